@@ -1,0 +1,45 @@
+# tirpol_add_module(<name> [PUBLIC deps...] [PRIVATE deps...])
+#
+# One call per module folder: builds tirpol_<name> (alias tirpol::<name>) from <name>/src/**.cpp with
+# public headers in <name>/include, and, when tests are on, tirpol_<name>_tests from
+# tests/<name>/*_test.cpp, registered with CTest under the label "unit" (tests/integration/ gets
+# the label "integration").
+
+set(TIRPOL_WARNINGS -Wall -Wextra -Wconversion -Wsign-conversion -Wshadow -Wnon-virtual-dtor -Wpedantic)
+
+function(tirpol_add_module name)
+  cmake_parse_arguments(ARG "" "" "PUBLIC;PRIVATE;TEST_DEPS" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  add_library(tirpol_${name} STATIC ${sources})
+  add_library(tirpol::${name} ALIAS tirpol_${name})
+  target_include_directories(tirpol_${name}
+    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(tirpol_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
+  target_compile_options(tirpol_${name} PRIVATE ${TIRPOL_WARNINGS})
+  set_target_properties(tirpol_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  tirpol_add_module_tests(${name} tirpol::${name} ${ARG_TEST_DEPS})
+endfunction()
+
+# Test executable for a module (also used by apps/ for CLI-level tests).
+function(tirpol_add_module_tests name)
+  if(NOT TIRPOL_BUILD_TESTS)
+    return()
+  endif()
+  set(dir ${PROJECT_SOURCE_DIR}/tests/${name})
+  file(GLOB test_sources CONFIGURE_DEPENDS ${dir}/*_test.cpp)
+  if(NOT test_sources)
+    return()
+  endif()
+  add_executable(tirpol_${name}_tests ${test_sources})
+  target_link_libraries(tirpol_${name}_tests PRIVATE ${ARGN} tirpol_test_support GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_options(tirpol_${name}_tests PRIVATE ${TIRPOL_WARNINGS} -Wno-sign-conversion)
+  set(label unit)
+  if(name STREQUAL "integration")
+    set(label integration)
+  endif()
+  gtest_discover_tests(tirpol_${name}_tests
+    WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
+    PROPERTIES LABELS "${label}" TIMEOUT 600
+    DISCOVERY_TIMEOUT 60)
+endfunction()
