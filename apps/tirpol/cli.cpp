@@ -1,11 +1,24 @@
 #include "cli.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
 
 namespace tirpol::cli {
+
+namespace {
+std::vector<std::pair<int, CommandRegistration>>& registry() {
+    static std::vector<std::pair<int, CommandRegistration>> r;
+    return r;
+}
+}  // namespace
+
+bool register_command(int order, CommandRegistration registration) {
+    registry().emplace_back(order, std::move(registration));
+    return true;
+}
 
 int run(int argc, char** argv) {
     CLI::App app{"tirpol — thermal-infrared polarimetry with the instrument in the loop"};
@@ -14,9 +27,10 @@ int run(int argc, char** argv) {
     app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")->capture_default_str();
     app.parse_complete_callback([&] { set_log_level(log_level); });
 
-    register_info(app);
-    register_planck(app);
-    register_demo(app);
+    auto& commands = registry();
+    std::stable_sort(commands.begin(), commands.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [order, add] : commands) add(app);
 
     try {
         app.parse(argc, argv);

@@ -1,8 +1,10 @@
 #pragma once
-// The `tirpol` command line: one CLI11 app, one file per subcommand (each file defines a
-// register_* function that adds its subcommand and the callback that runs it).
+// The `tirpol` command line: one CLI11 app, one file per subcommand. Each subcommand file registers
+// itself with TIRPOL_REGISTER_COMMAND(order, function) where function(CLI::App&) adds the subcommand
+// and its callback; `order` sorts the --help listing (pipeline order). No central list to edit.
 
 #include <CLI/CLI.hpp>
+#include <functional>
 
 namespace tirpol::cli {
 
@@ -13,8 +15,14 @@ inline constexpr int kExitUsage = 2;
 
 int run(int argc, char** argv);
 
-void register_info(CLI::App& app);
-void register_planck(CLI::App& app);
-void register_demo(CLI::App& app);
+using CommandRegistration = std::function<void(CLI::App&)>;
+/// Adds a subcommand registration; returns true so it can initialise a static.
+bool register_command(int order, CommandRegistration registration);
 
 }  // namespace tirpol::cli
+
+#define TIRPOL_CONCAT_INNER(a, b) a##b
+#define TIRPOL_CONCAT(a, b) TIRPOL_CONCAT_INNER(a, b)
+#define TIRPOL_REGISTER_COMMAND(order, function) \
+    static const bool TIRPOL_CONCAT(tirpol_command_registered_, __LINE__) = \
+        ::tirpol::cli::register_command(order, function)

@@ -11,6 +11,7 @@
 
 namespace tirpol::cli {
 
+namespace {
 void register_demo(CLI::App& app) {
     auto out_dir = std::make_shared<std::string>("demo-output");
     auto* cmd = app.add_subcommand("demo", "Run the built-in end-to-end demonstration");
@@ -26,5 +27,9 @@ void register_demo(CLI::App& app) {
         std::printf("\nDemo finished. Results are in %s\n", dir.c_str());
     });
 }
+
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(1000, register_demo);
 
 }  // namespace tirpol::cli

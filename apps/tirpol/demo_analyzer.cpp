@@ -14,6 +14,7 @@
 
 namespace tirpol::cli {
 
+namespace {
 void demo_analyzer(const std::filesystem::path& out_dir) {
     constexpr int kW = 180, kH = 120;
     const Band band(8.0, 14.0);
@@ -68,5 +69,9 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
     std::printf("  400:1 wire grid, ideal reduction: worst DoLP error %.4f (of DoLP ≤ 0.3)\n", worst_dolp_error);
     std::printf("  images: %s/{stokes_truth,stokes_reduced_ideal_eqs}.exr and quicklooks *.png\n", dir.c_str());
 }
+
+}  // namespace
+
+TIRPOL_REGISTER_DEMO_STEP(150, "Polarimetry: a wire-grid analyzer at 0/45/90/135° and Stokes reduction (eqs 14–16)", demo_analyzer);
 
 }  // namespace tirpol::cli

@@ -10,6 +10,7 @@
 
 namespace tirpol::cli {
 
+namespace {
 void demo_radiometry(const std::filesystem::path& out_dir) {
     const Band band(8.0, 14.0);
     std::ostringstream csv;
@@ -28,5 +29,9 @@ void demo_radiometry(const std::filesystem::path& out_dir) {
     std::printf("  brightness-temperature round trip, 230–350 K: worst error %.2e K\n", worst_round_trip_k);
     std::printf("  table: %s\n", path.c_str());
 }
+
+}  // namespace
+
+TIRPOL_REGISTER_DEMO_STEP(100, "Radiometry: 8–14 µm band radiance, dL/dT and brightness-temperature round trip", demo_radiometry);
 
 }  // namespace tirpol::cli

@@ -1,12 +1,25 @@
 #include "demo_steps.h"
 
+#include <algorithm>
+
 namespace tirpol::cli {
 
+namespace {
+std::vector<DemoStep>& registry() {
+    static std::vector<DemoStep> steps;
+    return steps;
+}
+}  // namespace
+
+bool register_demo_step(DemoStep step) {
+    registry().push_back(std::move(step));
+    return true;
+}
+
 std::vector<DemoStep> demo_steps() {
-    return {
-        {"Radiometry: 8–14 µm band radiance, dL/dT and brightness-temperature round trip", demo_radiometry},
-        {"Polarimetry: a wire-grid analyzer at 0/45/90/135° and Stokes reduction (eqs 14–16)", demo_analyzer},
-    };
+    auto steps = registry();
+    std::stable_sort(steps.begin(), steps.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+    return steps;
 }
 
 }  // namespace tirpol::cli

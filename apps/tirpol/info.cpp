@@ -59,6 +59,7 @@ void run_info(const std::string& path, bool json) {
 }
 }  // namespace
 
+namespace {
 void register_info(CLI::App& app) {
     auto path = std::make_shared<std::string>();
     auto json = std::make_shared<bool>(false);
@@ -67,5 +68,9 @@ void register_info(CLI::App& app) {
     cmd->add_flag("--json", *json, "Print JSON");
     cmd->callback([path, json] { run_info(*path, *json); });
 }
+
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(10, register_info);
 
 }  // namespace tirpol::cli

@@ -50,6 +50,7 @@ void run_planck(const PlanckArgs& a) {
 }
 }  // namespace
 
+namespace {
 void register_planck(CLI::App& app) {
     auto args = std::make_shared<PlanckArgs>();
     auto* cmd = app.add_subcommand("planck", "Blackbody band radiance and dL/dT, or brightness temperature");
@@ -66,5 +67,9 @@ void register_planck(CLI::App& app) {
         run_planck(*args);
     });
 }
+
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(20, register_planck);
 
 }  // namespace tirpol::cli

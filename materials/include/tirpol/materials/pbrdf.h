@@ -1,0 +1,66 @@
+#pragma once
+/// \file pbrdf.h
+/// The polarized BRDF interface (paper §2.3). Every model lives in its own file under
+/// materials/src/pbrdf/ and implements this interface.
+///
+/// Surface-local coordinates: z is the surface normal, x and y are tangent; both `wi` (towards where
+/// the light comes from) and `wo` (towards the observer) point away from the surface, z > 0.
+/// Stokes frames (stokes_frame.h):
+///   - incident light travels along −wi; its Stokes vector is given in surface_frame(−wi, z),
+///     i.e. reference axis z × (−wi) normalised: the s direction (perpendicular to the plane of incidence);
+///   - reflected/emitted light travels along wo; its Stokes vector is in surface_frame(wo, z),
+///     reference axis z × wo: the s direction of the plane of reflection/emission.
+/// So S1 > 0 means s-polarized on both sides, and for specular geometry the Fresnel Mueller matrix
+/// has m01 = (Rs − Rp)/2 > 0. At normal incidence the s direction is a convention
+/// (frame_from_reference's fallback); rotationally symmetric models do not depend on it.
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tirpol/core/geometry.h"
+#include "tirpol/core/mueller.h"
+
+namespace tirpol::materials {
+
+/// One importance sample of the incident direction for a given exitant direction.
+struct BrdfSample {
+    Vec3 wi = Vec3::UnitZ();            ///< sampled incident direction (surface-local, z > 0)
+    double pdf = 0.0;                   ///< solid-angle density of wi; 0 means "no sample" (weight is then zero)
+    MuellerMatrix weight = MuellerMatrix::Zero();  ///< M(wi→wo)·cosθi / pdf (for a delta lobe: the reflectance matrix)
+    bool is_delta = false;              ///< true for a specular (Dirac) lobe
+};
+
+/// A named model parameter, as reported to users and fitted by tirpol::fitting.
+struct BrdfParameter {
+    std::string name;   ///< e.g. "sigma", "rho_d"
+    double value;
+    std::string unit;   ///< "" for dimensionless
+};
+
+class PolarizedBrdf {
+public:
+    virtual ~PolarizedBrdf() = default;
+
+    /// Model name as written in material files ("smooth_fresnel", "microfacet", "lambertian").
+    virtual std::string model() const = 0;
+
+    /// Mueller BRDF f(wi→wo) in 1/sr at `wavelength_um`, frames as in the file comment. Zero for a
+    /// pure delta model (its reflection comes only through `sample`). Never NaN/Inf.
+    virtual MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double wavelength_um) const = 0;
+
+    /// Importance-samples wi for the exitant `wo` from two uniform numbers in [0,1).
+    virtual BrdfSample sample(const Vec3& wo, double wavelength_um, double u1, double u2) const = 0;
+
+    /// Solid-angle pdf of `sample` drawing wi given wo (0 for delta lobes).
+    virtual double pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const = 0;
+
+    /// True if part of the reflection is a Dirac delta (smooth surface).
+    virtual bool has_delta() const { return false; }
+
+    /// The model's parameters at a wavelength.
+    virtual std::vector<BrdfParameter> parameters(double wavelength_um) const = 0;
+};
+
+}  // namespace tirpol::materials
