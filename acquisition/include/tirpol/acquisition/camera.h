@@ -1,0 +1,59 @@
+#pragma once
+/// \file camera.h
+/// The camera interface. Back ends: Aravis (GenICam: GigE Vision / USB3 Vision), V4L2 (UVC thermal
+/// cores), simulated (frame generator). Opened by URI: `aravis://<device-id>`, `v4l2:///dev/videoN`,
+/// `sim://<name>` (see open_camera in camera_registry.h).
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/acquisition/result.h"
+
+namespace tirpol::acquisition {
+
+/// One frame as delivered by a camera: raw counts converted to float (exact for ≤ 24-bit data).
+struct Frame {
+    int width = 0, height = 0;
+    std::vector<float> counts;            ///< row-major, origin top-left
+    std::uint64_t frame_id = 0;           ///< the device's id, unwrapped to a monotonic 64-bit count
+    std::int64_t device_timestamp_ns = 0; ///< the device's timestamp (0 if none)
+    std::int64_t host_timestamp_ns = 0;   ///< host CLOCK_REALTIME at reception
+    std::optional<double> fpa_temperature_k; ///< sensor/device temperature when the camera exposes one
+};
+
+struct CameraInfo {
+    std::string uri;           ///< how to open it again
+    std::string vendor, model, serial;
+    std::string pixel_format;  ///< "Mono16", "Mono14", "Y16", ...
+    int width = 0, height = 0;
+    int bits_per_pixel = 0;
+    std::optional<double> frame_rate_hz;
+    std::map<std::string, double> planck_constants; ///< FLIR-style R, B, F, O (R1, R2, ...) when present
+};
+
+struct StreamStatistics {
+    std::uint64_t delivered = 0;   ///< complete frames handed out
+    std::uint64_t dropped = 0;     ///< frames lost (gaps in frame ids)
+    std::uint64_t incomplete = 0;  ///< frames that arrived damaged and were discarded
+};
+
+class Camera {
+public:
+    virtual ~Camera() = default;
+    virtual CameraInfo info() const = 0;
+    virtual Status set_pixel_format(const std::string& format) = 0;
+    virtual Status set_frame_rate(double hz) = 0;
+    virtual Status start() = 0;
+    virtual Status stop() = 0;
+    /// Next complete frame, waiting at most `timeout`.
+    virtual Result<Frame> grab(std::chrono::milliseconds timeout) = 0;
+    virtual StreamStatistics statistics() const = 0;
+    /// Device temperature now, if the camera exposes one.
+    virtual std::optional<double> device_temperature_k() { return std::nullopt; }
+};
+
+}  // namespace tirpol::acquisition
