@@ -24,14 +24,21 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
     StokesVector sum = StokesVector::Zero();
     for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
         if (!(breaks[piece + 1] > breaks[piece])) continue;
-        const detail::QuadratureRule radial =
-            detail::composite(base, std::max(1, options.radial_panels), breaks[piece], breaks[piece + 1]);
-        for (std::size_t i = 0; i < radial.nodes.size(); ++i)
+        // u = a + (b − a)(1 − (1 − v)²): nodes crowd towards the end of each piece, where the
+        // cosine-weighted lobe reaches the horizon (there a volume term ∝ 1/cosθi at grazing view
+        // becomes the smooth integrand 2(1 − v)/(1 − v)) and the specular lobe has its slope tail.
+        const double a = breaks[piece], width = breaks[piece + 1] - breaks[piece];
+        const detail::QuadratureRule radial = detail::composite(base, std::max(1, options.radial_panels), 0.0, 1.0);
+        for (std::size_t i = 0; i < radial.nodes.size(); ++i) {
+            const double one_minus_v = 1.0 - radial.nodes[i];
+            const double u1 = a + width * (1.0 - one_minus_v * one_minus_v);
+            const double w1 = radial.weights[i] * width * 2.0 * one_minus_v;
             for (std::size_t j = 0; j < azimuth.nodes.size(); ++j) {
-                const BrdfSample s = brdf.sample(wo, wavelength_um, radial.nodes[i], azimuth.nodes[j]);
+                const BrdfSample s = brdf.sample(wo, wavelength_um, u1, azimuth.nodes[j]);
                 if (!(s.pdf > 0.0)) continue;
-                sum += (radial.weights[i] * azimuth.weights[j]) * s.weight.col(0);
+                sum += (w1 * azimuth.weights[j]) * s.weight.col(0);
             }
+        }
     }
     return sum;
 }

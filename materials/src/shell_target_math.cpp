@@ -34,14 +34,17 @@ MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
     g.cot_o = cotangent(wo.z());
 
     // Incident beam (travelling along −wi): macro s/p frame → facet s/p frame; exitant beam: back.
+    // cos α and sin α as in core's frame_rotation_angle (atan2 arguments of unit vectors), so
+    // cos 2α = c² − s², sin 2α = 2cs without trigonometry.
     const Vec3 n = Vec3::UnitZ();
-    const MuellerMatrix rot_in =
-        frame_rotation(frame_rotation_angle(surface_frame(-wi, n), surface_frame(-wi, h)));
-    const MuellerMatrix rot_out = frame_rotation(frame_rotation_angle(surface_frame(wo, h), surface_frame(wo, n)));
-    g.c2i = rot_in(1, 1);
-    g.s2i = rot_in(1, 2);
-    g.c2o = rot_out(1, 1);
-    g.s2o = rot_out(1, 2);
+    const auto double_angle = [](const StokesFrame& from, const StokesFrame& to, double& c2, double& s2) {
+        const double c = to.reference.dot(from.reference), s = to.reference.dot(from.second_axis());
+        const double norm2 = c * c + s * s;
+        c2 = (c * c - s * s) / norm2;
+        s2 = 2.0 * c * s / norm2;
+    };
+    double_angle(surface_frame(-wi, n), surface_frame(-wi, h), g.c2i, g.s2i);
+    double_angle(surface_frame(wo, h), surface_frame(wo, n), g.c2o, g.s2o);
     return g;
 }
 

@@ -36,8 +36,8 @@ MuellerMatrix MicrofacetBrdf::eval(const Vec3& wi, const Vec3& wo, double wavele
     return to_eigen(shell_target_mueller(at(wavelength_um), microfacet_geometry(wi, wo)));
 }
 
-double MicrofacetBrdf::specular_sampling_probability(double wavelength_um) const {
-    const ShellTargetParameters<double> p = at(wavelength_um);
+namespace {
+double specular_probability(const ShellTargetParameters<double>& p) {
     const double specular = std::min(1.0, p.bias * fresnel({p.n, p.k}, 1.0).R());
     // Hemispherical albedo of the diffuse term (π ρ_D) and of the volume term at normal incidence
     // (4π ρ_V (1 − ln 2)).
@@ -48,13 +48,38 @@ double MicrofacetBrdf::specular_sampling_probability(double wavelength_um) const
     return std::clamp(specular / (specular + diffuse), 0.05, 0.95);
 }
 
+double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi, const Vec3& wo) {
+    if (!(wi.z() > 0.0) || !(wo.z() > 0.0)) return 0.0;
+    double pdf = 0.0;
+    if (p_spec > 0.0) {
+        const Vec3 h = (wi + wo).normalized();
+        const double ho = h.dot(wo);
+        if (ho > 0.0) {
+            const double cos_h = std::max(h.z(), kMinCosine);
+            const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
+            const double d = gaussian_facet_density(p.sigma, cos_h, tan2);
+            // Density of h is D·cosθh; the reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo)
+            // (Torrance & Sparrow 1967; Walter et al., EGSR 2007, eq 14).
+            pdf += p_spec * d * cos_h / (4.0 * ho);
+        }
+    }
+    if (p_spec < 1.0) pdf += (1.0 - p_spec) * detail::cosine_hemisphere_pdf(wi);
+    return pdf;
+}
+}  // namespace
+
+double MicrofacetBrdf::specular_sampling_probability(double wavelength_um) const {
+    return specular_probability(at(wavelength_um));
+}
+
 BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
-    const double p_spec = specular_sampling_probability(wavelength_um);
+    const ShellTargetParameters<double> p = at(wavelength_um);
+    const double p_spec = specular_probability(p);
     if (u1 < p_spec) {
         const double u = u1 / p_spec;
-        const double sigma = m_parameters.sigma.at(wavelength_um);
+        const double sigma = p.sigma;
         const double tan2 = -2.0 * sigma * sigma * std::log1p(-std::min(u, 1.0 - 1e-16));
         const double cos_h = 1.0 / std::sqrt(1.0 + tan2);
         const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
@@ -69,33 +94,18 @@ BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u
         const double u = (u1 - p_spec) / (1.0 - p_spec);
         s.wi = detail::sample_cosine_hemisphere(u, u2);
     }
-    s.pdf = pdf(s.wi, wo, wavelength_um);
+    s.pdf = mixture_pdf(p, p_spec, s.wi, wo);
     if (!(s.pdf > 0.0) || !std::isfinite(s.pdf)) {
         s.pdf = 0.0;
         return s;
     }
-    s.weight = eval(s.wi, wo, wavelength_um) * (s.wi.z() / s.pdf);
+    s.weight = to_eigen(shell_target_mueller(p, microfacet_geometry(s.wi, wo))) * (s.wi.z() / s.pdf);
     return s;
 }
 
 double MicrofacetBrdf::pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const {
-    if (!(wi.z() > 0.0) || !(wo.z() > 0.0)) return 0.0;
-    const double p_spec = specular_sampling_probability(wavelength_um);
-    double pdf = 0.0;
-    if (p_spec > 0.0) {
-        const Vec3 h = (wi + wo).normalized();
-        const double ho = h.dot(wo);
-        if (ho > 0.0) {
-            const double cos_h = std::max(h.z(), kMinCosine);
-            const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
-            const double d = gaussian_facet_density(m_parameters.sigma.at(wavelength_um), cos_h, tan2);
-            // Density of h is D·cosθh; the reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo)
-            // (Torrance & Sparrow 1967; Walter et al., EGSR 2007, eq 14).
-            pdf += p_spec * d * cos_h / (4.0 * ho);
-        }
-    }
-    if (p_spec < 1.0) pdf += (1.0 - p_spec) * detail::cosine_hemisphere_pdf(wi);
-    return pdf;
+    const ShellTargetParameters<double> p = at(wavelength_um);
+    return mixture_pdf(p, specular_probability(p), wi, wo);
 }
 
 std::vector<double> MicrofacetBrdf::sample_u1_breaks(const Vec3& /*wo*/, double wavelength_um) const {
