@@ -41,27 +41,30 @@ struct PixelResult {
 class PathTracer {
 public:
     PathTracer(const Scene& scene) : m_scene(scene) {
-        // Nodes sorted by wavelength (the emissivity tables want increasing wavelengths).
-        std::vector<BandNode> nodes = scene.band.nodes();
-        std::sort(nodes.begin(), nodes.end(), [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
-        std::vector<double> wavelengths;
+        const std::vector<BandNode>& nodes = scene.band.nodes();
         double total = 0.0;
         for (const auto& node : nodes) {
-            wavelengths.push_back(node.wavelength_um);
+            m_wavelengths.push_back(node.wavelength_um);
             total += node.weight_um;
             m_cdf.push_back(total);
         }
         if (!(total > 0.0)) fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
         for (auto& c : m_cdf) c /= total;
         m_band_weight_um = total;
-        m_wavelengths = wavelengths;
         for (const auto& m : scene.materials) {
             const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
             if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
                 fail("material '{}' ({}) is defined over {}–{} µm, which does not cover the band {}–{} µm", m.name, m.source, lo,
                      hi, scene.band.lo_um(), scene.band.hi_um());
-            m_emissivity.push_back(std::make_unique<materials::EmissivityTable>(*m.brdf, wavelengths));
         }
+        // Tabulated on a 0.25 µm grid and interpolated linearly to the nodes: a table at every
+        // quadrature node would cost ~8× more to build for tabulated indices, for a change in ε far
+        // below the Monte-Carlo noise. Materials are independent: build their tables in parallel.
+        m_emissivity.resize(scene.materials.size());
+        const auto wavelengths = materials::EmissivityTable::wavelengths_for_band(scene.band);
+        tbb::parallel_for(std::size_t{0}, scene.materials.size(), [&](std::size_t i) {
+            m_emissivity[i] = std::make_unique<materials::EmissivityTable>(*scene.materials[i].brdf, wavelengths);
+        });
     }
 
     /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`.
@@ -103,7 +106,7 @@ public:
 
             // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's world frame.
             const MuellerMatrix leaving = throughput * rotation_between(surface_frame(wo, n), world_frame(wo));
-            const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
+            const StokesVector emissivity = m_emissivity[object.material]->at_wavelength(std::clamp(wo_local.z(), 0.0, 1.0), lambda);
             radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
             if (bounce >= max_bounces) break;
 
@@ -162,7 +165,10 @@ struct Channels {
 
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
-    const PathTracer tracer(scene);
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    std::unique_ptr<const PathTracer> tracer_ptr;
+    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene); });
+    const PathTracer& tracer = *tracer_ptr;
     const Camera& camera = scene.camera;
     const int w = camera.width(), h = camera.height();
     const int spp = scene.sampling.samples_per_pixel;
@@ -236,7 +242,6 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         if (progress) progress->advance();
     };
 
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
