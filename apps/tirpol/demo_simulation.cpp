@@ -38,7 +38,7 @@ Image render_small(const std::string& name, int width, int height, int spp, cons
     const std::string stem = std::filesystem::path(name).stem().string();
     simulation::write_render_outputs(out_dir / "simulation", stem, image);
     std::printf("  %-26s %d×%d, %d spp: %.2f s, %.2f Mrays/s → %s\n", name.c_str(), width, height, spp, stats.seconds,
-                1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) / std::max(stats.seconds, 1e-9),
+                1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) / std::max(stats.seconds - stats.setup_seconds, 1e-9),
                 (out_dir / "simulation" / (stem + ".exr")).c_str());
     return image;
 }

@@ -169,6 +169,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     std::unique_ptr<const PathTracer> tracer_ptr;
     arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene); });
     const PathTracer& tracer = *tracer_ptr;
+    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
     const int w = camera.width(), h = camera.height();
     const int spp = scene.sampling.samples_per_pixel;
@@ -262,6 +263,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
 
     if (statistics) {
         statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        statistics->setup_seconds = setup_seconds;
         statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);
         statistics->scene_rays = scene_rays.load();
         statistics->shadow_rays = shadow_rays.load();
