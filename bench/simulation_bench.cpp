@@ -72,7 +72,8 @@ double s1_noise_on(const Scene& scene, const Image& img, const std::string& name
 /// Casts the camera rays of every pixel and sample (no shading) through the same BVH.
 double embree_rays_per_second(const Scene& scene, int spp) {
     const auto start = std::chrono::steady_clock::now();
-    std::size_t hits = 0, rays = 0;
+    int hits = 0;
+    std::size_t rays = 0;
     for (int y = 0; y < scene.camera.height(); ++y)
         for (int x = 0; x < scene.camera.width(); ++x)
             for (int s = 0; s < spp; ++s) {

@@ -67,10 +67,11 @@ public:
         });
     }
 
-    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`.
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, SampleStream& rng,
-                       std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
-        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), rng.next()) - m_cdf.begin());
+    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
+    /// `wavelength_u` in [0, 1) picks the wavelength node by inverting the weights' CDF.
+    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, double wavelength_u,
+                       SampleStream& rng, std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
+        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), wavelength_u) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky& sky = m_scene.sky;
@@ -197,9 +198,12 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                 for (int s = 0; s < spp; ++s) {
                     SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
                     const double u = x + rng.next(), v = y + rng.next();
+                    // Wavelengths stratified over the pixel's samples: the spectral part of the noise
+                    // falls as 1/spp instead of 1/√spp.
+                    const double wavelength_u = (s + rng.next()) / spp;
                     const Vec3 d = camera.ray_direction(u, v);
                     const StokesVector sample =
-                        tracer.trace(camera.position(), d, camera.image_frame(d), rng, rays, shadows);
+                        tracer.trace(camera.position(), d, camera.image_frame(d), wavelength_u, rng, rays, shadows);
                     const StokesVector delta = sample - mean;
                     mean += delta / (s + 1);
                     m2 += delta.head<3>().cwiseProduct((sample - mean).head<3>());

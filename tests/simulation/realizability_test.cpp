@@ -55,7 +55,6 @@ TEST(Realizability, SmoothSphereDoLPIsSmoothUpToTheLimb) {
         if (!std::isfinite(vz) || vz > 89.5) continue;
         ++on_sphere;
         if (vz > 75.0) ++grazing;
-        const double c = std::cos(deg_to_rad(vz));
         // Band DoLP of the emission: |∫R L_bb ε₁ dλ| / ∫R L_bb ε₀ dλ.
         const StokesVector e = table.band_average(std::cos(deg_to_rad(vz)), scene.band, 300.0);
         const double expected = std::abs(e[1]) / e[0];
