@@ -21,7 +21,10 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
     }
     const int order = std::clamp(options.order, 1, 10);
     const detail::QuadratureRule base = detail::gauss_legendre(order);
-    const detail::QuadratureRule azimuth = detail::composite(base, std::max(1, options.azimuth_panels), 0.0, 1.0);
+    // Mirror symmetry (is_isotropic): integrate u2 ∈ [0, ½] with the same node density and double.
+    const bool mirror = brdf.is_isotropic();
+    const int azimuth_panels = std::max(1, mirror ? (options.azimuth_panels + 1) / 2 : options.azimuth_panels);
+    const detail::QuadratureRule azimuth = detail::composite(base, azimuth_panels, 0.0, mirror ? 0.5 : 1.0);
 
     std::vector<double> breaks = brdf.sample_u1_breaks(wo, wavelength_um);
     breaks.insert(breaks.begin(), 0.0);
@@ -45,6 +48,10 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
                 sum += (w1 * azimuth.weights[j]) * s.weight.col(0);
             }
         }
+    }
+    if (mirror) {
+        sum *= 2.0;
+        sum(2) = sum(3) = 0.0;
     }
     return sum;
 }

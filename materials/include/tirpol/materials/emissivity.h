@@ -10,7 +10,7 @@
 /// PolarizedBrdf::sample, whose weight is M·cosθi/pdf, so ∫ M e0 cosθi dωi = ∫∫ weight·e0 du1 du2.
 /// Composite Gauss–Legendre rules in u1 (split at sample_u1_breaks, so every piece maps smoothly) and
 /// u2 follow the lobe however narrow it is, and delta lobes are exact (their weight is the reflectance
-/// matrix). Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
+/// matrix). Isotropic models (PolarizedBrdf::is_isotropic) are integrated over half the azimuths. Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
 /// 2-D integration over the hemisphere for rough surfaces, and exact (1e-12) for smooth ones.
 
 #include <cstddef>
