@@ -17,6 +17,8 @@
 #include <cmath>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
+#include <algorithm>
 #include <vector>
 
 #include "camera/pixel_decode.h"
@@ -356,6 +358,30 @@ private:
 }  // namespace
 
 std::shared_ptr<V4l2Io> system_v4l2_io() { return std::make_shared<SystemV4l2Io>(); }
+
+std::vector<V4l2DeviceInfo> discover_v4l2_cameras(const std::shared_ptr<V4l2Io>& io) {
+    std::vector<V4l2DeviceInfo> found;
+    std::error_code ec;
+    std::vector<std::string> paths;
+    for (const auto& entry : std::filesystem::directory_iterator("/dev", ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("video", 0) == 0) paths.push_back(entry.path().string());
+    }
+    std::sort(paths.begin(), paths.end());
+    for (const auto& path : paths) {
+        const int fd = io->open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
+        if (fd < 0) continue;
+        v4l2_capability cap{};
+        if (io->ioctl(fd, VIDIOC_QUERYCAP, &cap) == 0) {
+            const std::uint32_t caps = (cap.capabilities & V4L2_CAP_DEVICE_CAPS) != 0 ? cap.device_caps : cap.capabilities;
+            if ((caps & V4L2_CAP_VIDEO_CAPTURE) != 0 && (caps & V4L2_CAP_STREAMING) != 0)
+                found.push_back({path, reinterpret_cast<const char*>(cap.driver), reinterpret_cast<const char*>(cap.card),
+                                 reinterpret_cast<const char*>(cap.bus_info)});
+        }
+        io->close(fd);
+    }
+    return found;
+}
 
 Result<std::unique_ptr<Camera>> open_v4l2_camera(const std::string& device_path, const V4l2CameraOptions& options,
                                                  std::shared_ptr<V4l2Io> io) {

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tirpol/acquisition/camera.h"
 
@@ -41,6 +42,15 @@ struct V4l2CameraOptions {
     std::optional<double> frame_rate_hz;      ///< via VIDIOC_S_PARM when the driver has V4L2_CAP_TIMEPERFRAME
     unsigned buffers = 4;                     ///< requested; the driver may grant fewer (at least 2 are needed)
 };
+
+/// A /dev/video* node that is a streaming video-capture device (UVC also creates metadata nodes: skipped).
+struct V4l2DeviceInfo {
+    std::string path;            ///< e.g. /dev/video0
+    std::string driver, card, bus_info;
+};
+
+/// Lists the capture devices among /dev/video* (VIDIOC_QUERYCAP on each).
+std::vector<V4l2DeviceInfo> discover_v4l2_cameras(const std::shared_ptr<V4l2Io>& io = system_v4l2_io());
 
 /// Opens `device_path` (e.g. /dev/video0) non-blocking, checks it can capture and stream, applies `options`.
 Result<std::unique_ptr<Camera>> open_v4l2_camera(const std::string& device_path, const V4l2CameraOptions& options = {},
