@@ -119,9 +119,11 @@ TEST_F(AravisFakeCamera, ConfiguresAndDeliversTheTestPatternWithConsecutiveIds) 
     }
     const StreamStatistics stats = camera->statistics();
     EXPECT_EQ(stats.delivered, 20u);
-    // Accounting identity: every id between the first and last frame is delivered, damaged or lost.
-    EXPECT_EQ(frames.back().frame_id - frames.front().frame_id + 1,
-              stats.delivered + stats.incomplete + stats.dropped);
+    // Accounting: every id between the first and last frame is delivered, damaged or lost (on an idle
+    // loopback all are delivered; damaged frames before the first good one only add to `incomplete`).
+    const std::uint64_t span = frames.back().frame_id - frames.front().frame_id + 1;
+    EXPECT_LE(stats.delivered + stats.dropped, span);
+    EXPECT_GE(stats.delivered + stats.incomplete + stats.dropped, span);
 }
 
 TEST_F(AravisFakeCamera, FrameIdWrapAt65535IsUnwrappedToMonotonicIds) {
@@ -146,7 +148,8 @@ TEST_F(AravisFakeCamera, FrameIdWrapAt65535IsUnwrappedToMonotonicIds) {
     EXPECT_LT(first, 65535u);
     EXPECT_TRUE(crossed);
     const StreamStatistics stats = camera->statistics();
-    EXPECT_EQ(previous - first + 1, stats.delivered + stats.incomplete + stats.dropped);
+    EXPECT_LE(stats.delivered + stats.dropped, previous - first + 1);
+    EXPECT_GE(stats.delivered + stats.incomplete + stats.dropped, previous - first + 1);
 }
 
 TEST_F(AravisFakeCamera, AveragingFramesGivesTheMeanOfThePattern) {
