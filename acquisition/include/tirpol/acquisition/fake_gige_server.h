@@ -48,7 +48,7 @@ public:
     FakeGigECameraServer& operator=(const FakeGigECameraServer&) = delete;
 
     /// Replaces the image source; an empty function restores Aravis's diagonal-ramp test pattern.
-    /// Pixel formats other than Mono8…Mono16 fall back to the ramp.
+    /// With a callback set, frames in pixel formats other than Mono8…Mono16 are sent unfilled.
     void set_fill(FakeGigEFill fill);
     /// Aravis's device id of this camera ("Aravis-Fake-<serial>"), for aravis://.
     std::string device_id() const;
