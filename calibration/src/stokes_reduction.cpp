@@ -12,6 +12,7 @@ namespace tirpol::calibration {
 
 namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+const double kAopStdCapDeg = 180.0 / std::sqrt(12.0);
 
 const AnalyzerImage& image_for(const std::vector<AnalyzerImage>& images, double angle_deg) {
     for (const auto& im : images)
@@ -105,10 +106,12 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
                 const Eigen::Vector3d g_dolp{-pl / (s[0] * s[0]), s[1] / (s[0] * pl), s[2] / (s[0] * pl)};
                 const Eigen::Vector3d g_aop{0.0, -0.5 * s[2] / (pl * pl), 0.5 * s[1] / (pl * pl)};
                 (*dolp_std)[i] = static_cast<float>(std::sqrt(g_dolp.dot(cov * g_dolp)));
-                (*aop_std)[i] = static_cast<float>(rad_to_deg(std::sqrt(g_aop.dot(cov * g_aop))));
+                // Where DoLP ≈ its noise the linearisation diverges; an AoP known to nothing is uniform on
+                // [0°, 180°), σ = 180°/√12, the cap.
+                (*aop_std)[i] = static_cast<float>(std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(g_aop.dot(cov * g_aop)))));
             } else {
                 (*dolp_std)[i] = kNaN;
-                (*aop_std)[i] = kNaN;
+                (*aop_std)[i] = static_cast<float>(kAopStdCapDeg);
             }
         }
     }

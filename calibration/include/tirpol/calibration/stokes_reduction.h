@@ -30,7 +30,8 @@ struct ReductionOptions {
 
 /// Reduces N ≥ 3 analyzer images to an Image with channels S0 S1 S2 DoLP AoP and, when every input
 /// has `signal_std`, S0_std S1_std S2_std DoLP_std AoP_std (first-order propagation of the
-/// independent per-angle σ through W⁺, and of the Stokes covariance to DoLP and AoP). With
+/// independent per-angle σ through W⁺, and of the Stokes covariance to DoLP and AoP; AoP_std is
+/// capped at 180°/√12 ≈ 52°, the σ of an AoP uniform on [0°, 180°), where DoLP ≈ noise). With
 /// `wire_grid`, inputs are first corrected: L_SLAR = (I − B)/τ. Throws tirpol::Error (before any
 /// output) for: an angle of the model with no image, sizes that differ, NaN/inf inputs.
 /// Attributes: units, units_DoLP, units_AoP, analyzer_angles_deg, drm (row-major 3×N),
