@@ -142,7 +142,11 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
         if (!(cal.gain[i] >= th.dead_gain_fraction * gain_stats.median)) bits |= kDead;
         if (cal.offset[i] > offset_stats.median + th.hot_sigma * offset_sigma) bits |= kHot;
         if (have_std && temporal_noise[i] > th.noisy_factor * noise_stats.median) bits |= kNoisy;
-        if (dof > 0.0 && cal.residual_rms[i] > residual_stats.median + th.nonlinear_sigma * residual_sigma)
+        // A large residual that the pixel's own temporal noise explains (fit quality ≲ 3) is a
+        // noisy pixel, not a non-linear one.
+        const bool explained_by_noise = std::isfinite(cal.fit_quality[i]) && cal.fit_quality[i] < 3.0f;
+        if (dof > 0.0 && !explained_by_noise &&
+            cal.residual_rms[i] > residual_stats.median + th.nonlinear_sigma * residual_sigma)
             bits |= kNonLinear;
         cal.bad[i] = static_cast<float>(bits);
     }

@@ -39,6 +39,7 @@ TEST_F(SessionCalibration, RadiometricFindsPlantedBadPixelsAndSaturationLevel) {
     EXPECT_TRUE(bits(cam.hot_x, cam.hot_y) & kHot);
     EXPECT_TRUE(bits(cam.noisy_x, cam.noisy_y) & kNoisy);
     EXPECT_EQ(cal.bad_count(), 3u);
+    EXPECT_EQ(cal.bad_count(kNonLinear), 0u);
     EXPECT_THAT(cal.camera_id, testing::HasSubstr("sim://synthetic"));
     // The lab session says the polarizer was out of the beam; the field one says it was in.
     EXPECT_THROW(calibrate_radiometric_session(root() / "polcal", Band(8.0, 14.0)), Error);

@@ -14,7 +14,8 @@ enum BadPixel : std::uint32_t {
     kDead = 1u << 0,       ///< responsivity (gain) below `dead_gain_fraction` × median gain
     kHot = 1u << 1,        ///< offset more than `hot_sigma` robust σ above the median offset
     kNoisy = 1u << 2,      ///< temporal noise above `noisy_factor` × median temporal noise
-    kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median
+    kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median and
+                           ///< not explained by the pixel's temporal noise (fit quality ≥ 3)
     kSaturated = 1u << 4,  ///< at or above the saturation level in a calibration frame
 };
 
