@@ -66,49 +66,80 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
         aop_std = &out.add_channel("AoP_std");
     }
 
-    std::vector<double> scale(n_angles), bias(n_angles);
-    Eigen::VectorXd l(static_cast<Eigen::Index>(n_angles)), var(static_cast<Eigen::Index>(n_angles));
+    // Hot loop on plain arrays (no per-pixel Eigen temporaries of dynamic size): per angle k, the
+    // DRM column (w0k, w1k, w2k) and the signal, σ, τ and B planes.
+    std::vector<double> w(3 * n_angles), tau_const(n_angles), b_const(n_angles);
+    for (std::size_t k = 0; k < n_angles; ++k) {
+        for (std::size_t r = 0; r < 3; ++r)
+            w[3 * k + r] = drm(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
+        tau_const[k] = model.positions[k].relative_transmission;
+        b_const[k] = model.positions[k].background;
+    }
+    std::vector<const float*> sig_p(n_angles), std_p(n_angles, nullptr), tau_p(n_angles, nullptr), b_p(n_angles, nullptr);
+    for (std::size_t k = 0; k < n_angles; ++k) {
+        sig_p[k] = inputs[k]->signal.data();
+        if (have_std) std_p[k] = inputs[k]->signal_std.data();
+        if (wire_grid) {
+            tau_p[k] = grid[k]->tau.data();
+            b_p[k] = grid[k]->background.data();
+        }
+    }
     int unrealizable = 0;
     for (std::size_t i = 0; i < n; ++i) {
+        double s[3] = {0.0, 0.0, 0.0};
+        double c00 = 0.0, c11 = 0.0, c22 = 0.0, c01 = 0.0, c02 = 0.0, c12 = 0.0;
         for (std::size_t k = 0; k < n_angles; ++k) {
             // L_SLAR = (I − B)/τ with the per-pixel wire-grid maps, else the analyzer's (t_k, b_k).
-            const double tau = wire_grid ? grid[k]->tau[i] : model.positions[k].relative_transmission;
-            const double b = wire_grid ? grid[k]->background[i] : model.positions[k].background;
-            const auto ki = static_cast<Eigen::Index>(k);
-            l[ki] = (inputs[k]->signal[i] - b) / tau;
-            if (have_std) var[ki] = std::pow(inputs[k]->signal_std[i] / tau, 2);
+            const double tau = wire_grid ? tau_p[k][i] : tau_const[k];
+            const double b = wire_grid ? b_p[k][i] : b_const[k];
+            const double l = (sig_p[k][i] - b) / tau;
+            const double* wk = &w[3 * k];
+            s[0] += wk[0] * l;
+            s[1] += wk[1] * l;
+            s[2] += wk[2] * l;
+            if (have_std) {
+                // Independent per-angle errors: Cov(S) = W⁺·diag(σ²)·W⁺ᵀ (Tyo et al. 2006, §4.3).
+                const double sig = std_p[k][i] / tau;
+                const double var = sig * sig;
+                c00 += wk[0] * wk[0] * var;
+                c11 += wk[1] * wk[1] * var;
+                c22 += wk[2] * wk[2] * var;
+                c01 += wk[0] * wk[1] * var;
+                c02 += wk[0] * wk[2] * var;
+                c12 += wk[1] * wk[2] * var;
+            }
         }
-        Eigen::Vector3d s = drm * l;
-        const double p_lin = std::hypot(s[1], s[2]);
-        if (p_lin > s[0] && s[0] >= 0.0) {
+        double pl = std::sqrt(s[1] * s[1] + s[2] * s[2]);
+        if (pl > s[0] && s[0] >= 0.0) {
             ++unrealizable;
-            if (options.project_to_realizable && p_lin > 0.0) {
-                s[1] *= s[0] / p_lin;
-                s[2] *= s[0] / p_lin;
+            if (options.project_to_realizable && pl > 0.0) {
+                s[1] *= s[0] / pl;
+                s[2] *= s[0] / pl;
+                pl = s[0];
             }
         }
         s0[i] = static_cast<float>(s[0]);
         s1[i] = static_cast<float>(s[1]);
         s2[i] = static_cast<float>(s[2]);
-        const double pl = std::hypot(s[1], s[2]);
         dolp[i] = s[0] > 0.0 ? static_cast<float>(pl / s[0]) : kNaN;
         double psi = rad_to_deg(0.5 * std::atan2(s[2], s[1]));
         if (psi < 0.0) psi += 180.0;
         aop[i] = static_cast<float>(psi);
         if (have_std) {
-            // Independent per-angle errors: Cov(S) = W⁺·diag(σ²)·W⁺ᵀ (Tyo et al. 2006, §4.3).
-            const Eigen::Matrix3d cov = drm * var.asDiagonal() * drm.transpose();
-            (*s0_std)[i] = static_cast<float>(std::sqrt(cov(0, 0)));
-            (*s1_std)[i] = static_cast<float>(std::sqrt(cov(1, 1)));
-            (*s2_std)[i] = static_cast<float>(std::sqrt(cov(2, 2)));
-            // First-order propagation to DoLP = |(S1,S2)|/S0 and AoP = ½·atan2(S2, S1).
+            (*s0_std)[i] = static_cast<float>(std::sqrt(c00));
+            (*s1_std)[i] = static_cast<float>(std::sqrt(c11));
+            (*s2_std)[i] = static_cast<float>(std::sqrt(c22));
+            // First-order propagation to DoLP = |(S1,S2)|/S0 and AoP = ½·atan2(S2, S1): σ² = gᵀ·Cov·g.
             if (s[0] > 0.0 && pl > 0.0) {
-                const Eigen::Vector3d g_dolp{-pl / (s[0] * s[0]), s[1] / (s[0] * pl), s[2] / (s[0] * pl)};
-                const Eigen::Vector3d g_aop{0.0, -0.5 * s[2] / (pl * pl), 0.5 * s[1] / (pl * pl)};
-                (*dolp_std)[i] = static_cast<float>(std::sqrt(g_dolp.dot(cov * g_dolp)));
+                const double g0 = -pl / (s[0] * s[0]), g1 = s[1] / (s[0] * pl), g2 = s[2] / (s[0] * pl);
+                const double var_dolp = g0 * g0 * c00 + g1 * g1 * c11 + g2 * g2 * c22 +
+                                        2.0 * (g0 * g1 * c01 + g0 * g2 * c02 + g1 * g2 * c12);
+                const double a1 = -0.5 * s[2] / (pl * pl), a2 = 0.5 * s[1] / (pl * pl);
+                const double var_aop = a1 * a1 * c11 + a2 * a2 * c22 + 2.0 * a1 * a2 * c12;
+                (*dolp_std)[i] = static_cast<float>(std::sqrt(std::max(0.0, var_dolp)));
                 // Where DoLP ≈ its noise the linearisation diverges; an AoP known to nothing is uniform on
                 // [0°, 180°), σ = 180°/√12, the cap.
-                (*aop_std)[i] = static_cast<float>(std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(g_aop.dot(cov * g_aop)))));
+                (*aop_std)[i] = static_cast<float>(std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(std::max(0.0, var_aop)))));
             } else {
                 (*dolp_std)[i] = kNaN;
                 (*aop_std)[i] = static_cast<float>(kAopStdCapDeg);
