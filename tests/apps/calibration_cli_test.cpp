@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
@@ -119,6 +120,53 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
     r = run("extract-emissivity " + stokes + " " + (dir / "rois.yaml").string() + " -o " + (dir / "e.csv").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("does not exceed the downwelled"), std::string::npos) << r.out;
+}
+
+TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
+    // Thermimage's SC660 constants; raw 18109 under blackbody conditions is 296.7743 K (flir_test.cpp).
+    test::TempDir dir;
+    Image raw(4, 3);
+    raw.add_channel("counts", 18109.0f);
+    write_exr(dir / "raw.exr", raw);
+    const CliRun r = run("flir-temperature " + (dir / "raw.exr").string() +
+                         " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NEAR(read_exr(dir / "t.exr").at("temperature_k", 2, 1), 296.7743, 1e-3);
+    const CliRun bad = run("flir-temperature " + (dir / "raw.exr").string() +
+                           " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " +
+                           (dir / "u.exr").string());
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.out.find("window transmission"), std::string::npos) << bad.out;
+}
+
+TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
+    // 32 frames of a 300 K blackbody, temporal σ = 8 counts (uniform ±√3σ from a fixed LCG), gain
+    // 100 counts per W/(m²·sr): NEDT = 8/(100·dL/dT(300 K)).
+    test::TempDir dir;
+    const Band band(8.0, 14.0);
+    write_lab(dir / "lab", {283.15, 323.15});
+    ASSERT_EQ(run("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
+    std::uint64_t state = 12345;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
+    };
+    std::filesystem::create_directories(dir / "stack");
+    for (int t = 0; t < 32; ++t) {
+        Image f(kW, kH);
+        auto& c = f.add_channel("counts");
+        for (auto& v : c) v = static_cast<float>(kOffset + kGain * band.radiance(300.0) + 8.0 * std::sqrt(12.0) * uniform());
+        write_exr(dir / "stack" / fmt::format("f{}.exr", 100 + t), f);
+    }
+    const CliRun r = run("noise " + (dir / "stack").string() + " -o " + (dir / "n.json").string() + " --calibration " +
+                         (dir / "c.exr").string() + " --temperature-k 300");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto j = nlohmann::json::parse(read_file(dir / "n.json"));
+    EXPECT_EQ(j["frames"].get<int>(), 32);
+    const double expected = 8.0 / (kGain * band.radiance_dT(300.0));
+    EXPECT_NEAR(j["nedt_median_k"].get<double>(), expected, 0.1 * expected);
+    EXPECT_NEAR(j["three_d_noise_counts"]["sigma_tvh"].get<double>(), 8.0, 0.8);
+    EXPECT_EQ(j["nedt_vs_frames_averaged"].size(), 4u);  // n = 1, 2, 4, 8
 }
 
 TEST(CalibrationCli, BadSessionsGiveExitOneAndNameTheProblem) {
