@@ -14,6 +14,7 @@ namespace {
 struct ReduceArgs {
     std::string session, calibration, polarimetric, output, quicklooks;
     bool update_offset = false;
+    bool slar = false;
     double max_saturated_fraction = 0.01;
 };
 
@@ -24,6 +25,7 @@ void run_reduce(const ReduceArgs& a) {
     calibration::SessionReductionOptions options;
     options.update_offset = a.update_offset;
     options.max_saturated_fraction = a.max_saturated_fraction;
+    options.include_slar = a.slar;
     Image stokes = calibration::reduce_session(a.session, cal, pol ? &*pol : nullptr, options);
     stokes.attributes()["radiometric_calibration"] = a.calibration;
     stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
@@ -55,6 +57,7 @@ void register_reduce(CLI::App& app) {
     cmd->add_flag("--update-offset", a->update_offset, "Update the offset from the session's shutter/blackbody record");
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction, "Error above this saturated fraction")
         ->capture_default_str();
+    cmd->add_flag("--slar", a->slar, "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");
     cmd->add_option("--quicklooks", a->quicklooks, "Also write S0/S1/S2/DoLP/AoP PNGs to this folder");
     cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
     cmd->callback([a] { run_reduce(*a); });

@@ -196,11 +196,18 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         fail("offset update together with a polarimetric calibration would remove the drift twice: the wire-grid "
              "background B(α), fitted the same night, already holds it; drop one of the two");
     if (options.update_offset) {
+        // The reference must see the camera without the polarizer: a shutter, or a blackbody when the
+        // polarizer was out of the beam.
+        const bool polarizer = polarizer_in_beam(dir, m).value_or(false);
         const SessionRecord* ref = nullptr;
         for (const auto& r : m.records)
-            if (is_temperature_reference(r)) ref = &r;
+            if (is_temperature_reference(r) && r.kind == RecordKind::Shutter) ref = &r;
+        if (!ref && !polarizer)
+            for (const auto& r : m.records)
+                if (is_temperature_reference(r)) ref = &r;
         if (!ref)
-            fail("{}: --update-offset needs a shutter or blackbody record with a temperature; the session has none",
+            fail("{}: --update-offset needs a shutter record with a temperature (or a blackbody record taken "
+                 "without the polarizer); the session has none",
                  manifest_path(dir));
         update_offset(radiometric, to_blackbody_frame(dir, m, *ref));
     }
@@ -255,8 +262,10 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         images.push_back(std::move(im));
     }
     const AnalyzerModel model = polarimetric ? polarimetric->analyzer : AnalyzerModel::ideal(angles);
+    ReductionOptions reduction;
+    reduction.include_slar = options.include_slar;
     Image out = reduce_stokes(images, radiometric.width, radiometric.height, model,
-                              polarimetric ? &polarimetric->wire_grid : nullptr);
+                              polarimetric ? &polarimetric->wire_grid : nullptr, reduction);
     int n_saturated = 0;
     for (std::size_t i = 0; i < saturated.size(); ++i)
         if (saturated[i]) {

@@ -1,6 +1,7 @@
 #include "tirpol/calibration/stokes_reduction.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -65,6 +66,13 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
         dolp_std = &out.add_channel("DoLP_std");
         aop_std = &out.add_channel("AoP_std");
     }
+    std::vector<float*> slar_p(n_angles, nullptr);
+    if (options.include_slar)
+        for (std::size_t k = 0; k < n_angles; ++k) {
+            std::string tag = fmt::format("{:g}", model.positions[k].nominal_angle_deg);
+            std::replace(tag.begin(), tag.end(), '.', 'p');
+            slar_p[k] = out.add_channel("L_SLAR_" + tag).data();
+        }
 
     // Hot loop on plain arrays (no per-pixel Eigen temporaries of dynamic size): per angle k, the
     // DRM column (w0k, w1k, w2k) and the signal, σ, τ and B planes.
@@ -93,6 +101,7 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
             const double tau = wire_grid ? tau_p[k][i] : tau_const[k];
             const double b = wire_grid ? b_p[k][i] : b_const[k];
             const double l = (sig_p[k][i] - b) / tau;
+            if (slar_p[k]) slar_p[k][i] = static_cast<float>(l);
             const double* wk = &w[3 * k];
             s[0] += wk[0] * l;
             s[1] += wk[1] * l;

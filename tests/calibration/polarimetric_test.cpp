@@ -239,6 +239,14 @@ TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmis
     }
     EXPECT_LT(worst, 0.01 * std::abs(scene[1]));  // 1 % of the polarized signal
     EXPECT_GT(worst_naive, 0.5 * std::abs(scene[1]));
+
+    // The wire-grid-corrected radiance per angle is the analyzer row applied to the scene.
+    ReductionOptions with_slar;
+    with_slar.include_slar = true;
+    const Image slar = reduce_stokes(images, kW, kH, model, &grid, with_slar);
+    const double expected = truth_model.positions[1].row().dot(scene.head<3>());
+    EXPECT_NEAR(slar.at("L_SLAR_45", 7, 21), expected, 1e-3 * expected);
+    EXPECT_FALSE(s.has_channel("L_SLAR_45"));
 }
 
 TEST(WireGrid, OneTemperaturePerAngleIsRejected) {

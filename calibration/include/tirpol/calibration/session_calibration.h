@@ -40,10 +40,13 @@ PolarimetricCalibration calibrate_polarimetric_session(const std::filesystem::pa
                                                        const RadiometricCalibration& radiometric);
 
 struct SessionReductionOptions {
-    /// Update the offset from the session's shutter (or temperature-tagged blackbody) record first.
+    /// Update the offset from the session's shutter record with a temperature first (or, when the
+    /// polarizer was out of the beam, a blackbody record).
     bool update_offset = false;
     /// Saturated scene pixels become NaN; more than this fraction of any image is an error.
     double max_saturated_fraction = 0.01;
+    /// Add the L_SLAR_<angle> channels (ReductionOptions::include_slar).
+    bool include_slar = false;
 };
 
 /// Reduces the session's scene records to Stokes (S0 S1 S2 DoLP AoP + *_std), radiance units.

@@ -25,6 +25,9 @@ struct ReductionOptions {
     /// Pixels whose Stokes vector is not realizable (√(S1²+S2²) > S0, noise) get (S1, S2) scaled
     /// onto the cone S0 = √(S1²+S2²); their count is reported. Off: leave them as measured.
     bool project_to_realizable = true;
+    /// Also output the wire-grid-corrected radiance per angle, L_SLAR(α) = (I − B)/τ, as channels
+    /// `L_SLAR_<angle>` (angle with 'p' for a decimal point, e.g. L_SLAR_22p5).
+    bool include_slar = false;
     std::string units = "W/(m^2 sr)";
 };
 
