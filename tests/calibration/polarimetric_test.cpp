@@ -162,6 +162,36 @@ TEST(StokesReduction, PropagatedUncertaintyMatchesMonteCarloSpreadAndOutputIsRea
     }
 }
 
+TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) {
+    // Noise comparable to the signal: many pixels come out with √(S1²+S2²) > S0 from eqs 14–16.
+    constexpr int kN = 1000;
+    std::mt19937 rng(8);
+    std::normal_distribution<double> noise(0.0, 0.5);
+    std::vector<AnalyzerImage> images;
+    for (double a : kAngles) {
+        AnalyzerImage im{a, {}, {}, "noisy"};
+        for (int i = 0; i < kN; ++i) im.signal.push_back(static_cast<float>(0.5 + noise(rng)));
+        images.push_back(im);
+    }
+    const auto model = AnalyzerModel::ideal(kAngles);
+    ReductionOptions raw;
+    raw.project_to_realizable = false;
+    const Image as_measured = reduce_stokes(images, kN, 1, model, nullptr, raw);
+    const Image projected = reduce_stokes(images, kN, 1, model);
+    const int count = std::get<int>(projected.attributes().at("unrealizable_pixels"));
+    EXPECT_GT(count, 50);
+    int unrealizable_left = 0, unrealizable_before = 0;
+    for (std::size_t i = 0; i < kN; ++i) {
+        const StokesVector p{projected.channel("S0")[i], projected.channel("S1")[i], projected.channel("S2")[i], 0.0};
+        const StokesVector m{as_measured.channel("S0")[i], as_measured.channel("S1")[i], as_measured.channel("S2")[i], 0.0};
+        if (p[0] >= 0.0 && !is_realizable(p, 1e-6)) ++unrealizable_left;
+        if (m[0] >= 0.0 && !is_realizable(m, 1e-6)) ++unrealizable_before;
+        EXPECT_DOUBLE_EQ(p[0], m[0]);  // S0 is kept, (S1, S2) scaled
+    }
+    EXPECT_EQ(unrealizable_left, 0);
+    EXPECT_EQ(unrealizable_before, count);
+}
+
 TEST(StokesReduction, BadInputsGiveClearErrorsAndNoOutput) {
     const auto model = AnalyzerModel::ideal(kAngles);
     auto make = [](double a, std::size_t n) { return AnalyzerImage{a, std::vector<float>(n, 1.0f), {}, fmt::format("frame {:g}", a)}; };
