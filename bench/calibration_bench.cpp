@@ -97,8 +97,20 @@ void BM_CountsToStokes(benchmark::State& state) {
     state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN * 8 * sizeof(float)));
 }
 
+// Counts → radiance of the 4 angle images alone.
+void BM_CountsToRadiance(benchmark::State& state) {
+    const Session& s = session();
+    for (auto _ : state)
+        for (const auto& im : s.counts) {
+            auto radiance = counts_to_radiance(s.radiometric, im.signal);
+            benchmark::DoNotOptimize(radiance.data());
+        }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+}
+
 BENCHMARK(BM_MemoryCopyOfInputs)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReduceStokesWithUncertainties)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CountsToRadiance)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CountsToStokes)->Unit(benchmark::kMillisecond);
 
 }  // namespace

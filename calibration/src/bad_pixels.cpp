@@ -29,6 +29,7 @@ RobustStats robust_stats(const std::vector<float>& values) {
 }
 
 void replace_bad_pixels(std::vector<float>& plane, const std::vector<float>& bad_mask, int width, int height) {
+    if (std::all_of(bad_mask.begin(), bad_mask.end(), [](float b) { return b == 0.0f; })) return;
     const std::vector<float> source = plane;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
