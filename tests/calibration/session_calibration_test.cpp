@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -102,6 +103,45 @@ TEST_F(SessionCalibration, WithoutWireGridRemovalTheSkyReflectionBiasesS1) {
     EXPECT_GT(std::abs(naive.channel("S1")[naive.index(30, 20)] - truth.channel("S1")[naive.index(30, 20)]), 0.3);
     const auto pol = calibrate_polarimetric_session(root() / "polcal", cal);
     EXPECT_THROW(reduce_session(root() / "scene", cal, &pol, opt), Error);  // drift would be removed twice
+}
+
+TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
+    const SyntheticCamera cam;
+    const Band band(8.0, 14.0);
+    const auto cal = calibrate_radiometric_session(root() / "lab", band);
+    const Image scene = synthetic_panel_scene(cam.width, cam.height, band);
+    auto write = [&](const std::filesystem::path& dir, int saturated) {
+        SessionManifest m;
+        m.created_utc = "2026-11-22T17:00:00Z";
+        m.camera = {"sim://synthetic", "tirpol", "synthetic-uncooled", "0001", "Mono14", cam.width, cam.height, 14, 30.0, {}};
+        m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
+        auto w = SessionWriter::create(dir, m);
+        for (double a : cam.angles_deg) {
+            Image f = synthetic_record_frame(cam, scene, a, true, true, 50u + static_cast<unsigned>(a));
+            if (a == 45.0)
+                for (int i = 0; i < saturated; ++i) f.channel("counts")[static_cast<std::size_t>(7 * i)] = 16383.0f;
+            SessionRecord r;
+            r.file = session_frame_file(fmt::format("p{:g}", a));
+            r.angle_deg_requested = r.angle_deg_measured = a;
+            r.frames = 16;
+            w.add_record(r, f);
+        }
+    };
+    test::TempDir tmp;
+    write(tmp / "few", 5);
+    const Image s = reduce_session(tmp / "few", cal, nullptr);
+    EXPECT_EQ(std::get<int>(s.attributes().at("saturated_pixels")), 5);
+    EXPECT_TRUE(std::isnan(s.channel("S1")[7]));
+    EXPECT_TRUE(std::isnan(s.channel("S0_std")[7]));
+    EXPECT_FALSE(std::isnan(s.channel("S1")[8]));
+    write(tmp / "many", 200);  // 6.5 % of the 64×48 pixels
+    try {
+        reduce_session(tmp / "many", cal, nullptr);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), testing::HasSubstr("saturated"));
+        EXPECT_THAT(e.what(), testing::HasSubstr("p45.exr"));
+    }
 }
 
 TEST_F(SessionCalibration, CorruptManifestAndMissingAngleGiveClearErrors) {
