@@ -117,7 +117,8 @@ TEST(MaterialFile, InlineDefinitionWithSpectralParameter) {
     const ConfigNode node = ConfigNode::parse(
         "material:\n  name: inline_paint\n  source: test\n  model: microfacet\n"
         "  refractive_index: {wavelength_um: [8, 12], n: [1.5, 1.7], k: [0.05, 0.1]}\n"
-        "  parameters:\n    sigma: {wavelength_um: [8, 12], value: [0.2, 0.4]}\n",
+        "  parameters:\n    sigma: {wavelength_um: [8, 12], value: [0.2, 0.4]}\n"
+        "  thermal: {conductivity_w_m_k: 0.2, density_kg_m3: 1200}\n",
         "scene.yaml");
     const Material m = material_from_config(node.at("material"));
     EXPECT_EQ(m.name, "inline_paint");
@@ -125,6 +126,8 @@ TEST(MaterialFile, InlineDefinitionWithSpectralParameter) {
     EXPECT_NEAR(params[0].value, 1.6, 1e-12);
     EXPECT_NEAR(params[2].value, 0.3, 1e-12);
     EXPECT_EQ(m.brdf->valid_wavelength_range_um(), std::make_pair(8.0, 12.0));
+    EXPECT_DOUBLE_EQ(m.thermal.at("conductivity_w_m_k"), 0.2);
+    EXPECT_DOUBLE_EQ(m.thermal.at("density_kg_m3"), 1200.0);
 }
 
 }  // namespace
