@@ -187,14 +187,17 @@ struct MicrofacetFitProblem::Impl {
         for (std::size_t i = 0; i < free.size(); ++i)
             for (std::size_t j = i; j < free.size(); ++j) pairs.emplace_back(&best[free[i]], &best[free[j]]);
 
+        // SPARSE_QR drops the constant (fixed) blocks' columns and fails on a rank-deficient Jacobian;
+        // DENSE_SVD would see the fixed blocks as zero columns, so it serves only as the fallback.
         ceres::Covariance::Options co;
-        co.algorithm_type = ceres::DENSE_SVD;
+        co.algorithm_type = ceres::SPARSE_QR;
         co.num_threads = 1;
         auto cov = std::make_unique<ceres::Covariance>(co);
         bool ok = cov->Compute(pairs, problem.get());
         if (!ok) {
             // Rank-deficient Jacobian: some combination of parameters does not change the residuals.
             // The Moore–Penrose pseudo-inverse still gives the uncertainty of the identifiable part.
+            co.algorithm_type = ceres::DENSE_SVD;
             co.null_space_rank = -1;
             cov = std::make_unique<ceres::Covariance>(co);
             ok = cov->Compute(pairs, problem.get());
@@ -323,7 +326,10 @@ GradientCheckReport MicrofacetFitProblem::check_gradients(const std::vector<doub
     if (values.size() != m->value_count())
         fail("check_gradients: expected {} parameter values, got {}", m->value_count(), values.size());
     GradientCheckReport report;
+    // GradientChecker differentiates numerically by Ridders' extrapolation; its default first step (1 % of
+    // the value) is too coarse for the Gaussian tails of D(θN) in σ and biases the estimate by ~1e-3.
     ceres::NumericDiffOptions nd;
+    nd.ridders_relative_initial_step_size = 1e-3;
     std::vector<double> work = values;
     for (std::size_t r = 0; r < m->costs.size(); ++r) {
         const auto blocks = m->blocks_for(work, m->dataset_band[m->sample_of[r].first]);
