@@ -26,17 +26,18 @@ constexpr double kWavelengthUm = 10.0;
 // Standard uncertainties of a good field measurement (the paper's Fig. 1 error bars are ≈ ±0.01 at 2σ).
 constexpr double kSigmaS0 = 0.004, kSigmaS1 = 0.002;
 
-// config/materials/ of the source tree: $TIRPOL_MATERIALS_DIR, ./config/materials, or next to the
-// executable's build tree (build/apps/tirpol/tirpol → ../../../config/materials).
+// config/materials/ of the source tree: $TIRPOL_MATERIALS_DIR, ./config/materials, or the first
+// config/materials found walking up from the executable (which lives in the build tree).
 std::filesystem::path materials_dir() {
     if (const char* env = std::getenv("TIRPOL_MATERIALS_DIR")) return env;
     std::vector<std::filesystem::path> candidates = {"config/materials"};
     std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) candidates.push_back(exe.parent_path() / "../../../config/materials");
+    auto dir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+    for (int up = 0; !ec && up < 5 && !dir.empty(); ++up, dir = dir.parent_path())
+        candidates.push_back(dir / "config/materials");
     for (const auto& c : candidates)
         if (std::filesystem::is_regular_file(c / "flat_black_paint.yaml")) return c;
-    fail("flat_black_paint.yaml not found in ./config/materials or next to the build tree; run from the "
+    fail("flat_black_paint.yaml not found in ./config/materials or above the executable; run from the "
          "repository root or set TIRPOL_MATERIALS_DIR");
 }
 
@@ -60,10 +61,14 @@ void demo_fitting(const std::filesystem::path& out_dir) {
     const auto csv = dir / "flat_black_paint_measured.csv";
     write_file_atomic(csv, fitting::emissivity_csv({measured}));
 
-    // Fit as `tirpol fit` would: n, k, σ, ρ_D free; 16 starts.
+    // Fit as `tirpol fit flat_black_paint_measured.csv --fix k=0.1` would: n, σ, ρ_D free, 16 starts. k is
+    // held at the library's value because for an index this close to real ε(θ) hardly depends on k
+    // (|r|² is even in k at k = 0): with k free it trades off with n and runs to its bound k = 0, which
+    // the fit reports as a degenerate parameter (docs/fitting.md).
     const auto datasets = fitting::load_emissivity_csv(csv);
     fitting::MicrofacetFitOptions options;
     options.starts = 16;
+    options.parameters[static_cast<std::size_t>(fitting::MicrofacetParameter::k)] = {truth.k, 0.0, 2.0, true};
     const fitting::MicrofacetFitProblem problem(datasets, options);
     const fitting::MicrofacetFitResult result = problem.solve();
 
@@ -75,6 +80,7 @@ void demo_fitting(const std::filesystem::path& out_dir) {
                       fitting::fit_report_json(result, problem.datasets(), provenance).dump(2));
     fitting::write_fit_plot(png, problem.datasets(), result, "flat black paint (simulated): polarized emissivity");
 
+    std::printf("  k held at %.2f (--fix k=%.2f): ε curves alone do not separate a small k from n\n", truth.k, truth.k);
     std::printf("  simulated measurement: 18 angles 0–85°, σ(ε_S0) = %.3f, σ(ε_S1) = %.3f, at %.0f µm\n", kSigmaS0,
                 kSigmaS1, kWavelengthUm);
     std::printf("  fit: %s; χ²/dof = %.2f (dof %d); %.0f%% of %zu starts reached the best minimum\n",

@@ -57,11 +57,23 @@ EmissivityQuadrature::EmissivityQuadrature(double emission_angle_rad, const Quad
     m_nodes.reserve(theta.nodes.size() * phi.nodes.size());
     for (std::size_t i = 0; i < theta.nodes.size(); ++i) {
         const double st = std::sin(theta.nodes[i]), ct = std::cos(theta.nodes[i]);
+        Row row{0.0, m_nodes.size(), m_nodes.size()};
         for (std::size_t j = 0; j < phi.nodes.size(); ++j) {
             const Vec3 wi(st * std::cos(phi.nodes[j]), st * std::sin(phi.nodes[j]), ct);
-            Node node{materials::microfacet_geometry(wi, wo), 2.0 * theta.weights[i] * phi.weights[j] * ct * st};
-            if (node.geometry.valid) m_nodes.push_back(node);
+            const materials::MicrofacetGeometry g = materials::microfacet_geometry(wi, wo);
+            if (!g.valid) continue;
+            // ×2: the φi ∈ [π, 2π] half mirrors this one.
+            const double weight = 2.0 * theta.weights[i] * phi.weights[j] * g.cos_i * st;
+            const double c4 = g.cos_n * g.cos_n * g.cos_n * g.cos_n;
+            m_nodes.push_back({g.tan2_n, g.theta_n, g.cos_beta, 1.0 - g.cos_beta * g.cos_beta, g.beta, g.c2o,
+                               weight / (4.0 * g.cos_i * g.cos_o * c4)});
+            m_diffuse_sum += weight;
+            m_volume_sum += weight * 2.0 / (g.cos_i + g.cos_o);
+            m_cot_o = g.cot_o;
+            row.cot_i = g.cot_i;
         }
+        row.end = m_nodes.size();
+        if (row.end > row.begin) m_rows.push_back(row);
     }
 }
 
