@@ -300,7 +300,9 @@ void MicrofacetFitProblem::evaluate(const std::vector<double>& values, std::vect
     if (values.size() != m->value_count())
         fail("evaluate: expected {} parameter values, got {}", m->value_count(), values.size());
     std::vector<double> work = values;
-    auto problem = m->build(work, false);
+    // Fixed parameters are constant blocks, as in the fit: Ceres leaves their columns zero and does not
+    // differentiate with respect to them, so the cost of a call is the cost of one fit iteration.
+    auto problem = m->build(work, true);
     ceres::Problem::EvaluateOptions eo;
     for (double& v : work) eo.parameter_blocks.push_back(&v);
     std::vector<double> r;
@@ -314,9 +316,7 @@ void MicrofacetFitProblem::evaluate(const std::vector<double>& values, std::vect
             for (int i = crs.rows[static_cast<std::size_t>(row)]; i < crs.rows[static_cast<std::size_t>(row) + 1];
                  ++i) {
                 const auto col = static_cast<std::size_t>(crs.cols[static_cast<std::size_t>(i)]);
-                if (!m->setting(col).fixed)
-                    (*jacobian)[static_cast<std::size_t>(row) * values.size() + col] =
-                        crs.values[static_cast<std::size_t>(i)];
+                (*jacobian)[static_cast<std::size_t>(row) * values.size() + col] = crs.values[static_cast<std::size_t>(i)];
             }
     }
 }
