@@ -115,6 +115,11 @@ TEST(Emissivity, TableMatchesDirectIntegration) {
         EXPECT_LT((table.at(c, 1) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
         EXPECT_LT((table.band_average(c, Band(8.0, 14.0), 300.0) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
     }
+    // Precomputed band weights give the same band average (the renderer's hot path).
+    const Band band(8.0, 14.0);
+    const std::vector<double> weights = table.band_weights(band, 300.0);
+    for (double c : {1.0, 0.5, 0.05})
+        EXPECT_LT((table.at_weighted(c, weights) - table.band_average(c, band, 300.0)).cwiseAbs().maxCoeff(), 1e-14);
     // At a node the table holds exactly the integral.
     const double c_node = std::cos(table.angles_rad()[40]);
     EXPECT_LT((table.at(c_node, 0) - directional_emissivity(brdf, c_node, 8.0)).cwiseAbs().maxCoeff(), 1e-12);

@@ -63,6 +63,10 @@ public:
     /// True if part of the reflection is a Dirac delta (smooth surface).
     virtual bool has_delta() const { return false; }
 
+    /// True if ALL of the reflection is one Dirac delta (sample's weight does not depend on u1, u2);
+    /// integrators then need a single sample.
+    virtual bool is_pure_delta() const { return false; }
+
     /// The model's parameters at a wavelength.
     virtual std::vector<BrdfParameter> parameters(double wavelength_um) const = 0;
 
