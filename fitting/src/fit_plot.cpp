@@ -7,6 +7,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/line_plot.h"
 
 namespace tirpol::fitting {
 
@@ -22,15 +23,6 @@ constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 struct Axis {
     double lo, hi;
 };
-
-// Tick step 1, 2 or 5 × 10^k giving about six ticks over the range.
-double nice_step(double range) {
-    const double raw = range / 6.0;
-    const double decade = std::pow(10.0, std::floor(std::log10(raw)));
-    for (double m : {1.0, 2.0, 5.0})
-        if (m * decade >= raw) return m * decade;
-    return 10.0 * decade;
-}
 
 struct Panel {
     cv::Rect box;
@@ -53,8 +45,8 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, bool x_
         cv::putText(img, s, {x - 5 * static_cast<int>(s.size()), p.box.y + p.box.height + 20}, kFont, 0.45, kBlack,
                     1, cv::LINE_AA);
     }
-    const double step = nice_step(p.y.hi - p.y.lo);
-    for (double t = std::ceil(p.y.lo / step) * step; t <= p.y.hi + 1e-12; t += step) {
+    for (double t : nice_ticks(p.y.lo, p.y.hi, 6)) {
+        if (t < p.y.lo || t > p.y.hi) continue;
         const int y = p.py(t);
         cv::line(img, {p.box.x, y}, {p.box.x + 6, y}, kBlack, 1);
         cv::line(img, {p.box.x + 7, y}, {p.box.x + p.box.width - 1, y}, kGrey, 1);

@@ -2,6 +2,8 @@
 /// \file fit_plot.h
 /// A plot like the paper's Fig. 1: measured ε_S0(θ) and ε_S1(θ) with 2σ error bars and the fitted
 /// model curves, one panel each, one colour per dataset/band; axes, ticks, labels and a legend.
+/// Drawn with OpenCV directly rather than core's write_line_plot, which has neither error bars nor
+/// stacked panels; the tick positions are core's nice_ticks.
 
 #include <filesystem>
 #include <string>
