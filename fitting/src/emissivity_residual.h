@@ -33,7 +33,19 @@ struct EmissivityResidual {
         residual[1] = (s1 - T(sample.e_s1)) * T(1.0 / sample.e_s1_sigma);
         return true;
     }
+
+    /// The form DynamicAutoDiffCostFunction calls: one pointer per parameter block.
+    template <typename T>
+    bool operator()(T const* const* p, T* residual) const {
+        return (*this)(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], residual);
+    }
 };
+
+/// Jet width of the automatic derivatives. DynamicAutoDiffCostFunction seeds derivatives only for the
+/// blocks Ceres asks a Jacobian for — never the constant (fixed) ones — in passes of this many, so the
+/// default fit (4 free parameters) costs one pass with Jet<double, 4> instead of a Jet<double, 8> that a
+/// fixed-size AutoDiffCostFunction over the eight blocks would carry for every parameter.
+inline constexpr int kJetStride = 4;
 
 /// The residual as an automatic- or numeric-derivative cost function.
 inline std::unique_ptr<ceres::CostFunction> make_cost_function(const EmissivityResidual& residual,
@@ -41,8 +53,11 @@ inline std::unique_ptr<ceres::CostFunction> make_cost_function(const EmissivityR
     if (derivatives == Derivatives::Numeric)
         return std::make_unique<ceres::NumericDiffCostFunction<EmissivityResidual, ceres::CENTRAL, 2, 1, 1, 1, 1, 1,
                                                                1, 1, 1>>(new EmissivityResidual(residual));
-    return std::make_unique<ceres::AutoDiffCostFunction<EmissivityResidual, 2, 1, 1, 1, 1, 1, 1, 1, 1>>(
+    auto cost = std::make_unique<ceres::DynamicAutoDiffCostFunction<EmissivityResidual, kJetStride>>(
         new EmissivityResidual(residual));
+    for (std::size_t i = 0; i < kMicrofacetParameterCount; ++i) cost->AddParameterBlock(1);
+    cost->SetNumResiduals(2);
+    return cost;
 }
 
 }  // namespace tirpol::fitting::detail

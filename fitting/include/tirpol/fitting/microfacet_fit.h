@@ -55,7 +55,7 @@ struct ParameterSetting {
 std::array<ParameterSetting, kMicrofacetParameterCount> default_parameter_settings();
 
 enum class Derivatives {
-    Automatic,  ///< ceres::AutoDiffCostFunction (Jets through the quadrature)
+    Automatic,  ///< ceres::DynamicAutoDiffCostFunction (Jets through the quadrature, free parameters only)
     Numeric,    ///< ceres::NumericDiffCostFunction, central differences (reference for benchmarks)
 };
 
