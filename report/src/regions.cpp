@@ -1,5 +1,6 @@
 #include "tirpol/report/regions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -62,22 +63,39 @@ RegionSet parse_regions(const ConfigNode& root) {
 RegionSet load_regions(const std::filesystem::path& path) { return parse_regions(ConfigNode::load_file(path)); }
 
 std::vector<std::uint8_t> region_mask(const Region& region, int width, int height) {
-    // Vertices are pixel centres; fillPoly with 8 fractional bits keeps sub-pixel vertices.
-    constexpr int kShift = 8;
-    std::vector<cv::Point> points;
+    std::vector<cv::Point2f> contour;
+    double x_lo = width, x_hi = -1, y_lo = height, y_hi = -1;
     for (const auto& p : region.polygon) {
         if (p.x < -0.5 || p.y < -0.5 || p.x > width - 0.5 || p.y > height - 0.5)
             fail("{}: region '{}' has vertex ({}, {}) outside the {}×{} measured image (x in [0, {}], y in [0, {}])",
                  region.location, region.name, p.x, p.y, width, height, width - 1, height - 1);
-        points.emplace_back(static_cast<int>(std::lround(p.x * (1 << kShift))),
-                            static_cast<int>(std::lround(p.y * (1 << kShift))));
+        contour.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
+        x_lo = std::min(x_lo, p.x);
+        x_hi = std::max(x_hi, p.x);
+        y_lo = std::min(y_lo, p.y);
+        y_hi = std::max(y_hi, p.y);
     }
-    cv::Mat mask(height, width, CV_8UC1, cv::Scalar(0));
-    const std::vector<std::vector<cv::Point>> polygons{points};
-    cv::fillPoly(mask, polygons, cv::Scalar(1), cv::LINE_8, kShift);
-    if (cv::countNonZero(mask) == 0)
-        fail("{}: region '{}' covers no pixel (degenerate polygon of zero area?)", region.location, region.name);
-    return {mask.datastart, mask.dataend};
+    double twice_area = 0.0;  // shoelace formula
+    for (std::size_t i = 0; i < region.polygon.size(); ++i) {
+        const auto& a = region.polygon[i];
+        const auto& b = region.polygon[(i + 1) % region.polygon.size()];
+        twice_area += a.x * b.y - b.x * a.y;
+    }
+    if (std::abs(twice_area) < 1e-9)
+        fail("{}: region '{}' is empty: its polygon has zero area (collinear or repeated vertices)", region.location,
+             region.name);
+    // A pixel belongs to the region when its centre is inside the polygon or on its edge.
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+    std::size_t count = 0;
+    for (int y = std::max(0, static_cast<int>(std::ceil(y_lo))); y <= std::min(height - 1, static_cast<int>(std::floor(y_hi))); ++y)
+        for (int x = std::max(0, static_cast<int>(std::ceil(x_lo))); x <= std::min(width - 1, static_cast<int>(std::floor(x_hi))); ++x)
+            if (cv::pointPolygonTest(contour, cv::Point2f(static_cast<float>(x), static_cast<float>(y)), false) >= 0) {
+                mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = 1;
+                ++count;
+            }
+    if (count == 0)
+        fail("{}: region '{}' covers no pixel centre of the image", region.location, region.name);
+    return mask;
 }
 
 Region whole_image_region(int width, int height) {
