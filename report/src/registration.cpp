@@ -87,7 +87,11 @@ cv::Matx33d from_level(const cv::Matx33d& h, int level) {
 }
 
 cv::Mat to_warp(const cv::Matx33d& h, int motion) {
-    if (motion == cv::MOTION_HOMOGRAPHY) return cv::Mat(h, true);
+    if (motion == cv::MOTION_HOMOGRAPHY) {
+        cv::Mat w;
+        cv::Mat(h, true).convertTo(w, CV_32F);  // findTransformECC works on single-precision warps
+        return w;
+    }
     cv::Mat w(2, 3, CV_32F);
     for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 3; ++c) w.at<float>(r, c) = static_cast<float>(h(r, c));
@@ -302,13 +306,32 @@ Image resample_to_measured(const Image& simulated, const Registration& registrat
     Image out(width, height);
     out.attributes() = simulated.attributes();
     const cv::Matx33d h = to_matx(registration.measured_to_simulated);
+    // Bilinear interpolation with weights w_k of independent samples of variance v has variance
+    // Σ w_k² v, not Σ w_k v: for locally constant v that is the interpolated variance times
+    // ((1−fx)² + fx²)((1−fy)² + fy²), with (fx, fy) the fractional source position.
+    std::vector<float> variance_factor(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const cv::Point2d src = apply(h, {static_cast<double>(x), static_cast<double>(y)});
+            const double fx = src.x - std::floor(src.x), fy = src.y - std::floor(src.y);
+            variance_factor[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
+                static_cast<float>(((1 - fx) * (1 - fx) + fx * fx) * ((1 - fy) * (1 - fy) + fy * fy));
+        }
+    auto ends_with = [](const std::string& name, std::string_view suffix) {
+        return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
     for (const auto& name : simulated.channel_names()) {
         const bool label = name == "object_id" || name == "material_id";
         cv::Mat dst;
         cv::warpPerspective(plane(simulated, name), dst, h, {width, height},
                             (label ? cv::INTER_NEAREST : cv::INTER_LINEAR) | cv::WARP_INVERSE_MAP,
                             cv::BORDER_CONSTANT, cv::Scalar(kNaN));
-        out.set_channel(name, std::vector<float>(dst.ptr<float>(), dst.ptr<float>() + dst.total()));
+        std::vector<float> data(dst.ptr<float>(), dst.ptr<float>() + dst.total());
+        if (ends_with(name, "_var"))
+            for (std::size_t i = 0; i < data.size(); ++i) data[i] *= variance_factor[i];
+        else if (ends_with(name, "_std"))
+            for (std::size_t i = 0; i < data.size(); ++i) data[i] *= std::sqrt(variance_factor[i]);
+        out.set_channel(name, std::move(data));
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "synthetic_pair.h"
 #include "test_support.h"
@@ -133,6 +134,32 @@ TEST(ReportRegistration, ResamplingMarksPixelsOutsideTheSimulationAsNaN) {
     const auto out = resample_to_measured(pair.simulated, reg, 192, 144);
     EXPECT_TRUE(std::isnan(out.at("S0", 185, 50)));
     EXPECT_FLOAT_EQ(out.at("S0", 20, 50), pair.simulated.at("S0", 30, 50));
+}
+
+TEST(ReportRegistration, ResampledVarianceIsTheVarianceOfTheInterpolatedNoise) {
+    // White noise of variance 1 shifted by half a pixel in x and y: each output is the mean of four
+    // independent samples, variance 4 · (1/4)² = 1/4; the resampled S0_var must say the same.
+    const int w = 200, h = 160;
+    tirpol::Image sim(w, h);
+    auto& s0 = sim.add_channel("S0");
+    sim.add_channel("S0_var", 1.0f);
+    std::mt19937 rng(11);
+    std::normal_distribution<float> n;
+    for (auto& v : s0) v = n(rng);
+    Registration reg;
+    reg.model = "translation";
+    reg.measured_to_simulated = {1, 0, 0.5, 0, 1, 0.5, 0, 0, 1};
+    const auto out = resample_to_measured(sim, reg, w, h);
+    double sum2 = 0.0;
+    std::size_t count = 0;
+    for (float v : out.channel("S0"))
+        if (std::isfinite(v)) {
+            sum2 += v * v;
+            ++count;
+        }
+    const double sample_variance = sum2 / static_cast<double>(count);
+    EXPECT_NEAR(sample_variance, 0.25, 0.25 * 4.0 * std::sqrt(2.0 / static_cast<double>(count)));
+    EXPECT_FLOAT_EQ(out.at("S0_var", 50, 50), 0.25f);
 }
 
 TEST(ReportRegistration, ImpossibleRegistrationsFailClearly) {

@@ -76,7 +76,9 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
 
 /// Resamples every channel of `simulated` onto the measured grid (width × height) through the
 /// registration (bilinear; nearest for integer label channels object_id/material_id). Pixels that
-/// map outside the simulated image are NaN. Identity registration of an equal-size image copies it.
+/// map outside the simulated image are NaN. Channels named *_var (*_std) are scaled by Σ w_k² (its
+/// square root), the variance of a bilinear interpolation of independent samples, so that they stay
+/// the variance of the resampled Monte-Carlo mean. Identity registration of an equal-size image copies it.
 Image resample_to_measured(const Image& simulated, const Registration& registration, int width, int height);
 
 }  // namespace tirpol::report
