@@ -151,7 +151,8 @@ EccOutcome ecc_register(const cv::Mat& templ, const cv::Mat& input, const cv::Ma
             double rho = 0.0;
             for (int l = levels; l >= 0; --l) {
                 cv::Mat w = to_warp(to_level(h, l), motion);
-                const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-7);
+                // Coarse levels do the travelling; the full-resolution level only polishes.
+                const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, l == 0 ? 25 : 100, 1e-6);
                 rho = cv::findTransformECC(templs[static_cast<std::size_t>(l)], inputs[static_cast<std::size_t>(l)], w,
                                            motion, criteria, masks[static_cast<std::size_t>(l)], 5);
                 h = from_level(from_warp(w), l);
