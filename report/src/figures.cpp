@@ -166,23 +166,23 @@ void write_panel(const std::filesystem::path& panel, const std::vector<std::file
 
 void write_region_overview(const std::filesystem::path& path, const std::vector<float>& s0, int width, int height,
                            const std::vector<Region>& regions) {
-    const Plane shown = display_plane(s0, width, height);
-    // Same scale rule as the quicklooks: small images are enlarged to about 320 px.
-    const int up = std::max(1, 320 / std::max(shown.width, shown.height));
-    const double f = static_cast<double>(shown.width * up) / width;
+    // Drawn larger than the panels (long side kOverviewSide) so that region names stay legible.
+    constexpr int kOverviewSide = 560;
+    const double f = static_cast<double>(kOverviewSide) / std::max(width, height);
     std::vector<float> finite;
-    for (float v : shown.data)
+    for (float v : s0)
         if (std::isfinite(v)) finite.push_back(v);
     const auto [lo, hi] = percentile_range(finite, 0.01, 0.99);
-    cv::Mat grey(shown.height, shown.width, CV_8UC3);
-    for (int y = 0; y < shown.height; ++y)
-        for (int x = 0; x < shown.width; ++x) {
-            const float v = shown.data[static_cast<std::size_t>(y * shown.width + x)];
-            const auto g = std::isfinite(v) ? cv::saturate_cast<uchar>(40.0 + 200.0 * std::clamp((v - lo) / (hi - lo), 0.0, 1.0))
-                                            : uchar{128};
-            grey.at<cv::Vec3b>(y, x) = {g, g, g};
+    cv::Mat grey(height, width, CV_8UC1);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float v = s0[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+            grey.at<uchar>(y, x) = std::isfinite(v) ? cv::saturate_cast<uchar>(40.0 + 200.0 * std::clamp((v - lo) / (hi - lo), 0.0, 1.0))
+                                                    : uchar{128};
         }
-    if (up > 1) cv::resize(grey, grey, {shown.width * up, shown.height * up}, 0, 0, cv::INTER_NEAREST);
+    const cv::Size shown(std::max(1, static_cast<int>(std::lround(width * f))), std::max(1, static_cast<int>(std::lround(height * f))));
+    cv::resize(grey, grey, shown, 0, 0, f < 1.0 ? cv::INTER_AREA : cv::INTER_NEAREST);
+    cv::cvtColor(grey, grey, cv::COLOR_GRAY2BGR);
     const int pad = 10;
     cv::Mat canvas(grey.rows + 2 * pad, grey.cols + 2 * pad, CV_8UC3, kWhite);
     grey.copyTo(canvas(cv::Rect(pad, pad, grey.cols, grey.rows)));
@@ -194,10 +194,10 @@ void write_region_overview(const std::filesystem::path& path, const std::vector<
             pts.emplace_back(pad + static_cast<int>(std::lround((p.x + 0.5) * f)),
                              pad + static_cast<int>(std::lround((p.y + 0.5) * f)));
         cv::polylines(canvas, std::vector<std::vector<cv::Point>>{pts}, true, colour, 2, cv::LINE_AA);
-        cv::Point label = pts.front() + cv::Point(3, 14);
-        const std::string name = regions[r].name;
-        cv::putText(canvas, ascii_text(name), label, kFont, 0.42, kBlack, 3, cv::LINE_AA);
-        cv::putText(canvas, ascii_text(name), label, kFont, 0.42, colour, 1, cv::LINE_AA);
+        const cv::Point label = pts.front() + cv::Point(4, 17);
+        const std::string name = ascii_text(regions[r].name);
+        cv::putText(canvas, name, label, kFont, 0.5, kWhite, 4, cv::LINE_AA);
+        cv::putText(canvas, name, label, kFont, 0.5, colour, 1, cv::LINE_AA);
     }
     write_png(path, canvas);
 }
