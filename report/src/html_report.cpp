@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "figures.h"
 #include "tirpol/core/atomic_file.h"
 
 namespace tirpol::report::detail {
@@ -110,9 +111,7 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
         if (grid) h += "</div>\n";
     };
     auto swatch = [&](std::size_t index) {
-        static const char* const kCss[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
-        return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", kCss[index % 10]);
+        return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
     };
 
     h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
