@@ -1,0 +1,41 @@
+#pragma once
+/// \file fit_output.h
+/// What a fit leaves behind: a material YAML in the materials module's format (material.h,
+/// docs/materials.md) that `tirpol emissivity` and the renderer load directly, with the fit's
+/// provenance in `source`/`notes` and in comments; a JSON report; a text summary for the terminal.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tirpol/fitting/emissivity_data.h"
+#include "tirpol/fitting/microfacet_fit.h"
+
+namespace tirpol::fitting {
+
+struct FitProvenance {
+    std::vector<std::string> data_files;  ///< the measured CSVs
+    std::string date_utc;                 ///< ISO 8601, e.g. 2026-11-22T17:03:00Z
+    std::string command;                  ///< how the fit was run (for the record)
+};
+
+/// The current UTC time as ISO 8601 (seconds).
+std::string utc_now_iso8601();
+
+/// Material YAML for the fitted micro-facet model: `refractive_index` {n, k} for one band, or
+/// {wavelength_um, n, k} lists for a multi-band fit; `parameters` σ, bias, τ°, Ω°, ρ_D, ρ_V; `source`
+/// naming data, date, χ²/dof and the termination; `notes` with every parameter ± 2σ, the fixed ones and
+/// the warnings; a comment block with the correlation matrix and per-angle residuals.
+std::string fitted_material_yaml(const std::string& name, const MicrofacetFitResult& result,
+                                 const FitProvenance& provenance);
+
+/// Machine-readable report (keys in docs/fitting.md).
+nlohmann::json fit_report_json(const MicrofacetFitResult& result, const std::vector<EmissivityDataset>& datasets,
+                               const FitProvenance& provenance);
+
+/// Human-readable summary: termination, χ²/dof, parameters ± 2σ, correlations, residuals per angle,
+/// warnings.
+std::string fit_report_text(const MicrofacetFitResult& result, const std::vector<EmissivityDataset>& datasets);
+
+}  // namespace tirpol::fitting

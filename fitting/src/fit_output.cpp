@@ -1,0 +1,199 @@
+#include "tirpol/fitting/fit_output.h"
+
+#include <chrono>
+#include <ctime>
+#include <sstream>
+
+#include "tirpol/core/error.h"
+
+namespace tirpol::fitting {
+
+namespace {
+
+using P = MicrofacetParameter;
+
+// A YAML double-quoted scalar (JSON string syntax is valid YAML).
+std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }
+
+std::string plus_minus(const FittedParameter& f) {
+    if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);
+    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.sigma, f.at_bound ? " [at bound]" : "");
+}
+
+std::string free_names(const MicrofacetFitResult& r) {
+    std::string out;
+    for (std::size_t i : r.free_indices) out += (out.empty() ? "" : " ") + r.parameters[i].name;
+    return out;
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+    std::string out;
+    for (const auto& s : items) out += (out.empty() ? "" : separator) + s;
+    return out;
+}
+
+}  // namespace
+
+std::string utc_now_iso8601() {
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char buffer[32];
+    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buffer;
+}
+
+std::string fitted_material_yaml(const std::string& name, const MicrofacetFitResult& r,
+                                 const FitProvenance& provenance) {
+    if (name.empty()) fail("fitted material: the material needs a name");
+    std::ostringstream out;
+    out << "# Fitted by `tirpol fit` (docs/fitting.md): micro-facet pBRDF parameters from measured polarized\n"
+        << "# emissivity by weighted least squares (Ceres), uncertainties from the covariance at the minimum.\n";
+    out << "# data: " << join(provenance.data_files, ", ") << "\n# date: " << provenance.date_utc << '\n';
+    if (!provenance.command.empty()) out << "# command: " << provenance.command << '\n';
+    out << fmt::format("# chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}; termination: {}\n", r.chi2, r.dof,
+                       r.reduced_chi2, r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "", r.termination);
+    out << fmt::format("# starts: {}, fraction reaching the best minimum: {:.2f}\n", r.starts.size(),
+                       r.fraction_reaching_best);
+    if (r.covariance_available) {
+        out << "# correlation of the free parameters (" << free_names(r) << "):\n";
+        for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
+            out << "#  ";
+            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) out << fmt::format(" {:+.3f}", r.correlation(i, j));
+            out << '\n';
+        }
+    }
+    out << "# residuals per angle, (model - measured)/sigma for eps_S0 and eps_S1:\n";
+    for (const SampleFit& s : r.samples)
+        out << fmt::format("#   dataset {} angle {:5.1f} deg: {:+.2f} {:+.2f}\n", s.dataset, s.angle_deg,
+                           s.residual_s0, s.residual_s1);
+
+    out << "name: " << quoted(name) << '\n';
+    out << "source: "
+        << quoted(fmt::format("tirpol fit of {} on {}: micro-facet model, chi2/dof = {:.3g} (dof {}), {}",
+                              join(provenance.data_files, ", "), provenance.date_utc, r.reduced_chi2, r.dof,
+                              r.usable ? "converged" : "NOT CONVERGED"))
+        << '\n';
+    std::vector<std::string> notes;
+    for (const FittedParameter& f : r.parameters) notes.push_back(plus_minus(f));
+    std::string note = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
+    if (!r.warnings.empty()) note += " Warnings: " + join(r.warnings, " | ");
+    out << "notes: " << quoted(note) << '\n';
+    out << "model: microfacet\n";
+    if (r.wavelengths_um.size() == 1) {
+        out << fmt::format("refractive_index: {{n: {}, k: {}}}\n", r.get(P::n).value, r.get(P::k).value);
+    } else {
+        std::vector<std::string> w, n, k;
+        for (std::size_t b = 0; b < r.wavelengths_um.size(); ++b) {
+            w.push_back(fmt::format("{}", r.wavelengths_um[b]));
+            n.push_back(fmt::format("{}", r.get(P::n, b).value));
+            k.push_back(fmt::format("{}", r.get(P::k, b).value));
+        }
+        out << "refractive_index:\n  wavelength_um: [" << join(w, ", ") << "]\n  n: [" << join(n, ", ")
+            << "]\n  k: [" << join(k, ", ") << "]\n";
+    }
+    out << "parameters:\n";
+    for (P p : {P::sigma, P::bias, P::tau_deg, P::omega_deg, P::rho_d, P::rho_v})
+        out << "  " << parameter_name(p) << ": " << fmt::format("{}", r.get(p).value) << '\n';
+    return out.str();
+}
+
+nlohmann::json fit_report_json(const MicrofacetFitResult& r, const std::vector<EmissivityDataset>& datasets,
+                               const FitProvenance& provenance) {
+    nlohmann::json j;
+    j["model"] = "micro-facet";
+    j["data_files"] = provenance.data_files;
+    j["date_utc"] = provenance.date_utc;
+    j["command"] = provenance.command;
+    j["termination"] = r.termination;
+    j["usable"] = r.usable;
+    j["solver_report"] = r.solver_report;
+    j["chi2"] = r.chi2;
+    j["dof"] = r.dof;
+    j["reduced_chi2"] = r.reduced_chi2;
+    j["covariance_available"] = r.covariance_available;
+    j["covariance_scaled"] = r.covariance_scaled;
+    j["wavelengths_um"] = r.wavelengths_um;
+    nlohmann::json params = nlohmann::json::array();
+    for (const FittedParameter& f : r.parameters) {
+        nlohmann::json p{{"name", f.name},   {"value", f.value}, {"fixed", f.fixed},       {"sigma", f.sigma},
+                         {"lower", f.lower}, {"upper", f.upper}, {"at_bound", f.at_bound}};
+        if (!f.fixed) p["interval_2sigma"] = {f.value - 2.0 * f.sigma, f.value + 2.0 * f.sigma};
+        if (f.wavelength_um) p["wavelength_um"] = *f.wavelength_um;
+        params.push_back(p);
+    }
+    j["parameters"] = params;
+    std::vector<std::string> names;
+    for (std::size_t i : r.free_indices) names.push_back(r.parameters[i].name);
+    nlohmann::json corr = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
+        std::vector<double> row;
+        for (Eigen::Index c = 0; c < r.correlation.cols(); ++c) row.push_back(r.correlation(i, c));
+        corr.push_back(row);
+    }
+    j["correlation"] = {{"names", names}, {"matrix", corr}};
+    nlohmann::json samples = nlohmann::json::array();
+    for (const SampleFit& s : r.samples) {
+        const EmissivitySample& m = datasets.at(s.dataset).samples.at(s.sample);
+        samples.push_back({{"dataset", s.dataset},
+                           {"wavelength_um", datasets[s.dataset].wavelength_um},
+                           {"angle_deg", s.angle_deg},
+                           {"measured_s0", m.e_s0},
+                           {"sigma_s0", m.e_s0_sigma},
+                           {"model_s0", s.model_s0},
+                           {"residual_s0", s.residual_s0},
+                           {"measured_s1", m.e_s1},
+                           {"sigma_s1", m.e_s1_sigma},
+                           {"model_s1", s.model_s1},
+                           {"residual_s1", s.residual_s1}});
+    }
+    j["samples"] = samples;
+    nlohmann::json starts = nlohmann::json::array();
+    for (const StartOutcome& s : r.starts)
+        starts.push_back({{"initial", s.initial},
+                          {"chi2", s.chi2},
+                          {"usable", s.usable},
+                          {"iterations", s.iterations},
+                          {"reached_best", s.reached_best},
+                          {"termination", s.termination}});
+    j["starts"] = {{"count", r.starts.size()}, {"fraction_reaching_best", r.fraction_reaching_best}, {"outcomes", starts}};
+    j["evaluations"] = {{"residual", r.residual_evaluations}, {"jacobian", r.jacobian_evaluations}};
+    j["warnings"] = r.warnings;
+    return j;
+}
+
+std::string fit_report_text(const MicrofacetFitResult& r, const std::vector<EmissivityDataset>& datasets) {
+    std::ostringstream out;
+    out << fmt::format("termination: {}{}\n", r.termination, r.usable ? "" : "  (NOT USABLE)");
+    out << fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}\n", r.chi2, r.dof, r.reduced_chi2,
+                       r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "");
+    out << fmt::format("starts: {}, reaching the best minimum: {:.0f}%\n", r.starts.size(),
+                       100.0 * r.fraction_reaching_best);
+    out << "parameter          value        2σ interval\n";
+    for (const FittedParameter& f : r.parameters) {
+        if (f.fixed) {
+            out << fmt::format("  {:<14} {:>12.6g}   (fixed)\n", f.name, f.value);
+        } else {
+            out << fmt::format("  {:<14} {:>12.6g}   [{:.6g}, {:.6g}]{}\n", f.name, f.value, f.value - 2.0 * f.sigma,
+                               f.value + 2.0 * f.sigma, f.at_bound ? "  at bound" : "");
+        }
+    }
+    if (r.covariance_available && r.free_indices.size() > 1) {
+        out << "correlation (" << free_names(r) << "):\n";
+        for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
+            out << " ";
+            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) out << fmt::format(" {:+.3f}", r.correlation(i, j));
+            out << '\n';
+        }
+    }
+    out << "angle   eps_S0 meas   model   resid | eps_S1 meas   model   resid\n";
+    for (const SampleFit& s : r.samples) {
+        const EmissivitySample& m = datasets.at(s.dataset).samples.at(s.sample);
+        out << fmt::format("{:5.1f}   {:9.4f} {:9.4f} {:+6.2f}  | {:9.4f} {:9.4f} {:+6.2f}\n", s.angle_deg, m.e_s0,
+                           s.model_s0, s.residual_s0, m.e_s1, s.model_s1, s.residual_s1);
+    }
+    for (const std::string& w : r.warnings) out << "warning: " << w << '\n';
+    return out.str();
+}
+
+}  // namespace tirpol::fitting

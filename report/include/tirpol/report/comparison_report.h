@@ -1,0 +1,88 @@
+#pragma once
+/// \file comparison_report.h
+/// The measured-vs-simulated comparison report: registration, side-by-side images with shared colour
+/// scales, difference and z maps, per-region statistics, scatter plots and histograms, written as a
+/// self-contained `report.html`, a `report.json` with every number (keys in docs/report.md) and the
+/// PNGs, all under one directory with atomic writes.
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/image.h"
+#include "tirpol/report/registration.h"
+#include "tirpol/report/regions.h"
+#include "tirpol/report/statistics.h"
+
+namespace tirpol::report {
+
+/// Quantities compared statistically (AoP is shown, not averaged: it is an angle modulo 180°).
+inline const std::vector<std::string> kComparedQuantities = {"S0", "S1", "S2", "DoLP"};
+/// Quantities with a z statistic (those that carry variances).
+inline const std::vector<std::string> kZQuantities = {"S0", "S1", "S2"};
+
+struct CompareOptions {
+    RegistrationMethod registration = RegistrationMethod::Auto;
+    std::vector<ControlPoint> control_points;
+    /// Regions of interest in measured pixels; none = one region covering the image.
+    std::optional<RegionSet> regions;
+    /// Measured noise when the measured image has no S0_std/S1_std/S2_std (or *_var) channels: the
+    /// radiance noise σ_I of one polarizer frame (NEDT × dL/dT), W/(m²·sr). With the four-angle
+    /// reduction of paper eqs 14–16, σ(S0) = σ_I and σ(S1) = σ(S2) = √2 σ_I.
+    std::optional<double> measured_frame_sigma;
+    /// Names shown in the report and in error messages (usually the file paths).
+    std::string measured_name = "measured";
+    std::string simulated_name = "simulated";
+};
+
+/// Where the measured σ of one quantity came from, and its typical value.
+struct NoiseSource {
+    std::string measured;   ///< "channel S1_std", "--measured-sigma", "flat region 'bg'", "Immerkaer estimate"
+    std::string simulated;  ///< "channel S1_var" or "none (σ_s = 0)"
+    double measured_sigma_median = 0.0;
+    double simulated_sigma_median = 0.0;
+};
+
+struct RegionResult {
+    std::string name;
+    std::size_t pixel_count = 0;  ///< pixels inside the polygon
+    std::map<std::string, QuantityStats> stats;  ///< by quantity (kComparedQuantities)
+    /// mean S1(region) − mean S1(background), W/(m²·sr); absent without a background region.
+    std::optional<double> s1_contrast_measured, s1_contrast_simulated;
+    std::map<std::string, ZStats> z;  ///< by quantity (kZQuantities) and "all" (pooled)
+};
+
+struct CompareResult {
+    int width = 0, height = 0;             ///< measured (and comparison) grid
+    int simulated_width = 0, simulated_height = 0;
+    std::string units;                     ///< of S0, S1, S2
+    Registration registration;
+    std::map<std::string, NoiseSource> noise;  ///< by quantity (kZQuantities)
+    std::vector<RegionResult> regions;
+    std::string background;                ///< background region name or empty
+    std::filesystem::path html, json;      ///< written files
+    std::vector<std::filesystem::path> pngs;
+    std::vector<std::string> notes;        ///< warnings shown in the report (e.g. no simulation variance)
+    /// Colour-scale limits [min, max] of the figures: "S0" (shared by measured and simulated),
+    /// "S0_difference", …, "z"; in the units of the quantity.
+    std::map<std::string, std::array<double, 2>> colour_scales;
+    std::filesystem::path exr;             ///< comparison.exr: full-resolution planes behind the figures
+};
+
+/// Checks that `image` has S0, S1 and S2; throws tirpol::Error "<name>: <role> Stokes image lacks
+/// channel(s) …; channels present: …" otherwise.
+void require_stokes_channels(const Image& image, const std::string& name, const std::string& role);
+
+/// Compares `measured` with `simulated` and writes report.html, report.json and the PNGs into
+/// `report_dir` (created if needed). Returns every number written. Throws tirpol::Error for missing
+/// channels, bad regions, or a registration that is impossible without control points.
+CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,
+                                      const std::filesystem::path& report_dir);
+
+/// report.json's content for `result` (pretty-printed), as written by write_comparison_report.
+std::string comparison_json(const CompareResult& result);
+
+}  // namespace tirpol::report

@@ -1,0 +1,356 @@
+#include "tirpol/report/comparison_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "figures.h"
+#include "html_report.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+
+namespace tirpol::report {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using Mask = std::vector<std::uint8_t>;
+
+std::string join(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+    return out.empty() ? "none" : out;
+}
+
+// DoLP and AoP (degrees, [0, 180)) from S0..S2, recomputed after resampling: interpolating an
+// angle across its 0/180° wrap, or a ratio, would be wrong.
+void derive_dolp_aop(Image& image) {
+    const auto& s0 = image.channel("S0");
+    const auto& s1 = image.channel("S1");
+    const auto& s2 = image.channel("S2");
+    std::vector<float> dolp(s0.size(), kNaN), aop(s0.size(), kNaN);
+    for (std::size_t i = 0; i < s0.size(); ++i) {
+        if (!std::isfinite(s0[i]) || !std::isfinite(s1[i]) || !std::isfinite(s2[i])) continue;
+        dolp[i] = s0[i] > 0.0f ? std::hypot(s1[i], s2[i]) / s0[i] : 0.0f;
+        double a = 0.5 * std::atan2(static_cast<double>(s2[i]), static_cast<double>(s1[i])) * 180.0 / std::numbers::pi;
+        if (a < 0.0) a += 180.0;
+        aop[i] = static_cast<float>(a);
+    }
+    image.set_channel("DoLP", std::move(dolp));
+    image.set_channel("AoP", std::move(aop));
+}
+
+std::vector<float> difference(const std::vector<float>& m, const std::vector<float>& s, bool angle) {
+    std::vector<float> d(m.size());
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        float v = m[i] - s[i];
+        if (angle && std::isfinite(v)) v = std::remainder(v, 180.0f);  // AoP is defined modulo 180°
+        d[i] = v;
+    }
+    return d;
+}
+
+// Variance plane of quantity `q` from a Q_std or Q_var channel, if the image has one.
+std::optional<std::vector<float>> variance_channel(const Image& image, const std::string& q, std::string& source) {
+    if (image.has_channel(q + "_std")) {
+        auto v = image.channel(q + "_std");
+        for (auto& x : v) x *= x;
+        source = "channel " + q + "_std";
+        return v;
+    }
+    if (image.has_channel(q + "_var")) {
+        source = "channel " + q + "_var";
+        return image.channel(q + "_var");
+    }
+    return std::nullopt;
+}
+
+double median_sqrt(const std::vector<float>& variance) {
+    std::vector<float> v;
+    for (float x : variance)
+        if (std::isfinite(x)) v.push_back(x);
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return std::sqrt(std::max(0.0f, v[v.size() / 2]));
+}
+
+std::pair<double, double> shared_range(const std::vector<float>& a, const std::vector<float>& b,
+                                       const QuicklookOptions& options) {
+    std::vector<float> both(a);
+    both.insert(both.end(), b.begin(), b.end());
+    return quicklook_range(both, options);
+}
+
+struct QuantityDisplay {
+    std::string units;
+    Colormap map;
+};
+
+}  // namespace
+
+void require_stokes_channels(const Image& image, const std::string& name, const std::string& role) {
+    std::vector<std::string> missing;
+    for (const char* c : {"S0", "S1", "S2"})
+        if (!image.has_channel(c)) missing.emplace_back(c);
+    if (!missing.empty())
+        fail("{}: the {} Stokes image lacks channel{} {}; channels present: {} (expected S0 S1 S2, as written by "
+             "`tirpol {}`)",
+             name, role, missing.size() > 1 ? "s" : "", join(missing), join(image.channel_names()),
+             role == "measured" ? "reduce" : "render");
+    if (image.pixel_count() == 0) fail("{}: the {} Stokes image has no pixels", name, role);
+}
+
+CompareResult write_comparison_report(const Image& measured_in, const Image& simulated_in, const CompareOptions& options,
+                                      const std::filesystem::path& report_dir) {
+    require_stokes_channels(measured_in, options.measured_name, "measured");
+    require_stokes_channels(simulated_in, options.simulated_name, "simulated");
+    const int w = measured_in.width(), h = measured_in.height();
+    const std::size_t n = measured_in.pixel_count();
+
+    CompareResult result;
+    result.width = w;
+    result.height = h;
+    result.simulated_width = simulated_in.width();
+    result.simulated_height = simulated_in.height();
+    result.units = "W/(m²·sr)";
+    if (const auto it = measured_in.attributes().find("units");
+        it != measured_in.attributes().end() && std::holds_alternative<std::string>(it->second))
+        result.units = std::get<std::string>(it->second);
+
+    // Regions first: a bad polygon is reported before any expensive work.
+    std::vector<Region> regions;
+    if (options.regions) {
+        regions = options.regions->regions;
+        result.background = options.regions->background;
+    } else {
+        regions.push_back(whole_image_region(w, h));
+    }
+    std::vector<Mask> masks;
+    for (const auto& region : regions) masks.push_back(region_mask(region, w, h));
+    auto region_index = [&](const std::string& name) {
+        for (std::size_t r = 0; r < regions.size(); ++r)
+            if (regions[r].name == name) return r;
+        return regions.size();
+    };
+
+    result.registration = register_images(measured_in, simulated_in, options.registration, options.control_points);
+    Image measured = measured_in;
+    Image simulated = resample_to_measured(simulated_in, result.registration, w, h);
+    derive_dolp_aop(measured);
+    derive_dolp_aop(simulated);
+    if (std::abs(result.registration.rotation_deg) > 0.5)
+        result.notes.push_back(fmt::format(
+            "the registration rotates the image by {:.2f}°; S1/S2 of the simulation are not rotated back into the "
+            "measured frame, so their comparison is biased by that rotation",
+            result.registration.rotation_deg));
+
+    // Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2.
+    std::map<std::string, std::vector<float>> diffs, z, sigma_total;
+    const Mask all_pixels(n, 1);
+    const std::string noise_region_name =
+        options.regions ? (options.regions->noise_region.empty() ? options.regions->background : options.regions->noise_region)
+                        : std::string();
+    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
+        diffs[q] = difference(measured.channel(q), simulated.channel(q), q == "AoP");
+    for (const auto& q : kZQuantities) {
+        NoiseSource source;
+        auto var_m = variance_channel(measured, q, source.measured);
+        if (!var_m) {
+            double sigma = 0.0;
+            if (options.measured_frame_sigma) {
+                sigma = *options.measured_frame_sigma * (q == "S0" ? 1.0 : std::sqrt(2.0));
+                source.measured = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)",
+                                              *options.measured_frame_sigma);
+            } else if (!noise_region_name.empty()) {
+                const auto st = quantity_stats(measured.channel(q), measured.channel(q), masks[region_index(noise_region_name)]);
+                sigma = st.measured_std;
+                source.measured = "std of measured " + q + " in flat region '" + noise_region_name + "'";
+            } else {
+                sigma = immerkaer_noise_sigma(measured.channel(q), w, h);
+                source.measured = "Immerkær noise estimate of measured " + q;
+            }
+            var_m = std::vector<float>(n, static_cast<float>(sigma * sigma));
+        }
+        auto var_s = variance_channel(simulated, q, source.simulated);
+        if (!var_s) {
+            source.simulated = "none (σ_s = 0)";
+            var_s = std::vector<float>(n, 0.0f);
+            result.notes.push_back(fmt::format("{} has no {}_var channel: the z statistic of {} ignores Monte-Carlo noise",
+                                               options.simulated_name, q, q));
+        }
+        source.measured_sigma_median = median_sqrt(*var_m);
+        source.simulated_sigma_median = median_sqrt(*var_s);
+        result.noise[q] = source;
+        z[q] = z_scores(measured.channel(q), simulated.channel(q), *var_m, *var_s);
+        std::vector<float> total(n);
+        for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
+        sigma_total[q] = std::move(total);
+    }
+    std::vector<float> z_pooled;
+    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), z[q].begin(), z[q].end());
+
+    // Per-region statistics.
+    const std::size_t bg = result.background.empty() ? regions.size() : region_index(result.background);
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        RegionResult rr;
+        rr.name = regions[r].name;
+        rr.pixel_count = static_cast<std::size_t>(std::count(masks[r].begin(), masks[r].end(), 1));
+        for (const auto& q : kComparedQuantities) rr.stats[q] = quantity_stats(measured.channel(q), simulated.channel(q), masks[r]);
+        Mask pooled_mask;
+        for (const auto& q : kZQuantities) {
+            rr.z[q] = z_stats(z[q], masks[r]);
+            pooled_mask.insert(pooled_mask.end(), masks[r].begin(), masks[r].end());
+        }
+        rr.z["all"] = z_stats(z_pooled, pooled_mask);
+        result.regions.push_back(std::move(rr));
+    }
+    if (bg < regions.size()) {
+        const auto& b = result.regions[bg].stats.at("S1");
+        for (auto& rr : result.regions) {
+            const auto& s = rr.stats.at("S1");
+            if (s.pixel_count == 0 || b.pixel_count == 0) continue;
+            rr.s1_contrast_measured = s.measured_mean - b.measured_mean;
+            rr.s1_contrast_simulated = s.simulated_mean - b.simulated_mean;
+        }
+    }
+
+    // Figures.
+    std::filesystem::create_directories(report_dir);
+    std::vector<detail::Figure> figures;
+    auto png = [&](const std::string& name) {
+        result.pngs.push_back(report_dir / name);
+        return report_dir / name;
+    };
+    detail::write_region_overview(png("regions.png"), measured.channel("S0"), w, h, regions);
+    figures.push_back({"regions", report_dir / "regions.png",
+                       "Measured S0 with the regions of interest (polygons in measured pixel coordinates)."});
+
+    const std::map<std::string, QuantityDisplay> display = {{"S0", {result.units, Colormap::Sequential}},
+                                                            {"S1", {result.units, Colormap::Diverging}},
+                                                            {"S2", {result.units, Colormap::Diverging}},
+                                                            {"DoLP", {"", Colormap::Sequential}},
+                                                            {"AoP", {"°", Colormap::Cyclic}}};
+    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
+        const auto& d = display.at(q);
+        const auto pm = detail::display_plane(measured.channel(q), w, h);
+        const auto ps = detail::display_plane(simulated.channel(q), w, h);
+        const auto pd = detail::display_plane(diffs[q], w, h);
+        QuicklookOptions shared{d.map, std::nullopt, std::nullopt, "", d.units, 0};
+        if (q == "DoLP") shared.vmin = 0.0;
+        const auto [lo, hi] = shared_range(pm.data, ps.data, shared);
+        shared.vmin = lo;
+        shared.vmax = hi;
+        QuicklookOptions om = shared, os = shared, od{Colormap::Diverging, std::nullopt, std::nullopt,
+                                                       q + " measured - simulated", d.units, 0};
+        om.title = q + " measured";
+        os.title = q + " simulated";
+        if (q == "AoP") {
+            od.vmin = -90.0;
+            od.vmax = 90.0;
+        }
+        const auto [dlo, dhi] = quicklook_range(pd.data, od);
+        od.vmin = dlo;
+        od.vmax = dhi;
+        result.colour_scales[q] = {lo, hi};
+        result.colour_scales[q + "_difference"] = {dlo, dhi};
+        detail::write_panel(png("panel_" + q + ".png"),
+                    {png("measured_" + q + ".png"), png("simulated_" + q + ".png"), png("difference_" + q + ".png")},
+                    {pm, ps, pd}, {om, os, od});
+        const std::string unit_text = d.units.empty() ? "" : " " + d.units;
+        figures.push_back({"images", report_dir / ("panel_" + q + ".png"),
+                           fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
+                                       "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
+                                       q, lo, hi, unit_text, dlo, dhi, unit_text,
+                                       q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : "")});
+    }
+
+    {
+        std::vector<detail::Plane> planes;
+        std::vector<std::filesystem::path> parts;
+        std::vector<QuicklookOptions> opts;
+        for (const auto& q : kZQuantities) {
+            planes.push_back(detail::display_plane(z[q], w, h));
+            parts.push_back(png("z_" + q + ".png"));
+            opts.push_back({Colormap::Diverging, -5.0, 5.0, "z " + q, "sigma", 0});
+        }
+        result.colour_scales["z"] = {-5.0, 5.0};
+        detail::write_panel(png("panel_z.png"), parts, planes, opts);
+        figures.push_back({"z", report_dir / "panel_z.png",
+                           "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
+                           "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels."});
+        detail::write_histogram(png("histogram_z.png"), "z of S0, S1, S2 (all pixels)", "z", z_pooled, -6.0, 6.0,
+                                {-3, -2, 0, 2, 3}, 0.0, 1.0);
+        figures.push_back({"z", report_dir / "histogram_z.png",
+                           "Distribution of z over all pixels (bars) against the standard normal density (red "
+                           "curve); grey lines at ±2 and ±3."});
+    }
+
+    for (const auto& q : kComparedQuantities) {
+        std::vector<detail::ScatterSeries> series;
+        const auto& mq = measured.channel(q);
+        const auto& sq = simulated.channel(q);
+        for (std::size_t r = 0; r < regions.size(); ++r) {
+            detail::ScatterSeries s{regions[r].name, {}, {}};
+            for (std::size_t i = 0; i < n; ++i)
+                if (masks[r][i]) {
+                    s.measured.push_back(mq[i]);
+                    s.simulated.push_back(sq[i]);
+                }
+            series.push_back(std::move(s));
+        }
+        const std::string units = display.at(q).units;
+        detail::write_scatter(png("scatter_" + q + ".png"), q, units, series);
+        figures.push_back({"scatter", report_dir / ("scatter_" + q + ".png"),
+                           fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q)});
+    }
+    for (const auto& q : kComparedQuantities) {
+        const auto& d = diffs[q];
+        std::vector<float> finite_abs;
+        double bias = 0.0;
+        for (float v : d)
+            if (std::isfinite(v)) {
+                finite_abs.push_back(std::abs(v));
+                bias += v;
+            }
+        bias = finite_abs.empty() ? 0.0 : bias / static_cast<double>(finite_abs.size());
+        double range = 1.0;
+        if (!finite_abs.empty()) {
+            const auto k = static_cast<std::size_t>(0.995 * static_cast<double>(finite_abs.size() - 1));
+            std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k), finite_abs.end());
+            range = finite_abs[k] > 0.0f ? 1.1 * finite_abs[k] : 1.0;
+        }
+        const double sigma = sigma_total.count(q) ? median_sqrt(sigma_total[q]) : 0.0;
+        const std::string units = display.at(q).units;
+        detail::write_histogram(png("histogram_difference_" + q + ".png"), q + ": measured - simulated",
+                                "difference" + (units.empty() ? "" : " [" + units + "]"), d, -range, range, {0.0, bias},
+                                0.0, sigma);
+        figures.push_back({"histograms", report_dir / ("histogram_difference_" + q + ".png"),
+                           sigma > 0.0 ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
+                                                     "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
+                                                     q, sigma, bias)
+                                       : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.",
+                                                     q, bias)});
+    }
+
+    // Full-resolution planes behind the figures.
+    Image planes(w, h);
+    planes.attributes()["units"] = result.units;
+    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
+        planes.set_channel("measured." + q, measured.channel(q));
+        planes.set_channel("simulated." + q, simulated.channel(q));
+        planes.set_channel("difference." + q, diffs[q]);
+    }
+    for (const auto& q : kZQuantities) planes.set_channel("z." + q, z[q]);
+    result.exr = report_dir / "comparison.exr";
+    write_exr(result.exr, planes);
+
+    result.json = report_dir / "report.json";
+    result.html = report_dir / "report.html";
+    write_file_atomic(result.json, comparison_json(result));
+    write_file_atomic(result.html, detail::render_html(result, options.measured_name, options.simulated_name, figures));
+    return result;
+}
+
+}  // namespace tirpol::report

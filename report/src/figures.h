@@ -1,0 +1,57 @@
+#pragma once
+// Figures of the comparison report, drawn with OpenCV (colour maps and colorbars from core's
+// quicklook). Private to the report module. Text drawn by OpenCV is ASCII only.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/quicklook.h"
+#include "tirpol/report/regions.h"
+
+namespace tirpol::report::detail {
+
+/// A plane of display data (already reduced to display size), width × height, row-major.
+struct Plane {
+    std::vector<float> data;
+    int width = 0, height = 0;
+};
+
+/// Longest side of the images drawn in the report; larger inputs are averaged down (INTER_AREA).
+inline constexpr int kDisplayMaxSide = 400;
+/// `data` (width × height) reduced to fit kDisplayMaxSide (unchanged if it already fits).
+Plane display_plane(const std::vector<float>& data, int width, int height);
+
+/// "W/(m²·sr)" → "W/(m^2 sr)" for OpenCV's Hershey fonts.
+std::string ascii_text(const std::string& text);
+
+/// BGR colour of region `index` (Tableau 10 palette).
+std::vector<int> region_colour(std::size_t index);
+/// The same as a CSS "#rrggbb".
+std::string region_colour_css(std::size_t index);
+
+/// Writes the quicklooks of `planes` (same height) to `parts` and their horizontal composition to `panel`.
+void write_panel(const std::filesystem::path& panel, const std::vector<std::filesystem::path>& parts,
+                 const std::vector<Plane>& planes, const std::vector<QuicklookOptions>& options);
+
+/// Measured S0 in grey with the region polygons outlined and named.
+void write_region_overview(const std::filesystem::path& path, const std::vector<float>& s0, int width, int height,
+                           const std::vector<Region>& regions);
+
+/// One set of scatter points: (measured, simulated) pairs of one region.
+struct ScatterSeries {
+    std::string name;
+    std::vector<float> measured, simulated;
+};
+/// Measured (x) against simulated (y) with the 1:1 line, one colour per series.
+void write_scatter(const std::filesystem::path& path, const std::string& title, const std::string& units,
+                   const std::vector<ScatterSeries>& series);
+
+/// Histogram of `values` over [lo, hi] as a density, with vertical markers at `markers`, and, when
+/// `gaussian_sigma` > 0, the density of N(gaussian_mean, gaussian_sigma²) drawn over it.
+void write_histogram(const std::filesystem::path& path, const std::string& title, const std::string& x_label,
+                     const std::vector<float>& values, double lo, double hi, const std::vector<double>& markers,
+                     double gaussian_mean, double gaussian_sigma);
+
+}  // namespace tirpol::report::detail

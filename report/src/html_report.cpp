@@ -1,0 +1,260 @@
+#include "html_report.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "figures.h"
+#include "tirpol/core/atomic_file.h"
+
+namespace tirpol::report::detail {
+
+namespace {
+
+std::string escape(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string num(double v) {
+    if (!std::isfinite(v)) return "–";
+    return fmt::format("{:.4g}", v);
+}
+std::string percent(double v) { return fmt::format("{:.2f} %", 100.0 * v); }
+
+constexpr const char* kStyle = R"css(
+:root { --ink: #1d2330; --muted: #5b6475; --rule: #d5d9e0; --band: #f4f6f9; --ok: #1e7b34; --bad: #b3261e; }
+* { box-sizing: border-box; }
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", sans-serif; color: var(--ink);
+       max-width: 1200px; margin: 0 auto; padding: 24px 28px 48px; line-height: 1.45; font-size: 15px; }
+header { border-bottom: 3px solid var(--ink); margin-bottom: 18px; }
+h1 { font-size: 26px; margin: 0 0 6px; }
+h2 { font-size: 20px; margin: 30px 0 10px; padding-bottom: 4px; border-bottom: 1px solid var(--rule); }
+h3 { font-size: 16px; margin: 18px 0 6px; }
+.meta { color: var(--muted); margin: 0 0 12px; }
+code { font-family: "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 13px; background: var(--band);
+       padding: 1px 4px; border-radius: 3px; word-break: break-all; }
+table { border-collapse: collapse; margin: 8px 0 14px; font-size: 14px; width: 100%; }
+caption { text-align: left; font-weight: 600; padding: 4px 0; }
+th, td { border-bottom: 1px solid var(--rule); padding: 4px 8px; text-align: right; vertical-align: top; }
+th { background: var(--band); font-weight: 600; }
+th:first-child, td:first-child { text-align: left; }
+td.text, th.text { text-align: left; }
+tbody tr:nth-child(even) { background: #fafbfc; }
+.ok { color: var(--ok); font-weight: 600; }
+.bad { color: var(--bad); font-weight: 600; }
+.swatch { display: inline-block; width: 11px; height: 11px; border-radius: 2px; margin-right: 6px; vertical-align: -1px; }
+figure { margin: 12px 0 20px; }
+figure img { display: block; max-width: 100%; height: auto; border: 1px solid var(--rule); }
+figcaption { color: var(--muted); font-size: 13.5px; margin-top: 5px; }
+.grid { display: grid; grid-template-columns: repeat(auto-fit, minmax(360px, 1fr)); gap: 8px 18px; }
+.notes li { margin-bottom: 4px; }
+.summary td:first-child { width: 30%; }
+footer { margin-top: 36px; color: var(--muted); font-size: 13px; border-top: 1px solid var(--rule); padding-top: 8px; }
+@media print {
+  @page { size: A4; margin: 14mm; }
+  body { max-width: none; padding: 0; font-size: 10pt; }
+  h2 { break-after: avoid; }
+  figure, table, tr { break-inside: avoid; }
+  .grid { grid-template-columns: 1fr 1fr; }
+  code { background: none; }
+  tbody tr:nth-child(even) { background: none; }
+}
+)css";
+
+}  // namespace
+
+std::string base64_encode(std::string_view bytes) {
+    static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const auto v = (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16) |
+                       (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
+                       static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
+        out += kAlphabet[(v >> 18) & 63];
+        out += kAlphabet[(v >> 12) & 63];
+        out += kAlphabet[(v >> 6) & 63];
+        out += kAlphabet[v & 63];
+    }
+    if (const std::size_t rest = bytes.size() - i; rest > 0) {
+        std::uint32_t v = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
+        if (rest == 2) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+        out += kAlphabet[(v >> 18) & 63];
+        out += kAlphabet[(v >> 12) & 63];
+        out += rest == 2 ? kAlphabet[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+std::string render_html(const CompareResult& r, const std::string& measured_name, const std::string& simulated_name,
+                        const std::vector<Figure>& figures) {
+    const std::string units = escape(r.units);
+    std::string h;
+    auto figures_of = [&](const std::string& section, bool grid) {
+        if (grid) h += "<div class=\"grid\">\n";
+        for (const auto& f : figures) {
+            if (f.section != section) continue;
+            h += fmt::format("<figure><img src=\"data:image/png;base64,{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                             base64_encode(read_file(f.png)), escape(f.png.filename().string()), escape(f.caption));
+        }
+        if (grid) h += "</div>\n";
+    };
+    auto swatch = [&](std::size_t index) {
+        return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
+    };
+
+    h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name), escape(simulated_name));
+    h += fmt::format("<style>{}</style>\n</head>\n<body>\n", kStyle);
+    h += "<header>\n<h1>Measured vs simulated Stokes images</h1>\n";
+    h += fmt::format("<p class=\"meta\">Measured <code>{}</code> ({}×{}) · simulated <code>{}</code> ({}×{}) · "
+                     "Stokes in {} · written by <code>tirpol compare</code></p>\n</header>\n",
+                     escape(measured_name), r.width, r.height, escape(simulated_name), r.simulated_width,
+                     r.simulated_height, units);
+
+    // Summary.
+    const auto& g = r.registration;
+    const double residual = std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]);
+    h += "<section id=\"summary\">\n<h2>Summary</h2>\n<table class=\"summary\">\n<tbody>\n";
+    h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n", escape(to_string(g.method)),
+                     escape(g.model), escape(g.note));
+    h += fmt::format("<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
+                     "correlation of S0 gradients after registration)</td></tr>\n",
+                     num(residual), num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
+    for (const auto& region : r.regions) {
+        const auto& z = region.z.at("all");
+        const bool ok = consistent_with_noise(z);
+        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><span class=\"{}\">{}</span>: |z| &gt; 2 in {} of {} "
+                         "S0/S1/S2 values (noise alone: 4.55 %); S0 bias {} {}</td></tr>\n",
+                         swatch(static_cast<std::size_t>(&region - r.regions.data())), escape(region.name),
+                         ok ? "ok" : "bad", ok ? "consistent with noise" : "differences exceed noise",
+                         percent(z.fraction_above_2), z.pixel_count, num(region.stats.at("S0").bias), units);
+    }
+    h += "</tbody>\n</table>\n";
+    if (!r.notes.empty()) {
+        h += "<ul class=\"notes\">\n";
+        for (const auto& note : r.notes) h += "<li>" + escape(note) + "</li>\n";
+        h += "</ul>\n";
+    }
+    h += "</section>\n";
+
+    // Registration details.
+    h += "<section id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th><th>Value</th>"
+         "</tr></thead>\n<tbody>\n";
+    h += fmt::format("<tr><td>Method / model</td><td>{} / {}</td></tr>\n", escape(to_string(g.method)), escape(g.model));
+    const auto& m = g.measured_to_simulated;
+    h += fmt::format("<tr><td>H (measured → simulated pixels)</td><td><code>[{} {} {}; {} {} {}; {} {} {}]</code></td></tr>\n",
+                     num(m[0]), num(m[1]), num(m[2]), num(m[3]), num(m[4]), num(m[5]), num(m[6]), num(m[7]), num(m[8]));
+    h += fmt::format("<tr><td>Largest corner displacement [px]</td><td>{}</td></tr>\n", num(g.max_corner_displacement_px));
+    h += fmt::format("<tr><td>Rotation [°]</td><td>{}</td></tr>\n", num(g.rotation_deg));
+    h += fmt::format("<tr><td>Control-point RMS residual [px]</td><td>{}</td></tr>\n",
+                     g.control_point_rms_px ? num(*g.control_point_rms_px) : "–");
+    h += fmt::format("<tr><td>ECC correlation coefficient</td><td>{}</td></tr>\n",
+                     g.ecc_correlation ? num(*g.ecc_correlation) : "–");
+    h += fmt::format("<tr><td>Residual shift after registration (dx, dy) [px]</td><td>{}, {}</td></tr>\n",
+                     num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
+    h += "</tbody>\n</table>\n</section>\n";
+
+    h += "<section id=\"regions\">\n<h2>Regions of interest</h2>\n";
+    figures_of("regions", false);
+    h += "</section>\n";
+
+    h += "<section id=\"images\">\n<h2>Stokes images side by side</h2>\n<p>Measured and registered simulated images "
+         "share one colour scale per quantity; differences are measured − simulated.</p>\n";
+    figures_of("images", false);
+    h += "</section>\n";
+
+    // Statistics.
+    h += "<section id=\"statistics\">\n<h2>Region statistics</h2>\n<p>Means and standard deviations over the pixels of "
+         "each region where both images have data; bias = mean(m − s), RMSE = √mean((m − s)²).</p>\n";
+    for (const auto& q : kComparedQuantities) {
+        const std::string qu = q == "DoLP" ? "dimensionless" : units;
+        h += fmt::format("<table>\n<caption>{} [{}]</caption>\n<thead><tr><th>Region</th><th>Pixels</th>"
+                         "<th>Measured mean</th><th>Measured std</th><th>Simulated mean</th><th>Simulated std</th>"
+                         "<th>Bias</th><th>RMSE</th></tr></thead>\n<tbody>\n",
+                         q, qu);
+        for (std::size_t i = 0; i < r.regions.size(); ++i) {
+            const auto& s = r.regions[i].stats.at(q);
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+                             "<td>{}</td></tr>\n",
+                             swatch(i), escape(r.regions[i].name), s.pixel_count, num(s.measured_mean),
+                             num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias), num(s.rmse));
+        }
+        h += "</tbody>\n</table>\n";
+    }
+    if (!r.background.empty()) {
+        h += fmt::format("<table>\n<caption>S1 contrast against the background region “{}” [{}]</caption>\n<thead><tr>"
+                         "<th>Region</th><th>Measured</th><th>Simulated</th><th>Measured − simulated</th></tr></thead>\n"
+                         "<tbody>\n",
+                         escape(r.background), units);
+        for (std::size_t i = 0; i < r.regions.size(); ++i) {
+            const auto& region = r.regions[i];
+            if (region.name == r.background || !region.s1_contrast_measured) continue;
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i), escape(region.name),
+                             num(*region.s1_contrast_measured), num(*region.s1_contrast_simulated),
+                             num(*region.s1_contrast_measured - *region.s1_contrast_simulated));
+        }
+        h += "</tbody>\n</table>\n";
+    }
+    h += "</section>\n";
+
+    // Statistical comparison.
+    h += "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p>Per pixel, z = (m − s)/√(σ_m² + "
+         "σ_s²) with σ_m the measurement uncertainty and σ_s the standard error of the simulation's Monte-Carlo mean. "
+         "If the simulation is right and the noise Gaussian, |z| &gt; 2 in 4.55 % and |z| &gt; 3 in 0.27 % of "
+         "pixels. A region is <span class=\"ok\">consistent with noise</span> when its |z| &gt; 2 fraction is within "
+         "three binomial standard deviations of 4.55 %.</p>\n";
+    h += fmt::format("<table>\n<caption>Noise used [{}]</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">"
+                     "Measured σ from</th><th>Median σ_m</th><th class=\"text\">Simulated σ from</th><th>Median σ_s</th>"
+                     "</tr></thead>\n<tbody>\n",
+                     units);
+    for (const auto& [q, s] : r.noise)
+        h += fmt::format("<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td class=\"text\">{}</td><td>{}</td></tr>\n",
+                         q, escape(s.measured), num(s.measured_sigma_median), escape(s.simulated),
+                         num(s.simulated_sigma_median));
+    h += "</tbody>\n</table>\n";
+    h += "<table>\n<caption>Fraction of pixels beyond 2σ and 3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
+         "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th class=\"text\">Verdict</th>"
+         "</tr></thead>\n<tbody>\n";
+    for (std::size_t i = 0; i < r.regions.size(); ++i)
+        for (const auto& q : {"S0", "S1", "S2", "all"}) {
+            const auto& z = r.regions[i].z.at(q);
+            const bool ok = consistent_with_noise(z);
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+                             "<td class=\"text {}\">{}</td></tr>\n",
+                             swatch(i), escape(r.regions[i].name), std::string(q) == "all" ? "S0+S1+S2" : q,
+                             z.pixel_count, percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean),
+                             num(z.rms), ok ? "ok" : "bad", ok ? "consistent" : "exceeds noise");
+        }
+    h += fmt::format("<tr><td>expected (noise only)</td><td></td><td></td><td>{}</td><td>{}</td><td>0</td><td>1</td>"
+                     "<td></td></tr>\n</tbody>\n</table>\n",
+                     percent(kNormalTailAbove2), percent(kNormalTailAbove3));
+    figures_of("z", false);
+    h += "</section>\n";
+
+    h += "<section id=\"scatter\">\n<h2>Scatter plots</h2>\n";
+    figures_of("scatter", true);
+    h += "</section>\n<section id=\"histograms\">\n<h2>Histograms of the differences</h2>\n";
+    figures_of("histograms", true);
+    h += "</section>\n";
+
+    h += "<footer>Files next to this page: <code>report.json</code> (every number above), <code>comparison.exr</code> "
+         "(full-resolution measured, registered simulated, difference and z planes) and the PNG figures. Stokes "
+         "convention: S1 = I0 − I90, S2 = I45 − I135 in the camera frame (polarizer 0° along image rows); DoLP and "
+         "AoP are recomputed from S0, S1, S2 after registration.</footer>\n</body>\n</html>\n";
+    return h;
+}
+
+}  // namespace tirpol::report::detail

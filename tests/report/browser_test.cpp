@@ -1,0 +1,111 @@
+// The report in a real browser (Debian's chromium, headless): the page loads offline with no console
+// error, every <img> is an embedded data: URI, the expected sections are there, and a screenshot
+// shows the images (non-blank, with colour). Skipped only when /usr/bin/chromium is absent.
+// Set TIRPOL_REPORT_TEST_OUTPUT=DIR to keep the report and the screenshot for a look.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "synthetic_pair.h"
+#include "test_support.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/config.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/report/comparison_report.h"
+
+using namespace tirpol::report;
+using ::testing::HasSubstr;
+
+namespace {
+
+constexpr const char* kChromium = "/usr/bin/chromium";
+
+// Runs chromium headless on `url` with `extra` arguments, stdout/stderr to files, killed after 90 s.
+int run_chromium(const std::filesystem::path& profile, const std::string& extra, const std::string& url,
+                 const std::filesystem::path& out, const std::filesystem::path& err) {
+    const std::string command = std::string("timeout -k 5 90 ") + kChromium +
+                                " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                                " --disable-background-networking --disable-component-update --disable-sync"
+                                " --user-data-dir=" + profile.string() + " " + extra + " '" + url + "' > '" +
+                                out.string() + "' 2> '" + err.string() + "'";
+    return std::system(command.c_str());
+}
+
+}  // namespace
+
+TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages) {
+    if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << kChromium << " is absent (Debian package chromium)";
+    tirpol::test::TempDir temp("tirpol-report-browser");
+    const char* keep = std::getenv("TIRPOL_REPORT_TEST_OUTPUT");
+    const std::filesystem::path dir = keep ? std::filesystem::path(keep) : temp.path();
+    std::filesystem::create_directories(dir);
+
+    test::SyntheticPairOptions o;
+    o.width = 240;
+    o.height = 180;
+    o.shift_x_px = 1.6;
+    o.shift_y_px = -0.8;
+    o.s1_bias = 0.1;
+    const auto pair = test::make_synthetic_pair(o);
+    tirpol::write_exr(dir / "measured.exr", pair.measured);
+    tirpol::write_exr(dir / "simulated.exr", pair.simulated);
+    tirpol::write_file_atomic(dir / "rois.yaml", pair.regions_yaml);
+    CompareOptions options;
+    options.measured_name = "measured.exr";
+    options.simulated_name = "simulated.exr";
+    options.regions = load_regions(dir / "rois.yaml");
+    const auto result = write_comparison_report(pair.measured, pair.simulated, options, dir / "report");
+    const std::string url = "file://" + std::filesystem::absolute(result.html).string();
+
+    // One headless run: DOM to stdout, console log to stderr, screenshot to a file.
+    const auto shot = dir / "screenshot.png";
+    ASSERT_EQ(run_chromium(temp / "profile", "--enable-logging=stderr --v=0 --hide-scrollbars --window-size=1280,2000 "
+                                             "--screenshot=" + shot.string() + " --dump-dom",
+                           url, dir / "dom.html", dir / "chromium.log"),
+              0)
+        << tirpol::read_file(dir / "chromium.log");
+
+    // DOM and console: every section rendered, every image embedded, no console error.
+    const std::string dom = tirpol::read_file(dir / "dom.html");
+    const std::string log = tirpol::read_file(dir / "chromium.log");
+    for (const char* heading : {"Measured vs simulated Stokes images", "Summary", "Registration", "Regions of interest",
+                                "Stokes images side by side", "Region statistics", "Do the differences exceed the noise?",
+                                "Scatter plots", "Histograms of the differences"})
+        EXPECT_THAT(dom, HasSubstr(std::string(">") + heading + "<")) << heading;
+    std::size_t images = 0;
+    for (std::size_t at = dom.find("<img "); at != std::string::npos; at = dom.find("<img ", at + 1)) {
+        ++images;
+        const std::size_t src = dom.find("src=\"", at);
+        ASSERT_NE(src, std::string::npos);
+        EXPECT_EQ(dom.compare(src + 5, 22, "data:image/png;base64,"), 0) << dom.substr(src, 40);
+    }
+    std::size_t figures = 0;  // the PNGs shown: all but the parts of the composed panels
+    for (const auto& png : result.pngs) {
+        const std::string name = png.filename().string();
+        if (name.rfind("measured_", 0) && name.rfind("simulated_", 0) && name.rfind("difference_", 0) && name.rfind("z_", 0))
+            ++figures;
+    }
+    EXPECT_EQ(images, figures);
+    EXPECT_GE(images, 15u);
+    EXPECT_THAT(log, ::testing::Not(HasSubstr("Uncaught")));
+    EXPECT_THAT(log, ::testing::Not(HasSubstr("ERROR:CONSOLE")));
+    EXPECT_THAT(log, ::testing::Not(HasSubstr("Failed to load resource")));
+
+    // Screenshot: right size, not blank, and colourful where the figures are.
+    const cv::Mat png = cv::imread(shot.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(png.empty()) << "no screenshot at " << shot;
+    EXPECT_EQ(png.cols, 1280);
+    EXPECT_EQ(png.rows, 2000);
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(png, mean, stddev);
+    EXPECT_GT(stddev[0] + stddev[1] + stddev[2], 30.0) << "blank screenshot";
+    cv::Mat hsv;
+    cv::cvtColor(png, hsv, cv::COLOR_BGR2HSV);
+    cv::Mat saturated;
+    cv::inRange(hsv, cv::Scalar(0, 80, 40), cv::Scalar(180, 255, 255), saturated);
+    EXPECT_GT(cv::countNonZero(saturated), png.total() / 50) << "the colour figures do not show";
+}

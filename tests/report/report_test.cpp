@@ -1,0 +1,202 @@
+// The comparison report end to end on synthetic pairs with known noise and a known bias: the z
+// statistic follows the normal law when the simulation is right and flags a real bias; numbers in
+// report.json equal those returned; bad inputs fail clearly.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "synthetic_pair.h"
+#include "test_support.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/config.h"
+#include "tirpol/core/error.h"
+#include "tirpol/report/comparison_report.h"
+
+using namespace tirpol::report;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const tirpol::Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+const RegionResult& region(const CompareResult& r, const std::string& name) {
+    for (const auto& region : r.regions)
+        if (region.name == name) return region;
+    throw std::runtime_error("no region " + name);
+}
+
+// Binomial standard deviation of a fraction p over n independent pixels.
+double binomial_sd(double p, std::size_t n) { return std::sqrt(p * (1.0 - p) / static_cast<double>(n)); }
+
+}  // namespace
+
+TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
+    // Same scene, independent Gaussian noise of known σ in both images, variances given in the
+    // channels: z ~ N(0, 1), so P(|z| > 2) = 4.55 % and P(|z| > 3) = 0.27 % within binomial scatter.
+    test::SyntheticPairOptions o;
+    o.width = 256;
+    o.height = 192;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    ASSERT_EQ(r.regions.size(), 1u);
+    for (const auto& q : kZQuantities) {
+        const ZStats& z = r.regions[0].z.at(q);
+        ASSERT_EQ(z.pixel_count, 256u * 192u) << q;
+        EXPECT_NEAR(z.fraction_above_2, kNormalTailAbove2, 4.0 * binomial_sd(kNormalTailAbove2, z.pixel_count)) << q;
+        EXPECT_NEAR(z.fraction_above_3, kNormalTailAbove3, 4.0 * binomial_sd(kNormalTailAbove3, z.pixel_count)) << q;
+        EXPECT_NEAR(z.rms, 1.0, 0.03) << q;
+        EXPECT_TRUE(consistent_with_noise(z)) << q;
+    }
+    EXPECT_EQ(r.noise.at("S1").measured, "channel S1_std");
+    EXPECT_EQ(r.noise.at("S1").simulated, "channel S1_var");
+    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);
+    EXPECT_NEAR(r.noise.at("S0").simulated_sigma_median, o.simulated_sigma, 1e-6);
+}
+
+TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
+    // Bias of S1 in the centre panel by one combined σ: P(|z| > 2) = P(N(1,1) > 2) + P(N(1,1) < −2)
+    // = 0.1587 + 0.0013 = 16 %, far above 4.55 %; other regions stay consistent.
+    test::SyntheticPairOptions o;
+    const double sigma_total = std::sqrt(2.0 * o.measured_sigma * o.measured_sigma + o.simulated_sigma * o.simulated_sigma);
+    o.s1_bias = sigma_total;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const auto& centre = region(r, "panel_5");
+    EXPECT_FALSE(consistent_with_noise(centre.z.at("S1")));
+    EXPECT_NEAR(centre.z.at("S1").fraction_above_2, 0.16, 0.05);
+    EXPECT_NEAR(centre.stats.at("S1").bias, o.s1_bias, 4.0 * sigma_total / std::sqrt(centre.stats.at("S1").pixel_count));
+    EXPECT_TRUE(consistent_with_noise(region(r, "panel_1").z.at("S1")));
+    EXPECT_TRUE(consistent_with_noise(centre.z.at("S0")));
+    EXPECT_NEAR(region(r, "panel_1").stats.at("S1").bias, 0.0,
+                4.0 * sigma_total / std::sqrt(region(r, "panel_1").stats.at("S1").pixel_count));
+}
+
+TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
+    // Scene (synthetic_pair.h): panel k adds −0.15 − 0.06 k to the background's S1 = 0.02, so the
+    // contrast of panel 1 (k = 0) is −0.15 and of panel 5 (k = 4) −0.39 W/(m²·sr), in both images.
+    test::SyntheticPairOptions o;
+    o.shift_x_px = 2.3;
+    o.shift_y_px = -1.4;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;  // automatic registration
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    EXPECT_LT(std::hypot(r.registration.residual_shift_px[0], r.registration.residual_shift_px[1]), 0.5);
+    for (const auto& [name, contrast] : {std::pair{"panel_1", -0.15}, std::pair{"panel_5", -0.39}}) {
+        const auto& reg = region(r, name);
+        ASSERT_TRUE(reg.s1_contrast_measured.has_value()) << name;
+        EXPECT_NEAR(*reg.s1_contrast_measured, contrast, 0.01) << name;
+        EXPECT_NEAR(*reg.s1_contrast_simulated, contrast, 0.01) << name;
+    }
+    EXPECT_NEAR(*region(r, "background").s1_contrast_measured, 0.0, 1e-12);
+
+    // report.json holds the same numbers, and the page embeds every figure.
+    const auto json = nlohmann::json::parse(tirpol::read_file(dir / "report.json"));
+    EXPECT_EQ(json["measured"]["width"], 192);
+    EXPECT_EQ(json["registration"]["method"], "auto");
+    EXPECT_DOUBLE_EQ(json["regions"][1]["stats"]["S1"]["bias"].get<double>(), r.regions[1].stats.at("S1").bias);
+    EXPECT_DOUBLE_EQ(json["regions"][0]["s1_contrast"]["measured"].get<double>(), *r.regions[0].s1_contrast_measured);
+    EXPECT_DOUBLE_EQ(json["regions"][0]["z"]["all"]["fraction_above_2"].get<double>(),
+                     r.regions[0].z.at("all").fraction_above_2);
+    EXPECT_EQ(json["background"], "background");
+    for (const auto& png : json["files"]["pngs"]) EXPECT_TRUE(std::filesystem::exists(dir / png.get<std::string>())) << png;
+    EXPECT_TRUE(std::filesystem::exists(dir / "comparison.exr"));
+    const std::string html = tirpol::read_file(dir / "report.html");
+    EXPECT_THAT(html, HasSubstr("<h2>Region statistics</h2>"));
+    EXPECT_THAT(html, ::testing::Not(HasSubstr("<script")));
+    EXPECT_THAT(html, ::testing::Not(HasSubstr("http")));
+    std::size_t images = 0, embedded = 0;
+    for (std::size_t at = html.find("<img "); at != std::string::npos; at = html.find("<img ", at + 1)) ++images;
+    for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
+         at = html.find("src=\"data:image/png;base64,", at + 1))
+        ++embedded;
+    EXPECT_GE(images, 15u);
+    EXPECT_EQ(images, embedded);
+}
+
+TEST(ReportComparison, MeasuredNoiseFallsBackToUserSigmaFlatRegionOrImmerkaer) {
+    test::SyntheticPairOptions o;
+    o.measured_uncertainty = false;
+    const auto pair = test::make_synthetic_pair(o);
+    tirpol::test::TempDir dir;
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.measured_frame_sigma = o.measured_sigma;
+    auto r = write_comparison_report(pair.measured, pair.simulated, options, dir / "user");
+    EXPECT_THAT(r.noise.at("S1").measured, HasSubstr("--measured-sigma"));
+    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);  // eq 15
+    EXPECT_TRUE(consistent_with_noise(r.regions[0].z.at("all")));
+
+    options.measured_frame_sigma.reset();
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
+    r = write_comparison_report(pair.measured, pair.simulated, options, dir / "flat");
+    EXPECT_EQ(r.noise.at("S0").measured, "std of measured S0 in flat region 'background'");
+    // The background has a gentle S0 gradient; S1 is flat there, so its std is the noise.
+    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 0.1 * o.measured_sigma);
+
+    options.regions.reset();
+    r = write_comparison_report(pair.measured, pair.simulated, options, dir / "immerkaer");
+    EXPECT_THAT(r.noise.at("S2").measured, HasSubstr("Immerkær"));
+    EXPECT_NEAR(r.noise.at("S2").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 0.15 * o.measured_sigma);
+}
+
+TEST(ReportComparison, MissingSimulationVarianceIsNotedNotFatal) {
+    test::SyntheticPairOptions o;
+    o.simulated_variance = false;
+    const auto pair = test::make_synthetic_pair(o);
+    tirpol::test::TempDir dir;
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    const auto r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    EXPECT_EQ(r.noise.at("S0").simulated, "none (σ_s = 0)");
+    ASSERT_FALSE(r.notes.empty());
+    EXPECT_THAT(r.notes[0], HasSubstr("no S0_var channel"));
+}
+
+TEST(ReportComparison, BadInputsFailClearly) {
+    const auto pair = test::make_synthetic_pair({});
+    tirpol::test::TempDir dir;
+    CompareOptions options;
+    options.measured_name = "M.exr";
+    options.simulated_name = "S.exr";
+
+    tirpol::Image partial(pair.measured.width(), pair.measured.height());
+    partial.set_channel("S0", pair.measured.channel("S0"));
+    partial.set_channel("S1", pair.measured.channel("S1"));
+    auto msg = error_of([&] { write_comparison_report(partial, pair.simulated, options, dir.path()); });
+    EXPECT_THAT(msg, HasSubstr("M.exr"));
+    EXPECT_THAT(msg, HasSubstr("lacks channel S2"));
+    EXPECT_THAT(msg, HasSubstr("channels present: S0, S1"));
+
+    test::SyntheticPairOptions other;
+    other.width = 100;
+    other.height = 100;
+    const auto square = test::make_synthetic_pair(other);
+    msg = error_of([&] { write_comparison_report(pair.measured, square.simulated, options, dir.path()); });
+    EXPECT_THAT(msg, HasSubstr("give control points"));
+
+    options.regions = parse_regions(tirpol::ConfigNode::parse(
+        "regions:\n  - name: off_image\n    polygon: [[500, 10], [600, 10], [600, 50]]\n", "rois.yaml"));
+    msg = error_of([&] { write_comparison_report(pair.measured, pair.simulated, options, dir.path()); });
+    EXPECT_THAT(msg, HasSubstr("rois.yaml:2"));
+    EXPECT_THAT(msg, HasSubstr("outside the 192×144 measured image"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "report.html"));  // nothing written before inputs are checked
+}
