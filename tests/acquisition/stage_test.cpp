@@ -181,7 +181,7 @@ TEST(StageRegistry, RejectsUnknownSchemesAndOptionsByName) {
     auto missing = open_stage("elliptec:///dev/does-not-exist");
     ASSERT_FALSE(missing);
     EXPECT_EQ(missing.error().code, DeviceErrorCode::Disconnected);
-    auto uri = parse_device_uri("thorlabs-apt+usb://55000123?counts_per_degree=1000&channel=1").value();
+    auto uri = parse_stage_uri("thorlabs-apt+usb://55000123?counts_per_degree=1000&channel=1").value();
     EXPECT_EQ(uri.scheme, "thorlabs-apt+usb");
     EXPECT_EQ(uri.path, "55000123");
     EXPECT_EQ(uri.query.at("counts_per_degree"), "1000");

@@ -13,11 +13,11 @@
 
 namespace tirpol::acquisition {
 
-Result<DeviceUri> parse_device_uri(const std::string& uri) {
+Result<StageUri> parse_stage_uri(const std::string& uri) {
     const auto sep = uri.find("://");
     if (sep == std::string::npos || sep == 0)
         return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("'{}': expected a device URI like scheme://path[?key=value]", uri)};
-    DeviceUri out;
+    StageUri out;
     out.scheme = uri.substr(0, sep);
     std::string rest = uri.substr(sep + 3);
     const auto q = rest.find('?');
@@ -45,7 +45,7 @@ namespace {
 
 DeviceError bad(const std::string& uri, const std::string& what) { return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)}; }
 
-Result<double> number(const std::string& uri, const DeviceUri& u, const std::string& key, double fallback) {
+Result<double> number(const std::string& uri, const StageUri& u, const std::string& key, double fallback) {
     auto it = u.query.find(key);
     if (it == u.query.end()) return fallback;
     double v = 0;
@@ -55,7 +55,7 @@ Result<double> number(const std::string& uri, const DeviceUri& u, const std::str
     return v;
 }
 
-Result<int> integer(const std::string& uri, const DeviceUri& u, const std::string& key, int fallback) {
+Result<int> integer(const std::string& uri, const StageUri& u, const std::string& key, int fallback) {
     auto it = u.query.find(key);
     if (it == u.query.end()) return fallback;
     int v = 0;
@@ -67,7 +67,7 @@ Result<int> integer(const std::string& uri, const DeviceUri& u, const std::strin
     return v;
 }
 
-Status check_keys(const std::string& uri, const DeviceUri& u, const std::set<std::string>& allowed) {
+Status check_keys(const std::string& uri, const StageUri& u, const std::set<std::string>& allowed) {
     for (const auto& [k, v] : u.query)
         if (!allowed.count(k)) {
             std::string list;
@@ -77,7 +77,7 @@ Status check_keys(const std::string& uri, const DeviceUri& u, const std::set<std
     return ok_status();
 }
 
-Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const DeviceUri& u, bool usb) {
+Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& u, bool usb) {
     if (auto s = check_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
     AptStageOptions options;
     auto cpd = number(uri, u, "counts_per_degree", options.counts_per_degree);
@@ -100,7 +100,7 @@ Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const DeviceUri&
     return open_apt_stage(std::move(port.value()), uri, options);
 }
 
-Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const DeviceUri& u) {
+Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const StageUri& u) {
     if (auto s = check_keys(uri, u, {"address", "timeout_ms"}); !s) return s.error();
     ElliptecStageOptions options;
     auto it = u.query.find("address");
@@ -116,7 +116,7 @@ Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const Devic
     return open_elliptec_stage(std::move(port.value()), uri, options);
 }
 
-Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const DeviceUri& u) {
+Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& u) {
     if (auto s = check_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
     SimulatedStageOptions options;
     auto speed = number(uri, u, "deg_per_s", 0.0);
@@ -135,9 +135,9 @@ Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const DeviceUri&
 }  // namespace
 
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
-    auto parsed = parse_device_uri(uri);
+    auto parsed = parse_stage_uri(uri);
     if (!parsed) return parsed.error();
-    const DeviceUri& u = parsed.value();
+    const StageUri& u = parsed.value();
     if (u.scheme == "thorlabs-apt") return open_apt(uri, u, false);
     if (u.scheme == "thorlabs-apt+usb") return open_apt(uri, u, true);
     if (u.scheme == "elliptec") return open_elliptec(uri, u);

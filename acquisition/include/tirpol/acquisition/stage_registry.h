@@ -16,12 +16,12 @@
 namespace tirpol::acquisition {
 
 /// A parsed device URI: scheme, the part after "://" up to '?', and the query keys.
-struct DeviceUri {
+struct StageUri {
     std::string scheme, path;
     std::map<std::string, std::string> query;
 };
 /// Parses "scheme://path?key=value&..."; InvalidArgument when there is no "://".
-Result<DeviceUri> parse_device_uri(const std::string& uri);
+Result<StageUri> parse_stage_uri(const std::string& uri);
 
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri);
 
