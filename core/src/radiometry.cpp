@@ -174,12 +174,21 @@ double Band::brightness_temperature(double radiance_w_m2_sr) const {
     double t = kC2_um_K / (centroid * std::log1p(kC1L_W_um4_per_m2_sr / (std::pow(centroid, 5) * mean_l)));
     double lo = 0.0, hi = std::numeric_limits<double>::infinity();
     for (int iter = 0; iter < 100; ++iter) {
-        const double f = radiance(t) - radiance_w_m2_sr;
+        // Radiance and its derivative in one pass (one exp per node).
+        double l = 0.0, d = 0.0;
+        for (const auto& n : m_nodes) {
+            const double x = kC2_um_K / (n.wavelength_um * t);
+            const double em1 = std::expm1(x);
+            const double w2 = n.wavelength_um * n.wavelength_um;
+            const double ln = n.weight_um * kC1L_W_um4_per_m2_sr / (w2 * w2 * n.wavelength_um * em1);
+            l += ln;
+            d += ln * x / t * (em1 + 1.0) / em1;
+        }
+        const double f = l - radiance_w_m2_sr;
         if (f > 0.0) hi = std::min(hi, t); else lo = std::max(lo, t);
-        const double d = radiance_dT(t);
         double next = d > 0.0 ? t - f / d : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * t;
-        if (std::abs(next - t) < 1e-9 * std::max(1.0, t)) return next;
+        if (std::abs(next - t) < 1e-7) return next;  // kelvin; Newton converges quadratically here
         t = next;
     }
     return t;

@@ -1,0 +1,68 @@
+// PNG quicklooks and the progress reporter.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "test_support.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/progress.h"
+#include "tirpol/core/quicklook.h"
+
+namespace tirpol {
+namespace {
+
+TEST(Quicklook, DivergingRangeIsSymmetricAboutZero) {
+    QuicklookOptions o;
+    o.colormap = Colormap::Diverging;
+    std::vector<float> data(1000);
+    for (std::size_t i = 0; i < data.size(); ++i) data[i] = static_cast<float>(i) * 0.01f - 2.0f;
+    const auto [lo, hi] = quicklook_range(data, o);
+    EXPECT_DOUBLE_EQ(lo, -hi);
+    EXPECT_GT(hi, 7.0);
+}
+
+TEST(Quicklook, WritesAPngWithColorbarAndGreyNaN) {
+    test::TempDir dir;
+    std::vector<float> data(40 * 30, 1.0f);
+    data[0] = std::nanf("");
+    QuicklookOptions o;
+    o.title = "S0";
+    o.units = "W/(m²·sr)";
+    write_quicklook(dir / "s0.png", data, 40, 30, o);
+    const std::string png = read_file(dir / "s0.png");
+    ASSERT_GT(png.size(), 24u);
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+    // IHDR width (big-endian at byte 16): the upscaled image plus the colorbar.
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(png[i])); };
+    const unsigned width = (byte(16) << 24) | (byte(17) << 16) | (byte(18) << 8) | byte(19);
+    EXPECT_GT(width, 40u * 8u);
+    EXPECT_EQ(default_colormap("S1"), Colormap::Diverging);
+    EXPECT_EQ(default_colormap("AoP"), Colormap::Cyclic);
+    EXPECT_EQ(default_colormap("S0"), Colormap::Sequential);
+}
+
+TEST(Progress, NonInteractiveOutputIsPlainLines) {
+    std::FILE* f = std::tmpfile();
+    {
+        ProgressReporter p("render", 10, f, 0);
+        for (int i = 0; i < 10; ++i) p.advance();
+    }
+    std::rewind(f);
+    char buf[256] = {};
+    const std::size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+    std::fclose(f);
+    const std::string out(buf, n);
+    EXPECT_NE(out.find("render: 10/10 (100%)"), std::string::npos) << out;
+    EXPECT_EQ(out.find('\r'), std::string::npos);
+}
+
+TEST(Progress, DurationFormatting) {
+    EXPECT_EQ(format_duration(12.34), "12.3s");
+    EXPECT_EQ(format_duration(185), "3m05s");
+    EXPECT_EQ(format_duration(3720), "1h02m");
+}
+
+}  // namespace
+}  // namespace tirpol
