@@ -154,5 +154,22 @@ TEST(Acquire, KilledMidSessionAndResumedLosesAndDuplicatesNothing) {
     EXPECT_EQ(on_disk, 12);  // no orphans or temporaries left
 }
 
+TEST(Acquire, InterruptStopsCleanlyAndSaysHowToResume) {
+    test::TempDir tmp;
+    test::write_text(tmp / "plan.yaml", "frames_per_angle: 5\nsettle_s: 0.01\nrepeats: 3\n");
+    auto sim = start_stage_sim(tmp.path(), "90");
+    Child acquire(acquire_args(tmp.path(), tmp / "plan.yaml", false), tmp / "acquire.log");
+    for (int i = 0; i < 3000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i) std::this_thread::sleep_for(10ms);
+    std::this_thread::sleep_for(300ms);
+    acquire.signal(SIGTERM);  // as Ctrl-C does with SIGINT
+    EXPECT_EQ(acquire.wait(), 1);
+    const std::string log = read_file(tmp / "acquire.log");
+    EXPECT_THAT(log, ::testing::HasSubstr("interrupted"));
+    EXPECT_THAT(log, ::testing::HasSubstr("--resume"));
+    const SessionManifest m = read_session(tmp / "session");
+    EXPECT_FALSE(m.complete);
+    EXPECT_LT(m.records.size(), 12u);
+}
+
 }  // namespace
 }  // namespace tirpol::acquisition

@@ -100,6 +100,8 @@ struct FaultCase {
     const char* message_part;
 };
 
+void PrintTo(const FaultCase& c, std::ostream* os) { *os << c.message_part; }
+
 class StageFault : public ::testing::TestWithParam<FaultCase> {};
 
 TEST_P(StageFault, GivesTheRightDeviceError) {
