@@ -3,6 +3,7 @@
 // Exit codes: 0 session complete; 1 an error (bad plan or URI, device fault, interruption — the
 // message says how many steps are recorded; continue with --resume); 2 bad command-line usage.
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -20,7 +21,14 @@ namespace tirpol::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) { g_interrupted = true; }
+/// First Ctrl-C: stop after the current frame. A second one ends the process at once, which is
+/// safe too: every session write is atomic.
+extern "C" void on_interrupt(int sig) {
+    if (g_interrupted.exchange(true)) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+}
 
 struct AcquireArgs {
     std::string plan, camera, stage, output;
@@ -41,6 +49,18 @@ void run_acquire(const AcquireArgs& a) {
     if (a.resume && !std::filesystem::exists(dir / kSessionManifestName))
         fail("{}: no session to resume here (no {}); leave out --resume to start one", dir.string(), kSessionManifestName);
 
+    // Handlers first, so an interruption at any point after this leaves through the same clean path.
+    g_interrupted = false;
+    auto previous_int = std::signal(SIGINT, on_interrupt);
+    auto previous_term = std::signal(SIGTERM, on_interrupt);
+    struct RestoreSignals {
+        decltype(previous_int) i, t;
+        ~RestoreSignals() {
+            std::signal(SIGINT, i);
+            std::signal(SIGTERM, t);
+        }
+    } restore{previous_int, previous_term};
+
     auto camera = open_camera(a.camera).value_or_throw();
     auto stage = open_stage(a.stage).value_or_throw();
     const CameraInfo camera_info = camera->info();
@@ -56,16 +76,6 @@ void run_acquire(const AcquireArgs& a) {
     CaptureOptions options;
     if (!a.non_interactive) options.prompt = ask_operator;
     options.interrupt = &g_interrupted;
-    g_interrupted = false;
-    auto previous_int = std::signal(SIGINT, on_interrupt);
-    auto previous_term = std::signal(SIGTERM, on_interrupt);
-    struct RestoreSignals {
-        decltype(previous_int) i, t;
-        ~RestoreSignals() {
-            std::signal(SIGINT, i);
-            std::signal(SIGTERM, t);
-        }
-    } restore{previous_int, previous_term};
 
     const CaptureSummary s = run_capture(*camera, *stage, plan, session, options);
     std::printf("session complete: %s\n", dir.c_str());
