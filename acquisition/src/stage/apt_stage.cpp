@@ -119,6 +119,13 @@ private:
                 m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(decoded.consumed));
                 continue;
             }
+            if (decoded.status == apt::DecodeStatus::Complete && decoded.message.dest != apt::kHostAddress) {
+                // Every controller message is addressed to the host; anything else is a misaligned
+                // stream (line noise): drop one byte and look for the next header.
+                spdlog::debug("{}: header addressed to 0x{:02X}, not the host; resynchronising", m_info.uri, decoded.message.dest);
+                m_rx.erase(m_rx.begin());
+                continue;
+            }
             if (decoded.status == apt::DecodeStatus::Complete) {
                 m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(decoded.consumed));
                 const apt::Message& m = decoded.message;
