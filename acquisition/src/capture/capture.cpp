@@ -30,7 +30,7 @@ milliseconds to_ms(double seconds) { return milliseconds(static_cast<std::int64_
 template <typename T>
 T check(Result<T> r, const CaptureStep& step, std::size_t total, const char* device, const SessionWriter& session) {
     if (!r) fail_step(step, total, device, r.error(), session);
-    return std::move(r).value();
+    return std::move(r.value());
 }
 
 }  // namespace
