@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -244,10 +243,13 @@ std::filesystem::path xml_with_frame_rate_node(const test::TempDir& dir, const s
     std::ifstream in(thermal_xml());
     std::stringstream text;
     text << in.rdbuf();
-    const std::regex float_node(R"(<Float Name="AcquisitionFrameRate">[\s\S]*?</Float>)");
     std::string xml = text.str();
-    EXPECT_TRUE(std::regex_search(xml, float_node));
-    xml = std::regex_replace(xml, float_node, replacement);
+    const std::string open_tag = R"(<Float Name="AcquisitionFrameRate">)", close_tag = "</Float>";
+    const auto begin = xml.find(open_tag);
+    EXPECT_NE(begin, std::string::npos);
+    const auto end = xml.find(close_tag, begin);
+    if (begin != std::string::npos && end != std::string::npos)
+        xml.replace(begin, end + close_tag.size() - begin, replacement);
     const auto path = dir / "variant.xml";
     test::write_text(path, xml);
     return path;
