@@ -1,0 +1,89 @@
+#pragma once
+/// \file twin.h
+/// The digital twin, end to end (issue 9): a paper scene is rendered, the renderer's sensor model
+/// plays the camera (served over GigE Vision on loopback) and tirpol-stage-sim's engine plays the
+/// polarizer mount (APT or Elliptec bytes on a pseudo-terminal, opened through the real serial
+/// driver); `run_capture` records the sessions, calibration reduces them to Stokes, the flat black
+/// paint's polarized emissivity is extracted over view angles and fitted, the scene is rendered again
+/// with the fitted paint and the comparison report is written. Lives in apps/ because it wires
+/// simulation to acquisition, which must not depend on each other.
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tirpol/acquisition/stage_simulator.h"
+
+namespace tirpol::cli::twin {
+
+/// One camera position for the emissivity series (the scene's own camera is the first view).
+struct TwinView {
+    double position[3] = {0.0, -6.0, 1.6};
+    double look_at[3] = {0.0, 0.0, 1.1};
+};
+
+struct TwinOptions {
+    std::filesystem::path out_dir;
+    std::filesystem::path scene_file;  ///< empty: config/scenes/panels_night.yaml of the source tree
+    int width = 160, height = 120, spp = 8;
+    int frames_per_angle = 16;  ///< frames averaged per polarizer angle and per blackbody step
+    /// Camera positions; the first is the scene's (the report compares that view). Empty: the scene's
+    /// camera plus two higher ones, so the panel is seen at three view angles.
+    std::vector<TwinView> views;
+    acquisition::SimProtocol stage_protocol = acquisition::SimProtocol::Apt;
+    bool gige = true;     ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
+    int threads = 0;      ///< render threads (0: all cores)
+    std::string target = "panel_flat_black_paint";    ///< the panel whose paint is fitted
+    std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
+};
+
+/// Extracted polarized emissivity of the target in one view, with the renderer's truth there.
+struct TwinEmissivity {
+    double view_angle_deg = 0.0;
+    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;  ///< plane-of-emission frame
+    double true_s0 = 0.0, true_s1 = 0.0;  ///< the true paint's directional emissivity at that angle
+};
+
+struct TwinParameter {
+    std::string name;
+    double truth = 0.0, fitted = 0.0, sigma = 0.0;
+    bool fixed = false;
+};
+
+/// Agreement of measured and simulated Stokes in one region (from the comparison report).
+struct TwinRegionAgreement {
+    std::string name;
+    std::size_t pixels = 0;
+    double z_above_2 = 0.0;  ///< fraction of |z| > 2 over S0, S1, S2 pooled
+    bool consistent = false; ///< report::consistent_with_noise
+};
+
+/// Measured vs the truth render, target ROI means (W/(m²·sr)) and their standard errors.
+struct TwinStokesCheck {
+    double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0}, sigma[3] = {0, 0, 0};
+};
+
+struct TwinResult {
+    std::string camera_transport;  ///< "GigE Vision on 127.0.0.1 (aravis://…)" or the fallback's reason
+    std::string stage_description;
+    std::vector<std::filesystem::path> sessions;
+    TwinStokesCheck target_stokes;  ///< first view
+    std::vector<TwinEmissivity> emissivity;
+    std::vector<TwinParameter> parameters;
+    double reduced_chi2 = 0.0;
+    std::vector<TwinRegionAgreement> regions;
+    std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
+    std::map<std::string, double> seconds;  ///< per stage
+};
+
+/// Runs the whole chain. Throws tirpol::Error naming the stage that failed.
+TwinResult run_twin(const TwinOptions& options);
+
+/// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
+std::string twin_summary(const TwinResult& r);
+
+/// config/<sub> of the source tree: ./config/<sub>, or the first found walking up from the executable.
+std::filesystem::path find_config_file(const std::filesystem::path& relative);
+
+}  // namespace tirpol::cli::twin

@@ -1,0 +1,115 @@
+#pragma once
+/// \file twin_instrument.h
+/// The twin's field instrument: what is in front of the camera (the rendered scene or the
+/// blackbody, the polarizer in or out of the beam), the renderer's sensor model as the camera's
+/// detector, a stage decorator that tells the world where the polarizer is, and the devices
+/// themselves — tirpol-stage-sim's engine on a pseudo-terminal opened through the real serial driver,
+/// and the camera served over GigE Vision on loopback (FakeGigECameraServer) opened as aravis://.
+
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture_plan.h"
+#include "tirpol/acquisition/fake_gige_server.h"
+#include "tirpol/acquisition/stage.h"
+#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/core/image.h"
+#include "tirpol/core/radiometry.h"
+#include "tirpol/simulation/sensor_model.h"
+
+namespace tirpol::cli::twin {
+
+/// The world the camera looks at. Thread-safe: the camera's fill runs on the server's thread.
+class TwinWorld {
+public:
+    TwinWorld(simulation::SensorModel sensor, Band band, int width, int height);
+
+    /// The rendered Stokes image (S0 S1 S2 S3, camera frame) of the current view.
+    void set_scene(Image stokes);
+    void set_polarizer_in_beam(bool in_beam);
+    /// The operator puts the blackbody at `temperature_k` in front of the camera for the next step.
+    void place_blackbody(double temperature_k);
+    /// The stage starts a move: a blackbody placed for this step stays; otherwise the operator has
+    /// taken it away and the camera sees the scene.
+    void on_stage_move();
+    /// The polarizer angle the stage driver last read back.
+    void set_angle_deg(double angle_deg);
+    double angle_deg() const;
+
+    /// Counts of one frame at polarizer angle `angle_deg`: the sensor model (gain, offset, NEDT noise,
+    /// the grid's reflected and emitted radiance) with a fresh noise realisation per call.
+    void fill(double angle_deg, std::vector<float>& counts);
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    const Image& blackbody_image(double temperature_k);
+
+    mutable std::mutex m_mutex;
+    simulation::SensorModel m_sensor;
+    Band m_band;
+    int m_width, m_height;
+    Image m_scene;
+    std::map<long, Image> m_blackbodies;  ///< by temperature in mK
+    bool m_polarizer_in_beam = true;
+    std::optional<double> m_pending_blackbody_k, m_blackbody_k;
+    double m_angle_deg = 0.0;
+    std::uint64_t m_frame_index = 0;
+};
+
+/// A Stage that forwards to the real driver and reports every move and read-back to the world, so
+/// the camera renders the polarizer where the driver says it is (never where the plan wants it).
+class WorldReportingStage final : public acquisition::Stage {
+public:
+    WorldReportingStage(acquisition::Stage& inner, TwinWorld& world) : m_inner(inner), m_world(world) {}
+    acquisition::StageInfo info() const override { return m_inner.info(); }
+    acquisition::Status home(std::chrono::milliseconds timeout) override;
+    bool is_homed() const override { return m_inner.is_homed(); }
+    acquisition::Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override;
+    acquisition::Result<double> position_deg() override;
+
+private:
+    acquisition::Stage& m_inner;
+    TwinWorld& m_world;
+};
+
+/// The devices of the twin. Throws tirpol::Error when the stage cannot be opened; a GigE Vision
+/// failure falls back to the in-process SimulatedCamera and says why in `camera_transport()`.
+class TwinInstrument {
+public:
+    TwinInstrument(TwinWorld& world, acquisition::SimProtocol protocol, bool gige);
+    ~TwinInstrument();
+    TwinInstrument(const TwinInstrument&) = delete;
+    TwinInstrument& operator=(const TwinInstrument&) = delete;
+
+    const std::string& camera_transport() const { return m_camera_transport; }
+    std::string stage_description() const;
+    bool served_over_gige() const { return m_server != nullptr; }
+
+    /// Runs `plan` (the library call behind `tirpol acquire`) into a new session at `dir`; the
+    /// simulated operator places the blackbody when the capture loop asks for it.
+    void acquire(const acquisition::CapturePlan& plan, const std::filesystem::path& dir);
+
+private:
+    TwinWorld& m_world;
+    acquisition::SimProtocol m_protocol;
+    acquisition::StageSimulator m_simulator;
+    std::optional<acquisition::PseudoTerminal> m_pty;
+    std::atomic<bool> m_stop{false};
+    std::thread m_stage_thread;
+    std::unique_ptr<acquisition::Stage> m_driver;
+    std::unique_ptr<WorldReportingStage> m_stage;
+    int m_gige_lock_fd = -1;
+    std::unique_ptr<acquisition::FakeGigECameraServer> m_server;
+    std::unique_ptr<acquisition::Camera> m_camera;
+    std::string m_camera_transport;
+};
+
+}  // namespace tirpol::cli::twin

@@ -1,0 +1,78 @@
+// Regions of the twin's images from the truth render's geometry channels.
+
+#include "twin_regions.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tirpol/core/error.h"
+
+namespace tirpol::cli::twin {
+
+std::size_t object_index(const simulation::Scene& scene, const std::string& name) {
+    std::string names;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        if (scene.objects[i].name == name) return i;
+        names += (i ? ", " : "") + scene.objects[i].name;
+    }
+    fail("{}: no object named '{}' (objects: {})", scene.file.string(), name, names);
+}
+
+namespace {
+
+bool all_object(const Image& render, std::size_t object, int x0, int y0, int x1, int y1) {
+    const auto& id = render.channel("object_id");
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            if (id[render.index(x, y)] != static_cast<float>(object)) return false;
+    return true;
+}
+
+}  // namespace
+
+std::optional<calibration::PixelRect> object_rect(const Image& render, std::size_t object) {
+    const auto& id = render.channel("object_id");
+    int x0 = render.width(), y0 = render.height(), x1 = -1, y1 = -1;
+    for (int y = 0; y < render.height(); ++y)
+        for (int x = 0; x < render.width(); ++x)
+            if (id[render.index(x, y)] == static_cast<float>(object)) {
+                x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x + 1), y1 = std::max(y1, y + 1);
+            }
+    if (x1 < 0) return std::nullopt;
+    // Shrink the box one pixel per side until it holds only the object; the panels are convex
+    // quadrilaterals, so this converges on a rectangle well inside the silhouette.
+    while (x1 - x0 > 2 && y1 - y0 > 2 && !all_object(render, object, x0, y0, x1, y1)) {
+        if (!all_object(render, object, x0, y0, x0 + 1, y1)) ++x0;
+        if (!all_object(render, object, x1 - 1, y0, x1, y1)) --x1;
+        if (!all_object(render, object, x0, y0, x1, y0 + 1)) ++y0;
+        if (!all_object(render, object, x0, y1 - 1, x1, y1)) --y1;
+    }
+    // Margin: pixels next to the edge mix in the neighbour through the render's anti-aliasing.
+    x0 += 1, y0 += 1, x1 -= 1, y1 -= 1;
+    if (x1 - x0 < 2 || y1 - y0 < 2 || !all_object(render, object, x0, y0, x1, y1)) return std::nullopt;
+    return calibration::PixelRect{x0, y0, x1 - x0, y1 - y0};
+}
+
+double rect_mean(const Image& image, const std::string& channel, const calibration::PixelRect& rect) {
+    const auto& c = image.channel(channel);
+    double sum = 0.0;
+    int n = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y)
+        for (int x = rect.x; x < rect.x + rect.width; ++x) {
+            const float v = c[image.index(x, y)];
+            if (std::isfinite(v)) sum += v, ++n;
+        }
+    if (n == 0) fail("twin: no finite {} value in the rectangle [{}, {}, {}, {}]", channel, rect.x, rect.y, rect.width, rect.height);
+    return sum / n;
+}
+
+double plane_of_emission_angle(const Image& render, const simulation::Camera& camera, const calibration::PixelRect& rect) {
+    const Vec3 normal = Vec3(rect_mean(render, "normal_x", rect), rect_mean(render, "normal_y", rect),
+                             rect_mean(render, "normal_z", rect))
+                            .normalized();
+    // Camera axes: x right, y down (columns of world_from_camera); the image frame's 90° is the image top.
+    const Vec3 right = camera.world_from_camera().col(0), down = camera.world_from_camera().col(1);
+    return std::atan2(-normal.dot(down), normal.dot(right));
+}
+
+}  // namespace tirpol::cli::twin

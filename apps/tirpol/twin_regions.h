@@ -1,0 +1,34 @@
+#pragma once
+/// \file twin_regions.h
+/// Regions of the twin's images from the truth render's geometry channels: the rectangle inside
+/// an object's silhouette (object_id), its mean view angle, and the orientation of its plane of
+/// emission in the image (for turning image-frame ε_S1, ε_S2 into the plane-of-emission ε_S1 the
+/// fit expects).
+
+#include <optional>
+#include <string>
+
+#include "tirpol/calibration/emissivity_extraction.h"
+#include "tirpol/core/image.h"
+#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/scene.h"
+
+namespace tirpol::cli::twin {
+
+/// Index of the object called `name` in `scene`; throws tirpol::Error listing the names otherwise.
+std::size_t object_index(const simulation::Scene& scene, const std::string& name);
+
+/// The largest centred rectangle, shrunk from the silhouette's bounding box by whole pixels, whose
+/// pixels all show object `object` (render channel object_id), with a one-pixel margin against
+/// mixed edge pixels. nullopt when the object covers fewer than 4 such pixels.
+std::optional<calibration::PixelRect> object_rect(const Image& render, std::size_t object);
+
+/// Mean of `channel` over the rectangle (NaNs skipped).
+double rect_mean(const Image& image, const std::string& channel, const calibration::PixelRect& rect);
+
+/// Angle (radians, from image +x toward the image top) of the surface normal projected on the image
+/// plane, averaged over the rectangle: the p direction of emission seen by the camera.
+double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
+                               const calibration::PixelRect& rect);
+
+}  // namespace tirpol::cli::twin
