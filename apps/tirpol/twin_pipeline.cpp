@@ -113,22 +113,31 @@ acquisition::CapturePlan write_plan(const fs::path& path, const std::string& ref
     return acquisition::CapturePlan::load(path);
 }
 
-/// Standard error of the ROI mean of `channel` from its per-pixel σ channel (or variance channel).
-double rect_standard_error(const Image& image, const std::string& sigma_channel, bool is_variance,
-                           const calibration::PixelRect& rect) {
-    const double mean_sq = is_variance ? rect_mean(image, sigma_channel, rect)
-                                       : [&] {
-                                             const auto& c = image.channel(sigma_channel);
-                                             double s = 0.0;
-                                             int n = 0;
-                                             for (int y = rect.y; y < rect.y + rect.height; ++y)
-                                                 for (int x = rect.x; x < rect.x + rect.width; ++x) {
-                                                     const double v = c[image.index(x, y)];
-                                                     if (std::isfinite(v)) s += v * v, ++n;
-                                                 }
-                                             return n ? s / n : 0.0;
-                                         }();
-    return std::sqrt(mean_sq / (rect.width * rect.height));
+/// Standard error of the ROI mean from the per-pixel σ channel (pixels' noise independent).
+double rect_standard_error(const Image& image, const std::string& sigma_channel, const calibration::PixelRect& rect) {
+    const auto& c = image.channel(sigma_channel);
+    double sum_sq = 0.0;
+    int n = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y)
+        for (int x = rect.x; x < rect.x + rect.width; ++x) {
+            const double v = c[image.index(x, y)];
+            if (std::isfinite(v)) sum_sq += v * v, ++n;
+        }
+    if (n == 0) fail("twin: no finite {} value in the rectangle", sigma_channel);
+    return std::sqrt(sum_sq) / n;
+}
+
+/// The twin's measurement inherits the Monte Carlo noise of the render it observes; its stated σ
+/// must include it (S_k_std² += truth S_k_var) or the comparison with a fresh render would flag
+/// render noise as disagreement.
+Image with_render_noise(Image measured, const Image& truth) {
+    for (const char* s : {"S0", "S1", "S2"}) {
+        auto& sd = measured.channel(std::string(s) + "_std");
+        const auto& var = truth.channel(std::string(s) + "_var");
+        for (std::size_t i = 0; i < sd.size(); ++i)
+            if (std::isfinite(var[i])) sd[i] = std::sqrt(sd[i] * sd[i] + var[i]);
+    }
+    return measured;
 }
 
 report::Region rect_region(const std::string& name, const calibration::PixelRect& r) {
@@ -216,8 +225,8 @@ TwinResult run_twin(const TwinOptions& opt) {
         const std::string s = fmt::format("S{}", c);
         result.target_stokes.measured[c] = rect_mean(measured.front(), s, *target_rect0);
         result.target_stokes.truth[c] = rect_mean(truth.front(), s, *target_rect0);
-        result.target_stokes.sigma[c] = std::hypot(rect_standard_error(measured.front(), s + "_std", false, *target_rect0),
-                                                   rect_standard_error(truth.front(), s + "_var", true, *target_rect0));
+        // The measurement observes this very render, so only the instrument's noise separates them.
+        result.target_stokes.sigma[c] = rect_standard_error(measured.front(), s + "_std", *target_rect0);
     }
 
     // 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.
@@ -315,7 +324,8 @@ TwinResult run_twin(const TwinOptions& opt) {
             if (const auto r = object_rect(truth.front(), i)) regions.regions.push_back(rect_region(name.substr(6), *r));
         }
         co.regions = regions;
-        const report::CompareResult cr = write_comparison_report(measured.front(), simulated, co, out / "report");
+        const report::CompareResult cr = write_comparison_report(with_render_noise(measured.front(), truth.front()), simulated, co,
+                                                                   out / "report");
         result.report_html = cr.html;
         for (const auto& r : cr.regions) {
             const auto it = r.z.find("all");

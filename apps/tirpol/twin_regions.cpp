@@ -70,9 +70,17 @@ double plane_of_emission_angle(const Image& render, const simulation::Camera& ca
     const Vec3 normal = Vec3(rect_mean(render, "normal_x", rect), rect_mean(render, "normal_y", rect),
                              rect_mean(render, "normal_z", rect))
                             .normalized();
-    // Camera axes: x right, y down (columns of world_from_camera); the image frame's 90° is the image top.
-    const Vec3 right = camera.world_from_camera().col(0), down = camera.world_from_camera().col(1);
-    return std::atan2(-normal.dot(down), normal.dot(right));
+    // The p direction is the normal's component across the ray through the rectangle's centre; its
+    // angle is measured in the image Stokes frame of that ray: 0° = camera right projected on the
+    // wavefront, 90° toward the image top (ARCHITECTURE.md). Off the optical axis this differs from
+    // projecting the normal on the sensor plane by several degrees.
+    const Vec3 d = camera.ray_direction(rect.x + 0.5 * rect.width, rect.y + 0.5 * rect.height).normalized();
+    const auto across = [&d](const Vec3& v) { return Vec3(v - v.dot(d) * d).normalized(); };
+    const Vec3 reference = across(camera.world_from_camera().col(0));
+    Vec3 up = d.cross(reference);
+    if (up.dot(-camera.world_from_camera().col(1)) < 0.0) up = -up;
+    const Vec3 p = across(normal);
+    return std::atan2(p.dot(up), p.dot(reference));
 }
 
 }  // namespace tirpol::cli::twin

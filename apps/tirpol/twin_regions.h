@@ -26,8 +26,8 @@ std::optional<calibration::PixelRect> object_rect(const Image& render, std::size
 /// Mean of `channel` over the rectangle (NaNs skipped).
 double rect_mean(const Image& image, const std::string& channel, const calibration::PixelRect& rect);
 
-/// Angle (radians, from image +x toward the image top) of the surface normal projected on the image
-/// plane, averaged over the rectangle: the p direction of emission seen by the camera.
+/// Angle (radians) of the p direction of emission — the mean surface normal's component across the
+/// ray through the rectangle's centre — in that ray's image Stokes frame (0° camera right, 90° image top).
 double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
                                const calibration::PixelRect& rect);
 
