@@ -13,23 +13,30 @@ double local_solar_hour(double time_s, double longitude_deg) {
     return h < 0.0 ? h + 24.0 : h;
 }
 
-SkyRadianceModel sky_from_weather(const WeatherRecord& r, const Site& site, const ThermalOptions& options) {
-    const double ta_k = r.air_temperature_c + kZeroCelsiusK;
+namespace {
+SkyConditions sky_conditions(const WeatherRecord& r, const Site& site) {
     SkyConditions c;
     c.air_temperature_c = r.air_temperature_c;
     c.dew_point_c = std::min(r.dew_point_c, r.air_temperature_c);
     c.pressure_hpa = r.pressure_pa / 100.0;
     c.local_solar_hour = local_solar_hour(r.time_s, site.longitude_deg);
+    // A file with measured IR but no sky cover: the window model and a fallback broadband model see a clear sky.
     c.opaque_sky_cover_tenths = std::isnan(r.opaque_sky_cover_tenths) ? 0.0 : r.opaque_sky_cover_tenths;
-    double broadband = 0.0;
+    return c;
+}
+}  // namespace
+
+double broadband_sky_emissivity(const WeatherRecord& r, const Site& site, const ThermalOptions& options) {
     if (options.use_measured_sky_ir && !std::isnan(r.horizontal_ir_w_m2)) {
-        broadband = r.horizontal_ir_w_m2 / (kStefanBoltzmann * ta_k * ta_k * ta_k * ta_k);
-    } else {
-        if (std::isnan(r.opaque_sky_cover_tenths) && !std::isnan(r.horizontal_ir_w_m2))
-            c.opaque_sky_cover_tenths = 0.0;
-        broadband = sky_emissivity(options.sky_model, c);
+        const double ta_k = r.air_temperature_c + kZeroCelsiusK;
+        return r.horizontal_ir_w_m2 / (kStefanBoltzmann * ta_k * ta_k * ta_k * ta_k);
     }
-    return SkyRadianceModel(ta_k, broadband, window_sky_emissivity(c));
+    return sky_emissivity(options.sky_model, sky_conditions(r, site));
+}
+
+SkyRadianceModel sky_from_weather(const WeatherRecord& r, const Site& site, const ThermalOptions& options) {
+    return SkyRadianceModel(r.air_temperature_c + kZeroCelsiusK, broadband_sky_emissivity(r, site, options),
+                            window_sky_emissivity(sky_conditions(r, site)));
 }
 
 namespace {
@@ -66,14 +73,14 @@ double facet_solar_irradiance_w_m2(const WeatherRecord& r, const Site& site, con
 
 SurfaceForcing facet_forcing(const WeatherRecord& r, const Site& site, const ThermalMaterial& m, const Facet& facet,
                              const ThermalOptions& options, const ShadowFunction& shadow) {
-    const SkyRadianceModel sky = sky_from_weather(r, site, options);
     const double ta_k = r.air_temperature_c + kZeroCelsiusK;
+    const double sky_irradiance = broadband_sky_emissivity(r, site, options) * kStefanBoltzmann * std::pow(ta_k, 4);
     const double f_sky = std::isnan(facet.sky_view_factor) ? 0.5 * (1.0 + std::cos(deg_to_rad(facet.tilt_deg)))
                                                            : std::clamp(facet.sky_view_factor, 0.0, 1.0);
     SurfaceForcing f;
     f.absorbed_shortwave_w_m2 = m.solar_absorptivity * facet_solar_irradiance_w_m2(r, site, facet, options, shadow);
     // The ground and nearby objects are taken as black at the air temperature.
-    f.incident_longwave_w_m2 = f_sky * sky.horizontal_irradiance_w_m2() + (1.0 - f_sky) * kStefanBoltzmann * std::pow(ta_k, 4);
+    f.incident_longwave_w_m2 = f_sky * sky_irradiance + (1.0 - f_sky) * kStefanBoltzmann * std::pow(ta_k, 4);
     f.emissivity = m.thermal_emissivity;
     f.air_temperature_k = ta_k;
     f.convection_w_m2_k = options.convection == ConvectionModel::McAdams ? 5.7 + 3.8 * r.wind_speed_m_s

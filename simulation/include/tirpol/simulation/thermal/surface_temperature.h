@@ -59,6 +59,10 @@ using ShadowFunction = std::function<double(double time_s, const Vec3& sun_direc
 /// Local apparent solar hour used by the Berdahl–Martin diurnal term: UTC hours + longitude/15.
 double local_solar_hour(double time_s, double longitude_deg);
 
+/// Broadband hemispherical sky emissivity of a record: E_IR/(σT_a⁴) from the measured horizontal IR
+/// when present and `use_measured_sky_ir`, else `options.sky_model` with the Clark–Allen cloud factor.
+double broadband_sky_emissivity(const WeatherRecord& record, const Site& site, const ThermalOptions& options);
+
 /// The sky of one weather record: the renderer's sky and the solver's sky load (same numbers).
 /// Broadband emissivity from the measured horizontal IR when present and `use_measured_sky_ir`,
 /// else from `options.sky_model` with the Clark–Allen cloud factor; window emissivity from Idso (1981).
