@@ -136,5 +136,18 @@ TEST(ThermalSurface, SimulatedHistoryIsSampledOnRequestedGrid) {
     for (const auto& x : s) EXPECT_LT(std::abs(x.fluxes.net()), 60.0);
 }
 
+TEST(ThermalSurface, BatchedFacetsMatchOneAtATime) {
+    const WeatherSeries w = clear_days();
+    const double t = parse_time("2003-10-17T10:00", -7.0);
+    const ThermalMaterial a = rubber(), b = snow();
+    const ShadowFunction half = [](double, const Vec3&) { return 0.5; };
+    const std::vector<FacetRequest> requests = {{&a, {0.0, 180.0}, {}}, {&b, {60.0, 120.0}, half}, {&a, {90.0, 270.0}, {}}};
+    const auto batch = predict_surface_temperatures(w, requests, t, ThermalOptions{});
+    ASSERT_EQ(batch.size(), 3u);
+    for (std::size_t k = 0; k < requests.size(); ++k)
+        EXPECT_DOUBLE_EQ(batch[k], predict_surface_temperature(w, *requests[k].material, requests[k].facet, t,
+                                                               ThermalOptions{}, requests[k].shadow));
+}
+
 }  // namespace
 }  // namespace tirpol::thermal

@@ -97,4 +97,17 @@ std::vector<TemperatureSample> simulate_facet(const WeatherSeries& weather, cons
 double predict_surface_temperature(const WeatherSeries& weather, const ThermalMaterial& material, const Facet& facet,
                                    double time_s, const ThermalOptions& options, const ShadowFunction& shadow = {});
 
+/// One facet of a batch: its material (not owned), orientation and optional shadow function.
+struct FacetRequest {
+    const ThermalMaterial* material = nullptr;
+    Facet facet;
+    ShadowFunction shadow;
+};
+
+/// Surface temperatures (K) of many facets at `time_s`, spun up together: the weather, the sun and the
+/// sky are evaluated once per step and shared by all facets (what a scene with many materials and
+/// orientations needs). Same result as predict_surface_temperature for each facet.
+std::vector<double> predict_surface_temperatures(const WeatherSeries& weather, const std::vector<FacetRequest>& facets,
+                                                 double time_s, const ThermalOptions& options);
+
 }  // namespace tirpol::thermal
