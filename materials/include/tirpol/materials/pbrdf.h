@@ -13,7 +13,11 @@
 /// So S1 > 0 means s-polarized on both sides, and for specular geometry the Fresnel Mueller matrix
 /// has m01 = (Rs − Rp)/2 > 0. At normal incidence the s direction is a convention
 /// (frame_from_reference's fallback); rotationally symmetric models do not depend on it.
+///
+/// Reciprocity in these frames (tested in tests/materials/reciprocity_test.cpp): exchanging the roles
+/// of wi and wo gives M(wo→wi) = Q·M(wi→wo)ᵀ·Q with Q = diag(1, 1, −1, 1).
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -61,6 +65,17 @@ public:
 
     /// The model's parameters at a wavelength.
     virtual std::vector<BrdfParameter> parameters(double wavelength_um) const = 0;
+
+    /// Values of u1 in (0, 1), increasing, at which `sample` switches from one lobe to the next for
+    /// this wo (e.g. specular → diffuse). Deterministic integrators (emissivity.h) split their
+    /// quadrature there so that each piece maps smoothly onto directions. Empty: one lobe.
+    virtual std::vector<double> sample_u1_breaks(const Vec3& /*wo*/, double /*wavelength_um*/) const { return {}; }
+
+    /// Wavelength range (µm) over which the model's tabulated data are defined; eval/sample clamp to
+    /// the ends outside it, so callers check it once (EmissivityTable does) before their hot loops.
+    virtual std::pair<double, double> valid_wavelength_range_um() const {
+        return {0.0, std::numeric_limits<double>::infinity()};
+    }
 };
 
 }  // namespace tirpol::materials

@@ -1,0 +1,85 @@
+#pragma once
+/// \file emissivity.h
+/// Kirchhoff-consistent polarized directional emissivity (paper eq 5 generalized to Stokes):
+///   ε(θo) = e0 − ∫_{2π} M(wi→wo)·e0 cosθi dωi,   e0 = (1, 0, 0, 0),
+/// i.e. the emitted Stokes vector is what an isothermal black enclosure (uniform unpolarized
+/// illumination) would not see reflected. Stokes in surface_frame(wo, z) (pbrdf.h): S1 < 0 is
+/// emission polarized in the plane of emission. For an isotropic surface S2 = S3 = 0 by mirror symmetry.
+///
+/// The integral is computed deterministically in the model's sample space: (u1, u2) ∈ [0,1)² mapped by
+/// PolarizedBrdf::sample, whose weight is M·cosθi/pdf, so ∫ M e0 cosθi dωi = ∫∫ weight·e0 du1 du2.
+/// Composite Gauss–Legendre rules in u1 (split at sample_u1_breaks, so every piece maps smoothly) and
+/// u2 follow the lobe however narrow it is, and delta lobes are exact (their weight is the reflectance
+/// matrix). Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
+/// 2-D integration over the hemisphere for rough surfaces, and exact (1e-12) for smooth ones.
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "tirpol/core/radiometry.h"
+#include "tirpol/core/stokes.h"
+#include "tirpol/materials/pbrdf.h"
+
+namespace tirpol::materials {
+
+struct EmissivityOptions {
+    int radial_panels = 12;   ///< Gauss–Legendre panels along u1, per lobe piece
+    int azimuth_panels = 8;   ///< Gauss–Legendre panels along u2
+    int order = 6;            ///< Gauss–Legendre nodes per panel (1..10)
+};
+
+/// ∫ M(wi→wo)·e0 cosθi dωi for wo at polar angle acos(cos_theta) (φo = 0): the Stokes vector reflected
+/// towards wo under uniform unpolarized unit radiance. S0 is the DHR. cos_theta is clamped to
+/// [kMinCosine, 1] so that exactly grazing views get the grazing limit.
+StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                            const EmissivityOptions& options = {});
+
+/// Polarized directional emissivity ε = e0 − hemispherical_reflected_stokes (file comment).
+StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                    const EmissivityOptions& options = {});
+
+/// Directional-hemispherical reflectance ρ_DHR(θ) (paper eq 2), = 1 − ε_S0.
+double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                             const EmissivityOptions& options = {});
+
+/// Emissivity tabulated over emission angle θ ∈ [0°, 90°] and a list of wavelengths, for per-hit
+/// lookups by the renderer. The θ nodes are θj = 90°·(1 − (1 − j/(N−1))²): twice as sparse as uniform
+/// at normal incidence and ever denser towards 90° (last step 90°/(N−1)²), where ε and DoLP change
+/// fastest. Lookups use cubic Lagrange interpolation on that grid (no allocation, no exceptions).
+class EmissivityTable {
+public:
+    /// Builds the table. Throws tirpol::Error if a wavelength lies outside the model's
+    /// valid_wavelength_range_um, or if the list is empty / not increasing. Wavelengths at which the
+    /// model's parameters are identical to the previous wavelength's reuse that column.
+    EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes = 65,
+                    const EmissivityOptions& options = {});
+
+    /// Emissivity Stokes vector at cos θ (clamped to [0, 1]) for the table's wavelength index.
+    StokesVector at(double cos_theta, std::size_t wavelength_index) const;
+
+    /// Emissivity at an arbitrary wavelength: linear in wavelength between columns, clamped at the ends.
+    StokesVector at_wavelength(double cos_theta, double wavelength_um) const;
+
+    /// Planck×RSR-weighted band average ∫R L_bb(T) ε dλ / ∫R L_bb(T) dλ over the band's quadrature
+    /// nodes (radiometry.h), with ε interpolated in wavelength as in at_wavelength.
+    StokesVector band_average(double cos_theta, const Band& band, double temperature_k) const;
+
+    const std::vector<double>& wavelengths_um() const { return m_wavelengths_um; }
+    /// Emission angles of the nodes, radians.
+    const std::vector<double>& angles_rad() const { return m_angles_rad; }
+    /// The value stored at node (angle_index, wavelength_index).
+    const StokesVector& node(std::size_t angle_index, std::size_t wavelength_index) const {
+        return m_values[wavelength_index * m_angles_rad.size() + angle_index];
+    }
+
+    /// Wavelengths spanning a band (its ends and steps of at most `step_um`), for building a table.
+    static std::vector<double> wavelengths_for_band(const Band& band, double step_um = 0.25);
+
+private:
+    std::vector<double> m_wavelengths_um;
+    std::vector<double> m_angles_rad;
+    std::vector<StokesVector> m_values;  // [wavelength][angle]
+};
+
+}  // namespace tirpol::materials

@@ -1,0 +1,80 @@
+#pragma once
+/// \file fresnel.h
+/// Fresnel reflection at a smooth interface from air (index 1) into a medium of complex index
+/// ñ = n + i·k (complex_index.h: waves ∝ exp(i(k·r − ωt)), k ≥ 0 absorbing).
+///
+/// With c = cos θi, s² = 1 − c² and q = ñ·cos θt = √(ñ² − s²) (principal root, Re q ≥ 0, Im q ≥ 0):
+///   r_s = (c − q) / (c + q),      r_p = (ñ²·c − q) / (ñ²·c + q)
+/// (Born & Wolf, Principles of Optics, 7th ed., §1.5.2 eq 21 and §14.2 for absorbing media).
+/// These are the Jones matrix J = diag(r_s, r_p) of reflection in tirpol's s/p frames (pbrdf.h):
+/// incident Stokes in surface_frame(−wi, n), reflected in surface_frame(wo, n), both with reference
+/// axis s = n × k. In these frames p-light at normal incidence comes back with r_p = −r_s (the frames'
+/// p axes point in opposite directions in space while the physical field flips with r_s).
+///
+/// Mueller matrix (core's mueller_from_jones of J, Chipman et al. 2018 eq 6.99), with
+/// Rs = |r_s|², Rp = |r_p|²:
+///   [ (Rs+Rp)/2  (Rs−Rp)/2      0              0        ]
+///   [ (Rs−Rp)/2  (Rs+Rp)/2      0              0        ]
+///   [     0          0      Re(r_s r_p*)   Im(r_s r_p*)  ]
+///   [     0          0     −Im(r_s r_p*)   Re(r_s r_p*)  ]
+/// m01 > 0: reflection favours s (S1 > 0), the retardance term is the 2×2 lower block.
+///
+/// The formulas are templates on the scalar type T (double or ceres::Jet) using TinyComplex, so the
+/// fitting module can differentiate them; the cosine of incidence may be a plain double.
+
+#include <array>
+#include <complex>
+
+#include "tirpol/core/mueller.h"
+#include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/tiny_complex.h"
+
+namespace tirpol::materials {
+
+/// 4×4 Mueller matrix for any scalar type (row-major: m[row][col]).
+template <typename T>
+using Mueller4 = std::array<std::array<T, 4>, 4>;
+
+template <typename T>
+struct FresnelAmplitudes {
+    TinyComplex<T> rs;
+    TinyComplex<T> rp;
+};
+
+/// Amplitude reflection coefficients for index n + i·k at cosine of incidence `cos_i` ∈ [0, 1].
+template <typename T, typename C>
+FresnelAmplitudes<T> fresnel_amplitudes(const T& n, const T& k, const C& cos_i) {
+    const TinyComplex<T> eps{n * n - k * k, T(2) * n * k};  // ñ²
+    const TinyComplex<T> c{T(cos_i), T(0)};
+    const TinyComplex<T> sin2{T(1.0 - cos_i * cos_i), T(0)};
+    const TinyComplex<T> q = csqrt(eps - sin2);
+    const TinyComplex<T> eps_c = eps * c;
+    return {(c - q) / (c + q), (eps_c - q) / (eps_c + q)};
+}
+
+/// Mueller matrix of specular reflection in the s/p frames (file comment), templated.
+template <typename T, typename C>
+Mueller4<T> fresnel_mueller_t(const T& n, const T& k, const C& cos_i) {
+    const FresnelAmplitudes<T> r = fresnel_amplitudes(n, k, cos_i);
+    const T rs2 = norm2(r.rs), rp2 = norm2(r.rp);
+    const TinyComplex<T> cross = r.rs * conj(r.rp);
+    const T a = (rs2 + rp2) * T(0.5), b = (rs2 - rp2) * T(0.5);
+    const T zero(0);
+    return {{{a, b, zero, zero}, {b, a, zero, zero}, {zero, zero, cross.re, cross.im}, {zero, zero, -cross.im, cross.re}}};
+}
+
+/// Double-precision results at one angle.
+struct FresnelResult {
+    std::complex<double> rs, rp;  ///< amplitude coefficients (file comment)
+    double Rs = 0.0, Rp = 0.0;    ///< reflectances |r|²
+    /// Unpolarized reflectance (Rs + Rp)/2.
+    double R() const { return 0.5 * (Rs + Rp); }
+};
+
+/// Fresnel coefficients for `index` at cosine of incidence `cos_i` (clamped to [0, 1]).
+FresnelResult fresnel(const ComplexIndex& index, double cos_i);
+
+/// Mueller matrix of specular reflection (file comment) at cosine of incidence `cos_i`.
+MuellerMatrix fresnel_mueller(const ComplexIndex& index, double cos_i);
+
+}  // namespace tirpol::materials

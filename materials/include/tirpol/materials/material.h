@@ -1,0 +1,66 @@
+#pragma once
+/// \file material.h
+/// Materials as people write them: YAML files (docs/materials.md) naming a pBRDF model, its
+/// parameters, and the literature source of the values; and a library of them (config/materials/).
+///
+/// ```yaml
+/// name: flat_black_paint
+/// source: "where the numbers come from"
+/// model: microfacet              # smooth_fresnel | microfacet | lambertian
+/// refractive_index: {n: 1.6, k: 0.1}     # or {file: data/x.yml} (refractiveindex.info / CSV)
+/// parameters: {sigma: 0.3, bias: 1, tau_deg: 15, omega_deg: 60, rho_d: 0.005, rho_v: 0}
+/// notes: "free text"
+/// thermal: {conductivity_w_m_k: 0.2, ...}   # optional, free-form numbers kept for the thermal solver
+/// ```
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tirpol/materials/pbrdf.h"
+
+namespace tirpol {
+class ConfigNode;
+}
+
+namespace tirpol::materials {
+
+struct Material {
+    std::string name;
+    std::string source;   ///< literature source(s) of the values, as written in the file
+    std::string notes;    ///< free text (ranges, caveats)
+    std::shared_ptr<const PolarizedBrdf> brdf;
+    /// Optional thermal properties (e.g. "conductivity_w_m_k", "density_kg_m3",
+    /// "specific_heat_j_kg_k", "thickness_m"), as numbers with units in their names.
+    std::map<std::string, double> thermal;
+    std::filesystem::path file;  ///< where it was loaded from (empty for inline definitions)
+};
+
+/// Builds a material from a parsed YAML mapping (a file's root or a scene's inline `material:`).
+/// Relative data paths resolve against the node's file. Unknown keys are errors (ConfigNode::check_keys);
+/// every error names file:line and the field. `fallback_name` is used when the node has no `name`.
+Material material_from_config(const ConfigNode& node, const std::string& fallback_name = "");
+
+/// Loads one material file.
+Material load_material(const std::filesystem::path& path);
+
+/// All materials of a directory (its *.yaml / *.yml files, not recursive), by name.
+class MaterialLibrary {
+public:
+    /// Loads every material file of `directory`; error if two share a name, or the directory is missing.
+    static MaterialLibrary load_directory(const std::filesystem::path& directory);
+
+    /// Adds (or replaces) a material.
+    void add(Material material);
+    /// The material called `name`; error lists the known names.
+    const Material& get(const std::string& name) const;
+    bool contains(const std::string& name) const { return m_materials.count(name) != 0; }
+    std::vector<std::string> names() const;
+
+private:
+    std::map<std::string, Material> m_materials;
+};
+
+}  // namespace tirpol::materials

@@ -1,0 +1,55 @@
+#pragma once
+/// \file microfacet.h
+/// The paper's generalized micro-facet pBRDF ("Shell target" family): polarized Fresnel reflection on
+/// Gaussian-distributed facets with shadowing, plus unpolarized diffuse and volume terms. The formulas
+/// and their sources are in shell_target_math.h; this class supplies spectral parameters, evaluation,
+/// and importance sampling.
+
+#include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/pbrdf.h"
+#include "tirpol/materials/shell_target_math.h"
+#include "tirpol/materials/spectral_value.h"
+
+namespace tirpol::materials {
+
+/// Spectral parameters of the micro-facet model (names as in DIRSIG's Shell-target files).
+struct MicrofacetParameters {
+    RefractiveIndexTable index = RefractiveIndexTable::constant({1.5, 0.0});
+    SpectralValue sigma = 0.1;      ///< slope standard deviation per axis, > 0
+    SpectralValue bias = 1.0;       ///< specular scale, ≥ 0
+    SpectralValue tau_deg = 90.0;   ///< Beard–Maxwell τ, degrees, > 0
+    SpectralValue omega_deg = 1e6;  ///< Beard–Maxwell Ω, degrees, > 0 (huge: no Beard–Maxwell shadowing)
+    SpectralValue rho_d = 0.0;      ///< diffuse BRDF, 1/sr
+    SpectralValue rho_v = 0.0;      ///< volume coefficient, 1/sr
+};
+
+class MicrofacetBrdf final : public PolarizedBrdf {
+public:
+    explicit MicrofacetBrdf(MicrofacetParameters parameters);
+
+    std::string model() const override { return "microfacet"; }
+    MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double wavelength_um) const override;
+    /// With probability p_spec (specular_sampling_probability): a facet normal h drawn from
+    /// D(h)·cosθh (Gaussian slopes, inverse CDF tan²θh = −2σ² ln(1 − u)), wi = reflection of wo about
+    /// h; otherwise a cosine-weighted direction. pdf is the mixture of both densities, so the weight
+    /// f·cosθi/pdf is the one-sample multiple-importance estimator (Veach 1997, §9.2.4). Reflections
+    /// below the horizon return pdf = 0.
+    BrdfSample sample(const Vec3& wo, double wavelength_um, double u1, double u2) const override;
+    double pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const override;
+    std::vector<BrdfParameter> parameters(double wavelength_um) const override;
+    std::vector<double> sample_u1_breaks(const Vec3& wo, double wavelength_um) const override;
+    std::pair<double, double> valid_wavelength_range_um() const override;
+
+    /// Parameters at one wavelength in the templated form (radians for τ, Ω).
+    ShellTargetParameters<double> at(double wavelength_um) const;
+    const MicrofacetParameters& spectral_parameters() const { return m_parameters; }
+
+    /// Probability with which `sample` draws from the specular lobe: the share of the normal-incidence
+    /// Fresnel reflectance (× bias) in an estimate of the total albedo; 1 without diffuse/volume terms.
+    double specular_sampling_probability(double wavelength_um) const;
+
+private:
+    MicrofacetParameters m_parameters;
+};
+
+}  // namespace tirpol::materials

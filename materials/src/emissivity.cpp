@@ -1,0 +1,151 @@
+#include "tirpol/materials/emissivity.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gauss_legendre.h"
+#include "tirpol/core/error.h"
+#include "tirpol/materials/shell_target_math.h"
+
+namespace tirpol::materials {
+
+StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                            const EmissivityOptions& options) {
+    const double c = std::clamp(cos_theta, kMinCosine, 1.0);
+    const Vec3 wo(std::sqrt(std::max(0.0, 1.0 - c * c)), 0.0, c);
+    const int order = std::clamp(options.order, 1, 10);
+    const detail::QuadratureRule base = detail::gauss_legendre(order);
+    const detail::QuadratureRule azimuth = detail::composite(base, std::max(1, options.azimuth_panels), 0.0, 1.0);
+
+    std::vector<double> breaks = brdf.sample_u1_breaks(wo, wavelength_um);
+    breaks.insert(breaks.begin(), 0.0);
+    breaks.push_back(1.0);
+
+    StokesVector sum = StokesVector::Zero();
+    for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
+        if (!(breaks[piece + 1] > breaks[piece])) continue;
+        // u = a + (b − a)(1 − (1 − v)²): nodes crowd towards the end of each piece, where the
+        // cosine-weighted lobe reaches the horizon (there a volume term ∝ 1/cosθi at grazing view
+        // becomes the smooth integrand 2(1 − v)/(1 − v)) and the specular lobe has its slope tail.
+        const double a = breaks[piece], width = breaks[piece + 1] - breaks[piece];
+        const detail::QuadratureRule radial = detail::composite(base, std::max(1, options.radial_panels), 0.0, 1.0);
+        for (std::size_t i = 0; i < radial.nodes.size(); ++i) {
+            const double one_minus_v = 1.0 - radial.nodes[i];
+            const double u1 = a + width * (1.0 - one_minus_v * one_minus_v);
+            const double w1 = radial.weights[i] * width * 2.0 * one_minus_v;
+            for (std::size_t j = 0; j < azimuth.nodes.size(); ++j) {
+                const BrdfSample s = brdf.sample(wo, wavelength_um, u1, azimuth.nodes[j]);
+                if (!(s.pdf > 0.0)) continue;
+                sum += (w1 * azimuth.weights[j]) * s.weight.col(0);
+            }
+        }
+    }
+    return sum;
+}
+
+StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                    const EmissivityOptions& options) {
+    return unpolarized(1.0) - hemispherical_reflected_stokes(brdf, cos_theta, wavelength_um, options);
+}
+
+double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+                                             const EmissivityOptions& options) {
+    return hemispherical_reflected_stokes(brdf, cos_theta, wavelength_um, options)(0);
+}
+
+namespace {
+constexpr double kHalfPi = 0.5 * kPi;
+
+// Grid coordinate x ∈ [0, 1] of emission angle θ: θ = (π/2)(1 − (1 − x)²).
+double grid_coordinate(double theta_rad) {
+    return 1.0 - std::sqrt(std::max(0.0, 1.0 - theta_rad / kHalfPi));
+}
+
+bool same_parameters(const std::vector<BrdfParameter>& a, const std::vector<BrdfParameter>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].name != b[i].name || a[i].value != b[i].value) return false;
+    return true;
+}
+}  // namespace
+
+EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes,
+                                 const EmissivityOptions& options)
+    : m_wavelengths_um(std::move(wavelengths_um)) {
+    if (m_wavelengths_um.empty()) fail("EmissivityTable: empty wavelength list");
+    if (angle_nodes < 4) fail("EmissivityTable: angle_nodes = {}: expected at least 4", angle_nodes);
+    const auto [lo, hi] = brdf.valid_wavelength_range_um();
+    for (std::size_t i = 0; i < m_wavelengths_um.size(); ++i) {
+        const double w = m_wavelengths_um[i];
+        if (i > 0 && !(w > m_wavelengths_um[i - 1]))
+            fail("EmissivityTable: wavelengths must increase ({} µm after {} µm)", w, m_wavelengths_um[i - 1]);
+        if (w < lo * (1.0 - 1e-9) || w > hi * (1.0 + 1e-9))
+            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(),
+                 lo, hi);
+    }
+    const auto n = static_cast<std::size_t>(angle_nodes);
+    m_angles_rad.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        const double x = static_cast<double>(j) / static_cast<double>(n - 1);
+        m_angles_rad[j] = kHalfPi * (1.0 - (1.0 - x) * (1.0 - x));
+    }
+    m_values.resize(n * m_wavelengths_um.size());
+    std::vector<BrdfParameter> previous;
+    for (std::size_t w = 0; w < m_wavelengths_um.size(); ++w) {
+        const double wl = m_wavelengths_um[w];
+        std::vector<BrdfParameter> params = brdf.parameters(wl);
+        const bool reuse = w > 0 && same_parameters(params, previous);
+        for (std::size_t j = 0; j < n; ++j)
+            m_values[w * n + j] =
+                reuse ? m_values[(w - 1) * n + j] : directional_emissivity(brdf, std::cos(m_angles_rad[j]), wl, options);
+        previous = std::move(params);
+    }
+}
+
+StokesVector EmissivityTable::at(double cos_theta, std::size_t wavelength_index) const {
+    const std::size_t n = m_angles_rad.size();
+    const std::size_t w = std::min(wavelength_index, m_wavelengths_um.size() - 1);
+    const double theta = std::acos(std::clamp(cos_theta, 0.0, 1.0));
+    const double p = grid_coordinate(theta) * static_cast<double>(n - 1);
+    // Cubic Lagrange through the 4 nodes around p (window shifted inwards at the ends).
+    const auto i = static_cast<std::size_t>(std::clamp(p, 0.0, static_cast<double>(n - 1)));
+    const std::size_t start = std::min(i > 0 ? i - 1 : 0, n - 4);
+    const double t = p - static_cast<double>(start);  // position relative to node `start`
+    const double l0 = -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0;
+    const double l1 = t * (t - 2.0) * (t - 3.0) / 2.0;
+    const double l2 = -t * (t - 1.0) * (t - 3.0) / 2.0;
+    const double l3 = t * (t - 1.0) * (t - 2.0) / 6.0;
+    const StokesVector* v = &m_values[w * n + start];
+    return l0 * v[0] + l1 * v[1] + l2 * v[2] + l3 * v[3];
+}
+
+StokesVector EmissivityTable::at_wavelength(double cos_theta, double wavelength_um) const {
+    const auto& wl = m_wavelengths_um;
+    if (wl.size() == 1 || wavelength_um <= wl.front()) return at(cos_theta, 0);
+    if (wavelength_um >= wl.back()) return at(cos_theta, wl.size() - 1);
+    const auto it = std::upper_bound(wl.begin(), wl.end(), wavelength_um);
+    const auto i = static_cast<std::size_t>(it - wl.begin());
+    const double t = (wavelength_um - wl[i - 1]) / (wl[i] - wl[i - 1]);
+    return (1.0 - t) * at(cos_theta, i - 1) + t * at(cos_theta, i);
+}
+
+StokesVector EmissivityTable::band_average(double cos_theta, const Band& band, double temperature_k) const {
+    StokesVector num = StokesVector::Zero();
+    double den = 0.0;
+    for (const BandNode& node : band.nodes()) {
+        const double w = node.weight_um * planck_radiance(node.wavelength_um, temperature_k);
+        num += w * at_wavelength(cos_theta, node.wavelength_um);
+        den += w;
+    }
+    return den > 0.0 ? StokesVector(num / den) : at_wavelength(cos_theta, 0.5 * (band.lo_um() + band.hi_um()));
+}
+
+std::vector<double> EmissivityTable::wavelengths_for_band(const Band& band, double step_um) {
+    const double width = band.hi_um() - band.lo_um();
+    const int steps = std::max(1, static_cast<int>(std::ceil(width / step_um - 1e-9)));
+    std::vector<double> out;
+    for (int i = 0; i <= steps; ++i) out.push_back(band.lo_um() + width * i / steps);
+    return out;
+}
+
+}  // namespace tirpol::materials

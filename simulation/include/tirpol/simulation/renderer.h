@@ -1,0 +1,48 @@
+#pragma once
+/// \file renderer.h
+/// The polarized path tracer (paper §2.2–2.3.3). For each pixel and sample, a camera ray is traced
+/// into the scene; at every hit the surface's polarized emission ε(θ)·L_bb(λ, T) (eq 13) and its
+/// reflection of what arrives from an importance-sampled direction (eq 12) are accumulated, with
+/// the Stokes vector carried in world ray frames and rotated with core's change_frame between the
+/// surface s/p frames of the pBRDF and the world frames; the sun is added by next-event estimation
+/// with a shadow ray; escaped rays take the sky. Each path carries one wavelength node of the band,
+/// drawn with probability ∝ its quadrature weight, so emission and reflection of a path use the same
+/// wavelength and an isothermal enclosure is exact per path in expectation.
+///
+/// Why path tracing rather than the paper's hemisphere sampling with a bounce-dependent decay:
+/// one sample per bounce spends the ray budget on pixels (anti-aliasing, edge pixels, sub-pixel
+/// geometry) instead of on deep branches that contribute little; the noise-vs-time comparison is in
+/// bench/simulation_bench.cpp and docs/simulation.md.
+
+#include <cstdint>
+#include <string>
+
+#include "tirpol/core/image.h"
+#include "tirpol/simulation/scene.h"
+
+namespace tirpol::simulation {
+
+struct RenderOptions {
+    int threads = 0;             ///< 0: all cores (TBB's default concurrency)
+    bool show_progress = false;  ///< progress bar with ETA on stderr (core ProgressReporter)
+    int tile_size = 16;          ///< pixels per tile edge; the image does not depend on it
+};
+
+struct RenderStatistics {
+    double seconds = 0.0;
+    std::uint64_t camera_rays = 0;
+    std::uint64_t scene_rays = 0;   ///< every intersect query (camera, bounce and auxiliary rays)
+    std::uint64_t shadow_rays = 0;  ///< occlusion queries toward the sun
+};
+
+/// Renders `scene` at its camera's resolution with its sampling settings. Returns an image with the
+/// channels S0 S1 S2 S3 (camera frame: 0° along image +x, 90° toward the image top; band radiance
+/// W/(m²·sr)), DoLP, AoP (degrees, [0, 180)), S0_var S1_var S2_var (variance of the per-pixel mean;
+/// NaN with one sample per pixel), depth (m along the pixel-centre ray), normal_x/y/z (world, facing
+/// the camera), view_zenith_deg, object_id, material_id (−1 on sky), temperature_k; NaN on sky
+/// pixels for the geometric channels. Header attributes: units, band, spp, seed, bounces, scene file.
+/// The result is identical for any thread count and tile size (counter-based random numbers).
+/// Throws tirpol::Error before rendering if a material does not cover the band.
+Image render(const Scene& scene, const RenderOptions& options = {}, RenderStatistics* statistics = nullptr);
+
+}  // namespace tirpol::simulation

@@ -1,0 +1,58 @@
+#pragma once
+/// \file scene.h
+/// A scene ready to render: geometry in Embree, a material and a temperature field per object, the
+/// sky, the sun, the camera, the spectral band and the sampling settings. Loaded from the YAML scene
+/// format of docs/scene-format.md.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/radiometry.h"
+#include "tirpol/materials/pbrdf.h"
+#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/ray_tracer.h"
+#include "tirpol/simulation/sky.h"
+#include "tirpol/simulation/temperature_field.h"
+
+namespace tirpol::simulation {
+
+struct SamplingSettings {
+    int samples_per_pixel = 16;
+    int max_bounces = 4;  ///< reflections followed after the camera's first hit
+    std::uint64_t seed = 1;
+};
+
+/// A material as used by the renderer: its pBRDF and where it came from.
+struct SceneMaterial {
+    std::string name;
+    std::string source;  ///< file it was read from, or "inline in <scene>"
+    std::shared_ptr<const materials::PolarizedBrdf> brdf;
+};
+
+struct SceneObject {
+    std::string name;
+    std::uint32_t material = 0;  ///< index into Scene::materials
+    TemperatureField temperature;
+};
+
+struct Scene {
+    std::filesystem::path file;
+    Camera camera;
+    Band band;
+    Sky sky;
+    std::optional<Sun> sun;
+    SamplingSettings sampling;
+    std::vector<SceneMaterial> materials;
+    std::vector<SceneObject> objects;  ///< index = RayTracer object index
+    std::shared_ptr<RayTracer> tracer;
+};
+
+/// Loads a scene file. Every error names the file, line and field (unknown keys, wrong types, a
+/// missing mesh or material file, an unknown material name).
+Scene load_scene(const std::filesystem::path& path);
+
+}  // namespace tirpol::simulation

@@ -1,0 +1,65 @@
+#pragma once
+/// \file sky.h
+/// Downwelling sky radiance for rays that leave the scene, and the sun. The sky is unpolarized
+/// (a clear LWIR night sky is, to first order; the paper's MODTRAN-P polarized sky is not modelled).
+
+#include <optional>
+#include <vector>
+
+#include "tirpol/core/config.h"
+#include "tirpol/core/geometry.h"
+#include "tirpol/core/radiometry.h"
+
+namespace tirpol::simulation {
+
+/// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. Three kinds (docs/scene-format.md):
+///  - uniform: ε = 1 at one temperature (or the brightness temperature of a given band radiance);
+///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature — the
+///    angular form of Berdahl & Martin, "Emissivity of clear skies", Solar Energy 32(5), 663–664
+///    (1984), and Martin & Berdahl, "Characteristics of infrared sky radiation in the United
+///    States", Solar Energy 33(3/4), 321–336 (1984);
+///  - table: band radiance vs zenith angle from a CSV (e.g. converted from MODTRAN or libRadtran),
+///    turned into brightness temperatures over the band and interpolated linearly in zenith angle.
+/// Below the horizon every kind takes its horizon value (ε → 1 for the clear sky).
+class Sky {
+public:
+    static Sky uniform(double temperature_k);
+    static Sky clear_sky(double air_temperature_k, double zenith_emissivity);
+    static Sky table(std::vector<double> zenith_deg, std::vector<double> band_radiance, const Band& band);
+
+    /// From the `sky:` mapping of a scene file; `band` converts band radiances to brightness temperatures.
+    static Sky from_config(const ConfigNode& node, const Band& band);
+
+    /// Spectral radiance, W/(m²·sr·µm), seen along the world direction `direction` (pointing to the sky).
+    double spectral_radiance(double wavelength_um, const Vec3& direction) const;
+
+    /// Effective emissivity and temperature at zenith angle θ given by cos θ.
+    double emissivity(double cos_zenith) const;
+    double temperature_k(double cos_zenith) const;
+
+private:
+    enum class Kind { Uniform, ClearSky, Table };
+    Kind m_kind = Kind::Uniform;
+    double m_temperature_k = 0.0;
+    double m_zenith_emissivity = 1.0;
+    std::vector<double> m_zenith_deg, m_brightness_k;
+};
+
+/// The sun as a uniform disk of solid angle `solid_angle_sr` and spectral radiance
+/// transmittance·L_bb(λ, temperature_k). Defaults: 5778 K, 6.8e-5 sr (angular radius 0.2666°).
+struct Sun {
+    Vec3 direction = Vec3::UnitZ();  ///< unit world vector pointing to the sun
+    double temperature_k = 5778.0;
+    double solid_angle_sr = 6.8e-5;
+    double transmittance = 1.0;      ///< atmospheric path transmittance (grey)
+
+    /// From the `sun:` mapping: `elevation_deg`/`azimuth_deg` (azimuth from north, clockwise toward
+    /// east) or `direction`, and `temperature_k` (+ `transmittance`) or a band `radiance` in W/(m²·sr).
+    static Sun from_config(const ConfigNode& node, const Band& band);
+
+    double spectral_radiance(double wavelength_um) const;
+    /// cos of the disk's angular radius: a direction d is on the disk when d·direction ≥ this.
+    double cos_angular_radius() const { return 1.0 - solid_angle_sr / (2.0 * kPi); }
+};
+
+}  // namespace tirpol::simulation

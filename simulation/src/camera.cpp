@@ -1,0 +1,135 @@
+#include "tirpol/simulation/camera.h"
+
+#include <cmath>
+
+#include "tirpol/core/error.h"
+
+namespace tirpol::simulation {
+
+namespace {
+Vec3 vec3_field(const ConfigNode& node, std::string_view key) {
+    const ConfigNode child = node.at(key);
+    const auto v = child.as<std::vector<double>>();
+    if (v.size() != 3) child.fail(fmt::format("expected 3 numbers [x, y, z], got {}", v.size()));
+    return {v[0], v[1], v[2]};
+}
+}  // namespace
+
+Camera::Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position, Mat3 world_from_camera)
+    : m_width(width),
+      m_height(height),
+      m_intrinsics(intrinsics),
+      m_position(std::move(position)),
+      m_world_from_camera(std::move(world_from_camera)) {
+    if (width <= 0 || height <= 0) fail("camera: resolution must be positive, got {}x{}", width, height);
+    if (!(intrinsics.fx > 0.0 && intrinsics.fy > 0.0))
+        fail("camera: focal lengths fx, fy must be positive, got {} {}", intrinsics.fx, intrinsics.fy);
+}
+
+Mat3 Camera::look_at(const Vec3& position, const Vec3& target, const Vec3& up) {
+    const Vec3 forward = (target - position).normalized();
+    Vec3 right = forward.cross(up);
+    if (right.norm() < 1e-9) fail("camera: look_at direction is parallel to up; give another up vector");
+    right.normalize();
+    const Vec3 down = forward.cross(right);  // OpenCV: x right, y down, z forward, x × y = z
+    Mat3 m;
+    m.col(0) = right;
+    m.col(1) = down;
+    m.col(2) = forward;
+    return m;
+}
+
+Camera Camera::from_config(const ConfigNode& node) {
+    node.check_keys({"resolution", "fov_deg", "intrinsics", "distortion", "position", "look_at", "up", "rotation"});
+    const ConfigNode res_node = node.at("resolution");
+    const auto res = res_node.as<std::vector<double>>();
+    if (res.size() != 2 || res[0] < 1 || res[1] < 1 || res[0] != std::floor(res[0]) || res[1] != std::floor(res[1]))
+        res_node.fail("expected [width, height] in pixels (positive integers)");
+    const int w = static_cast<int>(res[0]), h = static_cast<int>(res[1]);
+
+    CameraIntrinsics k;
+    const bool has_fov = node.has("fov_deg"), has_k = node.has("intrinsics");
+    if (has_fov == has_k) node.fail("give exactly one of fov_deg (horizontal field of view) or intrinsics {fx, fy, cx, cy}");
+    if (has_fov) {
+        const double fov = deg_to_rad(node.get_in_range("fov_deg", 0.1, 179.0));
+        k.fx = k.fy = 0.5 * w / std::tan(0.5 * fov);
+        k.cx = 0.5 * w;
+        k.cy = 0.5 * h;
+    } else {
+        const ConfigNode in = node.at("intrinsics");
+        in.check_keys({"fx", "fy", "cx", "cy"});
+        k.fx = in.get_in_range("fx", 1e-6, 1e9);
+        k.fy = in.get_in_range("fy", 1e-6, 1e9);
+        k.cx = in.get<double>("cx");
+        k.cy = in.get<double>("cy");
+    }
+    if (auto d = node.find("distortion")) {
+        d->check_keys({"k1", "k2", "p1", "p2", "k3"});
+        k.k1 = d->get_or("k1", 0.0);
+        k.k2 = d->get_or("k2", 0.0);
+        k.p1 = d->get_or("p1", 0.0);
+        k.p2 = d->get_or("p2", 0.0);
+        k.k3 = d->get_or("k3", 0.0);
+    }
+
+    const Vec3 position = vec3_field(node, "position");
+    Mat3 world_from_camera;
+    if (node.has("look_at") == node.has("rotation"))
+        node.fail("give exactly one of look_at [x, y, z] or rotation (9 numbers, OpenCV R camera-from-world, row-major)");
+    if (node.has("look_at")) {
+        const Vec3 up = node.has("up") ? vec3_field(node, "up") : world_up();
+        const Vec3 target = vec3_field(node, "look_at");
+        if ((target - position).norm() < 1e-12) node.at("look_at").fail("look_at equals the camera position");
+        world_from_camera = look_at(position, target, up);
+    } else {
+        if (node.has("up")) node.at("up").fail("'up' only goes with look_at");
+        const ConfigNode r_node = node.at("rotation");
+        const auto r = r_node.as<std::vector<double>>();
+        if (r.size() != 9) r_node.fail("expected 9 numbers (3×3 rotation, row-major)");
+        Mat3 camera_from_world;
+        camera_from_world << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+        if ((camera_from_world * camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
+            camera_from_world.determinant() < 0.0)
+            r_node.fail("not a proper rotation matrix (R·Rᵀ = I, det R = +1)");
+        world_from_camera = camera_from_world.transpose();
+    }
+    return Camera(w, h, k, position, world_from_camera);
+}
+
+Camera Camera::resized(int width, int height) const {
+    CameraIntrinsics k = m_intrinsics;
+    const double sx = static_cast<double>(width) / m_width, sy = static_cast<double>(height) / m_height;
+    k.fx *= sx;
+    k.cx *= sx;
+    k.fy *= sy;
+    k.cy *= sy;
+    return Camera(width, height, k, m_position, m_world_from_camera);
+}
+
+Camera Camera::rotated(const Mat3& rotation) const {
+    return Camera(m_width, m_height, m_intrinsics, rotation * m_position, rotation * m_world_from_camera);
+}
+
+Vec3 Camera::ray_direction(double u, double v) const {
+    const auto& k = m_intrinsics;
+    const double xd = (u - k.cx) / k.fx, yd = (v - k.cy) / k.fy;
+    // Invert the distortion by fixed-point iteration, as cv::undistortPoints does.
+    double x = xd, y = yd;
+    if (k.k1 != 0.0 || k.k2 != 0.0 || k.k3 != 0.0 || k.p1 != 0.0 || k.p2 != 0.0) {
+        for (int i = 0; i < 20; ++i) {
+            const double r2 = x * x + y * y;
+            const double radial = 1.0 + r2 * (k.k1 + r2 * (k.k2 + r2 * k.k3));
+            const double dx = 2.0 * k.p1 * x * y + k.p2 * (r2 + 2.0 * x * x);
+            const double dy = k.p1 * (r2 + 2.0 * y * y) + 2.0 * k.p2 * x * y;
+            x = (xd - dx) / radial;
+            y = (yd - dy) / radial;
+        }
+    }
+    return (m_world_from_camera * Vec3(x, y, 1.0)).normalized();
+}
+
+StokesFrame Camera::image_frame(const Vec3& direction) const {
+    return frame_from_reference(-direction, m_world_from_camera.col(0));
+}
+
+}  // namespace tirpol::simulation

@@ -1,0 +1,267 @@
+#include "tirpol/simulation/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "surface_basis.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/progress.h"
+#include "tirpol/core/stokes_frame.h"
+#include "tirpol/materials/emissivity.h"
+#include "tirpol/simulation/rng.h"
+
+namespace tirpol::simulation {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Offset of a new ray's origin off the surface, relative to the scene's scale (float BVH).
+double ray_epsilon(const Vec3& p) { return 1e-5 * (1.0 + p.cwiseAbs().maxCoeff()); }
+
+MuellerMatrix rotation_between(const StokesFrame& from, const StokesFrame& to) {
+    return frame_rotation(frame_rotation_angle(from, to));
+}
+
+struct PixelResult {
+    StokesVector mean = StokesVector::Zero();
+    Eigen::Vector3d variance_of_mean = Eigen::Vector3d::Constant(kNaN);
+};
+
+/// Everything a path needs that does not change during a render.
+class PathTracer {
+public:
+    PathTracer(const Scene& scene) : m_scene(scene) {
+        // Nodes sorted by wavelength (the emissivity tables want increasing wavelengths).
+        std::vector<BandNode> nodes = scene.band.nodes();
+        std::sort(nodes.begin(), nodes.end(), [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
+        std::vector<double> wavelengths;
+        double total = 0.0;
+        for (const auto& node : nodes) {
+            wavelengths.push_back(node.wavelength_um);
+            total += node.weight_um;
+            m_cdf.push_back(total);
+        }
+        if (!(total > 0.0)) fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
+        for (auto& c : m_cdf) c /= total;
+        m_band_weight_um = total;
+        m_wavelengths = wavelengths;
+        for (const auto& m : scene.materials) {
+            const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
+            if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
+                fail("material '{}' ({}) is defined over {}–{} µm, which does not cover the band {}–{} µm", m.name, m.source, lo,
+                     hi, scene.band.lo_um(), scene.band.hi_um());
+            m_emissivity.push_back(std::make_unique<materials::EmissivityTable>(*m.brdf, wavelengths));
+        }
+    }
+
+    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`.
+    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, SampleStream& rng,
+                       std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
+        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), rng.next()) - m_cdf.begin());
+        const std::size_t k = std::min(node, m_cdf.size() - 1);
+        const double lambda = m_wavelengths[k];
+        const Sky& sky = m_scene.sky;
+        const Sun* sun = m_scene.sun ? &*m_scene.sun : nullptr;
+        const double sun_radiance = sun ? sun->spectral_radiance(lambda) : 0.0;
+
+        // Maps Stokes of light travelling along −direction, in its world frame, to the camera frame.
+        MuellerMatrix throughput = rotation_between(world_frame(-direction), camera_frame);
+        StokesVector radiance = StokesVector::Zero();
+        bool last_was_delta = true;  // the camera sees the sun's disk directly
+        const int max_bounces = m_scene.sampling.max_bounces;
+        for (int bounce = 0;; ++bounce) {
+            ++scene_rays;
+            const auto hit = m_scene.tracer->intersect(origin, direction);
+            if (!hit) {
+                double l = sky.spectral_radiance(lambda, direction);
+                if (sun && last_was_delta && direction.dot(sun->direction) >= sun->cos_angular_radius()) l += sun_radiance;
+                radiance += throughput.col(0) * l;
+                break;
+            }
+            const Vec3 wo = -direction;
+            Vec3 ng = hit->geometric_normal, ns = hit->shading_normal;
+            if (ng.dot(wo) < 0.0) {  // back face of a thin surface: shade the side the ray came from
+                ng = -ng;
+                ns = -ns;
+            }
+            const Vec3 n = ns.dot(wo) > 1e-9 ? ns : ng;
+            const detail::SurfaceBasis basis(n);
+            const Vec3 wo_local = basis.to_local(wo);
+            const SceneObject& object = m_scene.objects[hit->object];
+            const materials::PolarizedBrdf& brdf = *m_scene.materials[object.material].brdf;
+            const double temperature = object.temperature.at(*hit, m_scene.tracer->mesh(hit->object));
+
+            // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's world frame.
+            const MuellerMatrix leaving = throughput * rotation_between(surface_frame(wo, n), world_frame(wo));
+            const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
+            radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
+            if (bounce >= max_bounces) break;
+
+            const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
+            if (sun && sun->direction.dot(n) > 0.0 && sun->direction.dot(ng) > 0.0) {
+                ++shadow_rays;
+                if (!m_scene.tracer->occluded(p, sun->direction, 0.0, 1e30)) {
+                    const Vec3 wi_local = basis.to_local(sun->direction);
+                    const MuellerMatrix f = brdf.eval(wi_local, wo_local, lambda);
+                    // The sun is unpolarized: only the first column of M acts, in any incident frame.
+                    radiance += leaving * f.col(0) * (wi_local.z() * sun->solid_angle_sr * sun_radiance);
+                }
+            }
+
+            const materials::BrdfSample s = brdf.sample(wo_local, lambda, rng.next(), rng.next());
+            if (!(s.pdf > 0.0)) break;
+            const Vec3 wi = basis.to_world(s.wi).normalized();
+            if (wi.dot(ng) <= 0.0) break;  // shading normal sent the path under the surface
+            // eq 12: incident light travels along −wi; its Stokes comes in world_frame(−wi) and the
+            // pBRDF wants it in surface_frame(−wi, n).
+            throughput = leaving * s.weight * rotation_between(world_frame(-wi), surface_frame(-wi, n));
+            last_was_delta = s.is_delta;
+
+            // Russian roulette after a few bounces keeps long paths unbiased and rare.
+            if (bounce >= 2) {
+                const double survive = std::min(1.0, throughput(0, 0));
+                if (!(survive > 0.0) || rng.next() >= survive) break;
+                throughput /= survive;
+            }
+            origin = p;
+            direction = wi;
+        }
+        return radiance * m_band_weight_um;
+    }
+
+private:
+    const Scene& m_scene;
+    std::vector<double> m_cdf, m_wavelengths;
+    double m_band_weight_um = 0.0;
+    std::vector<std::unique_ptr<materials::EmissivityTable>> m_emissivity;
+};
+
+struct Channels {
+    explicit Channels(Image& image)
+        : s0(image.add_channel("S0")), s1(image.add_channel("S1")), s2(image.add_channel("S2")), s3(image.add_channel("S3")),
+          dolp(image.add_channel("DoLP")), aop(image.add_channel("AoP")), s0_var(image.add_channel("S0_var")),
+          s1_var(image.add_channel("S1_var")), s2_var(image.add_channel("S2_var")), depth(image.add_channel("depth")),
+          nx(image.add_channel("normal_x")), ny(image.add_channel("normal_y")), nz(image.add_channel("normal_z")),
+          view_zenith(image.add_channel("view_zenith_deg")), object_id(image.add_channel("object_id")),
+          material_id(image.add_channel("material_id")), temperature(image.add_channel("temperature_k")) {}
+    std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &depth, &nx, &ny, &nz, &view_zenith,
+        &object_id, &material_id, &temperature;
+};
+
+}  // namespace
+
+Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
+    const auto start = std::chrono::steady_clock::now();
+    const PathTracer tracer(scene);
+    const Camera& camera = scene.camera;
+    const int w = camera.width(), h = camera.height();
+    const int spp = scene.sampling.samples_per_pixel;
+    const std::uint64_t seed = scene.sampling.seed;
+    Image image(w, h);
+    Channels ch(image);
+
+    const int tile = std::max(1, options.tile_size);
+    const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
+    const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
+    std::unique_ptr<ProgressReporter> progress;
+    if (options.show_progress) progress = std::make_unique<ProgressReporter>("render", tile_count);
+    std::atomic<std::uint64_t> scene_rays{0}, shadow_rays{0};
+
+    auto render_tile = [&](std::size_t tile_index) {
+        const int tx = static_cast<int>(tile_index % static_cast<std::size_t>(tiles_x));
+        const int ty = static_cast<int>(tile_index / static_cast<std::size_t>(tiles_x));
+        std::uint64_t rays = 0, shadows = 0;
+        for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
+            for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
+                const std::size_t i = image.index(x, y);
+                // Welford's running mean and variance (Welford, Technometrics 4(3), 1962).
+                StokesVector mean = StokesVector::Zero();
+                Eigen::Vector3d m2 = Eigen::Vector3d::Zero();
+                for (int s = 0; s < spp; ++s) {
+                    SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
+                    const double u = x + rng.next(), v = y + rng.next();
+                    const Vec3 d = camera.ray_direction(u, v);
+                    const StokesVector sample =
+                        tracer.trace(camera.position(), d, camera.image_frame(d), rng, rays, shadows);
+                    const StokesVector delta = sample - mean;
+                    mean += delta / (s + 1);
+                    m2 += delta.head<3>().cwiseProduct((sample - mean).head<3>());
+                }
+                ch.s0[i] = static_cast<float>(mean[0]);
+                ch.s1[i] = static_cast<float>(mean[1]);
+                ch.s2[i] = static_cast<float>(mean[2]);
+                ch.s3[i] = static_cast<float>(mean[3]);
+                ch.dolp[i] = static_cast<float>(tirpol::dolp(mean));
+                ch.aop[i] = static_cast<float>(aop_deg_0_180(mean));
+                const Eigen::Vector3d var = spp > 1 ? Eigen::Vector3d(m2 / (spp - 1.0) / spp) : Eigen::Vector3d::Constant(kNaN);
+                ch.s0_var[i] = static_cast<float>(var[0]);
+                ch.s1_var[i] = static_cast<float>(var[1]);
+                ch.s2_var[i] = static_cast<float>(var[2]);
+
+                // Auxiliary channels from the pixel-centre ray.
+                const Vec3 d = camera.ray_direction(x + 0.5, y + 0.5);
+                ++rays;
+                const auto hit = scene.tracer->intersect(camera.position(), d);
+                if (hit) {
+                    Vec3 n = hit->shading_normal;
+                    if (hit->geometric_normal.dot(d) > 0.0) n = -n;
+                    const SceneObject& obj = scene.objects[hit->object];
+                    ch.depth[i] = static_cast<float>(hit->distance);
+                    ch.nx[i] = static_cast<float>(n.x());
+                    ch.ny[i] = static_cast<float>(n.y());
+                    ch.nz[i] = static_cast<float>(n.z());
+                    ch.view_zenith[i] = static_cast<float>(rad_to_deg(std::acos(std::clamp(-n.dot(d), -1.0, 1.0))));
+                    ch.object_id[i] = static_cast<float>(hit->object);
+                    ch.material_id[i] = static_cast<float>(obj.material);
+                    ch.temperature[i] = static_cast<float>(obj.temperature.at(*hit, scene.tracer->mesh(hit->object)));
+                } else {
+                    for (auto* c : {&ch.depth, &ch.nx, &ch.ny, &ch.nz, &ch.view_zenith, &ch.temperature})
+                        (*c)[i] = static_cast<float>(kNaN);
+                    ch.object_id[i] = ch.material_id[i] = -1.0f;
+                }
+            }
+        }
+        scene_rays += rays;
+        shadow_rays += shadows;
+        if (progress) progress->advance();
+    };
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
+        });
+    });
+    if (progress) progress->finish();
+
+    auto& attrs = image.attributes();
+    attrs["units"] = std::string("W/(m^2 sr) band radiance");
+    attrs["band_um"] = std::vector<double>{scene.band.lo_um(), scene.band.hi_um()};
+    attrs["band_rsr"] = std::string(scene.band.rsr() ? "yes" : "none");
+    attrs["spp"] = spp;
+    attrs["seed"] = std::to_string(seed);
+    attrs["max_bounces"] = scene.sampling.max_bounces;
+    attrs["scene_file"] = scene.file.string();
+    attrs["stokes_frame"] = std::string("camera: 0 deg along image +x (rows), 90 deg toward the image top; S1 = I0 - I90");
+    attrs["renderer"] = std::string("tirpol polarized path tracer (Embree 3, TBB)");
+
+    if (statistics) {
+        statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);
+        statistics->scene_rays = scene_rays.load();
+        statistics->shadow_rays = shadow_rays.load();
+    }
+    return image;
+}
+
+}  // namespace tirpol::simulation

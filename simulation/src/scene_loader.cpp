@@ -1,0 +1,213 @@
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <tuple>
+
+#include "material_resolution.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/simulation/csv_columns.h"
+#include "tirpol/simulation/scene.h"
+#include "tirpol/simulation/temperature_value.h"
+
+namespace tirpol::simulation {
+
+namespace {
+
+Vec3 vec3_of(const ConfigNode& node) {
+    const auto v = node.as<std::vector<double>>();
+    if (v.size() != 3) node.fail(fmt::format("expected 3 numbers [x, y, z], got {}", v.size()));
+    return {v[0], v[1], v[2]};
+}
+
+Transform transform_of(const std::optional<ConfigNode>& node) {
+    Transform t;
+    if (!node) return t;
+    node->check_keys({"translate", "rotate_deg", "scale"});
+    if (auto n = node->find("translate")) t.translate = vec3_of(*n);
+    if (auto n = node->find("rotate_deg")) t.rotation = Transform::rotation_from_euler_deg(vec3_of(*n));
+    if (auto n = node->find("scale")) {
+        t.scale = n->is_sequence() ? vec3_of(*n) : Vec3::Constant(n->as<double>());
+        if (t.scale.cwiseAbs().minCoeff() <= 0.0) n->fail("scale factors must be non-zero");
+    }
+    return t;
+}
+
+int segments_of(const ConfigNode& g) {
+    const double s = g.get_or("segments", 96.0);
+    if (s < 3 || s > 100000 || s != std::floor(s)) g.at("segments").fail("expected an integer number of segments ≥ 3");
+    return static_cast<int>(s);
+}
+
+/// Adds the object's geometry to the tracer; returns true if it is an analytic sphere. The vertex
+/// positions before the transform go to `object_positions` (per-vertex data files refer to them).
+bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, std::vector<Vec3>& object_positions) {
+    const std::string type = g.get<std::string>("type");
+    TriangleMesh mesh;
+    if (type == "sphere") {
+        g.check_keys({"type", "radius"});
+        if (!t.uniform_scale()) g.fail("a sphere needs a uniform scale (use a mesh for ellipsoids)");
+        tracer.add_sphere(t.translate, g.get_in_range("radius", 1e-9, 1e9) * std::abs(t.scale.x()));
+        return true;
+    }
+    if (type == "mesh") {
+        g.check_keys({"type", "file"});
+        const ConfigNode file = g.at("file");
+        const auto path = g.resolve_path(file.as<std::string>());
+        if (!std::filesystem::is_regular_file(path)) file.fail("mesh file not found: " + path.string());
+        mesh = load_mesh_file(path);
+    } else if (type == "box") {
+        g.check_keys({"type", "size"});
+        const Vec3 size = vec3_of(g.at("size"));
+        if (size.minCoeff() <= 0.0) g.at("size").fail("box edge lengths must be positive");
+        mesh = make_box(size);
+    } else if (type == "plane") {
+        g.check_keys({"type", "size"});
+        const auto s = g.get<std::vector<double>>("size");
+        if (s.size() != 2 || s[0] <= 0.0 || s[1] <= 0.0) g.at("size").fail("expected [size_x, size_y], positive");
+        mesh = make_plane(s[0], s[1]);
+    } else if (type == "disk") {
+        g.check_keys({"type", "radius", "segments"});
+        mesh = make_disk(g.get_in_range("radius", 1e-9, 1e9), segments_of(g));
+    } else if (type == "cylinder") {
+        g.check_keys({"type", "radius", "height", "segments", "caps"});
+        mesh = make_cylinder(g.get_in_range("radius", 1e-9, 1e9), g.get_in_range("height", 1e-9, 1e9), segments_of(g),
+                             g.get_or("caps", true));
+    } else {
+        g.at("type").fail("unknown geometry type \"" + type + "\" (expected mesh, sphere, box, plane, disk or cylinder)");
+    }
+    object_positions = mesh.positions;
+    transform_mesh(mesh, t);
+    tracer.add_mesh(std::move(mesh));
+    return false;
+}
+
+/// Per-vertex temperatures from a CSV of points (x, y, z in the mesh file's units, temperature_k):
+/// each vertex takes the value of the point at its position, so the file does not depend on how a
+/// mesh loader orders or duplicates vertices (OBJ faces, for one, are expanded per corner).
+std::vector<double> vertex_temperatures(const ConfigNode& node, const std::filesystem::path& path,
+                                        const std::vector<Vec3>& positions) {
+    const auto cols = read_csv_columns(path, {"x", "y", "z", "temperature_k"});
+    double extent = 0.0;
+    for (const auto& p : positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+    const double cell = 1e-6 * std::max(extent, 1.0);
+    using Key = std::tuple<long long, long long, long long>;
+    const auto key = [&](const Vec3& p) {
+        return Key{std::llround(p.x() / cell), std::llround(p.y() / cell), std::llround(p.z() / cell)};
+    };
+    std::map<Key, double> points;
+    for (std::size_t i = 0; i < cols[0].size(); ++i) {
+        if (!(cols[3][i] > 0.0)) node.fail(fmt::format("{}: row {}: temperature {} K is not above 0 K", path.string(), i + 1, cols[3][i]));
+        points[key(Vec3(cols[0][i], cols[1][i], cols[2][i]))] = cols[3][i];
+    }
+    std::vector<double> out;
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+        const auto [kx, ky, kz] = key(positions[v]);
+        std::optional<double> found;
+        for (long long dx = -1; dx <= 1 && !found; ++dx)
+            for (long long dy = -1; dy <= 1 && !found; ++dy)
+                for (long long dz = -1; dz <= 1 && !found; ++dz)
+                    if (auto it = points.find(Key{kx + dx, ky + dy, kz + dz}); it != points.end()) found = it->second;
+        if (!found)
+            node.fail(fmt::format("{} has no temperature for mesh vertex {} at ({}, {}, {})", path.string(), v,
+                                  positions[v].x(), positions[v].y(), positions[v].z()));
+        out.push_back(*found);
+    }
+    return out;
+}
+
+TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const std::vector<Vec3>& object_positions) {
+    if (node.is_scalar()) {
+        if (node.as<std::string>() == "predicted")
+            node.fail("\"predicted\" temperatures need the thermal solver (issue 8), which is not available yet; "
+                      "give a value (K or \"°C\"), {vertex_csv: FILE} or {texture: FILE.exr}");
+        return TemperatureField::constant(temperature_k_from_config(node));
+    }
+    if (!node.is_map()) node.fail("expected a temperature value, {vertex_csv: FILE} or {texture: FILE.exr, channel: NAME}");
+    node.check_keys({"vertex_csv", "texture", "channel"});
+    if (node.has("vertex_csv") == node.has("texture")) node.fail("give exactly one of vertex_csv or texture");
+    if (node.has("vertex_csv")) {
+        if (is_sphere) node.fail("per-vertex temperatures need a triangle mesh (an analytic sphere has no vertices)");
+        const auto path = node.resolve_path(node.get<std::string>("vertex_csv"));
+        if (!std::filesystem::is_regular_file(path)) node.at("vertex_csv").fail("file not found: " + path.string());
+        return TemperatureField::per_vertex(vertex_temperatures(node.at("vertex_csv"), path, object_positions));
+    }
+    const auto path = node.resolve_path(node.get<std::string>("texture"));
+    if (!std::filesystem::is_regular_file(path)) node.at("texture").fail("file not found: " + path.string());
+    const Image map = read_exr(path);
+    const std::string channel = node.get_or<std::string>("channel", "temperature_k");
+    if (!map.has_channel(channel)) node.fail(fmt::format("{} has no channel '{}'", path.string(), channel));
+    for (float v : map.channel(channel))
+        if (!(v > 0.0f)) node.at("texture").fail(fmt::format("{}: temperature {} K is not above 0 K", path.string(), v));
+    return TemperatureField::texture(map.channel(channel), map.width(), map.height());
+}
+
+SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
+    SamplingSettings s;
+    if (!node) return s;
+    node->check_keys({"spp", "max_bounces", "seed"});
+    s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
+    if (s.samples_per_pixel < 1) node->at("spp").fail("expected at least 1 sample per pixel");
+    s.max_bounces = node->get_or("max_bounces", s.max_bounces);
+    if (s.max_bounces < 0 || s.max_bounces > 64) node->at("max_bounces").fail("expected 0–64 bounces");
+    const int seed = node->get_or("seed", 1);
+    if (seed < 0) node->at("seed").fail("expected a non-negative seed");
+    s.seed = static_cast<std::uint64_t>(seed);
+    return s;
+}
+
+Band band_of(const ConfigNode& node) {
+    node.check_keys({"lo_um", "hi_um", "rsr"});
+    const double lo = node.get_in_range("lo_um", 0.1, 1000.0);
+    const double hi = node.get_in_range("hi_um", 0.1, 1000.0);
+    if (!(hi > lo)) node.at("hi_um").fail(fmt::format("hi_um ({}) must exceed lo_um ({})", hi, lo));
+    std::optional<SpectralResponse> rsr;
+    if (auto r = node.find("rsr")) {
+        const auto path = r->resolve_path(r->as<std::string>());
+        if (!std::filesystem::is_regular_file(path)) r->fail("RSR file not found: " + path.string());
+        rsr = SpectralResponse::load_csv(path);
+    }
+    return Band(lo, hi, rsr);
+}
+
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& path) {
+    const ConfigNode root = ConfigNode::load_file(path);
+    root.check_keys({"band", "sampling", "camera", "sky", "sun", "materials_dir", "objects"});
+    Band band = band_of(root.at("band"));
+    Camera camera = Camera::from_config(root.at("camera"));
+    Sky sky = Sky::from_config(root.at("sky"), band);
+    std::optional<Sun> sun;
+    if (auto s = root.find("sun")) sun = Sun::from_config(*s, band);
+
+    std::filesystem::path materials_dir = root.resolve_path("../materials");
+    if (auto d = root.find("materials_dir")) {
+        materials_dir = d->resolve_path(d->as<std::string>());
+        if (!std::filesystem::is_directory(materials_dir)) d->fail("materials directory not found: " + materials_dir.string());
+    }
+    detail::MaterialResolver resolver(materials_dir);
+
+    auto tracer = std::make_shared<RayTracer>();
+    std::vector<SceneMaterial> materials;
+    std::vector<SceneObject> objects;
+    const ConfigNode objects_node = root.at("objects");
+    const auto elements = objects_node.elements();
+    if (elements.empty()) objects_node.fail("a scene needs at least one object");
+    for (const ConfigNode& o : elements) {
+        o.check_keys({"name", "geometry", "transform", "material", "temperature"});
+        SceneObject obj;
+        obj.name = o.get_or<std::string>("name", fmt::format("object{}", objects.size()));
+        std::vector<Vec3> object_positions;
+        const bool is_sphere = add_geometry(o.at("geometry"), transform_of(o.find("transform")), *tracer, object_positions);
+        obj.material = resolver.resolve(o.at("material"), materials);
+        obj.temperature = temperature_of(o.at("temperature"), is_sphere, object_positions);
+        objects.push_back(std::move(obj));
+    }
+    tracer->commit();
+    return Scene{std::filesystem::absolute(path), camera, band, sky, sun, sampling_of(root.find("sampling")),
+                 std::move(materials), std::move(objects), std::move(tracer)};
+}
+
+}  // namespace tirpol::simulation

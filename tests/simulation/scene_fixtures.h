@@ -1,0 +1,38 @@
+#pragma once
+// Small scenes written as YAML for the simulation tests (so the tests go through the real loader).
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "test_support.h"
+#include "tirpol/simulation/renderer.h"
+#include "tirpol/simulation/scene.h"
+
+namespace tirpol::simulation::test {
+
+/// A smooth dielectric (paint-like, n = 1.5 + 0.05i in the LWIR): inline material mapping.
+inline const char* kSmoothPaint = "{name: smooth_paint, source: \"test: generic LWIR paint index\", model: smooth_fresnel, refractive_index: {n: 1.5, k: 0.05}}";
+/// A grey diffuse surface.
+inline const char* kGreyDiffuse = "{name: grey_diffuse, source: \"test\", model: lambertian, parameters: {reflectance: 0.3}}";
+
+/// Writes `yaml` to `<dir>/<name>` and loads it.
+inline Scene load_scene_text(const tirpol::test::TempDir& dir, const std::string& yaml,
+                             const std::string& name = "scene.yaml") {
+    tirpol::test::write_text(dir / name, yaml);
+    return load_scene(dir / name);
+}
+
+/// Header of a scene: 8–14 µm band, sampling, camera.
+inline std::string scene_header(int width, int height, int spp, int bounces, const std::string& camera_body,
+                                const std::string& sky) {
+    return fmt::format(
+        "band: {{lo_um: 8, hi_um: 14}}\n"
+        "sampling: {{spp: {}, max_bounces: {}, seed: 7}}\n"
+        "materials_dir: {}\n"
+        "camera: {{resolution: [{}, {}], {}}}\n"
+        "sky: {}\n",
+        spp, bounces, (tirpol::test::source_dir() / "config" / "materials").string(), width, height, camera_body, sky);
+}
+
+}  // namespace tirpol::simulation::test
