@@ -2,16 +2,16 @@
 // 24-hour plot of every object's surface temperature (drawn with OpenCV).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "cli.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/line_plot.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/thermal_config.h"
 
@@ -32,94 +32,44 @@ struct ObjectResult {
     std::vector<thermal::TemperatureSample> history;  // last 24 h when plotting, else only the final sample
 };
 
-// "Nice" tick step (1, 2 or 5 × 10^k) giving about `target` intervals over `span`.
-double nice_step(double span, int target) {
-    const double raw = span / target;
-    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    for (double m : {1.0, 2.0, 5.0, 10.0})
-        if (raw <= m * mag) return m * mag;
-    return 10.0 * mag;
-}
-
 void draw_plot(const std::string& path, const std::vector<ObjectResult>& results, const thermal::ThermalScene& scene,
                double end_s) {
-    const int width = 1200, height = 680, left = 90, right = 300, top = 60, bottom = 80;
-    const int pw = width - left - right, ph = height - top - bottom;
-    cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-    const double t0 = end_s - 24 * 3600.0;
-    double lo = 1e9, hi = -1e9;
-    for (const auto& r : results)
-        for (const auto& s : r.history) {
-            lo = std::min({lo, s.surface_temperature_k - 273.15, s.air_temperature_k - 273.15});
-            hi = std::max({hi, s.surface_temperature_k - 273.15, s.air_temperature_k - 273.15});
-        }
-    const double step = nice_step(std::max(hi - lo, 1.0), 6);
-    lo = std::floor(lo / step) * step;
-    hi = std::ceil(hi / step) * step;
-    auto px = [&](double t) { return left + static_cast<int>(std::lround((t - t0) / (24 * 3600.0) * pw)); };
-    auto py = [&](double c) { return top + ph - static_cast<int>(std::lround((c - lo) / (hi - lo) * ph)); };
-    const auto font = cv::FONT_HERSHEY_SIMPLEX;
-    const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
-    // y grid and ticks
-    for (double c = lo; c <= hi + 1e-9; c += step) {
-        cv::line(img, {left, py(c)}, {left + pw, py(c)}, grid, 1);
-        cv::line(img, {left - 6, py(c)}, {left, py(c)}, black, 1);
-        char label[32];
-        std::snprintf(label, sizeof label, "%g", c);
-        int base = 0;
-        const cv::Size sz = cv::getTextSize(label, font, 0.5, 1, &base);
-        cv::putText(img, label, {left - 10 - sz.width, py(c) + sz.height / 2}, font, 0.5, black, 1, cv::LINE_AA);
-    }
-    // x grid and ticks every 3 h, labelled with local clock time
-    for (int h = 0; h <= 24; h += 3) {
-        const double t = t0 + h * 3600.0;
-        cv::line(img, {px(t), top}, {px(t), top + ph}, grid, 1);
-        cv::line(img, {px(t), top + ph}, {px(t), top + ph + 6}, black, 1);
-        const std::string label = thermal::format_time(t, scene.site.utc_offset_h).substr(11, 5);
-        int base = 0;
-        const cv::Size sz = cv::getTextSize(label, font, 0.5, 1, &base);
-        cv::putText(img, label, {px(t) - sz.width / 2, top + ph + 24}, font, 0.5, black, 1, cv::LINE_AA);
-    }
-    cv::rectangle(img, {left, top}, {left + pw, top + ph}, black, 1);
-    const std::string end_label = thermal::format_time(end_s, scene.site.utc_offset_h);
-    cv::putText(img, "Surface temperature, 24 h to " + end_label, {left, 35}, font, 0.7, black, 1, cv::LINE_AA);
-    char xlabel[96];
-    std::snprintf(xlabel, sizeof xlabel, "local standard time (UTC%+g h)", scene.site.utc_offset_h);
-    cv::putText(img, xlabel, {left + pw / 2 - 150, height - 25}, font, 0.6, black, 1, cv::LINE_AA);
-    cv::putText(img, "deg C", {left - 70, top - 10}, font, 0.6, black, 1, cv::LINE_AA);
-
-    static const cv::Scalar kPalette[] = {{180, 119, 31}, {14, 127, 255}, {44, 160, 44}, {40, 39, 214}, {189, 103, 148},
-                                          {75, 86, 140},  {194, 119, 227}, {34, 189, 188}, {207, 190, 23}};
-    int legend_y = top + 10;
-    auto legend = [&](const std::string& text, const cv::Scalar& colour, bool dashed) {
-        const int x = left + pw + 20;
-        if (dashed) {
-            for (int d = 0; d < 30; d += 10) cv::line(img, {x + d, legend_y}, {x + d + 5, legend_y}, colour, 2, cv::LINE_AA);
-        } else {
-            cv::line(img, {x, legend_y}, {x + 30, legend_y}, colour, 2, cv::LINE_AA);
-        }
-        cv::putText(img, text, {x + 38, legend_y + 5}, font, 0.45, black, 1, cv::LINE_AA);
-        legend_y += 22;
-    };
-    // Air temperature (the same for all objects), dashed grey.
+    static const std::array<std::uint8_t, 3> kPalette[] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
+                                                            {214, 39, 40},  {148, 103, 189}, {140, 86, 75},
+                                                            {227, 119, 194}, {188, 189, 34}, {23, 190, 207}};
+    std::vector<PlotSeries> series;
     if (!results.empty()) {
-        const auto& h = results.front().history;
-        for (std::size_t i = 1; i < h.size(); i += 2)
-            cv::line(img, {px(h[i - 1].time_s), py(h[i - 1].air_temperature_k - 273.15)},
-                     {px(h[i].time_s), py(h[i].air_temperature_k - 273.15)}, cv::Scalar(120, 120, 120), 2, cv::LINE_AA);
-        legend("air", cv::Scalar(120, 120, 120), true);
+        PlotSeries air{"air", {}, {}, {120, 120, 120}, false, true};
+        for (const auto& s : results.front().history) {
+            air.x.push_back((s.time_s - end_s) / 3600.0);
+            air.y.push_back(s.air_temperature_k - 273.15);
+        }
+        series.push_back(std::move(air));
     }
     for (std::size_t k = 0; k < results.size(); ++k) {
-        const cv::Scalar colour = kPalette[k % std::size(kPalette)];
-        std::vector<cv::Point> pts;
-        for (const auto& s : results[k].history) pts.emplace_back(px(s.time_s), py(s.surface_temperature_k - 273.15));
-        cv::polylines(img, pts, false, colour, 2, cv::LINE_AA);
         const auto& obj = *results[k].object;
-        legend(obj.name + " (" + scene.materials[obj.material].name + ")", colour, false);
+        PlotSeries line{obj.name + " (" + scene.materials[obj.material].name + ")", {}, {}, kPalette[k % std::size(kPalette)]};
+        for (const auto& s : results[k].history) {
+            line.x.push_back((s.time_s - end_s) / 3600.0);
+            line.y.push_back(s.surface_temperature_k - 273.15);
+        }
+        series.push_back(std::move(line));
     }
-    std::vector<unsigned char> png;
-    if (!cv::imencode(".png", img, png)) fail("could not encode the plot {}", path);
-    write_file_atomic(path, std::string(png.begin(), png.end()));
+    LinePlotOptions options;
+    options.title = "Surface temperature, 24 h to " + thermal::format_time(end_s, scene.site.utc_offset_h);
+    options.x_label = "hours before that time";
+    options.y_label = "temperature (deg C)";
+    options.x_min = -24.0;
+    options.x_max = 0.0;
+    // Head-room above the data for the legend.
+    double lo = 1e300, hi = -1e300;
+    for (const auto& line : series)
+        for (double y : line.y) lo = std::min(lo, y), hi = std::max(hi, y);
+    options.y_min = lo - 0.05 * (hi - lo + 1.0);
+    options.y_max = hi + (0.12 + 0.05 * static_cast<double>(series.size())) * (hi - lo + 1.0);
+    options.width = 1100;
+    options.height = 650;
+    write_line_plot(path, series, options);
 }
 
 void run_therm(const ThermArgs& a) {
