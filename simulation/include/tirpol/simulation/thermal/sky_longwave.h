@@ -81,6 +81,9 @@ public:
     double air_temperature_k() const { return m_air_temperature_k; }
     double broadband_emissivity() const { return m_broadband_hemispherical; }
     double window_emissivity() const { return m_window_hemispherical; }
+    /// Zenith values of the angular law that reproduce the hemispherical emissivities.
+    double broadband_zenith_emissivity() const { return m_broadband_zenith; }
+    double window_zenith_emissivity() const { return m_window_zenith; }
 
     /// Downwelling broadband irradiance on a horizontal surface, W/m².
     double horizontal_irradiance_w_m2() const;
