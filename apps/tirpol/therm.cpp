@@ -12,6 +12,8 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
+#include "tirpol/core/config.h"
+#include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/thermal_config.h"
 
@@ -72,7 +74,30 @@ void draw_plot(const std::string& path, const std::vector<ObjectResult>& results
     write_line_plot(path, series, options);
 }
 
+// A scene file (it has a camera): load it — predicted temperatures are computed by the loader at the
+// scene's `time` — and report every object's temperature range.
+void run_therm_on_scene(const ThermArgs& a) {
+    if (!a.at.empty()) fail("--at: a scene file carries its own `time`; edit the scene (or use a standalone thermal file)");
+    if (!a.plot.empty()) fail("--plot needs a standalone thermal file (docs/thermal.md); scene files give one instant");
+    const simulation::Scene scene = simulation::load_scene(a.file);
+    std::ostringstream csv;
+    csv << "object,material,min_temperature_k,max_temperature_k\n";
+    nlohmann::json out;
+    out["objects"] = nlohmann::json::array();
+    if (!a.json) std::printf("%-22s %-26s %10s %10s\n", "object", "material", "min (K)", "max (K)");
+    for (const auto& obj : scene.objects) {
+        const std::string& mat = scene.materials[obj.material].name;
+        if (!a.json) std::printf("%-22s %-26s %10.2f %10.2f\n", obj.name.c_str(), mat.c_str(), obj.temperature.min_k(), obj.temperature.max_k());
+        csv << obj.name << ',' << mat << ',' << obj.temperature.min_k() << ',' << obj.temperature.max_k() << '\n';
+        out["objects"].push_back({{"name", obj.name}, {"material", mat}, {"min_temperature_k", obj.temperature.min_k()},
+                                  {"max_temperature_k", obj.temperature.max_k()}});
+    }
+    if (!a.csv.empty()) write_file_atomic(a.csv, csv.str());
+    if (a.json) std::printf("%s\n", out.dump(2).c_str());
+}
+
 void run_therm(const ThermArgs& a) {
+    if (ConfigNode::load_file(a.file).has("camera")) return run_therm_on_scene(a);
     const thermal::ThermalScene scene = thermal::load_thermal_scene(a.file);
     double at = 0.0;
     if (!a.at.empty()) {
@@ -128,7 +153,7 @@ void run_therm(const ThermArgs& a) {
 void register_therm(CLI::App& app) {
     auto args = std::make_shared<ThermArgs>();
     auto* cmd = app.add_subcommand("therm", "Surface temperatures from weather (1D slab model) and a 24-hour plot");
-    cmd->add_option("file", args->file, "Thermal YAML (docs/thermal.md)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("file", args->file, "Scene YAML with predicted temperatures, or a standalone thermal YAML (docs/thermal.md)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--at", args->at, "Time, ISO 8601 (no offset: the site's standard time); default: the file's `time`");
     cmd->add_option("--csv", args->csv, "Write each object's temperature and surface balance to this CSV");
     cmd->add_option("--plot", args->plot, "Write a 24-hour surface-temperature plot (PNG)");

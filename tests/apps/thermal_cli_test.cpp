@@ -68,4 +68,14 @@ TEST(ThermalCli, ThermWritesTemperaturesCsvAndPlot) {
     EXPECT_EQ(run_tirpol("therm " + yaml.string() + " --at 2030-01-01T00:00").exit_code, 1);
 }
 
+TEST(ThermalCli, ThermOnSceneReportsPredictedTemperatures) {
+    const auto yaml = tirpol::test::source_dir() / "config/thermal/ball_on_snow_day_predicted.yaml";
+    const CliRun r = run_tirpol("therm " + yaml.string() + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["objects"].size(), 3u);
+    EXPECT_GT(j["objects"][1]["max_temperature_k"].get<double>(), j["objects"][0]["max_temperature_k"].get<double>() + 10.0);
+    EXPECT_EQ(run_tirpol("therm " + yaml.string() + " --plot x.png").exit_code, 1);
+}
+
 }  // namespace
