@@ -8,6 +8,10 @@
 
 #include <cmath>
 
+#include <filesystem>
+
+#include "tirpol/simulation/renderer.h"
+#include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/solar_position.h"
 #include "tirpol/simulation/thermal/surface_temperature.h"
@@ -122,6 +126,33 @@ void BM_SpinUp24h_100Facets_Batched(benchmark::State& state) {
     state.counters["facet_steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SpinUp24h_100Facets_Batched)->Unit(benchmark::kMillisecond);
+
+// The cost the thermal model adds to a render: loading the ball-on-snow day scene with predicted
+// temperatures (1152-texel sphere map + mesh vertices, 24 h spin-up each) against loading the same scene
+// and rendering it at 32×24, 2 spp (wall-clock: the renderer runs on all cores).
+std::filesystem::path predicted_scene() {
+    std::error_code ec;
+    for (auto dir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+        if (std::filesystem::is_regular_file(dir / "config/thermal/ball_on_snow_day_predicted.yaml"))
+            return dir / "config/thermal/ball_on_snow_day_predicted.yaml";
+        if (dir == dir.parent_path()) break;
+    }
+    return "config/thermal/ball_on_snow_day_predicted.yaml";
+}
+
+void BM_BallOnSnowSceneLoadWithPredictedTemperatures(benchmark::State& state) {
+    const auto path = predicted_scene();
+    for (auto _ : state) benchmark::DoNotOptimize(simulation::load_scene(path).objects.size());
+}
+BENCHMARK(BM_BallOnSnowSceneLoadWithPredictedTemperatures)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_BallOnSnowRender32x24x2spp(benchmark::State& state) {
+    simulation::Scene scene = simulation::load_scene(predicted_scene());
+    scene.camera = scene.camera.resized(32, 24);
+    scene.sampling.samples_per_pixel = 2;
+    for (auto _ : state) benchmark::DoNotOptimize(simulation::render(scene).width());
+}
+BENCHMARK(BM_BallOnSnowRender32x24x2spp)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
