@@ -14,6 +14,7 @@
 #include "tirpol/core/line_plot.h"
 #include "tirpol/core/config.h"
 #include "tirpol/simulation/scene.h"
+#include "tirpol/simulation/thermal/scene_thermal.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/thermal_config.h"
 
@@ -26,6 +27,7 @@ struct ThermArgs {
     std::string at;
     std::string csv;
     std::string plot;
+    std::string export_dir;
     bool json = false;
 };
 
@@ -93,11 +95,16 @@ void run_therm_on_scene(const ThermArgs& a) {
                                   {"max_temperature_k", obj.temperature.max_k()}});
     }
     if (!a.csv.empty()) write_file_atomic(a.csv, csv.str());
+    if (!a.export_dir.empty()) {
+        for (const auto& f : simulation::export_scene_temperatures(ConfigNode::load_file(a.file), scene, a.export_dir))
+            if (!a.json) std::printf("wrote %s\n", f.c_str());
+    }
     if (a.json) std::printf("%s\n", out.dump(2).c_str());
 }
 
 void run_therm(const ThermArgs& a) {
     if (ConfigNode::load_file(a.file).has("camera")) return run_therm_on_scene(a);
+    if (!a.export_dir.empty()) fail("--export-dir needs a scene file with predicted temperatures");
     const thermal::ThermalScene scene = thermal::load_thermal_scene(a.file);
     double at = 0.0;
     if (!a.at.empty()) {
@@ -157,6 +164,8 @@ void register_therm(CLI::App& app) {
     cmd->add_option("--at", args->at, "Time, ISO 8601 (no offset: the site's standard time); default: the file's `time`");
     cmd->add_option("--csv", args->csv, "Write each object's temperature and surface balance to this CSV");
     cmd->add_option("--plot", args->plot, "Write a 24-hour surface-temperature plot (PNG)");
+    cmd->add_option("--export-dir", args->export_dir,
+                     "Scene files: write predicted temperatures as <object>.csv (vertex_csv) / <object>.exr (texture)");
     cmd->add_flag("--json", args->json, "Print JSON (keys in docs/thermal.md)");
     cmd->callback([args] { run_therm(*args); });
 }

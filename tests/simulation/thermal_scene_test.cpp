@@ -7,7 +7,10 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/config.h"
 #include "tirpol/simulation/scene.h"
+#include "tirpol/simulation/thermal/scene_thermal.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/solar_position.h"
 
@@ -49,6 +52,34 @@ TEST(ThermalScene, PredictedWithoutWeatherOrUnknownThermalMaterialIsAnError) {
                                      "\ntime: 2026-01-16T10:30\n"
                                      "objects: [{geometry: {type: plane, size: [1, 1]}, material: snow, temperature: predicted}]\n");
     EXPECT_THAT([&] { load_scene(dir / "b.yaml"); }, ::testing::ThrowsMessage<Error>(::testing::HasSubstr("no thermal material 'snow'")));
+}
+
+TEST(ThermalScene, ExportedTemperaturesImportBackUnchanged) {
+    // Export in the renderer's import forms ({vertex_csv} for meshes, {texture} EXR for spheres), then load
+    // a copy of the scene that reads them instead of predicting: the fields must match.
+    const auto path = test::source_dir() / "config/thermal/ball_on_snow_day_predicted.yaml";
+    const ConfigNode root = ConfigNode::load_file(path);
+    const Scene predicted = load_scene(path);
+    test::TempDir dir;
+    const auto files = export_scene_temperatures(root, predicted, dir.path());
+    ASSERT_EQ(files.size(), 3u);
+    std::string yaml = read_file(path);
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        const auto at = yaml.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        yaml.replace(at, from.size(), to);
+    };
+    replace("material: snow, temperature: predicted", "material: snow, temperature: {vertex_csv: " + (dir / "snow.csv").string() + "}");
+    replace("material: glossy_black_paint, temperature: predicted",
+            "material: glossy_black_paint, temperature: {texture: " + (dir / "ball.exr").string() + "}");
+    replace("materials_dir: ../materials", "materials_dir: " + (test::source_dir() / "config/materials").string());
+    replace("weather: synthetic_winter.epw", "weather: " + (test::source_dir() / "config/thermal/synthetic_winter.epw").string());
+    test::write_text(dir / "imported.yaml", yaml);
+    const Scene imported = load_scene(dir / "imported.yaml");
+    for (std::size_t i : {0u, 1u}) {
+        EXPECT_NEAR(imported.objects[i].temperature.min_k(), predicted.objects[i].temperature.min_k(), 1e-5) << i;
+        EXPECT_NEAR(imported.objects[i].temperature.max_k(), predicted.objects[i].temperature.max_k(), 1e-5) << i;
+    }
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/simulation/thermal/civil_time.h"
 #include "tirpol/simulation/thermal/solar_position.h"
 #include "tirpol/simulation/thermal/thermal_config.h"
@@ -46,6 +48,45 @@ const ThermalMaterial& thermal_material_for(const ConfigNode& node, const std::s
     node.fail("no thermal material '" + name + "' in `thermal_materials`" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
 }
 
+struct Inputs {
+    std::shared_ptr<const thermal::WeatherSeries> weather;
+    double time_s = 0.0;
+    thermal::ThermalOptions options;
+    std::vector<ThermalMaterial> materials;
+};
+
+Inputs inputs_of(const ConfigNode& root) {
+    Inputs in;
+    std::optional<thermal::Site> site;
+    if (auto n = root.find("site")) site = thermal::parse_site(*n);
+    in.weather = thermal::load_weather(root.at("weather"), site);
+    try {
+        in.time_s = thermal::parse_time(root.get<std::string>("time"), in.weather->site().utc_offset_h, "time");
+    } catch (const Error& e) {
+        root.at("time").fail(e.what());
+    }
+    if (auto n = root.find("thermal")) in.options = thermal::parse_thermal_options(*n);
+    if (auto n = root.find("thermal_materials"))
+        for (const auto& m : n->elements()) in.materials.push_back(thermal::parse_thermal_material(m));
+    return in;
+}
+
+// The object's `transform` (translate, rotate_deg, scale), as the scene loader reads it.
+Transform transform_of(const ConfigNode& object) {
+    Transform t;
+    const auto node = object.find("transform");
+    if (!node) return t;
+    const auto vec = [](const ConfigNode& n) {
+        const auto v = n.as<std::vector<double>>();
+        if (v.size() != 3) n.fail("expected 3 numbers");
+        return Vec3(v[0], v[1], v[2]);
+    };
+    if (auto n = node->find("translate")) t.translate = vec(*n);
+    if (auto n = node->find("rotate_deg")) t.rotation = Transform::rotation_from_euler_deg(vec(*n));
+    if (auto n = node->find("scale")) t.scale = n->is_sequence() ? vec(*n) : Vec3::Constant(n->as<double>());
+    return t;
+}
+
 }  // namespace
 
 bool is_predicted_temperature(const ConfigNode& node) {
@@ -54,21 +95,11 @@ bool is_predicted_temperature(const ConfigNode& node) {
 }
 
 void apply_scene_thermal(const ConfigNode& root, Scene& scene) {
-    std::optional<thermal::Site> site;
-    if (auto n = root.find("site")) site = thermal::parse_site(*n);
-    const auto weather = thermal::load_weather(root.at("weather"), site);
-    const thermal::Site& where = weather->site();
-    double time_s = 0.0;
-    try {
-        time_s = thermal::parse_time(root.get<std::string>("time"), where.utc_offset_h, "time");
-    } catch (const Error& e) {
-        root.at("time").fail(e.what());
-    }
-    const thermal::ThermalOptions options = root.has("thermal") ? thermal::parse_thermal_options(root.at("thermal")) : thermal::ThermalOptions{};
-    std::vector<ThermalMaterial> materials;
-    if (auto n = root.find("thermal_materials"))
-        for (const auto& m : n->elements()) materials.push_back(thermal::parse_thermal_material(m));
-    const thermal::WeatherRecord record = weather->at(time_s);
+    const Inputs inputs = inputs_of(root);
+    const thermal::Site& where = inputs.weather->site();
+    const double time_s = inputs.time_s;
+    const thermal::ThermalOptions& options = inputs.options;
+    const thermal::WeatherRecord record = inputs.weather->at(time_s);
 
     // One weather record drives the renderer's sky and sun and the solver's loads.
     if (!root.has("sky")) {
@@ -95,32 +126,38 @@ void apply_scene_thermal(const ConfigNode& root, Scene& scene) {
         }
     }
 
+    for (const PredictedTemperatures& p : predict_scene_temperatures(root, scene)) {
+        SceneObject& obj = scene.objects[p.object];
+        obj.temperature = p.map_k.empty() ? TemperatureField::per_vertex(p.vertex_k)
+                                          : TemperatureField::texture(p.map_k, p.width, p.height);
+    }
+}
+
+std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& root, const Scene& scene) {
+    const Inputs in = inputs_of(root);
+    std::vector<PredictedTemperatures> out;
     const auto objects = root.at("objects").elements();
     for (std::size_t i = 0; i < objects.size() && i < scene.objects.size(); ++i) {
         const ConfigNode node = objects[i].at("temperature");
         if (!is_predicted_temperature(node)) continue;
-        SceneObject& obj = scene.objects[i];
-        const ThermalMaterial& material = thermal_material_for(node, scene.materials[obj.material].name, materials);
+        const SceneObject& obj = scene.objects[i];
+        const ThermalMaterial& material = thermal_material_for(node, scene.materials[obj.material].name, in.materials);
         const TriangleMesh& mesh = scene.tracer->mesh(static_cast<std::uint32_t>(i));
         std::vector<FacetRequest> requests;
+        PredictedTemperatures p;
+        p.object = i;
         if (!mesh.positions.empty()) {
             for (std::size_t v = 0; v < mesh.positions.size(); ++v)
                 requests.push_back({&material, facet_of(mesh.normals[v]), shadow_at(*scene.tracer, mesh.positions[v], mesh.normals[v])});
-            obj.temperature = TemperatureField::per_vertex(thermal::predict_surface_temperatures(*weather, requests, time_s, options));
+            p.vertex_k = thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
+            out.push_back(std::move(p));
             continue;
         }
         // Analytic sphere: centre and radius as the scene loader placed it (translate, uniform scale).
         const ConfigNode o = objects[i];
-        Vec3 centre = Vec3::Zero();
-        double scale = 1.0;
-        if (auto t = o.find("transform")) {
-            if (auto tr = t->find("translate")) {
-                const auto v = tr->as<std::vector<double>>();
-                centre = {v[0], v[1], v[2]};
-            }
-            if (auto sc = t->find("scale")) scale = sc->is_sequence() ? sc->as<std::vector<double>>()[0] : sc->as<double>();
-        }
-        const double radius = o.at("geometry").get<double>("radius") * std::abs(scale);
+        const Transform t = transform_of(o);
+        const Vec3 centre = t.translate;
+        const double radius = o.at("geometry").get<double>("radius") * std::abs(t.scale.x());
         // Texel (u, v) ↔ outward normal, the inverse of the ray tracer's sphere mapping
         // u = ½ + atan2(n_y, n_x)/2π, v = acos(n_z)/π.
         for (int row = 0; row < kSphereMapHeight; ++row) {
@@ -131,9 +168,43 @@ void apply_scene_thermal(const ConfigNode& root, Scene& scene) {
                 requests.push_back({&material, facet_of(n), shadow_at(*scene.tracer, centre + radius * n, n)});
             }
         }
-        const auto t = thermal::predict_surface_temperatures(*weather, requests, time_s, options);
-        obj.temperature = TemperatureField::texture(std::vector<float>(t.begin(), t.end()), kSphereMapWidth, kSphereMapHeight);
+        const auto temps = thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
+        p.map_k.assign(temps.begin(), temps.end());
+        p.width = kSphereMapWidth;
+        p.height = kSphereMapHeight;
+        out.push_back(std::move(p));
     }
+    return out;
+}
+
+std::vector<std::filesystem::path> export_scene_temperatures(const ConfigNode& root, const Scene& scene,
+                                                             const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> written;
+    const auto objects = root.at("objects").elements();
+    for (const PredictedTemperatures& p : predict_scene_temperatures(root, scene)) {
+        const std::string& name = scene.objects[p.object].name;
+        if (!p.map_k.empty()) {
+            Image map(p.width, p.height);
+            map.set_channel("temperature_k", p.map_k);
+            map.attributes()["units"] = std::string("K");
+            const auto path = dir / (name + ".exr");
+            write_exr(path, map);
+            written.push_back(path);
+            continue;
+        }
+        // Object coordinates: the inverse of x ↦ R·diag(s)·x + t.
+        const Transform t = transform_of(objects[p.object]);
+        const TriangleMesh& mesh = scene.tracer->mesh(static_cast<std::uint32_t>(p.object));
+        std::string csv = "x,y,z,temperature_k\n";
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            const Vec3 local = (t.rotation.transpose() * (mesh.positions[v] - t.translate)).cwiseQuotient(t.scale);
+            csv += fmt::format("{:.9g},{:.9g},{:.9g},{:.6f}\n", local.x(), local.y(), local.z(), p.vertex_k[v]);
+        }
+        const auto path = dir / (name + ".csv");
+        write_file_atomic(path, csv);
+        written.push_back(path);
+    }
+    return written;
 }
 
 }  // namespace tirpol::simulation
