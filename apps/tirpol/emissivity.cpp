@@ -1,6 +1,7 @@
 // `tirpol emissivity`: polarized directional emissivity of a material versus emission angle, at one
 // wavelength or averaged over a band (Planck × RSR weighted), as a table, CSV, JSON and a Fig. 1-style plot.
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -66,9 +67,11 @@ void run_emissivity(const EmissivityArgs& a) {
     std::printf("%s (%s), %s; Stokes in the s/p frame, S1 < 0 = polarized in the plane of emission\n",
                 m.name.c_str(), m.brdf->model().c_str(), spectral.c_str());
     std::printf("%9s %9s %9s %9s %9s %8s %8s\n", "angle_deg", "e_s0", "e_s1", "e_s2", "e_s3", "dolp", "dhr");
+    // Rounding noise of symmetric integrals (|x| ~ 1e-17) would print as "-0.00000".
+    const auto shown = [](double x) { return std::abs(x) < 5e-7 ? 0.0 : x; };
     for (const auto& r : rows)
-        std::printf("%9.2f %9.5f %9.5f %9.5f %9.5f %8.5f %8.5f\n", r.angle_deg, r.e(0), r.e(1), r.e(2), r.e(3), r.dolp,
-                    r.dhr);
+        std::printf("%9.2f %9.5f %9.5f %9.5f %9.5f %8.5f %8.5f\n", r.angle_deg, r.e(0), shown(r.e(1)), shown(r.e(2)),
+                    shown(r.e(3)), shown(r.dolp), r.dhr);
     if (!a.csv.empty()) std::printf("table: %s\n", a.csv.c_str());
     if (!a.plot.empty()) std::printf("plot:  %s\n", a.plot.c_str());
 }

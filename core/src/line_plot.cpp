@@ -66,6 +66,10 @@ void write_line_plot(const std::filesystem::path& path, const std::vector<PlotSe
     const auto px = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * (right - left); };
     const auto py = [&](double y) { return bottom - (y - y_lo) / (y_hi - y_lo) * (bottom - top); };
     const auto pt = [](double x, double y) { return cv::Point(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y))); };
+    constexpr int kShift = 4;
+    const auto sub = [](double x, double y) {
+        return cv::Point(static_cast<int>(std::lround(x * (1 << kShift))), static_cast<int>(std::lround(y * (1 << kShift))));
+    };
     const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
     const int font = cv::FONT_HERSHEY_SIMPLEX;
 
@@ -112,8 +116,9 @@ void write_line_plot(const std::filesystem::path& path, const std::vector<PlotSe
             if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.x[i + 1]) || !std::isfinite(s.y[i + 1]))
                 continue;
             if (s.dashed && i % 2 == 1) continue;
-            cv::line(plot_area, pt(px(s.x[i]) - left, py(s.y[i]) - top), pt(px(s.x[i + 1]) - left, py(s.y[i + 1]) - top),
-                     colour, 2, cv::LINE_AA);
+            // Sub-pixel end points (4 fractional bits) so that shallow curves do not look stepped.
+            cv::line(plot_area, sub(px(s.x[i]) - left, py(s.y[i]) - top), sub(px(s.x[i + 1]) - left, py(s.y[i + 1]) - top),
+                     colour, 2, cv::LINE_AA, kShift);
         }
         if (s.markers)
             for (std::size_t i = 0; i < s.x.size(); ++i)

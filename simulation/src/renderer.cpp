@@ -41,33 +41,37 @@ struct PixelResult {
 class PathTracer {
 public:
     PathTracer(const Scene& scene) : m_scene(scene) {
-        // Nodes sorted by wavelength (the emissivity tables want increasing wavelengths).
-        std::vector<BandNode> nodes = scene.band.nodes();
-        std::sort(nodes.begin(), nodes.end(), [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
-        std::vector<double> wavelengths;
+        const std::vector<BandNode>& nodes = scene.band.nodes();
         double total = 0.0;
         for (const auto& node : nodes) {
-            wavelengths.push_back(node.wavelength_um);
+            m_wavelengths.push_back(node.wavelength_um);
             total += node.weight_um;
             m_cdf.push_back(total);
         }
         if (!(total > 0.0)) fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
         for (auto& c : m_cdf) c /= total;
         m_band_weight_um = total;
-        m_wavelengths = wavelengths;
         for (const auto& m : scene.materials) {
             const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
             if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
                 fail("material '{}' ({}) is defined over {}–{} µm, which does not cover the band {}–{} µm", m.name, m.source, lo,
                      hi, scene.band.lo_um(), scene.band.hi_um());
-            m_emissivity.push_back(std::make_unique<materials::EmissivityTable>(*m.brdf, wavelengths));
         }
+        // Tabulated on a 0.25 µm grid and interpolated linearly to the nodes: a table at every
+        // quadrature node would cost ~8× more to build for tabulated indices, for a change in ε far
+        // below the Monte-Carlo noise. Materials are independent: build their tables in parallel.
+        m_emissivity.resize(scene.materials.size());
+        const auto wavelengths = materials::EmissivityTable::wavelengths_for_band(scene.band);
+        tbb::parallel_for(std::size_t{0}, scene.materials.size(), [&](std::size_t i) {
+            m_emissivity[i] = std::make_unique<materials::EmissivityTable>(*scene.materials[i].brdf, wavelengths);
+        });
     }
 
-    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`.
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, SampleStream& rng,
-                       std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
-        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), rng.next()) - m_cdf.begin());
+    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
+    /// `wavelength_u` in [0, 1) picks the wavelength node by inverting the weights' CDF.
+    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, double wavelength_u,
+                       SampleStream& rng, std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
+        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), wavelength_u) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky& sky = m_scene.sky;
@@ -103,7 +107,7 @@ public:
 
             // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's world frame.
             const MuellerMatrix leaving = throughput * rotation_between(surface_frame(wo, n), world_frame(wo));
-            const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
+            const StokesVector emissivity = m_emissivity[object.material]->at_wavelength(std::clamp(wo_local.z(), 0.0, 1.0), lambda);
             radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
             if (bounce >= max_bounces) break;
 
@@ -162,7 +166,11 @@ struct Channels {
 
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
-    const PathTracer tracer(scene);
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    std::unique_ptr<const PathTracer> tracer_ptr;
+    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene); });
+    const PathTracer& tracer = *tracer_ptr;
+    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
     const int w = camera.width(), h = camera.height();
     const int spp = scene.sampling.samples_per_pixel;
@@ -190,9 +198,12 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                 for (int s = 0; s < spp; ++s) {
                     SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
                     const double u = x + rng.next(), v = y + rng.next();
+                    // Wavelengths stratified over the pixel's samples: the spectral part of the noise
+                    // falls as 1/spp instead of 1/√spp.
+                    const double wavelength_u = (s + rng.next()) / spp;
                     const Vec3 d = camera.ray_direction(u, v);
                     const StokesVector sample =
-                        tracer.trace(camera.position(), d, camera.image_frame(d), rng, rays, shadows);
+                        tracer.trace(camera.position(), d, camera.image_frame(d), wavelength_u, rng, rays, shadows);
                     const StokesVector delta = sample - mean;
                     mean += delta / (s + 1);
                     m2 += delta.head<3>().cwiseProduct((sample - mean).head<3>());
@@ -236,7 +247,6 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         if (progress) progress->advance();
     };
 
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
@@ -257,6 +267,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
 
     if (statistics) {
         statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        statistics->setup_seconds = setup_seconds;
         statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);
         statistics->scene_rays = scene_rays.load();
         statistics->shadow_rays = shadow_rays.load();

@@ -115,6 +115,11 @@ TEST(Emissivity, TableMatchesDirectIntegration) {
         EXPECT_LT((table.at(c, 1) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
         EXPECT_LT((table.band_average(c, Band(8.0, 14.0), 300.0) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
     }
+    // Precomputed band weights give the same band average (the renderer's hot path).
+    const Band band(8.0, 14.0);
+    const std::vector<double> weights = table.band_weights(band, 300.0);
+    for (double c : {1.0, 0.5, 0.05})
+        EXPECT_LT((table.at_weighted(c, weights) - table.band_average(c, band, 300.0)).cwiseAbs().maxCoeff(), 1e-14);
     // At a node the table holds exactly the integral.
     const double c_node = std::cos(table.angles_rad()[40]);
     EXPECT_LT((table.at(c_node, 0) - directional_emissivity(brdf, c_node, 8.0)).cwiseAbs().maxCoeff(), 1e-12);
@@ -133,6 +138,39 @@ TEST(Emissivity, BoundsAndPolarizationInPlaneOfEmission) {
         EXPECT_LE(std::abs(e(1)), e(0));
         EXPECT_NEAR(e(2), 0.0, 1e-9);
         EXPECT_NEAR(e(3), 0.0, 1e-9);
+    }
+}
+
+// The half-azimuth shortcut for isotropic models (is_isotropic) is justified by mirror symmetry:
+// integrating the full azimuth range of the same model gives S2 = S3 = 0 within 1e-12 and the same
+// S0, S1.
+class FullAzimuth final : public PolarizedBrdf {
+public:
+    explicit FullAzimuth(const PolarizedBrdf& inner) : m_inner(inner) {}
+    std::string model() const override { return m_inner.model(); }
+    MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double wl) const override { return m_inner.eval(wi, wo, wl); }
+    BrdfSample sample(const Vec3& wo, double wl, double u1, double u2) const override {
+        return m_inner.sample(wo, wl, u1, u2);
+    }
+    double pdf(const Vec3& wi, const Vec3& wo, double wl) const override { return m_inner.pdf(wi, wo, wl); }
+    std::vector<BrdfParameter> parameters(double wl) const override { return m_inner.parameters(wl); }
+    std::vector<double> sample_u1_breaks(const Vec3& wo, double wl) const override {
+        return m_inner.sample_u1_breaks(wo, wl);
+    }
+
+private:
+    const PolarizedBrdf& m_inner;
+};
+
+TEST(Emissivity, MirrorSymmetryShortcutMatchesFullAzimuth) {
+    const MicrofacetBrdf brdf = paint(0.2);
+    const FullAzimuth full(brdf);
+    for (double deg : {10.0, 50.0, 80.0, 89.0}) {
+        const double c = std::cos(deg_to_rad(deg));
+        const StokesVector a = directional_emissivity(brdf, c, 10.0), b = directional_emissivity(full, c, 10.0);
+        EXPECT_NEAR(b(2), 0.0, 1e-12);
+        EXPECT_NEAR(b(3), 0.0, 1e-12);
+        EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-12) << deg;
     }
 }
 

@@ -1,8 +1,8 @@
 // Invariances of the renderer: the image does not depend on the thread count or the tiling
 // (counter-based random numbers per pixel and sample), and the physics does not depend on the
 // azimuth: rotating the scene and the camera together about the vertical leaves the image unchanged
-// (the sky depends on zenith angle only; Stokes frames are tied to the camera, and the world frame's
-// horizontal reference axis rotates with the scene).
+// within its Monte-Carlo error (the sky depends on zenith angle only; Stokes is expressed in the
+// camera frame, which rotates with the scene).
 
 #include <gtest/gtest.h>
 
@@ -56,17 +56,32 @@ TEST(RenderInvariance, RotatingSceneAndCameraAboutTheVerticalLeavesTheImageUncha
     TempDir dir;
     const Image a = render(test::load_scene_text(dir, rotated_scene(0.0), "a.yaml"));
     const Image b = render(test::load_scene_text(dir, rotated_scene(37.0), "b.yaml"));
-    // Same random numbers per pixel; only float rounding in the BVH differs, which can flip a sample
-    // at a silhouette edge. Bound the fraction of pixels that differ beyond rounding.
+    // The tangent frames in which the pBRDFs are sampled do not rotate with the scene, so the two
+    // renders are independent Monte-Carlo estimates of the same image: compare them per pixel with
+    // their reported errors (|a − b| ≤ 5·√(σa² + σb²)), allowing 1 % outliers for silhouette pixels
+    // and heavy-tailed samples.
     for (const char* ch : {"S0", "S1", "S2"}) {
         const auto& pa = a.channel(ch);
         const auto& pb = b.channel(ch);
-        const double scale = *std::max_element(a.channel("S0").begin(), a.channel("S0").end());
+        const auto& va = a.channel(std::string(ch) + "_var");
+        const auto& vb = b.channel(std::string(ch) + "_var");
         std::size_t off = 0;
-        for (std::size_t i = 0; i < pa.size(); ++i)
-            if (std::abs(pa[i] - pb[i]) > 1e-4 * scale) ++off;
-        EXPECT_LE(static_cast<double>(off) / static_cast<double>(pa.size()), 0.03) << ch << ": " << off << " pixels differ";
+        double sum_diff = 0.0, sum_var = 0.0;
+        for (std::size_t i = 0; i < pa.size(); ++i) {
+            if (std::abs(pa[i] - pb[i]) > 5.0 * std::sqrt(va[i] + vb[i]) + 1e-6) ++off;
+            sum_diff += pa[i] - pb[i];
+            sum_var += va[i] + vb[i];
+        }
+        EXPECT_LE(static_cast<double>(off), 0.01 * static_cast<double>(pa.size())) << ch << ": " << off << " pixels differ";
+        EXPECT_LE(std::abs(sum_diff), 5.0 * std::sqrt(sum_var)) << ch << ": image means differ";
     }
+    // Geometry channels are deterministic: the same up to float rounding.
+    std::size_t depth_off = 0;
+    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+        const float da = a.channel("depth")[i], db = b.channel("depth")[i];
+        if (!(std::abs(da - db) < 1e-3f || (std::isnan(da) && std::isnan(db)))) ++depth_off;
+    }
+    EXPECT_LE(depth_off, a.pixel_count() / 100) << "depth differs beyond rounding";
 }
 
 }  // namespace

@@ -15,7 +15,8 @@ namespace {
 
 Image stokes_image(const StokesVector& s, int w = 64, int h = 64) {
     Image img(w, h);
-    for (int c = 0; c < 4; ++c) img.add_channel("S" + std::to_string(c), static_cast<float>(s[c]));
+    const char* names[4] = {"S0", "S1", "S2", "S3"};
+    for (int c = 0; c < 4; ++c) img.add_channel(names[c], static_cast<float>(s[c]));
     return img;
 }
 

@@ -10,7 +10,7 @@
 /// PolarizedBrdf::sample, whose weight is M·cosθi/pdf, so ∫ M e0 cosθi dωi = ∫∫ weight·e0 du1 du2.
 /// Composite Gauss–Legendre rules in u1 (split at sample_u1_breaks, so every piece maps smoothly) and
 /// u2 follow the lobe however narrow it is, and delta lobes are exact (their weight is the reflectance
-/// matrix). Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
+/// matrix). Isotropic models (PolarizedBrdf::is_isotropic) are integrated over half the azimuths. Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
 /// 2-D integration over the hemisphere for rough surfaces, and exact (1e-12) for smooth ones.
 
 #include <cstddef>
@@ -51,7 +51,8 @@ class EmissivityTable {
 public:
     /// Builds the table. Throws tirpol::Error if a wavelength lies outside the model's
     /// valid_wavelength_range_um, or if the list is empty / not increasing. Wavelengths at which the
-    /// model's parameters are identical to the previous wavelength's reuse that column.
+    /// model's parameters are identical to the previous wavelength's reuse that column. The integrals
+    /// run on up to std::thread::hardware_concurrency() threads.
     EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes = 65,
                     const EmissivityOptions& options = {});
 
@@ -62,8 +63,16 @@ public:
     StokesVector at_wavelength(double cos_theta, double wavelength_um) const;
 
     /// Planck×RSR-weighted band average ∫R L_bb(T) ε dλ / ∫R L_bb(T) dλ over the band's quadrature
-    /// nodes (radiometry.h), with ε interpolated in wavelength as in at_wavelength.
+    /// nodes (radiometry.h), with ε interpolated in wavelength as in at_wavelength. No allocation; it
+    /// evaluates Planck at every band node, so hot loops with a fixed (band, T) should use
+    /// band_weights once and at_weighted per hit (same result).
     StokesVector band_average(double cos_theta, const Band& band, double temperature_k) const;
+
+    /// Normalised per-column weights w_j with band_average(θ) = Σ_j w_j·at(θ, j).
+    std::vector<double> band_weights(const Band& band, double temperature_k) const;
+
+    /// Σ_j weights[j]·at(cos θ, j) (weights from band_weights; one entry per wavelength). No allocation.
+    StokesVector at_weighted(double cos_theta, const std::vector<double>& weights) const;
 
     const std::vector<double>& wavelengths_um() const { return m_wavelengths_um; }
     /// Emission angles of the nodes, radians.
@@ -74,9 +83,13 @@ public:
     }
 
     /// Wavelengths spanning a band (its ends and steps of at most `step_um`), for building a table.
-    static std::vector<double> wavelengths_for_band(const Band& band, double step_um = 0.25);
+    static std::vector<double> wavelengths_for_band(const Band& band, double step_um = 0.5);
 
 private:
+    /// Cubic interpolation at grid coordinate p ∈ [0, N−1] for one column.
+    StokesVector at_position(double p, std::size_t wavelength_index) const;
+    double position(double cos_theta) const;
+
     std::vector<double> m_wavelengths_um;
     std::vector<double> m_angles_rad;
     std::vector<StokesVector> m_values;  // [wavelength][angle]

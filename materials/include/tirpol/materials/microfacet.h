@@ -36,6 +36,7 @@ public:
     /// below the horizon return pdf = 0.
     BrdfSample sample(const Vec3& wo, double wavelength_um, double u1, double u2) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const override;
+    bool is_isotropic() const override { return true; }
     std::vector<BrdfParameter> parameters(double wavelength_um) const override;
     std::vector<double> sample_u1_breaks(const Vec3& wo, double wavelength_um) const override;
     std::pair<double, double> valid_wavelength_range_um() const override;

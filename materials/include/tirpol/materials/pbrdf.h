@@ -63,6 +63,15 @@ public:
     /// True if part of the reflection is a Dirac delta (smooth surface).
     virtual bool has_delta() const { return false; }
 
+    /// True if ALL of the reflection is one Dirac delta (sample's weight does not depend on u1, u2);
+    /// integrators then need a single sample.
+    virtual bool is_pure_delta() const { return false; }
+
+    /// True if the model is isotropic and mirror-symmetric about the plane of wo and the normal, and
+    /// `sample` maps u2 to the azimuth 2π·u2 (so u2 and 1 − u2 are mirror images for wo in the xz
+    /// plane). The emissivity integrator then integrates half the azimuths; S2 = S3 = 0 exactly.
+    virtual bool is_isotropic() const { return false; }
+
     /// The model's parameters at a wavelength.
     virtual std::vector<BrdfParameter> parameters(double wavelength_um) const = 0;
 

@@ -22,6 +22,8 @@ public:
     BrdfSample sample(const Vec3& wo, double wavelength_um, double u1, double u2) const override;
     double pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const override;
     bool has_delta() const override { return true; }
+    bool is_pure_delta() const override { return true; }
+    bool is_isotropic() const override { return true; }
     std::vector<BrdfParameter> parameters(double wavelength_um) const override;
     std::pair<double, double> valid_wavelength_range_um() const override;
 

@@ -29,7 +29,8 @@ struct RenderOptions {
 };
 
 struct RenderStatistics {
-    double seconds = 0.0;
+    double seconds = 0.0;        ///< wall time of the whole render
+    double setup_seconds = 0.0;  ///< of which building the materials' emissivity tables
     std::uint64_t camera_rays = 0;
     std::uint64_t scene_rays = 0;   ///< every intersect query (camera, bounce and auxiliary rays)
     std::uint64_t shadow_rays = 0;  ///< occlusion queries toward the sun

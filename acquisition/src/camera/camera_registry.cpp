@@ -1,0 +1,83 @@
+#include "tirpol/acquisition/camera_registry.h"
+
+#include <fmt/format.h>
+
+#include "camera/uri.h"
+#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::acquisition {
+
+namespace {
+
+std::optional<int> optional_int(const DeviceUri& u, const char* key) {
+    if (u.query.count(key) == 0) return std::nullopt;
+    return u.integer(key, 0);
+}
+
+std::optional<double> optional_number(const DeviceUri& u, const char* key) {
+    if (u.query.count(key) == 0) return std::nullopt;
+    return u.number(key, 0.0);
+}
+
+Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
+    u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size"});
+    if (u.target.empty()) fail("device URI '{}': expected aravis://<device-id>", u.text);
+    AravisCameraOptions options;
+    if (u.query.count("pixel_format") != 0) options.pixel_format = u.query.at("pixel_format");
+    options.width = optional_int(u, "width");
+    options.height = optional_int(u, "height");
+    options.frame_rate_hz = optional_number(u, "fps");
+    options.stream_buffers = u.integer("buffers", options.stream_buffers);
+    if (u.query.count("trigger") != 0) {
+        const std::string& t = u.query.at("trigger");
+        if (t != "software" && t != "off") fail("device URI '{}': trigger={} (expected software or off)", u.text, t);
+        options.software_trigger = t == "software";
+    }
+    if (u.query.count("packet_size") != 0) {
+        const std::string& p = u.query.at("packet_size");
+        if (p != "auto" && p != "keep") fail("device URI '{}': packet_size={} (expected auto or keep)", u.text, p);
+        options.auto_packet_size = p == "auto";
+    }
+    return open_aravis_camera(u.target, options);
+}
+
+Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
+    u.check_keys({"format", "width", "height", "fps", "buffers"});
+    if (u.target.empty() || u.target.front() != '/')
+        fail("device URI '{}': expected v4l2:///dev/videoN (an absolute device path)", u.text);
+    V4l2CameraOptions options;
+    if (u.query.count("format") != 0) options.pixel_format = u.query.at("format");
+    options.width = optional_int(u, "width");
+    options.height = optional_int(u, "height");
+    options.frame_rate_hz = optional_number(u, "fps");
+    const int buffers = u.integer("buffers", static_cast<int>(options.buffers));
+    if (buffers < 2 || buffers > 64) fail("device URI '{}': buffers={} (expected 2…64)", u.text, buffers);
+    options.buffers = static_cast<unsigned>(buffers);
+    return open_v4l2_camera(u.target, options);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Camera>> open_camera(const std::string& uri) {
+    const DeviceUri u = parse_device_uri(uri);
+    if (u.scheme == "aravis") return open_aravis(u);
+    if (u.scheme == "v4l2") return open_v4l2(u);
+    if (u.scheme == "sim") return std::unique_ptr<Camera>(open_simulated_camera(uri));
+    fail("device URI '{}': unknown camera scheme '{}' (expected aravis, v4l2 or sim)", uri, u.scheme);
+}
+
+std::vector<CameraDescriptor> list_cameras() {
+    std::vector<CameraDescriptor> cameras;
+    for (const auto& d : discover_aravis_cameras()) {
+        const std::string where = d.address.empty() ? d.protocol : fmt::format("{} at {}", d.protocol, d.address);
+        cameras.push_back({"aravis://" + d.id, fmt::format("{} {} (serial {}), {}", d.vendor, d.model, d.serial, where)});
+    }
+    for (const auto& d : discover_v4l2_cameras())
+        cameras.push_back({"v4l2://" + d.path, fmt::format("{} ({}, {})", d.card, d.driver, d.bus_info)});
+    return cameras;
+}
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,146 @@
+#include "tirpol/acquisition/simulated_camera.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+
+#include "camera/uri.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::acquisition {
+
+namespace {
+constexpr std::int64_t kTimestampOriginNs = 1'000'000'000;  ///< virtual device clock starts at 1 s
+
+std::int64_t realtime_now_ns() {
+    timespec ts{};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+std::optional<int> mono_bits(const std::string& format) {
+    for (int bits : {8, 10, 12, 14, 16})
+        if (format == fmt::format("Mono{}", bits)) return bits;
+    return std::nullopt;
+}
+}  // namespace
+
+SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator generator, AngleSource angle)
+    : m_config(std::move(config)), m_generator(std::move(generator)), m_angle(std::move(angle)), m_rng(m_config.seed) {
+    if (m_config.width <= 0 || m_config.height <= 0)
+        fail("simulated camera '{}': size {}×{} (expected positive)", m_config.name, m_config.width, m_config.height);
+    if (m_config.bits_per_pixel < 1 || m_config.bits_per_pixel > 16)
+        fail("simulated camera '{}': bits_per_pixel {} (expected 1…16)", m_config.name, m_config.bits_per_pixel);
+    if (!(m_config.frame_rate_hz > 0.0))
+        fail("simulated camera '{}': frame rate {} Hz (expected > 0)", m_config.name, m_config.frame_rate_hz);
+    if (!(m_config.noise_std_counts >= 0.0))
+        fail("simulated camera '{}': noise {} counts (expected ≥ 0)", m_config.name, m_config.noise_std_counts);
+    if (!(m_config.drop_probability >= 0.0 && m_config.drop_probability < 1.0))
+        fail("simulated camera '{}': drop probability {} (expected in [0, 1))", m_config.name,
+             m_config.drop_probability);
+    if (!m_generator) fail("simulated camera '{}': no frame generator", m_config.name);
+}
+
+CameraInfo SimulatedCamera::info() const {
+    CameraInfo info;
+    info.uri = "sim://" + m_config.name;
+    info.vendor = "tirpol";
+    info.model = "simulated (" + m_config.name + ")";
+    info.serial = fmt::format("seed-{}", m_config.seed);
+    info.pixel_format = fmt::format("Mono{}", m_config.bits_per_pixel);
+    info.width = m_config.width;
+    info.height = m_config.height;
+    info.bits_per_pixel = m_config.bits_per_pixel;
+    info.frame_rate_hz = m_config.frame_rate_hz;
+    return info;
+}
+
+Status SimulatedCamera::set_pixel_format(const std::string& format) {
+    const auto bits = mono_bits(format);
+    if (!bits)
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           fmt::format("sim://{}: pixel format '{}' (expected Mono8, Mono10, Mono12, Mono14 or Mono16)",
+                                       m_config.name, format)};
+    m_config.bits_per_pixel = *bits;
+    return ok_status();
+}
+
+Status SimulatedCamera::set_frame_rate(double hz) {
+    if (!(hz > 0.0) || !std::isfinite(hz))
+        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("sim://{}: frame rate {} Hz", m_config.name, hz)};
+    m_config.frame_rate_hz = hz;
+    return ok_status();
+}
+
+Status SimulatedCamera::start() {
+    m_streaming = true;
+    return ok_status();
+}
+
+Status SimulatedCamera::stop() {
+    m_streaming = false;
+    return ok_status();
+}
+
+Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds /*timeout*/) {
+    if (!m_streaming) return DeviceError{DeviceErrorCode::InvalidArgument, "sim://" + m_config.name + ": grab() before start()"};
+    std::bernoulli_distribution drop(m_config.drop_probability);
+    while (m_config.drop_probability > 0.0 && drop(m_rng)) {
+        ++m_next_id;
+        ++m_stats.dropped;
+    }
+    const std::size_t n = static_cast<std::size_t>(m_config.width) * static_cast<std::size_t>(m_config.height);
+    m_expected.assign(n, 0.0f);
+    const double angle_deg = m_angle ? m_angle() : 0.0;
+    m_generator(angle_deg, m_expected);
+    if (m_expected.size() != n)
+        return DeviceError{DeviceErrorCode::DeviceFault,
+                           fmt::format("sim://{}: the frame generator returned {} values for {}×{} pixels",
+                                       m_config.name, m_expected.size(), m_config.width, m_config.height)};
+    Frame frame;
+    frame.width = m_config.width;
+    frame.height = m_config.height;
+    frame.counts.resize(n);
+    const double full_scale = std::ldexp(1.0, m_config.bits_per_pixel) - 1.0;
+    std::normal_distribution<double> noise(0.0, 1.0);
+    const bool noisy = m_config.noise_std_counts > 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double v = m_expected[i];
+        if (noisy) v += m_config.noise_std_counts * noise(m_rng);
+        frame.counts[i] = static_cast<float>(std::clamp(std::nearbyint(v), 0.0, full_scale));
+    }
+    frame.frame_id = m_next_id++;
+    frame.device_timestamp_ns =
+        kTimestampOriginNs + static_cast<std::int64_t>(std::llround(static_cast<double>(frame.frame_id - 1) * 1e9 /
+                                                                     m_config.frame_rate_hz));
+    frame.host_timestamp_ns = realtime_now_ns();
+    frame.fpa_temperature_k = m_config.fpa_temperature_k;
+    ++m_stats.delivered;
+    return frame;
+}
+
+std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
+    const DeviceUri u = parse_device_uri(uri);
+    if (u.scheme != "sim") fail("device URI '{}': expected the sim:// scheme", uri);
+    if (u.target != "uniform")
+        fail("device URI '{}': unknown simulated camera '{}' (built in: uniform; the digital twin plugs its "
+             "renderer in through the C++ API)", uri, u.target);
+    u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k"});
+    SimulatedCameraConfig config;
+    config.name = "uniform";
+    config.width = u.integer("width", 640);
+    config.height = u.integer("height", 512);
+    config.bits_per_pixel = u.integer("bits", 16);
+    config.frame_rate_hz = u.number("fps", 30.0);
+    config.noise_std_counts = u.number("noise", 0.0);
+    config.drop_probability = u.number("drop", 0.0);
+    config.seed = static_cast<std::uint64_t>(u.integer("seed", 1));
+    if (u.query.count("fpa_k") != 0) config.fpa_temperature_k = u.number("fpa_k", 0.0);
+    const double counts = u.number("counts", 8000.0);
+    auto generator = [counts](double, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(counts)); };
+    return std::make_unique<SimulatedCamera>(config, generator);
+}
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,86 @@
+// `tirpol calibrate radiometric|polarimetric`: blackbody count→radiance calibration and the
+// polarizer/wire-grid calibration from capture sessions (docs/calibration.md).
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "cli.h"
+#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::cli {
+
+namespace {
+struct RadiometricArgs {
+    std::string session, output, rsr;
+    std::vector<double> band_um{8.0, 14.0};
+    bool quadratic = false;
+    std::optional<double> saturation_counts;
+};
+
+void run_radiometric(const RadiometricArgs& a) {
+    std::optional<SpectralResponse> rsr;
+    if (!a.rsr.empty()) rsr = SpectralResponse::load_csv(a.rsr);
+    const Band band(a.band_um[0], a.band_um[1], rsr);
+    calibration::RadiometricOptions options;
+    options.quadratic = a.quadratic;
+    options.saturation_counts = a.saturation_counts;
+    const auto cal = calibration::calibrate_radiometric_session(a.session, band, options);
+    calibration::write_radiometric_calibration(a.output, cal);
+    const auto gain = calibration::robust_stats(cal.gain);
+    const auto residual = calibration::robust_stats(cal.residual_rms);
+    std::printf("radiometric calibration of %s (%d×%d, %zu blackbody frames, %s model)\n", cal.camera_id.c_str(),
+                cal.width, cal.height, cal.temperatures_k.size(), a.quadratic ? "quadratic" : "linear");
+    std::printf("  median gain %.4g counts/(W/(m²·sr)), median residual %.3g counts\n", gain.median, residual.median);
+    std::printf("  bad pixels: %zu (dead %zu, hot %zu, noisy %zu, non-linear %zu, saturated %zu)\n", cal.bad_count(),
+                cal.bad_count(calibration::kDead), cal.bad_count(calibration::kHot), cal.bad_count(calibration::kNoisy),
+                cal.bad_count(calibration::kNonLinear), cal.bad_count(calibration::kSaturated));
+    std::printf("  written: %s\n", a.output.c_str());
+}
+
+struct PolarimetricArgs {
+    std::string session, calibration, output;
+};
+
+void run_polarimetric(const PolarimetricArgs& a) {
+    const auto cal = calibration::read_radiometric_calibration(a.calibration);
+    auto pol = calibration::calibrate_polarimetric_session(a.session, cal);
+    pol.radiometric_calibration = a.calibration;
+    calibration::write_polarimetric_calibration(a.output, pol);
+    std::printf("polarimetric calibration of %s: analyzer by %s\n", a.session.c_str(), pol.analyzer_method.c_str());
+    for (const auto& p : pol.analyzer.positions)
+        std::printf("  %6.2f°: axis %7.3f°, extinction ratio %8.4g, relative transmission %.4f\n", p.nominal_angle_deg,
+                    p.axis_angle_deg, p.extinction_ratio(), p.relative_transmission);
+    std::printf("  condition number of W: %.4f\n", pol.analyzer.condition_number());
+    std::printf("  written: %s and %s\n", a.output.c_str(), calibration::polarimetric_maps_path(a.output).c_str());
+}
+
+void register_calibrate(CLI::App& app) {
+    auto* cmd = app.add_subcommand("calibrate", "Radiometric (blackbody) or polarimetric (wire grid) calibration");
+    cmd->require_subcommand(1);
+
+    auto r = std::make_shared<RadiometricArgs>();
+    auto* rad = cmd->add_subcommand("radiometric", "Per-pixel counts→radiance, bad pixels, from blackbody records");
+    rad->add_option("SESSION", r->session, "Session directory with blackbody records")->required()->check(CLI::ExistingDirectory);
+    rad->add_option("-o,--output", r->output, "Calibration EXR to write")->required();
+    rad->add_option("--band-um", r->band_um, "Band limits LO HI in micrometres")->expected(2)->capture_default_str();
+    rad->add_option("--rsr", r->rsr, "Relative spectral response CSV (wavelength_um,response)")->check(CLI::ExistingFile);
+    rad->add_flag("--quadratic", r->quadratic, "Fit counts = o + g·L + q·L² (≥ 3 temperatures)");
+    rad->add_option("--saturation-counts", r->saturation_counts, "Saturation level (default 2^bits − 1 of the camera)");
+    rad->callback([r] { run_radiometric(*r); });
+
+    auto p = std::make_shared<PolarimetricArgs>();
+    auto* pol = cmd->add_subcommand("polarimetric", "Wire-grid τ/B maps and analyzer model from blackbody/known-source records");
+    pol->add_option("SESSION", p->session, "Session with blackbody records through the polarizer")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    pol->add_option("--calibration", p->calibration, "Radiometric calibration EXR")->required()->check(CLI::ExistingFile);
+    pol->add_option("-o,--output", p->output, "Polarimetric calibration YAML (maps next to it, .maps.exr)")->required();
+    pol->callback([p] { run_polarimetric(*p); });
+}
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(50, register_calibrate);
+
+}  // namespace tirpol::cli

@@ -1,0 +1,53 @@
+// `tirpol temperature`: counts → radiance → brightness temperature with a radiometric calibration.
+
+#include <cstdio>
+#include <memory>
+
+#include "cli.h"
+#include "tirpol/calibration/radiometric.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/core/raster_io.h"
+
+namespace tirpol::cli {
+
+namespace {
+struct TemperatureArgs {
+    std::string image, calibration, output, channel = "counts";
+};
+
+void run_temperature(const TemperatureArgs& a) {
+    const auto cal = calibration::read_radiometric_calibration(a.calibration);
+    const Image raw = read_raw_image(a.image, "counts", a.channel);
+    if (raw.width() != cal.width || raw.height() != cal.height)
+        fail("{}: image is {}×{} but calibration {} is {}×{}", a.image, raw.width(), raw.height(), a.calibration,
+             cal.width, cal.height);
+    const auto radiance = calibration::counts_to_radiance(cal, raw.channel("counts"));
+    Image out(raw.width(), raw.height());
+    out.set_channel("radiance", radiance);
+    out.set_channel("temperature_k", calibration::brightness_temperature(cal.band(), radiance));
+    out.attributes()["units_radiance"] = std::string("W/(m^2 sr)");
+    out.attributes()["units_temperature_k"] = std::string("K");
+    out.attributes()["band_um"] = std::vector<double>{cal.band_lo_um, cal.band_hi_um};
+    out.attributes()["calibration"] = a.calibration;
+    out.attributes()["source"] = a.image;
+    write_exr(a.output, out);
+    const auto stats = channel_stats(out.channel("temperature_k"));
+    std::printf("brightness temperature: min %.2f K, mean %.2f K, max %.2f K → %s\n", stats.min, stats.mean, stats.max,
+                a.output.c_str());
+}
+
+void register_temperature(CLI::App& app) {
+    auto a = std::make_shared<TemperatureArgs>();
+    auto* cmd = app.add_subcommand("temperature", "Brightness-temperature image from counts and a radiometric calibration");
+    cmd->add_option("IMAGE", a->image, "Raw image: EXR (channel --channel), 16-bit PNG or TIFF")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--channel", a->channel, "EXR channel holding counts")->capture_default_str();
+    cmd->add_option("-o,--output", a->output, "Output EXR (radiance, temperature_k)")->required();
+    cmd->callback([a] { run_temperature(*a); });
+}
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(52, register_temperature);
+
+}  // namespace tirpol::cli

@@ -1,0 +1,65 @@
+#pragma once
+/// \file emissivity_extraction.h
+/// Polarized emissivity of targets from a reduced Stokes image (paper eq 17 with τ_p → 1):
+///     L_SLAR = (1 − ε)·L_dw + ε·L_BB(T)   ⇒   ε_S0 = (S0 − L_dw)/(L_BB − L_dw),
+///     ε_S1 = S1/(L_BB − L_dw),   ε_S2 = S2/(L_BB − L_dw),
+/// the downwelled radiance L_dw (taken as unpolarized) from an IR-reflector region, L_BB from a
+/// contact temperature or from an in-scene blackbody at the target's temperature. The paper writes
+/// eq 17 per analyzer angle for radiances normalised to unit response to unpolarized light; applied
+/// to the Stokes components (eqs 14–16 are linear) it gives the expressions above. ε_S1 and ε_S2
+/// are in the image Stokes frame (ARCHITECTURE.md): a sky-facing panel seen obliquely has ε_S1 < 0.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/image.h"
+#include "tirpol/core/radiometry.h"
+
+namespace tirpol::calibration {
+
+/// A pixel rectangle [x, y, width, height] (origin top-left).
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct EmissivityTarget {
+    std::string name;
+    PixelRect rect;
+    double view_angle_deg = 0.0;
+    std::optional<double> temperature_k;        ///< contact temperature
+    double temperature_std_k = 0.5;             ///< its standard uncertainty
+    std::optional<PixelRect> blackbody_rect;    ///< in-scene blackbody at the target temperature
+};
+
+struct EmissivityRois {
+    PixelRect reflector;
+    std::vector<EmissivityTarget> targets;
+    /// Reads the ROI YAML (docs/calibration.md): keys `reflector: {rect}`, `targets: [{name, rect,
+    /// view_angle_deg, temperature_k | blackbody_rect, temperature_std_k}]`; errors name file, line, field.
+    static EmissivityRois load(const std::string& path);
+};
+
+/// One CSV row. `*_2sigma` are 2σ uncertainties: the standard errors of the ROI means (spatial σ/√n)
+/// of the target, the reflector and the blackbody region, and the contact-temperature σ through
+/// dL/dT, propagated to first order.
+struct EmissivityResult {
+    std::string name;
+    double view_angle_deg = 0.0, temperature_k = 0.0;
+    std::size_t pixels = 0;
+    double l_dw = 0.0, l_bb = 0.0;
+    double eps_s0 = 0.0, eps_s0_2sigma = 0.0;
+    double eps_s1 = 0.0, eps_s1_2sigma = 0.0;
+    double eps_s2 = 0.0, eps_s2_2sigma = 0.0;
+};
+
+/// Extracts ε per target. Throws tirpol::Error naming the ROI for a rectangle outside the image or
+/// empty, no finite pixel, or L_BB ≤ L_dw (the target's emission must exceed the downwelling).
+std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band);
+
+/// CSV with header name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,
+/// eps_s0_2sigma,eps_s1,eps_s1_2sigma,eps_s2,eps_s2_2sigma.
+std::string emissivity_csv(const std::vector<EmissivityResult>& results);
+
+}  // namespace tirpol::calibration

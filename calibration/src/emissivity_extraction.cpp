@@ -1,0 +1,128 @@
+#include "tirpol/calibration/emissivity_extraction.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "tirpol/core/config.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::calibration {
+
+namespace {
+PixelRect parse_rect(const ConfigNode& node) {
+    const auto v = node.as<std::vector<double>>();
+    if (v.size() != 4 || v[2] < 1 || v[3] < 1) node.fail("expected [x, y, width, height] with width, height ≥ 1");
+    return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])};
+}
+
+struct RegionMean {
+    double mean = 0.0, standard_error = 0.0;
+    std::size_t n = 0;
+};
+
+RegionMean region_mean(const Image& image, const std::string& channel, const PixelRect& r, const std::string& what) {
+    if (r.x < 0 || r.y < 0 || r.x + r.width > image.width() || r.y + r.height > image.height())
+        fail("{}: rectangle [{}, {}, {}, {}] is outside the {}×{} image", what, r.x, r.y, r.width, r.height,
+             image.width(), image.height());
+    const auto& plane = image.channel(channel);
+    double sum = 0.0, sum2 = 0.0;
+    std::size_t n = 0;
+    for (int y = r.y; y < r.y + r.height; ++y)
+        for (int x = r.x; x < r.x + r.width; ++x) {
+            const double v = plane[image.index(x, y)];
+            if (!std::isfinite(v)) continue;
+            sum += v;
+            sum2 += v * v;
+            ++n;
+        }
+    if (n == 0) fail("{}: no finite {} pixel in the rectangle", what, channel);
+    const double mean = sum / static_cast<double>(n);
+    const double var = n > 1 ? std::max(0.0, (sum2 - static_cast<double>(n) * mean * mean) / static_cast<double>(n - 1)) : 0.0;
+    return {mean, std::sqrt(var / static_cast<double>(n)), n};
+}
+}  // namespace
+
+EmissivityRois EmissivityRois::load(const std::string& path) {
+    const ConfigNode root = ConfigNode::load_file(path);
+    root.check_keys({"reflector", "targets"});
+    EmissivityRois rois;
+    const ConfigNode reflector = root.at("reflector");
+    reflector.check_keys({"rect"});
+    rois.reflector = parse_rect(reflector.at("rect"));
+    for (const ConfigNode& t : root.at("targets").elements()) {
+        t.check_keys({"name", "rect", "view_angle_deg", "temperature_k", "temperature_std_k", "blackbody_rect"});
+        EmissivityTarget target;
+        target.name = t.get<std::string>("name");
+        target.rect = parse_rect(t.at("rect"));
+        target.view_angle_deg = t.get_in_range("view_angle_deg", 0.0, 90.0);
+        if (t.has("temperature_k")) target.temperature_k = t.get_in_range("temperature_k", 1.0, 2000.0);
+        if (t.has("blackbody_rect")) target.blackbody_rect = parse_rect(t.at("blackbody_rect"));
+        if (target.temperature_k.has_value() == target.blackbody_rect.has_value())
+            t.fail("expected exactly one of temperature_k (contact) or blackbody_rect (in-scene blackbody)");
+        target.temperature_std_k = t.get_or("temperature_std_k", 0.5);
+        rois.targets.push_back(target);
+    }
+    if (rois.targets.empty()) root.at("targets").fail("expected at least one target");
+    return rois;
+}
+
+std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band) {
+    for (const char* c : {"S0", "S1", "S2"}) (void)stokes.channel(c);  // names the missing channel
+    const RegionMean dw = region_mean(stokes, "S0", rois.reflector, "reflector");
+    std::vector<EmissivityResult> results;
+    for (const auto& t : rois.targets) {
+        EmissivityResult r;
+        r.name = t.name;
+        r.view_angle_deg = t.view_angle_deg;
+        double sigma_lbb = 0.0;
+        if (t.temperature_k) {
+            r.temperature_k = *t.temperature_k;
+            r.l_bb = band.radiance(*t.temperature_k);
+            sigma_lbb = band.radiance_dT(*t.temperature_k) * t.temperature_std_k;
+        } else {
+            const RegionMean bb = region_mean(stokes, "S0", *t.blackbody_rect, t.name + " blackbody_rect");
+            r.l_bb = bb.mean;
+            sigma_lbb = bb.standard_error;
+            r.temperature_k = band.brightness_temperature(bb.mean);
+        }
+        r.l_dw = dw.mean;
+        const double d = r.l_bb - r.l_dw;
+        if (!(d > 0.0))
+            fail("target '{}': L_BB = {:.4g} W/(m²·sr) does not exceed the downwelled L_dw = {:.4g}; eq 17 needs the "
+                 "target warmer (in band) than its reflected background",
+                 t.name, r.l_bb, r.l_dw);
+        const RegionMean s0 = region_mean(stokes, "S0", t.rect, t.name);
+        const RegionMean s1 = region_mean(stokes, "S1", t.rect, t.name);
+        const RegionMean s2 = region_mean(stokes, "S2", t.rect, t.name);
+        r.pixels = s0.n;
+        const double sd = dw.standard_error;
+        r.eps_s0 = (s0.mean - r.l_dw) / d;
+        // First-order propagation: ∂ε0/∂S0 = 1/D, ∂ε0/∂L_dw = (S0 − L_BB)/D², ∂ε0/∂L_BB = −ε0/D.
+        r.eps_s0_2sigma = 2.0 * std::sqrt(std::pow(s0.standard_error / d, 2) +
+                                          std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
+                                          std::pow(r.eps_s0 / d * sigma_lbb, 2));
+        auto polarized = [&](const RegionMean& s, double& eps, double& two_sigma) {
+            eps = s.mean / d;
+            two_sigma = 2.0 * std::sqrt(std::pow(s.standard_error / d, 2) + std::pow(eps / d * sd, 2) +
+                                        std::pow(eps / d * sigma_lbb, 2));
+        };
+        polarized(s1, r.eps_s1, r.eps_s1_2sigma);
+        polarized(s2, r.eps_s2, r.eps_s2_2sigma);
+        results.push_back(r);
+    }
+    return results;
+}
+
+std::string emissivity_csv(const std::vector<EmissivityResult>& results) {
+    std::ostringstream out;
+    out.precision(8);
+    out << "name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,eps_s0_2sigma,eps_s1,"
+           "eps_s1_2sigma,eps_s2,eps_s2_2sigma\n";
+    for (const auto& r : results)
+        out << r.name << ',' << r.view_angle_deg << ',' << r.temperature_k << ',' << r.pixels << ',' << r.l_dw << ','
+            << r.l_bb << ',' << r.eps_s0 << ',' << r.eps_s0_2sigma << ',' << r.eps_s1 << ',' << r.eps_s1_2sigma << ','
+            << r.eps_s2 << ',' << r.eps_s2_2sigma << '\n';
+    return out.str();
+}
+
+}  // namespace tirpol::calibration

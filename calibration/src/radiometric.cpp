@@ -1,0 +1,201 @@
+#include "tirpol/calibration/radiometric.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tirpol/core/error.h"
+#include "validate.h"
+
+namespace tirpol::calibration {
+
+Band RadiometricCalibration::band() const {
+    std::optional<SpectralResponse> rsr;
+    if (!rsr_wavelength_um.empty()) rsr = SpectralResponse(rsr_wavelength_um, rsr_response);
+    return Band(band_lo_um, band_hi_um, rsr);
+}
+
+std::size_t RadiometricCalibration::bad_count(std::uint32_t bits) const {
+    return static_cast<std::size_t>(std::count_if(bad.begin(), bad.end(), [bits](float b) {
+        return (static_cast<std::uint32_t>(b) & bits) != 0;
+    }));
+}
+
+namespace {
+void validate_frames(const std::vector<BlackbodyFrame>& frames, int width, int height, std::size_t n_params) {
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<double> temps;
+    for (const auto& f : frames) {
+        if (!(f.temperature_k > 0.0) || !std::isfinite(f.temperature_k))
+            fail("{}: blackbody temperature {} K; expected a finite temperature above 0 K", f.source, f.temperature_k);
+        detail::check_plane(f.counts, n, f.source + " (counts)", width, height);
+        if (!f.counts_std.empty()) detail::check_plane(f.counts_std, n, f.source + " (counts_std)", width, height);
+        if (f.frames < 1) fail("{}: frames = {}; expected at least 1", f.source, f.frames);
+        if (std::none_of(temps.begin(), temps.end(), [&](double t) { return std::abs(t - f.temperature_k) < 1e-3; }))
+            temps.push_back(f.temperature_k);
+    }
+    if (temps.size() < n_params)
+        fail("blackbody set has {} distinct temperature(s) ({} frame(s)); the {} model needs at least {}", temps.size(),
+             frames.size(), n_params == 3 ? "quadratic" : "linear", n_params);
+}
+
+double robust_floor(const RobustStats& s, double floor) { return std::max(s.sigma, floor); }
+}  // namespace
+
+RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width, int height,
+                                       const Band& band, const RadiometricOptions& options) {
+    const std::size_t p = options.quadratic ? 3 : 2;
+    validate_frames(frames, width, height, p);
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    const std::size_t k = frames.size();
+
+    RadiometricCalibration cal;
+    cal.width = width;
+    cal.height = height;
+    cal.band_lo_um = band.lo_um();
+    cal.band_hi_um = band.hi_um();
+    if (band.rsr()) {
+        cal.rsr_wavelength_um = band.rsr()->wavelengths_um();
+        cal.rsr_response = band.rsr()->responses();
+    }
+    cal.created_utc = detail::utc_now_iso8601();
+    cal.bad.assign(n, 0.0f);
+
+    // Saturation: a few saturated pixels are a bad-pixel class; a frame full of them means the
+    // blackbody was too hot for the integration time, and the calibration would be wrong.
+    if (options.saturation_counts) {
+        for (const auto& f : frames) {
+            std::size_t saturated = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                if (f.counts[i] >= *options.saturation_counts) {
+                    ++saturated;
+                    cal.bad[i] = static_cast<float>(static_cast<std::uint32_t>(cal.bad[i]) | kSaturated);
+                }
+            if (static_cast<double>(saturated) > options.max_saturated_fraction * static_cast<double>(n))
+                fail("{}: {} of {} pixels are saturated (counts ≥ {}) at T = {} K; expected at most {:.3g}% — lower "
+                     "the blackbody temperature or the integration time",
+                     f.source, saturated, n, *options.saturation_counts, f.temperature_k,
+                     100.0 * options.max_saturated_fraction);
+        }
+    }
+
+    Eigen::MatrixXd a(k, p);
+    for (std::size_t j = 0; j < k; ++j) {
+        const double l = band.radiance(frames[j].temperature_k);
+        cal.temperatures_k.push_back(frames[j].temperature_k);
+        cal.radiances_w_m2_sr.push_back(l);
+        a(static_cast<Eigen::Index>(j), 0) = 1.0;
+        a(static_cast<Eigen::Index>(j), 1) = l;
+        if (p == 3) a(static_cast<Eigen::Index>(j), 2) = l * l;
+    }
+    // The same least-squares projector serves every pixel: coefficients = P·counts.
+    const Eigen::MatrixXd projector = a.completeOrthogonalDecomposition().pseudoInverse();
+
+    cal.offset.resize(n);
+    cal.gain.resize(n);
+    if (p == 3) cal.quadratic.resize(n);
+    cal.residual_rms.resize(n);
+    cal.fit_quality.resize(n);
+    std::vector<float> temporal_noise(n, std::numeric_limits<float>::quiet_NaN());
+    const bool have_std = std::all_of(frames.begin(), frames.end(), [](const auto& f) { return !f.counts_std.empty(); });
+    const double dof = static_cast<double>(k) - static_cast<double>(p);
+
+    Eigen::VectorXd c(k);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < k; ++j) c[static_cast<Eigen::Index>(j)] = frames[j].counts[i];
+        const Eigen::VectorXd coef = projector * c;
+        const Eigen::VectorXd r = c - a * coef;
+        cal.offset[i] = static_cast<float>(coef[0]);
+        cal.gain[i] = static_cast<float>(coef[1]);
+        if (p == 3) cal.quadratic[i] = static_cast<float>(coef[2]);
+        cal.residual_rms[i] = static_cast<float>(std::sqrt(r.squaredNorm() / static_cast<double>(k)));
+        float quality = std::numeric_limits<float>::quiet_NaN();
+        if (have_std) {
+            double var_mean = 0.0, var_frame = 0.0;
+            for (const auto& f : frames) {
+                const double s = f.counts_std[i];
+                var_mean += s * s / f.frames;
+                var_frame += s * s;
+            }
+            temporal_noise[i] = static_cast<float>(std::sqrt(var_frame / static_cast<double>(k)));
+            if (dof > 0.0 && var_mean > 0.0)
+                quality = static_cast<float>(std::sqrt(r.squaredNorm() / dof) / std::sqrt(var_mean / static_cast<double>(k)));
+        }
+        cal.fit_quality[i] = quality;
+    }
+
+    // Bad-pixel detection on robust statistics (median, 1.4826·MAD) of the good pixels' maps.
+    const BadPixelThresholds& th = options.thresholds;
+    const RobustStats gain_stats = robust_stats(cal.gain);
+    const RobustStats offset_stats = robust_stats(cal.offset);
+    const RobustStats residual_stats = robust_stats(cal.residual_rms);
+    const RobustStats noise_stats = robust_stats(temporal_noise);
+    const double span = std::abs(gain_stats.median) *
+                        (*std::max_element(cal.radiances_w_m2_sr.begin(), cal.radiances_w_m2_sr.end()) -
+                         *std::min_element(cal.radiances_w_m2_sr.begin(), cal.radiances_w_m2_sr.end()));
+    // Floors keep noiseless (synthetic) data from flagging round-off: 1e-4 of the counts span.
+    const double offset_sigma = robust_floor(offset_stats, 1e-4 * span);
+    const double residual_sigma = robust_floor(residual_stats, 1e-4 * span);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t bits = static_cast<std::uint32_t>(cal.bad[i]);
+        if (!(cal.gain[i] >= th.dead_gain_fraction * gain_stats.median)) bits |= kDead;
+        if (cal.offset[i] > offset_stats.median + th.hot_sigma * offset_sigma) bits |= kHot;
+        if (have_std && temporal_noise[i] > th.noisy_factor * noise_stats.median) bits |= kNoisy;
+        // A large residual that the pixel's own temporal noise explains (fit quality ≲ 3) is a
+        // noisy pixel, not a non-linear one.
+        const bool explained_by_noise = std::isfinite(cal.fit_quality[i]) && cal.fit_quality[i] < 3.0f;
+        if (dof > 0.0 && !explained_by_noise &&
+            cal.residual_rms[i] > residual_stats.median + th.nonlinear_sigma * residual_sigma)
+            bits |= kNonLinear;
+        cal.bad[i] = static_cast<float>(bits);
+    }
+    return cal;
+}
+
+std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts) {
+    const std::size_t n = cal.gain.size();
+    detail::check_plane(counts, n, "counts → radiance input", cal.width, cal.height);
+    std::vector<float> radiance(n);
+    const bool quad = !cal.quadratic.empty();
+    for (std::size_t i = 0; i < n; ++i) {
+        const double d = static_cast<double>(counts[i]) - cal.offset[i];
+        const double g = cal.gain[i];
+        // Root of q·L² + g·L − d = 0 written so that q → 0 gives d/g without cancellation.
+        const double q = quad ? cal.quadratic[i] : 0.0;
+        const double disc = g * g + 4.0 * q * d;
+        radiance[i] = static_cast<float>(disc >= 0.0 ? 2.0 * d / (g + std::sqrt(disc)) : std::numeric_limits<double>::quiet_NaN());
+    }
+    replace_bad_pixels(radiance, cal.bad, cal.width, cal.height);
+    return radiance;
+}
+
+std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance) {
+    std::vector<float> counts(radiance.size());
+    for (std::size_t i = 0; i < radiance.size(); ++i) {
+        const double l = radiance[i];
+        const double q = cal.quadratic.empty() ? 0.0 : cal.quadratic[i];
+        counts[i] = static_cast<float>(cal.offset[i] + cal.gain[i] * l + q * l * l);
+    }
+    return counts;
+}
+
+void update_offset(RadiometricCalibration& cal, const BlackbodyFrame& frame) {
+    if (!(frame.temperature_k > 0.0) || !std::isfinite(frame.temperature_k))
+        fail("{}: offset update needs the blackbody/shutter temperature; got {} K", frame.source, frame.temperature_k);
+    detail::check_plane(frame.counts, cal.gain.size(), frame.source + " (counts)", cal.width, cal.height);
+    const double l = cal.band().radiance(frame.temperature_k);
+    for (std::size_t i = 0; i < cal.gain.size(); ++i) {
+        const double q = cal.quadratic.empty() ? 0.0 : cal.quadratic[i];
+        cal.offset[i] = static_cast<float>(frame.counts[i] - cal.gain[i] * l - q * l * l);
+    }
+}
+
+std::vector<float> brightness_temperature(const Band& band, const std::vector<float>& radiance) {
+    std::vector<float> t(radiance.size());
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        t[i] = static_cast<float>(band.brightness_temperature(radiance[i]));
+    return t;
+}
+
+}  // namespace tirpol::calibration

@@ -1,0 +1,81 @@
+// The radiometric calibration EXR (docs/calibration.md, "Calibration file").
+
+#include <fmt/format.h>
+
+#include "tirpol/calibration/radiometric.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+
+namespace tirpol::calibration {
+
+namespace {
+constexpr const char* kKind = "radiometric";
+
+template <typename T>
+const T& attribute(const Image& image, const std::string& path, const std::string& name) {
+    const auto it = image.attributes().find(name);
+    if (it == image.attributes().end()) fail("{}: missing attribute '{}' of a radiometric calibration", path, name);
+    const T* value = std::get_if<T>(&it->second);
+    if (!value) fail("{}: attribute '{}' has the wrong type", path, name);
+    return *value;
+}
+}  // namespace
+
+void write_radiometric_calibration(const std::string& path, const RadiometricCalibration& cal) {
+    Image image(cal.width, cal.height);
+    image.set_channel("gain", cal.gain);
+    image.set_channel("offset", cal.offset);
+    if (!cal.quadratic.empty()) image.set_channel("quadratic", cal.quadratic);
+    image.set_channel("bad", cal.bad);
+    image.set_channel("residual_rms", cal.residual_rms);
+    image.set_channel("fit_quality", cal.fit_quality);
+    auto& a = image.attributes();
+    a["tirpol_calibration"] = std::string(kKind);
+    a["model"] = std::string(cal.quadratic.empty() ? "linear" : "quadratic");
+    a["temperatures_k"] = cal.temperatures_k;
+    a["radiances_w_m2_sr"] = cal.radiances_w_m2_sr;
+    a["band_um"] = std::vector<double>{cal.band_lo_um, cal.band_hi_um};
+    a["rsr_wavelength_um"] = cal.rsr_wavelength_um;
+    a["rsr_response"] = cal.rsr_response;
+    a["camera_id"] = cal.camera_id;
+    a["created_utc"] = cal.created_utc;
+    a["units_gain"] = std::string("counts/(W/(m^2 sr))");
+    a["units_offset"] = std::string("counts");
+    a["units_quadratic"] = std::string("counts/(W/(m^2 sr))^2");
+    a["units_residual_rms"] = std::string("counts");
+    a["bad_bits"] = std::string("1 dead, 2 hot, 4 noisy, 8 non-linear, 16 saturated");
+    a["bad_dead"] = static_cast<int>(cal.bad_count(kDead));
+    a["bad_hot"] = static_cast<int>(cal.bad_count(kHot));
+    a["bad_noisy"] = static_cast<int>(cal.bad_count(kNoisy));
+    a["bad_nonlinear"] = static_cast<int>(cal.bad_count(kNonLinear));
+    a["bad_saturated"] = static_cast<int>(cal.bad_count(kSaturated));
+    write_exr(path, image);
+}
+
+RadiometricCalibration read_radiometric_calibration(const std::string& path) {
+    const Image image = read_exr(path);
+    const auto& kind = attribute<std::string>(image, path, "tirpol_calibration");
+    if (kind != kKind) fail("{}: tirpol_calibration = '{}'; expected '{}'", path, kind, kKind);
+    RadiometricCalibration cal;
+    cal.width = image.width();
+    cal.height = image.height();
+    cal.gain = image.channel("gain");
+    cal.offset = image.channel("offset");
+    if (image.has_channel("quadratic")) cal.quadratic = image.channel("quadratic");
+    cal.bad = image.channel("bad");
+    cal.residual_rms = image.channel("residual_rms");
+    cal.fit_quality = image.channel("fit_quality");
+    cal.temperatures_k = attribute<std::vector<double>>(image, path, "temperatures_k");
+    cal.radiances_w_m2_sr = attribute<std::vector<double>>(image, path, "radiances_w_m2_sr");
+    const auto& band = attribute<std::vector<double>>(image, path, "band_um");
+    if (band.size() != 2 || !(band[0] < band[1])) fail("{}: band_um must be [lo, hi] with lo < hi", path);
+    cal.band_lo_um = band[0];
+    cal.band_hi_um = band[1];
+    cal.rsr_wavelength_um = attribute<std::vector<double>>(image, path, "rsr_wavelength_um");
+    cal.rsr_response = attribute<std::vector<double>>(image, path, "rsr_response");
+    cal.camera_id = attribute<std::string>(image, path, "camera_id");
+    cal.created_utc = attribute<std::string>(image, path, "created_utc");
+    return cal;
+}
+
+}  // namespace tirpol::calibration

@@ -1,0 +1,285 @@
+#include "tirpol/calibration/session_calibration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "tirpol/core/error.h"
+#include "tirpol/core/geometry.h"
+#include "validate.h"
+
+namespace tirpol::calibration {
+
+namespace fs = std::filesystem;
+
+std::optional<double> session_saturation_counts(const SessionManifest& m) {
+    const int bits = m.camera.bits_per_pixel;
+    if (bits >= 1 && bits <= 23) return std::ldexp(1.0, bits) - 1.0;
+    return std::nullopt;
+}
+
+namespace {
+std::string manifest_path(const fs::path& dir) { return (dir / kSessionManifestName).string(); }
+
+std::optional<bool> polarizer_in_beam(const fs::path& dir, const SessionManifest& m) {
+    const auto it = m.metadata.find("polarizer_in_beam");
+    if (it == m.metadata.end()) return std::nullopt;
+    if (!it->is_boolean()) fail("{}: metadata.polarizer_in_beam: expected true or false", manifest_path(dir));
+    return it->get<bool>();
+}
+
+std::string camera_id(const SessionManifest& m) {
+    return fmt::format("{} {} {} ({})", m.camera.vendor, m.camera.model, m.camera.serial, m.camera.uri);
+}
+
+BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m, const SessionRecord& r) {
+    const Image frame = read_session_frame(dir, m, r);
+    BlackbodyFrame f;
+    f.temperature_k = r.blackbody_temperature_k.value_or(std::numeric_limits<double>::quiet_NaN());
+    f.counts = frame.channel("counts");
+    f.counts_std = frame.channel("counts_std");
+    f.frames = static_cast<int>(r.frames);
+    f.source = (dir / r.file).string();
+    return f;
+}
+
+bool is_temperature_reference(const SessionRecord& r) {
+    return (r.kind == RecordKind::Blackbody || r.kind == RecordKind::Shutter) && r.blackbody_temperature_k.has_value();
+}
+
+/// The known-source state of each calibration repeat, from metadata.known_source.
+std::map<int, Eigen::Vector3d> known_sources(const fs::path& dir, const SessionManifest& m, const Band& band) {
+    std::map<int, Eigen::Vector3d> out;
+    const auto it = m.metadata.find("known_source");
+    if (it == m.metadata.end()) return out;
+    const std::string where = manifest_path(dir) + ": metadata.known_source";
+    if (!it->is_array()) fail("{}: expected a list of {{repeat, stokes | blackbody_temperature_k, reference_polarizer_deg}}", where);
+    for (std::size_t j = 0; j < it->size(); ++j) {
+        const auto& e = (*it)[j];
+        const std::string at = fmt::format("{}[{}]", where, j);
+        if (!e.is_object() || !e.contains("repeat") || !e["repeat"].is_number_integer())
+            fail("{}: expected an object with an integer 'repeat'", at);
+        Eigen::Vector3d s;
+        if (e.contains("stokes")) {
+            const auto& v = e["stokes"];
+            if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+                fail("{}.stokes: expected [S0, S1, S2] in W/(m^2 sr)", at);
+            s = {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+        } else if (e.contains("blackbody_temperature_k") && e.contains("reference_polarizer_deg") &&
+                   e["blackbody_temperature_k"].is_number() && e["reference_polarizer_deg"].is_number()) {
+            const double l = band.radiance(e["blackbody_temperature_k"].get<double>());
+            const double two_theta = 2.0 * deg_to_rad(e["reference_polarizer_deg"].get<double>());
+            s = {0.5 * l, 0.5 * l * std::cos(two_theta), 0.5 * l * std::sin(two_theta)};
+        } else {
+            fail("{}: expected 'stokes' or both 'blackbody_temperature_k' and 'reference_polarizer_deg'", at);
+        }
+        out[e["repeat"].get<int>()] = s;
+    }
+    return out;
+}
+
+struct RadianceFrame {
+    std::vector<float> radiance, sigma;  // σ of the frame mean
+    std::vector<std::uint8_t> saturated;
+};
+
+RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const SessionRecord& r,
+                          const RadiometricCalibration& cal) {
+    if (m.camera.width != cal.width || m.camera.height != cal.height)
+        fail("{}: camera is {}×{} but the radiometric calibration is {}×{}", manifest_path(dir), m.camera.width,
+             m.camera.height, cal.width, cal.height);
+    const Image frame = read_session_frame(dir, m, r);
+    const std::string src = (dir / r.file).string();
+    const auto& counts = frame.channel("counts");
+    detail::check_plane(counts, cal.gain.size(), src + " (counts)", cal.width, cal.height);
+    RadianceFrame out;
+    out.radiance = counts_to_radiance(cal, counts);
+    const auto& std_counts = frame.channel("counts_std");
+    detail::check_plane(std_counts, cal.gain.size(), src + " (counts_std)", cal.width, cal.height);
+    out.sigma.resize(counts.size());
+    const double root_n = std::sqrt(static_cast<double>(std::max<std::int64_t>(1, r.frames)));
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        // dL/dcounts of the fitted model: 1/(g + 2qL).
+        const double q = cal.quadratic.empty() ? 0.0 : cal.quadratic[i];
+        out.sigma[i] = static_cast<float>(std_counts[i] / root_n / std::abs(cal.gain[i] + 2.0 * q * out.radiance[i]));
+    }
+    replace_bad_pixels(out.sigma, cal.bad, cal.width, cal.height);
+    out.saturated.assign(counts.size(), 0);
+    if (const auto sat = session_saturation_counts(m))
+        for (std::size_t i = 0; i < counts.size(); ++i) out.saturated[i] = counts[i] >= *sat ? 1 : 0;
+    return out;
+}
+}  // namespace
+
+RadiometricCalibration calibrate_radiometric_session(const fs::path& dir, const Band& band, RadiometricOptions options) {
+    const SessionManifest m = read_session(dir);
+    if (polarizer_in_beam(dir, m).value_or(false))
+        fail("{}: metadata.polarizer_in_beam is true: these blackbody frames were taken through the polarizer; use "
+             "'tirpol calibrate polarimetric' for them",
+             manifest_path(dir));
+    std::vector<BlackbodyFrame> frames;
+    for (const auto& r : m.records)
+        if (is_temperature_reference(r)) frames.push_back(to_blackbody_frame(dir, m, r));
+    if (frames.empty())
+        fail("{}: no blackbody (or temperature-tagged shutter) records; radiometric calibration needs frames of a "
+             "blackbody at ≥ 2 temperatures",
+             manifest_path(dir));
+    if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(m);
+    RadiometricCalibration cal = fit_radiometric(frames, m.camera.width, m.camera.height, band, options);
+    cal.camera_id = camera_id(m);
+    return cal;
+}
+
+PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric) {
+    const SessionManifest m = read_session(dir);
+    if (!polarizer_in_beam(dir, m).value_or(false))
+        fail("{}: metadata.polarizer_in_beam must be true for a polarimetric calibration (blackbody frames taken "
+             "through the polarizer at each angle)",
+             manifest_path(dir));
+    const Band band = radiometric.band();
+    std::vector<PolarizedBlackbodyFrame> bb;
+    for (const auto& r : m.records)
+        if (r.kind == RecordKind::Blackbody) {
+            RadianceFrame f = to_radiance(dir, m, r, radiometric);
+            bb.push_back({r.angle_deg_requested, *r.blackbody_temperature_k, std::move(f.radiance), (dir / r.file).string()});
+        }
+    if (bb.empty()) fail("{}: no blackbody records taken through the polarizer", manifest_path(dir));
+    PolarimetricCalibration out;
+    out.wire_grid = fit_wire_grid(bb, radiometric.width, radiometric.height, band);
+    out.session = dir.string();
+    out.created_utc = detail::utc_now_iso8601();
+    std::vector<double> angles;
+    for (const auto& p : out.wire_grid.positions) angles.push_back(p.angle_deg);
+
+    // Known-source repeats: the spatial mean of L_SLAR = (L − B)/τ over good pixels, per angle.
+    const auto sources = known_sources(dir, m, band);
+    if (sources.empty()) {
+        out.analyzer = AnalyzerModel::ideal(angles);
+        out.analyzer_method = "ideal (no known-source records)";
+        return out;
+    }
+    std::vector<KnownSourceMeasurement> measurements;
+    for (const auto& [repeat, stokes] : sources) {
+        KnownSourceMeasurement meas{stokes, {}};
+        for (const auto& pos : out.wire_grid.positions) {
+            const SessionRecord* rec = nullptr;
+            for (const auto& r : m.records)
+                if (r.kind == RecordKind::Polarizer && r.repeat == repeat && std::abs(r.angle_deg_requested - pos.angle_deg) < 0.01)
+                    rec = &r;
+            if (!rec)
+                fail("{}: metadata.known_source names repeat {}, but it has no polarizer record at {:g}°",
+                     manifest_path(dir), repeat, pos.angle_deg);
+            const RadianceFrame f = to_radiance(dir, m, *rec, radiometric);
+            double sum = 0.0;
+            std::size_t n = 0;
+            for (std::size_t i = 0; i < f.radiance.size(); ++i) {
+                if (radiometric.bad[i] != 0.0f || f.saturated[i]) continue;
+                sum += (f.radiance[i] - pos.background[i]) / pos.tau[i];
+                ++n;
+            }
+            if (n == 0) fail("{}: no good pixel in {}", manifest_path(dir), rec->file);
+            meas.intensities.push_back(sum / static_cast<double>(n));
+        }
+        measurements.push_back(meas);
+    }
+    out.analyzer = estimate_analyzer(angles, measurements);
+    out.analyzer_method = "known-source least squares";
+    return out;
+}
+
+Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiometric_in,
+                     const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
+    const SessionManifest m = read_session(dir);
+    RadiometricCalibration radiometric = radiometric_in;
+    if (options.update_offset && polarimetric)
+        fail("offset update together with a polarimetric calibration would remove the drift twice: the wire-grid "
+             "background B(α), fitted the same night, already holds it; drop one of the two");
+    if (options.update_offset) {
+        // The reference must see the camera without the polarizer: a shutter, or a blackbody when the
+        // polarizer was out of the beam.
+        const bool polarizer = polarizer_in_beam(dir, m).value_or(false);
+        const SessionRecord* ref = nullptr;
+        for (const auto& r : m.records)
+            if (is_temperature_reference(r) && r.kind == RecordKind::Shutter) ref = &r;
+        if (!ref && !polarizer)
+            for (const auto& r : m.records)
+                if (is_temperature_reference(r)) ref = &r;
+        if (!ref)
+            fail("{}: --update-offset needs a shutter record with a temperature (or a blackbody record taken "
+                 "without the polarizer); the session has none",
+                 manifest_path(dir));
+        update_offset(radiometric, to_blackbody_frame(dir, m, *ref));
+    }
+    std::map<int, Eigen::Vector3d> sources;
+    if (m.metadata.contains("known_source")) sources = known_sources(dir, m, radiometric.band());
+
+    // Scene records grouped by requested angle; repeats averaged.
+    struct Accumulator {
+        std::vector<double> sum, var;
+        std::vector<std::uint8_t> saturated;
+        int n = 0;
+        std::string source;
+    };
+    std::map<long, Accumulator> by_angle;
+    for (const auto& r : m.records) {
+        if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
+        const RadianceFrame f = to_radiance(dir, m, r, radiometric);
+        const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
+        if (static_cast<double>(sat) > options.max_saturated_fraction * static_cast<double>(f.saturated.size()))
+            fail("{}: {} of {} pixels are saturated (counts ≥ {}); expected at most {:.3g}% — reduce the integration "
+                 "time",
+                 (dir / r.file).string(), sat, f.saturated.size(), *session_saturation_counts(m),
+                 100.0 * options.max_saturated_fraction);
+        Accumulator& acc = by_angle[std::lround(r.angle_deg_requested * 100.0)];
+        if (acc.n == 0) {
+            acc.sum.assign(f.radiance.size(), 0.0);
+            acc.var.assign(f.radiance.size(), 0.0);
+            acc.saturated.assign(f.radiance.size(), 0);
+            acc.source = (dir / r.file).string();
+        }
+        for (std::size_t i = 0; i < f.radiance.size(); ++i) {
+            acc.sum[i] += f.radiance[i];
+            acc.var[i] += static_cast<double>(f.sigma[i]) * f.sigma[i];
+            acc.saturated[i] |= f.saturated[i];
+        }
+        ++acc.n;
+    }
+    if (by_angle.empty()) fail("{}: no polarizer (scene) records to reduce", manifest_path(dir));
+    std::vector<AnalyzerImage> images;
+    std::vector<double> angles;
+    std::vector<std::uint8_t> saturated(radiometric.gain.size(), 0);
+    for (const auto& [key, acc] : by_angle) {
+        AnalyzerImage im;
+        im.angle_deg = static_cast<double>(key) / 100.0;
+        im.source = acc.source;
+        for (std::size_t i = 0; i < acc.sum.size(); ++i) {
+            im.signal.push_back(static_cast<float>(acc.sum[i] / acc.n));
+            im.signal_std.push_back(static_cast<float>(std::sqrt(acc.var[i]) / acc.n));
+            saturated[i] |= acc.saturated[i];
+        }
+        angles.push_back(im.angle_deg);
+        images.push_back(std::move(im));
+    }
+    const AnalyzerModel model = polarimetric ? polarimetric->analyzer : AnalyzerModel::ideal(angles);
+    ReductionOptions reduction;
+    reduction.include_slar = options.include_slar;
+    Image out = reduce_stokes(images, radiometric.width, radiometric.height, model,
+                              polarimetric ? &polarimetric->wire_grid : nullptr, reduction);
+    int n_saturated = 0;
+    for (std::size_t i = 0; i < saturated.size(); ++i)
+        if (saturated[i]) {
+            ++n_saturated;
+            for (const auto& name : out.channel_names()) out.channel(name)[i] = std::numeric_limits<float>::quiet_NaN();
+        }
+    auto& a = out.attributes();
+    a["saturated_pixels"] = n_saturated;
+    a["session"] = dir.string();
+    a["camera_id"] = camera_id(m);
+    a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
+    a["offset_updated"] = options.update_offset ? 1 : 0;
+    a["analyzer"] = polarimetric ? polarimetric->analyzer_method : std::string("ideal (no polarimetric calibration)");
+    return out;
+}
+
+}  // namespace tirpol::calibration

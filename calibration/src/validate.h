@@ -1,0 +1,30 @@
+#pragma once
+// Input checks shared by the calibration algorithms: done once before the per-pixel loops, so the
+// loops themselves never throw (STYLE.md).
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/error.h"
+
+namespace tirpol::calibration::detail {
+
+/// Throws unless `plane` has `expected` values, all finite; `what` names the source in the message.
+inline void check_plane(const std::vector<float>& plane, std::size_t expected, const std::string& what,
+                        int width, int height) {
+    if (plane.size() != expected)
+        fail("{}: image has {} pixels, expected {} ({}×{}, the size of the other images)", what, plane.size(),
+             expected, width, height);
+    std::size_t bad = 0, first = 0;
+    for (std::size_t i = 0; i < plane.size(); ++i)
+        if (!std::isfinite(plane[i]) && bad++ == 0) first = i;
+    if (bad > 0)
+        fail("{}: {} pixel(s) are NaN or infinite (first at x={}, y={}); expected finite values", what, bad,
+             first % static_cast<std::size_t>(width), first / static_cast<std::size_t>(width));
+}
+
+/// Current UTC time as ISO 8601, e.g. "2026-11-22T16:30:00Z".
+std::string utc_now_iso8601();
+
+}  // namespace tirpol::calibration::detail

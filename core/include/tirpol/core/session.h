@@ -1,0 +1,145 @@
+#pragma once
+/// \file session.h
+/// The capture-session store: a directory with a `session.json` manifest and one OpenEXR per
+/// recorded step under `frames/` (schema "tirpol.session", version 1; docs/session-format.md).
+/// Written by `tirpol acquire`, read by calibration.
+///
+/// Crash safety: every frame file is written atomically and only then is the manifest rewritten
+/// atomically, so after a crash (kill -9, power loss) the manifest lists only complete frames. A frame
+/// file that reached the disk but not the manifest is recovered on resume from its own header, which
+/// mirrors its record. An existing frame file is never overwritten.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/image.h"
+
+namespace tirpol {
+
+inline constexpr const char* kSessionSchema = "tirpol.session";
+inline constexpr int kSessionSchemaVersion = 1;
+inline constexpr const char* kSessionManifestName = "session.json";
+
+/// The camera as recorded in the manifest (mirrors acquisition::CameraInfo).
+struct SessionCamera {
+    std::string uri, vendor, model, serial, pixel_format;
+    int width = 0, height = 0, bits_per_pixel = 0;
+    std::optional<double> frame_rate_hz;
+    std::map<std::string, double> planck_constants;  ///< FLIR-style R, B, F, O when the camera has them
+};
+
+/// The rotation stage as recorded in the manifest (mirrors acquisition::StageInfo).
+struct SessionStage {
+    std::string uri, vendor, model, serial, firmware;
+    double counts_per_degree = 0.0;
+};
+
+/// What a record holds: polarizer frames of the scene, or reference frames of a blackbody or the shutter.
+enum class RecordKind { Polarizer, Blackbody, Shutter };
+const char* to_string(RecordKind kind);
+/// Parses "polarizer" | "blackbody" | "shutter"; std::nullopt otherwise.
+std::optional<RecordKind> record_kind_from_string(const std::string& text);
+
+/// One recorded step: N frames averaged into one EXR.
+struct SessionRecord {
+    RecordKind kind = RecordKind::Polarizer;
+    std::string file;                     ///< relative to the session dir: "frames/<name>.exr"
+    double angle_deg_requested = 0.0;     ///< polarizer angle asked of the stage, degrees [0, 360)
+    double angle_deg_measured = 0.0;      ///< angle read back from the stage after settling, degrees
+    int repeat = 0;                       ///< 0-based repeat index within the plan
+    std::optional<double> blackbody_temperature_k;  ///< set for blackbody (required) and shutter (optional)
+    std::int64_t frames = 0;              ///< frames averaged
+    std::int64_t dropped = 0;             ///< frames the camera dropped while these were grabbed
+    std::int64_t first_timestamp_ns = 0;  ///< host CLOCK_REALTIME of the first frame, ns since the epoch
+    std::int64_t last_timestamp_ns = 0;   ///< ... of the last frame
+    std::optional<double> fpa_temperature_k;  ///< mean sensor temperature when the camera reports it
+
+    bool operator==(const SessionRecord&) const = default;
+};
+
+/// The whole manifest.
+struct SessionManifest {
+    std::string created_utc;     ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
+    SessionCamera camera;
+    SessionStage stage;
+    nlohmann::json plan = nlohmann::json::object();      ///< the capture plan as run
+    nlohmann::json metadata = nlohmann::json::object();  ///< free form (site, operator, targets, ...)
+    std::vector<SessionRecord> records;
+    bool complete = false;
+};
+
+/// Manifest ⇄ JSON (schema v1). `from_json` validates everything and throws tirpol::Error naming
+/// `source` (the file) and the field, e.g. "DIR/session.json: records[2].frames: expected an integer ≥ 1".
+nlohmann::json session_to_json(const SessionManifest& manifest);
+SessionManifest session_from_json(const nlohmann::json& json, const std::string& source);
+
+/// Writes the record's fields into EXR header attributes (and reads them back); the EXR then
+/// describes itself. 64-bit timestamps are stored as decimal strings (an EXR int is 32-bit).
+void record_to_attributes(const SessionRecord& record, Attributes& attributes);
+SessionRecord record_from_attributes(const Attributes& attributes, const std::string& file,
+                                     const std::string& source);
+
+/// Reads and validates `dir/session.json`: schema name and version, every field's type and range,
+/// every record's frame file present, no file listed twice. Throws tirpol::Error otherwise.
+SessionManifest read_session(const std::filesystem::path& dir);
+
+/// Reads one record's EXR and checks it has `counts` and `counts_std` at the camera's size.
+Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& manifest,
+                         const SessionRecord& record);
+
+/// The "frames/<stem>.exr" name for a record; `stem` may use [A-Za-z0-9._+-] only.
+std::string session_frame_file(const std::string& stem);
+
+/// Appends to a session directory. Holds an exclusive lock on the directory while open, so two
+/// processes never write the same session.
+class SessionWriter {
+public:
+    /// Starts a new session in `dir` (created if missing). Refuses a directory that exists and is
+    /// not empty (use resume()). Writes the manifest with no records at once.
+    static SessionWriter create(const std::filesystem::path& dir, SessionManifest manifest);
+    /// Reopens an interrupted session: reads and validates the manifest, deletes leftover temporary
+    /// files, and adopts frame files that were written but not yet listed (crash between the two
+    /// writes), using the record their header carries.
+    static SessionWriter resume(const std::filesystem::path& dir);
+
+    SessionWriter(SessionWriter&&) noexcept;
+    SessionWriter& operator=(SessionWriter&&) noexcept;
+    ~SessionWriter();
+
+    const SessionManifest& manifest() const { return m_manifest; }
+    const std::filesystem::path& dir() const { return m_dir; }
+    /// Whether a record with this file ("frames/<stem>.exr") is already in the session.
+    bool has_record(const std::string& file) const;
+    /// Frame files recovered by resume() (empty after create()).
+    const std::vector<std::string>& adopted_files() const { return m_adopted; }
+
+    /// Writes `frame` (channels `counts` and `counts_std`, camera-sized) to record.file with the
+    /// record mirrored into its header, then rewrites the manifest. Throws tirpol::Error if the file
+    /// is already recorded or exists on disk (never overwrites), or if the session is complete.
+    void add_record(const SessionRecord& record, const Image& frame);
+    /// Replaces the free-form metadata and rewrites the manifest.
+    void set_metadata(nlohmann::json metadata);
+    /// Marks the session complete and rewrites the manifest.
+    void mark_complete();
+
+private:
+    struct Lock;
+    SessionWriter(std::filesystem::path dir, SessionManifest manifest, std::unique_ptr<Lock> lock);
+    void write_manifest() const;
+
+    std::filesystem::path m_dir;
+    SessionManifest m_manifest;
+    std::unique_ptr<Lock> m_lock;
+    std::vector<std::string> m_adopted;
+};
+
+/// Current UTC time as ISO 8601 with a trailing Z.
+std::string utc_now_iso8601();
+
+}  // namespace tirpol

@@ -1,0 +1,511 @@
+#include "tirpol/core/session.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <limits>
+#include <algorithm>
+#include <set>
+
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+
+namespace tirpol {
+
+using nlohmann::json;
+
+const char* to_string(RecordKind kind) {
+    switch (kind) {
+        case RecordKind::Polarizer: return "polarizer";
+        case RecordKind::Blackbody: return "blackbody";
+        case RecordKind::Shutter: return "shutter";
+    }
+    return "?";
+}
+
+std::optional<RecordKind> record_kind_from_string(const std::string& text) {
+    if (text == "polarizer") return RecordKind::Polarizer;
+    if (text == "blackbody") return RecordKind::Blackbody;
+    if (text == "shutter") return RecordKind::Shutter;
+    return std::nullopt;
+}
+
+std::string utc_now_iso8601() {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return buf;
+}
+
+std::string session_frame_file(const std::string& stem) {
+    if (stem.empty() || stem.front() == '.')
+        fail("session frame name '{}': expected a non-empty name not starting with '.'", stem);
+    for (char c : stem) {
+        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
+                        c == '_' || c == '+' || c == '-';
+        if (!ok) fail("session frame name '{}': character '{}' not allowed (use A-Z a-z 0-9 . _ + -)", stem, c);
+    }
+    return "frames/" + stem + ".exr";
+}
+
+// ---- JSON ⇄ manifest ----------------------------------------------------------------------------
+
+namespace {
+
+json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
+/// Typed access to one JSON object with errors "<source>: <path>.<key>: expected ..., got ...".
+class Fields {
+public:
+    Fields(const json& j, std::string source, std::string path) : m_j(j), m_source(std::move(source)), m_path(std::move(path)) {
+        if (!m_j.is_object()) fail_here(m_path, "expected an object, got " + describe(m_j));
+    }
+    const json& at(const std::string& key) const {
+        auto it = m_j.find(key);
+        if (it == m_j.end()) fail_here(field(key), "missing field");
+        return *it;
+    }
+    std::string string(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_string()) fail_here(field(key), "expected a string, got " + describe(v));
+        return v.get<std::string>();
+    }
+    double number(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number()) fail_here(field(key), "expected a number, got " + describe(v));
+        const double d = v.get<double>();
+        if (!std::isfinite(d)) fail_here(field(key), "expected a finite number");
+        return d;
+    }
+    std::optional<double> optional_number(const std::string& key) const {
+        if (at(key).is_null()) return std::nullopt;
+        return number(key);
+    }
+    std::int64_t integer(const std::string& key, std::int64_t min) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail_here(field(key), "expected an integer, got " + describe(v));
+        const auto i = v.get<std::int64_t>();
+        if (i < min) fail_here(field(key), fmt::format("expected an integer ≥ {}, got {}", min, i));
+        return i;
+    }
+    bool boolean(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_boolean()) fail_here(field(key), "expected true or false, got " + describe(v));
+        return v.get<bool>();
+    }
+    Fields object(const std::string& key) const { return Fields(at(key), m_source, field(key)); }
+    std::string field(const std::string& key) const { return m_path.empty() ? key : m_path + "." + key; }
+    [[noreturn]] void fail_here(const std::string& path, const std::string& message) const {
+        fail("{}: {}: {}", m_source, path.empty() ? "(top level)" : path, message);
+    }
+    const json& raw() const { return m_j; }
+
+    static std::string describe(const json& v) {
+        std::string text = v.dump();
+        if (text.size() > 40) text = text.substr(0, 37) + "...";
+        return std::string(v.type_name()) + " " + text;
+    }
+
+private:
+    const json& m_j;
+    std::string m_source;
+    std::string m_path;
+};
+
+json record_to_json(const SessionRecord& r) {
+    return json{{"kind", to_string(r.kind)},
+                {"file", r.file},
+                {"angle_deg_requested", r.angle_deg_requested},
+                {"angle_deg_measured", r.angle_deg_measured},
+                {"repeat", r.repeat},
+                {"blackbody_temperature_k", optional_number(r.blackbody_temperature_k)},
+                {"frames", r.frames},
+                {"dropped", r.dropped},
+                {"first_timestamp_ns", r.first_timestamp_ns},
+                {"last_timestamp_ns", r.last_timestamp_ns},
+                {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
+}
+
+void check_frame_path(const Fields& f, const std::string& key, const std::string& file) {
+    const std::string prefix = "frames/", suffix = ".exr";
+    const bool shaped = file.size() > prefix.size() + suffix.size() && file.compare(0, prefix.size(), prefix) == 0 &&
+                        file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0;
+    if (!shaped) f.fail_here(f.field(key), "expected \"frames/<name>.exr\", got \"" + file + "\"");
+    const std::string stem = file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
+    try {
+        session_frame_file(stem);
+    } catch (const Error& e) {
+        f.fail_here(f.field(key), e.what());
+    }
+}
+
+// Record semantics shared by the manifest and EXR-header readers.
+void check_record(const Fields& f, const SessionRecord& r) {
+    if (!(r.angle_deg_requested >= 0.0 && r.angle_deg_requested < 360.0))
+        f.fail_here(f.field("angle_deg_requested"), fmt::format("expected an angle in [0, 360) degrees, got {}", r.angle_deg_requested));
+    if (!(r.angle_deg_measured > -360.0 && r.angle_deg_measured < 720.0))
+        f.fail_here(f.field("angle_deg_measured"), fmt::format("expected an angle in degrees, got {}", r.angle_deg_measured));
+    if (r.kind == RecordKind::Polarizer && r.blackbody_temperature_k)
+        f.fail_here(f.field("blackbody_temperature_k"), "expected null for a polarizer record");
+    if (r.kind == RecordKind::Blackbody && !r.blackbody_temperature_k)
+        f.fail_here(f.field("blackbody_temperature_k"), "expected a temperature in kelvin for a blackbody record, got null");
+    if (r.blackbody_temperature_k && !(*r.blackbody_temperature_k > 0.0))
+        f.fail_here(f.field("blackbody_temperature_k"), fmt::format("expected a temperature above 0 K, got {}", *r.blackbody_temperature_k));
+    if (r.fpa_temperature_k && !(*r.fpa_temperature_k > 0.0))
+        f.fail_here(f.field("fpa_temperature_k"), fmt::format("expected a temperature above 0 K or null, got {}", *r.fpa_temperature_k));
+    if (r.last_timestamp_ns < r.first_timestamp_ns)
+        f.fail_here(f.field("last_timestamp_ns"), fmt::format("expected ≥ first_timestamp_ns ({}), got {}", r.first_timestamp_ns, r.last_timestamp_ns));
+}
+
+SessionRecord record_from_json(const Fields& f) {
+    SessionRecord r;
+    const std::string kind = f.string("kind");
+    const auto parsed = record_kind_from_string(kind);
+    if (!parsed) f.fail_here(f.field("kind"), "expected \"polarizer\", \"blackbody\" or \"shutter\", got \"" + kind + "\"");
+    r.kind = *parsed;
+    r.file = f.string("file");
+    check_frame_path(f, "file", r.file);
+    r.angle_deg_requested = f.number("angle_deg_requested");
+    r.angle_deg_measured = f.number("angle_deg_measured");
+    r.repeat = static_cast<int>(f.integer("repeat", 0));
+    r.blackbody_temperature_k = f.optional_number("blackbody_temperature_k");
+    r.frames = f.integer("frames", 1);
+    r.dropped = f.integer("dropped", 0);
+    r.first_timestamp_ns = f.integer("first_timestamp_ns", 0);
+    r.last_timestamp_ns = f.integer("last_timestamp_ns", 0);
+    r.fpa_temperature_k = f.optional_number("fpa_temperature_k");
+    check_record(f, r);
+    return r;
+}
+
+}  // namespace
+
+json session_to_json(const SessionManifest& m) {
+    json planck = json::object();
+    for (const auto& [k, v] : m.camera.planck_constants) planck[k] = v;
+    json records = json::array();
+    for (const auto& r : m.records) records.push_back(record_to_json(r));
+    return json{{"schema", kSessionSchema},
+                {"schema_version", kSessionSchemaVersion},
+                {"created_utc", m.created_utc},
+                {"camera",
+                 {{"uri", m.camera.uri},
+                  {"vendor", m.camera.vendor},
+                  {"model", m.camera.model},
+                  {"serial", m.camera.serial},
+                  {"pixel_format", m.camera.pixel_format},
+                  {"width", m.camera.width},
+                  {"height", m.camera.height},
+                  {"bits_per_pixel", m.camera.bits_per_pixel},
+                  {"frame_rate_hz", optional_number(m.camera.frame_rate_hz)},
+                  {"planck_constants", planck}}},
+                {"stage",
+                 {{"uri", m.stage.uri},
+                  {"vendor", m.stage.vendor},
+                  {"model", m.stage.model},
+                  {"serial", m.stage.serial},
+                  {"firmware", m.stage.firmware},
+                  {"counts_per_degree", m.stage.counts_per_degree}}},
+                {"plan", m.plan},
+                {"metadata", m.metadata},
+                {"records", records},
+                {"complete", m.complete}};
+}
+
+SessionManifest session_from_json(const json& j, const std::string& source) {
+    const Fields top(j, source, "");
+    const std::string schema = top.string("schema");
+    if (schema != kSessionSchema)
+        top.fail_here("schema", fmt::format("expected \"{}\", got \"{}\" (not a tirpol session manifest)", kSessionSchema, schema));
+    const std::int64_t version = top.integer("schema_version", 1);
+    if (version != kSessionSchemaVersion)
+        top.fail_here("schema_version", fmt::format("expected {}, got {} (written by a newer or older tirpol)",
+                                                    kSessionSchemaVersion, version));
+    SessionManifest m;
+    m.created_utc = top.string("created_utc");
+
+    const Fields cam = top.object("camera");
+    m.camera.uri = cam.string("uri");
+    m.camera.vendor = cam.string("vendor");
+    m.camera.model = cam.string("model");
+    m.camera.serial = cam.string("serial");
+    m.camera.pixel_format = cam.string("pixel_format");
+    m.camera.width = static_cast<int>(cam.integer("width", 1));
+    m.camera.height = static_cast<int>(cam.integer("height", 1));
+    m.camera.bits_per_pixel = static_cast<int>(cam.integer("bits_per_pixel", 1));
+    m.camera.frame_rate_hz = cam.optional_number("frame_rate_hz");
+    const Fields planck = cam.object("planck_constants");
+    for (const auto& [k, v] : planck.raw().items()) m.camera.planck_constants[k] = planck.number(k);
+
+    const Fields stage = top.object("stage");
+    m.stage.uri = stage.string("uri");
+    m.stage.vendor = stage.string("vendor");
+    m.stage.model = stage.string("model");
+    m.stage.serial = stage.string("serial");
+    m.stage.firmware = stage.string("firmware");
+    m.stage.counts_per_degree = stage.number("counts_per_degree");
+    if (!(m.stage.counts_per_degree > 0.0))
+        stage.fail_here(stage.field("counts_per_degree"), fmt::format("expected a positive number, got {}", m.stage.counts_per_degree));
+
+    m.plan = top.object("plan").raw();
+    m.metadata = top.object("metadata").raw();
+
+    const json& records = top.at("records");
+    if (!records.is_array()) top.fail_here("records", "expected an array, got " + Fields::describe(records));
+    std::set<std::string> files;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        const Fields rf(records[i], source, fmt::format("records[{}]", i));
+        SessionRecord r = record_from_json(rf);
+        if (!files.insert(r.file).second) rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
+        m.records.push_back(std::move(r));
+    }
+    m.complete = top.boolean("complete");
+    return m;
+}
+
+// ---- EXR header ⇄ record ------------------------------------------------------------------------
+
+void record_to_attributes(const SessionRecord& r, Attributes& a) {
+    a["tirpol_schema"] = std::string(kSessionSchema);
+    a["kind"] = std::string(to_string(r.kind));
+    a["angle_deg_requested"] = r.angle_deg_requested;
+    a["angle_deg_measured"] = r.angle_deg_measured;
+    a["repeat"] = r.repeat;
+    if (r.blackbody_temperature_k) a["blackbody_temperature_k"] = *r.blackbody_temperature_k;
+    else a.erase("blackbody_temperature_k");
+    // Counts and timestamps go through text: EXR ints are 32-bit, doubles lose ns after 2^53.
+    a["frames"] = std::to_string(r.frames);
+    a["dropped"] = std::to_string(r.dropped);
+    a["first_timestamp_ns"] = std::to_string(r.first_timestamp_ns);
+    a["last_timestamp_ns"] = std::to_string(r.last_timestamp_ns);
+    if (r.fpa_temperature_k) a["fpa_temperature_k"] = *r.fpa_temperature_k;
+    else a.erase("fpa_temperature_k");
+    a["units"] = std::string("counts");
+}
+
+SessionRecord record_from_attributes(const Attributes& a, const std::string& file, const std::string& source) {
+    // Rebuild the JSON record from the header and validate it with the manifest's rules.
+    json j = json::object();
+    j["file"] = file;
+    j["blackbody_temperature_k"] = nullptr;
+    j["fpa_temperature_k"] = nullptr;
+    for (const auto& [name, value] : a) {
+        std::visit([&j, &key = name](const auto& v) { j[key] = v; }, value);
+    }
+    for (const char* key : {"frames", "dropped", "first_timestamp_ns", "last_timestamp_ns"}) {
+        auto it = j.find(key);
+        if (it == j.end() || !it->is_string()) continue;
+        const std::string text = it->get<std::string>();
+        char* end = nullptr;
+        errno = 0;
+        const long long v = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0' || errno != 0)
+            fail("{}: header attribute {}: expected a decimal integer, got \"{}\"", source, key, text);
+        *it = static_cast<std::int64_t>(v);
+    }
+    return record_from_json(Fields(j, source, "header"));
+}
+
+// ---- reading ------------------------------------------------------------------------------------
+
+namespace {
+
+SessionManifest read_manifest_file(const std::filesystem::path& dir) {
+    const auto path = dir / kSessionManifestName;
+    if (!std::filesystem::exists(path))
+        fail("{}: no session manifest here (expected a directory written by tirpol acquire)", path.string());
+    const std::string text = read_file(path);
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        fail("{}: not valid JSON (truncated or corrupt manifest?) at byte {} of {}: {}", path.string(), e.byte,
+             text.size(), e.what());
+    }
+    return session_from_json(j, path.string());
+}
+
+/// Makes a new directory entry durable before the manifest that refers to it.
+void fsync_directory(const std::filesystem::path& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+void check_frame_files_exist(const std::filesystem::path& dir, const SessionManifest& m) {
+    for (std::size_t i = 0; i < m.records.size(); ++i) {
+        const auto p = dir / m.records[i].file;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec))
+            fail("{}: records[{}].file: frame file {} is missing", (dir / kSessionManifestName).string(), i, p.string());
+    }
+}
+
+}  // namespace
+
+SessionManifest read_session(const std::filesystem::path& dir) {
+    SessionManifest m = read_manifest_file(dir);
+    check_frame_files_exist(dir, m);
+    return m;
+}
+
+Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& m, const SessionRecord& r) {
+    const auto path = dir / r.file;
+    Image image = read_exr(path);
+    for (const char* channel : {"counts", "counts_std"})
+        if (!image.has_channel(channel)) fail("{}: missing channel '{}' (a session frame has counts and counts_std)", path.string(), channel);
+    if (image.width() != m.camera.width || image.height() != m.camera.height)
+        fail("{}: image is {}×{}, the manifest's camera is {}×{}", path.string(), image.width(), image.height(),
+             m.camera.width, m.camera.height);
+    return image;
+}
+
+// ---- writing ------------------------------------------------------------------------------------
+
+/// An exclusive flock on DIR/.lock; released when the process ends, even by SIGKILL.
+struct SessionWriter::Lock {
+    int fd = -1;
+    explicit Lock(const std::filesystem::path& dir) {
+        const auto path = dir / ".lock";
+        fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd < 0) fail("{}: cannot create the session lock: {}", path.string(), std::strerror(errno));
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            ::close(fd);
+            fail("{}: another process is writing this session", dir.string());
+        }
+    }
+    ~Lock() {
+        if (fd >= 0) ::close(fd);
+    }
+    Lock(const Lock&) = delete;
+    Lock& operator=(const Lock&) = delete;
+};
+
+SessionWriter::SessionWriter(std::filesystem::path dir, SessionManifest manifest, std::unique_ptr<Lock> lock)
+    : m_dir(std::move(dir)), m_manifest(std::move(manifest)), m_lock(std::move(lock)) {}
+SessionWriter::SessionWriter(SessionWriter&&) noexcept = default;
+SessionWriter& SessionWriter::operator=(SessionWriter&&) noexcept = default;
+SessionWriter::~SessionWriter() = default;
+
+SessionWriter SessionWriter::create(const std::filesystem::path& dir, SessionManifest manifest) {
+    std::error_code ec;
+    if (std::filesystem::exists(dir, ec)) {
+        if (!std::filesystem::is_directory(dir, ec)) fail("{}: exists and is not a directory", dir.string());
+        if (!std::filesystem::is_empty(dir, ec))
+            fail("{}: directory exists and is not empty; refusing to start a new session there "
+                 "(use --resume to continue a session, or choose a new directory)", dir.string());
+    }
+    std::filesystem::create_directories(dir / "frames", ec);
+    if (ec) fail("{}: cannot create the session directory: {}", dir.string(), ec.message());
+    auto lock = std::make_unique<Lock>(dir);
+    if (manifest.created_utc.empty()) manifest.created_utc = utc_now_iso8601();
+    manifest.records.clear();
+    manifest.complete = false;
+    // Validate what the caller gave before anything depends on it.
+    session_from_json(session_to_json(manifest), (dir / kSessionManifestName).string());
+    SessionWriter writer(dir, std::move(manifest), std::move(lock));
+    writer.write_manifest();
+    return writer;
+}
+
+SessionWriter SessionWriter::resume(const std::filesystem::path& dir) {
+    auto lock = std::make_unique<Lock>(dir);
+    SessionManifest manifest = read_manifest_file(dir);
+    check_frame_files_exist(dir, manifest);
+    SessionWriter writer(dir, std::move(manifest), std::move(lock));
+    const auto frames = dir / "frames";
+    std::error_code ec;
+    std::filesystem::create_directories(frames, ec);
+    std::vector<std::filesystem::path> candidates;
+    for (const auto& entry : std::filesystem::directory_iterator(frames)) {
+        if (!entry.is_regular_file()) continue;
+        const std::string name = entry.path().filename().string();
+        // Temporary files of an interrupted write hold nothing committed: remove them.
+        if (!name.empty() && name.front() == '.') {
+            std::filesystem::remove(entry.path(), ec);
+            continue;
+        }
+        if (entry.path().extension() == ".exr" && !writer.has_record("frames/" + name)) candidates.push_back(entry.path());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& path : candidates) {
+        const std::string file = "frames/" + path.filename().string();
+        const Image image = read_exr(path);
+        SessionRecord r = record_from_attributes(image.attributes(), file, path.string());
+        writer.m_manifest.records.push_back(std::move(r));
+        writer.m_adopted.push_back(file);
+    }
+    if (!candidates.empty()) writer.write_manifest();
+    return writer;
+}
+
+bool SessionWriter::has_record(const std::string& file) const {
+    for (const auto& r : m_manifest.records)
+        if (r.file == file) return true;
+    return false;
+}
+
+void SessionWriter::add_record(const SessionRecord& record, const Image& frame) {
+    const std::string source = (m_dir / kSessionManifestName).string();
+    if (m_manifest.complete) fail("{}: the session is complete; refusing to add {}", source, record.file);
+    // Validate the record as the reader will.
+    record_from_json(Fields(record_to_json(record), source, "new record"));
+    if (has_record(record.file)) fail("{}: {} is already recorded; refusing to overwrite it", source, record.file);
+    for (const char* channel : {"counts", "counts_std"})
+        if (!frame.has_channel(channel)) fail("{}: frame for {} lacks channel '{}'", source, record.file, channel);
+    if (frame.width() != m_manifest.camera.width || frame.height() != m_manifest.camera.height)
+        fail("{}: frame for {} is {}×{}, the camera is {}×{}", source, record.file, frame.width(), frame.height(),
+             m_manifest.camera.width, m_manifest.camera.height);
+
+    Image annotated = frame;
+    record_to_attributes(record, annotated.attributes());
+    annotated.attributes()["camera_uri"] = m_manifest.camera.uri;
+    annotated.attributes()["camera_model"] = m_manifest.camera.vendor + " " + m_manifest.camera.model;
+    annotated.attributes()["camera_serial"] = m_manifest.camera.serial;
+    annotated.attributes()["stage_uri"] = m_manifest.stage.uri;
+    annotated.attributes()["stage_model"] = m_manifest.stage.vendor + " " + m_manifest.stage.model;
+    annotated.attributes()["stage_serial"] = m_manifest.stage.serial;
+
+    // write_exr renames over its destination; to never overwrite, write a hidden file and hard-link
+    // it into place: link() fails with EEXIST instead of replacing.
+    const auto final_path = m_dir / record.file;
+    const auto staged = final_path.parent_path() / fmt::format(".{}.staged.exr", final_path.filename().string());
+    write_exr(staged, annotated);
+    if (::link(staged.c_str(), final_path.c_str()) != 0) {
+        const int err = errno;
+        std::error_code ec;
+        std::filesystem::remove(staged, ec);
+        if (err == EEXIST) fail("{}: {} already exists on disk; refusing to overwrite it", source, final_path.string());
+        fail("{}: cannot place {}: {}", source, final_path.string(), std::strerror(err));
+    }
+    std::error_code ec;
+    std::filesystem::remove(staged, ec);
+    fsync_directory(final_path.parent_path());
+    m_manifest.records.push_back(record);
+    write_manifest();
+}
+
+void SessionWriter::set_metadata(nlohmann::json metadata) {
+    m_manifest.metadata = std::move(metadata);
+    write_manifest();
+}
+
+void SessionWriter::mark_complete() {
+    m_manifest.complete = true;
+    write_manifest();
+}
+
+void SessionWriter::write_manifest() const {
+    write_file_atomic(m_dir / kSessionManifestName, session_to_json(m_manifest).dump(2) + "\n");
+}
+
+}  // namespace tirpol

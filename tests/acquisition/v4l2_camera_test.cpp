@@ -1,0 +1,260 @@
+// The v4l2:// backend against FakeV4l2Device (tests/acquisition/fake_v4l2_device.h), a state machine
+// that follows the kernel's V4L2 API documentation for memory-mapped streaming: formats, REQBUFS/
+// QUERYBUF/mmap/QBUF/STREAMON/DQBUF rules, sequence numbers, EAGAIN and poll timeouts, ENODEV.
+
+#include <gtest/gtest.h>
+
+#include "fake_v4l2_device.h"
+#include "tirpol/acquisition/v4l2_camera.h"
+
+namespace tirpol::acquisition {
+namespace {
+
+using namespace std::chrono_literals;
+using test::FakeV4l2Device;
+
+std::unique_ptr<Camera> open_fake(const std::shared_ptr<FakeV4l2Device>& device, V4l2CameraOptions options = {}) {
+    auto camera = open_v4l2_camera("/dev/video0", options, device);
+    EXPECT_TRUE(camera.ok()) << (camera.ok() ? "" : camera.error().message);
+    return camera.ok() ? std::move(camera.value()) : nullptr;
+}
+
+bool matches_pattern(const Frame& frame, std::uint32_t fourcc, std::uint32_t sequence) {
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x)
+            if (frame.counts[static_cast<std::size_t>(y * frame.width + x)] !=
+                static_cast<float>(FakeV4l2Device::pattern(fourcc, static_cast<std::uint32_t>(x),
+                                                           static_cast<std::uint32_t>(y), sequence)))
+                return false;
+    return true;
+}
+
+TEST(V4l2Camera, StreamsY16FramesWithSequenceIdsAndTimestamps) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    V4l2CameraOptions options;
+    options.pixel_format = "Y16";
+    options.frame_rate_hz = 30.0;
+    auto camera = open_fake(device, options);
+    ASSERT_TRUE(camera);
+    EXPECT_TRUE(device->opened_nonblocking());
+    const CameraInfo info = camera->info();
+    EXPECT_EQ(info.uri, "v4l2:///dev/video0");
+    EXPECT_EQ(info.vendor, "uvcvideo");
+    EXPECT_EQ(info.model, "Boson: FLIR Video");
+    EXPECT_EQ(info.pixel_format, "Y16");
+    EXPECT_EQ(info.bits_per_pixel, 16);
+    EXPECT_EQ(info.width, 160);
+    EXPECT_EQ(info.height, 120);
+    EXPECT_EQ(info.frame_rate_hz, 30.0);
+
+    ASSERT_TRUE(camera->start().ok());
+    EXPECT_TRUE(device->streaming());
+    EXPECT_EQ(device->mapped_count(), 4u);
+    for (std::uint32_t seq = 0; seq < 6; ++seq) {
+        auto frame = camera->grab(1s);
+        ASSERT_TRUE(frame.ok()) << frame.error().message;
+        EXPECT_EQ(frame.value().frame_id, seq);
+        EXPECT_TRUE(matches_pattern(frame.value(), V4L2_PIX_FMT_Y16, seq));
+        EXPECT_EQ(frame.value().device_timestamp_ns, static_cast<std::int64_t>(seq) * 33333 * 1000);
+        // Every buffer goes back to the driver after its frame is copied out.
+        EXPECT_EQ(device->queued_count(), 4u);
+    }
+    EXPECT_EQ(camera->statistics().delivered, 6u);
+    EXPECT_EQ(camera->statistics().dropped, 0u);
+}
+
+TEST(V4l2Camera, GreyFramesAreEightBit) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    V4l2CameraOptions options;
+    options.pixel_format = "GREY";
+    auto camera = open_fake(device, options);
+    ASSERT_TRUE(camera);
+    EXPECT_EQ(camera->info().bits_per_pixel, 8);
+    ASSERT_TRUE(camera->start().ok());
+    auto frame = camera->grab(1s);
+    ASSERT_TRUE(frame.ok());
+    EXPECT_TRUE(matches_pattern(frame.value(), V4L2_PIX_FMT_GREY, 0));
+}
+
+TEST(V4l2Camera, StopUnmapsAndFreesBuffersSoStreamingCanRestart) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    for (int round = 0; round < 2; ++round) {
+        ASSERT_TRUE(camera->start().ok());
+        ASSERT_TRUE(camera->grab(1s).ok());
+        ASSERT_TRUE(camera->stop().ok());
+        EXPECT_FALSE(device->streaming());
+        EXPECT_EQ(device->mapped_count(), 0u);
+        EXPECT_EQ(device->allocated_count(), 0u);  // REQBUFS(0) after munmap, else the driver says EBUSY
+    }
+    camera.reset();
+    EXPECT_FALSE(device->is_open());
+}
+
+TEST(V4l2Camera, DriverMayGrantFewerBuffersButNotFewerThanTwo) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    device->max_buffers = 3;
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    EXPECT_EQ(device->mapped_count(), 3u);
+    ASSERT_TRUE(camera->grab(1s).ok());
+    ASSERT_TRUE(camera->stop().ok());
+
+    device->max_buffers = 1;
+    const Status refused = camera->start();
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, DeviceErrorCode::DeviceFault);
+    EXPECT_EQ(device->allocated_count(), 0u);
+}
+
+TEST(V4l2Camera, SequenceGapsAreCountedAsDroppedFrames) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    ASSERT_EQ(camera->grab(1s).value().frame_id, 0u);
+    device->skip_next = 3;
+    const Frame after_gap = camera->grab(1s).value();
+    EXPECT_EQ(after_gap.frame_id, 4u);
+    EXPECT_TRUE(matches_pattern(after_gap, V4L2_PIX_FMT_Y16, 4));
+    EXPECT_EQ(camera->statistics().dropped, 3u);
+}
+
+TEST(V4l2Camera, ThirtyTwoBitSequenceWrapKeepsIdsMonotonic) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    device->next_sequence = 0xFFFFFFFEu;
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    std::uint64_t previous = 0;
+    for (int i = 0; i < 4; ++i) {
+        const Frame f = camera->grab(1s).value();
+        if (i > 0) {
+            EXPECT_EQ(f.frame_id, previous + 1);
+        }
+        previous = f.frame_id;
+    }
+    EXPECT_EQ(previous, 0x100000001u);
+    EXPECT_EQ(camera->statistics().dropped, 0u);
+}
+
+TEST(V4l2Camera, SpuriousWakeupIsRetriedAndAStalledSensorTimesOut) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    device->spurious_wakeup_next = true;  // POLLIN, then DQBUF says EAGAIN
+    ASSERT_TRUE(camera->grab(1s).ok());
+    device->frames_left = 0;
+    const auto timed_out = camera->grab(50ms);
+    ASSERT_FALSE(timed_out.ok());
+    EXPECT_EQ(timed_out.error().code, DeviceErrorCode::Timeout);
+}
+
+TEST(V4l2Camera, CorruptedAndShortBuffersAreIncompleteAndRequeued) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    device->corrupt_next = true;
+    Frame f = camera->grab(1s).value();
+    EXPECT_EQ(f.frame_id, 1u);  // frame 0 carried V4L2_BUF_FLAG_ERROR
+    device->short_next = true;
+    f = camera->grab(1s).value();
+    EXPECT_EQ(f.frame_id, 3u);  // frame 2 had half its bytes
+    const StreamStatistics stats = camera->statistics();
+    EXPECT_EQ(stats.incomplete, 2u);
+    EXPECT_EQ(stats.delivered, 2u);
+    EXPECT_EQ(stats.dropped, 0u);
+    EXPECT_EQ(device->queued_count(), 4u);
+}
+
+TEST(V4l2Camera, UnsupportedFormatsAreRefused) {
+    {
+        auto device = std::make_shared<FakeV4l2Device>();
+        V4l2CameraOptions options;
+        options.pixel_format = "YUYV";
+        const auto camera = open_v4l2_camera("/dev/video0", options, device);
+        ASSERT_FALSE(camera.ok());
+        EXPECT_EQ(camera.error().code, DeviceErrorCode::InvalidArgument);
+    }
+    for (bool einval : {true, false}) {
+        auto device = std::make_shared<FakeV4l2Device>();
+        device->formats = {{V4L2_PIX_FMT_GREY, 80, 60}};
+        device->refuse_unsupported_with_einval = einval;
+        V4l2CameraOptions options;
+        options.pixel_format = "Y16";
+        const auto camera = open_v4l2_camera("/dev/video0", options, device);
+        ASSERT_FALSE(camera.ok());
+        EXPECT_EQ(camera.error().code, DeviceErrorCode::NotSupported) << camera.error().message;
+        EXPECT_NE(camera.error().message.find("Y16"), std::string::npos) << camera.error().message;
+    }
+    {
+        auto device = std::make_shared<FakeV4l2Device>();
+        V4l2CameraOptions options;
+        options.width = 640;  // the core has one discrete size: the driver adjusts it to 160×120
+        const auto camera = open_v4l2_camera("/dev/video0", options, device);
+        ASSERT_FALSE(camera.ok());
+        EXPECT_EQ(camera.error().code, DeviceErrorCode::NotSupported);
+    }
+}
+
+TEST(V4l2Camera, UnpluggedDeviceIsDisconnected) {
+    auto device = std::make_shared<FakeV4l2Device>();
+    auto camera = open_fake(device);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->start().ok());
+    ASSERT_TRUE(camera->grab(1s).ok());
+    device->unplugged = true;
+    const auto frame = camera->grab(1s);
+    ASSERT_FALSE(frame.ok());
+    EXPECT_EQ(frame.error().code, DeviceErrorCode::Disconnected);
+
+    const auto absent = open_v4l2_camera("/dev/video7", {}, std::make_shared<FakeV4l2Device>());
+    ASSERT_FALSE(absent.ok());
+    EXPECT_EQ(absent.error().code, DeviceErrorCode::Disconnected);
+    EXPECT_NE(absent.error().message.find("/dev/video7"), std::string::npos);
+}
+
+TEST(FakeV4l2Device, EnforcesTheBufferQueueRules) {
+    // The fake is only useful if it refuses what a driver refuses (kernel docs, VIDIOC_QBUF/DQBUF, REQBUFS).
+    FakeV4l2Device device;
+    const int fd = device.open("/dev/video0", O_RDWR | O_NONBLOCK);
+    ASSERT_GE(fd, 0);
+    int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_STREAMON, &type), -1);  // no buffers yet
+    EXPECT_EQ(errno, EINVAL);
+    v4l2_requestbuffers req{};
+    req.count = 2;
+    req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    req.memory = V4L2_MEMORY_USERPTR;
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_REQBUFS, &req), -1);  // only MMAP
+    req.memory = V4L2_MEMORY_MMAP;
+    ASSERT_EQ(device.ioctl(fd, VIDIOC_REQBUFS, &req), 0);
+    v4l2_buffer buf{};
+    buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    buf.memory = V4L2_MEMORY_MMAP;
+    buf.index = 0;
+    ASSERT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), 0);
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), -1);  // already queued
+    EXPECT_EQ(errno, EINVAL);
+    buf.index = 2;
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), -1);  // no such buffer
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_DQBUF, &buf), -1);  // not streaming
+    ASSERT_EQ(device.ioctl(fd, VIDIOC_STREAMON, &type), 0);
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_DQBUF, &buf), -1);  // nothing done yet, non-blocking
+    EXPECT_EQ(errno, EAGAIN);
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_REQBUFS, &req), -1);  // busy while streaming
+    EXPECT_EQ(errno, EBUSY);
+    v4l2_format fmt{};
+    fmt.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_S_FMT, &fmt), -1);  // busy while buffers exist
+    EXPECT_EQ(errno, EBUSY);
+    EXPECT_EQ(device.ioctl(fd, 0xDEAD, &fmt), -1);
+    EXPECT_EQ(errno, ENOTTY);
+}
+
+}  // namespace
+}  // namespace tirpol::acquisition

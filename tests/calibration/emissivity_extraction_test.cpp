@@ -1,0 +1,108 @@
+// Emissivity extraction (paper eq 17): a synthetic Stokes image built from known polarized
+// emissivities, downwelled radiance and target temperatures gives them back within the reported 2σ.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "test_support.h"
+#include "tirpol/calibration/emissivity_extraction.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::calibration {
+namespace {
+
+constexpr int kW = 80, kH = 40;
+
+Image scene(const Band& band, double noise, unsigned seed) {
+    // Left: an aluminium reflector (S0 = L_dw of a 240 K sky); middle: a panel at 295 K with
+    // ε_S0 = 0.92, ε_S1 = −0.03 (vertical emission); right: an in-scene blackbody at 295 K.
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0.0, noise);
+    const double l_dw = band.radiance(240.0), l_bb = band.radiance(295.0);
+    Image im(kW, kH);
+    auto& s0 = im.add_channel("S0");
+    auto& s1 = im.add_channel("S1");
+    auto& s2 = im.add_channel("S2");
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const std::size_t i = im.index(x, y);
+            double a = l_dw, b = 0.0, c = 0.0;
+            if (x >= 30 && x < 50) {
+                a = 0.08 * l_dw + 0.92 * l_bb;
+                b = -0.03 * (l_bb - l_dw);
+                c = 0.004 * (l_bb - l_dw);
+            } else if (x >= 60) {
+                a = l_bb;
+            }
+            s0[i] = static_cast<float>(a + n(rng));
+            s1[i] = static_cast<float>(b + n(rng));
+            s2[i] = static_cast<float>(c + n(rng));
+        }
+    return im;
+}
+
+EmissivityRois rois() {
+    EmissivityRois r;
+    r.reflector = {2, 2, 20, 36};
+    EmissivityTarget contact{"panel_contact", {32, 5, 16, 30}, 40.0, 295.0, 0.1, std::nullopt};
+    EmissivityTarget bb{"panel_bb", {32, 5, 16, 30}, 40.0, std::nullopt, 0.5, PixelRect{62, 5, 16, 30}};
+    r.targets = {contact, bb};
+    return r;
+}
+
+TEST(EmissivityExtraction, RecoversKnownPolarizedEmissivityWithinTwoSigma) {
+    const Band band(8.0, 14.0);
+    const auto results = extract_emissivity(scene(band, 0.3, 1), rois(), band);
+    ASSERT_EQ(results.size(), 2u);
+    for (const auto& r : results) {
+        EXPECT_NEAR(r.eps_s0, 0.92, std::max(r.eps_s0_2sigma, 1e-9)) << r.name;
+        EXPECT_NEAR(r.eps_s1, -0.03, r.eps_s1_2sigma) << r.name;
+        EXPECT_NEAR(r.eps_s2, 0.004, r.eps_s2_2sigma) << r.name;
+        EXPECT_EQ(r.pixels, 16u * 30u);
+        // 2σ is tight enough to matter: a few thousandths of emissivity here.
+        EXPECT_LT(r.eps_s1_2sigma, 0.01);
+    }
+    EXPECT_NEAR(results[1].temperature_k, 295.0, 0.1);  // brightness temperature of the blackbody region
+    // Noiseless: exact.
+    const auto exact = extract_emissivity(scene(band, 0.0, 1), rois(), band);
+    EXPECT_NEAR(exact[0].eps_s0, 0.92, 1e-5);
+    EXPECT_NEAR(exact[0].eps_s1, -0.03, 1e-5);
+    const std::string csv = emissivity_csv(exact);
+    EXPECT_THAT(csv, testing::StartsWith("name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr"));
+    EXPECT_THAT(csv, testing::HasSubstr("panel_contact,40,295,480,"));
+}
+
+TEST(EmissivityExtraction, RoiFileIsValidatedWithClearErrors) {
+    test::TempDir dir;
+    const auto good = dir / "rois.yaml";
+    test::write_text(good, "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
+                           "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40, temperature_k: 295}\n");
+    const auto r = EmissivityRois::load(good.string());
+    EXPECT_EQ(r.targets.at(0).rect.width, 16);
+    const auto both = dir / "both.yaml";
+    test::write_text(both, "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
+                           "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40}\n");
+    try {
+        EmissivityRois::load(both.string());
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), testing::HasSubstr("exactly one of temperature_k"));
+    }
+    const auto typo = dir / "typo.yaml";
+    test::write_text(typo, "reflectr: {rect: [2, 2, 20, 36]}\ntargets: []\n");
+    EXPECT_THROW(EmissivityRois::load(typo.string()), Error);
+    // A rectangle outside the image is named.
+    EmissivityRois outside = rois();
+    outside.targets[0].rect = {70, 5, 20, 10};
+    try {
+        extract_emissivity(scene(Band(8.0, 14.0), 0.0, 1), outside, Band(8.0, 14.0));
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), testing::HasSubstr("panel_contact"));
+    }
+}
+
+}  // namespace
+}  // namespace tirpol::calibration

@@ -1,0 +1,247 @@
+// Session store (schema tirpol.session v1, docs/session-format.md): round trips, crash recovery,
+// no-overwrite guarantees and the reader's error messages for damaged sessions.
+
+#include "tirpol/core/session.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+
+namespace tirpol {
+namespace {
+
+using ::testing::HasSubstr;
+using nlohmann::json;
+
+SessionManifest example_manifest() {
+    SessionManifest m;
+    m.camera = {"sim://panel", "tirpol", "SimCam", "0001", "Mono16", 8, 4, 16, 30.0, {{"R", 16556.0}, {"B", 1428.0}}};
+    m.stage = {"sim://", "tirpol", "SimStage", "S1", "1.0", 409600.0 / 3.0};
+    m.plan = json{{"angles_deg", {0, 45, 90, 135}}, {"frames_per_angle", 4}};
+    m.metadata = json{{"site", "roof"}, {"operator", "test"}};
+    return m;
+}
+
+Image example_frame(float base) {
+    Image image(8, 4);
+    auto& counts = image.add_channel("counts");
+    auto& std_dev = image.add_channel("counts_std");
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        counts[i] = base + static_cast<float>(i);
+        std_dev[i] = 0.5f + static_cast<float>(i) * 0.01f;
+    }
+    return image;
+}
+
+SessionRecord polarizer_record(double angle, int repeat) {
+    SessionRecord r;
+    r.kind = RecordKind::Polarizer;
+    r.file = session_frame_file(fmt::format("pol_{:05.1f}deg_r{}", angle, repeat));
+    r.angle_deg_requested = angle;
+    r.angle_deg_measured = angle + 0.001;
+    r.repeat = repeat;
+    r.frames = 16;
+    r.dropped = 1;
+    // A 2026 timestamp in ns does not fit a double exactly: the round trip must keep every digit.
+    r.first_timestamp_ns = 1795359560123456789;
+    r.last_timestamp_ns = 1795359560623456789;
+    r.fpa_temperature_k = 305.25;
+    return r;
+}
+
+TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
+    test::TempDir tmp;
+    const auto dir = tmp / "s";
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        for (double a : {0.0, 45.0, 90.0, 135.0}) writer.add_record(polarizer_record(a, 0), example_frame(static_cast<float>(a)));
+        SessionRecord bb;
+        bb.kind = RecordKind::Blackbody;
+        bb.file = session_frame_file("bb_303.15K_r0");
+        bb.blackbody_temperature_k = 303.15;
+        bb.frames = 8;
+        writer.add_record(bb, example_frame(1000.0f));
+        writer.mark_complete();
+    }
+    const SessionManifest m = read_session(dir);
+    EXPECT_EQ(m.records.size(), 5u);
+    EXPECT_TRUE(m.complete);
+    EXPECT_EQ(m.camera.planck_constants.at("B"), 1428.0);
+    EXPECT_EQ(m.stage.counts_per_degree, 409600.0 / 3.0);
+    EXPECT_EQ(m.metadata.at("site"), "roof");
+    EXPECT_EQ(m.records[1], polarizer_record(45.0, 0));
+    EXPECT_EQ(m.records[1].first_timestamp_ns, 1795359560123456789);
+    EXPECT_FALSE(m.records[0].blackbody_temperature_k.has_value());
+    EXPECT_EQ(*m.records[4].blackbody_temperature_k, 303.15);
+
+    // The EXR carries the pixels and mirrors its record in the header.
+    const Image frame = read_session_frame(dir, m, m.records[2]);
+    EXPECT_EQ(frame.channel("counts"), example_frame(90.0f).channel("counts"));
+    EXPECT_EQ(frame.channel("counts_std"), example_frame(90.0f).channel("counts_std"));
+    EXPECT_EQ(record_from_attributes(frame.attributes(), m.records[2].file, "header"), m.records[2]);
+    EXPECT_EQ(std::get<std::string>(frame.attributes().at("camera_uri")), "sim://panel");
+
+    // The manifest is the documented schema, field for field.
+    const json j = json::parse(read_file(dir / "session.json"));
+    EXPECT_EQ(j.at("schema"), "tirpol.session");
+    EXPECT_EQ(j.at("schema_version"), 1);
+    EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
+    EXPECT_EQ(j.at("records")[0].at("file"), "frames/pol_000.0deg_r0.exr");
+}
+
+TEST(Session, CreateRefusesANonEmptyDirectory) {
+    test::TempDir tmp;
+    test::write_text(tmp / "d/notes.txt", "x");
+    EXPECT_THAT([&] { SessionWriter::create(tmp / "d", example_manifest()); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("not empty")));
+    SessionWriter::create(tmp / "empty", example_manifest());  // a fresh or empty directory is fine
+    EXPECT_TRUE(std::filesystem::exists(tmp / "empty/session.json"));
+}
+
+TEST(Session, NeverOverwritesAFrame) {
+    test::TempDir tmp;
+    auto writer = SessionWriter::create(tmp / "s", example_manifest());
+    writer.add_record(polarizer_record(0, 0), example_frame(1.0f));
+    EXPECT_THAT([&] { writer.add_record(polarizer_record(0, 0), example_frame(2.0f)); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("already recorded")));
+    // A stray file with the name of a new record is not replaced either.
+    test::write_text(tmp / "s/frames/pol_045.0deg_r0.exr", "not mine");
+    EXPECT_THAT([&] { writer.add_record(polarizer_record(45, 0), example_frame(2.0f)); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("already exists")));
+    EXPECT_EQ(read_file(tmp / "s/frames/pol_045.0deg_r0.exr"), "not mine");
+    EXPECT_EQ(read_exr(tmp / "s/frames/pol_000.0deg_r0.exr").channel("counts")[0], 1.0f);
+    EXPECT_EQ(read_session(tmp / "s").records.size(), 1u);
+}
+
+TEST(Session, ResumeKnowsWhatIsDoneAndAdoptsAFrameTheManifestMissed) {
+    test::TempDir tmp;
+    const auto dir = tmp / "s";
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(polarizer_record(0, 0), example_frame(0.0f));
+    }
+    // Simulate a crash after the second frame reached the disk but before the manifest was
+    // rewritten, plus a temporary file of a third write that was cut off.
+    Image orphan = example_frame(45.0f);
+    record_to_attributes(polarizer_record(45, 0), orphan.attributes());
+    write_exr(dir / "frames/pol_045.0deg_r0.exr", orphan);
+    test::write_text(dir / "frames/.pol_090.0deg_r0.exr.tmp-123-456.exr", "half");
+    ASSERT_EQ(read_session(dir).records.size(), 1u);
+
+    auto writer = SessionWriter::resume(dir);
+    EXPECT_TRUE(writer.has_record("frames/pol_000.0deg_r0.exr"));
+    EXPECT_TRUE(writer.has_record("frames/pol_045.0deg_r0.exr"));
+    EXPECT_FALSE(writer.has_record("frames/pol_090.0deg_r0.exr"));
+    EXPECT_EQ(writer.adopted_files(), std::vector<std::string>{"frames/pol_045.0deg_r0.exr"});
+    EXPECT_FALSE(std::filesystem::exists(dir / "frames/.pol_090.0deg_r0.exr.tmp-123-456.exr"));
+    writer.add_record(polarizer_record(90, 0), example_frame(90.0f));
+    writer.mark_complete();
+    const auto m = read_session(dir);
+    ASSERT_EQ(m.records.size(), 3u);
+    EXPECT_EQ(m.records[1], polarizer_record(45, 0));
+    EXPECT_TRUE(m.complete);
+    EXPECT_THAT([&] { writer.add_record(polarizer_record(135, 0), example_frame(1.0f)); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("complete")));
+}
+
+TEST(Session, OnlyOneWriterAtATime) {
+    test::TempDir tmp;
+    auto first = SessionWriter::create(tmp / "s", example_manifest());
+    EXPECT_THAT([&] { SessionWriter::resume(tmp / "s"); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("another process")));
+}
+
+class DamagedSession : public ::testing::Test {
+protected:
+    void SetUp() override {
+        auto writer = SessionWriter::create(dir(), example_manifest());
+        writer.add_record(polarizer_record(0, 0), example_frame(0.0f));
+        writer.add_record(polarizer_record(45, 0), example_frame(1.0f));
+        m_original = json::parse(read_file(dir() / "session.json"));
+    }
+    std::filesystem::path dir() const { return m_tmp / "s"; }
+    const json& manifest() const { return m_original; }
+    void write(const json& j) const { write_file_atomic(dir() / "session.json", j.dump()); }
+    std::string error_of_read() const {
+        try {
+            read_session(dir());
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    }
+    test::TempDir m_tmp;
+    json m_original;
+};
+
+TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
+    const std::string text = read_file(dir() / "session.json");
+    write_file_atomic(dir() / "session.json", text.substr(0, text.size() / 2));
+    EXPECT_THAT(error_of_read(), HasSubstr("session.json: not valid JSON"));
+}
+
+TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
+    json j = manifest();
+    j["schema_version"] = 2;
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1, got 2"));
+    j["schema"] = "something.else";
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));
+}
+
+TEST_F(DamagedSession, BadRecordFieldIsNamed) {
+    json j = manifest();
+    j["records"][1].erase("frames");
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("records[1].frames: missing field"));
+    j = manifest();
+    j["records"][0]["frames"] = "sixteen";
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("records[0].frames: expected an integer, got string"));
+    j = manifest();
+    j["records"][0]["kind"] = "blackbody";  // a blackbody record needs its temperature
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("records[0].blackbody_temperature_k"));
+    j = manifest();
+    j["records"][1]["file"] = "../elsewhere.exr";
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("records[1].file: expected \"frames/<name>.exr\""));
+    j = manifest();
+    j["records"][1]["file"] = j["records"][0]["file"];
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("listed twice"));
+    j = manifest();
+    j["camera"]["width"] = -3;
+    write(j);
+    EXPECT_THAT(error_of_read(), HasSubstr("camera.width: expected an integer ≥ 1, got -3"));
+}
+
+TEST_F(DamagedSession, MissingFrameFileIsNamed) {
+    std::filesystem::remove(dir() / "frames/pol_045.0deg_r0.exr");
+    EXPECT_THAT(error_of_read(), HasSubstr("records[1].file: frame file"));
+    EXPECT_THAT(error_of_read(), HasSubstr("pol_045.0deg_r0.exr is missing"));
+}
+
+TEST_F(DamagedSession, TruncatedFrameIsReportedWhenRead) {
+    const auto m = read_session(dir());
+    const auto path = dir() / m.records[0].file;
+    const std::string bytes = read_file(path);
+    write_file_atomic(path, bytes.substr(0, bytes.size() / 2));
+    EXPECT_THAT([&] { read_session_frame(dir(), m, m.records[0]); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("pol_000.0deg_r0.exr")));
+}
+
+TEST(Session, FrameNamesAreRestrictedToSafeCharacters) {
+    EXPECT_EQ(session_frame_file("pol_045deg_r1"), "frames/pol_045deg_r1.exr");
+    EXPECT_THROW(session_frame_file("../x"), Error);
+    EXPECT_THROW(session_frame_file("a/b"), Error);
+    EXPECT_THROW(session_frame_file(""), Error);
+}
+
+}  // namespace
+}  // namespace tirpol
