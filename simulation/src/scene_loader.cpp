@@ -10,6 +10,7 @@
 #include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/temperature_value.h"
+#include "tirpol/simulation/thermal/scene_thermal.h"
 
 namespace tirpol::simulation {
 
@@ -117,13 +118,13 @@ std::vector<double> vertex_temperatures(const ConfigNode& node, const std::files
     return out;
 }
 
-TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const std::vector<Vec3>& object_positions) {
-    if (node.is_scalar()) {
-        if (node.as<std::string>() == "predicted")
-            node.fail("\"predicted\" temperatures need the thermal solver (issue 8), which is not available yet; "
-                      "give a value (K or \"°C\"), {vertex_csv: FILE} or {texture: FILE.exr}");
-        return TemperatureField::constant(temperature_k_from_config(node));
+TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const std::vector<Vec3>& object_positions,
+                                bool has_weather) {
+    if (is_predicted_temperature(node)) {
+        if (!has_weather) node.fail("\"predicted\" temperatures need the thermal solver's inputs: a `weather` entry and a `time` in the scene");
+        return TemperatureField::constant(0.0);  // filled in by apply_scene_thermal once the geometry exists
     }
+    if (node.is_scalar()) return TemperatureField::constant(temperature_k_from_config(node));
     if (!node.is_map()) node.fail("expected a temperature value, {vertex_csv: FILE} or {texture: FILE.exr, channel: NAME}");
     node.check_keys({"vertex_csv", "texture", "channel"});
     if (node.has("vertex_csv") == node.has("texture")) node.fail("give exactly one of vertex_csv or texture");
@@ -175,10 +176,14 @@ Band band_of(const ConfigNode& node) {
 
 Scene load_scene(const std::filesystem::path& path) {
     const ConfigNode root = ConfigNode::load_file(path);
-    root.check_keys({"band", "sampling", "camera", "sky", "sun", "materials_dir", "objects"});
+    std::vector<std::string> keys = {"band", "sampling", "camera", "sky", "sun", "materials_dir", "objects"};
+    keys.insert(keys.end(), std::begin(kThermalSceneKeys), std::end(kThermalSceneKeys));
+    root.check_keys(keys);
+    const bool has_weather = root.has("weather");
     Band band = band_of(root.at("band"));
     Camera camera = Camera::from_config(root.at("camera"));
-    Sky sky = Sky::from_config(root.at("sky"), band);
+    // With a `weather` entry and no `sky`, apply_scene_thermal sets the sky from the weather.
+    Sky sky = has_weather && !root.has("sky") ? Sky::uniform(1.0) : Sky::from_config(root.at("sky"), band);
     std::optional<Sun> sun;
     if (auto s = root.find("sun")) sun = Sun::from_config(*s, band);
 
@@ -202,12 +207,14 @@ Scene load_scene(const std::filesystem::path& path) {
         std::vector<Vec3> object_positions;
         const bool is_sphere = add_geometry(o.at("geometry"), transform_of(o.find("transform")), *tracer, object_positions);
         obj.material = resolver.resolve(o.at("material"), materials);
-        obj.temperature = temperature_of(o.at("temperature"), is_sphere, object_positions);
+        obj.temperature = temperature_of(o.at("temperature"), is_sphere, object_positions, has_weather);
         objects.push_back(std::move(obj));
     }
     tracer->commit();
-    return Scene{std::filesystem::absolute(path), camera, band, sky, sun, sampling_of(root.find("sampling")),
-                 std::move(materials), std::move(objects), std::move(tracer)};
+    Scene scene{std::filesystem::absolute(path), camera, band, sky, sun, sampling_of(root.find("sampling")),
+                std::move(materials), std::move(objects), std::move(tracer)};
+    if (has_weather) apply_scene_thermal(root, scene);
+    return scene;
 }
 
 }  // namespace tirpol::simulation

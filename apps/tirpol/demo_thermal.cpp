@@ -1,0 +1,88 @@
+// Demo step: sun position check and a day of surface temperatures for the ball-on-snow example.
+
+#include <cstdio>
+#include <sstream>
+
+#include "demo_steps.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/line_plot.h"
+#include "tirpol/simulation/thermal/civil_time.h"
+#include "tirpol/simulation/thermal/solar_position.h"
+#include "tirpol/simulation/thermal/thermal_config.h"
+
+namespace tirpol::cli {
+
+namespace {
+
+// config/thermal of the source tree, searched upwards from the working directory and the executable.
+std::filesystem::path find_thermal_config() {
+    std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) starts.push_back(exe.parent_path());
+    for (auto dir : starts) {
+        for (; !dir.empty(); dir = dir.parent_path()) {
+            if (std::filesystem::is_regular_file(dir / "config/thermal/ball_on_snow_thermal.yaml"))
+                return dir / "config/thermal/ball_on_snow_thermal.yaml";
+            if (dir == dir.parent_path()) break;
+        }
+    }
+    fail("demo: cannot find config/thermal/ball_on_snow_thermal.yaml (run the demo from inside the tirpol source tree)");
+}
+
+void demo_thermal(const std::filesystem::path& out_dir) {
+    // The SPA report's worked example (Reda & Andreas, NREL/TP-560-34302): zenith 50.11162°, azimuth 194.34024°.
+    thermal::SpaInput in;
+    in.unix_seconds = thermal::parse_time("2003-10-17T12:30:30-07:00", 0.0);
+    in.latitude_deg = 39.742476;
+    in.longitude_deg = -105.1786;
+    in.elevation_m = 1830.14;
+    in.pressure_mbar = 820.0;
+    in.temperature_c = 11.0;
+    in.delta_t_s = 67.0;
+    const auto sun = thermal::solar_position(in);
+    std::printf("  SPA worked example: zenith %.5f° (report 50.11162°), azimuth %.5f° (report 194.34024°)\n",
+                sun.zenith_deg, sun.azimuth_deg);
+
+    const thermal::ThermalScene scene = thermal::load_thermal_scene(find_thermal_config());
+    const double end = *scene.time_s;
+    const double start = end - (24.0 + scene.options.spin_up_hours) * 3600.0;
+    std::vector<PlotSeries> series;
+    std::ostringstream csv;
+    csv << "object,material,temperature_k\n";
+    static const std::array<std::uint8_t, 3> kColours[] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
+                                                            {214, 39, 40},  {148, 103, 189}, {140, 86, 75}};
+    for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+        const auto& obj = scene.objects[k];
+        const double shadow = obj.shadow_fraction;
+        const auto h = thermal::simulate_facet(*scene.weather, scene.materials[obj.material], obj.facet, start, end,
+                                               end - 24 * 3600.0, 900.0, scene.options,
+                                               [shadow](double, const Vec3&) { return shadow; });
+        PlotSeries s{obj.name + " (" + scene.materials[obj.material].name + ")", {}, {}, kColours[k % 6]};
+        for (const auto& x : h) {
+            s.x.push_back((x.time_s - end) / 3600.0);
+            s.y.push_back(x.surface_temperature_k - 273.15);
+        }
+        series.push_back(std::move(s));
+        csv << obj.name << ',' << scene.materials[obj.material].name << ',' << h.back().surface_temperature_k << '\n';
+        std::printf("  %-20s %-12s %7.2f °C\n", obj.name.c_str(), scene.materials[obj.material].name.c_str(),
+                    h.back().surface_temperature_k - 273.15);
+    }
+    write_file_atomic(out_dir / "thermal" / "ball_on_snow_temperatures.csv", csv.str());
+    LinePlotOptions options;
+    options.title = "Surface temperature, 24 h to " + thermal::format_time(end, scene.site.utc_offset_h) + " (synthetic weather)";
+    options.x_label = "hours before that time";
+    options.y_label = "temperature (deg C)";
+    options.width = 1100;
+    options.height = 650;
+    options.legend_y_fraction = 0.0;
+    write_line_plot(out_dir / "thermal" / "ball_on_snow_24h.png", series, options);
+    std::printf("  table and plot: %s\n", (out_dir / "thermal").c_str());
+}
+
+}  // namespace
+
+TIRPOL_REGISTER_DEMO_STEP(290, "Thermal: SPA check and a day of ball-on-snow surface temperatures (1D slab model)", demo_thermal);
+
+}  // namespace tirpol::cli
