@@ -27,7 +27,7 @@ struct TwinOptions {
     std::filesystem::path out_dir;
     std::filesystem::path scene_file;  ///< empty: config/scenes/panels_night.yaml of the source tree
     int width = 160, height = 120, spp = 8;
-    int frames_per_angle = 16;  ///< frames averaged per polarizer angle and per blackbody step
+    int frames_per_angle = 16;  ///< frames averaged per polarizer angle (blackbody steps: twice as many)
     /// Camera positions; the first is the scene's (the report compares that view). Empty: the scene's
     /// camera plus two higher ones, so the panel is seen at three view angles.
     std::vector<TwinView> views;
@@ -59,9 +59,11 @@ struct TwinRegionAgreement {
     bool consistent = false; ///< report::consistent_with_noise
 };
 
-/// Measured vs the truth render, target ROI means (W/(m²·sr)) and their standard errors.
+/// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
 struct TwinStokesCheck {
-    double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0}, sigma[3] = {0, 0, 0};
+    double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0};
+    double sigma[3] = {0, 0, 0};           ///< standard error of the mean difference (ROI scatter of measured − truth)
+    double sigma_temporal[3] = {0, 0, 0};  ///< of which temporal noise alone (the reduction's *_std channels)
 };
 
 struct TwinResult {

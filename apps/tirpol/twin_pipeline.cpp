@@ -127,6 +127,22 @@ double rect_standard_error(const Image& image, const std::string& sigma_channel,
     return std::sqrt(sum_sq) / n;
 }
 
+/// Standard error of the ROI mean of a − b from the scatter of a − b over the ROI.
+double rect_difference_standard_error(const Image& a, const Image& b, const std::string& channel,
+                                      const calibration::PixelRect& rect) {
+    const auto &ca = a.channel(channel), &cb = b.channel(channel);
+    double sum = 0.0, sum_sq = 0.0;
+    int n = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y)
+        for (int x = rect.x; x < rect.x + rect.width; ++x) {
+            const double d = ca[a.index(x, y)] - cb[b.index(x, y)];
+            if (std::isfinite(d)) sum += d, sum_sq += d * d, ++n;
+        }
+    if (n < 2) fail("twin: fewer than 2 finite {} pixels in the rectangle", channel);
+    const double mean = sum / n;
+    return std::sqrt(std::max(0.0, (sum_sq - n * mean * mean) / (n - 1)) / n);
+}
+
 /// The twin's measurement inherits the Monte Carlo noise of the render it observes; its stated σ
 /// must include it (S_k_std² += truth S_k_var) or the comparison with a fresh render would flag
 /// render noise as disagreement.
@@ -186,7 +202,7 @@ TwinResult run_twin(const TwinOptions& opt) {
         StageTimer t(result, "acquire");
         world.set_scene(truth.front());
         // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
-        const auto lab = write_plan(sessions / "lab_plan.yaml", reference_yaml({273.15, 293.15, 313.15}, 0.0, opt.frames_per_angle),
+        const auto lab = write_plan(sessions / "lab_plan.yaml", reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle),
                                     false, "digital twin: laboratory", opt.frames_per_angle);
         instrument.acquire(lab, sessions / "lab");
         result.sessions.push_back(sessions / "lab");
@@ -195,7 +211,7 @@ TwinResult run_twin(const TwinOptions& opt) {
             // (polarimetric calibration); later views reuse that night's calibration.
             std::string refs;
             if (v == 0)
-                for (double a : {0.0, 45.0, 90.0, 135.0}) refs += reference_yaml({273.15, 298.15}, a, opt.frames_per_angle);
+                for (double a : {0.0, 45.0, 90.0, 135.0}) refs += reference_yaml({273.15, 298.15}, a, 2 * opt.frames_per_angle);
             const std::string name = fmt::format("view{}", v);
             const auto plan = write_plan(sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
                                          opt.frames_per_angle);
@@ -218,15 +234,17 @@ TwinResult run_twin(const TwinOptions& opt) {
         result.measured_exr = out / "measured" / "view0_stokes.exr";
     }
 
-    // Target Stokes, measured vs truth (first view).
+    // Target Stokes, measured vs truth (first view). The uncertainty of the ROI mean is the scatter
+    // of measured − truth over the ROI / √n: it holds the temporal noise (the *_std channels) and the
+    // per-pixel errors of the radiometric and polarimetric calibrations, which those channels leave out.
     const auto target_rect0 = object_rect(truth.front(), target);
     if (!target_rect0) fail("twin: the target '{}' is not visible in view 0", opt.target);
     for (int c = 0; c < 3; ++c) {
         const std::string s = fmt::format("S{}", c);
         result.target_stokes.measured[c] = rect_mean(measured.front(), s, *target_rect0);
         result.target_stokes.truth[c] = rect_mean(truth.front(), s, *target_rect0);
-        // The measurement observes this very render, so only the instrument's noise separates them.
-        result.target_stokes.sigma[c] = rect_standard_error(measured.front(), s + "_std", *target_rect0);
+        result.target_stokes.sigma[c] = rect_difference_standard_error(measured.front(), truth.front(), s, *target_rect0);
+        result.target_stokes.sigma_temporal[c] = rect_standard_error(measured.front(), s + "_std", *target_rect0);
     }
 
     // 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.

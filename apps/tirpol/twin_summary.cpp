@@ -18,8 +18,8 @@ std::string twin_summary(const TwinResult& r) {
     const auto& t = r.target_stokes;
     out += fmt::sprintf("  flat black paint, view 0 ROI mean, measured vs truth render [W/(m²·sr)]:\n");
     for (int c = 0; c < 3; ++c)
-        out += fmt::sprintf("    S%d %9.4f vs %9.4f   (diff %+.4f, σ %.4f, %.1fσ)\n", c, t.measured[c], t.truth[c],
-                    t.measured[c] - t.truth[c], t.sigma[c], std::abs(t.measured[c] - t.truth[c]) / t.sigma[c]);
+        out += fmt::sprintf("    S%d %9.4f vs %9.4f   (diff %+.4f, σ %.4f of which temporal %.4f, %.1fσ)\n", c, t.measured[c], t.truth[c],
+                    t.measured[c] - t.truth[c], t.sigma[c], t.sigma_temporal[c], std::abs(t.measured[c] - t.truth[c]) / t.sigma[c]);
     out += fmt::sprintf("  polarized emissivity (plane-of-emission frame), extracted vs true paint:\n");
     for (const auto& e : r.emissivity)
         out += fmt::sprintf("    θ %5.1f°: ε_S0 %.4f ± %.4f (true %.4f)   ε_S1 %+.4f ± %.4f (true %+.4f)\n", e.view_angle_deg,
