@@ -1,0 +1,74 @@
+// The twin's instrument pieces: the camera renders the polarizer where the stage driver read it
+// back (not where it was asked to go), and the blackbody is in view exactly for the step the
+// operator placed it for. Counts checked against the sensor model's equations (sensor_model.h):
+// C = g·I + o with, for unpolarized light through a diattenuator, I = ½(τ + τ/ER)·S0 + ρ·L_r + ε·L_bb(T_grid)
+// (Chipman, Lam & Young 2018 eq 6.35 for the diattenuator).
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include "tirpol/acquisition/stage_registry.h"
+#include "twin_instrument.h"
+
+namespace tirpol::cli::twin {
+namespace {
+
+using namespace std::chrono_literals;
+
+simulation::SensorModel noiseless_sensor() {
+    simulation::SensorModel s;
+    s.analyzer.transmission = 0.7;
+    s.analyzer.extinction_ratio = 400.0;
+    s.background = {0.05, 20.0, 0.03, 280.0};
+    s.counts = simulation::CountsModel{800.0, 3000.0, 0.0, 300.0};
+    return s;
+}
+
+Image uniform_scene(int w, int h, double s0) {
+    Image img(w, h);
+    img.add_channel("S0", static_cast<float>(s0));
+    for (const char* c : {"S1", "S2", "S3"}) img.add_channel(c, 0.0f);
+    return img;
+}
+
+TEST(TwinWorld, CameraSeesTheAngleTheDriverReadBack) {
+    const Band band(8.0, 14.0);
+    TwinWorld world(noiseless_sensor(), band, 4, 3);
+    auto stage = acquisition::open_stage("sim://?deg_per_s=1000").value_or_throw();
+    WorldReportingStage reporting(*stage, world);
+    ASSERT_TRUE(reporting.home(2s).ok());
+    ASSERT_TRUE(reporting.move_absolute(45.0, 2s).ok());
+    EXPECT_EQ(world.angle_deg(), 0.0);  // asked for 45°, but nothing has been read back yet
+    const double read = reporting.position_deg().value();
+    EXPECT_NEAR(read, 45.0, 0.05);
+    EXPECT_EQ(world.angle_deg(), read);
+}
+
+TEST(TwinWorld, BlackbodyInViewForTheStepItWasPlacedFor) {
+    const Band band(8.0, 14.0);
+    const auto sensor = noiseless_sensor();
+    const double g = sensor.counts->gain_counts_per_radiance, o = sensor.counts->offset_counts;
+    TwinWorld world(sensor, band, 4, 3);
+    world.set_scene(uniform_scene(4, 3, 10.0));
+    std::vector<float> counts(12);
+
+    // Polarizer out of the beam: C = g·L + o.
+    world.set_polarizer_in_beam(false);
+    world.place_blackbody(300.0);
+    world.on_stage_move();
+    world.fill(0.0, counts);
+    EXPECT_NEAR(counts[5], g * band.radiance(300.0) + o, 1e-3 * g);
+    world.on_stage_move();  // next step without a prompt: the operator took the blackbody away
+    world.fill(0.0, counts);
+    EXPECT_NEAR(counts[5], g * 10.0 + o, 1e-3 * g);
+
+    // Through the grid: unpolarized light loses ½(τ + τ/ER), the grid adds ρ·L_r + ε·L_bb(T_grid).
+    world.set_polarizer_in_beam(true);
+    world.fill(30.0, counts);
+    const double grid = 0.05 * 20.0 + 0.03 * band.radiance(280.0);
+    EXPECT_NEAR(counts[5], g * (0.5 * (0.7 + 0.7 / 400.0) * 10.0 + grid) + o, 1e-3 * g);
+}
+
+}  // namespace
+}  // namespace tirpol::cli::twin
