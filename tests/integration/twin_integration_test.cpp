@@ -24,11 +24,13 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     options.spp = 4;
     options.frames_per_angle = 8;
     options.threads = 2;
+    options.stage_protocol = acquisition::SimProtocol::Elliptec;  // the demo uses APT: both protocols run end to end
     const TwinResult r = run_twin(options);
     std::printf("%s", twin_summary(r).c_str());
 
     // The camera really went over GigE Vision on loopback (no silent fallback).
     EXPECT_EQ(r.camera_transport.rfind("GigE Vision", 0), 0u) << r.camera_transport;
+    EXPECT_NE(r.stage_description.find("Elliptec"), std::string::npos) << r.stage_description;
     ASSERT_EQ(r.sessions.size(), 4u);  // lab + three views
 
     // Measured Stokes of the target vs the truth render: within 4 propagated σ, and S1 < 0 (emission
