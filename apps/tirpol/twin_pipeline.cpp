@@ -46,9 +46,10 @@ namespace {
 constexpr double kFitWavelengthUm = 10.0;
 constexpr double kTargetTemperatureStdK = 0.2;  ///< contact thermometer
 
+/// Times one stage of the chain and names it for error messages.
 class StageTimer {
 public:
-    StageTimer(TwinResult& r, std::string name) : m_r(r), m_name(std::move(name)) {}
+    StageTimer(TwinResult& r, std::string name, std::string& current) : m_r(r), m_name(std::move(name)) { current = m_name; }
     ~StageTimer() { m_r.seconds[m_name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
 
 private:
@@ -80,8 +81,8 @@ std::vector<TwinView> default_views(const simulation::Scene& scene) {
     // Look where the scene's camera looks: a point 6 m along its optical axis.
     const Vec3 target = p + 6.0 * Vec3(scene.camera.world_from_camera().col(2));
     for (int i = 0; i < 3; ++i) first.look_at[i] = target[i];
-    // Two higher positions on the same side: the panels (tilted 30° toward the camera) are seen
-    // ~55°, ~40° and ~25° off their normal.
+    // Two higher positions on the same side: the flat black paint panel (tilted 30° toward the
+    // camera) is seen ≈ 58°, 41° and 25° off its normal.
     TwinView mid = first, high = first;
     mid.position[1] = -5.0, mid.position[2] = 3.4;
     high.position[1] = -3.8, high.position[2] = 4.6;
@@ -163,8 +164,9 @@ report::Region rect_region(const std::string& name, const calibration::PixelRect
 
 }  // namespace
 
-TwinResult run_twin(const TwinOptions& opt) {
-    TwinResult result;
+namespace {
+
+void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     const fs::path out = opt.out_dir;
     fs::create_directories(out);
     const fs::path scene_file = opt.scene_file.empty() ? find_config_file("scenes/panels_night.yaml") : opt.scene_file;
@@ -181,7 +183,7 @@ TwinResult run_twin(const TwinOptions& opt) {
     std::vector<Image> truth;
     std::vector<simulation::Camera> cameras;
     {
-        StageTimer t(result, "render truth");
+        StageTimer t(result, "render truth", stage);
         for (std::size_t v = 0; v < views.size(); ++v) {
             cameras.push_back(view_camera(scene.camera, views[v]));
             simulation::Scene s = scene;
@@ -194,12 +196,13 @@ TwinResult run_twin(const TwinOptions& opt) {
     // 2. The field instrument plays the scene; three kinds of session, as on a real night.
     const double air_k = scene.sky.temperature_k(1.0);  // clear sky: the air temperature
     TwinWorld world(twin_sensor(scene.band, air_k), scene.band, opt.width, opt.height);
+    stage = "instrument set-up (stage on a pty, GigE Vision camera)";
     TwinInstrument instrument(world, opt.stage_protocol, opt.gige);
     result.camera_transport = instrument.camera_transport();
     result.stage_description = instrument.stage_description();
     const fs::path sessions = out / "sessions";
     {
-        StageTimer t(result, "acquire");
+        StageTimer t(result, "acquire", stage);
         world.set_scene(truth.front());
         // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
         const auto lab = write_plan(sessions / "lab_plan.yaml", reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle),
@@ -224,7 +227,7 @@ TwinResult run_twin(const TwinOptions& opt) {
     // 3. Calibration and reduction to measured Stokes.
     std::vector<Image> measured;
     {
-        StageTimer t(result, "calibrate and reduce");
+        StageTimer t(result, "calibrate and reduce", stage);
         const auto radiometric = calibration::calibrate_radiometric_session(sessions / "lab", scene.band);
         const auto polarimetric = calibration::calibrate_polarimetric_session(sessions / "view0", radiometric);
         for (std::size_t v = 0; v < views.size(); ++v) {
@@ -251,7 +254,7 @@ TwinResult run_twin(const TwinOptions& opt) {
     const auto* true_brdf = scene.materials[target_material].brdf.get();
     fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
     {
-        StageTimer t(result, "extract emissivity");
+        StageTimer t(result, "extract emissivity", stage);
         for (std::size_t v = 0; v < views.size(); ++v) {
             const auto rect = object_rect(truth[v], target);
             const auto refl = object_rect(truth[v], reflector);
@@ -292,12 +295,15 @@ TwinResult run_twin(const TwinOptions& opt) {
     const materials::ShellTargetParameters<double> true_params = micro->at(kFitWavelengthUm);
     fitting::MicrofacetFitResult fit;
     {
-        StageTimer t(result, "fit");
+        StageTimer t(result, "fit", stage);
         fitting::MicrofacetFitOptions fo;
         fo.starts = 8;
         using P = fitting::MicrofacetParameter;
-        fo.parameters[static_cast<std::size_t>(P::k)] = {true_params.k, 0.0, 2.0, true};
-        fo.parameters[static_cast<std::size_t>(P::rho_d)] = {true_params.rho_d, 0.0, 1.0 / 3.14159, true};
+        for (const auto& [p, value] : {std::pair{P::k, true_params.k}, std::pair{P::rho_d, true_params.rho_d}}) {
+            auto& setting = fo.parameters[static_cast<std::size_t>(p)];
+            setting.initial = value;
+            setting.fixed = true;
+        }
         const fitting::MicrofacetFitProblem problem({dataset}, fo);
         fit = problem.solve();
         result.fitted_material = out / "fit" / "flat_black_paint_fitted.yaml";
@@ -317,7 +323,7 @@ TwinResult run_twin(const TwinOptions& opt) {
     // 6. The same scene rendered with the fitted paint (fresh samples) — the simulation to compare.
     Image simulated;
     {
-        StageTimer t(result, "render fitted");
+        StageTimer t(result, "render fitted", stage);
         const materials::Material fitted = materials::load_material(result.fitted_material);
         simulation::Scene s = scene;
         s.camera = cameras.front();
@@ -330,7 +336,7 @@ TwinResult run_twin(const TwinOptions& opt) {
 
     // 7. The comparison report, one region per panel.
     {
-        StageTimer t(result, "compare");
+        StageTimer t(result, "compare", stage);
         report::CompareOptions co;
         co.registration = report::RegistrationMethod::None;  // same camera model: no misalignment to find
         co.measured_name = result.measured_exr.string();
@@ -350,6 +356,18 @@ TwinResult run_twin(const TwinOptions& opt) {
             if (it == r.z.end()) continue;
             result.regions.push_back({r.name, r.pixel_count, it->second.fraction_above_2, report::consistent_with_noise(it->second)});
         }
+    }
+}
+
+}  // namespace
+
+TwinResult run_twin(const TwinOptions& options) {
+    TwinResult result;
+    std::string stage = "set-up";  // the last stage started
+    try {
+        run_chain(options, result, stage);
+    } catch (const std::exception& e) {
+        fail("digital twin, {} stage: {}", stage, e.what());
     }
     return result;
 }

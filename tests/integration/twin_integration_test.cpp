@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "test_support.h"
+#include "tirpol/core/error.h"
 #include "twin.h"
 
 namespace tirpol::cli::twin {
@@ -61,6 +62,24 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     EXPECT_TRUE(std::filesystem::is_regular_file(r.report_html));
     EXPECT_TRUE(std::filesystem::is_regular_file(r.fitted_material));
     ASSERT_FALSE(r.regions.empty());
+}
+
+TEST(DigitalTwin, UnknownTargetIsAnErrorNamingItAndTheScene) {
+    test::TempDir dir;
+    TwinOptions options;
+    options.out_dir = dir.path() / "twin";
+    options.scene_file = test::source_dir() / "config/scenes/panels_night.yaml";
+    options.target = "panel_no_such_paint";
+    try {
+        run_twin(options);
+        FAIL() << "expected tirpol::Error";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("digital twin, set-up stage"), std::string::npos) << message;
+        EXPECT_NE(message.find("no object named 'panel_no_such_paint'"), std::string::npos) << message;
+        EXPECT_NE(message.find("panels_night.yaml"), std::string::npos) << message;
+        EXPECT_NE(message.find("panel_flat_black_paint"), std::string::npos) << message;  // lists the objects
+    }
 }
 
 }  // namespace
