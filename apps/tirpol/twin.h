@@ -32,9 +32,9 @@ struct TwinOptions {
     /// camera plus two higher ones, so the panel is seen at three view angles.
     std::vector<TwinView> views;
     acquisition::SimProtocol stage_protocol = acquisition::SimProtocol::Apt;
-    bool gige = true;     ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
-    int threads = 0;      ///< render threads (0: all cores)
-    std::string target = "panel_flat_black_paint";    ///< the panel whose paint is fitted
+    bool gige = true;  ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
+    int threads = 0;   ///< render threads (0: all cores)
+    std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted
     std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
 };
 
@@ -55,14 +55,14 @@ struct TwinParameter {
 struct TwinRegionAgreement {
     std::string name;
     std::size_t pixels = 0;
-    double z_above_2 = 0.0;  ///< fraction of |z| > 2 over S0, S1, S2 pooled
-    bool consistent = false; ///< report::consistent_with_noise
+    double z_above_2 = 0.0;   ///< fraction of |z| > 2 over S0, S1, S2 pooled
+    bool consistent = false;  ///< report::consistent_with_noise
 };
 
 /// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
 struct TwinStokesCheck {
     double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0};
-    double sigma[3] = {0, 0, 0};           ///< standard error of the mean difference (ROI scatter of measured − truth)
+    double sigma[3] = {0, 0, 0};  ///< standard error of the mean difference (ROI scatter of measured − truth)
     double sigma_temporal[3] = {0, 0, 0};  ///< of which temporal noise alone (the reduction's *_std channels)
 };
 

@@ -141,8 +141,8 @@ TwinInstrument::TwinInstrument(TwinWorld& world, SimProtocol protocol, bool gige
                 m_world.fill(m_world.angle_deg(), counts);
             });
             // Software trigger: each grab exposes a new frame, so no frame predates the stage's read-back.
-            const std::string camera_uri = fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}&trigger=software",
-                                                       m_server->device_id(), w, h);
+            const std::string camera_uri = fmt::format(
+                "aravis://{}?pixel_format=Mono16&width={}&height={}&trigger=software", m_server->device_id(), w, h);
             auto opened = open_camera(camera_uri);
             if (!opened.ok()) fail("{}", opened.error().message);
             m_camera = std::move(opened).value_or_throw();

@@ -49,8 +49,12 @@ constexpr double kTargetTemperatureStdK = 0.2;  ///< contact thermometer
 /// Times one stage of the chain and names it for error messages.
 class StageTimer {
 public:
-    StageTimer(TwinResult& r, std::string name, std::string& current) : m_r(r), m_name(std::move(name)) { current = m_name; }
-    ~StageTimer() { m_r.seconds[m_name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count(); }
+    StageTimer(TwinResult& r, std::string name, std::string& current) : m_r(r), m_name(std::move(name)) {
+        current = m_name;
+    }
+    ~StageTimer() {
+        m_r.seconds[m_name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    }
 
 private:
     TwinResult& m_r;
@@ -98,7 +102,8 @@ simulation::Camera view_camera(const simulation::Camera& base, const TwinView& v
 std::string reference_yaml(const std::vector<double>& temperatures_k, double angle_deg, int frames) {
     std::string temps;
     for (double t : temperatures_k) temps += fmt::format("{}{:.2f}", temps.empty() ? "" : ", ", t);
-    return fmt::format("  - {{kind: blackbody, temperatures_k: [{}], frames: {}, angle_deg: {}}}\n", temps, frames, angle_deg);
+    return fmt::format("  - {{kind: blackbody, temperatures_k: [{}], frames: {}, angle_deg: {}}}\n", temps, frames,
+                       angle_deg);
 }
 
 /// Writes a capture plan as a person would for `tirpol acquire`, and loads it the same way.
@@ -109,7 +114,8 @@ acquisition::CapturePlan write_plan(const fs::path& path, const std::string& ref
         "angles_deg: [0, 45, 90, 135]\nframes_per_angle: {}\nsettle_s: 0.02\nframe_timeout_s: 5\n",
         frames);
     if (!references.empty()) yaml += "references:\n" + references;
-    yaml += fmt::format("metadata: {{site: \"{}\", polarizer_in_beam: {}}}\n", site, polarizer_in_beam ? "true" : "false");
+    yaml +=
+        fmt::format("metadata: {{site: \"{}\", polarizer_in_beam: {}}}\n", site, polarizer_in_beam ? "true" : "false");
     write_file_atomic(path, yaml);
     return acquisition::CapturePlan::load(path);
 }
@@ -205,8 +211,9 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         StageTimer t(result, "acquire", stage);
         world.set_scene(truth.front());
         // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
-        const auto lab = write_plan(sessions / "lab_plan.yaml", reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle),
-                                    false, "digital twin: laboratory", opt.frames_per_angle);
+        const auto lab = write_plan(sessions / "lab_plan.yaml",
+                                    reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle), false,
+                                    "digital twin: laboratory", opt.frames_per_angle);
         instrument.acquire(lab, sessions / "lab");
         result.sessions.push_back(sessions / "lab");
         for (std::size_t v = 0; v < views.size(); ++v) {
@@ -214,7 +221,8 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
             // (polarimetric calibration); later views reuse that night's calibration.
             std::string refs;
             if (v == 0)
-                for (double a : {0.0, 45.0, 90.0, 135.0}) refs += reference_yaml({273.15, 298.15}, a, 2 * opt.frames_per_angle);
+                for (double a : {0.0, 45.0, 90.0, 135.0})
+                    refs += reference_yaml({273.15, 298.15}, a, 2 * opt.frames_per_angle);
             const std::string name = fmt::format("view{}", v);
             const auto plan = write_plan(sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
                                          opt.frames_per_angle);
@@ -231,7 +239,8 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         const auto radiometric = calibration::calibrate_radiometric_session(sessions / "lab", scene.band);
         const auto polarimetric = calibration::calibrate_polarimetric_session(sessions / "view0", radiometric);
         for (std::size_t v = 0; v < views.size(); ++v) {
-            measured.push_back(calibration::reduce_session(sessions / fmt::format("view{}", v), radiometric, &polarimetric));
+            measured.push_back(
+                calibration::reduce_session(sessions / fmt::format("view{}", v), radiometric, &polarimetric));
             write_exr(out / "measured" / fmt::format("view{}_stokes.exr", v), measured.back());
         }
         result.measured_exr = out / "measured" / "view0_stokes.exr";
@@ -246,7 +255,8 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         const std::string s = fmt::format("S{}", c);
         result.target_stokes.measured[c] = rect_mean(measured.front(), s, *target_rect0);
         result.target_stokes.truth[c] = rect_mean(truth.front(), s, *target_rect0);
-        result.target_stokes.sigma[c] = rect_difference_standard_error(measured.front(), truth.front(), s, *target_rect0);
+        result.target_stokes.sigma[c] =
+            rect_difference_standard_error(measured.front(), truth.front(), s, *target_rect0);
         result.target_stokes.sigma_temporal[c] = rect_standard_error(measured.front(), s + "_std", *target_rect0);
     }
 
@@ -279,11 +289,13 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
             te.eps_s0_sigma = e.eps_s0_2sigma / 2.0;
             te.eps_s1 = -(e.eps_s1 * c2 + e.eps_s2 * s2);
             te.eps_s1_sigma = std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0;
-            const StokesVector truth_eps = materials::directional_emissivity(*true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
+            const StokesVector truth_eps = materials::directional_emissivity(
+                *true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
             te.true_s0 = truth_eps(0);
             te.true_s1 = truth_eps(1);
             result.emissivity.push_back(te);
-            dataset.samples.push_back({te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
+            dataset.samples.push_back(
+                {te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
         }
         write_file_atomic(out / "fit" / "emissivity.csv", fitting::emissivity_csv({dataset}));
     }
@@ -307,13 +319,21 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         const fitting::MicrofacetFitProblem problem({dataset}, fo);
         fit = problem.solve();
         result.fitted_material = out / "fit" / "flat_black_paint_fitted.yaml";
-        const fitting::FitProvenance provenance{{(out / "fit" / "emissivity.csv").string()}, fitting::utc_now_iso8601(),
-                                                "tirpol demo (digital twin)"};
-        write_file_atomic(result.fitted_material, fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
-        write_file_atomic(out / "fit" / "fit.json", fitting::fit_report_json(fit, problem.datasets(), provenance).dump(2));
+        const fitting::FitProvenance provenance{
+            {(out / "fit" / "emissivity.csv").string()}, fitting::utc_now_iso8601(), "tirpol demo (digital twin)"};
+        write_file_atomic(result.fitted_material,
+                          fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
+        write_file_atomic(out / "fit" / "fit.json",
+                          fitting::fit_report_json(fit, problem.datasets(), provenance).dump(2));
         result.reduced_chi2 = fit.reduced_chi2;
-        const double truths[] = {true_params.n,   true_params.k, true_params.sigma, true_params.bias, rad_to_deg(true_params.tau_rad),
-                                 rad_to_deg(true_params.omega_rad), true_params.rho_d, true_params.rho_v};
+        const double truths[] = {true_params.n,
+                                 true_params.k,
+                                 true_params.sigma,
+                                 true_params.bias,
+                                 rad_to_deg(true_params.tau_rad),
+                                 rad_to_deg(true_params.omega_rad),
+                                 true_params.rho_d,
+                                 true_params.rho_v};
         for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
             const auto& p = fit.parameters[i];
             result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
@@ -345,16 +365,18 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         for (std::size_t i = 0; i < scene.objects.size(); ++i) {
             const std::string& name = scene.objects[i].name;
             if (name.rfind("panel_", 0) != 0) continue;
-            if (const auto r = object_rect(truth.front(), i)) regions.regions.push_back(rect_region(name.substr(6), *r));
+            if (const auto r = object_rect(truth.front(), i))
+                regions.regions.push_back(rect_region(name.substr(6), *r));
         }
         co.regions = regions;
-        const report::CompareResult cr = write_comparison_report(with_render_noise(measured.front(), truth.front()), simulated, co,
-                                                                   out / "report");
+        const report::CompareResult cr =
+            write_comparison_report(with_render_noise(measured.front(), truth.front()), simulated, co, out / "report");
         result.report_html = cr.html;
         for (const auto& r : cr.regions) {
             const auto it = r.z.find("all");
             if (it == r.z.end()) continue;
-            result.regions.push_back({r.name, r.pixel_count, it->second.fraction_above_2, report::consistent_with_noise(it->second)});
+            result.regions.push_back(
+                {r.name, r.pixel_count, it->second.fraction_above_2, report::consistent_with_noise(it->second)});
         }
     }
 }

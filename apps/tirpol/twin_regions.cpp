@@ -62,11 +62,14 @@ double rect_mean(const Image& image, const std::string& channel, const calibrati
             const float v = c[image.index(x, y)];
             if (std::isfinite(v)) sum += v, ++n;
         }
-    if (n == 0) fail("twin: no finite {} value in the rectangle [{}, {}, {}, {}]", channel, rect.x, rect.y, rect.width, rect.height);
+    if (n == 0)
+        fail("twin: no finite {} value in the rectangle [{}, {}, {}, {}]", channel, rect.x, rect.y, rect.width,
+             rect.height);
     return sum / n;
 }
 
-double plane_of_emission_angle(const Image& render, const simulation::Camera& camera, const calibration::PixelRect& rect) {
+double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
+                               const calibration::PixelRect& rect) {
     const Vec3 normal = Vec3(rect_mean(render, "normal_x", rect), rect_mean(render, "normal_y", rect),
                              rect_mean(render, "normal_z", rect))
                             .normalized();

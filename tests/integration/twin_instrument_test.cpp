@@ -4,12 +4,13 @@
 // C = g·I + o with, for unpolarized light through a diattenuator, I = ½(τ + τ/ER)·S0 + ρ·L_r + ε·L_bb(T_grid)
 // (Chipman, Lam & Young 2018 eq 6.35 for the diattenuator).
 
+#include "twin_instrument.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
 
 #include "tirpol/acquisition/stage_registry.h"
-#include "twin_instrument.h"
 
 namespace tirpol::cli::twin {
 namespace {

@@ -55,7 +55,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
         if (p.fixed) continue;
         ++free_parameters;
         EXPECT_GT(p.sigma, 0.0) << p.name;
-        EXPECT_LT(std::abs(p.fitted - p.truth), 4.0 * p.sigma) << p.name << " fitted " << p.fitted << " true " << p.truth;
+        EXPECT_LT(std::abs(p.fitted - p.truth), 4.0 * p.sigma)
+            << p.name << " fitted " << p.fitted << " true " << p.truth;
     }
     EXPECT_EQ(free_parameters, 2);  // n and σ
 
