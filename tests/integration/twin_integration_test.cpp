@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -62,7 +63,12 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
 
     EXPECT_TRUE(std::filesystem::is_regular_file(r.report_html));
     EXPECT_TRUE(std::filesystem::is_regular_file(r.fitted_material));
-    ASSERT_FALSE(r.regions.empty());
+    // In the report, the fitted paint's panel agrees with the measurement within the stated noise.
+    ASSERT_EQ(r.regions.size(), 9u);  // the nine panels
+    const auto paint =
+        std::find_if(r.regions.begin(), r.regions.end(), [](const auto& g) { return g.name == "flat_black_paint"; });
+    ASSERT_NE(paint, r.regions.end());
+    EXPECT_TRUE(paint->consistent) << "|z| > 2 in " << 100.0 * paint->z_above_2 << " % of values";
 }
 
 TEST(DigitalTwin, UnknownTargetIsAnErrorNamingItAndTheScene) {
