@@ -164,7 +164,9 @@ Image with_render_noise(Image measured, const Image& truth) {
 }
 
 report::Region rect_region(const std::string& name, const calibration::PixelRect& r) {
-    const double x0 = r.x, y0 = r.y, x1 = r.x + r.width, y1 = r.y + r.height;
+    // Region polygons are in pixel-centre coordinates (docs/report.md): the rectangle's pixels have
+    // centres x .. x + width − 1.
+    const double x0 = r.x, y0 = r.y, x1 = r.x + r.width - 1, y1 = r.y + r.height - 1;
     return {name, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, "twin: " + name};
 }
 

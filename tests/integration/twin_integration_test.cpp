@@ -21,8 +21,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     TwinOptions options;
     options.out_dir = dir.path() / "twin";
     options.scene_file = test::source_dir() / "config/scenes/panels_night.yaml";
-    options.width = 96;
-    options.height = 72;
+    options.width = 128;
+    options.height = 96;
     options.spp = 4;
     options.frames_per_angle = 8;
     options.threads = 2;
