@@ -10,7 +10,9 @@
 
 #include <chrono>
 
+#include "test_support.h"
 #include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/core/session.h"
 
 namespace tirpol::cli::twin {
 namespace {
@@ -69,6 +71,34 @@ TEST(TwinWorld, BlackbodyInViewForTheStepItWasPlacedFor) {
     world.fill(30.0, counts);
     const double grid = 0.05 * 20.0 + 0.03 * band.radiance(280.0);
     EXPECT_NEAR(counts[5], g * (0.5 * (0.7 + 0.7 / 400.0) * 10.0 + grid) + o, 1e-3 * g);
+}
+
+TEST(TwinInstrument, CaptureLoopRecordsBlackbodyThenSceneThroughThePtyStage) {
+    // The in-process camera (gige = false) with the real capture loop and the APT stage on a pty: the
+    // blackbody record holds g·L(T) + o, the scene records g·S0 + o (polarizer out of the beam).
+    test::TempDir dir;
+    const Band band(8.0, 14.0);
+    const auto sensor = noiseless_sensor();
+    const double g = sensor.counts->gain_counts_per_radiance, o = sensor.counts->offset_counts;
+    TwinWorld world(sensor, band, 4, 3);
+    world.set_scene(uniform_scene(4, 3, 10.0));
+    TwinInstrument instrument(world, acquisition::SimProtocol::Apt, false);
+    EXPECT_NE(instrument.camera_transport().find("FALLBACK"), std::string::npos);
+    EXPECT_NE(instrument.stage_description().find("APT"), std::string::npos);
+    test::write_text(dir / "plan.yaml",
+                     "angles_deg: [0, 90]\nframes_per_angle: 2\nsettle_s: 0\n"
+                     "references:\n  - {kind: blackbody, temperatures_k: [310], frames: 2}\n"
+                     "metadata: {polarizer_in_beam: false}\n");
+    instrument.acquire(acquisition::CapturePlan::load(dir / "plan.yaml"), dir / "session");
+    const SessionManifest m = read_session(dir / "session");
+    ASSERT_EQ(m.records.size(), 3u);
+    EXPECT_EQ(m.records[0].kind, RecordKind::Blackbody);
+    const double expected[] = {g * band.radiance(310.0) + o, g * 10.0 + o, g * 10.0 + o};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const auto counts = read_session_frame(dir / "session", m, m.records[k]).channel("counts");
+        EXPECT_NEAR(counts[7], expected[k], 0.5) << m.records[k].file;  // the ADC rounds to whole counts
+    }
+    EXPECT_NEAR(m.records[2].angle_deg_measured, 90.0, 0.05);
 }
 
 }  // namespace
