@@ -22,6 +22,16 @@
 #include "tirpol/acquisition/aravis_camera.h"
 #include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/core/session.h"
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <thread>
 
 namespace {
 
@@ -176,6 +186,89 @@ BENCHMARK(GrabAverageWriteExr)
     ->Iterations(kFramesPerRun)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+
+// ---- Full 4-angle set: capture loop overhead -------------------------------------------------------
+// FourAngleSet/<deg_per_s>/<fps>: one iteration = run_capture of the default 0/45/90/135 plan
+// (16 frames per angle, no settle) into a fresh session: APT stage = the tirpol-stage-sim engine on a
+// pseudo-terminal driven through the real serial code; camera = a 640×512 simulated camera paced to
+// <fps> like a real one. Reference in the same run: the time the devices alone need, Σ|Δθ|/speed +
+// frames/fps. overhead_ratio = measured / reference (1.0 = no overhead; the remainder is serial
+// round trips, averaging and the 4 EXR + manifest writes).
+
+/// Benchmark double: delivers the wrapped camera's frames no faster than `fps`, as a real camera does.
+class PacedCamera final : public Camera {
+public:
+    PacedCamera(std::unique_ptr<Camera> inner, double fps) : m_inner(std::move(inner)), m_period(1.0 / fps) {}
+    CameraInfo info() const override { return m_inner->info(); }
+    Status set_pixel_format(const std::string& f) override { return m_inner->set_pixel_format(f); }
+    Status set_frame_rate(double hz) override { return m_inner->set_frame_rate(hz); }
+    Status start() override {
+        m_next = std::chrono::steady_clock::now();
+        return m_inner->start();
+    }
+    Status stop() override { return m_inner->stop(); }
+    Result<Frame> grab(std::chrono::milliseconds timeout) override {
+        m_next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(m_period);
+        std::this_thread::sleep_until(m_next);
+        return m_inner->grab(timeout);
+    }
+    StreamStatistics statistics() const override { return m_inner->statistics(); }
+
+private:
+    std::unique_ptr<Camera> m_inner;
+    std::chrono::duration<double> m_period;
+    std::chrono::steady_clock::time_point m_next;
+};
+
+void FourAngleSet(benchmark::State& state) {
+    const double deg_per_s = static_cast<double>(state.range(0));
+    const double fps = static_cast<double>(state.range(1));
+    StageSimulatorOptions sim_options;
+    sim_options.protocol = SimProtocol::Apt;
+    sim_options.deg_per_s = deg_per_s;
+    sim_options.start_deg = 0.0;
+    StageSimulator simulator(sim_options);
+    auto pty = PseudoTerminal::open().value_or_throw();
+    std::atomic<bool> stop{false};
+    std::thread server([&] { serve_stage_simulator(simulator, pty, stop); });
+    {
+        auto stage = open_stage("thorlabs-apt://" + pty.slave_path()).value_or_throw();
+        stage->home(std::chrono::seconds(10)).value_or_throw();
+        stage->move_absolute(135.0, std::chrono::seconds(10)).value_or_throw();  // where each set ends
+        SimulatedCameraConfig config;
+        config.width = kWidth;
+        config.height = kHeight;
+        config.noise_std_counts = 20.0;
+        PacedCamera camera(std::make_unique<SimulatedCamera>(config, [](double a, std::vector<float>& out) {
+                               std::fill(out.begin(), out.end(), static_cast<float>(8000.0 + 500.0 * std::cos(2.0 * a * 3.14159265358979 / 180.0)));
+                           }),
+                           fps);
+        CapturePlan plan;
+        plan.settle_s = 0.0;
+        const double moves_deg = 135.0 + 45.0 * 3.0;  // 135 → 0 → 45 → 90 → 135
+        const double reference_s = moves_deg / deg_per_s + 4.0 * plan.frames_per_angle / fps;
+        char dir_template[] = "/tmp/tirpol-bench-XXXXXX";
+        const std::filesystem::path root = ::mkdtemp(dir_template);
+        int run = 0;
+        double measured_s = 0.0;
+        for (auto _ : state) {
+            const auto t0 = std::chrono::steady_clock::now();
+            auto session = SessionWriter::create(root / std::to_string(run++), new_session_manifest(camera.info(), stage->info(), plan));
+            CaptureOptions options;
+            options.progress_stream = nullptr;
+            run_capture(camera, *stage, plan, session, options);
+            measured_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+        std::filesystem::remove_all(root);
+        state.counters["reference_s"] = reference_s;
+        state.counters["measured_s"] = measured_s / static_cast<double>(state.iterations());
+        state.counters["overhead_ratio"] = measured_s / static_cast<double>(state.iterations()) / reference_s;
+    }
+    stop = true;
+    server.join();
+}
+BENCHMARK(FourAngleSet)->Args({360, 60})->Args({90, 60})->Iterations(3)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

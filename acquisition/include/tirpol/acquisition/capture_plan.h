@@ -1,0 +1,76 @@
+#pragma once
+/// \file capture_plan.h
+/// The capture plan (YAML, written by people) and the ordered steps it expands to. Example:
+/// ```yaml
+/// angles_deg: [0, 45, 90, 135]   # polarizer angles (default)
+/// frames_per_angle: 16
+/// settle_s: 0.5                  # wait after each move before grabbing
+/// repeats: 1                     # the whole angle set, this many times
+/// angle_tolerance_deg: 0.05      # read-back must agree with the request this well
+/// move_timeout_s: 60
+/// home_timeout_s: 120
+/// frame_timeout_s: 5
+/// references:                    # optional, taken before the polarizer steps
+///   - kind: blackbody
+///     temperatures_k: [293.15, 313.15]    # or temperatures_c
+///     frames: 32
+///   - kind: shutter
+///     frames: 16
+/// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5, air_temperature_c: 4.5}
+/// ```
+/// Unknown keys are errors naming the key (typos never pass silently).
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tirpol/core/config.h"
+#include "tirpol/core/session.h"
+
+namespace tirpol::acquisition {
+
+struct ReferenceSpec {
+    RecordKind kind = RecordKind::Blackbody;  ///< Blackbody or Shutter
+    std::vector<double> temperatures_k;       ///< one step per temperature (blackbody: ≥ 1; shutter: optional)
+    int frames = 16;
+    double angle_deg = 0.0;                   ///< where the polarizer sits for the reference frames
+};
+
+struct CapturePlan {
+    std::vector<double> angles_deg{0.0, 45.0, 90.0, 135.0};
+    int frames_per_angle = 16;
+    double settle_s = 0.5;
+    int repeats = 1;
+    double angle_tolerance_deg = 0.05;
+    double move_timeout_s = 60.0;
+    double home_timeout_s = 120.0;
+    double frame_timeout_s = 5.0;
+    std::vector<ReferenceSpec> references;
+    nlohmann::json metadata = nlohmann::json::object();
+
+    /// Parses and validates; throws tirpol::Error naming the file, line and field.
+    static CapturePlan parse(const ConfigNode& root);
+    static CapturePlan load(const std::filesystem::path& path);
+    /// The plan as stored in the session manifest; equal JSON ⇔ same plan (used by --resume).
+    nlohmann::json to_json() const;
+};
+
+/// One step of the plan: where the stage goes, how many frames, and the record's file name.
+struct CaptureStep {
+    std::size_t index = 0;
+    RecordKind kind = RecordKind::Polarizer;
+    double angle_deg = 0.0;
+    int repeat = 0;
+    std::optional<double> temperature_k;
+    int frames = 0;
+    std::string file;   ///< "frames/s003_pol_090.000deg_r0.exr"
+    std::string label;  ///< "polarizer 90° (repeat 1/2)"
+};
+
+/// References first (in plan order), then `repeats` × angles. Deterministic: the same plan always
+/// gives the same steps and file names, which is what lets --resume skip what is recorded.
+std::vector<CaptureStep> plan_steps(const CapturePlan& plan);
+
+}  // namespace tirpol::acquisition

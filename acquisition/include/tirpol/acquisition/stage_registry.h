@@ -1,0 +1,28 @@
+#pragma once
+/// \file stage_registry.h
+/// Opens a rotation stage from a URI:
+///   thorlabs-apt:///dev/ttyUSB0[?counts_per_degree=N&channel=1&address=0x50]   (serial port, 115200 8N1 RTS/CTS)
+///   thorlabs-apt+usb://<USB serial>[?...same keys]                              (libusb straight to the FTDI chip)
+///   elliptec:///dev/ttyUSB0[?address=0]                                         (serial port, 9600 8N1)
+///   sim://[?deg_per_s=V&start_deg=A&fail_on_move=N]                             (in-process simulation)
+/// Common key: timeout_ms (reply timeout). Unknown schemes or keys give InvalidArgument naming them.
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "tirpol/acquisition/stage.h"
+
+namespace tirpol::acquisition {
+
+/// A parsed device URI: scheme, the part after "://" up to '?', and the query keys.
+struct StageUri {
+    std::string scheme, path;
+    std::map<std::string, std::string> query;
+};
+/// Parses "scheme://path?key=value&..."; InvalidArgument when there is no "://".
+Result<StageUri> parse_stage_uri(const std::string& uri);
+
+Result<std::unique_ptr<Stage>> open_stage(const std::string& uri);
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,100 @@
+#pragma once
+/// \file stage_simulator.h
+/// A rotation stage that speaks the real byte protocols (Thorlabs APT binary, Elliptec ASCII) on a
+/// pseudo-terminal, with move times from a set speed and injectable faults. It is the engine of
+/// `tirpol-stage-sim` and runs in-process on a thread in tests; either way the driver under test
+/// talks to it through the real serial-port code (termios on the pty's slave side).
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tirpol/acquisition/result.h"
+
+namespace tirpol::acquisition {
+
+enum class SimProtocol { Apt, Elliptec };
+enum class SimFault {
+    None,
+    NoReply,            ///< from the faulty move on, the device answers nothing
+    Busy,               ///< APT: the move never completes (moving bits stay set); Elliptec: `GS09`
+    Error,              ///< APT: MGMSG_HW_RICHRESPONSE; Elliptec: `GS02` (mechanical time out)
+    DisconnectMidMove,  ///< the device hangs up halfway through the move
+};
+/// Parses "apt" | "elliptec" and "none" | "no-reply" | "busy" | "error" | "disconnect-mid-move".
+std::optional<SimProtocol> parse_sim_protocol(const std::string& text);
+std::optional<SimFault> parse_sim_fault(const std::string& text);
+
+struct StageSimulatorOptions {
+    SimProtocol protocol = SimProtocol::Apt;
+    SimFault fault = SimFault::None;
+    int fault_on_move = 1;        ///< the 1-based absolute move at which the fault starts
+    double deg_per_s = 10.0;      ///< K10CR1 top speed is about 10°/s; ELL14 several hundred °/s
+    double start_deg = 37.5;      ///< position at power-up (unknown to the host until homed)
+    char elliptec_address = '0';
+    std::chrono::milliseconds latency{5};  ///< reply latency of immediate requests
+};
+
+/// The protocol state machine, independent of I/O: bytes in, bytes out, at given times.
+class StageSimulator {
+public:
+    using Clock = std::chrono::steady_clock;
+    explicit StageSimulator(StageSimulatorOptions options);
+
+    /// Consumes bytes from the host; returns bytes to send back now.
+    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now);
+    /// Bytes whose time has come (move completions).
+    std::vector<std::uint8_t> poll(Clock::time_point now);
+    /// Whether the device should hang up now (disconnect fault).
+    bool hang_up(Clock::time_point now) const;
+    /// Current angle in degrees (interpolated during a move).
+    double angle_deg(Clock::time_point now) const;
+
+private:
+    std::vector<std::uint8_t> receive_apt(Clock::time_point now);
+    std::vector<std::uint8_t> receive_elliptec(Clock::time_point now);
+    /// Starts a move to `target_deg`; returns whether the fault fires on this move.
+    bool start_move(double target_deg, bool homing, Clock::time_point now);
+    bool moving(Clock::time_point now) const;
+
+    StageSimulatorOptions m_options;
+    std::vector<std::uint8_t> m_rx;
+    double m_from_deg, m_to_deg;
+    Clock::time_point m_move_start{}, m_move_end{};
+    bool m_homing = false, m_homed = false, m_silent = false, m_stuck = false;
+    std::optional<Clock::time_point> m_hang_up_at;
+    int m_moves = 0;
+    struct Pending {
+        Clock::time_point due;
+        std::vector<std::uint8_t> bytes;
+    };
+    std::vector<Pending> m_pending;
+};
+
+/// A pseudo-terminal: the simulator owns the master side; a driver opens `slave_path`.
+class PseudoTerminal {
+public:
+    static Result<PseudoTerminal> open();
+    PseudoTerminal(PseudoTerminal&&) noexcept;
+    PseudoTerminal& operator=(PseudoTerminal&&) noexcept;
+    ~PseudoTerminal();
+    int master_fd() const { return m_master; }
+    const std::string& slave_path() const { return m_slave_path; }
+    /// Closes both sides held here: the driver's next read sees the hang-up.
+    void hang_up();
+
+private:
+    PseudoTerminal(int master, int slave, std::string path);
+    int m_master = -1;
+    int m_slave_keepalive = -1;  ///< keeps the slave open so the master never reads EIO between clients
+    std::string m_slave_path;
+};
+
+/// Serves `simulator` on `pty` until `stop` is set or the simulator hangs up.
+void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty, const std::atomic<bool>& stop);
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,161 @@
+#include "tirpol/acquisition/capture_plan.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "tirpol/acquisition/angles.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::acquisition {
+
+namespace {
+
+/// YAML → JSON for free-form metadata: numbers stay numbers, true/false stay booleans.
+nlohmann::json yaml_to_json(const ConfigNode& node) {
+    if (node.is_map()) {
+        nlohmann::json j = nlohmann::json::object();
+        for (const auto& key : node.keys()) j[key] = yaml_to_json(node.at(key));
+        return j;
+    }
+    if (node.is_sequence()) {
+        nlohmann::json j = nlohmann::json::array();
+        for (const auto& e : node.elements()) j.push_back(yaml_to_json(e));
+        return j;
+    }
+    if (node.is_null()) return nullptr;
+    const auto text = node.as<std::string>();
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v)) return v;
+    } catch (const std::exception&) {
+    }
+    if (text == "true") return true;
+    if (text == "false") return false;
+    return text;
+}
+
+int positive_int(const ConfigNode& root, std::string_view key, int fallback) {
+    const int v = root.get_or<int>(key, fallback);
+    if (v < 1) root.at(key).fail(fmt::format("expected an integer ≥ 1, got {}", v));
+    return v;
+}
+
+double positive_seconds(const ConfigNode& root, std::string_view key, double fallback, bool allow_zero) {
+    if (!root.has(key)) return fallback;
+    const double v = root.get<double>(key);
+    if (!(allow_zero ? v >= 0.0 : v > 0.0) || !std::isfinite(v))
+        root.at(key).fail(fmt::format("expected a duration in seconds {} 0, got {}", allow_zero ? "≥" : ">", v));
+    return v;
+}
+
+std::vector<double> temperatures(const ConfigNode& ref) {
+    if (ref.has("temperatures_k") && ref.has("temperatures_c"))
+        ref.fail("give temperatures_k or temperatures_c, not both");
+    std::vector<double> out;
+    if (ref.has("temperatures_k")) out = ref.get<std::vector<double>>("temperatures_k");
+    if (ref.has("temperatures_c"))
+        for (double c : ref.get<std::vector<double>>("temperatures_c")) out.push_back(c + 273.15);
+    for (double t : out)
+        if (!(t > 0.0 && t < 2000.0)) ref.fail(fmt::format("temperature {} K is not a blackbody temperature (0–2000 K)", t));
+    return out;
+}
+
+}  // namespace
+
+CapturePlan CapturePlan::parse(const ConfigNode& root) {
+    root.check_keys({"angles_deg", "frames_per_angle", "settle_s", "repeats", "angle_tolerance_deg", "move_timeout_s",
+                     "home_timeout_s", "frame_timeout_s", "references", "metadata"});
+    CapturePlan plan;
+    if (root.has("angles_deg")) {
+        plan.angles_deg = root.get<std::vector<double>>("angles_deg");
+        if (plan.angles_deg.empty()) root.at("angles_deg").fail("expected at least one angle");
+        for (double& a : plan.angles_deg) {
+            if (!std::isfinite(a) || a < -360.0 || a > 720.0) root.at("angles_deg").fail(fmt::format("angle {} is not in degrees", a));
+            a = wrap_degrees(a);
+        }
+        for (std::size_t i = 0; i < plan.angles_deg.size(); ++i)
+            for (std::size_t k = 0; k < i; ++k)
+                if (std::abs(angle_difference_deg(plan.angles_deg[i], plan.angles_deg[k])) < 1e-9)
+                    root.at("angles_deg").fail(fmt::format("angle {}° is listed twice", plan.angles_deg[i]));
+    }
+    plan.frames_per_angle = positive_int(root, "frames_per_angle", plan.frames_per_angle);
+    plan.repeats = positive_int(root, "repeats", plan.repeats);
+    plan.settle_s = positive_seconds(root, "settle_s", plan.settle_s, true);
+    plan.move_timeout_s = positive_seconds(root, "move_timeout_s", plan.move_timeout_s, false);
+    plan.home_timeout_s = positive_seconds(root, "home_timeout_s", plan.home_timeout_s, false);
+    plan.frame_timeout_s = positive_seconds(root, "frame_timeout_s", plan.frame_timeout_s, false);
+    if (root.has("angle_tolerance_deg")) plan.angle_tolerance_deg = root.get_in_range("angle_tolerance_deg", 1e-6, 10.0);
+    if (auto refs = root.find("references")) {
+        for (const auto& ref : refs->elements()) {
+            ref.check_keys({"kind", "temperatures_k", "temperatures_c", "frames", "angle_deg"});
+            ReferenceSpec spec;
+            const auto kind_text = ref.get<std::string>("kind");
+            const auto kind = record_kind_from_string(kind_text);
+            if (!kind || *kind == RecordKind::Polarizer) ref.at("kind").fail(fmt::format("expected blackbody or shutter, got '{}'", kind_text));
+            spec.kind = *kind;
+            spec.temperatures_k = temperatures(ref);
+            if (spec.kind == RecordKind::Blackbody && spec.temperatures_k.empty())
+                ref.fail("a blackbody reference needs temperatures_k (or temperatures_c)");
+            spec.frames = positive_int(ref, "frames", spec.frames);
+            spec.angle_deg = wrap_degrees(ref.get_or<double>("angle_deg", 0.0));
+            plan.references.push_back(std::move(spec));
+        }
+    }
+    if (auto meta = root.find("metadata")) {
+        if (!meta->is_map()) meta->fail("expected a mapping of free-form fields");
+        plan.metadata = yaml_to_json(*meta);
+    }
+    return plan;
+}
+
+CapturePlan CapturePlan::load(const std::filesystem::path& path) { return parse(ConfigNode::load_file(path)); }
+
+nlohmann::json CapturePlan::to_json() const {
+    nlohmann::json refs = nlohmann::json::array();
+    for (const auto& r : references)
+        refs.push_back({{"kind", tirpol::to_string(r.kind)}, {"temperatures_k", r.temperatures_k}, {"frames", r.frames}, {"angle_deg", r.angle_deg}});
+    return {{"angles_deg", angles_deg},         {"frames_per_angle", frames_per_angle},
+            {"settle_s", settle_s},             {"repeats", repeats},
+            {"angle_tolerance_deg", angle_tolerance_deg}, {"move_timeout_s", move_timeout_s},
+            {"home_timeout_s", home_timeout_s}, {"frame_timeout_s", frame_timeout_s},
+            {"references", refs}};
+}
+
+std::vector<CaptureStep> plan_steps(const CapturePlan& plan) {
+    std::vector<CaptureStep> steps;
+    auto add = [&](CaptureStep s, const std::string& stem) {
+        s.index = steps.size();
+        s.file = session_frame_file(fmt::format("s{:03}_{}", s.index, stem));
+        steps.push_back(std::move(s));
+    };
+    for (const auto& ref : plan.references) {
+        const std::vector<std::optional<double>> temps = ref.temperatures_k.empty()
+                                                             ? std::vector<std::optional<double>>{std::nullopt}
+                                                             : std::vector<std::optional<double>>(ref.temperatures_k.begin(), ref.temperatures_k.end());
+        for (const auto& t : temps) {
+            CaptureStep s;
+            s.kind = ref.kind;
+            s.angle_deg = ref.angle_deg;
+            s.temperature_k = t;
+            s.frames = ref.frames;
+            const std::string what = ref.kind == RecordKind::Blackbody ? "bb" : "shutter";
+            s.label = t ? fmt::format("{} at {:.2f} K", tirpol::to_string(ref.kind), *t) : std::string(tirpol::to_string(ref.kind));
+            add(s, t ? fmt::format("{}_{:.2f}K", what, *t) : what);
+        }
+    }
+    for (int r = 0; r < plan.repeats; ++r)
+        for (double a : plan.angles_deg) {
+            CaptureStep s;
+            s.kind = RecordKind::Polarizer;
+            s.angle_deg = a;
+            s.repeat = r;
+            s.frames = plan.frames_per_angle;
+            s.label = plan.repeats > 1 ? fmt::format("polarizer {:g}° (repeat {}/{})", a, r + 1, plan.repeats) : fmt::format("polarizer {:g}°", a);
+            add(s, fmt::format("pol_{:07.3f}deg_r{}", a, r));
+        }
+    return steps;
+}
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,156 @@
+#include "tirpol/acquisition/elliptec_stage.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <thread>
+
+#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/elliptec_protocol.h"
+
+namespace tirpol::acquisition {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace ell = elliptec;
+
+class ElliptecStage final : public Stage {
+public:
+    ElliptecStage(std::unique_ptr<BytePort> port, std::string uri, ElliptecStageOptions options)
+        : m_port(std::move(port)), m_options(options) {
+        m_info.uri = std::move(uri);
+        m_info.vendor = "Thorlabs";
+    }
+
+    Status initialise() {
+        if (auto s = m_port->discard_input(); !s) return s;
+        auto reply = transact(ell::info_request(m_options.address), Clock::now() + m_options.reply_timeout, "IN");
+        if (!reply) return reply.error();
+        const auto info = ell::parse_info(reply.value());
+        if (!info)
+            return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed IN reply \"{}\" (expected 30 characters of fields after IN)",
+                                                                      m_info.uri, reply.value().data)};
+        if (info->travel != 360 || info->pulses == 0)
+            return DeviceError{DeviceErrorCode::NotSupported,
+                               fmt::format("{}: ELL{} reports a travel of {} units with {} pulses; only rotary mounts (travel 360°) drive a polarizer",
+                                           m_info.uri, info->motor_type, info->travel, info->pulses)};
+        m_info.model = fmt::format("ELL{}", info->motor_type);
+        m_info.serial = info->serial;
+        m_info.firmware = std::to_string(info->firmware);
+        m_info.counts_per_degree = info->pulses_per_unit();
+        return ok_status();
+    }
+
+    StageInfo info() const override { return m_info; }
+    bool is_homed() const override { return m_homed; }
+
+    Status home(std::chrono::milliseconds timeout) override {
+        auto reply = transact(ell::home(m_options.address, true), Clock::now() + timeout, "PO");
+        if (!reply) return reply.error();
+        m_homed = true;
+        return ok_status();
+    }
+
+    Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
+        if (!std::isfinite(angle_deg))
+            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: angle {} is not a number", m_info.uri, angle_deg)};
+        if (!m_homed)
+            return DeviceError{DeviceErrorCode::InvalidArgument,
+                               fmt::format("{}: not homed; home the stage before the first absolute move", m_info.uri)};
+        const auto pulses = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
+        auto reply = transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO");
+        if (!reply) return reply.error();
+        return ok_status();
+    }
+
+    Result<double> position_deg() override {
+        auto reply = transact(ell::get_position(m_options.address), Clock::now() + m_options.reply_timeout, "PO");
+        if (!reply) return reply.error();
+        const auto pulses = ell::decode_position(reply.value().data);
+        if (!pulses)
+            return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed PO reply \"{}\" (expected 8 hex digits)", m_info.uri, reply.value().data)};
+        return wrap_degrees(*pulses / m_info.counts_per_degree);
+    }
+
+private:
+    /// Sends `command` and waits for the reply `expected` from our address. A GS reply with a
+    /// non-zero status is a fault, except Busy, which is waited out (re-sending) until the deadline.
+    Result<ell::Reply> transact(const std::string& command, Clock::time_point deadline, const char* expected) {
+        bool busy_seen = false;
+        for (;;) {
+            const std::vector<std::uint8_t> bytes(command.begin(), command.end());
+            if (auto s = m_port->write(bytes, m_options.reply_timeout); !s) return s.error();
+            auto reply = read_reply(deadline, command);
+            if (!reply) {
+                DeviceError e = reply.error();
+                if (busy_seen && e.code == DeviceErrorCode::Timeout) e.message += " (the module kept answering GS09 Busy)";
+                return e;
+            }
+            const ell::Reply& r = reply.value();
+            if (r.code == expected) return reply;
+            if (r.code == "GS") {
+                const auto status = ell::parse_status(r);
+                if (!status)
+                    return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed GS reply \"{}\"", m_info.uri, r.data)};
+                if (*status == ell::kOk) continue;  // acknowledged without the data reply: ask again
+                if (*status == ell::kBusy) {
+                    busy_seen = true;
+                    if (Clock::now() + std::chrono::milliseconds(50) >= deadline)
+                        return DeviceError{DeviceErrorCode::Timeout,
+                                           fmt::format("{}: '{}': the module stayed Busy (GS09) until the timeout", m_info.uri, command)};
+                    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+                    continue;
+                }
+                return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: '{}' failed: status {:02X}: {}", m_info.uri, command,
+                                                                             *status, ell::status_meaning(*status))};
+            }
+            return DeviceError{DeviceErrorCode::BadReply,
+                               fmt::format("{}: '{}': expected a {} reply, got \"{}{}\"", m_info.uri, command, expected, r.code, r.data)};
+        }
+    }
+
+    Result<ell::Reply> read_reply(Clock::time_point deadline, const std::string& command) {
+        for (;;) {
+            while (auto line = ell::take_line(m_rx)) {
+                const auto reply = ell::parse_reply(*line);
+                if (!reply) {
+                    spdlog::debug("{}: ignoring unparseable line \"{}\"", m_info.uri, *line);
+                    continue;
+                }
+                if (reply->address != m_options.address) continue;  // another module on the bus
+                return *reply;
+            }
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+            if (left.count() <= 0)
+                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply to '{}' in time", m_info.uri, command)};
+            auto bytes = m_port->read_some(left);
+            if (!bytes) {
+                DeviceError e = bytes.error();
+                e.message = e.code == DeviceErrorCode::Timeout ? fmt::format("{}: no reply to '{}' in time", m_info.uri, command)
+                                                               : fmt::format("{}: '{}': {}", m_info.uri, command, e.message);
+                return e;
+            }
+            m_rx.append(bytes.value().begin(), bytes.value().end());
+        }
+    }
+
+    std::unique_ptr<BytePort> m_port;
+    ElliptecStageOptions m_options;
+    StageInfo m_info;
+    bool m_homed = false;
+    std::string m_rx;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Stage>> open_elliptec_stage(std::unique_ptr<BytePort> port, std::string uri, const ElliptecStageOptions& options) {
+    if (!ell::valid_address(options.address))
+        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: address '{}' is not 0–9 or A–F", uri, options.address)};
+    auto stage = std::make_unique<ElliptecStage>(std::move(port), std::move(uri), options);
+    if (auto s = stage->initialise(); !s) return s.error();
+    return std::unique_ptr<Stage>(std::move(stage));
+}
+
+}  // namespace tirpol::acquisition

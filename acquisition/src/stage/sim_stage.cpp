@@ -1,0 +1,72 @@
+#include "tirpol/acquisition/sim_stage.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <thread>
+
+#include "tirpol/acquisition/angles.h"
+
+namespace tirpol::acquisition {
+
+namespace {
+
+class SimulatedStage final : public Stage {
+public:
+    SimulatedStage(std::string uri, SimulatedStageOptions options) : m_options(options), m_angle_deg(wrap_degrees(options.start_angle_deg)) {
+        m_info = {std::move(uri), "tirpol", "simulated rotation stage", "SIM-0001", "1.0", options.counts_per_degree};
+    }
+    StageInfo info() const override { return m_info; }
+    bool is_homed() const override { return m_homed; }
+
+    Status home(std::chrono::milliseconds timeout) override {
+        if (auto s = travel(0.0, timeout); !s) return s;
+        m_homed = true;
+        return ok_status();
+    }
+
+    Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
+        if (!std::isfinite(angle_deg))
+            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: angle {} is not a number", m_info.uri, angle_deg)};
+        if (!m_homed)
+            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: not homed; home the stage before the first absolute move", m_info.uri)};
+        ++m_moves;
+        if (m_options.fail_on_move && *m_options.fail_on_move == m_moves)
+            return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: injected fault on move {}", m_info.uri, m_moves)};
+        return travel(wrap_degrees(angle_deg), timeout);
+    }
+
+    Result<double> position_deg() override {
+        // Quantised to the stage's counts, as a real encoder reads back.
+        return wrap_degrees(std::round(m_angle_deg * m_options.counts_per_degree) / m_options.counts_per_degree);
+    }
+
+private:
+    Status travel(double target_deg, std::chrono::milliseconds timeout) {
+        if (m_options.deg_per_s > 0.0) {
+            const double seconds = std::abs(target_deg - m_angle_deg) / m_options.deg_per_s;
+            const auto needed = std::chrono::duration<double>(seconds);
+            if (needed > timeout) {
+                std::this_thread::sleep_for(timeout);
+                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: move needs {:.2f} s, timeout {} ms", m_info.uri, seconds, timeout.count())};
+            }
+            std::this_thread::sleep_for(needed);
+        }
+        m_angle_deg = target_deg;
+        return ok_status();
+    }
+
+    SimulatedStageOptions m_options;
+    StageInfo m_info;
+    double m_angle_deg;
+    bool m_homed = false;
+    int m_moves = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_simulated_stage(std::string uri, const SimulatedStageOptions& options) {
+    return std::make_unique<SimulatedStage>(std::move(uri), options);
+}
+
+}  // namespace tirpol::acquisition

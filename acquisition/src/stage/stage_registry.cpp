@@ -1,0 +1,148 @@
+#include "tirpol/acquisition/stage_registry.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <set>
+
+#include "tirpol/acquisition/apt_stage.h"
+#include "tirpol/acquisition/elliptec_stage.h"
+#include "tirpol/acquisition/ftdi_port.h"
+#include "tirpol/acquisition/serial_port.h"
+#include "tirpol/acquisition/sim_stage.h"
+
+namespace tirpol::acquisition {
+
+Result<StageUri> parse_stage_uri(const std::string& uri) {
+    const auto sep = uri.find("://");
+    if (sep == std::string::npos || sep == 0)
+        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("'{}': expected a device URI like scheme://path[?key=value]", uri)};
+    StageUri out;
+    out.scheme = uri.substr(0, sep);
+    std::string rest = uri.substr(sep + 3);
+    const auto q = rest.find('?');
+    out.path = rest.substr(0, q);
+    if (q != std::string::npos) {
+        std::string query = rest.substr(q + 1);
+        std::size_t start = 0;
+        while (start <= query.size()) {
+            const auto amp = query.find('&', start);
+            const std::string item = query.substr(start, amp == std::string::npos ? std::string::npos : amp - start);
+            if (!item.empty()) {
+                const auto eq = item.find('=');
+                if (eq == std::string::npos || eq == 0)
+                    return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("'{}': query item '{}' is not key=value", uri, item)};
+                out.query[item.substr(0, eq)] = item.substr(eq + 1);
+            }
+            if (amp == std::string::npos) break;
+            start = amp + 1;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+DeviceError bad(const std::string& uri, const std::string& what) { return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)}; }
+
+Result<double> number(const std::string& uri, const StageUri& u, const std::string& key, double fallback) {
+    auto it = u.query.find(key);
+    if (it == u.query.end()) return fallback;
+    double v = 0;
+    const auto* end = it->second.data() + it->second.size();
+    const auto r = std::from_chars(it->second.data(), end, v);
+    if (r.ec != std::errc() || r.ptr != end) return bad(uri, fmt::format("{}={}: expected a number", key, it->second));
+    return v;
+}
+
+Result<int> integer(const std::string& uri, const StageUri& u, const std::string& key, int fallback) {
+    auto it = u.query.find(key);
+    if (it == u.query.end()) return fallback;
+    int v = 0;
+    const std::string& s = it->second;
+    const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
+    const char* begin = s.data() + (hex ? 2 : 0);
+    const auto r = std::from_chars(begin, s.data() + s.size(), v, hex ? 16 : 10);
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return bad(uri, fmt::format("{}={}: expected an integer", key, s));
+    return v;
+}
+
+Status check_keys(const std::string& uri, const StageUri& u, const std::set<std::string>& allowed) {
+    for (const auto& [k, v] : u.query)
+        if (!allowed.count(k)) {
+            std::string list;
+            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+            return bad(uri, fmt::format("unknown option '{}' (known: {})", k, list));
+        }
+    return ok_status();
+}
+
+Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& u, bool usb) {
+    if (auto s = check_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
+    AptStageOptions options;
+    auto cpd = number(uri, u, "counts_per_degree", options.counts_per_degree);
+    auto channel = integer(uri, u, "channel", options.channel);
+    auto address = integer(uri, u, "address", options.address);
+    auto timeout = integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    if (!cpd) return cpd.error();
+    if (!channel) return channel.error();
+    if (!address) return address.error();
+    if (!timeout) return timeout.error();
+    if (channel.value() < 1 || channel.value() > 255 || address.value() < 0 || address.value() > 0x7F)
+        return bad(uri, "channel must be 1–255 and address 0–0x7F");
+    options.counts_per_degree = cpd.value();
+    options.channel = static_cast<std::uint8_t>(channel.value());
+    options.address = static_cast<std::uint8_t>(address.value());
+    options.reply_timeout = std::chrono::milliseconds(timeout.value());
+    const SerialSettings settings{115200, true};
+    auto port = usb ? open_ftdi_usb(u.path, settings) : open_serial_port(u.path, settings);
+    if (!port) return port.error();
+    return open_apt_stage(std::move(port.value()), uri, options);
+}
+
+Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const StageUri& u) {
+    if (auto s = check_keys(uri, u, {"address", "timeout_ms"}); !s) return s.error();
+    ElliptecStageOptions options;
+    auto it = u.query.find("address");
+    if (it != u.query.end()) {
+        if (it->second.size() != 1) return bad(uri, fmt::format("address={}: expected one hex digit 0–F", it->second));
+        options.address = static_cast<char>(std::toupper(static_cast<unsigned char>(it->second[0])));
+    }
+    auto timeout = integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    if (!timeout) return timeout.error();
+    options.reply_timeout = std::chrono::milliseconds(timeout.value());
+    auto port = open_serial_port(u.path, SerialSettings{9600, false});
+    if (!port) return port.error();
+    return open_elliptec_stage(std::move(port.value()), uri, options);
+}
+
+Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& u) {
+    if (auto s = check_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
+    SimulatedStageOptions options;
+    auto speed = number(uri, u, "deg_per_s", 0.0);
+    auto start = number(uri, u, "start_deg", 0.0);
+    auto fail = integer(uri, u, "fail_on_move", 0);
+    if (!speed) return speed.error();
+    if (!start) return start.error();
+    if (!fail) return fail.error();
+    if (speed.value() < 0.0) return bad(uri, "deg_per_s must be ≥ 0");
+    options.deg_per_s = speed.value();
+    options.start_angle_deg = start.value();
+    if (fail.value() > 0) options.fail_on_move = fail.value();
+    return make_simulated_stage(uri, options);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
+    auto parsed = parse_stage_uri(uri);
+    if (!parsed) return parsed.error();
+    const StageUri& u = parsed.value();
+    if (u.scheme == "thorlabs-apt") return open_apt(uri, u, false);
+    if (u.scheme == "thorlabs-apt+usb") return open_apt(uri, u, true);
+    if (u.scheme == "elliptec") return open_elliptec(uri, u);
+    if (u.scheme == "sim") return open_sim(uri, u);
+    return bad(uri, fmt::format("unknown stage type '{}' (expected thorlabs-apt, thorlabs-apt+usb, elliptec or sim)", u.scheme));
+}
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,311 @@
+#include "tirpol/acquisition/stage_simulator.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/apt_protocol.h"
+#include "tirpol/acquisition/elliptec_protocol.h"
+
+namespace tirpol::acquisition {
+
+std::optional<SimProtocol> parse_sim_protocol(const std::string& text) {
+    if (text == "apt") return SimProtocol::Apt;
+    if (text == "elliptec") return SimProtocol::Elliptec;
+    return std::nullopt;
+}
+
+std::optional<SimFault> parse_sim_fault(const std::string& text) {
+    if (text == "none") return SimFault::None;
+    if (text == "no-reply") return SimFault::NoReply;
+    if (text == "busy") return SimFault::Busy;
+    if (text == "error") return SimFault::Error;
+    if (text == "disconnect-mid-move") return SimFault::DisconnectMidMove;
+    return std::nullopt;
+}
+
+namespace {
+constexpr double kAptCountsPerDegree = apt::kK10cr1CountsPerDegree;
+// An ELL14 reports 143360 pulses (0x23000) over its 360° travel in its IN reply.
+constexpr std::uint32_t kEll14Pulses = 0x23000;
+constexpr double kEllPulsesPerDegree = kEll14Pulses / 360.0;
+
+std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
+}  // namespace
+
+StageSimulator::StageSimulator(StageSimulatorOptions options)
+    : m_options(options), m_from_deg(wrap_degrees(options.start_deg)), m_to_deg(m_from_deg) {}
+
+bool StageSimulator::moving(Clock::time_point now) const { return m_stuck || now < m_move_end; }
+
+double StageSimulator::angle_deg(Clock::time_point now) const {
+    if (!moving(now)) return m_to_deg;
+    const double total = std::chrono::duration<double>(m_move_end - m_move_start).count();
+    double f = total > 0 ? std::chrono::duration<double>(now - m_move_start).count() / total : 1.0;
+    if (m_stuck) f = 0.5;  // a busy stage that never arrives sits halfway
+    return m_from_deg + (m_to_deg - m_from_deg) * std::clamp(f, 0.0, 1.0);
+}
+
+bool StageSimulator::hang_up(Clock::time_point now) const { return m_hang_up_at && now >= *m_hang_up_at; }
+
+bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_point now) {
+    m_from_deg = angle_deg(now);
+    m_to_deg = target_deg;
+    m_homing = homing;
+    const double seconds = std::abs(m_to_deg - m_from_deg) / m_options.deg_per_s;
+    m_move_start = now;
+    m_move_end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)) + m_options.latency;
+    if (homing) return false;
+    ++m_moves;
+    return m_options.fault != SimFault::None && m_moves >= m_options.fault_on_move;
+}
+
+std::vector<std::uint8_t> StageSimulator::receive(std::span<const std::uint8_t> bytes, Clock::time_point now) {
+    m_rx.insert(m_rx.end(), bytes.begin(), bytes.end());
+    if (m_silent) {
+        m_rx.clear();
+        return {};
+    }
+    return m_options.protocol == SimProtocol::Apt ? receive_apt(now) : receive_elliptec(now);
+}
+
+std::vector<std::uint8_t> StageSimulator::poll(Clock::time_point now) {
+    std::vector<std::uint8_t> out;
+    auto due = std::stable_partition(m_pending.begin(), m_pending.end(), [&](const Pending& p) { return p.due > now; });
+    for (auto it = due; it != m_pending.end(); ++it) out.insert(out.end(), it->bytes.begin(), it->bytes.end());
+    m_pending.erase(due, m_pending.end());
+    if (!moving(now) && m_homing) {
+        m_homing = false;
+        m_homed = true;
+    }
+    return out;
+}
+
+std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
+    std::vector<std::uint8_t> out;
+    auto append = [&out](const std::vector<std::uint8_t>& b) { out.insert(out.end(), b.begin(), b.end()); };
+    auto status_now = [&](std::uint16_t id, double angle) {
+        apt::StatusUpdate s;
+        s.position = static_cast<std::int32_t>(std::llround(angle * kAptCountsPerDegree));
+        s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u);
+        if (moving(now)) s.status_bits |= m_homing ? apt::kHoming : (m_to_deg >= m_from_deg ? apt::kMovingCw : apt::kMovingCcw);
+        return apt::status_message(id, s);
+    };
+    for (;;) {
+        const auto d = apt::decode(m_rx);
+        if (d.status == apt::DecodeStatus::NeedMore) break;
+        m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(d.consumed));
+        if (d.status == apt::DecodeStatus::Invalid) continue;
+        const apt::Message& m = d.message;
+        switch (m.id) {
+            case apt::kHwReqInfo: {
+                apt::HardwareInfo info;
+                info.serial = 55000123;
+                info.model = "K10CR1";
+                info.type = 16;
+                info.firmware_major = 3;
+                info.firmware_interim = 0;
+                info.firmware_minor = 10;
+                info.notes = "tirpol-stage-sim K10CR1";
+                info.channels = 1;
+                append(apt::hw_get_info(info));
+                break;
+            }
+            case apt::kMotReqUStatusUpdate: append(status_now(apt::kMotGetUStatusUpdate, angle_deg(now))); break;
+            case apt::kMotMoveHome:
+                start_move(0.0, true, now);
+                m_pending.push_back({m_move_end, apt::encode_short(apt::kMotMoveHomed, 1, 0, apt::kHostAddress, apt::kUsbDeviceAddress)});
+                break;
+            case apt::kMotMoveAbsolute: {
+                if (m.data.size() != 6) break;
+                const auto counts = static_cast<std::int32_t>(m.data[2] | (m.data[3] << 8) | (m.data[4] << 16) | (m.data[5] << 24));
+                const double target = counts / kAptCountsPerDegree;
+                if (!start_move(target, false, now)) {
+                    apt::StatusUpdate s;
+                    s.position = counts;
+                    s.status_bits = apt::kChannelEnabled | apt::kHomed;
+                    m_pending.push_back({m_move_end, apt::status_message(apt::kMotMoveCompleted, s)});
+                    break;
+                }
+                switch (m_options.fault) {
+                    case SimFault::NoReply: m_silent = true; break;
+                    case SimFault::Busy: m_stuck = true; break;
+                    case SimFault::Error:
+                        m_to_deg = m_from_deg;
+                        m_move_end = now;
+                        append(apt::hw_rich_response({apt::kMotMoveAbsolute, 0x0010, "simulated motion error: position error limit exceeded"}));
+                        break;
+                    case SimFault::DisconnectMidMove: m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2; break;
+                    case SimFault::None: break;
+                }
+                break;
+            }
+            default: break;  // NO_FLASH_PROGRAMMING, SET_CHANENABLESTATE, IDENTIFY: no reply
+        }
+        if (m_silent) break;
+    }
+    return out;
+}
+
+std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now) {
+    std::vector<std::uint8_t> out;
+    const char a = m_options.elliptec_address;
+    auto reply = [&](const std::string& code, const std::string& data) {
+        const std::string line = std::string(1, a) + code + data + "\r\n";
+        return bytes_of(line);
+    };
+    auto position = [&](double angle) { return elliptec::encode_position(static_cast<std::int32_t>(std::llround(angle * kEllPulsesPerDegree))); };
+    auto append = [&out](const std::vector<std::uint8_t>& b) { out.insert(out.end(), b.begin(), b.end()); };
+    for (;;) {
+        while (!m_rx.empty() && (m_rx.front() == '\r' || m_rx.front() == '\n')) m_rx.erase(m_rx.begin());
+        if (m_rx.size() < 3) break;
+        const std::string head(m_rx.begin(), m_rx.begin() + 3);
+        const std::string cmd = head.substr(1);
+        const std::size_t data_len = cmd == "ma" ? 8 : cmd == "ho" ? 1 : 0;
+        if (m_rx.size() < 3 + data_len) break;
+        const std::string data(m_rx.begin() + 3, m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
+        m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
+        if (head[0] != a) continue;  // addressed to another module
+        if (cmd == "in") {
+            elliptec::DeviceInfo info;
+            info.motor_type = 14;
+            info.serial = "11400123";
+            info.year = "2023";
+            info.firmware = 0x17;
+            info.hardware_release = 1;
+            info.travel = 360;
+            info.pulses = kEll14Pulses;
+            append(reply("IN", elliptec::encode_info(info)));
+        } else if (cmd == "gp") {
+            append(reply("PO", position(angle_deg(now))));
+        } else if (cmd == "gs") {
+            append(reply("GS", moving(now) ? "09" : "00"));
+        } else if (cmd == "ho") {
+            if (moving(now)) {
+                append(reply("GS", "09"));
+                continue;
+            }
+            start_move(0.0, true, now);
+            m_pending.push_back({m_move_end, reply("PO", position(0.0))});
+        } else if (cmd == "ma") {
+            const auto pulses = elliptec::decode_position(data);
+            if (!pulses) {
+                append(reply("GS", "03"));
+                continue;
+            }
+            if (moving(now)) {
+                append(reply("GS", "09"));
+                continue;
+            }
+            const double target = *pulses / kEllPulsesPerDegree;
+            if (!start_move(target, false, now)) {
+                m_pending.push_back({m_move_end, reply("PO", data)});
+                continue;
+            }
+            switch (m_options.fault) {
+                case SimFault::NoReply: m_silent = true; break;
+                case SimFault::Busy:
+                    m_move_end = now;
+                    m_to_deg = m_from_deg;
+                    m_moves = m_options.fault_on_move - 1;  // every retry is the faulty move again
+                    append(reply("GS", "09"));
+                    break;
+                case SimFault::Error:
+                    m_move_end = now;
+                    m_to_deg = m_from_deg;
+                    append(reply("GS", fmt::format("{:02X}", static_cast<int>(elliptec::kMechanicalTimeout))));
+                    break;
+                case SimFault::DisconnectMidMove: m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2; break;
+                case SimFault::None: break;
+            }
+        } else {
+            append(reply("GS", "03"));  // command error or not supported
+        }
+        if (m_silent) break;
+    }
+    return out;
+}
+
+// ---- pseudo-terminal ----------------------------------------------------------------------------
+
+PseudoTerminal::PseudoTerminal(int master, int slave, std::string path) : m_master(master), m_slave_keepalive(slave), m_slave_path(std::move(path)) {}
+PseudoTerminal::PseudoTerminal(PseudoTerminal&& o) noexcept
+    : m_master(std::exchange(o.m_master, -1)), m_slave_keepalive(std::exchange(o.m_slave_keepalive, -1)), m_slave_path(std::move(o.m_slave_path)) {}
+PseudoTerminal& PseudoTerminal::operator=(PseudoTerminal&& o) noexcept {
+    if (this != &o) {
+        hang_up();
+        m_master = std::exchange(o.m_master, -1);
+        m_slave_keepalive = std::exchange(o.m_slave_keepalive, -1);
+        m_slave_path = std::move(o.m_slave_path);
+    }
+    return *this;
+}
+PseudoTerminal::~PseudoTerminal() { hang_up(); }
+
+void PseudoTerminal::hang_up() {
+    if (m_slave_keepalive >= 0) ::close(m_slave_keepalive);
+    if (m_master >= 0) ::close(m_master);
+    m_slave_keepalive = m_master = -1;
+}
+
+Result<PseudoTerminal> PseudoTerminal::open() {
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (master < 0) return DeviceError{DeviceErrorCode::IoError, fmt::format("posix_openpt failed: {}", std::strerror(errno))};
+    char name[128];
+    if (::grantpt(master) != 0 || ::unlockpt(master) != 0 || ::ptsname_r(master, name, sizeof name) != 0) {
+        const int err = errno;
+        ::close(master);
+        return DeviceError{DeviceErrorCode::IoError, fmt::format("setting up the pseudo-terminal failed: {}", std::strerror(err))};
+    }
+    const int slave = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (slave < 0) {
+        const int err = errno;
+        ::close(master);
+        return DeviceError{DeviceErrorCode::IoError, fmt::format("{}: cannot open: {}", name, std::strerror(err))};
+    }
+    // Raw from the start: no echo or line editing before the driver configures the port.
+    termios tio{};
+    ::tcgetattr(slave, &tio);
+    ::cfmakeraw(&tio);
+    ::tcsetattr(slave, TCSANOW, &tio);
+    ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+    return PseudoTerminal(master, slave, name);
+}
+
+void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty, const std::atomic<bool>& stop) {
+    auto write_all = [&](const std::vector<std::uint8_t>& bytes) {
+        std::size_t done = 0;
+        while (done < bytes.size()) {
+            const ssize_t n = ::write(pty.master_fd(), bytes.data() + done, bytes.size() - done);
+            if (n > 0) done += static_cast<std::size_t>(n);
+            else if (n < 0 && errno != EAGAIN && errno != EINTR) return;
+            else ::usleep(1000);
+        }
+    };
+    while (!stop.load()) {
+        const auto now = StageSimulator::Clock::now();
+        if (simulator.hang_up(now)) {
+            pty.hang_up();
+            return;
+        }
+        write_all(simulator.poll(now));
+        pollfd p{pty.master_fd(), POLLIN, 0};
+        if (::poll(&p, 1, 2) > 0 && (p.revents & POLLIN)) {
+            std::uint8_t buf[256];
+            const ssize_t n = ::read(pty.master_fd(), buf, sizeof buf);
+            if (n > 0) write_all(simulator.receive(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)), StageSimulator::Clock::now()));
+        }
+    }
+}
+
+}  // namespace tirpol::acquisition

@@ -1,0 +1,104 @@
+// tirpol-stage-sim: a Thorlabs APT or Elliptec rotation stage on a pseudo-terminal, for tests and
+// for trying tirpol without hardware. Prints the device path on the first line of stdout.
+//
+//   tirpol-stage-sim --protocol apt|elliptec [--link PATH] [--fault no-reply|busy|error|disconnect-mid-move]
+//                    [--fault-on-move N] [--move-deg-per-s V] [--address A]
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "tirpol/acquisition/stage_simulator.h"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+
+[[noreturn]] void usage(const char* message) {
+    std::fprintf(stderr,
+                 "tirpol-stage-sim: %s\n"
+                 "usage: tirpol-stage-sim --protocol apt|elliptec [--link PATH]\n"
+                 "       [--fault none|no-reply|busy|error|disconnect-mid-move] [--fault-on-move N]\n"
+                 "       [--move-deg-per-s V] [--address 0-F]\n",
+                 message);
+    std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace tirpol::acquisition;
+    StageSimulatorOptions options;
+    bool have_protocol = false, speed_given = false;
+    std::string link;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(("missing value after " + arg).c_str());
+            return argv[++i];
+        };
+        if (arg == "--protocol") {
+            const auto p = parse_sim_protocol(value());
+            if (!p) usage("--protocol: expected apt or elliptec");
+            options.protocol = *p;
+            have_protocol = true;
+        } else if (arg == "--fault") {
+            const auto f = parse_sim_fault(value());
+            if (!f) usage("--fault: expected none, no-reply, busy, error or disconnect-mid-move");
+            options.fault = *f;
+        } else if (arg == "--fault-on-move") {
+            options.fault_on_move = std::atoi(value().c_str());
+            if (options.fault_on_move < 1) usage("--fault-on-move: expected an integer ≥ 1");
+        } else if (arg == "--move-deg-per-s") {
+            options.deg_per_s = std::atof(value().c_str());
+            if (!(options.deg_per_s > 0)) usage("--move-deg-per-s: expected a positive speed");
+            speed_given = true;
+        } else if (arg == "--address") {
+            const std::string a = value();
+            if (a.size() != 1) usage("--address: expected one hex digit");
+            options.elliptec_address = a[0];
+        } else if (arg == "--link") {
+            link = value();
+        } else if (arg == "-h" || arg == "--help") {
+            usage("help");
+        } else {
+            usage(("unknown argument " + arg).c_str());
+        }
+    }
+    if (!have_protocol) usage("--protocol is required");
+    // Realistic defaults: a K10CR1 turns at up to 10°/s; an ELL14 about 360°/s for short moves.
+    if (!speed_given) options.deg_per_s = options.protocol == SimProtocol::Apt ? 10.0 : 360.0;
+
+    auto pty = PseudoTerminal::open();
+    if (!pty) {
+        std::fprintf(stderr, "tirpol-stage-sim: %s\n", pty.error().message.c_str());
+        return 1;
+    }
+    if (!link.empty()) {
+        std::error_code ec;
+        std::filesystem::remove(link, ec);
+        std::filesystem::create_symlink(pty.value().slave_path(), link, ec);
+        if (ec) {
+            std::fprintf(stderr, "tirpol-stage-sim: cannot link %s: %s\n", link.c_str(), ec.message().c_str());
+            return 1;
+        }
+    }
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    std::printf("%s\n", pty.value().slave_path().c_str());
+    std::fflush(stdout);
+
+    StageSimulator simulator(options);
+    serve_stage_simulator(simulator, pty.value(), g_stop);
+    if (!link.empty()) {
+        std::error_code ec;
+        std::filesystem::remove(link, ec);
+    }
+    return 0;
+}

@@ -1,0 +1,105 @@
+// `tirpol acquire PLAN.yaml --camera URI --stage URI -o DIR [--resume] [--non-interactive]`:
+// runs a capture plan into a session directory (docs/acquisition-stages.md, docs/session-format.md).
+// Exit codes: 0 session complete; 1 an error (bad plan or URI, device fault, interruption — the
+// message says how many steps are recorded; continue with --resume); 2 bad command-line usage.
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli.h"
+#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::cli {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+/// First Ctrl-C: stop after the current frame. A second one ends the process at once, which is
+/// safe too: every session write is atomic.
+extern "C" void on_interrupt(int sig) {
+    if (g_interrupted.exchange(true)) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+}
+
+struct AcquireArgs {
+    std::string plan, camera, stage, output;
+    bool resume = false, non_interactive = false;
+};
+
+bool ask_operator(const std::string& instruction) {
+    std::fprintf(stderr, "\n>>> %s, then press Enter (Ctrl-D to stop): ", instruction.c_str());
+    std::fflush(stderr);
+    std::string line;
+    return static_cast<bool>(std::getline(std::cin, line));
+}
+
+void run_acquire(const AcquireArgs& a) {
+    using namespace acquisition;
+    const CapturePlan plan = CapturePlan::load(a.plan);
+    const std::filesystem::path dir = a.output;
+    if (a.resume && !std::filesystem::exists(dir / kSessionManifestName))
+        fail("{}: no session to resume here (no {}); leave out --resume to start one", dir.string(), kSessionManifestName);
+
+    // Handlers first, so an interruption at any point after this leaves through the same clean path.
+    g_interrupted = false;
+    auto previous_int = std::signal(SIGINT, on_interrupt);
+    auto previous_term = std::signal(SIGTERM, on_interrupt);
+    struct RestoreSignals {
+        decltype(previous_int) i, t;
+        ~RestoreSignals() {
+            std::signal(SIGINT, i);
+            std::signal(SIGTERM, t);
+        }
+    } restore{previous_int, previous_term};
+
+    auto camera = open_camera(a.camera).value_or_throw();
+    auto stage = open_stage(a.stage).value_or_throw();
+    const CameraInfo camera_info = camera->info();
+
+    SessionWriter session = a.resume ? SessionWriter::resume(dir)
+                                     : SessionWriter::create(dir, new_session_manifest(camera_info, stage->info(), plan));
+    if (a.resume) {
+        check_resumable(session.manifest(), camera_info, plan);
+        for (const auto& file : session.adopted_files())
+            std::fprintf(stderr, "tirpol acquire: recovered %s (written just before the interruption)\n", file.c_str());
+    }
+
+    CaptureOptions options;
+    if (!a.non_interactive) options.prompt = ask_operator;
+    options.interrupt = &g_interrupted;
+
+    const CaptureSummary s = run_capture(*camera, *stage, plan, session, options);
+    std::printf("session complete: %s\n", dir.c_str());
+    std::printf("  steps: %zu (%zu recorded now, %zu were already there)\n", s.steps_total, s.steps_recorded,
+                s.steps_already_recorded);
+    std::printf("  frames averaged now: %llu, dropped by the camera: %llu\n", static_cast<unsigned long long>(s.frames),
+                static_cast<unsigned long long>(s.dropped));
+}
+
+void register_acquire(CLI::App& app) {
+    auto args = std::make_shared<AcquireArgs>();
+    auto* cmd = app.add_subcommand("acquire", "Run a capture plan: polarizer angles × frames into a session directory");
+    cmd->add_option("plan", args->plan, "Capture plan (YAML; docs/acquisition-stages.md)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--camera", args->camera, "Camera URI (aravis://ID, v4l2:///dev/videoN, sim://...)")->required();
+    cmd->add_option("--stage", args->stage, "Stage URI (thorlabs-apt:///dev/ttyUSB0, thorlabs-apt+usb://SERIAL, elliptec:///dev/ttyUSB0?address=0, sim://)")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "Session directory (new and empty, or an interrupted session with --resume)")->required();
+    cmd->add_flag("--resume", args->resume, "Continue an interrupted session: skips recorded steps, keeps everything written");
+    cmd->add_flag("--non-interactive", args->non_interactive, "Do not prompt before reference (blackbody/shutter) frames");
+    cmd->callback([args] { run_acquire(*args); });
+}
+
+}  // namespace
+
+TIRPOL_REGISTER_COMMAND(40, register_acquire);
+
+}  // namespace tirpol::cli
