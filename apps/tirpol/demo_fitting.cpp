@@ -9,6 +9,7 @@
 #include <random>
 
 #include "demo_steps.h"
+#include "tirpol/core/utc_time.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/fit_output.h"
@@ -74,7 +75,7 @@ void demo_fitting(const std::filesystem::path& out_dir) {
 
     const auto yaml = dir / "flat_black_paint_fitted.yaml";
     const auto png = dir / "flat_black_paint_fit.png";
-    const fitting::FitProvenance provenance{{csv.string()}, fitting::utc_now_iso8601(), "tirpol demo (fitting step)"};
+    const fitting::FitProvenance provenance{{csv.string()}, utc_now_iso8601(), "tirpol demo (fitting step)"};
     write_file_atomic(yaml, fitting::fitted_material_yaml("flat_black_paint_fitted", result, provenance));
     write_file_atomic(dir / "flat_black_paint_fit.json",
                       fitting::fit_report_json(result, problem.datasets(), provenance).dump(2));

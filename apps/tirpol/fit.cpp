@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "tirpol/core/utc_time.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/fit_output.h"
@@ -111,7 +112,7 @@ void run_fit(const FitArgs& a) {
     const fitting::MicrofacetFitProblem problem(datasets, options);
     const fitting::MicrofacetFitResult result = problem.solve();
 
-    const fitting::FitProvenance provenance{a.data, fitting::utc_now_iso8601(), command_line(a)};
+    const fitting::FitProvenance provenance{a.data, utc_now_iso8601(), command_line(a)};
     const std::string name =
         a.name.empty() ? std::filesystem::path(a.output).stem().string() : a.name;
     write_file_atomic(a.output, fitting::fitted_material_yaml(name, result, provenance));

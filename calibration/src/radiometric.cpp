@@ -1,3 +1,4 @@
+#include "tirpol/core/utc_time.h"
 #include "tirpol/calibration/radiometric.h"
 
 #include <Eigen/Dense>
@@ -59,7 +60,7 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
         cal.rsr_wavelength_um = band.rsr()->wavelengths_um();
         cal.rsr_response = band.rsr()->responses();
     }
-    cal.created_utc = detail::utc_now_iso8601();
+    cal.created_utc = utc_now_iso8601();
     cal.bad.assign(n, 0.0f);
 
     // Saturation: a few saturated pixels are a bad-pixel class; a frame full of them means the

@@ -1,3 +1,4 @@
+#include "tirpol/core/utc_time.h"
 #include "tirpol/calibration/session_calibration.h"
 
 #include <algorithm>
@@ -148,7 +149,7 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     PolarimetricCalibration out;
     out.wire_grid = fit_wire_grid(bb, radiometric.width, radiometric.height, band);
     out.session = dir.string();
-    out.created_utc = detail::utc_now_iso8601();
+    out.created_utc = utc_now_iso8601();
     std::vector<double> angles;
     for (const auto& p : out.wire_grid.positions) angles.push_back(p.angle_deg);
 

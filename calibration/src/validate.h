@@ -24,7 +24,4 @@ inline void check_plane(const std::vector<float>& plane, std::size_t expected, c
              first % static_cast<std::size_t>(width), first / static_cast<std::size_t>(width));
 }
 
-/// Current UTC time as ISO 8601, e.g. "2026-11-22T16:30:00Z".
-std::string utc_now_iso8601();
-
 }  // namespace tirpol::calibration::detail

@@ -36,15 +36,6 @@ std::optional<RecordKind> record_kind_from_string(const std::string& text) {
     return std::nullopt;
 }
 
-std::string utc_now_iso8601() {
-    const std::time_t now = std::time(nullptr);
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buf;
-}
-
 std::string session_frame_file(const std::string& stem) {
     if (stem.empty() || stem.front() == '.')
         fail("session frame name '{}': expected a non-empty name not starting with '.'", stem);

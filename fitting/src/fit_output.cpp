@@ -34,15 +34,6 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 
 }  // namespace
 
-std::string utc_now_iso8601() {
-    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char buffer[32];
-    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buffer;
-}
-
 std::string fitted_material_yaml(const std::string& name, const MicrofacetFitResult& r,
                                  const FitProvenance& provenance) {
     if (name.empty()) fail("fitted material: the material needs a name");

@@ -2,7 +2,6 @@
 // core's SessionWriter: exit codes, messages that name the problem, and the physics of the outputs.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
@@ -20,22 +20,8 @@ namespace {
 
 using namespace tirpol;
 
-struct CliRun {
-    int exit_code;
-    std::string out;
-};
-
-CliRun run(const std::string& args) {
-    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tirpol::test::CliRun;
+using tirpol::test::run_cli;
 
 constexpr int kW = 16, kH = 12;
 constexpr double kGain = 100.0, kOffset = 5000.0;  // counts = offset + gain·L, noiseless
@@ -81,14 +67,14 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
     const Band band(8.0, 14.0);
     write_lab(dir / "lab", {283.15, 303.15, 323.15});
     const auto cal = (dir / "cal.exr").string();
-    CliRun r = run("calibrate radiometric " + (dir / "lab").string() + " -o " + cal);
+    CliRun r = run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + cal);
     ASSERT_EQ(r.exit_code, 0) << r.out;
 
     // A blackbody frame at 300 K reads 300 K.
     const auto t_out = (dir / "t.exr").string();
     Image bb = frame(band.radiance(300.0));
     write_exr(dir / "bb300.exr", bb);
-    r = run("temperature " + (dir / "bb300.exr").string() + " --calibration " + cal + " -o " + t_out);
+    r = run_cli("temperature " + (dir / "bb300.exr").string() + " --calibration " + cal + " -o " + t_out);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NEAR(read_exr(t_out).at("temperature_k", 3, 4), 300.0, 1e-3);
 
@@ -103,7 +89,7 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
         w.mark_complete();
     }
     const auto stokes = (dir / "stokes.exr").string();
-    r = run("reduce " + (dir / "scene").string() + " --calibration " + cal + " -o " + stokes);
+    r = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " -o " + stokes);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const Image s = read_exr(stokes);
     EXPECT_NEAR(s.at("S0", 5, 5), s0, 1e-3);
@@ -117,7 +103,7 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
     // L_BB must exceed L_dw — a warm target gives a clear error, not a silent number.
     test::write_text(dir / "rois.yaml", "reflector: {rect: [0, 0, 4, 4]}\ntargets:\n"
                                         "  - {name: t, rect: [8, 4, 4, 4], view_angle_deg: 30, temperature_k: 250}\n");
-    r = run("extract-emissivity " + stokes + " " + (dir / "rois.yaml").string() + " -o " + (dir / "e.csv").string());
+    r = run_cli("extract-emissivity " + stokes + " " + (dir / "rois.yaml").string() + " -o " + (dir / "e.csv").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("does not exceed the downwelled"), std::string::npos) << r.out;
 }
@@ -128,11 +114,11 @@ TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
     Image raw(4, 3);
     raw.add_channel("counts", 18109.0f);
     write_exr(dir / "raw.exr", raw);
-    const CliRun r = run("flir-temperature " + (dir / "raw.exr").string() +
+    const CliRun r = run_cli("flir-temperature " + (dir / "raw.exr").string() +
                          " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NEAR(read_exr(dir / "t.exr").at("temperature_k", 2, 1), 296.7743, 1e-3);
-    const CliRun bad = run("flir-temperature " + (dir / "raw.exr").string() +
+    const CliRun bad = run_cli("flir-temperature " + (dir / "raw.exr").string() +
                            " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " +
                            (dir / "u.exr").string());
     EXPECT_EQ(bad.exit_code, 1);
@@ -145,7 +131,7 @@ TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
     test::TempDir dir;
     const Band band(8.0, 14.0);
     write_lab(dir / "lab", {283.15, 323.15});
-    ASSERT_EQ(run("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
     std::uint64_t state = 12345;
     auto uniform = [&] {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
@@ -158,7 +144,7 @@ TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
         for (auto& v : c) v = static_cast<float>(kOffset + kGain * band.radiance(300.0) + 8.0 * std::sqrt(12.0) * uniform());
         write_exr(dir / "stack" / fmt::format("f{}.exr", 100 + t), f);
     }
-    const CliRun r = run("noise " + (dir / "stack").string() + " -o " + (dir / "n.json").string() + " --calibration " +
+    const CliRun r = run_cli("noise " + (dir / "stack").string() + " -o " + (dir / "n.json").string() + " --calibration " +
                          (dir / "c.exr").string() + " --temperature-k 300");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(read_file(dir / "n.json"));
@@ -172,31 +158,31 @@ TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
 TEST(CalibrationCli, BadSessionsGiveExitOneAndNameTheProblem) {
     test::TempDir dir;
     write_lab(dir / "one", {300.0, 300.0});
-    CliRun r = run("calibrate radiometric " + (dir / "one").string() + " -o " + (dir / "c.exr").string());
+    CliRun r = run_cli("calibrate radiometric " + (dir / "one").string() + " -o " + (dir / "c.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("1 distinct temperature"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(dir / "c.exr"));  // no partial output
 
     write_lab(dir / "lab", {283.15, 323.15});
-    ASSERT_EQ(run("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
     {
         auto w = SessionWriter::create(dir / "two_angles", manifest(true));
         w.add_record(record(RecordKind::Polarizer, "p0", 0.0, std::nullopt), frame(20.0));
         w.add_record(record(RecordKind::Polarizer, "p90", 90.0, std::nullopt), frame(20.0));
     }
-    r = run("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
+    r = run_cli("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
             (dir / "s.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("at least 3 angles"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(dir / "s.exr"));
 
     write_file_atomic(dir / "two_angles" / "session.json", "{\"schema\": \"tirpol.session\", \"records\": [");
-    r = run("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
+    r = run_cli("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
             (dir / "s.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("session.json"), std::string::npos) << r.out;
 
-    r = run("flir-temperature " + (dir / "c.exr").string() + " --planck 1,2,3 -o " + (dir / "f.exr").string());
+    r = run_cli("flir-temperature " + (dir / "c.exr").string() + " --planck 1,2,3 -o " + (dir / "f.exr").string());
     EXPECT_EQ(r.exit_code, 2);
 }
 

@@ -1,68 +1,54 @@
 // The `tirpol` executable: subcommand listing, exit codes and the JSON of `planck` and `info`.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "test_support.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/radiometry.h"
 
 namespace {
 
-struct CliRun {
-    int exit_code;
-    std::string out;  // stdout and stderr
-};
-
-CliRun run(const std::string& args) {
-    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tirpol::test::CliRun;
+using tirpol::test::run_cli;
 
 TEST(Cli, HelpListsSubcommands) {
-    const CliRun r = run("--help");
+    const CliRun r = run_cli("--help");
     EXPECT_EQ(r.exit_code, 0);
     for (const char* sub : {"info", "planck", "demo"}) EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
-    EXPECT_EQ(run("planck --help").exit_code, 0);
+    EXPECT_EQ(run_cli("planck --help").exit_code, 0);
 }
 
 TEST(Cli, BadArgumentsExitWithTwo) {
-    EXPECT_EQ(run("").exit_code, 2);
-    EXPECT_EQ(run("no-such-command").exit_code, 2);
-    const CliRun r = run("planck --band-um 8 14");
+    EXPECT_EQ(run_cli("").exit_code, 2);
+    EXPECT_EQ(run_cli("no-such-command").exit_code, 2);
+    const CliRun r = run_cli("planck --band-um 8 14");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.out.find("--temperature-k or --radiance"), std::string::npos) << r.out;
-    EXPECT_EQ(run("planck --temperature-k hot --band-um 8 14").exit_code, 2);
+    EXPECT_EQ(run_cli("planck --temperature-k hot --band-um 8 14").exit_code, 2);
 }
 
 TEST(Cli, PlanckJsonMatchesTheLibraryAndInverts) {
-    const CliRun r = run("planck --temperature-k 300 --band-um 8 14 --json");
+    const CliRun r = run_cli("planck --temperature-k 300 --band-um 8 14 --json");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     const tirpol::Band band(8.0, 14.0);
     EXPECT_DOUBLE_EQ(j["radiance_w_m2_sr"].get<double>(), band.radiance(300.0));
     EXPECT_DOUBLE_EQ(j["radiance_dT_w_m2_sr_k"].get<double>(), band.radiance_dT(300.0));
-    const CliRun inv = run("planck --radiance " + std::to_string(band.radiance(300.0)) + " --band-um 8 14 --json");
+    const CliRun inv = run_cli("planck --radiance " + std::to_string(band.radiance(300.0)) + " --band-um 8 14 --json");
     ASSERT_EQ(inv.exit_code, 0) << inv.out;
     EXPECT_NEAR(nlohmann::json::parse(inv.out)["brightness_temperature_k"].get<double>(), 300.0, 1e-3);
 }
 
 TEST(Cli, PlanckRejectsNonPhysicalInputWithExitOne) {
-    const CliRun r = run("planck --temperature-k -3 --band-um 8 14");
+    const CliRun r = run_cli("planck --temperature-k -3 --band-um 8 14");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("above 0 K"), std::string::npos) << r.out;
-    EXPECT_EQ(run("planck --temperature-k 300 --band-um 14 8").exit_code, 1);
+    EXPECT_EQ(run_cli("planck --temperature-k 300 --band-um 14 8").exit_code, 1);
 }
 
 TEST(Cli, InfoDescribesAnExrAndNamesAMissingFile) {
@@ -72,14 +58,14 @@ TEST(Cli, InfoDescribesAnExrAndNamesAMissingFile) {
     img.add_channel("S1", 0.0f)[5] = std::nanf("");
     img.attributes()["units"] = std::string("W/(m^2 sr)");
     tirpol::write_exr(dir / "s.exr", img);
-    const CliRun r = run("info --json " + (dir / "s.exr").string());
+    const CliRun r = run_cli("info --json " + (dir / "s.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["width"], 4);
     EXPECT_EQ(j["channels"]["S1"]["nan_count"], 1);
     EXPECT_DOUBLE_EQ(j["channels"]["S0"]["mean"].get<double>(), 2.0);
     EXPECT_EQ(j["attributes"]["units"], "W/(m^2 sr)");
-    const CliRun missing = run("info " + (dir / "missing.exr").string());
+    const CliRun missing = run_cli("info " + (dir / "missing.exr").string());
     EXPECT_EQ(missing.exit_code, 1);
     EXPECT_NE(missing.out.find("missing.exr: no such file"), std::string::npos) << missing.out;
 }

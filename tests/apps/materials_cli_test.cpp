@@ -2,7 +2,6 @@
 // exit codes (1 for bad input, 2 for bad usage).
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cmath>
@@ -10,26 +9,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace {
 
-struct CliRun {
-    int exit_code;
-    std::string out;
-};
-
-CliRun run_cli(const std::string& args, bool merge_stderr = true) {
-    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tirpol::test::CliRun;
+using tirpol::test::run_cli;
 
 std::string material(const char* name) {
     return (tirpol::test::source_dir() / "config/materials" / name).string();

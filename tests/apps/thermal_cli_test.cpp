@@ -1,37 +1,23 @@
 // `tirpol sun` and `tirpol therm` as a user runs them.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace {
 
-struct CliRun {
-    int exit_code;
-    std::string out;
-};
-
-CliRun run_tirpol(const std::string& args) {
-    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tirpol::test::CliRun;
+using tirpol::test::run_cli;
 
 TEST(ThermalCli, SunReproducesSpaReportExample) {
     // Reda & Andreas, NREL/TP-560-34302, Table A5.2: zenith 50.11162°, azimuth 194.34024°, incidence 25.18700°.
-    const CliRun r = run_tirpol(
+    const CliRun r = run_cli(
         "sun --lat 39.742476 --lon -105.1786 --time 2003-10-17T12:30:30-07:00 --elevation-m 1830.14 "
         "--pressure-mbar 820 --temperature-c 11 --delta-t-s 67 --tilt-deg 30 --surface-azimuth-deg 170 --json");
     ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -39,14 +25,14 @@ TEST(ThermalCli, SunReproducesSpaReportExample) {
     EXPECT_NEAR(j["zenith_deg"].get<double>(), 50.11162, 1e-5);
     EXPECT_NEAR(j["azimuth_deg"].get<double>(), 194.34024, 1e-5);
     EXPECT_NEAR(j["surface"]["incidence_deg"].get<double>(), 25.18700, 1e-5);
-    EXPECT_EQ(run_tirpol("sun --lat 39 --lon -105 --time noon").exit_code, 1);
-    EXPECT_EQ(run_tirpol("sun --lat 99 --lon -105 --time 2003-10-17T12:00Z").exit_code, 2);
+    EXPECT_EQ(run_cli("sun --lat 39 --lon -105 --time noon").exit_code, 1);
+    EXPECT_EQ(run_cli("sun --lat 99 --lon -105 --time 2003-10-17T12:00Z").exit_code, 2);
 }
 
 TEST(ThermalCli, ThermWritesTemperaturesCsvAndPlot) {
     tirpol::test::TempDir dir;
     const auto yaml = tirpol::test::source_dir() / "config/thermal/ball_on_snow_thermal.yaml";
-    const CliRun r = run_tirpol("therm " + yaml.string() + " --at 2026-01-16T12:00 --json --csv " +
+    const CliRun r = run_cli("therm " + yaml.string() + " --at 2026-01-16T12:00 --json --csv " +
                                 (dir / "t.csv").string() + " --plot " + (dir / "t.png").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
@@ -65,17 +51,17 @@ TEST(ThermalCli, ThermWritesTemperaturesCsvAndPlot) {
     char sig[8] = {};
     png.read(sig, 8);
     EXPECT_EQ(std::string(sig + 1, 3), "PNG");
-    EXPECT_EQ(run_tirpol("therm " + yaml.string() + " --at 2030-01-01T00:00").exit_code, 1);
+    EXPECT_EQ(run_cli("therm " + yaml.string() + " --at 2030-01-01T00:00").exit_code, 1);
 }
 
 TEST(ThermalCli, ThermOnSceneReportsPredictedTemperatures) {
     const auto yaml = tirpol::test::source_dir() / "config/thermal/ball_on_snow_day_predicted.yaml";
-    const CliRun r = run_tirpol("therm " + yaml.string() + " --json");
+    const CliRun r = run_cli("therm " + yaml.string() + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["objects"].size(), 3u);
     EXPECT_GT(j["objects"][1]["max_temperature_k"].get<double>(), j["objects"][0]["max_temperature_k"].get<double>() + 10.0);
-    EXPECT_EQ(run_tirpol("therm " + yaml.string() + " --plot x.png").exit_code, 1);
+    EXPECT_EQ(run_cli("therm " + yaml.string() + " --plot x.png").exit_code, 1);
 }
 
 }  // namespace

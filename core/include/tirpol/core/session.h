@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "tirpol/core/image.h"
+#include "tirpol/core/utc_time.h"  // created_utc stamps
 
 namespace tirpol {
 
@@ -138,8 +139,5 @@ private:
     std::unique_ptr<Lock> m_lock;
     std::vector<std::string> m_adopted;
 };
-
-/// Current UTC time as ISO 8601 with a trailing Z.
-std::string utc_now_iso8601();
 
 }  // namespace tirpol

@@ -20,9 +20,6 @@ struct FitProvenance {
     std::string command;                  ///< how the fit was run (for the record)
 };
 
-/// The current UTC time as ISO 8601 (seconds).
-std::string utc_now_iso8601();
-
 /// Material YAML for the fitted micro-facet model: `refractive_index` {n, k} for one band, or
 /// {wavelength_um, n, k} lists for a multi-band fit; `parameters` σ, bias, τ°, Ω°, ρ_D, ρ_V; `source`
 /// naming data, date, χ²/dof and the termination; `notes` with every parameter ± 2σ, the fixed ones and
