@@ -12,6 +12,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/utc_time.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
@@ -322,7 +323,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         fit = problem.solve();
         result.fitted_material = out / "fit" / "flat_black_paint_fitted.yaml";
         const fitting::FitProvenance provenance{
-            {(out / "fit" / "emissivity.csv").string()}, fitting::utc_now_iso8601(), "tirpol demo (digital twin)"};
+            {(out / "fit" / "emissivity.csv").string()}, utc_now_iso8601(), "tirpol demo (digital twin)"};
         write_file_atomic(result.fitted_material,
                           fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
         write_file_atomic(out / "fit" / "fit.json",
