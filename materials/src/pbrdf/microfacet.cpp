@@ -37,8 +37,13 @@ MuellerMatrix MicrofacetBrdf::eval(const Vec3& wi, const Vec3& wo, double wavele
 }
 
 namespace {
-double specular_probability(const ShellTargetParameters<double>& p) {
-    const double specular = std::min(1.0, p.bias * fresnel({p.n, p.k}, 1.0).R());
+// Probability of drawing from the specular lobe for the exitant direction with cosine `cos_o`: the
+// lobes' share of the reflected energy. The specular share uses the Fresnel reflectance at the
+// exitant angle, not at normal incidence: at grazing views a glossy surface reflects mostly
+// specularly, and starving that lobe there made polarized sky reflections arrive as rare, heavy
+// samples (salt-and-pepper S1 on car roofs, the paper's §4.3 artifact).
+double specular_probability(const ShellTargetParameters<double>& p, double cos_o) {
+    const double specular = std::min(1.0, p.bias * fresnel({p.n, p.k}, std::clamp(cos_o, 0.0, 1.0)).R());
     // Hemispherical albedo of the diffuse term (π ρ_D) and of the volume term at normal incidence
     // (4π ρ_V (1 − ln 2)).
     const double diffuse = kPi * p.rho_d + 4.0 * kPi * (1.0 - std::log(2.0)) * p.rho_v;
@@ -68,15 +73,15 @@ double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const 
 }
 }  // namespace
 
-double MicrofacetBrdf::specular_sampling_probability(double wavelength_um) const {
-    return specular_probability(at(wavelength_um));
+double MicrofacetBrdf::specular_sampling_probability(const Vec3& wo, double wavelength_um) const {
+    return specular_probability(at(wavelength_um), wo.z());
 }
 
 BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
     const ShellTargetParameters<double> p = at(wavelength_um);
-    const double p_spec = specular_probability(p);
+    const double p_spec = specular_probability(p, wo.z());
     if (u1 < p_spec) {
         const double u = u1 / p_spec;
         const double sigma = p.sigma;
@@ -105,11 +110,11 @@ BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u
 
 double MicrofacetBrdf::pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
-    return mixture_pdf(p, specular_probability(p), wi, wo);
+    return mixture_pdf(p, specular_probability(p, wo.z()), wi, wo);
 }
 
-std::vector<double> MicrofacetBrdf::sample_u1_breaks(const Vec3& /*wo*/, double wavelength_um) const {
-    const double p = specular_sampling_probability(wavelength_um);
+std::vector<double> MicrofacetBrdf::sample_u1_breaks(const Vec3& wo, double wavelength_um) const {
+    const double p = specular_sampling_probability(wo, wavelength_um);
     if (p > 0.0 && p < 1.0) return {p};
     return {};
 }

@@ -45,9 +45,10 @@ public:
     ShellTargetParameters<double> at(double wavelength_um) const;
     const MicrofacetParameters& spectral_parameters() const { return m_parameters; }
 
-    /// Probability with which `sample` draws from the specular lobe: the share of the normal-incidence
-    /// Fresnel reflectance (× bias) in an estimate of the total albedo; 1 without diffuse/volume terms.
-    double specular_sampling_probability(double wavelength_um) const;
+    /// Probability with which `sample` draws from the specular lobe for exitant `wo`: the share of the
+    /// Fresnel reflectance at wo's angle (× bias) in an estimate of the total albedo, clamped to
+    /// [0.05, 0.95]; 1 without diffuse/volume terms.
+    double specular_sampling_probability(const Vec3& wo, double wavelength_um) const;
 
 private:
     MicrofacetParameters m_parameters;
