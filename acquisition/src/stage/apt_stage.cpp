@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "move_preconditions.h"
 #include "tirpol/acquisition/angles.h"
 
 namespace tirpol::acquisition {
@@ -56,11 +57,7 @@ public:
     }
 
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
-        if (!std::isfinite(angle_deg))
-            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: angle {} is not a number", m_info.uri, angle_deg)};
-        if (!m_homed)
-            return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: not homed; home the stage before the first absolute move", m_info.uri)};
+        if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         const auto target = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_options.counts_per_degree));
         if (auto s = send(apt::mot_move_absolute(target, m_options.channel)); !s) return s;
         auto reply = await({apt::kMotMoveCompleted, apt::kMotMoveStopped}, Clock::now() + timeout, "MGMSG_MOT_MOVE_COMPLETED");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "move_preconditions.h"
 #include "tirpol/acquisition/angles.h"
 #include "tirpol/acquisition/elliptec_protocol.h"
 
@@ -54,11 +55,7 @@ public:
     }
 
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
-        if (!std::isfinite(angle_deg))
-            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: angle {} is not a number", m_info.uri, angle_deg)};
-        if (!m_homed)
-            return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: not homed; home the stage before the first absolute move", m_info.uri)};
+        if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         const auto pulses = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
         auto reply = transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO");
         if (!reply) return reply.error();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "move_preconditions.h"
 #include "tirpol/acquisition/angles.h"
 
 namespace tirpol::acquisition {
@@ -26,10 +27,7 @@ public:
     }
 
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
-        if (!std::isfinite(angle_deg))
-            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: angle {} is not a number", m_info.uri, angle_deg)};
-        if (!m_homed)
-            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: not homed; home the stage before the first absolute move", m_info.uri)};
+        if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         ++m_moves;
         if (m_options.fail_on_move && *m_options.fail_on_move == m_moves)
             return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: injected fault on move {}", m_info.uri, m_moves)};
