@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
@@ -24,18 +25,7 @@ namespace {
 using namespace tirpol;
 using namespace tirpol::simulation;
 
-std::filesystem::path find_scene(const std::string& name) {
-    std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
-    std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) starts.push_back(exe.parent_path());
-    for (auto dir : starts)
-        for (; !dir.empty(); dir = dir.parent_path()) {
-            if (std::filesystem::is_regular_file(dir / "config/scenes" / name)) return dir / "config/scenes" / name;
-            if (dir == dir.parent_path()) break;
-        }
-    fail("bench: cannot find config/scenes/{}", name);
-}
+std::filesystem::path find_scene(const std::string& name) { return find_config("scenes/" + name); }
 
 double peak_rss_mb() {
     std::ifstream status("/proc/self/status");

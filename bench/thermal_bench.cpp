@@ -10,6 +10,7 @@
 
 #include <filesystem>
 
+#include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/thermal/civil_time.h"
@@ -130,15 +131,7 @@ BENCHMARK(BM_SpinUp24h_100Facets_Batched)->Unit(benchmark::kMillisecond);
 // The cost the thermal model adds to a render: loading the ball-on-snow day scene with predicted
 // temperatures (1152-texel sphere map + mesh vertices, 24 h spin-up each) against loading the same scene
 // and rendering it at 32×24, 2 spp (wall-clock: the renderer runs on all cores).
-std::filesystem::path predicted_scene() {
-    std::error_code ec;
-    for (auto dir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path(); !dir.empty(); dir = dir.parent_path()) {
-        if (std::filesystem::is_regular_file(dir / "config/thermal/ball_on_snow_day_predicted.yaml"))
-            return dir / "config/thermal/ball_on_snow_day_predicted.yaml";
-        if (dir == dir.parent_path()) break;
-    }
-    return "config/thermal/ball_on_snow_day_predicted.yaml";
-}
+std::filesystem::path predicted_scene() { return find_config("thermal/ball_on_snow_day_predicted.yaml"); }
 
 void BM_BallOnSnowSceneLoadWithPredictedTemperatures(benchmark::State& state) {
     const auto path = predicted_scene();

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "demo_steps.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -31,15 +32,7 @@ constexpr double kSigmaS0 = 0.004, kSigmaS1 = 0.002;
 // config/materials found walking up from the executable (which lives in the build tree).
 std::filesystem::path materials_dir() {
     if (const char* env = std::getenv("TIRPOL_MATERIALS_DIR")) return env;
-    std::vector<std::filesystem::path> candidates = {"config/materials"};
-    std::error_code ec;
-    auto dir = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
-    for (int up = 0; !ec && up < 5 && !dir.empty(); ++up, dir = dir.parent_path())
-        candidates.push_back(dir / "config/materials");
-    for (const auto& c : candidates)
-        if (std::filesystem::is_regular_file(c / "flat_black_paint.yaml")) return c;
-    fail("flat_black_paint.yaml not found in ./config/materials or above the executable; run from the "
-         "repository root or set TIRPOL_MATERIALS_DIR");
+    return find_config("materials");
 }
 
 void demo_fitting(const std::filesystem::path& out_dir) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "demo_steps.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
@@ -17,18 +18,7 @@ namespace tirpol::cli {
 namespace {
 // config/materials of the source tree: searched upwards from the working directory and from the
 // executable's directory (the demo runs from a build tree inside the repository).
-std::filesystem::path find_material_library() {
-    std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
-    std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) starts.push_back(exe.parent_path());
-    for (auto dir : starts)
-        for (; !dir.empty(); dir = dir.parent_path()) {
-            if (std::filesystem::is_directory(dir / "config/materials")) return dir / "config/materials";
-            if (dir == dir.parent_path()) break;
-        }
-    fail("demo: cannot find config/materials (run the demo from inside the tirpol source tree)");
-}
+std::filesystem::path find_material_library() { return find_config("materials"); }
 
 void demo_materials(const std::filesystem::path& out_dir) {
     const auto library_dir = find_material_library();

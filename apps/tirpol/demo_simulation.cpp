@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "demo_steps.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
@@ -14,20 +15,7 @@
 namespace tirpol::cli {
 
 namespace {
-// config/scenes of the source tree: searched upwards from the working directory and from the
-// executable's directory, as demo_materials.cpp finds config/materials.
-std::filesystem::path scene_path(const std::string& name) {
-    std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
-    std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) starts.push_back(exe.parent_path());
-    for (auto dir : starts)
-        for (; !dir.empty(); dir = dir.parent_path()) {
-            if (std::filesystem::is_regular_file(dir / "config/scenes" / name)) return dir / "config/scenes" / name;
-            if (dir == dir.parent_path()) break;
-        }
-    fail("demo: cannot find config/scenes/{} (run the demo from inside the tirpol source tree)", name);
-}
+std::filesystem::path scene_path(const std::string& name) { return find_config("scenes/" + name); }
 
 Image render_small(const std::string& name, int width, int height, int spp, const std::filesystem::path& out_dir) {
     simulation::Scene scene = simulation::load_scene(scene_path(name));

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "demo_steps.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
@@ -16,20 +17,7 @@ namespace tirpol::cli {
 namespace {
 
 // config/thermal of the source tree, searched upwards from the working directory and the executable.
-std::filesystem::path find_thermal_config() {
-    std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
-    std::error_code ec;
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) starts.push_back(exe.parent_path());
-    for (auto dir : starts) {
-        for (; !dir.empty(); dir = dir.parent_path()) {
-            if (std::filesystem::is_regular_file(dir / "config/thermal/ball_on_snow_thermal.yaml"))
-                return dir / "config/thermal/ball_on_snow_thermal.yaml";
-            if (dir == dir.parent_path()) break;
-        }
-    }
-    fail("demo: cannot find config/thermal/ball_on_snow_thermal.yaml (run the demo from inside the tirpol source tree)");
-}
+std::filesystem::path find_thermal_config() { return find_config("thermal/ball_on_snow_thermal.yaml"); }
 
 void demo_thermal(const std::filesystem::path& out_dir) {
     // The SPA report's worked example (Reda & Andreas, NREL/TP-560-34302): zenith 50.11162°, azimuth 194.34024°.

@@ -85,7 +85,5 @@ TwinResult run_twin(const TwinOptions& options);
 /// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
 std::string twin_summary(const TwinResult& r);
 
-/// config/<sub> of the source tree: ./config/<sub>, or the first found walking up from the executable.
-std::filesystem::path find_config_file(const std::filesystem::path& relative);
 
 }  // namespace tirpol::cli::twin

@@ -9,6 +9,7 @@
 
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/calibration/session_calibration.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -28,17 +29,6 @@
 namespace tirpol::cli::twin {
 
 namespace fs = std::filesystem;
-
-fs::path find_config_file(const fs::path& relative) {
-    std::vector<fs::path> candidates = {fs::path("config") / relative};
-    std::error_code ec;
-    auto dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-    for (int up = 0; !ec && up < 6 && !dir.empty(); ++up, dir = dir.parent_path())
-        candidates.push_back(dir / "config" / relative);
-    for (const auto& c : candidates)
-        if (fs::is_regular_file(c)) return fs::absolute(c);
-    fail("config/{} not found in ./config or above the executable; run from the repository root", relative.string());
-}
 
 namespace {
 
@@ -178,7 +168,7 @@ namespace {
 void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     const fs::path out = opt.out_dir;
     fs::create_directories(out);
-    const fs::path scene_file = opt.scene_file.empty() ? find_config_file("scenes/panels_night.yaml") : opt.scene_file;
+    const fs::path scene_file = opt.scene_file.empty() ? find_config("scenes/panels_night.yaml") : opt.scene_file;
 
     // 1. The truth: the paper's nine panels under a clear night sky, from every view.
     simulation::Scene scene = simulation::load_scene(scene_file);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "synthetic_emissivity.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/fitting/emissivity_quadrature.h"
@@ -14,18 +15,6 @@
 
 namespace tirpol::fitting {
 namespace {
-
-materials::MicrofacetBrdf make_brdf(const materials::ShellTargetParameters<double>& p) {
-    materials::MicrofacetParameters mp;
-    mp.index = materials::RefractiveIndexTable::constant({p.n, p.k});
-    mp.sigma = p.sigma;
-    mp.bias = p.bias;
-    mp.tau_deg = rad_to_deg(p.tau_rad);
-    mp.omega_deg = rad_to_deg(p.omega_rad);
-    mp.rho_d = p.rho_d;
-    mp.rho_v = p.rho_v;
-    return materials::MicrofacetBrdf(mp);
-}
 
 materials::EmissivityOptions reference_options() {
     materials::EmissivityOptions o;
@@ -49,7 +38,7 @@ const Case kCases[] = {
 
 TEST(EmissivityQuadrature, AgreesWithMaterialsIntegratorAtEveryAngle) {
     for (const Case& c : kCases) {
-        const materials::MicrofacetBrdf brdf = make_brdf(c.p);
+        const materials::MicrofacetBrdf brdf = test::brdf_of(c.p);
         for (double angle_deg : {0.0, 15.0, 35.0, 55.0, 70.0, 80.0, 86.0, 89.5}) {
             const double theta = deg_to_rad(angle_deg);
             const StokesVector reference =
