@@ -42,10 +42,10 @@ std::filesystem::path thermal_xml() { return test::source_dir() / "tests/data/ge
 
 class AravisFakeCamera : public ::testing::Test {
 protected:
-    /// Starts the fake camera with `args`; skips the test when aravis-tools is not installed.
+    /// Starts the fake camera with `args`; fails the test when aravis-tools is not installed (never skips).
     void start_fake(const std::vector<std::string>& args = {}) {
         const auto binary = test::find_fake_gv_camera_binary();
-        if (!binary) GTEST_SKIP() << test::kFakeGvCameraBinary << " not found on PATH (Debian package aravis-tools)";
+        if (!binary) FAIL() << test::kFakeGvCameraBinary << " not found on PATH: install the Debian package aravis-tools (./run does)";
         m_process = std::make_unique<test::FakeGvCameraProcess>(*binary, args);
         ASSERT_TRUE(m_process->ready()) << "the fake GigE Vision camera did not answer on 127.0.0.1";
     }

@@ -49,7 +49,7 @@ TEST(CameraRegistry, AbsentV4l2DeviceIsADeviceError) {
 
 TEST(CameraRegistry, ListsAndOpensTheFakeGigECameraByUri) {
     const auto binary = test::find_fake_gv_camera_binary();
-    if (!binary) GTEST_SKIP() << test::kFakeGvCameraBinary << " not found on PATH (Debian package aravis-tools)";
+    if (!binary) FAIL() << test::kFakeGvCameraBinary << " not found on PATH: install the Debian package aravis-tools (./run does)";
     test::LoopbackGigELock lock;
     test::FakeGvCameraProcess fake(*binary, {});
     ASSERT_TRUE(fake.ready());

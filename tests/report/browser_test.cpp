@@ -38,7 +38,7 @@ int run_chromium(const std::filesystem::path& profile, const std::string& extra,
 }  // namespace
 
 TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages) {
-    if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << kChromium << " is absent (Debian package chromium)";
+    if (!std::filesystem::exists(kChromium)) FAIL() << kChromium << " is absent: install the Debian package chromium (./run does)";
     tirpol::test::TempDir temp("tirpol-report-browser");
     const char* keep = std::getenv("TIRPOL_REPORT_TEST_OUTPUT");
     const std::filesystem::path dir = keep ? std::filesystem::path(keep) : temp.path();
