@@ -13,9 +13,9 @@
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
-#include "tirpol/simulation/thermal/surface_temperature.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace {
 using namespace tirpol;

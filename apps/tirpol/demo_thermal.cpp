@@ -8,9 +8,9 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
-#include "tirpol/simulation/thermal/thermal_config.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::cli {
 

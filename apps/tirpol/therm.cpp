@@ -14,9 +14,9 @@
 #include "tirpol/core/line_plot.h"
 #include "tirpol/core/config.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/thermal/scene_thermal.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/thermal_config.h"
+#include "tirpol/simulation/scene_thermal.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::cli {
 

@@ -10,7 +10,7 @@
 #include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/temperature_value.h"
-#include "tirpol/simulation/thermal/scene_thermal.h"
+#include "tirpol/simulation/scene_thermal.h"
 
 namespace tirpol::simulation {
 

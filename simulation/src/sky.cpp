@@ -6,6 +6,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/temperature_value.h"
+#include "tirpol/thermal/sky_longwave.h"
 
 namespace tirpol::simulation {
 
@@ -68,8 +69,7 @@ Sky Sky::from_config(const ConfigNode& node, const Band& band) {
 
 double Sky::emissivity(double cos_zenith) const {
     if (m_kind != Kind::ClearSky) return 1.0;
-    if (cos_zenith <= 1e-6) return 1.0;  // horizon and below: optically thick path
-    return 1.0 - std::pow(1.0 - m_zenith_emissivity, 1.0 / cos_zenith);
+    return thermal::directional_sky_emissivity_cos(m_zenith_emissivity, cos_zenith);
 }
 
 double Sky::temperature_k(double cos_zenith) const {

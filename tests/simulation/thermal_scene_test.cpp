@@ -10,9 +10,9 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/thermal/scene_thermal.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
+#include "tirpol/simulation/scene_thermal.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::simulation {
 namespace {

@@ -14,10 +14,10 @@ namespace tirpol::simulation {
 
 /// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. Three kinds (docs/scene-format.md):
 ///  - uniform: ε = 1 at one temperature (or the brightness temperature of a given band radiance);
-///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature — the
-///    angular form of Berdahl & Martin, "Emissivity of clear skies", Solar Energy 32(5), 663–664
-///    (1984), and Martin & Berdahl, "Characteristics of infrared sky radiation in the United
-///    States", Solar Energy 33(3/4), 321–336 (1984);
+///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature, the
+///    plane-parallel absorbing-atmosphere law of Granqvist & Hjortsberg (J. Appl. Phys. 52 (1981)
+///    4205), implemented once in thermal::directional_sky_emissivity_cos; ε_zenith comes from the
+///    scene or from a clear-sky model of the thermal module (Berdahl & Martin 1984 and others);
 ///  - table: band radiance vs zenith angle from a CSV (e.g. converted from MODTRAN or libRadtran),
 ///    turned into brightness temperatures over the band and interpolated linearly in zenith angle.
 /// Below the horizon every kind takes its horizon value (ε → 1 for the clear sky).

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/simulation/thermal/sky_longwave.h"
-#include "tirpol/simulation/thermal/slab.h"
-#include "tirpol/simulation/thermal/weather.h"
+#include "tirpol/thermal/sky_longwave.h"
+#include "tirpol/thermal/slab.h"
+#include "tirpol/thermal/weather.h"
 
 namespace tirpol::thermal {
 

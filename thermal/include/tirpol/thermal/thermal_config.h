@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tirpol/core/config.h"
-#include "tirpol/simulation/thermal/surface_temperature.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 

@@ -62,7 +62,10 @@ double sky_emissivity(ClearSkyModel model, const SkyConditions& c);
 double window_sky_emissivity(const SkyConditions& c);
 
 /// Directional emissivity of a plane-parallel isothermal absorbing atmosphere, Granqvist & Hjortsberg
-/// (J. Appl. Phys. 52 (1981) 4205): ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ); 1 at and below the horizon.
+/// (J. Appl. Phys. 52 (1981) 4205): ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ); 1 at and below the horizon
+/// (cos θ ≤ 1e-6: an optically thick path). The one implementation of the law, used by the renderer's sky.
+double directional_sky_emissivity_cos(double zenith_emissivity, double cos_zenith);
+/// The same law with the zenith angle in degrees.
 double directional_sky_emissivity(double zenith_emissivity, double zenith_deg);
 /// Hemispherical (cosine-weighted) emissivity 2∫ε(θ) cosθ sinθ dθ of that law; equals 1 − 2E₃(τ) with
 /// τ = −ln(1 − ε_zenith).

@@ -11,8 +11,8 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/weather.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/weather.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -1,9 +1,9 @@
-#include "tirpol/simulation/thermal/thermal_config.h"
+#include "tirpol/thermal/thermal_config.h"
 
 #include <algorithm>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
+#include "tirpol/thermal/civil_time.h"
 
 namespace tirpol::thermal {
 

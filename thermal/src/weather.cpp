@@ -1,10 +1,10 @@
-#include "tirpol/simulation/thermal/weather.h"
+#include "tirpol/thermal/weather.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
+#include "tirpol/thermal/civil_time.h"
 
 namespace tirpol::thermal {
 

@@ -10,7 +10,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/simulation/thermal/sky_longwave.h"
+#include "tirpol/thermal/sky_longwave.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -1,10 +1,10 @@
-#include "tirpol/simulation/thermal/slab.h"
+#include "tirpol/thermal/slab.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/sky_longwave.h"
+#include "tirpol/thermal/sky_longwave.h"
 
 namespace tirpol::thermal {
 

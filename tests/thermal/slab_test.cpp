@@ -10,8 +10,8 @@
 #include <cstdio>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/simulation/thermal/sky_longwave.h"
-#include "tirpol/simulation/thermal/slab.h"
+#include "tirpol/thermal/sky_longwave.h"
+#include "tirpol/thermal/slab.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -1,11 +1,11 @@
-#include "tirpol/simulation/thermal/surface_temperature.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/solar_position.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::thermal {
 

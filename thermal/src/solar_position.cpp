@@ -1,13 +1,13 @@
 // NREL SPA, written from Reda & Andreas, NREL/TP-560-34302, section 3 (steps 3.1–3.15).
 
-#include "tirpol/simulation/thermal/solar_position.h"
+#include "tirpol/thermal/solar_position.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "spa_periodic_terms.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
+#include "tirpol/thermal/civil_time.h"
 
 namespace tirpol::thermal {
 

@@ -5,8 +5,8 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/thermal_config.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -10,8 +10,8 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
-#include "tirpol/simulation/thermal/surface_temperature.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -1,4 +1,4 @@
-#include "tirpol/simulation/thermal/sky_longwave.h"
+#include "tirpol/thermal/sky_longwave.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,10 +73,13 @@ double window_sky_emissivity(const SkyConditions& c) {
     return clear + (1.0 - clear) * n;
 }
 
+double directional_sky_emissivity_cos(double zenith_emissivity, double cos_zenith) {
+    if (cos_zenith <= 1e-6) return 1.0;
+    return 1.0 - std::pow(1.0 - std::clamp(zenith_emissivity, 0.0, 1.0), 1.0 / cos_zenith);
+}
+
 double directional_sky_emissivity(double zenith_emissivity, double zenith_deg) {
-    const double mu = std::cos(deg_to_rad(zenith_deg));
-    if (mu <= 0.0) return 1.0;
-    return 1.0 - std::pow(1.0 - std::clamp(zenith_emissivity, 0.0, 1.0), 1.0 / mu);
+    return directional_sky_emissivity_cos(zenith_emissivity, std::cos(deg_to_rad(zenith_deg)));
 }
 
 double hemispherical_from_zenith_emissivity(double zenith_emissivity) {

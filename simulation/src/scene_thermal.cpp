@@ -1,4 +1,4 @@
-#include "tirpol/simulation/thermal/scene_thermal.h"
+#include "tirpol/simulation/scene_thermal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/solar_position.h"
-#include "tirpol/simulation/thermal/thermal_config.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::simulation {
 

@@ -1,4 +1,4 @@
-#include "tirpol/simulation/thermal/civil_time.h"
+#include "tirpol/thermal/civil_time.h"
 
 #include <fmt/format.h>
 

@@ -8,10 +8,10 @@
 #include "csv_fields.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/thermal/civil_time.h"
-#include "tirpol/simulation/thermal/sky_longwave.h"
-#include "tirpol/simulation/thermal/solar_position.h"
-#include "tirpol/simulation/thermal/weather.h"
+#include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/sky_longwave.h"
+#include "tirpol/thermal/solar_position.h"
+#include "tirpol/thermal/weather.h"
 
 namespace tirpol::thermal {
 
