@@ -74,10 +74,11 @@ std::size_t records_in(const std::filesystem::path& session) {
     }
 }
 
-std::vector<std::string> acquire_args(const std::filesystem::path& dir) {
-    return {TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
+std::vector<std::string> acquire_args(const std::filesystem::path& dir, const char* plan = "plan.yaml",
+                                      const char* session = "session") {
+    return {TIRPOL_CLI_PATH, "acquire", (dir / plan).string(), "--camera",
             std::string("aravis://") + kAddress + "?pixel_format=Mono16&width=64&height=48&fps=50", "--stage", "sim://", "-o",
-            (dir / "session").string(), "--non-interactive"};
+            (dir / session).string(), "--non-interactive"};
 }
 
 TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
@@ -87,8 +88,10 @@ TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
     ASSERT_TRUE(fake.ready()) << "the fake GigE Vision camera did not answer on " << kAddress;
     // A settle of a minute after the first move: the killed session is streaming, not finishing.
     test::write_text(tmp / "plan.yaml", "frames_per_angle: 1\nsettle_s: 60\n");
-    for (int round = 0; round < 2; ++round) {
+    test::write_text(tmp / "quick.yaml", "frames_per_angle: 2\nsettle_s: 0\n");
+    for (int round = 0; round < 3; ++round) {
         std::filesystem::remove_all(tmp / "session");
+        std::filesystem::remove_all(tmp / "again");
         {
             test::ChildProcess holder(acquire_args(tmp.path()), tmp / "holder.log");
             for (int i = 0; i < 2000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i) std::this_thread::sleep_for(10ms);
@@ -97,14 +100,35 @@ TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
             holder.signal(SIGKILL);  // no chance to release the camera's control channel
             ASSERT_EQ(holder.wait_for(10s), 128 + SIGKILL);
         }
-        auto camera = open_aravis_camera(kAddress, small_mono16());
-        ASSERT_TRUE(camera.ok()) << "round " << round << ": " << camera.error().message;
-        ASSERT_TRUE(camera.value()->start());
-        const auto frame = camera.value()->grab(5s);
-        ASSERT_TRUE(frame.ok()) << frame.error().message;
-        EXPECT_EQ(frame.value().width, 64);
-        ASSERT_TRUE(camera.value()->stop());
+        // As a user would: run again at once. The killed session left the camera acquiring towards
+        // its dead port and (for up to the heartbeat timeout) holding control privilege.
+        test::ChildProcess again(acquire_args(tmp.path(), "quick.yaml", "again"), tmp / "again.log");
+        ASSERT_EQ(again.wait_for(kBound), 0) << "round " << round << ": " << read_file(tmp / "again.log");
+        const SessionManifest m = read_session(tmp / "again");
+        EXPECT_TRUE(m.complete);
+        EXPECT_EQ(m.records.size(), 4u);
     }
+}
+
+TEST(AravisRecovery, WaitsForAnotherSessionToReleaseTheCameraThenOpens) {
+    test::LoopbackGigELock lock;
+    test::TempDir tmp;
+    FakeCamera fake(tmp / "fake.log");
+    ASSERT_TRUE(fake.ready());
+    auto holder = open_aravis_camera(kAddress, small_mono16());
+    ASSERT_TRUE(holder.ok()) << holder.error().message;
+    // The holder lets go 3 s later, during the second opener's first (refused) attempt.
+    std::thread release([&] {
+        std::this_thread::sleep_for(3s);
+        holder.value().reset();
+    });
+    auto second = open_aravis_camera(kAddress, small_mono16());
+    release.join();
+    ASSERT_TRUE(second.ok()) << second.error().message;
+    ASSERT_TRUE(second.value()->start());
+    const auto frame = second.value()->grab(5s);
+    ASSERT_TRUE(frame.ok()) << frame.error().message;
+    EXPECT_EQ(frame.value().width, 64);
 }
 
 TEST(AravisRecovery, AnotherLiveControllerIsReportedAfterTheBoundedWait) {

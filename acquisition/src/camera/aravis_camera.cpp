@@ -64,10 +64,13 @@ public:
         if (m_streaming) stop();
         g_signal_handlers_disconnect_by_data(arv_camera_get_device(m_camera.get()), this);
         if (m_gone) {
-            // Closing a GigE camera that is gone blocks for seconds in Aravis (its goodbye write
-            // times out, its heartbeat thread finishes a retry loop): release it in the background
-            // so the error reaches the user now, not after that.
-            std::thread([camera = m_camera.release()] { g_object_unref(camera); }).detach();
+            // Closing a GigE camera that is gone blocks for seconds in Aravis (the stream's and the
+            // device's goodbye writes time out, the heartbeat thread finishes a retry loop):
+            // release both in the background so the error reaches the user now, not after that.
+            std::thread([stream = m_stream.release(), camera = m_camera.release()] {
+                if (stream != nullptr) g_object_unref(stream);
+                g_object_unref(camera);
+            }).detach();
         }
     }
 
@@ -166,6 +169,10 @@ public:
         if (m_streaming) return ok_status();
         ArvCamera* cam = m_camera.get();
         GErrorSlot e;
+        // A session killed mid-stream leaves the camera acquiring towards its dead port; the fake
+        // camera (and a camera that latches the destination at AcquisitionStart) keeps sending
+        // there. Stopping first makes the acquisition below start towards this stream.
+        arv_camera_stop_acquisition(cam, nullptr);
         arv_camera_set_acquisition_mode(cam, ARV_ACQUISITION_MODE_CONTINUOUS, e.out());
         if (e) return to_device_error(e.get(), m_label, "setting AcquisitionMode=Continuous");
         const guint payload = arv_camera_get_payload(cam, e.out());
@@ -189,7 +196,8 @@ public:
         if (!m_streaming) return ok_status();
         m_streaming = false;
         GErrorSlot e;
-        if (!m_gone) arv_camera_stop_acquisition(m_camera.get(), e.out());  // a camera that is gone would time out
+        if (m_gone) return ok_status();  // nothing to tell a camera that is gone; released by the destructor
+        arv_camera_stop_acquisition(m_camera.get(), e.out());
         m_stream.reset();  // stops the stream thread and frees its buffers
         if (e) return to_device_error(e.get(), m_label, "AcquisitionStop");
         return ok_status();
