@@ -29,16 +29,25 @@ constexpr auto kBound = 60s;
 
 std::unique_ptr<test::ChildProcess> start_stage_sim(const std::filesystem::path& dir, const char* deg_per_s) {
     auto sim = std::make_unique<test::ChildProcess>(
-        std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link", (dir / "stage").string(), "--move-deg-per-s", deg_per_s},
+        std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link", (dir / "stage").string(),
+                                 "--move-deg-per-s", deg_per_s},
         dir / "stage-sim.log");
     for (int i = 0; i < 500 && !std::filesystem::exists(dir / "stage"); ++i) std::this_thread::sleep_for(10ms);
     return sim;
 }
 
-std::unique_ptr<test::ChildProcess> start_acquire(const std::filesystem::path& dir, const char* log, bool resume = false) {
-    std::vector<std::string> args{TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
-                                  "sim://uniform?width=16&height=12&counts=1000&noise=2&fps=100", "--stage",
-                                  "thorlabs-apt://" + (dir / "stage").string(), "-o", (dir / "session").string(), "--non-interactive"};
+std::unique_ptr<test::ChildProcess> start_acquire(const std::filesystem::path& dir, const char* log,
+                                                  bool resume = false) {
+    std::vector<std::string> args{TIRPOL_CLI_PATH,
+                                  "acquire",
+                                  (dir / "plan.yaml").string(),
+                                  "--camera",
+                                  "sim://uniform?width=16&height=12&counts=1000&noise=2&fps=100",
+                                  "--stage",
+                                  "thorlabs-apt://" + (dir / "stage").string(),
+                                  "-o",
+                                  (dir / "session").string(),
+                                  "--non-interactive"};
     if (resume) args.push_back("--resume");
     return std::make_unique<test::ChildProcess>(args, dir / log);
 }

@@ -48,7 +48,8 @@ public:
             ADD_FAILURE() << test::kFakeGvCameraBinary << " not found on PATH: install the Debian package aravis-tools";
             return;
         }
-        m_process = std::make_unique<test::ChildProcess>(std::vector<std::string>{binary->string(), "-i", kAddress}, log);
+        m_process =
+            std::make_unique<test::ChildProcess>(std::vector<std::string>{binary->string(), "-i", kAddress}, log);
         const auto end = std::chrono::steady_clock::now() + 10s;
         while (std::chrono::steady_clock::now() < end && !m_ready) {
             m_ready = open_aravis_camera(kAddress).ok();  // closed again at once: control released
@@ -76,9 +77,16 @@ std::size_t records_in(const std::filesystem::path& session) {
 
 std::vector<std::string> acquire_args(const std::filesystem::path& dir, const char* plan = "plan.yaml",
                                       const char* session = "session") {
-    return {TIRPOL_CLI_PATH, "acquire", (dir / plan).string(), "--camera",
-            std::string("aravis://") + kAddress + "?pixel_format=Mono16&width=64&height=48&fps=50", "--stage", "sim://", "-o",
-            (dir / session).string(), "--non-interactive"};
+    return {TIRPOL_CLI_PATH,
+            "acquire",
+            (dir / plan).string(),
+            "--camera",
+            std::string("aravis://") + kAddress + "?pixel_format=Mono16&width=64&height=48&fps=50",
+            "--stage",
+            "sim://",
+            "-o",
+            (dir / session).string(),
+            "--non-interactive"};
 }
 
 TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
@@ -94,7 +102,8 @@ TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
         std::filesystem::remove_all(tmp / "again");
         {
             test::ChildProcess holder(acquire_args(tmp.path()), tmp / "holder.log");
-            for (int i = 0; i < 2000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i) std::this_thread::sleep_for(10ms);
+            for (int i = 0; i < 2000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i)
+                std::this_thread::sleep_for(10ms);
             ASSERT_TRUE(std::filesystem::exists(tmp / "session" / "session.json")) << read_file(tmp / "holder.log");
             std::this_thread::sleep_for(300ms);
             holder.signal(SIGKILL);  // no chance to release the camera's control channel

@@ -43,8 +43,10 @@ TEST(CapturePlanLimits, AnEmptyPlanFileIsAnErrorNotTheDefaultPlan) {
 }
 
 TEST(CapturePlanLimits, AnglesOutsideZeroTo360AreRefusedNotWrapped) {
-    EXPECT_THAT(error_of("angles_deg: [0, 45, 405]"), HasSubstr("angle 405° is outside [0, 360) (the same position is 45°)"));
-    EXPECT_THAT(error_of("angles_deg: [-45, 0]"), HasSubstr("angle -45° is outside [0, 360) (the same position is 315°)"));
+    EXPECT_THAT(error_of("angles_deg: [0, 45, 405]"),
+                HasSubstr("angle 405° is outside [0, 360) (the same position is 45°)"));
+    EXPECT_THAT(error_of("angles_deg: [-45, 0]"),
+                HasSubstr("angle -45° is outside [0, 360) (the same position is 315°)"));
     EXPECT_THAT(error_of("angles_deg: [0, 360]"), HasSubstr("angles_deg"));
     EXPECT_THAT(error_of("angles_deg: [0, .nan]"), HasSubstr("angles_deg[1]"));
     EXPECT_THAT(error_of("references: [{kind: shutter, angle_deg: 370}]"), HasSubstr("references[0].angle_deg"));
@@ -56,7 +58,8 @@ TEST(CapturePlanLimits, AnglesOutsideZeroTo360AreRefusedNotWrapped) {
 TEST(CapturePlanLimits, ValuesThatWouldRunForeverAreRefusedBeforeAnythingStarts) {
     // The two reports of issue #20: a settle time of 2^32 s and 2^31 − 1 frames per angle.
     EXPECT_THAT(error_of("settle_s: 4294967296"), HasSubstr("settle_s: expected a duration in seconds ≥ 0 and ≤ 3600"));
-    EXPECT_THAT(error_of("frames_per_angle: 0x7fffffff"), HasSubstr("frames_per_angle: expected an integer ≥ 1 and ≤ 100000, got 2147483647"));
+    EXPECT_THAT(error_of("frames_per_angle: 0x7fffffff"),
+                HasSubstr("frames_per_angle: expected an integer ≥ 1 and ≤ 100000, got 2147483647"));
     EXPECT_THAT(error_of("repeats: 10001"), HasSubstr("repeats: expected an integer ≥ 1 and ≤ 10000"));
     EXPECT_THAT(error_of("move_timeout_s: 3601"), HasSubstr("move_timeout_s"));
     EXPECT_THAT(error_of("home_timeout_s: 1e9"), HasSubstr("home_timeout_s"));
@@ -65,7 +68,8 @@ TEST(CapturePlanLimits, ValuesThatWouldRunForeverAreRefusedBeforeAnythingStarts)
     EXPECT_THAT(error_of("references: [{kind: shutter, frames: 100001}]"), HasSubstr("references[0].frames"));
     // The limits themselves are accepted.
     const CapturePlan plan = CapturePlan::parse(ConfigNode::parse(
-        "settle_s: 3600\nframes_per_angle: 100000\nrepeats: 10000\nmove_timeout_s: 3600\nframe_timeout_s: 600\n", "plan.yaml"));
+        "settle_s: 3600\nframes_per_angle: 100000\nrepeats: 10000\nmove_timeout_s: 3600\nframe_timeout_s: 600\n",
+        "plan.yaml"));
     EXPECT_EQ(plan.settle_s, kMaxSettleSeconds);
     EXPECT_EQ(plan.frames_per_angle, kMaxFramesPerStep);
     EXPECT_EQ(plan.repeats, kMaxRepeats);

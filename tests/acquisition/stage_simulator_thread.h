@@ -13,7 +13,9 @@ namespace tirpol::test {
 class StageSimulatorThread {
 public:
     explicit StageSimulatorThread(acquisition::StageSimulatorOptions options)
-        : m_simulator(options), m_pty(acquisition::PseudoTerminal::open().value_or_throw()), m_path(m_pty.slave_path()) {
+        : m_simulator(options),
+          m_pty(acquisition::PseudoTerminal::open().value_or_throw()),
+          m_path(m_pty.slave_path()) {
         m_thread = std::thread([this] { serve_stage_simulator(m_simulator, m_pty, m_stop); });
     }
     ~StageSimulatorThread() {

@@ -123,7 +123,9 @@ TEST(StopOnInterrupt, CallsOnOverdueWhenTheProgramDoesNotFinishInTime) {
     EXPECT_EQ(overdue, 1);
     // A program that finishes (the watcher is destroyed) within the grace period is left alone.
     overdue = 0;
-    { StopOnInterrupt watcher(interrupt, 60s, [&] { ++overdue; }); }
+    {
+        StopOnInterrupt watcher(interrupt, 60s, [&] { ++overdue; });
+    }
     EXPECT_EQ(overdue, 0);
 }
 
@@ -144,10 +146,12 @@ std::vector<apt::Message> decode_all(std::vector<std::uint8_t> bytes) {
 
 TEST(AptSimulatorResync, AnswersTheFirstValidRequestAfterAnElliptecProbeOrGarbage) {
     const std::vector<std::vector<std::uint8_t>> junk = {
-        bytes_of("0in"), bytes_of("0in\r\n"), bytes_of("0in1in2in3in"),  // Elliptec probes of three addresses
-        {0xFF, 0x50, 0x01},                                               // noise ending like a header tail
-        {0x05, 0x00, 0x00, 0x00, 0x50},                                   // a request cut short
-        {0x53, 0x04, 0x06, 0x00, 0xD0, 0x01, 0x01},                       // a long header without its data
+        bytes_of("0in"),
+        bytes_of("0in\r\n"),
+        bytes_of("0in1in2in3in"),                    // Elliptec probes of three addresses
+        {0xFF, 0x50, 0x01},                          // noise ending like a header tail
+        {0x05, 0x00, 0x00, 0x00, 0x50},              // a request cut short
+        {0x53, 0x04, 0x06, 0x00, 0xD0, 0x01, 0x01},  // a long header without its data
     };
     for (const auto& j : junk) {
         StageSimulator sim(StageSimulatorOptions{});

@@ -255,7 +255,8 @@ private:
         if (!ARV_IS_GV_DEVICE(device)) return std::nullopt;
         GSocketAddress* address = arv_gv_device_get_device_address(ARV_GV_DEVICE(device));
         sockaddr_in native{};
-        if (address == nullptr || !g_socket_address_to_native(address, &native, sizeof native, nullptr)) return std::nullopt;
+        if (address == nullptr || !g_socket_address_to_native(address, &native, sizeof native, nullptr))
+            return std::nullopt;
         return native;
     }
 
@@ -265,10 +266,11 @@ private:
         switch (gvcp::probe_register(*m_control_address, gvcp::kVersionRegister, kProbeTimeout, kProbeTries)) {
             case gvcp::ProbeResult::Answered: return {};
             case gvcp::ProbeResult::Refused:
-                return "its control port refuses a register read (ICMP port unreachable: the device or the program serving it is gone)";
+                return "its control port refuses a register read (ICMP port unreachable: the device or the program "
+                       "serving it is gone)";
             case gvcp::ProbeResult::Silent:
-                return fmt::format("it answers no register read on its control channel ({} tries of {} ms)", kProbeTries,
-                                   kProbeTimeout.count());
+                return fmt::format("it answers no register read on its control channel ({} tries of {} ms)",
+                                   kProbeTries, kProbeTimeout.count());
         }
         return {};
     }
@@ -276,8 +278,8 @@ private:
     DeviceError disconnected(const std::string& why) {
         m_gone = true;
         return {DeviceErrorCode::Disconnected,
-                fmt::format("{}: no frame for {} ms and {}; the camera is disconnected (cable, power or network?)", m_label,
-                            kProbeAfterSilence.count(), why)};
+                fmt::format("{}: no frame for {} ms and {}; the camera is disconnected (cable, power or network?)",
+                            m_label, kProbeAfterSilence.count(), why)};
     }
 
     DeviceError busy(const char* what) const {
@@ -553,7 +555,8 @@ OpenAttempt open_once(const std::string& device_id, const AravisCameraOptions& o
     }
     auto result = std::make_unique<AravisCamera>(device_id, std::move(camera), options);
     if (Status s = result->configure(); !s)
-        return {s.error(), s.error().code == DeviceErrorCode::Timeout, std::nullopt};  // writes ignored: control lost again
+        // A timeout here means our writes were ignored: control was lost again.
+        return {s.error(), s.error().code == DeviceErrorCode::Timeout, std::nullopt};
     return {std::unique_ptr<Camera>(std::move(result)), false, std::nullopt};
 }
 
@@ -585,16 +588,18 @@ Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
         if (elapsed + pause > options.control_wait) {
             DeviceError error = a.camera.error();
             error.message += fmt::format(
-                "; still refused after {:.1f} s and {} attempts: another program (arv-viewer, a second tirpol) controls it",
+                "; still refused after {:.1f} s and {} attempts: another program (arv-viewer, a second tirpol) "
+                "controls it",
                 std::chrono::duration<double>(elapsed).count(), attempt);
             return error;
         }
         if (attempt == 1)
-            spdlog::warn("aravis://{}: the camera is still held by an earlier control session (a program that crashed or was "
-                         "killed keeps it until its heartbeat times out{}); retrying for up to {:.0f} s",
-                         device_id,
-                         a.heartbeat_timeout_ms ? fmt::format(", {} ms on this camera", *a.heartbeat_timeout_ms) : std::string(),
-                         std::chrono::duration<double>(options.control_wait).count());
+            spdlog::warn(
+                "aravis://{}: the camera is still held by an earlier control session (a program that crashed or was "
+                "killed keeps it until its heartbeat times out{}); retrying for up to {:.0f} s",
+                device_id,
+                a.heartbeat_timeout_ms ? fmt::format(", {} ms on this camera", *a.heartbeat_timeout_ms) : std::string(),
+                std::chrono::duration<double>(options.control_wait).count());
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::milliseconds(2000));
     }

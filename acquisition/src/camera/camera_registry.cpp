@@ -32,7 +32,8 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     options.frame_rate_hz = optional_number(u, "fps");
     options.stream_buffers = u.integer("buffers", options.stream_buffers);
     if (const auto wait_s = optional_number(u, "control_wait_s")) {
-        if (!(*wait_s >= 0.0 && *wait_s <= 600.0)) fail("device URI '{}': control_wait_s={} (expected 0 to 600 seconds)", u.text, *wait_s);
+        if (!(*wait_s >= 0.0 && *wait_s <= 600.0))
+            fail("device URI '{}': control_wait_s={} (expected 0 to 600 seconds)", u.text, *wait_s);
         options.control_wait = std::chrono::milliseconds(static_cast<std::int64_t>(*wait_s * 1000.0));
     }
     if (u.query.count("trigger") != 0) {

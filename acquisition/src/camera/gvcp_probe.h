@@ -8,9 +8,8 @@
 
 #include <netinet/in.h>
 
-#include <cstdint>
-
 #include <chrono>
+#include <cstdint>
 
 namespace tirpol::acquisition::gvcp {
 

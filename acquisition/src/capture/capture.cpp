@@ -38,13 +38,13 @@ bool interrupted(const CaptureOptions& options) { return options.interrupt && op
 
 /// A homing or move that returned: on an interruption (the stage was told to stop, or the signal
 /// came while it failed) the run ends as "interrupted", resumable; any other error fails the step.
-void check_motion(Status status, const char* motion, const CaptureStep& step, std::size_t total, const SessionWriter& session,
-                  const CaptureOptions& options) {
+void check_motion(Status status, const char* motion, const CaptureStep& step, std::size_t total,
+                  const SessionWriter& session, const CaptureOptions& options) {
     if (status) return;
     if (status.error().code == DeviceErrorCode::Stopped || interrupted(options))
-        fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume", motion,
-             step.index + 1, total, step.label, status.error().message, session.manifest().records.size(), total,
-             session.dir().string());
+        fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume",
+             motion, step.index + 1, total, step.label, status.error().message, session.manifest().records.size(),
+             total, session.dir().string());
     fail_step(step, total, "stage", status.error(), session);
 }
 
@@ -116,10 +116,13 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             if (!options.prompt(instruction))
                 fail("stopped by the operator before step {}/{} ({}); run again with --resume to continue", step->index + 1, total, step->label);
         }
-        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step, total, session, options);
+        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step, total,
+                     session, options);
         if (!settle(plan.settle_s, options))
-            fail("interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again with --resume",
-                 step->index + 1, total, step->label, session.manifest().records.size(), total, session.dir().string());
+            fail(
+                "interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again "
+                "with --resume",
+                step->index + 1, total, step->label, session.manifest().records.size(), total, session.dir().string());
         const double measured = check(stage.position_deg(), *step, total, "stage", session);
         if (std::abs(angle_difference_deg(measured, step->angle_deg)) > plan.angle_tolerance_deg)
             fail_step(*step, total, "stage",

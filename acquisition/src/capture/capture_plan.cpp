@@ -48,7 +48,8 @@ double seconds_in_range(const ConfigNode& root, std::string_view key, double fal
     if (!root.has(key)) return fallback;
     const double v = root.get<double>(key);
     if (!(allow_zero ? v >= 0.0 : v > 0.0) || !(v <= max_s))
-        root.at(key).fail(fmt::format("expected a duration in seconds {} 0 and ≤ {}, got {}", allow_zero ? "≥" : ">", max_s, v));
+        root.at(key).fail(
+            fmt::format("expected a duration in seconds {} 0 and ≤ {}, got {}", allow_zero ? "≥" : ">", max_s, v));
     return v;
 }
 
@@ -56,7 +57,8 @@ double seconds_in_range(const ConfigNode& root, std::string_view key, double fal
 /// is more often a typo than a wish, and the session records the angle as written.
 double plan_angle(const ConfigNode& node, double angle_deg) {
     if (!std::isfinite(angle_deg) || angle_deg < 0.0 || angle_deg >= 360.0) {
-        const std::string hint = std::isfinite(angle_deg) ? fmt::format(" (the same position is {:g}°)", wrap_degrees(angle_deg)) : "";
+        const std::string hint =
+            std::isfinite(angle_deg) ? fmt::format(" (the same position is {:g}°)", wrap_degrees(angle_deg)) : "";
         node.fail(fmt::format("angle {}° is outside [0, 360){}", angle_deg, hint));
     }
     return angle_deg;
@@ -80,7 +82,9 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
     // An empty file (or one holding only comments) is almost always the wrong file, not a wish for
     // the default plan.
     if (root.is_null() || (root.is_map() && root.keys().empty()))
-        root.fail("the capture plan is empty; write at least one field (e.g. `frames_per_angle: 16`), the others take their defaults");
+        root.fail(
+            "the capture plan is empty; write at least one field (e.g. `frames_per_angle: 16`), the others take their "
+            "defaults");
     root.check_keys({"angles_deg", "frames_per_angle", "settle_s", "repeats", "angle_tolerance_deg", "move_timeout_s",
                      "home_timeout_s", "frame_timeout_s", "references", "metadata"});
     CapturePlan plan;
@@ -98,7 +102,8 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
     plan.settle_s = seconds_in_range(root, "settle_s", plan.settle_s, true, kMaxSettleSeconds);
     plan.move_timeout_s = seconds_in_range(root, "move_timeout_s", plan.move_timeout_s, false, kMaxMoveTimeoutSeconds);
     plan.home_timeout_s = seconds_in_range(root, "home_timeout_s", plan.home_timeout_s, false, kMaxMoveTimeoutSeconds);
-    plan.frame_timeout_s = seconds_in_range(root, "frame_timeout_s", plan.frame_timeout_s, false, kMaxFrameTimeoutSeconds);
+    plan.frame_timeout_s =
+        seconds_in_range(root, "frame_timeout_s", plan.frame_timeout_s, false, kMaxFrameTimeoutSeconds);
     if (root.has("angle_tolerance_deg")) plan.angle_tolerance_deg = root.get_in_range("angle_tolerance_deg", 1e-6, 10.0);
     if (auto refs = root.find("references")) {
         for (const auto& ref : refs->elements()) {

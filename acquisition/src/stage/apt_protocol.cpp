@@ -81,7 +81,8 @@ Decoded decode_host_request(std::span<const std::uint8_t> bytes, std::uint8_t de
         Decoded d;
         d.status = DecodeStatus::Invalid;
         d.consumed = 1;
-        d.error = fmt::format("bytes {:02X} {:02X} … are not a header from the host to 0x{:02X}", bytes[0], bytes[1], device_address);
+        d.error = fmt::format("bytes {:02X} {:02X} … are not a header from the host to 0x{:02X}", bytes[0], bytes[1],
+                              device_address);
         return d;
     }
     return decode(bytes);

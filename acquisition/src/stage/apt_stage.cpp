@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
 #include <cmath>
+#include <mutex>
 
 #include "move_preconditions.h"
 #include "tirpol/acquisition/angles.h"
@@ -55,9 +55,10 @@ public:
         auto reply = await({apt::kMotMoveHomed, apt::kMotMoveStopped}, Clock::now() + timeout, "MGMSG_MOT_MOVE_HOMED");
         if (!reply) return with_motion_state(reply.error());
         if (reply.value().id == apt::kMotMoveStopped)
-            return DeviceError{m_stop_requested ? DeviceErrorCode::Stopped : DeviceErrorCode::DeviceFault,
-                               fmt::format("{}: homing stopped before the home switch{}", m_info.uri,
-                                           m_stop_requested ? " (MGMSG_MOT_MOVE_STOP sent); the stage is not homed" : "")};
+            return DeviceError{
+                m_stop_requested ? DeviceErrorCode::Stopped : DeviceErrorCode::DeviceFault,
+                fmt::format("{}: homing stopped before the home switch{}", m_info.uri,
+                            m_stop_requested ? " (MGMSG_MOT_MOVE_STOP sent); the stage is not homed" : "")};
         m_homed = true;
         return ok_status();
     }
@@ -72,9 +73,10 @@ public:
         const auto status = apt::parse_status_update(reply.value());
         if (!status) return bad_reply("a 14-byte status packet", reply.value());
         if (reply.value().id == apt::kMotMoveStopped && m_stop_requested)
-            return DeviceError{DeviceErrorCode::Stopped,
-                               fmt::format("{}: move to {:.3f}° stopped at {:.3f}° (MGMSG_MOT_MOVE_STOP sent)", m_info.uri,
-                                           wrap_degrees(angle_deg), status->position / m_options.counts_per_degree)};
+            return DeviceError{
+                DeviceErrorCode::Stopped,
+                fmt::format("{}: move to {:.3f}° stopped at {:.3f}° (MGMSG_MOT_MOVE_STOP sent)", m_info.uri,
+                            wrap_degrees(angle_deg), status->position / m_options.counts_per_degree)};
         if (reply.value().id == apt::kMotMoveStopped || (status->status_bits & apt::kMotionError))
             return DeviceError{DeviceErrorCode::DeviceFault,
                                fmt::format("{}: move to {:.3f}° stopped at {:.3f}° (status bits 0x{:08X}{})", m_info.uri,
@@ -176,11 +178,16 @@ private:
             }
             // After stop(), the controller has one reply timeout to confirm with MOVE_STOPPED.
             const bool stopping = m_stop_requested;
-            const auto stop_deadline = Clock::time_point(Clock::duration(m_stop_requested_at.load())) + m_options.reply_timeout;
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>((stopping ? std::min(deadline, stop_deadline) : deadline) - Clock::now());
+            const auto stop_deadline =
+                Clock::time_point(Clock::duration(m_stop_requested_at.load())) + m_options.reply_timeout;
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                (stopping ? std::min(deadline, stop_deadline) : deadline) - Clock::now());
             if (left.count() <= 0) {
                 if (stopping)
-                    return DeviceError{DeviceErrorCode::Stopped, fmt::format("{}: MGMSG_MOT_MOVE_STOP sent while waiting for {}; the controller did not confirm with MGMSG_MOT_MOVE_STOPPED", m_info.uri, what)};
+                    return DeviceError{DeviceErrorCode::Stopped,
+                                       fmt::format("{}: MGMSG_MOT_MOVE_STOP sent while waiting for {}; the controller "
+                                                   "did not confirm with MGMSG_MOT_MOVE_STOPPED",
+                                                   m_info.uri, what)};
                 return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no {} from the controller in time", m_info.uri, what)};
             }
             // Short reads, so a stop() from another thread is noticed within kStopPoll.

@@ -61,7 +61,8 @@ public:
         if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         const auto pulses = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
         const MotionScope motion(*this);
-        auto reply = transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO", Motion::Stoppable);
+        auto reply =
+            transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO", Motion::Stoppable);
         if (!reply) return reply.error();
         return ok_status();
     }
@@ -116,7 +117,8 @@ private:
         return stop_error(command);
     }
     DeviceError stop_error(const std::string& command) const {
-        return {DeviceErrorCode::Stopped, fmt::format("{}: '{}' ended by a stop request ('st' sent)", m_info.uri, command)};
+        return {DeviceErrorCode::Stopped,
+                fmt::format("{}: '{}' ended by a stop request ('st' sent)", m_info.uri, command)};
     }
 
     /// Sends `command` and waits for the reply `expected` from our address. A GS reply with a

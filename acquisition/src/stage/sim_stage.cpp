@@ -56,18 +56,21 @@ private:
             const double seconds = std::abs(target_deg - from_deg) / m_options.deg_per_s;
             const auto needed = std::chrono::duration<double>(seconds);
             const auto start = Clock::now();
-            const auto end = start + std::chrono::duration_cast<Clock::duration>(std::min<std::chrono::duration<double>>(needed, timeout));
+            const auto end = start + std::chrono::duration_cast<Clock::duration>(
+                                         std::min<std::chrono::duration<double>>(needed, timeout));
             for (auto now = start; now < end; now = Clock::now()) {
                 if (m_stop_requested) {
                     const double fraction = std::chrono::duration<double>(now - start).count() / seconds;
                     m_angle_deg = from_deg + (target_deg - from_deg) * fraction;
                     return DeviceError{DeviceErrorCode::Stopped,
-                                       fmt::format("{}: stopped at {:.3f}° on the way to {:.3f}°", m_info.uri, m_angle_deg, target_deg)};
+                                       fmt::format("{}: stopped at {:.3f}° on the way to {:.3f}°", m_info.uri,
+                                                   m_angle_deg, target_deg)};
                 }
                 std::this_thread::sleep_for(std::min<Clock::duration>(std::chrono::milliseconds(5), end - now));
             }
             if (needed > timeout)
-                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: move needs {:.2f} s, timeout {} ms", m_info.uri, seconds, timeout.count())};
+                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: move needs {:.2f} s, timeout {} ms",
+                                                                         m_info.uri, seconds, timeout.count())};
         }
         m_angle_deg = target_deg;
         return ok_status();

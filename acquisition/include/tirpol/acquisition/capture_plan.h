@@ -34,7 +34,7 @@ namespace tirpol::acquisition {
 
 /// Upper limits of a plan's fields: far above any real use, low enough that a typo fails at once
 /// instead of starting a run that never ends.
-inline constexpr int kMaxFramesPerStep = 100000;       ///< frames_per_angle, references[].frames
+inline constexpr int kMaxFramesPerStep = 100000;  ///< frames_per_angle, references[].frames
 inline constexpr int kMaxRepeats = 10000;
 inline constexpr double kMaxSettleSeconds = 3600.0;
 inline constexpr double kMaxMoveTimeoutSeconds = 3600.0;  ///< move_timeout_s, home_timeout_s

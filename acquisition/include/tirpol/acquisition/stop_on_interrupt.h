@@ -18,7 +18,8 @@ namespace tirpol::acquisition {
 
 class StopOnInterrupt {
 public:
-    StopOnInterrupt(const std::atomic<bool>& interrupt, std::chrono::milliseconds grace, std::function<void()> on_overdue,
+    StopOnInterrupt(const std::atomic<bool>& interrupt, std::chrono::milliseconds grace,
+                    std::function<void()> on_overdue,
                     std::chrono::milliseconds restop_period = std::chrono::milliseconds(250));
     /// Stops watching (joins the thread). Destroy it before the stage it watches.
     ~StopOnInterrupt();
