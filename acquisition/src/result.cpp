@@ -11,6 +11,7 @@ const char* to_string(DeviceErrorCode code) {
         case DeviceErrorCode::NotSupported: return "not supported";
         case DeviceErrorCode::InvalidArgument: return "invalid argument";
         case DeviceErrorCode::IoError: return "I/O error";
+        case DeviceErrorCode::Stopped: return "stopped";
     }
     return "unknown device error";
 }

@@ -4,8 +4,10 @@
 // message says how many steps are recorded; continue with --resume); 2 bad command-line usage.
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -14,6 +16,7 @@
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::cli {
@@ -21,8 +24,10 @@ namespace tirpol::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-/// First Ctrl-C: stop after the current frame. A second one ends the process at once, which is
-/// safe too: every session write is atomic.
+/// How long after Ctrl-C the program may take to leave through its clean path before it exits anyway.
+constexpr std::chrono::milliseconds kInterruptGrace{1000};
+/// First Ctrl-C: the stage is told to stop and the run ends after the current frame. A second one
+/// ends the process at once, which is safe too: every session write is atomic.
 extern "C" void on_interrupt(int sig) {
     if (g_interrupted.exchange(true)) {
         std::signal(sig, SIG_DFL);
@@ -61,8 +66,19 @@ void run_acquire(const AcquireArgs& a) {
         }
     } restore{previous_int, previous_term};
 
+    // Ctrl-C stops the stage at once (also mid-move or mid-homing) and never waits on a device for
+    // more than kInterruptGrace. Declared after `stage` so it stops watching before the stage goes.
+    std::unique_ptr<Stage> stage;
+    StopOnInterrupt stop_on_interrupt(g_interrupted, kInterruptGrace, [dir] {
+        std::fprintf(stderr,
+                     "\ntirpol acquire: interrupted; a device did not return within %.1f s, exiting now. Every step "
+                     "recorded so far is kept in %s; run again with --resume to continue\n",
+                     std::chrono::duration<double>(kInterruptGrace).count(), dir.c_str());
+        std::_Exit(1);
+    });
     auto camera = open_camera(a.camera).value_or_throw();
-    auto stage = open_stage(a.stage).value_or_throw();
+    stage = open_stage(a.stage).value_or_throw();
+    stop_on_interrupt.watch(stage.get());
     const CameraInfo camera_info = camera->info();
 
     SessionWriter session = a.resume ? SessionWriter::resume(dir)

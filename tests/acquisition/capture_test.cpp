@@ -96,7 +96,7 @@ TEST(CapturePlan, BadPlansAreReportedByField) {
     };
     EXPECT_THAT(error_of("frames_per_angel: 4"), HasSubstr("frames_per_angel"));
     EXPECT_THAT(error_of("frames_per_angle: 0"), HasSubstr("expected an integer ≥ 1"));
-    EXPECT_THAT(error_of("angles_deg: [0, 45, 405]"), HasSubstr("listed twice"));
+    EXPECT_THAT(error_of("angles_deg: [0, 45, 45.0]"), HasSubstr("listed twice"));
     EXPECT_THAT(error_of("references: [{kind: blackbody, frames: 3}]"), HasSubstr("needs temperatures_k"));
     EXPECT_THAT(error_of("references: [{kind: polarizer}]"), HasSubstr("expected blackbody or shutter"));
     EXPECT_THAT(error_of("settle_s: -1"), HasSubstr("settle_s"));

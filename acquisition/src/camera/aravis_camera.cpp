@@ -3,17 +3,21 @@
 #include "tirpol/acquisition/aravis_camera.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <thread>
 
 #include <arpa/inet.h>
 
 #include "camera/aravis_support.h"
+#include "camera/gvcp_probe.h"
 #include "camera/pixel_decode.h"
 #include "tirpol/acquisition/frame_id.h"
 
@@ -46,11 +50,28 @@ public:
     AravisCamera(std::string device_id, GObjectPtr<ArvCamera> camera, AravisCameraOptions options)
         : m_label("aravis://" + device_id), m_camera(std::move(camera)), m_options(std::move(options)) {
         m_info.uri = m_label;
-        m_genicam = arv_device_get_genicam(arv_camera_get_device(m_camera.get()));
+        ArvDevice* device = arv_camera_get_device(m_camera.get());
+        m_genicam = arv_device_get_genicam(device);
+        m_control_address = gige_control_address(device);
+        // Aravis's heartbeat thread emits control-lost when the camera no longer grants us control.
+        g_signal_connect(device, "control-lost", G_CALLBACK(+[](ArvDevice*, gpointer self) {
+                             static_cast<AravisCamera*>(self)->m_control_lost = true;
+                         }),
+                         this);
     }
 
     ~AravisCamera() override {
         if (m_streaming) stop();
+        g_signal_handlers_disconnect_by_data(arv_camera_get_device(m_camera.get()), this);
+        if (m_gone) {
+            // Closing a GigE camera that is gone blocks for seconds in Aravis (the stream's and the
+            // device's goodbye writes time out, the heartbeat thread finishes a retry loop):
+            // release both in the background so the error reaches the user now, not after that.
+            std::thread([stream = m_stream.release(), camera = m_camera.release()] {
+                if (stream != nullptr) g_object_unref(stream);
+                g_object_unref(camera);
+            }).detach();
+        }
     }
 
     Status configure() {
@@ -148,6 +169,10 @@ public:
         if (m_streaming) return ok_status();
         ArvCamera* cam = m_camera.get();
         GErrorSlot e;
+        // A session killed mid-stream leaves the camera acquiring towards its dead port; the fake
+        // camera (and a camera that latches the destination at AcquisitionStart) keeps sending
+        // there. Stopping first makes the acquisition below start towards this stream.
+        arv_camera_stop_acquisition(cam, nullptr);
         arv_camera_set_acquisition_mode(cam, ARV_ACQUISITION_MODE_CONTINUOUS, e.out());
         if (e) return to_device_error(e.get(), m_label, "setting AcquisitionMode=Continuous");
         const guint payload = arv_camera_get_payload(cam, e.out());
@@ -171,6 +196,7 @@ public:
         if (!m_streaming) return ok_status();
         m_streaming = false;
         GErrorSlot e;
+        if (m_gone) return ok_status();  // nothing to tell a camera that is gone; released by the destructor
         arv_camera_stop_acquisition(m_camera.get(), e.out());
         m_stream.reset();  // stops the stream thread and frees its buffers
         if (e) return to_device_error(e.get(), m_label, "AcquisitionStop");
@@ -185,13 +211,24 @@ public:
             arv_camera_software_trigger(m_camera.get(), e.out());
             if (e) return to_device_error(e.get(), m_label, "TriggerSoftware");
         }
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        using Clock = std::chrono::steady_clock;
+        const auto deadline = Clock::now() + timeout;
+        auto last_sign_of_life = Clock::now();
         for (;;) {
-            const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
-                deadline - std::chrono::steady_clock::now());
+            if (m_control_lost) return disconnected("Aravis's heartbeat reports the control channel lost");
+            const auto now = Clock::now();
+            if (now - last_sign_of_life >= kProbeAfterSilence) {
+                if (auto lost = check_alive(); !lost.empty()) return disconnected(lost);
+                last_sign_of_life = Clock::now();
+            }
+            const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - now);
             if (left.count() <= 0) break;
-            ArvBuffer* buffer = arv_stream_timeout_pop_buffer(m_stream.get(), static_cast<guint64>(left.count()));
-            if (buffer == nullptr) break;
+            // Short waits: a camera that vanished is noticed by the probe within about a second,
+            // not after the whole frame timeout.
+            const auto wait = std::min<std::chrono::microseconds>(left, kProbeAfterSilence);
+            ArvBuffer* buffer = arv_stream_timeout_pop_buffer(m_stream.get(), static_cast<guint64>(wait.count()));
+            if (buffer == nullptr) continue;
+            last_sign_of_life = Clock::now();
             Frame frame;
             const bool complete = take(buffer, frame);
             arv_stream_push_buffer(m_stream.get(), buffer);
@@ -213,6 +250,38 @@ public:
     }
 
 private:
+    /// The GVCP address of a GigE Vision camera (nullopt for USB3 Vision and others).
+    static std::optional<sockaddr_in> gige_control_address(ArvDevice* device) {
+        if (!ARV_IS_GV_DEVICE(device)) return std::nullopt;
+        GSocketAddress* address = arv_gv_device_get_device_address(ARV_GV_DEVICE(device));
+        sockaddr_in native{};
+        if (address == nullptr || !g_socket_address_to_native(address, &native, sizeof native, nullptr))
+            return std::nullopt;
+        return native;
+    }
+
+    /// Empty while the camera answers on its control channel, else what shows it is gone.
+    std::string check_alive() const {
+        if (!m_control_address) return {};
+        switch (gvcp::probe_register(*m_control_address, gvcp::kVersionRegister, kProbeTimeout, kProbeTries)) {
+            case gvcp::ProbeResult::Answered: return {};
+            case gvcp::ProbeResult::Refused:
+                return "its control port refuses a register read (ICMP port unreachable: the device or the program "
+                       "serving it is gone)";
+            case gvcp::ProbeResult::Silent:
+                return fmt::format("it answers no register read on its control channel ({} tries of {} ms)",
+                                   kProbeTries, kProbeTimeout.count());
+        }
+        return {};
+    }
+
+    DeviceError disconnected(const std::string& why) {
+        m_gone = true;
+        return {DeviceErrorCode::Disconnected,
+                fmt::format("{}: no frame for {} ms and {}; the camera is disconnected (cable, power or network?)",
+                            m_label, kProbeAfterSilence.count(), why)};
+    }
+
     DeviceError busy(const char* what) const {
         return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {} while streaming; stop() first", m_label, what)};
     }
@@ -383,8 +452,16 @@ private:
         return m_temperature_k;
     }
 
+    /// Without a frame for this long, ask the camera whether it is still there.
+    static constexpr std::chrono::milliseconds kProbeAfterSilence{500};
+    static constexpr std::chrono::milliseconds kProbeTimeout{200};
+    static constexpr int kProbeTries = 3;
+
     std::string m_label;
     GObjectPtr<ArvCamera> m_camera;
+    std::optional<sockaddr_in> m_control_address;
+    std::atomic<bool> m_control_lost{false};
+    bool m_gone = false;  ///< grab() found the camera disconnected
     GObjectPtr<ArvStream> m_stream;
     ArvGc* m_genicam = nullptr;  ///< owned by the device
     AravisCameraOptions m_options;
@@ -450,6 +527,41 @@ std::vector<AravisDeviceInfo> discover_aravis_cameras() {
     return devices;
 }
 
+namespace {
+
+/// GigE Vision bootstrap register "Heartbeat timeout" (ms), readable without control privilege.
+constexpr guint64 kHeartbeatTimeoutRegister = 0x0938;
+
+struct OpenAttempt {
+    Result<std::unique_ptr<Camera>> camera;
+    bool retry = false;  ///< failed because an earlier control session still holds the camera
+    std::optional<guint32> heartbeat_timeout_ms;
+};
+
+OpenAttempt open_once(const std::string& device_id, const AravisCameraOptions& options) {
+    const std::string label = "aravis://" + device_id;
+    GErrorSlot e;
+    GObjectPtr<ArvCamera> camera(arv_camera_new(device_id.c_str(), e.out()));
+    if (e || !camera) return {to_device_error(e.get(), label, "opening the camera"), false, std::nullopt};
+    ArvDevice* device = arv_camera_get_device(camera.get());
+    if (ARV_IS_GV_DEVICE(device) && !arv_gv_device_is_controller(ARV_GV_DEVICE(device))) {
+        // Aravis opens the camera even when its request for control privilege goes unanswered;
+        // every later write would then time out and the stream be refused.
+        guint32 heartbeat_ms = 0;
+        const bool read = arv_device_read_register(device, kHeartbeatTimeoutRegister, &heartbeat_ms, nullptr);
+        return {DeviceError{DeviceErrorCode::DeviceFault,
+                            label + ": Controller privilege required: another control session holds the camera"},
+                true, read ? std::optional<guint32>(heartbeat_ms) : std::nullopt};
+    }
+    auto result = std::make_unique<AravisCamera>(device_id, std::move(camera), options);
+    if (Status s = result->configure(); !s)
+        // A timeout here means our writes were ignored: control was lost again.
+        return {s.error(), s.error().code == DeviceErrorCode::Timeout, std::nullopt};
+    return {std::unique_ptr<Camera>(std::move(result)), false, std::nullopt};
+}
+
+}  // namespace
+
 Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id, const AravisCameraOptions& options) {
     // Observed with Aravis 0.8.26 and the fake camera on 127.0.0.1: opening a GigE Vision camera by id
     // when the id is not yet in Aravis's device list (no arv_update_device_list() in this process) gives
@@ -457,12 +569,40 @@ Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
     // So refresh the list first unless the id is an address or already listed.
     in_addr address{};
     if (inet_pton(AF_INET, device_id.c_str(), &address) != 1 && !listed(device_id)) arv_update_device_list();
-    GErrorSlot e;
-    GObjectPtr<ArvCamera> camera(arv_camera_new(device_id.c_str(), e.out()));
-    if (e || !camera) return to_device_error(e.get(), "aravis://" + device_id, "opening the camera");
-    auto result = std::make_unique<AravisCamera>(device_id, std::move(camera), options);
-    if (Status s = result->configure(); !s) return s.error();
-    return std::unique_ptr<Camera>(std::move(result));
+    // A GigE Vision camera grants control to one host session at a time and frees it only when that
+    // session's heartbeat times out: right after a session was killed (kill -9, a crash, a pulled
+    // cable) the camera refuses a new one for up to its heartbeat timeout. Retry with a growing
+    // pause instead of asking the user to try again.
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto pause = std::chrono::milliseconds(250);
+    for (int attempt = 1;; ++attempt) {
+        OpenAttempt a = open_once(device_id, options);
+        if (a.camera.ok() || !a.retry) {
+            if (a.camera.ok() && attempt > 1)
+                spdlog::info("aravis://{}: control privilege obtained after {} attempts ({:.1f} s)", device_id, attempt,
+                             std::chrono::duration<double>(Clock::now() - start).count());
+            return std::move(a.camera);
+        }
+        const auto elapsed = Clock::now() - start;
+        if (elapsed + pause > options.control_wait) {
+            DeviceError error = a.camera.error();
+            error.message += fmt::format(
+                "; still refused after {:.1f} s and {} attempts: another program (arv-viewer, a second tirpol) "
+                "controls it",
+                std::chrono::duration<double>(elapsed).count(), attempt);
+            return error;
+        }
+        if (attempt == 1)
+            spdlog::warn(
+                "aravis://{}: the camera is still held by an earlier control session (a program that crashed or was "
+                "killed keeps it until its heartbeat times out{}); retrying for up to {:.0f} s",
+                device_id,
+                a.heartbeat_timeout_ms ? fmt::format(", {} ms on this camera", *a.heartbeat_timeout_ms) : std::string(),
+                std::chrono::duration<double>(options.control_wait).count());
+        std::this_thread::sleep_for(pause);
+        pause = std::min(pause * 2, std::chrono::milliseconds(2000));
+    }
 }
 
 }  // namespace tirpol::acquisition

@@ -23,7 +23,7 @@ std::optional<double> optional_number(const DeviceUri& u, const char* key) {
 }
 
 Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
-    u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size"});
+    u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size", "control_wait_s"});
     if (u.target.empty()) fail("device URI '{}': expected aravis://<device-id>", u.text);
     AravisCameraOptions options;
     if (u.query.count("pixel_format") != 0) options.pixel_format = u.query.at("pixel_format");
@@ -31,6 +31,11 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     options.height = optional_int(u, "height");
     options.frame_rate_hz = optional_number(u, "fps");
     options.stream_buffers = u.integer("buffers", options.stream_buffers);
+    if (const auto wait_s = optional_number(u, "control_wait_s")) {
+        if (!(*wait_s >= 0.0 && *wait_s <= 600.0))
+            fail("device URI '{}': control_wait_s={} (expected 0 to 600 seconds)", u.text, *wait_s);
+        options.control_wait = std::chrono::milliseconds(static_cast<std::int64_t>(*wait_s * 1000.0));
+    }
     if (u.query.count("trigger") != 0) {
         const std::string& t = u.query.at("trigger");
         if (t != "software" && t != "off") fail("device URI '{}': trigger={} (expected software or off)", u.text, t);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -31,6 +32,31 @@ template <typename T>
 T check(Result<T> r, const CaptureStep& step, std::size_t total, const char* device, const SessionWriter& session) {
     if (!r) fail_step(step, total, device, r.error(), session);
     return std::move(r.value());
+}
+
+bool interrupted(const CaptureOptions& options) { return options.interrupt && options.interrupt->load(); }
+
+/// A homing or move that returned: on an interruption (the stage was told to stop, or the signal
+/// came while it failed) the run ends as "interrupted", resumable; any other error fails the step.
+void check_motion(Status status, const char* motion, const CaptureStep& step, std::size_t total,
+                  const SessionWriter& session, const CaptureOptions& options) {
+    if (status) return;
+    if (status.error().code == DeviceErrorCode::Stopped || interrupted(options))
+        fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume",
+             motion, step.index + 1, total, step.label, status.error().message, session.manifest().records.size(),
+             total, session.dir().string());
+    fail_step(step, total, "stage", status.error(), session);
+}
+
+/// Waits `seconds` after a move, returning early (false) on an interruption: a long settle_s must
+/// not hold Ctrl-C back.
+bool settle(double seconds, const CaptureOptions& options) {
+    const auto end = steady_clock::now() + duration_cast<steady_clock::duration>(duration<double>(seconds));
+    for (auto now = steady_clock::now(); now < end; now = steady_clock::now()) {
+        if (interrupted(options)) return false;
+        std::this_thread::sleep_for(std::min<steady_clock::duration>(milliseconds(20), end - now));
+    }
+    return !interrupted(options);
 }
 
 }  // namespace
@@ -73,7 +99,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     check(camera.start(), first, total, "camera", session);
     if (!stage.is_homed()) {
         spdlog::info("homing the stage {}", stage.info().uri);
-        check(stage.home(to_ms(plan.home_timeout_s)), first, total, "stage", session);
+        check_motion(stage.home(to_ms(plan.home_timeout_s)), "homing", first, total, session, options);
     }
     std::unique_ptr<ProgressReporter> progress;
     if (options.progress_stream) progress = std::make_unique<ProgressReporter>("acquire", todo.size(), options.progress_stream);
@@ -90,8 +116,13 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             if (!options.prompt(instruction))
                 fail("stopped by the operator before step {}/{} ({}); run again with --resume to continue", step->index + 1, total, step->label);
         }
-        check(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), *step, total, "stage", session);
-        std::this_thread::sleep_for(duration<double>(plan.settle_s));
+        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step, total,
+                     session, options);
+        if (!settle(plan.settle_s, options))
+            fail(
+                "interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again "
+                "with --resume",
+                step->index + 1, total, step->label, session.manifest().records.size(), total, session.dir().string());
         const double measured = check(stage.position_deg(), *step, total, "stage", session);
         if (std::abs(angle_difference_deg(measured, step->angle_deg)) > plan.angle_tolerance_deg)
             fail_step(*step, total, "stage",

@@ -36,18 +36,32 @@ nlohmann::json yaml_to_json(const ConfigNode& node) {
     return text;
 }
 
-int positive_int(const ConfigNode& root, std::string_view key, int fallback) {
+/// An integer in [1, max]; the upper limit stops a typo (`0x7fffffff`) from starting a run that never ends.
+int count_in_range(const ConfigNode& root, std::string_view key, int fallback, int max) {
     const int v = root.get_or<int>(key, fallback);
-    if (v < 1) root.at(key).fail(fmt::format("expected an integer ≥ 1, got {}", v));
+    if (v < 1 || v > max) root.at(key).fail(fmt::format("expected an integer ≥ 1 and ≤ {}, got {}", max, v));
     return v;
 }
 
-double positive_seconds(const ConfigNode& root, std::string_view key, double fallback, bool allow_zero) {
+/// A duration in seconds in [0, max_s] (or (0, max_s]); `settle_s: 4294967296` would sleep for 136 years.
+double seconds_in_range(const ConfigNode& root, std::string_view key, double fallback, bool allow_zero, double max_s) {
     if (!root.has(key)) return fallback;
     const double v = root.get<double>(key);
-    if (!(allow_zero ? v >= 0.0 : v > 0.0) || !std::isfinite(v))
-        root.at(key).fail(fmt::format("expected a duration in seconds {} 0, got {}", allow_zero ? "≥" : ">", v));
+    if (!(allow_zero ? v >= 0.0 : v > 0.0) || !(v <= max_s))
+        root.at(key).fail(
+            fmt::format("expected a duration in seconds {} 0 and ≤ {}, got {}", allow_zero ? "≥" : ">", max_s, v));
     return v;
+}
+
+/// A polarizer angle in [0, 360): a value outside is refused rather than wrapped, since 405 or −45
+/// is more often a typo than a wish, and the session records the angle as written.
+double plan_angle(const ConfigNode& node, double angle_deg) {
+    if (!std::isfinite(angle_deg) || angle_deg < 0.0 || angle_deg >= 360.0) {
+        const std::string hint =
+            std::isfinite(angle_deg) ? fmt::format(" (the same position is {:g}°)", wrap_degrees(angle_deg)) : "";
+        node.fail(fmt::format("angle {}° is outside [0, 360){}", angle_deg, hint));
+    }
+    return angle_deg;
 }
 
 std::vector<double> temperatures(const ConfigNode& ref) {
@@ -65,27 +79,31 @@ std::vector<double> temperatures(const ConfigNode& ref) {
 }  // namespace
 
 CapturePlan CapturePlan::parse(const ConfigNode& root) {
+    // An empty file (or one holding only comments) is almost always the wrong file, not a wish for
+    // the default plan.
+    if (root.is_null() || (root.is_map() && root.keys().empty()))
+        root.fail(
+            "the capture plan is empty; write at least one field (e.g. `frames_per_angle: 16`), the others take their "
+            "defaults");
     root.check_keys({"angles_deg", "frames_per_angle", "settle_s", "repeats", "angle_tolerance_deg", "move_timeout_s",
                      "home_timeout_s", "frame_timeout_s", "references", "metadata"});
     CapturePlan plan;
     if (root.has("angles_deg")) {
         plan.angles_deg = root.get<std::vector<double>>("angles_deg");
         if (plan.angles_deg.empty()) root.at("angles_deg").fail("expected at least one angle");
-        for (double& a : plan.angles_deg) {
-            if (!std::isfinite(a) || a < -360.0 || a > 720.0) root.at("angles_deg").fail(fmt::format("angle {} is not in degrees", a));
-            a = wrap_degrees(a);
-        }
+        for (double a : plan.angles_deg) plan_angle(root.at("angles_deg"), a);
         for (std::size_t i = 0; i < plan.angles_deg.size(); ++i)
             for (std::size_t k = 0; k < i; ++k)
                 if (std::abs(angle_difference_deg(plan.angles_deg[i], plan.angles_deg[k])) < 1e-9)
                     root.at("angles_deg").fail(fmt::format("angle {}° is listed twice", plan.angles_deg[i]));
     }
-    plan.frames_per_angle = positive_int(root, "frames_per_angle", plan.frames_per_angle);
-    plan.repeats = positive_int(root, "repeats", plan.repeats);
-    plan.settle_s = positive_seconds(root, "settle_s", plan.settle_s, true);
-    plan.move_timeout_s = positive_seconds(root, "move_timeout_s", plan.move_timeout_s, false);
-    plan.home_timeout_s = positive_seconds(root, "home_timeout_s", plan.home_timeout_s, false);
-    plan.frame_timeout_s = positive_seconds(root, "frame_timeout_s", plan.frame_timeout_s, false);
+    plan.frames_per_angle = count_in_range(root, "frames_per_angle", plan.frames_per_angle, kMaxFramesPerStep);
+    plan.repeats = count_in_range(root, "repeats", plan.repeats, kMaxRepeats);
+    plan.settle_s = seconds_in_range(root, "settle_s", plan.settle_s, true, kMaxSettleSeconds);
+    plan.move_timeout_s = seconds_in_range(root, "move_timeout_s", plan.move_timeout_s, false, kMaxMoveTimeoutSeconds);
+    plan.home_timeout_s = seconds_in_range(root, "home_timeout_s", plan.home_timeout_s, false, kMaxMoveTimeoutSeconds);
+    plan.frame_timeout_s =
+        seconds_in_range(root, "frame_timeout_s", plan.frame_timeout_s, false, kMaxFrameTimeoutSeconds);
     if (root.has("angle_tolerance_deg")) plan.angle_tolerance_deg = root.get_in_range("angle_tolerance_deg", 1e-6, 10.0);
     if (auto refs = root.find("references")) {
         for (const auto& ref : refs->elements()) {
@@ -98,8 +116,8 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
             spec.temperatures_k = temperatures(ref);
             if (spec.kind == RecordKind::Blackbody && spec.temperatures_k.empty())
                 ref.fail("a blackbody reference needs temperatures_k (or temperatures_c)");
-            spec.frames = positive_int(ref, "frames", spec.frames);
-            spec.angle_deg = wrap_degrees(ref.get_or<double>("angle_deg", 0.0));
+            spec.frames = count_in_range(ref, "frames", spec.frames, kMaxFramesPerStep);
+            if (ref.has("angle_deg")) spec.angle_deg = plan_angle(ref.at("angle_deg"), ref.get<double>("angle_deg"));
             plan.references.push_back(std::move(spec));
         }
     }

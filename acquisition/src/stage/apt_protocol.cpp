@@ -71,6 +71,23 @@ std::vector<std::uint8_t> mot_move_absolute(std::int32_t position, std::uint16_t
     return encode_long(kMotMoveAbsolute, data);
 }
 
+std::vector<std::uint8_t> mot_move_stop(std::uint8_t channel, StopMode mode) {
+    return encode_short(kMotMoveStop, channel, static_cast<std::uint8_t>(mode));
+}
+
+Decoded decode_host_request(std::span<const std::uint8_t> bytes, std::uint8_t device_address) {
+    if (bytes.size() >= kHeaderSize &&
+        (bytes[5] != kHostAddress || static_cast<std::uint8_t>(bytes[4] & ~kDataPacketFlag) != device_address)) {
+        Decoded d;
+        d.status = DecodeStatus::Invalid;
+        d.consumed = 1;
+        d.error = fmt::format("bytes {:02X} {:02X} … are not a header from the host to 0x{:02X}", bytes[0], bytes[1],
+                              device_address);
+        return d;
+    }
+    return decode(bytes);
+}
+
 Decoded decode(std::span<const std::uint8_t> bytes) {
     Decoded d;
     if (bytes.size() < kHeaderSize) return d;
@@ -186,6 +203,7 @@ std::string message_name(std::uint16_t id) {
         case kMotMoveHomed: return "MGMSG_MOT_MOVE_HOMED";
         case kMotMoveAbsolute: return "MGMSG_MOT_MOVE_ABSOLUTE";
         case kMotMoveCompleted: return "MGMSG_MOT_MOVE_COMPLETED";
+        case kMotMoveStop: return "MGMSG_MOT_MOVE_STOP";
         case kMotMoveStopped: return "MGMSG_MOT_MOVE_STOPPED";
         case kMotReqUStatusUpdate: return "MGMSG_MOT_REQ_USTATUSUPDATE";
         case kMotGetUStatusUpdate: return "MGMSG_MOT_GET_USTATUSUPDATE";

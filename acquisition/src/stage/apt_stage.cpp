@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 
 #include "move_preconditions.h"
 #include "tirpol/acquisition/angles.h"
@@ -15,6 +17,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
+constexpr std::chrono::milliseconds kStopPoll{50};
 
 class AptStage final : public Stage {
 public:
@@ -47,11 +50,15 @@ public:
     bool is_homed() const override { return m_homed; }
 
     Status home(std::chrono::milliseconds timeout) override {
+        const MotionScope motion(*this);
         if (auto s = send(apt::mot_move_home(m_options.channel)); !s) return s;
         auto reply = await({apt::kMotMoveHomed, apt::kMotMoveStopped}, Clock::now() + timeout, "MGMSG_MOT_MOVE_HOMED");
         if (!reply) return with_motion_state(reply.error());
         if (reply.value().id == apt::kMotMoveStopped)
-            return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: homing stopped before the home switch", m_info.uri)};
+            return DeviceError{
+                m_stop_requested ? DeviceErrorCode::Stopped : DeviceErrorCode::DeviceFault,
+                fmt::format("{}: homing stopped before the home switch{}", m_info.uri,
+                            m_stop_requested ? " (MGMSG_MOT_MOVE_STOP sent); the stage is not homed" : "")};
         m_homed = true;
         return ok_status();
     }
@@ -59,11 +66,17 @@ public:
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
         if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         const auto target = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_options.counts_per_degree));
+        const MotionScope motion(*this);
         if (auto s = send(apt::mot_move_absolute(target, m_options.channel)); !s) return s;
         auto reply = await({apt::kMotMoveCompleted, apt::kMotMoveStopped}, Clock::now() + timeout, "MGMSG_MOT_MOVE_COMPLETED");
         if (!reply) return with_motion_state(reply.error());
         const auto status = apt::parse_status_update(reply.value());
         if (!status) return bad_reply("a 14-byte status packet", reply.value());
+        if (reply.value().id == apt::kMotMoveStopped && m_stop_requested)
+            return DeviceError{
+                DeviceErrorCode::Stopped,
+                fmt::format("{}: move to {:.3f}° stopped at {:.3f}° (MGMSG_MOT_MOVE_STOP sent)", m_info.uri,
+                            wrap_degrees(angle_deg), status->position / m_options.counts_per_degree)};
         if (reply.value().id == apt::kMotMoveStopped || (status->status_bits & apt::kMotionError))
             return DeviceError{DeviceErrorCode::DeviceFault,
                                fmt::format("{}: move to {:.3f}° stopped at {:.3f}° (status bits 0x{:08X}{})", m_info.uri,
@@ -78,8 +91,33 @@ public:
         return wrap_degrees(status.value().position / m_options.counts_per_degree);
     }
 
+    /// Profiled stop: a stepper stopped abruptly can lose steps, and the position must stay true.
+    Status stop() override {
+        // Idle: nothing to stop, and a MOVE_STOPPED reply would later be taken for the next move's end.
+        if (!m_in_motion) return ok_status();
+        m_stop_requested_at = Clock::now().time_since_epoch().count();
+        m_stop_requested = true;
+        return send(apt::mot_move_stop(m_options.channel, apt::StopMode::Profiled));
+    }
+
 private:
-    Status send(const std::vector<std::uint8_t>& bytes) { return m_port->write(bytes, m_options.reply_timeout); }
+    /// Marks a homing or move in progress (what stop() may stop); clears an earlier stop request.
+    struct MotionScope {
+        explicit MotionScope(AptStage& stage) : m_stage(stage) {
+            m_stage.m_stop_requested = false;
+            m_stage.m_in_motion = true;
+        }
+        ~MotionScope() { m_stage.m_in_motion = false; }
+        MotionScope(const MotionScope&) = delete;
+        MotionScope& operator=(const MotionScope&) = delete;
+        AptStage& m_stage;
+    };
+
+    /// Serialised: stop() writes from another thread while a move's thread may write a request.
+    Status send(const std::vector<std::uint8_t>& bytes) {
+        const std::lock_guard lock(m_write_mutex);
+        return m_port->write(bytes, m_options.reply_timeout);
+    }
 
     Result<apt::StatusUpdate> request_status(Clock::time_point deadline) {
         if (auto s = send(apt::mot_req_ustatus_update(m_options.channel)); !s) return s.error();
@@ -138,10 +176,23 @@ private:
                 spdlog::trace("{}: skipping {} while waiting for {}", m_info.uri, apt::message_name(m.id), what);
                 continue;
             }
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-            if (left.count() <= 0)
+            // After stop(), the controller has one reply timeout to confirm with MOVE_STOPPED.
+            const bool stopping = m_stop_requested;
+            const auto stop_deadline =
+                Clock::time_point(Clock::duration(m_stop_requested_at.load())) + m_options.reply_timeout;
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                (stopping ? std::min(deadline, stop_deadline) : deadline) - Clock::now());
+            if (left.count() <= 0) {
+                if (stopping)
+                    return DeviceError{DeviceErrorCode::Stopped,
+                                       fmt::format("{}: MGMSG_MOT_MOVE_STOP sent while waiting for {}; the controller "
+                                                   "did not confirm with MGMSG_MOT_MOVE_STOPPED",
+                                                   m_info.uri, what)};
                 return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no {} from the controller in time", m_info.uri, what)};
-            auto bytes = m_port->read_some(left);
+            }
+            // Short reads, so a stop() from another thread is noticed within kStopPoll.
+            auto bytes = m_port->read_some(std::min(left, kStopPoll));
+            if (!bytes && bytes.error().code == DeviceErrorCode::Timeout && Clock::now() < deadline) continue;
             if (!bytes) {
                 DeviceError e = bytes.error();
                 if (e.code == DeviceErrorCode::Timeout)
@@ -159,6 +210,10 @@ private:
     StageInfo m_info;
     bool m_homed = false;
     std::vector<std::uint8_t> m_rx;
+    std::mutex m_write_mutex;
+    std::atomic<bool> m_in_motion{false};
+    std::atomic<bool> m_stop_requested{false};
+    std::atomic<Clock::rep> m_stop_requested_at{0};
 };
 
 }  // namespace

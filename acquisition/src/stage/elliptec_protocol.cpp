@@ -33,6 +33,7 @@ std::string home(char address, bool clockwise) { return command(address, "ho", c
 std::string move_absolute(char address, std::int32_t pulses) { return command(address, "ma", encode_position(pulses)); }
 std::string get_position(char address) { return command(address, "gp"); }
 std::string get_status(char address) { return command(address, "gs"); }
+std::string stop(char address) { return command(address, "st"); }
 
 std::string encode_position(std::int32_t pulses) { return fmt::format("{:08X}", static_cast<std::uint32_t>(pulses)); }
 

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <thread>
 
 #include "move_preconditions.h"
@@ -48,7 +50,8 @@ public:
     bool is_homed() const override { return m_homed; }
 
     Status home(std::chrono::milliseconds timeout) override {
-        auto reply = transact(ell::home(m_options.address, true), Clock::now() + timeout, "PO");
+        const MotionScope motion(*this);
+        auto reply = transact(ell::home(m_options.address, true), Clock::now() + timeout, "PO", Motion::Stoppable);
         if (!reply) return reply.error();
         m_homed = true;
         return ok_status();
@@ -57,7 +60,9 @@ public:
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
         if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
         const auto pulses = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
-        auto reply = transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO");
+        const MotionScope motion(*this);
+        auto reply =
+            transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO", Motion::Stoppable);
         if (!reply) return reply.error();
         return ok_status();
     }
@@ -71,15 +76,63 @@ public:
         return wrap_degrees(*pulses / m_info.counts_per_degree);
     }
 
+    Status stop() override {
+        // Idle: nothing to stop, and its GS reply would only come in the way of the next command.
+        if (!m_in_motion) return ok_status();
+        m_stop_requested = true;
+        return write(ell::stop(m_options.address));
+    }
+
 private:
+    /// Marks a homing or move in progress (what stop() may stop); clears an earlier stop request.
+    struct MotionScope {
+        explicit MotionScope(ElliptecStage& stage) : m_stage(stage) {
+            m_stage.m_stop_requested = false;
+            m_stage.m_in_motion = true;
+        }
+        ~MotionScope() { m_stage.m_in_motion = false; }
+        MotionScope(const MotionScope&) = delete;
+        MotionScope& operator=(const MotionScope&) = delete;
+        ElliptecStage& m_stage;
+    };
+
+    /// Whether stop() ends the wait (home, moves) or not (requests answered at once).
+    enum class Motion { Stoppable, Immediate };
+
+    /// Serialised: stop() writes from another thread while a move's thread may resend its command.
+    Status write(const std::string& command) {
+        const std::vector<std::uint8_t> bytes(command.begin(), command.end());
+        const std::lock_guard lock(m_write_mutex);
+        return m_port->write(bytes, m_options.reply_timeout);
+    }
+
+    /// Ends a motion cut short by stop(): reads up to the module's GS reply to `st`, so no reply of
+    /// the interrupted motion is left to be taken for the answer to the next command.
+    DeviceError stopped(const std::string& command) {
+        const auto deadline = Clock::now() + m_options.reply_timeout;
+        for (;;) {
+            auto reply = read_reply(deadline, "st", false);
+            if (!reply || reply.value().code == "GS") break;
+        }
+        return stop_error(command);
+    }
+    DeviceError stop_error(const std::string& command) const {
+        return {DeviceErrorCode::Stopped,
+                fmt::format("{}: '{}' ended by a stop request ('st' sent)", m_info.uri, command)};
+    }
+
     /// Sends `command` and waits for the reply `expected` from our address. A GS reply with a
     /// non-zero status is a fault, except Busy, which is waited out (re-sending) until the deadline.
-    Result<ell::Reply> transact(const std::string& command, Clock::time_point deadline, const char* expected) {
+    Result<ell::Reply> transact(const std::string& command, Clock::time_point deadline, const char* expected,
+                                Motion motion = Motion::Immediate) {
         bool busy_seen = false;
+        const bool stoppable = motion == Motion::Stoppable;
         for (;;) {
-            const std::vector<std::uint8_t> bytes(command.begin(), command.end());
-            if (auto s = m_port->write(bytes, m_options.reply_timeout); !s) return s.error();
-            auto reply = read_reply(deadline, command);
+            if (stoppable && m_stop_requested) return stopped(command);
+            if (auto s = write(command); !s) return s.error();
+            auto reply = read_reply(deadline, command, stoppable);
+            if (stoppable && m_stop_requested && reply)  // a GS here is the module's answer to `st`
+                return reply.value().code == "GS" ? stop_error(command) : stopped(command);
             if (!reply) {
                 DeviceError e = reply.error();
                 if (busy_seen && e.code == DeviceErrorCode::Timeout) e.message += " (the module kept answering GS09 Busy)";
@@ -108,7 +161,7 @@ private:
         }
     }
 
-    Result<ell::Reply> read_reply(Clock::time_point deadline, const std::string& command) {
+    Result<ell::Reply> read_reply(Clock::time_point deadline, const std::string& command, bool stoppable) {
         for (;;) {
             while (auto line = ell::take_line(m_rx)) {
                 const auto reply = ell::parse_reply(*line);
@@ -119,10 +172,13 @@ private:
                 if (reply->address != m_options.address) continue;  // another module on the bus
                 return *reply;
             }
+            if (stoppable && m_stop_requested) return stopped(command);
             const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
             if (left.count() <= 0)
                 return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply to '{}' in time", m_info.uri, command)};
-            auto bytes = m_port->read_some(left);
+            // Short reads while a motion runs, so a stop() from another thread is noticed promptly.
+            auto bytes = m_port->read_some(stoppable ? std::min(left, std::chrono::milliseconds(50)) : left);
+            if (!bytes && bytes.error().code == DeviceErrorCode::Timeout && Clock::now() < deadline) continue;
             if (!bytes) {
                 DeviceError e = bytes.error();
                 e.message = e.code == DeviceErrorCode::Timeout ? fmt::format("{}: no reply to '{}' in time", m_info.uri, command)
@@ -138,6 +194,9 @@ private:
     StageInfo m_info;
     bool m_homed = false;
     std::string m_rx;
+    std::mutex m_write_mutex;
+    std::atomic<bool> m_in_motion{false};
+    std::atomic<bool> m_stop_requested{false};
 };
 
 }  // namespace

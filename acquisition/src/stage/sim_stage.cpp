@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <thread>
 
@@ -39,16 +41,36 @@ public:
         return wrap_degrees(std::round(m_angle_deg * m_options.counts_per_degree) / m_options.counts_per_degree);
     }
 
+    Status stop() override {
+        m_stop_requested = true;
+        return ok_status();
+    }
+
 private:
+    /// Turns towards `target_deg` at the set speed, watching for stop() every few milliseconds.
     Status travel(double target_deg, std::chrono::milliseconds timeout) {
+        using Clock = std::chrono::steady_clock;
+        m_stop_requested = false;
         if (m_options.deg_per_s > 0.0) {
-            const double seconds = std::abs(target_deg - m_angle_deg) / m_options.deg_per_s;
+            const double from_deg = m_angle_deg;
+            const double seconds = std::abs(target_deg - from_deg) / m_options.deg_per_s;
             const auto needed = std::chrono::duration<double>(seconds);
-            if (needed > timeout) {
-                std::this_thread::sleep_for(timeout);
-                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: move needs {:.2f} s, timeout {} ms", m_info.uri, seconds, timeout.count())};
+            const auto start = Clock::now();
+            const auto end = start + std::chrono::duration_cast<Clock::duration>(
+                                         std::min<std::chrono::duration<double>>(needed, timeout));
+            for (auto now = start; now < end; now = Clock::now()) {
+                if (m_stop_requested) {
+                    const double fraction = std::chrono::duration<double>(now - start).count() / seconds;
+                    m_angle_deg = from_deg + (target_deg - from_deg) * fraction;
+                    return DeviceError{DeviceErrorCode::Stopped,
+                                       fmt::format("{}: stopped at {:.3f}° on the way to {:.3f}°", m_info.uri,
+                                                   m_angle_deg, target_deg)};
+                }
+                std::this_thread::sleep_for(std::min<Clock::duration>(std::chrono::milliseconds(5), end - now));
             }
-            std::this_thread::sleep_for(needed);
+            if (needed > timeout)
+                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: move needs {:.2f} s, timeout {} ms",
+                                                                         m_info.uri, seconds, timeout.count())};
         }
         m_angle_deg = target_deg;
         return ok_status();
@@ -59,6 +81,7 @@ private:
     double m_angle_deg;
     bool m_homed = false;
     int m_moves = 0;
+    std::atomic<bool> m_stop_requested{false};  ///< set by stop() from any thread
 };
 
 }  // namespace

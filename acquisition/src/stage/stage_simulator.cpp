@@ -1,13 +1,13 @@
 #include "tirpol/acquisition/stage_simulator.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
-#include <fmt/format.h>
-
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -70,6 +70,13 @@ bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_poin
     return m_options.fault != SimFault::None && m_moves >= m_options.fault_on_move;
 }
 
+void StageSimulator::stop_motion(Clock::time_point now) {
+    m_from_deg = m_to_deg = angle_deg(now);
+    m_move_end = now;
+    m_homing = m_stuck = false;
+    m_pending.clear();  // only move completions wait there
+}
+
 std::vector<std::uint8_t> StageSimulator::receive(std::span<const std::uint8_t> bytes, Clock::time_point now) {
     m_rx.insert(m_rx.end(), bytes.begin(), bytes.end());
     if (m_silent) {
@@ -102,7 +109,9 @@ std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
         return apt::status_message(id, s);
     };
     for (;;) {
-        const auto d = apt::decode(m_rx);
+        // As a controller does: bytes that do not start a header from the host (an Elliptec probe,
+        // line noise) are dropped one at a time until a valid header lines up again.
+        const auto d = apt::decode_host_request(m_rx);
         if (d.status == apt::DecodeStatus::NeedMore) break;
         m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(d.consumed));
         if (d.status == apt::DecodeStatus::Invalid) continue;
@@ -126,6 +135,14 @@ std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
                 start_move(0.0, true, now);
                 m_pending.push_back({m_move_end, apt::encode_short(apt::kMotMoveHomed, 1, 0, apt::kHostAddress, apt::kUsbDeviceAddress)});
                 break;
+            case apt::kMotMoveStop: {
+                stop_motion(now);
+                apt::StatusUpdate s;
+                s.position = static_cast<std::int32_t>(std::llround(angle_deg(now) * kAptCountsPerDegree));
+                s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u);
+                append(apt::status_message(apt::kMotMoveStopped, s));
+                break;
+            }
             case apt::kMotMoveAbsolute: {
                 if (m.data.size() != 6) break;
                 const auto counts = static_cast<std::int32_t>(m.data[2] | (m.data[3] << 8) | (m.data[4] << 16) | (m.data[5] << 24));
@@ -171,6 +188,13 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
         if (m_rx.size() < 3) break;
         const std::string head(m_rx.begin(), m_rx.begin() + 3);
         const std::string cmd = head.substr(1);
+        // Not `<address><two lower-case letters>`: garbage or another protocol (APT bytes).
+        // Drop one byte and look again, so the next valid command is understood.
+        if (!elliptec::valid_address(head[0]) || !std::islower(static_cast<unsigned char>(cmd[0])) ||
+            !std::islower(static_cast<unsigned char>(cmd[1]))) {
+            m_rx.erase(m_rx.begin());
+            continue;
+        }
         const std::size_t data_len = cmd == "ma" ? 8 : cmd == "ho" ? 1 : 0;
         if (m_rx.size() < 3 + data_len) break;
         const std::string data(m_rx.begin() + 3, m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
@@ -188,6 +212,9 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
             append(reply("IN", elliptec::encode_info(info)));
         } else if (cmd == "gp") {
             append(reply("PO", position(angle_deg(now))));
+        } else if (cmd == "st") {
+            stop_motion(now);
+            append(reply("GS", "00"));
         } else if (cmd == "gs") {
             append(reply("GS", moving(now) ? "09" : "00"));
         } else if (cmd == "ho") {

@@ -37,6 +37,7 @@ enum MessageId : std::uint16_t {
     kMotMoveHomed = 0x0444,          ///< MGMSG_MOT_MOVE_HOMED
     kMotMoveAbsolute = 0x0453,       ///< MGMSG_MOT_MOVE_ABSOLUTE (6-byte data packet form)
     kMotMoveCompleted = 0x0464,      ///< MGMSG_MOT_MOVE_COMPLETED, 14-byte status packet
+    kMotMoveStop = 0x0465,           ///< MGMSG_MOT_MOVE_STOP: param1 channel, param2 stop mode
     kMotMoveStopped = 0x0466,        ///< MGMSG_MOT_MOVE_STOPPED, 14-byte status packet
     kMotReqUStatusUpdate = 0x0490,   ///< MGMSG_MOT_REQ_USTATUSUPDATE
     kMotGetUStatusUpdate = 0x0491,   ///< MGMSG_MOT_GET_USTATUSUPDATE, 14-byte status packet
@@ -87,6 +88,13 @@ std::vector<std::uint8_t> mot_move_home(std::uint8_t channel = 1);
 std::vector<std::uint8_t> mot_move_absolute(std::int32_t position, std::uint16_t channel = 1);
 std::vector<std::uint8_t> mot_req_ustatus_update(std::uint8_t channel = 1);
 
+/// Stop modes of MGMSG_MOT_MOVE_STOP (protocol document: "0x01 stop immediately (abrupt)",
+/// "0x02 stop in a controlled (profiled) manner").
+enum class StopMode : std::uint8_t { Immediate = 0x01, Profiled = 0x02 };
+/// MGMSG_MOT_MOVE_STOP, header only: 65 04 <channel> <stop mode> <dest> <source>. Stops any move
+/// (absolute, relative, homing, velocity); the controller answers MGMSG_MOT_MOVE_STOPPED.
+std::vector<std::uint8_t> mot_move_stop(std::uint8_t channel = 1, StopMode mode = StopMode::Profiled);
+
 /// Outcome of trying to decode the front of a byte stream.
 enum class DecodeStatus { Complete, NeedMore, Invalid };
 struct Decoded {
@@ -99,6 +107,13 @@ struct Decoded {
 /// `kMaxDataLength` is Invalid (protects against a misaligned stream).
 Decoded decode(std::span<const std::uint8_t> bytes);
 inline constexpr std::size_t kMaxDataLength = 255;
+
+/// Decodes one host → controller message from the front of `bytes`, as a controller reads its
+/// input: a header not addressed from the host (source 0x01) to `device_address` is Invalid with
+/// `consumed` = 1, so a reader dropping that byte resynchronises on the next valid header after
+/// garbage or bytes of another protocol (an Elliptec probe "0in" would otherwise shift every
+/// following 6-byte header for good).
+Decoded decode_host_request(std::span<const std::uint8_t> bytes, std::uint8_t device_address = kUsbDeviceAddress);
 
 /// MGMSG_HW_GET_INFO data packet (84 bytes): serial (int32), model (8 chars), type (u16),
 /// firmware (minor, interim, major, unused), notes (48 chars), empty (12), hw version, mod state,

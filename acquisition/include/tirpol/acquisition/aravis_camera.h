@@ -3,6 +3,7 @@
 /// GenICam cameras (GigE Vision, USB3 Vision) through Aravis 0.8: `aravis://<device-id>`.
 /// The device id is Aravis's ("<vendor>-<model>-<serial>", e.g. `Aravis-Fake-GV01`), or an IP address.
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,10 +33,16 @@ struct AravisCameraOptions {
     bool software_trigger = false;  ///< each grab() fires TriggerSoftware (TriggerMode=On, TriggerSource=Software)
     int stream_buffers = 32;        ///< buffers queued on the stream; more absorb host hiccups
     bool auto_packet_size = true;   ///< GigE Vision: negotiate the largest packet the path carries
+    /// GigE Vision: how long to keep retrying (with a growing pause) while an earlier control
+    /// session, e.g. of a program that was killed, still holds the camera until its heartbeat times
+    /// out. A warning says so at the first refusal.
+    std::chrono::milliseconds control_wait{15000};
 };
 
 /// Opens `device_id` and applies `options`. Errors (device absent, feature refused) as DeviceError
-/// with the Aravis GError domain and code in the message.
+/// with the Aravis GError domain and code in the message. While a frame is awaited, a GigE Vision
+/// camera silent for 0.5 s is probed on its control channel: one that is gone gives Disconnected
+/// within about a second, not a Timeout at the end of the frame timeout.
 Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
                                                    const AravisCameraOptions& options = {});
 

@@ -18,7 +18,8 @@
 ///     frames: 16
 /// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5, air_temperature_c: 4.5}
 /// ```
-/// Unknown keys are errors naming the key (typos never pass silently).
+/// Unknown keys are errors naming the key (typos never pass silently); so are an empty plan file,
+/// angles outside [0, 360) and values beyond the limits below, all before any device moves.
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -30,6 +31,14 @@
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {
+
+/// Upper limits of a plan's fields: far above any real use, low enough that a typo fails at once
+/// instead of starting a run that never ends.
+inline constexpr int kMaxFramesPerStep = 100000;  ///< frames_per_angle, references[].frames
+inline constexpr int kMaxRepeats = 10000;
+inline constexpr double kMaxSettleSeconds = 3600.0;
+inline constexpr double kMaxMoveTimeoutSeconds = 3600.0;  ///< move_timeout_s, home_timeout_s
+inline constexpr double kMaxFrameTimeoutSeconds = 600.0;
 
 struct ReferenceSpec {
     RecordKind kind = RecordKind::Blackbody;  ///< Blackbody or Shutter

@@ -24,6 +24,8 @@ std::string move_absolute(char address, std::int32_t pulses);
 std::string get_position(char address);
 /// `<a>gs`: get status (reply `GS` with a status code).
 std::string get_status(char address);
+/// `<a>st`: stop the motion now (manual, "_st_ stop"; reply `GS` with the status).
+std::string stop(char address);
 
 /// 8 upper-case hex digits, two's complement (manual: "position ... 32-bit signed, 8 hex digits").
 std::string encode_position(std::int32_t pulses);

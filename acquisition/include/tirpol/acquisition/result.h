@@ -19,6 +19,7 @@ enum class DeviceErrorCode {
     NotSupported,   ///< the device lacks the feature
     InvalidArgument,///< the request was invalid (out of range, unknown feature)
     IoError,        ///< an operating-system I/O error
+    Stopped,        ///< a motion ended early because Stage::stop() was called (e.g. on Ctrl-C)
 };
 
 const char* to_string(DeviceErrorCode code);

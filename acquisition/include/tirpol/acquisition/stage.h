@@ -29,6 +29,14 @@ public:
     virtual Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) = 0;
     /// Current angle in degrees, read back from the device.
     virtual Result<double> position_deg() = 0;
+    /// Tells the device to stop moving now (APT MGMSG_MOT_MOVE_STOP, Elliptec `st`). Safe to call
+    /// from another thread while home() or move_absolute() waits: that call then returns promptly
+    /// with DeviceErrorCode::Stopped and the stage stays where it stopped (not homed if homing was
+    /// cut short). When nothing moves it sends nothing and returns ok. Stages that cannot stop
+    /// return NotSupported.
+    virtual Status stop() {
+        return DeviceError{DeviceErrorCode::NotSupported, info().uri + ": this stage has no stop command"};
+    }
 };
 
 }  // namespace tirpol::acquisition

@@ -59,6 +59,9 @@ private:
     std::vector<std::uint8_t> receive_elliptec(Clock::time_point now);
     /// Starts a move to `target_deg`; returns whether the fault fires on this move.
     bool start_move(double target_deg, bool homing, Clock::time_point now);
+    /// Ends any motion where the stage is now (APT MOVE_STOP, Elliptec `st`); drops the pending
+    /// completion message. A homing cut short leaves the stage not homed.
+    void stop_motion(Clock::time_point now);
     bool moving(Clock::time_point now) const;
 
     StageSimulatorOptions m_options;
