@@ -1,0 +1,54 @@
+#include "tirpol/acquisition/frame_gate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+
+namespace tirpol::acquisition {
+
+namespace {
+constexpr std::int64_t kUnknownPeriodNs = 200'000'000;  ///< before any interval is seen: ≤ 5 Hz assumed
+/// Intervals longer than this are pauses (the capture loop not grabbing, a software trigger waiting
+/// for a move), not the camera's rate.
+constexpr std::int64_t kPauseNs = 2'000'000'000;
+}  // namespace
+
+std::int64_t host_realtime_ns() {
+    timespec ts{};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+FrameGate::FrameGate(std::optional<double> nominal_frame_rate_hz) {
+    if (nominal_frame_rate_hz && *nominal_frame_rate_hz > 0.0 && std::isfinite(*nominal_frame_rate_hz))
+        m_nominal_period_ns = static_cast<std::int64_t>(std::llround(1e9 / *nominal_frame_rate_hz));
+}
+
+std::int64_t FrameGate::exposure_window_ns() const {
+    const std::int64_t period = m_nominal_period_ns ? *m_nominal_period_ns : m_min_period_ns.value_or(kUnknownPeriodNs);
+    return period + period / 2;
+}
+
+bool FrameGate::exposed_after(const Frame& frame, std::int64_t settle_end_ns) {
+    if (m_have_last && frame.frame_id > m_last_id && frame.host_timestamp_ns > m_last_ns) {
+        const auto ids = frame.frame_id - m_last_id;
+        const std::int64_t dt = frame.host_timestamp_ns - m_last_ns;
+        if (dt < kPauseNs) {
+            const auto per_id = dt / static_cast<std::int64_t>(ids);
+            m_min_period_ns = m_min_period_ns ? std::min(*m_min_period_ns, per_id) : per_id;
+            ++m_intervals;
+            m_span_ns += dt;
+        }
+    }
+    m_have_last = true;
+    m_last_id = frame.frame_id;
+    m_last_ns = frame.host_timestamp_ns;
+    return frame.host_timestamp_ns - exposure_window_ns() >= settle_end_ns;
+}
+
+std::optional<double> FrameGate::delivered_rate_hz() const {
+    if (m_span_ns <= 0 || m_intervals == 0) return std::nullopt;
+    return static_cast<double>(m_intervals) * 1e9 / static_cast<double>(m_span_ns);
+}
+
+}  // namespace tirpol::acquisition
