@@ -318,7 +318,8 @@ void record_to_attributes(const SessionRecord& r, Attributes& a) {
     a["last_timestamp_ns"] = std::to_string(r.last_timestamp_ns);
     if (r.fpa_temperature_k) a["fpa_temperature_k"] = *r.fpa_temperature_k;
     else a.erase("fpa_temperature_k");
-    for (const auto& [key, value] : (r.timing ? timing_to_json(*r.timing) : timing_to_json({})).items()) {
+    const json timing = timing_to_json(r.timing.value_or(StepTiming{}));
+    for (const auto& [key, value] : timing.items()) {
         const std::string name = "timing_" + key;
         if (!r.timing) a.erase(name);
         else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
@@ -337,7 +338,8 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
         std::visit([&j, &key = name](const auto& v) { j[key] = v; }, value);
     }
     json timing = json::object();
-    for (const auto& [key, value] : timing_to_json({}).items())
+    const json timing_keys = timing_to_json({});
+    for (const auto& [key, unused] : timing_keys.items())
         if (auto it = j.find("timing_" + key); it != j.end()) {
             timing[key] = *it;
             j.erase(it);

