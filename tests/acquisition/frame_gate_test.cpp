@@ -50,6 +50,24 @@ TEST(FrameGate, ACameraSlowerThanItsNominalRateIsGatedOnItsTruePeriod) {
     EXPECT_FALSE(gate.exposed_after(received(3, t0 + 32 * kMs), t0 + 10 * kMs));
 }
 
+TEST(FrameGate, AHostStampDelayedByAStarvedThreadIsCorrectedFromTheDeviceClock) {
+    // Device clock = host − 5 s (an arbitrary offset) + 2 ms of transfer latency for frames 1 and 2.
+    // Frame 3 was exposed at the same cadence but its host stamp is 40 ms late (the receiving thread
+    // waited for the CPU): from the device clock it arrived at t0 + 66 ms, before the settle end.
+    FrameGate gate(30.0);
+    const std::int64_t t0 = 9'000 * kMs, offset = 5'000 * kMs;
+    auto frame = [&](std::uint64_t id, std::int64_t exposed_end, std::int64_t latency) {
+        Frame f = received(id, exposed_end + latency);
+        f.device_timestamp_ns = exposed_end - offset;
+        return f;
+    };
+    EXPECT_FALSE(gate.exposed_after(frame(1, t0, 2 * kMs), t0));
+    EXPECT_FALSE(gate.exposed_after(frame(2, t0 + 33 * kMs, 2 * kMs), t0));
+    const std::int64_t settle_end = t0 + 30 * kMs;
+    EXPECT_FALSE(gate.exposed_after(frame(3, t0 + 66 * kMs, 42 * kMs), settle_end));  // host alone would pass: 108 − 50 ≥ 30
+    EXPECT_TRUE(gate.exposed_after(frame(4, t0 + 99 * kMs, 2 * kMs), settle_end));
+}
+
 TEST(FrameGate, DeliveredRateCountsReceivedFramesAndSkipsPauses) {
     FrameGate gate(100.0);
     EXPECT_FALSE(gate.delivered_rate_hz());

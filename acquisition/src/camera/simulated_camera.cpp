@@ -95,6 +95,7 @@ Status SimulatedCamera::start() {
     std::lock_guard lock(m_mutex);
     if (m_streaming) return ok_status();
     m_streaming = true;
+    m_started = std::chrono::steady_clock::now();
     m_thread = std::thread([this] { expose_frames(); });
     return ok_status();
 }
@@ -179,8 +180,9 @@ std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
         frame.counts[i] = static_cast<float>(std::clamp(std::nearbyint(v), 0.0, full_scale));
     }
     frame.frame_id = id;
+    // The device clock is an oscillator of the camera's own, started at power-up (1 s before start()).
     frame.device_timestamp_ns =
-        kTimestampOriginNs + static_cast<std::int64_t>(std::llround(static_cast<double>(id - 1) * 1e9 / m_config.frame_rate_hz));
+        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - m_started).count();
     frame.host_timestamp_ns = realtime_now_ns();
     frame.fpa_temperature_k = m_config.fpa_temperature_k;
     return frame;

@@ -1,5 +1,9 @@
 #include "capture/record_writer.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace tirpol::acquisition::detail {
 
 RecordWriter::RecordWriter(SessionWriter& session, std::size_t max_pending)
@@ -39,6 +43,9 @@ std::size_t RecordWriter::records() const {
 }
 
 void RecordWriter::run() {
+    // Compressing an EXR may wait; grabbing may not: on a busy machine the scheduler should favour the
+    // grabbing thread (and a camera served in-process). Best effort: a refusal changes nothing else.
+    (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
     std::unique_lock lock(m_mutex);
     for (;;) {
         m_changed.wait(lock, [this] { return !m_queue.empty() || m_stop; });

@@ -10,8 +10,8 @@
 /// Each frame: expected counts = generator(polarizer angle at the end of its exposure), plus Gaussian
 /// temporal noise, rounded and clipped to the pixel format's range like a real ADC; frame ids count up
 /// from 1 with optional injected drops; the host timestamp is the instant the frame left the sensor
-/// (CLOCK_REALTIME), the device timestamp a virtual clock at one period per id. A camera too slow for
-/// its rate (a heavy generator) runs slower instead of bursting.
+/// (CLOCK_REALTIME), the device timestamp the camera's own clock (steady, from 1 s at start()). A camera
+/// too slow for its rate (a heavy generator) runs slower instead of bursting.
 
 #include <condition_variable>
 #include <cstdint>
@@ -82,6 +82,7 @@ private:
     std::deque<Frame> m_queue;        ///< guarded by m_mutex
     StreamStatistics m_stats;         ///< guarded by m_mutex
     std::uint64_t m_next_id = 1;      ///< camera thread only
+    std::chrono::steady_clock::time_point m_started;  ///< set by start() before the thread runs
     std::mt19937_64 m_rng;            ///< camera thread only
     std::vector<float> m_expected;    ///< camera thread only
     std::thread m_thread;
