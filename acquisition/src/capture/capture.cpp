@@ -138,7 +138,9 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
 
         // Frames queued since the move began (a free-running camera never stops) come first: drain
         // them, keeping only frames exposed after the settle end.
-        const std::uint64_t dropped_before = camera.statistics().dropped;
+        // Drops among the kept frames only: frames lost while nobody grabbed during the move (a full
+        // queue) are counted by the camera too, but they belong to no step.
+        std::uint64_t dropped_before = 0;
         FrameAverager averager;
         SessionRecord record;
         double fpa_sum = 0.0;
@@ -160,7 +162,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 continue;
             }
             averager.add(frame);
-            if (averager.count() == 1) record.first_timestamp_ns = frame.host_timestamp_ns;
+            if (averager.count() == 1) {
+                record.first_timestamp_ns = frame.host_timestamp_ns;
+                dropped_before = camera.statistics().dropped;
+            }
             record.last_timestamp_ns = frame.host_timestamp_ns;
             if (frame.fpa_temperature_k) {
                 fpa_sum += *frame.fpa_temperature_k;
