@@ -64,7 +64,8 @@ TEST(FrameGate, AHostStampDelayedByAStarvedThreadIsCorrectedFromTheDeviceClock) 
     EXPECT_FALSE(gate.exposed_after(frame(1, t0, 2 * kMs), t0));
     EXPECT_FALSE(gate.exposed_after(frame(2, t0 + 33 * kMs, 2 * kMs), t0));
     const std::int64_t settle_end = t0 + 30 * kMs;
-    EXPECT_FALSE(gate.exposed_after(frame(3, t0 + 66 * kMs, 42 * kMs), settle_end));  // host alone would pass: 108 − 50 ≥ 30
+    EXPECT_FALSE(
+        gate.exposed_after(frame(3, t0 + 66 * kMs, 42 * kMs), settle_end));  // host alone would pass: 108 − 50 ≥ 30
     EXPECT_TRUE(gate.exposed_after(frame(4, t0 + 99 * kMs, 2 * kMs), settle_end));
 }
 
@@ -74,7 +75,7 @@ TEST(FrameGate, DeliveredRateCountsReceivedFramesAndSkipsPauses) {
     std::int64_t t = 1'000 * kMs;
     std::uint64_t id = 1;
     for (int i = 0; i < 11; ++i) gate.exposed_after(received(id++, t += 20 * kMs), 0);  // 50 Hz delivered
-    id += 1;                                                                     // one dropped
+    id += 1;                                                                            // one dropped
     gate.exposed_after(received(id++, t += 40 * kMs), 0);
     gate.exposed_after(received(id++, t += 5'000 * kMs), 0);  // a 5 s pause (e.g. a software trigger waiting)
     // 11 intervals in 240 ms: 45.8 Hz, what reached the host (not the 100 Hz asked for).

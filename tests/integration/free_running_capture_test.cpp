@@ -58,7 +58,8 @@ double angle_from_pixels_deg(const std::vector<float>& counts) {
     double c = 0.0, s = 0.0;
     for (int y = 0; y < kHeight / 2; ++y)
         for (int x = 0; x < kWidth; ++x) {
-            const double v = (2.0 * counts[static_cast<std::size_t>(y * kWidth + x)] - truth(x, y).s0) / kPolarizedCounts;
+            const double v =
+                (2.0 * counts[static_cast<std::size_t>(y * kWidth + x)] - truth(x, y).s0) / kPolarizedCounts;
             (x < kWidth / 2 ? c : s) += v;
         }
     return 0.5 * std::atan2(s, c) * 180.0 / std::numbers::pi;
@@ -107,8 +108,8 @@ TEST(FreeRunningCapture, EveryRecordIsExposedAtItsAngleAndReducesToTheScenesStok
             }
     });
 
-    auto camera = open_camera(fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}&fps={}", server.device_id(),
-                                          kWidth, kHeight, kFps))
+    auto camera = open_camera(fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}&fps={}",
+                                          server.device_id(), kWidth, kHeight, kFps))
                       .value_or_throw();
     auto stage = open_stage("thorlabs-apt://" + pty.slave_path()).value_or_throw();
     CapturePlan plan;  // 0/45/90/135°
@@ -144,8 +145,9 @@ TEST(FreeRunningCapture, EveryRecordIsExposedAtItsAngleAndReducesToTheScenesStok
         if (i == 0) continue;
         // Last frame of a step → first frame of the next: at least the 45° move at 15°/s (3 s) plus the settle.
         const double gap_s = static_cast<double>(r.first_timestamp_ns - m.records[i - 1].last_timestamp_ns) / 1e9;
-        std::printf("inter-step gap %s → %s: %.3f s (move %.3f s, %lld stale frames discarded)\n", m.records[i - 1].file.c_str(),
-                    r.file.c_str(), gap_s, static_cast<double>(r.timing->move_end_ns - r.timing->move_start_ns) / 1e9,
+        std::printf("inter-step gap %s → %s: %.3f s (move %.3f s, %lld stale frames discarded)\n",
+                    m.records[i - 1].file.c_str(), r.file.c_str(), gap_s,
+                    static_cast<double>(r.timing->move_end_ns - r.timing->move_start_ns) / 1e9,
                     static_cast<long long>(r.timing->stale_frames_discarded));
         EXPECT_GE(gap_s, 45.0 / kDegPerS + plan.settle_s);
         EXPECT_GE(r.timing->stale_frames_discarded, 1);

@@ -30,9 +30,12 @@ std::int64_t FrameGate::exposure_window_ns() const {
     // A camera may not reach the rate it reports (a fake asked for 1000 Hz delivers 60): the shortest
     // interval seen is a lower bound of the true period, so the longer of the two is the safe one.
     std::int64_t period = kUnknownPeriodNs;
-    if (m_nominal_period_ns && m_min_period_ns) period = std::max(*m_nominal_period_ns, *m_min_period_ns);
-    else if (m_nominal_period_ns) period = *m_nominal_period_ns;
-    else if (m_min_period_ns) period = *m_min_period_ns;
+    if (m_nominal_period_ns && m_min_period_ns)
+        period = std::max(*m_nominal_period_ns, *m_min_period_ns);
+    else if (m_nominal_period_ns)
+        period = *m_nominal_period_ns;
+    else if (m_min_period_ns)
+        period = *m_min_period_ns;
     return period + period / 2;
 }
 
@@ -44,7 +47,8 @@ std::int64_t FrameGate::reception_ns(const Frame& frame) {
     // than the host's (crystals differ by tens of ppm) is followed; a faster one lowers the minimum.
     const std::int64_t offset = frame.host_timestamp_ns - frame.device_timestamp_ns;
     if (m_min_offset_ns && m_last_device_ns != 0 && frame.device_timestamp_ns > m_last_device_ns)
-        *m_min_offset_ns += static_cast<std::int64_t>(kDriftPerNs * static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
+        *m_min_offset_ns +=
+            static_cast<std::int64_t>(kDriftPerNs * static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
     m_min_offset_ns = m_min_offset_ns ? std::min(*m_min_offset_ns, offset) : offset;
     m_last_device_ns = frame.device_timestamp_ns;
     return std::min(frame.host_timestamp_ns, frame.device_timestamp_ns + *m_min_offset_ns);

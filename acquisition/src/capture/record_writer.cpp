@@ -7,7 +7,9 @@
 namespace tirpol::acquisition::detail {
 
 RecordWriter::RecordWriter(SessionWriter& session, std::size_t max_pending)
-    : m_session(session), m_max_pending(max_pending), m_written(session.manifest().records.size()),
+    : m_session(session),
+      m_max_pending(max_pending),
+      m_written(session.manifest().records.size()),
       m_thread([this] { run(); }) {}
 
 RecordWriter::~RecordWriter() {
@@ -50,7 +52,7 @@ void RecordWriter::run() {
     for (;;) {
         m_changed.wait(lock, [this] { return !m_queue.empty() || m_stop; });
         if (m_queue.empty()) return;  // stopping, everything written
-        if (m_error) {  // a failed write (full disk) fails the rest too: drop them, the error says so
+        if (m_error) {                // a failed write (full disk) fails the rest too: drop them, the error says so
             m_queue.clear();
             m_changed.notify_all();
             continue;
@@ -68,8 +70,10 @@ void RecordWriter::run() {
         }
         lock.lock();
         m_busy = false;
-        if (error) m_error = error;
-        else ++m_written;
+        if (error)
+            m_error = error;
+        else
+            ++m_written;
         m_changed.notify_all();
     }
 }
