@@ -59,8 +59,8 @@ void demo_acquisition(const std::filesystem::path& out_dir) {
     config.height = kHeight;
     config.noise_std_counts = 8.0;
     config.fpa_temperature_k = 306.5;
-    Stage* s = stage.get();
-    SimulatedCamera camera(config, scene, [s] { return s->position_deg().value(); });
+    // Free-running: the camera sees the mount where it physically is, also while it turns.
+    SimulatedCamera camera(config, scene, [&simulator] { return simulator.physical_angle_deg(StageSimulator::Clock::now()); });
 
     CapturePlan plan;
     plan.frames_per_angle = 16;

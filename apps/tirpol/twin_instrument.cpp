@@ -137,12 +137,14 @@ TwinInstrument::TwinInstrument(TwinWorld& world, SimProtocol protocol, bool gige
             m_gige_lock_fd = ::open("/tmp/tirpol-loopback-gige.lock", O_RDWR | O_CREAT | O_CLOEXEC, 0666);
             if (m_gige_lock_fd >= 0) ::flock(m_gige_lock_fd, LOCK_EX);
             m_server = std::make_unique<FakeGigECameraServer>();
+            // Free-running, as a field camera: each frame shows the polarizer where the simulated mount
+            // physically is when the frame is exposed, also mid-move; the capture loop's gate must
+            // discard those (no software trigger needed).
             m_server->set_fill([this](const FakeGigEFrameRequest&, std::vector<float>& counts) {
-                m_world.fill(m_world.angle_deg(), counts);
+                m_world.fill(m_simulator.physical_angle_deg(StageSimulator::Clock::now()), counts);
             });
-            // Software trigger: each grab exposes a new frame, so no frame predates the stage's read-back.
-            const std::string camera_uri = fmt::format(
-                "aravis://{}?pixel_format=Mono16&width={}&height={}&trigger=software", m_server->device_id(), w, h);
+            const std::string camera_uri =
+                fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}", m_server->device_id(), w, h);
             auto opened = open_camera(camera_uri);
             if (!opened.ok()) fail("{}", opened.error().message);
             m_camera = std::move(opened).value_or_throw();
@@ -163,7 +165,7 @@ TwinInstrument::TwinInstrument(TwinWorld& world, SimProtocol protocol, bool gige
         config.bits_per_pixel = 16;
         m_camera = std::make_unique<SimulatedCamera>(
             config, [this](double angle, std::vector<float>& counts) { m_world.fill(angle, counts); },
-            [this] { return m_world.angle_deg(); });
+            [this] { return m_simulator.physical_angle_deg(StageSimulator::Clock::now()); });
         m_camera_transport = "in-process SimulatedCamera (FALLBACK: " + why_not + ")";
     }
 }

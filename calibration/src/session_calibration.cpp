@@ -23,6 +23,30 @@ std::optional<double> session_saturation_counts(const SessionManifest& m) {
 namespace {
 std::string manifest_path(const fs::path& dir) { return (dir / kSessionManifestName).string(); }
 
+/// a − b folded into [−180, 180) degrees.
+double angle_offset_deg(double a, double b) { return std::fmod(std::fmod(a - b + 180.0, 360.0) + 360.0, 360.0) - 180.0; }
+
+/// Where the polarizer was for a record's frames (record_polarizer_angle_deg: measured from schema v2,
+/// requested for v1), as an offset from the requested angle. Refuses a v2 record whose read-backs
+/// (around the frames) are further from the request than the plan's angle_tolerance_deg: its frames
+/// were not taken at its angle.
+double measured_offset_deg(const fs::path& dir, const SessionManifest& m, const SessionRecord& r) {
+    const double offset = angle_offset_deg(record_polarizer_angle_deg(m, r), r.angle_deg_requested);
+    const auto tol = m.plan.find("angle_tolerance_deg");
+    if (m.schema_version < 2 || tol == m.plan.end() || !tol->is_number()) return offset;
+    std::vector<std::pair<const char*, double>> readings{{"angle_deg_measured", r.angle_deg_measured}};
+    if (r.timing) {
+        readings.emplace_back("timing.angle_deg_before_frames", r.timing->angle_deg_before_frames);
+        readings.emplace_back("timing.angle_deg_after_frames", r.timing->angle_deg_after_frames);
+    }
+    for (const auto& [field, value] : readings)
+        if (std::abs(angle_offset_deg(value, r.angle_deg_requested)) > tol->get<double>())
+            fail("{}: record {}: {} is {:.4f}° for a requested {:.4f}°, further than the plan's angle_tolerance_deg ({}°): "
+                 "its frames were not taken at its angle; re-take this step",
+                 manifest_path(dir), r.file, field, value, r.angle_deg_requested, tol->get<double>());
+    return offset;
+}
+
 std::optional<bool> polarizer_in_beam(const fs::path& dir, const SessionManifest& m) {
     const auto it = m.metadata.find("polarizer_in_beam");
     if (it == m.metadata.end()) return std::nullopt;
@@ -143,6 +167,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     for (const auto& r : m.records)
         if (r.kind == RecordKind::Blackbody) {
             RadianceFrame f = to_radiance(dir, m, r, radiometric);
+            // Grouped by the nominal angle (the fitted analyzer absorbs the mount's offset); the read-back is checked.
+            measured_offset_deg(dir, m, r);
             bb.push_back({r.angle_deg_requested, *r.blackbody_temperature_k, std::move(f.radiance), (dir / r.file).string()});
         }
     if (bb.empty()) fail("{}: no blackbody records taken through the polarizer", manifest_path(dir));
@@ -168,6 +194,7 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
             for (const auto& r : m.records)
                 if (r.kind == RecordKind::Polarizer && r.repeat == repeat && std::abs(r.angle_deg_requested - pos.angle_deg) < 0.01)
                     rec = &r;
+            if (rec) measured_offset_deg(dir, m, *rec);
             if (!rec)
                 fail("{}: metadata.known_source names repeat {}, but it has no polarizer record at {:g}°",
                      manifest_path(dir), repeat, pos.angle_deg);
@@ -215,11 +242,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     std::map<int, Eigen::Vector3d> sources;
     if (m.metadata.contains("known_source")) sources = known_sources(dir, m, radiometric.band());
 
-    // Scene records grouped by requested angle; repeats averaged.
+    // Scene records grouped by requested angle; repeats averaged, at the mean measured angle.
     struct Accumulator {
         std::vector<double> sum, var;
         std::vector<std::uint8_t> saturated;
         int n = 0;
+        double offset_sum_deg = 0.0;  ///< measured − requested, summed over the repeats
         std::string source;
     };
     std::map<long, Accumulator> by_angle;
@@ -232,7 +260,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                  "time",
                  (dir / r.file).string(), sat, f.saturated.size(), *session_saturation_counts(m),
                  100.0 * options.max_saturated_fraction);
+        const double offset_deg = measured_offset_deg(dir, m, r);
         Accumulator& acc = by_angle[std::lround(r.angle_deg_requested * 100.0)];
+        acc.offset_sum_deg += offset_deg;
         if (acc.n == 0) {
             acc.sum.assign(f.radiance.size(), 0.0);
             acc.var.assign(f.radiance.size(), 0.0);
@@ -252,7 +282,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     std::vector<std::uint8_t> saturated(radiometric.gain.size(), 0);
     for (const auto& [key, acc] : by_angle) {
         AnalyzerImage im;
-        im.angle_deg = static_cast<double>(key) / 100.0;
+        // The ideal analyzer sits where the stage read back; a calibrated one is indexed by nominal angle
+        // and carries its own fitted axis angles.
+        im.angle_deg = static_cast<double>(key) / 100.0 + (polarimetric ? 0.0 : acc.offset_sum_deg / acc.n);
         im.source = acc.source;
         for (std::size_t i = 0; i < acc.sum.size(); ++i) {
             im.signal.push_back(static_cast<float>(acc.sum[i] / acc.n));

@@ -36,6 +36,10 @@ std::optional<RecordKind> record_kind_from_string(const std::string& text) {
     return std::nullopt;
 }
 
+double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record) {
+    return manifest.schema_version >= 2 ? record.angle_deg_measured : record.angle_deg_requested;
+}
+
 std::string session_frame_file(const std::string& stem) {
     if (stem.empty() || stem.front() == '.')
         fail("session frame name '{}': expected a non-empty name not starting with '.'", stem);
@@ -111,8 +115,34 @@ private:
     std::string m_path;
 };
 
+json timing_to_json(const StepTiming& t) {
+    return json{{"move_start_ns", t.move_start_ns},
+                {"move_end_ns", t.move_end_ns},
+                {"settle_end_ns", t.settle_end_ns},
+                {"exposure_window_ns", t.exposure_window_ns},
+                {"angle_deg_before_frames", t.angle_deg_before_frames},
+                {"angle_deg_after_frames", t.angle_deg_after_frames},
+                {"stale_frames_discarded", t.stale_frames_discarded}};
+}
+
+StepTiming timing_from_json(const Fields& f) {
+    StepTiming t;
+    t.move_start_ns = f.integer("move_start_ns", 0);
+    t.move_end_ns = f.integer("move_end_ns", t.move_start_ns);
+    t.settle_end_ns = f.integer("settle_end_ns", t.move_end_ns);
+    t.exposure_window_ns = f.integer("exposure_window_ns", 0);
+    t.angle_deg_before_frames = f.number("angle_deg_before_frames");
+    t.angle_deg_after_frames = f.number("angle_deg_after_frames");
+    t.stale_frames_discarded = f.integer("stale_frames_discarded", 0);
+    for (const char* key : {"angle_deg_before_frames", "angle_deg_after_frames"}) {
+        const double a = f.number(key);
+        if (!(a > -360.0 && a < 720.0)) f.fail_here(f.field(key), fmt::format("expected an angle in degrees, got {}", a));
+    }
+    return t;
+}
+
 json record_to_json(const SessionRecord& r) {
-    return json{{"kind", to_string(r.kind)},
+    json j{{"kind", to_string(r.kind)},
                 {"file", r.file},
                 {"angle_deg_requested", r.angle_deg_requested},
                 {"angle_deg_measured", r.angle_deg_measured},
@@ -123,6 +153,8 @@ json record_to_json(const SessionRecord& r) {
                 {"first_timestamp_ns", r.first_timestamp_ns},
                 {"last_timestamp_ns", r.last_timestamp_ns},
                 {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
+    if (r.timing) j["timing"] = timing_to_json(*r.timing);
+    return j;
 }
 
 void check_frame_path(const Fields& f, const std::string& key, const std::string& file) {
@@ -173,6 +205,12 @@ SessionRecord record_from_json(const Fields& f) {
     r.first_timestamp_ns = f.integer("first_timestamp_ns", 0);
     r.last_timestamp_ns = f.integer("last_timestamp_ns", 0);
     r.fpa_temperature_k = f.optional_number("fpa_temperature_k");
+    if (f.raw().contains("timing") && !f.raw().at("timing").is_null()) {
+        r.timing = timing_from_json(f.object("timing"));
+        if (r.first_timestamp_ns < r.timing->settle_end_ns)
+            f.fail_here(f.field("first_timestamp_ns"), fmt::format("expected ≥ timing.settle_end_ns ({}), got {} (a frame received before the stage settled)",
+                                                                  r.timing->settle_end_ns, r.first_timestamp_ns));
+    }
     check_record(f, r);
     return r;
 }
@@ -217,10 +255,11 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     if (schema != kSessionSchema)
         top.fail_here("schema", fmt::format("expected \"{}\", got \"{}\" (not a tirpol session manifest)", kSessionSchema, schema));
     const std::int64_t version = top.integer("schema_version", 1);
-    if (version != kSessionSchemaVersion)
-        top.fail_here("schema_version", fmt::format("expected {}, got {} (written by a newer or older tirpol)",
-                                                    kSessionSchemaVersion, version));
+    if (version < kSessionSchemaOldestReadable || version > kSessionSchemaVersion)
+        top.fail_here("schema_version", fmt::format("expected {} to {}, got {} (written by a newer or older tirpol)",
+                                                    kSessionSchemaOldestReadable, kSessionSchemaVersion, version));
     SessionManifest m;
+    m.schema_version = static_cast<int>(version);
     m.created_utc = top.string("created_utc");
 
     const Fields cam = top.object("camera");
@@ -279,6 +318,13 @@ void record_to_attributes(const SessionRecord& r, Attributes& a) {
     a["last_timestamp_ns"] = std::to_string(r.last_timestamp_ns);
     if (r.fpa_temperature_k) a["fpa_temperature_k"] = *r.fpa_temperature_k;
     else a.erase("fpa_temperature_k");
+    const json timing = timing_to_json(r.timing.value_or(StepTiming{}));
+    for (const auto& [key, value] : timing.items()) {
+        const std::string name = "timing_" + key;
+        if (!r.timing) a.erase(name);
+        else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
+        else a[name] = value.get<double>();
+    }
     a["units"] = std::string("counts");
 }
 
@@ -291,17 +337,29 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
     for (const auto& [name, value] : a) {
         std::visit([&j, &key = name](const auto& v) { j[key] = v; }, value);
     }
-    for (const char* key : {"frames", "dropped", "first_timestamp_ns", "last_timestamp_ns"}) {
-        auto it = j.find(key);
-        if (it == j.end() || !it->is_string()) continue;
+    json timing = json::object();
+    const json timing_keys = timing_to_json({});
+    for (const auto& [key, unused] : timing_keys.items())
+        if (auto it = j.find("timing_" + key); it != j.end()) {
+            timing[key] = *it;
+            j.erase(it);
+        }
+    if (!timing.empty()) j["timing"] = timing;
+    auto decimal = [&source](json& holder, const std::string& key, const std::string& name) {
+        auto it = holder.find(key);
+        if (it == holder.end() || !it->is_string()) return;
         const std::string text = it->get<std::string>();
         char* end = nullptr;
         errno = 0;
         const long long v = std::strtoll(text.c_str(), &end, 10);
         if (text.empty() || *end != '\0' || errno != 0)
-            fail("{}: header attribute {}: expected a decimal integer, got \"{}\"", source, key, text);
+            fail("{}: header attribute {}: expected a decimal integer, got \"{}\"", source, name, text);
         *it = static_cast<std::int64_t>(v);
-    }
+    };
+    for (const char* key : {"frames", "dropped", "first_timestamp_ns", "last_timestamp_ns"}) decimal(j, key, key);
+    if (j.contains("timing"))
+        for (const char* key : {"move_start_ns", "move_end_ns", "settle_end_ns", "exposure_window_ns", "stale_frames_discarded"})
+            decimal(j["timing"], key, std::string("timing_") + key);
     return record_from_json(Fields(j, source, "header"));
 }
 
@@ -387,7 +445,27 @@ SessionWriter::SessionWriter(SessionWriter&&) noexcept = default;
 SessionWriter& SessionWriter::operator=(SessionWriter&&) noexcept = default;
 SessionWriter::~SessionWriter() = default;
 
-SessionWriter SessionWriter::create(const std::filesystem::path& dir, SessionManifest manifest) {
+namespace {
+/// A hidden sibling that create() builds a session in before renaming it into place.
+std::string creating_prefix(const std::filesystem::path& dir) { return "." + dir.filename().string() + ".creating-"; }
+
+/// Removes what earlier crashed create() calls for `dir` left: siblings nobody holds the lock of.
+void remove_abandoned_creations(const std::filesystem::path& dir) {
+    std::error_code ec;
+    const auto parent = dir.parent_path().empty() ? std::filesystem::path(".") : dir.parent_path();
+    const std::string prefix = creating_prefix(dir);
+    for (const auto& entry : std::filesystem::directory_iterator(parent, ec)) {
+        if (entry.path().filename().string().rfind(prefix, 0) != 0) continue;
+        const int fd = ::open((entry.path() / ".lock").c_str(), O_RDWR | O_CLOEXEC);
+        const bool abandoned = fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+        if (fd >= 0) ::close(fd);
+        if (abandoned) std::filesystem::remove_all(entry.path(), ec);
+    }
+}
+}  // namespace
+
+SessionWriter SessionWriter::create(const std::filesystem::path& dir_in, SessionManifest manifest) {
+    const std::filesystem::path dir = dir_in.has_filename() ? dir_in : dir_in.parent_path();
     std::error_code ec;
     if (std::filesystem::exists(dir, ec)) {
         if (!std::filesystem::is_directory(dir, ec)) fail("{}: exists and is not a directory", dir.string());
@@ -395,26 +473,61 @@ SessionWriter SessionWriter::create(const std::filesystem::path& dir, SessionMan
             fail("{}: directory exists and is not empty; refusing to start a new session there "
                  "(use --resume to continue a session, or choose a new directory)", dir.string());
     }
-    std::filesystem::create_directories(dir / "frames", ec);
-    if (ec) fail("{}: cannot create the session directory: {}", dir.string(), ec.message());
-    auto lock = std::make_unique<Lock>(dir);
+    if (dir.has_parent_path()) {
+        std::filesystem::create_directories(dir.parent_path(), ec);
+        if (ec) fail("{}: cannot create the parent directory: {}", dir.string(), ec.message());
+    }
     if (manifest.created_utc.empty()) manifest.created_utc = utc_now_iso8601();
+    manifest.schema_version = kSessionSchemaVersion;
     manifest.records.clear();
     manifest.complete = false;
-    // Validate what the caller gave before anything depends on it.
+    // Validate what the caller gave before anything is created.
     session_from_json(session_to_json(manifest), (dir / kSessionManifestName).string());
-    SessionWriter writer(dir, std::move(manifest), std::move(lock));
-    writer.write_manifest();
-    return writer;
+    remove_abandoned_creations(dir);
+
+    // Build the whole empty session beside `dir`, then rename it into place: rename(2) replaces an
+    // empty directory atomically, so `dir` is never seen half made.
+    const auto staging = dir.parent_path() / (creating_prefix(dir) + std::to_string(::getpid()));
+    std::filesystem::remove_all(staging, ec);
+    struct Cleanup {
+        std::filesystem::path path;
+        bool armed = true;
+        ~Cleanup() {
+            std::error_code e;
+            if (armed) std::filesystem::remove_all(path, e);
+        }
+    } cleanup{staging};
+    std::filesystem::create_directories(staging / "frames", ec);
+    if (ec) fail("{}: cannot create the session directory: {}", dir.string(), ec.message());
+    auto lock = std::make_unique<Lock>(staging);  // the flock stays on the inode across the rename
+    write_file_atomic(staging / kSessionManifestName, session_to_json(manifest).dump(2) + "\n");
+    fsync_directory(staging);
+    if (::rename(staging.c_str(), dir.c_str()) != 0) {
+        const int err = errno;
+        if (err == ENOTEMPTY || err == EEXIST)
+            fail("{}: another session appeared here while this one was being created; refusing to mix them", dir.string());
+        fail("{}: cannot move the new session into place: {}", dir.string(), std::strerror(err));
+    }
+    cleanup.armed = false;
+    fsync_directory(dir.parent_path().empty() ? std::filesystem::path(".") : dir.parent_path());
+    return SessionWriter(dir, std::move(manifest), std::move(lock));
 }
 
 SessionWriter SessionWriter::resume(const std::filesystem::path& dir) {
     auto lock = std::make_unique<Lock>(dir);
     SessionManifest manifest = read_manifest_file(dir);
+    if (manifest.schema_version < kSessionSchemaVersion)
+        fail("{}: a schema v{} session (written before frames were gated on the end of each move); it reads, "
+             "but resuming would mix two timing models: finish it with the tirpol that started it, or start a new session",
+             (dir / kSessionManifestName).string(), manifest.schema_version);
     check_frame_files_exist(dir, manifest);
     SessionWriter writer(dir, std::move(manifest), std::move(lock));
-    const auto frames = dir / "frames";
     std::error_code ec;
+    // Manifest temporaries of an interrupted atomic write (write_file_atomic's ".session.json.tmp-*").
+    const std::string manifest_tmp = std::string(".") + kSessionManifestName + ".tmp-";
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().filename().string().rfind(manifest_tmp, 0) == 0) std::filesystem::remove(entry.path(), ec);
+    const auto frames = dir / "frames";
     std::filesystem::create_directories(frames, ec);
     std::vector<std::filesystem::path> candidates;
     for (const auto& entry : std::filesystem::directory_iterator(frames)) {
@@ -483,6 +596,12 @@ void SessionWriter::add_record(const SessionRecord& record, const Image& frame) 
     fsync_directory(final_path.parent_path());
     m_manifest.records.push_back(record);
     write_manifest();
+}
+
+void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
+    if (!(frame_rate_hz > 0.0) || !std::isfinite(frame_rate_hz))
+        fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}", (m_dir / kSessionManifestName).string(), frame_rate_hz);
+    m_manifest.camera.frame_rate_hz = frame_rate_hz;
 }
 
 void SessionWriter::set_metadata(nlohmann::json metadata) {

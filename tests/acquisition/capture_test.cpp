@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <utility>
 
 #include "test_support.h"
 #include "tirpol/acquisition/sim_stage.h"
@@ -32,10 +33,12 @@ double malus_counts(double theta_deg) {
     return kUnpolarized / 2.0 + kPolarized * std::cos(d) * std::cos(d);
 }
 
+/// A free-running simulated camera looking through the polarizer of a simulated stage: each frame shows
+/// the mount where it physically is when the frame is exposed, also mid-move.
 struct Rig {
     std::unique_ptr<Stage> stage;
     std::unique_ptr<SimulatedCamera> camera;
-    explicit Rig(SimulatedStageOptions stage_options = {}, double noise = 0.0) {
+    explicit Rig(SimulatedStageOptions stage_options = {}, double noise = 0.0, double fps = 500.0, int buffers = 16) {
         stage = make_simulated_stage("sim://", stage_options);
         SimulatedCameraConfig config;
         config.width = 6;
@@ -43,10 +46,11 @@ struct Rig {
         config.noise_std_counts = noise;
         config.seed = 7;
         config.fpa_temperature_k = 308.0;
-        Stage* s = stage.get();
+        config.frame_rate_hz = fps;
+        config.buffers = buffers;
         camera = std::make_unique<SimulatedCamera>(
             config, [](double angle, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(malus_counts(angle))); },
-            [s] { return s->position_deg().value(); });
+            simulated_stage_angle_source(*stage));
     }
 };
 
@@ -152,6 +156,96 @@ TEST(Capture, RecordsEveryStepAndTheMeansGiveTheScenesStokesVector) {
     }
 }
 
+TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSettle) {
+    // The stage turns at 180°/s (45° in 0.25 s) while the camera free-runs at 200 Hz into a 64-frame
+    // queue, which therefore holds frames of the whole move when the step starts grabbing. Noise-free
+    // Malus counts: a single frame from the move (up to 45° off) would move an 8-frame mean by tens of
+    // counts; frames exposed after the settle give malus(θ) exactly (integers: within 0.5).
+    test::TempDir tmp;
+    SimulatedStageOptions slow;
+    slow.deg_per_s = 180.0;
+    Rig rig(slow, 0.0, 200.0, 64);
+    CapturePlan plan;
+    plan.frames_per_angle = 8;
+    plan.settle_s = 0.05;
+    auto session = new_session(tmp / "s", rig, plan);
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    const auto summary = run_capture(*rig.camera, *rig.stage, plan, session, options);
+    EXPECT_GT(summary.stale_discarded, 0u);
+
+    const SessionManifest m = read_session(tmp / "s");
+    EXPECT_EQ(m.schema_version, kSessionSchemaVersion);
+    ASSERT_EQ(m.records.size(), 4u);
+    // What the camera delivered, measured: at most its 200 Hz (less when the loaded machine slows it).
+    ASSERT_TRUE(m.camera.frame_rate_hz);
+    EXPECT_GT(*m.camera.frame_rate_hz, 20.0);
+    EXPECT_LT(*m.camera.frame_rate_hz, 210.0);
+    std::int64_t previous_last = 0;
+    for (const auto& r : m.records) {
+        ASSERT_TRUE(r.timing) << r.file;
+        const StepTiming& t = *r.timing;
+        EXPECT_LE(previous_last, t.move_start_ns);
+        EXPECT_LE(t.move_start_ns, t.move_end_ns);
+        EXPECT_EQ(t.settle_end_ns, t.move_end_ns + 50'000'000);
+        EXPECT_GE(t.exposure_window_ns, 7'500'000);  // 1.5 periods at 200 Hz, more if the loaded machine slows the camera
+        EXPECT_GE(r.first_timestamp_ns - t.exposure_window_ns, t.settle_end_ns) << r.file;
+        EXPECT_NEAR(t.angle_deg_before_frames, r.angle_deg_requested, 1e-5);
+        EXPECT_NEAR(t.angle_deg_after_frames, r.angle_deg_requested, 1e-5);
+        previous_last = r.last_timestamp_ns;
+        const Image img = read_session_frame(tmp / "s", m, r);
+        for (float v : img.channel("counts")) ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
+    }
+    // The 45° moves took 0.25 s at up to 200 Hz: the frames of each were queued and thrown away (≈ 50
+    // on an idle machine; a loaded one slows the simulated sensor).
+    for (std::size_t i = 1; i < 4; ++i) EXPECT_GE(m.records[i].timing->stale_frames_discarded, 10) << m.records[i].file;
+}
+
+/// Test double: a stage that creeps 0.1° per read-back once it has arrived, as a mount losing its hold would.
+class CreepingStage final : public Stage {
+public:
+    StageInfo info() const override { return {"creep://", "test", "creeping", "0", "0", 100.0}; }
+    Status home(std::chrono::milliseconds) override { return ok_status(); }
+    bool is_homed() const override { return true; }
+    Status move_absolute(double angle_deg, std::chrono::milliseconds) override {
+        m_angle = angle_deg;
+        return ok_status();
+    }
+    Result<double> position_deg() override { return std::exchange(m_angle, m_angle + 0.1); }
+
+private:
+    double m_angle = 0;
+};
+
+TEST(Capture, StageThatMovesDuringTheFramesFailsTheStepAndKeepsNothingOfIt) {
+    // Documented choice (docs/acquisition-stages.md): a read-back after the frames that differs from the
+    // one before by more than angle_tolerance_deg is an error, not a flagged record.
+    test::TempDir tmp;
+    Rig rig;
+    CreepingStage stage;
+    CapturePlan plan;
+    plan.settle_s = 0;
+    plan.frames_per_angle = 2;
+    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), stage.info(), plan));
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    EXPECT_THAT([&] { run_capture(*rig.camera, stage, plan, session, options); },
+                ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("step 1/4"), HasSubstr("after the frames"), HasSubstr("drifted"),
+                                                      HasSubstr("0 of 4 steps are recorded"), HasSubstr("--resume"))));
+    EXPECT_TRUE(read_session(tmp / "s").records.empty());
+}
+
+TEST(Capture, TooLittleFreeSpaceIsRefusedSayingHowMuchIsNeeded) {
+    test::TempDir tmp;
+    const auto space = std::filesystem::space(tmp.path());
+    // Enough 640×512 steps to exceed what this file system has free.
+    const std::uintmax_t per_step = session_bytes_needed(640, 512, 1) - session_bytes_needed(640, 512, 0);
+    const std::size_t steps = static_cast<std::size_t>(space.available / per_step) + 10;
+    EXPECT_THAT([&] { check_free_space(tmp.path(), 640, 512, steps); },
+                ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("MB"), HasSubstr("free"), HasSubstr(std::to_string(steps) + " steps"))));
+    EXPECT_NO_THROW(check_free_space(tmp.path(), 640, 512, 1));
+}
+
 TEST(Capture, DeviceFaultKeepsRecordsAndResumeCompletesWithoutDuplicates) {
     test::TempDir tmp;
     const auto dir = tmp / "s";
@@ -249,7 +343,7 @@ TEST(Capture, AngleReadBackOutsideToleranceStopsTheStep) {
     CaptureOptions options;
     options.progress_stream = nullptr;
     EXPECT_THAT([&] { run_capture(*rig.camera, stage, plan, session, options); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("reads 0.3000° after moving to 0.0000°")));
+                ::testing::ThrowsMessage<Error>(HasSubstr("reads 0.3000° after settling (moved to 0.0000°")));
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <deque>
 #include <string>
 #include <vector>
@@ -52,6 +53,13 @@ public:
     bool short_next = false;         ///< next frame has half its bytes
     bool spurious_wakeup_next = false;
     bool unplugged = false;
+    /// Stamp buffers with CLOCK_MONOTONIC at the instant they are filled, as uvcvideo does (default:
+    /// a synthetic clock, sequence × period, that tests of ids and timestamps compare exactly).
+    bool stamp_with_monotonic_clock = false;
+
+    /// The sensor delivers a frame now into the next queued buffer (or loses it if none is queued),
+    /// whether or not anyone polls: a free-running camera during a stage move.
+    void expose_frame_now() { produce_frame(); }
 
     // --- state, for assertions ---
     std::size_t allocated_count() const { return m_buffers.size(); }
@@ -302,7 +310,12 @@ private:
         meta.bytesused = static_cast<std::uint32_t>(short_next ? buf.data.size() / 2 : buf.data.size());
         meta.flags = V4L2_BUF_FLAG_MAPPED | V4L2_BUF_FLAG_DONE | V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC |
                      (corrupt_next ? V4L2_BUF_FLAG_ERROR : 0u);
-        const std::uint64_t t_us = std::uint64_t{sequence} * period_us();
+        std::uint64_t t_us = std::uint64_t{sequence} * period_us();
+        if (stamp_with_monotonic_clock) {
+            timespec now{};
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            t_us = static_cast<std::uint64_t>(now.tv_sec) * 1000000u + static_cast<std::uint64_t>(now.tv_nsec) / 1000u;
+        }
         meta.timestamp.tv_sec = static_cast<time_t>(t_us / 1000000u);
         meta.timestamp.tv_usec = static_cast<suseconds_t>(t_us % 1000000u);
         corrupt_next = false;

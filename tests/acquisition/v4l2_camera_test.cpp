@@ -4,8 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "fake_v4l2_device.h"
+#include "test_support.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
 namespace {
@@ -254,6 +259,66 @@ TEST(FakeV4l2Device, EnforcesTheBufferQueueRules) {
     EXPECT_EQ(errno, EBUSY);
     EXPECT_EQ(device.ioctl(fd, 0xDEAD, &fmt), -1);
     EXPECT_EQ(errno, ENOTTY);
+}
+
+/// Test double at the seam V4L2 cannot be real here: a stage whose move lasts 80 ms while the camera's
+/// sensor keeps filling the queued buffers (a Boson does not stop for the mount).
+class StageFillingTheQueue final : public Stage {
+public:
+    explicit StageFillingTheQueue(FakeV4l2Device& device) : m_device(device) {}
+    StageInfo info() const override { return {"fill://", "test", "queue filler", "0", "0", 100.0}; }
+    Status home(std::chrono::milliseconds) override { return ok_status(); }
+    bool is_homed() const override { return true; }
+    Status move_absolute(double angle_deg, std::chrono::milliseconds) override {
+        for (int i = 0; i < 8; ++i) {
+            m_device.expose_frame_now();
+            std::this_thread::sleep_for(10ms);
+        }
+        m_angle = angle_deg;
+        last_sequence_during_move = m_device.next_sequence - 1;
+        return ok_status();
+    }
+    Result<double> position_deg() override { return m_angle; }
+    std::uint32_t last_sequence_during_move = 0;
+
+private:
+    FakeV4l2Device& m_device;
+    double m_angle = 0;
+};
+
+TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
+    // Four mmap buffers fill during the move; DQBUF hands them out first. Their driver timestamps
+    // (CLOCK_MONOTONIC at fill, mapped to CLOCK_REALTIME) predate the settle end, so the capture loop
+    // discards them however late they are dequeued; the kept frames' pattern says which they were.
+    auto device = std::make_shared<FakeV4l2Device>();
+    device->stamp_with_monotonic_clock = true;
+    V4l2CameraOptions options;
+    options.pixel_format = "Y16";
+    options.frame_rate_hz = 60.0;
+    auto camera = open_fake(device, options);
+    ASSERT_TRUE(camera);
+    StageFillingTheQueue stage(*device);
+    CapturePlan plan;
+    plan.angles_deg = {0.0};
+    plan.frames_per_angle = 3;
+    plan.settle_s = 0.02;
+    test::TempDir tmp;
+    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
+    CaptureOptions capture_options;
+    capture_options.progress_stream = nullptr;
+    const auto summary = run_capture(*camera, stage, plan, session, capture_options);
+    EXPECT_GE(summary.stale_discarded, 4u);  // the four buffers filled during the move, at least
+
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.records.size(), 1u);
+    const SessionRecord& r = m.records[0];
+    ASSERT_TRUE(r.timing);
+    EXPECT_EQ(r.timing->stale_frames_discarded, static_cast<std::int64_t>(summary.stale_discarded));
+    EXPECT_EQ(r.timing->exposure_window_ns, 25'000'000);  // 1.5 / 60 Hz
+    EXPECT_GE(r.first_timestamp_ns - r.timing->exposure_window_ns, r.timing->settle_end_ns);
+    // Y16 pattern at pixel (0, 0) is 7 × sequence: the mean of the kept frames' sequences.
+    const Image mean = read_session_frame(tmp / "s", m, r);
+    EXPECT_GT(mean.channel("counts")[0] / 7.0, static_cast<double>(stage.last_sequence_during_move));
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -141,6 +143,69 @@ TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), testing::HasSubstr("saturated"));
         EXPECT_THAT(e.what(), testing::HasSubstr("p45.exr"));
+    }
+}
+
+TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheTolerance) {
+    // A mount that sits 2° past every requested angle (read back as such), an ideal analyzer, no grid
+    // effects: frames exposed at θ + 2°. Reduced at the measured angle (schema v2) the scene's S1/S2
+    // come back; at the requested one (how a v1 session is read) they come back rotated by 2 × 2°.
+    SyntheticCamera cam;
+    cam.angle_offset_deg = 0.0;
+    cam.extinction_ratio = 1e6;
+    cam.t_max = 1.0;
+    cam.grid_reflectance = cam.grid_emissivity = cam.ghost_radiance = 0.0;
+    const Band band(8.0, 14.0);
+    const auto cal = calibrate_radiometric_session(root() / "lab", band);
+    const Image scene = synthetic_panel_scene(cam.width, cam.height, band);
+    auto write = [&](const std::filesystem::path& dir, double tolerance_deg) {
+        SessionManifest m;
+        m.created_utc = "2026-11-22T17:00:00Z";
+        m.camera = {"sim://synthetic", "tirpol", "synthetic-uncooled", "0001", "Mono14", cam.width, cam.height, 14, 30.0, {}};
+        m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
+        m.plan = {{"angle_tolerance_deg", tolerance_deg}};
+        auto w = SessionWriter::create(dir, m);
+        for (double a : cam.angles_deg) {
+            SessionRecord r;
+            r.file = session_frame_file(fmt::format("p{:g}", a));
+            r.angle_deg_requested = a;
+            r.angle_deg_measured = a + 2.0;
+            r.frames = 16;
+            w.add_record(r, synthetic_record_frame(cam, scene, a + 2.0, true, false, 70u + static_cast<unsigned>(a)));
+        }
+    };
+    test::TempDir tmp;
+    write(tmp / "v2", 3.0);
+    // Angle of polarization of the panel's mean S1, S2, against the truth's, in degrees.
+    auto aop_error_deg = [&](const Image& s) {
+        double s1 = 0, s2 = 0, t1 = 0, t2 = 0;
+        for (int y = 12; y < 36; ++y)
+            for (int x = 26; x < 38; ++x) {
+                s1 += s.channel("S1")[s.index(x, y)];
+                s2 += s.channel("S2")[s.index(x, y)];
+                t1 += scene.channel("S1")[s.index(x, y)];
+                t2 += scene.channel("S2")[s.index(x, y)];
+            }
+        return std::abs(std::remainder(0.5 * (std::atan2(s2, s1) - std::atan2(t2, t1)) * 180.0 / std::numbers::pi, 180.0));
+    };
+    const double measured_error = aop_error_deg(reduce_session(tmp / "v2", cal, nullptr));
+    std::filesystem::copy(tmp / "v2", tmp / "v1", std::filesystem::copy_options::recursive);
+    auto j = nlohmann::json::parse(read_file(tmp / "v1" / "session.json"));
+    j["schema_version"] = 1;
+    write_file_atomic(tmp / "v1" / "session.json", j.dump());
+    const double requested_error = aop_error_deg(reduce_session(tmp / "v1", cal, nullptr));
+    // Reduced at the wrong angle the AoP is off by the 2° offset; at the measured one only by noise
+    // (panel mean over 288 pixels: well under 0.5°).
+    EXPECT_LT(measured_error, 0.5);
+    EXPECT_NEAR(requested_error, 2.0, 0.5);
+
+    write(tmp / "tight", 1.0);  // the 2° read-back is outside this plan's tolerance
+    try {
+        reduce_session(tmp / "tight", cal, nullptr);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), testing::HasSubstr("p0.exr"));
+        EXPECT_THAT(e.what(), testing::HasSubstr("angle_tolerance_deg"));
     }
 }
 

@@ -1,10 +1,14 @@
-// Session store (schema tirpol.session v1, docs/session-format.md): round trips, crash recovery,
-// no-overwrite guarantees and the reader's error messages for damaged sessions.
+// Session store (schema tirpol.session v2, v1 still read; docs/session-format.md): round trips,
+// atomic creation, crash recovery, no-overwrite guarantees and the reader's error messages for
+// damaged sessions.
 
 #include "tirpol/core/session.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
@@ -88,9 +92,109 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     // The manifest is the documented schema, field for field.
     const json j = json::parse(read_file(dir / "session.json"));
     EXPECT_EQ(j.at("schema"), "tirpol.session");
-    EXPECT_EQ(j.at("schema_version"), 1);
+    EXPECT_EQ(j.at("schema_version"), 2);
     EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
     EXPECT_EQ(j.at("records")[0].at("file"), "frames/pol_000.0deg_r0.exr");
+}
+
+StepTiming example_timing() {
+    StepTiming t;
+    t.move_start_ns = 1795359556000000001;
+    t.move_end_ns = 1795359559000000002;
+    t.settle_end_ns = 1795359559500000003;
+    t.exposure_window_ns = 50'000'000;
+    t.angle_deg_before_frames = 45.0004;
+    t.angle_deg_after_frames = 45.0011;
+    t.stale_frames_discarded = 31;
+    return t;
+}
+
+TEST(Session, StepTimingRoundTripsThroughTheManifestAndTheFrameHeader) {
+    test::TempDir tmp;
+    SessionRecord r = polarizer_record(45.0, 0);
+    r.timing = example_timing();
+    {
+        auto writer = SessionWriter::create(tmp / "s", example_manifest());
+        writer.set_camera_frame_rate(29.7);
+        writer.add_record(r, example_frame(1.0f));
+    }
+    const SessionManifest m = read_session(tmp / "s");
+    EXPECT_EQ(m.schema_version, 2);
+    ASSERT_EQ(m.records.size(), 1u);
+    EXPECT_EQ(m.records[0], r);  // every ns digit kept
+    EXPECT_EQ(m.camera.frame_rate_hz.value_or(0.0), 29.7);
+    const Image frame = read_session_frame(tmp / "s", m, m.records[0]);
+    EXPECT_EQ(record_from_attributes(frame.attributes(), r.file, "header"), r);
+    EXPECT_EQ(record_polarizer_angle_deg(m, m.records[0]), r.angle_deg_measured);
+}
+
+TEST(Session, FirstFrameBeforeTheSettleEndIsRefused) {
+    test::TempDir tmp;
+    SessionRecord r = polarizer_record(45.0, 0);
+    r.timing = example_timing();
+    r.timing->settle_end_ns = r.first_timestamp_ns + 1;
+    auto writer = SessionWriter::create(tmp / "s", example_manifest());
+    EXPECT_THAT([&] { writer.add_record(r, example_frame(1.0f)); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("first_timestamp_ns: expected ≥ timing.settle_end_ns")));
+}
+
+TEST(Session, VersionOneSessionsStillReadAndUseTheRequestedAngle) {
+    test::TempDir tmp;
+    const auto dir = tmp / "v1";
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(polarizer_record(90.0, 0), example_frame(1.0f));
+    }
+    // What tirpol wrote before schema v2: same fields, version 1, no timing.
+    json j = json::parse(read_file(dir / "session.json"));
+    j["schema_version"] = 1;
+    write_file_atomic(dir / "session.json", j.dump(2));
+    const SessionManifest m = read_session(dir);
+    EXPECT_EQ(m.schema_version, 1);
+    EXPECT_FALSE(m.records[0].timing);
+    // A v1 read-back preceded frames that may have been exposed mid-move: the request is the angle.
+    EXPECT_EQ(record_polarizer_angle_deg(m, m.records[0]), 90.0);
+    EXPECT_THAT([&] { SessionWriter::resume(dir); }, ::testing::ThrowsMessage<Error>(HasSubstr("schema v1 session")));
+}
+
+TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
+    // A file-size limit makes write(2) fail as a full disk does (EFBIG instead of ENOSPC; SIGXFSZ ignored).
+    test::TempDir tmp;
+    const auto dir = tmp / "s";
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+    auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit tiny = old;
+    tiny.rlim_cur = 64;  // the manifest is larger
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &tiny), 0);
+    std::string error;
+    try {
+        SessionWriter::create(dir, example_manifest());
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, old_handler);
+    EXPECT_THAT(error, HasSubstr("session.json"));
+    // Nothing that a fresh start or --resume would trip over.
+    EXPECT_FALSE(std::filesystem::exists(dir));
+    for (const auto& e : std::filesystem::directory_iterator(tmp.path())) ADD_FAILURE() << "left behind: " << e.path();
+    SessionWriter::create(dir, example_manifest());
+    EXPECT_TRUE(read_session(dir).records.empty());
+}
+
+TEST(Session, CreateRemovesWhatACrashedCreationLeftAndResumeRemovesManifestTemporaries) {
+    test::TempDir tmp;
+    const auto dir = tmp / "s";
+    // kill -9 during an earlier create: its hidden staging directory, whose lock nobody holds.
+    test::write_text(tmp / ".s.creating-4242/frames/.keep", "");
+    test::write_text(tmp / ".s.creating-4242/.lock", "");
+    { SessionWriter::create(dir, example_manifest()); }
+    EXPECT_FALSE(std::filesystem::exists(tmp / ".s.creating-4242"));
+    // kill -9 during a manifest rewrite: write_file_atomic's temporary stays beside session.json.
+    test::write_text(dir / ".session.json.tmp-4242-17.json", "{\"half\":");
+    auto writer = SessionWriter::resume(dir);
+    EXPECT_FALSE(std::filesystem::exists(dir / ".session.json.tmp-4242-17.json"));
 }
 
 TEST(Session, CreateRefusesANonEmptyDirectory) {
@@ -186,9 +290,9 @@ TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
 
 TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
     json j = manifest();
-    j["schema_version"] = 2;
+    j["schema_version"] = 3;
     write(j);
-    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1, got 2"));
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 2, got 3"));
     j["schema"] = "something.else";
     write(j);
     EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));

@@ -49,6 +49,7 @@ struct FakeGigECameraServer::Impl {
         request.frame_id = arv_buffer_get_frame_id(buffer);
         request.exposure_time_us = exposure_time_us;
         request.gain = gain;
+        request.timestamp_ns = static_cast<std::int64_t>(arv_buffer_get_timestamp(buffer));
         const std::size_t n = static_cast<std::size_t>(request.width) * static_cast<std::size_t>(request.height);
         self->counts.assign(n, 0.0f);
         self->fill(request, self->counts);
@@ -79,6 +80,9 @@ FakeGigECameraServer::FakeGigECameraServer(FakeGigECameraOptions options) : m_im
                                                      o.genicam_xml.empty() ? nullptr : o.genicam_xml.c_str()));
     if (!m_impl->server || !arv_gv_fake_camera_is_running(m_impl->server.get()))
         fail("fake GigE camera: cannot serve on interface '{}' (no such interface, or port 3956 in use)", o.interface);
+    if (!(o.lost_packet_ratio >= 0.0 && o.lost_packet_ratio < 1.0))
+        fail("fake GigE camera: lost packet ratio {} (expected in [0, 1))", o.lost_packet_ratio);
+    if (o.lost_packet_ratio > 0.0) g_object_set(m_impl->server.get(), "gvsp-lost-ratio", o.lost_packet_ratio, nullptr);
 }
 
 FakeGigECameraServer::~FakeGigECameraServer() {

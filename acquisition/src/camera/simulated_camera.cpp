@@ -6,6 +6,8 @@
 #include <cmath>
 #include <ctime>
 
+#include <spdlog/spdlog.h>
+
 #include "camera/uri.h"
 #include "tirpol/core/error.h"
 
@@ -40,7 +42,20 @@ SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator ge
     if (!(m_config.drop_probability >= 0.0 && m_config.drop_probability < 1.0))
         fail("simulated camera '{}': drop probability {} (expected in [0, 1))", m_config.name,
              m_config.drop_probability);
+    if (m_config.buffers < 1) fail("simulated camera '{}': {} buffers (expected ≥ 1)", m_config.name, m_config.buffers);
     if (!m_generator) fail("simulated camera '{}': no frame generator", m_config.name);
+}
+
+SimulatedCamera::~SimulatedCamera() { (void)stop(); }
+
+void SimulatedCamera::set_generator(FrameGenerator generator) {
+    std::lock_guard lock(m_mutex);
+    m_generator = std::move(generator);
+}
+
+StreamStatistics SimulatedCamera::statistics() const {
+    std::lock_guard lock(m_mutex);
+    return m_stats;
 }
 
 CameraInfo SimulatedCamera::info() const {
@@ -70,35 +85,88 @@ Status SimulatedCamera::set_pixel_format(const std::string& format) {
 Status SimulatedCamera::set_frame_rate(double hz) {
     if (!(hz > 0.0) || !std::isfinite(hz))
         return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("sim://{}: frame rate {} Hz", m_config.name, hz)};
+    std::lock_guard lock(m_mutex);
+    if (m_streaming) return DeviceError{DeviceErrorCode::InvalidArgument, "sim://" + m_config.name + ": frame rate change while streaming"};
     m_config.frame_rate_hz = hz;
     return ok_status();
 }
 
 Status SimulatedCamera::start() {
+    std::lock_guard lock(m_mutex);
+    if (m_streaming) return ok_status();
     m_streaming = true;
+    m_started = std::chrono::steady_clock::now();
+    m_thread = std::thread([this] { expose_frames(); });
     return ok_status();
 }
 
 Status SimulatedCamera::stop() {
-    m_streaming = false;
+    {
+        std::lock_guard lock(m_mutex);
+        m_streaming = false;
+        m_queue.clear();
+    }
+    m_changed.notify_all();
+    if (m_thread.joinable()) m_thread.join();
     return ok_status();
 }
 
-Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds /*timeout*/) {
+Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds timeout) {
+    std::unique_lock lock(m_mutex);
     if (!m_streaming) return DeviceError{DeviceErrorCode::InvalidArgument, "sim://" + m_config.name + ": grab() before start()"};
-    std::bernoulli_distribution drop(m_config.drop_probability);
-    while (m_config.drop_probability > 0.0 && drop(m_rng)) {
-        ++m_next_id;
-        ++m_stats.dropped;
+    if (!m_changed.wait_for(lock, timeout, [this] { return !m_queue.empty() || !m_streaming; }) || m_queue.empty())
+        return DeviceError{DeviceErrorCode::Timeout, fmt::format("sim://{}: no frame within {} ms", m_config.name, timeout.count())};
+    Frame frame = std::move(m_queue.front());
+    m_queue.pop_front();
+    ++m_stats.delivered;
+    return frame;
+}
+
+void SimulatedCamera::expose_frames() {
+    using Clock = std::chrono::steady_clock;
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / m_config.frame_rate_hz));
+    auto due = Clock::now() + period;
+    std::unique_lock lock(m_mutex);
+    while (m_streaming) {
+        if (m_changed.wait_until(lock, due, [this] { return !m_streaming; })) break;
+        const std::uint64_t id = m_next_id++;
+        std::bernoulli_distribution drop(m_config.drop_probability);
+        if (m_config.drop_probability > 0.0 && drop(m_rng)) {
+            ++m_stats.dropped;  // lost in the camera: an id gap
+        } else if (m_queue.size() >= static_cast<std::size_t>(m_config.buffers)) {
+            ++m_stats.dropped;  // no free buffer on the host: the frame is lost
+        } else {
+            lock.unlock();  // render without blocking grab()
+            auto frame = expose_one(id);
+            lock.lock();
+            if (frame && m_streaming) {
+                m_queue.push_back(std::move(*frame));
+                m_changed.notify_all();
+            } else if (!frame) {
+                ++m_stats.incomplete;
+            }
+        }
+        due += period;
+        // A camera slower than its nominal rate (a heavy generator) runs late rather than bursting.
+        if (const auto now = Clock::now(); now > due) due = now;
     }
+}
+
+std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
     const std::size_t n = static_cast<std::size_t>(m_config.width) * static_cast<std::size_t>(m_config.height);
     m_expected.assign(n, 0.0f);
     const double angle_deg = m_angle ? m_angle() : 0.0;
-    m_generator(angle_deg, m_expected);
-    if (m_expected.size() != n)
-        return DeviceError{DeviceErrorCode::DeviceFault,
-                           fmt::format("sim://{}: the frame generator returned {} values for {}×{} pixels",
-                                       m_config.name, m_expected.size(), m_config.width, m_config.height)};
+    FrameGenerator generator;
+    {
+        std::lock_guard lock(m_mutex);
+        generator = m_generator;
+    }
+    generator(angle_deg, m_expected);
+    if (m_expected.size() != n) {
+        spdlog::error("sim://{}: the frame generator returned {} values for {}×{} pixels", m_config.name, m_expected.size(),
+                      m_config.width, m_config.height);
+        return std::nullopt;
+    }
     Frame frame;
     frame.width = m_config.width;
     frame.height = m_config.height;
@@ -111,13 +179,12 @@ Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds /*timeout*/) {
         if (noisy) v += m_config.noise_std_counts * noise(m_rng);
         frame.counts[i] = static_cast<float>(std::clamp(std::nearbyint(v), 0.0, full_scale));
     }
-    frame.frame_id = m_next_id++;
+    frame.frame_id = id;
+    // The device clock is an oscillator of the camera's own, started at power-up (1 s before start()).
     frame.device_timestamp_ns =
-        kTimestampOriginNs + static_cast<std::int64_t>(std::llround(static_cast<double>(frame.frame_id - 1) * 1e9 /
-                                                                     m_config.frame_rate_hz));
+        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - m_started).count();
     frame.host_timestamp_ns = realtime_now_ns();
     frame.fpa_temperature_k = m_config.fpa_temperature_k;
-    ++m_stats.delivered;
     return frame;
 }
 
@@ -127,7 +194,7 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     if (u.target != "uniform")
         fail("device URI '{}': unknown simulated camera '{}' (built in: uniform; the digital twin plugs its "
              "renderer in through the C++ API)", uri, u.target);
-    u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k"});
+    u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k", "buffers"});
     SimulatedCameraConfig config;
     config.name = "uniform";
     config.width = u.integer("width", 640);
@@ -137,6 +204,7 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     config.noise_std_counts = u.number("noise", 0.0);
     config.drop_probability = u.number("drop", 0.0);
     config.seed = static_cast<std::uint64_t>(u.integer("seed", 1));
+    config.buffers = u.integer("buffers", config.buffers);
     if (u.query.count("fpa_k") != 0) config.fpa_temperature_k = u.number("fpa_k", 0.0);
     const double counts = u.number("counts", 8000.0);
     auto generator = [counts](double, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(counts)); };

@@ -316,6 +316,22 @@ private:
         return ok_status();
     }
 
+    /// When the frame reached the host, on CLOCK_REALTIME. A buffer may wait in the queue long after
+    /// the driver filled it (a free-running camera keeps filling while nobody dequeues), so the time
+    /// of DQBUF says nothing about the frame: map the driver's CLOCK_MONOTONIC stamp to CLOCK_REALTIME
+    /// with the offset between the two clocks now. A start-of-exposure stamp (V4L2_BUF_FLAG_TSTAMP_SRC_SOE)
+    /// is used as is: earlier than reception, so the capture loop's gate only gets stricter. Without a
+    /// monotonic stamp (or one from the future) the dequeue time is the only bound there is.
+    static std::int64_t reception_realtime_ns(const v4l2_buffer& buf, std::int64_t stamp_ns) {
+        const std::int64_t now_real = realtime_now_ns();
+        if ((buf.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) != V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC || stamp_ns <= 0) return now_real;
+        timespec mono{};
+        clock_gettime(CLOCK_MONOTONIC, &mono);
+        const std::int64_t now_mono = static_cast<std::int64_t>(mono.tv_sec) * 1'000'000'000 + mono.tv_nsec;
+        if (stamp_ns > now_mono) return now_real;
+        return now_real - (now_mono - stamp_ns);
+    }
+
     bool take(const v4l2_buffer& buf, Frame& frame) {
         const FrameIdStep step = m_ids.next(buf.sequence);
         m_stats.dropped += step.missed;
@@ -336,7 +352,7 @@ private:
         // uvcvideo stamps buffers with CLOCK_MONOTONIC (V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC).
         frame.device_timestamp_ns =
             static_cast<std::int64_t>(buf.timestamp.tv_sec) * 1'000'000'000 + static_cast<std::int64_t>(buf.timestamp.tv_usec) * 1000;
-        frame.host_timestamp_ns = realtime_now_ns();
+        frame.host_timestamp_ns = reception_realtime_ns(buf, frame.device_timestamp_ns);
         ++m_stats.delivered;
         return true;
     }

@@ -3,12 +3,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <cmath>
 #include <thread>
 
 #include "tirpol/acquisition/angles.h"
+#include "capture/record_writer.h"
 #include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/progress.h"
 
@@ -20,41 +21,14 @@ using namespace std::chrono;
 
 milliseconds to_ms(double seconds) { return milliseconds(static_cast<std::int64_t>(std::ceil(seconds * 1000.0))); }
 
-/// A failed step: the device error, which step, and how to continue.
-[[noreturn]] void fail_step(const CaptureStep& step, std::size_t total, const char* device, const DeviceError& e,
-                            const SessionWriter& session) {
-    fail("step {}/{} ({}): {} {}: {}. {} of {} steps are recorded in {}; fix the cause and run again with --resume",
-         step.index + 1, total, step.label, device, to_string(e.code), e.message, session.manifest().records.size(), total,
-         session.dir().string());
-}
-
-template <typename T>
-T check(Result<T> r, const CaptureStep& step, std::size_t total, const char* device, const SessionWriter& session) {
-    if (!r) fail_step(step, total, device, r.error(), session);
-    return std::move(r.value());
-}
-
 bool interrupted(const CaptureOptions& options) { return options.interrupt && options.interrupt->load(); }
 
-/// A homing or move that returned: on an interruption (the stage was told to stop, or the signal
-/// came while it failed) the run ends as "interrupted", resumable; any other error fails the step.
-void check_motion(Status status, const char* motion, const CaptureStep& step, std::size_t total,
-                  const SessionWriter& session, const CaptureOptions& options) {
-    if (status) return;
-    if (status.error().code == DeviceErrorCode::Stopped || interrupted(options))
-        fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume",
-             motion, step.index + 1, total, step.label, status.error().message, session.manifest().records.size(),
-             total, session.dir().string());
-    fail_step(step, total, "stage", status.error(), session);
-}
-
-/// Waits `seconds` after a move, returning early (false) on an interruption: a long settle_s must
-/// not hold Ctrl-C back.
-bool settle(double seconds, const CaptureOptions& options) {
-    const auto end = steady_clock::now() + duration_cast<steady_clock::duration>(duration<double>(seconds));
-    for (auto now = steady_clock::now(); now < end; now = steady_clock::now()) {
+/// Sleeps until the host clock reaches `until_ns`, returning early (false) on an interruption: a
+/// long settle_s must not hold Ctrl-C back.
+bool sleep_until_host_ns(std::int64_t until_ns, const CaptureOptions& options) {
+    for (std::int64_t now = host_realtime_ns(); now < until_ns; now = host_realtime_ns()) {
         if (interrupted(options)) return false;
-        std::this_thread::sleep_for(std::min<steady_clock::duration>(milliseconds(20), end - now));
+        std::this_thread::sleep_for(std::min(nanoseconds(milliseconds(20)), nanoseconds(until_ns - now)));
     }
     return !interrupted(options);
 }
@@ -63,8 +37,9 @@ bool settle(double seconds, const CaptureOptions& options) {
 
 SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan) {
     SessionManifest m;
+    // frame_rate_hz stays null until the capture loop has measured what the camera delivers.
     m.camera = {camera.uri, camera.vendor, camera.model, camera.serial, camera.pixel_format, camera.width, camera.height,
-                camera.bits_per_pixel, camera.frame_rate_hz, camera.planck_constants};
+                camera.bits_per_pixel, std::nullopt, camera.planck_constants};
     m.stage = {stage.uri, stage.vendor, stage.model, stage.serial, stage.firmware, stage.counts_per_degree};
     m.plan = plan.to_json();
     m.metadata = plan.metadata;
@@ -78,6 +53,26 @@ void check_resumable(const SessionManifest& m, const CameraInfo& camera, const C
     if (m.camera.width != camera.width || m.camera.height != camera.height || m.camera.pixel_format != camera.pixel_format)
         fail("the camera delivers {}×{} {}, the session was started with {}×{} {}; resume with the same camera settings",
              camera.width, camera.height, camera.pixel_format, m.camera.width, m.camera.height, m.camera.pixel_format);
+}
+
+std::uintmax_t session_bytes_needed(int width, int height, std::size_t steps) {
+    // Per step one EXR of two FLOAT planes (counts, counts_std): its uncompressed size bounds the ZIP
+    // output (noise compresses poorly); plus the header and a manifest rewrite. One extra frame covers
+    // the staged copy that exists while a record is placed.
+    const std::uintmax_t per_step = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height) * 2u * 4u + 64u * 1024u;
+    return per_step * (steps + 1) + 1024u * 1024u;
+}
+
+void check_free_space(const std::filesystem::path& dir, int width, int height, std::size_t steps) {
+    std::error_code ec;
+    const auto space = std::filesystem::space(dir, ec);
+    if (ec) return;  // cannot tell (e.g. a file system without statvfs): the write errors will say it
+    const std::uintmax_t needed = session_bytes_needed(width, height, steps);
+    if (space.available < needed)
+        fail("{}: {} steps of {}×{} frames need about {:.1f} MB, only {:.1f} MB are free on that file system; free "
+             "space (or choose another directory) and run again{}",
+             dir.string(), steps, width, height, static_cast<double>(needed) / 1e6, static_cast<double>(space.available) / 1e6,
+             std::filesystem::exists(dir / kSessionManifestName) ? " with --resume" : "");
 }
 
 CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan, SessionWriter& session,
@@ -95,19 +90,48 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     }
     const std::size_t total = steps.size();
     const CaptureStep& first = *todo.front();
+    check_free_space(session.dir(), session.manifest().camera.width, session.manifest().camera.height, todo.size());
 
-    check(camera.start(), first, total, "camera", session);
+    detail::RecordWriter writer(session);
+    auto recorded = [&] { return writer.records(); };
+    auto step_failed = [&](const CaptureStep& step, const char* device, const DeviceError& e) {
+        fail("step {}/{} ({}): {} {}: {}. {} of {} steps are recorded in {}; fix the cause and run again with --resume",
+             step.index + 1, total, step.label, device, to_string(e.code), e.message, recorded(), total, session.dir().string());
+    };
+    auto check = [&]<typename T>(Result<T> r, const CaptureStep& step, const char* device) -> T {
+        if (!r) step_failed(step, device, r.error());
+        return std::move(r.value());
+    };
+    // A homing or move that returned: on an interruption (the stage was told to stop, or the signal
+    // came while it failed) the run ends as "interrupted", resumable; any other error fails the step.
+    auto check_motion = [&](Status status, const char* motion, const CaptureStep& step) {
+        if (status) return;
+        if (status.error().code == DeviceErrorCode::Stopped || interrupted(options))
+            fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume",
+                 motion, step.index + 1, total, step.label, status.error().message, recorded(), total, session.dir().string());
+        step_failed(step, "stage", status.error());
+    };
+    auto write_failed = [&](const CaptureStep& step, const Error& e) {
+        fail("step {}/{} ({}): writing the session failed: {}. {} of {} steps are recorded in {}; free disk space if it "
+             "is full and run again with --resume",
+             step.index + 1, total, step.label, e.what(), session.manifest().records.size(), total, session.dir().string());
+    };
+
+    check(camera.start(), first, "camera");
     if (!stage.is_homed()) {
         spdlog::info("homing the stage {}", stage.info().uri);
-        check_motion(stage.home(to_ms(plan.home_timeout_s)), "homing", first, total, session, options);
+        check_motion(stage.home(to_ms(plan.home_timeout_s)), "homing", first);
     }
     std::unique_ptr<ProgressReporter> progress;
     if (options.progress_stream) progress = std::make_unique<ProgressReporter>("acquire", todo.size(), options.progress_stream);
 
+    FrameGate gate(camera.info().frame_rate_hz);
+    const auto settle_ns = static_cast<std::int64_t>(std::llround(plan.settle_s * 1e9));
+    const auto frame_timeout_ns = static_cast<std::int64_t>(std::llround(plan.frame_timeout_s * 1e9));
     for (const CaptureStep* step : todo) {
-        if (options.interrupt && options.interrupt->load())
+        if (interrupted(options))
             fail("interrupted before step {}/{} ({}); {} of {} steps are recorded in {}; run again with --resume", step->index + 1,
-                 total, step->label, session.manifest().records.size(), total, session.dir().string());
+                 total, step->label, recorded(), total, session.dir().string());
         if (step->kind != RecordKind::Polarizer && options.prompt) {
             const std::string instruction =
                 step->kind == RecordKind::Blackbody
@@ -116,56 +140,102 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             if (!options.prompt(instruction))
                 fail("stopped by the operator before step {}/{} ({}); run again with --resume to continue", step->index + 1, total, step->label);
         }
-        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step, total,
-                     session, options);
-        if (!settle(plan.settle_s, options))
-            fail(
-                "interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again "
-                "with --resume",
-                step->index + 1, total, step->label, session.manifest().records.size(), total, session.dir().string());
-        const double measured = check(stage.position_deg(), *step, total, "stage", session);
-        if (std::abs(angle_difference_deg(measured, step->angle_deg)) > plan.angle_tolerance_deg)
-            fail_step(*step, total, "stage",
-                      {DeviceErrorCode::DeviceFault, fmt::format("reads {:.4f}° after moving to {:.4f}° (tolerance {}°)", measured,
-                                                                 step->angle_deg, plan.angle_tolerance_deg)},
-                      session);
+        StepTiming timing;
+        timing.move_start_ns = host_realtime_ns();
+        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step);
+        timing.move_end_ns = host_realtime_ns();
+        timing.settle_end_ns = timing.move_end_ns + settle_ns;
+        if (!sleep_until_host_ns(timing.settle_end_ns, options))
+            fail("interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again with "
+                 "--resume",
+                 step->index + 1, total, step->label, recorded(), total, session.dir().string());
+        auto read_angle = [&](const char* when) {
+            const double a = check(stage.position_deg(), *step, "stage");
+            if (std::abs(angle_difference_deg(a, step->angle_deg)) > plan.angle_tolerance_deg)
+                step_failed(*step, "stage",
+                            {DeviceErrorCode::DeviceFault, fmt::format("reads {:.4f}° {} (moved to {:.4f}°, tolerance {}°){}", a, when,
+                                                                       step->angle_deg, plan.angle_tolerance_deg,
+                                                                       std::string(when) == "after the frames" ? ": the stage drifted during the step, its frames are discarded" : "")});
+            return a;
+        };
+        timing.angle_deg_before_frames = read_angle("after settling");
 
-        const std::uint64_t dropped_before = camera.statistics().dropped;
+        // Frames queued since the move began (a free-running camera never stops) come first: drain
+        // them, keeping only frames exposed after the settle end.
+        // Drops among the kept frames only: frames lost while nobody grabbed during the move (a full
+        // queue) are counted by the camera too, but they belong to no step.
+        std::uint64_t dropped_before = 0;
         FrameAverager averager;
         SessionRecord record;
         double fpa_sum = 0.0;
         int fpa_count = 0;
-        for (int i = 0; i < step->frames; ++i) {
-            if (options.interrupt && options.interrupt->load())
+        while (averager.count() < static_cast<std::uint64_t>(step->frames)) {
+            if (interrupted(options))
                 fail("interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps are recorded in {}; run again with --resume",
-                     step->index + 1, total, step->label, session.manifest().records.size(), total, session.dir().string());
-            const Frame frame = check(camera.grab(to_ms(plan.frame_timeout_s)), *step, total, "camera", session);
+                     step->index + 1, total, step->label, recorded(), total, session.dir().string());
+            const Frame frame = check(camera.grab(to_ms(plan.frame_timeout_s)), *step, "camera");
+            if (!gate.exposed_after(frame, timing.settle_end_ns)) {
+                ++timing.stale_frames_discarded;
+                if (host_realtime_ns() - timing.settle_end_ns > frame_timeout_ns + gate.exposure_window_ns())
+                    step_failed(*step, "camera",
+                                {DeviceErrorCode::BadReply,
+                                 fmt::format("for {:g} s after the stage settled every frame was stamped before it (frame {} received {} ns "
+                                             "before the settle end, {} discarded): the camera's timestamps are not on the host clock",
+                                             plan.frame_timeout_s, frame.frame_id, timing.settle_end_ns - frame.host_timestamp_ns,
+                                             timing.stale_frames_discarded)});
+                continue;
+            }
             averager.add(frame);
-            if (i == 0) record.first_timestamp_ns = frame.host_timestamp_ns;
+            if (averager.count() == 1) {
+                record.first_timestamp_ns = frame.host_timestamp_ns;
+                dropped_before = camera.statistics().dropped;
+            }
             record.last_timestamp_ns = frame.host_timestamp_ns;
             if (frame.fpa_temperature_k) {
                 fpa_sum += *frame.fpa_temperature_k;
                 ++fpa_count;
             }
         }
+        timing.angle_deg_after_frames = read_angle("after the frames");
+        if (std::abs(angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames)) > plan.angle_tolerance_deg)
+            step_failed(*step, "stage",
+                        {DeviceErrorCode::DeviceFault,
+                         fmt::format("moved from {:.4f}° to {:.4f}° while its frames were taken (tolerance {}°): the stage drifted "
+                                     "during the step, its frames are discarded",
+                                     timing.angle_deg_before_frames, timing.angle_deg_after_frames, plan.angle_tolerance_deg)});
+        timing.exposure_window_ns = gate.exposure_window_ns();
         if (fpa_count > 0) record.fpa_temperature_k = fpa_sum / fpa_count;
         else record.fpa_temperature_k = camera.device_temperature_k();
         record.kind = step->kind;
         record.file = step->file;
         record.angle_deg_requested = step->angle_deg;
-        record.angle_deg_measured = measured;
+        record.angle_deg_measured =
+            wrap_degrees(timing.angle_deg_before_frames + 0.5 * angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames));
         record.repeat = step->repeat;
         record.blackbody_temperature_k = step->temperature_k;
         record.frames = step->frames;
         record.dropped = static_cast<std::int64_t>(camera.statistics().dropped - dropped_before);
-        session.add_record(record, averager.to_image());
+        record.timing = timing;
+        try {
+            writer.submit(record, averager.to_image(), gate.delivered_rate_hz());
+        } catch (const Error& e) {
+            write_failed(*step, e);
+        }
         summary.steps_recorded++;
         summary.frames += static_cast<std::uint64_t>(step->frames);
         summary.dropped += static_cast<std::uint64_t>(record.dropped);
+        summary.stale_discarded += static_cast<std::uint64_t>(timing.stale_frames_discarded);
         if (progress) progress->advance();
+    }
+    try {
+        writer.flush();
+    } catch (const Error& e) {
+        write_failed(*todo.back(), e);
     }
     if (progress) progress->finish();
     if (auto s = camera.stop(); !s) spdlog::warn("stopping the camera: {}", s.error().message);
+    summary.delivered_frame_rate_hz = gate.delivered_rate_hz();
+    if (summary.delivered_frame_rate_hz) session.set_camera_frame_rate(*summary.delivered_frame_rate_hz);
     session.mark_complete();
     return summary;
 }

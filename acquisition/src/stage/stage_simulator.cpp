@@ -44,7 +44,24 @@ std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.
 }  // namespace
 
 StageSimulator::StageSimulator(StageSimulatorOptions options)
-    : m_options(options), m_from_deg(wrap_degrees(options.start_deg)), m_to_deg(m_from_deg) {}
+    : m_options(options), m_from_deg(wrap_degrees(options.start_deg)), m_to_deg(m_from_deg) {
+    publish_trajectory();
+}
+
+void StageSimulator::publish_trajectory() {
+    std::lock_guard lock(m_trajectory_mutex);
+    m_trajectory = {m_from_deg, m_to_deg, m_move_start, m_move_end, m_stuck};
+}
+
+double StageSimulator::physical_angle_deg(Clock::time_point now) const {
+    std::lock_guard lock(m_trajectory_mutex);
+    const Trajectory& t = m_trajectory;
+    if (!t.stuck && now >= t.end) return wrap_degrees(t.to_deg);
+    const double total = std::chrono::duration<double>(t.end - t.start).count();
+    double f = total > 0 ? std::chrono::duration<double>(now - t.start).count() / total : 1.0;
+    if (t.stuck) f = 0.5;  // as angle_deg(): a busy stage that never arrives sits halfway
+    return wrap_degrees(t.from_deg + (t.to_deg - t.from_deg) * std::clamp(f, 0.0, 1.0));
+}
 
 bool StageSimulator::moving(Clock::time_point now) const { return m_stuck || now < m_move_end; }
 
@@ -65,6 +82,7 @@ bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_poin
     const double seconds = std::abs(m_to_deg - m_from_deg) / m_options.deg_per_s;
     m_move_start = now;
     m_move_end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)) + m_options.latency;
+    publish_trajectory();
     if (homing) return false;
     ++m_moves;
     return m_options.fault != SimFault::None && m_moves >= m_options.fault_on_move;
@@ -95,6 +113,7 @@ std::vector<std::uint8_t> StageSimulator::poll(Clock::time_point now) {
         m_homing = false;
         m_homed = true;
     }
+    publish_trajectory();  // fault handling may have changed the trajectory after start_move
     return out;
 }
 

@@ -1,13 +1,18 @@
 #pragma once
 /// \file capture.h
 /// The capture loop: for each plan step not yet in the session — move the stage, settle, read the
-/// angle back and check it, grab N frames, average them (mean and standard deviation per pixel),
-/// write the record. Device failures become tirpol::Error naming the step; everything recorded
+/// angle back and check it, discard every frame exposed before the settle end (FrameGate: a
+/// free-running camera's queue holds frames from the move), keep the next N, read the angle back
+/// again (a stage that moved during the frames fails the step), average the frames (mean and
+/// standard deviation per pixel), and hand the record to a writer thread so that EXR writing never
+/// stalls grabbing. Software trigger is not needed. Device failures become tirpol::Error naming the step; everything recorded
 /// before stays, and running again on the resumed session continues with the first missing step.
 
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "tirpol/acquisition/camera.h"
@@ -32,9 +37,18 @@ struct CaptureSummary {
     std::size_t steps_already_recorded = 0;  ///< found in the session when the run started
     std::size_t steps_recorded = 0;          ///< recorded by this run
     std::uint64_t frames = 0, dropped = 0;   ///< by this run
+    std::uint64_t stale_discarded = 0;       ///< frames exposed before their step's settle end, by this run
+    std::optional<double> delivered_frame_rate_hz;  ///< measured from the frames' reception times
 };
 
-/// The manifest of a new session for these devices and this plan (records empty).
+/// Bytes a session of `steps` records of width × height frames may need (EXR upper bound).
+std::uintmax_t session_bytes_needed(int width, int height, std::size_t steps);
+/// Throws tirpol::Error saying how much is needed and how much is free when `dir`'s file system
+/// cannot hold `steps` more records.
+void check_free_space(const std::filesystem::path& dir, int width, int height, std::size_t steps);
+
+/// The manifest of a new session for these devices and this plan (records empty; the camera's
+/// frame_rate_hz null until run_capture measures the delivered rate).
 SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan);
 
 /// Checks that a session being resumed was started with this plan and an identical camera format;

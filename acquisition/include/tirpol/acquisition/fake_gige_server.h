@@ -27,6 +27,10 @@ struct FakeGigEFrameRequest {
     std::uint64_t frame_id = 0;     ///< the GVSP block id of this frame (16-bit, never 0)
     std::uint32_t exposure_time_us = 0;
     std::uint32_t gain = 0;
+    /// Host CLOCK_REALTIME (ns) at which Aravis stamped this frame, just before filling it: the end of
+    /// its exposure. The camera free-runs, so a time-true fill renders the scene as it was over the
+    /// exposure that ended here (e.g. the polarizer angle of a turning stage).
+    std::int64_t timestamp_ns = 0;
 };
 
 /// Writes width × height counts, row-major (the vector arrives sized). Runs on the server's thread.
@@ -36,6 +40,9 @@ struct FakeGigECameraOptions {
     std::string interface = "127.0.0.1";  ///< interface name or IPv4 address to serve on
     std::string serial = "GV01";          ///< device id becomes "Aravis-Fake-<serial>"
     std::filesystem::path genicam_xml;    ///< empty: Aravis's built-in arv-fake-camera.xml
+    /// Fraction of GVSP packets the server does not send (Aravis's "gvsp-lost-ratio"): frames that
+    /// arrive incomplete or not at all, as on a congested link. 0: none.
+    double lost_packet_ratio = 0.0;
 };
 
 class FakeGigECameraServer {

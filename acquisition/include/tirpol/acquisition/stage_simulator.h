@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -53,6 +54,10 @@ public:
     bool hang_up(Clock::time_point now) const;
     /// Current angle in degrees (interpolated during a move).
     double angle_deg(Clock::time_point now) const;
+    /// The mount's physical angle at `now` in degrees [0, 360), turning at deg_per_s during a move;
+    /// safe to call from any thread while another serves the protocol (it reads a snapshot of the
+    /// trajectory, published at each move start and each poll). What a camera behind the polarizer sees.
+    double physical_angle_deg(Clock::time_point now) const;
 
 private:
     std::vector<std::uint8_t> receive_apt(Clock::time_point now);
@@ -76,6 +81,16 @@ private:
         std::vector<std::uint8_t> bytes;
     };
     std::vector<Pending> m_pending;
+
+    /// The trajectory as other threads see it (physical_angle_deg).
+    struct Trajectory {
+        double from_deg = 0.0, to_deg = 0.0;
+        Clock::time_point start{}, end{};
+        bool stuck = false;
+    };
+    void publish_trajectory();
+    mutable std::mutex m_trajectory_mutex;
+    Trajectory m_trajectory;
 };
 
 /// A pseudo-terminal: the simulator owns the master side; a driver opens `slave_path`.

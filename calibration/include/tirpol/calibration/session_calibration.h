@@ -3,7 +3,11 @@
 /// The thin layer between capture sessions (core/session.h, docs/session-format.md) and the image
 /// algorithms of this module: which records feed which step, units, saturation and uncertainties.
 ///
-/// Conventions on top of session schema v1 (docs/calibration.md, "Sessions"):
+/// Conventions on top of session schema v1/v2 (docs/calibration.md, "Sessions"):
+/// - Angles: from schema v2 the polarizer angle of a record is its read-back `angle_deg_measured`
+///   (v1: `angle_deg_requested`); a v2 record whose read-backs are further from the request than the
+///   plan's `angle_tolerance_deg` is refused, naming the file. The ideal analyzer of reduce_session
+///   sits at the mean measured angle of each requested angle's repeats.
 /// - `metadata.polarizer_in_beam` (bool, default false) says whether the blackbody records were
 ///   taken through the polarizer. Radiometric calibration refuses a session where it is true;
 ///   polarimetric calibration refuses one where it is false or absent.

@@ -1,7 +1,8 @@
 #pragma once
 /// \file session.h
 /// The capture-session store: a directory with a `session.json` manifest and one OpenEXR per
-/// recorded step under `frames/` (schema "tirpol.session", version 1; docs/session-format.md).
+/// recorded step under `frames/` (schema "tirpol.session", version 2; version 1 still reads;
+/// docs/session-format.md).
 /// Written by `tirpol acquire`, read by calibration.
 ///
 /// Crash safety: every frame file is written atomically and only then is the manifest rewritten
@@ -24,7 +25,11 @@
 namespace tirpol {
 
 inline constexpr const char* kSessionSchema = "tirpol.session";
-inline constexpr int kSessionSchemaVersion = 1;
+/// Written by this version. v2 adds each record's `timing` and a measured `camera.frame_rate_hz`;
+/// from v2 on `angle_deg_measured` is the read-back around the gated frames and is what reduction uses.
+inline constexpr int kSessionSchemaVersion = 2;
+/// The oldest version still read.
+inline constexpr int kSessionSchemaOldestReadable = 1;
 inline constexpr const char* kSessionManifestName = "session.json";
 
 /// The camera as recorded in the manifest (mirrors acquisition::CameraInfo).
@@ -47,6 +52,21 @@ const char* to_string(RecordKind kind);
 /// Parses "polarizer" | "blackbody" | "shutter"; std::nullopt otherwise.
 std::optional<RecordKind> record_kind_from_string(const std::string& text);
 
+/// When a step happened and which frames it kept (schema v2). All instants are host CLOCK_REALTIME
+/// in ns since the Unix epoch, the clock of the frames' reception timestamps (docs/acquisition-cameras.md,
+/// "Timing model"). A frame was kept only if reception − exposure_window_ns ≥ settle_end_ns.
+struct StepTiming {
+    std::int64_t move_start_ns = 0;     ///< the move command was sent
+    std::int64_t move_end_ns = 0;       ///< the stage reported the move complete
+    std::int64_t settle_end_ns = 0;     ///< move end + settle_s: frames must be exposed after this
+    std::int64_t exposure_window_ns = 0;  ///< subtracted from a frame's reception time to bound its exposure start
+    double angle_deg_before_frames = 0.0;  ///< stage read-back after settling, before the first kept frame
+    double angle_deg_after_frames = 0.0;   ///< stage read-back after the last kept frame
+    std::int64_t stale_frames_discarded = 0;  ///< frames exposed (partly) before settle_end_ns, thrown away
+
+    bool operator==(const StepTiming&) const = default;
+};
+
 /// One recorded step: N frames averaged into one EXR.
 struct SessionRecord {
     RecordKind kind = RecordKind::Polarizer;
@@ -60,12 +80,14 @@ struct SessionRecord {
     std::int64_t first_timestamp_ns = 0;  ///< host CLOCK_REALTIME of the first frame, ns since the epoch
     std::int64_t last_timestamp_ns = 0;   ///< ... of the last frame
     std::optional<double> fpa_temperature_k;  ///< mean sensor temperature when the camera reports it
+    std::optional<StepTiming> timing;     ///< v2 records written by the capture loop; absent in v1
 
     bool operator==(const SessionRecord&) const = default;
 };
 
 /// The whole manifest.
 struct SessionManifest {
+    int schema_version = kSessionSchemaVersion;  ///< as read (1 or 2); always written as kSessionSchemaVersion
     std::string created_utc;     ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
     SessionCamera camera;
     SessionStage stage;
@@ -75,7 +97,12 @@ struct SessionManifest {
     bool complete = false;
 };
 
-/// Manifest ⇄ JSON (schema v1). `from_json` validates everything and throws tirpol::Error naming
+/// The polarizer angle a record's frames were taken at: `angle_deg_measured` from schema v2 on (read
+/// back around the gated frames), `angle_deg_requested` for v1 sessions, whose read-back preceded
+/// frames that may have been exposed during the move.
+double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record);
+
+/// Manifest ⇄ JSON (schema v2; v1 reads). `from_json` validates everything and throws tirpol::Error naming
 /// `source` (the file) and the field, e.g. "DIR/session.json: records[2].frames: expected an integer ≥ 1".
 nlohmann::json session_to_json(const SessionManifest& manifest);
 SessionManifest session_from_json(const nlohmann::json& json, const std::string& source);
@@ -101,12 +128,15 @@ std::string session_frame_file(const std::string& stem);
 /// processes never write the same session.
 class SessionWriter {
 public:
-    /// Starts a new session in `dir` (created if missing). Refuses a directory that exists and is
-    /// not empty (use resume()). Writes the manifest with no records at once.
+    /// Starts a new session in `dir`. Refuses a directory that exists and is not empty (use
+    /// resume()). Atomic: the directory, `frames/`, the lock and the manifest with no records are
+    /// built in a hidden sibling (`.<name>.creating-*`) and renamed to `dir` in one step, so a crash or
+    /// a full disk leaves either nothing or a complete empty session.
     static SessionWriter create(const std::filesystem::path& dir, SessionManifest manifest);
     /// Reopens an interrupted session: reads and validates the manifest, deletes leftover temporary
-    /// files, and adopts frame files that were written but not yet listed (crash between the two
-    /// writes), using the record their header carries.
+    /// files (`.session.json.tmp-*`, hidden files in `frames/`), and adopts frame files that were
+    /// written but not yet listed (crash between the two writes), using the record their header
+    /// carries. Refuses a v1 session (finish it with the tirpol that started it, or start anew).
     static SessionWriter resume(const std::filesystem::path& dir);
 
     SessionWriter(SessionWriter&&) noexcept;
@@ -124,6 +154,9 @@ public:
     /// record mirrored into its header, then rewrites the manifest. Throws tirpol::Error if the file
     /// is already recorded or exists on disk (never overwrites), or if the session is complete.
     void add_record(const SessionRecord& record, const Image& frame);
+    /// Sets the frame rate the camera delivered (measured, Hz); written with the next manifest
+    /// write (add_record, mark_complete).
+    void set_camera_frame_rate(double frame_rate_hz);
     /// Replaces the free-form metadata and rewrites the manifest.
     void set_metadata(nlohmann::json metadata);
     /// Marks the session complete and rewrites the manifest.
