@@ -60,8 +60,10 @@ void run_render(const RenderArgs& a) {
             std::printf("  %s\n", path.c_str());
         }
     }
-    std::printf("rendered %s: %d×%d, %d spp, %.2f s (%.2f s emissivity tables), %.3g Mrays/s\n", a.scene.c_str(),
-                image.width(), image.height(), scene.sampling.samples_per_pixel, stats.seconds, stats.setup_seconds,
+    std::printf("rendered %s: %d×%d, %d spp, %.2f s (%.2f s emissivity tables: %d built, %d from the cache), %.3g Mrays/s\n",
+                a.scene.c_str(), image.width(), image.height(), scene.sampling.samples_per_pixel, stats.seconds,
+                stats.setup_seconds, stats.emissivity_tables_built,
+                stats.emissivity_tables_from_disk + stats.emissivity_tables_from_memory,
                 1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) / std::max(stats.seconds - stats.setup_seconds, 1e-9));
     for (const auto& p : written) std::printf("  %s\n", p.c_str());
 }
