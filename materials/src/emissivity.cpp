@@ -118,8 +118,8 @@ EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> 
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
     for (const double w : m_wavelengths_um)
         if (w < lo * (1.0 - 1e-9) || w > hi * (1.0 + 1e-9))
-            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(),
-                 lo, hi);
+            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(), lo,
+                 hi);
     const std::size_t n = m_angles_rad.size();
     m_values.resize(n * m_wavelengths_um.size());
     // Columns whose parameters equal the previous column's are copied afterwards.

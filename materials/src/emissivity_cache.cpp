@@ -33,9 +33,10 @@ constexpr std::uint64_t kSecondBasis = 0x84222325cbf29ce4ULL;
 std::string key_text(const PolarizedBrdf& brdf, const std::vector<double>& wavelengths_um, int angle_nodes,
                      const EmissivityOptions& options) {
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
-    std::string text = fmt::format("tirpol emissivity table v{}\nmodel {}\nrange {:a} {:a}\nangles {}\nquadrature {} {} {}\n",
-                                   kEmissivityCacheVersion, brdf.model(), lo, hi, angle_nodes, options.radial_panels,
-                                   options.azimuth_panels, options.order);
+    std::string text =
+        fmt::format("tirpol emissivity table v{}\nmodel {}\nrange {:a} {:a}\nangles {}\nquadrature {} {} {}\n",
+                    kEmissivityCacheVersion, brdf.model(), lo, hi, angle_nodes, options.radial_panels,
+                    options.azimuth_panels, options.order);
     text += fmt::format("delta {} {} isotropic {}\n", brdf.has_delta(), brdf.is_pure_delta(), brdf.is_isotropic());
     for (const double w : wavelengths_um) {
         text += fmt::format("{:a}", w);
@@ -136,7 +137,8 @@ CachedEmissivityTable cached_emissivity_table(const PolarizedBrdf& brdf, const s
     MemoryCache& memory = memory_cache();
     {
         const std::lock_guard lock(memory.mutex);
-        if (auto it = memory.tables.find(key); it != memory.tables.end()) return {it->second, EmissivityCacheSource::memory};
+        if (auto it = memory.tables.find(key); it != memory.tables.end())
+            return {it->second, EmissivityCacheSource::memory};
     }
     CachedEmissivityTable result;
     std::filesystem::path file;

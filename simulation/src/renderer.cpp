@@ -43,7 +43,8 @@ public:
     PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats) : m_scene(scene) {
         std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
         // Increasing wavelengths: the emissivity tables' columns.
-        std::sort(nodes.begin(), nodes.end(), [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
+        std::sort(nodes.begin(), nodes.end(),
+                  [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
         double total = 0.0;
         for (const auto& node : nodes) {
             m_wavelengths.push_back(node.wavelength_um);
@@ -70,9 +71,12 @@ public:
             sources[i] = cached.source;
         });
         for (const auto source : sources) {
-            if (source == materials::EmissivityCacheSource::memory) ++stats.emissivity_tables_from_memory;
-            else if (source == materials::EmissivityCacheSource::disk) ++stats.emissivity_tables_from_disk;
-            else ++stats.emissivity_tables_built;
+            if (source == materials::EmissivityCacheSource::memory)
+                ++stats.emissivity_tables_from_memory;
+            else if (source == materials::EmissivityCacheSource::disk)
+                ++stats.emissivity_tables_from_disk;
+            else
+                ++stats.emissivity_tables_built;
         }
     }
 

@@ -78,7 +78,8 @@ TEST(Cli, RenderMaxBouncesIsValidatedLikeTheSceneFile) {
     const tirpol::test::TempDir dir;
     const auto scene = tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml";
     for (const char* bad : {"-1", "100001"}) {
-        const CliRun r = run_cli("render " + scene.string() + " -o " + (dir / "out").string() + " -q --max-bounces " + bad);
+        const CliRun r =
+            run_cli("render " + scene.string() + " -o " + (dir / "out").string() + " -q --max-bounces " + bad);
         EXPECT_EQ(r.exit_code, 1) << r.out;
         EXPECT_NE(r.out.find("--max-bounces: expected 0–100000"), std::string::npos) << r.out;
     }

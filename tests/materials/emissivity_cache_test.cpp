@@ -1,12 +1,13 @@
 // The emissivity-table cache (emissivity_cache.h): a table read back from memory or disk equals the
 // one built from the model; a changed material, band grid or corrupt file never returns stale numbers.
 
+#include "tirpol/materials/emissivity_cache.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "test_support.h"
-#include "tirpol/materials/emissivity_cache.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
@@ -70,14 +71,17 @@ TEST(EmissivityCache, ChangedMaterialOrGridInvalidatesTheEntry) {
     clear_emissivity_memory_cache();
 
     for (const MicrofacetBrdf& edited : {rough(1.7, 0.3), rough(1.6, 0.31)}) {
-        EXPECT_NE(emissivity_table_key(edited, kGrid, kAngles, kQuick), emissivity_table_key(original, kGrid, kAngles, kQuick));
+        EXPECT_NE(emissivity_table_key(edited, kGrid, kAngles, kQuick),
+                  emissivity_table_key(original, kGrid, kAngles, kQuick));
         const auto c = cached_emissivity_table(edited, kGrid, dir.path(), kAngles, kQuick);
         EXPECT_EQ(c.source, EmissivityCacheSource::built);
         expect_same_values(*c.table, EmissivityTable(edited, kGrid, kAngles, kQuick));
     }
     const std::vector<double> other_grid = {8.0, 9.0, 10.25};
-    EXPECT_EQ(cached_emissivity_table(original, other_grid, dir.path(), kAngles, kQuick).source, EmissivityCacheSource::built);
-    EXPECT_EQ(cached_emissivity_table(original, kGrid, dir.path(), kAngles + 2, kQuick).source, EmissivityCacheSource::built);
+    EXPECT_EQ(cached_emissivity_table(original, other_grid, dir.path(), kAngles, kQuick).source,
+              EmissivityCacheSource::built);
+    EXPECT_EQ(cached_emissivity_table(original, kGrid, dir.path(), kAngles + 2, kQuick).source,
+              EmissivityCacheSource::built);
     EXPECT_EQ(files_in(dir.path()).size(), 5u);
 }
 
@@ -136,8 +140,10 @@ TEST(EmissivityCache, DefaultFolderFollowsTheEnvironment) {
     EXPECT_EQ(default_emissivity_cache_directory().filename(), "tirpol");
     EXPECT_NE(default_emissivity_cache_directory(), std::filesystem::path("relative/ignored/tirpol"));
     if (saved_dir) setenv("TIRPOL_CACHE_DIR", keep_dir.c_str(), 1);
-    if (saved_xdg) setenv("XDG_CACHE_HOME", keep_xdg.c_str(), 1);
-    else unsetenv("XDG_CACHE_HOME");
+    if (saved_xdg)
+        setenv("XDG_CACHE_HOME", keep_xdg.c_str(), 1);
+    else
+        unsetenv("XDG_CACHE_HOME");
 }
 
 }  // namespace

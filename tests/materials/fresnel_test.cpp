@@ -1,5 +1,7 @@
 // Fresnel reflection for a complex index: published values and the s/p Mueller convention.
 
+#include "tirpol/materials/fresnel.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/mueller.h"
-#include "tirpol/materials/fresnel.h"
 
 namespace tirpol::materials {
 namespace {
@@ -143,7 +144,8 @@ TEST(Fresnel, MetalRetardanceGivesTheS3OfThePhysicalField) {
             const FresnelResult r = fresnel(metal, c);
             const StokesVector out = fresnel_mueller(metal, c) * linearly_polarized(1.0, 1.0, deg_to_rad(45.0));
             ASSERT_GT(std::abs(out[3]), 1e-4) << deg;
-            EXPECT_EQ(out[3] > 0.0 ? 1 : -1, receiver_view_rotation(r.rs, r.rp)) << metal.n << "+" << metal.k << "i at " << deg;
+            EXPECT_EQ(out[3] > 0.0 ? 1 : -1, receiver_view_rotation(r.rs, r.rp))
+                << metal.n << "+" << metal.k << "i at " << deg;
             // In this convention both phases fall with angle and p falls further: δ = arg(r_p/r_s) < 0
             // between normal (±180°) and grazing (0), so +45° linear light comes back right-handed.
             EXPECT_GT(out[3], 0.0) << deg;

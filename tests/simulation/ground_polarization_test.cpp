@@ -22,7 +22,8 @@ TEST_P(GroundMaterial, ObliqueGroundEmissionIsVerticallyPolarized) {
     TempDir dir;
     const double view_zenith_deg = 70.0, ground_k = 290.0, sky_k = 230.0;
     const double th = deg_to_rad(view_zenith_deg), d = 5.0;
-    const std::string camera = fmt::format("fov_deg: 0.5, position: [0, {}, {}], look_at: [0, 0, 0]", -d * std::sin(th), d * std::cos(th));
+    const std::string camera =
+        fmt::format("fov_deg: 0.5, position: [0, {}, {}], look_at: [0, 0, 0]", -d * std::sin(th), d * std::cos(th));
     const Scene scene = test::load_scene_text(
         dir, test::scene_header(4, 4, 256, 8, camera, fmt::format("{{type: uniform, temperature: {}}}", sky_k)) +
                  "objects:\n  - {name: ground, geometry: {type: plane, size: [400, 400]}, material: " + GetParam() +
@@ -44,7 +45,8 @@ TEST_P(GroundMaterial, ObliqueGroundEmissionIsVerticallyPolarized) {
     double expected_s1 = 0.0, s0 = 0.0;
     for (const auto& node : scene.band.nodes()) {
         const StokesVector eps = materials::directional_emissivity(brdf, std::cos(th), node.wavelength_um);
-        const double lg = planck_radiance(node.wavelength_um, ground_k), ls = planck_radiance(node.wavelength_um, sky_k);
+        const double lg = planck_radiance(node.wavelength_um, ground_k),
+                     ls = planck_radiance(node.wavelength_um, sky_k);
         expected_s1 += node.weight_um * eps[1] * (lg - ls);
         s0 += node.weight_um * (eps[0] * lg + (1.0 - eps[0]) * ls);
     }

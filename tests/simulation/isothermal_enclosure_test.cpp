@@ -93,10 +93,11 @@ std::vector<std::filesystem::path> library_materials(double lo_um, double hi_um)
 void expect_library_blackbody(const std::vector<std::filesystem::path>& files, double lo_um, double hi_um) {
     ASSERT_GT(files.size(), 0u) << "no library material covers " << lo_um << "–" << hi_um << " µm";
     TempDir dir;
-    std::string yaml = test::scene_header(60, 32, 48, 24, "fov_deg: 50, position: [0, -7, 1.6], look_at: [0, 0, 1.6]",
-                                          "{type: uniform, temperature: 290}", lo_um, hi_um) +
-                       "objects:\n  - {name: ground, geometry: {type: plane, size: [12, 12]}, material: " + files[0].string() +
-                       ", temperature: 290}\n";
+    std::string yaml =
+        test::scene_header(60, 32, 48, 24, "fov_deg: 50, position: [0, -7, 1.6], look_at: [0, 0, 1.6]",
+                           "{type: uniform, temperature: 290}", lo_um, hi_um) +
+        "objects:\n  - {name: ground, geometry: {type: plane, size: [12, 12]}, material: " + files[0].string() +
+        ", temperature: 290}\n";
     for (std::size_t i = 0; i < files.size(); ++i)
         yaml += fmt::format("  - {{name: ball{}, geometry: {{type: sphere, radius: 0.5}}, transform: {{translate: [{}, 0, {}]}}, "
                             "material: {}, temperature: 290}}\n",
@@ -116,8 +117,9 @@ void expect_library_blackbody(const std::vector<std::filesystem::path>& files, d
             auto& plane = sub.add_channel(ch);
             for (std::size_t k = 0; k < pixels.size(); ++k) plane[k] = img.channel(ch)[pixels[k]];
         }
-        expect_blackbody(sub, l_bb,
-                         fmt::format("{} ({}) in {}–{} µm", scene.materials[m].name, scene.materials[m].source, lo_um, hi_um));
+        expect_blackbody(
+            sub, l_bb,
+            fmt::format("{} ({}) in {}–{} µm", scene.materials[m].name, scene.materials[m].source, lo_um, hi_um));
     }
 }
 
@@ -142,7 +144,8 @@ TEST(IsothermalEnclosure, SpectralMaterialsInNarrowBandsNearTheReststrahlenBand)
 // Bands elsewhere in 3–14 µm (MWIR, and a wide one): every material whose data cover them (constant-
 // index and Lambertian models cover every wavelength).
 TEST(IsothermalEnclosure, MaterialsCoveringTheMwirRenderTheBlackbody) {
-    for (const auto& [lo, hi] : {std::pair{3.0, 5.0}, std::pair{3.0, 14.0}}) expect_library_blackbody(library_materials(lo, hi), lo, hi);
+    for (const auto& [lo, hi] : {std::pair{3.0, 5.0}, std::pair{3.0, 14.0}})
+        expect_library_blackbody(library_materials(lo, hi), lo, hi);
 }
 
 }  // namespace

@@ -17,10 +17,12 @@ using tirpol::test::TempDir;
 
 /// Camera inside a closed 3 × 3 × 2 m box of `material` at 300 K (the sky, never seen, is colder).
 std::string aluminium_box(int max_bounces, const std::string& material = "bare_aluminium", int spp = 64) {
-    return test::scene_header(12, 8, spp, max_bounces, "fov_deg: 40, position: [0.3, -0.9, 0.2], look_at: [0.5, 1, -0.3]",
+    return test::scene_header(12, 8, spp, max_bounces,
+                              "fov_deg: 40, position: [0.3, -0.9, 0.2], look_at: [0.5, 1, -0.3]",
                               "{type: uniform, temperature: 220}") +
            "objects:\n"
-           "  - {name: box, geometry: {type: box, size: [3, 3, 2]}, material: " + material + ", temperature: 300}\n";
+           "  - {name: box, geometry: {type: box, size: [3, 3, 2]}, material: " +
+           material + ", temperature: 300}\n";
 }
 
 /// Polished aluminium: exact Fresnel reflection with the library's Rakić (1995) index, so sample
@@ -61,9 +63,11 @@ TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     std::size_t outside = 0;
     for (std::size_t i = 0; i < img.pixel_count(); ++i)
         for (const auto& [channel, expected] : {std::pair{"S0", l_bb}, std::pair{"S1", 0.0}, std::pair{"S2", 0.0}}) {
-            const double z = (img.channel(channel)[i] - expected) /
-                             std::sqrt(img.channel(std::string(channel) + "_var")[i]);
-            if (std::abs(z) > 5.0 && ++outside <= 3) ADD_FAILURE() << "pixel " << i << " " << channel << ": z = " << z << " value " << img.channel(channel)[i] << " L_bb " << l_bb;
+            const double z =
+                (img.channel(channel)[i] - expected) / std::sqrt(img.channel(std::string(channel) + "_var")[i]);
+            if (std::abs(z) > 5.0 && ++outside <= 3)
+                ADD_FAILURE() << "pixel " << i << " " << channel << ": z = " << z << " value "
+                              << img.channel(channel)[i] << " L_bb " << l_bb;
         }
     EXPECT_EQ(outside, 0u);
 }

@@ -32,7 +32,8 @@ inline std::string scene_header(int width, int height, int spp, int bounces, con
         "materials_dir: {}\n"
         "camera: {{resolution: [{}, {}], {}}}\n"
         "sky: {}\n",
-        band_lo_um, band_hi_um, spp, bounces, (tirpol::test::source_dir() / "config" / "materials").string(), width, height, camera_body, sky);
+        band_lo_um, band_hi_um, spp, bounces, (tirpol::test::source_dir() / "config" / "materials").string(), width,
+        height, camera_body, sky);
 }
 
 }  // namespace tirpol::simulation::test
