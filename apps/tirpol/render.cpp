@@ -38,7 +38,8 @@ void run_render(const RenderArgs& a) {
         scene.sampling.samples_per_pixel = *a.spp;
     }
     if (a.max_bounces) {
-        if (*a.max_bounces < 0) fail("--max-bounces: expected ≥ 0, got {}", *a.max_bounces);
+        if (const std::string problem = simulation::max_bounces_problem(*a.max_bounces); !problem.empty())
+            fail("--max-bounces: {}", problem);
         scene.sampling.max_bounces = *a.max_bounces;
     }
     if (a.seed) scene.sampling.seed = *a.seed;
@@ -59,9 +60,13 @@ void run_render(const RenderArgs& a) {
             std::printf("  %s\n", path.c_str());
         }
     }
-    std::printf("rendered %s: %d×%d, %d spp, %.2f s (%.2f s emissivity tables), %.3g Mrays/s\n", a.scene.c_str(),
-                image.width(), image.height(), scene.sampling.samples_per_pixel, stats.seconds, stats.setup_seconds,
-                1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) / std::max(stats.seconds - stats.setup_seconds, 1e-9));
+    std::printf(
+        "rendered %s: %d×%d, %d spp, %.2f s (%.2f s emissivity tables: %d built, %d from the cache), %.3g Mrays/s\n",
+        a.scene.c_str(), image.width(), image.height(), scene.sampling.samples_per_pixel, stats.seconds,
+        stats.setup_seconds, stats.emissivity_tables_built,
+        stats.emissivity_tables_from_disk + stats.emissivity_tables_from_memory,
+        1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) /
+            std::max(stats.seconds - stats.setup_seconds, 1e-9));
     for (const auto& p : written) std::printf("  %s\n", p.c_str());
 }
 
@@ -75,7 +80,9 @@ void register_render(CLI::App& app) {
     cmd->add_option("--seed", args->seed, "Random seed (overrides sampling.seed)");
     cmd->add_option("--width", args->width, "Image width in pixels (with --height; intrinsics scale along)");
     cmd->add_option("--height", args->height, "Image height in pixels");
-    cmd->add_option("--max-bounces", args->max_bounces, "Maximum reflections per path (overrides sampling.max_bounces)");
+    cmd->add_option(
+        "--max-bounces", args->max_bounces,
+        "Safety cap on reflections per path, 0–100000 (overrides sampling.max_bounces; paths end by Russian roulette)");
     cmd->add_option("--sensor", args->sensor, "Sensor-model YAML: also write the polarizer images I(α)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");

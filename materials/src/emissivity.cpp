@@ -82,26 +82,45 @@ bool same_parameters(const std::vector<BrdfParameter>& a, const std::vector<Brdf
 }
 }  // namespace
 
-EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes,
-                                 const EmissivityOptions& options)
-    : m_wavelengths_um(std::move(wavelengths_um)) {
+void EmissivityTable::init_grid(int angle_nodes) {
     if (m_wavelengths_um.empty()) fail("EmissivityTable: empty wavelength list");
     if (angle_nodes < 4) fail("EmissivityTable: angle_nodes = {}: expected at least 4", angle_nodes);
-    const auto [lo, hi] = brdf.valid_wavelength_range_um();
-    for (std::size_t i = 0; i < m_wavelengths_um.size(); ++i) {
-        const double w = m_wavelengths_um[i];
-        if (i > 0 && !(w > m_wavelengths_um[i - 1]))
-            fail("EmissivityTable: wavelengths must increase ({} µm after {} µm)", w, m_wavelengths_um[i - 1]);
-        if (w < lo * (1.0 - 1e-9) || w > hi * (1.0 + 1e-9))
-            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(),
-                 lo, hi);
-    }
+    for (std::size_t i = 1; i < m_wavelengths_um.size(); ++i)
+        if (!(m_wavelengths_um[i] > m_wavelengths_um[i - 1]))
+            fail("EmissivityTable: wavelengths must increase ({} µm after {} µm)", m_wavelengths_um[i],
+                 m_wavelengths_um[i - 1]);
     const auto n = static_cast<std::size_t>(angle_nodes);
     m_angles_rad.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
         const double x = static_cast<double>(j) / static_cast<double>(n - 1);
         m_angles_rad[j] = kHalfPi * (1.0 - (1.0 - x) * (1.0 - x));
     }
+}
+
+EmissivityTable EmissivityTable::from_values(std::vector<double> wavelengths_um, int angle_nodes,
+                                             std::vector<StokesVector> values) {
+    EmissivityTable table;
+    table.m_wavelengths_um = std::move(wavelengths_um);
+    table.init_grid(angle_nodes);
+    if (values.size() != table.m_wavelengths_um.size() * table.m_angles_rad.size())
+        fail("EmissivityTable: {} stored values for {} wavelengths × {} angles", values.size(),
+             table.m_wavelengths_um.size(), table.m_angles_rad.size());
+    for (const StokesVector& v : values)
+        if (!v.allFinite()) fail("EmissivityTable: a stored value is not finite");
+    table.m_values = std::move(values);
+    return table;
+}
+
+EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes,
+                                 const EmissivityOptions& options)
+    : m_wavelengths_um(std::move(wavelengths_um)) {
+    init_grid(angle_nodes);
+    const auto [lo, hi] = brdf.valid_wavelength_range_um();
+    for (const double w : m_wavelengths_um)
+        if (w < lo * (1.0 - 1e-9) || w > hi * (1.0 + 1e-9))
+            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(), lo,
+                 hi);
+    const std::size_t n = m_angles_rad.size();
     m_values.resize(n * m_wavelengths_um.size());
     // Columns whose parameters equal the previous column's are copied afterwards.
     std::vector<bool> reuse(m_wavelengths_um.size(), false);

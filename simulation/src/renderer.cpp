@@ -16,7 +16,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/core/stokes_frame.h"
-#include "tirpol/materials/emissivity.h"
+#include "tirpol/materials/emissivity_cache.h"
 #include "tirpol/simulation/rng.h"
 
 namespace tirpol::simulation {
@@ -40,8 +40,11 @@ struct PixelResult {
 /// Everything a path needs that does not change during a render.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene) : m_scene(scene) {
-        const std::vector<BandNode>& nodes = scene.band.nodes();
+    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats) : m_scene(scene) {
+        std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
+        // Increasing wavelengths: the emissivity tables' columns.
+        std::sort(nodes.begin(), nodes.end(),
+                  [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
         double total = 0.0;
         for (const auto& node : nodes) {
             m_wavelengths.push_back(node.wavelength_um);
@@ -57,14 +60,24 @@ public:
                 fail("material '{}' ({}) is defined over {}–{} µm, which does not cover the band {}–{} µm", m.name, m.source, lo,
                      hi, scene.band.lo_um(), scene.band.hi_um());
         }
-        // Tabulated on a 0.25 µm grid and interpolated linearly to the nodes: a table at every
-        // quadrature node would cost ~8× more to build for tabulated indices, for a change in ε far
-        // below the Monte-Carlo noise. Materials are independent: build their tables in parallel.
+        // Emission is looked up at exactly the path's wavelength node (a table column per node), so
+        // ε + ρ = 1 holds per path and an isothermal enclosure is a blackbody whatever n,k(λ) does.
+        // Materials are independent: their tables come from the cache or are built in parallel.
         m_emissivity.resize(scene.materials.size());
-        const auto wavelengths = materials::EmissivityTable::wavelengths_for_band(scene.band);
+        std::vector<materials::EmissivityCacheSource> sources(scene.materials.size());
         tbb::parallel_for(std::size_t{0}, scene.materials.size(), [&](std::size_t i) {
-            m_emissivity[i] = std::make_unique<materials::EmissivityTable>(*scene.materials[i].brdf, wavelengths);
+            auto cached = materials::cached_emissivity_table(*scene.materials[i].brdf, m_wavelengths, cache_dir);
+            m_emissivity[i] = std::move(cached.table);
+            sources[i] = cached.source;
         });
+        for (const auto source : sources) {
+            if (source == materials::EmissivityCacheSource::memory)
+                ++stats.emissivity_tables_from_memory;
+            else if (source == materials::EmissivityCacheSource::disk)
+                ++stats.emissivity_tables_from_disk;
+            else
+                ++stats.emissivity_tables_built;
+        }
     }
 
     /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
@@ -107,9 +120,9 @@ public:
 
             // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's world frame.
             const MuellerMatrix leaving = throughput * rotation_between(surface_frame(wo, n), world_frame(wo));
-            const StokesVector emissivity = m_emissivity[object.material]->at_wavelength(std::clamp(wo_local.z(), 0.0, 1.0), lambda);
+            const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
             radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
-            if (bounce >= max_bounces) break;
+            if (bounce >= max_bounces) break;  // safety cap only: Russian roulette ends paths (below)
 
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
             if (sun && sun->direction.dot(n) > 0.0 && sun->direction.dot(ng) > 0.0) {
@@ -131,7 +144,10 @@ public:
             throughput = leaving * s.weight * rotation_between(world_frame(-wi), surface_frame(-wi, n));
             last_was_delta = s.is_delta;
 
-            // Russian roulette after a few bounces keeps long paths unbiased and rare.
+            // Russian roulette after the third hit ends paths without bias: a path survives with
+            // probability q = min(1, S0 throughput) and is then weighted by 1/q (Arvo & Kirk,
+            // SIGGRAPH 1990). Deep mirror traps (a closed metal box) are followed as far as they carry
+            // radiance, where a fixed bounce limit would drop it.
             if (bounce >= 2) {
                 const double survive = std::min(1.0, throughput(0, 0));
                 if (!(survive > 0.0) || rng.next() >= survive) break;
@@ -147,7 +163,7 @@ private:
     const Scene& m_scene;
     std::vector<double> m_cdf, m_wavelengths;
     double m_band_weight_um = 0.0;
-    std::vector<std::unique_ptr<materials::EmissivityTable>> m_emissivity;
+    std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
 };
 
 struct Channels {
@@ -164,11 +180,16 @@ struct Channels {
 
 }  // namespace
 
+Band spectral_grid(const Band& band) { return Band(band.lo_um(), band.hi_um(), band.rsr(), kSpectralGridPanel_um); }
+
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    RenderStatistics stats;
+    const std::filesystem::path cache_dir =
+        options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
     std::unique_ptr<const PathTracer> tracer_ptr;
-    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene); });
+    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats); });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
@@ -262,10 +283,13 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
     attrs["scene_file"] = scene.file.string();
-    attrs["stokes_frame"] = std::string("camera: 0 deg along image +x (rows), 90 deg toward the image top; S1 = I0 - I90");
+    attrs["stokes_frame"] = std::string(
+        "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image top; S1 = I0 - I90; "
+        "S3 > 0 right-circular seen by the receiver");
     attrs["renderer"] = std::string("tirpol polarized path tracer (Embree 3, TBB)");
 
     if (statistics) {
+        *statistics = stats;
         statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         statistics->setup_seconds = setup_seconds;
         statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);

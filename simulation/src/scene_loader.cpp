@@ -144,6 +144,16 @@ TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const st
     return TemperatureField::texture(map.channel(channel), map.width(), map.height());
 }
 
+}  // namespace
+
+std::string max_bounces_problem(int max_bounces) {
+    if (max_bounces >= 0 && max_bounces <= kMaxBouncesLimit) return {};
+    return fmt::format("expected 0–{} reflections (a safety cap: paths end by Russian roulette), got {}",
+                       kMaxBouncesLimit, max_bounces);
+}
+
+namespace {
+
 SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     SamplingSettings s;
     if (!node) return s;
@@ -151,7 +161,8 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
     if (s.samples_per_pixel < 1) node->at("spp").fail("expected at least 1 sample per pixel");
     s.max_bounces = node->get_or("max_bounces", s.max_bounces);
-    if (s.max_bounces < 0 || s.max_bounces > 64) node->at("max_bounces").fail("expected 0–64 bounces");
+    if (const std::string problem = max_bounces_problem(s.max_bounces); !problem.empty())
+        node->at("max_bounces").fail(problem);
     const int seed = node->get_or("seed", 1);
     if (seed < 0) node->at("seed").fail("expected a non-negative seed");
     s.seed = static_cast<std::uint64_t>(seed);

@@ -71,3 +71,16 @@ TEST(Cli, InfoDescribesAnExrAndNamesAMissingFile) {
 }
 
 }  // namespace
+
+// --max-bounces follows the scene file's rule for sampling.max_bounces (scene.h max_bounces_problem):
+// 0–100000, a safety cap; anything else is a clear error before rendering, exit code 1.
+TEST(Cli, RenderMaxBouncesIsValidatedLikeTheSceneFile) {
+    const tirpol::test::TempDir dir;
+    const auto scene = tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml";
+    for (const char* bad : {"-1", "100001"}) {
+        const CliRun r =
+            run_cli("render " + scene.string() + " -o " + (dir / "out").string() + " -q --max-bounces " + bad);
+        EXPECT_EQ(r.exit_code, 1) << r.out;
+        EXPECT_NE(r.out.find("--max-bounces: expected 0–100000"), std::string::npos) << r.out;
+    }
+}

@@ -23,16 +23,17 @@ inline Scene load_scene_text(const tirpol::test::TempDir& dir, const std::string
     return load_scene(dir / name);
 }
 
-/// Header of a scene: 8–14 µm band, sampling, camera.
+/// Header of a scene: band (default 8–14 µm), sampling, camera.
 inline std::string scene_header(int width, int height, int spp, int bounces, const std::string& camera_body,
-                                const std::string& sky) {
+                                const std::string& sky, double band_lo_um = 8.0, double band_hi_um = 14.0) {
     return fmt::format(
-        "band: {{lo_um: 8, hi_um: 14}}\n"
+        "band: {{lo_um: {}, hi_um: {}}}\n"
         "sampling: {{spp: {}, max_bounces: {}, seed: 7}}\n"
         "materials_dir: {}\n"
         "camera: {{resolution: [{}, {}], {}}}\n"
         "sky: {}\n",
-        spp, bounces, (tirpol::test::source_dir() / "config" / "materials").string(), width, height, camera_body, sky);
+        band_lo_um, band_hi_um, spp, bounces, (tirpol::test::source_dir() / "config" / "materials").string(), width,
+        height, camera_body, sky);
 }
 
 }  // namespace tirpol::simulation::test

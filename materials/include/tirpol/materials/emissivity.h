@@ -56,10 +56,18 @@ public:
     EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes = 65,
                     const EmissivityOptions& options = {});
 
+    /// A table from stored node values (emissivity_cache.h), laid out as values()[wavelength][angle] on
+    /// the same angle grid as a built table with `angle_nodes` nodes. Throws tirpol::Error if the sizes
+    /// disagree, the wavelengths do not increase or a value is not finite.
+    static EmissivityTable from_values(std::vector<double> wavelengths_um, int angle_nodes,
+                                       std::vector<StokesVector> values);
+
     /// Emissivity Stokes vector at cos θ (clamped to [0, 1]) for the table's wavelength index.
     StokesVector at(double cos_theta, std::size_t wavelength_index) const;
 
     /// Emissivity at an arbitrary wavelength: linear in wavelength between columns, clamped at the ends.
+    /// Between columns this is not Kirchhoff-consistent with a reflection evaluated at that wavelength;
+    /// a renderer that needs ε + ρ = 1 per path samples the table's own wavelengths and calls `at`.
     StokesVector at_wavelength(double cos_theta, double wavelength_um) const;
 
     /// Planck×RSR-weighted band average ∫R L_bb(T) ε dλ / ∫R L_bb(T) dλ over the band's quadrature
@@ -75,6 +83,8 @@ public:
     StokesVector at_weighted(double cos_theta, const std::vector<double>& weights) const;
 
     const std::vector<double>& wavelengths_um() const { return m_wavelengths_um; }
+    /// Every node value, [wavelength][angle] (for storing the table).
+    const std::vector<StokesVector>& values() const { return m_values; }
     /// Emission angles of the nodes, radians.
     const std::vector<double>& angles_rad() const { return m_angles_rad; }
     /// The value stored at node (angle_index, wavelength_index).
@@ -86,6 +96,9 @@ public:
     static std::vector<double> wavelengths_for_band(const Band& band, double step_um = 0.5);
 
 private:
+    EmissivityTable() = default;
+    /// Checks the wavelength list and sets the angle nodes.
+    void init_grid(int angle_nodes);
     /// Cubic interpolation at grid coordinate p ∈ [0, N−1] for one column.
     StokesVector at_position(double p, std::size_t wavelength_index) const;
     double position(double cos_theta) const;

@@ -11,13 +11,19 @@
 /// axis s = n × k. In these frames p-light at normal incidence comes back with r_p = −r_s (the frames'
 /// p axes point in opposite directions in space while the physical field flips with r_s).
 ///
-/// Mueller matrix (core's mueller_from_jones of J, Chipman et al. 2018 eq 6.99), with
-/// Rs = |r_s|², Rp = |r_p|²:
-///   [ (Rs+Rp)/2  (Rs−Rp)/2      0              0        ]
-///   [ (Rs−Rp)/2  (Rs+Rp)/2      0              0        ]
-///   [     0          0      Re(r_s r_p*)   Im(r_s r_p*)  ]
-///   [     0          0     −Im(r_s r_p*)   Re(r_s r_p*)  ]
-/// m01 > 0: reflection favours s (S1 > 0), the retardance term is the 2×2 lower block.
+/// Time convention of the Jones→Mueller conversion: r_s, r_p above are amplitudes for waves
+/// ∝ exp(i(k·r − ωt)) (ñ = n + ik). core's mueller_from_jones and stokes.h use the opposite one,
+/// exp(i(ωt − k·r)), in which σ3 = [[0,−i],[i,0]] gives S3 > 0 for right-circular light as seen by
+/// the receiver (mueller.h). A Jones matrix changes convention by complex conjugation, so the Mueller
+/// matrix is mueller_from_jones(diag(r_s*, r_p*)) (Chipman et al. 2018 eq 6.99), with Rs = |r_s|²,
+/// Rp = |r_p|² and c = r_s*·r_p:
+///   [ (Rs+Rp)/2  (Rs−Rp)/2      0        0    ]
+///   [ (Rs−Rp)/2  (Rs+Rp)/2      0        0    ]
+///   [     0          0        Re c     Im c   ]
+///   [     0          0       −Im c     Re c   ]
+/// m01 > 0: reflection favours s (S1 > 0); the 2×2 lower block is the retardance δ = arg(r_p/r_s).
+/// Pinned by tests/materials/fresnel_test.cpp (Fresnel rhomb: Born & Wolf §1.5.4 eq 60 and Hecht,
+/// Optics §8.7; +45° linear light leaves right-circular, S3 > 0).
 ///
 /// The formulas are templates on the scalar type T (double or ceres::Jet) using TinyComplex, so the
 /// fitting module can differentiate them; the cosine of incidence may be a plain double.
@@ -57,7 +63,8 @@ template <typename T, typename C>
 Mueller4<T> fresnel_mueller_t(const T& n, const T& k, const C& cos_i) {
     const FresnelAmplitudes<T> r = fresnel_amplitudes(n, k, cos_i);
     const T rs2 = norm2(r.rs), rp2 = norm2(r.rp);
-    const TinyComplex<T> cross = r.rs * conj(r.rp);
+    // exp(i(k·r − ωt)) amplitudes → the exp(i(ωt − k·r)) Mueller convention: conjugate (file comment).
+    const TinyComplex<T> cross = conj(r.rs) * r.rp;
     const T a = (rs2 + rp2) * T(0.5), b = (rs2 - rp2) * T(0.5);
     const T zero(0);
     return {{{a, b, zero, zero}, {b, a, zero, zero}, {zero, zero, cross.re, cross.im}, {zero, zero, -cross.im, cross.re}}};

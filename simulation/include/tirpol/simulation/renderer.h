@@ -5,9 +5,10 @@
 /// reflection of what arrives from an importance-sampled direction (eq 12) are accumulated, with
 /// the Stokes vector carried in world ray frames and rotated with core's change_frame between the
 /// surface s/p frames of the pBRDF and the world frames; the sun is added by next-event estimation
-/// with a shadow ray; escaped rays take the sky. Each path carries one wavelength node of the band,
-/// drawn with probability ∝ its quadrature weight, so emission and reflection of a path use the same
-/// wavelength and an isothermal enclosure is exact per path in expectation.
+/// with a shadow ray; escaped rays take the sky. Each path carries one wavelength node of the band's
+/// spectral grid (spectral_grid), drawn with probability ∝ its quadrature weight; emission is read
+/// from the emissivity table's column at exactly that node and reflection is evaluated at it, so
+/// ε + ρ = 1 holds per path and an isothermal enclosure is a blackbody for any n,k(λ).
 ///
 /// Why path tracing rather than the paper's hemisphere sampling with a bounce-dependent decay:
 /// one sample per bounce spends the ray budget on pixels (anti-aliasing, edge pixels, sub-pixel
@@ -15,6 +16,8 @@
 /// bench/simulation_bench.cpp and docs/simulation.md.
 
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 
 #include "tirpol/core/image.h"
@@ -26,6 +29,9 @@ struct RenderOptions {
     int threads = 0;             ///< 0: all cores (TBB's default concurrency)
     bool show_progress = false;  ///< progress bar with ETA on stderr (core ProgressReporter)
     int tile_size = 16;          ///< pixels per tile edge; the image does not depend on it
+    /// Folder of the on-disk emissivity-table cache (materials emissivity_cache.h); unset: the default
+    /// ($TIRPOL_CACHE_DIR, $XDG_CACHE_HOME/tirpol or ~/.cache/tirpol); empty: memory cache only.
+    std::optional<std::filesystem::path> emissivity_cache_dir;
 };
 
 struct RenderStatistics {
@@ -34,7 +40,18 @@ struct RenderStatistics {
     std::uint64_t camera_rays = 0;
     std::uint64_t scene_rays = 0;   ///< every intersect query (camera, bounce and auxiliary rays)
     std::uint64_t shadow_rays = 0;  ///< occlusion queries toward the sun
+    int emissivity_tables_built = 0;        ///< computed in this render (no valid cache entry)
+    int emissivity_tables_from_disk = 0;    ///< read from the disk cache
+    int emissivity_tables_from_memory = 0;  ///< already held by this process
 };
+
+/// Width of the Gauss–Legendre panels (8 nodes each, split at the RSR's knots) of the spectral grid.
+inline constexpr double kSpectralGridPanel_um = 1.0;
+
+/// The wavelength nodes and weights the renderer samples for `band`: the same band (and RSR)
+/// integrated on panels of kSpectralGridPanel_um, i.e. 8 nodes per µm. Its quadrature of Planck's law
+/// agrees with band.radiance to < 1e-9 relative; each node gets its own emissivity-table column.
+Band spectral_grid(const Band& band);
 
 /// Renders `scene` at its camera's resolution with its sampling settings. Returns an image with the
 /// channels S0 S1 S2 S3 (camera frame: 0° along image +x, 90° toward the image top; band radiance
