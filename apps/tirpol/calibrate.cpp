@@ -13,7 +13,9 @@ namespace tirpol::cli {
 
 namespace {
 struct RadiometricArgs {
-    std::string session, output, rsr;
+    std::vector<std::string> sessions;
+    std::string output, rsr;
+    int fpa_degree = 0;
     std::vector<double> band_um{8.0, 14.0};
     bool quadratic = false;
     std::optional<double> saturation_counts;
@@ -26,13 +28,18 @@ void run_radiometric(const RadiometricArgs& a) {
     calibration::RadiometricOptions options;
     options.quadratic = a.quadratic;
     options.saturation_counts = a.saturation_counts;
-    const auto cal = calibration::calibrate_radiometric_session(a.session, band, options);
+    options.fpa_degree = a.fpa_degree;
+    const auto cal = calibration::calibrate_radiometric_sessions({a.sessions.begin(), a.sessions.end()}, band, options);
     calibration::write_radiometric_calibration(a.output, cal);
     const auto gain = calibration::robust_stats(cal.gain);
     const auto residual = calibration::robust_stats(cal.residual_rms);
     std::printf("radiometric calibration of %s (%d×%d, %zu blackbody frames, %s model)\n", cal.camera_id.c_str(),
                 cal.width, cal.height, cal.temperatures_k.size(), a.quadratic ? "quadratic" : "linear");
     std::printf("  median gain %.4g counts/(W/(m²·sr)), median residual %.3g counts\n", gain.median, residual.median);
+    if (cal.fpa_degree() > 0)
+        std::printf("  FPA-temperature model of degree %d about %.2f K, calibrated over FPA %.2f–%.2f K (%zu session(s))\n",
+                    cal.fpa_degree(), cal.fpa_reference_k, cal.fpa_min_k, cal.fpa_max_k, a.sessions.size());
+    for (const auto& w : cal.warnings) std::printf("  warning: %s\n", w.c_str());
     std::printf("  bad pixels: %zu (dead %zu, hot %zu, noisy %zu, non-linear %zu, saturated %zu)\n", cal.bad_count(),
                 cal.bad_count(calibration::kDead), cal.bad_count(calibration::kHot), cal.bad_count(calibration::kNoisy),
                 cal.bad_count(calibration::kNonLinear), cal.bad_count(calibration::kSaturated));
@@ -62,11 +69,18 @@ void register_calibrate(CLI::App& app) {
 
     auto r = std::make_shared<RadiometricArgs>();
     auto* rad = cmd->add_subcommand("radiometric", "Per-pixel counts→radiance, bad pixels, from blackbody records");
-    rad->add_option("SESSION", r->session, "Session directory with blackbody records")->required()->check(CLI::ExistingDirectory);
+    rad->add_option("SESSION", r->sessions, "Session directories with blackbody records (one camera; several camera temperatures for --fpa-degree)")
+        ->required()
+        ->check(CLI::ExistingDirectory);
     rad->add_option("-o,--output", r->output, "Calibration EXR to write")->required();
     rad->add_option("--band-um", r->band_um, "Band limits LO HI in micrometres")->expected(2)->capture_default_str();
     rad->add_option("--rsr", r->rsr, "Relative spectral response CSV (wavelength_um,response)")->check(CLI::ExistingFile);
     rad->add_flag("--quadratic", r->quadratic, "Fit counts = o + g·L + q·L² (≥ 3 temperatures)");
+    rad->add_option("--fpa-degree", r->fpa_degree,
+                    "Gain and offset as polynomials of this degree in the camera's FPA temperature (0: one camera state; "
+                    "1: Nugent et al. 2013)")
+        ->check(CLI::Range(0, 2))
+        ->capture_default_str();
     rad->add_option("--saturation-counts", r->saturation_counts, "Saturation level (default 2^bits − 1 of the camera)");
     rad->callback([r] { run_radiometric(*r); });
 

@@ -42,6 +42,7 @@ BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m,
     f.counts_std = frame.channel("counts_std");
     f.frames = static_cast<int>(r.frames);
     f.source = (dir / r.file).string();
+    f.fpa_temperature_k = r.fpa_temperature_k;
     return f;
 }
 
@@ -86,7 +87,8 @@ struct RadianceFrame {
 };
 
 RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const SessionRecord& r,
-                          const RadiometricCalibration& cal) {
+                          const RadiometricCalibration& calibration) {
+    const RadiometricCalibration cal = at_fpa_temperature(calibration, r.fpa_temperature_k, (dir / r.file).string());
     if (m.camera.width != cal.width || m.camera.height != cal.height)
         fail("{}: camera is {}×{} but the radiometric calibration is {}×{}", manifest_path(dir), m.camera.width,
              m.camera.height, cal.width, cal.height);
@@ -114,21 +116,41 @@ RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const S
 }  // namespace
 
 RadiometricCalibration calibrate_radiometric_session(const fs::path& dir, const Band& band, RadiometricOptions options) {
-    const SessionManifest m = read_session(dir);
-    if (polarizer_in_beam(dir, m).value_or(false))
-        fail("{}: metadata.polarizer_in_beam is true: these blackbody frames were taken through the polarizer; use "
-             "'tirpol calibrate polarimetric' for them",
-             manifest_path(dir));
+    return calibrate_radiometric_sessions({dir}, band, options);
+}
+
+RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path>& dirs, const Band& band,
+                                                      RadiometricOptions options) {
+    if (dirs.empty()) fail("radiometric calibration: no session given");
     std::vector<BlackbodyFrame> frames;
-    for (const auto& r : m.records)
-        if (is_temperature_reference(r)) frames.push_back(to_blackbody_frame(dir, m, r));
-    if (frames.empty())
-        fail("{}: no blackbody (or temperature-tagged shutter) records; radiometric calibration needs frames of a "
-             "blackbody at ≥ 2 temperatures",
-             manifest_path(dir));
-    if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(m);
-    RadiometricCalibration cal = fit_radiometric(frames, m.camera.width, m.camera.height, band, options);
-    cal.camera_id = camera_id(m);
+    std::optional<SessionManifest> first;
+    for (const auto& dir : dirs) {
+        const SessionManifest m = read_session(dir);
+        if (polarizer_in_beam(dir, m).value_or(false))
+            fail("{}: metadata.polarizer_in_beam is true: these blackbody frames were taken through the polarizer; use "
+                 "'tirpol calibrate polarimetric' for them",
+                 manifest_path(dir));
+        // Sessions at several camera temperatures calibrate one camera together, never two.
+        if (first && (camera_id(m) != camera_id(*first) || m.camera.width != first->camera.width ||
+                      m.camera.height != first->camera.height))
+            fail("{}: camera {} ({}×{}) differs from {} ({}×{}) of {}; one calibration is for one camera",
+                 manifest_path(dir), camera_id(m), m.camera.width, m.camera.height, camera_id(*first),
+                 first->camera.width, first->camera.height, manifest_path(dirs.front()));
+        std::size_t found = 0;
+        for (const auto& r : m.records)
+            if (is_temperature_reference(r)) {
+                frames.push_back(to_blackbody_frame(dir, m, r));
+                ++found;
+            }
+        if (found == 0)
+            fail("{}: no blackbody (or temperature-tagged shutter) records; radiometric calibration needs frames of a "
+                 "blackbody at ≥ 2 temperatures",
+                 manifest_path(dir));
+        if (!first) first = m;
+    }
+    if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(*first);
+    RadiometricCalibration cal = fit_radiometric(frames, first->camera.width, first->camera.height, band, options);
+    cal.camera_id = camera_id(*first);
     return cal;
 }
 

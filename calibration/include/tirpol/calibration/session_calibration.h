@@ -33,6 +33,12 @@ std::optional<double> session_saturation_counts(const SessionManifest& manifest)
 RadiometricCalibration calibrate_radiometric_session(const std::filesystem::path& dir, const Band& band,
                                                      RadiometricOptions options = {});
 
+/// The same from several sessions of one camera (e.g. taken at several camera temperatures for an
+/// FPA-dependent model, options.fpa_degree ≥ 1; each record's fpa_temperature_k is used). Refuses
+/// sessions of different cameras.
+RadiometricCalibration calibrate_radiometric_sessions(const std::vector<std::filesystem::path>& dirs, const Band& band,
+                                                      RadiometricOptions options = {});
+
 /// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance via
 /// `radiometric`), the analyzer by least squares from the known-source repeats (ideal at the
 /// blackbody angles when there are none).
