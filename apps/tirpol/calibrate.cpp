@@ -1,7 +1,9 @@
 // `tirpol calibrate radiometric|polarimetric`: blackbody count→radiance calibration and the
 // polarizer/wire-grid calibration from capture sessions (docs/calibration.md).
 
+#include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <memory>
 #include <optional>
 
@@ -14,7 +16,7 @@ namespace tirpol::cli {
 namespace {
 struct RadiometricArgs {
     std::vector<std::string> sessions;
-    std::string output, rsr;
+    std::string output, rsr, summary;
     int fpa_degree = 0;
     std::vector<double> band_um{8.0, 14.0};
     bool quadratic = false;
@@ -29,8 +31,12 @@ void run_radiometric(const RadiometricArgs& a) {
     options.quadratic = a.quadratic;
     options.saturation_counts = a.saturation_counts;
     options.fpa_degree = a.fpa_degree;
-    const auto cal = calibration::calibrate_radiometric_sessions({a.sessions.begin(), a.sessions.end()}, band, options);
+    calibration::CalibrationQuality quality;
+    const auto cal =
+        calibration::calibrate_radiometric_sessions({a.sessions.begin(), a.sessions.end()}, band, options, &quality);
     calibration::write_radiometric_calibration(a.output, cal);
+    const std::string summary = a.summary.empty() ? calibration::default_summary_dir(a.output) : a.summary;
+    calibration::write_calibration_summary(summary, cal, quality);
     const auto gain = calibration::robust_stats(cal.gain);
     const auto residual = calibration::robust_stats(cal.residual_rms);
     std::printf("radiometric calibration of %s (%d×%d, %zu blackbody frames, %s model)\n", cal.camera_id.c_str(),
@@ -39,11 +45,18 @@ void run_radiometric(const RadiometricArgs& a) {
     if (cal.fpa_degree() > 0)
         std::printf("  FPA-temperature model of degree %d about %.2f K, calibrated over FPA %.2f–%.2f K (%zu session(s))\n",
                     cal.fpa_degree(), cal.fpa_reference_k, cal.fpa_min_k, cal.fpa_max_k, a.sessions.size());
+    std::printf("  residual per set-point (mean over good pixels, mK):\n");
+    for (const auto& s : quality.set_points)
+        std::printf("    %8.2f K%s: mean %+7.1f mK, RMS %6.1f mK\n", s.temperature_k,
+                    std::isfinite(s.fpa_temperature_k) ? fmt::format(" at FPA {:.2f} K", s.fpa_temperature_k).c_str() : "",
+                    s.mean_mk, s.rms_mk);
+    std::printf("  median NEDT %.1f mK at %.1f K\n", 1000.0 * quality.nedt_median_k, quality.nedt_temperature_k);
     for (const auto& w : cal.warnings) std::printf("  warning: %s\n", w.c_str());
     std::printf("  bad pixels: %zu (dead %zu, hot %zu, noisy %zu, non-linear %zu, saturated %zu)\n", cal.bad_count(),
                 cal.bad_count(calibration::kDead), cal.bad_count(calibration::kHot), cal.bad_count(calibration::kNoisy),
                 cal.bad_count(calibration::kNonLinear), cal.bad_count(calibration::kSaturated));
-    std::printf("  written: %s\n", a.output.c_str());
+    std::printf("  written: %s and %s/ (index.html, maps.exr, nedt.png, bad_pixels.png, residuals.png)\n",
+                a.output.c_str(), summary.c_str());
 }
 
 struct PolarimetricArgs {
@@ -81,6 +94,7 @@ void register_calibrate(CLI::App& app) {
                     "1: Nugent et al. 2013)")
         ->check(CLI::Range(0, 2))
         ->capture_default_str();
+    rad->add_option("--summary", r->summary, "Directory of the one-page HTML/PNG summary (default: next to -o, .summary)");
     rad->add_option("--saturation-counts", r->saturation_counts, "Saturation level (default 2^bits − 1 of the camera)");
     rad->callback([r] { run_radiometric(*r); });
 

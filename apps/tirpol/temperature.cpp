@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "cli.h"
+#include "tirpol/calibration/calibration_quality.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -34,8 +35,9 @@ void run_temperature(const TemperatureArgs& a) {
     if (raw.width() != cal.width || raw.height() != cal.height)
         fail("{}: image is {}×{} but calibration {} is {}×{}", a.image, raw.width(), raw.height(), a.calibration,
              cal.width, cal.height);
-    const auto radiance =
-        calibration::counts_to_radiance(cal, raw.channel("counts"), frame_fpa_temperature_k(raw, a.fpa_temperature_k));
+    const auto fpa_k = frame_fpa_temperature_k(raw, a.fpa_temperature_k);
+    const auto radiance = calibration::counts_to_radiance(cal, raw.channel("counts"), fpa_k);
+    const auto warning = calibration::extrapolation_warning(cal, radiance, fpa_k);
     Image out(raw.width(), raw.height());
     out.set_channel("radiance", radiance);
     out.set_channel("temperature_k", calibration::brightness_temperature(cal.band(), radiance));
@@ -44,7 +46,9 @@ void run_temperature(const TemperatureArgs& a) {
     out.attributes()["band_um"] = std::vector<double>{cal.band_lo_um, cal.band_hi_um};
     out.attributes()["calibration"] = a.calibration;
     out.attributes()["source"] = a.image;
+    if (warning) out.attributes()["calibration_warning"] = *warning;
     write_exr(a.output, out);
+    if (warning) std::printf("warning: %s\n", warning->c_str());
     const auto stats = channel_stats(out.channel("temperature_k"));
     std::printf("brightness temperature: min %.2f K, mean %.2f K, max %.2f K → %s\n", stats.min, stats.mean, stats.max,
                 a.output.c_str());

@@ -120,7 +120,7 @@ RadiometricCalibration calibrate_radiometric_session(const fs::path& dir, const 
 }
 
 RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path>& dirs, const Band& band,
-                                                      RadiometricOptions options) {
+                                                      RadiometricOptions options, CalibrationQuality* quality) {
     if (dirs.empty()) fail("radiometric calibration: no session given");
     std::vector<BlackbodyFrame> frames;
     std::optional<SessionManifest> first;
@@ -151,6 +151,10 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path
     if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(*first);
     RadiometricCalibration cal = fit_radiometric(frames, first->camera.width, first->camera.height, band, options);
     cal.camera_id = camera_id(*first);
+    if (quality) {
+        *quality = assess_calibration(cal, frames);
+        cal.warnings.insert(cal.warnings.end(), quality->warnings.begin(), quality->warnings.end());
+    }
     return cal;
 }
 

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "tirpol/calibration/calibration_quality.h"
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"
@@ -35,9 +36,11 @@ RadiometricCalibration calibrate_radiometric_session(const std::filesystem::path
 
 /// The same from several sessions of one camera (e.g. taken at several camera temperatures for an
 /// FPA-dependent model, options.fpa_degree ≥ 1; each record's fpa_temperature_k is used). Refuses
-/// sessions of different cameras.
+/// sessions of different cameras. With `quality`, also residuals per set-point, NEDT and warnings
+/// (assess_calibration; its warnings are appended to the calibration's).
 RadiometricCalibration calibrate_radiometric_sessions(const std::vector<std::filesystem::path>& dirs, const Band& band,
-                                                      RadiometricOptions options = {});
+                                                      RadiometricOptions options = {},
+                                                      CalibrationQuality* quality = nullptr);
 
 /// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance via
 /// `radiometric`), the analyzer by least squares from the known-source repeats (ideal at the
