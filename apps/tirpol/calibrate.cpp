@@ -61,11 +61,16 @@ void run_radiometric(const RadiometricArgs& a) {
 
 struct PolarimetricArgs {
     std::string session, calibration, output;
+    std::optional<double> extinction_ratio;
+    std::vector<double> axis_offsets_deg;
 };
 
 void run_polarimetric(const PolarimetricArgs& a) {
     const auto cal = calibration::read_radiometric_calibration(a.calibration);
-    auto pol = calibration::calibrate_polarimetric_session(a.session, cal);
+    std::optional<calibration::DatasheetAnalyzer> datasheet;
+    if (a.extinction_ratio) datasheet = calibration::DatasheetAnalyzer{*a.extinction_ratio, a.axis_offsets_deg};
+    else if (!a.axis_offsets_deg.empty()) fail("--axis-offset-deg needs --extinction-ratio (the datasheet's t_max/t_min)");
+    auto pol = calibration::calibrate_polarimetric_session(a.session, cal, datasheet);
     pol.radiometric_calibration = a.calibration;
     calibration::write_polarimetric_calibration(a.output, pol);
     std::printf("polarimetric calibration of %s: analyzer by %s\n", a.session.c_str(), pol.analyzer_method.c_str());
@@ -105,6 +110,10 @@ void register_calibrate(CLI::App& app) {
         ->check(CLI::ExistingDirectory);
     pol->add_option("--calibration", p->calibration, "Radiometric calibration EXR")->required()->check(CLI::ExistingFile);
     pol->add_option("-o,--output", p->output, "Polarimetric calibration YAML (maps next to it, .maps.exr)")->required();
+    pol->add_option("--extinction-ratio", p->extinction_ratio,
+                    "Datasheet extinction ratio t_max/t_min of the polarizer, used without known-source records");
+    pol->add_option("--axis-offset-deg", p->axis_offsets_deg,
+                    "Datasheet/mount axis offset(s) in degrees: one for all angles or one per angle (ascending)");
     pol->callback([p] { run_polarimetric(*p); });
 }
 }  // namespace

@@ -158,7 +158,8 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path
     return cal;
 }
 
-PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric) {
+PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric,
+                                                       const std::optional<DatasheetAnalyzer>& datasheet) {
     const SessionManifest m = read_session(dir);
     if (!polarizer_in_beam(dir, m).value_or(false))
         fail("{}: metadata.polarizer_in_beam must be true for a polarimetric calibration (blackbody frames taken "
@@ -182,8 +183,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     // Known-source repeats: the spatial mean of L_SLAR = (L − B)/τ over good pixels, per angle.
     const auto sources = known_sources(dir, m, band);
     if (sources.empty()) {
-        out.analyzer = AnalyzerModel::ideal(angles);
-        out.analyzer_method = "ideal (no known-source records)";
+        out.analyzer = datasheet ? datasheet_analyzer_model(angles, *datasheet) : AnalyzerModel::ideal(angles);
+        out.analyzer_method = (datasheet ? describe(*datasheet) : std::string("ideal")) + " (no known-source records)";
         return out;
     }
     std::vector<KnownSourceMeasurement> measurements;
@@ -211,7 +212,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
         measurements.push_back(meas);
     }
     out.analyzer = estimate_analyzer(angles, measurements);
-    out.analyzer_method = "known-source least squares";
+    out.analyzer_method = std::string("known-source least squares") +
+                          (datasheet ? "; the datasheet values given were not used" : "");
     return out;
 }
 

@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "tirpol/calibration/calibration_quality.h"
+#include "tirpol/calibration/datasheet_analyzer.h"
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"
@@ -43,10 +44,12 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<std::fil
                                                       CalibrationQuality* quality = nullptr);
 
 /// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance via
-/// `radiometric`), the analyzer by least squares from the known-source repeats (ideal at the
-/// blackbody angles when there are none).
+/// `radiometric`), the analyzer by least squares from the known-source repeats; when there are none,
+/// from `datasheet` if given, else ideal — analyzer_method says which (and that datasheet values
+/// were not used when known-source records took precedence).
 PolarimetricCalibration calibrate_polarimetric_session(const std::filesystem::path& dir,
-                                                       const RadiometricCalibration& radiometric);
+                                                       const RadiometricCalibration& radiometric,
+                                                       const std::optional<DatasheetAnalyzer>& datasheet = std::nullopt);
 
 struct SessionReductionOptions {
     /// Update the offset from the session's shutter record with a temperature first (or, when the
