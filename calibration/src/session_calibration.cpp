@@ -251,9 +251,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         std::string source;
     };
     std::map<long, Accumulator> by_angle;
+    std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
         const RadianceFrame f = to_radiance(dir, m, r, radiometric);
+        if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
+            warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
         const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
         if (static_cast<double>(sat) > options.max_saturated_fraction * static_cast<double>(f.saturated.size()))
             fail("{}: {} of {} pixels are saturated (counts ≥ {}); expected at most {:.3g}% — reduce the integration "
@@ -307,6 +310,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["camera_id"] = camera_id(m);
     a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
+    if (!warnings.empty()) a["calibration_warnings"] = warnings;
     a["analyzer"] = polarimetric ? polarimetric->analyzer_method : std::string("ideal (no polarimetric calibration)");
     return out;
 }

@@ -11,7 +11,9 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/calibration_quality.h"
+#include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_fpa_camera.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
 
@@ -127,6 +129,20 @@ TEST(CalibrationQuality, SummaryWritesPageAndMaps) {
     const Image maps = read_exr(dir / "cal.summary" / "maps.exr");
     EXPECT_EQ(maps.channel("nedt_k"), q.nedt_k);
     EXPECT_EQ(default_summary_dir("/data/cal.exr"), "/data/cal.summary");
+}
+
+TEST(CalibrationQuality, ReductionListsRecordsBeyondTheCalibratedRange) {
+    // The synthetic scene seen through the polarizer (≈ half of a 280 K scene plus the grid's
+    // background) reads below the 283.15–328.15 K laboratory calibration: reduced, but listed.
+    test::TempDir root;
+    const SyntheticCamera cam;
+    write_synthetic_sessions(root.path(), cam, synthetic_panel_scene(cam.width, cam.height, kBand), kBand);
+    const auto cal = calibrate_radiometric_session(root / "lab", kBand);
+    const Image s = reduce_session(root / "scene", cal, nullptr);
+    ASSERT_TRUE(s.attributes().count("calibration_warnings"));
+    const auto& text = std::get<std::string>(s.attributes().at("calibration_warnings"));
+    EXPECT_THAT(text, testing::HasSubstr("frames/scene_45.0deg.exr: "));
+    EXPECT_THAT(text, testing::HasSubstr("outside the calibrated blackbody range 283.15–328.15 K"));
 }
 
 }  // namespace

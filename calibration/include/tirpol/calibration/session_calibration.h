@@ -62,7 +62,10 @@ struct SessionReductionOptions {
 };
 
 /// Reduces the session's scene records to Stokes (S0 S1 S2 DoLP AoP + *_std), radiance units.
-/// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced.
+/// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced. Each
+/// record is converted at its own fpa_temperature_k; records whose apparent radiance or FPA
+/// temperature lie outside the calibrated range are listed (one line each, extrapolation_warning)
+/// in the attribute `calibration_warnings`.
 Image reduce_session(const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options = {});
 
