@@ -46,6 +46,35 @@ BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m,
     return f;
 }
 
+/// The drift correction an offset update applied, and the per-pixel uncertainty it adds.
+struct OffsetUpdate {
+    std::string source;
+    double mean_counts = 0.0;  ///< mean over good pixels of the change of offset
+    double sigma_counts = 0.0;  ///< median per-pixel σ of the reference frame's mean (counts_std/√frames)
+    double sigma_mk = 0.0;      ///< the same in mK at the reference temperature
+};
+
+OffsetUpdate describe_offset_update(const RadiometricCalibration& before, const RadiometricCalibration& after,
+                                    const BlackbodyFrame& ref) {
+    OffsetUpdate u;
+    u.source = ref.source;
+    double sum = 0.0;
+    std::size_t n = 0;
+    std::vector<float> sigma, gain;
+    for (std::size_t i = 0; i < after.offset.size(); ++i) {
+        if (after.bad[i] != 0.0f) continue;
+        sum += static_cast<double>(after.offset[i]) - before.offset[i];
+        ++n;
+        sigma.push_back(static_cast<float>(ref.counts_std[i] / std::sqrt(static_cast<double>(ref.frames))));
+        gain.push_back(after.gain[i]);
+    }
+    if (n == 0) return u;
+    u.mean_counts = sum / static_cast<double>(n);
+    u.sigma_counts = robust_stats(sigma).median;
+    u.sigma_mk = 1e3 * u.sigma_counts / (robust_stats(gain).median * after.band().radiance_dT(ref.temperature_k));
+    return u;
+}
+
 bool is_temperature_reference(const SessionRecord& r) {
     return (r.kind == RecordKind::Blackbody || r.kind == RecordKind::Shutter) && r.blackbody_temperature_k.has_value();
 }
@@ -221,6 +250,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
     RadiometricCalibration radiometric = radiometric_in;
+    std::optional<OffsetUpdate> correction;
     if (options.update_offset && polarimetric)
         fail("offset update together with a polarimetric calibration would remove the drift twice: the wire-grid "
              "background B(α), fitted the same night, already holds it; drop one of the two");
@@ -238,7 +268,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
             fail("{}: --update-offset needs a shutter record with a temperature (or a blackbody record taken "
                  "without the polarizer); the session has none",
                  manifest_path(dir));
-        update_offset(radiometric, to_blackbody_frame(dir, m, *ref));
+        const BlackbodyFrame ref_frame = to_blackbody_frame(dir, m, *ref);
+        update_offset(radiometric, ref_frame);
+        correction = describe_offset_update(radiometric_in, radiometric, ref_frame);
     }
     std::map<int, Eigen::Vector3d> sources;
     if (m.metadata.contains("known_source")) sources = known_sources(dir, m, radiometric.band());
@@ -311,6 +343,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
     if (!warnings.empty()) a["calibration_warnings"] = warnings;
+    if (correction) {
+        a["offset_update_source"] = correction->source;
+        a["offset_update_mean_counts"] = correction->mean_counts;
+        a["offset_update_sigma_counts"] = correction->sigma_counts;
+        a["offset_update_sigma_mk"] = correction->sigma_mk;
+    }
     a["analyzer"] = polarimetric ? polarimetric->analyzer_method : std::string("ideal (no polarimetric calibration)");
     return out;
 }

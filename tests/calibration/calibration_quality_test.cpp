@@ -143,6 +143,17 @@ TEST(CalibrationQuality, ReductionListsRecordsBeyondTheCalibratedRange) {
     const auto& text = std::get<std::string>(s.attributes().at("calibration_warnings"));
     EXPECT_THAT(text, testing::HasSubstr("frames/scene_45.0deg.exr: "));
     EXPECT_THAT(text, testing::HasSubstr("outside the calibrated blackbody range 283.15–328.15 K"));
+
+    // The shutter's offset update is in the output with its uncertainty: the synthetic field drift
+    // is 60 counts; σ of a 16-frame mean of 6-count noise is 1.5 counts ≈ 21 mK at 293 K.
+    SessionReductionOptions update;
+    update.update_offset = true;
+    const Image u = reduce_session(root / "scene", cal, nullptr, update);
+    const auto attr = [&](const char* name) { return std::get<double>(u.attributes().at(name)); };
+    EXPECT_NEAR(attr("offset_update_mean_counts"), cam.field_offset_drift, 0.5);
+    EXPECT_NEAR(attr("offset_update_sigma_counts"), cam.noise_counts / std::sqrt(cam.frames), 1e-3);
+    EXPECT_NEAR(attr("offset_update_sigma_mk"), 1e3 * 1.5 / (cam.gain_mean * kBand.radiance_dT(293.15)), 1.5);
+    EXPECT_THAT(std::get<std::string>(u.attributes().at("offset_update_source")), testing::HasSubstr("shutter"));
 }
 
 }  // namespace

@@ -65,7 +65,10 @@ struct SessionReductionOptions {
 /// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced. Each
 /// record is converted at its own fpa_temperature_k; records whose apparent radiance or FPA
 /// temperature lie outside the calibrated range are listed (one line each, extrapolation_warning)
-/// in the attribute `calibration_warnings`.
+/// in the attribute `calibration_warnings`. With options.update_offset, the correction and its
+/// uncertainty are attributes: offset_update_source, offset_update_mean_counts (mean change of the
+/// offset over good pixels), offset_update_sigma_counts and offset_update_sigma_mk (median per-pixel
+/// σ of the reference frame's mean, the uncertainty the update adds to every pixel).
 Image reduce_session(const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options = {});
 
