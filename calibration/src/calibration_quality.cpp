@@ -1,8 +1,9 @@
 #include "tirpol/calibration/calibration_quality.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 #include <map>
 
@@ -54,7 +55,8 @@ CalibrationQuality assess_calibration(const RadiometricCalibration& cal, const s
         s.fpa_temperature_k = f.fpa_temperature_k.value_or(kNan);
         s.pixels = good;
         if (good > 0) {
-            const double counts_per_mk = responsivity / static_cast<double>(good) * band.radiance_dT(f.temperature_k) * 1e-3;
+            const double counts_per_mk =
+                responsivity / static_cast<double>(good) * band.radiance_dT(f.temperature_k) * 1e-3;
             s.mean_counts = sum / static_cast<double>(good);
             s.rms_counts = std::sqrt(sum2 / static_cast<double>(good));
             s.mean_mk = s.mean_counts / counts_per_mk;
@@ -95,7 +97,8 @@ CalibrationQuality assess_calibration(const RadiometricCalibration& cal, const s
             if (cal.bad[i] == 0.0f && std::isfinite(q.nedt_k[i])) good_values.push_back(q.nedt_k[i]);
         }
         if (!good_values.empty()) {
-            std::nth_element(good_values.begin(), good_values.begin() + static_cast<std::ptrdiff_t>(good_values.size() / 2),
+            std::nth_element(good_values.begin(),
+                             good_values.begin() + static_cast<std::ptrdiff_t>(good_values.size() / 2),
                              good_values.end());
             q.nedt_median_k = good_values[good_values.size() / 2];
         }
@@ -117,15 +120,18 @@ std::optional<std::string> extrapolation_warning(const RadiometricCalibration& c
     }
     std::vector<std::string> parts;
     if (below + above > 0)
-        parts.push_back(fmt::format("{} of {} good pixels ({:.1f} %) are outside the calibrated blackbody range "
-                                    "{:.2f}–{:.2f} K ({} below, {} above): their temperatures are extrapolated",
-                                    below + above, good, 100.0 * static_cast<double>(below + above) / static_cast<double>(std::max<std::size_t>(good, 1)),
-                                    *t_lo, *t_hi, below, above));
+        parts.push_back(fmt::format(
+            "{} of {} good pixels ({:.1f} %) are outside the calibrated blackbody range "
+            "{:.2f}–{:.2f} K ({} below, {} above): their temperatures are extrapolated",
+            below + above, good,
+            100.0 * static_cast<double>(below + above) / static_cast<double>(std::max<std::size_t>(good, 1)), *t_lo,
+            *t_hi, below, above));
     if (cal.fpa_degree() > 0 && fpa_temperature_k &&
         (*fpa_temperature_k < cal.fpa_min_k - kFpaMarginK || *fpa_temperature_k > cal.fpa_max_k + kFpaMarginK))
-        parts.push_back(fmt::format("the camera's FPA temperature {:.2f} K is outside the calibrated FPA range "
-                                    "{:.2f}–{:.2f} K: the drift model is extrapolated",
-                                    *fpa_temperature_k, cal.fpa_min_k, cal.fpa_max_k));
+        parts.push_back(
+            fmt::format("the camera's FPA temperature {:.2f} K is outside the calibrated FPA range "
+                        "{:.2f}–{:.2f} K: the drift model is extrapolated",
+                        *fpa_temperature_k, cal.fpa_min_k, cal.fpa_max_k));
     if (parts.empty()) return std::nullopt;
     std::string out = parts[0];
     for (std::size_t k = 1; k < parts.size(); ++k) out += "; " + parts[k];
@@ -170,25 +176,27 @@ void write_calibration_summary(const std::filesystem::path& dir, const Radiometr
         sorted.y[k] = mean.y[order[k]];
     }
     sorted.dashed = cal.fpa_degree() > 0;  // several camera states: points, not a curve
-    write_line_plot(dir / "residuals.png", {sorted},
-                    {"Residual of the calibration per blackbody set-point", "blackbody temperature (K)",
-                     "counts - model (mK)", std::nullopt, std::nullopt, std::nullopt, std::nullopt, 900, 500, true, 0.0});
+    write_line_plot(
+        dir / "residuals.png", {sorted},
+        {"Residual of the calibration per blackbody set-point", "blackbody temperature (K)", "counts - model (mK)",
+         std::nullopt, std::nullopt, std::nullopt, std::nullopt, 900, 500, true, 0.0});
 
     std::string rows;
     for (const auto& s : quality.set_points)
-        rows += fmt::format("<tr><td>{:.2f}</td><td>{}</td><td>{:+.1f}</td><td>{:.1f}</td><td>{:+.3f}</td><td>{:.3f}</td></tr>\n",
-                            s.temperature_k, std::isfinite(s.fpa_temperature_k) ? fmt::format("{:.2f}", s.fpa_temperature_k) : "–",
-                            s.mean_mk, s.rms_mk, s.mean_counts, s.rms_counts);
+        rows += fmt::format(
+            "<tr><td>{:.2f}</td><td>{}</td><td>{:+.1f}</td><td>{:.1f}</td><td>{:+.3f}</td><td>{:.3f}</td></tr>\n",
+            s.temperature_k, std::isfinite(s.fpa_temperature_k) ? fmt::format("{:.2f}", s.fpa_temperature_k) : "–",
+            s.mean_mk, s.rms_mk, s.mean_counts, s.rms_counts);
     std::string warnings;
     for (const auto& w : quality.warnings) warnings += "<li>" + w + "</li>";
     for (const auto& w : cal.warnings) warnings += "<li>" + w + "</li>";
     const auto [t_lo, t_hi] = std::minmax_element(cal.temperatures_k.begin(), cal.temperatures_k.end());
-    const std::string model = fmt::format("{}{}", cal.quadratic.empty() ? "linear" : "quadratic",
-                                          cal.fpa_degree() > 0
-                                              ? fmt::format(", gain and offset of degree {} in FPA temperature about {:.2f} K "
-                                                            "(calibrated over FPA {:.2f}–{:.2f} K)",
-                                                            cal.fpa_degree(), cal.fpa_reference_k, cal.fpa_min_k, cal.fpa_max_k)
-                                              : std::string(", one camera state"));
+    const std::string model = fmt::format(
+        "{}{}", cal.quadratic.empty() ? "linear" : "quadratic",
+        cal.fpa_degree() > 0 ? fmt::format(", gain and offset of degree {} in FPA temperature about {:.2f} K "
+                                           "(calibrated over FPA {:.2f}–{:.2f} K)",
+                                           cal.fpa_degree(), cal.fpa_reference_k, cal.fpa_min_k, cal.fpa_max_k)
+                             : std::string(", one camera state"));
     const std::string html = fmt::format(
         R"(<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>Radiometric calibration summary</title>

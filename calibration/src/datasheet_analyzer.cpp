@@ -1,7 +1,8 @@
 #include "tirpol/calibration/datasheet_analyzer.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "tirpol/core/error.h"
 

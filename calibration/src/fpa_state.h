@@ -21,9 +21,10 @@ public:
         const int degree = cal.fpa_degree();
         if (degree == 0) return;
         if (!fpa_temperature_k)
-            fail("{}: the calibration depends on the camera's FPA temperature (fitted over {:.2f}–{:.2f} K) but no "
-                 "FPA temperature is known for this frame; expected the record's fpa_temperature_k",
-                 what, cal.fpa_min_k, cal.fpa_max_k);
+            fail(
+                "{}: the calibration depends on the camera's FPA temperature (fitted over {:.2f}–{:.2f} K) but no "
+                "FPA temperature is known for this frame; expected the record's fpa_temperature_k",
+                what, cal.fpa_min_k, cal.fpa_max_k);
         if (!(*fpa_temperature_k > 0.0) || !std::isfinite(*fpa_temperature_k))
             fail("{}: FPA temperature {} K; expected a finite temperature above 0 K", what, *fpa_temperature_k);
         const double dt = *fpa_temperature_k - cal.fpa_reference_k;

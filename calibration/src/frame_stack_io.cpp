@@ -19,9 +19,12 @@ const std::set<std::string> kFrameExtensions{".exr", ".png", ".tif", ".tiff"};
 
 std::size_t bytes_per_value(RawFrameFormat::Type type) {
     switch (type) {
-        case RawFrameFormat::Type::UInt8: return 1;
-        case RawFrameFormat::Type::UInt16: return 2;
-        case RawFrameFormat::Type::Float32: return 4;
+        case RawFrameFormat::Type::UInt8:
+            return 1;
+        case RawFrameFormat::Type::UInt16:
+            return 2;
+        case RawFrameFormat::Type::Float32:
+            return 4;
     }
     return 0;
 }
@@ -39,9 +42,10 @@ FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
     const std::size_t frame_bytes = n * bytes_per_value(raw.type);
     const std::size_t size = fs::file_size(path);
     if (size < raw.header_bytes || (size - raw.header_bytes) % frame_bytes != 0)
-        fail("{}: {} bytes is not {} header bytes + a whole number of {}×{} frames of {} bytes each; check the shape, "
-             "the value type and the header size",
-             path.string(), size, raw.header_bytes, raw.width, raw.height, frame_bytes);
+        fail(
+            "{}: {} bytes is not {} header bytes + a whole number of {}×{} frames of {} bytes each; check the shape, "
+            "the value type and the header size",
+            path.string(), size, raw.header_bytes, raw.width, raw.height, frame_bytes);
     std::ifstream in(path, std::ios::binary);
     in.seekg(static_cast<std::streamoff>(raw.header_bytes));
     FrameStack stack;
@@ -55,11 +59,16 @@ FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
         for (std::size_t i = 0; i < n; ++i) {
             const unsigned char* b = buffer.data() + i * bytes_per_value(raw.type);
             switch (raw.type) {  // little-endian, independent of the host
-                case RawFrameFormat::Type::UInt8: frame[i] = b[0]; break;
-                case RawFrameFormat::Type::UInt16: frame[i] = static_cast<float>(b[0] | (b[1] << 8)); break;
+                case RawFrameFormat::Type::UInt8:
+                    frame[i] = b[0];
+                    break;
+                case RawFrameFormat::Type::UInt16:
+                    frame[i] = static_cast<float>(b[0] | (b[1] << 8));
+                    break;
                 case RawFrameFormat::Type::Float32: {
-                    const std::uint32_t bits = static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
-                                               (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+                    const std::uint32_t bits =
+                        static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
+                        (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
                     std::memcpy(&frame[i], &bits, 4);
                     break;
                 }
@@ -87,7 +96,8 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
         for (const auto& e : fs::directory_iterator(path))
             if (e.is_regular_file() && kFrameExtensions.count(lower_extension(e.path()))) files.push_back(e.path());
         if (files.empty())
-            fail("{}: no frame files (.exr, .png, .tif, .tiff); for a raw file give its shape (--raw-shape)", path.string());
+            fail("{}: no frame files (.exr, .png, .tif, .tiff); for a raw file give its shape (--raw-shape)",
+                 path.string());
         std::sort(files.begin(), files.end());
         for (const auto& f : files) {
             const Image im = read_raw_image(f, "counts", "counts");
@@ -110,9 +120,10 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
         std::sort(names.begin(), names.end());
         for (const auto& n : names) stack.frames.push_back(im.channel(n));
     } else {
-        fail("{}: expected a directory of frames, an EXR with frame_* channels, or a raw file with its shape "
-             "(--raw-shape)",
-             path.string());
+        fail(
+            "{}: expected a directory of frames, an EXR with frame_* channels, or a raw file with its shape "
+            "(--raw-shape)",
+            path.string());
     }
     validate_stack(stack, path.c_str());
     return stack;

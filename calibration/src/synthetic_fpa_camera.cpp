@@ -1,7 +1,8 @@
 #include "tirpol/calibration/synthetic_fpa_camera.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <random>
 
 namespace tirpol::calibration {

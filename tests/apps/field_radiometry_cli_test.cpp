@@ -2,9 +2,9 @@
 // sessions at three camera temperatures, applied at another camera temperature by `temperature`,
 // the extrapolation warning, the calibration summary, and `noise` on a raw file.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -77,15 +77,18 @@ TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAn
     Image scene = frame(band.radiance(300.0), 308.0);
     scene.attributes()["fpa_temperature_k"] = 308.0;
     write_exr(dir / "scene.exr", scene);
-    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " + cal + " -o " + (dir / "t.exr").string());
+    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " + cal + " -o " +
+                (dir / "t.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NEAR(read_exr(dir / "t.exr").at("temperature_k", 5, 5), 300.0, 0.01);
     EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
 
     // The single-state calibration of the 303 K session reads that frame kelvins off.
-    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "fpa303").string() + " -o " + (dir / "one.exr").string()).exit_code, 0);
-    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " + (dir / "one.exr").string() + " -o " +
-                (dir / "t1.exr").string());
+    ASSERT_EQ(
+        run_cli("calibrate radiometric " + (dir / "fpa303").string() + " -o " + (dir / "one.exr").string()).exit_code,
+        0);
+    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " + (dir / "one.exr").string() +
+                " -o " + (dir / "t1.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_GT(std::abs(read_exr(dir / "t1.exr").at("temperature_k", 5, 5) - 300.0), 1.0);
 
@@ -98,7 +101,8 @@ TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAn
 
     // Without an FPA temperature, the FPA-dependent calibration refuses (exit 1) and says why.
     write_exr(dir / "nofpa.exr", frame(band.radiance(300.0), 303.0));
-    r = run_cli("temperature " + (dir / "nofpa.exr").string() + " --calibration " + cal + " -o " + (dir / "t3.exr").string());
+    r = run_cli("temperature " + (dir / "nofpa.exr").string() + " --calibration " + cal + " -o " +
+                (dir / "t3.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("FPA temperature"), std::string::npos) << r.out;
 }

@@ -2,15 +2,16 @@
 // of a linear fit to a curved response, NEDT against its hand-computed value, warnings when a
 // calibration is applied beyond its blackbody or FPA range, and the one-page summary files.
 
+#include "tirpol/calibration/calibration_quality.h"
+
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fmt/format.h>
 #include <random>
 
 #include "test_support.h"
-#include "tirpol/calibration/calibration_quality.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_fpa_camera.h"
 #include "tirpol/calibration/synthetic_session.h"

@@ -2,6 +2,8 @@
 // polarizer's datasheet extinction ratio and the mount's axis offsets, and a method string that
 // says which model was used.
 
+#include "tirpol/calibration/datasheet_analyzer.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
-#include "tirpol/calibration/datasheet_analyzer.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
@@ -31,10 +32,16 @@ TEST(DatasheetAnalyzer, ExtinctionRatioAndOffsetsGiveTheDiattenuatorRows) {
     const auto one = datasheet_analyzer_model(kAngles, {150.0, {1.5}});
     for (const auto& p : one.positions) EXPECT_DOUBLE_EQ(p.axis_angle_deg - p.nominal_angle_deg, 1.5);
     EXPECT_EQ(describe({150.0, {1.5}}), "datasheet (extinction ratio 150, axis offsets +1.50°)");
-    EXPECT_THAT([] { datasheet_analyzer_model(kAngles, {1.0, {}}); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("expected a finite t_max/t_min above 1")));
-    EXPECT_THAT([] { datasheet_analyzer_model(kAngles, {150.0, {1.0, 2.0}}); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("2 axis offsets for 4 analyzer angles")));
+    EXPECT_THAT(
+        [] {
+            datasheet_analyzer_model(kAngles, {1.0, {}});
+        },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("expected a finite t_max/t_min above 1")));
+    EXPECT_THAT(
+        [] {
+            datasheet_analyzer_model(kAngles, {150.0, {1.0, 2.0}});
+        },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("2 axis offsets for 4 analyzer angles")));
 }
 
 TEST(DatasheetAnalyzer, SessionWithoutKnownSourceUsesTheDatasheetAndSaysSo) {

@@ -163,7 +163,8 @@ TEST(FpaCalibration, SessionsAtSeveralCameraTemperaturesCalibrateTogether) {
     test::TempDir root;
     SessionManifest base;
     base.created_utc = utc_now_iso8601();
-    base.camera = {"sim://drifting", "tirpol", "drifting-uncooled", "0007", "Mono16", cam.width, cam.height, 16, 30.0, {}};
+    base.camera = {
+        "sim://drifting", "tirpol", "drifting-uncooled", "0007", "Mono16", cam.width, cam.height, 16, 30.0, {}};
     base.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
     base.metadata = {{"polarizer_in_beam", false}};
     std::vector<std::filesystem::path> dirs;

@@ -3,11 +3,11 @@
 // is np.std(..., ddof=1)) against hand-computed cubes; stacks from PNG/TIFF folders and raw files;
 // noise in kelvin after the calibration, where the fixed pattern the calibration removes is gone.
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fmt/format.h>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
@@ -82,15 +82,19 @@ TEST(FrameStackIo, ReadsPngAndTiffFoldersAndRawFiles) {
         ASSERT_TRUE(cv::imwrite((dir / "tif" / fmt::format("f{:02d}.tif", t)).string(), m));
     }
     raw.close();
-    for (const auto& stack : {load_frame_stack(dir / "png"), load_frame_stack(dir / "tif"),
-                              load_frame_stack(dir / "stack.raw", RawFrameFormat{4, 3, RawFrameFormat::Type::UInt16, 4})}) {
+    for (const auto& stack :
+         {load_frame_stack(dir / "png"), load_frame_stack(dir / "tif"),
+          load_frame_stack(dir / "stack.raw", RawFrameFormat{4, 3, RawFrameFormat::Type::UInt16, 4})}) {
         ASSERT_EQ(stack.frames.size(), 3u);
         EXPECT_EQ(stack.width, 4);
         EXPECT_EQ(stack.height, 3);
         EXPECT_EQ(stack.frames[2][1 * 4 + 3], 42013.0f);  // frame 2, y = 1, x = 3
     }
-    EXPECT_THAT([&] { load_frame_stack(dir / "stack.raw", RawFrameFormat{5, 3, RawFrameFormat::Type::UInt16, 4}); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("not 4 header bytes + a whole number of 5×3 frames")));
+    EXPECT_THAT(
+        [&] {
+            load_frame_stack(dir / "stack.raw", RawFrameFormat{5, 3, RawFrameFormat::Type::UInt16, 4});
+        },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("not 4 header bytes + a whole number of 5×3 frames")));
     std::filesystem::create_directories(dir / "empty");
     EXPECT_THAT([&] { load_frame_stack(dir / "empty"); },
                 testing::ThrowsMessage<Error>(testing::HasSubstr("no frame files (.exr, .png, .tif, .tiff)")));
@@ -103,7 +107,8 @@ TEST(FrameStackIo, NoiseInKelvinAfterCalibrationHasNoFixedPattern) {
     const DriftingCameraTruth truth(cam);
     const Band band(8.0, 14.0);
     std::vector<BlackbodyFrame> frames;
-    for (double t : {283.15, 293.15, 303.15, 313.15, 323.15, 333.15}) frames.push_back(truth.frame(band, t, 303.15, 7u + static_cast<unsigned>(t)));
+    for (double t : {283.15, 293.15, 303.15, 313.15, 323.15, 333.15})
+        frames.push_back(truth.frame(band, t, 303.15, 7u + static_cast<unsigned>(t)));
     const auto cal = fit_radiometric(frames, cam.width, cam.height, band);
     DriftingCamera single = cam;
     single.frames = 1;  // raw frames: σ = 4 counts each

@@ -16,8 +16,8 @@ namespace tirpol::calibration {
 
 /// Residual of the fitted model at one calibration frame, over the good pixels.
 struct SetPointResidual {
-    double temperature_k = 0.0;      ///< blackbody
-    double fpa_temperature_k = 0.0;  ///< camera; NaN when the frame has none
+    double temperature_k = 0.0;                  ///< blackbody
+    double fpa_temperature_k = 0.0;              ///< camera; NaN when the frame has none
     double mean_counts = 0.0, rms_counts = 0.0;  ///< counts − model
     double mean_mk = 0.0, rms_mk = 0.0;          ///< the same in mK: ÷ (mean responsivity · dL/dT)
     double standard_error_mk = 0.0;              ///< of mean_mk: rms_mk / √pixels
@@ -47,9 +47,8 @@ std::optional<std::string> extrapolation_warning(const RadiometricCalibration& c
                                                  std::optional<double> fpa_temperature_k = std::nullopt);
 
 /// Writes DIR/index.html (one page: model, ranges, per-set-point table, bad-pixel counts, NEDT,
-/// warnings), DIR/maps.exr (channels nedt_k, bad), DIR/nedt.png, DIR/bad_pixels.png and DIR/residuals.png (mean residual in mK against
-/// blackbody temperature). DIR is created.
-/// "CAL.summary" next to the calibration file "CAL.exr".
+/// warnings), DIR/maps.exr (channels nedt_k, bad), DIR/nedt.png, DIR/bad_pixels.png and DIR/residuals.png (mean
+/// residual in mK against blackbody temperature). DIR is created. "CAL.summary" next to the calibration file "CAL.exr".
 std::string default_summary_dir(const std::string& calibration_path);
 
 void write_calibration_summary(const std::filesystem::path& dir, const RadiometricCalibration& cal,

@@ -11,7 +11,7 @@
 namespace tirpol::calibration {
 
 struct DatasheetAnalyzer {
-    double extinction_ratio = 0.0;          ///< t_max/t_min > 1 (e.g. 100–300 for an LWIR wire grid)
+    double extinction_ratio = 0.0;         ///< t_max/t_min > 1 (e.g. 100–300 for an LWIR wire grid)
     std::vector<double> axis_offsets_deg;  ///< axis − nominal: none (0°), one for all, or one per angle
 };
 

@@ -13,13 +13,13 @@ namespace tirpol::calibration {
 
 struct DriftingCamera {
     int width = 32, height = 24;
-    double gain_mean = 100.0, gain_rel_std = 0.05;        ///< g₀, counts per W/(m²·sr)
-    double offset_mean = 5000.0, offset_std = 150.0;      ///< o₀, counts
-    double reference_fpa_k = 303.15;                      ///< where o₀, g₀ hold
-    double offset_per_k = 60.0, offset_per_k_std = 6.0;   ///< o₁, counts/K
+    double gain_mean = 100.0, gain_rel_std = 0.05;                ///< g₀, counts per W/(m²·sr)
+    double offset_mean = 5000.0, offset_std = 150.0;              ///< o₀, counts
+    double reference_fpa_k = 303.15;                              ///< where o₀, g₀ hold
+    double offset_per_k = 60.0, offset_per_k_std = 6.0;           ///< o₁, counts/K
     double gain_rel_per_k = -0.006, gain_rel_per_k_std = 0.0005;  ///< γ, 1/K
-    double noise_counts = 4.0;  ///< temporal σ of one frame
-    int frames = 16;            ///< frames averaged per BlackbodyFrame
+    double noise_counts = 4.0;                                    ///< temporal σ of one frame
+    int frames = 16;                                              ///< frames averaged per BlackbodyFrame
     unsigned seed = 7;
 };
 
