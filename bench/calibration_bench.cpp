@@ -9,6 +9,7 @@
 
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"
+#include "tirpol/calibration/synthetic_fpa_camera.h"
 
 namespace {
 
@@ -108,7 +109,74 @@ void BM_CountsToRadiance(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
 }
 
+// FPA-temperature-dependent calibration (issue 15): blackbody at 8 set-points × 3 camera
+// temperatures on a 640×512 camera, the frames held in memory as `calibrate radiometric` holds them.
+struct FpaCalibrationInputs {
+    std::vector<BlackbodyFrame> frames;
+    RadiometricCalibration fitted;
+    BlackbodyFrame scene;
+};
+
+const FpaCalibrationInputs& fpa_inputs() {
+    static const FpaCalibrationInputs instance = [] {
+        FpaCalibrationInputs in;
+        DriftingCamera cam;
+        cam.width = kW;
+        cam.height = kH;
+        const DriftingCameraTruth truth(cam);
+        const Band band(8.0, 14.0);
+        unsigned seed = 1;
+        for (double fpa : {295.65, 303.15, 310.65})
+            for (int j = 0; j < 8; ++j) in.frames.push_back(truth.frame(band, 278.15 + 8.0 * j, fpa, ++seed));
+        RadiometricOptions options;
+        options.fpa_degree = 1;
+        in.fitted = fit_radiometric(in.frames, kW, kH, band, options);
+        in.scene = truth.frame(band, 300.0, 306.0, ++seed);
+        return in;
+    }();
+    return instance;
+}
+
+// The fit: design and its pseudo-inverse once, then a 4×24 product per pixel, residuals, bad pixels.
+void BM_FitFpaCalibration_8SetPoints_3CameraTemperatures(benchmark::State& state) {
+    const auto& in = fpa_inputs();
+    RadiometricOptions options;
+    options.fpa_degree = 1;
+    for (auto _ : state) {
+        auto cal = fit_radiometric(in.frames, kW, kH, Band(8.0, 14.0), options);
+        benchmark::DoNotOptimize(cal.gain.data());
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+}
+
+// Applying it to one frame at its own FPA temperature; items/s ÷ kN = frames per second, to set
+// against the camera's frame rate (30–60 Hz for a 640×512 uncooled core).
+void BM_ApplyFpaCalibrationPerFrame(benchmark::State& state) {
+    const auto& in = fpa_inputs();
+    for (auto _ : state) {
+        auto radiance = counts_to_radiance(in.fitted, in.scene.counts, in.scene.fpa_temperature_k);
+        benchmark::DoNotOptimize(radiance.data());
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+    state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// Reference in the same run: the single-state inverse of the same frame.
+void BM_ApplySingleStateCalibrationPerFrame(benchmark::State& state) {
+    const auto& in = fpa_inputs();
+    const RadiometricCalibration single = at_fpa_temperature(in.fitted, in.scene.fpa_temperature_k, "bench");
+    for (auto _ : state) {
+        auto radiance = counts_to_radiance(single, in.scene.counts);
+        benchmark::DoNotOptimize(radiance.data());
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+    state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 BENCHMARK(BM_MemoryCopyOfInputs)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FitFpaCalibration_8SetPoints_3CameraTemperatures)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ApplyFpaCalibrationPerFrame)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ApplySingleStateCalibrationPerFrame)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReduceStokesWithUncertainties)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CountsToRadiance)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CountsToStokes)->Unit(benchmark::kMillisecond);

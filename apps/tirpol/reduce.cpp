@@ -30,6 +30,8 @@ void run_reduce(const ReduceArgs& a) {
     stokes.attributes()["radiometric_calibration"] = a.calibration;
     stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
     write_exr(a.output, stokes);
+    if (const auto it = stokes.attributes().find("calibration_warnings"); it != stokes.attributes().end())
+        std::printf("warning: %s\n", std::get<std::string>(it->second).c_str());
     if (!a.quicklooks.empty())
         for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
             QuicklookOptions q;

@@ -17,7 +17,11 @@ void validate_stack(const FrameStack& stack, const char* source) {
         detail::check_plane(stack.frames[t], n, fmt::format("{} frame {}", source, t), stack.width, stack.height);
 }
 
-ThreeDNoise three_d_noise(const FrameStack& stack) {
+const char* to_string(NoiseConvention convention) {
+    return convention == NoiseConvention::Sample ? "sample (N-1, as pyradi ry3dnoise)" : "population (N)";
+}
+
+ThreeDNoise three_d_noise(const FrameStack& stack, NoiseConvention convention) {
     const std::size_t nt = stack.frames.size(), nv = static_cast<std::size_t>(stack.height),
                       nh = static_cast<std::size_t>(stack.width);
     // Directional means: over (v,h) per t, over (t,h) per v, over (t,v) per h, and the pairwise ones.
@@ -69,15 +73,19 @@ ThreeDNoise three_d_noise(const FrameStack& stack) {
                                  n_th(t, h) - n_vh(v, h);
                 ss_tvh += r * r;
             }
+    // Sample convention: one degree of freedom less per component (a 1-row or 1-column image has
+    // nothing to spread over; its component is 0 either way, so max(1, …) only avoids 0/0).
+    const double dof = convention == NoiseConvention::Sample ? 1.0 : 0.0;
+    auto sigma = [dof](double ss, double count) { return std::sqrt(ss / std::max(1.0, count - dof)); };
     ThreeDNoise out;
     out.mean = s;
-    out.sigma_t = std::sqrt(ss_t / static_cast<double>(nt));
-    out.sigma_v = std::sqrt(ss_v / static_cast<double>(nv));
-    out.sigma_h = std::sqrt(ss_h / static_cast<double>(nh));
-    out.sigma_tv = std::sqrt(ss_tv / static_cast<double>(nt * nv));
-    out.sigma_th = std::sqrt(ss_th / static_cast<double>(nt * nh));
-    out.sigma_vh = std::sqrt(ss_vh / static_cast<double>(nv * nh));
-    out.sigma_tvh = std::sqrt(ss_tvh / n);
+    out.sigma_t = sigma(ss_t, static_cast<double>(nt));
+    out.sigma_v = sigma(ss_v, static_cast<double>(nv));
+    out.sigma_h = sigma(ss_h, static_cast<double>(nh));
+    out.sigma_tv = sigma(ss_tv, static_cast<double>(nt * nv));
+    out.sigma_th = sigma(ss_th, static_cast<double>(nt * nh));
+    out.sigma_vh = sigma(ss_vh, static_cast<double>(nv * nh));
+    out.sigma_tvh = sigma(ss_tvh, n);
     out.sigma_total = std::sqrt(out.sigma_t * out.sigma_t + out.sigma_v * out.sigma_v + out.sigma_h * out.sigma_h +
                                 out.sigma_tv * out.sigma_tv + out.sigma_th * out.sigma_th +
                                 out.sigma_vh * out.sigma_vh + out.sigma_tvh * out.sigma_tvh);

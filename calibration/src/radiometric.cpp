@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "tirpol/core/error.h"
+#include "fpa_state.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -24,7 +25,8 @@ std::size_t RadiometricCalibration::bad_count(std::uint32_t bits) const {
 }
 
 namespace {
-void validate_frames(const std::vector<BlackbodyFrame>& frames, int width, int height, std::size_t n_params) {
+void validate_frames(const std::vector<BlackbodyFrame>& frames, int width, int height, std::size_t n_params,
+                     int fpa_degree) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     std::vector<double> temps;
     for (const auto& f : frames) {
@@ -33,6 +35,10 @@ void validate_frames(const std::vector<BlackbodyFrame>& frames, int width, int h
         detail::check_plane(f.counts, n, f.source + " (counts)", width, height);
         if (!f.counts_std.empty()) detail::check_plane(f.counts_std, n, f.source + " (counts_std)", width, height);
         if (f.frames < 1) fail("{}: frames = {}; expected at least 1", f.source, f.frames);
+        if (fpa_degree > 0 && (!f.fpa_temperature_k || !(*f.fpa_temperature_k > 0.0) || !std::isfinite(*f.fpa_temperature_k)))
+            fail("{}: an FPA-temperature-dependent calibration (degree {}) needs each frame's FPA temperature; expected "
+                 "fpa_temperature_k in kelvin, got {}",
+                 f.source, fpa_degree, f.fpa_temperature_k ? fmt::format("{}", *f.fpa_temperature_k) : "none");
         if (std::none_of(temps.begin(), temps.end(), [&](double t) { return std::abs(t - f.temperature_k) < 1e-3; }))
             temps.push_back(f.temperature_k);
     }
@@ -42,12 +48,20 @@ void validate_frames(const std::vector<BlackbodyFrame>& frames, int width, int h
 }
 
 double robust_floor(const RobustStats& s, double floor) { return std::max(s.sigma, floor); }
+
+// Above this spread of camera temperatures a single-state calibration of a typical uncooled camera
+// (tens of counts per kelvin of FPA drift) errs by tenths of a kelvin: worth a warning.
+constexpr double kFpaSpanWarningK = 1.0;
 }  // namespace
 
 RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width, int height,
                                        const Band& band, const RadiometricOptions& options) {
-    const std::size_t p = options.quadratic ? 3 : 2;
-    validate_frames(frames, width, height, p);
+    if (options.fpa_degree < 0 || options.fpa_degree > 2)
+        fail("FPA-temperature degree {}; expected 0 (one camera state), 1 or 2", options.fpa_degree);
+    const std::size_t d = static_cast<std::size_t>(options.fpa_degree);
+    validate_frames(frames, width, height, options.quadratic ? 3 : 2, options.fpa_degree);
+    // Columns: 1, ΔT..ΔT^d (offset), L, L·ΔT..L·ΔT^d (gain), [L²].
+    const std::size_t p = 2 * (d + 1) + (options.quadratic ? 1 : 0);
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     const std::size_t k = frames.size();
 
@@ -81,21 +95,51 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
         }
     }
 
+    if (d > 0) {
+        double sum = 0.0;
+        cal.fpa_min_k = cal.fpa_max_k = *frames[0].fpa_temperature_k;
+        for (const auto& f : frames) {
+            sum += *f.fpa_temperature_k;
+            cal.fpa_min_k = std::min(cal.fpa_min_k, *f.fpa_temperature_k);
+            cal.fpa_max_k = std::max(cal.fpa_max_k, *f.fpa_temperature_k);
+            cal.fpa_temperatures_k.push_back(*f.fpa_temperature_k);
+        }
+        // Centring ΔT on the frames' mean keeps the design well conditioned.
+        cal.fpa_reference_k = sum / static_cast<double>(k);
+    }
     Eigen::MatrixXd a(k, p);
     for (std::size_t j = 0; j < k; ++j) {
+        const auto row = static_cast<Eigen::Index>(j);
         const double l = band.radiance(frames[j].temperature_k);
         cal.temperatures_k.push_back(frames[j].temperature_k);
         cal.radiances_w_m2_sr.push_back(l);
-        a(static_cast<Eigen::Index>(j), 0) = 1.0;
-        a(static_cast<Eigen::Index>(j), 1) = l;
-        if (p == 3) a(static_cast<Eigen::Index>(j), 2) = l * l;
+        const double dt = d > 0 ? *frames[j].fpa_temperature_k - cal.fpa_reference_k : 0.0;
+        double power = 1.0;
+        for (std::size_t e = 0; e <= d; ++e, power *= dt) {
+            a(row, static_cast<Eigen::Index>(e)) = power;
+            a(row, static_cast<Eigen::Index>(d + 1 + e)) = l * power;
+        }
+        if (options.quadratic) a(row, static_cast<Eigen::Index>(p - 1)) = l * l;
+    }
+    if (d > 0) {
+        // Columns of ΔT span kelvin, of L·ΔT² thousands: judge the rank on unit-norm columns.
+        const Eigen::MatrixXd scaled = a * a.colwise().norm().cwiseMax(1e-300).cwiseInverse().asDiagonal();
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+        qr.setThreshold(1e-9);
+        if (static_cast<std::size_t>(qr.rank()) < p)
+            fail("the {} blackbody frame(s) do not determine an FPA-temperature model of degree {}: it needs blackbody "
+                 "frames at ≥ {} temperatures at each of ≥ {} distinct FPA temperatures (the frames' FPA temperatures "
+                 "span {:.2f}–{:.2f} K)",
+                 k, d, options.quadratic ? 3 : 2, d + 1, cal.fpa_min_k, cal.fpa_max_k);
     }
     // The same least-squares projector serves every pixel: coefficients = P·counts.
     const Eigen::MatrixXd projector = a.completeOrthogonalDecomposition().pseudoInverse();
 
     cal.offset.resize(n);
     cal.gain.resize(n);
-    if (p == 3) cal.quadratic.resize(n);
+    if (options.quadratic) cal.quadratic.resize(n);
+    cal.offset_fpa.assign(d, std::vector<float>(n));
+    cal.gain_fpa.assign(d, std::vector<float>(n));
     cal.residual_rms.resize(n);
     cal.fit_quality.resize(n);
     std::vector<float> temporal_noise(n, std::numeric_limits<float>::quiet_NaN());
@@ -108,8 +152,12 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
         const Eigen::VectorXd coef = projector * c;
         const Eigen::VectorXd r = c - a * coef;
         cal.offset[i] = static_cast<float>(coef[0]);
-        cal.gain[i] = static_cast<float>(coef[1]);
-        if (p == 3) cal.quadratic[i] = static_cast<float>(coef[2]);
+        cal.gain[i] = static_cast<float>(coef[static_cast<Eigen::Index>(d + 1)]);
+        for (std::size_t e = 1; e <= d; ++e) {
+            cal.offset_fpa[e - 1][i] = static_cast<float>(coef[static_cast<Eigen::Index>(e)]);
+            cal.gain_fpa[e - 1][i] = static_cast<float>(coef[static_cast<Eigen::Index>(d + 1 + e)]);
+        }
+        if (options.quadratic) cal.quadratic[i] = static_cast<float>(coef[static_cast<Eigen::Index>(p - 1)]);
         cal.residual_rms[i] = static_cast<float>(std::sqrt(r.squaredNorm() / static_cast<double>(k)));
         float quality = std::numeric_limits<float>::quiet_NaN();
         if (have_std) {
@@ -151,19 +199,36 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
             bits |= kNonLinear;
         cal.bad[i] = static_cast<float>(bits);
     }
+    if (d == 0) {
+        // A single-state fit over frames at different camera temperatures folds the drift into the fit.
+        double lo = 0.0, hi = 0.0;
+        bool any = false;
+        for (const auto& f : frames)
+            if (f.fpa_temperature_k) {
+                lo = any ? std::min(lo, *f.fpa_temperature_k) : *f.fpa_temperature_k;
+                hi = any ? std::max(hi, *f.fpa_temperature_k) : *f.fpa_temperature_k;
+                any = true;
+            }
+        if (any && hi - lo > kFpaSpanWarningK)
+            cal.warnings.push_back(fmt::format(
+                "the blackbody frames span {:.2f}–{:.2f} K of FPA temperature but the calibration is for one camera "
+                "state; fit the FPA dependence (--fpa-degree 1)",
+                lo, hi));
+    }
     return cal;
 }
 
-std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts) {
+std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts,
+                                      std::optional<double> fpa_temperature_k) {
     const std::size_t n = cal.gain.size();
     detail::check_plane(counts, n, "counts → radiance input", cal.width, cal.height);
+    const detail::FpaState state(cal, fpa_temperature_k, "counts → radiance input");
     std::vector<float> radiance(n);
-    const bool quad = !cal.quadratic.empty();
     for (std::size_t i = 0; i < n; ++i) {
-        const double d = static_cast<double>(counts[i]) - cal.offset[i];
-        const double g = cal.gain[i];
+        const double d = static_cast<double>(counts[i]) - state.offset(i);
+        const double g = state.gain(i);
         // Root of q·L² + g·L − d = 0 written so that q → 0 gives d/g without cancellation.
-        const double q = quad ? cal.quadratic[i] : 0.0;
+        const double q = state.quadratic(i);
         const double disc = g * g + 4.0 * q * d;
         radiance[i] = static_cast<float>(disc >= 0.0 ? 2.0 * d / (g + std::sqrt(disc)) : std::numeric_limits<double>::quiet_NaN());
     }
@@ -171,14 +236,28 @@ std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const s
     return radiance;
 }
 
-std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance) {
+std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance,
+                                      std::optional<double> fpa_temperature_k) {
+    const detail::FpaState state(cal, fpa_temperature_k, "radiance → counts input");
     std::vector<float> counts(radiance.size());
     for (std::size_t i = 0; i < radiance.size(); ++i) {
         const double l = radiance[i];
-        const double q = cal.quadratic.empty() ? 0.0 : cal.quadratic[i];
-        counts[i] = static_cast<float>(cal.offset[i] + cal.gain[i] * l + q * l * l);
+        counts[i] = static_cast<float>(state.offset(i) + state.gain(i) * l + state.quadratic(i) * l * l);
     }
     return counts;
+}
+
+RadiometricCalibration at_fpa_temperature(const RadiometricCalibration& cal, std::optional<double> fpa_temperature_k,
+                                          const std::string& what) {
+    const detail::FpaState state(cal, fpa_temperature_k, what);
+    RadiometricCalibration out = cal;
+    for (std::size_t i = 0; i < cal.gain.size(); ++i) {
+        out.offset[i] = static_cast<float>(state.offset(i));
+        out.gain[i] = static_cast<float>(state.gain(i));
+    }
+    out.offset_fpa.clear();
+    out.gain_fpa.clear();
+    return out;
 }
 
 void update_offset(RadiometricCalibration& cal, const BlackbodyFrame& frame) {
@@ -186,10 +265,13 @@ void update_offset(RadiometricCalibration& cal, const BlackbodyFrame& frame) {
         fail("{}: offset update needs the blackbody/shutter temperature; got {} K", frame.source, frame.temperature_k);
     detail::check_plane(frame.counts, cal.gain.size(), frame.source + " (counts)", cal.width, cal.height);
     const double l = cal.band().radiance(frame.temperature_k);
-    for (std::size_t i = 0; i < cal.gain.size(); ++i) {
-        const double q = cal.quadratic.empty() ? 0.0 : cal.quadratic[i];
-        cal.offset[i] = static_cast<float>(frame.counts[i] - cal.gain[i] * l - q * l * l);
-    }
+    const detail::FpaState state(cal, frame.fpa_temperature_k, frame.source);
+    // New reference offset o₀' such that o₀' + Σ o_a ΔT^a + g(ΔT)·L + q·L² reproduces the frame.
+    std::vector<float> offset(cal.gain.size());
+    for (std::size_t i = 0; i < cal.gain.size(); ++i)
+        offset[i] = static_cast<float>(frame.counts[i] - (state.offset(i) - cal.offset[i]) - state.gain(i) * l -
+                                       state.quadratic(i) * l * l);
+    cal.offset = std::move(offset);
 }
 
 std::vector<float> brightness_temperature(const Band& band, const std::vector<float>& radiance) {

@@ -10,6 +10,10 @@ namespace tirpol::calibration {
 
 namespace {
 constexpr const char* kKind = "radiometric";
+// 1: one camera state (no format_version attribute); 2: adds the FPA-temperature dependence.
+constexpr int kFormatVersion = 2;
+
+std::string fpa_channel(const char* plane, int power) { return fmt::format("{}_fpa{}", plane, power); }
 
 template <typename T>
 const T& attribute(const Image& image, const std::string& path, const std::string& name) {
@@ -29,8 +33,23 @@ void write_radiometric_calibration(const std::string& path, const RadiometricCal
     image.set_channel("bad", cal.bad);
     image.set_channel("residual_rms", cal.residual_rms);
     image.set_channel("fit_quality", cal.fit_quality);
+    for (int e = 1; e <= cal.fpa_degree(); ++e) {
+        image.set_channel(fpa_channel("offset", e), cal.offset_fpa[static_cast<std::size_t>(e - 1)]);
+        image.set_channel(fpa_channel("gain", e), cal.gain_fpa[static_cast<std::size_t>(e - 1)]);
+    }
     auto& a = image.attributes();
     a["tirpol_calibration"] = std::string(kKind);
+    a["format_version"] = kFormatVersion;
+    a["fpa_degree"] = cal.fpa_degree();
+    if (cal.fpa_degree() > 0) {
+        a["fpa_model"] = std::string("gain, offset polynomial in (T_fpa - fpa_reference_k); Nugent, Shaw & Pust 2013");
+        a["fpa_reference_k"] = cal.fpa_reference_k;
+        a["fpa_min_k"] = cal.fpa_min_k;  // doubles: an EXR float vector would round them
+        a["fpa_max_k"] = cal.fpa_max_k;
+        a["fpa_temperatures_k"] = cal.fpa_temperatures_k;
+        a["units_offset_fpa"] = std::string("counts/K^a (a = the channel's suffix)");
+        a["units_gain_fpa"] = std::string("counts/(W/(m^2 sr))/K^a");
+    }
     a["model"] = std::string(cal.quadratic.empty() ? "linear" : "quadratic");
     a["temperatures_k"] = cal.temperatures_k;
     a["radiances_w_m2_sr"] = cal.radiances_w_m2_sr;
@@ -56,6 +75,12 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
     const Image image = read_exr(path);
     const auto& kind = attribute<std::string>(image, path, "tirpol_calibration");
     if (kind != kKind) fail("{}: tirpol_calibration = '{}'; expected '{}'", path, kind, kKind);
+    int version = 1;
+    if (image.attributes().count("format_version")) version = attribute<int>(image, path, "format_version");
+    if (version < 1 || version > kFormatVersion)
+        fail("{}: format_version = {}; this tirpol reads radiometric calibrations of version 1 to {} (written by a "
+             "newer tirpol?)",
+             path, version, kFormatVersion);
     RadiometricCalibration cal;
     cal.width = image.width();
     cal.height = image.height();
@@ -75,6 +100,23 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
     cal.rsr_response = attribute<std::vector<double>>(image, path, "rsr_response");
     cal.camera_id = attribute<std::string>(image, path, "camera_id");
     cal.created_utc = attribute<std::string>(image, path, "created_utc");
+    const int degree = version >= 2 ? attribute<int>(image, path, "fpa_degree") : 0;
+    if (degree < 0 || degree > 2) fail("{}: fpa_degree = {}; expected 0, 1 or 2", path, degree);
+    if (degree > 0) {
+        cal.fpa_reference_k = attribute<double>(image, path, "fpa_reference_k");
+        cal.fpa_min_k = attribute<double>(image, path, "fpa_min_k");
+        cal.fpa_max_k = attribute<double>(image, path, "fpa_max_k");
+        if (!(cal.fpa_min_k <= cal.fpa_max_k) || !(cal.fpa_reference_k > 0.0))
+            fail("{}: expected fpa_min_k ≤ fpa_max_k and fpa_reference_k above 0 K", path);
+        cal.fpa_temperatures_k = attribute<std::vector<double>>(image, path, "fpa_temperatures_k");
+    }
+    for (int e = 1; e <= degree; ++e)
+        for (const char* plane : {"offset", "gain"}) {
+            const std::string name = fpa_channel(plane, e);
+            if (!image.has_channel(name))
+                fail("{}: missing channel '{}' of an FPA-dependent calibration (fpa_degree {})", path, name, degree);
+            (plane[0] == 'o' ? cal.offset_fpa : cal.gain_fpa).push_back(image.channel(name));
+        }
     return cal;
 }
 

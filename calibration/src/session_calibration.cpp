@@ -66,7 +66,37 @@ BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m,
     f.counts_std = frame.channel("counts_std");
     f.frames = static_cast<int>(r.frames);
     f.source = (dir / r.file).string();
+    f.fpa_temperature_k = r.fpa_temperature_k;
     return f;
+}
+
+/// The drift correction an offset update applied, and the per-pixel uncertainty it adds.
+struct OffsetUpdate {
+    std::string source;
+    double mean_counts = 0.0;  ///< mean over good pixels of the change of offset
+    double sigma_counts = 0.0;  ///< median per-pixel σ of the reference frame's mean (counts_std/√frames)
+    double sigma_mk = 0.0;      ///< the same in mK at the reference temperature
+};
+
+OffsetUpdate describe_offset_update(const RadiometricCalibration& before, const RadiometricCalibration& after,
+                                    const BlackbodyFrame& ref) {
+    OffsetUpdate u;
+    u.source = ref.source;
+    double sum = 0.0;
+    std::size_t n = 0;
+    std::vector<float> sigma, gain;
+    for (std::size_t i = 0; i < after.offset.size(); ++i) {
+        if (after.bad[i] != 0.0f) continue;
+        sum += static_cast<double>(after.offset[i]) - before.offset[i];
+        ++n;
+        sigma.push_back(static_cast<float>(ref.counts_std[i] / std::sqrt(static_cast<double>(ref.frames))));
+        gain.push_back(after.gain[i]);
+    }
+    if (n == 0) return u;
+    u.mean_counts = sum / static_cast<double>(n);
+    u.sigma_counts = robust_stats(sigma).median;
+    u.sigma_mk = 1e3 * u.sigma_counts / (robust_stats(gain).median * after.band().radiance_dT(ref.temperature_k));
+    return u;
 }
 
 bool is_temperature_reference(const SessionRecord& r) {
@@ -110,7 +140,8 @@ struct RadianceFrame {
 };
 
 RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const SessionRecord& r,
-                          const RadiometricCalibration& cal) {
+                          const RadiometricCalibration& calibration) {
+    const RadiometricCalibration cal = at_fpa_temperature(calibration, r.fpa_temperature_k, (dir / r.file).string());
     if (m.camera.width != cal.width || m.camera.height != cal.height)
         fail("{}: camera is {}×{} but the radiometric calibration is {}×{}", manifest_path(dir), m.camera.width,
              m.camera.height, cal.width, cal.height);
@@ -138,25 +169,50 @@ RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const S
 }  // namespace
 
 RadiometricCalibration calibrate_radiometric_session(const fs::path& dir, const Band& band, RadiometricOptions options) {
-    const SessionManifest m = read_session(dir);
-    if (polarizer_in_beam(dir, m).value_or(false))
-        fail("{}: metadata.polarizer_in_beam is true: these blackbody frames were taken through the polarizer; use "
-             "'tirpol calibrate polarimetric' for them",
-             manifest_path(dir));
+    return calibrate_radiometric_sessions({dir}, band, options);
+}
+
+RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path>& dirs, const Band& band,
+                                                      RadiometricOptions options, CalibrationQuality* quality) {
+    if (dirs.empty()) fail("radiometric calibration: no session given");
     std::vector<BlackbodyFrame> frames;
-    for (const auto& r : m.records)
-        if (is_temperature_reference(r)) frames.push_back(to_blackbody_frame(dir, m, r));
-    if (frames.empty())
-        fail("{}: no blackbody (or temperature-tagged shutter) records; radiometric calibration needs frames of a "
-             "blackbody at ≥ 2 temperatures",
-             manifest_path(dir));
-    if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(m);
-    RadiometricCalibration cal = fit_radiometric(frames, m.camera.width, m.camera.height, band, options);
-    cal.camera_id = camera_id(m);
+    std::optional<SessionManifest> first;
+    for (const auto& dir : dirs) {
+        const SessionManifest m = read_session(dir);
+        if (polarizer_in_beam(dir, m).value_or(false))
+            fail("{}: metadata.polarizer_in_beam is true: these blackbody frames were taken through the polarizer; use "
+                 "'tirpol calibrate polarimetric' for them",
+                 manifest_path(dir));
+        // Sessions at several camera temperatures calibrate one camera together, never two.
+        if (first && (camera_id(m) != camera_id(*first) || m.camera.width != first->camera.width ||
+                      m.camera.height != first->camera.height))
+            fail("{}: camera {} ({}×{}) differs from {} ({}×{}) of {}; one calibration is for one camera",
+                 manifest_path(dir), camera_id(m), m.camera.width, m.camera.height, camera_id(*first),
+                 first->camera.width, first->camera.height, manifest_path(dirs.front()));
+        std::size_t found = 0;
+        for (const auto& r : m.records)
+            if (is_temperature_reference(r)) {
+                frames.push_back(to_blackbody_frame(dir, m, r));
+                ++found;
+            }
+        if (found == 0)
+            fail("{}: no blackbody (or temperature-tagged shutter) records; radiometric calibration needs frames of a "
+                 "blackbody at ≥ 2 temperatures",
+                 manifest_path(dir));
+        if (!first) first = m;
+    }
+    if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(*first);
+    RadiometricCalibration cal = fit_radiometric(frames, first->camera.width, first->camera.height, band, options);
+    cal.camera_id = camera_id(*first);
+    if (quality) {
+        *quality = assess_calibration(cal, frames);
+        cal.warnings.insert(cal.warnings.end(), quality->warnings.begin(), quality->warnings.end());
+    }
     return cal;
 }
 
-PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric) {
+PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric,
+                                                       const std::optional<DatasheetAnalyzer>& datasheet) {
     const SessionManifest m = read_session(dir);
     if (!polarizer_in_beam(dir, m).value_or(false))
         fail("{}: metadata.polarizer_in_beam must be true for a polarimetric calibration (blackbody frames taken "
@@ -182,8 +238,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     // Known-source repeats: the spatial mean of L_SLAR = (L − B)/τ over good pixels, per angle.
     const auto sources = known_sources(dir, m, band);
     if (sources.empty()) {
-        out.analyzer = AnalyzerModel::ideal(angles);
-        out.analyzer_method = "ideal (no known-source records)";
+        out.analyzer = datasheet ? datasheet_analyzer_model(angles, *datasheet) : AnalyzerModel::ideal(angles);
+        out.analyzer_method = (datasheet ? describe(*datasheet) : std::string("ideal")) + " (no known-source records)";
         return out;
     }
     std::vector<KnownSourceMeasurement> measurements;
@@ -212,7 +268,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
         measurements.push_back(meas);
     }
     out.analyzer = estimate_analyzer(angles, measurements);
-    out.analyzer_method = "known-source least squares";
+    out.analyzer_method = std::string("known-source least squares") +
+                          (datasheet ? "; the datasheet values given were not used" : "");
     return out;
 }
 
@@ -220,6 +277,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
     RadiometricCalibration radiometric = radiometric_in;
+    std::optional<OffsetUpdate> correction;
     if (options.update_offset && polarimetric)
         fail("offset update together with a polarimetric calibration would remove the drift twice: the wire-grid "
              "background B(α), fitted the same night, already holds it; drop one of the two");
@@ -237,7 +295,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
             fail("{}: --update-offset needs a shutter record with a temperature (or a blackbody record taken "
                  "without the polarizer); the session has none",
                  manifest_path(dir));
-        update_offset(radiometric, to_blackbody_frame(dir, m, *ref));
+        const BlackbodyFrame ref_frame = to_blackbody_frame(dir, m, *ref);
+        update_offset(radiometric, ref_frame);
+        correction = describe_offset_update(radiometric_in, radiometric, ref_frame);
     }
     std::map<int, Eigen::Vector3d> sources;
     if (m.metadata.contains("known_source")) sources = known_sources(dir, m, radiometric.band());
@@ -251,9 +311,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         std::string source;
     };
     std::map<long, Accumulator> by_angle;
+    std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
         const RadianceFrame f = to_radiance(dir, m, r, radiometric);
+        if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
+            warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
         const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
         if (static_cast<double>(sat) > options.max_saturated_fraction * static_cast<double>(f.saturated.size()))
             fail("{}: {} of {} pixels are saturated (counts ≥ {}); expected at most {:.3g}% — reduce the integration "
@@ -311,6 +374,13 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["camera_id"] = camera_id(m);
     a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
+    if (!warnings.empty()) a["calibration_warnings"] = warnings;
+    if (correction) {
+        a["offset_update_source"] = correction->source;
+        a["offset_update_mean_counts"] = correction->mean_counts;
+        a["offset_update_sigma_counts"] = correction->sigma_counts;
+        a["offset_update_sigma_mk"] = correction->sigma_mk;
+    }
     a["analyzer"] = polarimetric ? polarimetric->analyzer_method : std::string("ideal (no polarimetric calibration)");
     return out;
 }

@@ -33,11 +33,20 @@ struct ThreeDNoise {
     double sigma_total = 0.0;
 };
 
+/// How each component's σ is normalised. The components have zero mean by construction, so σ² is
+/// Σx²/n (Population: D'Agostino & Webb; the seven variances add up exactly to the cube's variance)
+/// or Σx²/(n − 1) (Sample: numpy std(ddof=1), as pyradi's ry3dnoise computes every component, e.g.
+/// σ_t over the nt frame means, σ_vh over the nv·nh pixel means).
+enum class NoiseConvention { Population, Sample };
+
+/// "population (N)" or "sample (N-1, as pyradi ry3dnoise)".
+const char* to_string(NoiseConvention convention);
+
 /// Throws tirpol::Error for a stack with < 2 frames, frames of the wrong size or non-finite values.
 void validate_stack(const FrameStack& stack, const char* source);
 
 /// The 3D noise decomposition of the stack.
-ThreeDNoise three_d_noise(const FrameStack& stack);
+ThreeDNoise three_d_noise(const FrameStack& stack, NoiseConvention convention = NoiseConvention::Population);
 
 /// Per-pixel temporal standard deviation (n − 1 normalisation).
 std::vector<float> temporal_noise(const FrameStack& stack);

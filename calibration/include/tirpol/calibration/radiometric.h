@@ -4,6 +4,11 @@
 /// where L is the in-band radiance of the blackbody, ∫ R(λ) L_bb(λ, T) dλ in W/(m²·sr) (core's
 /// Band). Fitted by linear least squares with the same design matrix for every pixel, so the fit is
 /// one small matrix product per pixel.
+///
+/// For an uncooled camera whose response follows its own focal-plane-array (FPA) temperature, gain
+/// and offset can be polynomials in ΔT = T_fpa − T_ref (RadiometricOptions::fpa_degree ≥ 1; the form
+/// of Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304, 2013, docs/calibration.md), fitted from blackbody
+/// frames taken at several camera temperatures and applied frame by frame from each frame's T_fpa.
 
 #include <optional>
 #include <string>
@@ -23,6 +28,7 @@ struct BlackbodyFrame {
     std::vector<float> counts_std;
     int frames = 1;
     std::string source;
+    std::optional<double> fpa_temperature_k;  ///< camera (FPA) temperature during the frames
 };
 
 struct RadiometricOptions {
@@ -32,6 +38,8 @@ struct RadiometricOptions {
     /// A frame with more saturated pixels than this fraction is an error, not a bad-pixel class.
     double max_saturated_fraction = 0.001;
     BadPixelThresholds thresholds;
+    /// Degree of gain and offset in ΔT_fpa (0: one camera state; 1: Nugent et al. 2013; 2: curved).
+    int fpa_degree = 0;
 };
 
 /// The result of a radiometric calibration; planes are width × height, row-major.
@@ -51,6 +59,18 @@ struct RadiometricCalibration {
     std::vector<double> rsr_wavelength_um, rsr_response;  ///< empty: flat response
     std::string camera_id;
     std::string created_utc;
+    /// FPA dependence: at T_fpa the offset is offset + Σ_a offset_fpa[a−1]·ΔT^a and the gain
+    /// gain + Σ_a gain_fpa[a−1]·ΔT^a, ΔT = T_fpa − fpa_reference_k (counts/K^a, counts/(W/(m²·sr))/K^a).
+    /// Empty for a calibration at one camera state.
+    std::vector<std::vector<float>> offset_fpa, gain_fpa;
+    double fpa_reference_k = 0.0;            ///< T_ref, K (mean FPA temperature of the frames)
+    double fpa_min_k = 0.0, fpa_max_k = 0.0;  ///< FPA temperatures the calibration frames covered
+    std::vector<double> fpa_temperatures_k;  ///< per calibration frame (with temperatures_k); may be empty
+    /// What a user should know about the fit (model inadequate, drift not modelled, …); not stored.
+    std::vector<std::string> warnings;
+
+    /// Degree of the FPA dependence (0: one camera state).
+    int fpa_degree() const { return static_cast<int>(offset_fpa.size()); }
 
     /// The band the calibration was made for (with its RSR).
     Band band() const;
@@ -66,25 +86,38 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
 
 /// Counts → apparent in-band radiance W/(m²·sr) (inverse of the fitted model, the root of the
 /// quadratic that continues the linear branch). Bad pixels are replaced (replace_bad_pixels).
-std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts);
+/// `fpa_temperature_k` is the frame's camera temperature, required by an FPA-dependent calibration
+/// (tirpol::Error without it) and ignored by a single-state one.
+std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts,
+                                      std::optional<double> fpa_temperature_k = std::nullopt);
 
 /// Radiance → counts (the forward model), for simulation and tests.
-std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance);
+std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance,
+                                      std::optional<double> fpa_temperature_k = std::nullopt);
+
+/// The single-state calibration (gain, offset planes) of an FPA-dependent one at `fpa_temperature_k`;
+/// a copy of `cal` when it has no FPA dependence. `what` names the frame in the error thrown when the
+/// calibration needs an FPA temperature and none is given.
+RadiometricCalibration at_fpa_temperature(const RadiometricCalibration& cal, std::optional<double> fpa_temperature_k,
+                                          const std::string& what);
 
 /// Field offset update (drift between calibration and collection): from one frame of a blackbody or
-/// shutter at `temperature_k`, offset := counts − gain·L(T) − q·L(T)²; gains are kept.
+/// shutter at `temperature_k`, offset := counts − gain·L(T) − q·L(T)²; gains are kept. With an FPA
+/// dependence the reference-state offset is updated so that the model matches the frame at its T_fpa.
 void update_offset(RadiometricCalibration& cal, const BlackbodyFrame& frame);
 
 /// Brightness temperature image (K) from a radiance image, NaN where radiance ≤ 0 or not finite.
 std::vector<float> brightness_temperature(const Band& band, const std::vector<float>& radiance);
 
-/// Writes the calibration as EXR: channels gain, offset, [quadratic], bad, residual_rms, fit_quality;
-/// attributes tirpol_calibration="radiometric", model, temperatures_k, radiances_w_m2_sr, band_um,
-/// rsr_wavelength_um, rsr_response, camera_id, created_utc, units_*, bad_* counts. Atomic.
+/// Writes the calibration as EXR (format_version 2): channels gain, offset, [quadratic], bad,
+/// residual_rms, fit_quality, [offset_fpa<a>, gain_fpa<a> for a = 1..fpa_degree]; attributes
+/// tirpol_calibration="radiometric", format_version, model, temperatures_k, radiances_w_m2_sr,
+/// band_um, rsr_wavelength_um, rsr_response, camera_id, created_utc, units_*, bad_* counts, and with
+/// an FPA dependence fpa_degree, fpa_reference_k, fpa_min_k, fpa_max_k, fpa_temperatures_k. Atomic.
 void write_radiometric_calibration(const std::string& path, const RadiometricCalibration& cal);
 
-/// Reads a calibration EXR written by write_radiometric_calibration; errors name the file and the
-/// missing channel or attribute.
+/// Reads a calibration EXR written by write_radiometric_calibration (format 1, without
+/// format_version, or 2); errors name the file and the missing channel or attribute.
 RadiometricCalibration read_radiometric_calibration(const std::string& path);
 
 }  // namespace tirpol::calibration

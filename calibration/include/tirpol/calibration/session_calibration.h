@@ -21,6 +21,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "tirpol/calibration/calibration_quality.h"
+#include "tirpol/calibration/datasheet_analyzer.h"
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"
@@ -37,11 +39,21 @@ std::optional<double> session_saturation_counts(const SessionManifest& manifest)
 RadiometricCalibration calibrate_radiometric_session(const std::filesystem::path& dir, const Band& band,
                                                      RadiometricOptions options = {});
 
+/// The same from several sessions of one camera (e.g. taken at several camera temperatures for an
+/// FPA-dependent model, options.fpa_degree ≥ 1; each record's fpa_temperature_k is used). Refuses
+/// sessions of different cameras. With `quality`, also residuals per set-point, NEDT and warnings
+/// (assess_calibration; its warnings are appended to the calibration's).
+RadiometricCalibration calibrate_radiometric_sessions(const std::vector<std::filesystem::path>& dirs, const Band& band,
+                                                      RadiometricOptions options = {},
+                                                      CalibrationQuality* quality = nullptr);
+
 /// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance via
-/// `radiometric`), the analyzer by least squares from the known-source repeats (ideal at the
-/// blackbody angles when there are none).
+/// `radiometric`), the analyzer by least squares from the known-source repeats; when there are none,
+/// from `datasheet` if given, else ideal — analyzer_method says which (and that datasheet values
+/// were not used when known-source records took precedence).
 PolarimetricCalibration calibrate_polarimetric_session(const std::filesystem::path& dir,
-                                                       const RadiometricCalibration& radiometric);
+                                                       const RadiometricCalibration& radiometric,
+                                                       const std::optional<DatasheetAnalyzer>& datasheet = std::nullopt);
 
 struct SessionReductionOptions {
     /// Update the offset from the session's shutter record with a temperature first (or, when the
@@ -54,7 +66,13 @@ struct SessionReductionOptions {
 };
 
 /// Reduces the session's scene records to Stokes (S0 S1 S2 DoLP AoP + *_std), radiance units.
-/// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced.
+/// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced. Each
+/// record is converted at its own fpa_temperature_k; records whose apparent radiance or FPA
+/// temperature lie outside the calibrated range are listed (one line each, extrapolation_warning)
+/// in the attribute `calibration_warnings`. With options.update_offset, the correction and its
+/// uncertainty are attributes: offset_update_source, offset_update_mean_counts (mean change of the
+/// offset over good pixels), offset_update_sigma_counts and offset_update_sigma_mk (median per-pixel
+/// σ of the reference frame's mean, the uncertainty the update adds to every pixel).
 Image reduce_session(const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options = {});
 
