@@ -299,7 +299,7 @@ void write_report(Comparison& comparison, const CompareOptions& options, const s
     // A plot: written next to the page as .svg and inlined in it.
     auto svg_figure = [&](const std::string& section, const std::string& name, std::string svg, std::string caption) {
         result.svgs.push_back(report_dir / name);
-        write_file_atomic(report_dir / name, svg);
+        write_file_atomic(report_dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
         figures.push_back({section, report_dir / name, std::move(caption), std::move(svg)});
     };
     detail::write_region_overview(png("regions.png"), measured.channel("S0"), w, h, regions);

@@ -60,7 +60,8 @@ std::string axes(const Frame& f, const std::string& title, const std::string& x_
 }
 
 std::string open_svg(double height, const std::string& label) {
-    return fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" role=\"img\" aria-label=\"{}\" "
+    // No xmlns: inline SVG in HTML needs none (the .svg files get it when written).
+    return fmt::format("<svg viewBox=\"0 0 {} {}\" role=\"img\" aria-label=\"{}\" "
                        "{} fill=\"#1d2330\" style=\"width:100%;height:auto;max-width:{}px\">\n",
                        kWidth, height, escape(label), kFont, kWidth);
 }
