@@ -8,6 +8,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/materials/material.h"
+#include "tirpol/materials/material_reference.h"
 
 namespace tirpol::cli {
 
@@ -28,7 +29,7 @@ Vec3 direction(const std::vector<double>& theta_phi_deg, const char* option) {
 }
 
 void run_brdf(const BrdfArgs& a) {
-    const materials::Material m = materials::load_material(a.material);
+    const materials::Material m = materials::load_material(materials::material_file(a.material));
     const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
     if (a.wavelength_um < lo || a.wavelength_um > hi)
         fail("--wavelength-um {}: outside the material's data range {}–{} µm", a.wavelength_um, lo, hi);
@@ -68,7 +69,8 @@ void run_brdf(const BrdfArgs& a) {
 void register_brdf(CLI::App& app) {
     auto args = std::make_shared<BrdfArgs>();
     auto* cmd = app.add_subcommand("brdf", "Mueller BRDF of a material for one incident/exitant pair");
-    cmd->add_option("material", args->material, "Material YAML file")->required()->check(CLI::ExistingFile);
+    cmd->add_option("material", args->material, "Material YAML file or library name (flat_black_paint; docs/materials.md)")
+        ->required();
     cmd->add_option("--wavelength-um", args->wavelength_um, "Wavelength in micrometres")->required();
     cmd->add_option("--incident-deg", args->incident_deg, "Incident zenith and azimuth TH PHI (degrees)")
         ->required()

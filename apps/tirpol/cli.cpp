@@ -1,10 +1,17 @@
 #include "cli.h"
+#include "invocation.h"
+
+#include <glog/logging.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <opencv2/core/utils/logger.hpp>
 
+#include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
+#include "tirpol/report/provenance.h"
 
 namespace tirpol::cli {
 
@@ -13,7 +20,71 @@ std::vector<std::pair<int, CommandRegistration>>& registry() {
     static std::vector<std::pair<int, CommandRegistration>> r;
     return r;
 }
+
+std::string& command_line_storage() {
+    static std::string line;
+    return line;
+}
+
+// Libraries under the CLI write to stderr on their own: glog (through Ceres) warns "Logging before
+// InitGoogleLogging" and would log to files in /tmp once initialised; OpenCV prints info lines. Route
+// them to stderr at the level the user asked for, and give spdlog a plain "tirpol: level: message"
+// pattern (timestamps only when debugging).
+void quiet_libraries(const char* argv0, const std::string& log_level) {
+    const bool debugging = log_level == "debug" || log_level == "trace";
+    FLAGS_logtostderr = true;
+    FLAGS_minloglevel = debugging ? google::GLOG_INFO : google::GLOG_ERROR;
+    if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging(argv0);
+    cv::utils::logging::setLogLevel(debugging ? cv::utils::logging::LOG_LEVEL_INFO
+                                              : cv::utils::logging::LOG_LEVEL_ERROR);
+    spdlog::set_pattern(debugging ? "[%H:%M:%S.%e] tirpol: %l: %v" : "tirpol: %l: %v");
+}
+
+std::vector<std::string> option_names(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : app.get_options()) {
+        for (const auto& l : o->get_lnames()) names.push_back("--" + l);
+        for (const auto& s : o->get_snames()) names.push_back("-" + s);
+    }
+    return names;
+}
+
+std::vector<std::string> subcommand_names(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    return names;
+}
+
+// "did you mean" hints for the arguments CLI11 could not place: misspelt subcommands and options.
+void print_suggestions(CLI::App& app) {
+    CLI::App* deepest = &app;
+    while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+    for (const std::string& arg : app.remaining(true)) {
+        if (arg.rfind('-', 0) == 0 && arg.size() > 1) {
+            const std::string name = arg.substr(0, arg.find('='));
+            const std::string hint = closest_match(name, option_names(*deepest));
+            if (!hint.empty())
+                std::fprintf(stderr, "tirpol: unknown option '%s' for '%s'; did you mean '%s'?\n", name.c_str(),
+                             deepest == &app ? "tirpol" : deepest->get_name().c_str(), hint.c_str());
+        } else if (deepest->get_subcommands([](const CLI::App*) { return true; }).size() > 0) {
+            const std::string hint = closest_match(arg, subcommand_names(*deepest));
+            if (!hint.empty())
+                std::fprintf(stderr, "tirpol: unknown subcommand '%s'; did you mean '%s'?\n", arg.c_str(), hint.c_str());
+        }
+    }
+}
+
+// List-valued options take "8 14" and "8,14" alike, everywhere.
+void accept_comma_lists(CLI::App& app) {
+    for (CLI::Option* o : app.get_options())
+        if (o->get_expected_max() > 1 && o->get_delimiter() == '\0') o->delimiter(',');
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) accept_comma_lists(*sub);
+}
 }  // namespace
+
+std::string version_text() { return std::string("tirpol ") + TIRPOL_VERSION; }
+
+const std::string& command_line_text() { return command_line_storage(); }
 
 bool register_command(int order, CommandRegistration registration) {
     registry().emplace_back(order, std::move(registration));
@@ -21,16 +92,25 @@ bool register_command(int order, CommandRegistration registration) {
 }
 
 int run(int argc, char** argv) {
+    command_line_storage() = report::quoted_command_line(argc, argv);
+    quiet_libraries(argv[0], "info");
     CLI::App app{"tirpol — thermal-infrared polarimetry with the instrument in the loop"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", version_text());
+    app.footer("Exit codes: 0 success, 1 error in an input, a file or a device, 2 bad command-line usage "
+               "(docs/cli.md).");
     std::string log_level = "info";
     app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")->capture_default_str();
-    app.parse_complete_callback([&] { set_log_level(log_level); });
+    app.parse_complete_callback([&] {
+        set_log_level(log_level);
+        quiet_libraries(argv[0], log_level);
+    });
 
     auto& commands = registry();
     std::stable_sort(commands.begin(), commands.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [order, add] : commands) add(app);
+    accept_comma_lists(app);
 
     try {
         app.parse(argc, argv);
@@ -42,6 +122,7 @@ int run(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         app.exit(e);
+        print_suggestions(app);
         return kExitUsage;
     } catch (const tirpol::Error& e) {
         std::fprintf(stderr, "tirpol: error: %s\n", e.what());

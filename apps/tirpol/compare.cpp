@@ -2,10 +2,12 @@
 // and PNGs (docs/report.md).
 
 #include <cmath>
+#include <array>
 #include <cstdio>
 #include <optional>
 
 #include "cli.h"
+#include "invocation.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/report/comparison_report.h"
@@ -17,6 +19,7 @@ namespace {
 struct CompareArgs {
     std::string measured, simulated, rois, control_points, registration, output;
     std::optional<double> measured_sigma;
+    std::vector<double> band_um;
     bool json = false;
 };
 
@@ -31,15 +34,22 @@ void run_compare(const CompareArgs& a) {
                            : a.control_points.empty() ? RegistrationMethod::Auto
                                                       : RegistrationMethod::ControlPoints;
     if (options.registration == RegistrationMethod::ControlPoints && a.control_points.empty())
-        fail("--registration control-points needs --control-points CP.yaml");
+        throw CLI::ValidationError("--registration", "control-points needs --control-points CP.yaml");  // usage: exit 2
     if (!a.rois.empty()) options.regions = load_regions(a.rois);
     if (a.measured_sigma) {
         if (!(*a.measured_sigma > 0.0) || !std::isfinite(*a.measured_sigma))
             fail("--measured-sigma: expected a positive radiance in W/(m²·sr), got {}", *a.measured_sigma);
         options.measured_frame_sigma = a.measured_sigma;
     }
+    if (!a.band_um.empty()) options.band_um = std::array<double, 2>{a.band_um[0], a.band_um[1]};
     const Image measured = read_exr(a.measured);
     const Image simulated = read_exr(a.simulated);
+    options.provenance.tool_version = version_text();
+    options.provenance.command_line = command_line_text();
+    options.provenance.inputs.push_back(describe_input("measured", a.measured, &measured));
+    options.provenance.inputs.push_back(describe_input("simulated", a.simulated, &simulated));
+    if (!a.rois.empty()) options.provenance.inputs.push_back(describe_input("regions", a.rois));
+    if (!a.control_points.empty()) options.provenance.inputs.push_back(describe_input("control points", a.control_points));
     const CompareResult r = write_comparison_report(measured, simulated, options, a.output);
     if (a.json) {
         std::printf("%s", comparison_json(r).c_str());
@@ -48,13 +58,23 @@ void run_compare(const CompareArgs& a) {
     const auto& g = r.registration;
     std::printf("registration: %s (%s), residual misalignment %.3f px\n", to_string(g.method).c_str(), g.model.c_str(),
                 std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
-    std::printf("%-16s %9s %12s %12s %9s %9s  %s\n", "region", "pixels", "S0 bias", "S1 bias", "|z|>2", "|z|>3",
-                "verdict");
+    std::printf("%-16s %9s %12s %16s %-22s %-22s %-22s %s\n", "region", "pixels", "S0 bias", "S0 bias [K]", "S0",
+                "S1", "S2", "verdict");
     for (const auto& region : r.regions) {
-        const auto& z = region.z.at("all");
-        std::printf("%-16s %9zu %12.4g %12.4g %8.2f%% %8.2f%%  %s\n", region.name.c_str(), region.pixel_count,
-                    region.stats.at("S0").bias, region.stats.at("S1").bias, 100.0 * z.fraction_above_2,
-                    100.0 * z.fraction_above_3, consistent_with_noise(z) ? "consistent with noise" : "exceeds noise");
+        const auto& k = region.s0_bias_k;
+        const std::string kelvin = k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
+        std::printf("%-16s %9zu %12.4g %16s", region.name.c_str(), region.pixel_count, region.stats.at("S0").bias,
+                    kelvin.c_str());
+        for (const auto& q : kZQuantities) {
+            const auto& z = region.z.at(q);
+            std::printf(" %-22s", fmt::format("{:.1f}% rms {:.2f} {}", 100.0 * z.fraction_above_2, z.rms,
+                                              region.verdicts.at(q) == ZVerdict::Consistent          ? "ok"
+                                              : region.verdicts.at(q) == ZVerdict::SigmaOverestimated ? "sigma-high"
+                                              : region.verdicts.at(q) == ZVerdict::ExceedsNoise       ? "EXCEEDS"
+                                                                                                      : "-")
+                                      .c_str());
+        }
+        std::printf(" %s\n", to_string(region.verdict).c_str());
     }
     for (const auto& note : r.notes) std::printf("note: %s\n", note.c_str());
     std::printf("report: %s\n", r.html.string().c_str());
@@ -78,6 +98,8 @@ void register_compare(CLI::App& app) {
         ->check(CLI::IsMember({"none", "auto", "control-points"}));
     cmd->add_option("--measured-sigma", args->measured_sigma,
                     "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has no *_std channels");
+    cmd->add_option("--band-um", args->band_um, "Band LO HI in µm for the S0 bias in kelvin (default: the EXRs' band_um)")
+        ->expected(2);
     cmd->add_option("-o,--output", args->output, "Report directory (created)")->required();
     cmd->add_flag("--json", args->json, "Print report.json to stdout instead of the summary");
     cmd->callback([args] { run_compare(*args); });

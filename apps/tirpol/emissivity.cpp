@@ -12,6 +12,7 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/material.h"
+#include "tirpol/materials/material_reference.h"
 
 namespace tirpol::cli {
 
@@ -28,7 +29,7 @@ struct EmissivityArgs {
 };
 
 void run_emissivity(const EmissivityArgs& a) {
-    const materials::Material m = materials::load_material(a.material);
+    const materials::Material m = materials::load_material(materials::material_file(a.material));
     const std::vector<double> angles = materials::parse_angles_deg(a.angles);
     std::vector<materials::EmissivityRow> rows;
     std::string spectral, spectral_ascii;  // the plot's Hershey font has no µ or en dash
@@ -79,7 +80,8 @@ void run_emissivity(const EmissivityArgs& a) {
 void register_emissivity(CLI::App& app) {
     auto args = std::make_shared<EmissivityArgs>();
     auto* cmd = app.add_subcommand("emissivity", "Polarized directional emissivity of a material vs angle");
-    cmd->add_option("material", args->material, "Material YAML file (docs/materials.md)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("material", args->material, "Material YAML file or library name (flat_black_paint; docs/materials.md)")
+        ->required();
     auto* wl = cmd->add_option("--wavelength-um", args->wavelength_um, "One wavelength in micrometres");
     auto* band = cmd->add_option("--band-um", args->band_um, "Band limits LO HI in micrometres")->expected(2);
     wl->excludes(band);

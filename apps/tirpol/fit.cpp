@@ -11,6 +11,7 @@
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/material.h"
+#include "tirpol/materials/material_reference.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::cli {
@@ -65,7 +66,7 @@ double parse_number(const std::string& text, const std::string& what) {
 
 // Initial values from a material file (--init): the micro-facet parameters at the data's first wavelength.
 void apply_init(const std::string& path, double wavelength_um, fitting::MicrofacetFitOptions& options) {
-    const materials::Material material = materials::load_material(path);
+    const materials::Material material = materials::load_material(materials::material_file(path));
     const auto* brdf = dynamic_cast<const materials::MicrofacetBrdf*>(material.brdf.get());
     if (!brdf)
         fail("--init {}: model \"{}\" is not the micro-facet model; expected `model: microfacet`", path,
@@ -144,8 +145,8 @@ void register_fit(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--free", args->free, "Free parameters that are fixed by default: NAME,...")->delimiter(',');
     cmd->add_option("--bound", args->bounds, "Bounds: NAME=LOWER:UPPER,...")->delimiter(',');
-    cmd->add_option("--init", args->init, "Material YAML whose micro-facet parameters are the first start")
-        ->check(CLI::ExistingFile);
+    cmd->add_option("--init", args->init,
+                    "Material YAML or library name whose micro-facet parameters are the first start");
     cmd->add_option("--starts", args->starts, "Number of starts (initial + Latin hypercube)")->capture_default_str();
     cmd->add_option("--seed", args->seed, "Seed of the Latin hypercube")->capture_default_str();
     cmd->add_option("--quadrature-order", args->order, "Gauss–Legendre nodes per panel")->capture_default_str();

@@ -74,7 +74,9 @@ void register_render(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render a scene file into a polarized (Stokes) thermal-infrared image");
     cmd->add_option("scene", args->scene, "Scene YAML (docs/scene-format.md)")->required()->check(CLI::ExistingFile);
-    cmd->add_option("-o,--out", args->out_dir, "Output directory (EXR + PNG quicklooks)")->required();
+    // -o/--output as in every subcommand; --out is the old spelling, kept hidden.
+    auto* output = cmd->add_option("-o,--output", args->out_dir, "Output directory (EXR + PNG quicklooks) (required)");
+    cmd->add_option("--out", args->out_dir)->group("")->excludes(output);
     cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the scene's sampling.spp)");
     cmd->add_option("--threads", args->threads, "Worker threads (default: all cores); the image does not depend on it");
     cmd->add_option("--seed", args->seed, "Random seed (overrides sampling.seed)");
@@ -86,7 +88,10 @@ void register_render(CLI::App& app) {
     cmd->add_option("--sensor", args->sensor, "Sensor-model YAML: also write the polarizer images I(α)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
-    cmd->callback([args] { run_render(*args); });
+    cmd->callback([args] {
+        if (args->out_dir.empty()) throw CLI::RequiredError("--output");
+        run_render(*args);
+    });
 }
 }  // namespace
 

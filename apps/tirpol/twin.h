@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/report/verdict.h"
 
 namespace tirpol::cli::twin {
 
@@ -55,8 +56,8 @@ struct TwinParameter {
 struct TwinRegionAgreement {
     std::string name;
     std::size_t pixels = 0;
-    double z_above_2 = 0.0;   ///< fraction of |z| > 2 over S0, S1, S2 pooled
-    bool consistent = false;  ///< report::consistent_with_noise
+    double z_above_2[3] = {0.0, 0.0, 0.0};  ///< fraction of |z| > 2 of S0, S1, S2
+    report::ZVerdict verdict = report::ZVerdict::NoData;  ///< the worst of the three (report::z_verdict)
 };
 
 /// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
@@ -76,6 +77,7 @@ struct TwinResult {
     double reduced_chi2 = 0.0;
     std::vector<TwinRegionAgreement> regions;
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
+    std::filesystem::path report_regions;  ///< the report's regions as YAML (for `tirpol compare --rois`)
     std::map<std::string, double> seconds;  ///< per stage
 };
 

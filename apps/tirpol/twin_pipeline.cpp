@@ -22,6 +22,7 @@
 #include "tirpol/report/comparison_report.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
+#include "invocation.h"
 #include "twin.h"
 #include "twin_instrument.h"
 #include "twin_regions.h"
@@ -141,17 +142,19 @@ double rect_difference_standard_error(const Image& a, const Image& b, const std:
     return std::sqrt(std::max(0.0, (sum_sq - n * mean * mean) / (n - 1)) / n);
 }
 
-/// The twin's measurement inherits the Monte Carlo noise of the render it observes; its stated σ
-/// must include it (S_k_std² += truth S_k_var) or the comparison with a fresh render would flag
-/// render noise as disagreement.
-Image with_render_noise(Image measured, const Image& truth) {
+/// The twin's measurement inherits the Monte Carlo noise of the truth render it observes, which its
+/// *_std channels (temporal noise) do not hold; the fresh render has its own. Both enter the z
+/// statistic, so the simulation's variance channels carry both (S_k_var += truth S_k_var) and the
+/// written simulated EXR holds the σ the report used: `tirpol compare` on the files repeats it.
+void add_truth_render_noise(Image& simulated, const Image& truth) {
     for (const char* s : {"S0", "S1", "S2"}) {
-        auto& sd = measured.channel(std::string(s) + "_std");
-        const auto& var = truth.channel(std::string(s) + "_var");
-        for (std::size_t i = 0; i < sd.size(); ++i)
-            if (std::isfinite(var[i])) sd[i] = std::sqrt(sd[i] * sd[i] + var[i]);
+        auto& var = simulated.channel(std::string(s) + "_var");
+        const auto& truth_var = truth.channel(std::string(s) + "_var");
+        for (std::size_t i = 0; i < var.size(); ++i)
+            if (std::isfinite(truth_var[i])) var[i] += truth_var[i];
     }
-    return measured;
+    simulated.attributes()["variance_note"] =
+        std::string("S0_var..S2_var include the Monte Carlo variance of the twin's truth render");
 }
 
 report::Region rect_region(const std::string& name, const calibration::PixelRect& r) {
@@ -343,6 +346,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         s.materials[target_material].brdf = fitted.brdf;
         s.sampling.seed = scene.sampling.seed + 1;
         simulated = simulation::render(s, render_options);
+        add_truth_render_noise(simulated, truth.front());
         simulation::write_render_outputs(out / "simulated", "view0_fitted", simulated);
         result.simulated_exr = out / "simulated" / "view0_fitted.exr";
     }
@@ -362,14 +366,23 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
                 regions.regions.push_back(rect_region(name.substr(6), *r));
         }
         co.regions = regions;
-        const report::CompareResult cr =
-            write_comparison_report(with_render_noise(measured.front(), truth.front()), simulated, co, out / "report");
+        // The regions as a file and the equivalent command, so the report can be repeated from files.
+        result.report_regions = out / "report_regions.yaml";
+        write_file_atomic(result.report_regions, report::regions_yaml(regions));
+        co.provenance.tool_version = version_text();
+        co.provenance.command_line = fmt::format(
+            "tirpol compare --measured {} --simulated {} --rois {} --registration none -o {} (run in-process by "
+            "`tirpol demo`)",
+            result.measured_exr.string(), result.simulated_exr.string(), result.report_regions.string(),
+            (out / "report").string());
+        co.provenance.inputs.push_back(report::describe_input("measured", result.measured_exr, &measured.front()));
+        co.provenance.inputs.push_back(report::describe_input("simulated", result.simulated_exr, &simulated));
+        co.provenance.inputs.push_back(report::describe_input("regions", result.report_regions));
+        const report::CompareResult cr = write_comparison_report(measured.front(), simulated, co, out / "report");
         result.report_html = cr.html;
         for (const auto& r : cr.regions) {
-            const auto it = r.z.find("all");
-            if (it == r.z.end()) continue;
-            result.regions.push_back(
-                {r.name, r.pixel_count, it->second.fraction_above_2, report::consistent_with_noise(it->second)});
+            result.regions.push_back({r.name, r.pixel_count, r.z.at("S0").fraction_above_2,
+                                      r.z.at("S1").fraction_above_2, r.z.at("S2").fraction_above_2, r.verdict});
         }
     }
 }

@@ -35,11 +35,12 @@ std::string twin_summary(const TwinResult& r) {
     for (const auto& p : r.parameters)
         if (p.fixed) out += fmt::sprintf(" %s=%g", p.name.c_str(), p.fitted);
     out += fmt::sprintf(
-        "\n  Stokes agreement per region (measured vs fitted render; |z|>2 fraction over S0,S1,S2; 4.6%% expected from "
+        "\n  Stokes agreement per region (measured vs fitted render; |z|>2 fraction of S0, S1, S2; 4.6%% expected from "
         "noise):\n");
     for (const auto& g : r.regions)
-        out += fmt::sprintf("    %-24s %5zu px  |z|>2: %5.1f%%  %s\n", g.name.c_str(), g.pixels, 100.0 * g.z_above_2,
-                            g.consistent ? "consistent with noise" : "NOT explained by noise");
+        out += fmt::sprintf("    %-24s %5zu px  |z|>2 S0 %5.1f%%  S1 %5.1f%%  S2 %5.1f%%  %s\n", g.name.c_str(), g.pixels,
+                            100.0 * g.z_above_2[0], 100.0 * g.z_above_2[1], 100.0 * g.z_above_2[2],
+                            report::to_string(g.verdict).c_str());
     out += fmt::sprintf("  times:");
     for (const auto& [k, s] : r.seconds) out += fmt::sprintf(" %s %.1f s;", k.c_str(), s);
     out += fmt::sprintf("\n  report: %s\n", r.report_html.c_str());

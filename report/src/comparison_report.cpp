@@ -7,9 +7,11 @@
 
 #include "figures.h"
 #include "html_report.h"
+#include "svg_plot.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::report {
 
@@ -88,6 +90,44 @@ struct QuantityDisplay {
     Colormap map;
 };
 
+// The band for the kelvin bias: the option, else the measured then the simulated `band_um` attribute.
+std::optional<Band> comparison_band(const Image& measured, const Image& simulated, const CompareOptions& options,
+                                    CompareResult& result) {
+    auto from_attribute = [](const Image& image) -> std::optional<std::array<double, 2>> {
+        const auto it = image.attributes().find("band_um");
+        if (it == image.attributes().end() || !std::holds_alternative<std::vector<double>>(it->second)) return std::nullopt;
+        const auto& v = std::get<std::vector<double>>(it->second);
+        if (v.size() != 2 || !(v[0] > 0.0) || !(v[0] < v[1]) || !std::isfinite(v[1])) return std::nullopt;
+        return std::array<double, 2>{v[0], v[1]};
+    };
+    if (options.band_um) {
+        result.band_um = options.band_um;
+        result.band_source = "--band-um";
+    } else if (const auto m = from_attribute(measured)) {
+        result.band_um = m;
+        result.band_source = "band_um attribute of " + options.measured_name;
+    } else if (const auto s = from_attribute(simulated)) {
+        result.band_um = s;
+        result.band_source = "band_um attribute of " + options.simulated_name;
+    } else {
+        result.notes.push_back("no spectral band (no band_um attribute in either image, no --band-um): the S0 bias "
+                               "is not converted to kelvin");
+        return std::nullopt;
+    }
+    return Band((*result.band_um)[0], (*result.band_um)[1]);
+}
+
+std::optional<KelvinBias> kelvin_bias(const QuantityStats& s0, const Band& band) {
+    if (s0.pixel_count == 0 || !(s0.simulated_mean > 0.0)) return std::nullopt;
+    KelvinBias k;
+    k.temperature_k = band.brightness_temperature(s0.simulated_mean);
+    if (!std::isfinite(k.temperature_k)) return std::nullopt;
+    k.radiance_dT = band.radiance_dT(k.temperature_k);
+    k.bias_k = s0.bias / k.radiance_dT;
+    k.bias_sigma_k = s0.bias_sigma / k.radiance_dT;
+    return k;
+}
+
 }  // namespace
 
 void require_stokes_channels(const Image& image, const std::string& name, const std::string& role) {
@@ -102,14 +142,16 @@ void require_stokes_channels(const Image& image, const std::string& name, const 
     if (image.pixel_count() == 0) fail("{}: the {} Stokes image has no pixels", name, role);
 }
 
-CompareResult write_comparison_report(const Image& measured_in, const Image& simulated_in, const CompareOptions& options,
-                                      const std::filesystem::path& report_dir) {
+Comparison compare(const Image& measured_in, const Image& simulated_in, const CompareOptions& options) {
     require_stokes_channels(measured_in, options.measured_name, "measured");
     require_stokes_channels(simulated_in, options.simulated_name, "simulated");
     const int w = measured_in.width(), h = measured_in.height();
     const std::size_t n = measured_in.pixel_count();
 
-    CompareResult result;
+    Comparison comparison;
+    CompareResult& result = comparison.result;
+    ComparisonPlanes& planes = comparison.planes;
+    result.provenance = options.provenance;
     result.width = w;
     result.height = h;
     result.simulated_width = simulated_in.width();
@@ -120,14 +162,14 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
         result.units = std::get<std::string>(it->second);
 
     // Regions first: a bad polygon is reported before any expensive work.
-    std::vector<Region> regions;
+    std::vector<Region>& regions = planes.regions;
     if (options.regions) {
         regions = options.regions->regions;
         result.background = options.regions->background;
     } else {
         regions.push_back(whole_image_region(w, h));
     }
-    std::vector<Mask> masks;
+    std::vector<Mask>& masks = planes.masks;
     for (const auto& region : regions) masks.push_back(region_mask(region, w, h));
     auto region_index = [&](const std::string& name) {
         for (std::size_t r = 0; r < regions.size(); ++r)
@@ -136,8 +178,10 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
     };
 
     result.registration = register_images(measured_in, simulated_in, options.registration, options.control_points);
-    Image measured = measured_in;
-    Image simulated = resample_to_measured(simulated_in, result.registration, w, h);
+    planes.measured = measured_in;
+    planes.simulated = resample_to_measured(simulated_in, result.registration, w, h);
+    Image& measured = planes.measured;
+    Image& simulated = planes.simulated;
     derive_dolp_aop(measured);
     derive_dolp_aop(simulated);
     if (std::abs(result.registration.rotation_deg) > 0.5)
@@ -147,7 +191,10 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
             result.registration.rotation_deg));
 
     // Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2.
-    std::map<std::string, std::vector<float>> diffs, z, sigma_total;
+    auto& diffs = planes.difference;
+    auto& z = planes.z;
+    auto& sigma_total = planes.total_variance;
+    std::map<std::string, std::vector<float>> var_measured, var_simulated;
     const Mask all_pixels(n, 1);
     const std::string noise_region_name =
         options.regions ? (options.regions->noise_region.empty() ? options.regions->background : options.regions->noise_region)
@@ -187,11 +234,14 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
         sigma_total[q] = std::move(total);
+        var_measured[q] = std::move(*var_m);
+        var_simulated[q] = std::move(*var_s);
     }
     std::vector<float> z_pooled;
     for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), z[q].begin(), z[q].end());
 
     // Per-region statistics.
+    const std::optional<Band> band = comparison_band(measured_in, simulated_in, options, result);
     const std::size_t bg = result.background.empty() ? regions.size() : region_index(result.background);
     for (std::size_t r = 0; r < regions.size(); ++r) {
         RegionResult rr;
@@ -204,6 +254,14 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
             pooled_mask.insert(pooled_mask.end(), masks[r].begin(), masks[r].end());
         }
         rr.z["all"] = z_stats(z_pooled, pooled_mask);
+        for (const auto& q : kZQuantities) {
+            rr.verdicts[q] = z_verdict(rr.z[q]);
+            rr.verdict = worse(rr.verdict, rr.verdicts[q]);
+        }
+        rr.aop = aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"),
+                           simulated.channel("S2"), var_measured["S1"], var_measured["S2"], var_simulated["S1"],
+                           var_simulated["S2"], masks[r]);
+        if (band) rr.s0_bias_k = kelvin_bias(rr.stats.at("S0"), *band);
         result.regions.push_back(std::move(rr));
     }
     if (bg < regions.size()) {
@@ -215,17 +273,38 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
             rr.s1_contrast_simulated = s.simulated_mean - b.simulated_mean;
         }
     }
+    return comparison;
+}
 
-    // Figures.
+void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir) {
+    CompareResult& result = comparison.result;
+    const ComparisonPlanes& planes = comparison.planes;
+    const Image& measured = planes.measured;
+    const Image& simulated = planes.simulated;
+    const auto& regions = planes.regions;
+    const auto& masks = planes.masks;
+    const auto& diffs = planes.difference;
+    const auto& z = planes.z;
+    const auto& sigma_total = planes.total_variance;
+    const int w = result.width, h = result.height;
+    const std::size_t n = measured.pixel_count();
+    std::vector<float> z_pooled;
+    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), z.at(q).begin(), z.at(q).end());
     std::filesystem::create_directories(report_dir);
     std::vector<detail::Figure> figures;
     auto png = [&](const std::string& name) {
         result.pngs.push_back(report_dir / name);
         return report_dir / name;
     };
+    // A plot: written next to the page as .svg and inlined in it.
+    auto svg_figure = [&](const std::string& section, const std::string& name, std::string svg, std::string caption) {
+        result.svgs.push_back(report_dir / name);
+        write_file_atomic(report_dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
+        figures.push_back({section, report_dir / name, std::move(caption), std::move(svg)});
+    };
     detail::write_region_overview(png("regions.png"), measured.channel("S0"), w, h, regions);
     figures.push_back({"regions", report_dir / "regions.png",
-                       "Measured S0 with the regions of interest (polygons in measured pixel coordinates)."});
+                       "Measured S0 with the regions of interest (polygons in measured pixel coordinates).", ""});
 
     const std::map<std::string, QuantityDisplay> display = {{"S0", {result.units, Colormap::Sequential}},
                                                             {"S1", {result.units, Colormap::Diverging}},
@@ -236,7 +315,7 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
         const auto& d = display.at(q);
         const auto pm = detail::display_plane(measured.channel(q), w, h);
         const auto ps = detail::display_plane(simulated.channel(q), w, h);
-        const auto pd = detail::display_plane(diffs[q], w, h);
+        const auto pd = detail::display_plane(diffs.at(q), w, h);
         QuicklookOptions shared{d.map, std::nullopt, std::nullopt, "", d.units, 0};
         if (q == "DoLP") shared.vmin = 0.0;
         const auto [lo, hi] = shared_range(pm.data, ps.data, shared);
@@ -263,28 +342,30 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
                            fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
                                        "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
                                        q, lo, hi, unit_text, dlo, dhi, unit_text,
-                                       q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : "")});
+                                       q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : ""),
+                           ""});
     }
 
     {
-        std::vector<detail::Plane> planes;
+        std::vector<detail::Plane> z_planes;
         std::vector<std::filesystem::path> parts;
         std::vector<QuicklookOptions> opts;
         for (const auto& q : kZQuantities) {
-            planes.push_back(detail::display_plane(z[q], w, h));
+            z_planes.push_back(detail::display_plane(z.at(q), w, h));
             parts.push_back(png("z_" + q + ".png"));
             opts.push_back({Colormap::Diverging, -5.0, 5.0, "z " + q, "sigma", 0});
         }
         result.colour_scales["z"] = {-5.0, 5.0};
-        detail::write_panel(png("panel_z.png"), parts, planes, opts);
+        detail::write_panel(png("panel_z.png"), parts, z_planes, opts);
         figures.push_back({"z", report_dir / "panel_z.png",
                            "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
-                           "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels."});
-        detail::write_histogram(png("histogram_z.png"), "z of S0, S1, S2 (all pixels)", "z", z_pooled, -6.0, 6.0,
-                                {-3, -2, 0, 2, 3}, 0.0, 1.0);
-        figures.push_back({"z", report_dir / "histogram_z.png",
-                           "Distribution of z over all pixels (bars) against the standard normal density (red "
-                           "curve); grey lines at ±2 and ±3."});
+                           "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels.",
+                           ""});
+        svg_figure("z", "histogram_z.svg",
+                   detail::svg_histogram("z of S0, S1, S2 (all pixels)", "z", z_pooled, -6.0, 6.0, {-3, -2, 0, 2, 3},
+                                         0.0, 1.0),
+                   "Distribution of z over all pixels (bars) against the standard normal density (red curve); grey "
+                   "lines at ±2 and ±3.");
     }
 
     for (const auto& q : kComparedQuantities) {
@@ -301,12 +382,11 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
             series.push_back(std::move(s));
         }
         const std::string units = display.at(q).units;
-        detail::write_scatter(png("scatter_" + q + ".png"), q, units, series);
-        figures.push_back({"scatter", report_dir / ("scatter_" + q + ".png"),
-                           fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q)});
+        svg_figure("scatter", "scatter_" + q + ".svg", detail::svg_scatter(q, units, series),
+                   fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q));
     }
     for (const auto& q : kComparedQuantities) {
-        const auto& d = diffs[q];
+        const auto& d = diffs.at(q);
         std::vector<float> finite_abs;
         double bias = 0.0;
         for (float v : d)
@@ -321,36 +401,42 @@ CompareResult write_comparison_report(const Image& measured_in, const Image& sim
             std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k), finite_abs.end());
             range = finite_abs[k] > 0.0f ? 1.1 * finite_abs[k] : 1.0;
         }
-        const double sigma = sigma_total.count(q) ? median_sqrt(sigma_total[q]) : 0.0;
+        const double sigma = sigma_total.count(q) ? median_sqrt(sigma_total.at(q)) : 0.0;
         const std::string units = display.at(q).units;
-        detail::write_histogram(png("histogram_difference_" + q + ".png"), q + ": measured - simulated",
-                                "difference" + (units.empty() ? "" : " [" + units + "]"), d, -range, range, {0.0, bias},
-                                0.0, sigma);
-        figures.push_back({"histograms", report_dir / ("histogram_difference_" + q + ".png"),
+        svg_figure("histograms", "histogram_difference_" + q + ".svg",
+                   detail::svg_histogram(q + ": measured − simulated",
+                                         "difference" + (units.empty() ? "" : " [" + units + "]"), d, -range, range,
+                                         {0.0, bias}, 0.0, sigma),
                            sigma > 0.0 ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
                                                      "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
                                                      q, sigma, bias)
                                        : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.",
-                                                     q, bias)});
+                                                     q, bias));
     }
 
     // Full-resolution planes behind the figures.
-    Image planes(w, h);
-    planes.attributes()["units"] = result.units;
+    Image exr_planes(w, h);
+    exr_planes.attributes()["units"] = result.units;
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
-        planes.set_channel("measured." + q, measured.channel(q));
-        planes.set_channel("simulated." + q, simulated.channel(q));
-        planes.set_channel("difference." + q, diffs[q]);
+        exr_planes.set_channel("measured." + q, measured.channel(q));
+        exr_planes.set_channel("simulated." + q, simulated.channel(q));
+        exr_planes.set_channel("difference." + q, diffs.at(q));
     }
-    for (const auto& q : kZQuantities) planes.set_channel("z." + q, z[q]);
+    for (const auto& q : kZQuantities) exr_planes.set_channel("z." + q, z.at(q));
     result.exr = report_dir / "comparison.exr";
-    write_exr(result.exr, planes);
+    write_exr(result.exr, exr_planes);
 
     result.json = report_dir / "report.json";
     result.html = report_dir / "report.html";
     write_file_atomic(result.json, comparison_json(result));
     write_file_atomic(result.html, detail::render_html(result, options.measured_name, options.simulated_name, figures));
-    return result;
+}
+
+CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,
+                                      const std::filesystem::path& report_dir) {
+    Comparison comparison = compare(measured, simulated, options);
+    write_report(comparison, options, report_dir);
+    return std::move(comparison.result);
 }
 
 }  // namespace tirpol::report

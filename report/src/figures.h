@@ -1,10 +1,12 @@
 #pragma once
-// Figures of the comparison report, drawn with OpenCV (colour maps and colorbars from core's
-// quicklook). Private to the report module. Text drawn by OpenCV is ASCII only.
+// Image figures of the comparison report, drawn with OpenCV (colour maps and colorbars from core's
+// quicklook); line-art plots are SVG (svg_plot.h). Private to the report module. Text drawn by OpenCV
+// is ASCII only.
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tirpol/core/quicklook.h"
@@ -44,14 +46,7 @@ struct ScatterSeries {
     std::string name;
     std::vector<float> measured, simulated;
 };
-/// Measured (x) against simulated (y) with the 1:1 line, one colour per series.
-void write_scatter(const std::filesystem::path& path, const std::string& title, const std::string& units,
-                   const std::vector<ScatterSeries>& series);
-
-/// Histogram of `values` over [lo, hi] as a density, with vertical markers at `markers`, and, when
-/// `gaussian_sigma` > 0, the density of N(gaussian_mean, gaussian_sigma²) drawn over it.
-void write_histogram(const std::filesystem::path& path, const std::string& title, const std::string& x_label,
-                     const std::vector<float>& values, double lo, double hi, const std::vector<double>& markers,
-                     double gaussian_mean, double gaussian_sigma);
+/// [p_lo, p_hi] percentiles of `values` (a small interval around a constant).
+std::pair<double, double> percentile_range(std::vector<float> values, double lo_p, double hi_p);
 
 }  // namespace tirpol::report::detail

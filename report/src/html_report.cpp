@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
 
 #include "figures.h"
 #include "tirpol/core/atomic_file.h"
@@ -31,7 +32,7 @@ std::string num(double v) {
 std::string percent(double v) { return fmt::format("{:.2f} %", 100.0 * v); }
 
 constexpr const char* kStyle = R"css(
-:root { --ink: #1d2330; --muted: #5b6475; --rule: #d5d9e0; --band: #f4f6f9; --ok: #1e7b34; --bad: #b3261e; }
+:root { --ink: #1d2330; --muted: #5b6475; --rule: #d5d9e0; --band: #f4f6f9; --ok: #1e7b34; --bad: #b3261e; --warn: #9a5b00; }
 * { box-sizing: border-box; }
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", sans-serif; color: var(--ink);
        max-width: 1200px; margin: 0 auto; padding: 24px 28px 48px; line-height: 1.45; font-size: 15px; }
@@ -51,6 +52,8 @@ td.text, th.text { text-align: left; }
 tbody tr:nth-child(even) { background: #fafbfc; }
 .ok { color: var(--ok); font-weight: 600; }
 .bad { color: var(--bad); font-weight: 600; }
+.warn { color: var(--warn); font-weight: 600; }
+.muted { color: var(--muted); }
 .swatch { display: inline-block; width: 11px; height: 11px; border-radius: 2px; margin-right: 6px; vertical-align: -1px; }
 figure { margin: 12px 0 20px; }
 figure img { display: block; max-width: 100%; height: auto; border: 1px solid var(--rule); }
@@ -97,50 +100,85 @@ std::string base64_encode(std::string_view bytes) {
     return out;
 }
 
-std::string render_html(const CompareResult& r, const std::string& measured_name, const std::string& simulated_name,
-                        const std::vector<Figure>& figures) {
-    const std::string units = escape(r.units);
+namespace {
+
+// What every section reads.
+struct Page {
+    const CompareResult& r;
+    const std::string& measured_name;
+    const std::string& simulated_name;
+    const std::vector<Figure>& figures;
+    std::string units;  ///< HTML-escaped
+};
+
+std::string figures_of(const Page& p, const std::string& section, bool grid) {
     std::string h;
-    auto figures_of = [&](const std::string& section, bool grid) {
-        if (grid) h += "<div class=\"grid\">\n";
-        for (const auto& f : figures) {
-            if (f.section != section) continue;
+    if (grid) h += "<div class=\"grid\">\n";
+    for (const auto& f : p.figures) {
+        if (f.section != section) continue;
+        if (!f.svg.empty())
+            h += fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", f.svg, escape(f.caption));
+        else
             h += fmt::format("<figure><img src=\"data:image/png;base64,{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                             base64_encode(read_file(f.png)), escape(f.png.filename().string()), escape(f.caption));
-        }
-        if (grid) h += "</div>\n";
-    };
-    auto swatch = [&](std::size_t index) {
-        return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
-    };
+                             base64_encode(read_file(f.file)), escape(f.file.filename().string()), escape(f.caption));
+    }
+    if (grid) h += "</div>\n";
+    return h;
+}
 
-    h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name), escape(simulated_name));
-    h += fmt::format("<style>{}</style>\n</head>\n<body>\n", kStyle);
-    h += "<header>\n<h1>Measured vs simulated Stokes images</h1>\n";
-    h += fmt::format("<p class=\"meta\">Measured <code>{}</code> ({}×{}) · simulated <code>{}</code> ({}×{}) · "
-                     "Stokes in {} · written by <code>tirpol compare</code></p>\n</header>\n",
-                     escape(measured_name), r.width, r.height, escape(simulated_name), r.simulated_width,
-                     r.simulated_height, units);
+std::string swatch(std::size_t index) {
+    return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
+}
 
-    // Summary.
+const char* verdict_class(ZVerdict v) {
+    switch (v) {
+        case ZVerdict::Consistent: return "ok";
+        case ZVerdict::SigmaOverestimated: return "warn";
+        case ZVerdict::ExceedsNoise: return "bad";
+        case ZVerdict::NoData: break;
+    }
+    return "muted";
+}
+
+std::string verdict_span(ZVerdict v) {
+    return fmt::format("<span class=\"{}\">{}</span>", verdict_class(v), escape(to_string(v)));
+}
+
+std::string kelvin_text(const std::optional<KelvinBias>& k) {
+    if (!k) return "–";
+    return fmt::format("{} ± {} K", num(k->bias_k), num(k->bias_sigma_k));
+}
+
+std::string header_section(const Page& p) {
+    const auto& r = p.r;
+    return fmt::format("<header>\n<h1>Measured vs simulated Stokes images</h1>\n<p class=\"meta\">Measured <code>{}</code> "
+                       "({}×{}) · simulated <code>{}</code> ({}×{}) · Stokes in {} · written by <code>{}</code></p>\n"
+                       "</header>\n",
+                       escape(p.measured_name), r.width, r.height, escape(p.simulated_name), r.simulated_width,
+                       r.simulated_height, p.units,
+                       escape(r.provenance.tool_version.empty() ? "tirpol compare" : r.provenance.tool_version));
+}
+
+std::string summary_section(const Page& p) {
+    const auto& r = p.r;
     const auto& g = r.registration;
-    const double residual = std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]);
-    h += "<section id=\"summary\">\n<h2>Summary</h2>\n<table class=\"summary\">\n<tbody>\n";
+    std::string h = "<section id=\"summary\">\n<h2>Summary</h2>\n<table class=\"summary\">\n<tbody>\n";
     h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n", escape(to_string(g.method)),
                      escape(g.model), escape(g.note));
     h += fmt::format("<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
                      "correlation of S0 gradients after registration)</td></tr>\n",
-                     num(residual), num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
-    for (const auto& region : r.regions) {
-        const auto& z = region.z.at("all");
-        const bool ok = consistent_with_noise(z);
-        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><span class=\"{}\">{}</span>: |z| &gt; 2 in {} of {} "
-                         "S0/S1/S2 values (noise alone: 4.55 %); S0 bias {} {}</td></tr>\n",
-                         swatch(static_cast<std::size_t>(&region - r.regions.data())), escape(region.name),
-                         ok ? "ok" : "bad", ok ? "consistent with noise" : "differences exceed noise",
-                         percent(z.fraction_above_2), z.pixel_count, num(region.stats.at("S0").bias), units);
+                     num(std::hypot(g.residual_shift_px[0], g.residual_shift_px[1])), num(g.residual_shift_px[0]),
+                     num(g.residual_shift_px[1]));
+    for (std::size_t i = 0; i < r.regions.size(); ++i) {
+        const auto& region = r.regions[i];
+        std::string per_quantity;
+        for (const auto& q : kZQuantities)
+            per_quantity += fmt::format("{}{}: {} ({})", per_quantity.empty() ? "" : "; ", q,
+                                        verdict_span(region.verdicts.at(q)), escape(explain(region.verdicts.at(q), region.z.at(q))));
+        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong> — {}. S0 bias {} {}{}</td></tr>\n",
+                         swatch(i), escape(region.name), verdict_span(region.verdict), per_quantity,
+                         num(region.stats.at("S0").bias), p.units,
+                         region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
     }
     h += "</tbody>\n</table>\n";
     if (!r.notes.empty()) {
@@ -148,11 +186,44 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
         for (const auto& note : r.notes) h += "<li>" + escape(note) + "</li>\n";
         h += "</ul>\n";
     }
-    h += "</section>\n";
+    return h + "</section>\n";
+}
 
-    // Registration details.
-    h += "<section id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th><th>Value</th>"
-         "</tr></thead>\n<tbody>\n";
+std::string provenance_section(const Page& p) {
+    const auto& pv = p.r.provenance;
+    std::string h = "<section id=\"provenance\">\n<h2>Provenance</h2>\n<table class=\"summary\">\n<tbody>\n";
+    h += fmt::format("<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
+                     pv.tool_version.empty() ? "tirpol report library (no CLI)" : escape(pv.tool_version));
+    if (!pv.command_line.empty())
+        h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n", escape(pv.command_line));
+    if (p.r.band_um)
+        h += fmt::format("<tr><td>Band</td><td class=\"text\">{}–{} µm (from {})</td></tr>\n", num((*p.r.band_um)[0]),
+                         num((*p.r.band_um)[1]), escape(p.r.band_source));
+    h += "</tbody>\n</table>\n";
+    if (pv.inputs.empty()) return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
+    h += "<table>\n<caption>Input files</caption>\n<thead><tr><th class=\"text\">Role</th><th class=\"text\">File</th>"
+         "<th>Bytes</th><th class=\"text\">SHA-256</th></tr></thead>\n<tbody>\n";
+    for (const auto& f : pv.inputs)
+        h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td><td>{}</td><td class=\"text\"><code>{}"
+                         "</code></td></tr>\n",
+                         escape(f.role), escape(f.path.string()), f.size_bytes, f.sha256);
+    h += "</tbody>\n</table>\n";
+    for (const auto& f : pv.inputs) {
+        if (f.attributes.empty()) continue;
+        h += fmt::format("<table>\n<caption>Header of the {} file (scene, band, spp, seed, capture time, calibration "
+                         "files — as written by the tool that made it)</caption>\n<tbody>\n",
+                         escape(f.role));
+        for (const auto& [name, value] : f.attributes)
+            h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td></tr>\n", escape(name), escape(value));
+        h += "</tbody>\n</table>\n";
+    }
+    return h + "</section>\n";
+}
+
+std::string registration_section(const Page& p) {
+    const auto& g = p.r.registration;
+    std::string h = "<section id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th>"
+                    "<th>Value</th></tr></thead>\n<tbody>\n";
     h += fmt::format("<tr><td>Method / model</td><td>{} / {}</td></tr>\n", escape(to_string(g.method)), escape(g.model));
     const auto& m = g.measured_to_simulated;
     h += fmt::format("<tr><td>H (measured → simulated pixels)</td><td><code>[{} {} {}; {} {} {}; {} {} {}]</code></td></tr>\n",
@@ -163,34 +234,55 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
                      g.control_point_rms_px ? num(*g.control_point_rms_px) : "–");
     h += fmt::format("<tr><td>ECC correlation coefficient</td><td>{}</td></tr>\n",
                      g.ecc_correlation ? num(*g.ecc_correlation) : "–");
+    if (g.identity_edge_mismatch && g.registered_edge_mismatch)
+        h += fmt::format("<tr><td>S0 edge mismatch, identity / ECC warp</td><td>{} / {}</td></tr>\n",
+                         num(*g.identity_edge_mismatch), num(*g.registered_edge_mismatch));
     h += fmt::format("<tr><td>Residual shift after registration (dx, dy) [px]</td><td>{}, {}</td></tr>\n",
                      num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
-    h += "</tbody>\n</table>\n</section>\n";
+    return h + "</tbody>\n</table>\n</section>\n";
+}
 
-    h += "<section id=\"regions\">\n<h2>Regions of interest</h2>\n";
-    figures_of("regions", false);
-    h += "</section>\n";
+std::string regions_section(const Page& p) {
+    return "<section id=\"regions\">\n<h2>Regions of interest</h2>\n" + figures_of(p, "regions", false) + "</section>\n";
+}
 
-    h += "<section id=\"images\">\n<h2>Stokes images side by side</h2>\n<p>Measured and registered simulated images "
-         "share one colour scale per quantity; differences are measured − simulated.</p>\n";
-    figures_of("images", false);
-    h += "</section>\n";
+std::string images_section(const Page& p) {
+    return "<section id=\"images\">\n<h2>Stokes images side by side</h2>\n<p>Measured and registered simulated images "
+           "share one colour scale per quantity; differences are measured − simulated.</p>\n" +
+           figures_of(p, "images", false) + "</section>\n";
+}
 
-    // Statistics.
-    h += "<section id=\"statistics\">\n<h2>Region statistics</h2>\n<p>Means and standard deviations over the pixels of "
-         "each region where both images have data; bias = mean(m − s), RMSE = √mean((m − s)²).</p>\n";
+std::string statistics_section(const Page& p) {
+    const auto& r = p.r;
+    std::string h = "<section id=\"statistics\">\n<h2>Region statistics</h2>\n<p>Means and standard deviations over the "
+                    "pixels of each region where both images have data; bias = mean(m − s) ± its standard error "
+                    "(pixels treated as independent), RMSE = √mean((m − s)²).</p>\n";
     for (const auto& q : kComparedQuantities) {
-        const std::string qu = q == "DoLP" ? "dimensionless" : units;
+        const std::string qu = q == "DoLP" ? "dimensionless" : p.units;
         h += fmt::format("<table>\n<caption>{} [{}]</caption>\n<thead><tr><th>Region</th><th>Pixels</th>"
                          "<th>Measured mean</th><th>Measured std</th><th>Simulated mean</th><th>Simulated std</th>"
                          "<th>Bias</th><th>RMSE</th></tr></thead>\n<tbody>\n",
                          q, qu);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& s = r.regions[i].stats.at(q);
-            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ± {}</td>"
                              "<td>{}</td></tr>\n",
                              swatch(i), escape(r.regions[i].name), s.pixel_count, num(s.measured_mean),
-                             num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias), num(s.rmse));
+                             num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias),
+                             num(s.bias_sigma), num(s.rmse));
+        }
+        h += "</tbody>\n</table>\n";
+    }
+    if (r.band_um) {
+        h += fmt::format("<table>\n<caption>S0 bias as a brightness-temperature difference ({}–{} µm band, box "
+                         "response)</caption>\n<thead><tr><th>Region</th><th>T_b of simulated S0 [K]</th><th>dL/dT "
+                         "[W/(m²·sr·K)]</th><th>S0 bias [K]</th></tr></thead>\n<tbody>\n",
+                         num((*r.band_um)[0]), num((*r.band_um)[1]));
+        for (std::size_t i = 0; i < r.regions.size(); ++i) {
+            const auto& k = r.regions[i].s0_bias_k;
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i),
+                             escape(r.regions[i].name), k ? num(k->temperature_k) : "–", k ? num(k->radiance_dT) : "–",
+                             kelvin_text(k));
         }
         h += "</tbody>\n</table>\n";
     }
@@ -198,7 +290,7 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
         h += fmt::format("<table>\n<caption>S1 contrast against the background region “{}” [{}]</caption>\n<thead><tr>"
                          "<th>Region</th><th>Measured</th><th>Simulated</th><th>Measured − simulated</th></tr></thead>\n"
                          "<tbody>\n",
-                         escape(r.background), units);
+                         escape(r.background), p.units);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& region = r.regions[i];
             if (region.name == r.background || !region.s1_contrast_measured) continue;
@@ -208,18 +300,46 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
         }
         h += "</tbody>\n</table>\n";
     }
-    h += "</section>\n";
+    return h + "</section>\n";
+}
 
-    // Statistical comparison.
-    h += "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p>Per pixel, z = (m − s)/√(σ_m² + "
-         "σ_s²) with σ_m the measurement uncertainty and σ_s the standard error of the simulation's Monte-Carlo mean. "
-         "If the simulation is right and the noise Gaussian, |z| &gt; 2 in 4.55 % and |z| &gt; 3 in 0.27 % of "
-         "pixels. A region is <span class=\"ok\">consistent with noise</span> when its |z| &gt; 2 fraction is within "
-         "three binomial standard deviations of 4.55 %.</p>\n";
+std::string aop_section(const Page& p) {
+    const auto& r = p.r;
+    std::string h = fmt::format(
+        "<section id=\"aop\">\n<h2>Angle of polarization</h2>\n<p>AoP is an axial angle (θ and θ + 180° are the "
+        "same): means and spreads are taken on 2θ (Mardia &amp; Jupp, <i>Directional Statistics</i>, §9.3.2), over the "
+        "pixels where √(S1² + S2²) exceeds {:.0f} σ of its noise in <em>both</em> images — elsewhere AoP is the angle "
+        "of noise.</p>\n<table>\n<thead><tr><th>Region</th><th>Polarized pixels</th><th>Measured mean [°]</th>"
+        "<th>Simulated mean [°]</th><th>Mean difference [°]</th><th>Circular std of difference [°]</th></tr></thead>\n"
+        "<tbody>\n",
+        kAopSignificanceSigma);
+    for (std::size_t i = 0; i < r.regions.size(); ++i) {
+        const auto& a = r.regions[i].aop;
+        const bool any = a.pixel_count > 0;
+        h += fmt::format("<tr><td>{}{}</td><td>{} of {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                         swatch(i), escape(r.regions[i].name), a.pixel_count, a.region_pixel_count,
+                         any ? num(a.measured_mean_deg) : "–", any ? num(a.simulated_mean_deg) : "–",
+                         any ? num(a.difference_mean_deg) : "–", any ? num(a.difference_std_deg) : "–");
+    }
+    return h + "</tbody>\n</table>\n</section>\n";
+}
+
+std::string noise_section(const Page& p) {
+    const auto& r = p.r;
+    std::string h = fmt::format(
+        "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p>Per pixel, z = (m − s)/√(σ_m² + "
+        "σ_s²) with σ_m the measurement uncertainty and σ_s the standard error of the simulation's Monte-Carlo mean. "
+        "If the simulation is right and the noise Gaussian, |z| &gt; 2 in 4.55 % and |z| &gt; 3 in 0.27 % of pixels "
+        "and RMS z = 1. Each of S0, S1, S2 gets its own verdict (a pooled one can hide a quantity that alone exceeds "
+        "the noise): <span class=\"bad\">exceeds noise</span> when the |z| &gt; 2 fraction is more than three binomial "
+        "standard deviations above 4.55 % or RMS z &gt; {}; <span class=\"warn\">σ overestimated</span> when RMS z "
+        "&lt; {} — the stated σ is too large and the test too blunt to see differences of that size; "
+        "<span class=\"ok\">consistent with noise</span> otherwise. A region's verdict is the worst of its three.</p>\n",
+        kRmsHigh, kRmsLow);
     h += fmt::format("<table>\n<caption>Noise used [{}]</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">"
                      "Measured σ from</th><th>Median σ_m</th><th class=\"text\">Simulated σ from</th><th>Median σ_s</th>"
                      "</tr></thead>\n<tbody>\n",
-                     units);
+                     p.units);
     for (const auto& [q, s] : r.noise)
         h += fmt::format("<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td class=\"text\">{}</td><td>{}</td></tr>\n",
                          q, escape(s.measured), num(s.measured_sigma_median), escape(s.simulated),
@@ -231,30 +351,51 @@ std::string render_html(const CompareResult& r, const std::string& measured_name
     for (std::size_t i = 0; i < r.regions.size(); ++i)
         for (const auto& q : {"S0", "S1", "S2", "all"}) {
             const auto& z = r.regions[i].z.at(q);
-            const bool ok = consistent_with_noise(z);
+            const bool pooled = std::string(q) == "all";
             h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-                             "<td class=\"text {}\">{}</td></tr>\n",
-                             swatch(i), escape(r.regions[i].name), std::string(q) == "all" ? "S0+S1+S2" : q,
-                             z.pixel_count, percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean),
-                             num(z.rms), ok ? "ok" : "bad", ok ? "consistent" : "exceeds noise");
+                             "<td class=\"text\">{}</td></tr>\n",
+                             swatch(i), escape(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q, z.pixel_count,
+                             percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
+                             pooled ? "(reference only)" : verdict_span(r.regions[i].verdicts.at(q)));
         }
     h += fmt::format("<tr><td>expected (noise only)</td><td></td><td></td><td>{}</td><td>{}</td><td>0</td><td>1</td>"
                      "<td></td></tr>\n</tbody>\n</table>\n",
                      percent(kNormalTailAbove2), percent(kNormalTailAbove3));
-    figures_of("z", false);
-    h += "</section>\n";
+    return h + figures_of(p, "z", false) + "</section>\n";
+}
 
-    h += "<section id=\"scatter\">\n<h2>Scatter plots</h2>\n";
-    figures_of("scatter", true);
-    h += "</section>\n<section id=\"histograms\">\n<h2>Histograms of the differences</h2>\n";
-    figures_of("histograms", true);
-    h += "</section>\n";
+std::string scatter_section(const Page& p) {
+    return "<section id=\"scatter\">\n<h2>Scatter plots</h2>\n" + figures_of(p, "scatter", true) + "</section>\n";
+}
 
-    h += "<footer>Files next to this page: <code>report.json</code> (every number above), <code>comparison.exr</code> "
-         "(full-resolution measured, registered simulated, difference and z planes) and the PNG figures. Stokes "
-         "convention: S1 = I0 − I90, S2 = I45 − I135 in the camera frame (polarizer 0° along image rows); DoLP and "
-         "AoP are recomputed from S0, S1, S2 after registration.</footer>\n</body>\n</html>\n";
-    return h;
+std::string histograms_section(const Page& p) {
+    return "<section id=\"histograms\">\n<h2>Histograms of the differences</h2>\n" + figures_of(p, "histograms", true) +
+           "</section>\n";
+}
+
+std::string footer_section(const Page&) {
+    return "<footer>Files next to this page: <code>report.json</code> (every number above), <code>comparison.exr</code> "
+           "(full-resolution measured, registered simulated, difference and z planes) and the PNG figures. Stokes "
+           "convention: S1 = I0 − I90, S2 = I45 − I135 in the camera frame (polarizer 0° along image rows); DoLP and "
+           "AoP are recomputed from S0, S1, S2 after registration.</footer>\n";
+}
+
+// The page, top to bottom: a new section is one function and one entry here.
+const std::vector<std::function<std::string(const Page&)>> kSections = {
+    header_section,     summary_section, provenance_section, registration_section, regions_section, images_section,
+    statistics_section, aop_section,     noise_section,      scatter_section,      histograms_section, footer_section};
+
+}  // namespace
+
+std::string render_html(const CompareResult& r, const std::string& measured_name, const std::string& simulated_name,
+                        const std::vector<Figure>& figures) {
+    const Page page{r, measured_name, simulated_name, figures, escape(r.units)};
+    std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                    "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name), escape(simulated_name));
+    h += fmt::format("<style>{}</style>\n</head>\n<body>\n", kStyle);
+    for (const auto& section : kSections) h += section(page);
+    return h + "</body>\n</html>\n";
 }
 
 }  // namespace tirpol::report::detail

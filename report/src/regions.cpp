@@ -21,6 +21,28 @@ PixelPoint parse_point(const ConfigNode& node) {
 
 }  // namespace
 
+std::string regions_yaml(const RegionSet& set) {
+    // JSON strings are valid YAML double-quoted scalars for the characters a name holds.
+    auto quoted = [](const std::string& text) {
+        std::string out = "\"";
+        for (char c : text) {
+            if (c == '"' || c == '\\') out += '\\';
+            out += c;
+        }
+        return out + "\"";
+    };
+    std::string y = "regions:\n";
+    for (const auto& region : set.regions) {
+        y += "  - name: " + quoted(region.name) + "\n    polygon: [";
+        for (std::size_t i = 0; i < region.polygon.size(); ++i)
+            y += fmt::format("{}[{:.17g}, {:.17g}]", i ? ", " : "", region.polygon[i].x, region.polygon[i].y);
+        y += "]\n";
+    }
+    if (!set.background.empty()) y += "background: " + quoted(set.background) + "\n";
+    if (!set.noise_region.empty()) y += "noise_region: " + quoted(set.noise_region) + "\n";
+    return y;
+}
+
 RegionSet parse_regions(const ConfigNode& root) {
     if (!root.is_map()) root.fail("expected a mapping with 'regions' (and optionally 'background', 'noise_region')");
     root.check_keys({"regions", "background", "noise_region"});

@@ -188,6 +188,29 @@ std::array<double, 2> residual_shift(const Image& measured, const Image& registe
     return {d.x, d.y};
 }
 
+// Mismatch of the S0 edges after mapping the simulation through `h`: mean squared difference of the
+// gradient magnitudes of both images blurred at σ = 2 px, over pixels at least 6 px from missing data.
+// The blur makes the smoothing of a sub-pixel bilinear resampling negligible, so an aligned noisy
+// pair does not look "better" warped just because interpolation averages its noise.
+double edge_mismatch(const Image& measured, const Image& simulated, const cv::Matx33d& h, const cv::Mat& valid) {
+    const cv::Mat m = plane(measured, "S0");
+    cv::Mat s = plane(simulated, "S0");
+    if (h != cv::Matx33d::eye())
+        cv::warpPerspective(s.clone(), s, h, m.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT,
+                            cv::Scalar(kNaN));
+    auto edges = [](const cv::Mat& img) {
+        cv::Mat smooth, gx, gy, mag;
+        cv::GaussianBlur(fill_non_finite(img, finite_mask(img)), smooth, {0, 0}, 2.0);
+        cv::Sobel(smooth, gx, CV_32F, 1, 0, 3);
+        cv::Sobel(smooth, gy, CV_32F, 0, 1, 3);
+        cv::magnitude(gx, gy, mag);
+        return mag;
+    };
+    cv::Mat d = edges(m) - edges(s);
+    cv::Mat d2 = d.mul(d);
+    return cv::mean(d2, valid)[0];
+}
+
 }  // namespace
 
 RegistrationMethod parse_registration_method(std::string_view text) {
@@ -286,10 +309,38 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         reg.note = ecc.note.empty() ? fmt::format("ECC {} on S0 gradient magnitude", reg.model) : ecc.note;
         if (!same_size)
             reg.note += fmt::format("; simulated {}×{} resized to {}×{} first", simulated.width(), simulated.height(), w, h);
-        if (same_size && max_corner_displacement(homography, w, h) < 0.05) {
-            homography = cv::Matx33d::eye();
-            reg.model = "identity";
-            reg.note = "images already match (ECC displacement < 0.05 px everywhere): identity used";
+        if (same_size) {
+            // Keep the pixel grids as they are unless the warp matches the edges significantly better.
+            cv::Mat warped = plane(simulated, "S0");
+            cv::warpPerspective(warped.clone(), warped, homography, warped.size(),
+                                cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(kNaN));
+            cv::Mat valid = finite_mask(m_s0) & finite_mask(plane(simulated, "S0")) & finite_mask(warped);
+            cv::erode(valid, valid, cv::getStructuringElement(cv::MORPH_RECT, {13, 13}));
+            const double displacement = max_corner_displacement(homography, w, h);
+            if (cv::countNonZero(valid) >= 64) {
+                reg.identity_edge_mismatch = edge_mismatch(measured, simulated, cv::Matx33d::eye(), valid);
+                reg.registered_edge_mismatch = edge_mismatch(measured, simulated, homography, valid);
+            }
+            const bool improves = reg.identity_edge_mismatch && reg.registered_edge_mismatch &&
+                                  *reg.registered_edge_mismatch < (1.0 - kRegistrationMinImprovement) * *reg.identity_edge_mismatch;
+            if (displacement < 0.05 || !improves) {
+                const std::string found = fmt::format("ECC found a {} moving the corners by up to {:.2f} px", reg.model,
+                                                      displacement);
+                homography = cv::Matx33d::eye();
+                reg.model = "identity";
+                reg.note = displacement < 0.05
+                               ? "images already match (ECC displacement < 0.05 px everywhere): identity used"
+                           : reg.identity_edge_mismatch && reg.registered_edge_mismatch
+                               ? fmt::format("images already aligned: {}, but it reduces the S0 edge mismatch by only "
+                                             "{:.1f} % (< {:.0f} %), so the pixel grids are compared as they are",
+                                             found, 100.0 * (1.0 - *reg.registered_edge_mismatch / *reg.identity_edge_mismatch),
+                                             100.0 * kRegistrationMinImprovement)
+                               : fmt::format("{}, but too few valid pixels to show it improves the match: identity used",
+                                             found);
+            } else {
+                reg.note += fmt::format("; reduces the S0 edge mismatch by {:.1f} % against identity",
+                                        100.0 * (1.0 - *reg.registered_edge_mismatch / *reg.identity_edge_mismatch));
+            }
         }
     }
     reg.measured_to_simulated = to_array(homography);

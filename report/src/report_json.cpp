@@ -11,13 +11,33 @@ nlohmann::json optional_number(const std::optional<double>& v) { return v ? nloh
 nlohmann::json to_json(const QuantityStats& s) {
     return {{"pixel_count", s.pixel_count},   {"measured_mean", s.measured_mean}, {"measured_std", s.measured_std},
             {"simulated_mean", s.simulated_mean}, {"simulated_std", s.simulated_std}, {"bias", s.bias},
-            {"rmse", s.rmse}};
+            {"rmse", s.rmse}, {"bias_sigma", s.bias_sigma}};
 }
 
 nlohmann::json to_json(const ZStats& z) {
     return {{"pixel_count", z.pixel_count}, {"fraction_above_2", z.fraction_above_2},
             {"fraction_above_3", z.fraction_above_3}, {"mean", z.mean}, {"rms", z.rms},
-            {"consistent_with_noise", consistent_with_noise(z)}};
+            {"consistent_with_noise", consistent_with_noise(z)}, {"verdict", to_string(z_verdict(z))}};
+}
+
+nlohmann::json to_json(const AopStats& a) {
+    if (a.pixel_count == 0)
+        return {{"region_pixel_count", a.region_pixel_count}, {"pixel_count", 0}, {"measured_mean_deg", nullptr},
+                {"simulated_mean_deg", nullptr}, {"difference_mean_deg", nullptr}, {"difference_std_deg", nullptr}};
+    return {{"region_pixel_count", a.region_pixel_count}, {"pixel_count", a.pixel_count},
+            {"measured_mean_deg", a.measured_mean_deg},   {"simulated_mean_deg", a.simulated_mean_deg},
+            {"difference_mean_deg", a.difference_mean_deg}, {"difference_std_deg", a.difference_std_deg}};
+}
+
+nlohmann::json to_json(const Provenance& p) {
+    nlohmann::json inputs = nlohmann::json::array();
+    for (const auto& f : p.inputs) {
+        nlohmann::json attributes = nlohmann::json::object();
+        for (const auto& [name, value] : f.attributes) attributes[name] = value;
+        inputs.push_back({{"role", f.role}, {"path", f.path.string()}, {"sha256", f.sha256},
+                          {"size_bytes", f.size_bytes}, {"attributes", attributes}});
+    }
+    return {{"tool_version", p.tool_version}, {"command_line", p.command_line}, {"inputs", inputs}};
 }
 
 }  // namespace
@@ -27,6 +47,9 @@ std::string comparison_json(const CompareResult& r) {
     j["measured"] = {{"width", r.width}, {"height", r.height}};
     j["simulated"] = {{"width", r.simulated_width}, {"height", r.simulated_height}};
     j["units"] = r.units;
+    j["provenance"] = to_json(r.provenance);
+    j["band_um"] = r.band_um ? nlohmann::json(*r.band_um) : nlohmann::json(nullptr);
+    j["band_source"] = r.band_source;
     const auto& g = r.registration;
     const double residual = std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]);
     j["registration"] = {{"method", to_string(g.method)},
@@ -38,6 +61,8 @@ std::string comparison_json(const CompareResult& r) {
                          {"residual_misalignment_px", residual},
                          {"max_corner_displacement_px", g.max_corner_displacement_px},
                          {"rotation_deg", g.rotation_deg},
+                         {"identity_edge_mismatch", optional_number(g.identity_edge_mismatch)},
+                         {"registered_edge_mismatch", optional_number(g.registered_edge_mismatch)},
                          {"note", g.note}};
     for (const auto& [q, s] : r.noise)
         j["noise"][q] = {{"measured_source", s.measured},
@@ -58,17 +83,28 @@ std::string comparison_json(const CompareResult& r) {
         else
             jr["s1_contrast"] = nullptr;
         for (const auto& [q, z] : region.z) jr["z"][q] = to_json(z);
+        jr["verdict"] = to_string(region.verdict);
+        jr["aop"] = to_json(region.aop);
+        if (const auto& k = region.s0_bias_k)
+            jr["s0_bias_k"] = {{"temperature_k", k->temperature_k}, {"radiance_dT_w_m2_sr_k", k->radiance_dT},
+                               {"bias_k", k->bias_k}, {"bias_sigma_k", k->bias_sigma_k}};
+        else
+            jr["s0_bias_k"] = nullptr;
         j["regions"].push_back(std::move(jr));
     }
     for (const auto& [name, range] : r.colour_scales) j["colour_scales"][name] = range;
     j["notes"] = r.notes;
     nlohmann::json pngs = nlohmann::json::array();
     for (const auto& p : r.pngs) pngs.push_back(p.filename().string());
+    nlohmann::json svgs = nlohmann::json::array();
+    for (const auto& p : r.svgs) svgs.push_back(p.filename().string());
     j["files"] = {{"html", r.html.filename().string()},
                   {"json", r.json.filename().string()},
                   {"exr", r.exr.filename().string()},
-                  {"pngs", pngs}};
-    return j.dump(2) + "\n";
+                  {"pngs", pngs},
+                  {"svgs", svgs}};
+    // Replace invalid UTF-8 (from EXR attributes or region names) rather than throwing.
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace tirpol::report

@@ -1,5 +1,6 @@
 #include "tirpol/report/statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -36,6 +37,7 @@ QuantityStats quantity_stats(const std::vector<float>& measured, const std::vect
     st.simulated_std = std::sqrt(var_s / n);
     st.bias = sum_d / n;
     st.rmse = std::sqrt(sum_d2 / n);
+    if (st.pixel_count > 1) st.bias_sigma = std::sqrt(std::max(0.0, sum_d2 - n * st.bias * st.bias) / (n - 1.0) / n);
     return st;
 }
 

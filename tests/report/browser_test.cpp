@@ -74,7 +74,7 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
     const std::string log = tirpol::read_file(dir / "chromium.log");
     for (const char* heading : {"Measured vs simulated Stokes images", "Summary", "Registration", "Regions of interest",
                                 "Stokes images side by side", "Region statistics", "Do the differences exceed the noise?",
-                                "Scatter plots", "Histograms of the differences"})
+                                "Scatter plots", "Histograms of the differences", "Provenance", "Angle of polarization"})
         EXPECT_THAT(dom, HasSubstr(std::string(">") + heading + "<")) << heading;
     std::size_t images = 0;
     for (std::size_t at = dom.find("<img "); at != std::string::npos; at = dom.find("<img ", at + 1)) {
@@ -90,7 +90,11 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
             ++figures;
     }
     EXPECT_EQ(images, figures);
-    EXPECT_GE(images, 15u);
+    EXPECT_GE(images, 7u);
+    std::size_t svgs = 0;  // plots, inline
+    for (std::size_t at = dom.find("<svg "); at != std::string::npos; at = dom.find("<svg ", at + 1)) ++svgs;
+    EXPECT_EQ(svgs, result.svgs.size());
+    EXPECT_GE(svgs, 9u);
     EXPECT_THAT(log, ::testing::Not(HasSubstr("Uncaught")));
     EXPECT_THAT(log, ::testing::Not(HasSubstr("ERROR:CONSOLE")));
     EXPECT_THAT(log, ::testing::Not(HasSubstr("Failed to load resource")));

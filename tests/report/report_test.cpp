@@ -13,6 +13,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/report/comparison_report.h"
 
 using namespace tirpol::report;
@@ -86,6 +87,87 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
     EXPECT_TRUE(consistent_with_noise(centre.z.at("S0")));
     EXPECT_NEAR(region(r, "panel_1").stats.at("S1").bias, 0.0,
                 4.0 * sigma_total / std::sqrt(region(r, "panel_1").stats.at("S1").pixel_count));
+    // Verdicts per quantity: only S1 of the centre panel exceeds, and that decides the region.
+    EXPECT_EQ(centre.verdicts.at("S1"), ZVerdict::ExceedsNoise);
+    EXPECT_EQ(centre.verdicts.at("S0"), ZVerdict::Consistent);
+    EXPECT_EQ(centre.verdicts.at("S2"), ZVerdict::Consistent);
+    EXPECT_EQ(centre.verdict, ZVerdict::ExceedsNoise);
+    EXPECT_EQ(region(r, "panel_1").verdict, ZVerdict::Consistent);
+}
+
+TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
+    // The measurement states σ three times its real noise: z has RMS ≈ 1/3 … 0.5, almost never |z| > 2;
+    // the fraction test alone would call it consistent.
+    test::SyntheticPairOptions o;
+    o.measured_uncertainty = false;
+    o.simulated_variance = false;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.measured_frame_sigma = 3.0 * o.measured_sigma;
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const auto& all = r.regions.at(0);
+    EXPECT_TRUE(consistent_with_noise(all.z.at("S0")));
+    EXPECT_LT(all.z.at("S0").rms, kRmsLow);
+    EXPECT_EQ(all.verdicts.at("S0"), ZVerdict::SigmaOverestimated);
+    EXPECT_EQ(all.verdict, ZVerdict::SigmaOverestimated);
+    const auto json = nlohmann::json::parse(tirpol::read_file(dir / "report.json"));
+    EXPECT_EQ(json["regions"][0]["verdict"], "σ overestimated");
+    EXPECT_THAT(tirpol::read_file(dir / "report.html"), HasSubstr("too large"));
+}
+
+TEST(ReportComparison, S0BiasInKelvinFollowsThePlanckSlopeOfTheBand) {
+    // Measured S0 raised by dL/dT · 0.5 K at the simulated level: the bias in kelvin is 0.5 K within
+    // its standard error, and that error is the radiance one divided by dL/dT.
+    test::SyntheticPairOptions o;
+    const auto pair0 = test::make_synthetic_pair(o);
+    auto measured = pair0.measured;
+    auto simulated = pair0.simulated;
+    simulated.attributes()["band_um"] = std::vector<double>{8.0, 14.0};
+    const tirpol::Band band(8.0, 14.0);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair0.regions_yaml, "rois.yaml"));
+    // Panel 1 (k = 0) is uniform: S0 = 24 + ramp + 3 W/(m²·sr) ≈ 27.8.
+    tirpol::test::TempDir dir;
+    const CompareResult base = write_comparison_report(measured, simulated, options, dir / "base");
+    const auto& p1 = region(base, "panel_1");
+    ASSERT_TRUE(p1.s0_bias_k.has_value());
+    const double t = band.brightness_temperature(p1.stats.at("S0").simulated_mean);
+    EXPECT_NEAR(p1.s0_bias_k->temperature_k, t, 1e-9);
+    EXPECT_NEAR(p1.s0_bias_k->radiance_dT, band.radiance_dT(t), 1e-12);
+    const float offset = static_cast<float>(0.5 * band.radiance_dT(t));
+    for (auto& v : measured.channel("S0")) v += offset;
+    const CompareResult shifted = write_comparison_report(measured, simulated, options, dir / "shifted");
+    const auto& k = *region(shifted, "panel_1").s0_bias_k;
+    EXPECT_NEAR(k.bias_k - p1.s0_bias_k->bias_k, 0.5, 1e-3);
+    EXPECT_NEAR(k.bias_k, 0.5, 4.0 * k.bias_sigma_k);
+    EXPECT_NEAR(k.bias_sigma_k, region(shifted, "panel_1").stats.at("S0").bias_sigma / k.radiance_dT, 1e-12);
+    EXPECT_EQ(shifted.band_source, "band_um attribute of simulated");
+    // Without a band the kelvin bias is absent and the report says why.
+    simulated.attributes().erase("band_um");
+    const CompareResult none = write_comparison_report(measured, simulated, options, dir / "none");
+    EXPECT_FALSE(region(none, "panel_1").s0_bias_k.has_value());
+    EXPECT_THAT(none.notes.back(), HasSubstr("not converted to kelvin"));
+}
+
+TEST(ReportComparison, AopStatisticsUsePolarizedPixelsOnly) {
+    // Scene: panels have S1 ≈ −0.15 … −0.63 (AoP 90°), the background S1 = 0.02 with σ(S1) ≈ 0.078:
+    // the panels count, the background is mostly left out.
+    test::SyntheticPairOptions o;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const auto& p9 = region(r, "panel_9").aop;
+    EXPECT_GT(p9.pixel_count, p9.region_pixel_count * 9 / 10);
+    EXPECT_NEAR(p9.measured_mean_deg, 90.0, 2.0);
+    EXPECT_NEAR(p9.difference_mean_deg, 0.0, 1.0);
+    const auto& bg = region(r, "background").aop;
+    EXPECT_LT(bg.pixel_count, bg.region_pixel_count / 10);
 }
 
 TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
@@ -128,8 +210,50 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
          at = html.find("src=\"data:image/png;base64,", at + 1))
         ++embedded;
-    EXPECT_GE(images, 15u);
+    EXPECT_GE(images, 7u);  // regions, five Stokes panels, z panel
     EXPECT_EQ(images, embedded);
+    // Plots are inline SVG, one per file written.
+    std::size_t svgs = 0;
+    for (std::size_t at = html.find("<svg "); at != std::string::npos; at = html.find("<svg ", at + 1)) ++svgs;
+    EXPECT_EQ(svgs, r.svgs.size());
+    EXPECT_EQ(svgs, 9u);  // z histogram, 4 scatter plots, 4 difference histograms
+}
+
+TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
+    // A region named in German with a snowflake: SVG text keeps it as written (Hershey fonts dropped it).
+    test::SyntheticPairOptions o;
+    const auto pair = test::make_synthetic_pair(o);
+    std::string yaml = pair.regions_yaml;
+    yaml.replace(yaml.find("panel_1"), 7, "\"Schnee ❄ – Lack\"");
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.regions = parse_regions(tirpol::ConfigNode::parse(yaml, "rois.yaml"));
+    tirpol::test::TempDir dir;
+    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const std::string svg = tirpol::read_file(dir / "scatter_S0.svg");
+    EXPECT_THAT(svg, HasSubstr(">Schnee ❄ – Lack</text>"));
+    EXPECT_THAT(tirpol::read_file(dir / "report.html"), HasSubstr(">Schnee ❄ – Lack</text>"));
+    // x tick labels (centred under the axis): equally spaced by 1, 2, 2.5 or 5 × 10^k, each printed
+    // with no more digits than the step needs.
+    std::vector<double> ticks;
+    const std::string marker = "font-size=\"12\" text-anchor=\"middle\">";
+    for (std::size_t at = svg.find(marker); at != std::string::npos; at = svg.find(marker, at + 1)) {
+        std::string label = svg.substr(at + marker.size(), svg.find('<', at) - at - marker.size());
+        if (label.rfind("−", 0) == 0) label = "-" + label.substr(std::string("−").size());
+        ticks.push_back(std::stod(label));
+        EXPECT_LE(label.size(), 7u) << label;
+    }
+    ASSERT_GE(ticks.size(), 3u);
+    const double step = ticks[1] - ticks[0];
+    const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
+    EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 2.5) < 1e-9 ||
+                std::abs(mantissa - 5) < 1e-9)
+        << step;
+    for (std::size_t i = 1; i < ticks.size(); ++i) EXPECT_NEAR(ticks[i] - ticks[i - 1], step, 1e-9 * step);
+    for (double t : ticks) EXPECT_NEAR(std::remainder(t, step), 0.0, 1e-9 * step) << t;
+    // Ticks lie within the data range of S0 (about 24 … 34 W/(m²·sr) in this scene).
+    EXPECT_GT(ticks.front(), 20.0);
+    EXPECT_LT(ticks.back(), 40.0);
 }
 
 TEST(ReportComparison, MeasuredNoiseFallsBackToUserSigmaFlatRegionOrImmerkaer) {

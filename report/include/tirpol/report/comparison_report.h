@@ -13,9 +13,12 @@
 #include <vector>
 
 #include "tirpol/core/image.h"
+#include "tirpol/report/angle_statistics.h"
+#include "tirpol/report/provenance.h"
 #include "tirpol/report/registration.h"
 #include "tirpol/report/regions.h"
 #include "tirpol/report/statistics.h"
+#include "tirpol/report/verdict.h"
 
 namespace tirpol::report {
 
@@ -36,6 +39,20 @@ struct CompareOptions {
     /// Names shown in the report and in error messages (usually the file paths).
     std::string measured_name = "measured";
     std::string simulated_name = "simulated";
+    /// Spectral band [lo, hi] µm for the S0 bias in kelvin; default: the measured EXR's `band_um`
+    /// attribute, else the simulated one's; without any, no kelvin bias is given.
+    std::optional<std::array<double, 2>> band_um;
+    /// Tool version, command line and input files shown in the report (filled by the CLI).
+    Provenance provenance;
+};
+
+/// S0 bias as a brightness-temperature difference: bias / (dL/dT) at the brightness temperature of the
+/// simulated mean S0, with the standard error of the mean difference carried the same way.
+struct KelvinBias {
+    double temperature_k = 0.0;      ///< brightness temperature of the simulated mean S0
+    double radiance_dT = 0.0;        ///< dL/dT of the band at temperature_k, W/(m²·sr·K)
+    double bias_k = 0.0;
+    double bias_sigma_k = 0.0;
 };
 
 /// Where the measured σ of one quantity came from, and its typical value.
@@ -52,7 +69,11 @@ struct RegionResult {
     std::map<std::string, QuantityStats> stats;  ///< by quantity (kComparedQuantities)
     /// mean S1(region) − mean S1(background), W/(m²·sr); absent without a background region.
     std::optional<double> s1_contrast_measured, s1_contrast_simulated;
-    std::map<std::string, ZStats> z;  ///< by quantity (kZQuantities) and "all" (pooled)
+    std::map<std::string, ZStats> z;  ///< by quantity (kZQuantities) and "all" (pooled, for reference only)
+    std::map<std::string, ZVerdict> verdicts;  ///< by quantity (kZQuantities)
+    ZVerdict verdict = ZVerdict::NoData;       ///< the worst of `verdicts` (never the pooled z)
+    AopStats aop;                              ///< AoP over significantly polarized pixels
+    std::optional<KelvinBias> s0_bias_k;       ///< absent without a band or a positive simulated S0
 };
 
 struct CompareResult {
@@ -64,19 +85,47 @@ struct CompareResult {
     std::vector<RegionResult> regions;
     std::string background;                ///< background region name or empty
     std::filesystem::path html, json;      ///< written files
-    std::vector<std::filesystem::path> pngs;
+    std::vector<std::filesystem::path> pngs;  ///< image figures
+    std::vector<std::filesystem::path> svgs;  ///< plots (scatter, histograms), also inlined in the page
     std::vector<std::string> notes;        ///< warnings shown in the report (e.g. no simulation variance)
     /// Colour-scale limits [min, max] of the figures: "S0" (shared by measured and simulated),
     /// "S0_difference", …, "z"; in the units of the quantity.
     std::map<std::string, std::array<double, 2>> colour_scales;
     std::filesystem::path exr;             ///< comparison.exr: full-resolution planes behind the figures
+    std::optional<std::array<double, 2>> band_um;  ///< band used for the kelvin bias
+    std::string band_source;                       ///< "--band-um", "measured band_um attribute", …
+    Provenance provenance;
+};
+
+/// The planes behind the numbers and figures, on the measured grid.
+struct ComparisonPlanes {
+    Image measured, simulated;  ///< simulated registered; both with DoLP and AoP derived from S0..S2
+    std::map<std::string, std::vector<float>> difference;  ///< S0, S1, S2, DoLP, AoP (AoP wrapped to ±90°)
+    std::map<std::string, std::vector<float>> z;           ///< S0, S1, S2
+    std::map<std::string, std::vector<float>> total_variance;  ///< σ_m² + σ_s² of S0, S1, S2
+    std::vector<Region> regions;
+    std::vector<std::vector<std::uint8_t>> masks;  ///< one per region
+};
+
+struct Comparison {
+    CompareResult result;  ///< every number (file paths empty until written)
+    ComparisonPlanes planes;
 };
 
 /// Checks that `image` has S0, S1 and S2; throws tirpol::Error "<name>: <role> Stokes image lacks
 /// channel(s) …; channels present: …" otherwise.
 void require_stokes_channels(const Image& image, const std::string& name, const std::string& role);
 
-/// Compares `measured` with `simulated` and writes report.html, report.json and the PNGs into
+/// Compares `measured` with `simulated`: registration, statistics, verdicts; writes nothing. Throws
+/// tirpol::Error for missing channels, bad regions, or a registration that is impossible without
+/// control points.
+Comparison compare(const Image& measured, const Image& simulated, const CompareOptions& options);
+
+/// Writes report.html, report.json, comparison.exr and the figures of `comparison` into `report_dir`
+/// (created if needed) and records their paths in comparison.result.
+void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir);
+
+/// compare() then write_report(): compares `measured` with `simulated` and writes report.html, report.json and the PNGs into
 /// `report_dir` (created if needed). Returns every number written. Throws tirpol::Error for missing
 /// channels, bad regions, or a registration that is impossible without control points.
 CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,

@@ -52,6 +52,10 @@ RegionSet load_regions(const std::filesystem::path& path);
 /// Same from an already parsed YAML root.
 RegionSet parse_regions(const ConfigNode& root);
 
+/// `set` as a regions YAML that load_regions reads back to the same set (names quoted, vertices with
+/// 17 significant digits), so a report computed in memory can be repeated with `tirpol compare --rois`.
+std::string regions_yaml(const RegionSet& set);
+
 /// The region rasterized on a width × height grid: 1 inside (edges included), 0 outside.
 /// Throws tirpol::Error naming the region's location if a vertex lies outside the image
 /// ([-0.5, width-0.5] × [-0.5, height-0.5]) or the polygon covers no pixel.

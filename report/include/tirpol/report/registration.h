@@ -48,6 +48,9 @@ struct ControlPoint {
 /// Throws tirpol::Error naming file:line:field for a malformed entry or an unknown key.
 std::vector<ControlPoint> load_control_points(const std::filesystem::path& path);
 
+/// Relative reduction of the S0 edge mismatch an automatic warp must bring to replace the identity.
+inline constexpr double kRegistrationMinImprovement = 0.10;
+
 struct Registration {
     RegistrationMethod method = RegistrationMethod::None;
     /// Model actually used: "identity", "homography", "affine" or "translation".
@@ -64,11 +67,17 @@ struct Registration {
     double max_corner_displacement_px = 0.0;
     /// Rotation of the image axes implied by H at the image centre, degrees (counter-clockwise).
     double rotation_deg = 0.0;
+    /// Automatic registration of equal-size images: mean squared difference of the S0 edge strength
+    /// (gradient magnitude at σ = 2 px) without and with the warp; the warp is kept only when it lowers
+    /// the mismatch by more than kRegistrationMinImprovement.
+    std::optional<double> identity_edge_mismatch, registered_edge_mismatch;
     /// What happened, for the report ("images already match", "ECC homography did not converge; used affine").
     std::string note;
 };
 
-/// Registers `simulated` onto `measured` (both with an S0 channel). With Auto, images of different
+/// Registers `simulated` onto `measured` (both with an S0 channel). With Auto, images of equal size
+/// keep the identity unless the ECC warp lowers the S0 edge mismatch by more than
+/// kRegistrationMinImprovement (an aligned pair is never warped); images of different
 /// sizes are first resized when their aspect ratios agree within 1 %; otherwise, and for None with
 /// different sizes, throws tirpol::Error asking for control points. ControlPoints needs ≥ 4 pairs.
 Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,

@@ -25,6 +25,8 @@ struct QuantityStats {
     double measured_mean = 0.0, measured_std = 0.0;
     double simulated_mean = 0.0, simulated_std = 0.0;
     double bias = 0.0, rmse = 0.0;
+    /// Standard error of `bias`: sample std of m − s over √n (pixels treated as independent).
+    double bias_sigma = 0.0;
 };
 
 /// `measured`, `simulated` and `mask` have the same length; a pixel counts when mask ≠ 0 and both
