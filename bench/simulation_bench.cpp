@@ -1,22 +1,30 @@
-// Renderer throughput on a paper scene (nine panels under a clear night sky) at 640×512, against the
-// raw Embree ray-cast throughput of the same scene and camera rays measured in the same run, so the
-// cost of polarized shading is a ratio. Also: S1 noise on a flat panel (spatial std over its pixels,
-// which are uniform in expectation) versus time for a few samples-per-pixel and bounce settings, and
-// memory. Run: build/bench/tirpol_simulation_bench (from inside the source tree).
+// Renderer speed, as ratios measured in one run (docs/simulation.md "Speed"):
+//  - ShadingOverhead: CPU time of a render's pixel loop over the CPU time of bare rtcIntersect1 /
+//    rtcOccluded1 replaying exactly the rays that render cast (camera, bounce, shadow and auxiliary
+//    rays, recorded in order), both on one thread: what the polarized shading costs per ray.
+//  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
+//    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
+//  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
+//    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
+//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped.
+// Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <fstream>
+#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "tirpol/core/source_tree.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 
@@ -25,117 +33,232 @@ namespace {
 using namespace tirpol;
 using namespace tirpol::simulation;
 
-std::filesystem::path find_scene(const std::string& name) { return find_config("scenes/" + name); }
+double thread_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
-double peak_rss_mb() {
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmHWM:") {
-            double kb = 0.0;
-            status >> kb;
-            return kb / 1024.0;
-        }
-        status.ignore(1 << 20, '\n');
+/// Every ray of a render, in the order it was cast (single-threaded recording).
+class RayLog final : public RayRecorder {
+public:
+    struct Ray {
+        float origin[3], direction[3];
+        bool occlusion;
+    };
+    void record(const Vec3& o, const Vec3& d, double /*t_max*/, bool occlusion) override {
+        const std::lock_guard lock(m_mutex);
+        rays.push_back({{static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z())},
+                        {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())},
+                        occlusion});
     }
-    return 0.0;
+    std::vector<Ray> rays;
+
+private:
+    std::mutex m_mutex;
+};
+
+/// CPU seconds to cast `log`'s rays through the scene's BVH with bare Embree queries, one thread.
+double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
+    const double start = thread_cpu_seconds();
+    double checksum = 0.0;
+    for (const auto& r : log.rays) {
+        const Vec3 o(r.origin[0], r.origin[1], r.origin[2]), d(r.direction[0], r.direction[1], r.direction[2]);
+        if (r.occlusion)
+            checksum += tracer.occluded(o, d, 0.0, 1e30) ? 1.0 : 0.0;
+        else
+            checksum += std::min(tracer.nearest_distance(o, d), 1e3);
+    }
+    benchmark::DoNotOptimize(checksum);
+    return thread_cpu_seconds() - start;
 }
 
-/// Spatial std of S1 over the pixels of object `name` away from its edges (a flat, uniform panel),
-/// and (in `reported_sigma`) the median of the renderer's own per-pixel error √S1_var there.
-double s1_noise_on(const Scene& scene, const Image& img, const std::string& name, double& reported_sigma) {
-    std::uint32_t id = 0;
-    while (id < scene.objects.size() && scene.objects[id].name != name) ++id;
-    std::vector<double> values, sigmas;
-    for (int y = 2; y < img.height() - 2; ++y)
-        for (int x = 2; x < img.width() - 2; ++x) {
-            bool inside = true;
-            for (int d = -2; d <= 2 && inside; ++d)
-                inside = img.at("object_id", x + d, y) == static_cast<float>(id) && img.at("object_id", x, y + d) == static_cast<float>(id);
-            if (inside) {
-                values.push_back(img.at("S1", x, y));
-                sigmas.push_back(std::sqrt(img.at("S1_var", x, y)));
-            }
-        }
-    std::nth_element(sigmas.begin(), sigmas.begin() + static_cast<std::ptrdiff_t>(sigmas.size() / 2), sigmas.end());
-    reported_sigma = sigmas[sigmas.size() / 2];
-    double mean = 0.0, var = 0.0;
-    for (double v : values) mean += v;
-    mean /= static_cast<double>(values.size());
-    for (double v : values) var += (v - mean) * (v - mean);
-    return std::sqrt(var / static_cast<double>(values.size() - 1));
-}
-
-/// Casts the camera rays of every pixel and sample (no shading) through the same BVH.
-double embree_rays_per_second(const Scene& scene, int spp) {
-    const auto start = std::chrono::steady_clock::now();
-    int hits = 0;
-    std::size_t rays = 0;
-    for (int y = 0; y < scene.camera.height(); ++y)
-        for (int x = 0; x < scene.camera.width(); ++x)
-            for (int s = 0; s < spp; ++s) {
-                const Vec3 d = scene.camera.ray_direction(x + (s + 0.5) / spp, y + 0.5);
-                hits += scene.tracer->intersect(scene.camera.position(), d).has_value() ? 1 : 0;
-                ++rays;
-            }
-    benchmark::DoNotOptimize(hits);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return static_cast<double>(rays) / seconds;
-}
-
-void BM_RenderPanels640x512(benchmark::State& state) {
-    const int spp = static_cast<int>(state.range(0));
-    const int bounces = static_cast<int>(state.range(1));
-    Scene scene = load_scene(find_scene("panels_night.yaml"));
-    scene.camera = scene.camera.resized(640, 512);
-    scene.sampling.samples_per_pixel = spp;
-    scene.sampling.max_bounces = bounces;
+void BM_ShadingOverhead(benchmark::State& state) {
+    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(320, 256);
+    scene.sampling.samples_per_pixel = 8;
+    RenderOptions one_thread;
+    one_thread.threads = 1;
+    RayLog log;
+    RenderOptions recording = one_thread;
+    recording.ray_recorder = &log;
     RenderStatistics stats;
-    Image img;
+    render(scene, recording, &stats);
+    const auto recorded = static_cast<double>(log.rays.size());
+    double render_cpu = 0.0, replay_cpu = 0.0;
     for (auto _ : state) {
-        img = render(scene, {}, &stats);
+        render(scene, one_thread, &stats);
+        render_cpu = stats.trace_cpu_seconds;
+        replay_cpu = replay_cpu_seconds(*scene.tracer, log);
+        state.SetIterationTime(render_cpu);
+    }
+    state.counters["rays"] = recorded;
+    state.counters["render_cpu_s"] = render_cpu;
+    state.counters["embree_cpu_s"] = replay_cpu;
+    state.counters["overhead"] = render_cpu / replay_cpu;
+    std::printf("shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.2f CPU s, "
+                "bare Embree replay %.2f CPU s, ratio %.2f\n",
+                recorded, recorded / (320.0 * 256.0 * 8.0), render_cpu, replay_cpu, render_cpu / replay_cpu);
+}
+BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// Mean of √S1_var over the pixels whose centre ray hits a surface.
+double mean_s1_standard_error(const Image& img) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < img.pixel_count(); ++i)
+        if (img.channel("object_id")[i] >= 0.0f) {
+            sum += std::sqrt(img.channel("S1_var")[i]);
+            ++n;
+        }
+    return sum / static_cast<double>(std::max<std::size_t>(n, 1));
+}
+
+void BM_PanelsNightEqualNoise(benchmark::State& state) {
+    constexpr double kTargetW = 0.042;  // W/(m²·sr): ≈ 50 mK NEDT in 8–14 µm near 280 K (issue 13)
+    constexpr int kPilotSpp = 8;
+    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(640, 512);
+    scene.sampling.samples_per_pixel = kPilotSpp;
+    RenderStatistics pilot_stats, stats;
+    const double pilot_error = mean_s1_standard_error(render(scene, {}, &pilot_stats));
+    const int spp = static_cast<int>(std::ceil(kPilotSpp * std::pow(pilot_error / kTargetW, 2.0)));
+    scene.sampling.samples_per_pixel = spp;
+    double error = 0.0;
+    for (auto _ : state) {
+        error = mean_s1_standard_error(render(scene, {}, &stats));
         state.SetIterationTime(stats.seconds);
     }
-    // The Embree reference runs on one thread: the shading overhead compares rays per thread-second.
-    const double embree_rps = embree_rays_per_second(scene, 1);
-    const double trace_seconds = stats.seconds - stats.setup_seconds;
-    const double render_rps = static_cast<double>(stats.scene_rays + stats.shadow_rays) / trace_seconds;
-    const double threads = std::max(1u, std::thread::hardware_concurrency());
-    const double nedt_radiance = 0.08 * scene.band.radiance_dT(280.0);  // the paper's camera NEDT, 80 mK (§3.1)
+    state.counters["spp"] = spp;
     state.counters["seconds"] = stats.seconds;
-    state.counters["table_seconds"] = stats.setup_seconds;
-    state.counters["Mrays_per_s"] = render_rps * 1e-6;
-    state.counters["embree_1thread_Mrays_per_s"] = embree_rps * 1e-6;
-    state.counters["shading_overhead"] = embree_rps / (render_rps / threads);
-    double reported_sigma = 0.0;
-    state.counters["s1_noise"] = s1_noise_on(scene, img, "panel_matte_white_paint", reported_sigma);
-    state.counters["s1_reported_sigma"] = reported_sigma;
-    state.counters["s1_noise_over_nedt"] = state.counters["s1_noise"] / nedt_radiance;
-    state.counters["geometry_MB"] = static_cast<double>(scene.tracer->memory_bytes()) / 1048576.0;
-    state.counters["peak_rss_MB"] = peak_rss_mb();
-    std::printf("render 640x512 spp=%d bounces=%d: %.2f s (%.2f s tables), %.2f Mrays/s (all threads), Embree alone %.2f Mrays/s (1 thread), "
-                "overhead ×%.1f per ray, S1 noise %.4g W/(m²·sr) = %.2f × NEDT(80 mK) (median reported σ %.4g)\n",
-                spp, bounces, stats.seconds, stats.setup_seconds, render_rps * 1e-6, embree_rps * 1e-6,
-                static_cast<double>(state.counters["shading_overhead"]), static_cast<double>(state.counters["s1_noise"]),
-                static_cast<double>(state.counters["s1_noise_over_nedt"]), reported_sigma);
+    state.counters["setup_seconds"] = stats.setup_seconds;
+    state.counters["s1_std_error"] = error;
+    state.counters["cpu_s_per_Mpath"] = stats.trace_cpu_seconds / (640.0 * 512.0 * spp * 1e-6);
+    std::printf("panels_night 640x512: pilot %d spp -> mean S1 std error %.4f; %d spp -> %.4f W/(m2 sr) in %.2f s "
+                "(%.2f s emissivity tables, %.1f CPU s tracing)\n",
+                kPilotSpp, pilot_error, spp, error, stats.seconds, stats.setup_seconds, stats.trace_cpu_seconds);
 }
-BENCHMARK(BM_RenderPanels640x512)
-    ->Args({4, 4})
-    ->Args({16, 4})
-    ->Args({16, 1})
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kSecond);
+BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Embree alone: the camera rays of the same scene at 640×512, single thread.
-void BM_EmbreeCameraRays640x512(benchmark::State& state) {
-    Scene scene = load_scene(find_scene("panels_night.yaml"));
-    scene.camera = scene.camera.resized(640, 512);
-    double rps = 0.0;
-    for (auto _ : state) rps = embree_rays_per_second(scene, 1);
-    state.counters["Mrays_per_s"] = rps * 1e-6;
+/// Relative linear-polarization noise of one render, from two renders a and b with independent
+/// seeds over the surface pixels `mask`: √(mean over pixels of ((a−b)²/2 in S1 and S2)) / mean S0.
+/// S1² + S2² is invariant under the per-pixel rotation between the two renderers' Stokes frames.
+double relative_linear_noise(const Image& a, const Image& b, const std::vector<bool>& mask, const std::string& suffix) {
+    double var = 0.0, s0 = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+        if (!mask[i]) continue;
+        for (const char* c : {"S1", "S2"}) {
+            const double d = a.channel(c + suffix)[i] - b.channel(c + suffix)[i];
+            var += 0.5 * d * d;
+        }
+        s0 += 0.5 * (a.channel("S0" + suffix)[i] + b.channel("S0" + suffix)[i]);
+        ++n;
+    }
+    return std::sqrt(var / static_cast<double>(n)) / (s0 / static_cast<double>(n));
 }
-BENCHMARK(BM_EmbreeCameraRays640x512)->Iterations(1)->Unit(benchmark::kSecond);
+
+/// Writes Mitsuba 3's version of reflection_compare.yaml and its zenith-peaked envmap (lat-long,
+/// rows from the zenith down; Mitsuba's envmap is y-up, rotated here to tirpol's z-up).
+std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene) {
+    const int w = 256, h = 128;
+    Image env(w, h);
+    for (const char* c : {"R", "G", "B"}) env.add_channel(c);
+    for (int y = 0; y < h; ++y) {
+        const double theta = kPi * (y + 0.5) / h;
+        // Sky radiance at this zenith angle as tirpol sees it, integrated over the band.
+        const Vec3 d(std::sin(theta), 0.0, std::cos(theta));
+        double l = 0.0;
+        for (const auto& node : scene.band.nodes()) l += node.weight_um * scene.sky.spectral_radiance(node.wavelength_um, d);
+        for (int x = 0; x < w; ++x)
+            for (const char* c : {"R", "G", "B"}) env.channel(c)[env.index(x, y)] = static_cast<float>(l);
+    }
+    write_exr(dir / "sky.exr", env);
+    std::ofstream xml(dir / "scene.xml");
+    xml << R"(<scene version="3.0.0">
+  <default name="spp" value="16"/>
+  <default name="seed" value="0"/>
+  <integrator type="stokes"><integrator type="path"><integer name="max_depth" value="9"/></integrator></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/><string name="fov_axis" value="x"/>
+    <transform name="to_world"><lookat origin="0, -5, 1.5" target="0, 0, 0.6" up="0, 0, 1"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="320"/><integer name="height" value="256"/>
+      <string name="component_format" value="float32"/><rfilter type="box"/></film>
+  </sensor>
+  <emitter type="envmap"><string name="filename" value="sky.exr"/>
+    <transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="10"/></transform>
+    <bsdf type="roughconductor"><string name="distribution" value="beckmann"/><float name="alpha" value="0.28284"/>
+      <spectrum name="eta" value="1.5"/><spectrum name="k" value="0.05"/></bsdf>
+  </shape>
+  <shape type="sphere"><point name="center" value="0, 0, 0.6"/><float name="radius" value="0.6"/>
+    <bsdf type="conductor"><spectrum name="eta" value="1.5"/><spectrum name="k" value="0.05"/></bsdf>
+  </shape>
+</scene>
+)";
+    return dir / "scene.xml";
+}
+
+void BM_ReflectionEqualNoise(benchmark::State& state) {
+    constexpr double kTargetRelativeNoise = 0.01;
+    constexpr int kSpp = 16;
+    Scene scene = load_scene(find_config("scenes/reflection_compare.yaml"));
+    scene.sampling.samples_per_pixel = kSpp;
+    Image a, b;
+    double seconds = 0.0;
+    for (auto _ : state) {
+        RenderStatistics sa, sb;
+        scene.sampling.seed = 1;
+        a = render(scene, {}, &sa);
+        scene.sampling.seed = 2;
+        b = render(scene, {}, &sb);
+        seconds = 0.5 * (sa.seconds + sb.seconds);
+        state.SetIterationTime(seconds);
+    }
+    std::vector<bool> mask(a.pixel_count());
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = a.channel("object_id")[i] >= 0.0f;
+    const double noise = relative_linear_noise(a, b, mask, "");
+    const double tirpol_time = seconds * std::pow(noise / kTargetRelativeNoise, 2.0);
+    state.counters["tirpol_relative_noise"] = noise;
+    state.counters["tirpol_equal_noise_s"] = tirpol_time;
+    std::printf("reflection_compare 320x256 %d spp: tirpol %.2f s per render, relative S1/S2 noise %.4f -> %.2f s to 1 %%\n",
+                kSpp, seconds, noise, tirpol_time);
+
+    const char* mitsuba = std::getenv("TIRPOL_MITSUBA");
+    if (!mitsuba || !*mitsuba) {
+        std::printf("Mitsuba 3 comparison: skipped (set TIRPOL_MITSUBA to a mitsuba executable built with "
+                    "scalar_mono_polarized; docs/simulation.md)\n");
+        return;
+    }
+    const auto dir = std::filesystem::temp_directory_path() / "tirpol_mitsuba_bench";
+    std::filesystem::create_directories(dir);
+    const auto xml = write_mitsuba_scene(dir, scene);
+    std::vector<Image> images;
+    double mitsuba_seconds = 0.0;
+    for (int seed : {1, 2}) {
+        const auto out = dir / ("out" + std::to_string(seed) + ".exr");
+        const std::string command = std::string("'") + mitsuba + "' -m scalar_mono_polarized -D spp=" + std::to_string(kSpp) +
+                                    " -D seed=" + std::to_string(seed) + " -o '" + out.string() + "' '" + xml.string() + "' > /dev/null";
+        const auto start = std::chrono::steady_clock::now();
+        if (std::system(command.c_str()) != 0) {
+            state.SkipWithError(("Mitsuba 3 failed: " + command).c_str());
+            return;
+        }
+        mitsuba_seconds += 0.5 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        images.push_back(read_exr(out));
+    }
+    const double mitsuba_noise = relative_linear_noise(images[0], images[1], mask, ".R");
+    const double mitsuba_time = mitsuba_seconds * std::pow(mitsuba_noise / kTargetRelativeNoise, 2.0);
+    state.counters["mitsuba_relative_noise"] = mitsuba_noise;
+    state.counters["mitsuba_equal_noise_s"] = mitsuba_time;
+    state.counters["tirpol_over_mitsuba"] = tirpol_time / mitsuba_time;
+    std::printf("Mitsuba 3 %d spp: %.2f s per render (process wall time), relative noise %.4f -> %.2f s to 1 %%; "
+                "tirpol/Mitsuba equal-noise time ratio %.2f\n",
+                kSpp, mitsuba_seconds, mitsuba_noise, mitsuba_time, tirpol_time / mitsuba_time);
+}
+BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 }  // namespace
 

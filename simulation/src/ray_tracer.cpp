@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
@@ -138,6 +139,17 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
     hit.shading_normal = ns.squaredNorm() > 1e-20 ? ns.normalized() : hit.geometric_normal;
     hit.uv = b0 * obj.mesh.uvs[tri[0]] + hit.b1 * obj.mesh.uvs[tri[1]] + hit.b2 * obj.mesh.uvs[tri[2]];
     return hit;
+}
+
+double RayTracer::nearest_distance(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray = make_ray(origin, direction, t_min, t_max);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_embree->scene, &context, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<double>::infinity() : rh.ray.tfar;
 }
 
 bool RayTracer::occluded(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <memory>
 
@@ -28,6 +29,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Offset of a new ray's origin off the surface, relative to the scene's scale (float BVH).
 double ray_epsilon(const Vec3& p) { return 1e-5 * (1.0 + p.cwiseAbs().maxCoeff()); }
 
+/// CPU time of the calling thread: what a tile costs, whatever else the machine runs.
+std::uint64_t thread_cpu_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ULL + static_cast<std::uint64_t>(t.tv_nsec);
+}
+
 MuellerMatrix rotation_between(const StokesFrame& from, const StokesFrame& to) {
     return frame_rotation(frame_rotation_angle(from, to));
 }
@@ -40,7 +48,8 @@ struct PixelResult {
 /// Everything a path needs that does not change during a render.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats) : m_scene(scene) {
+    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats, RayRecorder* recorder)
+        : m_scene(scene), m_recorder(recorder) {
         std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
         // Increasing wavelengths: the emissivity tables' columns.
         std::sort(nodes.begin(), nodes.end(),
@@ -98,6 +107,7 @@ public:
         const int max_bounces = m_scene.sampling.max_bounces;
         for (int bounce = 0;; ++bounce) {
             ++scene_rays;
+            if (m_recorder) m_recorder->record(origin, direction, 1e30, false);
             const auto hit = m_scene.tracer->intersect(origin, direction);
             if (!hit) {
                 double l = sky.spectral_radiance(lambda, direction);
@@ -127,6 +137,7 @@ public:
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
             if (sun && sun->direction.dot(n) > 0.0 && sun->direction.dot(ng) > 0.0) {
                 ++shadow_rays;
+                if (m_recorder) m_recorder->record(p, sun->direction, 1e30, true);
                 if (!m_scene.tracer->occluded(p, sun->direction, 0.0, 1e30)) {
                     const Vec3 wi_local = basis.to_local(sun->direction);
                     const MuellerMatrix f = brdf.eval(wi_local, wo_local, lambda);
@@ -161,9 +172,46 @@ public:
 
 private:
     const Scene& m_scene;
+    RayRecorder* m_recorder;
     std::vector<double> m_cdf, m_wavelengths;
     double m_band_weight_um = 0.0;
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
+};
+
+/// Variance of a pixel's mean over spp samples drawn from spp wavelength strata, by collapsing
+/// adjacent strata into groups of two (the last of three when spp is odd): Var(mean) ≈ Σ_groups
+/// m/(m − 1)·Σ_i (x_i − x̄_g)² / spp² (Cochran, Sampling Techniques, 3rd ed. 1977, §5A.12). Its
+/// expectation is the true variance plus the squared differences between paired strata's means,
+/// so it stays conservative, but unlike the independent-sample variance it does not count the
+/// spectral spread that stratification removes from the mean. NaN with one sample.
+class StratifiedVariance {
+public:
+    explicit StratifiedVariance(int spp) : m_spp(spp) {}
+
+    void add(const Eigen::Vector3d& x) {
+        m_group[m_size++] = x;
+        // A pair followed by exactly one more sample (odd spp) waits for it: the last group has three.
+        const bool wait_for_last = m_size == 2 && m_index + 2 == m_spp;
+        ++m_index;
+        if (m_size < 2 || wait_for_last) return;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (int i = 0; i < m_size; ++i) mean += m_group[i];
+        mean /= m_size;
+        Eigen::Vector3d ss = Eigen::Vector3d::Zero();
+        for (int i = 0; i < m_size; ++i) ss += (m_group[i] - mean).cwiseAbs2();
+        m_total += ss * (m_size / (m_size - 1.0));
+        m_size = 0;
+    }
+
+    Eigen::Vector3d of_mean() const {
+        if (m_spp < 2) return Eigen::Vector3d::Constant(kNaN);
+        return m_total / (static_cast<double>(m_spp) * m_spp);
+    }
+
+private:
+    int m_spp, m_index = 0, m_size = 0;
+    Eigen::Vector3d m_group[3];
+    Eigen::Vector3d m_total = Eigen::Vector3d::Zero();
 };
 
 struct Channels {
@@ -189,7 +237,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
     std::unique_ptr<const PathTracer> tracer_ptr;
-    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats); });
+    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder); });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
@@ -204,18 +252,18 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const auto tile_count = static_cast<std::size_t>(tiles_x) * static_cast<std::size_t>(tiles_y);
     std::unique_ptr<ProgressReporter> progress;
     if (options.show_progress) progress = std::make_unique<ProgressReporter>("render", tile_count);
-    std::atomic<std::uint64_t> scene_rays{0}, shadow_rays{0};
+    std::atomic<std::uint64_t> scene_rays{0}, shadow_rays{0}, trace_cpu_ns{0};
 
     auto render_tile = [&](std::size_t tile_index) {
         const int tx = static_cast<int>(tile_index % static_cast<std::size_t>(tiles_x));
         const int ty = static_cast<int>(tile_index / static_cast<std::size_t>(tiles_x));
+        const std::uint64_t cpu_start_ns = thread_cpu_ns();
         std::uint64_t rays = 0, shadows = 0;
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
-                // Welford's running mean and variance (Welford, Technometrics 4(3), 1962).
-                StokesVector mean = StokesVector::Zero();
-                Eigen::Vector3d m2 = Eigen::Vector3d::Zero();
+                StokesVector sum = StokesVector::Zero();
+                StratifiedVariance variance(spp);
                 for (int s = 0; s < spp; ++s) {
                     SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
                     const double u = x + rng.next(), v = y + rng.next();
@@ -225,17 +273,17 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                     const Vec3 d = camera.ray_direction(u, v);
                     const StokesVector sample =
                         tracer.trace(camera.position(), d, camera.image_frame(d), wavelength_u, rng, rays, shadows);
-                    const StokesVector delta = sample - mean;
-                    mean += delta / (s + 1);
-                    m2 += delta.head<3>().cwiseProduct((sample - mean).head<3>());
+                    sum += sample;
+                    variance.add(sample.head<3>());
                 }
+                const StokesVector mean = sum / spp;
                 ch.s0[i] = static_cast<float>(mean[0]);
                 ch.s1[i] = static_cast<float>(mean[1]);
                 ch.s2[i] = static_cast<float>(mean[2]);
                 ch.s3[i] = static_cast<float>(mean[3]);
                 ch.dolp[i] = static_cast<float>(tirpol::dolp(mean));
                 ch.aop[i] = static_cast<float>(aop_deg_0_180(mean));
-                const Eigen::Vector3d var = spp > 1 ? Eigen::Vector3d(m2 / (spp - 1.0) / spp) : Eigen::Vector3d::Constant(kNaN);
+                const Eigen::Vector3d var = variance.of_mean();
                 ch.s0_var[i] = static_cast<float>(var[0]);
                 ch.s1_var[i] = static_cast<float>(var[1]);
                 ch.s2_var[i] = static_cast<float>(var[2]);
@@ -243,6 +291,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                 // Auxiliary channels from the pixel-centre ray.
                 const Vec3 d = camera.ray_direction(x + 0.5, y + 0.5);
                 ++rays;
+                if (options.ray_recorder) options.ray_recorder->record(camera.position(), d, 1e30, false);
                 const auto hit = scene.tracer->intersect(camera.position(), d);
                 if (hit) {
                     Vec3 n = hit->shading_normal;
@@ -265,6 +314,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         }
         scene_rays += rays;
         shadow_rays += shadows;
+        trace_cpu_ns += thread_cpu_ns() - cpu_start_ns;
         if (progress) progress->advance();
     };
 
@@ -292,6 +342,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         *statistics = stats;
         statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         statistics->setup_seconds = setup_seconds;
+        statistics->trace_cpu_seconds = static_cast<double>(trace_cpu_ns.load()) * 1e-9;
         statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);
         statistics->scene_rays = scene_rays.load();
         statistics->shadow_rays = shadow_rays.load();

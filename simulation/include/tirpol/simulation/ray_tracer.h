@@ -41,6 +41,9 @@ public:
     /// Nearest hit along origin + t·direction for t in (t_min, t_max).
     std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& direction, double t_min = 0.0,
                                         double t_max = 1e30) const;
+    /// Distance to the nearest hit (+inf on a miss) from rtcIntersect1 alone, without the hit record
+    /// `intersect` builds: the reference cost of a ray for benchmarks.
+    double nearest_distance(const Vec3& origin, const Vec3& direction, double t_min = 0.0, double t_max = 1e30) const;
     /// True if anything lies along the segment (t_min, t_max).
     bool occluded(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const;
 

@@ -25,6 +25,16 @@
 
 namespace tirpol::simulation {
 
+/// Receives every ray query a render makes, in the order each thread makes them (benchmarks replay
+/// them through bare Embree to price the shading; bench/simulation_bench.cpp). Called concurrently
+/// from the render threads: implementations synchronise.
+class RayRecorder {
+public:
+    virtual ~RayRecorder() = default;
+    /// A nearest-hit query (`occlusion` false) or a shadow query along origin + t·direction, t < t_max.
+    virtual void record(const Vec3& origin, const Vec3& direction, double t_max, bool occlusion) = 0;
+};
+
 struct RenderOptions {
     int threads = 0;             ///< 0: all cores (TBB's default concurrency)
     bool show_progress = false;  ///< progress bar with ETA on stderr (core ProgressReporter)
@@ -32,11 +42,13 @@ struct RenderOptions {
     /// Folder of the on-disk emissivity-table cache (materials emissivity_cache.h); unset: the default
     /// ($TIRPOL_CACHE_DIR, $XDG_CACHE_HOME/tirpol or ~/.cache/tirpol); empty: memory cache only.
     std::optional<std::filesystem::path> emissivity_cache_dir;
+    RayRecorder* ray_recorder = nullptr;  ///< not owned; null: no recording (no cost)
 };
 
 struct RenderStatistics {
     double seconds = 0.0;        ///< wall time of the whole render
     double setup_seconds = 0.0;  ///< of which building the materials' emissivity tables
+    double trace_cpu_seconds = 0.0;  ///< CPU time of the render threads in the pixel loop, summed over threads
     std::uint64_t camera_rays = 0;
     std::uint64_t scene_rays = 0;   ///< every intersect query (camera, bounce and auxiliary rays)
     std::uint64_t shadow_rays = 0;  ///< occlusion queries toward the sun
