@@ -12,6 +12,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {
 
@@ -104,7 +105,7 @@ void run_noise(const NoiseArgs& a) {
         }
         std::printf("NEDT median %.1f mK at %.2f K\n", 1e3 * out["nedt_median_k"].get<double>(), *a.temperature_k);
     }
-    write_file_atomic(a.output, out.dump(2) + "\n");
+    write_file_atomic(a.output, json_text(out, 2) + "\n");
     std::printf("3D noise (counts): σ_tvh %.3g, σ_vh %.3g, σ_v %.3g, σ_h %.3g, σ_t %.3g, σ_tv %.3g, σ_th %.3g → %s\n",
                 d3.sigma_tvh, d3.sigma_vh, d3.sigma_v, d3.sigma_h, d3.sigma_t, d3.sigma_tv, d3.sigma_th, a.output.c_str());
 }

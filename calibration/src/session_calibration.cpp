@@ -1,5 +1,6 @@
-#include "tirpol/core/utc_time.h"
 #include "tirpol/calibration/session_calibration.h"
+
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/utc_time.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -32,6 +34,16 @@ std::optional<bool> polarizer_in_beam(const fs::path& dir, const SessionManifest
 
 std::string camera_id(const SessionManifest& m) {
     return fmt::format("{} {} {} ({})", m.camera.vendor, m.camera.model, m.camera.serial, m.camera.uri);
+}
+
+CalibrationCamera calibration_camera(const SessionManifest& m) {
+    return {m.camera.vendor, m.camera.model, m.camera.serial, m.camera.pixel_format, m.camera.bits_per_pixel};
+}
+
+std::string describe_camera(const std::string& vendor, const std::string& model, const std::string& serial,
+                            const std::string& pixel_format, int bits, int width, int height) {
+    return fmt::format("{} {} serial '{}', {}×{}, {} ({}-bit)", vendor, model, serial, width, height,
+                       pixel_format.empty() ? "pixel format unknown" : pixel_format, bits);
 }
 
 BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m, const SessionRecord& r) {
@@ -129,11 +141,36 @@ RadiometricCalibration calibrate_radiometric_session(const fs::path& dir, const 
     if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(m);
     RadiometricCalibration cal = fit_radiometric(frames, m.camera.width, m.camera.height, band, options);
     cal.camera_id = camera_id(m);
+    cal.camera = calibration_camera(m);
     return cal;
+}
+
+void check_same_camera(const RadiometricCalibration& cal, const SessionManifest& m, const fs::path& dir) {
+    const CalibrationCamera& c = cal.camera;
+    std::vector<std::string> differences;
+    if (m.camera.width != cal.width || m.camera.height != cal.height) differences.push_back("size");
+    if (c.known()) {
+        if (c.serial != m.camera.serial) differences.push_back("serial");
+        if (c.model != m.camera.model || c.vendor != m.camera.vendor) differences.push_back("model");
+        if (c.bits_per_pixel != 0 && m.camera.bits_per_pixel != 0 && c.bits_per_pixel != m.camera.bits_per_pixel)
+            differences.push_back("bit depth");
+        if (!c.pixel_format.empty() && !m.camera.pixel_format.empty() && c.pixel_format != m.camera.pixel_format)
+            differences.push_back("pixel format");
+    }
+    if (differences.empty()) return;
+    fail(
+        "{}: the radiometric calibration was made with another camera ({} differ{}): calibration camera {}; session "
+        "camera {}. Per-pixel gains and offsets belong to one detector; use --force (C++: "
+        "SessionReductionOptions::force_other_camera) only if you know they apply",
+        manifest_path(dir), fmt::join(differences, ", "), differences.size() == 1 ? "s" : "",
+        describe_camera(c.vendor, c.model, c.serial, c.pixel_format, c.bits_per_pixel, cal.width, cal.height),
+        describe_camera(m.camera.vendor, m.camera.model, m.camera.serial, m.camera.pixel_format,
+                        m.camera.bits_per_pixel, m.camera.width, m.camera.height));
 }
 
 PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric) {
     const SessionManifest m = read_session(dir);
+    check_same_camera(radiometric, m, dir);
     if (!polarizer_in_beam(dir, m).value_or(false))
         fail("{}: metadata.polarizer_in_beam must be true for a polarimetric calibration (blackbody frames taken "
              "through the polarizer at each angle)",
@@ -192,6 +229,7 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
 Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiometric_in,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
+    if (!options.force_other_camera) check_same_camera(radiometric_in, m, dir);
     RadiometricCalibration radiometric = radiometric_in;
     if (options.update_offset && polarimetric)
         fail("offset update together with a polarimetric calibration would remove the drift twice: the wire-grid "

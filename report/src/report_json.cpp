@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include "tirpol/core/utf8.h"
 #include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
@@ -68,7 +69,7 @@ std::string comparison_json(const CompareResult& r) {
                   {"json", r.json.filename().string()},
                   {"exr", r.exr.filename().string()},
                   {"pngs", pngs}};
-    return j.dump(2) + "\n";
+    return json_text(j, 2) + "\n";
 }
 
 }  // namespace tirpol::report

@@ -34,6 +34,15 @@ struct RadiometricOptions {
     BadPixelThresholds thresholds;
 };
 
+/// The camera a calibration was made with, as the session manifest names it. Gains and offsets
+/// are per pixel of one detector: applying them to another camera (even of the same size) gives
+/// plausible-looking nonsense, so reduction compares this identity with the session's.
+struct CalibrationCamera {
+    std::string vendor, model, serial, pixel_format;
+    int bits_per_pixel = 0;  ///< 0: unknown
+    bool known() const { return !serial.empty() || !model.empty(); }
+};
+
 /// The result of a radiometric calibration; planes are width × height, row-major.
 struct RadiometricCalibration {
     int width = 0, height = 0;
@@ -50,6 +59,7 @@ struct RadiometricCalibration {
     double band_lo_um = 0.0, band_hi_um = 0.0;
     std::vector<double> rsr_wavelength_um, rsr_response;  ///< empty: flat response
     std::string camera_id;
+    CalibrationCamera camera;  ///< unknown in files written before tirpol recorded it
     std::string created_utc;
 
     /// The band the calibration was made for (with its RSR).
@@ -80,7 +90,8 @@ std::vector<float> brightness_temperature(const Band& band, const std::vector<fl
 
 /// Writes the calibration as EXR: channels gain, offset, [quadratic], bad, residual_rms, fit_quality;
 /// attributes tirpol_calibration="radiometric", model, temperatures_k, radiances_w_m2_sr, band_um,
-/// rsr_wavelength_um, rsr_response, camera_id, created_utc, units_*, bad_* counts. Atomic.
+/// rsr_wavelength_um, rsr_response, camera_id, camera_vendor, camera_model, camera_serial,
+/// camera_pixel_format, camera_bits_per_pixel, created_utc, units_*, bad_* counts. Atomic.
 void write_radiometric_calibration(const std::string& path, const RadiometricCalibration& cal);
 
 /// Reads a calibration EXR written by write_radiometric_calibration; errors name the file and the
