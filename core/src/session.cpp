@@ -89,8 +89,8 @@ public:
         if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
             fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, json_text(v)));
         const auto i = v.get<std::int64_t>();
-        if (i < min || i > max)
-            fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, i));
+        if (i < min) fail_here(field(key), fmt::format("expected an integer ≥ {}, got {}", min, i));
+        if (i > max) fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, i));
         return i;
     }
     bool boolean(const std::string& key) const {
