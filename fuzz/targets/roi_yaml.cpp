@@ -1,5 +1,6 @@
 // Fuzz target: regions-of-interest YAML for `compare` (report::parse_regions).
 #include "fuzz_support.h"
+#include "tirpol/core/config.h"
 #include "tirpol/report/regions.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
