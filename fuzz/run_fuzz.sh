@@ -25,12 +25,11 @@ if ((${#targets[@]} == 0)); then
 fi
 
 seeds_of() {  # the seed folders of a target: fuzz/corpus/<t>, tests/data/fuzz-regressions/<t>, seed_dirs.txt
-  local t=$1 dirs=("$ROOT/fuzz/corpus/$t")
-  [[ -d $ROOT/tests/data/fuzz-regressions/$t ]] && dirs+=("$ROOT/tests/data/fuzz-regressions/$t")
+  local t=$1 dirs=("$ROOT/fuzz/corpus/$t" "$ROOT/tests/data/fuzz-regressions/$t")
   while read -r name rest; do
     [[ $name == "$t" ]] && for d in $rest; do dirs+=("$ROOT/$d"); done
   done < <(grep -v '^#' "$ROOT/fuzz/seed_dirs.txt")
-  printf '%s\n' "${dirs[@]}"
+  for d in "${dirs[@]}"; do [[ -d $d ]] && echo "$d"; done  # libFuzzer stops at a missing folder
 }
 
 failed=0
