@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/material_reference.h"
 
@@ -50,7 +51,7 @@ void run_brdf(const BrdfArgs& a) {
     out["parameters"] = params;
     out["has_delta"] = m.brdf->has_delta();
     if (a.json) {
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out, 2).c_str());
         return;
     }
     std::printf("%s (%s) at %g µm, incident (θ, φ) = (%g°, %g°), exitant (%g°, %g°)\n", m.name.c_str(),

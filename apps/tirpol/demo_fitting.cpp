@@ -9,10 +9,11 @@
 #include <random>
 
 #include "demo_steps.h"
-#include "tirpol/core/source_tree.h"
-#include "tirpol/core/utc_time.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/source_tree.h"
+#include "tirpol/core/utc_time.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
@@ -71,7 +72,7 @@ void demo_fitting(const std::filesystem::path& out_dir) {
     const fitting::FitProvenance provenance{{csv.string()}, utc_now_iso8601(), "tirpol demo (fitting step)"};
     write_file_atomic(yaml, fitting::fitted_material_yaml("flat_black_paint_fitted", result, provenance));
     write_file_atomic(dir / "flat_black_paint_fit.json",
-                      fitting::fit_report_json(result, problem.datasets(), provenance).dump(2));
+                      json_text(fitting::fit_report_json(result, problem.datasets(), provenance), 2));
     fitting::write_fit_plot(png, problem.datasets(), result, "flat black paint (simulated): polarized emissivity");
 
     std::printf("  k held at %.2f (--fix k=%.2f): ε curves alone do not separate a small k from n\n", truth.k, truth.k);

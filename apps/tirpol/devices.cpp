@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {
 
@@ -54,7 +55,7 @@ void run_devices(bool json) {
         for (const auto& c : cameras) out["cameras"].push_back({{"uri", c.uri}, {"description", c.description}});
         out["serial_ports"] = nlohmann::json::array();
         for (const auto& p : ports) out["serial_ports"].push_back({{"path", p.path}, {"device", p.device}});
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out, 2).c_str());
         return;
     }
     std::printf("cameras:\n");

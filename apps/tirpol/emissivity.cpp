@@ -10,6 +10,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/material_reference.h"
@@ -62,7 +63,7 @@ void run_emissivity(const EmissivityArgs& a) {
     if (!a.csv.empty()) write_file_atomic(a.csv, materials::emissivity_csv(rows));
     if (!a.plot.empty()) materials::write_emissivity_plot(a.plot, rows, m.name + ", " + spectral_ascii);
     if (a.json) {
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out, 2).c_str());
         return;
     }
     std::printf("%s (%s), %s; Stokes in the s/p frame, S1 < 0 = polarized in the plane of emission\n",

@@ -4,9 +4,10 @@
 #include <memory>
 
 #include "cli.h"
-#include "tirpol/core/utc_time.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/utc_time.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
@@ -124,7 +125,7 @@ void run_fit(const FitArgs& a) {
         nlohmann::json j = fitting::fit_report_json(result, problem.datasets(), provenance);
         j["material_file"] = a.output;
         j["plot_file"] = a.plot.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.plot);
-        std::printf("%s\n", j.dump(2).c_str());
+        std::printf("%s\n", json_text(j, 2).c_str());
     } else {
         std::printf("%s", fitting::fit_report_text(result, problem.datasets()).c_str());
         std::printf("material: %s\n", a.output.c_str());

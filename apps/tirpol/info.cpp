@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {
 
@@ -20,7 +21,8 @@ std::string attribute_text(const AttributeValue& v) {
         [](const auto& x) -> std::string {
             using T = std::decay_t<decltype(x)>;
             if constexpr (std::is_same_v<T, std::string>) return "\"" + x + "\"";
-            else if constexpr (std::is_same_v<T, std::vector<double>>) return nlohmann::json(x).dump();
+            else if constexpr (std::is_same_v<T, std::vector<double>>)
+                return json_text(nlohmann::json(x));
             else return fmt::format("{}", x);
         },
         v);
@@ -42,7 +44,7 @@ void run_info(const std::string& path, bool json) {
                                  {"nan_count", s.nan_count},      {"inf_count", s.inf_count}};
     }
     if (json) {
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out, 2).c_str());
         return;
     }
     std::printf("%s: %d × %d, %zu channel(s)\n", path.c_str(), image.width(), image.height(),

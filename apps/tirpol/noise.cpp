@@ -13,6 +13,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {
 
@@ -80,7 +81,7 @@ void run_noise(const NoiseArgs& a) {
                     1e3 * out["nedt_median_k"].get<double>(), d3k.mean, calibration::to_string(convention),
                     1e3 * d3k.sigma_tvh, 1e3 * d3k.sigma_vh, 1e3 * d3k.sigma_t);
     }
-    write_file_atomic(a.output, out.dump(2) + "\n");
+    write_file_atomic(a.output, json_text(out, 2) + "\n");
     std::printf("%zu frames; 3D noise (counts, %s): σ_tvh %.3g, σ_vh %.3g, σ_v %.3g, σ_h %.3g, σ_t %.3g, σ_tv %.3g, "
                 "σ_th %.3g → %s\n",
                 stack.frames.size(), calibration::to_string(convention), d3.sigma_tvh, d3.sigma_vh, d3.sigma_v,

@@ -5,8 +5,10 @@
 #include <optional>
 
 #include "cli.h"
+#include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {
 
@@ -27,26 +29,27 @@ void run_planck(const PlanckArgs& a) {
     out["band_um"] = {a.band_um[0], a.band_um[1]};
     out["rsr"] = a.rsr.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.rsr);
     if (a.temperature_k) {
-        const double t = *a.temperature_k;
-        if (!(t > 0.0)) fail("--temperature-k: expected a temperature above 0 K, got {}", t);
+        const double t = check_temperature_k(*a.temperature_k, "--temperature-k");
+        const double radiance = check_finite(band.radiance(t), "band radiance");
+        const double radiance_dT = check_finite(band.radiance_dT(t), "band radiance derivative dL/dT");
         out["temperature_k"] = t;
-        out["radiance_w_m2_sr"] = band.radiance(t);
-        out["radiance_dT_w_m2_sr_k"] = band.radiance_dT(t);
+        out["radiance_w_m2_sr"] = radiance;
+        out["radiance_dT_w_m2_sr_k"] = radiance_dT;
         if (!a.json) {
             std::printf("band %.4g–%.4g µm%s, T = %.3f K\n", a.band_um[0], a.band_um[1],
                         a.rsr.empty() ? "" : (" with RSR " + a.rsr).c_str(), t);
-            std::printf("band radiance  L    = %.6g W/(m²·sr)\n", band.radiance(t));
-            std::printf("derivative     dL/dT = %.6g W/(m²·sr·K)\n", band.radiance_dT(t));
+            std::printf("band radiance  L    = %.6g W/(m²·sr)\n", radiance);
+            std::printf("derivative     dL/dT = %.6g W/(m²·sr·K)\n", radiance_dT);
         }
     } else {
         const double l = *a.radiance;
         if (!(l > 0.0)) fail("--radiance: expected a positive band radiance in W/(m²·sr), got {}", l);
-        const double t = band.brightness_temperature(l);
+        const double t = check_finite(band.brightness_temperature(l), "brightness temperature");
         out["radiance_w_m2_sr"] = l;
         out["brightness_temperature_k"] = t;
         if (!a.json) std::printf("brightness temperature = %.4f K (%.4f °C)\n", t, t - 273.15);
     }
-    if (a.json) std::printf("%s\n", out.dump(2).c_str());
+    if (a.json) std::printf("%s\n", json_text(out, 2).c_str());
 }
 }  // namespace
 

@@ -15,6 +15,7 @@ struct ReduceArgs {
     std::string session, calibration, polarimetric, output, quicklooks;
     bool update_offset = false;
     bool slar = false;
+    bool force = false;
     double max_saturated_fraction = 0.01;
 };
 
@@ -26,6 +27,7 @@ void run_reduce(const ReduceArgs& a) {
     options.update_offset = a.update_offset;
     options.max_saturated_fraction = a.max_saturated_fraction;
     options.include_slar = a.slar;
+    options.force_other_camera = a.force;
     Image stokes = calibration::reduce_session(a.session, cal, pol ? &*pol : nullptr, options);
     stokes.attributes()["radiometric_calibration"] = a.calibration;
     stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
@@ -60,6 +62,7 @@ void register_reduce(CLI::App& app) {
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction, "Error above this saturated fraction")
         ->capture_default_str();
     cmd->add_flag("--slar", a->slar, "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");
+    cmd->add_flag("--force", a->force, "Apply a calibration made with another camera (serial/model/bit depth differ)");
     cmd->add_option("--quicklooks", a->quicklooks, "Also write S0/S1/S2/DoLP/AoP PNGs to this folder");
     cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
     cmd->callback([a] { run_reduce(*a); });

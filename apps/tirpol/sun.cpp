@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/solar_position.h"
 
@@ -46,7 +47,7 @@ void run_sun(const SunArgs& a) {
         out["hour_angle_deg"] = s.hour_angle_deg;
         out["earth_sun_distance_au"] = s.earth_radius_au;
         out["surface"] = {{"tilt_deg", a.tilt_deg}, {"azimuth_deg", a.surface_azimuth_deg}, {"incidence_deg", incidence}};
-        std::printf("%s\n", out.dump(2).c_str());
+        std::printf("%s\n", json_text(out, 2).c_str());
         return;
     }
     std::printf("time (UTC)        %s   JD %.6f\n", thermal::format_time(in.unix_seconds, 0.0).c_str(), s.julian_day);

@@ -41,6 +41,11 @@ void run_temperature(const TemperatureArgs& a) {
     Image out(raw.width(), raw.height());
     out.set_channel("radiance", radiance);
     out.set_channel("temperature_k", calibration::brightness_temperature(cal.band(), radiance));
+    if (channel_stats(out.channel("temperature_k")).finite_count == 0)
+        fail(
+            "{}: no pixel gives a finite brightness temperature with calibration {} (counts below its offsets "
+            "everywhere: another camera, bit depth or gain setting?); nothing written",
+            a.image, a.calibration);
     out.attributes()["units_radiance"] = std::string("W/(m^2 sr)");
     out.attributes()["units_temperature_k"] = std::string("K");
     out.attributes()["band_um"] = std::vector<double>{cal.band_lo_um, cal.band_hi_um};

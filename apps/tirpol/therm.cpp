@@ -10,9 +10,10 @@
 
 #include "cli.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
-#include "tirpol/core/config.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/scene_thermal.h"
 #include "tirpol/thermal/civil_time.h"
@@ -99,7 +100,7 @@ void run_therm_on_scene(const ThermArgs& a) {
         for (const auto& f : simulation::export_scene_temperatures(ConfigNode::load_file(a.file), scene, a.export_dir))
             if (!a.json) std::printf("wrote %s\n", f.c_str());
     }
-    if (a.json) std::printf("%s\n", out.dump(2).c_str());
+    if (a.json) std::printf("%s\n", json_text(out, 2).c_str());
 }
 
 void run_therm(const ThermArgs& a) {
@@ -154,7 +155,7 @@ void run_therm(const ThermArgs& a) {
     }
     if (!a.csv.empty()) write_file_atomic(a.csv, csv.str());
     if (plot) draw_plot(a.plot, results, scene, at);
-    if (a.json) std::printf("%s\n", out.dump(2).c_str());
+    if (a.json) std::printf("%s\n", json_text(out, 2).c_str());
 }
 
 void register_therm(CLI::App& app) {

@@ -9,11 +9,12 @@
 
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/core/source_tree.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/source_tree.h"
 #include "tirpol/core/utc_time.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
@@ -320,7 +321,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         write_file_atomic(result.fitted_material,
                           fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
         write_file_atomic(out / "fit" / "fit.json",
-                          fitting::fit_report_json(fit, problem.datasets(), provenance).dump(2));
+                          json_text(fitting::fit_report_json(fit, problem.datasets(), provenance), 2));
         result.reduced_chi2 = fit.reduced_chi2;
         const double truths[] = {true_params.n,
                                  true_params.k,

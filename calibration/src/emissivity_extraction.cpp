@@ -1,17 +1,28 @@
 #include "tirpol/calibration/emissivity_extraction.h"
 
+#include <fmt/ranges.h>
+
 #include <cmath>
 #include <sstream>
 
+#include "tirpol/core/checks.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::calibration {
 
 namespace {
 PixelRect parse_rect(const ConfigNode& node) {
     const auto v = node.as<std::vector<double>>();
-    if (v.size() != 4 || v[2] < 1 || v[3] < 1) node.fail("expected [x, y, width, height] with width, height ≥ 1");
+    const auto whole_in = [](double x, double lo) {
+        return x == std::floor(x) && x >= lo && x <= limits::kMaxImageSide;
+    };
+    if (v.size() != 4 || !whole_in(v[0], 0) || !whole_in(v[1], 0) || !whole_in(v[2], 1) || !whole_in(v[3], 1))
+        node.fail(
+            fmt::format("expected [x, y, width, height] in whole pixels (x, y ≥ 0; width, height ≥ 1; each ≤ {}), "
+                        "found [{}]; a fractional rectangle would be truncated silently",
+                        limits::kMaxImageSide, fmt::join(v, ", ")));
     return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])};
 }
 
@@ -59,7 +70,7 @@ EmissivityRois EmissivityRois::load(const std::string& path) {
         if (t.has("blackbody_rect")) target.blackbody_rect = parse_rect(t.at("blackbody_rect"));
         if (target.temperature_k.has_value() == target.blackbody_rect.has_value())
             t.fail("expected exactly one of temperature_k (contact) or blackbody_rect (in-scene blackbody)");
-        target.temperature_std_k = t.get_or("temperature_std_k", 0.5);
+        if (t.has("temperature_std_k")) target.temperature_std_k = t.get_in_range("temperature_std_k", 0.0, 100.0);
         rois.targets.push_back(target);
     }
     if (rois.targets.empty()) root.at("targets").fail("expected at least one target");
@@ -108,6 +119,14 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
         };
         polarized(s1, r.eps_s1, r.eps_s1_2sigma);
         polarized(s2, r.eps_s2, r.eps_s2_2sigma);
+        for (double v : {r.eps_s0, r.eps_s0_2sigma, r.eps_s1, r.eps_s1_2sigma, r.eps_s2, r.eps_s2_2sigma})
+            check_finite(v, "target '" + t.name + "': emissivity");
+        constexpr double tol = limits::kEmissivityTolerance;
+        if (r.eps_s0 < -tol || r.eps_s0 > 1.0 + tol)
+            r.warnings.push_back(fmt::format(
+                "target '{}': ε_S0 = {:.3f} is outside [0, 1] beyond measurement noise (±{}): check its temperature "
+                "({:.2f} K), its rectangle and the reflector's; `fit` refuses this row",
+                t.name, r.eps_s0, tol, r.temperature_k));
         results.push_back(r);
     }
     return results;

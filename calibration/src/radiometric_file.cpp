@@ -57,6 +57,11 @@ void write_radiometric_calibration(const std::string& path, const RadiometricCal
     a["rsr_wavelength_um"] = cal.rsr_wavelength_um;
     a["rsr_response"] = cal.rsr_response;
     a["camera_id"] = cal.camera_id;
+    a["camera_vendor"] = cal.camera.vendor;
+    a["camera_model"] = cal.camera.model;
+    a["camera_serial"] = cal.camera.serial;
+    a["camera_pixel_format"] = cal.camera.pixel_format;
+    a["camera_bits_per_pixel"] = cal.camera.bits_per_pixel;
     a["created_utc"] = cal.created_utc;
     a["units_gain"] = std::string("counts/(W/(m^2 sr))");
     a["units_offset"] = std::string("counts");
@@ -99,6 +104,14 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
     cal.rsr_wavelength_um = attribute<std::vector<double>>(image, path, "rsr_wavelength_um");
     cal.rsr_response = attribute<std::vector<double>>(image, path, "rsr_response");
     cal.camera_id = attribute<std::string>(image, path, "camera_id");
+    // The camera_* attributes are absent from calibrations written before they existed.
+    if (image.attributes().count("camera_serial")) {
+        cal.camera.vendor = attribute<std::string>(image, path, "camera_vendor");
+        cal.camera.model = attribute<std::string>(image, path, "camera_model");
+        cal.camera.serial = attribute<std::string>(image, path, "camera_serial");
+        cal.camera.pixel_format = attribute<std::string>(image, path, "camera_pixel_format");
+        cal.camera.bits_per_pixel = attribute<int>(image, path, "camera_bits_per_pixel");
+    }
     cal.created_utc = attribute<std::string>(image, path, "created_utc");
     const int degree = version >= 2 ? attribute<int>(image, path, "fpa_degree") : 0;
     if (degree < 0 || degree > 2) fail("{}: fpa_degree = {}; expected 0, 1 or 2", path, degree);

@@ -1,5 +1,6 @@
-#include "tirpol/core/utc_time.h"
 #include "tirpol/calibration/session_calibration.h"
+
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/utc_time.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -56,6 +58,16 @@ std::optional<bool> polarizer_in_beam(const fs::path& dir, const SessionManifest
 
 std::string camera_id(const SessionManifest& m) {
     return fmt::format("{} {} {} ({})", m.camera.vendor, m.camera.model, m.camera.serial, m.camera.uri);
+}
+
+CalibrationCamera calibration_camera(const SessionManifest& m) {
+    return {m.camera.vendor, m.camera.model, m.camera.serial, m.camera.pixel_format, m.camera.bits_per_pixel};
+}
+
+std::string describe_camera(const std::string& vendor, const std::string& model, const std::string& serial,
+                            const std::string& pixel_format, int bits, int width, int height) {
+    return fmt::format("{} {} serial '{}', {}×{}, {} ({}-bit)", vendor, model, serial, width, height,
+                       pixel_format.empty() ? "pixel format unknown" : pixel_format, bits);
 }
 
 BlackbodyFrame to_blackbody_frame(const fs::path& dir, const SessionManifest& m, const SessionRecord& r) {
@@ -204,6 +216,7 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path
     if (!options.saturation_counts) options.saturation_counts = session_saturation_counts(*first);
     RadiometricCalibration cal = fit_radiometric(frames, first->camera.width, first->camera.height, band, options);
     cal.camera_id = camera_id(*first);
+    cal.camera = calibration_camera(*first);
     if (quality) {
         *quality = assess_calibration(cal, frames);
         cal.warnings.insert(cal.warnings.end(), quality->warnings.begin(), quality->warnings.end());
@@ -214,6 +227,7 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path
 PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric,
                                                        const std::optional<DatasheetAnalyzer>& datasheet) {
     const SessionManifest m = read_session(dir);
+    check_same_camera(radiometric, m, dir);
     if (!polarizer_in_beam(dir, m).value_or(false))
         fail("{}: metadata.polarizer_in_beam must be true for a polarimetric calibration (blackbody frames taken "
              "through the polarizer at each angle)",
@@ -276,6 +290,7 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
 Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiometric_in,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
+    if (!options.force_other_camera) check_same_camera(radiometric_in, m, dir);
     RadiometricCalibration radiometric = radiometric_in;
     std::optional<OffsetUpdate> correction;
     if (options.update_offset && polarimetric)

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -41,12 +43,37 @@ std::string describe(const YAML::Node& node) {
         default: return "an undefined value";
     }
 }
+
+// yaml-cpp keeps every pair of a mapping and its lookups return the first: a repeated key would be
+// silently dropped. Each collection is visited once (aliases share nodes, so a YAML bomb stays linear).
+void check_unique_keys(const YAML::Node& node, const std::string& source, std::unordered_set<std::size_t>& visited) {
+    if (!node.IsMap() && !node.IsSequence()) return;
+    if (!visited.insert(static_cast<std::size_t>(node.Mark().pos)).second) return;
+    if (node.IsSequence()) {
+        for (const auto& element : node) check_unique_keys(element, source, visited);
+        return;
+    }
+    std::unordered_map<std::string, YAML::Mark> seen;
+    for (const auto& kv : node) {
+        if (kv.first.IsScalar()) {
+            const auto [it, inserted] = seen.emplace(kv.first.Scalar(), kv.first.Mark());
+            if (!inserted)
+                tirpol::fail(
+                    "{}:{}:{}: duplicate key '{}' (first given at {}:{}:{}); each key may appear once in a mapping",
+                    source, kv.first.Mark().line + 1, kv.first.Mark().column + 1, kv.first.Scalar(), source,
+                    it->second.line + 1, it->second.column + 1);
+        }
+        check_unique_keys(kv.second, source, visited);
+    }
+}
 }  // namespace
 
 ConfigNode ConfigNode::parse(std::string_view text, std::string source_name) {
     auto source = std::make_shared<Source>(Source{source_name, source_name});
     try {
         auto node = std::make_unique<YAML::Node>(YAML::Load(std::string(text)));
+        std::unordered_set<std::size_t> visited;
+        check_unique_keys(*node, source_name, visited);
         return ConfigNode(std::move(source), std::move(node), "");
     } catch (const YAML::Exception& e) {
         tirpol::fail("{}:{}:{}: YAML syntax error: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg);

@@ -1,5 +1,6 @@
 #include "tirpol/core/exr_io.h"
 
+#include <Iex.h>
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFloatAttribute.h>
@@ -11,10 +12,12 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <ImfTestFile.h>
-#include <Iex.h>
+
+#include <cstdint>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol {
 
@@ -26,6 +29,40 @@ bool is_structural(const std::string& name) {
     for (const char* n : kNames)
         if (name == n) return true;
     return false;
+}
+
+// OpenEXR's own sanity check rejects a larger data window or tile while reading the header,
+// before it sizes its offset tables from it.
+void limit_openexr_header_sizes() {
+    static const bool once = [] {
+        Imf::Header::setMaxImageSize(limits::kMaxImageSide, limits::kMaxImageSide);
+        Imf::Header::setMaxTileSize(limits::kMaxImageSide, limits::kMaxImageSide);
+        return true;
+    }();
+    (void)once;
+}
+
+// Checks the declared size before any pixel is allocated: against tirpol's limits, and against
+// the file's size (a 480 KB file cannot hold 40000×40000 pixels under any OpenEXR compression).
+void check_declared_size(const std::filesystem::path& path, std::int64_t width, std::int64_t height,
+                         const Imf::ChannelList& channels) {
+    if (width <= 0 || height <= 0)
+        fail("{}: the OpenEXR data window is empty or inverted ({}×{})", path.string(), width, height);
+    const auto pixels = static_cast<double>(width) * static_cast<double>(height);
+    if (width > limits::kMaxImageSide || height > limits::kMaxImageSide ||
+        pixels > static_cast<double>(limits::kMaxImagePixels))
+        fail("{}: declares {}×{} pixels, beyond tirpol's limits ({} pixels a side, {} pixels in all)", path.string(),
+             width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
+    double decoded_bytes = 0.0;
+    int channel_count = 0;
+    for (auto it = channels.begin(); it != channels.end(); ++it, ++channel_count)
+        decoded_bytes += pixels * (it.channel().type == Imf::HALF ? 2.0 : 4.0);
+    const auto file_bytes = static_cast<double>(std::filesystem::file_size(path));
+    if (decoded_bytes > limits::kMaxCompressionRatio * file_bytes)
+        fail(
+            "{}: declares {}×{} pixels in {} channel(s) ({:.3g} bytes decoded) but the file has only {} bytes; "
+            "no OpenEXR compression reaches that ratio (corrupt header?)",
+            path.string(), width, height, channel_count, decoded_bytes, file_bytes);
 }
 }  // namespace
 
@@ -71,13 +108,16 @@ Image read_exr(const std::filesystem::path& path) {
     if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multipart))
         fail("{}: not an OpenEXR file (bad magic number or header)", path.string());
     if (deep) fail("{}: deep OpenEXR images are not supported", path.string());
+    limit_openexr_header_sizes();
     try {
         Imf::InputFile in(path.c_str());
+        const Imath::Box2i dw = in.header().dataWindow();
+        const std::int64_t width = std::int64_t{dw.max.x} - dw.min.x + 1,
+                           height = std::int64_t{dw.max.y} - dw.min.y + 1;
+        check_declared_size(path, width, height, in.header().channels());
         if (!in.isComplete())
             fail("{}: the OpenEXR file is truncated or incomplete (missing scan lines or tiles)", path.string());
-        const Imath::Box2i dw = in.header().dataWindow();
-        const int width = dw.max.x - dw.min.x + 1, height = dw.max.y - dw.min.y + 1;
-        Image image(width, height);
+        Image image(static_cast<int>(width), static_cast<int>(height));
         Imf::FrameBuffer fb;
         const std::size_t xs = sizeof(float), ys = sizeof(float) * static_cast<std::size_t>(width);
         for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) {
@@ -105,7 +145,7 @@ Image read_exr(const std::filesystem::path& path) {
         }
         return image;
     } catch (const Iex::BaseExc& e) {
-        fail("{}: corrupt or truncated OpenEXR file: {}", path.string(), e.what());
+        fail("{}: unreadable OpenEXR file (corrupt, truncated or beyond limits): {}", path.string(), e.what());
     }
 }
 

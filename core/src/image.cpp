@@ -4,11 +4,15 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol {
 
 Image::Image(int width, int height) : m_width(width), m_height(height) {
     if (width <= 0 || height <= 0) fail("image size must be positive, got {}×{}", width, height);
+    if (width > limits::kMaxImageSide || height > limits::kMaxImageSide || pixel_count() > limits::kMaxImagePixels)
+        fail("image size {}×{} exceeds tirpol's limits ({} pixels a side, {} pixels in all)", width, height,
+             limits::kMaxImageSide, limits::kMaxImagePixels);
 }
 
 std::vector<float>& Image::add_channel(const std::string& name, float value) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol {
 
@@ -28,6 +29,10 @@ double planck_radiance_dT(double wavelength_um, double temperature_k) {
     return radiance * x / temperature_k * (em1 + 1.0) / em1;
 }
 
+namespace {
+constexpr double kMaxRelativeResponse = 1.05;
+}  // namespace
+
 SpectralResponse::SpectralResponse(std::vector<double> wavelength_um, std::vector<double> response)
     : m_wavelength_um(std::move(wavelength_um)), m_response(std::move(response)) {
     if (m_wavelength_um.size() != m_response.size() || m_wavelength_um.size() < 2)
@@ -37,8 +42,11 @@ SpectralResponse::SpectralResponse(std::vector<double> wavelength_um, std::vecto
         if (!std::isfinite(m_wavelength_um[i]) || m_wavelength_um[i] <= 0.0)
             fail("spectral response: wavelength_um[{}] = {} must be a positive number (micrometres)", i,
                  m_wavelength_um[i]);
-        if (!std::isfinite(m_response[i]) || m_response[i] < 0.0)
-            fail("spectral response: response[{}] = {} must be ≥ 0", i, m_response[i]);
+        if (!std::isfinite(m_response[i]) || m_response[i] < 0.0 || m_response[i] > kMaxRelativeResponse)
+            fail(
+                "spectral response: response[{}] = {} at {} µm must lie in [0, 1] (a relative response, "
+                "normalised to its peak; {} is tolerated for digitising noise; divide percentages by 100)",
+                i, m_response[i], m_wavelength_um[i], kMaxRelativeResponse);
         if (i > 0 && m_wavelength_um[i] <= m_wavelength_um[i - 1])
             fail("spectral response: wavelengths must increase strictly, but {} follows {}", m_wavelength_um[i],
                  m_wavelength_um[i - 1]);
@@ -91,6 +99,9 @@ SpectralResponse SpectralResponse::load_csv(const std::filesystem::path& path) {
                 fail("{}:{}: column '{}': expected a number, found '{}'", path.string(), line_no, name, text);
             return v;
         };
+        if (wl.size() == limits::kMaxCsvRows)
+            fail("{}:{}: more than {} data rows; tirpol reads spectral responses up to that size", path.string(),
+                 line_no, limits::kMaxCsvRows);
         wl.push_back(parse(wl_col, "wavelength_um"));
         resp.push_back(parse(resp_col, "response"));
     }

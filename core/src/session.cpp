@@ -4,17 +4,19 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <ctime>
 #include <limits>
-#include <algorithm>
 #include <set>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol {
 
@@ -84,11 +86,15 @@ public:
         if (at(key).is_null()) return std::nullopt;
         return number(key);
     }
-    std::int64_t integer(const std::string& key, std::int64_t min) const {
+    std::int64_t integer(const std::string& key, std::int64_t min,
+                         std::int64_t max = std::numeric_limits<std::int64_t>::max()) const {
         const json& v = at(key);
         if (!v.is_number_integer()) fail_here(field(key), "expected an integer, got " + describe(v));
+        if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
+            fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, json_text(v)));
         const auto i = v.get<std::int64_t>();
         if (i < min) fail_here(field(key), fmt::format("expected an integer ≥ {}, got {}", min, i));
+        if (i > max) fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, i));
         return i;
     }
     bool boolean(const std::string& key) const {
@@ -104,7 +110,7 @@ public:
     const json& raw() const { return m_j; }
 
     static std::string describe(const json& v) {
-        std::string text = v.dump();
+        std::string text = json_text(v);
         if (text.size() > 40) text = text.substr(0, 37) + "...";
         return std::string(v.type_name()) + " " + text;
     }
@@ -180,10 +186,15 @@ void check_record(const Fields& f, const SessionRecord& r) {
         f.fail_here(f.field("blackbody_temperature_k"), "expected null for a polarizer record");
     if (r.kind == RecordKind::Blackbody && !r.blackbody_temperature_k)
         f.fail_here(f.field("blackbody_temperature_k"), "expected a temperature in kelvin for a blackbody record, got null");
-    if (r.blackbody_temperature_k && !(*r.blackbody_temperature_k > 0.0))
-        f.fail_here(f.field("blackbody_temperature_k"), fmt::format("expected a temperature above 0 K, got {}", *r.blackbody_temperature_k));
-    if (r.fpa_temperature_k && !(*r.fpa_temperature_k > 0.0))
-        f.fail_here(f.field("fpa_temperature_k"), fmt::format("expected a temperature above 0 K or null, got {}", *r.fpa_temperature_k));
+    const auto in_range = [](double t_k) { return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK; };
+    if (r.blackbody_temperature_k && !in_range(*r.blackbody_temperature_k))
+        f.fail_here(f.field("blackbody_temperature_k"),
+                    fmt::format("expected a temperature in [{}, {}] K, got {}", limits::kMinTemperatureK,
+                                limits::kMaxTemperatureK, *r.blackbody_temperature_k));
+    if (r.fpa_temperature_k && !in_range(*r.fpa_temperature_k))
+        f.fail_here(f.field("fpa_temperature_k"),
+                    fmt::format("expected a temperature in [{}, {}] K or null, got {}", limits::kMinTemperatureK,
+                                limits::kMaxTemperatureK, *r.fpa_temperature_k));
     if (r.last_timestamp_ns < r.first_timestamp_ns)
         f.fail_here(f.field("last_timestamp_ns"), fmt::format("expected ≥ first_timestamp_ns ({}), got {}", r.first_timestamp_ns, r.last_timestamp_ns));
 }
@@ -268,9 +279,9 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     m.camera.model = cam.string("model");
     m.camera.serial = cam.string("serial");
     m.camera.pixel_format = cam.string("pixel_format");
-    m.camera.width = static_cast<int>(cam.integer("width", 1));
-    m.camera.height = static_cast<int>(cam.integer("height", 1));
-    m.camera.bits_per_pixel = static_cast<int>(cam.integer("bits_per_pixel", 1));
+    m.camera.width = static_cast<int>(cam.integer("width", 1, limits::kMaxImageSide));
+    m.camera.height = static_cast<int>(cam.integer("height", 1, limits::kMaxImageSide));
+    m.camera.bits_per_pixel = static_cast<int>(cam.integer("bits_per_pixel", 1, 64));
     m.camera.frame_rate_hz = cam.optional_number("frame_rate_hz");
     const Fields planck = cam.object("planck_constants");
     for (const auto& [k, v] : planck.raw().items()) m.camera.planck_constants[k] = planck.number(k);
@@ -615,7 +626,7 @@ void SessionWriter::mark_complete() {
 }
 
 void SessionWriter::write_manifest() const {
-    write_file_atomic(m_dir / kSessionManifestName, session_to_json(m_manifest).dump(2) + "\n");
+    write_file_atomic(m_dir / kSessionManifestName, json_text(session_to_json(m_manifest), 2) + "\n");
 }
 
 }  // namespace tirpol

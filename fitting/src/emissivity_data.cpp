@@ -9,6 +9,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::fitting {
 
@@ -68,6 +69,18 @@ void validate_dataset(const EmissivityDataset& d) {
         if (s.angle_deg < 0.0 || s.angle_deg > 90.0)
             fail("{}: view angle {}° is outside [0°, 90°] (angles are measured from the surface normal)", which,
                  s.angle_deg);
+        // Measured emissivities stray outside [0, 1] by noise only; far outside, the row is not an emissivity.
+        constexpr double tol = limits::kEmissivityTolerance;
+        if (s.e_s0 < -tol || s.e_s0 > 1.0 + tol)
+            fail(
+                "{}: e_s0 = {} is outside [{}, {}]; an emissivity lies in [0, 1] (a tolerance of {} is allowed for "
+                "measurement noise)",
+                which, s.e_s0, -tol, 1.0 + tol, tol);
+        if (std::abs(s.e_s1) > 1.0 + tol)
+            fail(
+                "{}: e_s1 = {} is outside [{}, {}]; a polarized emissivity lies in [-1, 1] (a tolerance of {} is "
+                "allowed for measurement noise)",
+                which, s.e_s1, -1.0 - tol, 1.0 + tol, tol);
         if (!(s.e_s0_sigma > 0.0) || !(s.e_s1_sigma > 0.0))
             fail("{}: uncertainties must be > 0 (got e_s0_sigma = {}, e_s1_sigma = {}); a zero uncertainty would "
                  "give the sample infinite weight",
@@ -111,10 +124,14 @@ std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& 
         fail("default wavelength must be a positive number of micrometres, got {}", default_wavelength_um);
 
     std::map<double, EmissivityDataset> by_wavelength;
+    std::size_t rows = 0;
     while (std::getline(in, line)) {
         ++line_no;
         const std::string t = trim(line);
         if (t.empty() || t.front() == '#') continue;
+        if (++rows > limits::kMaxCsvRows)
+            fail("{}:{}: more than {} data rows; tirpol reads emissivity tables up to that size", path.string(),
+                 line_no, limits::kMaxCsvRows);
         const std::vector<std::string> cells = split_csv_line(t);
         if (cells.size() != header.size())
             fail("{}:{}: {} cells, expected {} as in the header", path.string(), line_no, cells.size(), header.size());

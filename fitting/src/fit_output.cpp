@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::fitting {
 
@@ -13,7 +14,7 @@ namespace {
 using P = MicrofacetParameter;
 
 // A YAML double-quoted scalar (JSON string syntax is valid YAML).
-std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }
+std::string quoted(const std::string& s) { return json_text(nlohmann::json(s)); }
 
 std::string plus_minus(const FittedParameter& f) {
     if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);

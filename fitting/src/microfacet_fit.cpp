@@ -392,10 +392,21 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         result.warnings.push_back("no start gave a usable solution (" + result.termination +
                                   "): the parameters below are not a fit");
 
+    // Non-finite residuals make Ceres' covariance factorise a matrix of NaN (Eigen's JacobiSVD then
+    // crashed): a solution that is not finite is an error, and only a usable one gets a covariance.
+    if (!std::isfinite(best_chi2) || !std::all_of(best.begin(), best.end(), [](double v) { return std::isfinite(v); }))
+        fail(
+            "the fit gave no finite solution (chi2 = {}, {}): check the data for values far outside the model's "
+            "range",
+            best_chi2, result.termination);
     result.chi2 = best_chi2;
     result.dof = static_cast<int>(residual_count()) - static_cast<int>(free.size());
     result.reduced_chi2 = result.chi2 / result.dof;
-    im.covariance(result, best);
+    if (best_usable)
+        im.covariance(result, best);
+    else
+        result.warnings.push_back(
+            "covariance not computed: the solution is not usable, so uncertainties are unavailable");
 
     for (std::size_t v = 0; v < im.value_count(); ++v) {
         const ParameterSetting& s = im.setting(v);

@@ -1,11 +1,13 @@
 #include "html_report.h"
 
-#include <cmath>
 #include <fmt/format.h>
 #include <functional>
 
+#include <cmath>
+
 #include "figures.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol::report::detail {
 
@@ -13,7 +15,7 @@ namespace {
 
 std::string escape(std::string_view text) {
     std::string out;
-    for (char c : text) {
+    for (char c : valid_utf8(text)) {
         switch (c) {
             case '&': out += "&amp;"; break;
             case '<': out += "&lt;"; break;

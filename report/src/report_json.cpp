@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include "tirpol/core/utf8.h"
 #include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
@@ -103,8 +104,7 @@ std::string comparison_json(const CompareResult& r) {
                   {"exr", r.exr.filename().string()},
                   {"pngs", pngs},
                   {"svgs", svgs}};
-    // Replace invalid UTF-8 (from EXR attributes or region names) rather than throwing.
-    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    return json_text(j, 2) + "\n";
 }
 
 }  // namespace tirpol::report

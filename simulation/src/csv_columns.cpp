@@ -5,6 +5,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::simulation {
 
@@ -44,6 +45,9 @@ std::vector<std::vector<double>> read_csv_columns(const std::filesystem::path& p
             }
             continue;
         }
+        if (out.front().size() == limits::kMaxCsvRows)
+            fail("{}:{}: more than {} data rows; tirpol reads tables up to that size", path.string(), line_no,
+                 limits::kMaxCsvRows);
         for (std::size_t c = 0; c < columns.size(); ++c) {
             if (index[c] >= fields.size()) fail("{}:{}: missing value for column '{}'", path.string(), line_no, columns[c]);
             const std::string& f = fields[index[c]];

@@ -7,6 +7,7 @@
 #include "material_resolution.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/temperature_value.h"
@@ -84,6 +85,8 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, st
     return false;
 }
 
+bool in_temperature_range(double t_k) { return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK; }
+
 /// Per-vertex temperatures from a CSV of points (x, y, z in the mesh file's units, temperature_k):
 /// each vertex takes the value of the point at its position, so the file does not depend on how a
 /// mesh loader orders or duplicates vertices (OBJ faces, for one, are expanded per corner).
@@ -99,7 +102,10 @@ std::vector<double> vertex_temperatures(const ConfigNode& node, const std::files
     };
     std::map<Key, double> points;
     for (std::size_t i = 0; i < cols[0].size(); ++i) {
-        if (!(cols[3][i] > 0.0)) node.fail(fmt::format("{}: row {}: temperature {} K is not above 0 K", path.string(), i + 1, cols[3][i]));
+        if (!in_temperature_range(cols[3][i]))
+            node.fail(fmt::format("{}: row {}: temperature {} K is outside the physical range [{}, {}] K",
+                                  path.string(), i + 1, cols[3][i], limits::kMinTemperatureK,
+                                  limits::kMaxTemperatureK));
         points[key(Vec3(cols[0][i], cols[1][i], cols[2][i]))] = cols[3][i];
     }
     std::vector<double> out;
@@ -140,7 +146,9 @@ TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const st
     const std::string channel = node.get_or<std::string>("channel", "temperature_k");
     if (!map.has_channel(channel)) node.fail(fmt::format("{} has no channel '{}'", path.string(), channel));
     for (float v : map.channel(channel))
-        if (!(v > 0.0f)) node.at("texture").fail(fmt::format("{}: temperature {} K is not above 0 K", path.string(), v));
+        if (!in_temperature_range(v))
+            node.at("texture").fail(fmt::format("{}: temperature {} K is outside the physical range [{}, {}] K",
+                                                path.string(), v, limits::kMinTemperatureK, limits::kMaxTemperatureK));
     return TemperatureField::texture(map.channel(channel), map.width(), map.height());
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::simulation {
 
@@ -34,7 +35,9 @@ double temperature_k_from_config(const ConfigNode& node) {
     } else {
         node.fail("expected a temperature: a number in K, or a string like \"15 °C\" or \"288.15 K\", got \"" + text + "\"");
     }
-    if (!(kelvin > 0.0)) node.fail(fmt::format("temperature must be above 0 K, got {} K", kelvin));
+    if (!(kelvin >= limits::kMinTemperatureK && kelvin <= limits::kMaxTemperatureK))
+        node.fail(fmt::format("temperature {} K is outside the physical range [{}, {}] K", kelvin,
+                              limits::kMinTemperatureK, limits::kMaxTemperatureK));
     return kelvin;
 }
 

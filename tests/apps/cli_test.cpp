@@ -47,7 +47,7 @@ TEST(Cli, PlanckJsonMatchesTheLibraryAndInverts) {
 TEST(Cli, PlanckRejectsNonPhysicalInputWithExitOne) {
     const CliRun r = run_cli("planck --temperature-k -3 --band-um 8 14");
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.out.find("above 0 K"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("outside the physical range tirpol accepts, [1, 10000] K"), std::string::npos) << r.out;
     EXPECT_EQ(run_cli("planck --temperature-k 300 --band-um 14 8").exit_code, 1);
 }
 

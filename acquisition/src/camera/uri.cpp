@@ -38,7 +38,9 @@ DeviceUri parse_device_uri(const std::string& uri) {
 }
 
 void DeviceUri::check_keys(std::initializer_list<const char*> allowed) const {
-    for (const auto& [key, value] : query) {
+    for (const auto& entry : query) {
+        // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+        const std::string& key = entry.first;
         if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
             fail("device URI '{}': unknown query key '{}' (expected one of: {})", text, key,
                  fmt::join(std::vector<std::string>(allowed.begin(), allowed.end()), ", "));

@@ -52,10 +52,14 @@ struct EmissivityResult {
     double eps_s0 = 0.0, eps_s0_2sigma = 0.0;
     double eps_s1 = 0.0, eps_s1_2sigma = 0.0;
     double eps_s2 = 0.0, eps_s2_2sigma = 0.0;
+    /// Physically implausible values (ε_S0 outside [0, 1] beyond limits::kEmissivityTolerance), in
+    /// words a person can act on; `fit` refuses such rows.
+    std::vector<std::string> warnings;
 };
 
 /// Extracts ε per target. Throws tirpol::Error naming the ROI for a rectangle outside the image or
-/// empty, no finite pixel, or L_BB ≤ L_dw (the target's emission must exceed the downwelling).
+/// empty, no finite pixel, L_BB ≤ L_dw (the target's emission must exceed the downwelling) or a
+/// non-finite result.
 std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band);
 
 /// CSV with header name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,

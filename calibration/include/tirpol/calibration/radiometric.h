@@ -42,6 +42,15 @@ struct RadiometricOptions {
     int fpa_degree = 0;
 };
 
+/// The camera a calibration was made with, as the session manifest names it. Gains and offsets
+/// are per pixel of one detector: applying them to another camera (even of the same size) gives
+/// plausible-looking nonsense, so reduction compares this identity with the session's.
+struct CalibrationCamera {
+    std::string vendor, model, serial, pixel_format;
+    int bits_per_pixel = 0;  ///< 0: unknown
+    bool known() const { return !serial.empty() || !model.empty(); }
+};
+
 /// The result of a radiometric calibration; planes are width × height, row-major.
 struct RadiometricCalibration {
     int width = 0, height = 0;
@@ -58,6 +67,7 @@ struct RadiometricCalibration {
     double band_lo_um = 0.0, band_hi_um = 0.0;
     std::vector<double> rsr_wavelength_um, rsr_response;  ///< empty: flat response
     std::string camera_id;
+    CalibrationCamera camera;  ///< unknown in files written before tirpol recorded it
     std::string created_utc;
     /// FPA dependence: at T_fpa the offset is offset + Σ_a offset_fpa[a−1]·ΔT^a and the gain
     /// gain + Σ_a gain_fpa[a−1]·ΔT^a, ΔT = T_fpa − fpa_reference_k (counts/K^a, counts/(W/(m²·sr))/K^a).
@@ -112,8 +122,9 @@ std::vector<float> brightness_temperature(const Band& band, const std::vector<fl
 /// Writes the calibration as EXR (format_version 2): channels gain, offset, [quadratic], bad,
 /// residual_rms, fit_quality, [offset_fpa<a>, gain_fpa<a> for a = 1..fpa_degree]; attributes
 /// tirpol_calibration="radiometric", format_version, model, temperatures_k, radiances_w_m2_sr,
-/// band_um, rsr_wavelength_um, rsr_response, camera_id, created_utc, units_*, bad_* counts, and with
-/// an FPA dependence fpa_degree, fpa_reference_k, fpa_min_k, fpa_max_k, fpa_temperatures_k. Atomic.
+/// band_um, rsr_wavelength_um, rsr_response, camera_id, camera_vendor, camera_model, camera_serial,
+/// camera_pixel_format, camera_bits_per_pixel, created_utc, units_*, bad_* counts, and with an FPA
+/// dependence fpa_degree, fpa_reference_k, fpa_min_k, fpa_max_k, fpa_temperatures_k. Atomic.
 void write_radiometric_calibration(const std::string& path, const RadiometricCalibration& cal);
 
 /// Reads a calibration EXR written by write_radiometric_calibration (format 1, without

@@ -63,7 +63,15 @@ struct SessionReductionOptions {
     double max_saturated_fraction = 0.01;
     /// Add the L_SLAR_<angle> channels (ReductionOptions::include_slar).
     bool include_slar = false;
+    /// Apply the calibration even if it was made with another camera (serial, model, bit depth or
+    /// pixel format differ); without it that is an error naming both cameras.
+    bool force_other_camera = false;
 };
+
+/// Throws tirpol::Error naming both cameras unless `calibration` was made with the session's camera
+/// (same size, and serial, model, bit depth and pixel format where the calibration records them).
+void check_same_camera(const RadiometricCalibration& calibration, const SessionManifest& session,
+                       const std::filesystem::path& dir);
 
 /// Reduces the session's scene records to Stokes (S0 S1 S2 DoLP AoP + *_std), radiance units.
 /// Records at the same angle (repeats) are averaged. Bad pixels of `radiometric` are replaced. Each

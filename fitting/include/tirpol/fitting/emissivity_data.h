@@ -43,7 +43,8 @@ struct EmissivityDataset {
 std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& path,
                                                    double default_wavelength_um = 10.0);
 
-/// Checks one dataset: at least one sample; finite values; angles in [0°, 90°]; uncertainties finite
+/// Checks one dataset: at least one sample; finite values; angles in [0°, 90°]; e_s0 in [0, 1] and
+/// e_s1 in [-1, 1] within limits::kEmissivityTolerance (measurement noise); uncertainties finite
 /// and > 0; wavelength finite and > 0. Throws tirpol::Error naming `dataset.source` and the sample.
 void validate_dataset(const EmissivityDataset& dataset);
 

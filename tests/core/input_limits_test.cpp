@@ -1,0 +1,84 @@
+// Declared sizes are checked before allocating and bit depths before interpreting pixels (issue 20:
+// a 480 KB EXR declaring 40000×40000 made `info` use 4.5 GB; an 8-bit PNG gave all-NaN
+// temperatures). The inputs are the regression files kept in tests/data/fuzz-regressions/,
+// written by fuzz/make_seeds.py.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "tirpol/core/checks.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/core/image.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/radiometry.h"
+#include "tirpol/core/raster_io.h"
+
+namespace tirpol {
+namespace {
+
+std::filesystem::path regression(const std::string& target, const std::string& name) {
+    return test::source_dir() / "tests/data/fuzz-regressions" / target / name;
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(InputLimits, ExrDeclaringHugeSizeIsRefusedBeforeAllocating) {
+    const auto huge = regression("exr", "declares_40000x40000.exr");
+    EXPECT_THAT(error_of([&] { read_exr(huge); }),
+                testing::AllOf(testing::HasSubstr("declares_40000x40000.exr"), testing::HasSubstr("16384")));
+    // Within the side limit but far more pixels than a 400-byte file can hold under any compression.
+    const auto liar = regression("exr", "declares_4000x4000_in_tiny_file.exr");
+    EXPECT_THAT(error_of([&] { read_exr(liar); }),
+                testing::AllOf(testing::HasSubstr("4000×4000"), testing::HasSubstr("no OpenEXR compression")));
+}
+
+TEST(InputLimits, ExrWithNonUtf8AttributeStillReads) {
+    const Image im = read_exr(regression("exr", "non_utf8_attribute.exr"));
+    EXPECT_EQ(im.width(), 2);
+    EXPECT_EQ(std::get<std::string>(im.attributes().at("note")),
+              "caf\xE9 \xFF\xFE");  // kept as is; sanitised on output
+}
+
+TEST(InputLimits, EightBitRawImagesAreRefusedWithTheReason) {
+    for (const char* name : {"eight_bit.png", "tiff_bits_per_sample_8.tif"})
+        EXPECT_THAT(error_of([&] { read_raw_image(regression("raw_image", name)); }),
+                    testing::AllOf(testing::HasSubstr(name), testing::HasSubstr("8-bit"),
+                                   testing::HasSubstr("cannot hold camera counts")));
+    EXPECT_THAT(error_of([&] { read_raw_image(regression("raw_image", "png_declares_40000x40000.png")); }),
+                testing::HasSubstr("40000×40000"));
+}
+
+TEST(InputLimits, ImagesBeyondTheLimitsAreErrorsNotBadAlloc) {
+    EXPECT_THAT(error_of([] { Image(limits::kMaxImageSide + 1, 1); }), testing::HasSubstr("exceeds tirpol's limits"));
+    EXPECT_THAT(error_of([] { Image(16000, 16000); }), testing::HasSubstr("exceeds tirpol's limits"));
+    EXPECT_NO_THROW(Image(640, 512));
+}
+
+TEST(InputLimits, PhysicalRangesNameTheQuantity) {
+    EXPECT_THAT(error_of([] { check_temperature_k(1e308, "--temperature-k"); }),
+                testing::AllOf(testing::HasSubstr("--temperature-k"), testing::HasSubstr("[1, 10000] K")));
+    EXPECT_THAT(error_of([] { check_temperature_k(0.5, "t"); }), testing::HasSubstr("outside"));
+    EXPECT_DOUBLE_EQ(check_temperature_k(300.0, "t"), 300.0);
+    EXPECT_THAT(error_of([] { check_finite(std::numeric_limits<double>::infinity(), "band radiance"); }),
+                testing::HasSubstr("band radiance: the result is not a finite number"));
+    EXPECT_THAT(error_of([] { check_non_negative(-1.0, "temperature_std_k"); }), testing::HasSubstr("≥ 0"));
+}
+
+TEST(InputLimits, RelativeSpectralResponseStaysRelative) {
+    // Issue 20: an RSR value of 1e308 made every band radiance inf.
+    EXPECT_THAT(error_of([] { SpectralResponse::load_csv(regression("rsr_csv", "response_1e308.csv")); }),
+                testing::AllOf(testing::HasSubstr("response_1e308.csv"), testing::HasSubstr("must lie in [0, 1]")));
+    EXPECT_NO_THROW(SpectralResponse({8.0, 10.0, 12.0}, {0.0, 1.02, 0.5}));  // digitising noise at the peak
+}
+
+}  // namespace
+}  // namespace tirpol
