@@ -99,7 +99,7 @@ class RenderedCalibration : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         s_dir = new test::TempDir("tirpol-geocal");
-        s_frames = new RenderedFrames(render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 16));
+        s_frames = new RenderedFrames(render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 8));
     }
     static void TearDownTestSuite() {
         delete s_frames;
