@@ -82,7 +82,7 @@ void run_polarimetric(const PolarimetricArgs& a) {
 }
 
 void register_calibrate(CLI::App& app) {
-    auto* cmd = app.add_subcommand("calibrate", "Radiometric (blackbody) or polarimetric (wire grid) calibration");
+    auto* cmd = app.add_subcommand("calibrate", "Radiometric (blackbody), polarimetric (wire grid), geometric (lens) or pose calibration");
     cmd->require_subcommand(1);
 
     auto r = std::make_shared<RadiometricArgs>();

@@ -1,0 +1,57 @@
+#pragma once
+/// \file geometric_calibration.h
+/// Intrinsics and lens distortion from views of a planar target (Zhang, "A flexible new technique
+/// for camera calibration", IEEE TPAMI 22(11), 2000, as implemented by cv::calibrateCamera), with
+/// per-view and total RMS reprojection error, 1σ of every parameter, and outlier views flagged.
+/// Pixel convention: OpenCV's (core/camera_model.h).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tirpol/calibration/calibration_target.h"
+#include "tirpol/calibration/target_detection.h"
+#include "tirpol/core/camera_model.h"
+
+namespace tirpol::calibration {
+
+struct GeometricCalibrationOptions {
+    std::string distortion_model = "standard";  ///< standard (k1 k2 p1 p2 k3), rational, thin_prism
+    bool fix_k3 = false;                        ///< keep k3 = 0 (few views, or a narrow lens)
+    bool zero_tangential = false;               ///< keep p1 = p2 = 0
+    int min_views = 5;                          ///< fewer usable views is an error
+    /// Views whose RMS exceeds max(outlier_factor × median view RMS, median + outlier_margin_px) are
+    /// flagged (and reported, not dropped: the user decides).
+    double outlier_factor = 3.0;
+    double outlier_margin_px = 0.25;
+    /// All target planes within this angle of each other (rotations about the optical axis aside)
+    /// leave the focal length unobservable: an error.
+    double min_tilt_spread_deg = 5.0;
+};
+
+struct ViewReport {
+    std::string name;
+    double rms_px = 0.0;
+    double tilt_deg = 0.0;  ///< angle between the target normal and the optical axis
+    bool outlier = false;
+};
+
+struct GeometricCalibrationResult {
+    CameraModel model;               ///< with rms_px, views, std_dev and target filled in
+    std::vector<ViewReport> views;   ///< the views used, in input order
+    std::vector<std::string> parameter_names;  ///< fx fy cx cy k1 …, the order of model.std_dev
+    std::vector<std::string> frames_without_target;
+};
+
+/// Calibrates from detected views of `target` in images of `width`×`height`. Throws tirpol::Error
+/// for too few views, views with the wrong point count, or degenerate geometry (all views parallel).
+GeometricCalibrationResult calibrate_geometric(const std::vector<TargetView>& views, const CalibrationTarget& target,
+                                               int width, int height, const GeometricCalibrationOptions& options = {});
+
+/// Reads each frame, detects the target and calibrates. Frames without the target are listed in the
+/// result; if fewer than options.min_views remain, the error names every frame without the target.
+GeometricCalibrationResult calibrate_geometric_frames(const std::vector<std::filesystem::path>& frames,
+                                                      const CalibrationTarget& target,
+                                                      const GeometricCalibrationOptions& options = {});
+
+}  // namespace tirpol::calibration

@@ -1,0 +1,227 @@
+#include "tirpol/core/camera_model.h"
+
+#include <opencv2/core.hpp>
+
+#include <cmath>
+
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol {
+
+std::size_t distortion_length(const std::string& model) {
+    if (model == "standard") return 5;
+    if (model == "rational") return 8;
+    if (model == "thin_prism") return 12;
+    fail("distortion model '{}': expected standard (k1 k2 p1 p2 k3), rational (+ k4 k5 k6) or thin_prism (+ s1..s4)",
+         model);
+}
+
+std::string distortion_model_of_length(std::size_t length) {
+    switch (length) {
+        case 5: return "standard";
+        case 8: return "rational";
+        case 12: return "thin_prism";
+        default: fail("{} distortion coefficients: expected 5 (standard), 8 (rational) or 12 (thin_prism)", length);
+    }
+}
+
+namespace {
+double coefficient(const std::vector<double>& d, std::size_t i) { return i < d.size() ? d[i] : 0.0; }
+
+struct DistortionTerms {
+    double radial;  ///< (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶)
+    Vec2 additive;  ///< tangential (p1, p2) and thin-prism (s1..s4) terms
+};
+
+DistortionTerms distortion_terms(const std::vector<double>& d, const Vec2& p) {
+    const double x = p.x(), y = p.y(), r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
+    const double k1 = coefficient(d, 0), k2 = coefficient(d, 1), p1 = coefficient(d, 2), p2 = coefficient(d, 3),
+                 k3 = coefficient(d, 4), k4 = coefficient(d, 5), k5 = coefficient(d, 6), k6 = coefficient(d, 7),
+                 s1 = coefficient(d, 8), s2 = coefficient(d, 9), s3 = coefficient(d, 10), s4 = coefficient(d, 11);
+    return {(1.0 + k1 * r2 + k2 * r4 + k3 * r6) / (1.0 + k4 * r2 + k5 * r4 + k6 * r6),
+            Vec2(2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x) + s1 * r2 + s2 * r4,
+                 p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y + s3 * r2 + s4 * r4)};
+}
+
+/// OpenCV's forward distortion of normalised coordinates (calib3d, "Detailed description").
+Vec2 distort_normalised(const std::vector<double>& d, const Vec2& p) {
+    const DistortionTerms t = distortion_terms(d, p);
+    return t.radial * p + t.additive;
+}
+}  // namespace
+
+Vec2 CameraModel::project(const Vec3& point_camera) const {
+    const Vec2 d = distort_normalised(distortion, Vec2(point_camera.x() / point_camera.z(), point_camera.y() / point_camera.z()));
+    return {fx * d.x() + cx, fy * d.y() + cy};
+}
+
+Vec2 CameraModel::undistort(const Vec2& pixel) const {
+    const Vec2 goal((pixel.x() - cx) / fx, (pixel.y() - cy) / fy);
+    bool distorted = false;
+    for (double c : distortion) distorted = distorted || c != 0.0;
+    if (!distorted) return goal;
+    // Fixed-point iteration (as cv::undistortPoints) gets close; Newton on the forward model then
+    // makes it exact where fixed-point converges slowly (strong barrel distortion at the corners).
+    Vec2 p = goal;
+    for (int i = 0; i < 10; ++i) {
+        const DistortionTerms t = distortion_terms(distortion, p);
+        const Vec2 next = (goal - t.additive) / t.radial;
+        if (!next.allFinite()) break;
+        p = next;
+    }
+    for (int i = 0; i < 20; ++i) {
+        const Vec2 residual = distort_normalised(distortion, p) - goal;
+        if (residual.norm() < 1e-15) break;
+        constexpr double h = 1e-7;
+        Eigen::Matrix2d jacobian;
+        jacobian.col(0) = (distort_normalised(distortion, p + Vec2(h, 0)) - distort_normalised(distortion, p - Vec2(h, 0))) / (2 * h);
+        jacobian.col(1) = (distort_normalised(distortion, p + Vec2(0, h)) - distort_normalised(distortion, p - Vec2(0, h))) / (2 * h);
+        p -= jacobian.inverse() * residual;
+    }
+    return p;
+}
+
+void validate_camera_model(const CameraModel& m, const std::string& where) {
+    if (m.width < 1 || m.height < 1) fail("{}: image_width/image_height must be positive, got {}x{}", where, m.width, m.height);
+    if (!(m.fx > 0.0 && m.fy > 0.0 && std::isfinite(m.fx) && std::isfinite(m.fy)))
+        fail("{}: camera_matrix focal lengths fx, fy must be positive, got {} {}", where, m.fx, m.fy);
+    if (!std::isfinite(m.cx) || !std::isfinite(m.cy)) fail("{}: camera_matrix principal point is not finite", where);
+    try {
+        (void)distortion_model_of_length(m.distortion.size());
+    } catch (const Error& e) {
+        fail("{}: distortion_coefficients: {}", where, e.what());
+    }
+    for (double c : m.distortion)
+        if (!std::isfinite(c)) fail("{}: distortion_coefficients contain a non-finite value", where);
+}
+
+namespace {
+cv::FileStorage open_for_reading(const std::filesystem::path& path) {
+    const std::string text = read_file(path);
+    try {
+        cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+        if (!fs.isOpened()) fail("{}: not an OpenCV FileStorage YAML file", path.string());
+        return fs;
+    } catch (const cv::Exception& e) {
+        fail("{}: not readable as OpenCV FileStorage YAML: {}", path.string(), e.err);
+    }
+}
+
+cv::Mat required_mat(const cv::FileStorage& fs, const char* key, int rows, int cols, const std::filesystem::path& path) {
+    const cv::FileNode n = fs[key];
+    if (n.empty()) fail("{}: missing field '{}'", path.string(), key);
+    cv::Mat m;
+    try {
+        n >> m;
+    } catch (const cv::Exception&) {
+        fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix)", path.string(), key);
+    }
+    if (rows > 0 && (m.rows != rows || m.cols != cols))
+        fail("{}: field '{}' must be {}x{}, got {}x{}", path.string(), key, rows, cols, m.rows, m.cols);
+    m.convertTo(m, CV_64F);
+    return m;
+}
+
+int required_int(const cv::FileStorage& fs, const char* key, const std::filesystem::path& path) {
+    const cv::FileNode n = fs[key];
+    if (n.empty() || !n.isInt()) fail("{}: missing or non-integer field '{}'", path.string(), key);
+    return static_cast<int>(n);
+}
+
+double optional_real(const cv::FileStorage& fs, const char* key) {
+    const cv::FileNode n = fs[key];
+    return n.isReal() || n.isInt() ? static_cast<double>(n) : 0.0;
+}
+
+std::vector<double> to_vector(const cv::Mat& m) { return std::vector<double>(m.begin<double>(), m.end<double>()); }
+
+void commit_storage(cv::FileStorage& fs, const std::filesystem::path& path) {
+    write_file_atomic(path, fs.releaseAndGetString());
+}
+}  // namespace
+
+CameraModel read_camera_model(const std::filesystem::path& path) {
+    cv::FileStorage fs = open_for_reading(path);
+    CameraModel m;
+    m.width = required_int(fs, "image_width", path);
+    m.height = required_int(fs, "image_height", path);
+    const cv::Mat k = required_mat(fs, "camera_matrix", 3, 3, path);
+    if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 || k.at<double>(2, 1) != 0.0 ||
+        k.at<double>(2, 2) != 1.0)
+        fail("{}: camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)", path.string());
+    m.fx = k.at<double>(0, 0);
+    m.fy = k.at<double>(1, 1);
+    m.cx = k.at<double>(0, 2);
+    m.cy = k.at<double>(1, 2);
+    m.distortion = to_vector(required_mat(fs, "distortion_coefficients", 0, 0, path));
+    if (!fs["distortion_model"].empty()) {
+        const std::string declared = static_cast<std::string>(fs["distortion_model"]);
+        if (distortion_length(declared) != m.distortion.size())
+            fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(), declared,
+                 distortion_length(declared), m.distortion.size());
+    }
+    m.rms_px = optional_real(fs, "rms_reprojection_error_px");
+    if (!fs["views"].empty()) m.views = static_cast<int>(fs["views"]);
+    if (!fs["std_dev_intrinsics"].empty()) m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
+    if (!fs["target"].empty()) m.target = static_cast<std::string>(fs["target"]);
+    validate_camera_model(m, path.string());
+    return m;
+}
+
+void write_camera_model(const std::filesystem::path& path, const CameraModel& m) {
+    validate_camera_model(m, path.string());
+    cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+    fs.writeComment(" tirpol camera model (docs/camera-geometry.md). OpenCV conventions: pixel (0,0) is the centre\n"
+                    " of the top-left pixel, u right, v down; camera x right, y down, z forward; units pixels.");
+    fs << "image_width" << m.width << "image_height" << m.height;
+    fs << "camera_matrix" << (cv::Mat_<double>(3, 3) << m.fx, 0.0, m.cx, 0.0, m.fy, m.cy, 0.0, 0.0, 1.0);
+    fs << "distortion_model" << m.distortion_model();
+    fs << "distortion_coefficients" << cv::Mat(m.distortion, true).reshape(1, 1);
+    if (m.views > 0) {
+        fs << "rms_reprojection_error_px" << m.rms_px << "views" << m.views;
+        if (!m.std_dev.empty()) fs << "std_dev_intrinsics" << cv::Mat(m.std_dev, true).reshape(1, 1);
+    }
+    if (!m.target.empty()) fs << "target" << m.target;
+    commit_storage(fs, path);
+}
+
+CameraPose read_camera_pose(const std::filesystem::path& path) {
+    cv::FileStorage fs = open_for_reading(path);
+    CameraPose p;
+    const cv::Mat r = required_mat(fs, "rotation_camera_from_world", 3, 3, path);
+    const cv::Mat t = required_mat(fs, "translation_m", 3, 1, path);
+    for (int i = 0; i < 3; ++i) {
+        p.translation_m[i] = t.at<double>(i);
+        for (int j = 0; j < 3; ++j) p.camera_from_world(i, j) = r.at<double>(i, j);
+    }
+    if ((p.camera_from_world * p.camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
+        p.camera_from_world.determinant() < 0.0)
+        fail("{}: rotation_camera_from_world is not a proper rotation (R·Rᵀ = I, det R = +1)", path.string());
+    if (!p.translation_m.allFinite()) fail("{}: translation_m is not finite", path.string());
+    p.rms_px = optional_real(fs, "rms_reprojection_error_px");
+    if (!fs["control_points"].empty()) p.points = static_cast<int>(fs["control_points"]);
+    return p;
+}
+
+void write_camera_pose(const std::filesystem::path& path, const CameraPose& p) {
+    cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+    fs.writeComment(" tirpol camera pose (docs/camera-geometry.md): x_camera = R x_world + t, world frame of the\n"
+                    " scene (x east, y north, z up), camera x right, y down, z forward; metres.");
+    cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F), c(3, 1, CV_64F);
+    const Vec3 position = p.position_m();
+    for (int i = 0; i < 3; ++i) {
+        t.at<double>(i) = p.translation_m[i];
+        c.at<double>(i) = position[i];
+        for (int j = 0; j < 3; ++j) r.at<double>(i, j) = p.camera_from_world(i, j);
+    }
+    fs << "rotation_camera_from_world" << r << "translation_m" << t << "camera_position_m" << c;
+    if (p.points > 0) {
+        fs << "control_points" << p.points << "rms_reprojection_error_px" << p.rms_px;
+        fs << "rotation_sigma_deg" << cv::Mat(cv::Vec3d(p.rotation_sigma_deg.x(), p.rotation_sigma_deg.y(), p.rotation_sigma_deg.z()));
+        fs << "position_sigma_m" << cv::Mat(cv::Vec3d(p.position_sigma_m.x(), p.position_sigma_m.y(), p.position_sigma_m.z()));
+    }
+    commit_storage(fs, path);
+}
+
+}  // namespace tirpol

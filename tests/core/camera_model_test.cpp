@@ -1,0 +1,91 @@
+// Camera model and pose files: round trip, readable by OpenCV's own FileStorage, and clear errors.
+
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "test_support.h"
+#include "tirpol/core/camera_model.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol {
+namespace {
+
+CameraModel sample_model() {
+    CameraModel m;
+    m.width = 640;
+    m.height = 512;
+    m.fx = 760.25;
+    m.fy = 762.5;
+    m.cx = 330.125;
+    m.cy = 249.75;
+    m.distortion = {-0.31, 0.12, 0.0008, -0.0004, -0.02};
+    m.rms_px = 0.07;
+    m.views = 15;
+    m.std_dev = {0.5, 0.5, 0.2, 0.2, 0.001, 0.003, 0.0001, 0.0001, 0.004};
+    m.target = "checkerboard:9x6:0.06";
+    return m;
+}
+
+TEST(CameraModelFile, RoundTripsAndOpenCvReadsIt) {
+    test::TempDir dir;
+    const CameraModel m = sample_model();
+    write_camera_model(dir / "cam.yaml", m);
+    const CameraModel back = read_camera_model(dir / "cam.yaml");
+    EXPECT_EQ(back.width, 640);
+    EXPECT_EQ(back.fx, m.fx);
+    EXPECT_EQ(back.cy, m.cy);
+    EXPECT_EQ(back.distortion, m.distortion);
+    EXPECT_EQ(back.std_dev, m.std_dev);
+    EXPECT_EQ(back.target, m.target);
+    // A user's OpenCV program reads the same file without tirpol.
+    cv::FileStorage fs((dir / "cam.yaml").string(), cv::FileStorage::READ);
+    ASSERT_TRUE(fs.isOpened());
+    cv::Mat k, d;
+    fs["camera_matrix"] >> k;
+    fs["distortion_coefficients"] >> d;
+    EXPECT_EQ(k.at<double>(0, 2), m.cx);
+    EXPECT_EQ(d.total(), 5u);
+    EXPECT_EQ(d.at<double>(4), m.distortion[4]);
+}
+
+TEST(CameraModelFile, PoseRoundTrips) {
+    test::TempDir dir;
+    CameraPose p;
+    p.camera_from_world = Eigen::AngleAxisd(0.3, Vec3(0.2, 0.9, -0.1).normalized()).toRotationMatrix();
+    p.translation_m = Vec3(0.5, -1.0, 9.8);
+    p.points = 8;
+    p.rms_px = 0.2;
+    write_camera_pose(dir / "pose.yaml", p);
+    const CameraPose back = read_camera_pose(dir / "pose.yaml");
+    EXPECT_LT((back.camera_from_world - p.camera_from_world).norm(), 1e-15);
+    EXPECT_LT((back.position_m() - p.position_m()).norm(), 1e-12);
+}
+
+TEST(CameraModelFile, BadFilesNameTheField) {
+    test::TempDir dir;
+    auto expect_error = [&](const std::string& text, const std::string& needle) {
+        test::write_text(dir / "bad.yaml", text);
+        try {
+            read_camera_model(dir / "bad.yaml");
+            FAIL() << "accepted: " << text;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos) << e.what();
+        }
+    };
+    expect_error("%YAML:1.0\n---\nimage_width: 640\n", "image_height");
+    expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\n", "camera_matrix");
+    expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
+                 "  dt: d\n  data: [ 700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+                 "  rows: 1\n  cols: 4\n  dt: d\n  data: [ 0., 0., 0., 0. ]\n",
+                 "distortion_coefficients");
+    expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
+                 "  dt: d\n  data: [ -700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+                 "  rows: 1\n  cols: 5\n  dt: d\n  data: [ 0., 0., 0., 0., 0. ]\n",
+                 "fx");
+    expect_error("just: text\n", "bad.yaml");
+}
+
+}  // namespace
+}  // namespace tirpol
