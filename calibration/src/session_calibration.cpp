@@ -224,6 +224,29 @@ RadiometricCalibration calibrate_radiometric_sessions(const std::vector<fs::path
     return cal;
 }
 
+void check_same_camera(const RadiometricCalibration& cal, const SessionManifest& m, const fs::path& dir) {
+    const CalibrationCamera& c = cal.camera;
+    std::vector<std::string> differences;
+    if (m.camera.width != cal.width || m.camera.height != cal.height) differences.push_back("size");
+    if (c.known()) {
+        if (c.serial != m.camera.serial) differences.push_back("serial");
+        if (c.model != m.camera.model || c.vendor != m.camera.vendor) differences.push_back("model");
+        if (c.bits_per_pixel != 0 && m.camera.bits_per_pixel != 0 && c.bits_per_pixel != m.camera.bits_per_pixel)
+            differences.push_back("bit depth");
+        if (!c.pixel_format.empty() && !m.camera.pixel_format.empty() && c.pixel_format != m.camera.pixel_format)
+            differences.push_back("pixel format");
+    }
+    if (differences.empty()) return;
+    fail(
+        "{}: the radiometric calibration was made with another camera ({} differ{}): calibration camera {}; session "
+        "camera {}. Per-pixel gains and offsets belong to one detector; use --force (C++: "
+        "SessionReductionOptions::force_other_camera) only if you know they apply",
+        manifest_path(dir), fmt::join(differences, ", "), differences.size() == 1 ? "s" : "",
+        describe_camera(c.vendor, c.model, c.serial, c.pixel_format, c.bits_per_pixel, cal.width, cal.height),
+        describe_camera(m.camera.vendor, m.camera.model, m.camera.serial, m.camera.pixel_format,
+                        m.camera.bits_per_pixel, m.camera.width, m.camera.height));
+}
+
 PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, const RadiometricCalibration& radiometric,
                                                        const std::optional<DatasheetAnalyzer>& datasheet) {
     const SessionManifest m = read_session(dir);
