@@ -37,7 +37,7 @@ TEST(GeometryCli, PoseFromControlPointsIsWrittenAndPrinted) {
     const Vec3 position(0.0, 0.0, 1.5);
     truth.translation_m = -truth.camera_from_world * position;
     std::string csv = "name,x_m,y_m,z_m,u_px,v_px\n";
-    const std::vector<Vec3> world = {{-2, 9, 0}, {2, 9, 0}, {-2, 9, 2.5}, {2, 9, 2.5}, {0, 12, 1}, {-3, 6, 0.3}, {3, 7, 1.8}};
+    const std::vector<Vec3> world = {{-2, 9, 0}, {2, 9, 0}, {-2, 9, 2.5}, {2, 9, 2.5}, {0, 12, 1}, {-2.5, 7, 0.3}, {2.5, 7, 1.8}};  // all inside the 640×512 view
     for (std::size_t i = 0; i < world.size(); ++i) {
         const Vec2 px = lens().project(truth.camera_from_world * world[i] + truth.translation_m);
         csv += fmt::format("p{},{},{},{},{:.4f},{:.4f}\n", i, world[i].x(), world[i].y(), world[i].z(), px.x(), px.y());
