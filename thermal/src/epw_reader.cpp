@@ -36,6 +36,14 @@ struct FieldReader {
         if (!(v >= lo && v <= hi)) fail("{}: {} = {} outside the plausible range [{}, {}]", where, name, v, lo, hi);
         return v;
     }
+    // A whole number in [lo, hi] (date and time fields): checked before the cast, so a huge or
+    // non-finite value is an error, never undefined behaviour.
+    int integer(std::size_t i, std::string_view name, int lo, int hi) const {
+        const double v = number(i, name);
+        if (!(v >= lo && v <= hi) || v != std::floor(v))
+            fail("{}: {} = {} is not a whole number in [{}, {}]", where, name, v, lo, hi);
+        return static_cast<int>(v);
+    }
     // A value that may be missing (→ NaN); present values must be in range.
     double optional(std::size_t i, std::string_view name, double missing_code, double lo, double hi) const {
         const double v = number(i, name);
@@ -83,12 +91,11 @@ WeatherSeries load_epw(const std::filesystem::path& path, std::optional<int> yea
         if (f.size() < kEpwFields) fail("{}: {} fields, an EPW data line has {}", where, f.size(), kEpwFields);
         const FieldReader r{f, where};
         CivilTime c;
-        c.year = year ? *year : static_cast<int>(r.number(kYear, "year"));
-        c.month = static_cast<int>(r.number(kMonth, "month"));
-        c.day = static_cast<int>(r.number(kDay, "day"));
-        const int hour = static_cast<int>(r.number(kHour, "hour"));
-        const int minute = static_cast<int>(r.number(kMinute, "minute"));
-        if (hour < 1 || hour > 24) fail("{}: hour {} outside 1–24 (EPW hours end at the given hour)", where, hour);
+        c.year = year ? *year : r.integer(kYear, "year", 1, 9999);
+        c.month = r.integer(kMonth, "month", 1, 12);
+        c.day = r.integer(kDay, "day", 1, 31);
+        const int hour = r.integer(kHour, "hour (EPW hours 1–24 end at the given hour)", 1, 24);
+        const int minute = r.integer(kMinute, "minute", 0, 60);
         // Hour h covers (h−1):00–h:00; a minute of 0 or 60 marks the end of the hour (hourly files).
         c.hour = hour - 1;
         c.utc_offset_h = site.utc_offset_h;
