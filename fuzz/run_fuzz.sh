@@ -37,11 +37,15 @@ printf '%-18s %10s %8s %6s %5s  %s\n' target inputs crashes hangs ooms result | 
 for t in "${targets[@]}"; do
   mkdir -p "$OUT/$t/corpus" "$OUT/$t/artifacts"
   mapfile -t seeds < <(seeds_of "$t")
+  # A fixed libFuzzer seed (TIRPOL_FUZZ_SEED, default 1; 0 = random) makes CI explore the same
+  # inputs from the same corpus on every run, so a pass or a finding is reproducible; campaigns
+  # that look further set another seed or 0.
   # The first folder receives new inputs; the seed folders are only read. Inputs are capped at 64 KB
   # (the real files are smaller), so a run explores structure rather than size.
   mkdir -p "$OUT/$t/tmp"
   ( cd "$OUT/$t" && TMPDIR="$OUT/$t/tmp" timeout $((SECONDS_PER_TARGET + 120)) "$BUILD/fuzz/tirpol_fuzz_$t" \
-      -max_total_time="$SECONDS_PER_TARGET" -rss_limit_mb="$RSS_LIMIT_MB" -timeout="$HANG_S" -max_len=65536 \
+      -seed="${TIRPOL_FUZZ_SEED:-1}" -max_total_time="$SECONDS_PER_TARGET" -rss_limit_mb="$RSS_LIMIT_MB" \
+      -timeout="$HANG_S" -max_len=65536 \
       -print_final_stats=1 -artifact_prefix="$OUT/$t/artifacts/" "$OUT/$t/corpus" "${seeds[@]}" ) \
       >"$OUT/$t/log.txt" 2>&1
   rc=$?
