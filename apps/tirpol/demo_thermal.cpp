@@ -5,6 +5,7 @@
 
 #include "demo_steps.h"
 #include "tirpol/core/source_tree.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
@@ -50,12 +51,12 @@ void demo_thermal(const std::filesystem::path& out_dir) {
         PlotSeries s{obj.name + " (" + scene.materials[obj.material].name + ")", {}, {}, kColours[k % 6]};
         for (const auto& x : h) {
             s.x.push_back((x.time_s - end) / 3600.0);
-            s.y.push_back(x.surface_temperature_k - 273.15);
+            s.y.push_back(x.surface_temperature_k - kZeroCelsiusK);
         }
         series.push_back(std::move(s));
         csv << obj.name << ',' << scene.materials[obj.material].name << ',' << h.back().surface_temperature_k << '\n';
         std::printf("  %-20s %-12s %7.2f °C\n", obj.name.c_str(), scene.materials[obj.material].name.c_str(),
-                    h.back().surface_temperature_k - 273.15);
+                    h.back().surface_temperature_k - kZeroCelsiusK);
     }
     write_file_atomic(out_dir / "thermal" / "ball_on_snow_temperatures.csv", csv.str());
     LinePlotOptions options;

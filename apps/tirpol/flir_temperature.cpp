@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "tirpol/calibration/flir.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/raster_io.h"
 
 namespace tirpol::cli {
@@ -26,9 +27,9 @@ void run_flir(const FlirArgs& a) {
     calibration::FlirConditions c;
     c.emissivity = a.emissivity;
     c.distance_m = a.distance_m;
-    c.reflected_k = a.reflected_c + 273.15;
-    c.atmosphere_k = a.atmosphere_c.value_or(a.reflected_c) + 273.15;
-    c.window_k = a.window_c.value_or(a.reflected_c) + 273.15;
+    c.reflected_k = a.reflected_c + kZeroCelsiusK;
+    c.atmosphere_k = a.atmosphere_c.value_or(a.reflected_c) + kZeroCelsiusK;
+    c.window_k = a.window_c.value_or(a.reflected_c) + kZeroCelsiusK;
     c.humidity_pct = a.humidity_pct;
     c.window_transmission = a.window_transmission;
     calibration::validate_flir(p, c);
@@ -57,7 +58,7 @@ void run_flir(const FlirArgs& a) {
     write_exr(a.output, out);
     const auto s = channel_stats(t);
     std::printf("object temperature: min %.2f °C, mean %.2f °C, max %.2f °C (%zu pixel(s) without a solution) → %s\n",
-                s.min - 273.15, s.mean - 273.15, s.max - 273.15, invalid, a.output.c_str());
+                s.min - kZeroCelsiusK, s.mean - kZeroCelsiusK, s.max - kZeroCelsiusK, invalid, a.output.c_str());
 }
 
 void register_flir(CLI::App& app) {

@@ -47,7 +47,7 @@ void run_planck(const PlanckArgs& a) {
         const double t = check_finite(band.brightness_temperature(l), "brightness temperature");
         out["radiance_w_m2_sr"] = l;
         out["brightness_temperature_k"] = t;
-        if (!a.json) std::printf("brightness temperature = %.4f K (%.4f °C)\n", t, t - 273.15);
+        if (!a.json) std::printf("brightness temperature = %.4f K (%.4f °C)\n", t, t - kZeroCelsiusK);
     }
     if (a.json) std::printf("%s\n", json_text(out, 2).c_str());
 }

@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
@@ -47,7 +48,7 @@ void draw_plot(const std::string& path, const std::vector<ObjectResult>& results
         PlotSeries air{"air", {}, {}, {120, 120, 120}, false, true};
         for (const auto& s : results.front().history) {
             air.x.push_back((s.time_s - end_s) / 3600.0);
-            air.y.push_back(s.air_temperature_k - 273.15);
+            air.y.push_back(s.air_temperature_k - kZeroCelsiusK);
         }
         series.push_back(std::move(air));
     }
@@ -56,7 +57,7 @@ void draw_plot(const std::string& path, const std::vector<ObjectResult>& results
         PlotSeries line{obj.name + " (" + scene.materials[obj.material].name + ")", {}, {}, kPalette[k % std::size(kPalette)]};
         for (const auto& s : results[k].history) {
             line.x.push_back((s.time_s - end_s) / 3600.0);
-            line.y.push_back(s.surface_temperature_k - 273.15);
+            line.y.push_back(s.surface_temperature_k - kZeroCelsiusK);
         }
         series.push_back(std::move(line));
     }
@@ -142,7 +143,7 @@ void run_therm(const ThermArgs& a) {
         const auto& s = r.history.back();
         const auto& obj = *r.object;
         const std::string& mat = scene.materials[obj.material].name;
-        const double tc = s.surface_temperature_k - 273.15, air_c = s.air_temperature_k - 273.15;
+        const double tc = s.surface_temperature_k - kZeroCelsiusK, air_c = s.air_temperature_k - kZeroCelsiusK;
         if (!a.json)
             std::printf("%-22s %-14s %8.2f %8.2f %9.2f %9.1f\n", obj.name.c_str(), mat.c_str(), s.surface_temperature_k, tc,
                         air_c, s.fluxes.absorbed_shortwave);

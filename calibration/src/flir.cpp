@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::calibration {
 
@@ -19,7 +20,7 @@ double flir_blackbody_temperature(const FlirPlanck& p, double raw) {
 
 double flir_atmospheric_transmission(double distance_m, double air_k, double humidity_pct,
                                      const FlirAtmosphereConstants& c) {
-    const double t = air_k - 273.15;
+    const double t = air_k - kZeroCelsiusK;
     const double h2o = humidity_pct / 100.0 *
                        std::exp(1.5587 + 0.06939 * t - 0.00027816 * t * t + 0.00000068455 * t * t * t);
     const double sd = std::sqrt(distance_m), sh = std::sqrt(h2o);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/limits.h"
 
 namespace tirpol::simulation {
@@ -29,7 +30,7 @@ double temperature_k_from_config(const ConfigNode& node) {
     if (parse_number(text, value)) {
         kelvin = value;
     } else if (text.size() > 3 && text.ends_with("°C") && parse_number(trim(text.substr(0, text.size() - 3)), value)) {
-        kelvin = value + 273.15;
+        kelvin = value + kZeroCelsiusK;
     } else if (text.size() > 1 && text.ends_with("K") && parse_number(trim(text.substr(0, text.size() - 1)), value)) {
         kelvin = value;
     } else {

@@ -24,6 +24,14 @@ TEST(Planck, RadiationConstantsMatchCodata2018) {
     EXPECT_NEAR(kC2_um_K, 14387.76877, 1e-5);
 }
 
+TEST(Planck, StefanBoltzmannConstantFollowsFromTheExactConstants) {
+    // σ = 2π⁵k⁴/(15h³c²) with the exact SI h, c, k gives CODATA 2018's σ to its 10 digits.
+    const double sigma = 2.0 * std::pow(kPi, 5) * std::pow(kBoltzmannK, 4) /
+                         (15.0 * std::pow(kPlanckH, 3) * kSpeedOfLight * kSpeedOfLight);
+    EXPECT_NEAR(kStefanBoltzmann / sigma, 1.0, 1e-9);
+    EXPECT_EQ(kStefanBoltzmann, kSigmaCodata2018);
+}
+
 TEST(Planck, TotalRadianceIsStefanBoltzmannOverPi) {
     // ∫ L(λ,T) dλ = σT⁴/π for a Lambertian blackbody. The band 0.2–3000 µm misses the Rayleigh–Jeans
     // tail beyond 3000 µm, ∫ 2ckT/λ⁴ dλ = 2ckT/(3λ³) (a few 1e-7 of the total), added analytically.

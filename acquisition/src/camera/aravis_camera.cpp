@@ -20,6 +20,7 @@
 #include "camera/gvcp_probe.h"
 #include "camera/pixel_decode.h"
 #include "tirpol/acquisition/frame_id.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
@@ -246,7 +247,7 @@ public:
         GErrorSlot e;
         const double value = arv_gc_float_get_value(node, e.out());
         if (e) return std::nullopt;
-        return m_temperature_in_kelvin ? value : value + 273.15;
+        return m_temperature_in_kelvin ? value : value + kZeroCelsiusK;
     }
 
 private:

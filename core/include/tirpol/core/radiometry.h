@@ -17,6 +17,10 @@ inline constexpr double kBoltzmannK = 1.380649e-23;   ///< J/K (exact)
 inline constexpr double kC1L_W_um4_per_m2_sr = 2.0 * kPlanckH * kSpeedOfLight * kSpeedOfLight * 1e24;
 /// Second radiation constant hc/k in µm·K.
 inline constexpr double kC2_um_K = kPlanckH * kSpeedOfLight / kBoltzmannK * 1e6;
+/// Stefan–Boltzmann constant 2π⁵k⁴/(15h³c²), W/(m²·K⁴) (CODATA 2018 value).
+inline constexpr double kStefanBoltzmann = 5.670374419e-8;
+/// 0 °C in kelvin (the Celsius scale's definition).
+inline constexpr double kZeroCelsiusK = 273.15;
 
 /// Planck spectral radiance of a blackbody, W/(m²·sr·µm). Returns 0 for T ≤ 0.
 double planck_radiance(double wavelength_um, double temperature_k);

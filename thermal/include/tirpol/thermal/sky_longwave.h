@@ -10,11 +10,6 @@
 
 namespace tirpol::thermal {
 
-/// Stefan–Boltzmann constant, W/(m²·K⁴) (CODATA 2018).
-inline constexpr double kStefanBoltzmann = 5.670374419e-8;
-/// 0 °C in kelvin.
-inline constexpr double kZeroCelsiusK = 273.15;
-
 /// Saturation vapour pressure over water, hPa, Magnus form with Alduchov & Eskridge (1996, J. Appl.
 /// Meteor. 35, 601) coefficients: 6.1094 exp(17.625 T / (T + 243.04)), T in °C.
 double saturation_vapour_pressure_hpa(double temperature_c);
