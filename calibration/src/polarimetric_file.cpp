@@ -40,6 +40,11 @@ void write_polarimetric_calibration(const std::string& yaml_path, const Polarime
         maps.set_channel("tau_" + angle_tag(p.angle_deg), p.tau);
         maps.set_channel("B_" + angle_tag(p.angle_deg), p.background);
         maps.set_channel("residual_" + angle_tag(p.angle_deg), p.residual_rms);
+        if (p.has_covariance()) {
+            maps.set_channel("tau_var_" + angle_tag(p.angle_deg), p.tau_var);
+            maps.set_channel("B_var_" + angle_tag(p.angle_deg), p.background_var);
+            maps.set_channel("tau_B_cov_" + angle_tag(p.angle_deg), p.tau_background_cov);
+        }
     }
     maps.attributes()["tirpol_calibration"] = std::string("polarimetric-maps");
     maps.attributes()["units_B"] = std::string("W/(m^2 sr)");
@@ -100,8 +105,15 @@ PolarimetricCalibration read_polarimetric_calibration(const std::string& yaml_pa
         if (!maps.has_channel("tau_" + tag))
             fail("{}: no channel tau_{} for analyzer angle {:g}° listed in {}", maps_path, tag, p.nominal_angle_deg,
                  yaml_path);
-        cal.wire_grid.positions.push_back({p.nominal_angle_deg, maps.channel("tau_" + tag), maps.channel("B_" + tag),
-                                           maps.channel("residual_" + tag)});
+        WireGridPosition pos{p.nominal_angle_deg, maps.channel("tau_" + tag), maps.channel("B_" + tag),
+                             maps.channel("residual_" + tag)};
+        // Maps written before tirpol recorded the fit's covariance have none; reductions then state so.
+        if (maps.has_channel("tau_var_" + tag) && maps.has_channel("B_var_" + tag) && maps.has_channel("tau_B_cov_" + tag)) {
+            pos.tau_var = maps.channel("tau_var_" + tag);
+            pos.background_var = maps.channel("B_var_" + tag);
+            pos.tau_background_cov = maps.channel("tau_B_cov_" + tag);
+        }
+        cal.wire_grid.positions.push_back(std::move(pos));
     }
     return cal;
 }

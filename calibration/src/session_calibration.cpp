@@ -262,7 +262,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
             RadianceFrame f = to_radiance(dir, m, r, radiometric);
             // Grouped by the nominal angle (the fitted analyzer absorbs the mount's offset); the read-back is checked.
             measured_offset_deg(dir, m, r);
-            bb.push_back({r.angle_deg_requested, *r.blackbody_temperature_k, std::move(f.radiance), (dir / r.file).string()});
+            bb.push_back({r.angle_deg_requested, *r.blackbody_temperature_k, std::move(f.radiance),
+                          (dir / r.file).string(), std::move(f.sigma)});
         }
     if (bb.empty()) fail("{}: no blackbody records taken through the polarizer", manifest_path(dir));
     PolarimetricCalibration out;

@@ -52,6 +52,10 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
         }
     }
 
+    // The wire-grid fit's own error, when known, is part of every reduced image's uncertainty.
+    const bool grid_covariance =
+        wire_grid && std::all_of(grid.begin(), grid.end(), [](const auto* g) { return g->has_covariance(); });
+
     Image out(width, height);
     auto& s0 = out.add_channel("S0");
     auto& s1 = out.add_channel("S1");
@@ -60,6 +64,8 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
     auto& aop = out.add_channel("AoP");
     std::vector<float>*s0_std = nullptr, *s1_std = nullptr, *s2_std = nullptr, *dolp_std = nullptr, *aop_std = nullptr;
     if (have_std) {
+        out.attributes()["std_includes"] = std::string(
+            grid_covariance ? "temporal noise and the wire-grid calibration's fit error" : "temporal noise");
         s0_std = &out.add_channel("S0_std");
         s1_std = &out.add_channel("S1_std");
         s2_std = &out.add_channel("S2_std");
@@ -84,12 +90,18 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
         b_const[k] = model.positions[k].background;
     }
     std::vector<const float*> sig_p(n_angles), std_p(n_angles, nullptr), tau_p(n_angles, nullptr), b_p(n_angles, nullptr);
+    std::vector<const float*> tau_var_p(n_angles, nullptr), b_var_p(n_angles, nullptr), tau_b_cov_p(n_angles, nullptr);
     for (std::size_t k = 0; k < n_angles; ++k) {
         sig_p[k] = inputs[k]->signal.data();
         if (have_std) std_p[k] = inputs[k]->signal_std.data();
         if (wire_grid) {
             tau_p[k] = grid[k]->tau.data();
             b_p[k] = grid[k]->background.data();
+        }
+        if (grid_covariance) {
+            tau_var_p[k] = grid[k]->tau_var.data();
+            b_var_p[k] = grid[k]->background_var.data();
+            tau_b_cov_p[k] = grid[k]->tau_background_cov.data();
         }
     }
     int unrealizable = 0;
@@ -107,9 +119,13 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
             s[1] += wk[1] * l;
             s[2] += wk[2] * l;
             if (have_std) {
-                // Independent per-angle errors: Cov(S) = W⁺·diag(σ²)·W⁺ᵀ (Tyo et al. 2006, §4.3).
-                const double sig = std_p[k][i] / tau;
-                const double var = sig * sig;
+                // Independent per-angle errors: Cov(S) = W⁺·diag(σ²)·W⁺ᵀ (Tyo et al. 2006, §4.3). With
+                // the grid's fitted (τ, B) uncertain too (each angle fitted from its own frames), first order
+                // in l = (I − B)/τ: Var l = (σ_I² + Var B + l² Var τ + 2 l Cov(τ, B)) / τ².
+                double var = static_cast<double>(std_p[k][i]) * std_p[k][i];
+                if (grid_covariance)
+                    var += b_var_p[k][i] + l * l * tau_var_p[k][i] + 2.0 * l * tau_b_cov_p[k][i];
+                var /= tau * tau;
                 c00 += wk[0] * wk[0] * var;
                 c11 += wk[1] * wk[1] * var;
                 c22 += wk[2] * wk[2] * var;

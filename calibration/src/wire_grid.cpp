@@ -1,6 +1,7 @@
 #include "tirpol/calibration/wire_grid.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -25,8 +26,11 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
     for (const auto& f : frames) {
         detail::check_plane(f.signal, n, f.source, width, height);
         if (!(f.temperature_k > 0.0)) fail("{}: blackbody temperature {} K; expected > 0 K", f.source, f.temperature_k);
+        if (!f.signal_std.empty()) detail::check_plane(f.signal_std, n, f.source + " (std)", width, height);
         by_angle[std::lround(f.angle_deg * 100.0)].push_back(&f);
     }
+    const bool with_covariance =
+        std::all_of(frames.begin(), frames.end(), [](const auto& f) { return !f.signal_std.empty(); });
     if (by_angle.empty()) fail("wire-grid calibration: no blackbody frames taken through the polarizer");
     WireGridCalibration cal;
     cal.width = width;
@@ -49,6 +53,11 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
         pos.tau.resize(n);
         pos.background.resize(n);
         pos.residual_rms.resize(n);
+        if (with_covariance) {
+            pos.tau_var.resize(n);
+            pos.background_var.resize(n);
+            pos.tau_background_cov.resize(n);
+        }
         Eigen::VectorXd y(k);
         for (std::size_t i = 0; i < n; ++i) {
             for (Eigen::Index j = 0; j < k; ++j) y[j] = group[static_cast<std::size_t>(j)]->signal[i];
@@ -56,6 +65,15 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
             pos.tau[i] = static_cast<float>(c[0]);
             pos.background[i] = static_cast<float>(c[1]);
             pos.residual_rms[i] = static_cast<float>(std::sqrt((y - a * c).squaredNorm() / static_cast<double>(k)));
+            if (!with_covariance) continue;
+            Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+            for (Eigen::Index j = 0; j < k; ++j) {
+                const double s = group[static_cast<std::size_t>(j)]->signal_std[i];
+                cov += s * s * projector.col(j) * projector.col(j).transpose();
+            }
+            pos.tau_var[i] = static_cast<float>(cov(0, 0));
+            pos.background_var[i] = static_cast<float>(cov(1, 1));
+            pos.tau_background_cov[i] = static_cast<float>(cov(0, 1));
         }
         cal.positions.push_back(std::move(pos));
     }

@@ -162,6 +162,56 @@ TEST(StokesReduction, PropagatedUncertaintyMatchesMonteCarloSpreadAndOutputIsRea
     }
 }
 
+TEST(StokesReduction, UncertaintyIncludesTheWireGridFitErrorWhichDoesNotAverageAway) {
+    // τ and B are fitted per pixel from blackbody frames that are themselves noisy; that error is the
+    // same in every frame of a session, so a scene averaged over many frames keeps it. 64×64 pixels,
+    // each an independent realisation: blackbody means at 278/308 K with σ_bb, scene means with σ_s.
+    // The spread of S − truth over pixels must match the reported S_std (σ of a σ-estimate from 4096
+    // samples ≈ 1.1 %, tolerance 5 %); with the grid's error left out it reads ≥ 10 % low here.
+    constexpr int kW = 64, kH = 64, kN = kW * kH;
+    const Band band(8.0, 14.0);
+    const auto model = AnalyzerModel::ideal(kAngles);
+    const double tau = 0.7, background = 3.0, sigma_bb = 0.03, sigma_scene = 0.03;
+    const StokesVector scene = linearly_polarized(band.radiance(285.0), 0.05, deg_to_rad(30.0));
+    std::mt19937 rng(11);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    std::vector<PolarizedBlackbodyFrame> frames;
+    for (double a : kAngles)
+        for (double t : {278.15, 308.15}) {
+            PolarizedBlackbodyFrame f{a, t, {}, fmt::format("bb {:g} K at {:g}°", t, a), {}};
+            for (int i = 0; i < kN; ++i) {
+                f.signal.push_back(static_cast<float>(tau * 0.5 * band.radiance(t) + background + sigma_bb * unit(rng)));
+                f.signal_std.push_back(static_cast<float>(sigma_bb));
+            }
+            frames.push_back(std::move(f));
+        }
+    const WireGridCalibration grid = fit_wire_grid(frames, kW, kH, band);
+    WireGridCalibration grid_without_covariance = grid;
+    for (auto& p : grid_without_covariance.positions) p.tau_var.clear();
+    std::vector<AnalyzerImage> images;
+    for (const auto& p : model.positions) {
+        AnalyzerImage im{p.nominal_angle_deg, {}, {}, "scene"};
+        const double truth = tau * p.row().dot(scene.head<3>()) + background;
+        for (int i = 0; i < kN; ++i) {
+            im.signal.push_back(static_cast<float>(truth + sigma_scene * unit(rng)));
+            im.signal_std.push_back(static_cast<float>(sigma_scene));
+        }
+        images.push_back(std::move(im));
+    }
+    const Image s = reduce_stokes(images, kW, kH, model, &grid);
+    const Image temporal_only = reduce_stokes(images, kW, kH, model, &grid_without_covariance);
+    EXPECT_EQ(std::get<std::string>(s.attributes().at("std_includes")),
+              "temporal noise and the wire-grid calibration's fit error");
+    for (int q = 0; q < 3; ++q) {
+        const std::string c = fmt::format("S{}", q);
+        double spread = 0.0;
+        for (float x : s.channel(c)) spread += (x - scene[q]) * (x - scene[q]);
+        spread = std::sqrt(spread / kN);
+        EXPECT_NEAR(spread / s.channel(c + "_std")[0], 1.0, 0.05) << c;
+        EXPECT_GT(spread / temporal_only.channel(c + "_std")[0], 1.10) << c;
+    }
+}
+
 TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) {
     // Noise comparable to the signal: many pixels come out with √(S1²+S2²) > S0 from eqs 14–16.
     constexpr int kN = 1000;

@@ -18,12 +18,13 @@
 namespace tirpol::calibration {
 
 /// A blackbody frame through the polarizer: `signal` is the measurement I (radiance or counts),
-/// `signal_std` its per-pixel temporal σ (may be empty).
+/// `signal_std` the per-pixel σ of that (frame-mean) signal, or empty when unknown.
 struct PolarizedBlackbodyFrame {
     double angle_deg = 0.0;
     double temperature_k = 0.0;
     std::vector<float> signal;
     std::string source;
+    std::vector<float> signal_std;
 };
 
 /// Per-pixel τ and B maps of one analyzer position.
@@ -32,6 +33,13 @@ struct WireGridPosition {
     std::vector<float> tau;         ///< dimensionless
     std::vector<float> background;  ///< units of the signal
     std::vector<float> residual_rms;
+    /// Per-pixel covariance of the fitted (τ, B) from the frames' σ: Var τ, Var B, Cov(τ, B). The
+    /// fit's error is fixed for the session (the same at every frame), so it adds to the temporal
+    /// noise of a reduced image instead of averaging away. Empty when the frames carried no σ.
+    std::vector<float> tau_var, background_var, tau_background_cov;
+
+    /// True when the (τ, B) covariance maps are present.
+    bool has_covariance() const { return !tau_var.empty(); }
 };
 
 struct WireGridCalibration {
@@ -42,7 +50,9 @@ struct WireGridCalibration {
     const WireGridPosition& at(double angle_deg) const;
 };
 
-/// Fits τ(α), B(α) per pixel: signal = τ·½·L_band(T) + B over the frames of each angle. Throws
+/// Fits τ(α), B(α) per pixel: signal = τ·½·L_band(T) + B over the frames of each angle, by least
+/// squares; when every frame has `signal_std`, also their covariance (P·diag(σ²)·Pᵀ, P the
+/// least-squares projector, exact for independent frame errors). Throws
 /// tirpol::Error for an angle with fewer than 2 distinct temperatures, mismatched sizes or NaNs.
 WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& frames, int width, int height,
                                   const Band& band);
