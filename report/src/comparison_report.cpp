@@ -69,6 +69,16 @@ std::optional<std::vector<float>> variance_channel(const Image& image, const std
     return std::nullopt;
 }
 
+// Degrees of freedom of an image's variance channels (the renderer's `variance_dof`); infinite when
+// the image does not say (a reduction's σ from many frames, or a model).
+double variance_dof(const Image& image) {
+    const auto it = image.attributes().find("variance_dof");
+    if (it == image.attributes().end()) return std::numeric_limits<double>::infinity();
+    if (const auto* i = std::get_if<int>(&it->second)) return *i > 0 ? *i : std::numeric_limits<double>::infinity();
+    if (const auto* d = std::get_if<double>(&it->second)) return *d > 0.0 ? *d : std::numeric_limits<double>::infinity();
+    return std::numeric_limits<double>::infinity();
+}
+
 double median_sqrt(const std::vector<float>& variance) {
     std::vector<float> v;
     for (float x : variance)
@@ -230,7 +240,10 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
         source.measured_sigma_median = median_sqrt(*var_m);
         source.simulated_sigma_median = median_sqrt(*var_s);
         result.noise[q] = source;
-        z[q] = z_scores(measured.channel(q), simulated.channel(q), *var_m, *var_s);
+        const double dof_m = variance_dof(measured_in), dof_s = variance_dof(simulated_in);
+        if (std::isfinite(dof_m)) source.measured += fmt::format(" ({:g} degrees of freedom)", dof_m);
+        if (std::isfinite(dof_s)) source.simulated += fmt::format(" ({:g} degrees of freedom)", dof_s);
+        z[q] = z_scores(measured.channel(q), simulated.channel(q), *var_m, *var_s, dof_m, dof_s);
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
         sigma_total[q] = std::move(total);

@@ -331,6 +331,9 @@ std::string noise_section(const Page& p) {
     std::string h = fmt::format(
         "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p>Per pixel, z = (m − s)/√(σ_m² + "
         "σ_s²) with σ_m the measurement uncertainty and σ_s the standard error of the simulation's Monte-Carlo mean. "
+        "Where a variance is itself estimated from few samples (a render's has ⌈spp/2⌉ degrees of freedom), that ratio "
+        "follows Student's t with Welch–Satterthwaite degrees of freedom and is mapped to the normal z of the same tail "
+        "probability, so the thresholds below hold at any spp. "
         "If the simulation is right and the noise Gaussian, |z| &gt; 2 in 4.55 % and |z| &gt; 3 in 0.27 % of pixels "
         "and RMS z = 1. Each of S0, S1, S2 gets its own verdict (a pooled one can hide a quantity that alone exceeds "
         "the noise): <span class=\"bad\">exceeds noise</span> when the |z| &gt; 2 fraction is more than three binomial "

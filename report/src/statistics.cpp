@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include <unsupported/Eigen/SpecialFunctions>
+
 namespace tirpol::report {
 
 QuantityStats quantity_stats(const std::vector<float>& measured, const std::vector<float>& simulated,
@@ -53,14 +55,26 @@ std::optional<double> masked_mean(const std::vector<float>& data, const std::vec
     return sum / static_cast<double>(n);
 }
 
+double normal_equivalent_of_t(double t, double dof) {
+    if (!std::isfinite(dof) || !std::isfinite(t) || t == 0.0) return t;
+    // P(|T| > |t|) = I_{ν/(ν+t²)}(ν/2, ½) (Abramowitz & Stegun 26.7.1 with 26.5.27).
+    const double tail = Eigen::numext::betainc(0.5 * dof, 0.5, dof / (dof + t * t));
+    if (!(tail > 0.0)) return t;  // beyond double precision: as extreme as the ratio says
+    return std::copysign(-Eigen::numext::ndtri(0.5 * tail), t);
+}
+
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
-                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance) {
+                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance,
+                            double measured_dof, double simulated_dof) {
     std::vector<float> z(measured.size(), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t i = 0; i < measured.size(); ++i) {
-        const double var = static_cast<double>(measured_variance[i]) + static_cast<double>(simulated_variance[i]);
+        const double vm = measured_variance[i], vs = simulated_variance[i];
+        const double var = vm + vs;
         if (!std::isfinite(measured[i]) || !std::isfinite(simulated[i]) || !std::isfinite(var) || !(var > 0.0))
             continue;
-        z[i] = static_cast<float>((static_cast<double>(measured[i]) - static_cast<double>(simulated[i])) / std::sqrt(var));
+        const double ratio = (static_cast<double>(measured[i]) - static_cast<double>(simulated[i])) / std::sqrt(var);
+        const double inverse_dof = vm * vm / measured_dof + vs * vs / simulated_dof;  // 0 for infinite dof
+        z[i] = static_cast<float>(inverse_dof > 0.0 ? normal_equivalent_of_t(ratio, var * var / inverse_dof) : ratio);
     }
     return z;
 }

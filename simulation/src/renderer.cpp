@@ -334,6 +334,9 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["band_um"] = std::vector<double>{scene.band.lo_um(), scene.band.hi_um()};
     attrs["band_rsr"] = std::string(scene.band.rsr() ? "yes" : "none");
     attrs["spp"] = spp;
+    // Degrees of freedom of the S*_var channels: one per pair of strata (two for a closing triple), so
+    // that a comparison can allow for the heavier tails of a ratio with an estimated variance.
+    attrs["variance_dof"] = spp - spp / 2;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
     attrs["scene_file"] = scene.file.string();

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "tirpol/report/statistics.h"
@@ -51,6 +52,44 @@ TEST(ReportStatistics, ZScoresAndTheirSummaryMatchHandValues) {
     EXPECT_DOUBLE_EQ(st.fraction_above_3, 0.25);  // −3.5
     EXPECT_DOUBLE_EQ(st.mean, 0.125);
     EXPECT_NEAR(st.rms, std::sqrt((6.25 + 12.25 + 0.25 + 1.0) / 4.0), 1e-12);
+}
+
+TEST(ReportStatistics, StudentTMapsToTheNormalOfTheSameTailProbability) {
+    // Two-sided 5 % and 1 % points of Student's t (NIST/SEMATECH e-Handbook of Statistical Methods,
+    // §1.3.6.7.2, table of upper critical values): t(0.975; 4) = 2.776, t(0.995; 10) = 3.169, whose
+    // normal equivalents are 1.95996 and 2.57583 (Abramowitz & Stegun, Table 26.1).
+    EXPECT_NEAR(normal_equivalent_of_t(2.776, 4.0), 1.95996, 2e-4);
+    EXPECT_NEAR(normal_equivalent_of_t(-3.169, 10.0), -2.57583, 2e-4);
+    EXPECT_DOUBLE_EQ(normal_equivalent_of_t(1.7, std::numeric_limits<double>::infinity()), 1.7);
+    EXPECT_NEAR(normal_equivalent_of_t(1.7, 1e7), 1.7, 1e-5);  // t → normal for many degrees of freedom
+    EXPECT_EQ(normal_equivalent_of_t(0.0, 3.0), 0.0);
+}
+
+TEST(ReportStatistics, ZWithAFewSampleVarianceKeepsTheNormalTailFraction) {
+    // A render's variance estimated from ν = 4 degrees of freedom (8 spp): the plain ratio has
+    // P(|t₄| > 2) = 11.6 % of pixels beyond 2 under noise alone; the dof-aware z must give 4.55 %.
+    // Half of the variance is measured (known, ν = ∞), half simulated (ν = 4), as in the digital twin.
+    std::mt19937 rng(3);
+    std::normal_distribution<double> unit(0.0, 1.0);
+    constexpr int kN = 200000, kDof = 4;
+    std::vector<float> m(kN), s(kN, 0.0f), vm(kN, 0.5f), vs(kN);
+    for (int i = 0; i < kN; ++i) {
+        m[i] = static_cast<float>(unit(rng));  // true variance 0.5 + 0.5
+        double chi2 = 0.0;
+        for (int k = 0; k < kDof; ++k) chi2 += std::pow(unit(rng), 2);
+        vs[i] = static_cast<float>(0.5 * chi2 / kDof);
+    }
+    const std::vector<std::uint8_t> all(kN, 1);
+    const ZStats plain = z_stats(z_scores(m, s, vm, vs), all);
+    const ZStats aware = z_stats(z_scores(m, s, vm, vs, std::numeric_limits<double>::infinity(), kDof), all);
+    const double binomial_sd = std::sqrt(0.0455 * 0.9545 / kN);
+    EXPECT_GT(plain.fraction_above_2, 0.0455 + 10 * binomial_sd);
+    // Welch–Satterthwaite is an approximation: within 0.5 % of the nominal tail.
+    EXPECT_NEAR(aware.fraction_above_2, 0.0455, 0.005);
+    EXPECT_TRUE(consistent_with_noise(z_stats(z_scores({m.begin(), m.begin() + 2000}, {s.begin(), s.begin() + 2000},
+                                                       {vm.begin(), vm.begin() + 2000}, {vs.begin(), vs.begin() + 2000},
+                                                       std::numeric_limits<double>::infinity(), kDof),
+                                              std::vector<std::uint8_t>(2000, 1))));
 }
 
 TEST(ReportStatistics, NormalTailConstantsMatchErfc) {

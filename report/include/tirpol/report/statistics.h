@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <limits>
 #include <vector>
 
 namespace tirpol::report {
@@ -38,9 +39,20 @@ QuantityStats quantity_stats(const std::vector<float>& measured, const std::vect
 std::optional<double> masked_mean(const std::vector<float>& data, const std::vector<std::uint8_t>& mask);
 
 /// Per-pixel z = (m − s)/√(var_m + var_s); NaN where an input is not finite or the total variance
-/// is not positive.
+/// is not positive. A variance estimated from few samples (a Monte-Carlo render's per-pixel
+/// variance has ⌈spp/2⌉ degrees of freedom) makes that ratio Student-t distributed with heavier tails
+/// than a normal: with finite `measured_dof`/`simulated_dof` each z is mapped to the normal value
+/// of the same two-sided tail probability under t with the Welch–Satterthwaite degrees of freedom
+/// ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947, Biometrika 34, 28), so that |z| > 2 keeps
+/// meaning 4.55 % under noise alone. Infinite dof (the default): the plain ratio.
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
-                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance);
+                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance,
+                            double measured_dof = std::numeric_limits<double>::infinity(),
+                            double simulated_dof = std::numeric_limits<double>::infinity());
+
+/// The standard normal deviate with the same two-sided tail probability as `t` under Student's t
+/// with `dof` degrees of freedom (sign kept); `t` itself for infinite dof.
+double normal_equivalent_of_t(double t, double dof);
 
 /// Summary of z over a region: fractions of valid pixels beyond 2 and 3, mean and RMS of z.
 struct ZStats {
