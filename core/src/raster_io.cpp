@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <tiffio.h>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -41,6 +43,29 @@ void check_png_header(const std::filesystem::path& path) {
         fail("{}: is a {}-bit PNG, which cannot hold camera counts; expected a 16-bit raw image", path.string(),
              bit_depth);
 }
+
+// The same for a TIFF, with libtiff reading only the first directory's tags (OpenCV would decode
+// first and check after). libtiff's own messages are silenced; its failure becomes our error.
+void check_tiff_header(const std::filesystem::path& path) {
+    TIFFSetErrorHandler(nullptr);
+    TIFFSetWarningHandler(nullptr);
+    const std::unique_ptr<TIFF, void (*)(TIFF*)> tiff(TIFFOpen(path.c_str(), "r"), TIFFClose);
+    if (!tiff) fail("{}: not a TIFF file (bad header or unreadable first directory)", path.string());
+    std::uint32_t width = 0, height = 0;
+    std::uint16_t bits = 0, samples = 1;
+    if (TIFFGetField(tiff.get(), TIFFTAG_IMAGEWIDTH, &width) != 1 || TIFFGetField(tiff.get(), TIFFTAG_IMAGELENGTH, &height) != 1)
+        fail("{}: TIFF without ImageWidth/ImageLength tags", path.string());
+    TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_BITSPERSAMPLE, &bits);
+    TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, &samples);
+    if (width == 0 || height == 0 || width > limits::kMaxImageSide || height > limits::kMaxImageSide ||
+        std::uint64_t{width} * height > limits::kMaxImagePixels)
+        fail("{}: declares {}×{} pixels, beyond tirpol's limits ({} pixels a side, {} pixels in all)", path.string(),
+             width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
+    const double decoded_bytes = static_cast<double>(width) * height * samples * std::max<int>(bits, 8) / 8.0;
+    if (decoded_bytes > limits::kMaxCompressionRatio * static_cast<double>(std::filesystem::file_size(path)))
+        fail("{}: declares {}×{} pixels, more than the file's {} bytes can hold (corrupt header?)", path.string(),
+             width, height, std::filesystem::file_size(path));
+}
 }  // namespace
 
 Image read_raw_image(const std::filesystem::path& path, const std::string& channel_name, const std::string& exr_channel) {
@@ -58,6 +83,7 @@ Image read_raw_image(const std::filesystem::path& path, const std::string& chann
         fail("{}: unsupported raw image type '{}'; expected .exr, .png or .tif/.tiff", path.string(), ext);
     if (!std::filesystem::exists(path)) fail("{}: no such file", path.string());
     if (ext == ".png") check_png_header(path);
+    if (ext == ".tif" || ext == ".tiff") check_tiff_header(path);
     const cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
     if (m.empty()) fail("{}: cannot be decoded as {} (truncated or corrupt?)", path.string(), ext);
     if (m.channels() != 1) fail("{}: has {} channels; expected a single-channel raw image", path.string(), m.channels());
