@@ -9,12 +9,13 @@ namespace tirpol::sweep::detail {
 void write_manifest(const std::filesystem::path& path, const SweepSpec& spec, const SweepSummary& summary) {
     nlohmann::json axes = nlohmann::json::array(), points = nlohmann::json::array();
     for (const auto& a : spec.axes) axes.push_back({{"parameter", a.parameter}, {"values", a.labels}});
-    double seconds = 0.0, wait_seconds = 0.0;
+    double seconds = 0.0, render_seconds = 0.0, wait_seconds = 0.0;
     std::size_t messaged = 0;
     for (const auto& r : summary.points) {
         points.push_back(record_json(spec, r));
         if (r.status != "rendered") continue;
         seconds += r.seconds;
+        render_seconds += r.render_seconds;
         if (r.rank != 0) wait_seconds += r.wait_seconds, ++messaged;
     }
     const nlohmann::json j = {
@@ -32,6 +33,7 @@ void write_manifest(const std::filesystem::path& path, const SweepSpec& spec, co
           {"failed", summary.failed},
           {"wall_seconds", summary.wall_seconds},
           {"mean_point_seconds", summary.rendered ? seconds / static_cast<double>(summary.rendered) : 0.0},
+          {"mean_render_seconds", summary.rendered ? render_seconds / static_cast<double>(summary.rendered) : 0.0},
           // Scheduling overhead: how long a rank other than 0 waited for each assignment.
           {"mean_wait_seconds", messaged ? wait_seconds / static_cast<double>(messaged) : 0.0}}},
         {"points", points}};

@@ -28,7 +28,9 @@ void write_point(const SweepSpec& spec, const SweepPoint& point, const std::file
     scene.sampling.seed = point.seed;
     simulation::RenderOptions options;
     options.threads = threads;
-    const Image image = simulation::render(scene, options);
+    simulation::RenderStatistics stats;
+    const Image image = simulation::render(scene, options, &stats);
+    record.render_seconds = stats.seconds;
     simulation::write_render_outputs(dir, "stokes", image);
     if (config.sensor) {
         simulation::SensorModel model = simulation::SensorModel::from_config(*config.sensor);

@@ -68,6 +68,7 @@ nlohmann::json record_json(const SweepSpec& spec, const PointRecord& r) {
         {"index", r.point.index}, {"id", r.point.id},     {"parameters", parameters_json(spec, r.point)},
         {"seed", r.point.seed},   {"status", r.status},   {"error", r.error},
         {"rank", r.rank},         {"seconds", r.seconds}, {"wait_seconds", r.wait_seconds}};
+    j["render_seconds"] = r.render_seconds;
     j["statistics"] = r.statistics ? statistics_json(*r.statistics) : nlohmann::json(nullptr);
     return j;
 }
@@ -80,6 +81,7 @@ PointRecord record_from_json(const nlohmann::json& j, const std::vector<SweepPoi
                   j.at("error").get<std::string>(),
                   j.at("rank").get<int>(),
                   j.at("seconds").get<double>(),
+                  j.at("render_seconds").get<double>(),
                   j.at("wait_seconds").get<double>(),
                   std::nullopt};
     if (!j.at("statistics").is_null()) r.statistics = statistics_from_json(j.at("statistics"), "point " + r.point.id);

@@ -56,7 +56,7 @@ std::vector<std::filesystem::path> write_tables(const SweepSpec& spec, const std
             append_values(row, s ? &s->contrasts[i].values : nullptr);
         csv += fmt::format("{}\n", fmt::join(row | std::views::transform(csv_field), ","));
         nlohmann::json j = record_json(spec, p);
-        j.erase("wait_seconds");
+        for (const char* timing : {"seconds", "render_seconds", "wait_seconds", "rank"}) j.erase(timing);
         rows.push_back(std::move(j));
     }
     const std::vector<std::filesystem::path> written = {out_dir / "results.csv", out_dir / "results.json"};

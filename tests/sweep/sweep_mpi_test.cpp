@@ -64,6 +64,7 @@ contrasts:
     }
     EXPECT_EQ(ranks_used.size(), 2u) << "both ranks should have rendered points";
     EXPECT_EQ(read_file(one / "results.csv"), read_file(two / "results.csv"));
+    EXPECT_EQ(read_file(one / "results.json"), read_file(two / "results.json"));
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ struct PointRecord {
     std::string error;               ///< why it failed
     int rank = 0;                    ///< MPI rank that rendered it
     double seconds = 0.0;            ///< loading, thermal model, render and writing
+    double render_seconds = 0.0;     ///< of which the renderer (the part that uses the threads)
     double wait_seconds = 0.0;       ///< time its rank waited for the assignment (scheduling overhead)
     std::optional<PointStatistics> statistics;
 };
