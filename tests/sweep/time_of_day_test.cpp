@@ -18,6 +18,7 @@
 
 #include <cmath>
 
+#include "../apps/cli_runner.h"
 #include "sweep_test_support.h"
 #include "tirpol/sweep/sweep_run.h"
 
@@ -78,6 +79,20 @@ contrasts:
     // The pattern contrast at least doubles by day, far beyond the Monte-Carlo error.
     EXPECT_GT(c_day.mean, 2.0 * c_night.mean);
     EXPECT_GT(c_day.mean - c_night.mean, 10.0 * std::hypot(c_day.error, c_night.error));
+
+    // What a person looks at: table, plots against time, contact sheets, and the animation, which headless
+    // chromium plays: after one 600 ms tick of virtual time the page shows the second frame.
+    const auto out = dir / "out";
+    for (const char* file : {"results.csv", "results.json", "plots/time_S1.png", "contact_sheet_S0.png",
+                             "contact_sheet_S1.png", "animation/frame_000.png", "animation/frame_001.png"})
+        EXPECT_TRUE(std::filesystem::is_regular_file(out / file)) << file;
+    const auto page = tirpol::test::run_command(
+        "chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=900 --dump-dom file://" +
+            (out / "animation/index.html").string(),
+        false);
+    ASSERT_EQ(page.exit_code, 0) << "headless chromium (Debian package chromium) is needed: " << page.out;
+    EXPECT_NE(page.out.find("src=\"frame_001.png\""), std::string::npos) << page.out;
+    EXPECT_NE(page.out.find("<span id=\"label\">2026-01-16T12:00</span>"), std::string::npos) << page.out;
 }
 
 }  // namespace
