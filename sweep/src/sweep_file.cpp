@@ -47,6 +47,17 @@ std::vector<std::string> object_names(const ConfigNode& scene) {
     return names;
 }
 
+/// A library material file ready to be written inline in a scene: its one relative file reference (the
+/// n, k table, docs/materials.md) made absolute, since inline it would resolve against the scene's folder.
+ConfigNode inlinable_material(const std::filesystem::path& file) {
+    const ConfigNode material = ConfigNode::load_file(file);
+    const auto index = material.find("refractive_index");
+    if (!index || !index->is_map() || !index->has("file")) return material;
+    std::string absolute = index->resolve_path(index->get<std::string>("file")).string(), quoted = "'";
+    for (char c : absolute) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+    return material.with_value("refractive_index.file", ConfigNode::parse(quoted + "'", file.string()));
+}
+
 /// `materials.<name>.<path>`: each object whose material is the library material <name> gets it inline
 /// with the override; an inline material of that name is overridden in place.
 ConfigNode with_material_value(const ConfigNode& scene, const std::string& name, const std::string& path,
@@ -68,7 +79,7 @@ ConfigNode with_material_value(const ConfigNode& scene, const std::string& name,
             const auto file = dir / (name + ".yaml");
             if (!std::filesystem::is_regular_file(file))
                 material.fail(fmt::format("materials.{}: material file not found: {}", name, file.string()));
-            out = out.with_value(object_path, ConfigNode::load_file(file).with_value(path, value));
+            out = out.with_value(object_path, inlinable_material(file).with_value(path, value));
             found = true;
         } else if (material.is_map() && material.has("name")) {
             used.push_back(material.get<std::string>("name"));

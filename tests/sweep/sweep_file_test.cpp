@@ -99,6 +99,19 @@ axes:
         << "the base scene is never modified";
 }
 
+TEST(SweepFile, InlinedLibraryMaterialKeepsItsRefractiveIndexTable) {
+    // snow.yaml reads its n, k from data/… next to it; inline in the scene the path must still find it.
+    TempDir dir;
+    const auto path = write_sweep(dir, "axes:\n  materials.snow.parameters.sigma: [0.1, 0.4]\n");
+    const SweepSpec spec = load_sweep(path);
+    const auto points = sweep_points(spec);
+    const simulation::Scene scene = simulation::load_scene(point_config(spec, points[1]).scene);
+    EXPECT_EQ(scene.objects[0].name, "snow");
+    const ConfigNode snow = point_config(spec, points[1]).scene.at("objects").elements()[0].at("material");
+    EXPECT_TRUE(std::filesystem::path(snow.at("refractive_index").get<std::string>("file")).is_absolute());
+    EXPECT_NEAR(snow.at("parameters").get<double>("sigma"), 0.4, 1e-12);
+}
+
 TEST(SweepFile, UnknownParameterIsNamedWithFileLineAndSuggestion) {
     TempDir dir;
     const auto path = write_sweep(dir, "axes:\n  camera.positon: [[0, -3, 1]]\n");
