@@ -43,27 +43,34 @@ cv::Mat padded(const cv::Mat& image, int rows, int cols) {
 std::vector<std::vector<cv::Mat>> write_tiles(const SweepSpec& spec, const std::filesystem::path& out_dir,
                                               const std::vector<PointRecord>& points,
                                               std::vector<std::filesystem::path>& written) {
-    std::vector<Image> images(points.size());
-    std::vector<std::vector<float>> all(std::size(kSheetChannels));
+    const auto exr = [&](std::size_t i) { return out_dir / "points" / points[i].point.id / "stokes.exr"; };
+    // The common range from a sample of every point's pixels (at most kRangeSamples per point), so memory
+    // does not grow with the sweep; each image is read again for its tile.
+    constexpr std::size_t kRangeSamples = 20000;
+    std::vector<std::vector<float>> samples(std::size(kSheetChannels));
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (!points[i].statistics) continue;
-        images[i] = read_exr(out_dir / "points" / points[i].point.id / "stokes.exr");
-        for (std::size_t c = 0; c < all.size(); ++c)
-            all[c].insert(all[c].end(), images[i].channel(kSheetChannels[c]).begin(),
-                          images[i].channel(kSheetChannels[c]).end());
+        const Image image = read_exr(exr(i));
+        const std::size_t stride = std::max<std::size_t>(1, image.pixel_count() / kRangeSamples);
+        for (std::size_t c = 0; c < samples.size(); ++c)
+            for (std::size_t k = 0; k < image.pixel_count(); k += stride)
+                samples[c].push_back(image.channel(kSheetChannels[c])[k]);
     }
-    std::vector<std::vector<cv::Mat>> tiles(all.size(), std::vector<cv::Mat>(points.size()));
+    std::vector<std::vector<cv::Mat>> tiles(samples.size(), std::vector<cv::Mat>(points.size()));
     std::filesystem::create_directories(out_dir / "tiles");
-    for (std::size_t c = 0; c < all.size(); ++c) {
-        QuicklookOptions options;
-        options.colormap = default_colormap(kSheetChannels[c]);
-        options.units = "W/(m²·sr)";
-        std::tie(options.vmin, options.vmax) = quicklook_range(all[c], options);
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            if (images[i].pixel_count() == 0) continue;
-            options.title = fmt::format("{} {}", kSheetChannels[c], point_label(spec, points[i].point));
+    std::vector<QuicklookOptions> options(samples.size());
+    for (std::size_t c = 0; c < samples.size(); ++c) {
+        options[c].colormap = default_colormap(kSheetChannels[c]);
+        options[c].units = "W/(m²·sr)";
+        std::tie(options[c].vmin, options[c].vmax) = quicklook_range(samples[c], options[c]);
+    }
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!points[i].statistics) continue;
+        const Image image = read_exr(exr(i));
+        for (std::size_t c = 0; c < samples.size(); ++c) {
+            options[c].title = fmt::format("{} {}", kSheetChannels[c], point_label(spec, points[i].point));
             const auto path = out_dir / "tiles" / fmt::format("{}_{}.png", points[i].point.id, kSheetChannels[c]);
-            write_quicklook(path, images[i].channel(kSheetChannels[c]), images[i].width(), images[i].height(), options);
+            write_quicklook(path, image.channel(kSheetChannels[c]), image.width(), image.height(), options[c]);
             written.push_back(path);
             tiles[c][i] = cv::imread(path.string(), cv::IMREAD_COLOR);
             if (tiles[c][i].empty()) fail("{}: could not read back the tile", path.string());
