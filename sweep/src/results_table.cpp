@@ -1,9 +1,8 @@
 // results.csv and results.json (sweep_results.h).
 
-#include <fmt/ranges.h>
+#include <fmt/format.h>
 
 #include <cmath>
-#include <ranges>
 
 #include "records_json.h"
 #include "results.h"
@@ -18,6 +17,12 @@ std::string csv_field(const std::string& s) {
     std::string out = "\"";
     for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
+}
+
+std::string csv_line(const std::vector<std::string>& fields) {
+    std::string line;
+    for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + csv_field(fields[i]);
+    return line + "\n";
 }
 
 std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); }
@@ -44,7 +49,7 @@ std::vector<std::filesystem::path> write_tables(const SweepSpec& spec, const std
             header.push_back(g + "." + q);
             header.push_back(g + "." + q + ".error");
         }
-    std::string csv = fmt::format("{}\n", fmt::join(header | std::views::transform(csv_field), ","));
+    std::string csv = csv_line(header);
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& p : points) {
         std::vector<std::string> row = {std::to_string(p.point.index), p.point.id, p.status};
@@ -54,7 +59,7 @@ std::vector<std::filesystem::path> write_tables(const SweepSpec& spec, const std
         for (std::size_t i = 0; i < spec.regions.size(); ++i) append_values(row, s ? &s->regions[i].values : nullptr);
         for (std::size_t i = 0; i < spec.contrasts.size(); ++i)
             append_values(row, s ? &s->contrasts[i].values : nullptr);
-        csv += fmt::format("{}\n", fmt::join(row | std::views::transform(csv_field), ","));
+        csv += csv_line(row);
         nlohmann::json j = record_json(spec, p);
         for (const char* timing : {"seconds", "render_seconds", "wait_seconds", "rank"}) j.erase(timing);
         rows.push_back(std::move(j));
