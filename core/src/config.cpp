@@ -1,11 +1,14 @@
 #include "tirpol/core/config.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -91,7 +94,7 @@ bool ConfigNode::is_sequence() const { return m_node->IsSequence(); }
 bool ConfigNode::is_scalar() const { return m_node->IsScalar(); }
 bool ConfigNode::is_null() const { return m_node->IsNull(); }
 bool ConfigNode::has(std::string_view key) const {
-    return m_node->IsMap() && static_cast<bool>((*m_node)[std::string(key)]);
+    return m_node->IsMap() && static_cast<bool>(std::as_const(*m_node)[std::string(key)]);
 }
 
 std::string ConfigNode::child_path(std::string_view key) const {
@@ -103,7 +106,9 @@ std::optional<ConfigNode> ConfigNode::find(std::string_view key) const {
         if (m_node->IsNull()) return std::nullopt;
         fail(fmt::format("expected a mapping with a field '{}', found {}", key, describe(*m_node)));
     }
-    YAML::Node child = (*m_node)[std::string(key)];
+    // Const lookup: yaml-cpp's non-const operator[] adds an (undefined) entry for a missing key, allocated in
+    // this node's memory; a tree shared with another (with_value) would keep a dangling entry.
+    YAML::Node child = std::as_const(*m_node)[std::string(key)];
     if (!child) return std::nullopt;
     return ConfigNode(m_source, std::make_unique<YAML::Node>(child), child_path(key));
 }
@@ -118,7 +123,7 @@ std::vector<ConfigNode> ConfigNode::elements() const {
     if (!m_node->IsSequence()) fail("expected a list, found " + describe(*m_node));
     std::vector<ConfigNode> out;
     for (std::size_t i = 0; i < m_node->size(); ++i)
-        out.emplace_back(ConfigNode(m_source, std::make_unique<YAML::Node>((*m_node)[i]),
+        out.emplace_back(ConfigNode(m_source, std::make_unique<YAML::Node>(std::as_const(*m_node)[i]),
                                     m_path + "[" + std::to_string(i) + "]"));
     return out;
 }
@@ -199,6 +204,87 @@ void ConfigNode::check_keys(const std::vector<std::string>& allowed) const {
         key_node.fail(fmt::format("unknown key '{}'{} (allowed here: {})", key,
                                   hint.empty() ? "" : " — did you mean '" + hint + "'?", known));
     }
+}
+
+namespace {
+/// Splits "a.b[c].d" into {"a", "b", "[c]", "d"}; an empty step is an error.
+std::vector<std::string> path_steps(std::string_view path) {
+    std::vector<std::string> steps;
+    std::string current;
+    auto flush = [&] {
+        if (current.empty()) tirpol::fail("parameter path '{}': empty step (expected key.key[name].key)", path);
+        steps.push_back(current);
+        current.clear();
+    };
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        const char c = path[i];
+        if (c == '.') {
+            if (i == 0 || path[i - 1] != ']') flush();
+        } else if (c == '[') {
+            if (!current.empty()) flush();
+            const std::size_t close = path.find(']', i);
+            if (close == std::string_view::npos || close == i + 1)
+                tirpol::fail("parameter path '{}': expected [index] or [name] after position {}", path, i);
+            steps.emplace_back(path.substr(i, close - i + 1));
+            i = close;
+        } else {
+            current += c;
+        }
+    }
+    if (!current.empty() || path.empty() || path.back() == '.') flush();
+    return steps;
+}
+
+/// Index of the element of `list` selected by "[2]" or "[ball]" (its `name` field).
+std::size_t list_index(const YAML::Node& list, const std::string& step, const std::string& where) {
+    const std::string key = step.substr(1, step.size() - 2);
+    if (!list.IsSequence()) tirpol::fail("{}: '{}' selects a list element, but this is {}", where, step, describe(list));
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        if (std::to_string(i) == key) return i;
+        if (list[i].IsMap() && list[i]["name"] && list[i]["name"].IsScalar()) {
+            if (list[i]["name"].Scalar() == key) return i;
+            names.push_back(list[i]["name"].Scalar());
+        }
+    }
+    const std::string hint = closest_match(key, names);
+    tirpol::fail("{}: no element '{}' in this list of {} (names: {}){}", where, key, list.size(), fmt::join(names, ", "),
+                 hint.empty() ? "" : " — did you mean '" + hint + "'?");
+}
+
+/// `node` with the node at steps[i…] replaced by `value`. Only the collections along the path are new;
+/// every other node (and `value`) is shared, so it keeps its file position for error messages.
+YAML::Node replaced(const YAML::Node& node, const std::vector<std::string>& steps, std::size_t i,
+                    const YAML::Node& value, const std::string& where) {
+    if (i == steps.size()) return value;
+    const std::string& step = steps[i];
+    const std::string here = where.empty() ? step : where + (step.front() == '[' ? "" : ".") + step;
+    if (step.front() == '[') {
+        const std::size_t selected = list_index(node, step, where.empty() ? "the top level" : where);
+        YAML::Node copy(YAML::NodeType::Sequence);
+        for (std::size_t k = 0; k < node.size(); ++k)
+            copy.push_back(k == selected ? replaced(node[k], steps, i + 1, value, here) : node[k]);
+        return copy;
+    }
+    const std::string parent = where.empty() ? "the top level" : where;
+    if (!node.IsMap()) tirpol::fail("{}: '{}' is a field, but this is {}", parent, step, describe(node));
+    std::vector<std::string> keys;
+    for (const auto& kv : node) keys.push_back(kv.first.Scalar());
+    if (std::find(keys.begin(), keys.end(), step) == keys.end()) {
+        const std::string hint = closest_match(step, keys);
+        tirpol::fail("{}: no field '{}'{} (fields here: {})", parent, step,
+                     hint.empty() ? "" : " — did you mean '" + hint + "'?", fmt::join(keys, ", "));
+    }
+    YAML::Node copy(YAML::NodeType::Map);
+    for (const auto& kv : node)
+        copy.force_insert(kv.first, kv.first.Scalar() == step ? replaced(kv.second, steps, i + 1, value, here) : kv.second);
+    return copy;
+}
+}  // namespace
+
+ConfigNode ConfigNode::with_value(std::string_view path, const ConfigNode& value) const {
+    YAML::Node root = replaced(*m_node, path_steps(path), 0, *value.m_node, m_path);
+    return ConfigNode(m_source, std::make_unique<YAML::Node>(root), m_path);
 }
 
 std::string ConfigNode::location() const {

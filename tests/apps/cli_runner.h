@@ -1,6 +1,6 @@
 #pragma once
 // Runs the real `tirpol` executable (TIRPOL_CLI_PATH, set by apps/CMakeLists.txt) as a user would and
-// returns its exit code and output, for the CLI tests in this folder.
+// returns its exit code and output, for the CLI tests in this folder (and tests/sweep, under mpirun).
 
 #include <sys/wait.h>
 
@@ -15,8 +15,9 @@ struct CliRun {
     std::string out;  ///< stdout, followed by stderr unless merge_stderr is false
 };
 
-inline CliRun run_cli(const std::string& args, bool merge_stderr = true) {
-    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+/// Runs a shell command line; stderr is merged into the output unless `merge_stderr` is false.
+inline CliRun run_command(const std::string& command, bool merge_stderr = true) {
+    const std::string cmd = command + (merge_stderr ? " 2>&1" : " 2>/dev/null");
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return {-1, "popen failed"};
     std::string out;
@@ -25,6 +26,10 @@ inline CliRun run_cli(const std::string& args, bool merge_stderr = true) {
     while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
     const int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+inline CliRun run_cli(const std::string& args, bool merge_stderr = true) {
+    return run_command(std::string(TIRPOL_CLI_PATH) + " " + args, merge_stderr);
 }
 
 }  // namespace tirpol::test

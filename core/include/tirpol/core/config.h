@@ -62,6 +62,14 @@ public:
     void check_keys(std::initializer_list<std::string_view> allowed) const;
     void check_keys(const std::vector<std::string>& allowed) const;
 
+    /// A deep copy of this node with the node at `path` replaced by a copy of `value` (a sweep point's
+    /// scene is its base scene with such overrides, read by the one scene loader). `path` is keys joined
+    /// by '.', a list element written `[index]` or `[name]` (the element whose `name` field is name),
+    /// e.g. "objects[ball].transform.translate". Every step must exist: an unknown key throws
+    /// tirpol::Error naming the step and the closest existing key ("did you mean"). Locations of the
+    /// copied value keep their own lines; the copy keeps this node's file (relative paths still resolve).
+    ConfigNode with_value(std::string_view path, const ConfigNode& value) const;
+
     /// "file.yaml:12:5" of this node.
     std::string location() const;
     /// Dotted path of this node from the root, e.g. "camera.fov_deg" or "objects[2].material".

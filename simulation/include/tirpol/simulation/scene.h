@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/core/config.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/materials/pbrdf.h"
 #include "tirpol/simulation/camera.h"
@@ -65,5 +66,8 @@ struct Scene {
 /// Loads a scene file. Every error names the file, line and field (unknown keys, wrong types, a
 /// missing mesh or material file, an unknown material name).
 Scene load_scene(const std::filesystem::path& path);
+/// Same from an already parsed scene (e.g. a base scene with a sweep point's overrides, ConfigNode::
+/// with_value); relative paths resolve against `root.file()`.
+Scene load_scene(const ConfigNode& root);
 
 }  // namespace tirpol::simulation
