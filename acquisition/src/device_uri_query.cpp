@@ -6,7 +6,9 @@
 
 namespace tirpol::acquisition::detail {
 
-DeviceError bad_uri(const std::string& uri, const std::string& what) { return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)}; }
+DeviceError bad_uri(const std::string& uri, const std::string& what) {
+    return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)};
+}
 
 Result<double> uri_number(const std::string& uri, const StageUri& u, const std::string& key, double fallback) {
     auto it = u.query.find(key);
@@ -14,7 +16,8 @@ Result<double> uri_number(const std::string& uri, const StageUri& u, const std::
     double v = 0;
     const auto* end = it->second.data() + it->second.size();
     const auto r = std::from_chars(it->second.data(), end, v);
-    if (r.ec != std::errc() || r.ptr != end) return bad_uri(uri, fmt::format("{}={}: expected a number", key, it->second));
+    if (r.ec != std::errc() || r.ptr != end)
+        return bad_uri(uri, fmt::format("{}={}: expected a number", key, it->second));
     return v;
 }
 
@@ -26,7 +29,8 @@ Result<int> uri_integer(const std::string& uri, const StageUri& u, const std::st
     const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
     const char* begin = s.data() + (hex ? 2 : 0);
     const auto r = std::from_chars(begin, s.data() + s.size(), v, hex ? 16 : 10);
-    if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return bad_uri(uri, fmt::format("{}={}: expected an integer", key, s));
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+        return bad_uri(uri, fmt::format("{}={}: expected an integer", key, s));
     return v;
 }
 

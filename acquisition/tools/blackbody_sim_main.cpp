@@ -43,15 +43,24 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         auto value = [&] { return value_after(i, argc, argv); };
-        if (arg == "--model") options.model = value();
-        else if (arg == "--link") link = value();
-        else if (arg == "--tau-s") options.time_constant_s = positive(arg, value());
-        else if (arg == "--ambient-k") options.ambient_k = positive(arg, value());
-        else if (arg == "--noise-k") options.noise_k = positive(arg, value());
-        else if (arg == "--limit-k") options.stability_limit_k = positive(arg, value());
-        else if (arg == "--window-s") options.stability_window_s = positive(arg, value());
-        else if (arg == "--sample-period-s") options.sample_period_s = positive(arg, value());
-        else if (arg == "--seed") options.seed = static_cast<std::uint64_t>(positive(arg, value()));
+        if (arg == "--model")
+            options.model = value();
+        else if (arg == "--link")
+            link = value();
+        else if (arg == "--tau-s")
+            options.time_constant_s = positive(arg, value());
+        else if (arg == "--ambient-k")
+            options.ambient_k = positive(arg, value());
+        else if (arg == "--noise-k")
+            options.noise_k = positive(arg, value());
+        else if (arg == "--limit-k")
+            options.stability_limit_k = positive(arg, value());
+        else if (arg == "--window-s")
+            options.stability_window_s = positive(arg, value());
+        else if (arg == "--sample-period-s")
+            options.sample_period_s = positive(arg, value());
+        else if (arg == "--seed")
+            options.seed = static_cast<std::uint64_t>(positive(arg, value()));
         else if (arg == "--fault-on-set") {
             options.fault_on_set = std::atoi(value().c_str());
             if (options.fault_on_set < 1) usage("--fault-on-set: expected an integer ≥ 1");

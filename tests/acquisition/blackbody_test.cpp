@@ -168,7 +168,8 @@ TEST(BlackbodyController, ASetPointNeverStableTimesOutNamingTheSetPointAndLastRe
     const auto r = bring_blackbody_to(*bb, 318.15, {0.05, 0.2, 0.5, 0.05});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, DeviceErrorCode::Timeout);
-    EXPECT_THAT(r.error().message, HasSubstr("set-point 318.15 K (45.00 °C) not stable within ±0.05 K for 0.2 s after 0.5 s"));
+    EXPECT_THAT(r.error().message,
+                HasSubstr("set-point 318.15 K (45.00 °C) not stable within ±0.05 K for 0.2 s after 0.5 s"));
     EXPECT_THAT(r.error().message, HasSubstr("last reading 29"));  // ≈ 296.5 K: barely moved
 }
 
@@ -180,7 +181,8 @@ TEST(BlackbodyController, SimUriServesTheSameProtocolInProcess) {
     const auto bad = open_blackbody("sim://?tau=3");
     ASSERT_FALSE(bad);
     EXPECT_THAT(bad.error().message, HasSubstr("unknown option 'tau'"));
-    EXPECT_THAT(open_blackbody("fluke-9999:///dev/ttyUSB0").error().message, HasSubstr("unknown blackbody controller type"));
+    EXPECT_THAT(open_blackbody("fluke-9999:///dev/ttyUSB0").error().message,
+                HasSubstr("unknown blackbody controller type"));
 }
 
 TEST(BlackbodyController, ReadingLogSummarisesWithSampleStatistics) {
@@ -216,9 +218,21 @@ TEST(BlackbodySimulatorProgram, ServesOnAPtyThatTheDriverOpens) {
 }
 
 /// `tirpol-blackbody-sim` linked at DIR/bb (τ = 0.3 s) with `extra` arguments, waiting for the link.
-std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::path& dir, std::vector<std::string> extra = {}) {
-    std::vector<std::string> args{TIRPOL_BLACKBODY_SIM_PATH, "--link", (dir / "bb").string(), "--tau-s", "0.3", "--window-s",
-                                  "0.2", "--limit-k", "0.02", "--sample-period-s", "0.02", "--noise-k", "0.002"};
+std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::path& dir,
+                                                        std::vector<std::string> extra = {}) {
+    std::vector<std::string> args{TIRPOL_BLACKBODY_SIM_PATH,
+                                  "--link",
+                                  (dir / "bb").string(),
+                                  "--tau-s",
+                                  "0.3",
+                                  "--window-s",
+                                  "0.2",
+                                  "--limit-k",
+                                  "0.02",
+                                  "--sample-period-s",
+                                  "0.02",
+                                  "--noise-k",
+                                  "0.002"};
     args.insert(args.end(), extra.begin(), extra.end());
     auto sim = std::make_unique<test::ChildProcess>(args, dir / "bb-sim.log");
     for (int i = 0; i < 500 && !std::filesystem::exists(dir / "bb"); ++i) std::this_thread::sleep_for(10ms);
@@ -226,10 +240,11 @@ std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::p
 }
 
 int run_acquire(const std::filesystem::path& dir, const char* log) {
-    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
-                                "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://", "--blackbody",
-                                "fluke-4180://" + (dir / "bb").string(), "-o", (dir / "session").string(), "--non-interactive"},
-                               dir / log);
+    test::ChildProcess acquire(
+        {TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
+         "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://", "--blackbody",
+         "fluke-4180://" + (dir / "bb").string(), "-o", (dir / "session").string(), "--non-interactive"},
+        dir / log);
     return acquire.wait_for(120s).value_or(-1);
 }
 
@@ -280,11 +295,13 @@ TEST(AcquireWithBlackbody, AControllerFaultStopsTheRunNamingTheStep) {
 TEST(AcquireWithBlackbody, APlanWithSetPointsNeedsAController) {
     test::TempDir tmp;
     test::write_text(tmp / "plan.yaml", kControlledPlan);
-    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (tmp / "plan.yaml").string(), "--camera", "sim://uniform?width=8&height=6",
-                                "--stage", "sim://", "-o", (tmp / "session").string(), "--non-interactive"},
-                               tmp / "acquire.log");
+    test::ChildProcess acquire(
+        {TIRPOL_CLI_PATH, "acquire", (tmp / "plan.yaml").string(), "--camera", "sim://uniform?width=8&height=6",
+         "--stage", "sim://", "-o", (tmp / "session").string(), "--non-interactive"},
+        tmp / "acquire.log");
     EXPECT_EQ(acquire.wait_for(60s), 1);
-    EXPECT_THAT(read_file(tmp / "acquire.log"), HasSubstr("no blackbody controller was given (tirpol acquire --blackbody URI)"));
+    EXPECT_THAT(read_file(tmp / "acquire.log"),
+                HasSubstr("no blackbody controller was given (tirpol acquire --blackbody URI)"));
 }
 
 }  // namespace

@@ -66,7 +66,8 @@ struct Rig {
         config.seed = 11;
         camera = std::make_unique<SimulatedCamera>(config, [this](double, std::vector<float>& counts) {
             const double radiance = band.radiance(sim.device().plate_temperature_k(Clock::now()));
-            for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = static_cast<float>(offset[i] + gain[i] * radiance);
+            for (std::size_t i = 0; i < counts.size(); ++i)
+                counts[i] = static_cast<float>(offset[i] + gain[i] * radiance);
         });
     }
 
@@ -80,7 +81,8 @@ struct Rig {
         return sum;
     }
 
-    /// Brightness temperatures (K) of the plate held stable at kCheckK, through `cal`, and the plate's true temperature.
+    /// Brightness temperatures (K) of the plate held stable at kCheckK, through `cal`, and the plate's true
+    /// temperature.
     std::pair<std::vector<float>, double> check_temperatures(const calibration::RadiometricCalibration& cal) {
         bring_blackbody_to(*blackbody, kCheckK, {0.01, 0.3, 30.0, 0.05}).value_or_throw();
         ensure_streaming();
@@ -118,10 +120,12 @@ references:
     frames: 24
     controller: {tolerance_k: 0.01, stable_for_s: 0.3, timeout_s: 30, poll_s: 0.05}
 metadata: {polarizer_in_beam: false}
-)", "plan.yaml"));
+)",
+                                                                  "plan.yaml"));
     const BlackbodyInfo bb_info = rig.blackbody->info();
     {
-        auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan, &bb_info));
+        auto session = SessionWriter::create(
+            tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan, &bb_info));
         CaptureOptions options;
         options.progress_stream = nullptr;
         options.blackbody = rig.blackbody.get();
@@ -146,8 +150,8 @@ metadata: {polarizer_in_beam: false}
 
     const auto cal = calibration::calibrate_radiometric_session(tmp / "s", rig.band);
     const auto [temperatures, truth] = rig.check_temperatures(cal);
-    std::printf("brightness temperature error at %.2f K after the unattended session: max %.4f K over %d pixels\n", kCheckK,
-                max_abs_error(temperatures, truth), kWidth * kHeight);
+    std::printf("brightness temperature error at %.2f K after the unattended session: max %.4f K over %d pixels\n",
+                kCheckK, max_abs_error(temperatures, truth), kWidth * kHeight);
     // Budget: 3 counts of noise over 24 + 32 frames ≈ 0.6 + 0.5 counts, ≈ 3 mK at ≈ 350 counts/K, the
     // controller's 2 mK sensor noise and the ±10 mK tolerance the plate held: 30 mK bounds it.
     EXPECT_LT(max_abs_error(temperatures, truth), 0.03);
@@ -162,8 +166,10 @@ TEST(BlackbodyCalibration, CapturingBeforeTheSetPointIsStableBiasesTheCalibratio
     auto fit = [&](bool wait) {
         std::vector<calibration::BlackbodyFrame> frames;
         for (double t : kSetPointsK) {
-            if (wait) bring_blackbody_to(*rig.blackbody, t, {0.01, 0.3, 30.0, 0.05}).value_or_throw();
-            else rig.blackbody->set_temperature_k(t).value_or_throw();
+            if (wait)
+                bring_blackbody_to(*rig.blackbody, t, {0.01, 0.3, 30.0, 0.05}).value_or_throw();
+            else
+                rig.blackbody->set_temperature_k(t).value_or_throw();
             rig.ensure_streaming();
             calibration::BlackbodyFrame f;
             f.temperature_k = t;
@@ -179,8 +185,8 @@ TEST(BlackbodyCalibration, CapturingBeforeTheSetPointIsStableBiasesTheCalibratio
     const double hasty_error = max_abs_error(hasty_t, truth_hasty);
     const auto [patient_t, truth_patient] = rig.check_temperatures(patient);
     const double patient_error = max_abs_error(patient_t, truth_patient);
-    std::printf("brightness temperature error at %.2f K: without the wait %.3f K, with it %.4f K\n", kCheckK, hasty_error,
-                patient_error);
+    std::printf("brightness temperature error at %.2f K: without the wait %.3f K, with it %.4f K\n", kCheckK,
+                hasty_error, patient_error);
     EXPECT_GT(hasty_error, 1.0);
     EXPECT_LT(patient_error, 0.03);
 }

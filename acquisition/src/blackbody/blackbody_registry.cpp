@@ -28,7 +28,8 @@ public:
     Result<std::vector<std::uint8_t>> read_some(std::chrono::milliseconds timeout) override {
         if (m_pending.empty()) {
             std::this_thread::sleep_for(timeout);  // a silent device: the host waits out its timeout
-            return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply within {} ms", name(), timeout.count())};
+            return DeviceError{DeviceErrorCode::Timeout,
+                               fmt::format("{}: no reply within {} ms", name(), timeout.count())};
         }
         return std::exchange(m_pending, {});
     }
@@ -51,7 +52,8 @@ FlukeBlackbodyOptions model_range(const std::string& model) {
     return o;
 }
 
-Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri, const StageUri& u, const std::string& model) {
+Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri, const StageUri& u,
+                                                               const std::string& model) {
     if (auto s = detail::check_uri_keys(uri, u, {"baud", "timeout_ms"}); !s) return s.error();
     auto baud = detail::uri_integer(uri, u, "baud", fluke_scpi::kDefaultBaud);
     auto timeout = detail::uri_integer(uri, u, "timeout_ms", 1000);
@@ -67,7 +69,9 @@ Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string
 }
 
 Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, const StageUri& u) {
-    if (auto s = detail::check_uri_keys(uri, u, {"tau_s", "ambient_k", "noise_k", "limit_k", "window_s", "model", "fault", "fault_on_set", "seed"}); !s)
+    if (auto s = detail::check_uri_keys(
+            uri, u, {"tau_s", "ambient_k", "noise_k", "limit_k", "window_s", "model", "fault", "fault_on_set", "seed"});
+        !s)
         return s.error();
     BlackbodySimulatorOptions o;
     auto tau = detail::uri_number(uri, u, "tau_s", o.time_constant_s);
@@ -91,7 +95,9 @@ Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, co
     if (auto it = u.query.find("model"); it != u.query.end()) o.model = it->second;
     if (auto it = u.query.find("fault"); it != u.query.end()) {
         const auto f = parse_blackbody_fault(it->second);
-        if (!f) return bad_uri(uri, fmt::format("fault={}: expected none, over-temperature, no-reply or garbled", it->second));
+        if (!f)
+            return bad_uri(uri,
+                           fmt::format("fault={}: expected none, over-temperature, no-reply or garbled", it->second));
         o.fault = *f;
     }
     const std::string model = o.model;
@@ -115,7 +121,8 @@ Result<std::unique_ptr<BlackbodyController>> open_blackbody(const std::string& u
     if (u.scheme == "fluke-4180") return open_serial_fluke(uri, u, "4180");
     if (u.scheme == "fluke-4181") return open_serial_fluke(uri, u, "4181");
     if (u.scheme == "sim") return open_sim(uri, u);
-    return bad_uri(uri, fmt::format("unknown blackbody controller type '{}' (expected fluke-4180, fluke-4181 or sim)", u.scheme));
+    return bad_uri(
+        uri, fmt::format("unknown blackbody controller type '{}' (expected fluke-4180, fluke-4181 or sim)", u.scheme));
 }
 
 }  // namespace tirpol::acquisition

@@ -42,7 +42,8 @@ BlackbodySimulator::BlackbodySimulator(BlackbodySimulatorOptions options, Clock:
     } else {
         fail("blackbody simulator: model '{}': expected 4180 or 4181", m_options.model);
     }
-    if (!(m_options.time_constant_s > 0.0) || !(m_options.stability_window_s > 0.0) || !(m_options.sample_period_s > 0.0))
+    if (!(m_options.time_constant_s > 0.0) || !(m_options.stability_window_s > 0.0) ||
+        !(m_options.sample_period_s > 0.0))
         fail("blackbody simulator: time constant, stability window and sample period must be > 0 s (got {}, {}, {})",
              m_options.time_constant_s, m_options.stability_window_s, m_options.sample_period_s);
     if (!(m_options.noise_k >= 0.0) || !(m_options.stability_limit_k > 0.0))
@@ -68,7 +69,8 @@ void BlackbodySimulator::sample_until(Clock::time_point now) {
     std::normal_distribution<double> noise(0.0, m_options.noise_k);
     const auto period = std::chrono::duration_cast<Clock::duration>(Seconds(m_options.sample_period_s));
     for (; m_next_sample <= now; m_next_sample += period)
-        m_samples.push_back({m_next_sample, plate_temperature_k(m_next_sample) + (m_options.noise_k > 0 ? noise(m_rng) : 0.0)});
+        m_samples.push_back(
+            {m_next_sample, plate_temperature_k(m_next_sample) + (m_options.noise_k > 0 ? noise(m_rng) : 0.0)});
     const auto window = std::chrono::duration_cast<Clock::duration>(Seconds(m_options.stability_window_s));
     while (m_samples.size() > 1 && m_samples.front().at < now - window - period) m_samples.pop_front();
 }
@@ -164,10 +166,17 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
         ++m_sets;
         if (m_options.fault != BlackbodyFault::None && m_sets >= m_options.fault_on_set) {
             switch (m_options.fault) {
-                case BlackbodyFault::OverTemperature: m_tripped = true; break;
-                case BlackbodyFault::NoReply: m_silent = true; break;
-                case BlackbodyFault::Garbled: m_garbled = true; break;
-                case BlackbodyFault::None: break;
+                case BlackbodyFault::OverTemperature:
+                    m_tripped = true;
+                    break;
+                case BlackbodyFault::NoReply:
+                    m_silent = true;
+                    break;
+                case BlackbodyFault::Garbled:
+                    m_garbled = true;
+                    break;
+                case BlackbodyFault::None:
+                    break;
             }
         }
         // A tripped cutout removes heater power: the plate drifts to ambient whatever the set-point.

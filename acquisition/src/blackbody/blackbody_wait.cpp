@@ -24,20 +24,25 @@ Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, doub
     for (auto next = start;; next += poll) {
         std::this_thread::sleep_until(next);
         if (should_stop && should_stop())
-            return DeviceError{DeviceErrorCode::Stopped, fmt::format("waiting for the blackbody to reach {:.2f} K was interrupted", set_point_k)};
+            return DeviceError{DeviceErrorCode::Stopped,
+                               fmt::format("waiting for the blackbody to reach {:.2f} K was interrupted", set_point_k)};
         auto status = controller.status();
         if (!status) return status.error();
         const BlackbodyStatus& s = status.value();
         const bool good = s.stable && std::abs(s.temperature_k - set_point_k) <= criterion.tolerance_k;
-        if (!good) good_since.reset();
-        else if (!good_since) good_since = Clock::now();
-        if (good_since && seconds_since(*good_since) >= criterion.stable_for_s) return SetPointReached{seconds_since(start), s};
+        if (!good)
+            good_since.reset();
+        else if (!good_since)
+            good_since = Clock::now();
+        if (good_since && seconds_since(*good_since) >= criterion.stable_for_s)
+            return SetPointReached{seconds_since(start), s};
         if (seconds_since(start) > criterion.timeout_s)
-            return DeviceError{DeviceErrorCode::Timeout,
-                               fmt::format("{}: set-point {:.2f} K ({:.2f} °C) not stable within ±{:g} K for {:g} s after {:g} s; "
-                                           "last reading {:.3f} K, stability flag {}",
-                                           controller.info().uri, set_point_k, set_point_k - 273.15, criterion.tolerance_k,
-                                           criterion.stable_for_s, criterion.timeout_s, s.temperature_k, s.stable ? 1 : 0)};
+            return DeviceError{
+                DeviceErrorCode::Timeout,
+                fmt::format("{}: set-point {:.2f} K ({:.2f} °C) not stable within ±{:g} K for {:g} s after {:g} s; "
+                            "last reading {:.3f} K, stability flag {}",
+                            controller.info().uri, set_point_k, set_point_k - 273.15, criterion.tolerance_k,
+                            criterion.stable_for_s, criterion.timeout_s, s.temperature_k, s.stable ? 1 : 0)};
         if (Clock::now() > next + poll) next = Clock::now() - poll;  // a slow reply: no burst of catch-up polls
     }
 }

@@ -52,17 +52,18 @@ public:
     Status set_temperature_k(double set_point_k) override {
         if (!(set_point_k >= m_info.min_set_point_k && set_point_k <= m_info.max_set_point_k))
             return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: set-point {:.3f} K ({:.3f} °C) is outside the {} range {:.2f}–{:.2f} K", m_info.uri,
-                                           set_point_k, set_point_k - kCelsiusZeroK, m_info.model, m_info.min_set_point_k,
-                                           m_info.max_set_point_k)};
+                               fmt::format("{}: set-point {:.3f} K ({:.3f} °C) is outside the {} range {:.2f}–{:.2f} K",
+                                           m_info.uri, set_point_k, set_point_k - kCelsiusZeroK, m_info.model,
+                                           m_info.min_set_point_k, m_info.max_set_point_k)};
         if (auto s = send(fs::set_point_command(set_point_k - kCelsiusZeroK)); !s) return s;
         if (auto s = check_error_queue("SOUR:SPO"); !s) return s;
         auto back = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!back) return back.error();
         // The command carries millikelvin: a read-back further off means the device holds another set-point.
         if (std::abs(back.value() + kCelsiusZeroK - set_point_k) > 0.0015)
-            return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: set-point {:.3f} °C sent, the controller holds {:.3f} °C",
-                                                                         m_info.uri, set_point_k - kCelsiusZeroK, back.value())};
+            return DeviceError{DeviceErrorCode::DeviceFault,
+                               fmt::format("{}: set-point {:.3f} °C sent, the controller holds {:.3f} °C", m_info.uri,
+                                           set_point_k - kCelsiusZeroK, back.value())};
         return ok_status();
     }
 
@@ -76,10 +77,12 @@ public:
         if (!t) return t.error();
         s.temperature_k = t.value() + kCelsiusZeroK;
         if (*trip)
-            return DeviceError{DeviceErrorCode::DeviceFault,
-                               fmt::format("{}: the over-temperature cutout has tripped, the heater is off (plate at {:.2f} K); reset the "
-                                           "cutout at the controller",
-                                           m_info.uri, s.temperature_k)};
+            return DeviceError{
+                DeviceErrorCode::DeviceFault,
+                fmt::format(
+                    "{}: the over-temperature cutout has tripped, the heater is off (plate at {:.2f} K); reset the "
+                    "cutout at the controller",
+                    m_info.uri, s.temperature_k)};
         auto sp = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!sp) return sp.error();
         s.set_point_k = sp.value() + kCelsiusZeroK;
@@ -94,8 +97,8 @@ public:
 private:
     DeviceError bad_reply(const char* command, const std::string& reply, const char* expected) const {
         return {DeviceErrorCode::BadReply,
-                fmt::format("{}: reply \"{}\" to {} is not {} (garbled line? check the baud rate and cable)", m_info.uri,
-                            printable(reply), command, expected)};
+                fmt::format("{}: reply \"{}\" to {} is not {} (garbled line? check the baud rate and cable)",
+                            m_info.uri, printable(reply), command, expected)};
     }
 
     Status send(std::string_view command) {
@@ -120,9 +123,10 @@ private:
             if (!bytes) {
                 if (bytes.error().code != DeviceErrorCode::Timeout) return bytes.error();
                 m_rx.clear();  // a late reply would answer the next query
-                return DeviceError{DeviceErrorCode::Timeout,
-                                   fmt::format("{}: no reply to {} within {} ms (controller off, wrong port or baud rate?)", m_info.uri,
-                                               command.substr(0, command.size() - 1), m_options.reply_timeout.count())};
+                return DeviceError{
+                    DeviceErrorCode::Timeout,
+                    fmt::format("{}: no reply to {} within {} ms (controller off, wrong port or baud rate?)",
+                                m_info.uri, command.substr(0, command.size() - 1), m_options.reply_timeout.count())};
             }
             m_rx.insert(m_rx.end(), bytes.value().begin(), bytes.value().end());
         }

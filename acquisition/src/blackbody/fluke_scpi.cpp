@@ -28,12 +28,11 @@ std::string_view trim(std::string_view s) {
 struct Keyword {
     std::string_view long_form, short_form;
 };
-constexpr std::array kKeywords{
-    Keyword{"SOURCE", "SOUR"},   Keyword{"SPOINT", "SPO"},      Keyword{"SENSE", "SENS"},
-    Keyword{"DATA", "DATA"},     Keyword{"STABILITY", "STAB"},  Keyword{"TEST", "TEST"},
-    Keyword{"LIMIT", "LIM"},     Keyword{"PROTECTION", "PROT"}, Keyword{"TRIPPED", "TRIP"},
-    Keyword{"SYSTEM", "SYST"},   Keyword{"ERROR", "ERR"},       Keyword{"UNIT", "UNIT"},
-    Keyword{"TEMPERATURE", "TEMP"}};
+constexpr std::array kKeywords{Keyword{"SOURCE", "SOUR"},     Keyword{"SPOINT", "SPO"},      Keyword{"SENSE", "SENS"},
+                               Keyword{"DATA", "DATA"},       Keyword{"STABILITY", "STAB"},  Keyword{"TEST", "TEST"},
+                               Keyword{"LIMIT", "LIM"},       Keyword{"PROTECTION", "PROT"}, Keyword{"TRIPPED", "TRIP"},
+                               Keyword{"SYSTEM", "SYST"},     Keyword{"ERROR", "ERR"},       Keyword{"UNIT", "UNIT"},
+                               Keyword{"TEMPERATURE", "TEMP"}};
 
 }  // namespace
 
@@ -99,7 +98,8 @@ std::optional<Identity> parse_identity(std::string_view reply) {
     for (std::size_t i = 0; i < fields.size(); ++i) {
         const auto comma = reply.find(',', start);
         if ((comma == std::string_view::npos) != (i == fields.size() - 1)) return std::nullopt;
-        fields[i] = std::string(trim(reply.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        fields[i] = std::string(
+            trim(reply.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
         if (fields[i].empty()) return std::nullopt;
         start = comma + 1;
     }

@@ -6,7 +6,8 @@
 
 namespace tirpol::acquisition::detail {
 
-BlackbodyStep::BlackbodyStep(BlackbodyController& controller, const CaptureStep& step, std::optional<double>& settled_set_point_k)
+BlackbodyStep::BlackbodyStep(BlackbodyController& controller, const CaptureStep& step,
+                             std::optional<double>& settled_set_point_k)
     : m_controller(controller),
       m_set_point_k(step.temperature_k.value()),
       m_criterion(step.blackbody_control.value()),
@@ -31,8 +32,8 @@ Status BlackbodyStep::poll() {
     }
     m_log.add(status.value());
     m_worst_deviation_k = std::max(m_worst_deviation_k, std::abs(status.value().temperature_k - m_set_point_k));
-    m_next_poll = std::chrono::steady_clock::now() +
-                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(m_criterion.poll_s));
+    m_next_poll = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                         std::chrono::duration<double>(m_criterion.poll_s));
     return ok_status();
 }
 
@@ -46,10 +47,12 @@ Status BlackbodyStep::finish() {
     if (m_worst_deviation_k > m_criterion.tolerance_k) {
         m_settled.reset();  // wait again before the next step at this set-point
         const BlackbodyReadings r = m_log.summary();
-        return DeviceError{DeviceErrorCode::DeviceFault,
-                           fmt::format("{}: left ±{:g} K of the set-point {:.2f} K while the frames were taken (readings {:.3f}–{:.3f} K); "
-                                       "its frames are discarded",
-                                       m_controller.info().uri, m_criterion.tolerance_k, m_set_point_k, r.min_k, r.max_k)};
+        return DeviceError{
+            DeviceErrorCode::DeviceFault,
+            fmt::format(
+                "{}: left ±{:g} K of the set-point {:.2f} K while the frames were taken (readings {:.3f}–{:.3f} K); "
+                "its frames are discarded",
+                m_controller.info().uri, m_criterion.tolerance_k, m_set_point_k, r.min_k, r.max_k)};
     }
     return ok_status();
 }

@@ -16,9 +16,12 @@
 
 namespace tirpol::acquisition {
 
-PseudoTerminal::PseudoTerminal(int master, int slave, std::string path) : m_master(master), m_slave_keepalive(slave), m_slave_path(std::move(path)) {}
+PseudoTerminal::PseudoTerminal(int master, int slave, std::string path)
+    : m_master(master), m_slave_keepalive(slave), m_slave_path(std::move(path)) {}
 PseudoTerminal::PseudoTerminal(PseudoTerminal&& o) noexcept
-    : m_master(std::exchange(o.m_master, -1)), m_slave_keepalive(std::exchange(o.m_slave_keepalive, -1)), m_slave_path(std::move(o.m_slave_path)) {}
+    : m_master(std::exchange(o.m_master, -1)),
+      m_slave_keepalive(std::exchange(o.m_slave_keepalive, -1)),
+      m_slave_path(std::move(o.m_slave_path)) {}
 PseudoTerminal& PseudoTerminal::operator=(PseudoTerminal&& o) noexcept {
     if (this != &o) {
         hang_up();
@@ -38,12 +41,14 @@ void PseudoTerminal::hang_up() {
 
 Result<PseudoTerminal> PseudoTerminal::open() {
     const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
-    if (master < 0) return DeviceError{DeviceErrorCode::IoError, fmt::format("posix_openpt failed: {}", std::strerror(errno))};
+    if (master < 0)
+        return DeviceError{DeviceErrorCode::IoError, fmt::format("posix_openpt failed: {}", std::strerror(errno))};
     char name[128];
     if (::grantpt(master) != 0 || ::unlockpt(master) != 0 || ::ptsname_r(master, name, sizeof name) != 0) {
         const int err = errno;
         ::close(master);
-        return DeviceError{DeviceErrorCode::IoError, fmt::format("setting up the pseudo-terminal failed: {}", std::strerror(err))};
+        return DeviceError{DeviceErrorCode::IoError,
+                           fmt::format("setting up the pseudo-terminal failed: {}", std::strerror(err))};
     }
     const int slave = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (slave < 0) {
@@ -65,9 +70,12 @@ void serve_pty_device(PtyDevice& device, PseudoTerminal& pty, const std::atomic<
         std::size_t done = 0;
         while (done < bytes.size()) {
             const ssize_t n = ::write(pty.master_fd(), bytes.data() + done, bytes.size() - done);
-            if (n > 0) done += static_cast<std::size_t>(n);
-            else if (n < 0 && errno != EAGAIN && errno != EINTR) return;
-            else ::usleep(1000);
+            if (n > 0)
+                done += static_cast<std::size_t>(n);
+            else if (n < 0 && errno != EAGAIN && errno != EINTR)
+                return;
+            else
+                ::usleep(1000);
         }
     };
     while (!stop.load()) {
@@ -81,11 +89,12 @@ void serve_pty_device(PtyDevice& device, PseudoTerminal& pty, const std::atomic<
         if (::poll(&p, 1, 2) > 0 && (p.revents & POLLIN)) {
             std::uint8_t buf[256];
             const ssize_t n = ::read(pty.master_fd(), buf, sizeof buf);
-            if (n > 0) write_all(device.receive(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)), PtyDevice::Clock::now()));
+            if (n > 0)
+                write_all(device.receive(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)),
+                                         PtyDevice::Clock::now()));
         }
     }
 }
-
 
 namespace {
 std::atomic<bool> g_stop_program{false};

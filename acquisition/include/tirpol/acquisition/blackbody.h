@@ -14,7 +14,7 @@ namespace tirpol::acquisition {
 
 struct BlackbodyInfo {
     std::string uri;
-    std::string vendor, model, serial, firmware;  ///< from *IDN?
+    std::string vendor, model, serial, firmware;          ///< from *IDN?
     double min_set_point_k = 0.0, max_set_point_k = 0.0;  ///< the model's set-point range
 };
 

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/pseudo_terminal.h"
 #include "tirpol/acquisition/fluke_scpi.h"
+#include "tirpol/acquisition/pseudo_terminal.h"
 
 namespace tirpol::acquisition {
 
@@ -38,7 +38,7 @@ struct BlackbodySimulatorOptions {
     double stability_window_s = 30.0;
     double sample_period_s = 0.25;
     BlackbodyFault fault = BlackbodyFault::None;
-    int fault_on_set = 1;             ///< the 1-based set-point command from which the fault starts
+    int fault_on_set = 1;  ///< the 1-based set-point command from which the fault starts
     std::uint64_t seed = 1;
 };
 
