@@ -41,7 +41,8 @@ BlackbodySimulatorOptions fast_options() {
     return o;
 }
 
-std::unique_ptr<BlackbodyController> open_on(const SimThread& sim, const std::string& query = "") {
+/// The driver on the simulator's pty; the reply timeout is generous for a loaded machine unless given.
+std::unique_ptr<BlackbodyController> open_on(const SimThread& sim, const std::string& query = "?timeout_ms=5000") {
     return open_blackbody("fluke-4180://" + sim.path() + query).value_or_throw();
 }
 
@@ -207,7 +208,7 @@ TEST(BlackbodySimulatorProgram, ServesOnAPtyThatTheDriverOpens) {
     for (int i = 0; i < 500 && !std::filesystem::exists(link); ++i) std::this_thread::sleep_for(10ms);
     ASSERT_TRUE(std::filesystem::exists(link)) << "tirpol-blackbody-sim did not create its link";
     {
-        auto bb = open_blackbody("fluke-4180://" + link.string()).value_or_throw();
+        auto bb = open_blackbody("fluke-4180://" + link.string() + "?timeout_ms=5000").value_or_throw();
         EXPECT_EQ(bb->info().vendor, "FLUKE");
         ASSERT_TRUE(bb->set_temperature_k(300.0));
         EXPECT_NEAR(bb->status().value_or_throw().set_point_k, 300.0, 1e-9);
@@ -240,11 +241,11 @@ std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::p
 }
 
 int run_acquire(const std::filesystem::path& dir, const char* log) {
-    test::ChildProcess acquire(
-        {TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
-         "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://", "--blackbody",
-         "fluke-4180://" + (dir / "bb").string(), "-o", (dir / "session").string(), "--non-interactive"},
-        dir / log);
+    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
+                                "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://",
+                                "--blackbody", "fluke-4180://" + (dir / "bb").string() + "?timeout_ms=5000", "-o",
+                                (dir / "session").string(), "--non-interactive"},
+                               dir / log);
     return acquire.wait_for(120s).value_or(-1);
 }
 
@@ -267,7 +268,7 @@ TEST(AcquireWithBlackbody, RunsTheSetPointsUnattendedAndRecordsTheReadings) {
     const SessionManifest m = read_session(tmp / "session");
     ASSERT_EQ(m.records.size(), 5u);  // 2 set-points × 2 angles + 1 polarizer step
     ASSERT_TRUE(m.blackbody_controller);
-    EXPECT_EQ(m.blackbody_controller->uri, "fluke-4180://" + (tmp / "bb").string());
+    EXPECT_EQ(m.blackbody_controller->uri, "fluke-4180://" + (tmp / "bb").string() + "?timeout_ms=5000");
     const double set_points[] = {293.15, 293.15, 303.15, 303.15};
     for (std::size_t i = 0; i < 4; ++i) {
         const SessionRecord& r = m.records[i];
