@@ -4,21 +4,13 @@
 //   tirpol-stage-sim --protocol apt|elliptec [--link PATH] [--fault no-reply|busy|error|disconnect-mid-move]
 //                    [--fault-on-move N] [--move-deg-per-s V] [--address A]
 
-#include <unistd.h>
-
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 
 #include "tirpol/acquisition/stage_simulator.h"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
 
 [[noreturn]] void usage(const char* message) {
     std::fprintf(stderr,
@@ -75,30 +67,6 @@ int main(int argc, char** argv) {
     // Realistic defaults: a K10CR1 turns at up to 10°/s; an ELL14 about 360°/s for short moves.
     if (!speed_given) options.deg_per_s = options.protocol == SimProtocol::Apt ? 10.0 : 360.0;
 
-    auto pty = PseudoTerminal::open();
-    if (!pty) {
-        std::fprintf(stderr, "tirpol-stage-sim: %s\n", pty.error().message.c_str());
-        return 1;
-    }
-    if (!link.empty()) {
-        std::error_code ec;
-        std::filesystem::remove(link, ec);
-        std::filesystem::create_symlink(pty.value().slave_path(), link, ec);
-        if (ec) {
-            std::fprintf(stderr, "tirpol-stage-sim: cannot link %s: %s\n", link.c_str(), ec.message().c_str());
-            return 1;
-        }
-    }
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    std::printf("%s\n", pty.value().slave_path().c_str());
-    std::fflush(stdout);
-
     StageSimulator simulator(options);
-    serve_stage_simulator(simulator, pty.value(), g_stop);
-    if (!link.empty()) {
-        std::error_code ec;
-        std::filesystem::remove(link, ec);
-    }
-    return 0;
+    return run_pty_simulator_program(simulator, link, "tirpol-stage-sim");
 }

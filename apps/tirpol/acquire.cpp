@@ -1,4 +1,4 @@
-// `tirpol acquire PLAN.yaml --camera URI --stage URI -o DIR [--resume] [--non-interactive]`:
+// `tirpol acquire PLAN.yaml --camera URI --stage URI [--blackbody URI] -o DIR [--resume] [--non-interactive]`:
 // runs a capture plan into a session directory (docs/acquisition-stages.md, docs/session-format.md).
 // Exit codes: 0 session complete; 1 an error (bad plan or URI, device fault, interruption — the
 // message says how many steps are recorded; continue with --resume); 2 bad command-line usage.
@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cli.h"
+#include "tirpol/acquisition/blackbody_registry.h"
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage_registry.h"
@@ -36,7 +37,7 @@ extern "C" void on_interrupt(int sig) {
 }
 
 struct AcquireArgs {
-    std::string plan, camera, stage, output;
+    std::string plan, camera, stage, blackbody, output;
     bool resume = false, non_interactive = false;
 };
 
@@ -80,9 +81,13 @@ void run_acquire(const AcquireArgs& a) {
     stage = open_stage(a.stage).value_or_throw();
     stop_on_interrupt.watch(stage.get());
     const CameraInfo camera_info = camera->info();
+    std::unique_ptr<BlackbodyController> blackbody;
+    if (!a.blackbody.empty()) blackbody = open_blackbody(a.blackbody).value_or_throw();
+    const BlackbodyInfo blackbody_info = blackbody ? blackbody->info() : BlackbodyInfo{};
 
     SessionWriter session = a.resume ? SessionWriter::resume(dir)
-                                     : SessionWriter::create(dir, new_session_manifest(camera_info, stage->info(), plan));
+                                     : SessionWriter::create(dir, new_session_manifest(camera_info, stage->info(), plan,
+                                                                                        blackbody ? &blackbody_info : nullptr));
     if (a.resume) {
         check_resumable(session.manifest(), camera_info, plan);
         for (const auto& file : session.adopted_files())
@@ -92,6 +97,7 @@ void run_acquire(const AcquireArgs& a) {
     CaptureOptions options;
     if (!a.non_interactive) options.prompt = ask_operator;
     options.interrupt = &g_interrupted;
+    options.blackbody = blackbody.get();
 
     const CaptureSummary s = run_capture(*camera, *stage, plan, session, options);
     std::printf("session complete: %s\n", dir.c_str());
@@ -108,6 +114,9 @@ void register_acquire(CLI::App& app) {
     cmd->add_option("--camera", args->camera, "Camera URI (aravis://ID, v4l2:///dev/videoN, sim://...)")->required();
     cmd->add_option("--stage", args->stage, "Stage URI (thorlabs-apt:///dev/ttyUSB0, thorlabs-apt+usb://SERIAL, elliptec:///dev/ttyUSB0?address=0, sim://)")
         ->required();
+    cmd->add_option("--blackbody", args->blackbody,
+                    "Blackbody controller URI (fluke-4180:///dev/ttyUSB1, fluke-4181://..., sim://): sets the plan's controlled "
+                    "blackbody temperatures and waits for stability (docs/acquisition-blackbody.md)");
     cmd->add_option("-o,--output", args->output, "Session directory (new and empty, or an interrupted session with --resume)")->required();
     cmd->add_flag("--resume", args->resume, "Continue an interrupted session: skips recorded steps, keeps everything written");
     cmd->add_flag("--non-interactive", args->non_interactive, "Do not prompt before reference (blackbody/shutter) frames");

@@ -147,6 +147,34 @@ StepTiming timing_from_json(const Fields& f) {
     return t;
 }
 
+json readings_to_json(const BlackbodyReadings& b) {
+    return json{{"set_point_k", b.set_point_k}, {"mean_k", b.mean_k}, {"std_k", b.std_k}, {"min_k", b.min_k},
+                {"max_k", b.max_k},             {"readings", b.readings}, {"stable", b.stable}, {"wait_s", b.wait_s}};
+}
+
+BlackbodyReadings readings_from_json(const Fields& f) {
+    BlackbodyReadings b;
+    b.set_point_k = f.number("set_point_k");
+    b.mean_k = f.number("mean_k");
+    b.std_k = f.number("std_k");
+    b.min_k = f.number("min_k");
+    b.max_k = f.number("max_k");
+    b.readings = f.integer("readings", 1);
+    b.stable = f.boolean("stable");
+    b.wait_s = f.number("wait_s");
+    for (const char* key : {"set_point_k", "mean_k", "min_k", "max_k"}) {
+        const double t = f.number(key);
+        if (!(t >= limits::kMinTemperatureK && t <= limits::kMaxTemperatureK))
+            f.fail_here(f.field(key), fmt::format("expected a temperature in [{}, {}] K, got {}", limits::kMinTemperatureK,
+                                                  limits::kMaxTemperatureK, t));
+    }
+    if (!(b.min_k <= b.mean_k && b.mean_k <= b.max_k))
+        f.fail_here(f.field("mean_k"), fmt::format("expected min_k ≤ mean_k ≤ max_k, got {} ≤ {} ≤ {}", b.min_k, b.mean_k, b.max_k));
+    if (!(b.std_k >= 0.0)) f.fail_here(f.field("std_k"), fmt::format("expected ≥ 0, got {}", b.std_k));
+    if (!(b.wait_s >= 0.0)) f.fail_here(f.field("wait_s"), fmt::format("expected ≥ 0 s, got {}", b.wait_s));
+    return b;
+}
+
 json record_to_json(const SessionRecord& r) {
     json j{{"kind", to_string(r.kind)},
                 {"file", r.file},
@@ -160,6 +188,7 @@ json record_to_json(const SessionRecord& r) {
                 {"last_timestamp_ns", r.last_timestamp_ns},
                 {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
     if (r.timing) j["timing"] = timing_to_json(*r.timing);
+    if (r.blackbody_readings) j["blackbody_readings"] = readings_to_json(*r.blackbody_readings);
     return j;
 }
 
@@ -222,6 +251,10 @@ SessionRecord record_from_json(const Fields& f) {
             f.fail_here(f.field("first_timestamp_ns"), fmt::format("expected ≥ timing.settle_end_ns ({}), got {} (a frame received before the stage settled)",
                                                                   r.timing->settle_end_ns, r.first_timestamp_ns));
     }
+    if (f.raw().contains("blackbody_readings") && !f.raw().at("blackbody_readings").is_null()) {
+        r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
+        if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
+    }
     check_record(f, r);
     return r;
 }
@@ -254,6 +287,12 @@ json session_to_json(const SessionManifest& m) {
                   {"serial", m.stage.serial},
                   {"firmware", m.stage.firmware},
                   {"counts_per_degree", m.stage.counts_per_degree}}},
+                {"blackbody_controller", m.blackbody_controller ? json{{"uri", m.blackbody_controller->uri},
+                                                                      {"vendor", m.blackbody_controller->vendor},
+                                                                      {"model", m.blackbody_controller->model},
+                                                                      {"serial", m.blackbody_controller->serial},
+                                                                      {"firmware", m.blackbody_controller->firmware}}
+                                                                : json(nullptr)},
                 {"plan", m.plan},
                 {"metadata", m.metadata},
                 {"records", records},
@@ -296,6 +335,11 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     if (!(m.stage.counts_per_degree > 0.0))
         stage.fail_here(stage.field("counts_per_degree"), fmt::format("expected a positive number, got {}", m.stage.counts_per_degree));
 
+    if (top.raw().contains("blackbody_controller") && !top.raw().at("blackbody_controller").is_null()) {
+        const Fields bb = top.object("blackbody_controller");
+        m.blackbody_controller = SessionBlackbodyController{bb.string("uri"), bb.string("vendor"), bb.string("model"),
+                                                            bb.string("serial"), bb.string("firmware")};
+    }
     m.plan = top.object("plan").raw();
     m.metadata = top.object("metadata").raw();
 
@@ -336,6 +380,14 @@ void record_to_attributes(const SessionRecord& r, Attributes& a) {
         else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
         else a[name] = value.get<double>();
     }
+    const json readings = readings_to_json(r.blackbody_readings.value_or(BlackbodyReadings{}));
+    for (const auto& [key, value] : readings.items()) {
+        const std::string name = "blackbody_readings_" + key;
+        if (!r.blackbody_readings) a.erase(name);
+        else if (value.is_boolean()) a[name] = value.get<bool>() ? 1 : 0;
+        else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
+        else a[name] = value.get<double>();
+    }
     a["units"] = std::string("counts");
 }
 
@@ -356,6 +408,14 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
             j.erase(it);
         }
     if (!timing.empty()) j["timing"] = timing;
+    json readings = json::object();
+    const json readings_keys = readings_to_json({});  // named: items() of a temporary would dangle
+    for (const auto& [key, unused] : readings_keys.items())
+        if (auto it = j.find("blackbody_readings_" + key); it != j.end()) {
+            readings[key] = key == "stable" && it->is_number_integer() ? json(it->get<int>() != 0) : *it;
+            j.erase(it);
+        }
+    if (!readings.empty()) j["blackbody_readings"] = readings;
     auto decimal = [&source](json& holder, const std::string& key, const std::string& name) {
         auto it = holder.find(key);
         if (it == holder.end() || !it->is_string()) return;
@@ -371,6 +431,7 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
     if (j.contains("timing"))
         for (const char* key : {"move_start_ns", "move_end_ns", "settle_end_ns", "exposure_window_ns", "stale_frames_discarded"})
             decimal(j["timing"], key, std::string("timing_") + key);
+    if (j.contains("blackbody_readings")) decimal(j["blackbody_readings"], "readings", "blackbody_readings_readings");
     return record_from_json(Fields(j, source, "header"));
 }
 
@@ -527,7 +588,7 @@ SessionWriter SessionWriter::create(const std::filesystem::path& dir_in, Session
 SessionWriter SessionWriter::resume(const std::filesystem::path& dir) {
     auto lock = std::make_unique<Lock>(dir);
     SessionManifest manifest = read_manifest_file(dir);
-    if (manifest.schema_version < kSessionSchemaVersion)
+    if (manifest.schema_version < 2)
         fail("{}: a schema v{} session (written before frames were gated on the end of each move); it reads, "
              "but resuming would mix two timing models: finish it with the tirpol that started it, or start a new session",
              (dir / kSessionManifestName).string(), manifest.schema_version);

@@ -1,4 +1,4 @@
-// Session store (schema tirpol.session v2, v1 still read; docs/session-format.md): round trips,
+// Session store (schema tirpol.session v3, v1 and v2 still read; docs/session-format.md): round trips,
 // atomic creation, crash recovery, no-overwrite guarantees and the reader's error messages for
 // damaged sessions.
 
@@ -92,7 +92,7 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     // The manifest is the documented schema, field for field.
     const json j = json::parse(read_file(dir / "session.json"));
     EXPECT_EQ(j.at("schema"), "tirpol.session");
-    EXPECT_EQ(j.at("schema_version"), 2);
+    EXPECT_EQ(j.at("schema_version"), 3);
     EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
     EXPECT_EQ(j.at("records")[0].at("file"), "frames/pol_000.0deg_r0.exr");
 }
@@ -119,7 +119,7 @@ TEST(Session, StepTimingRoundTripsThroughTheManifestAndTheFrameHeader) {
         writer.add_record(r, example_frame(1.0f));
     }
     const SessionManifest m = read_session(tmp / "s");
-    EXPECT_EQ(m.schema_version, 2);
+    EXPECT_EQ(m.schema_version, 3);
     ASSERT_EQ(m.records.size(), 1u);
     EXPECT_EQ(m.records[0], r);  // every ns digit kept
     EXPECT_EQ(m.camera.frame_rate_hz.value_or(0.0), 29.7);
@@ -155,6 +155,59 @@ TEST(Session, VersionOneSessionsStillReadAndUseTheRequestedAngle) {
     // A v1 read-back preceded frames that may have been exposed mid-move: the request is the angle.
     EXPECT_EQ(record_polarizer_angle_deg(m, m.records[0]), 90.0);
     EXPECT_THAT([&] { SessionWriter::resume(dir); }, ::testing::ThrowsMessage<Error>(HasSubstr("schema v1 session")));
+}
+
+TEST(Session, BlackbodyReadingsRoundTripThroughTheManifestAndTheFrameHeader) {
+    // Schema v3: a controlled blackbody record keeps the controller's readings during its frames.
+    test::TempDir tmp;
+    SessionRecord r = polarizer_record(0.0, 0);
+    r.kind = RecordKind::Blackbody;
+    r.file = session_frame_file("s000_bb_303.15K");
+    r.blackbody_temperature_k = 303.1487;
+    r.timing = example_timing();
+    r.blackbody_readings = BlackbodyReadings{303.15, 303.1487, 0.0042, 303.141, 303.157, 7, true, 41.25};
+    SessionManifest manifest = example_manifest();
+    manifest.blackbody_controller = SessionBlackbodyController{"fluke-4180:///dev/ttyUSB1", "FLUKE", "4180", "B12345", "1.10"};
+    {
+        auto writer = SessionWriter::create(tmp / "s", manifest);
+        writer.add_record(r, example_frame(1.0f));
+    }
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.records.size(), 1u);
+    EXPECT_EQ(m.records[0], r);
+    EXPECT_EQ(m.blackbody_controller, manifest.blackbody_controller);
+    const Image frame = read_session_frame(tmp / "s", m, m.records[0]);
+    EXPECT_EQ(record_from_attributes(frame.attributes(), r.file, "header"), r);
+
+    // A reading summary that contradicts itself names the field.
+    json j = json::parse(read_file(tmp / "s" / "session.json"));
+    j["records"][0]["blackbody_readings"]["min_k"] = 304.0;
+    write_file_atomic(tmp / "s" / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(tmp / "s"); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("records[0].blackbody_readings.mean_k: expected min_k ≤ mean_k ≤ max_k")));
+}
+
+TEST(Session, VersionTwoSessionsReadAndResume) {
+    // v3 only adds optional fields: a v2 session (no controller) reads and can be continued.
+    test::TempDir tmp;
+    const auto dir = tmp / "v2";
+    SessionRecord r = polarizer_record(90.0, 0);
+    r.timing = example_timing();
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(r, example_frame(1.0f));
+    }
+    json j = json::parse(read_file(dir / "session.json"));
+    j["schema_version"] = 2;
+    j.erase("blackbody_controller");
+    write_file_atomic(dir / "session.json", j.dump(2));
+    const SessionManifest m = read_session(dir);
+    EXPECT_EQ(m.schema_version, 2);
+    EXPECT_FALSE(m.blackbody_controller);
+    EXPECT_EQ(record_polarizer_angle_deg(m, m.records[0]), r.angle_deg_measured);
+    auto writer = SessionWriter::resume(dir);
+    writer.add_record(polarizer_record(45.0, 0), example_frame(2.0f));
+    EXPECT_EQ(read_session(dir).records.size(), 2u);
 }
 
 TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
@@ -290,9 +343,9 @@ TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
 
 TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
     json j = manifest();
-    j["schema_version"] = 3;
+    j["schema_version"] = 4;
     write(j);
-    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 2, got 3"));
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 3, got 4"));
     j["schema"] = "something.else";
     write(j);
     EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "tirpol/acquisition/angles.h"
+#include "capture/blackbody_step.h"
 #include "capture/record_writer.h"
 #include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/acquisition/frame_gate.h"
@@ -35,12 +36,14 @@ bool sleep_until_host_ns(std::int64_t until_ns, const CaptureOptions& options) {
 
 }  // namespace
 
-SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan) {
+SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan,
+                                     const BlackbodyInfo* blackbody) {
     SessionManifest m;
     // frame_rate_hz stays null until the capture loop has measured what the camera delivers.
     m.camera = {camera.uri, camera.vendor, camera.model, camera.serial, camera.pixel_format, camera.width, camera.height,
                 camera.bits_per_pixel, std::nullopt, camera.planck_constants};
     m.stage = {stage.uri, stage.vendor, stage.model, stage.serial, stage.firmware, stage.counts_per_degree};
+    if (blackbody) m.blackbody_controller = SessionBlackbodyController{blackbody->uri, blackbody->vendor, blackbody->model, blackbody->serial, blackbody->firmware};
     m.plan = plan.to_json();
     m.metadata = plan.metadata;
     return m;
@@ -90,6 +93,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     }
     const std::size_t total = steps.size();
     const CaptureStep& first = *todo.front();
+    if (plan_uses_blackbody_controller(plan) && !options.blackbody)
+        fail("the plan sets blackbody temperatures (references[].controller) but no blackbody controller was given (tirpol acquire "
+             "--blackbody URI); nothing was recorded");
+    std::optional<double> settled_set_point_k;  // the controller's set-point reached in this run
     check_free_space(session.dir(), session.manifest().camera.width, session.manifest().camera.height, todo.size());
 
     detail::RecordWriter writer(session);
@@ -132,7 +139,16 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         if (interrupted(options))
             fail("interrupted before step {}/{} ({}); {} of {} steps are recorded in {}; run again with --resume", step->index + 1,
                  total, step->label, recorded(), total, session.dir().string());
-        if (step->kind != RecordKind::Polarizer && options.prompt) {
+        std::optional<detail::BlackbodyStep> blackbody;
+        if (step->blackbody_control) {
+            blackbody.emplace(*options.blackbody, *step, settled_set_point_k);
+            if (auto reached = blackbody->reach_set_point([&] { return interrupted(options); }); !reached) {
+                if (reached.error().code == DeviceErrorCode::Stopped)
+                    fail("interrupted while the blackbody settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again with --resume",
+                         step->index + 1, total, step->label, recorded(), total, session.dir().string());
+                step_failed(*step, "blackbody", reached.error());
+            }
+        } else if (step->kind != RecordKind::Polarizer && options.prompt) {
             const std::string instruction =
                 step->kind == RecordKind::Blackbody
                     ? fmt::format("Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, filling the field of view", *step->temperature_k, *step->temperature_k - 273.15)
@@ -173,6 +189,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             if (interrupted(options))
                 fail("interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps are recorded in {}; run again with --resume",
                      step->index + 1, total, step->label, recorded(), total, session.dir().string());
+            if (blackbody) check(blackbody->poll_if_due(), *step, "blackbody");
             const Frame frame = check(camera.grab(to_ms(plan.frame_timeout_s)), *step, "camera");
             if (!gate.exposed_after(frame, timing.settle_end_ns)) {
                 ++timing.stale_frames_discarded;
@@ -196,6 +213,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 ++fpa_count;
             }
         }
+        if (blackbody) check(blackbody->finish(), *step, "blackbody");
         timing.angle_deg_after_frames = read_angle("after the frames");
         if (std::abs(angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames)) > plan.angle_tolerance_deg)
             step_failed(*step, "stage",
@@ -213,6 +231,11 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             wrap_degrees(timing.angle_deg_before_frames + 0.5 * angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames));
         record.repeat = step->repeat;
         record.blackbody_temperature_k = step->temperature_k;
+        if (blackbody) {
+            // What the controller read during the frames, not the set-point: the calibration uses it.
+            record.blackbody_readings = blackbody->readings();
+            record.blackbody_temperature_k = record.blackbody_readings->mean_k;
+        }
         record.frames = step->frames;
         record.dropped = static_cast<std::int64_t>(camera.statistics().dropped - dropped_before);
         record.timing = timing;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tirpol/acquisition/angles.h"
@@ -76,6 +77,26 @@ std::vector<double> temperatures(const ConfigNode& ref) {
     return out;
 }
 
+/// A number in [lo, hi] under `node[key]`, `fallback` when absent.
+double number_in_range(const ConfigNode& node, std::string_view key, double fallback, double lo, double hi) {
+    return node.has(key) ? node.get_in_range(key, lo, hi) : fallback;
+}
+
+BlackbodyStabilityCriterion stability_criterion(const ConfigNode& node) {
+    if (!node.is_map()) node.fail("expected a mapping {tolerance_k, stable_for_s, timeout_s, poll_s}");
+    node.check_keys({"tolerance_k", "stable_for_s", "timeout_s", "poll_s"});
+    BlackbodyStabilityCriterion c;
+    c.tolerance_k = number_in_range(node, "tolerance_k", c.tolerance_k, 1e-4, 50.0);
+    c.stable_for_s = number_in_range(node, "stable_for_s", c.stable_for_s, 0.0, kMaxSettleSeconds);
+    c.timeout_s = number_in_range(node, "timeout_s", c.timeout_s, 1e-3, 24 * 3600.0);
+    c.poll_s = number_in_range(node, "poll_s", c.poll_s, 0.01, 600.0);
+    return c;
+}
+
+nlohmann::json criterion_json(const BlackbodyStabilityCriterion& c) {
+    return {{"tolerance_k", c.tolerance_k}, {"stable_for_s", c.stable_for_s}, {"timeout_s", c.timeout_s}, {"poll_s", c.poll_s}};
+}
+
 }  // namespace
 
 CapturePlan CapturePlan::parse(const ConfigNode& root) {
@@ -107,7 +128,7 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
     if (root.has("angle_tolerance_deg")) plan.angle_tolerance_deg = root.get_in_range("angle_tolerance_deg", 1e-6, 10.0);
     if (auto refs = root.find("references")) {
         for (const auto& ref : refs->elements()) {
-            ref.check_keys({"kind", "temperatures_k", "temperatures_c", "frames", "angle_deg"});
+            ref.check_keys({"kind", "temperatures_k", "temperatures_c", "frames", "angle_deg", "angles_deg", "controller"});
             ReferenceSpec spec;
             const auto kind_text = ref.get<std::string>("kind");
             const auto kind = record_kind_from_string(kind_text);
@@ -118,6 +139,16 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
                 ref.fail("a blackbody reference needs temperatures_k (or temperatures_c)");
             spec.frames = count_in_range(ref, "frames", spec.frames, kMaxFramesPerStep);
             if (ref.has("angle_deg")) spec.angle_deg = plan_angle(ref.at("angle_deg"), ref.get<double>("angle_deg"));
+            if (ref.has("angles_deg")) {
+                if (ref.has("angle_deg")) ref.fail("give angle_deg or angles_deg, not both");
+                spec.angles_deg = ref.get<std::vector<double>>("angles_deg");
+                if (spec.angles_deg.empty()) ref.at("angles_deg").fail("expected at least one angle");
+                for (double a : spec.angles_deg) plan_angle(ref.at("angles_deg"), a);
+            }
+            if (auto c = ref.find("controller")) {
+                if (spec.kind != RecordKind::Blackbody) c->fail("only a blackbody reference has a controller");
+                spec.controller = stability_criterion(*c);
+            }
             plan.references.push_back(std::move(spec));
         }
     }
@@ -132,13 +163,22 @@ CapturePlan CapturePlan::load(const std::filesystem::path& path) { return parse(
 
 nlohmann::json CapturePlan::to_json() const {
     nlohmann::json refs = nlohmann::json::array();
-    for (const auto& r : references)
-        refs.push_back({{"kind", tirpol::to_string(r.kind)}, {"temperatures_k", r.temperatures_k}, {"frames", r.frames}, {"angle_deg", r.angle_deg}});
+    for (const auto& r : references) {
+        nlohmann::json ref = {{"kind", tirpol::to_string(r.kind)}, {"temperatures_k", r.temperatures_k}, {"frames", r.frames}, {"angle_deg", r.angle_deg}};
+        // Only when given: a plan without them keeps the JSON (and so --resume) of earlier versions.
+        if (!r.angles_deg.empty()) ref["angles_deg"] = r.angles_deg;
+        if (r.controller) ref["controller"] = criterion_json(*r.controller);
+        refs.push_back(std::move(ref));
+    }
     return {{"angles_deg", angles_deg},         {"frames_per_angle", frames_per_angle},
             {"settle_s", settle_s},             {"repeats", repeats},
             {"angle_tolerance_deg", angle_tolerance_deg}, {"move_timeout_s", move_timeout_s},
             {"home_timeout_s", home_timeout_s}, {"frame_timeout_s", frame_timeout_s},
             {"references", refs}};
+}
+
+bool plan_uses_blackbody_controller(const CapturePlan& plan) {
+    return std::any_of(plan.references.begin(), plan.references.end(), [](const ReferenceSpec& r) { return r.controller.has_value(); });
 }
 
 std::vector<CaptureStep> plan_steps(const CapturePlan& plan) {
@@ -152,16 +192,26 @@ std::vector<CaptureStep> plan_steps(const CapturePlan& plan) {
         const std::vector<std::optional<double>> temps = ref.temperatures_k.empty()
                                                              ? std::vector<std::optional<double>>{std::nullopt}
                                                              : std::vector<std::optional<double>>(ref.temperatures_k.begin(), ref.temperatures_k.end());
-        for (const auto& t : temps) {
-            CaptureStep s;
-            s.kind = ref.kind;
-            s.angle_deg = ref.angle_deg;
-            s.temperature_k = t;
-            s.frames = ref.frames;
-            const std::string what = ref.kind == RecordKind::Blackbody ? "bb" : "shutter";
-            s.label = t ? fmt::format("{} at {:.2f} K", tirpol::to_string(ref.kind), *t) : std::string(tirpol::to_string(ref.kind));
-            add(s, t ? fmt::format("{}_{:.2f}K", what, *t) : what);
-        }
+        const bool per_angle = !ref.angles_deg.empty();
+        const std::vector<double> angles = per_angle ? ref.angles_deg : std::vector<double>{ref.angle_deg};
+        for (const auto& t : temps)
+            for (double a : angles) {
+                CaptureStep s;
+                s.kind = ref.kind;
+                s.angle_deg = a;
+                s.temperature_k = t;
+                s.blackbody_control = ref.controller;
+                s.frames = ref.frames;
+                const std::string what = ref.kind == RecordKind::Blackbody ? "bb" : "shutter";
+                std::string label = t ? fmt::format("{} at {:.2f} K", tirpol::to_string(ref.kind), *t) : std::string(tirpol::to_string(ref.kind));
+                std::string stem = t ? fmt::format("{}_{:.2f}K", what, *t) : what;
+                if (per_angle) {
+                    label += fmt::format(", polarizer {:g}°", a);
+                    stem += fmt::format("_pol_{:07.3f}deg", a);
+                }
+                s.label = std::move(label);
+                add(s, stem);
+            }
     }
     for (int r = 0; r < plan.repeats; ++r)
         for (double a : plan.angles_deg) {

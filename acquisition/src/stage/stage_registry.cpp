@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <set>
 
+#include "device_uri_query.h"
 #include "tirpol/acquisition/apt_stage.h"
 #include "tirpol/acquisition/elliptec_stage.h"
 #include "tirpol/acquisition/ftdi_port.h"
@@ -43,47 +42,18 @@ Result<StageUri> parse_stage_uri(const std::string& uri) {
 
 namespace {
 
-DeviceError bad(const std::string& uri, const std::string& what) { return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)}; }
-
-Result<double> number(const std::string& uri, const StageUri& u, const std::string& key, double fallback) {
-    auto it = u.query.find(key);
-    if (it == u.query.end()) return fallback;
-    double v = 0;
-    const auto* end = it->second.data() + it->second.size();
-    const auto r = std::from_chars(it->second.data(), end, v);
-    if (r.ec != std::errc() || r.ptr != end) return bad(uri, fmt::format("{}={}: expected a number", key, it->second));
-    return v;
-}
-
-Result<int> integer(const std::string& uri, const StageUri& u, const std::string& key, int fallback) {
-    auto it = u.query.find(key);
-    if (it == u.query.end()) return fallback;
-    int v = 0;
-    const std::string& s = it->second;
-    const bool hex = s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
-    const char* begin = s.data() + (hex ? 2 : 0);
-    const auto r = std::from_chars(begin, s.data() + s.size(), v, hex ? 16 : 10);
-    if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return bad(uri, fmt::format("{}={}: expected an integer", key, s));
-    return v;
-}
-
-Status check_keys(const std::string& uri, const StageUri& u, const std::set<std::string>& allowed) {
-    for (const auto& [k, v] : u.query)
-        if (!allowed.count(k)) {
-            std::string list;
-            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            return bad(uri, fmt::format("unknown option '{}' (known: {})", k, list));
-        }
-    return ok_status();
-}
+using detail::check_uri_keys;
+using detail::uri_integer;
+using detail::uri_number;
+DeviceError bad(const std::string& uri, const std::string& what) { return detail::bad_uri(uri, what); }
 
 Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& u, bool usb) {
-    if (auto s = check_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
+    if (auto s = check_uri_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
     AptStageOptions options;
-    auto cpd = number(uri, u, "counts_per_degree", options.counts_per_degree);
-    auto channel = integer(uri, u, "channel", options.channel);
-    auto address = integer(uri, u, "address", options.address);
-    auto timeout = integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    auto cpd = uri_number(uri, u, "counts_per_degree", options.counts_per_degree);
+    auto channel = uri_integer(uri, u, "channel", options.channel);
+    auto address = uri_integer(uri, u, "address", options.address);
+    auto timeout = uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
     if (!cpd) return cpd.error();
     if (!channel) return channel.error();
     if (!address) return address.error();
@@ -101,14 +71,14 @@ Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& 
 }
 
 Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const StageUri& u) {
-    if (auto s = check_keys(uri, u, {"address", "timeout_ms"}); !s) return s.error();
+    if (auto s = check_uri_keys(uri, u, {"address", "timeout_ms"}); !s) return s.error();
     ElliptecStageOptions options;
     auto it = u.query.find("address");
     if (it != u.query.end()) {
         if (it->second.size() != 1) return bad(uri, fmt::format("address={}: expected one hex digit 0–F", it->second));
         options.address = static_cast<char>(std::toupper(static_cast<unsigned char>(it->second[0])));
     }
-    auto timeout = integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    auto timeout = uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
     if (!timeout) return timeout.error();
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     auto port = open_serial_port(u.path, SerialSettings{9600, false});
@@ -117,11 +87,11 @@ Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const Stage
 }
 
 Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& u) {
-    if (auto s = check_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
+    if (auto s = check_uri_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
     SimulatedStageOptions options;
-    auto speed = number(uri, u, "deg_per_s", 0.0);
-    auto start = number(uri, u, "start_deg", 0.0);
-    auto fail = integer(uri, u, "fail_on_move", 0);
+    auto speed = uri_number(uri, u, "deg_per_s", 0.0);
+    auto start = uri_number(uri, u, "start_deg", 0.0);
+    auto fail = uri_integer(uri, u, "fail_on_move", 0);
     if (!speed) return speed.error();
     if (!start) return start.error();
     if (!fail) return fail.error();

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/acquisition/stage.h"
@@ -30,6 +31,10 @@ struct CaptureOptions {
     std::FILE* progress_stream = stderr;
     /// Set (e.g. by a SIGINT handler) to stop after the current frame; the session stays resumable.
     const std::atomic<bool>* interrupt = nullptr;
+    /// Sets the temperatures of the plan's controlled blackbody references (required when the plan
+    /// has any: capture_plan.h `controller`); each such step first waits for the set-point
+    /// (blackbody_wait.h), polls the controller during its frames and records the readings.
+    BlackbodyController* blackbody = nullptr;
 };
 
 struct CaptureSummary {
@@ -49,7 +54,8 @@ void check_free_space(const std::filesystem::path& dir, int width, int height, s
 
 /// The manifest of a new session for these devices and this plan (records empty; the camera's
 /// frame_rate_hz null until run_capture measures the delivered rate).
-SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan);
+SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan,
+                                     const BlackbodyInfo* blackbody = nullptr);
 
 /// Checks that a session being resumed was started with this plan and an identical camera format;
 /// throws tirpol::Error naming what differs.

@@ -16,6 +16,11 @@
 ///     frames: 32
 ///   - kind: shutter
 ///     frames: 16
+///   - kind: blackbody               # set by a blackbody controller (tirpol acquire --blackbody URI)
+///     temperatures_c: [10, 20, 30, 40]
+///     frames: 32
+///     angles_deg: [0, 45, 90, 135]  # optional: each set-point × these polarizer angles
+///     controller: {tolerance_k: 0.05, stable_for_s: 30, timeout_s: 1800, poll_s: 1}
 /// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5, air_temperature_c: 4.5}
 /// ```
 /// Unknown keys are errors naming the key (typos never pass silently); so are an empty plan file,
@@ -27,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/acquisition/blackbody_wait.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/session.h"
 
@@ -45,6 +51,10 @@ struct ReferenceSpec {
     std::vector<double> temperatures_k;       ///< one step per temperature (blackbody: ≥ 1; shutter: optional)
     int frames = 16;
     double angle_deg = 0.0;                   ///< where the polarizer sits for the reference frames
+    std::vector<double> angles_deg;           ///< instead of angle_deg: every temperature × these angles
+    /// Set: a blackbody controller sets each temperature and the frames wait for `controller`'s
+    /// criterion (blackbody only); unset: the operator places the blackbody.
+    std::optional<BlackbodyStabilityCriterion> controller;
 };
 
 struct CapturePlan {
@@ -73,12 +83,17 @@ struct CaptureStep {
     double angle_deg = 0.0;
     int repeat = 0;
     std::optional<double> temperature_k;
+    std::optional<BlackbodyStabilityCriterion> blackbody_control;  ///< the controller sets temperature_k
     int frames = 0;
     std::string file;   ///< "frames/s003_pol_090.000deg_r0.exr"
     std::string label;  ///< "polarizer 90° (repeat 1/2)"
 };
 
-/// References first (in plan order), then `repeats` × angles. Deterministic: the same plan always
+/// Whether any step needs a blackbody controller.
+bool plan_uses_blackbody_controller(const CapturePlan& plan);
+
+/// References first (in plan order; a reference with angles_deg gives temperature × angle steps),
+/// then `repeats` × angles. Deterministic: the same plan always
 /// gives the same steps and file names, which is what lets --resume skip what is recorded.
 std::vector<CaptureStep> plan_steps(const CapturePlan& plan);
 

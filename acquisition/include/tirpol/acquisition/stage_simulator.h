@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/acquisition/pseudo_terminal.h"
 #include "tirpol/acquisition/result.h"
 
 namespace tirpol::acquisition {
@@ -41,17 +42,16 @@ struct StageSimulatorOptions {
 };
 
 /// The protocol state machine, independent of I/O: bytes in, bytes out, at given times.
-class StageSimulator {
+class StageSimulator final : public PtyDevice {
 public:
-    using Clock = std::chrono::steady_clock;
     explicit StageSimulator(StageSimulatorOptions options);
 
     /// Consumes bytes from the host; returns bytes to send back now.
-    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now);
+    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now) override;
     /// Bytes whose time has come (move completions).
-    std::vector<std::uint8_t> poll(Clock::time_point now);
+    std::vector<std::uint8_t> poll(Clock::time_point now) override;
     /// Whether the device should hang up now (disconnect fault).
-    bool hang_up(Clock::time_point now) const;
+    bool hang_up(Clock::time_point now) const override;
     /// Current angle in degrees (interpolated during a move).
     double angle_deg(Clock::time_point now) const;
     /// The mount's physical angle at `now` in degrees [0, 360), turning at deg_per_s during a move;
@@ -93,26 +93,7 @@ private:
     Trajectory m_trajectory;
 };
 
-/// A pseudo-terminal: the simulator owns the master side; a driver opens `slave_path`.
-class PseudoTerminal {
-public:
-    static Result<PseudoTerminal> open();
-    PseudoTerminal(PseudoTerminal&&) noexcept;
-    PseudoTerminal& operator=(PseudoTerminal&&) noexcept;
-    ~PseudoTerminal();
-    int master_fd() const { return m_master; }
-    const std::string& slave_path() const { return m_slave_path; }
-    /// Closes both sides held here: the driver's next read sees the hang-up.
-    void hang_up();
-
-private:
-    PseudoTerminal(int master, int slave, std::string path);
-    int m_master = -1;
-    int m_slave_keepalive = -1;  ///< keeps the slave open so the master never reads EIO between clients
-    std::string m_slave_path;
-};
-
-/// Serves `simulator` on `pty` until `stop` is set or the simulator hangs up.
+/// Serves `simulator` on `pty` until `stop` is set or the simulator hangs up (serve_pty_device).
 void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty, const std::atomic<bool>& stop);
 
 }  // namespace tirpol::acquisition

@@ -1,14 +1,14 @@
 #pragma once
 /// \file session.h
 /// The capture-session store: a directory with a `session.json` manifest and one OpenEXR per
-/// recorded step under `frames/` (schema "tirpol.session", version 2; version 1 still reads;
-/// docs/session-format.md).
+/// recorded step under `frames/` (docs/session-format.md).
 /// Written by `tirpol acquire`, read by calibration.
 ///
 /// Crash safety: every frame file is written atomically and only then is the manifest rewritten
 /// atomically, so after a crash (kill -9, power loss) the manifest lists only complete frames. A frame
 /// file that reached the disk but not the manifest is recovered on resume from its own header, which
 /// mirrors its record. An existing frame file is never overwritten.
+/// (Schema "tirpol.session" version 3; versions 1 and 2 still read.)
 
 #include <cstdint>
 #include <filesystem>
@@ -27,7 +27,9 @@ namespace tirpol {
 inline constexpr const char* kSessionSchema = "tirpol.session";
 /// Written by this version. v2 adds each record's `timing` and a measured `camera.frame_rate_hz`;
 /// from v2 on `angle_deg_measured` is the read-back around the gated frames and is what reduction uses.
-inline constexpr int kSessionSchemaVersion = 2;
+/// v3 adds the blackbody controller (`blackbody_controller`) and each controlled record's
+/// `blackbody_readings`; its `blackbody_temperature_k` is then the mean reading during the frames.
+inline constexpr int kSessionSchemaVersion = 3;
 /// The oldest version still read.
 inline constexpr int kSessionSchemaOldestReadable = 1;
 inline constexpr const char* kSessionManifestName = "session.json";
@@ -67,6 +69,27 @@ struct StepTiming {
     bool operator==(const StepTiming&) const = default;
 };
 
+/// What a blackbody controller read while a record's frames were taken (schema v3; absent for a
+/// blackbody placed by hand). Temperatures are the control sensor's, kelvin.
+struct BlackbodyReadings {
+    double set_point_k = 0.0;
+    double mean_k = 0.0;           ///< mean of the readings (the record's blackbody_temperature_k)
+    double std_k = 0.0;            ///< their sample standard deviation (0 for one reading)
+    double min_k = 0.0, max_k = 0.0;
+    std::int64_t readings = 0;     ///< polls during the frames, ≥ 1
+    bool stable = false;           ///< the controller's stability flag was set at every poll
+    double wait_s = 0.0;           ///< from the set-point command until it was stable within tolerance long enough
+
+    bool operator==(const BlackbodyReadings&) const = default;
+};
+
+/// The blackbody controller as recorded in the manifest (mirrors acquisition::BlackbodyInfo).
+struct SessionBlackbodyController {
+    std::string uri, vendor, model, serial, firmware;
+
+    bool operator==(const SessionBlackbodyController&) const = default;
+};
+
 /// One recorded step: N frames averaged into one EXR.
 struct SessionRecord {
     RecordKind kind = RecordKind::Polarizer;
@@ -81,16 +104,18 @@ struct SessionRecord {
     std::int64_t last_timestamp_ns = 0;   ///< ... of the last frame
     std::optional<double> fpa_temperature_k;  ///< mean sensor temperature when the camera reports it
     std::optional<StepTiming> timing;     ///< v2 records written by the capture loop; absent in v1
+    std::optional<BlackbodyReadings> blackbody_readings;  ///< v3: set by a blackbody controller
 
     bool operator==(const SessionRecord&) const = default;
 };
 
 /// The whole manifest.
 struct SessionManifest {
-    int schema_version = kSessionSchemaVersion;  ///< as read (1 or 2); always written as kSessionSchemaVersion
+    int schema_version = kSessionSchemaVersion;  ///< as read (1 to 3); always written as kSessionSchemaVersion
     std::string created_utc;     ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
     SessionCamera camera;
     SessionStage stage;
+    std::optional<SessionBlackbodyController> blackbody_controller;  ///< v3: when a controller set the blackbody
     nlohmann::json plan = nlohmann::json::object();      ///< the capture plan as run
     nlohmann::json metadata = nlohmann::json::object();  ///< free form (site, operator, targets, ...)
     std::vector<SessionRecord> records;
@@ -102,7 +127,7 @@ struct SessionManifest {
 /// frames that may have been exposed during the move.
 double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record);
 
-/// Manifest ⇄ JSON (schema v2; v1 reads). `from_json` validates everything and throws tirpol::Error naming
+/// Manifest ⇄ JSON (schema v3; v1 and v2 read). `from_json` validates everything and throws tirpol::Error naming
 /// `source` (the file) and the field, e.g. "DIR/session.json: records[2].frames: expected an integer ≥ 1".
 nlohmann::json session_to_json(const SessionManifest& manifest);
 SessionManifest session_from_json(const nlohmann::json& json, const std::string& source);
