@@ -193,8 +193,9 @@ Band band_of(const ConfigNode& node) {
 
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& path) {
-    const ConfigNode root = ConfigNode::load_file(path);
+Scene load_scene(const std::filesystem::path& path) { return load_scene(ConfigNode::load_file(path)); }
+
+Scene load_scene(const ConfigNode& root) {
     std::vector<std::string> keys = {"band", "sampling", "camera", "sky", "sun", "materials_dir", "objects"};
     keys.insert(keys.end(), std::begin(kThermalSceneKeys), std::end(kThermalSceneKeys));
     root.check_keys(keys);
@@ -230,7 +231,7 @@ Scene load_scene(const std::filesystem::path& path) {
         objects.push_back(std::move(obj));
     }
     tracer->commit();
-    Scene scene{std::filesystem::absolute(path), camera, band, sky, sun, sampling_of(root.find("sampling")),
+    Scene scene{std::filesystem::absolute(root.file()), camera, band, sky, sun, sampling_of(root.find("sampling")),
                 std::move(materials), std::move(objects), std::move(tracer)};
     if (has_weather) apply_scene_thermal(root, scene);
     return scene;

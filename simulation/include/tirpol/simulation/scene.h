@@ -66,4 +66,8 @@ struct Scene {
 /// missing mesh or material file, an unknown material name).
 Scene load_scene(const std::filesystem::path& path);
 
+/// Loads a scene already parsed (e.g. from a Python dict): relative paths resolve against the
+/// directory of `root.file()`, which also becomes Scene::file.
+Scene load_scene(const ConfigNode& root);
+
 }  // namespace tirpol::simulation

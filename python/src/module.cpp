@@ -1,0 +1,29 @@
+// The extension module tirpol._tirpol: errors at its top level, one submodule per library. The
+// submodules are entered in sys.modules so that the pure-Python package can re-export them with
+// `from ._tirpol.core import *` (pybind11's def_submodule alone does not make them importable).
+#include <pybind11/pybind11.h>
+
+#include "bindings.h"
+
+namespace py = pybind11;
+
+namespace {
+
+py::module_ importable_submodule(py::module_& parent, const char* name, const char* doc) {
+    py::module_ sub = parent.def_submodule(name, doc);
+    py::module_::import("sys").attr("modules")[py::str(std::string("tirpol._tirpol.") + name)] = sub;
+    return sub;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_tirpol, m) {
+    m.doc() = "tirpol's C++ library (pybind11). Use the package `tirpol`, which re-exports this module.";
+    tirpol::python::bind_errors(m);
+    py::module_ core = importable_submodule(m, "core", "Stokes/Mueller algebra, Planck radiometry, EXR I/O");
+    tirpol::python::bind_core(core);
+    py::module_ simulation = importable_submodule(m, "simulation", "Scenes and the polarized path tracer");
+    tirpol::python::bind_simulation(simulation);
+    py::module_ calibration = importable_submodule(m, "calibration", "Analyzer model and Stokes reduction");
+    tirpol::python::bind_calibration(calibration);
+}

@@ -1,0 +1,18 @@
+"""tirpol — thermal-infrared polarimetry from Python.
+
+The C++ toolkit's libraries with numpy arrays in and out (docs/python.md):
+
+- ``tirpol.core``: Stokes/Mueller helpers, Planck band radiance and brightness temperature, EXR files.
+- ``tirpol.simulation``: scenes from YAML files or dicts, the polarized path tracer.
+- ``tirpol.calibration``: the analyzer model and Stokes reduction with uncertainties.
+
+Images are :class:`tirpol.Image`: a dict of channel name → float32 array of shape (H, W), with the
+EXR header attributes in ``.attributes``. Errors from the C++ library raise :class:`tirpol.Error`
+(a ``RuntimeError``) with the library's message; long calls release the GIL and stop on Ctrl-C.
+"""
+
+from ._tirpol import Cancelled, Error
+from .image import Image
+from . import calibration, core, simulation
+
+__all__ = ["Cancelled", "Error", "Image", "calibration", "core", "simulation"]
