@@ -8,6 +8,7 @@ namespace tirpol::python {
 
 void bind_errors(pybind11::module_& m);
 void bind_core(pybind11::module_& m);
+void bind_materials(pybind11::module_& m);
 void bind_simulation(pybind11::module_& m);
 void bind_calibration(pybind11::module_& m);
 

@@ -22,6 +22,8 @@ PYBIND11_MODULE(_tirpol, m) {
     tirpol::python::bind_errors(m);
     py::module_ core = importable_submodule(m, "core", "Stokes/Mueller algebra, Planck radiometry, EXR I/O");
     tirpol::python::bind_core(core);
+    py::module_ materials = importable_submodule(m, "materials", "Material files, polarized emissivity, Mueller pBRDF");
+    tirpol::python::bind_materials(materials);
     py::module_ simulation = importable_submodule(m, "simulation", "Scenes and the polarized path tracer");
     tirpol::python::bind_simulation(simulation);
     py::module_ calibration = importable_submodule(m, "calibration", "Analyzer model and Stokes reduction");

@@ -23,7 +23,7 @@ using simulation::Scene;
 /// A dict's stand-in file name: relative paths (meshes, materials_dir, the default ../materials)
 /// resolve against `base_dir`, and messages say where the dict came from.
 std::filesystem::path dict_source(const std::filesystem::path& base_dir, const char* what) {
-    return std::filesystem::absolute(base_dir) / fmt::format("<{} from a Python dict>", what);
+    return std::filesystem::absolute(base_dir).lexically_normal() / fmt::format("<{} from a Python dict>", what);
 }
 
 void check_positive(const char* field, long long value) {

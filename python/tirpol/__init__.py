@@ -3,6 +3,7 @@
 The C++ toolkit's libraries with numpy arrays in and out (docs/python.md):
 
 - ``tirpol.core``: Stokes/Mueller helpers, Planck band radiance and brightness temperature, EXR files.
+- ``tirpol.materials``: material files, polarized directional emissivity, the Mueller pBRDF on arrays.
 - ``tirpol.simulation``: scenes from YAML files or dicts, the polarized path tracer.
 - ``tirpol.calibration``: the analyzer model and Stokes reduction with uncertainties.
 
@@ -13,6 +14,6 @@ EXR header attributes in ``.attributes``. Errors from the C++ library raise :cla
 
 from ._tirpol import Cancelled, Error
 from .image import Image
-from . import calibration, core, simulation
+from . import calibration, core, materials, simulation
 
-__all__ = ["Cancelled", "Error", "Image", "calibration", "core", "simulation"]
+__all__ = ["Cancelled", "Error", "Image", "calibration", "core", "materials", "simulation"]
