@@ -28,4 +28,6 @@ PYBIND11_MODULE(_tirpol, m) {
     tirpol::python::bind_simulation(simulation);
     py::module_ calibration = importable_submodule(m, "calibration", "Analyzer model and Stokes reduction");
     tirpol::python::bind_calibration(calibration);
+    py::module_ fitting = importable_submodule(m, "fitting", "Fits of pBRDF parameters with uncertainties");
+    tirpol::python::bind_fitting(fitting);
 }

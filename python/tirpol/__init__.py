@@ -6,6 +6,7 @@ The C++ toolkit's libraries with numpy arrays in and out (docs/python.md):
 - ``tirpol.materials``: material files, polarized directional emissivity, the Mueller pBRDF on arrays.
 - ``tirpol.simulation``: scenes from YAML files or dicts, the polarized path tracer.
 - ``tirpol.calibration``: the analyzer model and Stokes reduction with uncertainties.
+- ``tirpol.fitting``: Ceres fits of micro-facet pBRDF parameters with covariance and 2σ intervals.
 
 Images are :class:`tirpol.Image`: a dict of channel name → float32 array of shape (H, W), with the
 EXR header attributes in ``.attributes``. Errors from the C++ library raise :class:`tirpol.Error`
@@ -14,6 +15,6 @@ EXR header attributes in ``.attributes``. Errors from the C++ library raise :cla
 
 from ._tirpol import Cancelled, Error
 from .image import Image
-from . import calibration, core, materials, simulation
+from . import calibration, core, fitting, materials, simulation
 
-__all__ = ["Cancelled", "Error", "Image", "calibration", "core", "materials", "simulation"]
+__all__ = ["Cancelled", "Error", "Image", "calibration", "core", "fitting", "materials", "simulation"]
