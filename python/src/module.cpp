@@ -28,6 +28,7 @@ PYBIND11_MODULE(_tirpol, m) {
     tirpol::python::bind_simulation(simulation);
     py::module_ calibration = importable_submodule(m, "calibration", "Analyzer model and Stokes reduction");
     tirpol::python::bind_calibration(calibration);
+    tirpol::python::bind_calibration_sessions(calibration);
     py::module_ fitting = importable_submodule(m, "fitting", "Fits of pBRDF parameters with uncertainties");
     tirpol::python::bind_fitting(fitting);
 }

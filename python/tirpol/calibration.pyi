@@ -1,11 +1,15 @@
 """Type stubs of tirpol.calibration (bindings of tirpol::calibration)."""
 
-from typing import Mapping, Optional, Sequence
+import os
+from typing import Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
 
+from .core import Band
 from .image import Image
+
+PathLike = Union[str, os.PathLike[str]]
 
 class AnalyzerPosition:
     @property
@@ -41,3 +45,59 @@ def reduce(
     include_slar: bool = False,
     units: str = "W/(m^2 sr)",
 ) -> Image: ...
+
+class RadiometricCalibration:
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def camera_id(self) -> str: ...
+    @property
+    def temperatures_k(self) -> list[float]: ...
+    @property
+    def warnings(self) -> list[str]: ...
+    @property
+    def band(self) -> Band: ...
+    @property
+    def gain(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def offset(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def bad(self) -> npt.NDArray[np.float32]: ...
+    def bad_count(self) -> int: ...
+    def counts_to_radiance(
+        self, counts: npt.ArrayLike, fpa_temperature_k: Optional[float] = None
+    ) -> npt.NDArray[np.float32]: ...
+    def temperature_from_counts(
+        self, counts: npt.ArrayLike, fpa_temperature_k: Optional[float] = None
+    ) -> npt.NDArray[np.float32]: ...
+    def write(self, path: str) -> None: ...
+
+class PolarimetricCalibration:
+    @property
+    def analyzer(self) -> AnalyzerModel: ...
+    @property
+    def analyzer_method(self) -> str: ...
+    @property
+    def session(self) -> str: ...
+
+def read_radiometric_calibration(path: str) -> RadiometricCalibration: ...
+def fit_radiometric(
+    frames: Mapping[float, npt.ArrayLike],
+    band: Band,
+    stds: Optional[Mapping[float, npt.ArrayLike]] = None,
+    frames_averaged: int = 1,
+    quadratic: bool = False,
+) -> RadiometricCalibration: ...
+def calibrate_radiometric_session(session_dir: PathLike, band: Band, quadratic: bool = False) -> RadiometricCalibration: ...
+def calibrate_polarimetric_session(session_dir: PathLike, radiometric: RadiometricCalibration) -> PolarimetricCalibration: ...
+def reduce_session(
+    session_dir: PathLike,
+    radiometric: RadiometricCalibration,
+    polarimetric: Optional[PolarimetricCalibration] = None,
+    update_offset: bool = False,
+    include_slar: bool = False,
+    force_other_camera: bool = False,
+) -> Image: ...
+def write_synthetic_sessions(root: PathLike, band: Band, width: int = 64, height: int = 48) -> Image: ...

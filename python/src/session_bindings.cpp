@@ -1,0 +1,177 @@
+// tirpol.calibration, part 2: radiometric calibration (from arrays or a session), temperature from
+// counts, polarimetric calibration and reduction of a capture session to Stokes with uncertainties.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.h"
+#include "image_conversion.h"
+#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/calibration/synthetic_session.h"
+#include "tirpol/core/error.h"
+
+namespace py = pybind11;
+
+namespace tirpol::python {
+
+namespace {
+
+using namespace tirpol::calibration;
+
+std::optional<double> optional_fpa(const py::object& fpa_temperature_k) {
+    if (fpa_temperature_k.is_none()) return std::nullopt;
+    return fpa_temperature_k.cast<double>();
+}
+
+/// Counts (H, W) of the calibration's size as a plane; tirpol::Error naming the shapes otherwise.
+std::vector<float> counts_plane(const RadiometricCalibration& cal, const py::handle& counts) {
+    int width = cal.width, height = cal.height;
+    return plane_from_array(counts, "counts", width, height);
+}
+
+void bind_radiometric(py::module_& m) {
+    py::class_<RadiometricCalibration>(m, "RadiometricCalibration",
+                                       "Per-pixel counts → band radiance model (calibration/radiometric.h) with its "
+                                       "bad-pixel map; planes are (H, W) float32.")
+        .def_readonly("width", &RadiometricCalibration::width)
+        .def_readonly("height", &RadiometricCalibration::height)
+        .def_readonly("camera_id", &RadiometricCalibration::camera_id)
+        .def_readonly("temperatures_k", &RadiometricCalibration::temperatures_k)
+        .def_readonly("warnings", &RadiometricCalibration::warnings)
+        .def_property_readonly("band", &RadiometricCalibration::band)
+        .def_property_readonly(
+            "gain",
+            [](const RadiometricCalibration& c) { return array_from_plane(std::vector(c.gain), c.width, c.height); },
+            "counts per W/(m²·sr)")
+        .def_property_readonly(
+            "offset",
+            [](const RadiometricCalibration& c) { return array_from_plane(std::vector(c.offset), c.width, c.height); },
+            "counts")
+        .def_property_readonly(
+            "bad",
+            [](const RadiometricCalibration& c) { return array_from_plane(std::vector(c.bad), c.width, c.height); },
+            "BadPixel bit mask (1 dead, 2 hot, 4 noisy, ...; docs/calibration.md) as float")
+        .def("bad_count", [](const RadiometricCalibration& c) { return c.bad_count(); })
+        .def(
+            "counts_to_radiance",
+            [](const RadiometricCalibration& c, const py::object& counts, const py::object& fpa_temperature_k) {
+                auto plane = counts_plane(c, counts);
+                return array_from_plane(counts_to_radiance(c, plane, optional_fpa(fpa_temperature_k)), c.width,
+                                        c.height);
+            },
+            py::arg("counts"), py::arg("fpa_temperature_k") = py::none(),
+            "Apparent band radiance W/(m²·sr) of a counts image (H, W); bad pixels replaced.")
+        .def(
+            "temperature_from_counts",
+            [](const RadiometricCalibration& c, const py::object& counts, const py::object& fpa_temperature_k) {
+                auto plane = counts_plane(c, counts);
+                const auto radiance = counts_to_radiance(c, plane, optional_fpa(fpa_temperature_k));
+                return array_from_plane(brightness_temperature(c.band(), radiance), c.width, c.height);
+            },
+            py::arg("counts"), py::arg("fpa_temperature_k") = py::none(),
+            "Brightness temperature (K) of a counts image (H, W): counts → radiance → inverse band Planck; NaN "
+            "where the radiance is ≤ 0.")
+        .def(
+            "write",
+            [](const RadiometricCalibration& c, const std::string& path) { write_radiometric_calibration(path, c); },
+            py::arg("path"), "Writes the calibration EXR (the file `tirpol calibrate radiometric` writes).");
+    m.def("read_radiometric_calibration", &read_radiometric_calibration, py::arg("path"));
+    m.def(
+        "fit_radiometric",
+        [](const py::dict& frames, const Band& band, const py::object& stds, int frames_averaged, bool quadratic) {
+            int width = 0, height = 0;
+            std::vector<BlackbodyFrame> bb;
+            for (const auto& [key, value] : frames) {
+                BlackbodyFrame f;
+                f.temperature_k = key.cast<double>();
+                f.source = fmt::format("frames[{} K]", f.temperature_k);
+                f.counts = plane_from_array(value, f.source, width, height);
+                if (!stds.is_none())
+                    f.counts_std = plane_from_array(stds.cast<py::dict>()[key], f.source + " std", width, height);
+                f.frames = frames_averaged;
+                bb.push_back(std::move(f));
+            }
+            RadiometricOptions options;
+            options.quadratic = quadratic;
+            py::gil_scoped_release release;
+            return fit_radiometric(bb, width, height, band, options);
+        },
+        py::arg("frames"), py::arg("band"), py::arg("stds") = py::none(), py::arg("frames_averaged") = 1,
+        py::arg("quadratic") = false,
+        "Per-pixel fit counts = offset + gain·L(T) (+ q·L² when quadratic) to blackbody frames {temperature_k: counts "
+        "(H, W)} (mean of `frames_averaged` frames, σ images `stds` optional), with bad-pixel detection.");
+    m.def(
+        "calibrate_radiometric_session",
+        [](const std::filesystem::path& dir, const Band& band, bool quadratic) {
+            RadiometricOptions options;
+            options.quadratic = quadratic;
+            py::gil_scoped_release release;
+            return calibrate_radiometric_session(dir, band, options);
+        },
+        py::arg("session_dir"), py::arg("band"), py::arg("quadratic") = false,
+        "Radiometric calibration from a session's blackbody records (docs/session-format.md).");
+}
+
+void bind_session(py::module_& m) {
+    py::class_<PolarimetricCalibration>(m, "PolarimetricCalibration",
+                                        "Analyzer model and wire-grid τ/B maps from a field session.")
+        .def_readonly("analyzer", &PolarimetricCalibration::analyzer)
+        .def_readonly("analyzer_method", &PolarimetricCalibration::analyzer_method)
+        .def_readonly("session", &PolarimetricCalibration::session);
+    m.def(
+        "calibrate_polarimetric_session",
+        [](const std::filesystem::path& dir, const RadiometricCalibration& radiometric) {
+            py::gil_scoped_release release;
+            return calibrate_polarimetric_session(dir, radiometric);
+        },
+        py::arg("session_dir"), py::arg("radiometric"),
+        "Polarimetric calibration: wire-grid τ/B maps from the blackbody records through the polarizer, the "
+        "analyzer by least squares from the known-source repeats (ideal when there are none).");
+    m.def(
+        "reduce_session",
+        [](const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
+           const PolarimetricCalibration* polarimetric, bool update_offset, bool include_slar,
+           bool force_other_camera) {
+            SessionReductionOptions options;
+            options.update_offset = update_offset;
+            options.include_slar = include_slar;
+            options.force_other_camera = force_other_camera;
+            Image result;
+            {
+                py::gil_scoped_release release;
+                result = reduce_session(dir, radiometric, polarimetric, options);
+            }
+            return to_python(std::move(result));
+        },
+        py::arg("session_dir"), py::arg("radiometric"), py::arg("polarimetric") = py::none(),
+        py::arg("update_offset") = false, py::arg("include_slar") = false, py::arg("force_other_camera") = false,
+        "Reduces a session's scene records to Stokes in radiance units: S0 S1 S2 DoLP AoP and their *_std, "
+        "repeats averaged, bad pixels replaced, wire grid removed with `polarimetric`. Releases the GIL.");
+    m.def(
+        "write_synthetic_sessions",
+        [](const std::filesystem::path& root, const Band& band, int width, int height) {
+            SyntheticCamera camera;
+            camera.width = width;
+            camera.height = height;
+            Image truth = synthetic_panel_scene(width, height, band);
+            {
+                py::gil_scoped_release release;
+                write_synthetic_sessions(root, camera, truth, band);
+            }
+            return to_python(std::move(truth));
+        },
+        py::arg("root"), py::arg("band"), py::arg("width") = 64, py::arg("height") = 48,
+        "Writes the synthetic sessions lab/ (blackbody, no polarizer), polcal/ (blackbody through the polarizer "
+        "and a known source) and scene/ (a 300 K panel with ε_S0 = 0.93, ε_S1 = −0.035 in front of a 280 K "
+        "background, an IR reflector at the left) of a simulated uncooled camera (calibration/synthetic_session.h); "
+        "returns the true scene Stokes image S0 S1 S2.");
+}
+
+}  // namespace
+
+void bind_calibration_sessions(py::module_& m) {
+    bind_radiometric(m);
+    bind_session(m);
+}
+
+}  // namespace tirpol::python

@@ -1,0 +1,71 @@
+"""tirpol.calibration on sessions and counts: the synthetic sessions of calibration/synthetic_session.h
+(a simulated uncooled camera, a 100:1 wire grid offset by 1.5°, a panel with ε_S1 = −0.035) go
+through radiometric calibration, polarimetric calibration and reduction, and the planted truth comes
+back within the propagated uncertainties (as tests/calibration/session_calibration_test.cpp);
+temperature from counts inverts a per-pixel radiometric model fitted from arrays."""
+
+import numpy as np
+import pytest
+
+import tirpol
+from tirpol import calibration, core
+
+BAND = core.Band(8.0, 14.0)
+
+
+@pytest.fixture(scope="module")
+def sessions(tmp_path_factory):
+    root = tmp_path_factory.mktemp("sessions")
+    truth = calibration.write_synthetic_sessions(root, BAND)
+    return root, truth
+
+
+def test_session_pipeline_recovers_the_planted_scene(sessions):
+    root, truth = sessions
+    radiometric = calibration.calibrate_radiometric_session(root / "lab", BAND)
+    assert (radiometric.height, radiometric.width) == (48, 64)
+    assert radiometric.bad_count() == 3  # the planted dead, hot and noisy pixels
+    assert radiometric.bad[5, 5] != 0 and radiometric.bad[30, 9] != 0 and radiometric.bad[12, 40] != 0
+    polarimetric = calibration.calibrate_polarimetric_session(root / "polcal", radiometric)
+    assert polarimetric.analyzer_method == "known-source least squares"
+    for p in polarimetric.analyzer.positions:
+        assert p.axis_angle_deg - p.nominal_angle_deg == pytest.approx(1.5, abs=0.2)
+        assert p.extinction_ratio == pytest.approx(100.0, abs=20.0)
+    stokes = calibration.reduce_session(root / "scene", radiometric, polarimetric)
+    panel = (slice(12, 36), slice(26, 38))
+    error = stokes["S1"][panel] - truth["S1"][panel]
+    assert np.all(np.abs(error) <= 5 * stokes["S1_std"][panel] + 1e-3)
+    assert abs(error.mean()) < 4 * 0.04 / np.sqrt(error.size)
+    assert stokes["S0"][20, 30] == pytest.approx(truth["S0"][20, 30], abs=0.15)
+    assert stokes.attributes["saturated_pixels"] == 0
+
+
+def test_without_the_wire_grid_calibration_the_sky_reflection_biases_s1(sessions):
+    root, truth = sessions
+    radiometric = calibration.calibrate_radiometric_session(root / "lab", BAND)
+    naive = calibration.reduce_session(root / "scene", radiometric, update_offset=True)
+    assert abs(naive["S1"][20, 30] - truth["S1"][20, 30]) > 0.3
+
+
+def test_temperature_from_counts_inverts_a_fitted_radiometric_model():
+    rng = np.random.default_rng(5)
+    gain = rng.uniform(80.0, 120.0, size=(16, 20))  # counts per W/(m² sr)
+    offset = rng.uniform(4000.0, 6000.0, size=(16, 20))
+    frames = {t: offset + gain * BAND.radiance(t) for t in (283.0, 303.0, 323.0)}
+    cal = calibration.fit_radiometric(frames, BAND)
+    np.testing.assert_allclose(cal.gain, gain, rtol=1e-4)
+    scene_k = np.linspace(270.0, 330.0, 16 * 20).reshape(16, 20)
+    counts = (offset + gain * BAND.radiance(scene_k)).astype(np.float32)
+    # float32 counts of ~6000 carry ±0.0005 counts: ≈ 1e-4 K at these gains.
+    np.testing.assert_allclose(cal.temperature_from_counts(counts), scene_k, atol=5e-3)
+    with pytest.raises(tirpol.Error, match=r"counts: shape \(3, 3\) differs"):
+        cal.temperature_from_counts(np.zeros((3, 3)))
+
+
+def test_radiometric_calibration_file_round_trip(tmp_path):
+    frames = {t: 5000.0 + 100.0 * BAND.radiance(t) * np.ones((4, 5)) for t in (283.0, 323.0)}
+    cal = calibration.fit_radiometric(frames, BAND)
+    cal.write(str(tmp_path / "radiometric.exr"))
+    back = calibration.read_radiometric_calibration(str(tmp_path / "radiometric.exr"))
+    np.testing.assert_array_equal(back.gain, cal.gain)
+    assert back.temperatures_k == [283.0, 323.0]
