@@ -13,5 +13,6 @@ void bind_simulation(pybind11::module_& m);
 void bind_calibration(pybind11::module_& m);
 void bind_calibration_sessions(pybind11::module_& m);
 void bind_fitting(pybind11::module_& m);
+void bind_acquisition(pybind11::module_& m);
 
 }  // namespace tirpol::python

@@ -31,4 +31,6 @@ PYBIND11_MODULE(_tirpol, m) {
     tirpol::python::bind_calibration_sessions(calibration);
     py::module_ fitting = importable_submodule(m, "fitting", "Fits of pBRDF parameters with uncertainties");
     tirpol::python::bind_fitting(fitting);
+    py::module_ acquisition = importable_submodule(m, "acquisition", "Cameras by URI, frames as arrays");
+    tirpol::python::bind_acquisition(acquisition);
 }
