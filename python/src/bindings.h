@@ -14,5 +14,6 @@ void bind_calibration(pybind11::module_& m);
 void bind_calibration_sessions(pybind11::module_& m);
 void bind_fitting(pybind11::module_& m);
 void bind_acquisition(pybind11::module_& m);
+void bind_report(pybind11::module_& m);
 
 }  // namespace tirpol::python

@@ -33,4 +33,6 @@ PYBIND11_MODULE(_tirpol, m) {
     tirpol::python::bind_fitting(fitting);
     py::module_ acquisition = importable_submodule(m, "acquisition", "Cameras by URI, frames as arrays");
     tirpol::python::bind_acquisition(acquisition);
+    py::module_ report = importable_submodule(m, "report", "Measured-vs-simulated comparison and HTML report");
+    tirpol::python::bind_report(report);
 }

@@ -7,6 +7,7 @@ The C++ toolkit's libraries with numpy arrays in and out (docs/python.md):
 - ``tirpol.simulation``: scenes from YAML files or dicts, the polarized path tracer.
 - ``tirpol.calibration``: the analyzer model and Stokes reduction with uncertainties.
 - ``tirpol.fitting``: Ceres fits of micro-facet pBRDF parameters with covariance and 2σ intervals.
+- ``tirpol.report``: measured-vs-simulated comparison statistics as a dict, the HTML report.
 - ``tirpol.acquisition``: cameras opened by URI (the fake GigE Vision camera, ``sim://``), frames as arrays.
 
 Images are :class:`tirpol.Image`: a dict of channel name → float32 array of shape (H, W), with the
@@ -16,9 +17,9 @@ EXR header attributes in ``.attributes``. Errors from the C++ library raise :cla
 
 from ._tirpol import Cancelled, DeviceError, Error
 from .image import Image
-from . import acquisition, calibration, core, fitting, materials, simulation
+from . import acquisition, calibration, core, fitting, materials, report, simulation
 
 __all__ = [
     "Cancelled", "DeviceError", "Error", "Image", "acquisition", "calibration", "core", "fitting", "materials",
-    "simulation",
+    "report", "simulation",
 ]
