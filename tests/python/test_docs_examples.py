@@ -7,6 +7,7 @@ import re
 import runpy
 
 import matplotlib
+import numpy as np
 import pytest
 
 matplotlib.use("Agg")
@@ -30,7 +31,7 @@ def run_example(source_dir, tmp_path, name):
 
 
 def test_the_page_has_both_examples(source_dir):
-    assert set(examples(source_dir)) == {"ball_on_snow_figure", "reduce_arrays"}
+    assert set(examples(source_dir)) == {"ball_on_snow_figure", "reduce_arrays", "session_and_fit"}
 
 
 def test_ball_on_snow_figure(source_dir, tmp_path, monkeypatch):
@@ -46,3 +47,13 @@ def test_reduce_arrays(source_dir, tmp_path):
     stokes = result["stokes"]
     assert float((stokes["S1"] / stokes["S0"]).mean()) == pytest.approx(-0.02, abs=1e-4)
     assert (tmp_path / "reduced.exr").exists()
+
+
+def test_session_and_fit(source_dir, tmp_path):
+    result = run_example(source_dir, tmp_path, "session_and_fit")
+    s1, truth = result["s1"], result["truth"]["S1"][result["panel"]]
+    assert abs(s1.mean() - truth.mean()) < 4 * 0.04 / np.sqrt(s1.size)  # as test_calibration_sessions
+    fit = result["fit"]
+    assert fit.usable and fit.free_names == ["n", "sigma"]
+    for name, truth_value in (("n", 1.6), ("sigma", 0.35)):  # config/materials/flat_black_paint.yaml
+        assert abs(fit.estimates[name] - truth_value) < 3 * fit.sigmas[name]
