@@ -4,11 +4,14 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <functional>
 
 #include "bindings.h"
 #include "device_errors.h"
 #include "image_conversion.h"
+#include "interruptible.h"
 #include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/stage_registry.h"
 
 namespace py = pybind11;
 
@@ -45,9 +48,70 @@ py::dict frame_dict(acquisition::Frame&& frame) {
 
 void check(acquisition::Status&& status) { value_or_raise(std::move(status)); }
 
+std::chrono::milliseconds milliseconds(double seconds) {
+    return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
+}
+
+/// A stage motion that Ctrl-C stops: the signal makes the calling thread send Stage::stop(), so the
+/// motion ends (DeviceErrorCode::Stopped) with the stage standing where it stopped.
+void interruptible_motion(acquisition::Stage& stage, const std::function<acquisition::Status()>& motion) {
+    check(run_interruptible([&](const std::atomic<bool>&) { return motion(); }, [&] { stage.stop(); }));
+}
+
+void bind_stage(py::module_& m) {
+    using acquisition::Stage;
+    py::class_<Stage, std::unique_ptr<Stage>>(m, "Stage",
+                                              "A rotation stage opened by URI (docs/acquisition-stages.md).")
+        .def_property_readonly("info",
+                               [](const Stage& s) {
+                                   const auto i = s.info();
+                                   py::dict d;
+                                   d["uri"] = i.uri;
+                                   d["vendor"] = i.vendor;
+                                   d["model"] = i.model;
+                                   d["serial"] = i.serial;
+                                   d["firmware"] = i.firmware;
+                                   d["counts_per_degree"] = i.counts_per_degree;
+                                   return d;
+                               })
+        .def(
+            "home",
+            [](Stage& s, double timeout_s) {
+                interruptible_motion(s, [&] { return s.home(milliseconds(timeout_s)); });
+            },
+            py::arg("timeout_s") = 60.0, "Homes the stage; Ctrl-C stops it (KeyboardInterrupt, stage stopped).")
+        .def_property_readonly("is_homed", &Stage::is_homed)
+        .def(
+            "move_absolute",
+            [](Stage& s, double angle_deg, double timeout_s) {
+                interruptible_motion(s, [&] { return s.move_absolute(angle_deg, milliseconds(timeout_s)); });
+            },
+            py::arg("angle_deg"), py::arg("timeout_s") = 60.0,
+            "Moves to angle_deg and waits until the move is done; Ctrl-C stops the stage (KeyboardInterrupt).")
+        .def(
+            "position_deg",
+            [](Stage& s) {
+                py::gil_scoped_release release;
+                return value_or_raise(s.position_deg());
+            },
+            "The angle read back from the device, degrees.")
+        .def(
+            "stop", [](Stage& s) { check(s.stop()); }, "Stops any motion now.");
+    m.def(
+        "open_stage",
+        [](const std::string& uri) {
+            py::gil_scoped_release release;
+            return value_or_raise(acquisition::open_stage(uri));
+        },
+        py::arg("uri"),
+        "Opens a rotation stage: thorlabs-apt:///dev/ttyUSB0, elliptec:///dev/ttyUSB0, sim://?deg_per_s=&start_deg= "
+        "(docs/acquisition-stages.md). Device failures raise tirpol.DeviceError.");
+}
+
 }  // namespace
 
 void bind_acquisition(py::module_& m) {
+    bind_stage(m);
     py::class_<Camera, std::unique_ptr<Camera>>(m, "Camera",
                                                 "A camera opened by URI (docs/acquisition-cameras.md). Use it as a "
                                                 "context manager to stop streaming on exit.")

@@ -21,9 +21,11 @@ inline constexpr std::chrono::milliseconds kSignalPollPeriod{50};
 
 /// Runs `work(cancel)` (which must not touch Python objects) and returns its result. Exceptions of
 /// `work` propagate unchanged, except when a signal handler raised: then its exception
-/// (KeyboardInterrupt) replaces whatever the stopped work threw.
-template <typename Work>
-auto run_interruptible(Work&& work) {
+/// (KeyboardInterrupt) replaces whatever the stopped work threw. `on_interrupt` runs on the calling
+/// thread right after `cancel` is set, for work blocked where no flag is read (a stage move: stop it).
+template <typename Work, typename OnInterrupt = void (*)()>
+auto run_interruptible(
+    Work&& work, OnInterrupt&& on_interrupt = [] {}) {
     std::atomic<bool> cancel{false};
     auto result = std::async(std::launch::async, [&] { return work(static_cast<const std::atomic<bool>&>(cancel)); });
     for (;;) {
@@ -37,6 +39,7 @@ auto run_interruptible(Work&& work) {
             cancel = true;
             {
                 pybind11::gil_scoped_release release;
+                on_interrupt();
                 result.wait();
             }
             try {

@@ -5,8 +5,11 @@ pattern for its own frame id — Aravis 0.8.26 src/arvfakecamera.c arv_fake_came
 pixel (x, y) of frame id f is (256 x + 256 f + 256 y) mod 65535 — and ids must be consecutive."""
 
 import fcntl
+import os
 import shutil
+import signal
 import subprocess
+import threading
 import time
 
 import numpy as np
@@ -82,3 +85,28 @@ def test_simulated_camera_streams_its_uniform_level():
     # Mean of 3840 samples of σ = 2 around 1000: within 5σ/√n = 0.16 counts.
     assert abs(stack.mean() - 1000.0) < 0.16
     assert stack.std() == pytest.approx(2.0, rel=0.1)
+
+
+def test_stage_moves_and_reads_back():
+    stage = acquisition.open_stage("sim://?deg_per_s=720&start_deg=0")
+    stage.home(timeout_s=10)
+    assert stage.is_homed
+    stage.move_absolute(45.0, timeout_s=10)
+    assert stage.position_deg() == pytest.approx(45.0, abs=0.01)
+
+
+def test_ctrl_c_stops_a_stage_move_and_the_stage_stands_still():
+    # 5 °/s: the move to 170° would take 34 s; a real SIGINT arrives after 0.5 s.
+    stage = acquisition.open_stage("sim://?deg_per_s=5&start_deg=0")
+    stage.home(timeout_s=10)
+    timer = threading.Timer(0.5, os.kill, args=(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            stage.move_absolute(170.0, timeout_s=120)
+    finally:
+        timer.cancel()
+    stopped_at = stage.position_deg()
+    assert 0.0 < stopped_at < 170.0
+    time.sleep(0.3)
+    assert stage.position_deg() == pytest.approx(stopped_at, abs=1e-6), "the stage kept moving"
