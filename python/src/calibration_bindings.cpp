@@ -131,6 +131,7 @@ void bind_reduce(py::module_& m) {
 void bind_calibration(py::module_& m) {
     bind_analyzer(m);
     bind_reduce(m);
+    bind_calibration_sessions(m);
 }
 
 }  // namespace tirpol::python

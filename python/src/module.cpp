@@ -9,30 +9,31 @@ namespace py = pybind11;
 
 namespace {
 
-py::module_ importable_submodule(py::module_& parent, const char* name, const char* doc) {
-    py::module_ sub = parent.def_submodule(name, doc);
-    py::module_::import("sys").attr("modules")[py::str(std::string("tirpol._tirpol.") + name)] = sub;
-    return sub;
-}
+struct Submodule {
+    const char* name;
+    const char* doc;
+    void (*bind)(py::module_&);
+};
+
+// In dependency order: a submodule's functions may take classes of an earlier one (core.Band).
+constexpr Submodule kSubmodules[] = {
+    {"core", "Stokes/Mueller algebra, Planck radiometry, EXR I/O", tirpol::python::bind_core},
+    {"materials", "Material files, polarized emissivity, Mueller pBRDF", tirpol::python::bind_materials},
+    {"simulation", "Scenes and the polarized path tracer", tirpol::python::bind_simulation},
+    {"calibration", "Analyzer model, radiometric calibration, Stokes reduction", tirpol::python::bind_calibration},
+    {"fitting", "Fits of pBRDF parameters with uncertainties", tirpol::python::bind_fitting},
+    {"acquisition", "Cameras and stages by URI, frames as arrays", tirpol::python::bind_acquisition},
+    {"report", "Measured-vs-simulated comparison and HTML report", tirpol::python::bind_report},
+};
 
 }  // namespace
 
 PYBIND11_MODULE(_tirpol, m) {
     m.doc() = "tirpol's C++ library (pybind11). Use the package `tirpol`, which re-exports this module.";
     tirpol::python::bind_errors(m);
-    py::module_ core = importable_submodule(m, "core", "Stokes/Mueller algebra, Planck radiometry, EXR I/O");
-    tirpol::python::bind_core(core);
-    py::module_ materials = importable_submodule(m, "materials", "Material files, polarized emissivity, Mueller pBRDF");
-    tirpol::python::bind_materials(materials);
-    py::module_ simulation = importable_submodule(m, "simulation", "Scenes and the polarized path tracer");
-    tirpol::python::bind_simulation(simulation);
-    py::module_ calibration = importable_submodule(m, "calibration", "Analyzer model and Stokes reduction");
-    tirpol::python::bind_calibration(calibration);
-    tirpol::python::bind_calibration_sessions(calibration);
-    py::module_ fitting = importable_submodule(m, "fitting", "Fits of pBRDF parameters with uncertainties");
-    tirpol::python::bind_fitting(fitting);
-    py::module_ acquisition = importable_submodule(m, "acquisition", "Cameras by URI, frames as arrays");
-    tirpol::python::bind_acquisition(acquisition);
-    py::module_ report = importable_submodule(m, "report", "Measured-vs-simulated comparison and HTML report");
-    tirpol::python::bind_report(report);
+    for (const Submodule& s : kSubmodules) {
+        py::module_ sub = m.def_submodule(s.name, s.doc);
+        py::module_::import("sys").attr("modules")[py::str(std::string("tirpol._tirpol.") + s.name)] = sub;
+        s.bind(sub);
+    }
 }
