@@ -43,8 +43,9 @@ void bind_analyzer(py::module_& m) {
 
 /// Buffers for the input planes, kept between reduce() calls. Fresh megabyte-sized vectors on every
 /// call are handed back to the kernel by glibc's heap trimming and page-faulted in again next time,
-/// which cost several times the copy itself (bench/python_bench.cpp at 640×512: 17 % over the C++
-/// call with fresh buffers, the copy alone ≈ 4 %). Holds at most the planes of the largest call.
+/// which cost several times the copy itself (bench/python_bench.cpp at 640×512, wall time: 17 % over
+/// the C++ call with fresh buffers, 5 % with glibc's trimming turned off by MALLOC_TRIM_THRESHOLD_).
+/// Holds at most the planes of the largest call.
 class PlanePool {
 public:
     std::vector<float> take() {
