@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
@@ -167,11 +168,68 @@ void bind_session(py::module_& m) {
         "returns the true scene Stokes image S0 S1 S2.");
 }
 
+PixelRect rect_of(const py::handle& rect, const std::string& what) {
+    const auto v = rect.cast<std::vector<int>>();
+    if (v.size() != 4) fail("{}: expected a rectangle [x, y, width, height], got {} numbers", what, v.size());
+    return {v[0], v[1], v[2], v[3]};
+}
+
+py::dict result_dict(const EmissivityResult& r) {
+    py::dict d;
+    d["name"] = r.name;
+    d["view_angle_deg"] = r.view_angle_deg;
+    d["temperature_k"] = r.temperature_k;
+    d["pixels"] = r.pixels;
+    d["l_dw_w_m2_sr"] = r.l_dw;
+    d["l_bb_w_m2_sr"] = r.l_bb;
+    d["eps_s0"] = r.eps_s0;
+    d["eps_s0_2sigma"] = r.eps_s0_2sigma;
+    d["eps_s1"] = r.eps_s1;
+    d["eps_s1_2sigma"] = r.eps_s1_2sigma;
+    d["eps_s2"] = r.eps_s2;
+    d["eps_s2_2sigma"] = r.eps_s2_2sigma;
+    d["warnings"] = r.warnings;
+    return d;
+}
+
+void bind_emissivity(py::module_& m) {
+    m.def(
+        "extract_emissivity",
+        [](const py::object& stokes, const py::object& reflector, const py::list& targets, const Band& band) {
+            EmissivityRois rois;
+            rois.reflector = rect_of(reflector, "reflector");
+            for (const auto& t : targets) {
+                const auto d = t.cast<py::dict>();
+                EmissivityTarget target;
+                target.name = d["name"].cast<std::string>();
+                target.rect = rect_of(d["rect"], "targets['" + target.name + "'].rect");
+                target.view_angle_deg = d["view_angle_deg"].cast<double>();
+                if (d.contains("temperature_k")) target.temperature_k = d["temperature_k"].cast<double>();
+                if (d.contains("temperature_std_k")) target.temperature_std_k = d["temperature_std_k"].cast<double>();
+                if (d.contains("blackbody_rect"))
+                    target.blackbody_rect =
+                        rect_of(d["blackbody_rect"], "targets['" + target.name + "'].blackbody_rect");
+                rois.targets.push_back(std::move(target));
+            }
+            const Image image = from_python(
+                stokes, py::hasattr(stokes, "attributes") ? stokes.attr("attributes") : py::object(py::none()));
+            py::list out;
+            for (const auto& r : extract_emissivity(image, rois, band)) out.append(result_dict(r));
+            return out;
+        },
+        py::arg("stokes"), py::arg("reflector"), py::arg("targets"), py::arg("band"),
+        "Polarized emissivity of targets in a reduced Stokes image (paper eq 17): the IR reflector rectangle "
+        "[x, y, w, h] gives the downwelling radiance, each target {name, rect, view_angle_deg, temperature_k "
+        "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 2σ uncertainties — the rows "
+        "fit_microfacet takes (ε_S1 in the plane-of-emission frame).");
+}
+
 }  // namespace
 
 void bind_calibration_sessions(py::module_& m) {
     bind_radiometric(m);
     bind_session(m);
+    bind_emissivity(m);
 }
 
 }  // namespace tirpol::python

@@ -101,3 +101,9 @@ def reduce_session(
     force_other_camera: bool = False,
 ) -> Image: ...
 def write_synthetic_sessions(root: PathLike, band: Band, width: int = 64, height: int = 48) -> Image: ...
+def extract_emissivity(
+    stokes: Mapping[str, npt.ArrayLike],
+    reflector: Sequence[int],
+    targets: Sequence[Mapping[str, object]],
+    band: Band,
+) -> list[dict[str, object]]: ...

@@ -1,7 +1,7 @@
 """tirpol.calibration on sessions and counts: the synthetic sessions of calibration/synthetic_session.h
 (a simulated uncooled camera, a 100:1 wire grid offset by 1.5°, a panel with ε_S1 = −0.035) go
-through radiometric calibration, polarimetric calibration and reduction, and the planted truth comes
-back within the propagated uncertainties (as tests/calibration/session_calibration_test.cpp);
+through radiometric calibration, polarimetric calibration, reduction and emissivity extraction, and
+the planted truth comes back within the propagated uncertainties (as tests/calibration/session_calibration_test.cpp);
 temperature from counts inverts a per-pixel radiometric model fitted from arrays."""
 
 import numpy as np
@@ -38,6 +38,14 @@ def test_session_pipeline_recovers_the_planted_scene(sessions):
     assert abs(error.mean()) < 4 * 0.04 / np.sqrt(error.size)
     assert stokes["S0"][20, 30] == pytest.approx(truth["S0"][20, 30], abs=0.15)
     assert stokes.attributes["saturated_pixels"] == 0
+    # Emissivity of the panel (paper eq 17) against its planted ε: reflector x 4..15, panel x 24..39.
+    [panel_eps] = calibration.extract_emissivity(
+        stokes, reflector=[5, 10, 9, 28], band=BAND,
+        targets=[{"name": "panel", "rect": [26, 12, 12, 24], "view_angle_deg": 45.0, "temperature_k": 300.0,
+                  "temperature_std_k": 0.05}])
+    assert panel_eps["eps_s0"] == pytest.approx(0.93, abs=max(panel_eps["eps_s0_2sigma"], 0.005))
+    assert panel_eps["eps_s1"] == pytest.approx(-0.035, abs=max(panel_eps["eps_s1_2sigma"], 0.002))
+    assert panel_eps["eps_s2"] == pytest.approx(0.01, abs=max(panel_eps["eps_s2_2sigma"], 0.002))
 
 
 def test_without_the_wire_grid_calibration_the_sky_reflection_biases_s1(sessions):
