@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "image_conversion.h"
 #include "tirpol/calibration/emissivity_extraction.h"
+#include "tirpol/calibration/noise.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
@@ -224,9 +225,59 @@ void bind_emissivity(py::module_& m) {
         "fit_microfacet takes (ε_S1 in the plane-of-emission frame).");
 }
 
+/// A (T, H, W) cube of frames as a FrameStack.
+FrameStack stack_of(const py::handle& cube) {
+    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(cube);
+    if (!a || a.ndim() != 3) fail("frames: expected a 3-D array (frames, H, W)");
+    FrameStack stack;
+    stack.height = static_cast<int>(a.shape(1));
+    stack.width = static_cast<int>(a.shape(2));
+    const auto n = static_cast<std::size_t>(a.shape(1) * a.shape(2));
+    for (py::ssize_t t = 0; t < a.shape(0); ++t)
+        stack.frames.emplace_back(a.data() + static_cast<std::size_t>(t) * n,
+                                  a.data() + static_cast<std::size_t>(t + 1) * n);
+    validate_stack(stack, "frames");
+    return stack;
+}
+
+void bind_noise(py::module_& m) {
+    m.def(
+        "three_d_noise",
+        [](const py::object& frames, const std::string& convention) {
+            if (convention != "population" && convention != "sample")
+                fail("convention: expected 'population' or 'sample', got '{}'", convention);
+            const FrameStack stack = stack_of(frames);
+            const ThreeDNoise n =
+                three_d_noise(stack, convention == "sample" ? NoiseConvention::Sample : NoiseConvention::Population);
+            py::dict d;
+            d["mean"] = n.mean;
+            d["sigma_t"] = n.sigma_t;
+            d["sigma_v"] = n.sigma_v;
+            d["sigma_h"] = n.sigma_h;
+            d["sigma_tv"] = n.sigma_tv;
+            d["sigma_th"] = n.sigma_th;
+            d["sigma_vh"] = n.sigma_vh;
+            d["sigma_tvh"] = n.sigma_tvh;
+            d["sigma_total"] = n.sigma_total;
+            return d;
+        },
+        py::arg("frames"), py::arg("convention") = "population",
+        "3D noise (D'Agostino & Webb, Proc. SPIE 1488, 1991) of a (frames, H, W) stack of a uniform source: mean "
+        "and σ of the seven components t, v, h, tv, th, vh, tvh and their total. 'population' (Σx²/n: the "
+        "variances add up to the cube's) or 'sample' (Σx²/(n − 1), as pyradi's ry3dnoise).");
+    m.def(
+        "temporal_noise",
+        [](const py::object& frames) {
+            const FrameStack stack = stack_of(frames);
+            return array_from_plane(temporal_noise(stack), stack.width, stack.height);
+        },
+        py::arg("frames"), "Per-pixel temporal standard deviation (n − 1) of a (frames, H, W) stack → (H, W).");
+}
+
 }  // namespace
 
 void bind_calibration_sessions(py::module_& m) {
+    bind_noise(m);
     bind_radiometric(m);
     bind_session(m);
     bind_emissivity(m);

@@ -77,3 +77,32 @@ def test_radiometric_calibration_file_round_trip(tmp_path):
     back = calibration.read_radiometric_calibration(str(tmp_path / "radiometric.exr"))
     np.testing.assert_array_equal(back.gain, cal.gain)
     assert back.temperatures_k == [283.0, 323.0]
+
+
+def test_three_d_noise_separates_planted_components():
+    # D'Agostino & Webb (1991): a cube with a frame flicker, fixed row and column patterns and white
+    # noise. Each planted pattern is exactly zero-mean, so its population σ comes back up to the
+    # white noise's leak into that average (σ_tvh/√(pixels averaged)); the seven population variances
+    # add up exactly to the cube's variance.
+    rng = np.random.default_rng(2)
+    t, v, h = 40, 32, 48
+
+    def zero_mean(n, s):
+        x = rng.normal(size=n) * s
+        return x - x.mean()
+
+    flicker, rows, cols = zero_mean(t, 0.5), zero_mean(v, 0.8), zero_mean(h, 0.3)
+    cube = 1000.0 + flicker[:, None, None] + rows[None, :, None] + cols[None, None, :] + rng.normal(size=(t, v, h))
+    n = calibration.three_d_noise(cube.astype(np.float32))
+    assert n["mean"] == pytest.approx(1000.0, abs=0.01)
+    assert n["sigma_t"] == pytest.approx(flicker.std(), abs=3 / np.sqrt(v * h))
+    assert n["sigma_v"] == pytest.approx(rows.std(), abs=3 / np.sqrt(t * h))
+    assert n["sigma_h"] == pytest.approx(cols.std(), abs=3 / np.sqrt(t * v))
+    # The white noise's variance is shared among the components by their degrees of freedom: N_tvh
+    # keeps (t−1)(v−1)(h−1)/(t·v·h) of it.
+    assert n["sigma_tvh"] == pytest.approx(np.sqrt((t - 1) * (v - 1) * (h - 1) / (t * v * h)), abs=0.01)
+    parts = sum(n[f"sigma_{k}"] ** 2 for k in ("t", "v", "h", "tv", "th", "vh", "tvh"))
+    assert parts == pytest.approx(cube.astype(np.float32).astype(np.float64).var(), rel=1e-4)
+    assert n["sigma_total"] ** 2 == pytest.approx(parts, rel=1e-9)
+    temporal = calibration.temporal_noise(cube)
+    assert temporal.shape == (v, h) and np.median(temporal) == pytest.approx(np.sqrt(1 + 0.25), rel=0.1)
