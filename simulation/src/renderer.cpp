@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "surface_basis.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/core/stokes_frame.h"
@@ -259,6 +260,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     std::atomic<std::uint64_t> scene_rays{0}, shadow_rays{0}, trace_cpu_ns{0};
 
     auto render_tile = [&](std::size_t tile_index) {
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) return;
         const int tx = static_cast<int>(tile_index % static_cast<std::size_t>(tiles_x));
         const int ty = static_cast<int>(tile_index / static_cast<std::size_t>(tiles_x));
         const std::uint64_t cpu_start_ns = thread_cpu_ns();
@@ -327,6 +329,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
             for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
         });
     });
+    if (options.cancel && options.cancel->load()) throw Cancelled("render cancelled");
     if (progress) progress->finish();
 
     auto& attrs = image.attributes();

@@ -15,6 +15,7 @@
 /// geometry) instead of on deep branches that contribute little; the noise-vs-time comparison is in
 /// bench/simulation_bench.cpp and docs/simulation.md.
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -43,6 +44,9 @@ struct RenderOptions {
     /// ($TIRPOL_CACHE_DIR, $XDG_CACHE_HOME/tirpol or ~/.cache/tirpol); empty: memory cache only.
     std::optional<std::filesystem::path> emissivity_cache_dir;
     RayRecorder* ray_recorder = nullptr;  ///< not owned; null: no recording (no cost)
+    /// Not owned; checked before each tile: once true, the remaining tiles are skipped and render()
+    /// throws tirpol::Cancelled (how the Python module stops a render on Ctrl-C). Null: never.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 struct RenderStatistics {
@@ -72,7 +76,8 @@ Band spectral_grid(const Band& band);
 /// the camera), view_zenith_deg, object_id, material_id (−1 on sky), temperature_k; NaN on sky
 /// pixels for the geometric channels. Header attributes: units, band, spp, seed, bounces, scene file.
 /// The result is identical for any thread count and tile size (counter-based random numbers).
-/// Throws tirpol::Error before rendering if a material does not cover the band.
+/// Throws tirpol::Error before rendering if a material does not cover the band, tirpol::Cancelled
+/// if `options.cancel` was set.
 Image render(const Scene& scene, const RenderOptions& options = {}, RenderStatistics* statistics = nullptr);
 
 }  // namespace tirpol::simulation

@@ -70,4 +70,8 @@ Scene load_scene(const std::filesystem::path& path);
 /// with_value); relative paths resolve against `root.file()`.
 Scene load_scene(const ConfigNode& root);
 
+/// Loads a scene already parsed (e.g. from a Python dict): relative paths resolve against the
+/// directory of `root.file()`, which also becomes Scene::file.
+Scene load_scene(const ConfigNode& root);
+
 }  // namespace tirpol::simulation

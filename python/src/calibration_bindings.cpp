@@ -1,0 +1,138 @@
+// tirpol.calibration: the analyzer model and Stokes reduction from numpy arrays.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <mutex>
+
+#include "bindings.h"
+#include "image_conversion.h"
+#include "tirpol/calibration/analyzer.h"
+#include "tirpol/calibration/stokes_reduction.h"
+#include "tirpol/core/error.h"
+
+namespace py = pybind11;
+
+namespace tirpol::python {
+
+namespace {
+
+using calibration::AnalyzerModel;
+using calibration::AnalyzerPosition;
+
+void bind_analyzer(py::module_& m) {
+    py::class_<AnalyzerPosition>(m, "AnalyzerPosition", "Model of one analyzer position (calibration/analyzer.h).")
+        .def_readonly("nominal_angle_deg", &AnalyzerPosition::nominal_angle_deg)
+        .def_readonly("axis_angle_deg", &AnalyzerPosition::axis_angle_deg)
+        .def_readonly("diattenuation", &AnalyzerPosition::diattenuation)
+        .def_readonly("relative_transmission", &AnalyzerPosition::relative_transmission)
+        .def_readonly("background", &AnalyzerPosition::background)
+        .def_property_readonly("extinction_ratio", &AnalyzerPosition::extinction_ratio);
+    py::class_<AnalyzerModel>(m, "AnalyzerModel",
+                              "The rotating polarizer: one AnalyzerPosition per angle; its data-reduction matrix W⁺ "
+                              "turns N ≥ 3 analyzer images into (S0, S1, S2).")
+        .def_static("ideal", &AnalyzerModel::ideal, py::arg("angles_deg"),
+                    "An ideal polarizer at the given angles (for 0/45/90/135 the DRM is Gartley et al. eqs 14–16).")
+        .def_static("non_ideal", &AnalyzerModel::non_ideal, py::arg("angles_deg"), py::arg("extinction_ratio"),
+                    py::arg("angle_offset_deg") = 0.0, py::arg("t_max") = 1.0,
+                    "A polarizer with an extinction ratio and an axis offset at every position.")
+        .def_readonly("positions", &AnalyzerModel::positions)
+        .def("data_reduction_matrix", &AnalyzerModel::data_reduction_matrix, "W⁺, shape (3, N).")
+        .def("condition_number", &AnalyzerModel::condition_number);
+}
+
+/// Buffers for the input planes, kept between reduce() calls. Fresh megabyte-sized vectors on every
+/// call are handed back to the kernel by glibc's heap trimming and page-faulted in again next time,
+/// which cost several times the copy itself (bench/python_bench.cpp at 640×512, wall time: 17 % over
+/// the C++ call with fresh buffers, 5 % with glibc's trimming turned off by MALLOC_TRIM_THRESHOLD_).
+/// Holds at most the planes of the largest call.
+class PlanePool {
+public:
+    std::vector<float> take() {
+        std::lock_guard lock(m_mutex);
+        if (m_free.empty()) return {};
+        std::vector<float> plane = std::move(m_free.back());
+        m_free.pop_back();
+        return plane;
+    }
+    void give_back(std::vector<calibration::AnalyzerImage>& images) {
+        std::lock_guard lock(m_mutex);
+        for (auto& a : images)
+            for (auto* plane : {&a.signal, &a.signal_std})
+                if (plane->capacity() > 0) m_free.push_back(std::move(*plane));
+    }
+
+private:
+    std::mutex m_mutex;  // reduce() runs without the GIL: two Python threads may call it at once
+    std::vector<std::vector<float>> m_free;
+};
+
+PlanePool& plane_pool() {
+    static PlanePool pool;
+    return pool;
+}
+
+/// The analyzer images of `images` (angle_deg → (H, W) array) with their σ from `stds` (same keys).
+std::vector<calibration::AnalyzerImage> analyzer_images(const py::dict& images, const py::object& stds, int& width,
+                                                        int& height) {
+    std::vector<calibration::AnalyzerImage> out;
+    for (const auto& [key, value] : images) {
+        calibration::AnalyzerImage a;
+        a.angle_deg = key.cast<double>();
+        a.source = fmt::format("images[{}]", a.angle_deg);
+        a.signal = plane_from_array(value, a.source, width, height, plane_pool().take());
+        if (!stds.is_none()) {
+            const auto std_dict = stds.cast<py::dict>();
+            if (!std_dict.contains(key))
+                fail("stds: no array for angle {} (every image needs its σ, or pass none)", a.angle_deg);
+            a.signal_std = plane_from_array(std_dict[key], fmt::format("stds[{}]", a.angle_deg), width, height,
+                                            plane_pool().take());
+        }
+        out.push_back(std::move(a));
+    }
+    if (out.empty()) fail("images: no analyzer images (expected a dict angle_deg → 2-D array)");
+    return out;
+}
+
+void bind_reduce(py::module_& m) {
+    m.def(
+        "reduce",
+        [](const py::dict& images, const py::object& stds, std::optional<AnalyzerModel> model,
+           bool project_to_realizable, bool include_slar, const std::string& units) {
+            int width = 0, height = 0;
+            auto inputs = analyzer_images(images, stds, width, height);
+            if (!model) {
+                std::vector<double> angles;
+                for (const auto& a : inputs) angles.push_back(a.angle_deg);
+                std::sort(angles.begin(), angles.end());
+                model = AnalyzerModel::ideal(angles);
+            }
+            calibration::ReductionOptions options;
+            options.project_to_realizable = project_to_realizable;
+            options.include_slar = include_slar;
+            options.units = units;
+            Image result;
+            {
+                py::gil_scoped_release release;
+                result = calibration::reduce_stokes(inputs, width, height, *model, nullptr, options);
+            }
+            plane_pool().give_back(inputs);
+            return to_python(std::move(result));
+        },
+        py::arg("images"), py::arg("stds") = py::none(), py::arg("model") = py::none(),
+        py::arg("project_to_realizable") = true, py::arg("include_slar") = false, py::arg("units") = "W/(m^2 sr)",
+        "Stokes reduction S = W⁺·I per pixel (Tyo et al. 2006 §4) of analyzer images {angle_deg: (H, W) array}, "
+        "with σ images `stds` (same keys) propagated to S0_std S1_std S2_std DoLP_std AoP_std. Default model: an "
+        "ideal polarizer at the given angles. Returns a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, "
+        "S1 = I0 − I90, S2 = I45 − I135). Releases the GIL.");
+}
+
+}  // namespace
+
+void bind_calibration(py::module_& m) {
+    bind_analyzer(m);
+    bind_reduce(m);
+    bind_calibration_sessions(m);
+}
+
+}  // namespace tirpol::python

@@ -1,0 +1,32 @@
+#pragma once
+/// \file image_conversion.h
+/// tirpol::Image ↔ tirpol.Image (the Python dict of channel name → float32 array (H, W) with an
+/// `attributes` dict of EXR header attributes).
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+#include <vector>
+
+#include "tirpol/core/image.h"
+
+namespace tirpol::python {
+
+/// A float32 array of shape (height, width) that takes over `plane` without copying it.
+pybind11::array_t<float> array_from_plane(std::vector<float>&& plane, int width, int height);
+
+/// Copies a 2-D array (any real dtype, converted to float32) into a plane; `what` names it in errors
+/// (tirpol::Error if it is not 2-D or its shape is not (height, width) when those are > 0). The copy
+/// goes into `buffer`, whose memory is reused when its capacity suffices.
+std::vector<float> plane_from_array(const pybind11::handle& array, const std::string& what, int& width, int& height,
+                                    std::vector<float> buffer = {});
+
+/// A tirpol.Image holding the channels of `image` (moved, not copied) in channel order.
+pybind11::object to_python(Image&& image);
+
+/// An Image from a mapping of channel name → 2-D array, and a mapping of header attributes
+/// (int, float, str or a sequence of floats). tirpol::Error names the channel or attribute at fault.
+Image from_python(const pybind11::handle& channels, const pybind11::handle& attributes);
+
+}  // namespace tirpol::python
