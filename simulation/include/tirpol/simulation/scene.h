@@ -66,12 +66,8 @@ struct Scene {
 /// Loads a scene file. Every error names the file, line and field (unknown keys, wrong types, a
 /// missing mesh or material file, an unknown material name).
 Scene load_scene(const std::filesystem::path& path);
-/// Same from an already parsed scene (e.g. a base scene with a sweep point's overrides, ConfigNode::
-/// with_value); relative paths resolve against `root.file()`.
-Scene load_scene(const ConfigNode& root);
-
-/// Loads a scene already parsed (e.g. from a Python dict): relative paths resolve against the
-/// directory of `root.file()`, which also becomes Scene::file.
+/// Same from an already parsed scene (a sweep point's overrides via ConfigNode::with_value, a Python
+/// dict): relative paths resolve against the directory of `root.file()`, which becomes Scene::file.
 Scene load_scene(const ConfigNode& root);
 
 }  // namespace tirpol::simulation
