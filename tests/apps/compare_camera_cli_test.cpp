@@ -3,9 +3,8 @@
 // on the measured pixel grid without a warp, the report states the method and the residual
 // misalignment measured from the images; a simulation rendered through another lens is refused.
 
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include "cli_runner.h"
 #include "test_support.h"
@@ -30,14 +29,16 @@ CameraModel lens() {
 
 /// A warm ball on the ground seen through the camera model `model` (relative to the scene file).
 void write_scene(const test::TempDir& dir, const std::string& name, const std::string& model, int seed) {
-    test::write_text(dir / name, fmt::format(
-        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: 8, max_bounces: 0, seed: {}}}\nmaterials_dir: {}\n"
-        "camera: {{model: {}, position: [0, -3, 1.2], look_at: [0, 0, 0.4]}}\n"
-        "sky: {{type: uniform, temperature: 230}}\nobjects:\n"
-        "  - {{name: ground, geometry: {{type: plane, size: [10, 10]}}, material: concrete, temperature: 280}}\n"
-        "  - {{name: ball, geometry: {{type: sphere, radius: 0.4}}, transform: {{translate: [0, 0, 0.4]}}, "
-        "material: flat_black_paint, temperature: 305}}\n",
-        seed, (test::source_dir() / "config" / "materials").string(), model));
+    test::write_text(
+        dir / name,
+        fmt::format(
+            "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: 8, max_bounces: 0, seed: {}}}\nmaterials_dir: {}\n"
+            "camera: {{model: {}, position: [0, -3, 1.2], look_at: [0, 0, 0.4]}}\n"
+            "sky: {{type: uniform, temperature: 230}}\nobjects:\n"
+            "  - {{name: ground, geometry: {{type: plane, size: [10, 10]}}, material: concrete, temperature: 280}}\n"
+            "  - {{name: ball, geometry: {{type: sphere, radius: 0.4}}, transform: {{translate: [0, 0, 0.4]}}, "
+            "material: flat_black_paint, temperature: 305}}\n",
+            seed, (test::source_dir() / "config" / "materials").string(), model));
 }
 
 TEST(CompareCameraCli, ASimulationRenderedThroughTheModelIsComparedWithoutAWarp) {
@@ -46,13 +47,14 @@ TEST(CompareCameraCli, ASimulationRenderedThroughTheModelIsComparedWithoutAWarp)
     write_scene(dir, "measured.yaml", "cam.yaml", 2);
     write_scene(dir, "simulated.yaml", "cam.yaml", 1);
     for (const char* scene : {"measured", "simulated"}) {
-        const auto r = run_cli(fmt::format("render {} -o {} --threads 2 --quiet", (dir / (std::string(scene) + ".yaml")).string(),
-                                           dir.path().string()));
+        const auto r = run_cli(fmt::format("render {} -o {} --threads 2 --quiet",
+                                           (dir / (std::string(scene) + ".yaml")).string(), dir.path().string()));
         ASSERT_EQ(r.exit_code, 0) << r.out;
     }
     const std::string common = fmt::format("compare --measured {} --simulated {} --measured-sigma 0.05",
                                            (dir / "measured.exr").string(), (dir / "simulated.exr").string());
-    auto run = run_cli(common + fmt::format(" --camera {} -o {}", (dir / "cam.yaml").string(), (dir / "report").string()));
+    auto run =
+        run_cli(common + fmt::format(" --camera {} -o {}", (dir / "cam.yaml").string(), (dir / "report").string()));
     ASSERT_EQ(run.exit_code, 0) << run.out;
     const std::string stated = "registration: camera-model (identity), residual misalignment ";
     const auto at = run.out.find(stated);

@@ -33,9 +33,10 @@ TEST(TwinCameraGeometry, TheFieldProcedureRecoversTheLensAndThePose) {
         if (field.objects[i].name.rfind("panel_", 0) == 0)
             for (const Vec3& corner : field.tracer->mesh(static_cast<std::uint32_t>(i)).positions)
                 worst_px = std::max(worst_px, (*r.camera().project(corner) - *truth.project(corner)).norm());
-    std::printf("lens from %d of %d frames, RMS %.4f px; fx %.3f/%.3f fy %.3f/%.3f cx %.3f/%.3f ± %.3f cy %.3f/%.3f ± %.3f\n",
-                r.lens.views, r.board_frames, r.lens.rms_px, r.lens.fx, r.true_lens.fx, r.lens.fy, r.true_lens.fy,
-                r.lens.cx, r.true_lens.cx, r.lens.std_dev[2], r.lens.cy, r.true_lens.cy, r.lens.std_dev[3]);
+    std::printf(
+        "lens from %d of %d frames, RMS %.4f px; fx %.3f/%.3f fy %.3f/%.3f cx %.3f/%.3f ± %.3f cy %.3f/%.3f ± %.3f\n",
+        r.lens.views, r.board_frames, r.lens.rms_px, r.lens.fx, r.true_lens.fx, r.lens.fy, r.true_lens.fy, r.lens.cx,
+        r.true_lens.cx, r.lens.std_dev[2], r.lens.cy, r.true_lens.cy, r.lens.std_dev[3]);
     std::printf("pose from %d points: %.4f° %.4f m (nominal %.3f° %.4f m); panel corners within %.3f px of the truth\n",
                 r.control_points, r.rotation_error_deg, r.position_error_m, r.nominal_rotation_error_deg,
                 r.nominal_position_error_m, worst_px);
@@ -58,7 +59,7 @@ TEST(TwinCameraGeometry, TheFieldProcedureRecoversTheLensAndThePose) {
 
     // The pose: far better than the nominal set-up, and consistent with the lens — the recovered
     // camera puts the scene on the truth's pixel grid to a fraction of a pixel.
-    EXPECT_EQ(r.control_points, 36);  // the four corners of the nine panels
+    EXPECT_EQ(r.control_points, 36);               // the four corners of the nine panels
     EXPECT_GT(r.nominal_rotation_error_deg, 0.5);  // there was a pose error to find
     EXPECT_GT(r.nominal_position_error_m, 0.05);
     EXPECT_LT(r.position_error_m, 0.5 * r.nominal_position_error_m);

@@ -57,9 +57,9 @@ std::vector<fs::path> film_board(const simulation::Camera& truth, const TwinWorl
                                                            options.board_max_tilt_deg);
     for (std::size_t i = 0; i < views.size(); ++i) {
         const fs::path scene_file = dir / fmt::format("board_view{:02}.yaml", i);
-        write_file_atomic(scene_file, simulation::board_scene(object, find_config("materials"), "truth_lens.yaml",
-                                                              views[i].position, views[i].look_at, views[i].up,
-                                                              options.board_spp));
+        write_file_atomic(
+            scene_file, simulation::board_scene(object, find_config("materials"), "truth_lens.yaml", views[i].position,
+                                                views[i].look_at, views[i].up, options.board_spp));
         const Image stokes = simulation::render(simulation::load_scene(scene_file), render_options);
         Image frame(stokes.width(), stokes.height());
         frame.set_channel("counts", world.sensor_frame(stokes, 0.0, false, 1'000'000 + i));
@@ -74,8 +74,9 @@ std::vector<fs::path> film_board(const simulation::Camera& truth, const TwinWorl
 std::string control_points_csv(const simulation::Scene& field, const simulation::Camera& truth, double sigma_px) {
     std::mt19937_64 rng(14);
     std::normal_distribution<double> pick(0.0, sigma_px);
-    std::string csv = "# panel corners: surveyed world coordinates (m) and their pixels (OpenCV convention)\n"
-                      "name,x_m,y_m,z_m,u_px,v_px\n";
+    std::string csv =
+        "# panel corners: surveyed world coordinates (m) and their pixels (OpenCV convention)\n"
+        "name,x_m,y_m,z_m,u_px,v_px\n";
     for (std::size_t i = 0; i < field.objects.size(); ++i) {
         if (field.objects[i].name.rfind("panel_", 0) != 0) continue;
         const auto& corners = field.tracer->mesh(static_cast<std::uint32_t>(i)).positions;

@@ -26,26 +26,26 @@ simulation::Camera with_realistic_lens(const simulation::Camera& nominal);
 simulation::Camera with_pose_error(const simulation::Camera& camera);
 
 struct CameraGeometryOptions {
-    int board_views = 25;          ///< frames of the heated checkerboard filmed for the lens
-    int board_spp = 64;            ///< samples per pixel of those frames
+    int board_views = 25;  ///< frames of the heated checkerboard filmed for the lens
+    int board_spp = 64;    ///< samples per pixel of those frames
     /// The board is tilted 20° to this toward the camera: steep views make the focal length observable
     /// on a small detector (at 160×120, 40° leaves fx uncertain by 1 %, 55° by 0.2 %).
     double board_max_tilt_deg = 55.0;
     /// `--fix-k3`: a 34° lens on a 160-pixel detector does not constrain k3 (docs/camera-geometry.md:
     /// its σ exceeds it), so the field user keeps it at 0.
     bool fix_k3 = true;
-    double pick_sigma_px = 0.1;    ///< pixel noise of the control points (centroids of heated markers)
-    int threads = 0;               ///< render threads (0: all cores)
+    double pick_sigma_px = 0.1;  ///< pixel noise of the control points (centroids of heated markers)
+    int threads = 0;             ///< render threads (0: all cores)
 };
 
 struct CameraGeometryRecovery {
-    CameraModel true_lens, lens;         ///< truth and recovered (OpenCV pixel convention)
-    std::vector<std::string> lens_parameter_names;  ///< fx fy cx cy k1 …, the order of lens.std_dev
-    CameraPose true_pose, pose;          ///< truth and recovered, x_camera = R x_world + t
-    CameraPose nominal_pose;             ///< where the user believed the camera was
-    int board_frames = 0;                ///< frames filmed (lens.views of them showed the board)
-    int control_points = 0;              ///< surveyed points given to the pose estimate
-    double rotation_error_deg = 0.0, position_error_m = 0.0;                  ///< recovered vs true pose
+    CameraModel true_lens, lens;                              ///< truth and recovered (OpenCV pixel convention)
+    std::vector<std::string> lens_parameter_names;            ///< fx fy cx cy k1 …, the order of lens.std_dev
+    CameraPose true_pose, pose;                               ///< truth and recovered, x_camera = R x_world + t
+    CameraPose nominal_pose;                                  ///< where the user believed the camera was
+    int board_frames = 0;                                     ///< frames filmed (lens.views of them showed the board)
+    int control_points = 0;                                   ///< surveyed points given to the pose estimate
+    double rotation_error_deg = 0.0, position_error_m = 0.0;  ///< recovered vs true pose
     double nominal_rotation_error_deg = 0.0, nominal_position_error_m = 0.0;  ///< nominal vs true pose
     std::filesystem::path lens_file, pose_file, control_points_file;
 
