@@ -8,6 +8,7 @@
 
 #include "cli.h"
 #include "invocation.h"
+#include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/report/comparison_report.h"
@@ -17,7 +18,7 @@ namespace tirpol::cli {
 namespace {
 
 struct CompareArgs {
-    std::string measured, simulated, rois, control_points, registration, output;
+    std::string measured, simulated, rois, control_points, camera, registration, output;
     std::optional<double> measured_sigma;
     std::vector<double> band_um;
     bool json = false;
@@ -29,12 +30,21 @@ void run_compare(const CompareArgs& a) {
     options.measured_name = a.measured;
     options.simulated_name = a.simulated;
     if (!a.control_points.empty()) options.control_points = load_control_points(a.control_points);
-    // Default: control points when given, automatic otherwise.
-    options.registration = !a.registration.empty() ? parse_registration_method(a.registration)
-                           : a.control_points.empty() ? RegistrationMethod::Auto
-                                                      : RegistrationMethod::ControlPoints;
+    if (!a.camera.empty()) {
+        options.camera_model = read_camera_model(a.camera);
+        options.camera_model_name = a.camera;
+    }
+    // Default: the camera model when given, else control points when given, else automatic.
+    options.registration = !a.registration.empty()      ? parse_registration_method(a.registration)
+                           : !a.camera.empty()          ? RegistrationMethod::CameraModel
+                           : !a.control_points.empty() ? RegistrationMethod::ControlPoints
+                                                        : RegistrationMethod::Auto;
     if (options.registration == RegistrationMethod::ControlPoints && a.control_points.empty())
         throw CLI::ValidationError("--registration", "control-points needs --control-points CP.yaml");  // usage: exit 2
+    if (options.registration == RegistrationMethod::CameraModel && a.camera.empty())
+        throw CLI::ValidationError("--registration", "camera-model needs --camera CAM.yaml");
+    if (!a.camera.empty() && options.registration != RegistrationMethod::CameraModel)
+        throw CLI::ValidationError("--camera", "a camera model registers by the model: leave out --registration or give camera-model");
     if (!a.rois.empty()) options.regions = load_regions(a.rois);
     if (a.measured_sigma) {
         if (!(*a.measured_sigma > 0.0) || !std::isfinite(*a.measured_sigma))
@@ -50,6 +60,7 @@ void run_compare(const CompareArgs& a) {
     options.provenance.inputs.push_back(describe_input("simulated", a.simulated, &simulated));
     if (!a.rois.empty()) options.provenance.inputs.push_back(describe_input("regions", a.rois));
     if (!a.control_points.empty()) options.provenance.inputs.push_back(describe_input("control points", a.control_points));
+    if (!a.camera.empty()) options.provenance.inputs.push_back(describe_input("camera model", a.camera));
     const CompareResult r = write_comparison_report(measured, simulated, options, a.output);
     if (a.json) {
         std::printf("%s", comparison_json(r).c_str());
@@ -58,6 +69,7 @@ void run_compare(const CompareArgs& a) {
     const auto& g = r.registration;
     std::printf("registration: %s (%s), residual misalignment %.3f px\n", to_string(g.method).c_str(), g.model.c_str(),
                 std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
+    if (!g.note.empty()) std::printf("  %s\n", g.note.c_str());
     std::printf("%-16s %9s %12s %16s %-22s %-22s %-22s %s\n", "region", "pixels", "S0 bias", "S0 bias [K]", "S0",
                 "S1", "S2", "verdict");
     for (const auto& region : r.regions) {
@@ -93,9 +105,14 @@ void register_compare(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--control-points", args->control_points, "Control points YAML (measured ↔ simulated pixels)")
         ->check(CLI::ExistingFile);
+    cmd->add_option("--camera", args->camera,
+                    "The measured camera's model YAML (`tirpol calibrate geometric`) the simulation was rendered through: "
+                    "no warp, the residual misalignment is measured")
+        ->check(CLI::ExistingFile);
     cmd->add_option("--registration", args->registration,
-                    "none | auto | control-points (default: control-points if given, else auto)")
-        ->check(CLI::IsMember({"none", "auto", "control-points"}));
+                    "none | auto | control-points | camera-model (default: camera-model with --camera, else control-points "
+                    "if given, else auto)")
+        ->check(CLI::IsMember({"none", "auto", "control-points", "camera-model"}));
     cmd->add_option("--measured-sigma", args->measured_sigma,
                     "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has no *_std channels");
     cmd->add_option("--band-um", args->band_um, "Band LO HI in µm for the S0 bias in kelvin (default: the EXRs' band_um)")

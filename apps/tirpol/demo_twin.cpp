@@ -7,7 +7,8 @@
 #include <cstdio>
 
 #include "demo_steps.h"
-#include "twin.h"
+#include "invocation.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::cli {
 
@@ -16,6 +17,7 @@ namespace {
 void demo_twin(const std::filesystem::path& out_dir) {
     twin::TwinOptions options;
     options.out_dir = out_dir / "twin";
+    options.tool_version = version_text();
     std::fputs(twin::twin_summary(twin::run_twin(options)).c_str(), stdout);
 }
 

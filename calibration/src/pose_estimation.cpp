@@ -52,6 +52,22 @@ std::vector<ControlPoint> read_control_points(const std::filesystem::path& path)
 }
 
 namespace {
+/// Eigenvalues (ascending) of the scatter matrix of the points' world positions.
+Eigen::Vector3d scatter_eigenvalues(const std::vector<ControlPoint>& points) {
+    Vec3 mean = Vec3::Zero();
+    for (const auto& p : points) mean += p.world_m;
+    mean /= static_cast<double>(points.size());
+    Mat3 scatter = Mat3::Zero();
+    for (const auto& p : points) scatter += (p.world_m - mean) * (p.world_m - mean).transpose();
+    return Eigen::SelfAdjointEigenSolver<Mat3>(scatter).eigenvalues();
+}
+
+/// True when the points lie on a plane to within 1 % of their extent (a wall, a rack of panels).
+bool coplanar(const std::vector<ControlPoint>& points) {
+    const Eigen::Vector3d ev = scatter_eigenvalues(points);
+    return ev[0] < 1e-4 * ev[2];
+}
+
 void check_input(const CameraModel& model, const std::vector<ControlPoint>& points) {
     validate_camera_model(model, "camera model");
     if (points.size() < 4) fail("pose: {} control point(s), need at least 4 (6 or more, spread in depth, recommended)", points.size());
@@ -60,12 +76,7 @@ void check_input(const CameraModel& model, const std::vector<ControlPoint>& poin
             fail("pose: control point '{}' at pixel ({}, {}) is outside the {}x{} image", p.name, p.pixel.x(), p.pixel.y(),
                  model.width, model.height);
     // Collinear (or coincident) world points leave a rotation about their line free.
-    Vec3 mean = Vec3::Zero();
-    for (const auto& p : points) mean += p.world_m;
-    mean /= static_cast<double>(points.size());
-    Mat3 scatter = Mat3::Zero();
-    for (const auto& p : points) scatter += (p.world_m - mean) * (p.world_m - mean).transpose();
-    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Mat3>(scatter).eigenvalues();
+    const Eigen::Vector3d ev = scatter_eigenvalues(points);
     if (ev[2] <= 0.0 || ev[1] < 1e-6 * ev[2])
         fail("pose: the {} control points are collinear or coincident in the world; survey points spread over an area", points.size());
 }
@@ -84,9 +95,11 @@ PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoin
     const cv::Mat k = camera_matrix(model), dist(model.distortion, true);
     cv::Mat rvec, tvec;
     std::vector<int> inlier_index;
+    // EPnP's minimal sets of (nearly) coplanar points are degenerate and can return the mirrored pose;
+    // IPPE (Collins & Bartoli, IJCV 109(3), 2014) is the planar solver.
+    const int method = points.size() == 4 ? cv::SOLVEPNP_AP3P : coplanar(points) ? cv::SOLVEPNP_IPPE : cv::SOLVEPNP_EPNP;
     const bool ok = cv::solvePnPRansac(world, pixels, k, dist, rvec, tvec, false, 1000,
-                                       static_cast<float>(options.ransac_threshold_px), 0.999, inlier_index,
-                                       points.size() == 4 ? cv::SOLVEPNP_AP3P : cv::SOLVEPNP_EPNP);
+                                       static_cast<float>(options.ransac_threshold_px), 0.999, inlier_index, method);
     if (!ok || inlier_index.size() < 4)
         fail("pose: no pose explains at least 4 of the {} control points within {} px; check the pixel picks and that "
              "the points are in the scene's world frame",

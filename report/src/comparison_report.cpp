@@ -187,7 +187,10 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
         return regions.size();
     };
 
-    result.registration = register_images(measured_in, simulated_in, options.registration, options.control_points);
+    result.registration =
+        options.registration == RegistrationMethod::CameraModel && options.camera_model
+            ? register_by_camera_model(measured_in, simulated_in, *options.camera_model, options.camera_model_name)
+            : register_images(measured_in, simulated_in, options.registration, options.control_points);
     planes.measured = measured_in;
     planes.simulated = resample_to_measured(simulated_in, result.registration, w, h);
     Image& measured = planes.measured;

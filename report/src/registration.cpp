@@ -1,7 +1,11 @@
 #include "tirpol/report/registration.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <variant>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -217,7 +221,8 @@ RegistrationMethod parse_registration_method(std::string_view text) {
     if (text == "none") return RegistrationMethod::None;
     if (text == "auto") return RegistrationMethod::Auto;
     if (text == "control-points") return RegistrationMethod::ControlPoints;
-    fail("registration method '{}': expected one of none, auto, control-points", text);
+    if (text == "camera-model") return RegistrationMethod::CameraModel;
+    fail("registration method '{}': expected one of none, auto, control-points, camera-model", text);
 }
 
 std::string to_string(RegistrationMethod method) {
@@ -225,6 +230,7 @@ std::string to_string(RegistrationMethod method) {
         case RegistrationMethod::None: return "none";
         case RegistrationMethod::Auto: return "auto";
         case RegistrationMethod::ControlPoints: return "control-points";
+        case RegistrationMethod::CameraModel: return "camera-model";
     }
     return "?";
 }
@@ -256,6 +262,8 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
     reg.method = method;
     cv::Matx33d homography = cv::Matx33d::eye();
 
+    if (method == RegistrationMethod::CameraModel)
+        fail("registration 'camera-model' needs the measured camera's model (--camera CAM.yaml)");
     if (method == RegistrationMethod::None) {
         if (!same_size)
             fail("the measured image is {}×{} and the simulated one {}×{}: registration 'none' needs equal sizes; "
@@ -349,6 +357,52 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         reg.rotation_deg = rotation_deg(homography, w, h);
     }
     reg.residual_shift_px = residual_shift(measured, resample_to_measured(simulated, reg, w, h));
+    return reg;
+}
+
+namespace {
+
+/// The renderer's camera attribute `name` of `simulated`, checked against `expected` to float precision.
+void check_camera_attribute(const Image& simulated, const std::string& name, const std::vector<double>& expected,
+                            const std::string& camera_name, const std::string& what) {
+    const auto it = simulated.attributes().find(name);
+    const auto* values = it == simulated.attributes().end() ? nullptr : std::get_if<std::vector<double>>(&it->second);
+    if (!values)
+        fail("registration by camera model {}: the simulated image has no '{}' header attribute; render it through "
+             "that model (scene `camera: {{model: {}}}`) with this version of tirpol",
+             camera_name, name, camera_name);
+    // Missing trailing coefficients are zero (the renderer writes the shortest OpenCV layout that holds them).
+    const auto at = [](const std::vector<double>& v, std::size_t i) { return i < v.size() ? v[i] : 0.0; };
+    bool same = true;
+    for (std::size_t i = 0; same && i < std::max(values->size(), expected.size()); ++i)
+        same = std::abs(at(*values, i) - at(expected, i)) <= 1e-6 * std::max(std::abs(at(expected, i)), 1e-3);
+    if (!same)
+        fail("registration by camera model {}: the simulated image was rendered with {} [{}], the model has [{}]; "
+             "render the simulation through the same camera model",
+             camera_name, what, fmt::join(*values, ", "), fmt::join(expected, ", "));
+}
+
+}  // namespace
+
+Registration register_by_camera_model(const Image& measured, const Image& simulated, const CameraModel& camera,
+                                      const std::string& camera_name) {
+    const int w = measured.width(), h = measured.height();
+    if (w != camera.width || h != camera.height)
+        fail("registration by camera model {}: the model is {}×{} pixels, the measured image {}×{}", camera_name,
+             camera.width, camera.height, w, h);
+    if (simulated.width() != w || simulated.height() != h)
+        fail("registration by camera model {}: the simulated image is {}×{}, the model and the measured image {}×{}",
+             camera_name, simulated.width(), simulated.height(), w, h);
+    check_camera_attribute(simulated, "camera_intrinsics_px", {camera.fx, camera.fy, camera.cx, camera.cy}, camera_name,
+                           "intrinsics fx fy cx cy");
+    check_camera_attribute(simulated, "camera_distortion", camera.distortion, camera_name, "distortion");
+    Registration reg;
+    reg.method = RegistrationMethod::CameraModel;
+    reg.note = fmt::format(
+        "simulation rendered through the calibrated camera model {} (fx {:.2f} fy {:.2f} cx {:.2f} cy {:.2f} px, {} "
+        "distortion): it lies on the measured pixel grid, no warp",
+        camera_name, camera.fx, camera.fy, camera.cx, camera.cy, camera.distortion_model());
+    reg.residual_shift_px = residual_shift(measured, simulated);
     return reg;
 }
 

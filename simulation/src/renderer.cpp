@@ -347,6 +347,11 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image top; S1 = I0 - I90; "
         "S3 > 0 right-circular seen by the receiver");
     attrs["renderer"] = std::string("tirpol polarized path tracer (Embree 3, TBB)");
+    // The lens rendered through (OpenCV pixel convention), so a comparison can check that it is the
+    // measured camera's calibrated model (report::register_by_camera_model).
+    const CameraModel& lens = scene.camera.lens_model();
+    attrs["camera_intrinsics_px"] = std::vector<double>{lens.fx, lens.fy, lens.cx, lens.cy};
+    attrs["camera_distortion"] = lens.distortion;
 
     if (statistics) {
         *statistics = stats;

@@ -4,6 +4,7 @@
 // reprojection error is < 0.1 px without noise and grows as it should with sensor noise. A board at
 // 10 m gives the pose from its corners as surveyed control points within 0.1° and 1 cm.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +14,10 @@
 #include "test_support.h"
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/calibration/pose_estimation.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/renderer.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol {
 namespace {
@@ -32,24 +36,11 @@ CameraModel truth_lens() {
     return m;
 }
 
-struct View {
-    Vec3 position, look_at, up;
-};
+using View = simulation::BoardView;
 
 /// 15 views: the board tilted 20–40° toward the camera from all around, at 1.1–1.3 m, shifted in
 /// the image so the corners of the frame (where distortion is largest) are covered, with some roll.
-std::vector<View> calibration_views() {
-    std::vector<View> views;
-    for (int i = 0; i < 15; ++i) {
-        const double tilt = deg_to_rad(20.0 + 5.0 * (i % 5)), azimuth = 2.0 * kPi * i / 15.0;
-        const double distance = 1.1 + 0.04 * (i % 4);
-        const Vec3 position = distance * Vec3(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
-        const Vec3 look_at(0.05 * std::cos(3.0 * azimuth), 0.035 * std::sin(2.0 * azimuth), 0.0);
-        const double roll = deg_to_rad(90.0 + 25.0 * std::sin(1.7 * i));
-        views.push_back({position, look_at, Vec3(std::cos(azimuth + roll), std::sin(azimuth + roll), 0.0)});
-    }
-    return views;
-}
+std::vector<View> calibration_views() { return simulation::board_calibration_views(15, truth_lens().fx, truth_lens().width); }
 
 struct RenderedFrames {
     std::vector<std::filesystem::path> frames;

@@ -30,6 +30,9 @@ inline const std::vector<std::string> kZQuantities = {"S0", "S1", "S2"};
 struct CompareOptions {
     RegistrationMethod registration = RegistrationMethod::Auto;
     std::vector<ControlPoint> control_points;
+    /// The measured camera's calibrated model, for RegistrationMethod::CameraModel, and its name (file).
+    std::optional<CameraModel> camera_model;
+    std::string camera_model_name = "camera model";
     /// Regions of interest in measured pixels; none = one region covering the image.
     std::optional<RegionSet> regions;
     /// Measured noise when the measured image has no S0_std/S1_std/S2_std (or *_var) channels: the

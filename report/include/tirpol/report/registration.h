@@ -8,6 +8,11 @@
 /// Evangelidis & Psarakis (IEEE TPAMI 30(10), 2008; cv::findTransformECC) on the gradient magnitude
 /// of S0, which is insensitive to the gain/offset differences between a measurement and a render.
 ///
+/// A simulation rendered through the measured camera's calibrated model (intrinsics, distortion and
+/// pose from `tirpol calibrate geometric|pose`) already lies on the measured pixel grid: registration
+/// by camera model checks that it was (the renderer's header attributes against the model) and warps
+/// nothing — a homography cannot undo lens distortion or parallax, the camera model does.
+///
 /// The residual misalignment after registration is measured independently of the method by phase
 /// correlation (Kuglin & Hines 1975; cv::phaseCorrelate) between the measured and the registered
 /// simulated S0 gradient magnitude.
@@ -23,6 +28,7 @@
 #include <string_view>
 #include <vector>
 
+#include "tirpol/core/camera_model.h"
 #include "tirpol/core/image.h"
 #include "tirpol/report/regions.h"
 
@@ -32,9 +38,10 @@ enum class RegistrationMethod {
     None,           ///< identity; images must have the same size
     Auto,           ///< ECC on S0 gradient magnitude (homography, falling back to affine, translation)
     ControlPoints,  ///< homography from control points
+    CameraModel,    ///< identity: the simulation was rendered through the measured camera's calibrated model
 };
 
-/// "none" | "auto" | "control-points"; throws tirpol::Error naming the accepted values otherwise.
+/// "none" | "auto" | "control-points" | "camera-model"; throws tirpol::Error naming the accepted values otherwise.
 RegistrationMethod parse_registration_method(std::string_view text);
 std::string to_string(RegistrationMethod method);
 
@@ -82,6 +89,14 @@ struct Registration {
 /// different sizes, throws tirpol::Error asking for control points. ControlPoints needs ≥ 4 pairs.
 Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,
                              const std::vector<ControlPoint>& control_points);
+
+/// Registration by camera model: checks that `simulated` was rendered through `camera` (same size as
+/// it and as `measured`; the renderer's `camera_intrinsics_px` = fx fy cx cy, OpenCV pixel convention,
+/// and `camera_distortion` header attributes equal the model's to float precision) and returns the
+/// identity with the residual misalignment measured by phase correlation. Throws tirpol::Error naming
+/// `camera_name` and the field that disagrees, or the missing attribute.
+Registration register_by_camera_model(const Image& measured, const Image& simulated, const CameraModel& camera,
+                                      const std::string& camera_name);
 
 /// Resamples every channel of `simulated` onto the measured grid (width × height) through the
 /// registration (bilinear; nearest for integer label channels object_id/material_id). Pixels that

@@ -23,7 +23,12 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/sensor_model.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
+
+/// The instrument's detector and wire grid: an uncooled 16-bit camera with NEDT 50 mK, the paper's
+/// grid (extinction 400, τ = 0.7, §3.1) tilted so it reflects the cold sky into the camera, and its
+/// own emission at air temperature.
+simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k);
 
 /// The world the camera looks at. Thread-safe: the camera's fill runs on the server's thread.
 class TwinWorld {
@@ -45,6 +50,12 @@ public:
     /// Counts of one frame at polarizer angle `angle_deg`: the sensor model (gain, offset, NEDT noise,
     /// the grid's reflected and emitted radiance) with a fresh noise realisation per call.
     void fill(double angle_deg, std::vector<float>& counts);
+
+    /// Counts of one frame of `stokes` through the same sensor model, polarizer at `angle_deg` or out of
+    /// the beam, noise realisation `frame_index` (frames filmed outside the capture loop, e.g. of the
+    /// geometric calibration target).
+    std::vector<float> sensor_frame(const Image& stokes, double angle_deg, bool polarizer_in_beam,
+                                    std::uint64_t frame_index) const;
 
     int width() const { return m_width; }
     int height() const { return m_height; }
@@ -112,4 +123,4 @@ private:
     std::string m_camera_transport;
 };
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

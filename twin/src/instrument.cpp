@@ -1,6 +1,6 @@
 // The twin's instrument: world state, the sensor model as the camera's detector, and the devices.
 
-#include "twin_instrument.h"
+#include "tirpol/twin/instrument.h"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -18,7 +18,7 @@
 #include "tirpol/core/log.h"
 #include "tirpol/core/session.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 
 using namespace acquisition;
 
@@ -74,16 +74,33 @@ void TwinWorld::fill(double angle_deg, std::vector<float>& counts) {
     std::lock_guard lock(m_mutex);
     const Image& source = m_blackbody_k ? blackbody_image(*m_blackbody_k) : m_scene;
     if (source.pixel_count() == 0) fail("twin: no scene set before the camera was read");
+    counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, ++m_frame_index);
+}
+
+std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg, bool polarizer_in_beam,
+                                           std::uint64_t frame_index) const {
     simulation::SensorModel model = m_sensor;
     model.analyzer.angles_deg = {angle_deg};
-    if (!m_polarizer_in_beam) {
+    if (!polarizer_in_beam) {
         // Polarizer out of the beam: no diattenuation, no grid reflection or emission.
         model.analyzer.transmission = 1.0;
         model.analyzer.extinction_ratio = 1.0;
         model.background = {};
     }
-    const std::vector<Image> frames = simulation::polarizer_images(source, model, m_band, ++m_frame_index);
-    counts = frames.front().channel("counts");
+    return simulation::polarizer_images(stokes, model, m_band, frame_index).front().channel("counts");
+}
+
+simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) {
+    simulation::SensorModel s;
+    s.analyzer.transmission = 0.7;
+    s.analyzer.extinction_ratio = 400.0;
+    s.background.reflectance = 0.05;
+    s.background.reflected_radiance = band.radiance(240.0);  // clear night sky, brightness temperature ~240 K
+    s.background.emissivity = 0.03;
+    s.background.temperature_k = air_temperature_k;
+    s.counts = simulation::CountsModel{800.0, 3000.0, 0.05, 300.0};
+    s.seed = 9;
+    return s;
 }
 
 Status WorldReportingStage::home(std::chrono::milliseconds timeout) {
@@ -205,4 +222,4 @@ void TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::pat
     run_capture(*m_camera, *m_stage, plan, session, options);
 }
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

@@ -1,13 +1,13 @@
 // Regions of the twin's images from the truth render's geometry channels.
 
-#include "twin_regions.h"
+#include "regions.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 
 std::size_t object_index(const simulation::Scene& scene, const std::string& name) {
     std::string names;
@@ -86,4 +86,4 @@ double plane_of_emission_angle(const Image& render, const simulation::Camera& ca
     return std::atan2(p.dot(up), p.dot(reference));
 }
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

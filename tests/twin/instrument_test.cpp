@@ -4,7 +4,7 @@
 // C = g·I + o with, for unpolarized light through a diattenuator, I = ½(τ + τ/ER)·S0 + ρ·L_r + ε·L_bb(T_grid)
 // (Chipman, Lam & Young 2018 eq 6.35 for the diattenuator).
 
-#include "twin_instrument.h"
+#include "tirpol/twin/instrument.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "tirpol/acquisition/stage_registry.h"
 #include "tirpol/core/session.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 namespace {
 
 using namespace std::chrono_literals;
@@ -102,4 +102,4 @@ TEST(TwinInstrument, CaptureLoopRecordsBlackbodyThenSceneThroughThePtyStage) {
 }
 
 }  // namespace
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

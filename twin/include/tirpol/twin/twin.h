@@ -5,8 +5,9 @@
 /// polarizer mount (APT or Elliptec bytes on a pseudo-terminal, opened through the real serial
 /// driver); `run_capture` records the sessions, calibration reduces them to Stokes, the flat black
 /// paint's polarized emissivity is extracted over view angles and fitted, the scene is rendered again
-/// with the fitted paint and the comparison report is written. Lives in apps/ because it wires
-/// simulation to acquisition, which must not depend on each other.
+/// with the fitted paint and the comparison report is written. A module of its own (tirpol::twin)
+/// because it wires simulation to acquisition, which must not depend on each other; the CLI's demo
+/// step and the Python bindings only call run_twin() and print twin_summary().
 
 #include <filesystem>
 #include <map>
@@ -14,9 +15,11 @@
 #include <vector>
 
 #include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/report/registration.h"
 #include "tirpol/report/verdict.h"
+#include "tirpol/twin/camera_geometry.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 
 /// One camera position for the emissivity series (the scene's own camera is the first view).
 struct TwinView {
@@ -37,6 +40,7 @@ struct TwinOptions {
     int threads = 0;   ///< render threads (0: all cores)
     std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted
     std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
+    std::string tool_version = "tirpol";  ///< written into the report's provenance ("tirpol X.Y.Z")
 };
 
 /// Extracted polarized emissivity of the target in one view, with the renderer's truth there.
@@ -75,6 +79,8 @@ struct TwinResult {
     std::vector<TwinEmissivity> emissivity;
     std::vector<TwinParameter> parameters;
     double reduced_chi2 = 0.0;
+    CameraGeometryRecovery camera;  ///< the field camera's lens and pose (view 0), true and recovered
+    report::Registration registration;  ///< of the comparison: by the recovered camera model, with the residual
     std::vector<TwinRegionAgreement> regions;
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
     std::filesystem::path report_regions;  ///< the report's regions as YAML (for `tirpol compare --rois`)
@@ -88,4 +94,4 @@ TwinResult run_twin(const TwinOptions& options);
 std::string twin_summary(const TwinResult& r);
 
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

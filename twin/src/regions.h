@@ -13,7 +13,7 @@
 #include "tirpol/simulation/camera.h"
 #include "tirpol/simulation/scene.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 
 /// Index of the object called `name` in `scene`; throws tirpol::Error listing the names otherwise.
 std::size_t object_index(const simulation::Scene& scene, const std::string& name);
@@ -31,4 +31,4 @@ double rect_mean(const Image& image, const std::string& channel, const calibrati
 double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
                                const calibration::PixelRect& rect);
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

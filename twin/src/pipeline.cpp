@@ -23,12 +23,12 @@
 #include "tirpol/report/comparison_report.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
-#include "invocation.h"
-#include "twin.h"
-#include "twin_instrument.h"
-#include "twin_regions.h"
+#include "tirpol/twin/camera_geometry.h"
+#include "tirpol/twin/twin.h"
+#include "tirpol/twin/instrument.h"
+#include "regions.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
 
 namespace fs = std::filesystem;
 
@@ -54,22 +54,6 @@ private:
     std::string m_name;
     std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now();
 };
-
-/// The instrument's detector and wire grid: an uncooled 16-bit camera with NEDT 50 mK, the paper's
-/// grid (extinction 400, τ = 0.7, §3.1) tilted so it reflects the cold sky into the camera, and its
-/// own emission at air temperature.
-simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) {
-    simulation::SensorModel s;
-    s.analyzer.transmission = 0.7;
-    s.analyzer.extinction_ratio = 400.0;
-    s.background.reflectance = 0.05;
-    s.background.reflected_radiance = band.radiance(240.0);  // clear night sky, brightness temperature ~240 K
-    s.background.emissivity = 0.03;
-    s.background.temperature_k = air_temperature_k;
-    s.counts = simulation::CountsModel{800.0, 3000.0, 0.05, 300.0};
-    s.seed = 9;
-    return s;
-}
 
 std::vector<TwinView> default_views(const simulation::Scene& scene) {
     const Vec3 p = scene.camera.position();
@@ -174,7 +158,8 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     fs::create_directories(out);
     const fs::path scene_file = opt.scene_file.empty() ? find_config("scenes/panels_night.yaml") : opt.scene_file;
 
-    // 1. The truth: the paper's nine panels under a clear night sky, from every view.
+    // 1. The truth: the paper's nine panels under a clear night sky, from every view, through the
+    //    field camera as it is — a realistic lens, and not quite where the user set it up.
     simulation::Scene scene = simulation::load_scene(scene_file);
     scene.camera = scene.camera.resized(opt.width, opt.height);
     scene.sampling.samples_per_pixel = opt.spp;
@@ -185,10 +170,11 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     const std::uint32_t target_material = scene.objects[target].material;
     std::vector<Image> truth;
     std::vector<simulation::Camera> cameras;
+    const simulation::Camera field_lens = with_realistic_lens(scene.camera);
     {
         StageTimer t(result, "render truth", stage);
         for (std::size_t v = 0; v < views.size(); ++v) {
-            cameras.push_back(view_camera(scene.camera, views[v]));
+            cameras.push_back(with_pose_error(view_camera(field_lens, views[v])));
             simulation::Scene s = scene;
             s.camera = cameras.back();
             truth.push_back(simulation::render(s, render_options));
@@ -227,6 +213,16 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
             instrument.acquire(plan, sessions / name);
             result.sessions.push_back(sessions / name);
         }
+    }
+
+    // The camera's geometry, recovered as in the field: lens from filmed checkerboard frames, pose from
+    // the surveyed panel corners.
+    {
+        StageTimer t(result, "camera geometry", stage);
+        CameraGeometryOptions go;
+        go.threads = opt.threads;
+        result.camera = recover_camera_geometry(scene, cameras.front(), view_camera(scene.camera, views.front()), world,
+                                                out / "camera", go);
     }
 
     // 3. Calibration and reduction to measured Stokes.
@@ -337,13 +333,14 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         }
     }
 
-    // 6. The same scene rendered with the fitted paint (fresh samples) — the simulation to compare.
+    // 6. The same scene rendered with the fitted paint (fresh samples) through the recovered camera —
+    //    the simulation to compare, on the measured pixel grid.
     Image simulated;
     {
         StageTimer t(result, "render fitted", stage);
         const materials::Material fitted = materials::load_material(result.fitted_material);
         simulation::Scene s = scene;
-        s.camera = cameras.front();
+        s.camera = result.camera.camera();
         s.materials[target_material].brdf = fitted.brdf;
         s.sampling.seed = scene.sampling.seed + 1;
         simulated = simulation::render(s, render_options);
@@ -356,7 +353,10 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     {
         StageTimer t(result, "compare", stage);
         report::CompareOptions co;
-        co.registration = report::RegistrationMethod::None;  // same camera model: no misalignment to find
+        // Rendered through the recovered camera: registration by the camera model, no warp.
+        co.registration = report::RegistrationMethod::CameraModel;
+        co.camera_model = result.camera.lens;
+        co.camera_model_name = result.camera.lens_file.string();
         co.measured_name = result.measured_exr.string();
         co.simulated_name = result.simulated_exr.string();
         report::RegionSet regions;
@@ -370,17 +370,19 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         // The regions as a file and the equivalent command, so the report can be repeated from files.
         result.report_regions = out / "report_regions.yaml";
         write_file_atomic(result.report_regions, report::regions_yaml(regions));
-        co.provenance.tool_version = version_text();
+        co.provenance.tool_version = opt.tool_version;
         co.provenance.command_line = fmt::format(
-            "tirpol compare --measured {} --simulated {} --rois {} --registration none -o {} (run in-process by "
+            "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process by "
             "`tirpol demo`)",
             result.measured_exr.string(), result.simulated_exr.string(), result.report_regions.string(),
-            (out / "report").string());
+            result.camera.lens_file.string(), (out / "report").string());
         co.provenance.inputs.push_back(report::describe_input("measured", result.measured_exr, &measured.front()));
         co.provenance.inputs.push_back(report::describe_input("simulated", result.simulated_exr, &simulated));
         co.provenance.inputs.push_back(report::describe_input("regions", result.report_regions));
+        co.provenance.inputs.push_back(report::describe_input("camera model", result.camera.lens_file));
         const report::CompareResult cr = write_comparison_report(measured.front(), simulated, co, out / "report");
         result.report_html = cr.html;
+        result.registration = cr.registration;
         for (const auto& r : cr.regions) {
             result.regions.push_back({r.name, r.pixel_count, r.z.at("S0").fraction_above_2,
                                       r.z.at("S1").fraction_above_2, r.z.at("S2").fraction_above_2, r.verdict});
@@ -401,4 +403,4 @@ TwinResult run_twin(const TwinOptions& options) {
     return result;
 }
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin

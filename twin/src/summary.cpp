@@ -4,9 +4,35 @@
 
 #include <cmath>
 
-#include "twin.h"
+#include "tirpol/twin/twin.h"
 
-namespace tirpol::cli::twin {
+namespace tirpol::twin {
+
+namespace {
+
+std::string camera_geometry_summary(const CameraGeometryRecovery& c) {
+    std::string out = fmt::sprintf(
+        "  camera geometry, true vs recovered (lens from %d of %d board frames, RMS %.3f px; pose from %d panel "
+        "corners):\n   ",
+        c.lens.views, c.board_frames, c.lens.rms_px, c.control_points);
+    const double truth[] = {c.true_lens.fx, c.true_lens.fy, c.true_lens.cx, c.true_lens.cy};
+    const double recovered[] = {c.lens.fx, c.lens.fy, c.lens.cx, c.lens.cy};
+    for (std::size_t i = 0; i < 4; ++i)
+        out += fmt::sprintf(" %s %.2f vs %.2f (%+.2f %%);", c.lens_parameter_names[i].c_str(), truth[i], recovered[i],
+                            100.0 * (recovered[i] / truth[i] - 1.0));
+    out += "\n   ";
+    for (std::size_t i = 0; i < c.lens.distortion.size(); ++i) {
+        const double t = i < c.true_lens.distortion.size() ? c.true_lens.distortion[i] : 0.0;
+        out += fmt::sprintf(" %s %+.4f vs %+.4f ± %.4f;", c.lens_parameter_names[4 + i].c_str(), t, c.lens.distortion[i],
+                            c.lens.std_dev[4 + i]);
+    }
+    out += fmt::sprintf("\n    pose: the nominal one is off by %.3f° and %.4f m; the recovered one by %.4f° and %.4f m\n",
+                        c.nominal_rotation_error_deg, c.nominal_position_error_m, c.rotation_error_deg,
+                        c.position_error_m);
+    return out;
+}
+
+}  // namespace
 
 std::string twin_summary(const TwinResult& r) {
     std::string out;
@@ -15,6 +41,7 @@ std::string twin_summary(const TwinResult& r) {
     out += fmt::sprintf("  sessions:");
     for (const auto& s : r.sessions) out += fmt::sprintf(" %s", s.filename().c_str());
     out += fmt::sprintf(" (in %s)\n", r.sessions.front().parent_path().c_str());
+    out += camera_geometry_summary(r.camera);
     const auto& t = r.target_stokes;
     out += fmt::sprintf("  flat black paint, view 0 ROI mean, measured vs truth render [W/(m²·sr)]:\n");
     for (int c = 0; c < 3; ++c)
@@ -34,6 +61,10 @@ std::string twin_summary(const TwinResult& r) {
     out += fmt::sprintf("    fixed:");
     for (const auto& p : r.parameters)
         if (p.fixed) out += fmt::sprintf(" %s=%g", p.name.c_str(), p.fitted);
+    out += fmt::sprintf("\n  comparison registration: %s, residual misalignment %.3f px (%s)",
+                        report::to_string(r.registration.method).c_str(),
+                        std::hypot(r.registration.residual_shift_px[0], r.registration.residual_shift_px[1]),
+                        r.registration.note.c_str());
     out += fmt::sprintf(
         "\n  Stokes agreement per region (measured vs fitted render; |z|>2 fraction of S0, S1, S2; 4.6%% expected from "
         "noise):\n");
@@ -47,4 +78,4 @@ std::string twin_summary(const TwinResult& r) {
     return out;
 }
 
-}  // namespace tirpol::cli::twin
+}  // namespace tirpol::twin
