@@ -63,9 +63,13 @@ TEST(Mueller, NonIdealPolarizerLeaksOneOverExtinctionRatio) {
     EXPECT_THROW(polarizer_with_extinction(0.0, 0.7, 0.5), Error);
 }
 
-TEST(Mueller, QuarterWavePlateAt45TurnsHorizontalIntoCircular) {
+TEST(Mueller, QuarterWavePlateAt45TurnsHorizontalIntoRightCircular) {
+    // Collett, Field Guide to Polarization (SPIE 2005), quarter-wave retarder at +45°: rows
+    // (1,0,0,0), (0,0,0,−1), (0,0,1,0), (0,1,0,0), so horizontal light leaves with S3 = +1. In
+    // tirpol's receiver-view convention that is right-circular: the field turns from the fast axis
+    // (+45°) toward the slow one (−45°), clockwise for an observer looking at the source (Hecht §8.2).
     const StokesVector out = linear_retarder(kPi / 4, kPi / 2) * linearly_polarized(1, 1, 0);
-    EXPECT_NEAR(std::abs(out[3]), 1.0, 1e-12);
+    EXPECT_NEAR(out[3], 1.0, 1e-12);
     EXPECT_NEAR(out[1], 0.0, 1e-12);
     EXPECT_NEAR(out[2], 0.0, 1e-12);
 }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "tirpol/acquisition/capture_plan.h"
+#include "tirpol/calibration/datasheet_analyzer.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -230,7 +231,12 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     {
         StageTimer t(result, "calibrate and reduce", stage);
         const auto radiometric = calibration::calibrate_radiometric_session(sessions / "lab", scene.band);
-        const auto polarimetric = calibration::calibrate_polarimetric_session(sessions / "view0", radiometric);
+        // The user has the polarizer's datasheet but no known polarized source: its extinction ratio
+        // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
+        // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
+        const calibration::DatasheetAnalyzer datasheet{world.sensor().analyzer.extinction_ratio, {}};
+        const auto polarimetric =
+            calibration::calibrate_polarimetric_session(sessions / "view0", radiometric, datasheet);
         for (std::size_t v = 0; v < views.size(); ++v) {
             measured.push_back(
                 calibration::reduce_session(sessions / fmt::format("view{}", v), radiometric, &polarimetric));

@@ -36,7 +36,8 @@ MuellerMatrix polarizer_with_extinction(double axis_rad, double transmission, do
 
 /// Linear retarder with fast axis at `fast_axis_rad` and retardance `retardance_rad` (Collett's form;
 /// equals mueller_from_jones(diag(1, e^{−iδ})) for a horizontal fast axis, i.e. the exp(i(ωt − kz))
-/// time convention, in which a quarter-wave plate at +45° turns horizontal light into S3 = −1).
+/// time convention). A quarter-wave plate with its fast axis at +45° turns horizontal light into
+/// S3 = +1, right-circular seen by the receiver as stokes.h defines it.
 MuellerMatrix linear_retarder(double fast_axis_rad, double retardance_rad);
 
 /// Partial depolarizer diag(1, a, a, a) with `a` in [0, 1].

@@ -59,6 +59,8 @@ public:
 
     int width() const { return m_width; }
     int height() const { return m_height; }
+    /// The instrument's sensor model (what its datasheets tell the user).
+    const simulation::SensorModel& sensor() const { return m_sensor; }
 
 private:
     const Image& blackbody_image(double temperature_k);
