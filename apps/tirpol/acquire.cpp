@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/capture_session.h"
 #include "tirpol/acquisition/stage_registry.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
@@ -81,10 +82,8 @@ void run_acquire(const AcquireArgs& a) {
     stop_on_interrupt.watch(stage.get());
     const CameraInfo camera_info = camera->info();
 
-    SessionWriter session = a.resume ? SessionWriter::resume(dir)
-                                     : SessionWriter::create(dir, new_session_manifest(camera_info, stage->info(), plan));
+    SessionWriter session = open_capture_session(dir, camera_info, stage->info(), plan, a.resume);
     if (a.resume) {
-        check_resumable(session.manifest(), camera_info, plan);
         for (const auto& file : session.adopted_files())
             std::fprintf(stderr, "tirpol acquire: recovered %s (written just before the interruption)\n", file.c_str());
     }
