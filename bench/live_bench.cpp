@@ -91,7 +91,8 @@ void LiveViewPageOpen(benchmark::State& state) {
     live::LiveView view(options);
     live::LiveServer server(view, {});
     std::thread serving([&] { server.run(); });
-    const auto profile_root = std::filesystem::temp_directory_path() / ("tirpol-live-bench-" + std::to_string(::getpid()));
+    const auto profile_root =
+        std::filesystem::temp_directory_path() / ("tirpol-live-bench-" + std::to_string(::getpid()));
 
     for (auto _ : state) {
         std::this_thread::sleep_for(2s);  // stream start-up

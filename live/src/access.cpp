@@ -19,8 +19,7 @@ std::string make_access_token() {
 bool token_matches(const std::string& presented, const std::string& token) {
     if (presented.size() != token.size() || token.empty()) return false;
     unsigned char diff = 0;
-    for (std::size_t i = 0; i < token.size(); ++i)
-        diff |= static_cast<unsigned char>(presented[i] ^ token[i]);
+    for (std::size_t i = 0; i < token.size(); ++i) diff |= static_cast<unsigned char>(presented[i] ^ token[i]);
     return diff == 0;
 }
 

@@ -20,12 +20,18 @@ constexpr std::chrono::milliseconds kStopGrace{10000};
 
 const char* to_string(CapturePhase phase) {
     switch (phase) {
-        case CapturePhase::Idle: return "idle";
-        case CapturePhase::Running: return "running";
-        case CapturePhase::Stopping: return "stopping";
-        case CapturePhase::Complete: return "complete";
-        case CapturePhase::Stopped: return "stopped";
-        case CapturePhase::Failed: return "failed";
+        case CapturePhase::Idle:
+            return "idle";
+        case CapturePhase::Running:
+            return "running";
+        case CapturePhase::Stopping:
+            return "stopping";
+        case CapturePhase::Complete:
+            return "complete";
+        case CapturePhase::Stopped:
+            return "stopped";
+        case CapturePhase::Failed:
+            return "failed";
     }
     return "?";
 }
@@ -62,8 +68,9 @@ void CaptureControl::start(const CaptureRequest& request) {
             options.progress_stream = nullptr;
             options.interrupt = &m_stop;
             const CaptureSummary s = run_capture(camera, m_stage, plan, *session, options);
-            finish(CapturePhase::Complete, fmt::format("session complete: {} steps ({} recorded now), {} frames, {} dropped",
-                                                       s.steps_total, s.steps_recorded, s.frames, s.dropped));
+            finish(CapturePhase::Complete,
+                   fmt::format("session complete: {} steps ({} recorded now), {} frames, {} dropped", s.steps_total,
+                               s.steps_recorded, s.frames, s.dropped));
         } catch (const Error& e) {
             finish(m_stop ? CapturePhase::Stopped : CapturePhase::Failed, e.what());
         } catch (const std::exception& e) {  // e.g. a full disk (std::filesystem_error): shown, not fatal

@@ -40,9 +40,12 @@ DisplayConverter::DisplayConverter(const acquisition::CameraInfo& camera,
 
 std::string DisplayConverter::units() const {
     switch (m_unit) {
-        case DisplayUnit::Counts: return "counts";
-        case DisplayUnit::Radiance: return "W/(m²·sr)";
-        case DisplayUnit::Temperature: return "K";
+        case DisplayUnit::Counts:
+            return "counts";
+        case DisplayUnit::Radiance:
+            return "W/(m²·sr)";
+        case DisplayUnit::Temperature:
+            return "K";
     }
     return "";
 }

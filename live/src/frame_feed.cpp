@@ -13,8 +13,8 @@ constexpr std::chrono::milliseconds kGrabTimeout{500};
 Result<Frame> FrameTap::next(std::chrono::milliseconds timeout) {
     std::unique_lock lock(m_mutex);
     if (!m_pushed.wait_for(lock, timeout, [&] { return !m_frames.empty(); }))
-        return DeviceError{DeviceErrorCode::Timeout, "live view: no frame from the camera within " +
-                                                         std::to_string(timeout.count()) + " ms"};
+        return DeviceError{DeviceErrorCode::Timeout,
+                           "live view: no frame from the camera within " + std::to_string(timeout.count()) + " ms"};
     Frame frame = std::move(m_frames.front());
     m_frames.pop_front();
     return frame;

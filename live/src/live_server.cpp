@@ -18,6 +18,22 @@ constexpr std::chrono::milliseconds kLongPoll{1000};
 /// Each open page holds a few connections (image, status, Stokes); two dozen threads serve several pages.
 constexpr std::size_t kServerThreads = 24;
 
+constexpr const char* kTokenCookie = "tirpol_token";
+
+/// The value of cookie `name` in a Cookie header ("a=1; b=2"), or "".
+std::string cookie_value(const std::string& header, const std::string& name) {
+    std::size_t at = 0;
+    while (at < header.size()) {
+        const std::size_t end = std::min(header.find(';', at), header.size());
+        std::size_t start = at;
+        while (start < end && header[start] == ' ') ++start;
+        if (header.compare(start, name.size() + 1, name + "=") == 0)
+            return header.substr(start + name.size() + 1, end - start - name.size() - 1);
+        at = end + 1;
+    }
+    return "";
+}
+
 void send_json(httplib::Response& res, const nlohmann::json& j, int status = 200) {
     res.status = status;
     res.set_content(j.dump(), "application/json");
@@ -62,9 +78,15 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
 
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
         if (m_token.empty()) return httplib::Server::HandlerResponse::Unhandled;
-        const std::string presented =
-            req.has_param("token") ? req.get_param_value("token") : req.get_header_value("X-Tirpol-Token");
-        if (token_matches(presented, m_token)) return httplib::Server::HandlerResponse::Unhandled;
+        if (token_matches(req.get_param_value("token"), m_token)) {
+            // The page's own files (<script src>, <link href>) carry no query: the cookie covers them.
+            res.set_header("Set-Cookie",
+                           std::string(kTokenCookie) + "=" + m_token + "; HttpOnly; SameSite=Strict; Path=/");
+            return httplib::Server::HandlerResponse::Unhandled;
+        }
+        if (token_matches(req.get_header_value("X-Tirpol-Token"), m_token) ||
+            token_matches(cookie_value(req.get_header_value("Cookie"), kTokenCookie), m_token))
+            return httplib::Server::HandlerResponse::Unhandled;
         res.status = 401;
         res.set_content("tirpol live: this page needs the access token printed when the server started (?token=...)\n",
                         "text/plain");
@@ -80,8 +102,10 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
     server.Get("/live.js", serve_file("live.js", "text/javascript; charset=utf-8"));
     server.Get("/live.css", serve_file("live.css", "text/css; charset=utf-8"));
 
-    server.Get("/api/describe", [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.describe()); });
-    server.Get("/api/status", [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.status()); });
+    server.Get("/api/describe",
+               [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.describe()); });
+    server.Get("/api/status",
+               [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.status()); });
     server.Get("/api/frame", [&view](const httplib::Request& req, httplib::Response& res) {
         send_image(res, view.frame_after(after_param(req), kLongPoll));
     });
@@ -98,7 +122,8 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
             view.capture().start(request);
             send_json(res, view.status());
         } catch (const nlohmann::json::exception& e) {
-            send_json(res, {{"error", std::string("capture request: expected {plan, output, resume}: ") + e.what()}}, 400);
+            send_json(res, {{"error", std::string("capture request: expected {plan, output, resume}: ") + e.what()}},
+                      400);
         } catch (const Error& e) {
             send_json(res, {{"error", e.what()}}, 400);
         }
@@ -128,14 +153,16 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
 
     m_port = options.port == 0 ? server.bind_to_any_port(options.bind_address)
                                : (server.bind_to_port(options.bind_address, options.port) ? options.port : -1);
-    if (m_port <= 0) fail("live view: cannot listen on {} port {} (in use, or not an address of this machine)",
-                          options.bind_address, options.port);
+    if (m_port <= 0)
+        fail("live view: cannot listen on {} port {} (in use, or not an address of this machine)", options.bind_address,
+             options.port);
 }
 
 LiveServer::~LiveServer() { stop(); }
 
 std::string LiveServer::url() const {
-    const std::string host = m_bind_address.find(':') != std::string::npos ? "[" + m_bind_address + "]" : m_bind_address;
+    const std::string host =
+        m_bind_address.find(':') != std::string::npos ? "[" + m_bind_address + "]" : m_bind_address;
     std::string url = "http://" + host + ":" + std::to_string(m_port) + "/";
     if (!m_token.empty()) url += "?token=" + m_token;
     return url;

@@ -31,8 +31,8 @@ LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
     if (!options.stage_uri.empty()) m_stage = open_stage(options.stage_uri).value_or_throw();
     if (!options.calibration_path.empty())
         m_calibration = calibration::read_radiometric_calibration(options.calibration_path);
-    m_converter = std::make_unique<DisplayConverter>(m_camera->info(), m_calibration ? &*m_calibration : nullptr,
-                                                     options.unit);
+    m_converter =
+        std::make_unique<DisplayConverter>(m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
     m_feed = std::make_unique<FrameFeed>(*m_camera);
     if (m_stage) {
         m_cycle = std::make_unique<PolarizerCycle>(*m_feed, *m_stage, *m_converter, options.cycle);
@@ -90,8 +90,8 @@ nlohmann::json LiveView::describe() const {
                    {"width", c.width}, {"height", c.height}, {"pixel_format", c.pixel_format}};
     j["camera"]["frame_rate_hz"] = c.frame_rate_hz ? nlohmann::json(*c.frame_rate_hz) : nlohmann::json();
     j["units"] = m_converter->units();
-    j["saturation_counts"] = m_converter->saturation_counts() ? nlohmann::json(*m_converter->saturation_counts())
-                                                              : nlohmann::json();
+    j["saturation_counts"] =
+        m_converter->saturation_counts() ? nlohmann::json(*m_converter->saturation_counts()) : nlohmann::json();
     j["calibration"] = m_options.calibration_path;
     j["stage"] = m_stage ? nlohmann::json(m_stage->info().uri) : nlohmann::json();
     j["angles_deg"] = m_options.cycle.angles_deg;
@@ -103,8 +103,11 @@ nlohmann::json LiveView::describe() const {
 nlohmann::json LiveView::status() const {
     const FeedStatistics s = m_feed->statistics();
     nlohmann::json j;
-    j["camera"] = {{"delivered", s.delivered}, {"dropped", s.dropped},     {"incomplete", s.incomplete},
-                   {"grabbed", s.grabbed},     {"error", s.last_error}};
+    j["camera"] = {{"delivered", s.delivered},
+                   {"dropped", s.dropped},
+                   {"incomplete", s.incomplete},
+                   {"grabbed", s.grabbed},
+                   {"error", s.last_error}};
     j["camera"]["frame_rate_hz"] = s.frame_rate_hz ? nlohmann::json(*s.frame_rate_hz) : nlohmann::json();
     auto fpa = nlohmann::json::array();
     const auto history = m_feed->fpa_history();
@@ -119,8 +122,10 @@ nlohmann::json LiveView::status() const {
     }
     if (m_capture) {
         const CaptureState c = m_capture->state();
-        j["capture"] = {{"phase", to_string(c.phase)},       {"steps_total", c.steps_total},
-                        {"steps_recorded", c.steps_recorded}, {"output", c.output},
+        j["capture"] = {{"phase", to_string(c.phase)},
+                        {"steps_total", c.steps_total},
+                        {"steps_recorded", c.steps_recorded},
+                        {"output", c.output},
                         {"message", c.message}};
     }
     return j;

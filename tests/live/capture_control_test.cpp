@@ -2,6 +2,8 @@
 // every step once), a stopped one keeps its steps and resumes to completion, and the polarizer cycle
 // is paused meanwhile and continues after.
 
+#include "tirpol/live/capture_control.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
@@ -11,56 +13,31 @@
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
-#include "tirpol/live/capture_control.h"
 
 namespace tirpol::live {
 namespace {
 
 using namespace std::chrono_literals;
 
-bool wait_for(const std::function<bool()>& condition, std::chrono::seconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!condition()) {
-        if (std::chrono::steady_clock::now() > deadline) return false;
-        std::this_thread::sleep_for(20ms);
-    }
-    return true;
-}
-
 bool finished(const CaptureState& s) {
     return s.phase == CapturePhase::Complete || s.phase == CapturePhase::Stopped || s.phase == CapturePhase::Failed;
 }
 
-struct LiveRig {
-    test::SimRig rig;
-    FrameFeed feed;
-    DisplayConverter converter;
-    PolarizerCycle cycle;
+/// The cycling rig plus the capture control a page drives (2 frames per angle, no settle for the cycle).
+struct LiveRig : test::CyclingRig {
     CaptureControl capture;
-
     explicit LiveRig(double deg_per_s)
-        : rig(test::PolarizedSource{}, deg_per_s),
-          feed(*rig.camera),
-          converter(rig.camera->info(), nullptr, DisplayUnit::Counts),
-          cycle(feed, *rig.stage, converter, CycleOptions{{0.0, 45.0, 90.0, 135.0}, 2, 0.0, 60.0, 120.0, 5.0}),
-          capture(feed, *rig.stage, &cycle) {
-        EXPECT_TRUE(feed.start().ok());
-        cycle.start();
-    }
-    ~LiveRig() {
-        cycle.stop();
-        feed.stop();
-    }
+        : CyclingRig(test::PolarizedSource{}, deg_per_s, 2, 0.0), capture(feed, *rig.stage, &cycle) {}
 };
 
 TEST(CaptureControl, WritesACompleteSessionAndTheCycleResumesAfter) {
     test::TempDir dir("tirpol-live-capture");
     test::write_text(dir / "plan.yaml", "frames_per_angle: 3\nsettle_s: 0.05\nrepeats: 2\n");
     LiveRig live(360.0);
-    ASSERT_TRUE(wait_for([&] { return live.cycle.status().cycles >= 1; }, 60s));
+    ASSERT_TRUE(test::wait_until([&] { return live.cycle.status().cycles >= 1; }, 60s));
     live.capture.start({dir / "plan.yaml", dir / "session", false});
     EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "other", false}), Error);  // one at a time
-    ASSERT_TRUE(wait_for([&] { return finished(live.capture.state()); }, 120s));
+    ASSERT_TRUE(test::wait_until([&] { return finished(live.capture.state()); }, 120s));
     const CaptureState s = live.capture.state();
     ASSERT_EQ(s.phase, CapturePhase::Complete) << s.message;
     EXPECT_EQ(s.steps_total, 8u);
@@ -71,7 +48,8 @@ TEST(CaptureControl, WritesACompleteSessionAndTheCycleResumesAfter) {
     for (const auto& r : m.records) EXPECT_EQ(r.frames, 3);
     EXPECT_EQ(m.camera.width, 16);
     const auto cycles = live.cycle.status().cycles;
-    EXPECT_TRUE(wait_for([&] { return live.cycle.status().cycles > cycles; }, 60s)) << "the cycle did not resume";
+    EXPECT_TRUE(test::wait_until([&] { return live.cycle.status().cycles > cycles; }, 60s))
+        << "the cycle did not resume";
 }
 
 TEST(CaptureControl, AStoppedCaptureKeepsItsStepsAndResumes) {
@@ -80,9 +58,9 @@ TEST(CaptureControl, AStoppedCaptureKeepsItsStepsAndResumes) {
     test::write_text(dir / "plan.yaml", "frames_per_angle: 3\nsettle_s: 0.05\n");
     LiveRig live(30.0);
     live.capture.start({dir / "plan.yaml", dir / "session", false});
-    ASSERT_TRUE(wait_for([&] { return live.capture.state().steps_recorded >= 1; }, 120s));
+    ASSERT_TRUE(test::wait_until([&] { return live.capture.state().steps_recorded >= 1; }, 120s));
     live.capture.stop();
-    ASSERT_TRUE(wait_for([&] { return finished(live.capture.state()); }, 30s));
+    ASSERT_TRUE(test::wait_until([&] { return finished(live.capture.state()); }, 30s));
     const CaptureState stopped = live.capture.state();
     EXPECT_EQ(stopped.phase, CapturePhase::Stopped) << stopped.message;
     EXPECT_NE(stopped.message.find("--resume"), std::string::npos) << stopped.message;
@@ -93,7 +71,7 @@ TEST(CaptureControl, AStoppedCaptureKeepsItsStepsAndResumes) {
 
     EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "session", false}), Error);  // not empty: resume it
     live.capture.start({dir / "plan.yaml", dir / "session", true});
-    ASSERT_TRUE(wait_for([&] { return finished(live.capture.state()); }, 120s));
+    ASSERT_TRUE(test::wait_until([&] { return finished(live.capture.state()); }, 120s));
     ASSERT_EQ(live.capture.state().phase, CapturePhase::Complete) << live.capture.state().message;
     const SessionManifest m = read_session(dir / "session");
     EXPECT_TRUE(m.complete);

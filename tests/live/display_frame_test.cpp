@@ -3,6 +3,8 @@
 // display temperature of a blackbody's counts is the blackbody's temperature (Planck round trip
 // through calibration's counts_to_radiance and brightness_temperature).
 
+#include "tirpol/live/display_frame.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include "decoded_image.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/live/display_frame.h"
 
 namespace tirpol::live {
 namespace {

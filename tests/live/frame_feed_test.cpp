@@ -2,12 +2,13 @@
 // frame slowly sees few of them, while every tap (the polarizer cycle, a capture) receives each frame
 // the camera delivered, in order, and the camera itself drops none.
 
+#include "tirpol/live/frame_feed.h"
+
 #include <gtest/gtest.h>
 
 #include <thread>
 
 #include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/live/frame_feed.h"
 #include "tirpol/live/latest_slot.h"
 #include "tirpol/live/tapped_camera.h"
 
@@ -39,7 +40,8 @@ TEST(LatestSlot, ASlowReaderSeesIncreasingSequencesAndTheLastValue) {
 }
 
 TEST(FrameFeed, TapsGetEveryFrameInOrderWhileASlowDisplayDropsDisplayFramesOnly) {
-    auto camera = acquisition::open_simulated_camera("sim://uniform?width=64&height=48&counts=900&noise=3&fps=100&buffers=64");
+    auto camera =
+        acquisition::open_simulated_camera("sim://uniform?width=64&height=48&counts=900&noise=3&fps=100&buffers=64");
     FrameFeed feed(*camera);
     const auto tap = feed.open_tap();
     ASSERT_TRUE(feed.start().ok());

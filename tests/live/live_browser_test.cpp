@@ -6,10 +6,9 @@
 // buttons from URL parameters. Screenshots go to build/test-artefacts/live/. A missing chromium or
 // aravis-tools fails these tests: they never skip.
 
+#include <gtest/gtest.h>
 #include <httplib.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <fstream>
 #include <regex>
@@ -96,8 +95,9 @@ protected:
     void open_browser(const std::string& name, const std::string& query) {
         const auto profile = dir() / ("chromium-" + name);
         m_browsers.push_back(std::make_unique<test::ChildProcess>(
-            std::vector<std::string>{m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                                     "--user-data-dir=" + profile.string(), "--window-size=1400,1300", page_url(query)},
+            std::vector<std::string>{m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu",
+                                     "--no-first-run", "--user-data-dir=" + profile.string(), "--window-size=1400,1300",
+                                     page_url(query)},
             dir() / ("chromium-" + name + ".log")));
     }
 
@@ -106,11 +106,11 @@ protected:
     void screenshot(const std::string& file, const std::string& query) {
         const auto out = std::filesystem::path(TIRPOL_ARTEFACT_DIR) / file;
         std::filesystem::remove(out);
-        test::ChildProcess shot({m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                                 "--user-data-dir=" + (dir() / "chromium-shot").string(), "--hide-scrollbars",
-                                 "--window-size=1100,1250", "--virtual-time-budget=20000",
-                                 "--screenshot=" + out.string(), page_url("still=1" + query)},
-                                dir() / "chromium-shot.log");
+        test::ChildProcess shot(
+            {m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+             "--user-data-dir=" + (dir() / "chromium-shot").string(), "--hide-scrollbars", "--window-size=1100,950",
+             "--virtual-time-budget=20000", "--screenshot=" + out.string(), page_url("still=1" + query)},
+            dir() / "chromium-shot.log");
         ASSERT_TRUE(shot.wait_for(120s).has_value()) << "chromium --screenshot did not finish";
         ASSERT_TRUE(std::filesystem::exists(out)) << read_text(dir() / "chromium-shot.log");
         EXPECT_GT(std::filesystem::file_size(out), 20000u) << "a blank screenshot";
@@ -188,7 +188,8 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0.1\n");
     start_live({"--stage", stage_uri(), "--frames-per-angle", "2", "--settle-s", "0.1"});
     const auto session = dir() / "session";
-    open_browser("s", "observe=s&capture_plan=" + (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
+    open_browser("s",
+                 "observe=s&capture_plan=" + (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {

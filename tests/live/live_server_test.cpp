@@ -3,15 +3,15 @@
 // loopback no token is needed, bound beyond loopback every request without the printed token is
 // refused with 401.
 
-#include <httplib.h>
+#include "tirpol/live/live_server.h"
 
 #include <gtest/gtest.h>
+#include <httplib.h>
 
 #include <thread>
 
 #include "decoded_image.h"
 #include "tirpol/live/access.h"
-#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 namespace {
@@ -96,9 +96,17 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
         EXPECT_EQ(r->body.find("canvas"), std::string::npos);
     }
     EXPECT_EQ(client.Post("/api/capture/stop", "", "application/json")->status, 401);
-    EXPECT_EQ(client.Get(("/api/status?token=" + token.substr(0, 31) + "0").c_str())->status, token.back() == '0' ? 200 : 401);
+    EXPECT_EQ(client.Get(("/api/status?token=" + token.substr(0, 31) + "0").c_str())->status,
+              token.back() == '0' ? 200 : 401);
     EXPECT_EQ(client.Get(("/?token=" + token).c_str())->status, 200);
     EXPECT_EQ(client.Get("/api/status", {{"X-Tirpol-Token", token}})->status, 200);
+    // The page's script and style sheet are fetched without a query: the cookie set with the page covers them.
+    const auto page = client.Get(("/?token=" + token).c_str());
+    const std::string cookie = page->get_header_value("Set-Cookie");
+    EXPECT_NE(cookie.find("tirpol_token=" + token), std::string::npos) << cookie;
+    EXPECT_NE(cookie.find("HttpOnly"), std::string::npos) << cookie;
+    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "other=1; tirpol_token=" + token}})->status, 200);
+    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "tirpol_token=" + std::string(32, '0')}})->status, 401);
 }
 
 TEST(Access, LoopbackAddressesAndTokens) {

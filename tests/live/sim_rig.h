@@ -5,12 +5,17 @@
 // at the end of each exposure: I(θ) = ½·(S0 + S1·cos 2θ + S2·sin 2θ) (Chipman, Lam & Young 2018, eq 6.35),
 // so frames exposed during a move carry the wrong angle's counts, as on a real rig.
 
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <numbers>
+#include <stdexcept>
+#include <thread>
 
 #include "tirpol/acquisition/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/live/polarizer_cycle.h"
 
 namespace tirpol::test {
 
@@ -45,5 +50,42 @@ struct SimRig {
             acquisition::simulated_stage_angle_source(*stage));
     }
 };
+
+/// The rig with the live view's grab thread and polarizer cycle running on it (counts, no calibration).
+struct CyclingRig {
+    SimRig rig;
+    live::FrameFeed feed;
+    live::DisplayConverter converter;
+    live::PolarizerCycle cycle;
+
+    CyclingRig(const PolarizedSource& source, double deg_per_s, int frames_per_angle, double settle_s)
+        : rig(source, deg_per_s),
+          feed(*rig.camera),
+          converter(rig.camera->info(), nullptr, live::DisplayUnit::Counts),
+          cycle(feed, *rig.stage, converter, options(frames_per_angle, settle_s)) {
+        if (!feed.start().ok()) throw std::runtime_error("the simulated camera did not start");
+        cycle.start();
+    }
+    ~CyclingRig() {
+        cycle.stop();
+        feed.stop();
+    }
+    static live::CycleOptions options(int frames_per_angle, double settle_s) {
+        live::CycleOptions o;
+        o.frames_per_angle = frames_per_angle;
+        o.settle_s = settle_s;
+        return o;
+    }
+};
+
+/// Polls `condition` every 20 ms until it holds (true) or `timeout` passes (false).
+inline bool wait_until(const std::function<bool()>& condition, std::chrono::seconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (!condition()) {
+        if (std::chrono::steady_clock::now() > deadline) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+}
 
 }  // namespace tirpol::test

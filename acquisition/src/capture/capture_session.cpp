@@ -9,7 +9,8 @@ SessionWriter open_capture_session(const std::filesystem::path& dir, const Camer
                                    const CapturePlan& plan, bool resume) {
     if (!resume) return SessionWriter::create(dir, new_session_manifest(camera, stage, plan));
     if (!std::filesystem::exists(dir / kSessionManifestName))
-        fail("{}: no session to resume here (no {}); leave out --resume to start one", dir.string(), kSessionManifestName);
+        fail("{}: no session to resume here (no {}); leave out --resume to start one", dir.string(),
+             kSessionManifestName);
     SessionWriter session = SessionWriter::resume(dir);
     check_resumable(session.manifest(), camera, plan);
     return session;

@@ -33,7 +33,7 @@ struct CaptureState {
     std::size_t steps_total = 0;
     std::size_t steps_recorded = 0;  ///< in the session, read back from its manifest
     std::string output;
-    std::string message;             ///< the summary, or the error (which says how to resume)
+    std::string message;  ///< the summary, or the error (which says how to resume)
 };
 
 class CaptureControl {

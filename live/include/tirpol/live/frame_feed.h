@@ -42,8 +42,8 @@ private:
 struct FeedStatistics {
     std::uint64_t delivered = 0, dropped = 0, incomplete = 0;  ///< the camera's own counts
     std::uint64_t grabbed = 0;                                 ///< frames this feed handed on
-    std::optional<double> frame_rate_hz;  ///< frames received per second over the last ~2 s
-    std::string last_error;               ///< the last grab error other than a timeout, if any
+    std::optional<double> frame_rate_hz;                       ///< frames received per second over the last ~2 s
+    std::string last_error;                                    ///< the last grab error other than a timeout, if any
 };
 
 struct FpaSample {

@@ -17,7 +17,7 @@ template <typename T>
 class LatestSlot {
 public:
     struct Snapshot {
-        std::uint64_t sequence = 0;       ///< 0: nothing published yet; +1 per publish
+        std::uint64_t sequence = 0;  ///< 0: nothing published yet; +1 per publish
         std::shared_ptr<const T> value;
     };
 

@@ -6,10 +6,9 @@
 
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/stage.h"
@@ -22,9 +21,9 @@
 namespace tirpol::live {
 
 struct LiveViewOptions {
-    std::string camera_uri;            ///< acquisition::open_camera
-    std::string stage_uri;             ///< acquisition::open_stage; empty = no stage (S0 only)
-    std::string calibration_path;      ///< radiometric calibration EXR; empty = counts only
+    std::string camera_uri;        ///< acquisition::open_camera
+    std::string stage_uri;         ///< acquisition::open_stage; empty = no stage (S0 only)
+    std::string calibration_path;  ///< radiometric calibration EXR; empty = counts only
     DisplayUnit unit = DisplayUnit::Counts;
     CycleOptions cycle;
     std::string default_plan, default_output;  ///< prefilled in the page's capture form

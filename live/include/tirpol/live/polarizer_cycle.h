@@ -32,10 +32,10 @@ struct CycleOptions {
 };
 
 struct CycleStatus {
-    std::string state = "idle";          ///< "homing", "moving to 45°", "averaging 45° (2/4)", "paused", "failed"
-    std::optional<double> angle_deg;     ///< the stage's last read-back angle
-    std::uint64_t cycles = 0;            ///< complete cycles published
-    std::string error;                   ///< the last device error, if any
+    std::string state = "idle";       ///< "homing", "moving to 45°", "averaging 45° (2/4)", "paused", "failed"
+    std::optional<double> angle_deg;  ///< the stage's last read-back angle
+    std::uint64_t cycles = 0;         ///< complete cycles published
+    std::string error;                ///< the last device error, if any
 };
 
 class PolarizerCycle {
