@@ -5,7 +5,10 @@
 //   page       headless Chromium(s) showing the page (S0 drawn at the browser's pace)
 //   reference  no page again           (the two references are averaged: drift cancels)
 // Counters: ref_fps, page_fps, ratio = page_fps / ref_fps (issue 17 asks ≥ 0.98), dropped (frames the
-// stream lost in the page window), shown_fps (frames the page drew per second), and the server
+// stream lost in the page window), cam_ref_fps / cam_page_fps (the rate the fake camera itself produced,
+// from frame ids over device time: the fake is a process on the same 2 cores and slows down, without
+// skipping ids, when Chromium takes its CPU — a real camera does not), shown_fps (frames the page drew
+// per second), and the server
 // process's CPU use (user + system time of every thread of this process — Aravis's stream thread, the
 // grab thread, the HTTP threads — over wall time, in % of one core) with and without the page.
 // Chromium's own CPU is not counted: it is the browser's, as on the operator's laptop.
@@ -46,6 +49,7 @@ std::string find_chromium() {
 
 struct Window {
     double fps = 0.0, cpu_percent = 0.0;
+    double camera_fps = 0.0;  ///< frames the camera produced per second of its own clock (frame ids, device timestamps)
     std::uint64_t dropped = 0;
 };
 
@@ -61,6 +65,10 @@ Window measure(const live::LiveView& view) {
     w.fps = static_cast<double>(s1["grabbed"].get<std::uint64_t>() - s0["grabbed"].get<std::uint64_t>()) / wall;
     w.cpu_percent = 100.0 * (cpu_seconds() - cpu0) / wall;
     w.dropped = s1["dropped"].get<std::uint64_t>() - s0["dropped"].get<std::uint64_t>();
+    const auto device_ns = s1["device_timestamp_ns"].get<std::int64_t>() - s0["device_timestamp_ns"].get<std::int64_t>();
+    if (device_ns > 0)
+        w.camera_fps = 1e9 * static_cast<double>(s1["frame_id"].get<std::uint64_t>() - s0["frame_id"].get<std::uint64_t>()) /
+                       static_cast<double>(device_ns);
     return w;
 }
 
@@ -118,6 +126,10 @@ void LiveViewPageOpen(benchmark::State& state) {
         state.counters["page_fps"] = page.fps;
         state.counters["ratio"] = ref > 0.0 ? page.fps / ref : 0.0;
         state.counters["dropped"] = static_cast<double>(page.dropped);
+        state.counters["cam_ref_fps"] = 0.5 * (before.camera_fps + after.camera_fps);
+        state.counters["cam_page_fps"] = page.camera_fps;
+        // Of the frames the camera produced while the page was open, the share the live view received.
+        state.counters["kept"] = page.camera_fps > 0.0 ? page.fps / page.camera_fps : 0.0;
         state.counters["shown_fps"] =
             static_cast<double>(shown1 - shown0) / std::chrono::duration<double>(kWindow).count();
         state.counters["cpu_ref_pct"] = 0.5 * (before.cpu_percent + after.cpu_percent);

@@ -1,6 +1,7 @@
 #include "tirpol/live/live_server.h"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <map>
 
@@ -75,6 +76,12 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
     if (!is_loopback_address(options.bind_address)) m_token = make_access_token();
     auto& server = m_impl->server;
     server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
+    // httplib's default also sets SO_REUSEPORT, which lets a second `tirpol live` bind the same port and
+    // silently share its connections; SO_REUSEADDR alone still allows a quick restart.
+    server.set_socket_options([](socket_t sock) {
+        const int yes = 1;
+        ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
 
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
         if (m_token.empty()) return httplib::Server::HandlerResponse::Unhandled;

@@ -109,6 +109,10 @@ nlohmann::json LiveView::status() const {
                    {"grabbed", s.grabbed},
                    {"error", s.last_error}};
     j["camera"]["frame_rate_hz"] = s.frame_rate_hz ? nlohmann::json(*s.frame_rate_hz) : nlohmann::json();
+    if (const auto latest = m_feed->latest().latest().value) {
+        j["camera"]["frame_id"] = latest->frame_id;
+        j["camera"]["device_timestamp_ns"] = latest->device_timestamp_ns;
+    }
     auto fpa = nlohmann::json::array();
     const auto history = m_feed->fpa_history();
     for (std::size_t i = history.size() > kFpaSamplesInStatus ? history.size() - kFpaSamplesInStatus : 0;

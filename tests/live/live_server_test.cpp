@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <functional>
 #include <thread>
 
 #include "decoded_image.h"
+#include "tirpol/core/error.h"
 #include "tirpol/live/access.h"
 
 namespace tirpol::live {
@@ -123,6 +125,40 @@ TEST(Access, LoopbackAddressesAndTokens) {
     EXPECT_FALSE(token_matches(b, a));
     EXPECT_FALSE(token_matches("", ""));
     EXPECT_FALSE(token_matches(a.substr(0, 31), a));
+}
+
+}  // namespace
+}  // namespace tirpol::live
+
+namespace tirpol::live {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(LiveView, BadInputsAreErrorsNamingWhatIsWrong) {
+    LiveViewOptions o;
+    o.camera_uri = "sim://uniform?widht=32";
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("widht"), std::string::npos);
+    o.camera_uri = kCamera;
+    o.unit = DisplayUnit::Temperature;
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("--calibration"), std::string::npos);
+    o.unit = DisplayUnit::Counts;
+    o.stage_uri = "nostage://x";
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("nostage"), std::string::npos);
+}
+
+TEST(LiveServer, APortInUseIsAnErrorNamingIt) {
+    Served first("127.0.0.1");
+    LiveView view(Served::options());
+    const std::string message = error_of([&] { LiveServer second(view, {"127.0.0.1", first.server.port()}); });
+    EXPECT_NE(message.find(std::to_string(first.server.port())), std::string::npos) << message;
 }
 
 }  // namespace
