@@ -320,8 +320,22 @@ function paintedFraction(canvas) {
   for (let i = 0; i < d.length; i += 4) if (d[i] || d[i + 1] || d[i + 2]) lit++;
   return lit / (d.length / 4);
 }
+// Drags a region over pixels (100, 80)–(139, 119) of the S0 image and zooms once at its centre with
+// synthetic mouse events, as an operator's mouse would.
+function exerciseMouse() {
+  const canvas = $('s0'), rect = canvas.getBoundingClientRect();
+  // Mouse events carry whole CSS pixels: the first whole position inside the image pixel.
+  const at = (x, y) => ({ clientX: Math.ceil(rect.left + x * rect.width / canvas.width - 1e-6),
+    clientY: Math.ceil(rect.top + y * rect.height / canvas.height - 1e-6), bubbles: true });
+  canvas.dispatchEvent(new MouseEvent('mousedown', at(100, 80)));
+  canvas.dispatchEvent(new MouseEvent('mousemove', at(139, 119)));
+  window.dispatchEvent(new MouseEvent('mouseup', at(139, 119)));
+  canvas.dispatchEvent(new WheelEvent('wheel', { ...at(canvas.width / 2, canvas.height / 2), deltaY: -100, cancelable: true }));
+  return { region: $('region').textContent.split('\n'), cursor: $('readout').textContent.split('\n'), zoom: state.view.scale };
+}
+
 async function observeLoop(client) {
-  let clickedStart = false, clickedStop = false;
+  let clickedStart = false, clickedStop = false, mouse = null;
   const stopAfter = params.has('capture_stop_after') ? Number(params.get('capture_stop_after')) : null;
   for (;;) {
     await sleep(400);
@@ -337,6 +351,7 @@ async function observeLoop(client) {
       $('stop').click();
       clickedStop = true;
     }
+    if (!mouse && state.framesShown > 0 && params.has('mouse')) mouse = exerciseMouse();
     const cx = Math.floor($('s0').width / 2), cy = Math.floor($('s0').height / 2);
     const dolp = state.stokes && state.stokes.channels.find((c) => c.name === 'DoLP');
     const obs = {
@@ -345,7 +360,7 @@ async function observeLoop(client) {
       stokes_shown: state.stokesShown, dolp_painted: state.stokes ? paintedFraction($('st-DoLP')) : 0,
       dolp_range: dolp ? [dolp.min, dolp.max] : null, center_readout: valuesAt(cx, cy),
       stage: state.status && state.status.stage, capture: k || null, clicked_start: clickedStart, clicked_stop: clickedStop,
-      capture_message: $('capture-message').textContent,
+      capture_message: $('capture-message').textContent, mouse,
     };
     try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
   }

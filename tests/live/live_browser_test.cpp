@@ -159,7 +159,7 @@ bool shows_frames(const json& obs, const std::string& client, int frames) {
 
 TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
     start_live({});
-    open_browser("a", "observe=a");
+    open_browser("a", "observe=a&mouse=1");
     open_browser("b", "observe=b");
     json obs;
     ASSERT_TRUE(wait_for_observations([](const json& o) { return shows_frames(o, "a", 3) && shows_frames(o, "b", 3); },
@@ -179,6 +179,14 @@ TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
         << obs.dump(1);
     EXPECT_EQ(obs["a"]["colorbar_units"], "counts");
     EXPECT_FALSE(obs["a"]["center_readout"].empty());  // the cursor readout of the middle pixel
+    // Page a dragged a 40×40 region from pixel (100, 80) and zoomed once with the wheel (mouse=1).
+    const json& mouse = obs["a"]["mouse"];
+    ASSERT_TRUE(mouse.is_object()) << obs["a"].dump(1);
+    EXPECT_EQ(mouse["region"][0], "x 100–139, y 80–119 (1600 px)");
+    EXPECT_NE(mouse["region"][1].get<std::string>().find("live  S0    mean"), std::string::npos) << mouse.dump(1);
+    EXPECT_NE(mouse["region"][1].get<std::string>().find("(1600 px)"), std::string::npos) << mouse.dump(1);
+    EXPECT_EQ(mouse["cursor"][0], "x 139, y 119");
+    EXPECT_DOUBLE_EQ(mouse["zoom"].get<double>(), 1.25);
     screenshot("live_s0.png", "");
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 }
