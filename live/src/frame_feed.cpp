@@ -68,11 +68,11 @@ std::shared_ptr<FrameTap> FrameFeed::open_tap() {
 void FrameFeed::run() {
     while (m_running) {
         auto grabbed = m_camera.grab(kGrabTimeout);
+        const StreamStatistics camera_stats = m_camera.statistics();
         if (!grabbed) {
-            if (grabbed.error().code != DeviceErrorCode::Timeout) {
-                std::lock_guard lock(m_mutex);
-                m_last_error = grabbed.error().message;
-            }
+            std::lock_guard lock(m_mutex);
+            m_camera_stats = camera_stats;
+            if (grabbed.error().code != DeviceErrorCode::Timeout) m_last_error = grabbed.error().message;
             continue;
         }
         auto frame = std::make_shared<const Frame>(std::move(grabbed.value()));
@@ -81,6 +81,7 @@ void FrameFeed::run() {
         {
             std::lock_guard lock(m_mutex);
             ++m_grabbed;
+            m_camera_stats = camera_stats;
             m_recent_ns.push_back(frame->host_timestamp_ns);
             while (m_recent_ns.size() > 2 && m_recent_ns.back() - m_recent_ns.front() > kRateWindowNs)
                 m_recent_ns.pop_front();
@@ -105,13 +106,23 @@ void FrameFeed::record_fpa(const Frame& frame) {
     while (m_fpa.size() > m_fpa_capacity) m_fpa.pop_front();
 }
 
-FeedStatistics FrameFeed::statistics() const {
-    const StreamStatistics camera = m_camera.statistics();
-    FeedStatistics s;
-    s.delivered = camera.delivered;
-    s.dropped = camera.dropped;
-    s.incomplete = camera.incomplete;
+StreamStatistics FrameFeed::camera_statistics() const {
     std::lock_guard lock(m_mutex);
+    return m_camera_stats;
+}
+
+std::optional<double> FrameFeed::fpa_temperature_k() const {
+    std::lock_guard lock(m_mutex);
+    if (m_fpa.empty()) return std::nullopt;
+    return m_fpa.back().temperature_k;
+}
+
+FeedStatistics FrameFeed::statistics() const {
+    FeedStatistics s;
+    std::lock_guard lock(m_mutex);
+    s.delivered = m_camera_stats.delivered;
+    s.dropped = m_camera_stats.dropped;
+    s.incomplete = m_camera_stats.incomplete;
     s.grabbed = m_grabbed;
     s.last_error = m_last_error;
     if (m_recent_ns.size() >= 2 && m_recent_ns.back() > m_recent_ns.front())

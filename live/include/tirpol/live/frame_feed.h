@@ -65,12 +65,16 @@ public:
     void stop();
 
     const acquisition::CameraInfo& camera_info() const { return m_info; }
-    acquisition::Camera& camera() { return m_camera; }
     const LatestSlot<acquisition::Frame>& latest() const { return m_latest; }
     /// A tap that receives every frame grabbed from now on.
     std::shared_ptr<FrameTap> open_tap();
+    /// The camera's counts as the grab thread read them after its last grab (the back ends' counters
+    /// are not safe to read from another thread while it grabs), with the feed's own.
     FeedStatistics statistics() const;
+    acquisition::StreamStatistics camera_statistics() const;
     std::vector<FpaSample> fpa_history() const;
+    /// The last FPA temperature recorded (at most a second old), if the camera reports one.
+    std::optional<double> fpa_temperature_k() const;
 
 private:
     void run();
@@ -84,6 +88,7 @@ private:
     std::vector<std::weak_ptr<FrameTap>> m_taps;
     std::deque<std::int64_t> m_recent_ns;  ///< reception times of the last ~2 s
     std::uint64_t m_grabbed = 0;
+    acquisition::StreamStatistics m_camera_stats;
     std::string m_last_error;
     std::deque<FpaSample> m_fpa;
     std::chrono::steady_clock::time_point m_started, m_next_fpa;

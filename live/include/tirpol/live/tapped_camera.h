@@ -23,9 +23,10 @@ public:
     acquisition::Status start() override;
     acquisition::Status stop() override;
     acquisition::Result<acquisition::Frame> grab(std::chrono::milliseconds timeout) override;
-    /// The device's counts (drops are the device's, whoever reads the frames).
-    acquisition::StreamStatistics statistics() const override { return m_feed.camera().statistics(); }
-    std::optional<double> device_temperature_k() override { return m_feed.camera().device_temperature_k(); }
+    /// The device's counts (drops are the device's, whoever reads the frames), as the grab thread read them.
+    acquisition::StreamStatistics statistics() const override { return m_feed.camera_statistics(); }
+    /// The feed's last FPA sample: only the grab thread talks to the device.
+    std::optional<double> device_temperature_k() override { return m_feed.fpa_temperature_k(); }
 
 private:
     FrameFeed& m_feed;
