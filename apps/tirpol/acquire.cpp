@@ -16,6 +16,7 @@
 #include "tirpol/acquisition/blackbody_registry.h"
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/capture_session.h"
 #include "tirpol/acquisition/stage_registry.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
@@ -85,11 +86,9 @@ void run_acquire(const AcquireArgs& a) {
     if (!a.blackbody.empty()) blackbody = open_blackbody(a.blackbody).value_or_throw();
     const BlackbodyInfo blackbody_info = blackbody ? blackbody->info() : BlackbodyInfo{};
 
-    SessionWriter session = a.resume ? SessionWriter::resume(dir)
-                                     : SessionWriter::create(dir, new_session_manifest(camera_info, stage->info(), plan,
-                                                                                        blackbody ? &blackbody_info : nullptr));
+    SessionWriter session =
+        open_capture_session(dir, camera_info, stage->info(), plan, a.resume, blackbody ? &blackbody_info : nullptr);
     if (a.resume) {
-        check_resumable(session.manifest(), camera_info, plan);
         for (const auto& file : session.adopted_files())
             std::fprintf(stderr, "tirpol acquire: recovered %s (written just before the interruption)\n", file.c_str());
     }

@@ -1,0 +1,81 @@
+#pragma once
+/// \file live_view.h
+/// Everything `tirpol live` shows and does, without the HTTP: the devices opened by URI, the grab
+/// thread (FrameFeed), the display conversion, the polarizer cycle (with a stage) and the capture
+/// control, plus the encoded images and status the page polls.
+
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/stage.h"
+#include "tirpol/calibration/radiometric.h"
+#include "tirpol/live/capture_control.h"
+#include "tirpol/live/display_frame.h"
+#include "tirpol/live/frame_feed.h"
+#include "tirpol/live/polarizer_cycle.h"
+
+namespace tirpol::live {
+
+struct LiveViewOptions {
+    std::string camera_uri;        ///< acquisition::open_camera
+    std::string stage_uri;         ///< acquisition::open_stage; empty = no stage (S0 only)
+    std::string calibration_path;  ///< radiometric calibration EXR; empty = counts only
+    DisplayUnit unit = DisplayUnit::Counts;
+    CycleOptions cycle;
+    std::string default_plan, default_output;  ///< prefilled in the page's capture form
+};
+
+/// An encoded image and the LatestSlot sequence it came from.
+struct EncodedImage {
+    std::uint64_t sequence = 0;
+    std::shared_ptr<const std::string> bytes;  ///< null: nothing newer than asked for
+};
+
+class LiveView {
+public:
+    /// Opens the devices and the calibration and starts streaming (and cycling, with a stage). Throws
+    /// tirpol::Error naming the URI or file that failed.
+    explicit LiveView(const LiveViewOptions& options);
+    ~LiveView();
+    LiveView(const LiveView&) = delete;
+    LiveView& operator=(const LiveView&) = delete;
+
+    /// The latest S0 frame once newer than `after`, waiting at most `timeout`. Each frame is encoded
+    /// once however many pages ask for it.
+    EncodedImage frame_after(std::uint64_t after, std::chrono::milliseconds timeout);
+    /// The latest cycle's S0 S1 S2 DoLP AoP the same way (never anything without a stage).
+    EncodedImage stokes_after(std::uint64_t after, std::chrono::milliseconds timeout);
+    /// Camera, statistics, FPA history, stage and capture state as JSON (docs/live.md lists the fields).
+    nlohmann::json status() const;
+    /// Static facts for the page: camera, units, whether a stage is present, the capture form defaults.
+    nlohmann::json describe() const;
+
+    bool has_stage() const { return m_stage != nullptr; }
+    /// The capture control; throws tirpol::Error without a stage.
+    CaptureControl& capture();
+
+private:
+    struct Cache {
+        std::mutex mutex;
+        EncodedImage image;
+    };
+    template <typename T, typename Encode>
+    EncodedImage encoded_after(const LatestSlot<T>& slot, Cache& cache, std::uint64_t after,
+                               std::chrono::milliseconds timeout, Encode encode);
+
+    LiveViewOptions m_options;
+    std::unique_ptr<acquisition::Camera> m_camera;
+    std::unique_ptr<acquisition::Stage> m_stage;
+    std::optional<calibration::RadiometricCalibration> m_calibration;
+    std::unique_ptr<DisplayConverter> m_converter;
+    std::unique_ptr<FrameFeed> m_feed;
+    std::unique_ptr<PolarizerCycle> m_cycle;
+    std::unique_ptr<CaptureControl> m_capture;
+    Cache m_frame_cache, m_stokes_cache;
+};
+
+}  // namespace tirpol::live

@@ -1,0 +1,138 @@
+#include "tirpol/live/live_view.h"
+
+#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/core/error.h"
+
+namespace tirpol::live {
+
+using namespace acquisition;
+
+namespace {
+/// The last FPA samples sent with each status (the page plots them; one a second → 10 minutes).
+constexpr std::size_t kFpaSamplesInStatus = 600;
+
+DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) {
+    DisplayImage image;
+    image.width = stokes.width();
+    image.height = stokes.height();
+    for (const char* name : {"S0", "S1", "S2", "DoLP", "AoP"}) {
+        const std::string n = name;
+        image.channels.push_back({n, n == "DoLP" ? "" : n == "AoP" ? "deg" : signal_units, stokes.channel(n), {}});
+    }
+    if (const auto it = stokes.attributes().find("analyzer_angles_deg"); it != stokes.attributes().end())
+        image.info["analyzer_angles_deg"] = std::get<std::vector<double>>(it->second);
+    return image;
+}
+}  // namespace
+
+LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
+    m_camera = open_camera(options.camera_uri).value_or_throw();
+    if (!options.stage_uri.empty()) m_stage = open_stage(options.stage_uri).value_or_throw();
+    if (!options.calibration_path.empty())
+        m_calibration = calibration::read_radiometric_calibration(options.calibration_path);
+    m_converter =
+        std::make_unique<DisplayConverter>(m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
+    m_feed = std::make_unique<FrameFeed>(*m_camera);
+    if (m_stage) {
+        m_cycle = std::make_unique<PolarizerCycle>(*m_feed, *m_stage, *m_converter, options.cycle);
+        m_capture = std::make_unique<CaptureControl>(*m_feed, *m_stage, m_cycle.get());
+    }
+    std::move(m_feed->start()).value_or_throw();
+    if (m_cycle) m_cycle->start();
+}
+
+LiveView::~LiveView() {
+    m_capture.reset();
+    if (m_cycle) m_cycle->stop();
+    m_feed->stop();
+}
+
+CaptureControl& LiveView::capture() {
+    if (!m_capture) fail("live view: capturing a plan needs a stage (--stage URI)");
+    return *m_capture;
+}
+
+template <typename T, typename Encode>
+EncodedImage LiveView::encoded_after(const LatestSlot<T>& slot, Cache& cache, std::uint64_t after,
+                                     std::chrono::milliseconds timeout, Encode encode) {
+    const auto snapshot = slot.wait_newer(after, timeout);
+    if (snapshot.sequence <= after || !snapshot.value) return {snapshot.sequence, nullptr};
+    std::lock_guard lock(cache.mutex);
+    if (cache.image.sequence != snapshot.sequence)
+        cache.image = {snapshot.sequence, std::make_shared<const std::string>(encode(*snapshot.value))};
+    return cache.image;
+}
+
+EncodedImage LiveView::frame_after(std::uint64_t after, std::chrono::milliseconds timeout) {
+    return encoded_after(m_feed->latest(), m_frame_cache, after, timeout, [&](const Frame& frame) {
+        try {
+            return encode_display_image(m_converter->frame_image(frame));
+        } catch (const Error& e) {  // e.g. an FPA-dependent calibration and a frame without FPA temperature
+            DisplayImage image;
+            image.info["error"] = e.what();
+            return encode_display_image(image);
+        }
+    });
+}
+
+EncodedImage LiveView::stokes_after(std::uint64_t after, std::chrono::milliseconds timeout) {
+    if (!m_cycle) return {};
+    const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
+    return encoded_after(m_cycle->stokes(), m_stokes_cache, after, timeout,
+                         [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
+}
+
+nlohmann::json LiveView::describe() const {
+    const CameraInfo& c = m_feed->camera_info();
+    nlohmann::json j;
+    j["camera"] = {{"uri", c.uri},     {"vendor", c.vendor}, {"model", c.model},
+                   {"width", c.width}, {"height", c.height}, {"pixel_format", c.pixel_format}};
+    j["camera"]["frame_rate_hz"] = c.frame_rate_hz ? nlohmann::json(*c.frame_rate_hz) : nlohmann::json();
+    j["units"] = m_converter->units();
+    j["saturation_counts"] =
+        m_converter->saturation_counts() ? nlohmann::json(*m_converter->saturation_counts()) : nlohmann::json();
+    j["calibration"] = m_options.calibration_path;
+    j["stage"] = m_stage ? nlohmann::json(m_stage->info().uri) : nlohmann::json();
+    j["angles_deg"] = m_options.cycle.angles_deg;
+    j["default_plan"] = m_options.default_plan;
+    j["default_output"] = m_options.default_output;
+    return j;
+}
+
+nlohmann::json LiveView::status() const {
+    const FeedStatistics s = m_feed->statistics();
+    nlohmann::json j;
+    j["camera"] = {{"delivered", s.delivered},
+                   {"dropped", s.dropped},
+                   {"incomplete", s.incomplete},
+                   {"grabbed", s.grabbed},
+                   {"error", s.last_error}};
+    j["camera"]["frame_rate_hz"] = s.frame_rate_hz ? nlohmann::json(*s.frame_rate_hz) : nlohmann::json();
+    if (const auto latest = m_feed->latest().latest().value) {
+        j["camera"]["frame_id"] = latest->frame_id;
+        j["camera"]["device_timestamp_ns"] = latest->device_timestamp_ns;
+    }
+    auto fpa = nlohmann::json::array();
+    const auto history = m_feed->fpa_history();
+    for (std::size_t i = history.size() > kFpaSamplesInStatus ? history.size() - kFpaSamplesInStatus : 0;
+         i < history.size(); ++i)
+        fpa.push_back({history[i].time_s, history[i].temperature_k});
+    j["fpa_temperature_k"] = std::move(fpa);
+    if (m_cycle) {
+        const CycleStatus c = m_cycle->status();
+        j["stage"] = {{"state", c.state}, {"cycles", c.cycles}, {"error", c.error}};
+        j["stage"]["angle_deg"] = c.angle_deg ? nlohmann::json(*c.angle_deg) : nlohmann::json();
+    }
+    if (m_capture) {
+        const CaptureState c = m_capture->state();
+        j["capture"] = {{"phase", to_string(c.phase)},
+                        {"steps_total", c.steps_total},
+                        {"steps_recorded", c.steps_recorded},
+                        {"output", c.output},
+                        {"message", c.message}};
+    }
+    return j;
+}
+
+}  // namespace tirpol::live

@@ -1,0 +1,165 @@
+// The HTTP side in-process, with an httplib client as the page: the page and its files are served
+// from the binary, /api/frame hands out each newer frame once, decodable, at the client's pace; on
+// loopback no token is needed, bound beyond loopback every request without the printed token is
+// refused with 401.
+
+#include "tirpol/live/live_server.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <functional>
+#include <thread>
+
+#include "decoded_image.h"
+#include "tirpol/core/error.h"
+#include "tirpol/live/access.h"
+
+namespace tirpol::live {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr const char* kCamera = "sim://uniform?width=32&height=24&counts=1500&noise=2&fps=50&fpa_k=300";
+
+/// A LiveView + LiveServer serving on their own thread for the duration of a test.
+struct Served {
+    LiveView view;
+    LiveServer server;
+    std::thread thread;
+    explicit Served(const std::string& bind) : view(options()), server(view, {bind, 0}) {
+        thread = std::thread([this] { server.run(); });
+        for (int i = 0; i < 200; ++i) {  // listen_after_bind starts accepting at once; give it a moment
+            httplib::Client probe("127.0.0.1", server.port());
+            if (probe.Get("/live.css")) break;
+            std::this_thread::sleep_for(10ms);
+        }
+    }
+    ~Served() {
+        server.stop();
+        thread.join();
+    }
+    static LiveViewOptions options() {
+        LiveViewOptions o;
+        o.camera_uri = kCamera;
+        return o;
+    }
+};
+
+TEST(LiveServer, ServesThePageAndNewerFramesOnLoopback) {
+    Served s("127.0.0.1");
+    EXPECT_TRUE(s.server.token().empty());
+    EXPECT_EQ(s.server.url(), "http://127.0.0.1:" + std::to_string(s.server.port()) + "/");
+    httplib::Client client("127.0.0.1", s.server.port());
+    auto page = client.Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_NE(page->body.find("<canvas id=\"s0\""), std::string::npos);
+    auto script = client.Get("/live.js");
+    ASSERT_TRUE(script);
+    EXPECT_NE(script->body.find("function decode"), std::string::npos);
+
+    auto first = client.Get("/api/frame?after=0");
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200);
+    const std::uint64_t seq = std::stoull(first->get_header_value("X-Sequence"));
+    const auto a = test::decode_live_image(first->body);
+    ASSERT_EQ(a.codes.size(), 1u);
+    EXPECT_EQ(a.header["width"], 32);
+    EXPECT_NEAR(a.value(0, 0), 1500.0, 20.0);  // 1500 counts ± noise
+    auto second = client.Get(("/api/frame?after=" + std::to_string(seq)).c_str());
+    ASSERT_TRUE(second);
+    ASSERT_EQ(second->status, 200);
+    EXPECT_GT(std::stoull(second->get_header_value("X-Sequence")), seq);
+    EXPECT_GT(test::decode_live_image(second->body).header["frame_id"].get<std::uint64_t>(),
+              a.header["frame_id"].get<std::uint64_t>());
+
+    const auto status = nlohmann::json::parse(client.Get("/api/status")->body);
+    EXPECT_GE(status["camera"]["grabbed"].get<int>(), 2);
+    EXPECT_FALSE(status.contains("stage"));
+    // No stage: Stokes never arrives (204 after the long poll) and capture is refused with a reason.
+    EXPECT_EQ(client.Get("/api/stokes?after=0")->status, 204);
+    auto capture = client.Post("/api/capture/start", R"({"plan":"p.yaml","output":"o"})", "application/json");
+    ASSERT_TRUE(capture);
+    EXPECT_EQ(capture->status, 400);
+    EXPECT_NE(capture->body.find("--stage"), std::string::npos) << capture->body;
+}
+
+TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
+    Served s("0.0.0.0");
+    const std::string token = s.server.token();
+    ASSERT_EQ(token.size(), 32u);
+    EXPECT_NE(s.server.url().find("?token=" + token), std::string::npos);
+    httplib::Client client("127.0.0.1", s.server.port());
+    for (const char* path : {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {
+        auto r = client.Get(path);
+        ASSERT_TRUE(r) << path;
+        EXPECT_EQ(r->status, 401) << path;
+        EXPECT_EQ(r->body.find("canvas"), std::string::npos);
+    }
+    EXPECT_EQ(client.Post("/api/capture/stop", "", "application/json")->status, 401);
+    EXPECT_EQ(client.Get(("/api/status?token=" + token.substr(0, 31) + "0").c_str())->status,
+              token.back() == '0' ? 200 : 401);
+    EXPECT_EQ(client.Get(("/?token=" + token).c_str())->status, 200);
+    EXPECT_EQ(client.Get("/api/status", {{"X-Tirpol-Token", token}})->status, 200);
+    // The page's script and style sheet are fetched without a query: the cookie set with the page covers them.
+    const auto page = client.Get(("/?token=" + token).c_str());
+    const std::string cookie = page->get_header_value("Set-Cookie");
+    EXPECT_NE(cookie.find("tirpol_token=" + token), std::string::npos) << cookie;
+    EXPECT_NE(cookie.find("HttpOnly"), std::string::npos) << cookie;
+    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "other=1; tirpol_token=" + token}})->status, 200);
+    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "tirpol_token=" + std::string(32, '0')}})->status, 401);
+}
+
+TEST(Access, LoopbackAddressesAndTokens) {
+    EXPECT_TRUE(is_loopback_address("127.0.0.1"));
+    EXPECT_TRUE(is_loopback_address("127.1.2.3"));
+    EXPECT_TRUE(is_loopback_address("::1"));
+    EXPECT_TRUE(is_loopback_address("localhost"));
+    EXPECT_FALSE(is_loopback_address("0.0.0.0"));
+    EXPECT_FALSE(is_loopback_address("192.168.1.20"));
+    const std::string a = make_access_token(), b = make_access_token();
+    EXPECT_EQ(a.size(), 32u);
+    EXPECT_NE(a, b);
+    EXPECT_TRUE(token_matches(a, a));
+    EXPECT_FALSE(token_matches(b, a));
+    EXPECT_FALSE(token_matches("", ""));
+    EXPECT_FALSE(token_matches(a.substr(0, 31), a));
+}
+
+}  // namespace
+}  // namespace tirpol::live
+
+namespace tirpol::live {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(LiveView, BadInputsAreErrorsNamingWhatIsWrong) {
+    LiveViewOptions o;
+    o.camera_uri = "sim://uniform?widht=32";
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("widht"), std::string::npos);
+    o.camera_uri = kCamera;
+    o.unit = DisplayUnit::Temperature;
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("--calibration"), std::string::npos);
+    o.unit = DisplayUnit::Counts;
+    o.stage_uri = "nostage://x";
+    EXPECT_NE(error_of([&] { LiveView v(o); }).find("nostage"), std::string::npos);
+}
+
+TEST(LiveServer, APortInUseIsAnErrorNamingIt) {
+    Served first("127.0.0.1");
+    LiveView view(Served::options());
+    const std::string message = error_of([&] { LiveServer second(view, {"127.0.0.1", first.server.port()}); });
+    EXPECT_NE(message.find(std::to_string(first.server.port())), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace tirpol::live
