@@ -1,9 +1,12 @@
 // Capture plans with drift references (issue #15 item 2): an in-scene reference blackbody region
 // and shutter records interleaved with the scene records. The session's plan JSON carries them in
 // the form calibration's offset_drift.h reads; the capture loop asks to close and reopen the shutter.
+// (Bad drift references: capture_plan_limits_test.cpp.)
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <set>
 
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
@@ -26,15 +29,6 @@ scene_reference:
   temperature_sigma_k: 0.02
 shutter_interleave: {every: 4, temperature_k: 295, frames: 3}
 )";
-
-std::string error_of(const std::string& yaml) {
-    try {
-        CapturePlan::parse(ConfigNode::parse(yaml, "plan.yaml"));
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(accepted)";
-}
 
 TEST(DriftReferencePlan, ShuttersAreInterleavedAtTheNeighbouringAngleAndTheRegionIsStored) {
     const CapturePlan plan = CapturePlan::parse(ConfigNode::parse(kPlan, "plan.yaml"));
@@ -65,18 +59,6 @@ TEST(DriftReferencePlan, ShuttersAreInterleavedAtTheNeighbouringAngleAndTheRegio
     EXPECT_FALSE(plain.contains("shutter_interleave"));
 }
 
-TEST(DriftReferencePlan, BadDriftReferencesAreReportedByField) {
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 2, height: 2}}"), HasSubstr("contact-sensor"));
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 0, height: 2}, temperature_k: 300}"),
-                HasSubstr("width"));
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1.5, y: 1, width: 2, height: 2}, temperature_k: 300}"),
-                HasSubstr("whole number"));
-    EXPECT_THAT(error_of("shutter_interleave: {every: 0}"), HasSubstr("every"));
-    EXPECT_THAT(error_of("shutter_interleave: {every: 2, temperature_k: 295, temperature_c: 20}"),
-                HasSubstr("not both"));
-    EXPECT_THAT(error_of("shutter_interleave: {evry: 2}"), HasSubstr("evry"));
-}
-
 TEST(DriftReferencePlan, TheCaptureLoopClosesAndReopensTheShutterAndRecordsItsTemperature) {
     test::TempDir tmp;
     auto stage = make_simulated_stage("sim://", {});
@@ -89,13 +71,10 @@ TEST(DriftReferencePlan, TheCaptureLoopClosesAndReopensTheShutterAndRecordsItsTe
         simulated_stage_angle_source(*stage));
     const CapturePlan plan = CapturePlan::parse(ConfigNode::parse(kPlan, "plan.yaml"));
     auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
-    std::vector<std::string> prompts;
     CaptureOptions options;
     options.progress_stream = nullptr;
-    options.prompt = [&](const std::string& text) {
-        prompts.push_back(text);
-        return true;
-    };
+    std::vector<std::string> prompts;  // the operator answers every prompt with "done"
+    options.prompt = [&prompts](const std::string& text) { return prompts.push_back(text), true; };
     EXPECT_EQ(run_capture(camera, *stage, plan, session, options).steps_recorded, 11u);
     ASSERT_EQ(prompts.size(), 5u);  // close, open, close, open, close
     EXPECT_THAT(prompts[0], HasSubstr("Close the shutter"));
