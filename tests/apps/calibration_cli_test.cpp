@@ -1,12 +1,12 @@
 // The calibration subcommands end to end through the real executable, on sessions written with
 // core's SessionWriter: exit codes, messages that name the problem, and the physics of the outputs.
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -58,8 +58,7 @@ void write_lab(const std::filesystem::path& dir, const std::vector<double>& temp
     const Band band(8.0, 14.0);
     auto w = SessionWriter::create(dir, manifest(false));
     int i = 0;
-    for (double t : temps)
-        w.add_record(record(RecordKind::Blackbody, "bb" + std::to_string(i++), 0.0, t), frame(band.radiance(t)));
+    for (double t : temps) w.add_record(record(RecordKind::Blackbody, "bb" + std::to_string(i++), 0.0, t), frame(band.radiance(t)));
     w.mark_complete();
 }
 
@@ -85,8 +84,7 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
         auto w = SessionWriter::create(dir / "scene", manifest(true));
         for (double a : {0.0, 45.0, 90.0, 135.0}) {
             const double i = 0.5 * (s0 + s1 * std::cos(2.0 * a * 3.14159265358979 / 180.0));
-            w.add_record(record(RecordKind::Polarizer, "p" + std::to_string(static_cast<int>(a)), a, std::nullopt),
-                         frame(i));
+            w.add_record(record(RecordKind::Polarizer, "p" + std::to_string(static_cast<int>(a)), a, std::nullopt), frame(i));
         }
         w.mark_complete();
     }
@@ -103,11 +101,9 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
 
     // Emissivity from the Stokes EXR: reflector and target are the same uniform image here, so
     // L_BB must exceed L_dw — a warm target gives a clear error, not a silent number.
-    test::write_text(dir / "rois.yaml",
-                     "reflector: {rect: [0, 0, 4, 4]}\ntargets:\n"
-                     "  - {name: t, rect: [8, 4, 4, 4], view_angle_deg: 30, temperature_k: 250}\n");
-    r = run_cli("extract-emissivity " + stokes + " " + (dir / "rois.yaml").string() + " -o " +
-                (dir / "e.csv").string());
+    test::write_text(dir / "rois.yaml", "reflector: {rect: [0, 0, 4, 4]}\ntargets:\n"
+                                        "  - {name: t, rect: [8, 4, 4, 4], view_angle_deg: 30, temperature_k: 250}\n");
+    r = run_cli("extract-emissivity " + stokes + " " + (dir / "rois.yaml").string() + " -o " + (dir / "e.csv").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("does not exceed the downwelled"), std::string::npos) << r.out;
 }
@@ -163,12 +159,12 @@ TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
     raw.add_channel("counts", 18109.0f);
     write_exr(dir / "raw.exr", raw);
     const CliRun r = run_cli("flir-temperature " + (dir / "raw.exr").string() +
-                             " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string());
+                         " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NEAR(read_exr(dir / "t.exr").at("temperature_k", 2, 1), 296.7743, 1e-3);
-    const CliRun bad =
-        run_cli("flir-temperature " + (dir / "raw.exr").string() +
-                " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " + (dir / "u.exr").string());
+    const CliRun bad = run_cli("flir-temperature " + (dir / "raw.exr").string() +
+                           " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " +
+                           (dir / "u.exr").string());
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_NE(bad.out.find("window transmission"), std::string::npos) << bad.out;
 }
@@ -179,8 +175,7 @@ TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
     test::TempDir dir;
     const Band band(8.0, 14.0);
     write_lab(dir / "lab", {283.15, 323.15});
-    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code,
-              0);
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
     std::uint64_t state = 12345;
     auto uniform = [&] {
         state = state * 6364136223846793005ull + 1442695040888963407ull;
@@ -190,12 +185,11 @@ TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {
     for (int t = 0; t < 32; ++t) {
         Image f(kW, kH);
         auto& c = f.add_channel("counts");
-        for (auto& v : c)
-            v = static_cast<float>(kOffset + kGain * band.radiance(300.0) + 8.0 * std::sqrt(12.0) * uniform());
+        for (auto& v : c) v = static_cast<float>(kOffset + kGain * band.radiance(300.0) + 8.0 * std::sqrt(12.0) * uniform());
         write_exr(dir / "stack" / fmt::format("f{}.exr", 100 + t), f);
     }
-    const CliRun r = run_cli("noise " + (dir / "stack").string() + " -o " + (dir / "n.json").string() +
-                             " --calibration " + (dir / "c.exr").string() + " --temperature-k 300");
+    const CliRun r = run_cli("noise " + (dir / "stack").string() + " -o " + (dir / "n.json").string() + " --calibration " +
+                         (dir / "c.exr").string() + " --temperature-k 300");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(read_file(dir / "n.json"));
     EXPECT_EQ(j["frames"].get<int>(), 32);
@@ -214,22 +208,21 @@ TEST(CalibrationCli, BadSessionsGiveExitOneAndNameTheProblem) {
     EXPECT_FALSE(std::filesystem::exists(dir / "c.exr"));  // no partial output
 
     write_lab(dir / "lab", {283.15, 323.15});
-    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code,
-              0);
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + (dir / "c.exr").string()).exit_code, 0);
     {
         auto w = SessionWriter::create(dir / "two_angles", manifest(true));
         w.add_record(record(RecordKind::Polarizer, "p0", 0.0, std::nullopt), frame(20.0));
         w.add_record(record(RecordKind::Polarizer, "p90", 90.0, std::nullopt), frame(20.0));
     }
     r = run_cli("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
-                (dir / "s.exr").string());
+            (dir / "s.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("at least 3 angles"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(dir / "s.exr"));
 
     write_file_atomic(dir / "two_angles" / "session.json", "{\"schema\": \"tirpol.session\", \"records\": [");
     r = run_cli("reduce " + (dir / "two_angles").string() + " --calibration " + (dir / "c.exr").string() + " -o " +
-                (dir / "s.exr").string());
+            (dir / "s.exr").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("session.json"), std::string::npos) << r.out;
 
