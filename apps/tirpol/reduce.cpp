@@ -1,5 +1,6 @@
 // `tirpol reduce`: a session of raw counts → calibrated Stokes EXR (S0 S1 S2 DoLP AoP + *_std).
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -14,6 +15,7 @@ namespace {
 struct ReduceArgs {
     std::string session, calibration, polarimetric, output, quicklooks;
     bool update_offset = false;
+    bool drift_correction = false;
     bool slar = false;
     bool force = false;
     double max_saturated_fraction = 0.01;
@@ -25,6 +27,7 @@ void run_reduce(const ReduceArgs& a) {
     if (!a.polarimetric.empty()) pol = calibration::read_polarimetric_calibration(a.polarimetric);
     calibration::SessionReductionOptions options;
     options.update_offset = a.update_offset;
+    options.drift_correction = a.drift_correction;
     options.max_saturated_fraction = a.max_saturated_fraction;
     options.include_slar = a.slar;
     options.force_other_camera = a.force;
@@ -43,6 +46,14 @@ void run_reduce(const ReduceArgs& a) {
             write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"), stokes.channel(c),
                             stokes.width(), stokes.height(), q);
         }
+    if (const auto it = stokes.attributes().find("drift_offset_counts"); it != stokes.attributes().end()) {
+        const auto& shift = std::get<std::vector<double>>(it->second);
+        const auto& sigma = std::get<std::vector<double>>(stokes.attributes().at("drift_offset_sigma_counts"));
+        const auto [lo, hi] = std::minmax_element(shift.begin(), shift.end());
+        std::printf("drift correction (%s): offset shift %.2f … %.2f counts over %zu records, σ ≤ %.3f counts\n",
+                    std::get<std::string>(stokes.attributes().at("drift_correction_source")).c_str(), *lo, *hi,
+                    shift.size(), *std::max_element(sigma.begin(), sigma.end()));
+    }
     const auto s0 = channel_stats(stokes.channel("S0"));
     const auto dolp = channel_stats(stokes.channel("DoLP"));
     std::printf("Stokes %d×%d: S0 mean %.4g W/(m²·sr), DoLP mean %.4f; %d unrealizable pixel(s) projected, %d saturated → %s\n",
@@ -59,6 +70,9 @@ void register_reduce(CLI::App& app) {
     cmd->add_option("--polarimetric", a->polarimetric, "Polarimetric calibration YAML (wire-grid removal, analyzer model)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("--update-offset", a->update_offset, "Update the offset from the session's shutter/blackbody record");
+    cmd->add_flag("--drift-correction", a->drift_correction,
+                  "Correct each record for the offset drift during the session (plan scene_reference region, else "
+                  "interleaved shutter records with a temperature)");
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction, "Error above this saturated fraction")
         ->capture_default_str();
     cmd->add_flag("--slar", a->slar, "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");

@@ -1,5 +1,7 @@
 #include "tirpol/calibration/session_calibration.h"
 
+#include "tirpol/calibration/offset_drift.h"
+
 #include <fmt/ranges.h>
 
 #include <algorithm>
@@ -151,9 +153,11 @@ struct RadianceFrame {
     std::vector<std::uint8_t> saturated;
 };
 
+/// `offset_shift_counts`: the record's offset drift (offset_drift.h), added to every pixel's offset.
 RadianceFrame to_radiance(const fs::path& dir, const SessionManifest& m, const SessionRecord& r,
-                          const RadiometricCalibration& calibration) {
-    const RadiometricCalibration cal = at_fpa_temperature(calibration, r.fpa_temperature_k, (dir / r.file).string());
+                          const RadiometricCalibration& calibration, double offset_shift_counts = 0.0) {
+    RadiometricCalibration cal = at_fpa_temperature(calibration, r.fpa_temperature_k, (dir / r.file).string());
+    for (auto& o : cal.offset) o += static_cast<float>(offset_shift_counts);
     if (m.camera.width != cal.width || m.camera.height != cal.height)
         fail("{}: camera is {}×{} but the radiometric calibration is {}×{}", manifest_path(dir), m.camera.width,
              m.camera.height, cal.width, cal.height);
@@ -338,6 +342,16 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         update_offset(radiometric, ref_frame);
         correction = describe_offset_update(radiometric_in, radiometric, ref_frame);
     }
+    if (options.drift_correction && polarimetric)
+        fail("drift correction together with a polarimetric calibration would remove the drift twice: the wire-grid "
+             "background B(α) already holds the offset; drop one of the two");
+    // Measured against the calibration in use (after --update-offset when both are asked for).
+    std::optional<SessionOffsetDrift> drift;
+    std::map<std::string, double> drift_by_file;
+    if (options.drift_correction) {
+        drift = session_offset_drift(dir, m, radiometric);
+        for (std::size_t k = 0; k < drift->files.size(); ++k) drift_by_file[drift->files[k]] = drift->points[k].shift_counts;
+    }
     std::map<int, Eigen::Vector3d> sources;
     if (m.metadata.contains("known_source")) sources = known_sources(dir, m, radiometric.band());
 
@@ -353,7 +367,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
-        const RadianceFrame f = to_radiance(dir, m, r, radiometric);
+        const RadianceFrame f = to_radiance(dir, m, r, radiometric, drift ? drift_by_file.at(r.file) : 0.0);
         if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
             warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
         const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
@@ -419,6 +433,19 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         a["offset_update_mean_counts"] = correction->mean_counts;
         a["offset_update_sigma_counts"] = correction->sigma_counts;
         a["offset_update_sigma_mk"] = correction->sigma_mk;
+    }
+    if (drift) {
+        std::vector<double> shift, sigma, time;
+        for (const auto& p : drift->points) {
+            shift.push_back(p.shift_counts);
+            sigma.push_back(p.sigma_counts);
+            time.push_back(p.time_s - drift->points.front().time_s);
+        }
+        a["drift_correction_source"] = drift->source;
+        a["drift_offset_counts"] = shift;
+        a["drift_offset_sigma_counts"] = sigma;
+        a["drift_time_s"] = time;
+        a["drift_records"] = fmt::format("{}", fmt::join(drift->files, "\n"));
     }
     a["analyzer"] = polarimetric ? polarimetric->analyzer_method : std::string("ideal (no polarimetric calibration)");
     return out;

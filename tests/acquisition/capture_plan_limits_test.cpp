@@ -79,5 +79,17 @@ TEST(CapturePlanLimits, ErrorsNameTheFileAndLine) {
     EXPECT_THAT(error_of("frames_per_angle: 4\nsettle_s: 99999\n"), HasSubstr("plan.yaml:2"));
 }
 
+TEST(CapturePlanLimits, BadDriftReferencesAreReportedByField) {
+    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 2, height: 2}}"), HasSubstr("contact-sensor"));
+    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 0, height: 2}, temperature_k: 300}"),
+                HasSubstr("width"));
+    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1.5, y: 1, width: 2, height: 2}, temperature_k: 300}"),
+                HasSubstr("whole number"));
+    EXPECT_THAT(error_of("shutter_interleave: {every: 0}"), HasSubstr("every"));
+    EXPECT_THAT(error_of("shutter_interleave: {every: 2, temperature_k: 295, temperature_c: 20}"),
+                HasSubstr("not both"));
+    EXPECT_THAT(error_of("shutter_interleave: {evry: 2}"), HasSubstr("evry"));
+}
+
 }  // namespace
 }  // namespace tirpol::acquisition

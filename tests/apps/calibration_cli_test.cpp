@@ -108,6 +108,50 @@ TEST(CalibrationCli, RadiometricCalibrationTemperatureAndReduce) {
     EXPECT_NE(r.out.find("does not exceed the downwelled"), std::string::npos) << r.out;
 }
 
+TEST(CalibrationCli, ReduceWithDriftCorrectionInterpolatesBetweenShutterRecords) {
+    // The offset drifts 40 → 80 counts linearly over 100 s; shutter records at 295 K at 0 and 100 s,
+    // an unpolarized 300 K scene at 20, 40, 60, 80 s: linear interpolation recovers it exactly.
+    test::TempDir dir;
+    const Band band(8.0, 14.0);
+    write_lab(dir / "lab", {283.15, 303.15, 323.15});
+    const auto cal = (dir / "cal.exr").string();
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "lab").string() + " -o " + cal).exit_code, 0);
+    {
+        auto w = SessionWriter::create(dir / "scene", manifest(true));
+        auto add = [&](RecordKind kind, const std::string& stem, double angle, std::optional<double> t, double time_s,
+                       double radiance) {
+            SessionRecord r = record(kind, stem, angle, t);
+            r.first_timestamp_ns = r.last_timestamp_ns = 1795359560000000000 + static_cast<std::int64_t>(time_s * 1e9);
+            Image f = frame(radiance);
+            for (auto& c : f.channel("counts")) c += static_cast<float>(40.0 + 0.4 * time_s);
+            w.add_record(r, f);
+        };
+        add(RecordKind::Shutter, "shutter0", 0.0, 295.0, 0.0, band.radiance(295.0));
+        for (int k = 0; k < 4; ++k)
+            add(RecordKind::Polarizer, fmt::format("p{}", 45 * k), 45.0 * k, std::nullopt, 20.0 * (k + 1),
+                0.5 * band.radiance(300.0));
+        add(RecordKind::Shutter, "shutter1", 0.0, 295.0, 100.0, band.radiance(295.0));
+        w.mark_complete();
+    }
+    const auto out = (dir / "stokes.exr").string();
+    const CliRun raw = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " -o " + out);
+    ASSERT_EQ(raw.exit_code, 0) << raw.out;
+    EXPECT_GT(std::abs(band.brightness_temperature(read_exr(out).at("S0", 5, 5)) - 300.0), 1.0);
+    const CliRun r =
+        run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " --drift-correction -o " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(
+        r.out.find("drift correction (shutter records (2), interpolated in time): offset shift 48.00 … 72.00 counts"),
+        std::string::npos)
+        << r.out;
+    const Image s = read_exr(out);
+    EXPECT_NEAR(band.brightness_temperature(s.at("S0", 5, 5)), 300.0, 1e-3);
+    const auto& shift = std::get<std::vector<double>>(s.attributes().at("drift_offset_counts"));
+    ASSERT_EQ(shift.size(), 4u);
+    EXPECT_NEAR(shift[1], 56.0, 1e-2);
+    EXPECT_NEAR(std::get<std::vector<double>>(s.attributes().at("drift_time_s"))[3], 60.0, 1e-9);
+}
+
 TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
     // Thermimage's SC660 constants; raw 18109 under blackbody conditions is 296.7743 K (flir_test.cpp).
     test::TempDir dir;

@@ -148,9 +148,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                          step->index + 1, total, step->label, recorded(), total, session.dir().string());
                 step_failed(*step, "blackbody", reached.error());
             }
-        } else if (step->kind != RecordKind::Polarizer && options.prompt) {
+        } else if ((step->kind != RecordKind::Polarizer || step->after_shutter) && options.prompt) {
             const std::string instruction =
-                step->kind == RecordKind::Blackbody
+                step->kind == RecordKind::Polarizer ? std::string("Open the shutter (uncover the lens) for the scene")
+                : step->kind == RecordKind::Blackbody
                     ? fmt::format("Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, filling the field of view", *step->temperature_k, *step->temperature_k - 273.15)
                     : std::string("Close the shutter (or cover the lens with a uniform cover)");
             if (!options.prompt(instruction))

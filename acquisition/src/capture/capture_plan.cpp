@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "drift_reference_plan.h"
 #include "tirpol/acquisition/angles.h"
 #include "tirpol/core/error.h"
 
@@ -107,7 +108,7 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
             "the capture plan is empty; write at least one field (e.g. `frames_per_angle: 16`), the others take their "
             "defaults");
     root.check_keys({"angles_deg", "frames_per_angle", "settle_s", "repeats", "angle_tolerance_deg", "move_timeout_s",
-                     "home_timeout_s", "frame_timeout_s", "references", "metadata"});
+                     "home_timeout_s", "frame_timeout_s", "references", "scene_reference", "shutter_interleave", "metadata"});
     CapturePlan plan;
     if (root.has("angles_deg")) {
         plan.angles_deg = root.get<std::vector<double>>("angles_deg");
@@ -152,6 +153,7 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
             plan.references.push_back(std::move(spec));
         }
     }
+    detail::parse_drift_references(root, plan);
     if (auto meta = root.find("metadata")) {
         if (!meta->is_map()) meta->fail("expected a mapping of free-form fields");
         plan.metadata = yaml_to_json(*meta);
@@ -170,11 +172,13 @@ nlohmann::json CapturePlan::to_json() const {
         if (r.controller) ref["controller"] = criterion_json(*r.controller);
         refs.push_back(std::move(ref));
     }
-    return {{"angles_deg", angles_deg},         {"frames_per_angle", frames_per_angle},
+    nlohmann::json out = {{"angles_deg", angles_deg},         {"frames_per_angle", frames_per_angle},
             {"settle_s", settle_s},             {"repeats", repeats},
             {"angle_tolerance_deg", angle_tolerance_deg}, {"move_timeout_s", move_timeout_s},
             {"home_timeout_s", home_timeout_s}, {"frame_timeout_s", frame_timeout_s},
             {"references", refs}};
+    detail::drift_references_json(*this, out);
+    return out;
 }
 
 bool plan_uses_blackbody_controller(const CapturePlan& plan) {
@@ -213,16 +217,28 @@ std::vector<CaptureStep> plan_steps(const CapturePlan& plan) {
                 add(s, stem);
             }
     }
+    // Interleaved shutters stay at the polarizer angle of the scene step next to them: no extra move.
+    const ShutterInterleaveSpec* interleave = plan.shutter_interleave ? &*plan.shutter_interleave : nullptr;
+    int scene_steps = 0, shutters = 0;
+    auto add_shutter = [&](double angle_deg) {
+        add(detail::interleaved_shutter_step(*interleave, shutters, angle_deg), fmt::format("shutter_i{:03}", shutters));
+        ++shutters;
+    };
     for (int r = 0; r < plan.repeats; ++r)
         for (double a : plan.angles_deg) {
             CaptureStep s;
             s.kind = RecordKind::Polarizer;
             s.angle_deg = a;
             s.repeat = r;
+            if (interleave && scene_steps++ % interleave->every == 0) {
+                add_shutter(a);
+                s.after_shutter = true;
+            }
             s.frames = plan.frames_per_angle;
             s.label = plan.repeats > 1 ? fmt::format("polarizer {:g}° (repeat {}/{})", a, r + 1, plan.repeats) : fmt::format("polarizer {:g}°", a);
             add(s, fmt::format("pol_{:07.3f}deg_r{}", a, r));
         }
+    if (interleave && !steps.empty()) add_shutter(steps.back().angle_deg);
     return steps;
 }
 

@@ -21,6 +21,14 @@
 ///     frames: 32
 ///     angles_deg: [0, 45, 90, 135]  # optional: each set-point × these polarizer angles
 ///     controller: {tolerance_k: 0.05, stable_for_s: 30, timeout_s: 1800, poll_s: 1}
+/// scene_reference:               # optional: in-scene reference blackbody region (drift correction)
+///   roi: {x: 2, y: 2, width: 6, height: 6}   # pixels
+///   temperature_k: 303.15         # or temperature_c: its contact sensor
+///   temperature_sigma_k: 0.02
+/// shutter_interleave:             # optional: a shutter record before every N scene records and at the end
+///   every: 4
+///   temperature_k: 295.0          # the shutter's sensor (needed for the drift correction)
+///   frames: 16
 /// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5, air_temperature_c: 4.5}
 /// ```
 /// Unknown keys are errors naming the key (typos never pass silently); so are an empty plan file,
@@ -57,6 +65,20 @@ struct ReferenceSpec {
     std::optional<BlackbodyStabilityCriterion> controller;
 };
 
+/// An in-scene reference blackbody seen in every scene record (docs/calibration.md, "Drift correction").
+struct SceneReferenceSpec {
+    int x = 0, y = 0, width = 0, height = 0;  ///< ROI, pixels
+    double temperature_k = 0.0;               ///< contact-sensor value
+    double temperature_sigma_k = 0.0;
+};
+
+/// Shutter (flat-field) records interleaved with the scene records.
+struct ShutterInterleaveSpec {
+    int every = 4;  ///< scene records between two shutter records
+    std::optional<double> temperature_k;
+    int frames = 16;
+};
+
 struct CapturePlan {
     std::vector<double> angles_deg{0.0, 45.0, 90.0, 135.0};
     int frames_per_angle = 16;
@@ -67,6 +89,8 @@ struct CapturePlan {
     double home_timeout_s = 120.0;
     double frame_timeout_s = 5.0;
     std::vector<ReferenceSpec> references;
+    std::optional<SceneReferenceSpec> scene_reference;
+    std::optional<ShutterInterleaveSpec> shutter_interleave;
     nlohmann::json metadata = nlohmann::json::object();
 
     /// Parses and validates; throws tirpol::Error naming the file, line and field.
@@ -87,13 +111,15 @@ struct CaptureStep {
     int frames = 0;
     std::string file;   ///< "frames/s003_pol_090.000deg_r0.exr"
     std::string label;  ///< "polarizer 90° (repeat 1/2)"
+    bool after_shutter = false;  ///< a scene step right after an interleaved shutter: reopen it first
 };
 
 /// Whether any step needs a blackbody controller.
 bool plan_uses_blackbody_controller(const CapturePlan& plan);
 
 /// References first (in plan order; a reference with angles_deg gives temperature × angle steps),
-/// then `repeats` × angles. Deterministic: the same plan always
+/// then `repeats` × angles, with a shutter step before every shutter_interleave.every of them and
+/// one at the end when the plan interleaves shutters. Deterministic: the same plan always
 /// gives the same steps and file names, which is what lets --resume skip what is recorded.
 std::vector<CaptureStep> plan_steps(const CapturePlan& plan);
 

@@ -59,6 +59,10 @@ struct SessionReductionOptions {
     /// Update the offset from the session's shutter record with a temperature first (or, when the
     /// polarizer was out of the beam, a blackbody record).
     bool update_offset = false;
+    /// Correct each scene record for the offset drift during the session (offset_drift.h): from the
+    /// plan's in-scene reference region, else interpolated in time between temperature-tagged
+    /// shutter records.
+    bool drift_correction = false;
     /// Saturated scene pixels become NaN; more than this fraction of any image is an error.
     double max_saturated_fraction = 0.01;
     /// Add the L_SLAR_<angle> channels (ReductionOptions::include_slar).
@@ -80,7 +84,10 @@ void check_same_camera(const RadiometricCalibration& calibration, const SessionM
 /// in the attribute `calibration_warnings`. With options.update_offset, the correction and its
 /// uncertainty are attributes: offset_update_source, offset_update_mean_counts (mean change of the
 /// offset over good pixels), offset_update_sigma_counts and offset_update_sigma_mk (median per-pixel
-/// σ of the reference frame's mean, the uncertainty the update adds to every pixel).
+/// σ of the reference frame's mean, the uncertainty the update adds to every pixel). With
+/// options.drift_correction: drift_correction_source, and per scene record (in record order, files in
+/// drift_records, one per line) drift_offset_counts, drift_offset_sigma_counts and drift_time_s
+/// (seconds since the first scene record).
 Image reduce_session(const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options = {});
 
