@@ -16,7 +16,7 @@ namespace tirpol::cli {
 namespace {
 
 std::atomic<bool> g_stop{false};
-extern "C" void on_stop_signal(int) { g_stop = true; }
+extern "C" void on_live_stop_signal(int) { g_stop = true; }
 
 struct LiveArgs {
     live::LiveViewOptions view;
@@ -35,8 +35,8 @@ void run_live(LiveArgs a) {
     std::fflush(stdout);
 
     g_stop = false;
-    std::signal(SIGINT, on_stop_signal);
-    std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGINT, on_live_stop_signal);
+    std::signal(SIGTERM, on_live_stop_signal);
     std::thread watcher([&server] {
         while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
         server.stop();

@@ -98,7 +98,7 @@ void serve_pty_device(PtyDevice& device, PseudoTerminal& pty, const std::atomic<
 
 namespace {
 std::atomic<bool> g_stop_program{false};
-extern "C" void on_stop_signal(int) { g_stop_program = true; }
+extern "C" void on_simulator_stop_signal(int) { g_stop_program = true; }
 }  // namespace
 
 int run_pty_simulator_program(PtyDevice& device, const std::string& link, const char* program) {
@@ -116,8 +116,8 @@ int run_pty_simulator_program(PtyDevice& device, const std::string& link, const 
             return 1;
         }
     }
-    std::signal(SIGINT, on_stop_signal);
-    std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGINT, on_simulator_stop_signal);
+    std::signal(SIGTERM, on_simulator_stop_signal);
     std::printf("%s\n", pty.value().slave_path().c_str());
     std::fflush(stdout);
     serve_pty_device(device, pty.value(), g_stop_program);
