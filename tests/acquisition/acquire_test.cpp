@@ -3,16 +3,14 @@
 // a run killed with SIGKILL mid-session and resumed gives a complete session with every step
 // exactly once and every record written before the kill unchanged.
 
-#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <set>
 #include <thread>
 
+#include "child_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/core/atomic_file.h"
@@ -24,44 +22,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// A child process with stdout+stderr to a file; killed (SIGKILL) if still running at destruction.
-class Child {
-public:
-    Child(std::vector<std::string> argv, const std::filesystem::path& log) {
-        m_pid = ::fork();
-        if (m_pid == 0) {
-            const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            ::dup2(fd, STDOUT_FILENO);
-            ::dup2(fd, STDERR_FILENO);
-            const int devnull = ::open("/dev/null", O_RDONLY);
-            ::dup2(devnull, STDIN_FILENO);
-            std::vector<char*> args;
-            for (auto& a : argv) args.push_back(a.data());
-            args.push_back(nullptr);
-            ::execv(args[0], args.data());
-            ::_exit(127);
-        }
-    }
-    ~Child() {
-        if (m_pid > 0 && !m_reaped) {
-            ::kill(m_pid, SIGKILL);
-            ::waitpid(m_pid, nullptr, 0);
-        }
-    }
-    Child(const Child&) = delete;
-    Child& operator=(const Child&) = delete;
-    int wait() {
-        int status = 0;
-        ::waitpid(m_pid, &status, 0);
-        m_reaped = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    }
-    void signal(int sig) const { ::kill(m_pid, sig); }
-
-private:
-    pid_t m_pid = -1;
-    bool m_reaped = false;
-};
+using Child = test::ChildProcess;
 
 /// `tirpol-stage-sim --protocol apt` linked at DIR/stage, waiting until the link exists.
 std::unique_ptr<Child> start_stage_sim(const std::filesystem::path& dir, const char* speed) {

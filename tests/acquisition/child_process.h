@@ -59,6 +59,15 @@ public:
         m_exit = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         return false;
     }
+    /// Exit code (128 + signal when killed), waiting as long as it takes.
+    int wait() {
+        if (!m_exit) {
+            int status = 0;
+            ::waitpid(m_pid, &status, 0);
+            m_exit = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        }
+        return *m_exit;
+    }
     void signal(int sig) const { ::kill(m_pid, sig); }
     pid_t pid() const { return m_pid; }
 
