@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/utc_time.h"
@@ -367,6 +368,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
+        throw_if_cancelled(options.cancel, "session reduction");
         const RadianceFrame f = to_radiance(dir, m, r, radiometric, drift ? drift_by_file.at(r.file) : 0.0);
         if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
             warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
@@ -413,6 +415,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     const AnalyzerModel model = polarimetric ? polarimetric->analyzer : AnalyzerModel::ideal(angles);
     ReductionOptions reduction;
     reduction.include_slar = options.include_slar;
+    reduction.cancel = options.cancel;
     Image out = reduce_stokes(images, radiometric.width, radiometric.height, model,
                               polarimetric ? &polarimetric->wire_grid : nullptr, reduction);
     int n_saturated = 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "validate.h"
@@ -105,7 +106,12 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
         }
     }
     int unrealizable = 0;
+    std::size_t next_cancel_check = 0;  // the start of each row
     for (std::size_t i = 0; i < n; ++i) {
+        if (i == next_cancel_check) {
+            throw_if_cancelled(options.cancel, "Stokes reduction");
+            next_cancel_check += static_cast<std::size_t>(width);
+        }
         double s[3] = {0.0, 0.0, 0.0};
         double c00 = 0.0, c11 = 0.0, c22 = 0.0, c01 = 0.0, c02 = 0.0, c12 = 0.0;
         for (std::size_t k = 0; k < n_angles; ++k) {

@@ -6,6 +6,7 @@
 
 #include "emissivity_residual.h"
 #include "latin_hypercube.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::fitting {
@@ -348,6 +349,22 @@ GradientCheckReport MicrofacetFitProblem::check_gradients(const std::vector<doub
     return report;
 }
 
+namespace {
+
+/// Ends a Ceres solve at the next iteration once the caller's cancellation flag is set.
+class AbortWhenCancelled final : public ceres::IterationCallback {
+public:
+    explicit AbortWhenCancelled(const std::atomic<bool>* cancel) : m_cancel(cancel) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+        return m_cancel && m_cancel->load(std::memory_order_relaxed) ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    }
+
+private:
+    const std::atomic<bool>* m_cancel;
+};
+
+}  // namespace
+
 MicrofacetFitResult MicrofacetFitProblem::solve() const {
     const Impl& im = *m;
     MicrofacetFitResult result;
@@ -360,8 +377,13 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
     for (const std::vector<double>& start : im.start_points()) {
         std::vector<double> values = start;
         auto problem = im.build(values, true);
+        throw_if_cancelled(im.options.cancel, "micro-facet fit");
+        AbortWhenCancelled abort_when_cancelled(im.options.cancel);
+        ceres::Solver::Options solver_options = im.solver_options();
+        solver_options.callbacks.push_back(&abort_when_cancelled);
         ceres::Solver::Summary summary;
-        ceres::Solve(im.solver_options(), problem.get(), &summary);
+        ceres::Solve(solver_options, problem.get(), &summary);
+        throw_if_cancelled(im.options.cancel, "micro-facet fit");
         StartOutcome outcome;
         outcome.initial = start;
         outcome.chi2 = 2.0 * summary.final_cost;

@@ -112,6 +112,7 @@ void bind_stage(py::module_& m) {
 
 void bind_acquisition(py::module_& m) {
     bind_stage(m);
+    bind_capture(m);
     py::class_<Camera, std::unique_ptr<Camera>>(m, "Camera",
                                                 "A camera opened by URI (docs/acquisition-cameras.md). Use it as a "
                                                 "context manager to stop streaming on exit.")
@@ -159,6 +160,22 @@ void bind_acquisition(py::module_& m) {
         "Opens a camera: aravis://<device-id>[?pixel_format=&width=&height=&fps=], v4l2:///dev/videoN, "
         "sim://uniform?width=&height=&counts=&noise=&fps=. A malformed URI raises tirpol.Error, an absent or "
         "refusing device tirpol.DeviceError.");
+    m.def(
+        "list_cameras",
+        [] {
+            std::vector<acquisition::CameraDescriptor> cameras;
+            {
+                py::gil_scoped_release release;
+                cameras = acquisition::list_cameras();
+            }
+            py::list out;
+            for (const auto& c : cameras)
+                out.append(py::dict(py::arg("uri") = c.uri, py::arg("description") = c.description));
+            return out;
+        },
+        "Cameras reachable now: Aravis discovery (GigE Vision, USB3 Vision; takes about 1 s) and the V4L2 capture "
+        "devices among /dev/video*, as a list of {'uri': pass to open_camera, 'description': vendor, model, "
+        "address or driver}. Releases the GIL.");
 }
 
 }  // namespace tirpol::python

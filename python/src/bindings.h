@@ -10,10 +10,14 @@ void bind_errors(pybind11::module_& m);
 void bind_core(pybind11::module_& m);
 void bind_materials(pybind11::module_& m);
 void bind_simulation(pybind11::module_& m);
+void bind_sensor_model(pybind11::module_& m);  ///< I(α) images; called by bind_simulation
 void bind_calibration(pybind11::module_& m);
 void bind_calibration_sessions(pybind11::module_& m);  ///< sessions and counts; called by bind_calibration
+void bind_noise(pybind11::module_& m);                 ///< 3D noise, NEDT; called by bind_calibration
+void bind_wire_grid(pybind11::module_& m);             ///< τ/B from arrays; called by bind_calibration
 void bind_fitting(pybind11::module_& m);
 void bind_acquisition(pybind11::module_& m);
+void bind_capture(pybind11::module_& m);  ///< run_capture; called by bind_acquisition
 void bind_report(pybind11::module_& m);
 
 }  // namespace tirpol::python

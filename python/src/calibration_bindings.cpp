@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
+#include "interruptible.h"
 #include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
@@ -36,6 +37,28 @@ void bind_analyzer(py::module_& m) {
         .def_static("non_ideal", &AnalyzerModel::non_ideal, py::arg("angles_deg"), py::arg("extinction_ratio"),
                     py::arg("angle_offset_deg") = 0.0, py::arg("t_max") = 1.0,
                     "A polarizer with an extinction ratio and an axis offset at every position.")
+        .def_static(
+            "estimate",
+            [](const std::vector<double>& angles_deg, const Eigen::MatrixX3d& source_stokes,
+               const Eigen::MatrixXd& intensities) {
+                if (intensities.rows() != source_stokes.rows() ||
+                    intensities.cols() != static_cast<Eigen::Index>(angles_deg.size()))
+                    fail("intensities: expected shape ({}, {}) (one row per source, one column per angle), got "
+                         "({}, {})",
+                         source_stokes.rows(), angles_deg.size(), intensities.rows(), intensities.cols());
+                std::vector<calibration::KnownSourceMeasurement> measurements;
+                for (Eigen::Index j = 0; j < source_stokes.rows(); ++j) {
+                    const Eigen::RowVectorXd row = intensities.row(j);
+                    measurements.push_back({source_stokes.row(j).transpose(), {row.data(), row.data() + row.size()}});
+                }
+                return calibration::estimate_analyzer(angles_deg, measurements);
+            },
+            py::arg("angles_deg"), py::arg("source_stokes"), py::arg("intensities"),
+            "Least-squares analyzer model from known polarized sources (the polarimetric calibration's analyzer "
+            "step, from arrays): `source_stokes` (J, 3) = (S0, S1, S2) of each source in the camera frame, "
+            "`intensities` (J, N) its mean measurement at each angle. Per position the axis angle, diattenuation, "
+            "transmission and background are fitted; needs ≥ 4 sources spanning two intensities and two "
+            "polarization orientations.")
         .def_readonly("positions", &AnalyzerModel::positions)
         .def("data_reduction_matrix", &AnalyzerModel::data_reduction_matrix, "W⁺, shape (3, N).")
         .def("condition_number", &AnalyzerModel::condition_number);
@@ -98,7 +121,8 @@ void bind_reduce(py::module_& m) {
     m.def(
         "reduce",
         [](const py::dict& images, const py::object& stds, std::optional<AnalyzerModel> model,
-           bool project_to_realizable, bool include_slar, const std::string& units) {
+           bool project_to_realizable, bool include_slar, const std::string& units,
+           const calibration::WireGridCalibration* wire_grid) {
             int width = 0, height = 0;
             auto inputs = analyzer_images(images, stds, width, height);
             if (!model) {
@@ -111,28 +135,37 @@ void bind_reduce(py::module_& m) {
             options.project_to_realizable = project_to_realizable;
             options.include_slar = include_slar;
             options.units = units;
-            Image result;
-            {
-                py::gil_scoped_release release;
-                result = calibration::reduce_stokes(inputs, width, height, *model, nullptr, options);
-            }
-            plane_pool().give_back(inputs);
+            // The input planes go back to the pool whether the reduction ends or is interrupted.
+            struct GiveBack {
+                std::vector<calibration::AnalyzerImage>& inputs;
+                ~GiveBack() { plane_pool().give_back(inputs); }
+            } give_back{inputs};
+            Image result = run_interruptible([&](const std::atomic<bool>& cancel) {
+                calibration::ReductionOptions o = options;
+                o.cancel = &cancel;
+                return calibration::reduce_stokes(inputs, width, height, *model, wire_grid, o);
+            });
             return to_python(std::move(result));
         },
         py::arg("images"), py::arg("stds") = py::none(), py::arg("model") = py::none(),
         py::arg("project_to_realizable") = true, py::arg("include_slar") = false, py::arg("units") = "W/(m^2 sr)",
+        py::arg("wire_grid") = py::none(),
         "Stokes reduction S = W⁺·I per pixel (Tyo et al. 2006 §4) of analyzer images {angle_deg: (H, W) array}, "
         "with σ images `stds` (same keys) propagated to S0_std S1_std S2_std DoLP_std AoP_std. Default model: an "
         "ideal polarizer at the given angles. Returns a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, "
-        "S1 = I0 − I90, S2 = I45 − I135). Releases the GIL.");
+        "S1 = I0 − I90, S2 = I45 − I135). With `wire_grid` (fit_wire_grid), each image is first corrected to "
+        "L_SLAR = (I − B)/τ and the grid fit's covariance adds to the σ. Releases the GIL; Ctrl-C stops it "
+        "(KeyboardInterrupt).");
 }
 
 }  // namespace
 
 void bind_calibration(py::module_& m) {
     bind_analyzer(m);
+    bind_wire_grid(m);
     bind_reduce(m);
     bind_calibration_sessions(m);
+    bind_noise(m);
 }
 
 }  // namespace tirpol::python

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "interruptible.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/microfacet_fit.h"
 
@@ -118,30 +119,47 @@ void bind_fit_result(py::module_& m) {
         });
 }
 
+/// One dataset from 1-D arrays of equal length.
+EmissivityDataset dataset_of(const DoubleArray& angle_deg, const DoubleArray& e_s0, const DoubleArray& e_s0_sigma,
+                             const DoubleArray& e_s1, const DoubleArray& e_s1_sigma, double wavelength_um,
+                             std::string source) {
+    const auto angles = values_of(angle_deg, "angle_deg", 0);
+    const auto s0 = values_of(e_s0, "e_s0", angles.size()),
+               s0_sigma = values_of(e_s0_sigma, "e_s0_sigma", angles.size());
+    const auto s1 = values_of(e_s1, "e_s1", angles.size()),
+               s1_sigma = values_of(e_s1_sigma, "e_s1_sigma", angles.size());
+    EmissivityDataset dataset;
+    dataset.source = std::move(source);
+    dataset.wavelength_um = wavelength_um;
+    for (std::size_t i = 0; i < angles.size(); ++i)
+        dataset.samples.push_back({angles[i], s0[i], s0_sigma[i], s1[i], s1_sigma[i], ""});
+    return dataset;
+}
+
+/// Validates, then solves on a worker thread that Ctrl-C stops (MicrofacetFitOptions::cancel).
+FitResult solve(std::vector<EmissivityDataset> datasets, const py::dict& parameters, int starts, std::uint64_t seed,
+                bool scale_covariance_by_reduced_chi2) {
+    MicrofacetFitOptions options;
+    apply_parameter_settings(parameters, options);
+    options.starts = starts;
+    options.seed = seed;
+    options.scale_covariance_by_reduced_chi2 = scale_covariance_by_reduced_chi2;
+    return run_interruptible([&](const std::atomic<bool>& cancel) {
+        MicrofacetFitOptions o = options;
+        o.cancel = &cancel;
+        return FitResult{MicrofacetFitProblem(std::move(datasets), o).solve()};
+    });
+}
+
 void bind_fit(py::module_& m) {
     m.def(
         "fit_microfacet",
         [](const DoubleArray& angle_deg, const DoubleArray& e_s0, const DoubleArray& e_s0_sigma,
            const DoubleArray& e_s1, const DoubleArray& e_s1_sigma, double wavelength_um, const py::dict& parameters,
            int starts, std::uint64_t seed, bool scale_covariance_by_reduced_chi2) {
-            const auto angles = values_of(angle_deg, "angle_deg", 0);
-            const auto s0 = values_of(e_s0, "e_s0", angles.size()),
-                       s0_sigma = values_of(e_s0_sigma, "e_s0_sigma", angles.size());
-            const auto s1 = values_of(e_s1, "e_s1", angles.size()),
-                       s1_sigma = values_of(e_s1_sigma, "e_s1_sigma", angles.size());
-            EmissivityDataset dataset;
-            dataset.source = "arrays from Python";
-            dataset.wavelength_um = wavelength_um;
-            for (std::size_t i = 0; i < angles.size(); ++i)
-                dataset.samples.push_back({angles[i], s0[i], s0_sigma[i], s1[i], s1_sigma[i], ""});
-            MicrofacetFitOptions options;
-            apply_parameter_settings(parameters, options);
-            options.starts = starts;
-            options.seed = seed;
-            options.scale_covariance_by_reduced_chi2 = scale_covariance_by_reduced_chi2;
-            const MicrofacetFitProblem problem({std::move(dataset)}, options);
-            py::gil_scoped_release release;
-            return FitResult{problem.solve()};
+            return solve(
+                {dataset_of(angle_deg, e_s0, e_s0_sigma, e_s1, e_s1_sigma, wavelength_um, "arrays from Python")},
+                parameters, starts, seed, scale_covariance_by_reduced_chi2);
         },
         py::arg("angle_deg"), py::arg("e_s0"), py::arg("e_s0_sigma"), py::arg("e_s1"), py::arg("e_s1_sigma"),
         py::arg("wavelength_um") = 10.0, py::arg("parameters") = py::dict(), py::arg("starts") = 16,
@@ -150,7 +168,34 @@ void bind_fit(py::module_& m) {
         "to polarized emissivity ε_S0(θ), ε_S1(θ) (1-D arrays, 1σ uncertainties; ε_S1 in the plane-of-emission "
         "frame, < 0 for emission polarized in it) with Ceres, several starts (docs/fitting.md). `parameters` "
         "overrides the defaults per name: {'sigma': {'initial': 0.3, 'lower': 0.05, 'upper': 1, 'fixed': False}}. "
-        "Releases the GIL.");
+        "Releases the GIL; Ctrl-C stops it at the next solver iteration (KeyboardInterrupt).");
+    m.def(
+        "fit_microfacet_joint",
+        [](const py::list& datasets, const py::dict& parameters, int starts, std::uint64_t seed,
+           bool scale_covariance_by_reduced_chi2) {
+            std::vector<EmissivityDataset> inputs;
+            for (const auto& item : datasets) {
+                const auto d = item.cast<py::dict>();
+                const std::string source = fmt::format("datasets[{}]", inputs.size());
+                for (const char* key : {"angle_deg", "e_s0", "e_s0_sigma", "e_s1", "e_s1_sigma", "wavelength_um"})
+                    if (!d.contains(key))
+                        fail("{}: no '{}' (expected angle_deg, e_s0, e_s0_sigma, e_s1, e_s1_sigma, wavelength_um)",
+                             source, key);
+                inputs.push_back(dataset_of(d["angle_deg"].cast<DoubleArray>(), d["e_s0"].cast<DoubleArray>(),
+                                            d["e_s0_sigma"].cast<DoubleArray>(), d["e_s1"].cast<DoubleArray>(),
+                                            d["e_s1_sigma"].cast<DoubleArray>(), d["wavelength_um"].cast<double>(),
+                                            source));
+            }
+            if (inputs.empty()) fail("datasets: none given (expected a list of dicts of arrays)");
+            return solve(std::move(inputs), parameters, starts, seed, scale_covariance_by_reduced_chi2);
+        },
+        py::arg("datasets"), py::arg("parameters") = py::dict(), py::arg("starts") = 16, py::arg("seed") = 1,
+        py::arg("scale_covariance_by_reduced_chi2") = false,
+        "Joint fit of several datasets of one material — view-angle series or wavelength bands, each a dict with "
+        "the arrays angle_deg, e_s0, e_s0_sigma, e_s1, e_s1_sigma and a number wavelength_um: σ, bias, τ, Ω, ρ_D, "
+        "ρ_V are shared, n and k are fitted per distinct wavelength (named 'n@8.5um', 'k@8.5um' when there are "
+        "several). model_e_s0/model_e_s1 list the samples of all datasets in order. Releases the GIL; Ctrl-C stops "
+        "it (KeyboardInterrupt).");
 }
 
 }  // namespace

@@ -97,4 +97,8 @@ Image from_python(const py::handle& channels, const py::handle& attributes) {
     return image;
 }
 
+Image image_from_python(const py::handle& image) {
+    return from_python(image, py::hasattr(image, "attributes") ? image.attr("attributes") : py::object(py::none()));
+}
+
 }  // namespace tirpol::python

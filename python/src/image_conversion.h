@@ -29,4 +29,7 @@ pybind11::object to_python(Image&& image);
 /// (int, float, str or a sequence of floats). tirpol::Error names the channel or attribute at fault.
 Image from_python(const pybind11::handle& channels, const pybind11::handle& attributes);
 
+/// A tirpol.Image (its `attributes` too) or a plain dict of channel name → 2-D array as an Image.
+Image image_from_python(const pybind11::handle& image);
+
 }  // namespace tirpol::python

@@ -5,6 +5,7 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
+#include "interruptible.h"
 #include "tirpol/report/comparison_report.h"
 
 namespace py = pybind11;
@@ -49,21 +50,19 @@ void bind_report(py::module_& m) {
         [](const py::object& measured, const py::object& simulated, const std::string& registration,
            std::optional<double> measured_frame_sigma, std::optional<std::array<double, 2>> band_um,
            const std::string& measured_name, const std::string& simulated_name) {
-            auto attributes_of = [](const py::object& image) {
-                return py::hasattr(image, "attributes") ? image.attr("attributes") : py::object(py::none());
-            };
-            const Image m_image = from_python(measured, attributes_of(measured));
-            const Image s_image = from_python(simulated, attributes_of(simulated));
+            const Image m_image = image_from_python(measured);
+            const Image s_image = image_from_python(simulated);
             PyComparison c;
             c.options.registration = report::parse_registration_method(registration);
             c.options.measured_frame_sigma = measured_frame_sigma;
             c.options.band_um = band_um;
             c.options.measured_name = measured_name;
             c.options.simulated_name = simulated_name;
-            {
-                py::gil_scoped_release release;
-                c.comparison = report::compare(m_image, s_image, c.options);
-            }
+            c.comparison = run_interruptible([&](const std::atomic<bool>& cancel) {
+                report::CompareOptions o = c.options;
+                o.cancel = &cancel;
+                return report::compare(m_image, s_image, o);
+            });
             return c;
         },
         py::arg("measured"), py::arg("simulated"), py::arg("registration") = "auto",
@@ -72,7 +71,8 @@ void bind_report(py::module_& m) {
         "Compares a measured Stokes image with a simulated one (tirpol.Image or dicts with S0 S1 S2 and, for "
         "z statistics, S*_std / S*_var): registration ('auto': ECC on S0 gradients; 'none': identity, same size), "
         "per-region statistics, z maps and verdicts. Writes "
-        "nothing; see Comparison.statistics and Comparison.write_html.");
+        "nothing; see Comparison.statistics and Comparison.write_html. Releases the GIL; Ctrl-C stops it between "
+        "its stages (KeyboardInterrupt).");
 }
 
 }  // namespace tirpol::python

@@ -6,8 +6,8 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
+#include "interruptible.h"
 #include "tirpol/calibration/emissivity_extraction.h"
-#include "tirpol/calibration/noise.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
@@ -119,6 +119,7 @@ void bind_session(py::module_& m) {
                                         "Analyzer model and wire-grid τ/B maps from a field session.")
         .def_readonly("analyzer", &PolarimetricCalibration::analyzer)
         .def_readonly("analyzer_method", &PolarimetricCalibration::analyzer_method)
+        .def_readonly("wire_grid", &PolarimetricCalibration::wire_grid)
         .def_readonly("session", &PolarimetricCalibration::session);
     m.def(
         "calibrate_polarimetric_session",
@@ -138,17 +139,18 @@ void bind_session(py::module_& m) {
             options.update_offset = update_offset;
             options.include_slar = include_slar;
             options.force_other_camera = force_other_camera;
-            Image result;
-            {
-                py::gil_scoped_release release;
-                result = reduce_session(dir, radiometric, polarimetric, options);
-            }
+            Image result = run_interruptible([&](const std::atomic<bool>& cancel) {
+                SessionReductionOptions o = options;
+                o.cancel = &cancel;
+                return reduce_session(dir, radiometric, polarimetric, o);
+            });
             return to_python(std::move(result));
         },
         py::arg("session_dir"), py::arg("radiometric"), py::arg("polarimetric") = py::none(),
         py::arg("update_offset") = false, py::arg("include_slar") = false, py::arg("force_other_camera") = false,
         "Reduces a session's scene records to Stokes in radiance units: S0 S1 S2 DoLP AoP and their *_std, "
-        "repeats averaged, bad pixels replaced, wire grid removed with `polarimetric`. Releases the GIL.");
+        "repeats averaged, bad pixels replaced, wire grid removed with `polarimetric`. Releases the GIL; Ctrl-C "
+        "stops it (KeyboardInterrupt).");
     m.def(
         "write_synthetic_sessions",
         [](const std::filesystem::path& root, const Band& band, int width, int height) {
@@ -212,8 +214,7 @@ void bind_emissivity(py::module_& m) {
                         rect_of(d["blackbody_rect"], "targets['" + target.name + "'].blackbody_rect");
                 rois.targets.push_back(std::move(target));
             }
-            const Image image = from_python(
-                stokes, py::hasattr(stokes, "attributes") ? stokes.attr("attributes") : py::object(py::none()));
+            const Image image = image_from_python(stokes);
             py::list out;
             for (const auto& r : extract_emissivity(image, rois, band)) out.append(result_dict(r));
             return out;
@@ -225,59 +226,9 @@ void bind_emissivity(py::module_& m) {
         "fit_microfacet takes (ε_S1 in the plane-of-emission frame).");
 }
 
-/// A (T, H, W) cube of frames as a FrameStack.
-FrameStack stack_of(const py::handle& cube) {
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(cube);
-    if (!a || a.ndim() != 3) fail("frames: expected a 3-D array (frames, H, W)");
-    FrameStack stack;
-    stack.height = static_cast<int>(a.shape(1));
-    stack.width = static_cast<int>(a.shape(2));
-    const auto n = static_cast<std::size_t>(a.shape(1) * a.shape(2));
-    for (py::ssize_t t = 0; t < a.shape(0); ++t)
-        stack.frames.emplace_back(a.data() + static_cast<std::size_t>(t) * n,
-                                  a.data() + static_cast<std::size_t>(t + 1) * n);
-    validate_stack(stack, "frames");
-    return stack;
-}
-
-void bind_noise(py::module_& m) {
-    m.def(
-        "three_d_noise",
-        [](const py::object& frames, const std::string& convention) {
-            if (convention != "population" && convention != "sample")
-                fail("convention: expected 'population' or 'sample', got '{}'", convention);
-            const FrameStack stack = stack_of(frames);
-            const ThreeDNoise n =
-                three_d_noise(stack, convention == "sample" ? NoiseConvention::Sample : NoiseConvention::Population);
-            py::dict d;
-            d["mean"] = n.mean;
-            d["sigma_t"] = n.sigma_t;
-            d["sigma_v"] = n.sigma_v;
-            d["sigma_h"] = n.sigma_h;
-            d["sigma_tv"] = n.sigma_tv;
-            d["sigma_th"] = n.sigma_th;
-            d["sigma_vh"] = n.sigma_vh;
-            d["sigma_tvh"] = n.sigma_tvh;
-            d["sigma_total"] = n.sigma_total;
-            return d;
-        },
-        py::arg("frames"), py::arg("convention") = "population",
-        "3D noise (D'Agostino & Webb, Proc. SPIE 1488, 1991) of a (frames, H, W) stack of a uniform source: mean "
-        "and σ of the seven components t, v, h, tv, th, vh, tvh and their total. 'population' (Σx²/n: the "
-        "variances add up to the cube's) or 'sample' (Σx²/(n − 1), as pyradi's ry3dnoise).");
-    m.def(
-        "temporal_noise",
-        [](const py::object& frames) {
-            const FrameStack stack = stack_of(frames);
-            return array_from_plane(temporal_noise(stack), stack.width, stack.height);
-        },
-        py::arg("frames"), "Per-pixel temporal standard deviation (n − 1) of a (frames, H, W) stack → (H, W).");
-}
-
 }  // namespace
 
 void bind_calibration_sessions(py::module_& m) {
-    bind_noise(m);
     bind_radiometric(m);
     bind_session(m);
     bind_emissivity(m);

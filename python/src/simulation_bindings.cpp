@@ -125,6 +125,7 @@ void bind_render(py::module_& m) {
 void bind_simulation(py::module_& m) {
     bind_scene(m);
     bind_render(m);
+    bind_sensor_model(m);
 }
 
 }  // namespace tirpol::python

@@ -1,6 +1,7 @@
 """Type stubs of tirpol.acquisition (bindings of tirpol::acquisition)."""
 
-from typing import Any, Optional, TypedDict
+import os
+from typing import Any, Callable, Mapping, Optional, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -25,6 +26,7 @@ class Camera:
     def __exit__(self, *args: Any) -> None: ...
 
 def open_camera(uri: str) -> Camera: ...
+def list_cameras() -> list[dict[str, str]]: ...
 
 class Stage:
     @property
@@ -37,3 +39,13 @@ class Stage:
     def stop(self) -> None: ...
 
 def open_stage(uri: str) -> Stage: ...
+
+def run_capture(
+    plan: Union[str, os.PathLike[str], Mapping[str, Any]],
+    camera: Camera,
+    stage: Stage,
+    session_dir: Union[str, os.PathLike[str]],
+    progress: Optional[Callable[[dict[str, Any]], object]] = None,
+    prompt: Optional[Callable[[str], bool]] = None,
+    resume: bool = False,
+) -> dict[str, Any]: ...

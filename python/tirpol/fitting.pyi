@@ -1,6 +1,6 @@
 """Type stubs of tirpol.fitting (bindings of tirpol::fitting)."""
 
-from typing import Mapping, Tuple
+from typing import Mapping, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -46,6 +46,13 @@ def fit_microfacet(
     e_s1: npt.ArrayLike,
     e_s1_sigma: npt.ArrayLike,
     wavelength_um: float = 10.0,
+    parameters: Mapping[str, Mapping[str, float | bool]] = ...,
+    starts: int = 16,
+    seed: int = 1,
+    scale_covariance_by_reduced_chi2: bool = False,
+) -> FitResult: ...
+def fit_microfacet_joint(
+    datasets: Sequence[Mapping[str, npt.ArrayLike | float]],
     parameters: Mapping[str, Mapping[str, float | bool]] = ...,
     starts: int = 16,
     seed: int = 1,

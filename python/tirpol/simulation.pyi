@@ -4,6 +4,7 @@ import os
 from pathlib import Path
 from typing import Any, Mapping, Optional, Tuple, Union
 
+from .core import Band
 from .image import Image
 
 PathLike = Union[str, os.PathLike[str]]
@@ -30,3 +31,6 @@ def scene_from_dict(scene: Mapping[str, Any], base_dir: PathLike = ".") -> Scene
 def render(
     scene: Scene, threads: int = 0, tile_size: int = 16, emissivity_cache_dir: Optional[PathLike] = None
 ) -> Image: ...
+def sensor_images(
+    stokes: Mapping[str, Any], band: Band, model: Mapping[str, Any] = ..., frame_index: int = 0
+) -> list[Image]: ...

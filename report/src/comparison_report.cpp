@@ -9,6 +9,7 @@
 #include "html_report.h"
 #include "svg_plot.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/radiometry.h"
@@ -187,10 +188,12 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
         return regions.size();
     };
 
+    throw_if_cancelled(options.cancel, "comparison");
     result.registration =
         options.registration == RegistrationMethod::CameraModel && options.camera_model
             ? register_by_camera_model(measured_in, simulated_in, *options.camera_model, options.camera_model_name)
-            : register_images(measured_in, simulated_in, options.registration, options.control_points);
+            : register_images(measured_in, simulated_in, options.registration, options.control_points, options.cancel);
+    throw_if_cancelled(options.cancel, "comparison");
     planes.measured = measured_in;
     planes.simulated = resample_to_measured(simulated_in, result.registration, w, h);
     Image& measured = planes.measured;
@@ -215,6 +218,7 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
         diffs[q] = difference(measured.channel(q), simulated.channel(q), q == "AoP");
     for (const auto& q : kZQuantities) {
+        throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
         auto var_m = variance_channel(measured, q, source.measured);
         if (!var_m) {
@@ -260,6 +264,7 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
     const std::optional<Band> band = comparison_band(measured_in, simulated_in, options, result);
     const std::size_t bg = result.background.empty() ? regions.size() : region_index(result.background);
     for (std::size_t r = 0; r < regions.size(); ++r) {
+        throw_if_cancelled(options.cancel, "comparison");
         RegionResult rr;
         rr.name = regions[r].name;
         rr.pixel_count = static_cast<std::size_t>(std::count(masks[r].begin(), masks[r].end(), 1));

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 
@@ -128,7 +129,8 @@ struct EccOutcome {
 // Coarse-to-fine ECC of `input` against `templ` (same size), from a phase-correlation start.
 // Tries a homography, then affine, then translation, keeping the first that converges to a
 // plausible warp (corner displacement within a quarter of the image beyond the start).
-EccOutcome ecc_register(const cv::Mat& templ, const cv::Mat& input, const cv::Mat& templ_mask) {
+EccOutcome ecc_register(const cv::Mat& templ, const cv::Mat& input, const cv::Mat& templ_mask,
+                        const std::atomic<bool>* cancel) {
     cv::Mat window;
     cv::createHanningWindow(window, templ.size(), CV_32F);
     const cv::Point2d start = cv::phaseCorrelate(templ, input, window);
@@ -154,6 +156,7 @@ EccOutcome ecc_register(const cv::Mat& templ, const cv::Mat& input, const cv::Ma
             cv::Matx33d h = initial;
             double rho = 0.0;
             for (int l = levels; l >= 0; --l) {
+                throw_if_cancelled(cancel, "registration");
                 cv::Mat w = to_warp(to_level(h, l), motion);
                 // Coarse levels do the travelling; the full-resolution level only polishes.
                 const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, l == 0 ? 25 : 100, 1e-6);
@@ -255,7 +258,7 @@ std::vector<ControlPoint> load_control_points(const std::filesystem::path& path)
 }
 
 Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,
-                             const std::vector<ControlPoint>& control_points) {
+                             const std::vector<ControlPoint>& control_points, const std::atomic<bool>* cancel) {
     const int w = measured.width(), h = measured.height();
     const bool same_size = w == simulated.width() && h == simulated.height();
     Registration reg;
@@ -310,7 +313,7 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
             cv::resize(input, input, templ.size(), 0, 0, cv::INTER_AREA);
             prescale = cv::Matx33d(kx, 0, 0.5 * kx - 0.5, 0, ky, 0.5 * ky - 0.5, 0, 0, 1);
         }
-        const EccOutcome ecc = ecc_register(templ, input, finite_mask(m_s0));
+        const EccOutcome ecc = ecc_register(templ, input, finite_mask(m_s0), cancel);
         homography = prescale * ecc.h;
         reg.ecc_correlation = ecc.correlation;
         reg.model = motion_name(ecc.motion);

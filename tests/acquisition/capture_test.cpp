@@ -292,6 +292,74 @@ TEST(Capture, DeviceFaultKeepsRecordsAndResumeCompletesWithoutDuplicates) {
     EXPECT_EQ(run_capture(*rig.camera, *rig.stage, plan, session, options).steps_recorded, 0u);
 }
 
+TEST(Capture, ProgressReportsEveryKeptFrameThenItsStepInPlanOrder) {
+    test::TempDir tmp;
+    Rig rig;
+    const CapturePlan plan = small_plan();
+    auto session = new_session(tmp / "s", rig, plan);
+    struct Event {
+        CaptureProgress progress;
+        std::string file;  // CaptureProgress::step points into run_capture's own step list
+    };
+    std::vector<Event> events;
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    options.on_progress = [&](const CaptureProgress& p) { events.push_back({p, p.step->file}); };
+    run_capture(*rig.camera, *rig.stage, plan, session, options);
+
+    // Each step: frames_kept 1 … frames as Frame events, then one StepRecorded; nothing else.
+    const auto steps = plan_steps(plan);
+    std::size_t e = 0;
+    for (const auto& step : steps) {
+        for (int f = 1; f <= step.frames; ++f, ++e) {
+            ASSERT_LT(e, events.size());
+            EXPECT_EQ(events[e].progress.event, CaptureProgress::Event::Frame);
+            EXPECT_EQ(events[e].file, step.file);
+            EXPECT_EQ(events[e].progress.frames_kept, f);
+            EXPECT_EQ(events[e].progress.steps_recorded, step.index);
+            if (f > 1) EXPECT_GT(events[e].progress.frame_id, events[e - 1].progress.frame_id);
+        }
+        ASSERT_LT(e, events.size());
+        EXPECT_EQ(events[e].progress.event, CaptureProgress::Event::StepRecorded);
+        EXPECT_EQ(events[e].file, step.file);
+        EXPECT_EQ(events[e].progress.steps_recorded, step.index + 1);
+        EXPECT_EQ(events[e].progress.steps_total, steps.size());
+        ++e;
+    }
+    EXPECT_EQ(e, events.size());
+}
+
+TEST(Capture, AThrowingProgressCallbackStopsTheCaptureAndTheSessionResumes) {
+    test::TempDir tmp;
+    const auto dir = tmp / "s";
+    const CapturePlan plan = small_plan();
+    {
+        Rig rig;
+        auto session = new_session(dir, rig, plan);
+        CaptureOptions options;
+        options.progress_stream = nullptr;
+        // Stops during step 5's third frame: steps 1–4 are recorded, step 5's frames are dropped.
+        options.on_progress = [](const CaptureProgress& p) {
+            if (p.step->index == 4 && p.frames_kept == 3) throw std::runtime_error("enough");
+        };
+        EXPECT_THAT([&] { run_capture(*rig.camera, *rig.stage, plan, session, options); },
+                    ::testing::ThrowsMessage<std::runtime_error>(HasSubstr("enough")));
+    }
+    ASSERT_EQ(read_session(dir).records.size(), 4u);
+    Rig rig;
+    auto session = SessionWriter::resume(dir);
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    std::size_t first_reported = 0;
+    options.on_progress = [&](const CaptureProgress& p) {
+        if (first_reported == 0) first_reported = p.step->index + 1;
+    };
+    const auto summary = run_capture(*rig.camera, *rig.stage, plan, session, options);
+    EXPECT_EQ(first_reported, 5u);
+    EXPECT_EQ(summary.steps_recorded, 7u);
+    EXPECT_TRUE(read_session(dir).complete);
+}
+
 TEST(Capture, ResumeRefusesADifferentPlan) {
     test::TempDir tmp;
     Rig rig;

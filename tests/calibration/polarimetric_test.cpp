@@ -5,12 +5,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <random>
 
 #include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/calibration/wire_grid.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/mueller.h"
@@ -240,6 +242,22 @@ TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) 
     }
     EXPECT_EQ(unrealizable_left, 0);
     EXPECT_EQ(unrealizable_before, count);
+}
+
+TEST(StokesReduction, ASetCancelFlagStopsTheReductionAndAnUnsetOneChangesNothing) {
+    // The flag Ctrl-C sets from Python (python/src/interruptible.h): checked at each row start.
+    constexpr int kW = 8, kH = 4;
+    const auto model = AnalyzerModel::ideal(kAngles);
+    std::vector<AnalyzerImage> images;
+    for (const auto& p : model.positions)
+        images.push_back({p.nominal_angle_deg, std::vector<float>(kW * kH, 10.0f), {}, "synthetic"});
+    std::atomic<bool> cancel{false};
+    ReductionOptions options;
+    options.cancel = &cancel;
+    const Image unflagged = reduce_stokes(images, kW, kH, model, nullptr, options);
+    EXPECT_EQ(unflagged.channel("S0"), reduce_stokes(images, kW, kH, model).channel("S0"));
+    cancel = true;
+    EXPECT_THROW(reduce_stokes(images, kW, kH, model, nullptr, options), Cancelled);
 }
 
 TEST(StokesReduction, BadInputsGiveClearErrorsAndNoOutput) {

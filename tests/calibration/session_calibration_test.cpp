@@ -7,6 +7,7 @@
 
 #include <numbers>
 
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -105,6 +107,14 @@ TEST_F(SessionCalibration, WithoutWireGridRemovalTheSkyReflectionBiasesS1) {
     EXPECT_GT(std::abs(naive.channel("S1")[naive.index(30, 20)] - truth.channel("S1")[naive.index(30, 20)]), 0.3);
     const auto pol = calibrate_polarimetric_session(root() / "polcal", cal);
     EXPECT_THROW(reduce_session(root() / "scene", cal, &pol, opt), Error);  // drift would be removed twice
+}
+
+TEST_F(SessionCalibration, ASetCancelFlagStopsTheSessionReduction) {
+    const auto cal = calibrate_radiometric_session(root() / "lab", Band(8.0, 14.0));
+    const std::atomic<bool> cancel{true};
+    SessionReductionOptions opt;
+    opt.cancel = &cancel;
+    EXPECT_THROW(reduce_session(root() / "scene", cal, nullptr, opt), Cancelled);
 }
 
 TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {

@@ -6,9 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "synthetic_emissivity.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/microfacet_fit.h"
 
@@ -64,6 +68,21 @@ TEST(MicrofacetFit, RecoversPaintFromNoiseFreeData) {
     EXPECT_DOUBLE_EQ(r.get(P::omega_deg).value, 1e6);
 }
 
+TEST(MicrofacetFit, ACancelFlagStopsTheFitDuringItsIterations) {
+    // Thousands of starts would take hours: only the flag, set from another thread (as Ctrl-C does
+    // from Python) and read by the Ceres iteration callback, ends this solve.
+    const EmissivityDataset data = test::clean_dataset(test::paint_truth(), test::fig1_angles(), 0.003, 0.002);
+    MicrofacetFitOptions options = fast_options(100000);
+    std::atomic<bool> cancel{false};
+    options.cancel = &cancel;
+    const MicrofacetFitProblem problem({data}, options);
+    std::thread canceller([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        cancel = true;
+    });
+    EXPECT_THROW(problem.solve(), Cancelled);
+    canceller.join();
+}
 TEST(MicrofacetFit, TwoSigmaIntervalsCoverTheTruthAtTheExpectedRate) {
     // n, σ, ρ_D free, k held at its true value: with k free as well the paint's k (0.12) is within one
     // standard deviation of its bound k = 0, where ∂ε/∂k vanishes (|r|² is even in k at k = 0), so many

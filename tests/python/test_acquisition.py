@@ -4,11 +4,8 @@ aravis-tools, and its absence fails this test). Each frame must be the fake's pu
 pattern for its own frame id — Aravis 0.8.26 src/arvfakecamera.c arv_fake_camera_diagonal_ramp:
 pixel (x, y) of frame id f is (256 x + 256 f + 256 y) mod 65535 — and ids must be consecutive."""
 
-import fcntl
 import os
-import shutil
 import signal
-import subprocess
 import threading
 import time
 
@@ -18,32 +15,12 @@ import pytest
 import tirpol
 from tirpol import acquisition
 
-FAKE = "arv-fake-gv-camera-0.8"
-
 
 @pytest.fixture()
-def fake_camera():
-    binary = shutil.which(FAKE)
-    assert binary, f"{FAKE} not found: install aravis-tools (./run does)"
-    # Only one device can bind 127.0.0.1:3956; the C++ tests take the same lock.
-    with open("/tmp/tirpol-loopback-gige.lock", "a+") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        process = subprocess.Popen([binary, "-i", "127.0.0.1"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            deadline = time.monotonic() + 10.0
-            while True:
-                try:
-                    camera = acquisition.open_camera("aravis://127.0.0.1?pixel_format=Mono16")
-                    break
-                except tirpol.DeviceError:
-                    assert time.monotonic() < deadline, "the fake camera did not answer within 10 s"
-                    time.sleep(0.05)
-            yield camera
-            camera.stop()
-            del camera
-        finally:
-            process.terminate()
-            process.wait()
+def fake_camera(fake_gige_camera):
+    camera = fake_gige_camera("pixel_format=Mono16")
+    yield camera
+    camera.stop()
 
 
 def diagonal_ramp(width, height, unwrapped_id):

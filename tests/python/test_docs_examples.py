@@ -2,6 +2,7 @@
 '# example: <name>' is executed from the source root (so its relative paths are the README's) with
 the Agg backend, writing into a temporary folder."""
 
+import json
 import os
 import re
 import runpy
@@ -30,8 +31,9 @@ def run_example(source_dir, tmp_path, name):
         os.chdir(cwd)
 
 
-def test_the_page_has_both_examples(source_dir):
-    assert set(examples(source_dir)) == {"ball_on_snow_figure", "reduce_arrays", "session_and_fit"}
+def test_the_page_has_every_example(source_dir):
+    assert set(examples(source_dir)) == {"ball_on_snow_figure", "reduce_arrays", "session_and_fit",
+                                         "capture_with_progress"}
 
 
 def test_ball_on_snow_figure(source_dir, tmp_path, monkeypatch):
@@ -57,3 +59,13 @@ def test_session_and_fit(source_dir, tmp_path):
     assert fit.usable and fit.free_names == ["n", "sigma"]
     for name, truth_value in (("n", 1.6), ("sigma", 0.35)):  # config/materials/flat_black_paint.yaml
         assert abs(fit.estimates[name] - truth_value) < 3 * fit.sigmas[name]
+
+
+def test_capture_with_progress(source_dir, tmp_path, capsys):
+    result = run_example(source_dir, tmp_path, "capture_with_progress")
+    assert result["summary"]["steps_recorded"] == 4 and result["summary"]["frames"] == 32
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[:4] == [f"{i}/4: polarizer {a}° -> frames/s{i - 1:03d}_pol_{a:07.3f}deg_r0.exr"
+                           for i, a in zip(range(1, 5), (0, 45, 90, 135))]
+    manifest = json.loads((tmp_path / "capture" / "session.json").read_text(encoding="utf-8"))
+    assert manifest["complete"] and len(manifest["records"]) == 4

@@ -69,3 +69,39 @@ def test_fit_rejects_inconsistent_arrays():
         fitting.fit_microfacet([0, 10, 20], [0.9] * 3, [0.01] * 3, [0] * 3, [0.01] * 3, parameters={"n": {"start": 1}})
     with pytest.raises(tirpol.Error, match="sgima"):
         fitting.fit_microfacet([0, 10, 20], [0.9] * 3, [0.01] * 3, [0] * 3, [0.01] * 3, parameters={"sgima": {}})
+
+
+def paint_emissivity(n, angle_deg, wavelength_um):
+    paint = materials.material_from_dict({
+        "name": f"paint_n{n}", "source": "test", "model": "microfacet",
+        "refractive_index": {"n": n, "k": TRUTH["k"]}, "parameters": {"sigma": TRUTH["sigma"]}})
+    return paint.emissivity(angle_deg, wavelength_um)
+
+
+def test_a_joint_fit_of_two_bands_shares_the_roughness_and_fits_n_per_band():
+    # Two bands of one paint whose index differs between them (1.6 at 8.5 µm, 2.0 at 11 µm) and whose
+    # facet slope σ is the same: the joint fit gives n per band and one σ, known better than from
+    # either band alone (more samples constrain it).
+    angle_deg = np.arange(0.0, 81.0, 5.0)
+    sigma = np.full(angle_deg.shape, 1e-3)
+    held = {"rho_d": {"initial": 0.0, "fixed": True}, "k": {"initial": TRUTH["k"], "fixed": True}}
+    datasets = []
+    for n, wavelength_um in ((1.6, 8.5), (2.0, 11.0)):
+        eps = paint_emissivity(n, angle_deg, wavelength_um)
+        datasets.append({"angle_deg": angle_deg, "e_s0": eps[:, 0], "e_s0_sigma": sigma, "e_s1": eps[:, 1],
+                         "e_s1_sigma": sigma, "wavelength_um": wavelength_um})
+    joint = fitting.fit_microfacet_joint(datasets, parameters=held, starts=4)
+    assert joint.usable, joint.termination
+    assert joint.free_names == ["n@8.5um", "n@11um", "sigma"]
+    assert len(joint.model_e_s0) == 2 * angle_deg.size
+    for name, truth in (("n@8.5um", 1.6), ("n@11um", 2.0), ("sigma", TRUTH["sigma"])):
+        assert abs(joint.estimates[name] - truth) < 0.1 * joint.sigmas[name], name
+    single = [fitting.fit_microfacet(d["angle_deg"], d["e_s0"], sigma, d["e_s1"], sigma, wavelength_um=d["wavelength_um"],
+                                     parameters=held, starts=4) for d in datasets]
+    assert joint.sigmas["sigma"] < min(s.sigmas["sigma"] for s in single)
+
+
+def test_a_joint_fit_names_a_missing_array():
+    with pytest.raises(tirpol.Error, match=r"datasets\[0\]: no 'e_s1_sigma'"):
+        fitting.fit_microfacet_joint([{"angle_deg": [0, 10], "e_s0": [0.9, 0.9], "e_s0_sigma": [0.01, 0.01],
+                                       "e_s1": [0, 0], "wavelength_um": 10}])

@@ -5,12 +5,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
@@ -65,6 +67,14 @@ TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
     EXPECT_EQ(r.noise.at("S1").simulated, "channel S1_var");
     EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);
     EXPECT_NEAR(r.noise.at("S0").simulated_sigma_median, o.simulated_sigma, 1e-6);
+}
+
+TEST(ReportComparison, ASetCancelFlagStopsTheComparisonBeforeItsRegistration) {
+    const auto pair = test::make_synthetic_pair({});
+    const std::atomic<bool> cancel{true};
+    CompareOptions options;
+    options.cancel = &cancel;
+    EXPECT_THROW(compare(pair.measured, pair.simulated, options), tirpol::Cancelled);
 }
 
 TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {

@@ -97,6 +97,11 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         fail("the plan sets blackbody temperatures (references[].controller) but no blackbody controller was given (tirpol acquire "
              "--blackbody URI); nothing was recorded");
     std::optional<double> settled_set_point_k;  // the controller's set-point reached in this run
+    auto report = [&](CaptureProgress::Event event, const CaptureStep& step, int frames_kept, std::uint64_t frame_id) {
+        if (options.on_progress)
+            options.on_progress(
+                {event, &step, total, summary.steps_already_recorded + summary.steps_recorded, frames_kept, frame_id});
+    };
     check_free_space(session.dir(), session.manifest().camera.width, session.manifest().camera.height, todo.size());
 
     detail::RecordWriter writer(session);
@@ -204,6 +209,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 continue;
             }
             averager.add(frame);
+            report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()), frame.frame_id);
             if (averager.count() == 1) {
                 record.first_timestamp_ns = frame.host_timestamp_ns;
                 dropped_before = camera.statistics().dropped;
@@ -250,6 +256,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         summary.dropped += static_cast<std::uint64_t>(record.dropped);
         summary.stale_discarded += static_cast<std::uint64_t>(timing.stale_frames_discarded);
         if (progress) progress->advance();
+        report(CaptureProgress::Event::StepRecorded, *step, step->frames, 0);
     }
     try {
         writer.flush();

@@ -23,6 +23,21 @@
 
 namespace tirpol::acquisition {
 
+/// Where a capture stands, for CaptureOptions::on_progress.
+struct CaptureProgress {
+    enum class Event {
+        Frame,         ///< a frame was kept for the current step (exposed after its settle end)
+        StepRecorded,  ///< the step's averaged record was handed to the session writer
+    };
+    Event event = Event::Frame;
+    /// The current step (index, kind, label, angle_deg, file); never null, valid during the call.
+    const CaptureStep* step = nullptr;
+    std::size_t steps_total = 0;     ///< steps in the plan
+    std::size_t steps_recorded = 0;  ///< steps in the session, earlier runs included (this one counted once recorded)
+    int frames_kept = 0;             ///< frames of the current step averaged so far (of step->frames)
+    std::uint64_t frame_id = 0;      ///< Frame: the id of the frame just kept
+};
+
 struct CaptureOptions {
     /// Called before each reference step with an instruction for the operator ("Put the blackbody
     /// at 313.15 K in front of the camera"); return false to stop. Empty = non-interactive.
@@ -35,6 +50,10 @@ struct CaptureOptions {
     /// has any: capture_plan.h `controller`); each such step first waits for the set-point
     /// (blackbody_wait.h), polls the controller during its frames and records the readings.
     BlackbodyController* blackbody = nullptr;
+    /// Called on the capturing thread after each kept frame and after each recorded step (a
+    /// notebook's progress bar). An exception it throws ends the capture like a device error: the
+    /// steps recorded before stay and the session resumes. Empty: not called.
+    std::function<void(const CaptureProgress&)> on_progress;
 };
 
 struct CaptureSummary {

@@ -18,6 +18,7 @@
 ///   polarizer records are the scene.
 /// - Saturation: counts ≥ 2^bits_per_pixel − 1 (bits 1–23; none for float cameras).
 
+#include <atomic>
 #include <filesystem>
 #include <optional>
 
@@ -70,6 +71,9 @@ struct SessionReductionOptions {
     /// Apply the calibration even if it was made with another camera (serial, model, bit depth or
     /// pixel format differ); without it that is an error naming both cameras.
     bool force_other_camera = false;
+    /// Checked before each record is read and during the reduction (ReductionOptions::cancel): once
+    /// set, reduce_session throws tirpol::Cancelled. Null: never.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 /// Throws tirpol::Error naming both cameras unless `calibration` was made with the session's camera

@@ -3,6 +3,7 @@
 /// Stokes reduction S = W⁺·L_SLAR per pixel with propagated uncertainties, in the Stokes convention
 /// of ARCHITECTURE.md (S1 = I0 − I90, S2 = I45 − I135, 0° along image rows, 90° to the top).
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct ReductionOptions {
     /// `L_SLAR_<angle>` (angle with 'p' for a decimal point, e.g. L_SLAR_22p5).
     bool include_slar = false;
     std::string units = "W/(m^2 sr)";
+    /// Checked at the start of every image row: once set, reduce_stokes throws tirpol::Cancelled
+    /// (how the Python module stops a reduction on Ctrl-C). Null: never.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 /// Reduces N ≥ 3 analyzer images to an Image with channels S0 S1 S2 DoLP AoP and, when every input

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -70,6 +71,10 @@ struct MicrofacetFitOptions {
     bool scale_covariance_by_reduced_chi2 = false;
     double correlation_warning = 0.95;  ///< warn about parameter pairs with |ρ| above this
     int threads = 1;            ///< Ceres threads per start
+    /// Checked after every Ceres iteration (an IterationCallback returning SOLVER_ABORT) and before
+    /// each start: once set, solve() throws tirpol::Cancelled (how the Python module stops a fit on
+    /// Ctrl-C). Null: never.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 /// One fitted parameter (a free or fixed value of the model).

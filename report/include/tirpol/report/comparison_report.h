@@ -6,6 +6,7 @@
 /// PNGs, all under one directory with atomic writes.
 
 #include <array>
+#include <atomic>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -47,6 +48,9 @@ struct CompareOptions {
     std::optional<std::array<double, 2>> band_um;
     /// Tool version, command line and input files shown in the report (filled by the CLI).
     Provenance provenance;
+    /// Checked between the stages of compare() (before and after the registration, per compared
+    /// quantity, per region): once set, compare() throws tirpol::Cancelled. Null: never.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 /// S0 bias as a brightness-temperature difference: bias / (dL/dT) at the brightness temperature of the

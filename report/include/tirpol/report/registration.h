@@ -22,6 +22,7 @@
 /// camera that matches the real one).
 
 #include <array>
+#include <atomic>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -87,8 +88,10 @@ struct Registration {
 /// kRegistrationMinImprovement (an aligned pair is never warped); images of different
 /// sizes are first resized when their aspect ratios agree within 1 %; otherwise, and for None with
 /// different sizes, throws tirpol::Error asking for control points. ControlPoints needs ≥ 4 pairs.
+/// `cancel` (null: never) is read before each ECC pyramid level; once set, tirpol::Cancelled is thrown.
 Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,
-                             const std::vector<ControlPoint>& control_points);
+                             const std::vector<ControlPoint>& control_points,
+                             const std::atomic<bool>* cancel = nullptr);
 
 /// Registration by camera model: checks that `simulated` was rendered through `camera` (same size as
 /// it and as `measured`; the renderer's `camera_intrinsics_px` = fx fy cx cy, OpenCV pixel convention,
