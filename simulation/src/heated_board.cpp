@@ -48,7 +48,8 @@ std::string board_scene(const std::string& board_object, const std::filesystem::
         look_at.z(), up.x(), up.y(), up.z(), board_object);
 }
 
-std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg) {
+std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg,
+                                              double roll_spread_deg) {
     // Distances and shifts scale with fx / width, so the board covers the same part of any frame.
     const double scale = (fx_px / width_px) / (762.0 / 640.0);
     std::vector<BoardView> views;
@@ -58,7 +59,7 @@ std::vector<BoardView> board_calibration_views(int count, double fx_px, int widt
         const Vec3 position =
             distance * Vec3(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
         const Vec3 look_at = scale * Vec3(0.05 * std::cos(3.0 * azimuth), 0.035 * std::sin(2.0 * azimuth), 0.0);
-        const double roll = deg_to_rad(90.0 + 25.0 * std::sin(1.7 * i));
+        const double roll = deg_to_rad(90.0 + roll_spread_deg * std::sin(1.7 * i));
         views.push_back({position, look_at, Vec3(std::cos(azimuth + roll), std::sin(azimuth + roll), 0.0)});
     }
     return views;

@@ -48,8 +48,10 @@ struct BoardView {
 /// `count` views of the default HeatedBoard lying at the origin, for a camera of focal length `fx_px`
 /// and `width_px` pixels: tilted 20° to `max_tilt_deg` toward the camera from all around, at the distance where the
 /// board fills the frame as it does 1.1–1.3 m from a 640-pixel camera with fx = 762 px, shifted so the
-/// frame's corners (where the distortion is largest) are covered, with some roll — varied tilts make
-/// the focal length observable (Zhang, IEEE TPAMI 22(11), 2000).
-std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg = 40.0);
+/// frame's corners (where the distortion is largest) are covered, rolled about the optical axis by up
+/// to ±`roll_spread_deg` — varied tilts make the focal length observable (Zhang, IEEE TPAMI 22(11),
+/// 2000), varied rolls separate the principal point from the tilts.
+std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg = 40.0,
+                                               double roll_spread_deg = 25.0);
 
 }  // namespace tirpol::simulation
