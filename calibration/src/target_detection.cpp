@@ -95,18 +95,30 @@ std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_f
     return corners;
 }
 
-std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size, bool asymmetric) {
+/// Circle centres by cv::findCirclesGrid with a blob detector set for thermal frames: after the
+/// robust stretch the target's contrast spans 0–255, so the default threshold ladder applies; the
+/// discs of a low-resolution frame are a few pixels across and close together (the default 10 px
+/// between blobs and 25 px² of area would drop them), tilted views turn them into ellipses
+/// (inertia ratio cos(tilt)), and noise roughens their edges (convexity). `hot_discs`: hot discs on
+/// a cold plate (a heated plate behind a mask with holes) or the inverse.
+std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size, bool asymmetric,
+                                                     bool hot_discs) {
     cv::Mat image_8u;
     image_f.convertTo(image_8u, CV_8U);
     cv::SimpleBlobDetector::Params params;
-    params.minArea = 6;  // small discs of a low-resolution thermal frame
+    params.minDistBetweenBlobs = 2.0f;
+    params.minArea = 6.0f;
     params.maxArea = static_cast<float>(image_8u.total()) * 0.05f;
-    params.blobColor = 0;  // dark blobs; the caller passes both polarities
+    params.minInertiaRatio = 0.25f;  // boards tilted up to ~75°
+    params.minConvexity = 0.85f;
+    params.blobColor = hot_discs ? 255 : 0;
     const auto detector = cv::SimpleBlobDetector::create(params);
     std::vector<cv::Point2f> centres;
-    const int flags = (asymmetric ? cv::CALIB_CB_ASYMMETRIC_GRID : cv::CALIB_CB_SYMMETRIC_GRID) | cv::CALIB_CB_CLUSTERING;
-    if (!cv::findCirclesGrid(image_8u, size, centres, flags, detector)) return std::nullopt;
-    return centres;
+    const int grid = asymmetric ? cv::CALIB_CB_ASYMMETRIC_GRID : cv::CALIB_CB_SYMMETRIC_GRID;
+    // The plain search first (fast); the clustering one copes with stronger perspective.
+    for (int flags : {grid, grid | cv::CALIB_CB_CLUSTERING})
+        if (cv::findCirclesGrid(image_8u, size, centres, flags, detector)) return centres;
+    return std::nullopt;
 }
 }  // namespace
 
@@ -121,9 +133,8 @@ std::optional<TargetView> detect_target(const std::vector<float>& plane, int wid
     if (target.kind == CalibrationTarget::Kind::Checkerboard) {
         found = find_checkerboard(image, size);  // either polarity
     } else {
-        for (bool invert : {false, true}) {
-            found = find_circles(invert ? cv::Mat(255.0f - image) : image, size,
-                                 target.kind == CalibrationTarget::Kind::AsymmetricCircles);
+        for (bool hot_discs : {true, false}) {
+            found = find_circles(image, size, target.kind == CalibrationTarget::Kind::AsymmetricCircles, hot_discs);
             if (found) break;
         }
     }
