@@ -13,9 +13,12 @@ namespace tirpol::simulation {
 
 std::string HeatedBoard::target() const {
     switch (pattern) {
-        case Pattern::Circles: return fmt::format("circles:{}x{}:{}", squares_x, squares_y, square_m);
-        case Pattern::AsymmetricCircles: return fmt::format("acircles:{}x{}:{}", squares_x / 2, squares_y, square_m);
-        case Pattern::Checkerboard: break;
+        case Pattern::Circles:
+            return fmt::format("circles:{}x{}:{}", squares_x, squares_y, square_m);
+        case Pattern::AsymmetricCircles:
+            return fmt::format("acircles:{}x{}:{}", squares_x / 2, squares_y, square_m);
+        case Pattern::Checkerboard:
+            break;
     }
     return fmt::format("checkerboard:{}x{}:{}", squares_x - 1, squares_y - 1, square_m);
 }
@@ -32,7 +35,9 @@ Vec3 HeatedBoard::inner_corner(int c, int r) const {
 
 std::vector<Vec3> HeatedBoard::features() const {
     std::vector<Vec3> out;
-    auto at = [&](double x_m, double y_m) { out.push_back(centre + (standing ? Vec3(x_m, 0.0, y_m) : Vec3(x_m, y_m, 0.0))); };
+    auto at = [&](double x_m, double y_m) {
+        out.push_back(centre + (standing ? Vec3(x_m, 0.0, y_m) : Vec3(x_m, y_m, 0.0)));
+    };
     for (int j = 1; j <= squares_y; ++j)
         for (int i = 1; i <= squares_x; ++i) {
             const double x = -0.5 * size_x() + (i + 0.5) * square_m, y = -0.5 * size_y() + (j + 0.5) * square_m;
@@ -86,7 +91,7 @@ std::string board_scene(const std::string& board_object, const std::filesystem::
 }
 
 std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg,
-                                              double roll_spread_deg) {
+                                               double roll_spread_deg) {
     // Distances and shifts scale with fx / width, so the board covers the same part of any frame.
     const double scale = (fx_px / width_px) / (762.0 / 640.0);
     std::vector<BoardView> views;

@@ -11,10 +11,10 @@
 #include <random>
 
 #include "test_support.h"
-#include "truth_lens.h"
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/error.h"
+#include "truth_lens.h"
 
 namespace tirpol::calibration {
 namespace {
@@ -59,7 +59,8 @@ TEST(CalibrationTarget, ParsesAndRejectsWithTheExpectedForm) {
     EXPECT_NE(error_of([] { CalibrationTarget::parse("circles:7x7:0"); }).find("spacing"), std::string::npos);
     // OpenCV 4.6 orders an asymmetric grid with an even row count inconsistently with its layout
     // (measured: 62 px homography residual for 4x6 at 0°, 0 px for 4x7).
-    EXPECT_NE(error_of([] { CalibrationTarget::parse("acircles:4x6:0.02"); }).find("odd number of rows"), std::string::npos);
+    EXPECT_NE(error_of([] { CalibrationTarget::parse("acircles:4x6:0.02"); }).find("odd number of rows"),
+              std::string::npos);
     EXPECT_EQ(CalibrationTarget::parse("acircles:4x11:0.02").point_count(), 44u);
 }
 

@@ -42,7 +42,8 @@ double worst_centre_error_px(const calibration::TargetView& view, const test::He
                              const test::BoardView& pose) {
     test::TempDir dir;
     write_camera_model(dir / "lens.yaml", test::truth_lens());
-    test::write_text(dir / "scene.yaml", test::board_scene(board.write(dir.path()), "lens.yaml", pose.position, pose.look_at, pose.up, 1));
+    test::write_text(dir / "scene.yaml",
+                     test::board_scene(board.write(dir.path()), "lens.yaml", pose.position, pose.look_at, pose.up, 1));
     const simulation::Scene scene = simulation::load_scene(dir / "scene.yaml");
     double worst = 0.0;
     for (const Vec2& found : view.points_px) {

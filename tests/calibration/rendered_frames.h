@@ -10,11 +10,11 @@
 
 #include "heated_board.h"
 #include "test_support.h"
-#include "truth_lens.h"
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
+#include "truth_lens.h"
 
 namespace tirpol::test {
 
@@ -33,7 +33,8 @@ inline RenderedFrames render_views(const TempDir& dir, const HeatedBoard& board,
     RenderedFrames out;
     for (std::size_t i = 0; i < views.size(); ++i) {
         const auto scene_path = dir / fmt::format("view{:02}.yaml", i);
-        write_text(scene_path, board_scene(object, "truth_lens.yaml", views[i].position, views[i].look_at, views[i].up, spp));
+        write_text(scene_path,
+                   board_scene(object, "truth_lens.yaml", views[i].position, views[i].look_at, views[i].up, spp));
         const simulation::Scene scene = simulation::load_scene(scene_path);
         // Precondition of the test design: every feature point is in the frame with a margin.
         for (const Vec3& feature : board.features()) {
