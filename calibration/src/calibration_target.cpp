@@ -29,6 +29,11 @@ CalibrationTarget CalibrationTarget::parse(const std::string& text) {
         fail("target '{}': a square checkerboard ({}x{} inner corners) has no unique orientation; use one with an "
              "odd and an even count, e.g. 9x6",
              text, t.columns, t.rows);
+    if (t.kind == Kind::AsymmetricCircles && t.rows % 2 == 0)
+        fail(
+            "target '{}': an asymmetric circle grid needs an odd number of rows (e.g. acircles:4x11); with {} rows "
+            "OpenCV's detector returns the circles in an order that does not match the grid's layout",
+            text, t.rows);
     if (!(t.spacing_m > 0.0 && t.spacing_m < 100.0)) fail("target '{}': spacing must be in (0, 100) m", text);
     return t;
 }

@@ -56,35 +56,69 @@ int subpixel_half_window(const std::vector<cv::Point2f>& corners, int columns) {
     return std::clamp(static_cast<int>(min_d * 0.4), 2, 10);
 }
 
+/// Frames at least this many rows high are first searched at half resolution: the sector detector's
+/// cost grows with the pixel count, and a board that fills a 512-row frame still has squares of
+/// ≥ 10 px at 256 rows. The corners are refined at full resolution either way.
+constexpr int kCoarseSearchMinRows = 480;
+
+/// Inner corners by OpenCV's sector-based detector (findChessboardCornersSB: Duda & Frese, "Accurate
+/// Detection and Localization of Checkerboard Corners for Calibration", BMVC 2018). It responds to
+/// corners whatever the polarity, so a hot-squares board on a cold border is found as is. The
+/// quad-based findChessboardCorners is not used: it needs dark squares inside a light border, and on
+/// the other polarity its search fails only after every dilation and threshold (3–5 s CPU per
+/// 640×512 frame, profiled for issue 14) — the fast check passes, since a board is there.
+std::optional<std::vector<cv::Point2f>> find_checkerboard_corners(const cv::Mat& image_8u, const cv::Size& size) {
+    std::vector<cv::Point2f> corners;
+    if (image_8u.rows >= kCoarseSearchMinRows) {
+        cv::Mat half;
+        cv::resize(image_8u, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+        if (cv::findChessboardCornersSB(half, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE)) {
+            // Pixel centres: half-resolution pixel i covers full-resolution pixels 2i and 2i + 1.
+            for (auto& p : corners) p = 2.0f * p + cv::Point2f(0.5f, 0.5f);
+            return corners;
+        }
+    }
+    // Small, blurred or steeply tilted boards: the exhaustive search at full resolution.
+    if (cv::findChessboardCornersSB(image_8u, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE))
+        return corners;
+    return std::nullopt;
+}
+
 std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_f, const cv::Size& size) {
     cv::Mat image_8u;
     image_f.convertTo(image_8u, CV_8U);
-    std::vector<cv::Point2f> corners;
-    const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK;
-    bool found = cv::findChessboardCorners(image_8u, size, corners, flags);
-    if (!found) {
-        // Blurred low-resolution frames defeat the quad detector more often than the sector-based one.
-        found = cv::findChessboardCornersSB(image_8u, size, corners, cv::CALIB_CB_EXHAUSTIVE);
-    }
-    if (!found) return std::nullopt;
-    const int half = subpixel_half_window(corners, size.width);
-    cv::cornerSubPix(image_f, corners, cv::Size(half, half), cv::Size(-1, -1),
+    auto corners = find_checkerboard_corners(image_8u, size);
+    if (!corners) return std::nullopt;
+    const int half = subpixel_half_window(*corners, size.width);
+    cv::cornerSubPix(image_f, *corners, cv::Size(half, half), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
     return corners;
 }
 
-std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size, bool asymmetric) {
+/// Circle centres by cv::findCirclesGrid with a blob detector set for thermal frames: after the
+/// robust stretch the target's contrast spans 0–255, so the default threshold ladder applies; the
+/// discs of a low-resolution frame are a few pixels across and close together (the default 10 px
+/// between blobs and 25 px² of area would drop them), tilted views turn them into ellipses
+/// (inertia ratio cos(tilt)), and noise roughens their edges (convexity). `hot_discs`: hot discs on
+/// a cold plate (a heated plate behind a mask with holes) or the inverse.
+std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size, bool asymmetric,
+                                                     bool hot_discs) {
     cv::Mat image_8u;
     image_f.convertTo(image_8u, CV_8U);
     cv::SimpleBlobDetector::Params params;
-    params.minArea = 6;  // small discs of a low-resolution thermal frame
+    params.minDistBetweenBlobs = 2.0f;
+    params.minArea = 6.0f;
     params.maxArea = static_cast<float>(image_8u.total()) * 0.05f;
-    params.blobColor = 0;  // dark blobs; the caller passes both polarities
+    params.minInertiaRatio = 0.25f;  // boards tilted up to ~75°
+    params.minConvexity = 0.85f;
+    params.blobColor = hot_discs ? 255 : 0;
     const auto detector = cv::SimpleBlobDetector::create(params);
     std::vector<cv::Point2f> centres;
-    const int flags = (asymmetric ? cv::CALIB_CB_ASYMMETRIC_GRID : cv::CALIB_CB_SYMMETRIC_GRID) | cv::CALIB_CB_CLUSTERING;
-    if (!cv::findCirclesGrid(image_8u, size, centres, flags, detector)) return std::nullopt;
-    return centres;
+    const int grid = asymmetric ? cv::CALIB_CB_ASYMMETRIC_GRID : cv::CALIB_CB_SYMMETRIC_GRID;
+    // The plain search first (fast); the clustering one copes with stronger perspective.
+    for (int flags : {grid, grid | cv::CALIB_CB_CLUSTERING})
+        if (cv::findCirclesGrid(image_8u, size, centres, flags, detector)) return centres;
+    return std::nullopt;
 }
 }  // namespace
 
@@ -95,20 +129,20 @@ std::optional<TargetView> detect_target(const std::vector<float>& plane, int wid
     const cv::Mat image = stretched(plane, width, height);
     if (image.empty()) return std::nullopt;  // flat or mostly invalid frame
     const cv::Size size(target.columns, target.rows);
-    for (bool invert : {false, true}) {
-        cv::Mat polarity = invert ? cv::Mat(255.0f - image) : image;
-        std::optional<std::vector<cv::Point2f>> found;
-        if (target.kind == CalibrationTarget::Kind::Checkerboard)
-            found = find_checkerboard(polarity, size);
-        else
-            found = find_circles(polarity, size, target.kind == CalibrationTarget::Kind::AsymmetricCircles);
-        if (!found) continue;
-        TargetView view{name, {}};
-        view.points_px.reserve(found->size());
-        for (const auto& p : *found) view.points_px.emplace_back(p.x, p.y);
-        return view;
+    std::optional<std::vector<cv::Point2f>> found;
+    if (target.kind == CalibrationTarget::Kind::Checkerboard) {
+        found = find_checkerboard(image, size);  // either polarity
+    } else {
+        for (bool hot_discs : {true, false}) {
+            found = find_circles(image, size, target.kind == CalibrationTarget::Kind::AsymmetricCircles, hot_discs);
+            if (found) break;
+        }
     }
-    return std::nullopt;
+    if (!found) return std::nullopt;
+    TargetView view{name, {}};
+    view.points_px.reserve(found->size());
+    for (const auto& p : *found) view.points_px.emplace_back(p.x, p.y);
+    return view;
 }
 
 std::vector<std::optional<TargetView>> detect_target_views(const std::vector<std::vector<float>>& planes, int width,

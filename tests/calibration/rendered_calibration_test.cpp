@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "heated_board.h"
+#include "rendered_frames.h"
 #include "test_support.h"
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/calibration/pose_estimation.h"
@@ -22,91 +22,33 @@
 namespace tirpol {
 namespace {
 
-/// The truth lens: a 640×512 uncooled core behind a ~13 mm f/1 lens, barrel distortion, principal
-/// point off centre by (11.7, −8.8) px.
-CameraModel truth_lens() {
-    CameraModel m;
-    m.width = 640;
-    m.height = 512;
-    m.fx = 762.0;
-    m.fy = 765.5;
-    m.cx = 331.7;
-    m.cy = 247.2;
-    m.distortion = {-0.32, 0.14, 0.0009, -0.0006, -0.035};
-    return m;
-}
-
-using View = simulation::BoardView;
-
 /// 15 views: the board tilted 20–40° toward the camera from all around, at 1.1–1.3 m, shifted in
 /// the image so the corners of the frame (where distortion is largest) are covered, with some roll.
-std::vector<View> calibration_views() { return simulation::board_calibration_views(15, truth_lens().fx, truth_lens().width); }
-
-struct RenderedFrames {
-    std::vector<std::filesystem::path> frames;
-    std::vector<Image> images;
-};
-
-RenderedFrames render_views(const test::TempDir& dir, const test::HeatedBoard& board, const std::vector<View>& views, int spp) {
-    write_camera_model(dir / "truth_lens.yaml", truth_lens());
-    const std::string object = board.write(dir.path());
-    RenderedFrames out;
-    for (std::size_t i = 0; i < views.size(); ++i) {
-        const auto scene_path = dir / fmt::format("view{:02}.yaml", i);
-        test::write_text(scene_path, test::board_scene(object, "truth_lens.yaml", views[i].position, views[i].look_at, views[i].up, spp));
-        const simulation::Scene scene = simulation::load_scene(scene_path);
-        // Precondition of the test design: every inner corner is in the frame with a margin.
-        for (int r = 0; r < board.squares_y - 1; ++r)
-            for (int c = 0; c < board.squares_x - 1; ++c) {
-                const auto px = scene.camera.project(board.inner_corner(c, r));
-                EXPECT_TRUE(px && px->x() > 12 && px->y() > 12 && px->x() < 628 && px->y() < 500) << "view " << i;
-            }
-        Image image = simulation::render(scene);
-        Image frame(image.width(), image.height());
-        frame.set_channel("S0", image.channel("S0"));
-        out.frames.push_back(dir / fmt::format("frame{:02}.exr", i));
-        write_exr(out.frames.back(), frame);
-        out.images.push_back(std::move(frame));
-    }
-    return out;
-}
-
-void expect_recovered(const calibration::GeometricCalibrationResult& r, double max_rms_px) {
-    const CameraModel truth = truth_lens();
-    const CameraModel& m = r.model;
-    EXPECT_EQ(m.views, 15);
-    EXPECT_LT(m.rms_px, max_rms_px);
-    EXPECT_NEAR(m.fx, truth.fx, 0.005 * truth.fx);
-    EXPECT_NEAR(m.fy, truth.fy, 0.005 * truth.fy);
-    EXPECT_NEAR(m.cx, truth.cx, 0.005 * truth.cx);
-    EXPECT_NEAR(m.cy, truth.cy, 0.005 * truth.cy);
-    for (std::size_t i = 0; i < 5; ++i)
-        EXPECT_LT(std::abs(m.distortion[i] - truth.distortion[i]), 2.0 * m.std_dev[4 + i])
-            << r.parameter_names[4 + i] << " = " << m.distortion[i] << " ± " << m.std_dev[4 + i] << ", truth "
-            << truth.distortion[i];
+std::vector<test::BoardView> calibration_views() {
+    return simulation::board_calibration_views(15, test::truth_lens().fx, test::truth_lens().width);
 }
 
 class RenderedCalibration : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         s_dir = new test::TempDir("tirpol-geocal");
-        s_frames = new RenderedFrames(render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 8));
+        s_frames = new test::RenderedFrames(test::render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 8));
     }
     static void TearDownTestSuite() {
         delete s_frames;
         delete s_dir;
     }
     static test::TempDir* s_dir;
-    static RenderedFrames* s_frames;
+    static test::RenderedFrames* s_frames;
 };
 test::TempDir* RenderedCalibration::s_dir = nullptr;
-RenderedFrames* RenderedCalibration::s_frames = nullptr;
+test::RenderedFrames* RenderedCalibration::s_frames = nullptr;
 
 TEST_F(RenderedCalibration, RecoversTheTruthLensNoiseFree) {
     const auto target = calibration::CalibrationTarget::parse(test::HeatedBoard{}.target());
     const auto r = calibration::calibrate_geometric_frames(s_frames->frames, target);
     EXPECT_TRUE(r.frames_without_target.empty());
-    expect_recovered(r, 0.1);
+    test::expect_recovered(r, 15, 0.1);
     for (const auto& v : r.views) EXPECT_FALSE(v.outlier) << v.name << " " << v.rms_px;
     std::printf("noise-free: fx %.3f fy %.3f cx %.3f cy %.3f k1 %.5f RMS %.4f px\n", r.model.fx, r.model.fy, r.model.cx,
                 r.model.cy, r.model.distortion[0], r.model.rms_px);
@@ -130,7 +72,7 @@ TEST_F(RenderedCalibration, WithSensorNoiseTheRmsGrowsAndTheLensIsStillRecovered
     const auto clean = calibration::calibrate_geometric_frames(s_frames->frames, target);
     const auto r = calibration::calibrate_geometric_frames(noisy, target);
     EXPECT_GT(r.model.rms_px, clean.model.rms_px) << "noise must show in the reprojection error";
-    expect_recovered(r, 0.3);
+    test::expect_recovered(r, 15, 0.3);
     std::printf("noisy: fx %.3f fy %.3f cx %.3f cy %.3f RMS %.4f px\n", r.model.fx, r.model.fy, r.model.cx, r.model.cy,
                 r.model.rms_px);
 }
@@ -147,7 +89,7 @@ TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
     board.texels_per_square = 16;
     board.centre = Vec3(0.3, 10.0, 2.5);
     board.standing = true;
-    write_camera_model(dir / "truth_lens.yaml", truth_lens());
+    write_camera_model(dir / "truth_lens.yaml", test::truth_lens());
     const Vec3 position(0.1, 0.2, 2.5), look_at(0.4, 10.0, 2.3);
     test::write_text(dir / "scene.yaml", test::board_scene(board.write(dir.path()), "truth_lens.yaml", position, look_at, world_up(), 48));
     const simulation::Scene scene = simulation::load_scene(dir / "scene.yaml");
@@ -168,7 +110,7 @@ TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
             ASSERT_LT((best - predicted).norm(), 1.0);
             points.push_back({fmt::format("c{}r{}", c, r), world, best});
         }
-    const auto result = calibration::estimate_pose(truth_lens(), points);
+    const auto result = calibration::estimate_pose(test::truth_lens(), points);
     const CameraPose truth = scene.camera.pose();
     const double angle_deg = rad_to_deg(Eigen::AngleAxisd(result.pose.camera_from_world * truth.camera_from_world.transpose()).angle());
     const double offset_m = (result.pose.position_m() - truth.position_m()).norm();

@@ -46,12 +46,14 @@ TEST(TwinCameraGeometry, TheFieldProcedureRecoversTheLensAndThePose) {
     // The focal lengths within the 0.5 %.
     EXPECT_NEAR(r.lens.fx, r.true_lens.fx, 0.005 * r.true_lens.fx);
     EXPECT_NEAR(r.lens.fy, r.true_lens.fy, 0.005 * r.true_lens.fy);
-    // The principal point, within 3 of its reported σ: on a 160×120 detector σ is 1.5–3 px, more than
-    // the 0.5 % of cx (0.4 px), which holds only for larger detectors (docs/twin.md).
+    // The principal point, within 3 of its reported σ. On a 160×120 detector with ~0.09 px of corner
+    // noise σ is ~1.2 px with the board rolled ±180° between views (3.5 px for cx with ±25°), more
+    // than the 0.5 % of cx (0.4 px), which needs a larger detector or many more views
+    // (docs/twin.md, "Known limits").
     EXPECT_NEAR(r.lens.cx, r.true_lens.cx, 3.0 * r.lens.std_dev[2]);
     EXPECT_NEAR(r.lens.cy, r.true_lens.cy, 3.0 * r.lens.std_dev[3]);
-    EXPECT_LT(r.lens.std_dev[2], 4.0);
-    EXPECT_LT(r.lens.std_dev[3], 4.0);
+    EXPECT_LT(r.lens.std_dev[2], 2.0);
+    EXPECT_LT(r.lens.std_dev[3], 2.0);
     for (std::size_t i = 0; i < 4; ++i)  // k3 is held at 0 (--fix-k3), as is the truth's
         EXPECT_LT(std::abs(r.lens.distortion[i] - r.true_lens.distortion[i]), 2.0 * r.lens.std_dev[4 + i])
             << r.lens_parameter_names[4 + i] << " " << r.lens.distortion[i] << " ± " << r.lens.std_dev[4 + i]
@@ -63,6 +65,7 @@ TEST(TwinCameraGeometry, TheFieldProcedureRecoversTheLensAndThePose) {
     EXPECT_GT(r.nominal_rotation_error_deg, 0.5);  // there was a pose error to find
     EXPECT_GT(r.nominal_position_error_m, 0.05);
     EXPECT_LT(r.position_error_m, 0.5 * r.nominal_position_error_m);
+    EXPECT_LT(r.rotation_error_deg, 0.5 * r.nominal_rotation_error_deg);
     EXPECT_LT(worst_px, 0.3);
 
     // The files a field user would have, readable by the commands that follow.

@@ -54,7 +54,7 @@ std::vector<fs::path> film_board(const simulation::Camera& truth, const TwinWorl
     render_options.threads = options.threads;
     std::vector<fs::path> frames;
     const auto views = simulation::board_calibration_views(options.board_views, truth.lens_model().fx, truth.width(),
-                                                           options.board_max_tilt_deg);
+                                                           options.board_max_tilt_deg, options.board_roll_spread_deg);
     for (std::size_t i = 0; i < views.size(); ++i) {
         const fs::path scene_file = dir / fmt::format("board_view{:02}.yaml", i);
         write_file_atomic(

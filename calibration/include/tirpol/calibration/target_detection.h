@@ -2,9 +2,10 @@
 /// \file target_detection.h
 /// Finding a calibration target in a thermal frame: 14-bit counts, low contrast, blur, hot-on-cold
 /// or cold-on-hot. The frame is contrast-stretched robustly (0.5th–99.5th percentile → 0–255, NaN
-/// and dead pixels ignored) before OpenCV's detectors; both polarities are tried; checkerboard
-/// corners are refined to sub-pixel on the stretched float image (cv::cornerSubPix), circle centres
-/// come from cv::findCirclesGrid's blob centroids.
+/// and dead pixels ignored) before OpenCV's detectors. Checkerboards: the sector-based detector
+/// (either polarity; frames ≥ 480 rows are searched at half resolution first), corners refined to
+/// sub-pixel on the full-resolution stretched float image (cv::cornerSubPix). Circle grids: both
+/// polarities are tried; centres are cv::findCirclesGrid's blob centroids.
 
 #include <filesystem>
 #include <optional>

@@ -31,6 +31,10 @@ struct CameraGeometryOptions {
     /// The board is tilted 20° to this toward the camera: steep views make the focal length observable
     /// on a small detector (at 160×120, 40° leaves fx uncertain by 1 %, 55° by 0.2 %).
     double board_max_tilt_deg = 55.0;
+    /// The board is also rolled about the optical axis by up to ± this: at 160×120 with ~0.09 px of
+    /// corner noise, rolls of ±25° leave cx uncertain by 3.5 px (1σ), ±180° by 1.4 px (issue 14;
+    /// docs/twin.md, "Known limits").
+    double board_roll_spread_deg = 180.0;
     /// `--fix-k3`: a 34° lens on a 160-pixel detector does not constrain k3 (docs/camera-geometry.md:
     /// its σ exceeds it), so the field user keeps it at 0.
     bool fix_k3 = true;
