@@ -142,8 +142,8 @@ def main():
         '42\ntirpol_token=abc; other=1\npage-1\n{"plan": "plan.yaml", "output": "session", "resume": true}')
     put(CORPUS, "live_request", "observation.txt", '0\n\nclient\n{"frames": 3, "ok": [1, 2]}')
     put(CORPUS, "sweep_yaml", "time_grid.yaml",
-        "scene: scenes/ball_on_snow_night.yaml\nset:\n  camera.resolution: [32, 24]\n  sampling.spp: 4\n"
-        "axes:\n  time: {from: 2026-01-16T00:00, to: 2026-01-16T06:00, step_h: 3}\n"
+        "scene: thermal/ball_on_snow_day_predicted.yaml\nset:\n  camera.resolution: [32, 24]\n  sampling.spp: 4\n"
+        "axes:\n  time: {from: 2026-01-16T06:00, to: 2026-01-16T12:00, step_h: 3}\n"
         "  materials.snow.parameters.sigma: [0.1, 0.3]\n")
     put(CORPUS, "sweep_yaml", "list_regions.yaml",
         "scene: scenes/ball_on_snow_night.yaml\ncombine: list\nseed: 7\n"

@@ -1,7 +1,7 @@
 // Fuzz target: sweep files (sweep::load_sweep), their points and each point's scene (point_config).
-// The input is written next to links to the shipped scenes and materials, so seeds name a real base
-// scene as `scene: scenes/<file>.yaml` and every check against the base scene runs.
-#include <algorithm>
+// The input is written next to links to the shipped scenes, materials and thermal scenes, so seeds name
+// a real base scene as `scene: scenes/<file>.yaml` (`thermal/<file>.yaml` for a time axis) and every
+// check against the base scene runs.
 #include <filesystem>
 
 #include "fuzz_support.h"
@@ -10,7 +10,7 @@
 namespace {
 void link_config_folders() {
     static const bool linked = [] {
-        for (const char* folder : {"scenes", "materials"}) {
+        for (const char* folder : {"scenes", "materials", "thermal"}) {
             const auto link = tirpol::fuzz::scratch_dir() / folder;
             std::error_code ignored;
             std::filesystem::remove(link, ignored);
