@@ -6,6 +6,8 @@
 
 namespace tirpol::fuzz {
 
+std::filesystem::path source_dir() { return TIRPOL_SOURCE_DIR; }
+
 std::filesystem::path scratch_dir() {
     static const std::filesystem::path dir = [] {
         auto d = std::filesystem::temp_directory_path() / ("tirpol-fuzz-" + std::to_string(::getpid()));

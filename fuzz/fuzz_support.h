@@ -19,6 +19,9 @@ inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
     return {reinterpret_cast<const char*>(data), size};
 }
 
+/// The source tree (config/ for targets whose inputs name shipped files).
+std::filesystem::path source_dir();
+
 /// A per-process scratch directory (created once, reused by every input so no file system churn).
 std::filesystem::path scratch_dir();
 

@@ -55,14 +55,18 @@ def exr(width, height, channels=("counts",), attributes=(), declared=None, compr
     return b"\x76\x2f\x31\x01" + struct.pack("<I", 2) + header + offsets + body
 
 
-def png(width, height, bit_depth=16):
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+def png_chunk(kind, data, crc=None):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) if crc is None else crc)
+
+
+def png(width, height, bit_depth=16, ancillary=b""):
+    """Grey PNG of counts 18000 + x + 100 y; `ancillary` chunks go right after IHDR."""
+    chunk = png_chunk
     bpp = bit_depth // 8
     rows = b"".join(b"\0" + b"".join((18000 + x + 100 * y).to_bytes(bpp, "big") if bpp == 2 else bytes([x + y])
                                      for x in range(width)) for y in range(height))
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, bit_depth, 0, 0, 0, 0))
-            + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+            + ancillary + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 
 
 def tiff(width, height, bits=16):
@@ -127,12 +131,73 @@ def main():
         "0IN0E1140028420211701016800023000\r\n0GS00\r\n0PO00008000\r\n0GS09\r\n")
     put(CORPUS, "refractive_index", "tabulated.csv", "# test\nwavelength_um,n,k\n8,1.5,0.01\n10,1.4,0.05\n12,1.3,0.2\n")
     put(CORPUS, "thermal_yaml", "minimal.yaml", "site: {latitude_deg: 43.1, longitude_deg: -77.6}\n")
+    put(CORPUS, "capture_plan", "drift_plan.yaml",
+        "angles_deg: [0, 45, 90, 135]\nframes_per_angle: 4\n"
+        "scene_reference: {roi: {x: 2, y: 2, width: 6, height: 6}, temperature_c: 30, temperature_sigma_k: 0.02}\n"
+        "shutter_interleave: {every: 4, temperature_k: 295.0, frames: 16}\n")
+    put(CORPUS, "fluke_scpi", "replies.txt",
+        "FLUKE,4180,B12345,1.10\r\n35.012\r\n+3.5012E+01\r\n0\r\n1\r\n0,\"No error\"\r\n"
+        "-113,\"Undefined header\"\r\nSOURce:SPOint 35.0\nsour:stab:test?\n*IDN?\n")
+    put(CORPUS, "live_request", "capture_start.txt",
+        '42\ntirpol_token=abc; other=1\npage-1\n{"plan": "plan.yaml", "output": "session", "resume": true}')
+    put(CORPUS, "live_request", "observation.txt", '0\n\nclient\n{"frames": 3, "ok": [1, 2]}')
+    put(CORPUS, "sweep_yaml", "time_grid.yaml",
+        "scene: thermal/ball_on_snow_day_predicted.yaml\nset:\n  camera.resolution: [32, 24]\n  sampling.spp: 4\n"
+        "axes:\n  time: {from: 2026-01-16T06:00, to: 2026-01-16T12:00, step_h: 3}\n"
+        "  materials.snow.parameters.sigma: [0.1, 0.3]\n")
+    put(CORPUS, "sweep_yaml", "list_regions.yaml",
+        "scene: scenes/ball_on_snow_night.yaml\ncombine: list\nseed: 7\n"
+        "axes:\n  camera.position: [[0, -6, 1.6], [0, -8, 2]]\n  sampling.spp: [4, 8]\n"
+        "regions:\n  rim: {object: ball, sectors_deg: [[0, 90]]}\n  patch: {polygon: [[1, 1], [9, 1], [9, 9]]}\n"
+        "contrasts:\n  rim_vs_patch: {a: rim, b: patch}\n")
+    put(CORPUS, "camera_geometry", "model.yaml",
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n"
+        "   rows: 3\n   cols: 3\n   dt: d\n   data: [ 800., 0., 319.5, 0., 800., 239.5, 0., 0., 1. ]\n"
+        "distortion_coefficients: !!opencv-matrix\n   rows: 1\n   cols: 5\n   dt: d\n"
+        "   data: [ -0.1, 0.01, 0., 0., 0. ]\n")
+    put(CORPUS, "camera_geometry", "pose.yaml",
+        "%YAML:1.0\n---\nrotation_camera_from_world: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+        "   data: [ 1., 0., 0., 0., 0., -1., 0., 1., 0. ]\ntranslation_m: !!opencv-matrix\n   rows: 3\n   cols: 1\n"
+        "   dt: d\n   data: [ 0., 1.6, 6. ]\n")
+    put(CORPUS, "control_points", "survey.csv",
+        "# survey\nname,x_m,y_m,z_m,u_px,v_px\na,1,2,3,100.5,200.25\nb,0,0,5,320,240\n")
+    put(CORPUS, "control_points", "pairs.yaml",
+        "- {measured: [1, 2], simulated: [3.5, 4]}\n- measured: [10, 20]\n  simulated: [11, 22]\n")
+    put(CORPUS, "weather_csv", "field_log.csv",
+        "time,air_temperature_c,relative_humidity_pct,wind_speed_m_s,global_horizontal_w_m2\n"
+        "2026-01-16T00:00,-5,80,2,0\n2026-01-16T01:00-07:00,-6,82,1.5,0\n2026-01-16T09:00Z,-7,85,1,0\n")
 
     # --- regressions: the inputs of issue 20, each must give a clean tirpol::Error ---
     put(REGRESSIONS, "exr", "declares_40000x40000.exr", exr(4, 3, declared=(40000, 40000)))
     put(REGRESSIONS, "exr", "declares_4000x4000_in_tiny_file.exr", exr_header_only(4000, 4000))
     put(REGRESSIONS, "exr", "non_utf8_attribute.exr", exr(2, 2, attributes=[("note", "string", b"caf\xe9 \xff\xfe")]))
+    # An attribute of a type OpenEXR does not know, declaring 1.6 GB in a 400-byte file: OpenEXR
+    # allocated the declared size before reading (what made the exr fuzz target run 3 inputs/s).
+    opaque = exr(2, 2, attributes=[("junk", "mystery", b"abcd")])
+    put(REGRESSIONS, "exr", "attribute_declares_1_6_GB.exr",
+        opaque.replace(b"junk\0mystery\0" + struct.pack("<i", 4), b"junk\0mystery\0" + struct.pack("<i", 0x61686300)))
+    # Uncompressed with a complete offset table but no pixels: 16 KB declared in < 1 KB (passed the
+    # general 4096:1 bound, meant only for PIZ/DWA).
+    put(REGRESSIONS, "exr", "uncompressed_declares_64x64_without_pixels.exr",
+        exr(1, 1, declared=(64, 64), compression=0, chunks_only=64))
     put(REGRESSIONS, "raw_image", "eight_bit.png", png(4, 3, bit_depth=8))
+    # Found by the camera_geometry target: OpenCV allocated a 3 × 2^31 matrix for a `cols:` that is not a number.
+    put(REGRESSIONS, "camera_geometry", "matrix_cols_not_a_number.yaml",
+        b"%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n"
+        b"   cols: \xd5\n   dt: d\n   data: [ 800., 0., 319.5, 0., 800., 239.5, 0., 0., 1. ]\n")
+    # ... and OpenCV asserted (cv::Exception) when a matrix field was a list rather than a mapping.
+    put(REGRESSIONS, "camera_geometry", "matrix_field_is_a_list.yaml",
+        "%YAML:1.0\n---\nrotation_camera_from_world: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+        "   data: [ 1., 0., 0., 0., 0., -1., 0., 1., 0. ]\ntranslation_m: !!opencv-matrix\n  , 1.6, 6. ]\n")
+    # ... and OpenCV's YAML parser threw std::length_error on this text.
+    put(REGRESSIONS, "camera_geometry", "parser_length_error.yaml",
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrixmatrix\n   rows: 1\n"
+        "   cols: 5\n   dt: d\n   dataimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrixmatrix\n"
+        "   rows: 1\n   cols: 5\n   : [ -0.1, 0.01, 0., 0., 0. ]\n")
+    # Chunks that cannot change a count but made libpng (under OpenCV) print warnings on stderr: a text
+    # chunk with a wrong CRC and a colour profile that is not zlib data.
+    put(REGRESSIONS, "raw_image", "ancillary_chunk_warnings.png",
+        png(4, 3, ancillary=png_chunk(b"tEXt", b"Comment\0camera raw", crc=0) + png_chunk(b"iCCP", b"x\0\0not zlib")))
     put(REGRESSIONS, "raw_image", "png_declares_40000x40000.png", png(4, 3)[:16] + struct.pack(">II", 40000, 40000) + png(4, 3)[24:])
     put(REGRESSIONS, "raw_image", "tiff_bits_per_sample_8.tif", tiff(4, 3, bits=8))
     put(REGRESSIONS, "fit_csv", "emissivity_1e308.csv", "angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma\n10,1e308,0.01,0,0.01\n")

@@ -3,11 +3,11 @@
 # the totals per target (inputs run, crashes, hangs, out-of-memory). Fails on any finding, naming
 # the input libFuzzer saved; keep it as tests/data/fuzz-regressions/<target>/<name> once fixed, so
 # the fuzz_replay.<target> ctest test replays it in every build.
-#   fuzz/run_fuzz.sh BUILD_DIR [SECONDS_PER_TARGET]        (default TIRPOL_FUZZ_SECONDS or 15)
+#   fuzz/run_fuzz.sh BUILD_DIR [SECONDS_PER_TARGET]        (default TIRPOL_FUZZ_SECONDS or 12)
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$(cd "${1:?usage: fuzz/run_fuzz.sh BUILD_DIR [SECONDS_PER_TARGET]}" && pwd)
-SECONDS_PER_TARGET=${2:-${TIRPOL_FUZZ_SECONDS:-15}}
+SECONDS_PER_TARGET=${2:-${TIRPOL_FUZZ_SECONDS:-12}}
 RSS_LIMIT_MB=${TIRPOL_FUZZ_RSS_MB:-2048}
 HANG_S=${TIRPOL_FUZZ_HANG_S:-10}
 OUT=$BUILD/fuzz-results

@@ -24,7 +24,7 @@ struct BrdfArgs {
 Vec3 direction(const std::vector<double>& theta_phi_deg, const char* option) {
     const double theta = theta_phi_deg[0], phi = theta_phi_deg[1];
     if (!(theta >= 0.0 && theta <= 90.0) || !std::isfinite(phi))
-        fail("{}: zenith angle {}° must lie in [0, 90] and the azimuth must be finite", option, theta);
+        usage_error(option, "zenith angle {}° must lie in [0, 90] and the azimuth must be finite", theta);
     const double t = deg_to_rad(theta), p = deg_to_rad(phi);
     return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }

@@ -66,10 +66,11 @@ struct PolarimetricArgs {
 };
 
 void run_polarimetric(const PolarimetricArgs& a) {
+    if (!a.extinction_ratio && !a.axis_offsets_deg.empty())
+        usage_error("--axis-offset-deg", "needs --extinction-ratio (the datasheet's t_max/t_min)");
     const auto cal = calibration::read_radiometric_calibration(a.calibration);
     std::optional<calibration::DatasheetAnalyzer> datasheet;
     if (a.extinction_ratio) datasheet = calibration::DatasheetAnalyzer{*a.extinction_ratio, a.axis_offsets_deg};
-    else if (!a.axis_offsets_deg.empty()) fail("--axis-offset-deg needs --extinction-ratio (the datasheet's t_max/t_min)");
     auto pol = calibration::calibrate_polarimetric_session(a.session, cal, datasheet);
     pol.radiometric_calibration = a.calibration;
     calibration::write_polarimetric_calibration(a.output, pol);

@@ -25,7 +25,7 @@ void run_geometric(const GeometricArgs& a) {
     options.fix_k3 = a.fix_k3;
     options.zero_tangential = a.zero_tangential;
     options.min_views = a.min_views;
-    const auto target = calibration::CalibrationTarget::parse(a.target);
+    const auto target = parse_option_value("--target", [&] { return calibration::CalibrationTarget::parse(a.target); });
     const std::vector<std::filesystem::path> frames(a.frames.begin(), a.frames.end());
     const auto r = calibration::calibrate_geometric_frames(frames, target, options);
     write_camera_model(a.output, r.model);

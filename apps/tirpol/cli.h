@@ -3,8 +3,13 @@
 // itself with TIRPOL_REGISTER_COMMAND(order, function) where function(CLI::App&) adds the subcommand
 // and its callback; `order` sorts the --help listing (pipeline order). No central list to edit.
 
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+
+#include "tirpol/core/error.h"
 
 namespace tirpol::cli {
 
@@ -14,6 +19,25 @@ inline constexpr int kExitError = 1;
 inline constexpr int kExitUsage = 2;
 
 int run(int argc, char** argv);
+
+/// A usage error found after parsing (a value outside its range, options that conflict or need each
+/// other): exit 2 with CLI11's "OPTION: message" and "Run with --help", like CLI11's own checks.
+template <typename... Args>
+[[noreturn]] void usage_error(const std::string& option, fmt::format_string<Args...> format, Args&&... args) {
+    throw CLI::ValidationError(option, fmt::format(format, std::forward<Args>(args)...));
+}
+
+/// `parse()` of an option's value by a library function; its tirpol::Error becomes a usage error of
+/// `option` (the value is wrong, not a file or a device).
+template <typename Parse>
+auto parse_option_value(const std::string& option, Parse&& parse) {
+    try {
+        return parse();
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        throw message.rfind(option, 0) == 0 ? CLI::ValidationError(message) : CLI::ValidationError(option, message);
+    }
+}
 
 using CommandRegistration = std::function<void(CLI::App&)>;
 /// Adds a subcommand registration; returns true so it can initialise a static.

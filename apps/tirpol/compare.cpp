@@ -35,20 +35,22 @@ void run_compare(const CompareArgs& a) {
         options.camera_model_name = a.camera;
     }
     // Default: the camera model when given, else control points when given, else automatic.
-    options.registration = !a.registration.empty()      ? parse_registration_method(a.registration)
+    options.registration = !a.registration.empty()
+                               ? parse_option_value("--registration",
+                                                    [&] { return parse_registration_method(a.registration); })
                            : !a.camera.empty()          ? RegistrationMethod::CameraModel
                            : !a.control_points.empty() ? RegistrationMethod::ControlPoints
                                                         : RegistrationMethod::Auto;
     if (options.registration == RegistrationMethod::ControlPoints && a.control_points.empty())
-        throw CLI::ValidationError("--registration", "control-points needs --control-points CP.yaml");  // usage: exit 2
+        usage_error("--registration", "control-points needs --control-points CP.yaml");
     if (options.registration == RegistrationMethod::CameraModel && a.camera.empty())
-        throw CLI::ValidationError("--registration", "camera-model needs --camera CAM.yaml");
+        usage_error("--registration", "camera-model needs --camera CAM.yaml");
     if (!a.camera.empty() && options.registration != RegistrationMethod::CameraModel)
-        throw CLI::ValidationError("--camera", "a camera model registers by the model: leave out --registration or give camera-model");
+        usage_error("--camera", "a camera model registers by the model: leave out --registration or give camera-model");
     if (!a.rois.empty()) options.regions = load_regions(a.rois);
     if (a.measured_sigma) {
         if (!(*a.measured_sigma > 0.0) || !std::isfinite(*a.measured_sigma))
-            fail("--measured-sigma: expected a positive radiance in W/(m²·sr), got {}", *a.measured_sigma);
+            usage_error("--measured-sigma", "expected a positive radiance in W/(m²·sr), got {}", *a.measured_sigma);
         options.measured_frame_sigma = a.measured_sigma;
     }
     if (!a.band_um.empty()) options.band_um = std::array<double, 2>{a.band_um[0], a.band_um[1]};

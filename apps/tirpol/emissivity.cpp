@@ -31,7 +31,8 @@ struct EmissivityArgs {
 
 void run_emissivity(const EmissivityArgs& a) {
     const materials::Material m = materials::load_material(materials::material_file(a.material));
-    const std::vector<double> angles = materials::parse_angles_deg(a.angles);
+    const std::vector<double> angles =
+        parse_option_value("--angles-deg", [&] { return materials::parse_angles_deg(a.angles); });
     std::vector<materials::EmissivityRow> rows;
     std::string spectral, spectral_ascii;  // the plot's Hershey font has no µ or en dash
     nlohmann::json out;
@@ -44,7 +45,7 @@ void run_emissivity(const EmissivityArgs& a) {
         spectral_ascii = fmt::format("{} um", *a.wavelength_um);
         out["wavelength_um"] = *a.wavelength_um;
     } else {
-        if (!(a.temperature_k > 0.0)) fail("--temperature-k: expected a temperature above 0 K, got {}", a.temperature_k);
+        if (!(a.temperature_k > 0.0)) usage_error("--temperature-k", "expected a temperature above 0 K, got {}", a.temperature_k);
         std::optional<SpectralResponse> rsr;
         if (!a.rsr.empty()) rsr = SpectralResponse::load_csv(a.rsr);
         const Band band(a.band_um[0], a.band_um[1], rsr);

@@ -22,7 +22,7 @@ void run_extract(const EmissivityArgs& a) {
     Image stokes;
     std::optional<Band> band;
     if (std::filesystem::is_directory(a.input)) {
-        if (a.calibration.empty()) fail("{} is a session: --calibration CAL.exr is needed to reduce it", a.input);
+        if (a.calibration.empty()) usage_error("--calibration", "{} is a session: CAL.exr is needed to reduce it", a.input);
         const auto cal = calibration::read_radiometric_calibration(a.calibration);
         std::optional<calibration::PolarimetricCalibration> pol;
         if (!a.polarimetric.empty()) pol = calibration::read_polarimetric_calibration(a.polarimetric);

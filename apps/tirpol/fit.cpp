@@ -61,8 +61,12 @@ double parse_number(const std::string& text, const std::string& what) {
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used != text.size() || text.empty()) fail("{}: \"{}\" is not a number", what, text);
+    if (used != text.size() || text.empty()) usage_error(what, "\"{}\" is not a number", text);
     return v;
+}
+
+std::size_t parameter_index(const std::string& option, const std::string& name) {
+    return static_cast<std::size_t>(parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
 }
 
 // Initial values from a material file (--init): the micro-facet parameters at the data's first wavelength.
@@ -88,16 +92,16 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
     for (const std::string& item : a.bounds) {
         const auto eq = item.find('='), colon = item.find(':');
         if (eq == std::string::npos || colon == std::string::npos || colon < eq)
-            fail("--bound {}: expected NAME=LOWER:UPPER, e.g. sigma=0.05:0.8", item);
-        auto& s = o.parameters[static_cast<std::size_t>(fitting::parameter_from_name(item.substr(0, eq)))];
+            usage_error("--bound", "{}: expected NAME=LOWER:UPPER, e.g. sigma=0.05:0.8", item);
+        auto& s = o.parameters[parameter_index("--bound", item.substr(0, eq))];
         s.lower = parse_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
         s.upper = parse_number(item.substr(colon + 1), "--bound " + item);
     }
     for (const std::string& name : a.free)
-        o.parameters[static_cast<std::size_t>(fitting::parameter_from_name(name))].fixed = false;
+        o.parameters[parameter_index("--free", name)].fixed = false;
     for (const std::string& item : a.fix) {
         const auto eq = item.find('=');
-        auto& s = o.parameters[static_cast<std::size_t>(fitting::parameter_from_name(item.substr(0, eq)))];
+        auto& s = o.parameters[parameter_index("--fix", item.substr(0, eq))];
         s.fixed = true;
         if (eq != std::string::npos) s.initial = parse_number(item.substr(eq + 1), "--fix " + item);
     }
@@ -106,7 +110,7 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
 
 void run_fit(const FitArgs& a) {
     if (a.model != "micro-facet" && a.model != "microfacet")
-        fail("--model {}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
+        usage_error("--model", "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
     std::vector<fitting::EmissivityDataset> datasets;
     for (const std::string& file : a.data)
         for (auto& d : fitting::load_emissivity_csv(file, a.wavelength_um)) datasets.push_back(std::move(d));

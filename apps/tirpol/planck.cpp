@@ -24,12 +24,13 @@ struct PlanckArgs {
 void run_planck(const PlanckArgs& a) {
     std::optional<SpectralResponse> rsr;
     if (!a.rsr.empty()) rsr = SpectralResponse::load_csv(a.rsr);
-    const Band band(a.band_um[0], a.band_um[1], rsr);
+    const Band band = parse_option_value("--band-um", [&] { return Band(a.band_um[0], a.band_um[1], rsr); });
     nlohmann::json out;
     out["band_um"] = {a.band_um[0], a.band_um[1]};
     out["rsr"] = a.rsr.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.rsr);
     if (a.temperature_k) {
-        const double t = check_temperature_k(*a.temperature_k, "--temperature-k");
+        const double t = parse_option_value(
+            "--temperature-k", [&] { return check_temperature_k(*a.temperature_k, "--temperature-k"); });
         const double radiance = check_finite(band.radiance(t), "band radiance");
         const double radiance_dT = check_finite(band.radiance_dT(t), "band radiance derivative dL/dT");
         out["temperature_k"] = t;
@@ -43,7 +44,7 @@ void run_planck(const PlanckArgs& a) {
         }
     } else {
         const double l = *a.radiance;
-        if (!(l > 0.0)) fail("--radiance: expected a positive band radiance in W/(m²·sr), got {}", l);
+        if (!(l > 0.0)) usage_error("--radiance", "expected a positive band radiance in W/(m²·sr), got {}", l);
         const double t = check_finite(band.brightness_temperature(l), "brightness temperature");
         out["radiance_w_m2_sr"] = l;
         out["brightness_temperature_k"] = t;

@@ -28,18 +28,19 @@ struct RenderArgs {
 
 void run_render(const RenderArgs& a) {
     simulation::Scene scene = simulation::load_scene(a.scene);
-    if (a.width.has_value() != a.height.has_value()) fail("--width and --height go together");
+    if (a.width.has_value() != a.height.has_value()) usage_error("--width/--height", "give both or neither");
     if (a.width) {
-        if (*a.width < 1 || *a.height < 1) fail("--width/--height: expected positive sizes, got {}x{}", *a.width, *a.height);
+        if (*a.width < 1 || *a.height < 1)
+            usage_error("--width/--height", "expected positive sizes, got {}x{}", *a.width, *a.height);
         scene.camera = scene.camera.resized(*a.width, *a.height);
     }
     if (a.spp) {
-        if (*a.spp < 1) fail("--spp: expected at least 1, got {}", *a.spp);
+        if (*a.spp < 1) usage_error("--spp", "expected at least 1, got {}", *a.spp);
         scene.sampling.samples_per_pixel = *a.spp;
     }
     if (a.max_bounces) {
         if (const std::string problem = simulation::max_bounces_problem(*a.max_bounces); !problem.empty())
-            fail("--max-bounces: {}", problem);
+            usage_error("--max-bounces", "{}", problem);
         scene.sampling.max_bounces = *a.max_bounces;
     }
     if (a.seed) scene.sampling.seed = *a.seed;

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli.h"
 #include "tirpol/core/error.h"
@@ -15,7 +16,7 @@ namespace {
 struct SunArgs {
     double latitude_deg = 0.0, longitude_deg = 0.0;
     std::string time;
-    double utc_offset_h = 0.0;
+    std::optional<double> utc_offset_h;
     double elevation_m = 0.0;
     double pressure_mbar = 1013.25;
     double temperature_c = 15.0;
@@ -26,8 +27,14 @@ struct SunArgs {
 };
 
 void run_sun(const SunArgs& a) {
+    // `sun` knows no site, hence no standard time to assume: a time without an offset needs --utc-offset-h.
+    const double as_utc = parse_option_value("--time", [&] { return thermal::parse_time(a.time, 0.0, "--time"); });
+    const bool has_offset = as_utc == thermal::parse_time(a.time, 1.0, "--time");
+    if (!has_offset && !a.utc_offset_h)
+        usage_error("--time", "{} has no UTC offset: write it (2003-10-17T12:30:30-07:00, or Z for UTC) or give "
+                    "--utc-offset-h", a.time);
     thermal::SpaInput in;
-    in.unix_seconds = thermal::parse_time(a.time, a.utc_offset_h, "--time");
+    in.unix_seconds = has_offset ? as_utc : thermal::parse_time(a.time, *a.utc_offset_h, "--time");
     in.latitude_deg = a.latitude_deg;
     in.longitude_deg = a.longitude_deg;
     in.elevation_m = a.elevation_m;
@@ -63,8 +70,11 @@ void register_sun(CLI::App& app) {
     auto* cmd = app.add_subcommand("sun", "Solar zenith, azimuth and incidence on a tilted surface (NREL SPA)");
     cmd->add_option("--lat", args->latitude_deg, "Latitude, degrees north")->required()->check(CLI::Range(-90.0, 90.0));
     cmd->add_option("--lon", args->longitude_deg, "Longitude, degrees east (west negative)")->required()->check(CLI::Range(-180.0, 180.0));
-    cmd->add_option("--time", args->time, "Time, ISO 8601: 2003-10-17T12:30:30-07:00 (no offset: --utc-offset-h)")->required();
-    cmd->add_option("--utc-offset-h", args->utc_offset_h, "UTC offset of a --time written without one")->capture_default_str();
+    cmd->add_option("--time", args->time,
+                    "Time, ISO 8601 with its offset: 2003-10-17T12:30:30-07:00, or Z for UTC (without one, "
+                    "--utc-offset-h is required)")
+        ->required();
+    cmd->add_option("--utc-offset-h", args->utc_offset_h, "UTC offset, hours, of a --time written without one");
     cmd->add_option("--elevation-m", args->elevation_m, "Elevation above sea level, m")->capture_default_str();
     cmd->add_option("--pressure-mbar", args->pressure_mbar, "Mean local pressure (refraction), mbar")->capture_default_str();
     cmd->add_option("--temperature-c", args->temperature_c, "Mean local temperature (refraction), °C")->capture_default_str();

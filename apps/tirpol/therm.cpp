@@ -110,7 +110,7 @@ void run_therm(const ThermArgs& a) {
     const thermal::ThermalScene scene = thermal::load_thermal_scene(a.file);
     double at = 0.0;
     if (!a.at.empty()) {
-        at = thermal::parse_time(a.at, scene.site.utc_offset_h, "--at");
+        at = parse_option_value("--at", [&] { return thermal::parse_time(a.at, scene.site.utc_offset_h, "--at"); });
     } else if (scene.time_s) {
         at = *scene.time_s;
     } else {

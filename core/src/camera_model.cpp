@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -105,12 +106,27 @@ cv::FileStorage open_for_reading(const std::filesystem::path& path) {
         return fs;
     } catch (const cv::Exception& e) {
         fail("{}: not readable as OpenCV FileStorage YAML: {}", path.string(), e.err);
+    } catch (const std::logic_error& e) {
+        // OpenCV's YAML parser also throws std::length_error on some malformed text (fuzz regression
+        // camera_geometry/parser_length_error.yaml).
+        fail("{}: not readable as OpenCV FileStorage YAML ({})", path.string(), e.what());
     }
 }
 
 cv::Mat required_mat(const cv::FileStorage& fs, const char* key, int rows, int cols, const std::filesystem::path& path) {
     const cv::FileNode n = fs[key];
     if (n.empty()) fail("{}: missing field '{}'", path.string(), key);
+    // `n >> m` allocates the declared rows × cols before reading the data: a `cols:` that is not a
+    // number (fuzz regression camera_geometry/matrix_cols_not_a_number.yaml) asked for 48 GB. Check the
+    // declaration against the data first.
+    if (!n.isMap()) fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix)", path.string(), key);
+    const cv::FileNode declared_rows = n["rows"], declared_cols = n["cols"], data = n["data"];
+    if (!declared_rows.isInt() || !declared_cols.isInt() || !data.isSeq())
+        fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix with integer rows, cols and a data list)",
+             path.string(), key);
+    const int r = static_cast<int>(declared_rows), c = static_cast<int>(declared_cols);
+    if (r < 1 || c < 1 || static_cast<long long>(r) * c != static_cast<long long>(data.size()))
+        fail("{}: field '{}' declares {}x{} values but its data holds {}", path.string(), key, r, c, data.size());
     cv::Mat m;
     try {
         n >> m;
@@ -134,6 +150,17 @@ double optional_real(const cv::FileStorage& fs, const char* key) {
     return n.isReal() || n.isInt() ? static_cast<double>(n) : 0.0;
 }
 
+// OpenCV's FileNode asserts (cv::Exception) on shapes it does not expect, e.g. a key looked up in a
+// node that is a list: such a file is malformed (fuzz target camera_geometry), not a crash.
+template <typename Read>
+auto reading(const std::filesystem::path& path, Read read) {
+    try {
+        return read();
+    } catch (const cv::Exception& e) {
+        fail("{}: malformed camera file: {}", path.string(), e.err);
+    }
+}
+
 std::vector<double> to_vector(const cv::Mat& m) { return std::vector<double>(m.begin<double>(), m.end<double>()); }
 
 void commit_storage(cv::FileStorage& fs, const std::filesystem::path& path) {
@@ -142,31 +169,33 @@ void commit_storage(cv::FileStorage& fs, const std::filesystem::path& path) {
 }  // namespace
 
 CameraModel read_camera_model(const std::filesystem::path& path) {
-    cv::FileStorage fs = open_for_reading(path);
-    CameraModel m;
-    m.width = required_int(fs, "image_width", path);
-    m.height = required_int(fs, "image_height", path);
-    const cv::Mat k = required_mat(fs, "camera_matrix", 3, 3, path);
-    if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 || k.at<double>(2, 1) != 0.0 ||
-        k.at<double>(2, 2) != 1.0)
-        fail("{}: camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)", path.string());
-    m.fx = k.at<double>(0, 0);
-    m.fy = k.at<double>(1, 1);
-    m.cx = k.at<double>(0, 2);
-    m.cy = k.at<double>(1, 2);
-    m.distortion = to_vector(required_mat(fs, "distortion_coefficients", 0, 0, path));
-    if (!fs["distortion_model"].empty()) {
-        const std::string declared = static_cast<std::string>(fs["distortion_model"]);
-        if (distortion_length(declared) != m.distortion.size())
-            fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(), declared,
-                 distortion_length(declared), m.distortion.size());
-    }
-    m.rms_px = optional_real(fs, "rms_reprojection_error_px");
-    if (!fs["views"].empty()) m.views = static_cast<int>(fs["views"]);
-    if (!fs["std_dev_intrinsics"].empty()) m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
-    if (!fs["target"].empty()) m.target = static_cast<std::string>(fs["target"]);
-    validate_camera_model(m, path.string());
-    return m;
+    return reading(path, [&] {
+        cv::FileStorage fs = open_for_reading(path);
+        CameraModel m;
+        m.width = required_int(fs, "image_width", path);
+        m.height = required_int(fs, "image_height", path);
+        const cv::Mat k = required_mat(fs, "camera_matrix", 3, 3, path);
+        if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 || k.at<double>(2, 1) != 0.0 ||
+            k.at<double>(2, 2) != 1.0)
+            fail("{}: camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)", path.string());
+        m.fx = k.at<double>(0, 0);
+        m.fy = k.at<double>(1, 1);
+        m.cx = k.at<double>(0, 2);
+        m.cy = k.at<double>(1, 2);
+        m.distortion = to_vector(required_mat(fs, "distortion_coefficients", 0, 0, path));
+        if (!fs["distortion_model"].empty()) {
+            const std::string declared = static_cast<std::string>(fs["distortion_model"]);
+            if (distortion_length(declared) != m.distortion.size())
+                fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(), declared,
+                     distortion_length(declared), m.distortion.size());
+        }
+        m.rms_px = optional_real(fs, "rms_reprojection_error_px");
+        if (!fs["views"].empty()) m.views = static_cast<int>(fs["views"]);
+        if (!fs["std_dev_intrinsics"].empty()) m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
+        if (!fs["target"].empty()) m.target = static_cast<std::string>(fs["target"]);
+        validate_camera_model(m, path.string());
+        return m;
+    });
 }
 
 void write_camera_model(const std::filesystem::path& path, const CameraModel& m) {
@@ -187,21 +216,23 @@ void write_camera_model(const std::filesystem::path& path, const CameraModel& m)
 }
 
 CameraPose read_camera_pose(const std::filesystem::path& path) {
-    cv::FileStorage fs = open_for_reading(path);
-    CameraPose p;
-    const cv::Mat r = required_mat(fs, "rotation_camera_from_world", 3, 3, path);
-    const cv::Mat t = required_mat(fs, "translation_m", 3, 1, path);
-    for (int i = 0; i < 3; ++i) {
-        p.translation_m[i] = t.at<double>(i);
-        for (int j = 0; j < 3; ++j) p.camera_from_world(i, j) = r.at<double>(i, j);
-    }
-    if ((p.camera_from_world * p.camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
-        p.camera_from_world.determinant() < 0.0)
-        fail("{}: rotation_camera_from_world is not a proper rotation (R·Rᵀ = I, det R = +1)", path.string());
-    if (!p.translation_m.allFinite()) fail("{}: translation_m is not finite", path.string());
-    p.rms_px = optional_real(fs, "rms_reprojection_error_px");
-    if (!fs["control_points"].empty()) p.points = static_cast<int>(fs["control_points"]);
-    return p;
+    return reading(path, [&] {
+        cv::FileStorage fs = open_for_reading(path);
+        CameraPose p;
+        const cv::Mat r = required_mat(fs, "rotation_camera_from_world", 3, 3, path);
+        const cv::Mat t = required_mat(fs, "translation_m", 3, 1, path);
+        for (int i = 0; i < 3; ++i) {
+            p.translation_m[i] = t.at<double>(i);
+            for (int j = 0; j < 3; ++j) p.camera_from_world(i, j) = r.at<double>(i, j);
+        }
+        if ((p.camera_from_world * p.camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
+            p.camera_from_world.determinant() < 0.0)
+            fail("{}: rotation_camera_from_world is not a proper rotation (R·Rᵀ = I, det R = +1)", path.string());
+        if (!p.translation_m.allFinite()) fail("{}: translation_m is not finite", path.string());
+        p.rms_px = optional_real(fs, "rms_reprojection_error_px");
+        if (!fs["control_points"].empty()) p.points = static_cast<int>(fs["control_points"]);
+        return p;
+    });
 }
 
 void write_camera_pose(const std::filesystem::path& path, const CameraPose& p) {

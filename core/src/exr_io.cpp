@@ -14,6 +14,7 @@
 #include <ImfTestFile.h>
 
 #include <cstdint>
+#include <fstream>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -42,10 +43,68 @@ void limit_openexr_header_sizes() {
     (void)once;
 }
 
+// OpenEXR allocates each attribute's declared size before it reads the value (an attribute of an
+// unknown type becomes an OpaqueAttribute: `new char[size]`), so a 300-byte file declaring a 1.6 GB
+// attribute costs a 1.6 GB allocation or std::bad_alloc. Walks the header(s) first, as laid out in
+// "OpenEXR File Layout" (name\0 type\0 int32 size, value; an empty name ends a header; with the
+// multi-part flag, an empty header ends the list), and refuses a size beyond the bytes left in the
+// file. What this walk cannot follow is left to OpenEXR's own checks.
+void check_attribute_sizes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    const auto file_bytes = static_cast<std::int64_t>(std::filesystem::file_size(path));
+    std::uint8_t version[8];
+    if (!in.read(reinterpret_cast<char*>(version), sizeof version)) return;
+    const bool multipart = (version[5] & 0x10) != 0;  // flag bit 12 of the version field
+    auto read_text = [&](std::string& out) {          // a null-terminated name, at most 255 bytes
+        out.clear();
+        for (char c = 0; in.get(c);) {
+            if (c == '\0') return true;
+            if (out.size() == 255) return false;
+            out += c;
+        }
+        return false;
+    };
+    std::string name, type;
+    for (bool header_was_empty = false; !header_was_empty;) {
+        header_was_empty = true;
+        while (read_text(name) && !name.empty()) {
+            header_was_empty = false;
+            std::uint8_t size_le[4];
+            if (!read_text(type) || !in.read(reinterpret_cast<char*>(size_le), sizeof size_le)) return;
+            const auto size = static_cast<std::int32_t>(static_cast<std::uint32_t>(size_le[0]) | std::uint32_t{size_le[1]} << 8 |
+                                                        std::uint32_t{size_le[2]} << 16 | std::uint32_t{size_le[3]} << 24);
+            const std::int64_t left = file_bytes - static_cast<std::int64_t>(in.tellg());
+            if (size < 0 || size > left)
+                fail("{}: header attribute '{}' ({}) declares {} bytes, but the file has only {} left (corrupt or "
+                     "truncated header)",
+                     path.string(), name, type, size, left);
+            in.seekg(size, std::ios::cur);
+        }
+        if (!in || !multipart) return;
+    }
+}
+
+// Most decoded bytes a compression can produce per file byte: none stores them as they are; RLE
+// codes at most 128 equal bytes in 2 (ImfRle.cpp); zlib's deflate reaches at most 1032:1 (ZIP, ZIPS;
+// PXR24 first keeps 3 of every 4 float bytes); B44 stores a 4×4 block of halves in 14 bytes, B44A a
+// flat one in 3. PIZ and DWA have no simple bound: limits::kMaxCompressionRatio.
+double max_compression_ratio(Imf::Compression compression) {
+    switch (compression) {
+        case Imf::NO_COMPRESSION: return 1.0;
+        case Imf::RLE_COMPRESSION: return 64.0;
+        case Imf::ZIPS_COMPRESSION:
+        case Imf::ZIP_COMPRESSION: return 1032.0;
+        case Imf::PXR24_COMPRESSION: return 1032.0 * 4.0 / 3.0;
+        case Imf::B44_COMPRESSION: return 32.0 / 14.0;
+        case Imf::B44A_COMPRESSION: return 32.0 / 3.0;
+        default: return limits::kMaxCompressionRatio;
+    }
+}
+
 // Checks the declared size before any pixel is allocated: against tirpol's limits, and against
-// the file's size (a 480 KB file cannot hold 40000×40000 pixels under any OpenEXR compression).
+// the file's size under the file's own compression (a 480 KB file cannot hold 40000×40000 pixels).
 void check_declared_size(const std::filesystem::path& path, std::int64_t width, std::int64_t height,
-                         const Imf::ChannelList& channels) {
+                         const Imf::Header& header) {
     if (width <= 0 || height <= 0)
         fail("{}: the OpenEXR data window is empty or inverted ({}×{})", path.string(), width, height);
     const auto pixels = static_cast<double>(width) * static_cast<double>(height);
@@ -55,14 +114,16 @@ void check_declared_size(const std::filesystem::path& path, std::int64_t width, 
              width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
     double decoded_bytes = 0.0;
     int channel_count = 0;
-    for (auto it = channels.begin(); it != channels.end(); ++it, ++channel_count)
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it, ++channel_count)
         decoded_bytes += pixels * (it.channel().type == Imf::HALF ? 2.0 : 4.0);
     const auto file_bytes = static_cast<double>(std::filesystem::file_size(path));
-    if (decoded_bytes > limits::kMaxCompressionRatio * file_bytes)
+    const double max_ratio = max_compression_ratio(header.compression());
+    if (decoded_bytes > max_ratio * file_bytes)
         fail(
             "{}: declares {}×{} pixels in {} channel(s) ({:.3g} bytes decoded) but the file has only {} bytes; "
-            "no OpenEXR compression reaches that ratio (corrupt header?)",
-            path.string(), width, height, channel_count, decoded_bytes, file_bytes);
+            "no OpenEXR compression reaches that ratio (at most {:.4g}:1 for this file's compression; corrupt "
+            "header or truncated file?)",
+            path.string(), width, height, channel_count, decoded_bytes, file_bytes, max_ratio);
 }
 }  // namespace
 
@@ -109,12 +170,13 @@ Image read_exr(const std::filesystem::path& path) {
         fail("{}: not an OpenEXR file (bad magic number or header)", path.string());
     if (deep) fail("{}: deep OpenEXR images are not supported", path.string());
     limit_openexr_header_sizes();
+    check_attribute_sizes(path);
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i dw = in.header().dataWindow();
         const std::int64_t width = std::int64_t{dw.max.x} - dw.min.x + 1,
                            height = std::int64_t{dw.max.y} - dw.min.y + 1;
-        check_declared_size(path, width, height, in.header().channels());
+        check_declared_size(path, width, height, in.header());
         if (!in.isComplete())
             fail("{}: the OpenEXR file is truncated or incomplete (missing scan lines or tiles)", path.string());
         Image image(static_cast<int>(width), static_cast<int>(height));

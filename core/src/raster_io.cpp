@@ -12,6 +12,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/limits.h"
+#include "png_read.h"
 
 namespace tirpol {
 
@@ -66,6 +67,12 @@ void check_tiff_header(const std::filesystem::path& path) {
         fail("{}: declares {}×{} pixels, more than the file's {} bytes can hold (corrupt header?)", path.string(),
              width, height, std::filesystem::file_size(path));
 }
+Image counts_image(const detail::PngCounts& png, const std::string& channel_name) {
+    Image out(png.width, png.height);
+    out.set_channel(channel_name, std::vector<float>(png.counts.begin(), png.counts.end()));
+    out.attributes()["source_depth_bits"] = 16;
+    return out;
+}
 }  // namespace
 
 Image read_raw_image(const std::filesystem::path& path, const std::string& channel_name, const std::string& exr_channel) {
@@ -82,8 +89,11 @@ Image read_raw_image(const std::filesystem::path& path, const std::string& chann
     if (ext != ".png" && ext != ".tif" && ext != ".tiff")
         fail("{}: unsupported raw image type '{}'; expected .exr, .png or .tif/.tiff", path.string(), ext);
     if (!std::filesystem::exists(path)) fail("{}: no such file", path.string());
-    if (ext == ".png") check_png_header(path);
-    if (ext == ".tif" || ext == ".tiff") check_tiff_header(path);
+    if (ext == ".png") {
+        check_png_header(path);
+        return counts_image(detail::read_png_counts(path), channel_name);
+    }
+    check_tiff_header(path);
     const cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
     if (m.empty()) fail("{}: cannot be decoded as {} (truncated or corrupt?)", path.string(), ext);
     if (m.channels() != 1) fail("{}: has {} channels; expected a single-channel raw image", path.string(), m.channels());

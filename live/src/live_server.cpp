@@ -4,9 +4,12 @@
 #include <sys/socket.h>
 
 #include <map>
+#include <optional>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/live/access.h"
+#include "tirpol/live/api_request.h"
 
 namespace tirpol::live {
 
@@ -21,32 +24,19 @@ constexpr std::size_t kServerThreads = 24;
 
 constexpr const char* kTokenCookie = "tirpol_token";
 
-/// The value of cookie `name` in a Cookie header ("a=1; b=2"), or "".
-std::string cookie_value(const std::string& header, const std::string& name) {
-    std::size_t at = 0;
-    while (at < header.size()) {
-        const std::size_t end = std::min(header.find(';', at), header.size());
-        std::size_t start = at;
-        while (start < end && header[start] == ' ') ++start;
-        if (header.compare(start, name.size() + 1, name + "=") == 0)
-            return header.substr(start + name.size() + 1, end - start - name.size() - 1);
-        at = end + 1;
-    }
-    return "";
+void send_json(httplib::Response& res, const nlohmann::json& j) {
+    res.status = 200;
+    res.set_content(json_text(j), "application/json");
 }
 
-void send_json(httplib::Response& res, const nlohmann::json& j, int status = 200) {
-    res.status = status;
-    res.set_content(j.dump(), "application/json");
+void send_error(httplib::Response& res, const Error& e) {
+    res.status = 400;
+    res.set_content(error_body(e.what()), "application/json");
 }
 
-std::uint64_t after_param(const httplib::Request& req) {
-    if (!req.has_param("after")) return 0;
-    try {
-        return std::stoull(req.get_param_value("after"));
-    } catch (const std::exception&) {
-        return 0;
-    }
+std::optional<std::string> param(const httplib::Request& req, const char* name) {
+    if (!req.has_param(name)) return std::nullopt;
+    return req.get_param_value(name);
 }
 
 void send_image(httplib::Response& res, const EncodedImage& image) {
@@ -62,6 +52,21 @@ void send_image(httplib::Response& res, const EncodedImage& image) {
                              [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
                                  return sink.write(bytes->data() + offset, length);
                              });
+}
+
+/// Serves an image stream: the frame after ?after=SEQ from `next`, or 400 for a bad sequence number.
+template <typename Next>
+auto image_handler(Next next) {
+    return [next](const httplib::Request& req, httplib::Response& res) {
+        std::uint64_t after = 0;
+        try {
+            after = parse_after(param(req, "after"));
+        } catch (const Error& e) {
+            send_error(res, e);
+            return;
+        }
+        send_image(res, next(after));
+    };
 }
 }  // namespace
 
@@ -91,8 +96,8 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
                            std::string(kTokenCookie) + "=" + m_token + "; HttpOnly; SameSite=Strict; Path=/");
             return httplib::Server::HandlerResponse::Unhandled;
         }
-        if (token_matches(req.get_header_value("X-Tirpol-Token"), m_token) ||
-            token_matches(cookie_value(req.get_header_value("Cookie"), kTokenCookie), m_token))
+        if (request_authorised(m_token, "", req.get_header_value("X-Tirpol-Token"), req.get_header_value("Cookie"),
+                               kTokenCookie))
             return httplib::Server::HandlerResponse::Unhandled;
         res.status = 401;
         res.set_content("tirpol live: this page needs the access token printed when the server started (?token=...)\n",
@@ -113,26 +118,15 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
                [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.describe()); });
     server.Get("/api/status",
                [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.status()); });
-    server.Get("/api/frame", [&view](const httplib::Request& req, httplib::Response& res) {
-        send_image(res, view.frame_after(after_param(req), kLongPoll));
-    });
-    server.Get("/api/stokes", [&view](const httplib::Request& req, httplib::Response& res) {
-        send_image(res, view.stokes_after(after_param(req), kLongPoll));
-    });
+    server.Get("/api/frame", image_handler([&view](std::uint64_t after) { return view.frame_after(after, kLongPoll); }));
+    server.Get("/api/stokes",
+               image_handler([&view](std::uint64_t after) { return view.stokes_after(after, kLongPoll); }));
     server.Post("/api/capture/start", [&view](const httplib::Request& req, httplib::Response& res) {
         try {
-            const auto body = nlohmann::json::parse(req.body);
-            CaptureRequest request;
-            request.plan = body.at("plan").get<std::string>();
-            request.output = body.at("output").get<std::string>();
-            request.resume = body.value("resume", false);
-            view.capture().start(request);
+            view.capture().start(parse_capture_request(req.body));
             send_json(res, view.status());
-        } catch (const nlohmann::json::exception& e) {
-            send_json(res, {{"error", std::string("capture request: expected {plan, output, resume}: ") + e.what()}},
-                      400);
         } catch (const Error& e) {
-            send_json(res, {{"error", e.what()}}, 400);
+            send_error(res, e);
         }
     });
     server.Post("/api/capture/stop", [&view](const httplib::Request&, httplib::Response& res) {
@@ -140,17 +134,19 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
             view.capture().stop();
             send_json(res, view.status());
         } catch (const Error& e) {
-            send_json(res, {{"error", e.what()}}, 400);
+            send_error(res, e);
         }
     });
     server.Post("/api/observations", [this](const httplib::Request& req, httplib::Response& res) {
-        const auto body = nlohmann::json::parse(req.body, nullptr, false);
-        if (body.is_discarded() || !req.has_param("client")) {
-            send_json(res, {{"error", "observations: expected ?client=ID and a JSON body"}}, 400);
+        nlohmann::json body;
+        try {
+            body = parse_observation(param(req, "client"), req.body);
+        } catch (const Error& e) {
+            send_error(res, e);
             return;
         }
         std::lock_guard lock(m_impl->observations_mutex);
-        m_impl->observations[req.get_param_value("client")] = body;
+        m_impl->observations[req.get_param_value("client")] = std::move(body);
         send_json(res, {{"ok", true}});
     });
     server.Get("/api/observations", [this](const httplib::Request&, httplib::Response& res) {

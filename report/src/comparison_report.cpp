@@ -323,9 +323,9 @@ void write_report(Comparison& comparison, const CompareOptions& options, const s
         write_file_atomic(report_dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
         figures.push_back({section, report_dir / name, std::move(caption), std::move(svg)});
     };
-    detail::write_region_overview(png("regions.png"), measured.channel("S0"), w, h, regions);
-    figures.push_back({"regions", report_dir / "regions.png",
-                       "Measured S0 with the regions of interest (polygons in measured pixel coordinates).", ""});
+    svg_figure("regions", "regions.svg",
+               detail::svg_region_overview(detail::region_overview(measured.channel("S0"), w, h, regions)),
+               "Measured S0 with the regions of interest (polygons in measured pixel coordinates).");
 
     const std::map<std::string, QuantityDisplay> display = {{"S0", {result.units, Colormap::Sequential}},
                                                             {"S1", {result.units, Colormap::Diverging}},

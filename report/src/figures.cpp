@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -15,7 +14,6 @@ namespace tirpol::report::detail {
 namespace {
 
 const cv::Scalar kWhite(255, 255, 255);
-constexpr auto kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
     AtomicFile file(path);
@@ -66,26 +64,6 @@ Plane display_plane(const std::vector<float>& data, int width, int height) {
     return {std::vector<float>(dst.ptr<float>(), dst.ptr<float>() + dst.total()), w, h};
 }
 
-std::string ascii_text(const std::string& text) {
-    static const std::pair<const char*, const char*> kReplacements[] = {
-        {"²", "^2"}, {"·", " "}, {"µ", "u"}, {"°", "deg"}, {"−", "-"}, {"σ", "sigma"}, {"≈", "~"}, {"×", "x"}};
-    std::string out;
-    for (std::size_t i = 0; i < text.size();) {
-        bool replaced = false;
-        for (const auto& [from, to] : kReplacements)
-            if (text.compare(i, std::strlen(from), from) == 0) {
-                out += to;
-                i += std::strlen(from);
-                replaced = true;
-                break;
-            }
-        if (replaced) continue;
-        if (static_cast<unsigned char>(text[i]) < 128) out += text[i];
-        ++i;
-    }
-    return out;
-}
-
 std::vector<int> region_colour(std::size_t index) {
     // Tableau 10 (sRGB), as BGR.
     static constexpr int kRgb[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
@@ -120,8 +98,7 @@ void write_panel(const std::filesystem::path& panel, const std::vector<std::file
     write_png(panel, out);
 }
 
-void write_region_overview(const std::filesystem::path& path, const std::vector<float>& s0, int width, int height,
-                           const std::vector<Region>& regions) {
+RegionOverview region_overview(const std::vector<float>& s0, int width, int height, const std::vector<Region>& regions) {
     // Drawn larger than the panels (long side kOverviewSide) so that region names stay legible.
     constexpr int kOverviewSide = 560;
     const double f = static_cast<double>(kOverviewSide) / std::max(width, height);
@@ -142,6 +119,7 @@ void write_region_overview(const std::filesystem::path& path, const std::vector<
     const int pad = 10;
     cv::Mat canvas(grey.rows + 2 * pad, grey.cols + 2 * pad, CV_8UC3, kWhite);
     grey.copyTo(canvas(cv::Rect(pad, pad, grey.cols, grey.rows)));
+    RegionOverview overview;
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const auto c = region_colour(r);
         const cv::Scalar colour(c[0], c[1], c[2]);
@@ -151,11 +129,14 @@ void write_region_overview(const std::filesystem::path& path, const std::vector<
                              pad + static_cast<int>(std::lround((p.y + 0.5) * f)));
         cv::polylines(canvas, std::vector<std::vector<cv::Point>>{pts}, true, colour, 2, cv::LINE_AA);
         const cv::Point label = pts.front() + cv::Point(4, 17);
-        const std::string name = ascii_text(regions[r].name);
-        cv::putText(canvas, name, label, kFont, 0.5, kWhite, 4, cv::LINE_AA);
-        cv::putText(canvas, name, label, kFont, 0.5, colour, 1, cv::LINE_AA);
+        overview.labels.push_back({regions[r].name, label.x, label.y, region_colour_css(r)});
     }
-    write_png(path, canvas);
+    std::vector<uchar> bytes;
+    if (!cv::imencode(".png", canvas, bytes)) fail("region overview: OpenCV could not encode the PNG");
+    overview.png.assign(bytes.begin(), bytes.end());
+    overview.width = canvas.cols;
+    overview.height = canvas.rows;
+    return overview;
 }
 
 }  // namespace tirpol::report::detail

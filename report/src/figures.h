@@ -1,7 +1,7 @@
 #pragma once
 // Image figures of the comparison report, drawn with OpenCV (colour maps and colorbars from core's
-// quicklook); line-art plots are SVG (svg_plot.h). Private to the report module. Text drawn by OpenCV
-// is ASCII only.
+// quicklook); line-art plots and the region names are SVG (svg_plot.h). Private to the report module.
+// Text drawn by OpenCV is ASCII only (colour-bar numbers and units).
 
 #include <cstdint>
 #include <filesystem>
@@ -25,9 +25,6 @@ inline constexpr int kDisplayMaxSide = 400;
 /// `data` (width × height) reduced to fit kDisplayMaxSide (unchanged if it already fits).
 Plane display_plane(const std::vector<float>& data, int width, int height);
 
-/// "W/(m²·sr)" → "W/(m^2 sr)" for OpenCV's Hershey fonts.
-std::string ascii_text(const std::string& text);
-
 /// BGR colour of region `index` (Tableau 10 palette).
 std::vector<int> region_colour(std::size_t index);
 /// The same as a CSS "#rrggbb".
@@ -37,9 +34,19 @@ std::string region_colour_css(std::size_t index);
 void write_panel(const std::filesystem::path& panel, const std::vector<std::filesystem::path>& parts,
                  const std::vector<Plane>& planes, const std::vector<QuicklookOptions>& options);
 
-/// Measured S0 in grey with the region polygons outlined and named.
-void write_region_overview(const std::filesystem::path& path, const std::vector<float>& s0, int width, int height,
-                           const std::vector<Region>& regions);
+/// Measured S0 in grey with the region polygons outlined, as PNG bytes; the names are not drawn
+/// (Hershey fonts are ASCII only) but returned with their anchors for the SVG overlay (svg_plot.h).
+struct RegionOverview {
+    std::string png;    ///< encoded PNG
+    int width = 0, height = 0;  ///< of the PNG, pixels
+    struct Label {
+        std::string name;
+        int x = 0, y = 0;        ///< baseline start, PNG pixels
+        std::string colour_css;  ///< the region's outline colour
+    };
+    std::vector<Label> labels;
+};
+RegionOverview region_overview(const std::vector<float>& s0, int width, int height, const std::vector<Region>& regions);
 
 /// One set of scatter points: (measured, simulated) pairs of one region.
 struct ScatterSeries {

@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "html_report.h"
+#include "tirpol/core/utf8.h"
+
 namespace tirpol::report::detail {
 
 namespace {
@@ -193,6 +196,19 @@ std::string svg_histogram(const std::string& title, const std::string& x_label, 
         s += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\"/>\n", points);
     }
     return s + "</svg>\n";
+}
+
+std::string svg_region_overview(const RegionOverview& overview) {
+    std::string svg = fmt::format(
+        "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\">"
+        "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",
+        overview.width, overview.height, base64_encode(overview.png));
+    for (const auto& label : overview.labels)
+        svg += fmt::format(
+            "<text x=\"{}\" y=\"{}\" {} font-size=\"15\" fill=\"{}\" stroke=\"white\" stroke-width=\"3.5\" "
+            "paint-order=\"stroke\">{}</text>",
+            label.x, label.y, kFont, label.colour_css, escape(valid_utf8(label.name)));
+    return svg + "</svg>";
 }
 
 }  // namespace tirpol::report::detail

@@ -27,4 +27,8 @@ std::string svg_histogram(const std::string& title, const std::string& x_label, 
                           double lo, double hi, const std::vector<double>& markers, double gaussian_mean,
                           double gaussian_sigma);
 
+/// The region overview: its PNG as an embedded image and each region's name as SVG text on top, in
+/// the region's colour with a white halo, so any Unicode name renders in the browser's font.
+std::string svg_region_overview(const RegionOverview& overview);
+
 }  // namespace tirpol::report::detail

@@ -110,4 +110,18 @@ TEST(CliRules, NoLibraryNoiseOnStderr) {
     EXPECT_EQ(WEXITSTATUS(status), 0) << err;
 }
 
+TEST(CliRules, ReadingAPngWithChunksLibpngWarnsAboutPrintsNothingOnStderr) {
+    // tests/core/raw_png_test.cpp checks that OpenCV's decoder makes libpng warn on this file.
+    tirpol::test::TempDir dir;
+    const auto png =
+        tirpol::test::source_dir() / "tests/data/fuzz-regressions/raw_image/ancillary_chunk_warnings.png";
+    const std::string cmd = std::string(TIRPOL_CLI_PATH) + " flir-temperature " + png.string() +
+                            " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string() +
+                            " >/dev/null 2>" + (dir / "stderr.txt").string();
+    const int status = std::system(cmd.c_str());
+    const std::string err = tirpol::read_file(dir / "stderr.txt");
+    EXPECT_EQ(WEXITSTATUS(status), 0) << err;
+    EXPECT_EQ(err, "");
+}
+
 }  // namespace

@@ -44,11 +44,11 @@ TEST(Cli, PlanckJsonMatchesTheLibraryAndInverts) {
     EXPECT_NEAR(nlohmann::json::parse(inv.out)["brightness_temperature_k"].get<double>(), 300.0, 1e-3);
 }
 
-TEST(Cli, PlanckRejectsNonPhysicalInputWithExitOne) {
+TEST(Cli, PlanckRejectsNonPhysicalInputAsAUsageError) {
     const CliRun r = run_cli("planck --temperature-k -3 --band-um 8 14");
-    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.exit_code, 2);  // values outside an option's range are usage errors (docs/cli.md)
     EXPECT_NE(r.out.find("outside the physical range tirpol accepts, [1, 10000] K"), std::string::npos) << r.out;
-    EXPECT_EQ(run_cli("planck --temperature-k 300 --band-um 14 8").exit_code, 1);
+    EXPECT_EQ(run_cli("planck --temperature-k 300 --band-um 14 8").exit_code, 2);
 }
 
 TEST(Cli, InfoDescribesAnExrAndNamesAMissingFile) {
@@ -80,7 +80,7 @@ TEST(Cli, RenderMaxBouncesIsValidatedLikeTheSceneFile) {
     for (const char* bad : {"-1", "100001"}) {
         const CliRun r =
             run_cli("render " + scene.string() + " -o " + (dir / "out").string() + " -q --max-bounces " + bad);
-        EXPECT_EQ(r.exit_code, 1) << r.out;
+        EXPECT_EQ(r.exit_code, 2) << r.out;
         EXPECT_NE(r.out.find("--max-bounces: expected 0–100000"), std::string::npos) << r.out;
     }
 }

@@ -77,7 +77,7 @@ TEST(GeometryCli, BadInputExitsOneAndSaysWhy) {
     EXPECT_NE(run.out.find("found in 0 of 5 frames"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("flat4.exr"), std::string::npos) << run.out;
     run = run_cli(fmt::format("calibrate geometric{} --target checkerboard:9x6 -o {}", frames, (dir / "cam.yaml").string()));
-    EXPECT_EQ(run.exit_code, 1) << run.out;
+    EXPECT_EQ(run.exit_code, 2) << run.out;  // a malformed --target is a usage error
     EXPECT_NE(run.out.find("checkerboard:COLSxROWS:SQUARE_M"), std::string::npos) << run.out;
 }
 

@@ -25,8 +25,32 @@ TEST(ThermalCli, SunReproducesSpaReportExample) {
     EXPECT_NEAR(j["zenith_deg"].get<double>(), 50.11162, 1e-5);
     EXPECT_NEAR(j["azimuth_deg"].get<double>(), 194.34024, 1e-5);
     EXPECT_NEAR(j["surface"]["incidence_deg"].get<double>(), 25.18700, 1e-5);
-    EXPECT_EQ(run_cli("sun --lat 39 --lon -105 --time noon").exit_code, 1);
+    EXPECT_EQ(run_cli("sun --lat 39 --lon -105 --time noon").exit_code, 2);  // a malformed option value: usage
     EXPECT_EQ(run_cli("sun --lat 99 --lon -105 --time 2003-10-17T12:00Z").exit_code, 2);
+}
+
+TEST(ThermalCli, ATimeWithoutAnOffsetIsAUsageErrorUnlessTheCommandStatesItsConvention) {
+    // docs/cli.md "Times": `sun` has no site, so no standard time to assume; `therm --at` takes the site's.
+    const std::string sun = "sun --lat 39.742476 --lon -105.1786 --json --time ";
+    const CliRun bare = run_cli(sun + "2003-10-17T12:30:30");
+    EXPECT_EQ(bare.exit_code, 2) << bare.out;
+    EXPECT_NE(bare.out.find("has no UTC offset"), std::string::npos) << bare.out;
+    // The same instant three ways: offset in the text, --utc-offset-h, and UTC with Z (19:30:30Z).
+    const CliRun with_offset = run_cli(sun + "2003-10-17T12:30:30-07:00", false);
+    const CliRun with_option = run_cli(sun + "2003-10-17T12:30:30 --utc-offset-h -7", false);
+    const CliRun in_utc = run_cli(sun + "2003-10-17T19:30:30Z", false);
+    ASSERT_EQ(with_offset.exit_code, 0) << with_offset.out;
+    ASSERT_EQ(with_option.exit_code, 0) << with_option.out;
+    ASSERT_EQ(in_utc.exit_code, 0) << in_utc.out;
+    const auto zenith = [](const CliRun& r) { return nlohmann::json::parse(r.out)["zenith_deg"].get<double>(); };
+    EXPECT_EQ(zenith(with_option), zenith(with_offset));
+    EXPECT_EQ(zenith(in_utc), zenith(with_offset));
+    // The help of each option that takes a time says what a time without an offset means.
+    const CliRun sun_help = run_cli("sun --help", false), therm_help = run_cli("therm --help", false);
+    EXPECT_NE(sun_help.out.find("without one, --utc-offset-h is required"), std::string::npos) << sun_help.out;
+    EXPECT_NE(therm_help.out.find("no offset: the site's standard time"), std::string::npos) << therm_help.out;
+    const auto yaml = tirpol::test::source_dir() / "config/thermal/ball_on_snow_thermal.yaml";
+    EXPECT_EQ(run_cli("therm " + yaml.string() + " --at 2026-01-16T25:00").exit_code, 2);
 }
 
 TEST(ThermalCli, ThermWritesTemperaturesCsvAndPlot) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "tirpol/core/camera_model.h"
 #include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -39,6 +40,42 @@ TEST(InputLimits, ExrDeclaringHugeSizeIsRefusedBeforeAllocating) {
     const auto liar = regression("exr", "declares_4000x4000_in_tiny_file.exr");
     EXPECT_THAT(error_of([&] { read_exr(liar); }),
                 testing::AllOf(testing::HasSubstr("4000×4000"), testing::HasSubstr("no OpenEXR compression")));
+}
+
+TEST(InputLimits, ExrAttributeDeclaringMoreBytesThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+    const auto path = regression("exr", "attribute_declares_1_6_GB.exr");
+    EXPECT_THAT(error_of([&] { read_exr(path); }),
+                testing::AllOf(testing::HasSubstr("attribute_declares_1_6_GB.exr"), testing::HasSubstr("'junk'"),
+                               testing::HasSubstr("declares 1634231040 bytes")));
+}
+
+TEST(InputLimits, ExrPixelCountIsBoundedByTheFilesOwnCompression) {
+    // Uncompressed, a file holds every decoded byte: 64×64 floats (16 KB) cannot fit in < 1 KB.
+    const auto path = regression("exr", "uncompressed_declares_64x64_without_pixels.exr");
+    EXPECT_THAT(error_of([&] { read_exr(path); }),
+                testing::AllOf(testing::HasSubstr("64×64"), testing::HasSubstr("at most 1:1")));
+    // The ZIP bound (deflate's 1032:1) must not refuse the best case a real file reaches: a constant
+    // 2048×2048 image, written by OpenEXR's own ZIP compressor.
+    const test::TempDir dir;
+    Image flat(2048, 2048);
+    flat.add_channel("S0");
+    write_exr(dir / "flat.exr", flat);
+    EXPECT_EQ(read_exr(dir / "flat.exr").width(), 2048);
+}
+
+TEST(InputLimits, CameraModelMatrixIsCheckedAgainstItsDataBeforeOpenCvAllocatesIt) {
+    const auto path = regression("camera_geometry", "matrix_cols_not_a_number.yaml");
+    EXPECT_THAT(error_of([&] { (void)read_camera_model(path); }),
+                testing::AllOf(testing::HasSubstr("matrix_cols_not_a_number.yaml"), testing::HasSubstr("camera_matrix"),
+                               testing::HasSubstr("integer rows, cols")));
+    const test::TempDir dir;
+    test::write_text(dir / "short.yaml",
+                     "%YAML:1.0\n---\nimage_width: 64\nimage_height: 48\ncamera_matrix: !!opencv-matrix\n"
+                     "   rows: 3\n   cols: 3\n   dt: d\n   data: [ 80., 0., 31.5, 0., 80., 23.5, 0., 0. ]\n");
+    EXPECT_THAT(error_of([&] { (void)read_camera_model(dir / "short.yaml"); }),
+                testing::HasSubstr("declares 3x3 values but its data holds 8"));
+    EXPECT_THAT(error_of([&] { (void)read_camera_pose(regression("camera_geometry", "matrix_field_is_a_list.yaml")); }),
+                testing::AllOf(testing::HasSubstr("matrix_field_is_a_list.yaml"), testing::HasSubstr("translation_m")));
 }
 
 TEST(InputLimits, ExrWithNonUtf8AttributeStillReads) {

@@ -220,13 +220,13 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
          at = html.find("src=\"data:image/png;base64,", at + 1))
         ++embedded;
-    EXPECT_GE(images, 7u);  // regions, five Stokes panels, z panel
+    EXPECT_GE(images, 6u);  // five Stokes panels, z panel
     EXPECT_EQ(images, embedded);
     // Plots are inline SVG, one per file written.
     std::size_t svgs = 0;
     for (std::size_t at = html.find("<svg "); at != std::string::npos; at = html.find("<svg ", at + 1)) ++svgs;
     EXPECT_EQ(svgs, r.svgs.size());
-    EXPECT_EQ(svgs, 9u);  // z histogram, 4 scatter plots, 4 difference histograms
+    EXPECT_EQ(svgs, 10u);  // region overview, z histogram, 4 scatter plots, 4 difference histograms
 }
 
 TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
