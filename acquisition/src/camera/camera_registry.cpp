@@ -2,7 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "camera/uri.h"
+#include "scheme_registry.h"
+#include "tirpol/acquisition/device_uri.h"
 #include "tirpol/acquisition/aravis_camera.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/acquisition/v4l2_camera.h"
@@ -64,15 +65,37 @@ Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     return open_v4l2_camera(u.target, options);
 }
 
+/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+detail::SchemeRegistry<CameraFactory>& registry() {
+    static detail::SchemeRegistry<CameraFactory> table;
+    [[maybe_unused]] static const bool built_in = [] {
+        table.register_scheme("aravis", [](const std::string& uri) { return open_aravis(parse_device_uri(uri)); });
+        table.register_scheme("v4l2", [](const std::string& uri) { return open_v4l2(parse_device_uri(uri)); });
+        table.register_scheme("sim", [](const std::string& uri) -> Result<std::unique_ptr<Camera>> {
+            return std::unique_ptr<Camera>(open_simulated_camera(uri));
+        });
+        return true;
+    }();
+    return table;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<Camera>> open_camera(const std::string& uri) {
     const DeviceUri u = parse_device_uri(uri);
-    if (u.scheme == "aravis") return open_aravis(u);
-    if (u.scheme == "v4l2") return open_v4l2(u);
-    if (u.scheme == "sim") return std::unique_ptr<Camera>(open_simulated_camera(uri));
-    fail("device URI '{}': unknown camera scheme '{}' (expected aravis, v4l2 or sim)", uri, u.scheme);
+    const CameraFactory factory = registry().find(u.scheme);
+    if (!factory) throw Error(registry().unknown_scheme_message("camera", u.scheme, uri));
+    return factory(uri);
 }
+
+CameraFactory register_camera_scheme(const std::string& scheme, CameraFactory factory) {
+    if (scheme.empty() || scheme.find_first_of(":/?") != std::string::npos)
+        fail("register_camera_scheme: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", scheme);
+    if (!factory) fail("register_camera_scheme: empty factory for scheme '{}'", scheme);
+    return registry().register_scheme(scheme, std::move(factory));
+}
+
+std::vector<std::string> camera_schemes() { return registry().schemes(); }
 
 std::vector<CameraDescriptor> list_cameras() {
     std::vector<CameraDescriptor> cameras;

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-
 #include "device_uri_query.h"
+#include "scheme_registry.h"
 #include "tirpol/acquisition/apt_stage.h"
 #include "tirpol/acquisition/elliptec_stage.h"
 #include "tirpol/acquisition/ftdi_port.h"
@@ -102,17 +102,52 @@ Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& 
     return make_simulated_stage(uri, options);
 }
 
+/// Parses the URI and hands it to one of the built-in openers above.
+template <typename Open>
+StageFactory built_in(Open open) {
+    return [open](const std::string& uri) -> Result<std::unique_ptr<Stage>> {
+        auto parsed = parse_stage_uri(uri);
+        if (!parsed) return parsed.error();
+        return open(uri, parsed.value());
+    };
+}
+
+/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+detail::SchemeRegistry<StageFactory>& registry() {
+    static detail::SchemeRegistry<StageFactory> table;
+    [[maybe_unused]] static const bool built_in_registered = [] {
+        table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const StageUri& u) {
+                                  return open_apt(uri, u, false);
+                              }));
+        table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const StageUri& u) {
+                                  return open_apt(uri, u, true);
+                              }));
+        table.register_scheme("elliptec", built_in(open_elliptec));
+        table.register_scheme("sim", built_in(open_sim));
+        return true;
+    }();
+    return table;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
     auto parsed = parse_stage_uri(uri);
     if (!parsed) return parsed.error();
-    const StageUri& u = parsed.value();
-    if (u.scheme == "thorlabs-apt") return open_apt(uri, u, false);
-    if (u.scheme == "thorlabs-apt+usb") return open_apt(uri, u, true);
-    if (u.scheme == "elliptec") return open_elliptec(uri, u);
-    if (u.scheme == "sim") return open_sim(uri, u);
-    return bad(uri, fmt::format("unknown stage type '{}' (expected thorlabs-apt, thorlabs-apt+usb, elliptec or sim)", u.scheme));
+    const StageFactory factory = registry().find(parsed.value().scheme);
+    if (!factory)
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           registry().unknown_scheme_message("stage", parsed.value().scheme, uri)};
+    return factory(uri);
 }
+
+StageFactory register_stage_scheme(const std::string& scheme, StageFactory factory) {
+    if (scheme.empty() || scheme.find_first_of(":/?") != std::string::npos)
+        fail("register_stage_scheme: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", scheme);
+    if (!factory) fail("register_stage_scheme: empty factory for scheme '{}'", scheme);
+    return registry().register_scheme(scheme, std::move(factory));
+}
+
+std::vector<std::string> stage_schemes() { return registry().schemes(); }
 
 }  // namespace tirpol::acquisition
