@@ -8,7 +8,7 @@
 
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/device_uri.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/acquisition/stage_registry.h"
 #include "tirpol/core/error.h"

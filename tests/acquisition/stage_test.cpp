@@ -14,9 +14,9 @@
 #include <thread>
 
 #include "test_support.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/stage_registry.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
 namespace {

@@ -9,7 +9,7 @@
 #include "fake_v4l2_device.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

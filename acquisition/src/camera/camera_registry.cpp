@@ -4,9 +4,9 @@
 
 #include "scheme_registry.h"
 #include "tirpol/acquisition/device_uri.h"
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -4,11 +4,11 @@
 
 #include "device_uri_query.h"
 #include "scheme_registry.h"
-#include "tirpol/acquisition/apt_stage.h"
-#include "tirpol/acquisition/elliptec_stage.h"
-#include "tirpol/acquisition/ftdi_port.h"
-#include "tirpol/acquisition/serial_port.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/apt_stage.h"
+#include "tirpol/acquisition/internal/elliptec_stage.h"
+#include "tirpol/acquisition/internal/ftdi_port.h"
+#include "tirpol/acquisition/internal/serial_port.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 
 namespace tirpol::acquisition {
 
