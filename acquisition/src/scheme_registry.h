@@ -10,13 +10,19 @@
 #include <utility>
 #include <vector>
 
+#include "tirpol/core/error.h"
+
 namespace tirpol::acquisition::detail {
 
 template <typename Factory>
 class SchemeRegistry {
 public:
-    /// Adds or replaces the factory of `scheme`; returns the replaced one (empty if none).
-    Factory register_scheme(const std::string& scheme, Factory factory) {
+    /// Adds or replaces the factory of `scheme`; returns the replaced one (empty if none). Throws
+    /// tirpol::Error, naming `caller`, for a name that is not a URI scheme or an empty factory.
+    Factory register_scheme(const std::string& scheme, Factory factory, const char* caller = "register_scheme") {
+        if (scheme.empty() || scheme.find_first_of(":/?") != std::string::npos)
+            fail("{}: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", caller, scheme);
+        if (!factory) fail("{}: empty factory for scheme '{}'", caller, scheme);
         std::lock_guard lock(m_mutex);
         Factory& slot = m_factories[scheme];
         return std::exchange(slot, std::move(factory));

@@ -65,7 +65,12 @@ Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& 
     options.address = static_cast<std::uint8_t>(address.value());
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     const SerialSettings settings{115200, true};
+#ifdef TIRPOL_HAVE_LIBUSB
     auto port = usb ? open_ftdi_usb(u.path, settings) : open_serial_port(u.path, settings);
+#else
+    (void)usb;  // thorlabs-apt+usb is registered only when built with libusb
+    auto port = open_serial_port(u.path, settings);
+#endif
     if (!port) return port.error();
     return open_apt_stage(std::move(port.value()), uri, options);
 }
@@ -119,9 +124,11 @@ detail::SchemeRegistry<StageFactory>& registry() {
         table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const StageUri& u) {
                                   return open_apt(uri, u, false);
                               }));
+#ifdef TIRPOL_HAVE_LIBUSB
         table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const StageUri& u) {
                                   return open_apt(uri, u, true);
                               }));
+#endif
         table.register_scheme("elliptec", built_in(open_elliptec));
         table.register_scheme("sim", built_in(open_sim));
         return true;
@@ -142,10 +149,7 @@ Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
 }
 
 StageFactory register_stage_scheme(const std::string& scheme, StageFactory factory) {
-    if (scheme.empty() || scheme.find_first_of(":/?") != std::string::npos)
-        fail("register_stage_scheme: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", scheme);
-    if (!factory) fail("register_stage_scheme: empty factory for scheme '{}'", scheme);
-    return registry().register_scheme(scheme, std::move(factory));
+    return registry().register_scheme(scheme, std::move(factory), "register_stage_scheme");
 }
 
 std::vector<std::string> stage_schemes() { return registry().schemes(); }
