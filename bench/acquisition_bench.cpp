@@ -19,16 +19,16 @@
 #include <memory>
 
 #include "../tests/acquisition/fake_gv_camera_process.h"
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/fake_gige_server.h"
+#include "tirpol/acquisition/internal/fake_gige_server.h"
 #include "tirpol/acquisition/frame_gate.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/acquisition/stage_registry.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/session.h"
 
 #include <atomic>

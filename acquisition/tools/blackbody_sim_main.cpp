@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "tirpol/acquisition/blackbody_simulator.h"
+#include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/core/error.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace {
 

@@ -12,6 +12,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
 #include "tirpol/report/provenance.h"
+#include "tirpol/twin/scene_camera.h"
 
 namespace tirpol::cli {
 
@@ -94,6 +95,7 @@ bool register_command(int order, CommandRegistration registration) {
 int run(int argc, char** argv) {
     command_line_storage() = report::quoted_command_line(argc, argv);
     quiet_libraries(argv[0], "info");
+    twin::register_twin_device_schemes();  // `--camera sim://<scene.yaml>` wherever a camera URI is taken
     CLI::App app{"tirpol — thermal-infrared polarimetry with the instrument in the loop"};
     app.require_subcommand(1);
     app.set_version_flag("--version", version_text());

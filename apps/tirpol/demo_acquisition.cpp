@@ -13,7 +13,7 @@
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/acquisition/stage_registry.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::cli {

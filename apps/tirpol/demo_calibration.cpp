@@ -11,7 +11,7 @@
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/noise.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/synthetic_session.h"
+#include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"

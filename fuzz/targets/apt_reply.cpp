@@ -1,7 +1,7 @@
 // Fuzz target: Thorlabs APT reply decoding, as the stage driver consumes a byte stream: decode
 // messages from the front, resynchronise on Invalid, and parse each known payload.
 #include "fuzz_support.h"
-#include "tirpol/acquisition/apt_protocol.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
 
 namespace apt = tirpol::acquisition::apt;
 

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "tirpol/acquisition/elliptec_protocol.h"
+#include "tirpol/acquisition/internal/elliptec_protocol.h"
 
 namespace ell = tirpol::acquisition::elliptec;
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "tirpol/acquisition/fluke_scpi.h"
+#include "tirpol/acquisition/internal/fluke_scpi.h"
 
 namespace fs = tirpol::acquisition::fluke_scpi;
 

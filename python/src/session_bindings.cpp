@@ -9,7 +9,7 @@
 #include "interruptible.h"
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/synthetic_session.h"
+#include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/error.h"
 
 namespace py = pybind11;
@@ -167,7 +167,7 @@ void bind_session(py::module_& m) {
         py::arg("root"), py::arg("band"), py::arg("width") = 64, py::arg("height") = 48,
         "Writes the synthetic sessions lab/ (blackbody, no polarizer), polcal/ (blackbody through the polarizer "
         "and a known source) and scene/ (a 300 K panel with ε_S0 = 0.93, ε_S1 = −0.035 in front of a 280 K "
-        "background, an IR reflector at the left) of a simulated uncooled camera (calibration/synthetic_session.h); "
+        "background, an IR reflector at the left) of a simulated uncooled camera (calibration/testing/synthetic_session.h); "
         "returns the true scene Stokes image S0 S1 S2.");
 }
 

@@ -4,7 +4,6 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
 #include "tirpol/simulation/rng.h"
 #include "tirpol/simulation/temperature_value.h"
 
@@ -43,43 +42,49 @@ SensorModel SensorModel::from_config(const ConfigNode& node) {
     return m;
 }
 
+WireGridPolarizer SensorModel::wire_grid(const Band& band) const {
+    WireGridPolarizer grid;
+    grid.transmission = analyzer.transmission;
+    grid.extinction_ratio = analyzer.extinction_ratio;
+    grid.angle_offset_deg = analyzer.angle_offset_deg;
+    grid.reflectance = background.reflectance;
+    grid.reflected_radiance = background.reflected_radiance;
+    grid.emissivity = background.emissivity;
+    grid.emitted_radiance = band.radiance(background.temperature_k);
+    return grid;
+}
+
 std::vector<Image> polarizer_images(const Image& stokes, const SensorModel& model, const Band& band,
                                     std::uint64_t frame_index) {
     const auto& s0 = stokes.channel("S0");
     const auto& s1 = stokes.channel("S1");
     const auto& s2 = stokes.channel("S2");
     const auto& s3 = stokes.channel("S3");
-    const auto& a = model.analyzer;
-    const double background = model.background.reflectance * model.background.reflected_radiance +
-                              model.background.emissivity * band.radiance(model.background.temperature_k);
+    const WireGridPolarizer grid = model.wire_grid(band);
     double sigma_counts = 0.0;
     if (model.counts)
         sigma_counts = model.counts->gain_counts_per_radiance * model.counts->nedt_k *
                        band.radiance_dT(model.counts->reference_temperature_k);
 
     std::vector<Image> out;
-    for (std::size_t ai = 0; ai < a.angles_deg.size(); ++ai) {
-        const double angle_deg = a.angles_deg[ai];
-        const MuellerMatrix p =
-            polarizer_with_extinction(deg_to_rad(angle_deg + a.angle_offset_deg), a.transmission, a.extinction_ratio);
+    for (std::size_t ai = 0; ai < model.analyzer.angles_deg.size(); ++ai) {
+        const double angle_deg = model.analyzer.angles_deg[ai];
+        const AnalyzerAtAngle analyzer = analyzer_at(grid, angle_deg);
         Image img(stokes.width(), stokes.height());
         auto& radiance = img.add_channel("radiance");
+        std::vector<float>* counts = model.counts ? &img.add_channel("counts") : nullptr;
         for (std::size_t i = 0; i < radiance.size(); ++i) {
-            const StokesVector s(s0[i], s1[i], s2[i], s3[i]);
-            radiance[i] = static_cast<float>(p.row(0).dot(s) + background);
+            const double l = analyzer.radiance(StokesVector(s0[i], s1[i], s2[i], s3[i]));
+            radiance[i] = static_cast<float>(l);
+            if (!counts) continue;
+            // Box–Muller on a counter-based stream: the same noise for the same (seed, frame, angle, pixel).
+            SampleStream rng(model.seed, (frame_index << 32) ^ i, ai);
+            const double u1 = 1.0 - rng.next(), u2 = rng.next();
+            const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+            (*counts)[i] = static_cast<float>(detector_counts(l, model.counts->gain_counts_per_radiance,
+                                                              model.counts->offset_counts, sigma_counts, gauss));
         }
-        if (model.counts) {
-            auto& counts = img.add_channel("counts");
-            for (std::size_t i = 0; i < radiance.size(); ++i) {
-                // Box–Muller on a counter-based stream: the same noise for the same (seed, frame, angle, pixel).
-                SampleStream rng(model.seed, (frame_index << 32) ^ i, ai);
-                const double u1 = 1.0 - rng.next(), u2 = rng.next();
-                const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-                counts[i] = static_cast<float>(model.counts->gain_counts_per_radiance * radiance[i] +
-                                               model.counts->offset_counts + sigma_counts * gauss);
-            }
-            img.attributes()["counts_noise_sigma"] = sigma_counts;
-        }
+        if (model.counts) img.attributes()["counts_noise_sigma"] = sigma_counts;
         img.attributes()["polarizer_angle_deg"] = angle_deg;
         img.attributes()["frame_index"] = static_cast<int>(frame_index);
         img.attributes()["units"] = std::string("radiance: W/(m^2 sr); counts: DN");

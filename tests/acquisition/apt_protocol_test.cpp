@@ -3,7 +3,7 @@
 // §2.1 message header, and the pages of each message; the same bytes are printed in the README of
 // yaq-project/thorlabs-apt-protocol (mot_move_home, mot_move_absolute), which follows the document.
 
-#include "tirpol/acquisition/apt_protocol.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
 
 #include <gtest/gtest.h>
 

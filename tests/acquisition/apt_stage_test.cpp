@@ -7,9 +7,9 @@
 
 #include <deque>
 
-#include "tirpol/acquisition/apt_protocol.h"
-#include "tirpol/acquisition/apt_stage.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
+#include "tirpol/acquisition/internal/apt_stage.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
 namespace {

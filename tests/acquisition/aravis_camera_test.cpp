@@ -13,7 +13,7 @@
 
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/acquisition/frame_averager.h"
 
 namespace tirpol::acquisition {

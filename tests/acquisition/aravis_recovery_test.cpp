@@ -17,7 +17,7 @@
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/session.h"
 

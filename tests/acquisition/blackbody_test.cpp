@@ -13,7 +13,7 @@
 #include "pty_device_thread.h"
 #include "test_support.h"
 #include "tirpol/acquisition/blackbody_registry.h"
-#include "tirpol/acquisition/blackbody_simulator.h"
+#include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/acquisition/blackbody_wait.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/session.h"

@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "test_support.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"

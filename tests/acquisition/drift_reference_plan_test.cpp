@@ -10,7 +10,7 @@
 
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/core/error.h"
 

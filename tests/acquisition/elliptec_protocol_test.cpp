@@ -4,7 +4,7 @@
 // thread [19], hardware [20], travel [21:25], pulses [25:33]), 8-digit two's-complement positions,
 // and the `gs` status table (0 OK ... 9 Busy ... 13 Over current error).
 
-#include "tirpol/acquisition/elliptec_protocol.h"
+#include "tirpol/acquisition/internal/elliptec_protocol.h"
 
 #include <gtest/gtest.h>
 

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 
 extern char** environ;
 

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 
 namespace tirpol::test {
 

@@ -2,7 +2,7 @@
 // Syntax" section states them (case-insensitive, long or short form), numbers, the error queue's
 // `<code>,"<message>"` and *IDN? replies; garbled text is refused, never read as a value.
 
-#include "tirpol/acquisition/fluke_scpi.h"
+#include "tirpol/acquisition/internal/fluke_scpi.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tirpol/acquisition/frame_id.h"
+#include "tirpol/acquisition/internal/frame_id.h"
 
 namespace tirpol::acquisition {
 namespace {

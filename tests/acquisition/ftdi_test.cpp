@@ -4,7 +4,7 @@
 // Thorlabs APT protocol document "USB device set-up" (115200 8N1, 50 ms dwells around the purge,
 // reset, RTS/CTS flow control, RTS asserted).
 
-#include "tirpol/acquisition/ftdi_port.h"
+#include "tirpol/acquisition/internal/ftdi_port.h"
 
 #include <gtest/gtest.h>
 

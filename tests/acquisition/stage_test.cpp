@@ -14,9 +14,9 @@
 #include <thread>
 
 #include "test_support.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/stage_registry.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
 namespace {
@@ -176,7 +176,7 @@ TEST(StageSimulatorProcess, ExecutableServesAStageOnItsLink) {
 TEST(StageRegistry, RejectsUnknownSchemesAndOptionsByName) {
     auto unknown = open_stage("newport://x");
     ASSERT_FALSE(unknown);
-    EXPECT_NE(unknown.error().message.find("unknown stage type 'newport'"), std::string::npos);
+    EXPECT_NE(unknown.error().message.find("unknown stage scheme 'newport'"), std::string::npos);
     auto bad_key = open_stage("sim://?speed=3");
     ASSERT_FALSE(bad_key);
     EXPECT_NE(bad_key.error().message.find("unknown option 'speed'"), std::string::npos);

@@ -7,9 +7,11 @@
 #include <thread>
 
 #include "fake_v4l2_device.h"
+#include "open_camera_error.h"
 #include "test_support.h"
+#include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
@@ -319,6 +321,14 @@ TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     // Y16 pattern at pixel (0, 0) is 7 × sequence: the mean of the kept frames' sequences.
     const Image mean = read_session_frame(tmp / "s", m, r);
     EXPECT_GT(mean.channel("counts")[0] / 7.0, static_cast<double>(stage.last_sequence_during_move));
+}
+
+TEST(CameraRegistry, V4l2UrisAreCheckedAndAnAbsentDeviceIsADeviceError) {
+    EXPECT_NE(test::open_camera_error("v4l2://video0").find("absolute device path"), std::string::npos);
+    EXPECT_NE(test::open_camera_error("v4l2:///dev/video0?buffers=1").find("buffers=1"), std::string::npos);
+    const auto camera = open_camera("v4l2:///dev/tirpol-no-such-video");
+    ASSERT_FALSE(camera.ok());
+    EXPECT_EQ(camera.error().code, DeviceErrorCode::Disconnected);
 }
 
 }  // namespace

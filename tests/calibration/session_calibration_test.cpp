@@ -15,7 +15,7 @@
 #include "test_support.h"
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/synthetic_session.h"
+#include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
@@ -129,7 +129,7 @@ TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
         m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
         auto w = SessionWriter::create(dir, m);
         for (double a : cam.angles_deg) {
-            Image f = synthetic_record_frame(cam, scene, a, true, true, 50u + static_cast<unsigned>(a));
+            Image f = synthetic_record_frame(cam, scene, band, a, true, true, 50u + static_cast<unsigned>(a));
             if (a == 45.0)
                 for (int i = 0; i < saturated; ++i) f.channel("counts")[static_cast<std::size_t>(7 * i)] = 16383.0f;
             SessionRecord r;
@@ -181,7 +181,7 @@ TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheT
             r.angle_deg_requested = a;
             r.angle_deg_measured = a + 2.0;
             r.frames = 16;
-            w.add_record(r, synthetic_record_frame(cam, scene, a + 2.0, true, false, 70u + static_cast<unsigned>(a)));
+            w.add_record(r, synthetic_record_frame(cam, scene, band, a + 2.0, true, false, 70u + static_cast<unsigned>(a)));
         }
     };
     test::TempDir tmp;

@@ -22,9 +22,9 @@
 #include "test_support.h"
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/fake_gige_server.h"
+#include "tirpol/acquisition/internal/fake_gige_server.h"
 #include "tirpol/acquisition/stage_registry.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {

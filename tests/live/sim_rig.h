@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/simulated_camera.h"
 #include "tirpol/live/polarizer_cycle.h"
 

@@ -150,250 +150,270 @@ report::Region rect_region(const std::string& name, const calibration::PixelRect
     return {name, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, "twin: " + name};
 }
 
-}  // namespace
+/// What the chain's stages hand on to each other, in the order they fill it.
+struct Chain {
+    Chain(const TwinOptions& options, TwinResult& r, std::string& current_stage, simulation::Scene s)
+        : opt(options), result(r), stage(current_stage), out(options.out_dir), sessions(out / "sessions"),
+          scene(std::move(s)) {}
 
-namespace {
+    const TwinOptions& opt;
+    TwinResult& result;
+    std::string& stage;  ///< the last stage started, for error messages
+    fs::path out, sessions;
+    simulation::Scene scene;
+    std::vector<TwinView> views;
+    simulation::RenderOptions render_options;
+    std::size_t target = 0, reflector = 0;
+    std::uint32_t target_material = 0;
+    std::vector<simulation::Camera> cameras;  ///< the field camera in each view
+    std::vector<Image> truth;                 ///< renders of the truth, per view
+    std::vector<Image> measured;              ///< reduced Stokes, per view
+    fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
+    Image simulated;  ///< the render with the fitted paint, view 0
+};
+
+/// 1. The truth: the paper's nine panels under a clear night sky, from every view, through the
+///    field camera as it is — a realistic lens, and not quite where the user set it up.
+void render_truth(Chain& c) {
+    const simulation::Camera field_lens = with_realistic_lens(c.scene.camera);
+    StageTimer t(c.result, "render truth", c.stage);
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        c.cameras.push_back(with_pose_error(view_camera(field_lens, c.views[v])));
+        simulation::Scene s = c.scene;
+        s.camera = c.cameras.back();
+        c.truth.push_back(simulation::render(s, c.render_options));
+        simulation::write_render_outputs(c.out / "truth", fmt::format("view{}", v), c.truth.back());
+    }
+}
+
+/// 2. The field instrument plays the scene; three kinds of session, as on a real night.
+void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
+    StageTimer t(c.result, "acquire", c.stage);
+    world.set_scene(c.truth.front());
+    // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
+    const auto lab = write_plan(c.sessions / "lab_plan.yaml",
+                                reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * c.opt.frames_per_angle), false,
+                                "digital twin: laboratory", c.opt.frames_per_angle);
+    instrument.acquire(lab, c.sessions / "lab");
+    c.result.sessions.push_back(c.sessions / "lab");
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        // Field: the first view also takes the blackbody through the polarizer at each angle
+        // (polarimetric calibration); later views reuse that night's calibration.
+        std::string refs;
+        if (v == 0)
+            for (double a : {0.0, 45.0, 90.0, 135.0})
+                refs += reference_yaml({273.15, 298.15}, a, 2 * c.opt.frames_per_angle);
+        const std::string name = fmt::format("view{}", v);
+        const auto plan = write_plan(c.sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
+                                     c.opt.frames_per_angle);
+        world.set_scene(c.truth[v]);
+        instrument.acquire(plan, c.sessions / name);
+        c.result.sessions.push_back(c.sessions / name);
+    }
+}
+
+/// The camera's geometry, recovered as in the field: lens from filmed checkerboard frames, pose from
+/// the surveyed panel corners.
+void recover_geometry(Chain& c, TwinWorld& world) {
+    StageTimer t(c.result, "camera geometry", c.stage);
+    CameraGeometryOptions go;
+    go.threads = c.opt.threads;
+    c.result.camera = recover_camera_geometry(c.scene, c.cameras.front(), view_camera(c.scene.camera, c.views.front()),
+                                              world, c.out / "camera", go);
+}
+
+/// 3. Calibration and reduction to measured Stokes.
+void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
+    StageTimer t(c.result, "calibrate and reduce", c.stage);
+    const auto radiometric = calibration::calibrate_radiometric_session(c.sessions / "lab", c.scene.band);
+    // The user has the polarizer's datasheet but no known polarized source: its extinction ratio
+    // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
+    // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
+    const calibration::DatasheetAnalyzer datasheet{world.sensor().analyzer.extinction_ratio, {}};
+    const auto polarimetric = calibration::calibrate_polarimetric_session(c.sessions / "view0", radiometric, datasheet);
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        c.measured.push_back(
+            calibration::reduce_session(c.sessions / fmt::format("view{}", v), radiometric, &polarimetric));
+        write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.measured.back());
+    }
+    c.result.measured_exr = c.out / "measured" / "view0_stokes.exr";
+}
+
+/// Target Stokes, measured vs truth (first view). The uncertainty of the ROI mean is the scatter
+/// of measured − truth over the ROI / √n: it holds the temporal noise (the *_std channels) and the
+/// per-pixel errors of the radiometric and polarimetric calibrations, which those channels leave out.
+void check_target_stokes(Chain& c) {
+    const auto target_rect0 = object_rect(c.truth.front(), c.target);
+    if (!target_rect0) fail("twin: the target '{}' is not visible in view 0", c.opt.target);
+    for (int k = 0; k < 3; ++k) {
+        const std::string s = fmt::format("S{}", k);
+        c.result.target_stokes.measured[k] = rect_mean(c.measured.front(), s, *target_rect0);
+        c.result.target_stokes.truth[k] = rect_mean(c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.sigma[k] =
+            rect_difference_standard_error(c.measured.front(), c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.sigma_temporal[k] = rect_standard_error(c.measured.front(), s + "_std", *target_rect0);
+    }
+}
+
+/// 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.
+void extract_target_emissivity(Chain& c) {
+    const auto* true_brdf = c.scene.materials[c.target_material].brdf.get();
+    StageTimer t(c.result, "extract emissivity", c.stage);
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        const auto rect = object_rect(c.truth[v], c.target);
+        const auto refl = object_rect(c.truth[v], c.reflector);
+        if (!rect || !refl) fail("twin: view {}: target or reflector not visible", v);
+        calibration::EmissivityRois rois;
+        rois.reflector = *refl;
+        calibration::EmissivityTarget et;
+        et.name = fmt::format("{}_view{}", c.opt.target, v);
+        et.rect = *rect;
+        et.view_angle_deg = rect_mean(c.truth[v], "view_zenith_deg", *rect);
+        et.temperature_k = rect_mean(c.truth[v], "temperature_k", *rect);  // the contact thermometer
+        et.temperature_std_k = kTargetTemperatureStdK;
+        rois.targets.push_back(et);
+        const auto e = calibration::extract_emissivity(c.measured[v], rois, c.scene.band).front();
+        // Image frame → plane of emission: the p direction lies at ψ in the image; a frame with its
+        // 0° axis along s (ψ − 90°) gives ε_S1 < 0 for p-polarized emission.
+        const double psi = plane_of_emission_angle(c.truth[v], c.cameras[v], *rect);
+        const double c2 = std::cos(2.0 * psi), s2 = std::sin(2.0 * psi);
+        TwinEmissivity te;
+        te.view_angle_deg = e.view_angle_deg;
+        te.eps_s0 = e.eps_s0;
+        te.eps_s0_sigma = e.eps_s0_2sigma / 2.0;
+        te.eps_s1 = -(e.eps_s1 * c2 + e.eps_s2 * s2);
+        te.eps_s1_sigma = std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0;
+        const StokesVector truth_eps =
+            materials::directional_emissivity(*true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
+        te.true_s0 = truth_eps(0);
+        te.true_s1 = truth_eps(1);
+        c.result.emissivity.push_back(te);
+        c.dataset.samples.push_back(
+            {te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
+    }
+    write_file_atomic(c.out / "fit" / "emissivity.csv", fitting::emissivity_csv({c.dataset}));
+}
+
+/// 5. Fit the paint: n and σ free; k and ρ_D held at the library's values (three view angles do
+///    not separate a small k from n, docs/fitting.md) and the other parameters at their defaults.
+void fit_paint(Chain& c) {
+    const auto* micro = dynamic_cast<const materials::MicrofacetBrdf*>(c.scene.materials[c.target_material].brdf.get());
+    if (!micro) fail("twin: the target material is not a micro-facet model");
+    const materials::ShellTargetParameters<double> true_params = micro->at(kFitWavelengthUm);
+    StageTimer t(c.result, "fit", c.stage);
+    fitting::MicrofacetFitOptions fo;
+    fo.starts = 8;
+    using P = fitting::MicrofacetParameter;
+    for (const auto& [p, value] : {std::pair{P::k, true_params.k}, std::pair{P::rho_d, true_params.rho_d}}) {
+        auto& setting = fo.parameters[static_cast<std::size_t>(p)];
+        setting.initial = value;
+        setting.fixed = true;
+    }
+    const fitting::MicrofacetFitProblem problem({c.dataset}, fo);
+    const fitting::MicrofacetFitResult fit = problem.solve();
+    c.result.fitted_material = c.out / "fit" / "flat_black_paint_fitted.yaml";
+    const fitting::FitProvenance provenance{
+        {(c.out / "fit" / "emissivity.csv").string()}, utc_now_iso8601(), "tirpol demo (digital twin)"};
+    write_file_atomic(c.result.fitted_material,
+                      fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
+    write_file_atomic(c.out / "fit" / "fit.json",
+                      json_text(fitting::fit_report_json(fit, problem.datasets(), provenance), 2));
+    c.result.reduced_chi2 = fit.reduced_chi2;
+    const double truths[] = {true_params.n,
+                             true_params.k,
+                             true_params.sigma,
+                             true_params.bias,
+                             rad_to_deg(true_params.tau_rad),
+                             rad_to_deg(true_params.omega_rad),
+                             true_params.rho_d,
+                             true_params.rho_v};
+    for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
+        const auto& p = fit.parameters[i];
+        c.result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
+    }
+}
+
+/// 6. The same scene rendered with the fitted paint (fresh samples) through the recovered camera —
+///    the simulation to compare, on the measured pixel grid.
+void render_fitted(Chain& c) {
+    StageTimer t(c.result, "render fitted", c.stage);
+    const materials::Material fitted = materials::load_material(c.result.fitted_material);
+    simulation::Scene s = c.scene;
+    s.camera = c.result.camera.camera();
+    s.materials[c.target_material].brdf = fitted.brdf;
+    s.sampling.seed = c.scene.sampling.seed + 1;
+    c.simulated = simulation::render(s, c.render_options);
+    add_truth_render_noise(c.simulated, c.truth.front());
+    simulation::write_render_outputs(c.out / "simulated", "view0_fitted", c.simulated);
+    c.result.simulated_exr = c.out / "simulated" / "view0_fitted.exr";
+}
+
+/// 7. The comparison report, one region per panel.
+void compare_and_report(Chain& c) {
+    StageTimer t(c.result, "compare", c.stage);
+    report::CompareOptions co;
+    // Rendered through the recovered camera: registration by the camera model, no warp.
+    co.registration = report::RegistrationMethod::CameraModel;
+    co.camera_model = c.result.camera.lens;
+    co.camera_model_name = c.result.camera.lens_file.string();
+    co.measured_name = c.result.measured_exr.string();
+    co.simulated_name = c.result.simulated_exr.string();
+    report::RegionSet regions;
+    for (std::size_t i = 0; i < c.scene.objects.size(); ++i) {
+        const std::string& name = c.scene.objects[i].name;
+        if (name.rfind("panel_", 0) != 0) continue;
+        if (const auto r = object_rect(c.truth.front(), i)) regions.regions.push_back(rect_region(name.substr(6), *r));
+    }
+    co.regions = regions;
+    // The regions as a file and the equivalent command, so the report can be repeated from files.
+    c.result.report_regions = c.out / "report_regions.yaml";
+    write_file_atomic(c.result.report_regions, report::regions_yaml(regions));
+    co.provenance.tool_version = c.opt.tool_version;
+    co.provenance.command_line = fmt::format(
+        "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process by "
+        "`tirpol demo`)",
+        c.result.measured_exr.string(), c.result.simulated_exr.string(), c.result.report_regions.string(),
+        c.result.camera.lens_file.string(), (c.out / "report").string());
+    co.provenance.inputs.push_back(report::describe_input("measured", c.result.measured_exr, &c.measured.front()));
+    co.provenance.inputs.push_back(report::describe_input("simulated", c.result.simulated_exr, &c.simulated));
+    co.provenance.inputs.push_back(report::describe_input("regions", c.result.report_regions));
+    co.provenance.inputs.push_back(report::describe_input("camera model", c.result.camera.lens_file));
+    const report::CompareResult cr = write_comparison_report(c.measured.front(), c.simulated, co, c.out / "report");
+    c.result.report_html = cr.html;
+    c.result.registration = cr.registration;
+    for (const auto& r : cr.regions) {
+        c.result.regions.push_back({r.name, r.pixel_count, r.z.at("S0").fraction_above_2, r.z.at("S1").fraction_above_2,
+                                    r.z.at("S2").fraction_above_2, r.verdict});
+    }
+}
 
 void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
-    const fs::path out = opt.out_dir;
-    fs::create_directories(out);
-    const fs::path scene_file = opt.scene_file.empty() ? find_config("scenes/panels_night.yaml") : opt.scene_file;
+    Chain c(opt, result, stage,
+            simulation::load_scene(opt.scene_file.empty() ? find_config("scenes/panels_night.yaml") : opt.scene_file));
+    fs::create_directories(c.out);
+    c.scene.camera = c.scene.camera.resized(opt.width, opt.height);
+    c.scene.sampling.samples_per_pixel = opt.spp;
+    c.views = opt.views.empty() ? default_views(c.scene) : opt.views;
+    c.render_options.threads = opt.threads;
+    c.target = object_index(c.scene, opt.target);
+    c.reflector = object_index(c.scene, opt.reflector);
+    c.target_material = c.scene.objects[c.target].material;
 
-    // 1. The truth: the paper's nine panels under a clear night sky, from every view, through the
-    //    field camera as it is — a realistic lens, and not quite where the user set it up.
-    simulation::Scene scene = simulation::load_scene(scene_file);
-    scene.camera = scene.camera.resized(opt.width, opt.height);
-    scene.sampling.samples_per_pixel = opt.spp;
-    const std::vector<TwinView> views = opt.views.empty() ? default_views(scene) : opt.views;
-    simulation::RenderOptions render_options;
-    render_options.threads = opt.threads;
-    const std::size_t target = object_index(scene, opt.target), reflector = object_index(scene, opt.reflector);
-    const std::uint32_t target_material = scene.objects[target].material;
-    std::vector<Image> truth;
-    std::vector<simulation::Camera> cameras;
-    const simulation::Camera field_lens = with_realistic_lens(scene.camera);
-    {
-        StageTimer t(result, "render truth", stage);
-        for (std::size_t v = 0; v < views.size(); ++v) {
-            cameras.push_back(with_pose_error(view_camera(field_lens, views[v])));
-            simulation::Scene s = scene;
-            s.camera = cameras.back();
-            truth.push_back(simulation::render(s, render_options));
-            simulation::write_render_outputs(out / "truth", fmt::format("view{}", v), truth.back());
-        }
-    }
-
-    // 2. The field instrument plays the scene; three kinds of session, as on a real night.
-    const double air_k = scene.sky.temperature_k(1.0);  // clear sky: the air temperature
-    TwinWorld world(twin_sensor(scene.band, air_k), scene.band, opt.width, opt.height);
+    render_truth(c);
+    const double air_k = c.scene.sky.temperature_k(1.0);  // clear sky: the air temperature
+    TwinWorld world(twin_sensor(c.scene.band, air_k), c.scene.band, opt.width, opt.height);
     stage = "instrument set-up (stage on a pty, GigE Vision camera)";
     TwinInstrument instrument(world, opt.stage_protocol, opt.gige);
     result.camera_transport = instrument.camera_transport();
     result.stage_description = instrument.stage_description();
-    const fs::path sessions = out / "sessions";
-    {
-        StageTimer t(result, "acquire", stage);
-        world.set_scene(truth.front());
-        // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
-        const auto lab = write_plan(sessions / "lab_plan.yaml",
-                                    reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle), false,
-                                    "digital twin: laboratory", opt.frames_per_angle);
-        instrument.acquire(lab, sessions / "lab");
-        result.sessions.push_back(sessions / "lab");
-        for (std::size_t v = 0; v < views.size(); ++v) {
-            // Field: the first view also takes the blackbody through the polarizer at each angle
-            // (polarimetric calibration); later views reuse that night's calibration.
-            std::string refs;
-            if (v == 0)
-                for (double a : {0.0, 45.0, 90.0, 135.0})
-                    refs += reference_yaml({273.15, 298.15}, a, 2 * opt.frames_per_angle);
-            const std::string name = fmt::format("view{}", v);
-            const auto plan = write_plan(sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
-                                         opt.frames_per_angle);
-            world.set_scene(truth[v]);
-            instrument.acquire(plan, sessions / name);
-            result.sessions.push_back(sessions / name);
-        }
-    }
-
-    // The camera's geometry, recovered as in the field: lens from filmed checkerboard frames, pose from
-    // the surveyed panel corners.
-    {
-        StageTimer t(result, "camera geometry", stage);
-        CameraGeometryOptions go;
-        go.threads = opt.threads;
-        result.camera = recover_camera_geometry(scene, cameras.front(), view_camera(scene.camera, views.front()), world,
-                                                out / "camera", go);
-    }
-
-    // 3. Calibration and reduction to measured Stokes.
-    std::vector<Image> measured;
-    {
-        StageTimer t(result, "calibrate and reduce", stage);
-        const auto radiometric = calibration::calibrate_radiometric_session(sessions / "lab", scene.band);
-        // The user has the polarizer's datasheet but no known polarized source: its extinction ratio
-        // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
-        // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
-        const calibration::DatasheetAnalyzer datasheet{world.sensor().analyzer.extinction_ratio, {}};
-        const auto polarimetric =
-            calibration::calibrate_polarimetric_session(sessions / "view0", radiometric, datasheet);
-        for (std::size_t v = 0; v < views.size(); ++v) {
-            measured.push_back(
-                calibration::reduce_session(sessions / fmt::format("view{}", v), radiometric, &polarimetric));
-            write_exr(out / "measured" / fmt::format("view{}_stokes.exr", v), measured.back());
-        }
-        result.measured_exr = out / "measured" / "view0_stokes.exr";
-    }
-
-    // Target Stokes, measured vs truth (first view). The uncertainty of the ROI mean is the scatter
-    // of measured − truth over the ROI / √n: it holds the temporal noise (the *_std channels) and the
-    // per-pixel errors of the radiometric and polarimetric calibrations, which those channels leave out.
-    const auto target_rect0 = object_rect(truth.front(), target);
-    if (!target_rect0) fail("twin: the target '{}' is not visible in view 0", opt.target);
-    for (int c = 0; c < 3; ++c) {
-        const std::string s = fmt::format("S{}", c);
-        result.target_stokes.measured[c] = rect_mean(measured.front(), s, *target_rect0);
-        result.target_stokes.truth[c] = rect_mean(truth.front(), s, *target_rect0);
-        result.target_stokes.sigma[c] =
-            rect_difference_standard_error(measured.front(), truth.front(), s, *target_rect0);
-        result.target_stokes.sigma_temporal[c] = rect_standard_error(measured.front(), s + "_std", *target_rect0);
-    }
-
-    // 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.
-    const auto* true_brdf = scene.materials[target_material].brdf.get();
-    fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
-    {
-        StageTimer t(result, "extract emissivity", stage);
-        for (std::size_t v = 0; v < views.size(); ++v) {
-            const auto rect = object_rect(truth[v], target);
-            const auto refl = object_rect(truth[v], reflector);
-            if (!rect || !refl) fail("twin: view {}: target or reflector not visible", v);
-            calibration::EmissivityRois rois;
-            rois.reflector = *refl;
-            calibration::EmissivityTarget et;
-            et.name = fmt::format("{}_view{}", opt.target, v);
-            et.rect = *rect;
-            et.view_angle_deg = rect_mean(truth[v], "view_zenith_deg", *rect);
-            et.temperature_k = rect_mean(truth[v], "temperature_k", *rect);  // the contact thermometer
-            et.temperature_std_k = kTargetTemperatureStdK;
-            rois.targets.push_back(et);
-            const auto e = calibration::extract_emissivity(measured[v], rois, scene.band).front();
-            // Image frame → plane of emission: the p direction lies at ψ in the image; a frame with its
-            // 0° axis along s (ψ − 90°) gives ε_S1 < 0 for p-polarized emission.
-            const double psi = plane_of_emission_angle(truth[v], cameras[v], *rect);
-            const double c2 = std::cos(2.0 * psi), s2 = std::sin(2.0 * psi);
-            TwinEmissivity te;
-            te.view_angle_deg = e.view_angle_deg;
-            te.eps_s0 = e.eps_s0;
-            te.eps_s0_sigma = e.eps_s0_2sigma / 2.0;
-            te.eps_s1 = -(e.eps_s1 * c2 + e.eps_s2 * s2);
-            te.eps_s1_sigma = std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0;
-            const StokesVector truth_eps = materials::directional_emissivity(
-                *true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
-            te.true_s0 = truth_eps(0);
-            te.true_s1 = truth_eps(1);
-            result.emissivity.push_back(te);
-            dataset.samples.push_back(
-                {te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
-        }
-        write_file_atomic(out / "fit" / "emissivity.csv", fitting::emissivity_csv({dataset}));
-    }
-
-    // 5. Fit the paint: n and σ free; k and ρ_D held at the library's values (three view angles do
-    //    not separate a small k from n, docs/fitting.md) and the other parameters at their defaults.
-    const auto* micro = dynamic_cast<const materials::MicrofacetBrdf*>(true_brdf);
-    if (!micro) fail("twin: the target material is not a micro-facet model");
-    const materials::ShellTargetParameters<double> true_params = micro->at(kFitWavelengthUm);
-    fitting::MicrofacetFitResult fit;
-    {
-        StageTimer t(result, "fit", stage);
-        fitting::MicrofacetFitOptions fo;
-        fo.starts = 8;
-        using P = fitting::MicrofacetParameter;
-        for (const auto& [p, value] : {std::pair{P::k, true_params.k}, std::pair{P::rho_d, true_params.rho_d}}) {
-            auto& setting = fo.parameters[static_cast<std::size_t>(p)];
-            setting.initial = value;
-            setting.fixed = true;
-        }
-        const fitting::MicrofacetFitProblem problem({dataset}, fo);
-        fit = problem.solve();
-        result.fitted_material = out / "fit" / "flat_black_paint_fitted.yaml";
-        const fitting::FitProvenance provenance{
-            {(out / "fit" / "emissivity.csv").string()}, utc_now_iso8601(), "tirpol demo (digital twin)"};
-        write_file_atomic(result.fitted_material,
-                          fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
-        write_file_atomic(out / "fit" / "fit.json",
-                          json_text(fitting::fit_report_json(fit, problem.datasets(), provenance), 2));
-        result.reduced_chi2 = fit.reduced_chi2;
-        const double truths[] = {true_params.n,
-                                 true_params.k,
-                                 true_params.sigma,
-                                 true_params.bias,
-                                 rad_to_deg(true_params.tau_rad),
-                                 rad_to_deg(true_params.omega_rad),
-                                 true_params.rho_d,
-                                 true_params.rho_v};
-        for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
-            const auto& p = fit.parameters[i];
-            result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
-        }
-    }
-
-    // 6. The same scene rendered with the fitted paint (fresh samples) through the recovered camera —
-    //    the simulation to compare, on the measured pixel grid.
-    Image simulated;
-    {
-        StageTimer t(result, "render fitted", stage);
-        const materials::Material fitted = materials::load_material(result.fitted_material);
-        simulation::Scene s = scene;
-        s.camera = result.camera.camera();
-        s.materials[target_material].brdf = fitted.brdf;
-        s.sampling.seed = scene.sampling.seed + 1;
-        simulated = simulation::render(s, render_options);
-        add_truth_render_noise(simulated, truth.front());
-        simulation::write_render_outputs(out / "simulated", "view0_fitted", simulated);
-        result.simulated_exr = out / "simulated" / "view0_fitted.exr";
-    }
-
-    // 7. The comparison report, one region per panel.
-    {
-        StageTimer t(result, "compare", stage);
-        report::CompareOptions co;
-        // Rendered through the recovered camera: registration by the camera model, no warp.
-        co.registration = report::RegistrationMethod::CameraModel;
-        co.camera_model = result.camera.lens;
-        co.camera_model_name = result.camera.lens_file.string();
-        co.measured_name = result.measured_exr.string();
-        co.simulated_name = result.simulated_exr.string();
-        report::RegionSet regions;
-        for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-            const std::string& name = scene.objects[i].name;
-            if (name.rfind("panel_", 0) != 0) continue;
-            if (const auto r = object_rect(truth.front(), i))
-                regions.regions.push_back(rect_region(name.substr(6), *r));
-        }
-        co.regions = regions;
-        // The regions as a file and the equivalent command, so the report can be repeated from files.
-        result.report_regions = out / "report_regions.yaml";
-        write_file_atomic(result.report_regions, report::regions_yaml(regions));
-        co.provenance.tool_version = opt.tool_version;
-        co.provenance.command_line = fmt::format(
-            "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process by "
-            "`tirpol demo`)",
-            result.measured_exr.string(), result.simulated_exr.string(), result.report_regions.string(),
-            result.camera.lens_file.string(), (out / "report").string());
-        co.provenance.inputs.push_back(report::describe_input("measured", result.measured_exr, &measured.front()));
-        co.provenance.inputs.push_back(report::describe_input("simulated", result.simulated_exr, &simulated));
-        co.provenance.inputs.push_back(report::describe_input("regions", result.report_regions));
-        co.provenance.inputs.push_back(report::describe_input("camera model", result.camera.lens_file));
-        const report::CompareResult cr = write_comparison_report(measured.front(), simulated, co, out / "report");
-        result.report_html = cr.html;
-        result.registration = cr.registration;
-        for (const auto& r : cr.regions) {
-            result.regions.push_back({r.name, r.pixel_count, r.z.at("S0").fraction_above_2,
-                                      r.z.at("S1").fraction_above_2, r.z.at("S2").fraction_above_2, r.verdict});
-        }
-    }
+    acquire_sessions(c, world, instrument);
+    recover_geometry(c, world);
+    calibrate_and_reduce(c, world);
+    check_target_stokes(c);
+    extract_target_emissivity(c);
+    fit_paint(c);
+    render_fitted(c);
+    compare_and_report(c);
 }
 
 }  // namespace

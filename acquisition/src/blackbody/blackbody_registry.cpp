@@ -5,8 +5,9 @@
 #include <thread>
 
 #include "device_uri_query.h"
-#include "tirpol/acquisition/blackbody_simulator.h"
-#include "tirpol/acquisition/serial_port.h"
+#include "tirpol/acquisition/internal/blackbody_simulator.h"
+#include "tirpol/acquisition/internal/fluke_blackbody.h"
+#include "tirpol/acquisition/internal/serial_port.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/blackbody_simulator.h"
+#include "tirpol/acquisition/internal/blackbody_simulator.h"
 
 #include <fmt/format.h>
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tirpol/acquisition/blackbody_registry.h"
-#include "tirpol/acquisition/fluke_scpi.h"
+#include "tirpol/acquisition/internal/fluke_blackbody.h"
+#include "tirpol/acquisition/internal/fluke_scpi.h"
 
 namespace tirpol::acquisition {
 

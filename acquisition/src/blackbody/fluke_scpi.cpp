@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/fluke_scpi.h"
+#include "tirpol/acquisition/internal/fluke_scpi.h"
 
 #include <fmt/format.h>
 

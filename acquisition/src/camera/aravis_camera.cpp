@@ -1,6 +1,6 @@
 // aravis://<device-id>: a GenICam camera through Aravis 0.8's C API (ArvCamera, ArvStream, ArvGc).
 
-#include "tirpol/acquisition/aravis_camera.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -19,7 +19,7 @@
 #include "camera/aravis_support.h"
 #include "camera/gvcp_probe.h"
 #include "camera/pixel_decode.h"
-#include "tirpol/acquisition/frame_id.h"
+#include "tirpol/acquisition/internal/frame_id.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {

@@ -2,26 +2,32 @@
 
 #include <fmt/format.h>
 
-#include "camera/uri.h"
-#include "tirpol/acquisition/aravis_camera.h"
+#include "scheme_registry.h"
+#include "tirpol/acquisition/device_uri.h"
+#ifdef TIRPOL_HAVE_ARAVIS
+#include "tirpol/acquisition/internal/aravis_camera.h"
+#endif
 #include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/acquisition/v4l2_camera.h"
+#ifdef TIRPOL_HAVE_V4L2
+#include "tirpol/acquisition/internal/v4l2_camera.h"
+#endif
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
 
 namespace {
 
-std::optional<int> optional_int(const DeviceUri& u, const char* key) {
+[[maybe_unused]] std::optional<int> optional_int(const DeviceUri& u, const char* key) {
     if (u.query.count(key) == 0) return std::nullopt;
     return u.integer(key, 0);
 }
 
-std::optional<double> optional_number(const DeviceUri& u, const char* key) {
+[[maybe_unused]] std::optional<double> optional_number(const DeviceUri& u, const char* key) {
     if (u.query.count(key) == 0) return std::nullopt;
     return u.number(key, 0.0);
 }
 
+#ifdef TIRPOL_HAVE_ARAVIS
 Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size", "control_wait_s"});
     if (u.target.empty()) fail("device URI '{}': expected aravis://<device-id>", u.text);
@@ -48,7 +54,9 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     }
     return open_aravis_camera(u.target, options);
 }
+#endif
 
+#ifdef TIRPOL_HAVE_V4L2
 Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     u.check_keys({"format", "width", "height", "fps", "buffers"});
     if (u.target.empty() || u.target.front() != '/')
@@ -63,25 +71,53 @@ Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     options.buffers = static_cast<unsigned>(buffers);
     return open_v4l2_camera(u.target, options);
 }
+#endif
+
+/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+detail::SchemeRegistry<CameraFactory>& registry() {
+    static detail::SchemeRegistry<CameraFactory> table;
+    [[maybe_unused]] static const bool built_in = [] {
+#ifdef TIRPOL_HAVE_ARAVIS
+        table.register_scheme("aravis", [](const std::string& uri) { return open_aravis(parse_device_uri(uri)); });
+#endif
+#ifdef TIRPOL_HAVE_V4L2
+        table.register_scheme("v4l2", [](const std::string& uri) { return open_v4l2(parse_device_uri(uri)); });
+#endif
+        table.register_scheme("sim", [](const std::string& uri) -> Result<std::unique_ptr<Camera>> {
+            return std::unique_ptr<Camera>(open_simulated_camera(uri));
+        });
+        return true;
+    }();
+    return table;
+}
 
 }  // namespace
 
 Result<std::unique_ptr<Camera>> open_camera(const std::string& uri) {
     const DeviceUri u = parse_device_uri(uri);
-    if (u.scheme == "aravis") return open_aravis(u);
-    if (u.scheme == "v4l2") return open_v4l2(u);
-    if (u.scheme == "sim") return std::unique_ptr<Camera>(open_simulated_camera(uri));
-    fail("device URI '{}': unknown camera scheme '{}' (expected aravis, v4l2 or sim)", uri, u.scheme);
+    const CameraFactory factory = registry().find(u.scheme);
+    if (!factory) throw Error(registry().unknown_scheme_message("camera", u.scheme, uri));
+    return factory(uri);
 }
+
+CameraFactory register_camera_scheme(const std::string& scheme, CameraFactory factory) {
+    return registry().register_scheme(scheme, std::move(factory), "register_camera_scheme");
+}
+
+std::vector<std::string> camera_schemes() { return registry().schemes(); }
 
 std::vector<CameraDescriptor> list_cameras() {
     std::vector<CameraDescriptor> cameras;
+#ifdef TIRPOL_HAVE_ARAVIS
     for (const auto& d : discover_aravis_cameras()) {
         const std::string where = d.address.empty() ? d.protocol : fmt::format("{} at {}", d.protocol, d.address);
         cameras.push_back({"aravis://" + d.id, fmt::format("{} {} (serial {}), {}", d.vendor, d.model, d.serial, where)});
     }
+#endif
+#ifdef TIRPOL_HAVE_V4L2
     for (const auto& d : discover_v4l2_cameras())
         cameras.push_back({"v4l2://" + d.path, fmt::format("{} ({}, {})", d.card, d.driver, d.bus_info)});
+#endif
     return cameras;
 }
 

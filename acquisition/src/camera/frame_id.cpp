@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/frame_id.h"
+#include "tirpol/acquisition/internal/frame_id.h"
 
 namespace tirpol::acquisition {
 

@@ -8,7 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "camera/uri.h"
+#include "tirpol/acquisition/device_uri.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
@@ -192,8 +192,8 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     const DeviceUri u = parse_device_uri(uri);
     if (u.scheme != "sim") fail("device URI '{}': expected the sim:// scheme", uri);
     if (u.target != "uniform")
-        fail("device URI '{}': unknown simulated camera '{}' (built in: uniform; the digital twin plugs its "
-             "renderer in through the C++ API)", uri, u.target);
+        fail("device URI '{}': unknown simulated camera '{}' (built in: uniform; scene files "
+             "sim://<scene.yaml> once the digital twin registered its renderer-backed camera)", uri, u.target);
     u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k", "buffers"});
     SimulatedCameraConfig config;
     config.name = "uniform";

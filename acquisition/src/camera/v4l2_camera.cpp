@@ -2,7 +2,7 @@
 // ("Streaming I/O (Memory Mapping)", "ioctl VIDIOC_REQBUFS", "ioctl VIDIOC_QBUF, VIDIOC_DQBUF",
 // "struct v4l2_buffer"), through the V4l2Io seam.
 
-#include "tirpol/acquisition/v4l2_camera.h"
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 
 #include <fcntl.h>
 #include <linux/videodev2.h>
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "camera/pixel_decode.h"
-#include "tirpol/acquisition/frame_id.h"
+#include "tirpol/acquisition/internal/frame_id.h"
 
 namespace tirpol::acquisition {
 

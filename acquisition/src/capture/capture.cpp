@@ -6,7 +6,7 @@
 #include <cmath>
 #include <thread>
 
-#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/internal/angles.h"
 #include "capture/blackbody_step.h"
 #include "capture/record_writer.h"
 #include "tirpol/acquisition/frame_averager.h"

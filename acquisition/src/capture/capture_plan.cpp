@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "drift_reference_plan.h"
-#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/apt_protocol.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/apt_stage.h"
+#include "tirpol/acquisition/internal/apt_stage.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -9,7 +9,7 @@
 #include <mutex>
 
 #include "move_preconditions.h"
-#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/internal/angles.h"
 
 namespace tirpol::acquisition {
 

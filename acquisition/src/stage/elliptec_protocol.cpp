@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/elliptec_protocol.h"
+#include "tirpol/acquisition/internal/elliptec_protocol.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/elliptec_stage.h"
+#include "tirpol/acquisition/internal/elliptec_stage.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "move_preconditions.h"
-#include "tirpol/acquisition/angles.h"
-#include "tirpol/acquisition/elliptec_protocol.h"
+#include "tirpol/acquisition/internal/angles.h"
+#include "tirpol/acquisition/internal/elliptec_protocol.h"
 
 namespace tirpol::acquisition {
 

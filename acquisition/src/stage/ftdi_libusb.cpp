@@ -6,7 +6,7 @@
 
 #include <thread>
 
-#include "tirpol/acquisition/ftdi_port.h"
+#include "tirpol/acquisition/internal/ftdi_port.h"
 
 namespace tirpol::acquisition {
 

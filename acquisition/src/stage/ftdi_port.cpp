@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/ftdi_port.h"
+#include "tirpol/acquisition/internal/ftdi_port.h"
 
 #include <fmt/format.h>
 

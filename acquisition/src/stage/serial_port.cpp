@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/serial_port.h"
+#include "tirpol/acquisition/internal/serial_port.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/sim_stage.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "move_preconditions.h"
-#include "tirpol/acquisition/angles.h"
+#include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-
 #include "device_uri_query.h"
-#include "tirpol/acquisition/apt_stage.h"
-#include "tirpol/acquisition/elliptec_stage.h"
-#include "tirpol/acquisition/ftdi_port.h"
-#include "tirpol/acquisition/serial_port.h"
-#include "tirpol/acquisition/sim_stage.h"
+#include "scheme_registry.h"
+#include "tirpol/acquisition/internal/apt_stage.h"
+#include "tirpol/acquisition/internal/elliptec_stage.h"
+#include "tirpol/acquisition/internal/ftdi_port.h"
+#include "tirpol/acquisition/internal/serial_port.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
 
 namespace tirpol::acquisition {
 
@@ -65,7 +65,12 @@ Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& 
     options.address = static_cast<std::uint8_t>(address.value());
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     const SerialSettings settings{115200, true};
+#ifdef TIRPOL_HAVE_LIBUSB
     auto port = usb ? open_ftdi_usb(u.path, settings) : open_serial_port(u.path, settings);
+#else
+    (void)usb;  // thorlabs-apt+usb is registered only when built with libusb
+    auto port = open_serial_port(u.path, settings);
+#endif
     if (!port) return port.error();
     return open_apt_stage(std::move(port.value()), uri, options);
 }
@@ -102,17 +107,51 @@ Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& 
     return make_simulated_stage(uri, options);
 }
 
+/// Parses the URI and hands it to one of the built-in openers above.
+template <typename Open>
+StageFactory built_in(Open open) {
+    return [open](const std::string& uri) -> Result<std::unique_ptr<Stage>> {
+        auto parsed = parse_stage_uri(uri);
+        if (!parsed) return parsed.error();
+        return open(uri, parsed.value());
+    };
+}
+
+/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+detail::SchemeRegistry<StageFactory>& registry() {
+    static detail::SchemeRegistry<StageFactory> table;
+    [[maybe_unused]] static const bool built_in_registered = [] {
+        table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const StageUri& u) {
+                                  return open_apt(uri, u, false);
+                              }));
+#ifdef TIRPOL_HAVE_LIBUSB
+        table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const StageUri& u) {
+                                  return open_apt(uri, u, true);
+                              }));
+#endif
+        table.register_scheme("elliptec", built_in(open_elliptec));
+        table.register_scheme("sim", built_in(open_sim));
+        return true;
+    }();
+    return table;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
     auto parsed = parse_stage_uri(uri);
     if (!parsed) return parsed.error();
-    const StageUri& u = parsed.value();
-    if (u.scheme == "thorlabs-apt") return open_apt(uri, u, false);
-    if (u.scheme == "thorlabs-apt+usb") return open_apt(uri, u, true);
-    if (u.scheme == "elliptec") return open_elliptec(uri, u);
-    if (u.scheme == "sim") return open_sim(uri, u);
-    return bad(uri, fmt::format("unknown stage type '{}' (expected thorlabs-apt, thorlabs-apt+usb, elliptec or sim)", u.scheme));
+    const StageFactory factory = registry().find(parsed.value().scheme);
+    if (!factory)
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           registry().unknown_scheme_message("stage", parsed.value().scheme, uri)};
+    return factory(uri);
 }
+
+StageFactory register_stage_scheme(const std::string& scheme, StageFactory factory) {
+    return registry().register_scheme(scheme, std::move(factory), "register_stage_scheme");
+}
+
+std::vector<std::string> stage_schemes() { return registry().schemes(); }
 
 }  // namespace tirpol::acquisition

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 
 #include <fmt/format.h>
 
@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "tirpol/acquisition/angles.h"
-#include "tirpol/acquisition/apt_protocol.h"
-#include "tirpol/acquisition/elliptec_protocol.h"
+#include "tirpol/acquisition/internal/angles.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
+#include "tirpol/acquisition/internal/elliptec_protocol.h"
 
 namespace tirpol::acquisition {
 

@@ -4,7 +4,8 @@
 /// rendered Stokes image (camera frame), the images I(α) the camera would record through a
 /// non-ideal analyzer, optionally in counts through a gain/offset with temporal noise set by an NEDT.
 ///
-/// Radiance model per polarizer angle α (band radiance, W/(m²·sr)):
+/// The physics is core's forward instrument model (instrument_model.h), which calibration's synthetic
+/// sessions share: per polarizer angle α (band radiance, W/(m²·sr))
 ///   I(α) = [P(α + offset) · S]₀ + ρ_grid·L_reflected + ε_grid·L_bb(T_grid)
 /// where P is a linear diattenuator with major transmittance τ and extinction ratio τ/τ_min
 /// (core polarizer_with_extinction; Chipman, Lam & Young 2018 eq 6.35), and the last two terms are
@@ -18,6 +19,7 @@
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/image.h"
+#include "tirpol/core/instrument_model.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::simulation {
@@ -51,6 +53,8 @@ struct SensorModel {
 
     /// From a YAML mapping with optional `analyzer`, `background`, `counts`, `seed` (docs/simulation.md).
     static SensorModel from_config(const ConfigNode& node);
+    /// The analyzer and grid background as core's forward model (grid emission over `band`).
+    WireGridPolarizer wire_grid(const Band& band) const;
 };
 
 /// One image per analyzer angle, in the order of `model.analyzer.angles_deg`: channel `radiance`

@@ -16,9 +16,9 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture_plan.h"
-#include "tirpol/acquisition/fake_gige_server.h"
+#include "tirpol/acquisition/internal/fake_gige_server.h"
 #include "tirpol/acquisition/stage.h"
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/sensor_model.h"

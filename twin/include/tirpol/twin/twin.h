@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/stage_simulator.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/report/registration.h"
 #include "tirpol/report/verdict.h"
 #include "tirpol/twin/camera_geometry.h"

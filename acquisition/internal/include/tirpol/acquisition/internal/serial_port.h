@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "tirpol/acquisition/byte_port.h"
+#include "tirpol/acquisition/internal/byte_port.h"
 
 namespace tirpol::acquisition {
 

@@ -1,6 +1,10 @@
 #pragma once
-// Device URIs: `scheme://rest?key=value&key=value`. Private to the acquisition module.
+/// \file device_uri.h
+/// Device URIs, `scheme://target?key=value&key=value`: the parser the built-in camera factories use,
+/// public so that a factory added with register_camera_scheme reads its URI with the same rules and
+/// error messages.
 
+#include <initializer_list>
 #include <map>
 #include <string>
 
@@ -8,7 +12,7 @@ namespace tirpol::acquisition {
 
 struct DeviceUri {
     std::string text;    ///< the whole URI, for messages
-    std::string scheme;  ///< "aravis", "v4l2", "sim"
+    std::string scheme;  ///< "aravis", "v4l2", "sim", or a registered one
     std::string target;  ///< between "://" and "?"
     std::map<std::string, std::string> query;
 

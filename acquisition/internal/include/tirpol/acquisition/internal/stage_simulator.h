@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/pseudo_terminal.h"
+#include "tirpol/acquisition/internal/pseudo_terminal.h"
 #include "tirpol/acquisition/result.h"
 
 namespace tirpol::acquisition {

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/fluke_scpi.h"
-#include "tirpol/acquisition/pseudo_terminal.h"
+#include "tirpol/acquisition/internal/fluke_scpi.h"
+#include "tirpol/acquisition/internal/pseudo_terminal.h"
 
 namespace tirpol::acquisition {
 

@@ -1,12 +1,12 @@
-#include "tirpol/calibration/synthetic_session.h"
+#include "tirpol/calibration/testing/synthetic_session.h"
 
 #include <cmath>
 #include <fmt/format.h>
 
 #include <random>
 
-#include "tirpol/calibration/analyzer.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/instrument_model.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::calibration {
@@ -37,19 +37,29 @@ Image uniform_scene(int w, int h, double s0) {
     s.add_channel("S2");
     return s;
 }
-}  // namespace
 
-Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, double angle_deg, bool through_polarizer,
-                             bool field, unsigned seed) {
-    const auto px = pixel_truth(cam);
-    const Band band(8.0, 14.0);
-    const AnalyzerPosition analyzer = AnalyzerModel::non_ideal({angle_deg}, cam.extinction_ratio, cam.angle_offset_deg,
-                                                               cam.t_max).positions[0];
+/// Core's forward model of the synthetic camera's wire grid over `band`.
+WireGridPolarizer synthetic_wire_grid(const SyntheticCamera& cam, const Band& band) {
+    WireGridPolarizer grid;
+    grid.transmission = cam.t_max;
+    grid.extinction_ratio = cam.extinction_ratio;
+    grid.angle_offset_deg = cam.angle_offset_deg;
+    grid.reflectance = cam.grid_reflectance;
+    grid.reflected_radiance = band.radiance(cam.sky_temperature_k);
     // The grid reflects toward the camera the polarization it does not transmit: the sky term is
     // partly polarized across the wires, so it changes with the angle.
-    const double sky = cam.grid_reflectance * band.radiance(cam.sky_temperature_k) *
-                       (1.0 + 0.3 * std::cos(2.0 * deg_to_rad(angle_deg)));
-    const double grid_emission = cam.grid_emissivity * band.radiance(cam.grid_temperature_k);
+    grid.reflection_polarization = cam.sky_polarization;
+    grid.emissivity = cam.grid_emissivity;
+    grid.emitted_radiance = band.radiance(cam.grid_temperature_k);
+    return grid;
+}
+
+}  // namespace
+
+Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, const Band& band, double angle_deg,
+                             bool through_polarizer, bool field, unsigned seed) {
+    const auto px = pixel_truth(cam);
+    const AnalyzerAtAngle analyzer = analyzer_at(synthetic_wire_grid(cam, band), angle_deg);
     std::mt19937 rng(seed);
     std::normal_distribution<double> unit(0.0, 1.0);
     Image out(cam.width, cam.height);
@@ -65,15 +75,14 @@ Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, dou
             double l = s0[i];
             if (through_polarizer) {
                 const double r2 = std::pow((x - cam.width / 2.0) / cam.width, 2) + std::pow((y - cam.height / 2.0) / cam.height, 2);
-                const double tau = analyzer.relative_transmission * (1.0 - 0.3 * r2);
                 const double ghost = cam.ghost_radiance *
                                      std::exp(-(std::pow(x - 0.3 * cam.width, 2) + std::pow(y - 0.4 * cam.height, 2)) /
                                               (0.02 * cam.width * cam.width));
-                l = tau * analyzer.row().dot(Eigen::Vector3d(s0[i], s1[i], s2[i])) + ghost + sky + grid_emission;
+                l = analyzer.radiance(StokesVector(s0[i], s1[i], s2[i], 0.0), 1.0 - cam.vignetting * r2) + ghost;
             }
             const auto& p = px[i];
             const double offset = p.offset + (field ? cam.field_offset_drift : 0.0);
-            const double mean = offset + p.gain * l + p.noise / std::sqrt(static_cast<double>(cam.frames)) * unit(rng);
+            const double mean = detector_counts(l, p.gain, offset, p.noise / std::sqrt(static_cast<double>(cam.frames)), unit(rng));
             counts[i] = static_cast<float>(std::min(mean, saturation));
             counts_std[i] = static_cast<float>(p.noise);
         }
@@ -110,7 +119,7 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         auto w = SessionWriter::create(root / "lab", m);
         for (double t : {283.15, 298.15, 313.15, 328.15})
             w.add_record(record(RecordKind::Blackbody, fmt::format("bb_{:.2f}K", t), 0.0, 0, t),
-                         synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), 0.0, false,
+                         synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), band, 0.0, false,
                                                 false, ++seed));
         w.mark_complete();
     }
@@ -126,7 +135,7 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         for (double a : cam.angles_deg)
             for (double t : {278.15, 308.15})
                 w.add_record(record(RecordKind::Blackbody, fmt::format("bb_{:.2f}K_{:.1f}deg", t, a), a, 0, t),
-                             synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), a, true,
+                             synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), band, a, true,
                                                     true, ++seed));
         for (const auto& k : known) {
             const double l = band.radiance(k["blackbody_temperature_k"].get<double>());
@@ -138,7 +147,7 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
             const int rep = k["repeat"].get<int>();
             for (double a : cam.angles_deg)
                 w.add_record(record(RecordKind::Polarizer, fmt::format("known_r{}_{:.1f}deg", rep, a), a, rep, std::nullopt),
-                             synthetic_record_frame(cam, source, a, true, true, ++seed));
+                             synthetic_record_frame(cam, source, band, a, true, true, ++seed));
         }
         w.mark_complete();
     }
@@ -147,11 +156,11 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         m.metadata = {{"site", "field"}, {"polarizer_in_beam", true}};
         auto w = SessionWriter::create(root / "scene", m);
         w.add_record(record(RecordKind::Shutter, "shutter", 0.0, 0, 293.15),
-                     synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(293.15)), 0.0, false,
+                     synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(293.15)), band, 0.0, false,
                                             true, ++seed));
         for (double a : cam.angles_deg)
             w.add_record(record(RecordKind::Polarizer, fmt::format("scene_{:.1f}deg", a), a, 0, std::nullopt),
-                         synthetic_record_frame(cam, scene, a, true, true, ++seed));
+                         synthetic_record_frame(cam, scene, band, a, true, true, ++seed));
         w.mark_complete();
     }
 }

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/byte_port.h"
-#include "tirpol/acquisition/serial_port.h"
+#include "tirpol/acquisition/internal/byte_port.h"
+#include "tirpol/acquisition/internal/serial_port.h"
 
 namespace tirpol::acquisition {
 

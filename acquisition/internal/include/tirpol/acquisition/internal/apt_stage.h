@@ -9,8 +9,8 @@
 
 #include <memory>
 
-#include "tirpol/acquisition/apt_protocol.h"
-#include "tirpol/acquisition/byte_port.h"
+#include "tirpol/acquisition/internal/apt_protocol.h"
+#include "tirpol/acquisition/internal/byte_port.h"
 #include "tirpol/acquisition/stage.h"
 
 namespace tirpol::acquisition {

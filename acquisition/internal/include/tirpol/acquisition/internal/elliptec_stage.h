@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "tirpol/acquisition/byte_port.h"
+#include "tirpol/acquisition/internal/byte_port.h"
 #include "tirpol/acquisition/stage.h"
 
 namespace tirpol::acquisition {

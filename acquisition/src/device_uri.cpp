@@ -1,4 +1,4 @@
-#include "camera/uri.h"
+#include "tirpol/acquisition/device_uri.h"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,94 @@
+// The renderer-backed camera sim://<scene.yaml>, opened through acquisition's ordinary camera
+// registry once the twin registered it: a frame's counts are the rendered Stokes image through the
+// twin's wire grid and detector, C = g·(½(τ + τ/ER)·S0 + ½(τ − τ/ER)·S1 + ρ·L_r + ε·L_bb(T_grid)) + o at
+// 0° (linear diattenuator, Chipman, Lam & Young 2018 eq 6.35), within the detector's temporal noise
+// σ = g·NEDT·dL/dT(T_ref).
+
+#include "tirpol/twin/scene_camera.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/core/error.h"
+#include "tirpol/core/source_tree.h"
+#include "tirpol/simulation/renderer.h"
+#include "tirpol/simulation/scene.h"
+#include "tirpol/twin/instrument.h"
+
+namespace tirpol::twin {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr int kWidth = 24, kHeight = 18, kSpp = 2;
+
+TEST(SceneCamera, FrameCountsFollowTheRenderedRadiance) {
+    register_twin_device_schemes();
+    auto opened = acquisition::open_camera("sim://config/scenes/panels_night.yaml?width=24&height=18&spp=2&fps=50");
+    ASSERT_TRUE(opened.ok()) << opened.error().message;
+    auto& camera = *opened.value();
+    EXPECT_EQ(camera.info().width, kWidth);
+    ASSERT_TRUE(camera.start().ok());
+    const acquisition::Frame frame = camera.grab(10s).value();
+    ASSERT_EQ(frame.counts.size(), static_cast<std::size_t>(kWidth * kHeight));
+
+    // The same render, made here (the renderer is deterministic for a scene and its settings).
+    simulation::Scene scene = simulation::load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(kWidth, kHeight);
+    scene.sampling.samples_per_pixel = kSpp;
+    const Image stokes = simulation::render(scene);
+    const simulation::SensorModel sensor = twin_sensor(scene.band, scene.sky.temperature_k(1.0));
+    const double tau = sensor.analyzer.transmission, tau_min = tau / sensor.analyzer.extinction_ratio;
+    const double g = sensor.counts->gain_counts_per_radiance, o = sensor.counts->offset_counts;
+    const double grid = sensor.background.reflectance * sensor.background.reflected_radiance +
+                        sensor.background.emissivity * scene.band.radiance(sensor.background.temperature_k);
+    const double sigma = g * sensor.counts->nedt_k * scene.band.radiance_dT(sensor.counts->reference_temperature_k);
+    ASSERT_GT(sigma, 0.0);
+
+    const auto& s0 = stokes.channel("S0");
+    const auto& s1 = stokes.channel("S1");
+    double sum_z = 0.0, s0_min = 1e300, s0_max = -1e300;
+    for (std::size_t i = 0; i < frame.counts.size(); ++i) {
+        const double expected = g * (0.5 * (tau + tau_min) * s0[i] + 0.5 * (tau - tau_min) * s1[i] + grid) + o;
+        const double z = (frame.counts[i] - expected) / sigma;
+        EXPECT_LT(std::abs(z), 6.0) << "pixel " << i << ": counts " << frame.counts[i] << ", expected " << expected;
+        sum_z += z;
+        s0_min = std::min(s0_min, static_cast<double>(s0[i]));
+        s0_max = std::max(s0_max, static_cast<double>(s0[i]));
+    }
+    // Unbiased: the mean z of N pixels has σ = 1/√N (+ rounding to whole counts, ≤ 0.5/σ).
+    EXPECT_LT(std::abs(sum_z / static_cast<double>(frame.counts.size())),
+              5.0 / std::sqrt(frame.counts.size()) + 0.5 / sigma);
+    // The scene has contrast well above the noise (sky vs panels), so the check above is not vacuous.
+    EXPECT_GT(g * 0.5 * tau * (s0_max - s0_min), 50.0 * sigma);
+}
+
+TEST(SceneCamera, OtherSimTargetsStillReachTheBuiltInCamera) {
+    register_twin_device_schemes();
+    auto camera = acquisition::open_camera("sim://uniform?width=2&height=2&counts=77");
+    ASSERT_TRUE(camera.ok());
+    ASSERT_TRUE(camera.value()->start().ok());
+    const acquisition::Frame frame = camera.value()->grab(2s).value();
+    ASSERT_EQ(frame.counts.size(), 4u);
+    for (float v : frame.counts) EXPECT_EQ(v, 77.0f);
+}
+
+TEST(SceneCamera, MissingSceneFileAndUnknownKeysAreNamed) {
+    register_twin_device_schemes();
+    auto error_of = [](const std::string& uri) -> std::string {
+        try {
+            (void)acquisition::open_camera(uri);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(error_of("sim://no/such/scene.yaml").find("no/such/scene.yaml"), std::string::npos);
+    EXPECT_NE(error_of("sim://config/scenes/panels_night.yaml?zoom=2").find("zoom"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tirpol::twin
