@@ -47,6 +47,12 @@ struct RenderOptions {
     /// Not owned; checked before each tile: once true, the remaining tiles are skipped and render()
     /// throws tirpol::Cancelled (how the Python module stops a render on Ctrl-C). Null: never.
     const std::atomic<bool>* cancel = nullptr;
+    /// Estimate each vertex's reflected radiance as (e0 − ε)·L_ref + (sampled ∫M·(L_in − L_ref)·cosθi dωi),
+    /// a control variate whose first term is exact by Kirchhoff's law (the emissivity table's own ε);
+    /// L_ref is the sky along the mirror direction, or the vertex's blackbody radiance when that points
+    /// below the horizon. Unbiased either way; on: ~5× lower S1 noise on panels_night at 16 spp, and an
+    /// isothermal enclosure renders L_bb exactly. Off: the plain estimator, for tests of the sampling.
+    bool control_variate = true;
 };
 
 struct RenderStatistics {
