@@ -37,7 +37,11 @@ void expect_blackbody(const Image& img, double l_bb, const std::string& what) {
     // quadrature, |Δε| < 2e-4, and its interpolation in angle and wavelength near grazing). Rough
     // (micro-facet) weights are heavy-tailed at grazing angles, so 24 samples can under-estimate a
     // pixel's variance: allow 2 % of pixels outside, and check the image means against their pooled
-    // error, which does not suffer from it.
+    // error, which does not suffer from it. At least one pixel may lie outside, so that a material
+    // seen in ~45 pixels (the narrow-band grids) is not held to zero outliers: over all 1338 surface
+    // pixels of the 8.8–9.3 µm grid at 48 spp, 0–5 (0.22 % on average over seeds 1–6; 0.08 % with
+    // slope sampling of the facets) fall outside and none at 400 spp — error bars too small at low
+    // spp, not a bias (per-vertex unbiasedness: tests/materials/sampling_test.cpp).
     const std::size_t n = img.pixel_count();
     std::size_t outside = 0;
     std::string examples;
@@ -55,7 +59,7 @@ void expect_blackbody(const Image& img, double l_bb, const std::string& what) {
             examples += line.str();
         }
     }
-    EXPECT_LE(static_cast<double>(outside), 0.02 * static_cast<double>(n)) << what << examples;
+    EXPECT_LE(static_cast<double>(outside), std::max(1.0, 0.02 * static_cast<double>(n))) << what << examples;
     const Eigen::Vector3d mean = sum / static_cast<double>(n);
     const Eigen::Vector3d sigma_mean = var_sum.cwiseSqrt() / static_cast<double>(n);
     for (int c = 0; c < 3; ++c)
