@@ -45,11 +45,9 @@ double cotangent(double cos_theta) {
     return sin_theta * 1e8 <= cos_theta ? 1e8 : cos_theta / sin_theta;
 }
 
-/// x with erf(x) = z, |z| < 1: Giles's approximation ("Approximating the erfinv function", GPU
-/// Computing Gems 2011) refined by Newton steps on erf, or on erfc in the upper tail, to double precision.
-double inverse_erf(double z) {
-    if (z < 0.0) return -inverse_erf(-z);
-    z = std::min(z, 1.0 - 1e-16);
+/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv function",
+/// GPU Computing Gems 2011): a starting point for Newton steps.
+double approximate_inverse_erf(double z) {
     double w = -std::log((1.0 - z) * (1.0 + z)), x;
     if (w < 5.0) {
         w -= 2.5;
@@ -64,8 +62,15 @@ double inverse_erf(double z) {
                          0.00943887047, 1.00167406, 2.83297682})
             x = c + x * w;
     }
-    x *= z;
-    // erf(x) − z, written with erfc in the tail where erf(x) rounds to 1.
+    return x * z;
+}
+
+/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation refined by Newton steps on
+/// erf, or on erfc in the upper tail where erf(x) rounds to 1.
+double inverse_erf(double z) {
+    if (z < 0.0) return -inverse_erf(-z);
+    z = std::min(z, 1.0 - 1e-16);
+    double x = approximate_inverse_erf(z);
     for (int i = 0; i < 3; ++i)
         x -= (z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z) / (2.0 * kInvSqrtPi * std::exp(-x * x));
     return x;
@@ -73,8 +78,8 @@ double inverse_erf(double z) {
 
 /// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along +x):
 /// inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz &
-/// d'Eon 2014, appendix; pbrt-v3 BeckmannSample11) by Newton steps kept inside a bisection bracket,
-/// to |F − u| < 1e-13, so that the map u → x̃ is smooth for the emissivity quadrature.
+/// d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Newton
+/// steps kept inside a bisection bracket, to |F − u| < 1e-13, so that the map u → x̃ is smooth.
 double visible_slope_x(double cos_theta, double u) {
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
@@ -83,13 +88,16 @@ double visible_slope_x(double cos_theta, double u) {
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
     double lo = std::min(-1.0, cot_theta - 1.0), hi = cot_theta;
     while (unnormalised(lo) / total > u) lo *= 2.0;
-    double x = 0.5 * (lo + hi);
+    const double theta = std::acos(cos_theta), erf_cot = std::erf(cot_theta);
+    const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
+    double x = approximate_inverse_erf(std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     for (int i = 0; i < 100; ++i) {
-        const double f = unnormalised(x) / total - u;
+        const double e = std::exp(-x * x);
+        const double f = (std::erfc(-x) + tan_theta * kInvSqrtPi * e) / total - u;
         if (std::abs(f) < 1e-13) break;
         (f > 0.0 ? hi : lo) = x;
-        const double derivative = 2.0 * kInvSqrtPi * std::exp(-x * x) * (1.0 - x * tan_theta) / total;
-        const double next = x - f / derivative;
+        const double next = x - f * total / (2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta));
         x = next > lo && next < hi ? next : 0.5 * (lo + hi);
         if (hi - lo < 1e-15 * (1.0 + std::abs(x))) break;
     }
