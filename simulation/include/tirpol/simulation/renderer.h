@@ -8,7 +8,9 @@
 /// with a shadow ray; escaped rays take the sky. Each path carries one wavelength node of the band's
 /// spectral grid (spectral_grid), drawn with probability ∝ its quadrature weight; emission is read
 /// from the emissivity table's column at exactly that node and reflection is evaluated at it, so
-/// ε + ρ = 1 holds per path and an isothermal enclosure is a blackbody for any n,k(λ).
+/// ε + ρ = 1 holds per path and an isothermal enclosure is a blackbody for any n,k(λ). Reflection is
+/// estimated with a control variate, (e0 − ε)·L_ref exactly plus the sampled reflection of L_in − L_ref
+/// (RenderOptions::control_variate; docs/simulation.md).
 ///
 /// Why path tracing rather than the paper's hemisphere sampling with a bounce-dependent decay:
 /// one sample per bounce spends the ray budget on pixels (anti-aliasing, edge pixels, sub-pixel
