@@ -137,10 +137,11 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
     state.counters["s1_std_error"] = error;
     state.counters["cpu_s_per_Mpath"] = stats.trace_cpu_seconds / (640.0 * 512.0 * spp * 1e-6);
     state.counters["trace_cpu_s"] = stats.trace_cpu_seconds;
-    std::printf("panels_night 640x512: pilot %d spp -> mean S1 std error %.4f; %d spp -> %.4f W/(m2 sr) in %.2f s "
-                "(%.2f s emissivity tables, %.1f CPU s tracing, i.e. %.1f s on 2 otherwise idle cores)\n",
-                kPilotSpp, pilot_error, spp, error, stats.seconds, stats.setup_seconds, stats.trace_cpu_seconds,
-                stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
+    std::printf(
+        "panels_night 640x512: pilot %d spp -> mean S1 std error %.4f; %d spp -> %.4f W/(m2 sr) in %.2f s "
+        "(%.2f s emissivity tables, %.1f CPU s tracing, i.e. %.1f s on 2 otherwise idle cores)\n",
+        kPilotSpp, pilot_error, spp, error, stats.seconds, stats.setup_seconds, stats.trace_cpu_seconds,
+        stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
 }
 BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 

@@ -41,7 +41,8 @@ MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
     // trigonometry. Where a × k = 0 (a beam along the normal) the s axis is core's fallback convention
     // (stokes_frame.h), so those rare exact cases take the frames themselves.
     const Vec3 n = Vec3::UnitZ();
-    const auto double_angle = [](const Vec3& beam, const Vec3& from_normal, const Vec3& to_normal, double& c2, double& s2) {
+    const auto double_angle = [](const Vec3& beam, const Vec3& from_normal, const Vec3& to_normal, double& c2,
+                                 double& s2) {
         const Vec3 k = beam.normalized();
         const Vec3 from_s = from_normal.cross(k), to_s = to_normal.cross(k);
         double c = to_s.dot(from_s), s = to_s.dot(k.cross(from_s));

@@ -58,8 +58,8 @@ struct PixelResult {
 /// Everything a path needs that does not change during a render.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats, RayRecorder* recorder,
-               bool control_variate)
+    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats,
+               RayRecorder* recorder, bool control_variate)
         : m_scene(scene), m_recorder(recorder), m_control_variate(control_variate) {
         std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
         // Increasing wavelengths: the emissivity tables' columns.
@@ -279,8 +279,9 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
     std::unique_ptr<const PathTracer> tracer_ptr;
-    arena.execute([&] { 
-        tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, options.control_variate);
+    arena.execute([&] {
+        tracer_ptr =
+            std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, options.control_variate);
     });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

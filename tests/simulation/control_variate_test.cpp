@@ -28,8 +28,10 @@ std::string enclosure(const std::string& material, bool with_objects) {
                                           "{type: uniform, temperature: 290}") +
                        "objects:\n";
     if (!with_objects)
-        return yaml + "  - {name: behind, geometry: {type: plane, size: [0.1, 0.1]}, transform: {translate: [0, -9, 0]}, "
-                      "material: " + material + ", temperature: 290}\n";
+        return yaml +
+               "  - {name: behind, geometry: {type: plane, size: [0.1, 0.1]}, transform: {translate: [0, -9, 0]}, "
+               "material: " +
+               material + ", temperature: 290}\n";
     return yaml + "  - {name: ground, geometry: {type: plane, size: [6, 6]}, material: " + material +
            ", temperature: 290}\n"
            "  - {name: ball, geometry: {type: sphere, radius: 0.5}, transform: {translate: [0, 0, 0.8]}, material: " +
@@ -51,7 +53,8 @@ TEST(ControlVariate, IsothermalEnclosureIsExactInEveryPixel) {
             // Exact up to rounding: emission ε·L_bb and the control variate's (e0 − ε)·L_bb add up to
             // e0·L_bb at each vertex, and every sampled L_in − L_ref is zero.
             ASSERT_NEAR(img.channel("S0")[i], sky.channel("S0")[i], 1e-6 * l_bb) << material << " pixel " << i;
-            for (const char* c : {"S1", "S2", "S3"}) ASSERT_NEAR(img.channel(c)[i], 0.0, 1e-6 * l_bb) << material << " " << c;
+            for (const char* c : {"S1", "S2", "S3"})
+                ASSERT_NEAR(img.channel(c)[i], 0.0, 1e-6 * l_bb) << material << " " << c;
         }
         EXPECT_GT(surface_pixels, img.pixel_count() / 2) << material;
     }
@@ -59,15 +62,17 @@ TEST(ControlVariate, IsothermalEnclosureIsExactInEveryPixel) {
 
 /// A warm rough-paint ball and a glossy-paint wall on concrete under a cold clear sky and the sun.
 Scene open_scene(const TempDir& dir, std::uint64_t seed) {
-    std::string yaml = test::scene_header(40, 30, 64, 1000, "fov_deg: 45, position: [0, -5, 1.5], look_at: [0, 0, 0.6]",
-                                          "{type: clear_sky, air_temperature: 275, zenith_emissivity: 0.7}") +
-                       "sun: {elevation_deg: 35, azimuth_deg: 200}\n"
-                       "objects:\n"
-                       "  - {name: ground, geometry: {type: plane, size: [30, 30]}, material: concrete, temperature: 285}\n"
-                       "  - {name: wall, geometry: {type: box, size: [4, 0.2, 2]}, transform: {translate: [0, 1.5, 1], "
-                       "rotate_deg: [0, 0, 20]}, material: glossy_black_paint, temperature: 300}\n"
-                       "  - {name: ball, geometry: {type: sphere, radius: 0.6}, transform: {translate: [0, 0, 0.6]}, "
-                       "material: " + std::string(kRoughPaint) + ", temperature: 320}\n";
+    std::string yaml =
+        test::scene_header(40, 30, 64, 1000, "fov_deg: 45, position: [0, -5, 1.5], look_at: [0, 0, 0.6]",
+                           "{type: clear_sky, air_temperature: 275, zenith_emissivity: 0.7}") +
+        "sun: {elevation_deg: 35, azimuth_deg: 200}\n"
+        "objects:\n"
+        "  - {name: ground, geometry: {type: plane, size: [30, 30]}, material: concrete, temperature: 285}\n"
+        "  - {name: wall, geometry: {type: box, size: [4, 0.2, 2]}, transform: {translate: [0, 1.5, 1], "
+        "rotate_deg: [0, 0, 20]}, material: glossy_black_paint, temperature: 300}\n"
+        "  - {name: ball, geometry: {type: sphere, radius: 0.6}, transform: {translate: [0, 0, 0.6]}, "
+        "material: " +
+        std::string(kRoughPaint) + ", temperature: 320}\n";
     Scene scene = test::load_scene_text(dir, yaml, "open" + std::to_string(seed) + ".yaml");
     scene.sampling.seed = seed;
     return scene;
@@ -92,8 +97,8 @@ TEST(ControlVariate, OpenSceneMatchesThePlainEstimatorWithLowerNoise) {
             ASSERT_GT(n, 20u) << "object " << object;
             const double sigma = std::sqrt(var) / static_cast<double>(n);
             diff /= static_cast<double>(n);
-            EXPECT_LE(std::abs(diff), 5.0 * sigma) << "object " << object << " " << c << ": mean difference " << diff
-                                                   << ", pooled σ " << sigma;
+            EXPECT_LE(std::abs(diff), 5.0 * sigma)
+                << "object " << object << " " << c << ": mean difference " << diff << ", pooled σ " << sigma;
         }
     }
     // Over all surface pixels, the control variate lowers the S1 variance (the sampled part is the

@@ -52,14 +52,14 @@ double approximate_inverse_erf(double z) {
     if (w < 5.0) {
         w -= 2.5;
         x = 2.81022636e-08;
-        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087, -0.00125372503,
-                         -0.00417768164, 0.246640727, 1.50140941})
+        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087, -0.00125372503, -0.00417768164,
+                         0.246640727, 1.50140941})
             x = c + x * w;
     } else {
         w = std::sqrt(w) - 3.0;
         x = -0.000200214257;
-        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773, -0.0076224613,
-                         0.00943887047, 1.00167406, 2.83297682})
+        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773, -0.0076224613, 0.00943887047,
+                         1.00167406, 2.83297682})
             x = c + x * w;
     }
     return x * z;
@@ -90,7 +90,8 @@ double visible_slope_x(double cos_theta, double u) {
     while (unnormalised(lo) / total > u) lo *= 2.0;
     const double theta = std::acos(cos_theta), erf_cot = std::erf(cot_theta);
     const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
-    double x = approximate_inverse_erf(std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
+    double x = approximate_inverse_erf(
+        std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     for (int i = 0; i < 100; ++i) {
         const double e = std::exp(-x * x);
@@ -162,7 +163,8 @@ double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const 
             // Visible normals have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the
             // h·wo cancel; slope sampling has D·cosθh (Torrance & Sparrow 1967).
             if (facets == FacetSampling::visible)
-                pdf += p_spec * d / ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 * std::max(wo.z(), kMinCosine));
+                pdf += p_spec * d /
+                       ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 * std::max(wo.z(), kMinCosine));
             else
                 pdf += p_spec * d * cos_h / (4.0 * ho);
         }
