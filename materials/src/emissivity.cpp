@@ -16,7 +16,7 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
     const double c = std::clamp(cos_theta, kMinCosine, 1.0);
     const Vec3 wo(std::sqrt(std::max(0.0, 1.0 - c * c)), 0.0, c);
     if (brdf.is_pure_delta()) {
-        const BrdfSample s = brdf.sample(wo, wavelength_um, 0.5, 0.5);
+        const BrdfSample s = brdf.quadrature_sample(wo, wavelength_um, 0.5, 0.5);
         return s.pdf > 0.0 ? StokesVector(s.weight.col(0)) : StokesVector(StokesVector::Zero());
     }
     const int order = std::clamp(options.order, 1, 10);
@@ -43,7 +43,7 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
             const double u1 = a + width * (1.0 - one_minus_v * one_minus_v);
             const double w1 = radial.weights[i] * width * 2.0 * one_minus_v;
             for (std::size_t j = 0; j < azimuth.nodes.size(); ++j) {
-                const BrdfSample s = brdf.sample(wo, wavelength_um, u1, azimuth.nodes[j]);
+                const BrdfSample s = brdf.quadrature_sample(wo, wavelength_um, u1, azimuth.nodes[j]);
                 if (!(s.pdf > 0.0)) continue;
                 sum += (w1 * azimuth.weights[j]) * s.weight.col(0);
             }

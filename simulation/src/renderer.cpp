@@ -37,8 +37,17 @@ std::uint64_t thread_cpu_ns() {
     return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ULL + static_cast<std::uint64_t>(t.tv_nsec);
 }
 
-MuellerMatrix rotation_between(const StokesFrame& from, const StokesFrame& to) {
-    return frame_rotation(frame_rotation_angle(from, to));
+/// m · R, where R = frame_rotation(frame_rotation_angle(from, to)) re-expresses Stokes given in `from`
+/// in `to` (both frames share their propagation). R only mixes S1 and S2, so
+/// only m's columns 1 and 2 change, and cos 2α, sin 2α come from the axes' dot products (no trig).
+MuellerMatrix times_rotation(const MuellerMatrix& m, const StokesFrame& from, const StokesFrame& to) {
+    const double c = to.reference.dot(from.reference), s = to.reference.dot(from.second_axis());
+    const double norm = c * c + s * s;
+    const double c2 = (c * c - s * s) / norm, s2 = 2.0 * c * s / norm;
+    MuellerMatrix out = m;
+    out.col(1) = c2 * m.col(1) - s2 * m.col(2);
+    out.col(2) = s2 * m.col(1) + c2 * m.col(2);
+    return out;
 }
 
 struct PixelResult {
@@ -49,8 +58,9 @@ struct PixelResult {
 /// Everything a path needs that does not change during a render.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats, RayRecorder* recorder)
-        : m_scene(scene), m_recorder(recorder) {
+    PathTracer(const Scene& scene, const std::filesystem::path& cache_dir, RenderStatistics& stats,
+               RayRecorder* recorder, bool control_variate)
+        : m_scene(scene), m_recorder(recorder), m_control_variate(control_variate) {
         std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
         // Increasing wavelengths: the emissivity tables' columns.
         std::sort(nodes.begin(), nodes.end(),
@@ -101,8 +111,12 @@ public:
         const Sun* sun = m_scene.sun ? &*m_scene.sun : nullptr;
         const double sun_radiance = sun ? sun->spectral_radiance(lambda) : 0.0;
 
-        // Maps Stokes of light travelling along −direction, in its world frame, to the camera frame.
-        MuellerMatrix throughput = rotation_between(world_frame(-direction), camera_frame);
+        // Maps Stokes of light travelling along −direction, given in `frame`, to the camera frame. The
+        // frame is the s/p frame of the last surface (first: the camera's), so each vertex needs one
+        // rotation, from its own s/p frame of the same ray (paper eq 12's two rotations through the
+        // world frame compose into this one).
+        MuellerMatrix throughput = MuellerMatrix::Identity();
+        StokesFrame frame = camera_frame;
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
         const int max_bounces = m_scene.sampling.max_bounces;
@@ -129,11 +143,17 @@ public:
             const materials::PolarizedBrdf& brdf = *m_scene.materials[object.material].brdf;
             const double temperature = object.temperature.at(*hit, m_scene.tracer->mesh(hit->object));
 
-            // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's world frame.
-            const MuellerMatrix leaving = throughput * rotation_between(surface_frame(wo, n), world_frame(wo));
+            // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's frame.
+            const MuellerMatrix leaving = times_rotation(throughput, surface_frame(wo, n), frame);
             const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
             radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
             if (bounce >= max_bounces) break;  // safety cap only: Russian roulette ends paths (below)
+
+            // Control variate for the reflected radiance ∫M·L_in·cosθi dωi (renderer.h): its exact
+            // value for an unpolarized incident radiance L_ref, (e0 − ε)·L_ref by Kirchhoff's law (the
+            // same table as the emission), plus the sampled estimate of ∫M·(L_in − L_ref)·cosθi dωi.
+            const double l_ref = m_control_variate ? reference_radiance(wo, n, lambda, temperature) : 0.0;
+            radiance += leaving * (StokesVector::UnitX() - emissivity) * l_ref;
 
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
             if (sun && sun->direction.dot(n) > 0.0 && sun->direction.dot(ng) > 0.0) {
@@ -150,10 +170,13 @@ public:
             const materials::BrdfSample s = brdf.sample(wo_local, lambda, rng.next(), rng.next());
             if (!(s.pdf > 0.0)) break;
             const Vec3 wi = basis.to_world(s.wi).normalized();
-            if (wi.dot(ng) <= 0.0) break;  // shading normal sent the path under the surface
-            // eq 12: incident light travels along −wi; its Stokes comes in world_frame(−wi) and the
-            // pBRDF wants it in surface_frame(−wi, n).
-            throughput = leaving * s.weight * rotation_between(world_frame(-wi), surface_frame(-wi, n));
+            if (wi.dot(ng) <= 0.0) {  // shading normal sent the path under the surface: L_in = 0 there
+                radiance -= leaving * s.weight.col(0) * l_ref;
+                break;
+            }
+            // eq 12: incident light travels along −wi; the pBRDF takes its Stokes in surface_frame(−wi, n).
+            throughput = leaving * s.weight;
+            frame = surface_frame(-wi, n);
             last_was_delta = s.is_delta;
 
             // Russian roulette after the third hit ends paths without bias: a path survives with
@@ -169,6 +192,9 @@ public:
                 if (!(survive > 0.0) || rng.next() >= survive) break;
                 throughput /= survive;
             }
+            // The control variate's −L_ref, carried by the same (roulette-weighted) throughput as the
+            // L_in that the continuing path collects; unpolarized, so only the first column acts.
+            radiance -= throughput.col(0) * l_ref;
             origin = p;
             direction = wi;
         }
@@ -176,8 +202,19 @@ public:
     }
 
 private:
+    /// L_ref of the control variate at a vertex (any value that does not depend on the sampled wi keeps
+    /// the estimate unbiased; the closer to the incident radiance, the lower the variance): the sky along
+    /// the mirror direction of wo, where most of a glossy lobe looks in an open scene, or the vertex's
+    /// own blackbody radiance when that direction is below the horizon (ground, walls, closed scenes,
+    /// where the surroundings are near the surface's temperature).
+    double reference_radiance(const Vec3& wo, const Vec3& n, double lambda, double temperature) const {
+        const Vec3 mirror = 2.0 * n.dot(wo) * n - wo;
+        return mirror.z() > 0.0 ? m_scene.sky.spectral_radiance(lambda, mirror) : planck_radiance(lambda, temperature);
+    }
+
     const Scene& m_scene;
     RayRecorder* m_recorder;
+    bool m_control_variate;
     std::vector<double> m_cdf, m_wavelengths;
     double m_band_weight_um = 0.0;
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
@@ -242,7 +279,10 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
     std::unique_ptr<const PathTracer> tracer_ptr;
-    arena.execute([&] { tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder); });
+    arena.execute([&] {
+        tracer_ptr =
+            std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, options.control_variate);
+    });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;

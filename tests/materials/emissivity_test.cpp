@@ -152,6 +152,9 @@ public:
     BrdfSample sample(const Vec3& wo, double wl, double u1, double u2) const override {
         return m_inner.sample(wo, wl, u1, u2);
     }
+    BrdfSample quadrature_sample(const Vec3& wo, double wl, double u1, double u2) const override {
+        return m_inner.quadrature_sample(wo, wl, u1, u2);
+    }
     double pdf(const Vec3& wi, const Vec3& wo, double wl) const override { return m_inner.pdf(wi, wo, wl); }
     std::vector<BrdfParameter> parameters(double wl) const override { return m_inner.parameters(wl); }
     std::vector<double> sample_u1_breaks(const Vec3& wo, double wl) const override {

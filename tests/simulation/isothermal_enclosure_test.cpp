@@ -37,7 +37,11 @@ void expect_blackbody(const Image& img, double l_bb, const std::string& what) {
     // quadrature, |Δε| < 2e-4, and its interpolation in angle and wavelength near grazing). Rough
     // (micro-facet) weights are heavy-tailed at grazing angles, so 24 samples can under-estimate a
     // pixel's variance: allow 2 % of pixels outside, and check the image means against their pooled
-    // error, which does not suffer from it.
+    // error, which does not suffer from it. At least one pixel may lie outside, so that a material
+    // seen in ~45 pixels (the narrow-band grids) is not held to zero outliers: over all 1338 surface
+    // pixels of the 8.8–9.3 µm grid at 48 spp, 0–5 (0.22 % on average over seeds 1–6; 0.08 % with
+    // slope sampling of the facets) fall outside and none at 400 spp — error bars too small at low
+    // spp, not a bias (per-vertex unbiasedness: tests/materials/sampling_test.cpp).
     const std::size_t n = img.pixel_count();
     std::size_t outside = 0;
     std::string examples;
@@ -55,7 +59,7 @@ void expect_blackbody(const Image& img, double l_bb, const std::string& what) {
             examples += line.str();
         }
     }
-    EXPECT_LE(static_cast<double>(outside), 0.02 * static_cast<double>(n)) << what << examples;
+    EXPECT_LE(static_cast<double>(outside), std::max(1.0, 0.02 * static_cast<double>(n))) << what << examples;
     const Eigen::Vector3d mean = sum / static_cast<double>(n);
     const Eigen::Vector3d sigma_mean = var_sum.cwiseSqrt() / static_cast<double>(n);
     for (int c = 0; c < 3; ++c)
@@ -69,7 +73,7 @@ TEST(IsothermalEnclosure, InlineModelsRenderTheBlackbody) {
                                  "{name: rough, source: test, model: microfacet, refractive_index: {n: 1.6, k: 0.1}, "
                                  "parameters: {sigma: 0.2, bias: 0.1, tau_deg: 20, omega_deg: 60, rho_d: 0.05, rho_v: 0.02}}"}) {
         const Scene scene = test::load_scene_text(dir, enclosure_scene(material));
-        expect_blackbody(render(scene), scene.band.radiance(290.0), material);
+        expect_blackbody(render(scene, test::without_control_variate()), scene.band.radiance(290.0), material);
     }
 }
 
@@ -103,7 +107,7 @@ void expect_library_blackbody(const std::vector<std::filesystem::path>& files, d
                             "material: {}, temperature: 290}}\n",
                             i, -3.0 + 1.2 * static_cast<double>(i % 6), 0.7 + 1.2 * static_cast<double>(i / 6), files[i].string());
     const Scene scene = test::load_scene_text(dir, yaml);
-    RenderOptions options;
+    RenderOptions options = test::without_control_variate();  // the sampling is under test
     options.emissivity_cache_dir = std::filesystem::path{};  // memory only: the test builds its tables
     const Image img = render(scene, options);
     const double l_bb = scene.band.radiance(290.0);

@@ -53,7 +53,7 @@ TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     TempDir dir;
     const Scene scene = test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, polished_aluminium(), 1536));
     ASSERT_EQ(scene.sampling.max_bounces, kDefaultMaxBounces);
-    const Image img = render(scene);
+    const Image img = render(scene, test::without_control_variate());
     const double l_bb = scene.band.radiance(300.0);
     const ImageMean m = mean_s0(img);
     EXPECT_LE(std::abs(m.s0 - l_bb), 5.0 * m.sigma + 2e-3 * l_bb)
@@ -78,7 +78,7 @@ TEST(PathTermination, ClosedRoughAluminiumBoxConvergesToTheBlackbody) {
     TempDir dir;
     const Scene scene = test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, "bare_aluminium", 256));
     const double l_bb = scene.band.radiance(300.0);
-    const ImageMean m = mean_s0(render(scene));
+    const ImageMean m = mean_s0(render(scene, test::without_control_variate()));
     EXPECT_LE(std::abs(m.s0 - l_bb), 5.0 * m.sigma + 2e-3 * l_bb)
         << "image mean S0 = " << m.s0 << ", L_bb = " << l_bb << ", σ = " << m.sigma;
     EXPECT_LT(m.sigma, 0.04 * l_bb) << "too noisy to tell";
@@ -89,7 +89,7 @@ TEST(PathTermination, ClosedRoughAluminiumBoxConvergesToTheBlackbody) {
 TEST(PathTermination, ALowBounceCapTruncatesTheCavity) {
     TempDir dir;
     const Scene scene = test::load_scene_text(dir, aluminium_box(4));
-    const ImageMean m = mean_s0(render(scene));
+    const ImageMean m = mean_s0(render(scene, test::without_control_variate()));
     EXPECT_LT(m.s0, 0.5 * scene.band.radiance(300.0));
 }
 

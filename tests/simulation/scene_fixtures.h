@@ -16,6 +16,15 @@ inline const char* kSmoothPaint = "{name: smooth_paint, source: \"test: generic 
 /// A grey diffuse surface.
 inline const char* kGreyDiffuse = "{name: grey_diffuse, source: \"test\", model: lambertian, parameters: {reflectance: 0.3}}";
 
+/// Render options without the reflection control variate (RenderOptions::control_variate): the
+/// plain path-traced estimator, for tests of the BRDF sampling, Russian roulette and the error bars,
+/// which the control variate would make exact (and vacuous) in an isothermal enclosure.
+inline RenderOptions without_control_variate() {
+    RenderOptions options;
+    options.control_variate = false;
+    return options;
+}
+
 /// Writes `yaml` to `<dir>/<name>` and loads it.
 inline Scene load_scene_text(const tirpol::test::TempDir& dir, const std::string& yaml,
                              const std::string& name = "scene.yaml") {

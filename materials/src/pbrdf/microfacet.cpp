@@ -37,6 +37,97 @@ MuellerMatrix MicrofacetBrdf::eval(const Vec3& wi, const Vec3& wo, double wavele
 }
 
 namespace {
+constexpr double kInvSqrtPi = 0.56418958354775628695;  // 1/√π
+
+/// cot θ for cos θ, capped where θ → 0.
+double cotangent(double cos_theta) {
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    return sin_theta * 1e8 <= cos_theta ? 1e8 : cos_theta / sin_theta;
+}
+
+/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv function",
+/// GPU Computing Gems 2011): a starting point for Newton steps.
+double approximate_inverse_erf(double z) {
+    double w = -std::log((1.0 - z) * (1.0 + z)), x;
+    if (w < 5.0) {
+        w -= 2.5;
+        x = 2.81022636e-08;
+        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087, -0.00125372503, -0.00417768164,
+                         0.246640727, 1.50140941})
+            x = c + x * w;
+    } else {
+        w = std::sqrt(w) - 3.0;
+        x = -0.000200214257;
+        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773, -0.0076224613, 0.00943887047,
+                         1.00167406, 2.83297682})
+            x = c + x * w;
+    }
+    return x * z;
+}
+
+/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation refined by Newton steps on
+/// erf, or on erfc in the upper tail where erf(x) rounds to 1.
+double inverse_erf(double z) {
+    if (z < 0.0) return -inverse_erf(-z);
+    z = std::min(z, 1.0 - 1e-16);
+    double x = approximate_inverse_erf(z);
+    for (int i = 0; i < 3; ++i)
+        x -= (z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z) / (2.0 * kInvSqrtPi * std::exp(-x * x));
+    return x;
+}
+
+/// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along +x):
+/// inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz &
+/// d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Newton
+/// steps kept inside a bisection bracket, to |F − u| < 1e-13, so that the map u → x̃ is smooth.
+double visible_slope_x(double cos_theta, double u) {
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
+    const auto unnormalised = [&](double x) { return std::erfc(-x) + tan_theta * kInvSqrtPi * std::exp(-x * x); };
+    const double total = unnormalised(cot_theta);
+    u = std::clamp(u, 1e-16, 1.0 - 1e-16);
+    double lo = std::min(-1.0, cot_theta - 1.0), hi = cot_theta;
+    while (unnormalised(lo) / total > u) lo *= 2.0;
+    const double theta = std::acos(cos_theta), erf_cot = std::erf(cot_theta);
+    const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
+    double x = approximate_inverse_erf(
+        std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    for (int i = 0; i < 100; ++i) {
+        const double e = std::exp(-x * x);
+        const double f = (std::erfc(-x) + tan_theta * kInvSqrtPi * e) / total - u;
+        if (std::abs(f) < 1e-13) break;
+        (f > 0.0 ? hi : lo) = x;
+        const double next = x - f * total / (2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta));
+        x = next > lo && next < hi ? next : 0.5 * (lo + hi);
+        if (hi - lo < 1e-15 * (1.0 + std::abs(x))) break;
+    }
+    return x;
+}
+}  // namespace
+
+Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
+    // Heitz & d'Eon, "Importance sampling microfacet-based BSDFs using the distribution of visible
+    // normals", EGSR 2014, §4: the Gaussian slopes are Beckmann's with α = √2σ; stretch wo to unit
+    // roughness, sample the visible slopes there, rotate to wo's azimuth, unstretch.
+    const double alpha = std::sqrt(2.0) * sigma;
+    const Vec3 stretched = Vec3(alpha * wo.x(), alpha * wo.y(), wo.z()).normalized();
+    double x, y;
+    if (stretched.z() > 0.99999999) {  // seen from the normal: the plain slope distribution
+        const double r = std::sqrt(-std::log1p(-std::min(u1, 1.0 - 1e-16)));
+        x = r * std::cos(2.0 * kPi * u2);
+        y = r * std::sin(2.0 * kPi * u2);
+    } else {
+        const double slope_x = visible_slope_x(stretched.z(), u1), slope_y = inverse_erf(2.0 * u2 - 1.0);
+        const double r = std::hypot(stretched.x(), stretched.y());
+        const double c = stretched.x() / r, s = stretched.y() / r;
+        x = c * slope_x - s * slope_y;
+        y = s * slope_x + c * slope_y;
+    }
+    return Vec3(-alpha * x, -alpha * y, 1.0).normalized();
+}
+
+namespace {
 // Probability of drawing from the specular lobe for the exitant direction with cosine `cos_o`: the
 // lobes' share of the reflected energy. The specular share uses the Fresnel reflectance at the
 // exitant angle, not at normal incidence: at grazing views a glossy surface reflects mostly
@@ -53,7 +144,12 @@ double specular_probability(const ShellTargetParameters<double>& p, double cos_o
     return std::clamp(specular / (specular + diffuse), 0.05, 0.95);
 }
 
-double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi, const Vec3& wo) {
+/// How the specular lobe draws its facet normal: from the normals visible from wo (the renderer's
+/// sampler) or from D(h)·cosθh (the smoother map in u that the emissivity quadrature integrates through).
+enum class FacetSampling { visible, slope };
+
+double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi, const Vec3& wo,
+                   FacetSampling facets) {
     if (!(wi.z() > 0.0) || !(wo.z() > 0.0)) return 0.0;
     double pdf = 0.0;
     if (p_spec > 0.0) {
@@ -63,33 +159,35 @@ double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const 
             const double cos_h = std::max(h.z(), kMinCosine);
             const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
             const double d = gaussian_facet_density(p.sigma, cos_h, tan2);
-            // Density of h is D·cosθh; the reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo)
-            // (Torrance & Sparrow 1967; Walter et al., EGSR 2007, eq 14).
-            pdf += p_spec * d * cos_h / (4.0 * ho);
+            // The reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq 14).
+            // Visible normals have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the
+            // h·wo cancel; slope sampling has D·cosθh (Torrance & Sparrow 1967).
+            if (facets == FacetSampling::visible)
+                pdf += p_spec * d /
+                       ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 * std::max(wo.z(), kMinCosine));
+            else
+                pdf += p_spec * d * cos_h / (4.0 * ho);
         }
     }
     if (p_spec < 1.0) pdf += (1.0 - p_spec) * detail::cosine_hemisphere_pdf(wi);
     return pdf;
 }
-}  // namespace
 
-double MicrofacetBrdf::specular_sampling_probability(const Vec3& wo, double wavelength_um) const {
-    return specular_probability(at(wavelength_um), wo.z());
-}
-
-BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo, double u1, double u2,
+                          FacetSampling facets) {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
-    const ShellTargetParameters<double> p = at(wavelength_um);
-    const double p_spec = specular_probability(p, wo.z());
     if (u1 < p_spec) {
         const double u = u1 / p_spec;
-        const double sigma = p.sigma;
-        const double tan2 = -2.0 * sigma * sigma * std::log1p(-std::min(u, 1.0 - 1e-16));
-        const double cos_h = 1.0 / std::sqrt(1.0 + tan2);
-        const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-        const double phi = 2.0 * kPi * u2;
-        const Vec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+        Vec3 h;
+        if (facets == FacetSampling::visible) {
+            h = sample_visible_normal(wo, p.sigma, u, u2);
+        } else {  // inverse CDF of the slope distribution: tan²θh = −2σ² ln(1 − u)
+            const double tan2 = -2.0 * p.sigma * p.sigma * std::log1p(-std::min(u, 1.0 - 1e-16));
+            const double cos_h = 1.0 / std::sqrt(1.0 + tan2);
+            const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+            h = Vec3(sin_h * std::cos(2.0 * kPi * u2), sin_h * std::sin(2.0 * kPi * u2), cos_h);
+        }
         const double ho = h.dot(wo);
         if (!(ho > 0.0)) return s;
         s.wi = 2.0 * ho * h - wo;
@@ -99,7 +197,7 @@ BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u
         const double u = (u1 - p_spec) / (1.0 - p_spec);
         s.wi = detail::sample_cosine_hemisphere(u, u2);
     }
-    s.pdf = mixture_pdf(p, p_spec, s.wi, wo);
+    s.pdf = mixture_pdf(p, p_spec, s.wi, wo, facets);
     if (!(s.pdf > 0.0) || !std::isfinite(s.pdf)) {
         s.pdf = 0.0;
         return s;
@@ -107,10 +205,25 @@ BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u
     s.weight = to_eigen(shell_target_mueller(p, microfacet_geometry(s.wi, wo))) * (s.wi.z() / s.pdf);
     return s;
 }
+}  // namespace
+
+double MicrofacetBrdf::specular_sampling_probability(const Vec3& wo, double wavelength_um) const {
+    return specular_probability(at(wavelength_um), wo.z());
+}
+
+BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+    const ShellTargetParameters<double> p = at(wavelength_um);
+    return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::visible);
+}
+
+BrdfSample MicrofacetBrdf::quadrature_sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+    const ShellTargetParameters<double> p = at(wavelength_um);
+    return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::slope);
+}
 
 double MicrofacetBrdf::pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
-    return mixture_pdf(p, specular_probability(p, wo.z()), wi, wo);
+    return mixture_pdf(p, specular_probability(p, wo.z()), wi, wo, FacetSampling::visible);
 }
 
 std::vector<double> MicrofacetBrdf::sample_u1_breaks(const Vec3& wo, double wavelength_um) const {

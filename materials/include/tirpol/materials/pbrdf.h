@@ -57,6 +57,13 @@ public:
     /// Importance-samples wi for the exitant `wo` from two uniform numbers in [0,1).
     virtual BrdfSample sample(const Vec3& wo, double wavelength_um, double u1, double u2) const = 0;
 
+    /// A deterministic map of (u1, u2) for quadratures (emissivity.h): same contract as `sample`
+    /// (weight = M·cosθi/pdf with its own pdf, breaks at sample_u1_breaks, the is_isotropic mirror
+    /// property), possibly another distribution whose map is smoother in u. Default: `sample`.
+    virtual BrdfSample quadrature_sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+        return sample(wo, wavelength_um, u1, u2);
+    }
+
     /// Solid-angle pdf of `sample` drawing wi given wo (0 for delta lobes).
     virtual double pdf(const Vec3& wi, const Vec3& wo, double wavelength_um) const = 0;
 
