@@ -16,7 +16,7 @@ namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 const double kAopStdCapDeg = 180.0 / std::sqrt(12.0);
 
-const AnalyzerImage& image_for(const std::vector<AnalyzerImage>& images, double angle_deg) {
+const AnalyzerPlanes& image_for(const std::vector<AnalyzerPlanes>& images, double angle_deg) {
     for (const auto& im : images)
         if (std::abs(im.angle_deg - angle_deg) < 0.01) return im;
     std::string present;
@@ -27,19 +27,19 @@ const AnalyzerImage& image_for(const std::vector<AnalyzerImage>& images, double 
 
 /// The inputs in the model's angle order, checked before anything is computed.
 struct ValidatedInputs {
-    std::vector<const AnalyzerImage*> images;
+    std::vector<const AnalyzerPlanes*> images;
     std::vector<const WireGridPosition*> grid;  ///< empty without a wire-grid calibration
     bool have_std = true;          ///< every image has its σ plane
     bool grid_covariance = false;  ///< every grid position has the fit's (co)variances
 };
 
 /// Validates everything first: no partial output for a bad input.
-ValidatedInputs validate(const std::vector<AnalyzerImage>& images, int width, int height, const AnalyzerModel& model,
+ValidatedInputs validate(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
                          const WireGridCalibration* wire_grid) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     ValidatedInputs v;
     for (const auto& pos : model.positions) {
-        const AnalyzerImage& im = image_for(images, pos.nominal_angle_deg);
+        const AnalyzerPlanes& im = image_for(images, pos.nominal_angle_deg);
         detail::check_plane(im.signal, n, im.source, width, height);
         if (im.signal_std.empty())
             v.have_std = false;
@@ -222,6 +222,14 @@ void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matri
 }  // namespace
 
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height, const AnalyzerModel& model,
+                    const WireGridCalibration* wire_grid, const ReductionOptions& options) {
+    std::vector<AnalyzerPlanes> views;
+    views.reserve(images.size());
+    for (const AnalyzerImage& im : images) views.push_back({im.angle_deg, im.signal, im.signal_std, im.source});
+    return reduce_stokes(views, width, height, model, wire_grid, options);
+}
+
+Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
                     const WireGridCalibration* wire_grid, const ReductionOptions& options) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     const Eigen::Matrix3Xd drm = model.data_reduction_matrix();

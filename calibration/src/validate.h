@@ -3,15 +3,15 @@
 // loops themselves never throw (STYLE.md).
 
 #include <cmath>
+#include <span>
 #include <string>
-#include <vector>
 
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration::detail {
 
 /// Throws unless `plane` has `expected` values, all finite; `what` names the source in the message.
-inline void check_plane(const std::vector<float>& plane, std::size_t expected, const std::string& what,
+inline void check_plane(std::span<const float> plane, std::size_t expected, const std::string& what,
                         int width, int height) {
     if (plane.size() != expected)
         fail("{}: image has {} pixels, expected {} ({}×{}, the size of the other images)", what, plane.size(),

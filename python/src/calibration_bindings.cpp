@@ -3,7 +3,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <mutex>
+#include <span>
 
 #include "bindings.h"
 #include "image_conversion.h"
@@ -64,52 +64,27 @@ void bind_analyzer(py::module_& m) {
         .def("condition_number", &AnalyzerModel::condition_number);
 }
 
-/// Buffers for the input planes, kept between reduce() calls. Fresh megabyte-sized vectors on every
-/// call are handed back to the kernel by glibc's heap trimming and page-faulted in again next time,
-/// which cost several times the copy itself (bench/python_bench.cpp at 640×512, wall time: 17 % over
-/// the C++ call with fresh buffers, 5 % with glibc's trimming turned off by MALLOC_TRIM_THRESHOLD_).
-/// Holds at most the planes of the largest call.
-class PlanePool {
-public:
-    std::vector<float> take() {
-        std::lock_guard lock(m_mutex);
-        if (m_free.empty()) return {};
-        std::vector<float> plane = std::move(m_free.back());
-        m_free.pop_back();
-        return plane;
-    }
-    void give_back(std::vector<calibration::AnalyzerImage>& images) {
-        std::lock_guard lock(m_mutex);
-        for (auto& a : images)
-            for (auto* plane : {&a.signal, &a.signal_std})
-                if (plane->capacity() > 0) m_free.push_back(std::move(*plane));
-    }
-
-private:
-    std::mutex m_mutex;  // reduce() runs without the GIL: two Python threads may call it at once
-    std::vector<std::vector<float>> m_free;
-};
-
-PlanePool& plane_pool() {
-    static PlanePool pool;
-    return pool;
-}
-
-/// The analyzer images of `images` (angle_deg → (H, W) array) with their σ from `stds` (same keys).
-std::vector<calibration::AnalyzerImage> analyzer_images(const py::dict& images, const py::object& stds, int& width,
-                                                        int& height) {
-    std::vector<calibration::AnalyzerImage> out;
+/// The analyzer images of `images` (angle_deg → (H, W) array) with their σ from `stds` (same keys), as
+/// views of float32 arrays kept in `arrays`: float32 C-contiguous inputs are not copied (the
+/// overhead bench/python_bench.cpp measures).
+std::vector<calibration::AnalyzerPlanes> analyzer_planes(const py::dict& images, const py::object& stds,
+                                                         std::vector<py::array_t<float>>& arrays, int& width,
+                                                         int& height) {
+    const auto view = [&](const py::handle& value, const std::string& what) {
+        arrays.push_back(float_plane(value, what, width, height));
+        return std::span<const float>(arrays.back().data(), static_cast<std::size_t>(arrays.back().size()));
+    };
+    std::vector<calibration::AnalyzerPlanes> out;
     for (const auto& [key, value] : images) {
-        calibration::AnalyzerImage a;
+        calibration::AnalyzerPlanes a;
         a.angle_deg = key.cast<double>();
         a.source = fmt::format("images[{}]", a.angle_deg);
-        a.signal = plane_from_array(value, a.source, width, height, plane_pool().take());
+        a.signal = view(value, a.source);
         if (!stds.is_none()) {
             const auto std_dict = stds.cast<py::dict>();
             if (!std_dict.contains(key))
                 fail("stds: no array for angle {} (every image needs its σ, or pass none)", a.angle_deg);
-            a.signal_std = plane_from_array(std_dict[key], fmt::format("stds[{}]", a.angle_deg), width, height,
-                                            plane_pool().take());
+            a.signal_std = view(std_dict[key], fmt::format("stds[{}]", a.angle_deg));
         }
         out.push_back(std::move(a));
     }
@@ -124,7 +99,8 @@ void bind_reduce(py::module_& m) {
            bool project_to_realizable, bool include_slar, const std::string& units,
            const calibration::WireGridCalibration* wire_grid) {
             int width = 0, height = 0;
-            auto inputs = analyzer_images(images, stds, width, height);
+            std::vector<py::array_t<float>> arrays;  // owns what the views see until the end of the call
+            const auto inputs = analyzer_planes(images, stds, arrays, width, height);
             if (!model) {
                 std::vector<double> angles;
                 for (const auto& a : inputs) angles.push_back(a.angle_deg);
@@ -135,11 +111,6 @@ void bind_reduce(py::module_& m) {
             options.project_to_realizable = project_to_realizable;
             options.include_slar = include_slar;
             options.units = units;
-            // The input planes go back to the pool whether the reduction ends or is interrupted.
-            struct GiveBack {
-                std::vector<calibration::AnalyzerImage>& inputs;
-                ~GiveBack() { plane_pool().give_back(inputs); }
-            } give_back{inputs};
             Image result = run_interruptible([&](const std::atomic<bool>& cancel) {
                 calibration::ReductionOptions o = options;
                 o.cancel = &cancel;

@@ -49,9 +49,8 @@ py::array_t<float> array_from_plane(std::vector<float>&& plane, int width, int h
                               free_when_done);
 }
 
-std::vector<float> plane_from_array(const py::handle& array, const std::string& what, int& width, int& height,
-                                    std::vector<float> buffer) {
-    const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+py::array_t<float> float_plane(const py::handle& array, const std::string& what, int& width, int& height) {
+    auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
     if (!a)
         fail("{}: expected a 2-D array of numbers (H, W), got {}", what,
              py::str(py::type::of(array)).cast<std::string>());
@@ -61,8 +60,12 @@ std::vector<float> plane_from_array(const py::handle& array, const std::string& 
         fail("{}: shape ({}, {}) differs from the first array's ({}, {})", what, h, w, height, width);
     width = w;
     height = h;
-    buffer.assign(a.data(), a.data() + a.size());
-    return buffer;
+    return a;
+}
+
+std::vector<float> plane_from_array(const py::handle& array, const std::string& what, int& width, int& height) {
+    const auto a = float_plane(array, what, width, height);
+    return {a.data(), a.data() + a.size()};
 }
 
 py::object to_python(Image&& image) {

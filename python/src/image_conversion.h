@@ -16,11 +16,13 @@ namespace tirpol::python {
 /// A float32 array of shape (height, width) that takes over `plane` without copying it.
 pybind11::array_t<float> array_from_plane(std::vector<float>&& plane, int width, int height);
 
-/// Copies a 2-D array (any real dtype, converted to float32) into a plane; `what` names it in errors
-/// (tirpol::Error if it is not 2-D or its shape is not (height, width) when those are > 0). The copy
-/// goes into `buffer`, whose memory is reused when its capacity suffices.
-std::vector<float> plane_from_array(const pybind11::handle& array, const std::string& what, int& width, int& height,
-                                    std::vector<float> buffer = {});
+/// A 2-D array as C-contiguous float32: the array itself when it already is one (no copy), else a
+/// converted copy. `what` names it in errors (tirpol::Error if it is not 2-D or its shape is not
+/// (height, width) when those are > 0); sets width and height from the first array.
+pybind11::array_t<float> float_plane(const pybind11::handle& array, const std::string& what, int& width, int& height);
+
+/// float_plane's values copied into a plane the library can own.
+std::vector<float> plane_from_array(const pybind11::handle& array, const std::string& what, int& width, int& height);
 
 /// A tirpol.Image holding the channels of `image` (moved, not copied) in channel order.
 pybind11::object to_python(Image&& image);

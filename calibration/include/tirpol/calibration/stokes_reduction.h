@@ -5,6 +5,8 @@
 
 #include <atomic>
 #include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "tirpol/calibration/analyzer.h"
@@ -19,6 +21,15 @@ struct AnalyzerImage {
     double angle_deg = 0.0;
     std::vector<float> signal;
     std::vector<float> signal_std;
+    std::string source;
+};
+
+/// The same measurement as a view of planes owned elsewhere (numpy arrays, a mapped file): what
+/// reduce_stokes reads, so such callers reduce without copying their pixels.
+struct AnalyzerPlanes {
+    double angle_deg = 0.0;
+    std::span<const float> signal;
+    std::span<const float> signal_std;  ///< empty = unknown
     std::string source;
 };
 
@@ -44,6 +55,9 @@ struct ReductionOptions {
 /// Attributes: units, units_DoLP, units_AoP, analyzer_angles_deg, drm (row-major 3×N),
 /// unrealizable_pixels.
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height, const AnalyzerModel& model,
+                    const WireGridCalibration* wire_grid = nullptr, const ReductionOptions& options = {});
+/// The same on views; the planes must outlive the call.
+Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
                     const WireGridCalibration* wire_grid = nullptr, const ReductionOptions& options = {});
 
 }  // namespace tirpol::calibration
