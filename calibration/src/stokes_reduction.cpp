@@ -7,6 +7,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/polarizer_angle.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -17,7 +18,7 @@ const double kAopStdCapDeg = 180.0 / std::sqrt(12.0);
 
 const AnalyzerImage& image_for(const std::vector<AnalyzerImage>& images, double angle_deg) {
     for (const auto& im : images)
-        if (std::abs(im.angle_deg - angle_deg) < 0.01) return im;
+        if (same_polarizer_angle(im.angle_deg, angle_deg)) return im;
     std::string present;
     for (const auto& im : images) present += (present.empty() ? "" : ", ") + fmt::format("{:g}°", im.angle_deg);
     fail("no image at analyzer angle {:g}° (the analyzer model needs it); images present at: {}", angle_deg,
@@ -75,9 +76,7 @@ Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int hei
     std::vector<float*> slar_p(n_angles, nullptr);
     if (options.include_slar)
         for (std::size_t k = 0; k < n_angles; ++k) {
-            std::string tag = fmt::format("{:g}", model.positions[k].nominal_angle_deg);
-            std::replace(tag.begin(), tag.end(), '.', 'p');
-            slar_p[k] = out.add_channel("L_SLAR_" + tag).data();
+            slar_p[k] = out.add_channel("L_SLAR_" + polarizer_angle_tag(model.positions[k].nominal_angle_deg)).data();
         }
 
     // Hot loop on plain arrays (no per-pixel Eigen temporaries of dynamic size): per angle k, the

@@ -16,6 +16,7 @@
 #include "tirpol/core/source_tree.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
@@ -196,7 +197,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
         world.set_scene(truth.front());
         // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
         const auto lab = write_plan(sessions / "lab_plan.yaml",
-                                    reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * opt.frames_per_angle), false,
+                                    reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 20.0, kZeroCelsiusK + 40.0}, 0.0, 2 * opt.frames_per_angle), false,
                                     "digital twin: laboratory", opt.frames_per_angle);
         instrument.acquire(lab, sessions / "lab");
         result.sessions.push_back(sessions / "lab");
@@ -206,7 +207,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
             std::string refs;
             if (v == 0)
                 for (double a : {0.0, 45.0, 90.0, 135.0})
-                    refs += reference_yaml({273.15, 298.15}, a, 2 * opt.frames_per_angle);
+                    refs += reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 25.0}, a, 2 * opt.frames_per_angle);
             const std::string name = fmt::format("view{}", v);
             const auto plan = write_plan(sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
                                          opt.frames_per_angle);
