@@ -82,8 +82,7 @@ void demo_fitting(const std::filesystem::path& out_dir) {
                 result.termination.substr(0, result.termination.find(':')).c_str(), result.reduced_chi2, result.dof,
                 100.0 * result.fraction_reaching_best, result.starts.size());
     std::printf("  %-10s %10s %12s %22s\n", "parameter", "true", "fitted", "2σ interval");
-    const double true_values[] = {truth.n,     truth.k,   truth.sigma, truth.bias, rad_to_deg(truth.tau_rad),
-                                  rad_to_deg(truth.omega_rad), truth.rho_d, truth.rho_v};
+    const auto true_values = fitting::fit_order_values(truth);
     for (std::size_t i = 0; i < result.parameters.size(); ++i) {
         const fitting::FittedParameter& f = result.parameters[i];
         if (f.fixed) {

@@ -76,9 +76,7 @@ void apply_init(const std::string& path, double wavelength_um, fitting::Microfac
     if (!brdf)
         fail("--init {}: model \"{}\" is not the micro-facet model; expected `model: microfacet`", path,
              material.brdf->model());
-    const materials::ShellTargetParameters<double> p = brdf->at(wavelength_um);
-    const double values[] = {p.n,     p.k,   p.sigma, p.bias, rad_to_deg(p.tau_rad), rad_to_deg(p.omega_rad),
-                             p.rho_d, p.rho_v};
+    const auto values = fitting::fit_order_values(brdf->at(wavelength_um));
     for (std::size_t i = 0; i < fitting::kMicrofacetParameterCount; ++i) options.parameters[i].initial = values[i];
 }
 

@@ -3,10 +3,10 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "tirpol/core/checks.h"
 #include "tirpol/core/config.h"
+#include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/limits.h"
 
@@ -133,15 +133,12 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
 }
 
 std::string emissivity_csv(const std::vector<EmissivityResult>& results) {
-    std::ostringstream out;
-    out.precision(8);
-    out << "name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,eps_s0_2sigma,eps_s1,"
-           "eps_s1_2sigma,eps_s2,eps_s2_2sigma\n";
+    std::vector<EmissivityCsvRow> rows;
     for (const auto& r : results)
-        out << r.name << ',' << r.view_angle_deg << ',' << r.temperature_k << ',' << r.pixels << ',' << r.l_dw << ','
-            << r.l_bb << ',' << r.eps_s0 << ',' << r.eps_s0_2sigma << ',' << r.eps_s1 << ',' << r.eps_s1_2sigma << ','
-            << r.eps_s2 << ',' << r.eps_s2_2sigma << '\n';
-    return out.str();
+        rows.push_back({r.name, r.view_angle_deg, r.temperature_k, r.pixels, r.l_dw, r.l_bb, EmissivityFrame::Image,
+                        r.eps_s0, r.eps_s0_2sigma / 2.0, r.eps_s1, r.eps_s1_2sigma / 2.0, r.eps_s2,
+                        r.eps_s2_2sigma / 2.0, std::nullopt, 0});
+    return emissivity_csv_text(rows);
 }
 
 }  // namespace tirpol::calibration

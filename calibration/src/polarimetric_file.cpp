@@ -8,16 +8,11 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/polarizer_angle.h"
 
 namespace tirpol::calibration {
 
 namespace {
-std::string angle_tag(double angle_deg) {
-    std::string s = fmt::format("{:g}", angle_deg);
-    for (char& c : s)
-        if (c == '.') c = 'p';
-    return s;
-}
 // YAML double-quoted scalar (the strings we write are paths and ISO dates).
 std::string quoted(const std::string& s) {
     std::string out = "\"";
@@ -37,13 +32,13 @@ std::string polarimetric_maps_path(const std::string& yaml_path) {
 void write_polarimetric_calibration(const std::string& yaml_path, const PolarimetricCalibration& cal) {
     Image maps(cal.wire_grid.width, cal.wire_grid.height);
     for (const auto& p : cal.wire_grid.positions) {
-        maps.set_channel("tau_" + angle_tag(p.angle_deg), p.tau);
-        maps.set_channel("B_" + angle_tag(p.angle_deg), p.background);
-        maps.set_channel("residual_" + angle_tag(p.angle_deg), p.residual_rms);
+        maps.set_channel("tau_" + polarizer_angle_tag(p.angle_deg), p.tau);
+        maps.set_channel("B_" + polarizer_angle_tag(p.angle_deg), p.background);
+        maps.set_channel("residual_" + polarizer_angle_tag(p.angle_deg), p.residual_rms);
         if (p.has_covariance()) {
-            maps.set_channel("tau_var_" + angle_tag(p.angle_deg), p.tau_var);
-            maps.set_channel("B_var_" + angle_tag(p.angle_deg), p.background_var);
-            maps.set_channel("tau_B_cov_" + angle_tag(p.angle_deg), p.tau_background_cov);
+            maps.set_channel("tau_var_" + polarizer_angle_tag(p.angle_deg), p.tau_var);
+            maps.set_channel("B_var_" + polarizer_angle_tag(p.angle_deg), p.background_var);
+            maps.set_channel("tau_B_cov_" + polarizer_angle_tag(p.angle_deg), p.tau_background_cov);
         }
     }
     maps.attributes()["tirpol_calibration"] = std::string("polarimetric-maps");
@@ -101,7 +96,7 @@ PolarimetricCalibration read_polarimetric_calibration(const std::string& yaml_pa
     cal.wire_grid.width = maps.width();
     cal.wire_grid.height = maps.height();
     for (const auto& p : cal.analyzer.positions) {
-        const std::string tag = angle_tag(p.nominal_angle_deg);
+        const std::string tag = polarizer_angle_tag(p.nominal_angle_deg);
         if (!maps.has_channel("tau_" + tag))
             fail("{}: no channel tau_{} for analyzer angle {:g}° listed in {}", maps_path, tag, p.nominal_angle_deg,
                  yaml_path);

@@ -236,17 +236,6 @@ std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const s
     return radiance;
 }
 
-std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance,
-                                      std::optional<double> fpa_temperature_k) {
-    const detail::FpaState state(cal, fpa_temperature_k, "radiance → counts input");
-    std::vector<float> counts(radiance.size());
-    for (std::size_t i = 0; i < radiance.size(); ++i) {
-        const double l = radiance[i];
-        counts[i] = static_cast<float>(state.offset(i) + state.gain(i) * l + state.quadratic(i) * l * l);
-    }
-    return counts;
-}
-
 RadiometricCalibration at_fpa_temperature(const RadiometricCalibration& cal, std::optional<double> fpa_temperature_k,
                                           const std::string& what) {
     const detail::FpaState state(cal, fpa_temperature_k, what);

@@ -12,6 +12,7 @@
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/polarizer_angle.h"
 #include "tirpol/core/utc_time.h"
 #include "validate.h"
 
@@ -28,15 +29,12 @@ std::optional<double> session_saturation_counts(const SessionManifest& m) {
 namespace {
 std::string manifest_path(const fs::path& dir) { return (dir / kSessionManifestName).string(); }
 
-/// a − b folded into [−180, 180) degrees.
-double angle_offset_deg(double a, double b) { return std::fmod(std::fmod(a - b + 180.0, 360.0) + 360.0, 360.0) - 180.0; }
-
 /// Where the polarizer was for a record's frames (record_polarizer_angle_deg: measured from schema v2,
 /// requested for v1), as an offset from the requested angle. Refuses a v2 record whose read-backs
 /// (around the frames) are further from the request than the plan's angle_tolerance_deg: its frames
 /// were not taken at its angle.
 double measured_offset_deg(const fs::path& dir, const SessionManifest& m, const SessionRecord& r) {
-    const double offset = angle_offset_deg(record_polarizer_angle_deg(m, r), r.angle_deg_requested);
+    const double offset = angle_difference_deg(record_polarizer_angle_deg(m, r), r.angle_deg_requested);
     const auto tol = m.plan.find("angle_tolerance_deg");
     if (m.schema_version < 2 || tol == m.plan.end() || !tol->is_number()) return offset;
     std::vector<std::pair<const char*, double>> readings{{"angle_deg_measured", r.angle_deg_measured}};
@@ -45,7 +43,7 @@ double measured_offset_deg(const fs::path& dir, const SessionManifest& m, const 
         readings.emplace_back("timing.angle_deg_after_frames", r.timing->angle_deg_after_frames);
     }
     for (const auto& [field, value] : readings)
-        if (std::abs(angle_offset_deg(value, r.angle_deg_requested)) > tol->get<double>())
+        if (std::abs(angle_difference_deg(value, r.angle_deg_requested)) > tol->get<double>())
             fail("{}: record {}: {} is {:.4f}° for a requested {:.4f}°, further than the plan's angle_tolerance_deg ({}°): "
                  "its frames were not taken at its angle; re-take this step",
                  manifest_path(dir), r.file, field, value, r.angle_deg_requested, tol->get<double>());
@@ -291,7 +289,7 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
         for (const auto& pos : out.wire_grid.positions) {
             const SessionRecord* rec = nullptr;
             for (const auto& r : m.records)
-                if (r.kind == RecordKind::Polarizer && r.repeat == repeat && std::abs(r.angle_deg_requested - pos.angle_deg) < 0.01)
+                if (r.kind == RecordKind::Polarizer && r.repeat == repeat && same_polarizer_angle(r.angle_deg_requested, pos.angle_deg))
                     rec = &r;
             if (rec) measured_offset_deg(dir, m, *rec);
             if (!rec)
@@ -379,7 +377,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                  (dir / r.file).string(), sat, f.saturated.size(), *session_saturation_counts(m),
                  100.0 * options.max_saturated_fraction);
         const double offset_deg = measured_offset_deg(dir, m, r);
-        Accumulator& acc = by_angle[std::lround(r.angle_deg_requested * 100.0)];
+        Accumulator& acc = by_angle[polarizer_angle_key(r.angle_deg_requested)];
         acc.offset_sum_deg += offset_deg;
         if (acc.n == 0) {
             acc.sum.assign(f.radiance.size(), 0.0);
@@ -402,7 +400,7 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
         AnalyzerImage im;
         // The ideal analyzer sits where the stage read back; a calibrated one is indexed by nominal angle
         // and carries its own fitted axis angles.
-        im.angle_deg = static_cast<double>(key) / 100.0 + (polarimetric ? 0.0 : acc.offset_sum_deg / acc.n);
+        im.angle_deg = polarizer_angle_deg(key) + (polarimetric ? 0.0 : acc.offset_sum_deg / acc.n);
         im.source = acc.source;
         for (std::size_t i = 0; i < acc.sum.size(); ++i) {
             im.signal.push_back(static_cast<float>(acc.sum[i] / acc.n));

@@ -8,6 +8,7 @@
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/polarizer_angle.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -18,7 +19,7 @@ const double kAopStdCapDeg = 180.0 / std::sqrt(12.0);
 
 const AnalyzerPlanes& image_for(const std::vector<AnalyzerPlanes>& images, double angle_deg) {
     for (const auto& im : images)
-        if (std::abs(im.angle_deg - angle_deg) < 0.01) return im;
+        if (same_polarizer_angle(im.angle_deg, angle_deg)) return im;
     std::string present;
     for (const auto& im : images) present += (present.empty() ? "" : ", ") + fmt::format("{:g}°", im.angle_deg);
     fail("no image at analyzer angle {:g}° (the analyzer model needs it); images present at: {}", angle_deg,
@@ -150,11 +151,8 @@ OutputPlanes add_output_channels(Image& out, const ValidatedInputs& v, const Ana
         o.aop_std = &out.add_channel("AoP_std");
     }
     if (options.include_slar)
-        for (std::size_t k = 0; k < planes.n_angles; ++k) {
-            std::string tag = fmt::format("{:g}", model.positions[k].nominal_angle_deg);
-            std::replace(tag.begin(), tag.end(), '.', 'p');
-            planes.slar[k] = out.add_channel("L_SLAR_" + tag).data();
-        }
+        for (std::size_t k = 0; k < planes.n_angles; ++k)
+            planes.slar[k] = out.add_channel("L_SLAR_" + polarizer_angle_tag(model.positions[k].nominal_angle_deg)).data();
     return o;
 }
 

@@ -6,13 +6,14 @@
 #include <map>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/polarizer_angle.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
 
 const WireGridPosition& WireGridCalibration::at(double angle_deg) const {
     for (const auto& p : positions)
-        if (std::abs(p.angle_deg - angle_deg) < 0.01) return p;
+        if (same_polarizer_angle(p.angle_deg, angle_deg)) return p;
     std::string present;
     for (const auto& p : positions) present += (present.empty() ? "" : ", ") + fmt::format("{:g}°", p.angle_deg);
     fail("wire-grid calibration has no analyzer angle {:g}°; it has {}", angle_deg, present.empty() ? "none" : present);
@@ -27,7 +28,7 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
         detail::check_plane(f.signal, n, f.source, width, height);
         if (!(f.temperature_k > 0.0)) fail("{}: blackbody temperature {} K; expected > 0 K", f.source, f.temperature_k);
         if (!f.signal_std.empty()) detail::check_plane(f.signal_std, n, f.source + " (std)", width, height);
-        by_angle[std::lround(f.angle_deg * 100.0)].push_back(&f);
+        by_angle[polarizer_angle_key(f.angle_deg)].push_back(&f);
     }
     const bool with_covariance =
         std::all_of(frames.begin(), frames.end(), [](const auto& f) { return !f.signal_std.empty(); });
@@ -36,7 +37,7 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
     cal.width = width;
     cal.height = height;
     for (const auto& [key, group] : by_angle) {
-        const double angle = static_cast<double>(key) / 100.0;
+        const double angle = polarizer_angle_deg(key);
         std::vector<double> temps;
         for (const auto* f : group)
             if (std::none_of(temps.begin(), temps.end(), [&](double t) { return std::abs(t - f->temperature_k) < 1e-3; }))

@@ -1,57 +1,14 @@
 #include "tirpol/fitting/emissivity_data.h"
 
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <map>
-#include <sstream>
 
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/limits.h"
 
 namespace tirpol::fitting {
-
-namespace {
-
-std::string trim(std::string_view s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    if (b == std::string_view::npos) return {};
-    const auto e = s.find_last_not_of(" \t\r");
-    return std::string(s.substr(b, e - b + 1));
-}
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-    if (!line.empty() && line.back() == ',') out.emplace_back();
-    return out;
-}
-
-// Column lookup by the first of several accepted names; -1 if none is present.
-int find_column(const std::vector<std::string>& header, std::initializer_list<std::string_view> names) {
-    for (std::string_view name : names) {
-        const auto it = std::find(header.begin(), header.end(), name);
-        if (it != header.end()) return static_cast<int>(it - header.begin());
-    }
-    return -1;
-}
-
-struct UncertaintyColumn {
-    int index = -1;
-    double to_sigma = 1.0;  // 0.5 for a 2σ column
-};
-
-UncertaintyColumn find_uncertainty(const std::vector<std::string>& header, std::string_view two_sigma,
-                                   std::string_view one_sigma_a, std::string_view one_sigma_b) {
-    if (const int i = find_column(header, {two_sigma}); i >= 0) return {i, 0.5};
-    return {find_column(header, {one_sigma_a, one_sigma_b}), 1.0};
-}
-
-}  // namespace
 
 void validate_dataset(const EmissivityDataset& d) {
     if (!(std::isfinite(d.wavelength_um) && d.wavelength_um > 0.0))
@@ -89,95 +46,43 @@ void validate_dataset(const EmissivityDataset& d) {
 }
 
 std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& path, double default_wavelength_um) {
-    const std::string text = read_file(path);
-    std::istringstream in(text);
-    std::string line;
-    int line_no = 0;
-    std::vector<std::string> header;
-    while (std::getline(in, line)) {
-        ++line_no;
-        const std::string t = trim(line);
-        if (t.empty() || t.front() == '#') continue;
-        header = split_csv_line(t);
-        break;
-    }
-    if (header.empty()) fail("{}: empty file; expected a CSV header (docs/fitting.md)", path.string());
-
-    const int c_angle = find_column(header, {"view_angle_deg", "angle_deg"});
-    const int c_s0 = find_column(header, {"eps_s0", "e_s0"});
-    const int c_s1 = find_column(header, {"eps_s1", "e_s1"});
-    const UncertaintyColumn u_s0 = find_uncertainty(header, "eps_s0_2sigma", "eps_s0_sigma", "e_s0_sigma");
-    const UncertaintyColumn u_s1 = find_uncertainty(header, "eps_s1_2sigma", "eps_s1_sigma", "e_s1_sigma");
-    const int c_name = find_column(header, {"name"});
-    const int c_wavelength = find_column(header, {"wavelength_um"});
-    const std::pair<const char*, int> required[] = {{"view_angle_deg (or angle_deg)", c_angle},
-                                                    {"eps_s0 (or e_s0)", c_s0},
-                                                    {"eps_s0_2sigma (or e_s0_sigma)", u_s0.index},
-                                                    {"eps_s1 (or e_s1)", c_s1},
-                                                    {"eps_s1_2sigma (or e_s1_sigma)", u_s1.index}};
-    for (const auto& [what, index] : required)
-        if (index < 0)
-            fail("{}:{}: the header has no column {}; expected the CSV of `tirpol extract-emissivity` "
-                 "(docs/fitting.md)",
-                 path.string(), line_no, what);
     if (!(std::isfinite(default_wavelength_um) && default_wavelength_um > 0.0))
         fail("default wavelength must be a positive number of micrometres, got {}", default_wavelength_um);
-
+    const std::vector<EmissivityCsvRow> rows = parse_emissivity_csv(read_file(path), path.string());
     std::map<double, EmissivityDataset> by_wavelength;
-    std::size_t rows = 0;
-    while (std::getline(in, line)) {
-        ++line_no;
-        const std::string t = trim(line);
-        if (t.empty() || t.front() == '#') continue;
-        if (++rows > limits::kMaxCsvRows)
-            fail("{}:{}: more than {} data rows; tirpol reads emissivity tables up to that size", path.string(),
-                 line_no, limits::kMaxCsvRows);
-        const std::vector<std::string> cells = split_csv_line(t);
-        if (cells.size() != header.size())
-            fail("{}:{}: {} cells, expected {} as in the header", path.string(), line_no, cells.size(), header.size());
-        auto number = [&](int column) {
-            const std::string& cell = cells[static_cast<std::size_t>(column)];
-            const char* begin = cell.c_str();
-            char* end = nullptr;
-            errno = 0;
-            const double v = std::strtod(begin, &end);
-            if (cell.empty() || end != begin + cell.size() || errno == ERANGE)
-                fail("{}:{}: column {}: \"{}\" is not a number", path.string(), line_no,
-                     header[static_cast<std::size_t>(column)], cell);
-            return v;
-        };
-        EmissivitySample s;
-        s.angle_deg = number(c_angle);
-        s.e_s0 = number(c_s0);
-        s.e_s0_sigma = number(u_s0.index) * u_s0.to_sigma;
-        s.e_s1 = number(c_s1);
-        s.e_s1_sigma = number(u_s1.index) * u_s1.to_sigma;
-        if (c_name >= 0) s.name = cells[static_cast<std::size_t>(c_name)];
-        const double wavelength = c_wavelength >= 0 ? number(c_wavelength) : default_wavelength_um;
+    for (const EmissivityCsvRow& row : rows) {
+        // An image-frame ε_S1 is the plane-of-emission one when that plane is vertical in the image
+        // (the geometry docs/fitting.md asks for); other geometries are rotated before writing.
+        const EmissivitySample s{row.view_angle_deg, row.eps_s0, row.eps_s0_std, row.eps_s1, row.eps_s1_std, row.name};
+        const double wavelength = row.wavelength_um.value_or(default_wavelength_um);
         EmissivityDataset& d = by_wavelength[wavelength];
         d.wavelength_um = wavelength;
-        d.source = c_wavelength >= 0 ? fmt::format("{} ({} µm)", path.string(), wavelength) : path.string();
+        d.source = row.wavelength_um ? fmt::format("{} ({} µm)", path.string(), wavelength) : path.string();
         // Validate row by row so that the message can name the line.
-        EmissivityDataset one{fmt::format("{}:{}", path.string(), line_no), wavelength, {s}};
-        validate_dataset(one);
-        d.samples.push_back(std::move(s));
+        validate_dataset({fmt::format("{}:{}", path.string(), row.line), wavelength, {s}});
+        d.samples.push_back(s);
     }
-    if (by_wavelength.empty()) fail("{}: no data rows after the header", path.string());
     std::vector<EmissivityDataset> out;
     for (auto& [wavelength, d] : by_wavelength) out.push_back(std::move(d));
     return out;
 }
 
 std::string emissivity_csv(const std::vector<EmissivityDataset>& datasets) {
-    std::ostringstream out;
-    out.precision(10);
-    out << "name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,eps_s0_2sigma,eps_s1,"
-           "eps_s1_2sigma,eps_s2,eps_s2_2sigma,wavelength_um\n";
+    std::vector<EmissivityCsvRow> rows;
     for (const EmissivityDataset& d : datasets)
-        for (const EmissivitySample& s : d.samples)
-            out << s.name << ',' << s.angle_deg << ",,,,," << s.e_s0 << ',' << 2.0 * s.e_s0_sigma << ','
-                << s.e_s1 << ',' << 2.0 * s.e_s1_sigma << ",,," << d.wavelength_um << '\n';
-    return out.str();
+        for (const EmissivitySample& s : d.samples) {
+            EmissivityCsvRow r;
+            r.name = s.name;
+            r.view_angle_deg = s.angle_deg;
+            r.frame = EmissivityFrame::PlaneOfEmission;
+            r.eps_s0 = s.e_s0;
+            r.eps_s0_std = s.e_s0_sigma;
+            r.eps_s1 = s.e_s1;
+            r.eps_s1_std = s.e_s1_sigma;
+            r.wavelength_um = d.wavelength_um;
+            rows.push_back(std::move(r));
+        }
+    return emissivity_csv_text(rows);
 }
 
 }  // namespace tirpol::fitting

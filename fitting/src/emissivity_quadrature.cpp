@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gauss_legendre.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/quadrature.h"
 
 namespace tirpol::fitting {
 
@@ -46,10 +46,9 @@ EmissivityQuadrature::EmissivityQuadrature(double emission_angle_rad, const Quad
         }
         for (double d : {0.1, 0.3, 0.7, 1.5}) phi_inner.push_back(kPi - d * scale);
     }
-    const detail::QuadratureRule theta =
-        detail::composite_gauss_legendre(options.order, panel_edges(0.0, kHalfPi, theta_inner));
-    const detail::QuadratureRule phi =
-        detail::composite_gauss_legendre(options.order, panel_edges(0.0, kPi, phi_inner));
+    const QuadratureRule unit_rule = gauss_legendre(options.order);
+    const QuadratureRule theta = composite_rule(unit_rule, panel_edges(0.0, kHalfPi, theta_inner));
+    const QuadratureRule phi = composite_rule(unit_rule, panel_edges(0.0, kPi, phi_inner));
 
     // wo at the clamped grazing limit, as materials::hemispherical_reflected_stokes does.
     const double cos_o = std::max(std::cos(t), materials::kMinCosine);
@@ -65,7 +64,7 @@ EmissivityQuadrature::EmissivityQuadrature(double emission_angle_rad, const Quad
             // ×2: the φi ∈ [π, 2π] half mirrors this one.
             const double weight = 2.0 * theta.weights[i] * phi.weights[j] * g.cos_i * st;
             const double c4 = g.cos_n * g.cos_n * g.cos_n * g.cos_n;
-            m_nodes.push_back({g.tan2_n, g.theta_n, g.cos_beta, 1.0 - g.cos_beta * g.cos_beta, g.beta, g.c2o,
+            m_nodes.push_back({g.tan2_n, g.theta_n, g.cos_beta, g.beta, g.c2o,
                                weight / (4.0 * g.cos_i * g.cos_o * c4)});
             m_diffuse_sum += weight;
             m_volume_sum += weight * 2.0 / (g.cos_i + g.cos_o);

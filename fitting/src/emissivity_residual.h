@@ -20,14 +20,8 @@ struct EmissivityResidual {
     template <typename T>
     bool operator()(const T* n, const T* k, const T* sigma, const T* bias, const T* tau_deg, const T* omega_deg,
                     const T* rho_d, const T* rho_v, T* residual) const {
-        const materials::ShellTargetParameters<T> p{n[0],
-                                                    k[0],
-                                                    sigma[0],
-                                                    bias[0],
-                                                    tau_deg[0] * T(deg_to_rad(1.0)),
-                                                    omega_deg[0] * T(deg_to_rad(1.0)),
-                                                    rho_d[0],
-                                                    rho_v[0]};
+        const materials::ShellTargetParameters<T> p = model_parameters_from_fit_order<T>(
+            {n[0], k[0], sigma[0], bias[0], tau_deg[0], omega_deg[0], rho_d[0], rho_v[0]});
         const auto [s0, s1] = quadrature->emissivity(p);
         residual[0] = (s0 - T(sample.e_s0)) * T(1.0 / sample.e_s0_sigma);
         residual[1] = (s1 - T(sample.e_s1)) * T(1.0 / sample.e_s1_sigma);

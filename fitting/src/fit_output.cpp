@@ -1,20 +1,15 @@
 #include "tirpol/fitting/fit_output.h"
 
-#include <chrono>
-#include <ctime>
 #include <sstream>
 
 #include "tirpol/core/error.h"
-#include "tirpol/core/utf8.h"
+#include "tirpol/materials/material_writer.h"
 
 namespace tirpol::fitting {
 
 namespace {
 
 using P = MicrofacetParameter;
-
-// A YAML double-quoted scalar (JSON string syntax is valid YAML).
-std::string quoted(const std::string& s) { return json_text(nlohmann::json(s)); }
 
 std::string plus_minus(const FittedParameter& f) {
     if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);
@@ -37,57 +32,51 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 
 std::string fitted_material_yaml(const std::string& name, const MicrofacetFitResult& r,
                                  const FitProvenance& provenance) {
-    if (name.empty()) fail("fitted material: the material needs a name");
-    std::ostringstream out;
-    out << "# Fitted by `tirpol fit` (docs/fitting.md): micro-facet pBRDF parameters from measured polarized\n"
-        << "# emissivity by weighted least squares (Ceres), uncertainties from the covariance at the minimum.\n";
-    out << "# data: " << join(provenance.data_files, ", ") << "\n# date: " << provenance.date_utc << '\n';
-    if (!provenance.command.empty()) out << "# command: " << provenance.command << '\n';
-    out << fmt::format("# chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}; termination: {}\n", r.chi2, r.dof,
-                       r.reduced_chi2, r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "", r.termination);
-    out << fmt::format("# starts: {}, fraction reaching the best minimum: {:.2f}\n", r.starts.size(),
-                       r.fraction_reaching_best);
+    materials::MicrofacetMaterialRecord m;
+    m.name = name;
+    auto& comments = m.comment_lines;
+    comments.push_back("Fitted by `tirpol fit` (docs/fitting.md): micro-facet pBRDF parameters from measured polarized");
+    comments.push_back("emissivity by weighted least squares (Ceres), uncertainties from the covariance at the minimum.");
+    comments.push_back("data: " + join(provenance.data_files, ", "));
+    comments.push_back("date: " + provenance.date_utc);
+    if (!provenance.command.empty()) comments.push_back("command: " + provenance.command);
+    comments.push_back(fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}; termination: {}", r.chi2, r.dof,
+                                   r.reduced_chi2, r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "",
+                                   r.termination));
+    comments.push_back(fmt::format("starts: {}, fraction reaching the best minimum: {:.2f}", r.starts.size(),
+                                   r.fraction_reaching_best));
     if (r.covariance_available) {
-        out << "# correlation of the free parameters (" << free_names(r) << "):\n";
+        comments.push_back("correlation of the free parameters (" + free_names(r) + "):");
         for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
-            out << "#  ";
-            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) out << fmt::format(" {:+.3f}", r.correlation(i, j));
-            out << '\n';
+            std::string row = " ";
+            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) row += fmt::format(" {:+.3f}", r.correlation(i, j));
+            comments.push_back(row);
         }
     }
-    out << "# residuals per angle, (model - measured)/sigma for eps_S0 and eps_S1:\n";
+    comments.push_back("residuals per angle, (model - measured)/sigma for eps_S0 and eps_S1:");
     for (const SampleFit& s : r.samples)
-        out << fmt::format("#   dataset {} angle {:5.1f} deg: {:+.2f} {:+.2f}\n", s.dataset, s.angle_deg,
-                           s.residual_s0, s.residual_s1);
+        comments.push_back(fmt::format("  dataset {} angle {:5.1f} deg: {:+.2f} {:+.2f}", s.dataset, s.angle_deg,
+                                       s.residual_s0, s.residual_s1));
 
-    out << "name: " << quoted(name) << '\n';
-    out << "source: "
-        << quoted(fmt::format("tirpol fit of {} on {}: micro-facet model, chi2/dof = {:.3g} (dof {}), {}",
-                              join(provenance.data_files, ", "), provenance.date_utc, r.reduced_chi2, r.dof,
-                              r.usable ? "converged" : "NOT CONVERGED"))
-        << '\n';
+    m.source = fmt::format("tirpol fit of {} on {}: micro-facet model, chi2/dof = {:.3g} (dof {}), {}",
+                           join(provenance.data_files, ", "), provenance.date_utc, r.reduced_chi2, r.dof,
+                           r.usable ? "converged" : "NOT CONVERGED");
     std::vector<std::string> notes;
     for (const FittedParameter& f : r.parameters) notes.push_back(plus_minus(f));
-    std::string note = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
-    if (!r.warnings.empty()) note += " Warnings: " + join(r.warnings, " | ");
-    out << "notes: " << quoted(note) << '\n';
-    out << "model: microfacet\n";
-    if (r.wavelengths_um.size() == 1) {
-        out << fmt::format("refractive_index: {{n: {}, k: {}}}\n", r.get(P::n).value, r.get(P::k).value);
-    } else {
-        std::vector<std::string> w, n, k;
-        for (std::size_t b = 0; b < r.wavelengths_um.size(); ++b) {
-            w.push_back(fmt::format("{}", r.wavelengths_um[b]));
-            n.push_back(fmt::format("{}", r.get(P::n, b).value));
-            k.push_back(fmt::format("{}", r.get(P::k, b).value));
-        }
-        out << "refractive_index:\n  wavelength_um: [" << join(w, ", ") << "]\n  n: [" << join(n, ", ")
-            << "]\n  k: [" << join(k, ", ") << "]\n";
+    m.notes = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
+    if (!r.warnings.empty()) m.notes += " Warnings: " + join(r.warnings, " | ");
+    m.wavelengths_um = r.wavelengths_um;
+    for (std::size_t band = 0; band < r.wavelengths_um.size(); ++band) {
+        m.n.push_back(r.get(P::n, band).value);
+        m.k.push_back(r.get(P::k, band).value);
     }
-    out << "parameters:\n";
-    for (P p : {P::sigma, P::bias, P::tau_deg, P::omega_deg, P::rho_d, P::rho_v})
-        out << "  " << parameter_name(p) << ": " << fmt::format("{}", r.get(p).value) << '\n';
-    return out.str();
+    m.sigma = r.get(P::sigma).value;
+    m.bias = r.get(P::bias).value;
+    m.tau_deg = r.get(P::tau_deg).value;
+    m.omega_deg = r.get(P::omega_deg).value;
+    m.rho_d = r.get(P::rho_d).value;
+    m.rho_v = r.get(P::rho_v).value;
+    return materials::microfacet_material_yaml(m);
 }
 
 nlohmann::json fit_report_json(const MicrofacetFitResult& r, const std::vector<EmissivityDataset>& datasets,

@@ -56,15 +56,14 @@ const FittedParameter& MicrofacetFitResult::get(MicrofacetParameter p, std::size
 }
 
 materials::ShellTargetParameters<double> MicrofacetFitResult::model_parameters(std::size_t band) const {
-    using P = MicrofacetParameter;
-    return {get(P::n, band).value,
-            get(P::k, band).value,
-            get(P::sigma).value,
-            get(P::bias).value,
-            deg_to_rad(get(P::tau_deg).value),
-            deg_to_rad(get(P::omega_deg).value),
-            get(P::rho_d).value,
-            get(P::rho_v).value};
+    std::array<double, kMicrofacetParameterCount> values{};
+    for (std::size_t i = 0; i < kMicrofacetParameterCount; ++i)
+        values[i] = get(static_cast<MicrofacetParameter>(i), band).value;
+    return model_parameters_from_fit_order(values);
+}
+
+std::array<double, kMicrofacetParameterCount> fit_order_values(const materials::ShellTargetParameters<double>& p) {
+    return {p.n, p.k, p.sigma, p.bias, rad_to_deg(p.tau_rad), rad_to_deg(p.omega_rad), p.rho_d, p.rho_v};
 }
 
 struct MicrofacetFitProblem::Impl {

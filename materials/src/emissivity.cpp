@@ -5,8 +5,8 @@
 #include <cmath>
 #include <thread>
 
-#include "gauss_legendre.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/quadrature.h"
 #include "tirpol/materials/shell_target_math.h"
 
 namespace tirpol::materials {
@@ -20,11 +20,11 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
         return s.pdf > 0.0 ? StokesVector(s.weight.col(0)) : StokesVector(StokesVector::Zero());
     }
     const int order = std::clamp(options.order, 1, 10);
-    const detail::QuadratureRule base = detail::gauss_legendre(order);
+    const QuadratureRule base = gauss_legendre(order);
     // Mirror symmetry (is_isotropic): integrate u2 ∈ [0, ½] with the same node density and double.
     const bool mirror = brdf.is_isotropic();
     const int azimuth_panels = std::max(1, mirror ? (options.azimuth_panels + 1) / 2 : options.azimuth_panels);
-    const detail::QuadratureRule azimuth = detail::composite(base, azimuth_panels, 0.0, mirror ? 0.5 : 1.0);
+    const QuadratureRule azimuth = composite_rule(base, azimuth_panels, 0.0, mirror ? 0.5 : 1.0);
 
     std::vector<double> breaks = brdf.sample_u1_breaks(wo, wavelength_um);
     breaks.insert(breaks.begin(), 0.0);
@@ -37,7 +37,7 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
         // cosine-weighted lobe reaches the horizon (there a volume term ∝ 1/cosθi at grazing view
         // becomes the smooth integrand 2(1 − v)/(1 − v)) and the specular lobe has its slope tail.
         const double a = breaks[piece], width = breaks[piece + 1] - breaks[piece];
-        const detail::QuadratureRule radial = detail::composite(base, std::max(1, options.radial_panels), 0.0, 1.0);
+        const QuadratureRule radial = composite_rule(base, std::max(1, options.radial_panels), 0.0, 1.0);
         for (std::size_t i = 0; i < radial.nodes.size(); ++i) {
             const double one_minus_v = 1.0 - radial.nodes[i];
             const double u1 = a + width * (1.0 - one_minus_v * one_minus_v);

@@ -93,7 +93,12 @@ std::shared_ptr<const PolarizedBrdf> brdf_from_config(const ConfigNode& node) {
 
 Material material_from_config(const ConfigNode& node, const std::string& fallback_name) {
     if (!node.is_map()) node.fail("expected a material mapping (name, source, model, ...)");
-    node.check_keys({"name", "description", "source", "model", "refractive_index", "parameters", "notes", "thermal"});
+    // Thermal properties live with the slab solver's layered materials, not here (docs/materials.md).
+    if (node.has("thermal"))
+        node.at("thermal").fail(
+            "a material file no longer carries `thermal`: give the layers (thickness_m, conductivity_w_m_k, "
+            "density_kg_m3, specific_heat_j_kg_k) in the scene's `thermal_materials` (docs/thermal.md)");
+    node.check_keys({"name", "description", "source", "model", "refractive_index", "parameters", "notes"});
     Material m;
     m.name = node.get_or<std::string>("name", fallback_name);
     if (m.name.empty()) node.fail("missing field `name`");
@@ -101,9 +106,6 @@ Material material_from_config(const ConfigNode& node, const std::string& fallbac
     m.notes = node.get_or<std::string>("notes", "");
     if (const auto d = node.find("description")) m.notes = d->as<std::string>() + (m.notes.empty() ? "" : "\n" + m.notes);
     m.brdf = brdf_from_config(node);
-    if (const auto thermal = node.find("thermal")) {
-        for (const std::string& key : thermal->keys()) m.thermal[key] = thermal->get<double>(key);
-    }
     m.file = node.file();
     return m;
 }

@@ -66,7 +66,6 @@ void bind_material(py::module_& m) {
         .def_readonly("source", &Material::source)
         .def_readonly("notes", &Material::notes)
         .def_readonly("file", &Material::file)
-        .def_readonly("thermal", &Material::thermal)
         .def_property_readonly("model", [](const Material& mat) { return mat.brdf->model(); })
         .def_property_readonly("valid_wavelength_range_um",
                                [](const Material& mat) { return mat.brdf->valid_wavelength_range_um(); })

@@ -8,6 +8,7 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/emissivity_extraction.h"
+#include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -72,6 +73,13 @@ TEST(EmissivityExtraction, RecoversKnownPolarizedEmissivityWithinTwoSigma) {
     const std::string csv = emissivity_csv(exact);
     EXPECT_THAT(csv, testing::StartsWith("name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr"));
     EXPECT_THAT(csv, testing::HasSubstr("panel_contact,40,295,480,"));
+    // The file states its frame (image: what was measured) and carries 1σ, half the result's 2σ.
+    const auto rows = parse_emissivity_csv(csv, "emissivity.csv");
+    ASSERT_EQ(rows.size(), exact.size());
+    EXPECT_EQ(rows[0].frame, EmissivityFrame::Image);
+    EXPECT_EQ(rows[0].eps_s1, exact[0].eps_s1);
+    EXPECT_EQ(rows[0].eps_s0_std, exact[0].eps_s0_2sigma / 2.0);
+    EXPECT_EQ(rows[0].eps_s2_std, exact[0].eps_s2_2sigma / 2.0);
 }
 
 TEST(EmissivityExtraction, RoiFileIsValidatedWithClearErrors) {

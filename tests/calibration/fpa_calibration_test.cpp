@@ -94,13 +94,15 @@ TEST(FpaCalibration, RecoversTheDriftCoefficients) {
     RadiometricOptions options;
     options.fpa_degree = 1;
     const auto cal = fit_radiometric(calibration_frames(truth, kCameraK), cam.width, cam.height, kBand, options);
-    // Noise-free and inside the model class: the fitted model reproduces the truth's counts at any
-    // camera state (float storage: ~1e-6 relative).
-    const std::vector<float> radiance(cal.gain.size(), static_cast<float>(kBand.radiance(300.0)));
+    // Noise-free and inside the model class: at any camera state the fitted model inverts the truth's
+    // counts back to the radiance that made them (float storage: ~1e-6 relative, i.e. 0.02 counts).
+    const double radiance = kBand.radiance(300.0);
     for (double fpa : {297.0, 309.0}) {
-        const auto counts = radiance_to_counts(cal, radiance, fpa);
-        for (std::size_t i = 0; i < counts.size(); ++i)
-            ASSERT_NEAR(counts[i], truth.counts(i, radiance[i], fpa), 0.02) << i;
+        std::vector<float> counts(cal.gain.size());
+        for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = static_cast<float>(truth.counts(i, radiance, fpa));
+        const auto recovered = counts_to_radiance(cal, counts, fpa);
+        for (std::size_t i = 0; i < recovered.size(); ++i)
+            ASSERT_NEAR(recovered[i], radiance, 0.02 / cal.gain[i]) << i;
     }
 }
 

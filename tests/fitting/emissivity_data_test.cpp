@@ -91,7 +91,7 @@ TEST(EmissivityData, BadDataGiveClearErrors) {
         EXPECT_THAT(message, HasSubstr("bad.csv:3")) << "the message names file and line";
     }
     tirpol::test::write_text(dir / "nocol.csv", "view_angle_deg,eps_s0,eps_s1\n30,0.9,-0.01\n");
-    EXPECT_THAT(error_of(dir / "nocol.csv"), HasSubstr("no column eps_s0_2sigma"));
+    EXPECT_THAT(error_of(dir / "nocol.csv"), HasSubstr("no column eps_s0_std (or eps_s0_2sigma, e_s0_sigma)"));
     tirpol::test::write_text(dir / "empty.csv", kCalibrationHeader);
     EXPECT_THAT(error_of(dir / "empty.csv"), HasSubstr("no data rows"));
 }

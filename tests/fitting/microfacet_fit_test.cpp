@@ -29,8 +29,7 @@ MicrofacetFitOptions fast_options(int starts, int order = 3) {
 }
 
 void start_at(MicrofacetFitOptions& o, const materials::ShellTargetParameters<double>& p) {
-    const double values[] = {p.n, p.k, p.sigma, p.bias, rad_to_deg(p.tau_rad), rad_to_deg(p.omega_rad), p.rho_d,
-                             p.rho_v};
+    const auto values = fit_order_values(p);
     for (std::size_t i = 0; i < kMicrofacetParameterCount; ++i) o.parameters[i].initial = values[i];
 }
 

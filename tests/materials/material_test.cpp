@@ -117,8 +117,7 @@ TEST(MaterialFile, InlineDefinitionWithSpectralParameter) {
     const ConfigNode node = ConfigNode::parse(
         "material:\n  name: inline_paint\n  source: test\n  model: microfacet\n"
         "  refractive_index: {wavelength_um: [8, 12], n: [1.5, 1.7], k: [0.05, 0.1]}\n"
-        "  parameters:\n    sigma: {wavelength_um: [8, 12], value: [0.2, 0.4]}\n"
-        "  thermal: {conductivity_w_m_k: 0.2, density_kg_m3: 1200}\n",
+        "  parameters:\n    sigma: {wavelength_um: [8, 12], value: [0.2, 0.4]}\n",
         "scene.yaml");
     const Material m = material_from_config(node.at("material"));
     EXPECT_EQ(m.name, "inline_paint");
@@ -126,8 +125,21 @@ TEST(MaterialFile, InlineDefinitionWithSpectralParameter) {
     EXPECT_NEAR(params[0].value, 1.6, 1e-12);
     EXPECT_NEAR(params[2].value, 0.3, 1e-12);
     EXPECT_EQ(m.brdf->valid_wavelength_range_um(), std::make_pair(8.0, 12.0));
-    EXPECT_DOUBLE_EQ(m.thermal.at("conductivity_w_m_k"), 0.2);
-    EXPECT_DOUBLE_EQ(m.thermal.at("density_kg_m3"), 1200.0);
+}
+
+// The old optional `thermal:` map was parsed and never read; a file that still has it is told where
+// thermal properties go instead of having them silently ignored.
+TEST(MaterialFile, ThermalMapIsRefusedWithWhereItBelongs) {
+    const ConfigNode node = ConfigNode::parse(
+        "name: paint\nsource: test\nmodel: lambertian\nreflectance: 0.1\nthermal: {conductivity_w_m_k: 0.2}\n",
+        "old_paint.yaml");
+    try {
+        material_from_config(node);
+        FAIL() << "a material with `thermal:` was accepted";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("old_paint.yaml"));
+        EXPECT_THAT(e.what(), HasSubstr("thermal_materials"));
+    }
 }
 
 }  // namespace

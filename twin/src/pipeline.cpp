@@ -13,6 +13,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
@@ -192,7 +193,7 @@ void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
     world.set_scene(c.truth.front());
     // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
     const auto lab = write_plan(c.sessions / "lab_plan.yaml",
-                                reference_yaml({273.15, 293.15, 313.15}, 0.0, 2 * c.opt.frames_per_angle), false,
+                                reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 20.0, kZeroCelsiusK + 40.0}, 0.0, 2 * c.opt.frames_per_angle), false,
                                 "digital twin: laboratory", c.opt.frames_per_angle);
     instrument.acquire(lab, c.sessions / "lab");
     c.result.sessions.push_back(c.sessions / "lab");
@@ -202,7 +203,7 @@ void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
         std::string refs;
         if (v == 0)
             for (double a : {0.0, 45.0, 90.0, 135.0})
-                refs += reference_yaml({273.15, 298.15}, a, 2 * c.opt.frames_per_angle);
+                refs += reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 25.0}, a, 2 * c.opt.frames_per_angle);
         const std::string name = fmt::format("view{}", v);
         const auto plan = write_plan(c.sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
                                      c.opt.frames_per_angle);

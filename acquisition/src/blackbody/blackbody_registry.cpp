@@ -9,13 +9,13 @@
 #include "tirpol/acquisition/internal/fluke_blackbody.h"
 #include "tirpol/acquisition/internal/serial_port.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
 namespace {
 
 using detail::bad_uri;
-constexpr double kCelsiusZeroK = 273.15;
 
 /// The simulator in-process behind a BytePort: the driver speaks the same bytes as on a serial line.
 class SimulatorPort final : public BytePort {
@@ -48,8 +48,8 @@ private:
 FlukeBlackbodyOptions model_range(const std::string& model) {
     FlukeBlackbodyOptions o;
     const bool is_4181 = model == "4181";
-    o.min_set_point_k = (is_4181 ? fluke_scpi::kModel4181MinC : fluke_scpi::kModel4180MinC) + kCelsiusZeroK;
-    o.max_set_point_k = (is_4181 ? fluke_scpi::kModel4181MaxC : fluke_scpi::kModel4180MaxC) + kCelsiusZeroK;
+    o.min_set_point_k = (is_4181 ? fluke_scpi::kModel4181MinC : fluke_scpi::kModel4180MinC) + kZeroCelsiusK;
+    o.max_set_point_k = (is_4181 ? fluke_scpi::kModel4181MaxC : fluke_scpi::kModel4180MaxC) + kZeroCelsiusK;
     return o;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
@@ -20,7 +21,6 @@ std::optional<BlackbodyFault> parse_blackbody_fault(const std::string& text) {
 }
 
 namespace {
-constexpr double kCelsiusZeroK = 273.15;
 using Seconds = std::chrono::duration<double>;
 }  // namespace
 
@@ -146,8 +146,8 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
         if (argument != "C" && argument != "c") return error(-224, "Illegal parameter value");  // °F not simulated
         return {};
     }
-    if (header == "SOUR:SENS:DATA?") return fmt::format("{:.3f}", reading_k - kCelsiusZeroK);
-    if (header == "SOUR:SPO?") return fmt::format("{:.3f}", m_set_point_k - kCelsiusZeroK);
+    if (header == "SOUR:SENS:DATA?") return fmt::format("{:.3f}", reading_k - kZeroCelsiusK);
+    if (header == "SOUR:SPO?") return fmt::format("{:.3f}", m_set_point_k - kZeroCelsiusK);
     if (header == "SOUR:STAB:TEST?") return stable() ? "1" : "0";
     if (header == "SOUR:STAB:LIM?") return fmt::format("{:.3f}", m_limit_k);
     if (header == "SOUR:PROT:TRIP?") return m_tripped ? "1" : "0";
@@ -162,7 +162,7 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
         const auto c = number_argument();
         if (!c) return error(-109, "Missing parameter");
         if (*c < m_min_c || *c > m_max_c) return error(-222, "Data out of range");
-        m_set_point_k = *c + kCelsiusZeroK;
+        m_set_point_k = *c + kZeroCelsiusK;
         ++m_sets;
         if (m_options.fault != BlackbodyFault::None && m_sets >= m_options.fault_on_set) {
             switch (m_options.fault) {

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <thread>
 
+#include "tirpol/core/radiometry.h"
+
 namespace tirpol::acquisition {
 
 namespace {
@@ -41,7 +43,7 @@ Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, doub
                 DeviceErrorCode::Timeout,
                 fmt::format("{}: set-point {:.2f} K ({:.2f} °C) not stable within ±{:g} K for {:g} s after {:g} s; "
                             "last reading {:.3f} K, stability flag {}",
-                            controller.info().uri, set_point_k, set_point_k - 273.15, criterion.tolerance_k,
+                            controller.info().uri, set_point_k, set_point_k - kZeroCelsiusK, criterion.tolerance_k,
                             criterion.stable_for_s, criterion.timeout_s, s.temperature_k, s.stable ? 1 : 0)};
         if (Clock::now() > next + poll) next = Clock::now() - poll;  // a slow reply: no burst of catch-up polls
     }

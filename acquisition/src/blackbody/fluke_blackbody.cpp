@@ -5,6 +5,7 @@
 
 #include "tirpol/acquisition/internal/fluke_blackbody.h"
 #include "tirpol/acquisition/internal/fluke_scpi.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
@@ -12,7 +13,6 @@ namespace {
 
 namespace fs = fluke_scpi;
 using Clock = std::chrono::steady_clock;
-constexpr double kCelsiusZeroK = 273.15;
 
 std::string printable(const std::string& text) {
     std::string out;
@@ -53,17 +53,17 @@ public:
         if (!(set_point_k >= m_info.min_set_point_k && set_point_k <= m_info.max_set_point_k))
             return DeviceError{DeviceErrorCode::InvalidArgument,
                                fmt::format("{}: set-point {:.3f} K ({:.3f} °C) is outside the {} range {:.2f}–{:.2f} K",
-                                           m_info.uri, set_point_k, set_point_k - kCelsiusZeroK, m_info.model,
+                                           m_info.uri, set_point_k, set_point_k - kZeroCelsiusK, m_info.model,
                                            m_info.min_set_point_k, m_info.max_set_point_k)};
-        if (auto s = send(fs::set_point_command(set_point_k - kCelsiusZeroK)); !s) return s;
+        if (auto s = send(fs::set_point_command(set_point_k - kZeroCelsiusK)); !s) return s;
         if (auto s = check_error_queue("SOUR:SPO"); !s) return s;
         auto back = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!back) return back.error();
         // The command carries millikelvin: a read-back further off means the device holds another set-point.
-        if (std::abs(back.value() + kCelsiusZeroK - set_point_k) > 0.0015)
+        if (std::abs(back.value() + kZeroCelsiusK - set_point_k) > 0.0015)
             return DeviceError{DeviceErrorCode::DeviceFault,
                                fmt::format("{}: set-point {:.3f} °C sent, the controller holds {:.3f} °C", m_info.uri,
-                                           set_point_k - kCelsiusZeroK, back.value())};
+                                           set_point_k - kZeroCelsiusK, back.value())};
         return ok_status();
     }
 
@@ -75,7 +75,7 @@ public:
         BlackbodyStatus s;
         auto t = number(fs::kReadTemperature, "SOUR:SENS:DATA?");
         if (!t) return t.error();
-        s.temperature_k = t.value() + kCelsiusZeroK;
+        s.temperature_k = t.value() + kZeroCelsiusK;
         if (*trip)
             return DeviceError{
                 DeviceErrorCode::DeviceFault,
@@ -85,7 +85,7 @@ public:
                     m_info.uri, s.temperature_k)};
         auto sp = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!sp) return sp.error();
-        s.set_point_k = sp.value() + kCelsiusZeroK;
+        s.set_point_k = sp.value() + kZeroCelsiusK;
         auto stable = query(fs::kReadStability);
         if (!stable) return stable.error();
         const auto flag = fs::parse_flag(stable.value());

@@ -48,11 +48,6 @@ SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator ge
 
 SimulatedCamera::~SimulatedCamera() { (void)stop(); }
 
-void SimulatedCamera::set_generator(FrameGenerator generator) {
-    std::lock_guard lock(m_mutex);
-    m_generator = std::move(generator);
-}
-
 StreamStatistics SimulatedCamera::statistics() const {
     std::lock_guard lock(m_mutex);
     return m_stats;

@@ -13,6 +13,7 @@
 #include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/progress.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
@@ -157,7 +158,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             const std::string instruction =
                 step->kind == RecordKind::Polarizer ? std::string("Open the shutter (uncover the lens) for the scene")
                 : step->kind == RecordKind::Blackbody
-                    ? fmt::format("Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, filling the field of view", *step->temperature_k, *step->temperature_k - 273.15)
+                    ? fmt::format("Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, filling the field of view", *step->temperature_k, *step->temperature_k - kZeroCelsiusK)
                     : std::string("Close the shutter (or cover the lens with a uniform cover)");
             if (!options.prompt(instruction))
                 fail("stopped by the operator before step {}/{} ({}); run again with --resume to continue", step->index + 1, total, step->label);

@@ -8,6 +8,7 @@
 #include "drift_reference_plan.h"
 #include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {
 
@@ -72,7 +73,7 @@ std::vector<double> temperatures(const ConfigNode& ref) {
     std::vector<double> out;
     if (ref.has("temperatures_k")) out = ref.get<std::vector<double>>("temperatures_k");
     if (ref.has("temperatures_c"))
-        for (double c : ref.get<std::vector<double>>("temperatures_c")) out.push_back(c + 273.15);
+        for (double c : ref.get<std::vector<double>>("temperatures_c")) out.push_back(c + kZeroCelsiusK);
     for (double t : out)
         if (!(t > 0.0 && t < 2000.0)) ref.fail(fmt::format("temperature {} K is not a blackbody temperature (0–2000 K)", t));
     return out;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "tirpol/core/radiometry.h"
+
 namespace tirpol::acquisition::detail {
 
 namespace {
@@ -10,7 +12,7 @@ std::optional<double> temperature(const ConfigNode& node) {
     if (node.has("temperature_k") && node.has("temperature_c"))
         node.fail("give temperature_k or temperature_c, not both");
     if (node.has("temperature_k")) return node.get_in_range("temperature_k", 1.0, 2000.0);
-    if (node.has("temperature_c")) return node.get_in_range("temperature_c", -272.0, 1700.0) + 273.15;
+    if (node.has("temperature_c")) return node.get_in_range("temperature_c", -272.0, 1700.0) + kZeroCelsiusK;
     return std::nullopt;
 }
 

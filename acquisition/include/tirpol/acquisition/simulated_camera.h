@@ -66,9 +66,6 @@ public:
     StreamStatistics statistics() const override;
     std::optional<double> device_temperature_k() override { return m_config.fpa_temperature_k; }
 
-    /// Replaces the generator (e.g. a new scene); takes effect at the next grab.
-    void set_generator(FrameGenerator generator);
-
 private:
     void expose_frames();  ///< the camera's thread
     std::optional<Frame> expose_one(std::uint64_t id);

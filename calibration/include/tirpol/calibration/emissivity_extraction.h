@@ -41,7 +41,7 @@ struct EmissivityRois {
     static EmissivityRois load(const std::string& path);
 };
 
-/// One CSV row. `*_2sigma` are 2σ uncertainties: the standard errors of the ROI means (spatial σ/√n)
+/// One target's result. `*_2sigma` are 2σ uncertainties: the standard errors of the ROI means (spatial σ/√n)
 /// of the target, the reflector and the blackbody region, and the contact-temperature σ through
 /// dL/dT, propagated to first order.
 struct EmissivityResult {
@@ -62,8 +62,8 @@ struct EmissivityResult {
 /// non-finite result.
 std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band);
 
-/// CSV with header name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,
-/// eps_s0_2sigma,eps_s1,eps_s1_2sigma,eps_s2,eps_s2_2sigma.
+/// The emissivity CSV (tirpol/core/emissivity_csv.h): frame `image`, uncertainties as 1σ (`*_std`,
+/// half the `*_2sigma` above), wavelength_um empty.
 std::string emissivity_csv(const std::vector<EmissivityResult>& results);
 
 }  // namespace tirpol::calibration

@@ -101,10 +101,6 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
 std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts,
                                       std::optional<double> fpa_temperature_k = std::nullopt);
 
-/// Radiance → counts (the forward model), for simulation and tests.
-std::vector<float> radiance_to_counts(const RadiometricCalibration& cal, const std::vector<float>& radiance,
-                                      std::optional<double> fpa_temperature_k = std::nullopt);
-
 /// The single-state calibration (gain, offset planes) of an FPA-dependent one at `fpa_temperature_k`;
 /// a copy of `cal` when it has no FPA dependence. `what` names the frame in the error thrown when the
 /// calibration needs an FPA temperature and none is given.

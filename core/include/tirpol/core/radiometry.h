@@ -79,19 +79,6 @@ public:
     /// 1e-6 K (Newton's method, bracketed). NaN for a non-positive or non-finite radiance.
     double brightness_temperature(double radiance_w_m2_sr) const;
 
-    /// RSR- and Planck-weighted average of a spectral quantity f(λ) at temperature T:
-    /// ∫ R f L_bb dλ / ∫ R L_bb dλ (how an emissivity spectrum is seen by a camera).
-    template <typename F>
-    double planck_weighted_average(F&& f, double temperature_k) const {
-        double num = 0.0, den = 0.0;
-        for (const auto& node : m_nodes) {
-            const double w = node.weight_um * planck_radiance(node.wavelength_um, temperature_k);
-            num += w * f(node.wavelength_um);
-            den += w;
-        }
-        return den > 0.0 ? num / den : 0.0;
-    }
-
 private:
     double m_lo_um, m_hi_um;
     std::optional<SpectralResponse> m_rsr;

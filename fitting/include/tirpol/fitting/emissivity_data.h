@@ -1,15 +1,12 @@
 #pragma once
 /// \file emissivity_data.h
-/// Measured polarized directional emissivity ε_S0(θ), ε_S1(θ) with uncertainties: the input of the
-/// fits (paper §3.2, Fig. 1). The CSV is the one `tirpol extract-emissivity` writes
-/// (calibration/emissivity_extraction.h), header
-///   name,view_angle_deg,temperature_k,pixels,l_dw_w_m2_sr,l_bb_w_m2_sr,eps_s0,eps_s0_2sigma,eps_s1,
-///   eps_s1_2sigma,eps_s2,eps_s2_2sigma
-/// of which the fit reads view_angle_deg, eps_s0, eps_s0_2sigma, eps_s1, eps_s1_2sigma (the 2σ columns
-/// are halved to standard uncertainties) and, when present, name and wavelength_um. Also accepted: a
-/// hand-written CSV angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma[,wavelength_um][,name] with 1σ columns
-/// (docs/fitting.md). ε_S1 is in the s/p frame of the plane of emission (pbrdf.h): S1 < 0 means
-/// polarized in the plane of emission, as for a horizontal panel in the camera frame.
+/// Measured polarized directional emissivity ε_S0(θ), ε_S1(θ) with standard (1σ) uncertainties: the
+/// input of the fits (paper §3.2, Fig. 1), read from the emissivity CSV whose schema core owns
+/// (tirpol/core/emissivity_csv.h; `tirpol extract-emissivity` writes it). The fit uses view_angle_deg,
+/// eps_s0, eps_s0_std, eps_s1, eps_s1_std and, when present, name and wavelength_um.
+/// ε_S1 is in the s/p frame of the plane of emission (pbrdf.h): S1 < 0 means polarized in the plane of
+/// emission. Rows in the `image` frame are taken as that frame, which they equal when the plane of
+/// emission is vertical in the image (a horizontal panel viewed obliquely, docs/fitting.md).
 
 #include <filesystem>
 #include <optional>
@@ -48,8 +45,8 @@ std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& 
 /// and > 0; wavelength finite and > 0. Throws tirpol::Error naming `dataset.source` and the sample.
 void validate_dataset(const EmissivityDataset& dataset);
 
-/// Writes samples as the calibration CSV layout (name,view_angle_deg,...; unknown columns left empty,
-/// 2σ columns = 2 × sigma) plus a wavelength_um column, so that load_emissivity_csv reads them back.
+/// Writes samples as an emissivity CSV (core/emissivity_csv.h) in the plane-of-emission frame, with
+/// their wavelength_um and unknown columns empty, so that load_emissivity_csv reads them back exactly.
 std::string emissivity_csv(const std::vector<EmissivityDataset>& datasets);
 
 }  // namespace tirpol::fitting

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/shell_target_math.h"
 #include "tirpol/materials/tiny_complex.h"
 
@@ -35,23 +36,23 @@ public:
 
     /// (ε_S0, ε_S1) of the micro-facet model with parameters `p` (τ, Ω in radians) at this angle.
     ///
-    /// Column 0 of shell_target_mueller (materials/shell_target_math.h) summed over the nodes, arranged
-    /// for speed (this runs with ceres::Jet in every residual evaluation): e0 is unpolarized, so only
-    /// M00 = s·(Rs+Rp)/2 + ρ_D + 2ρ_V/(cosθi+cosθo) and M10 = s·(Rs−Rp)/2·cos2αo are needed (the frame
-    /// rotations only mix columns 1 and 2, and the Fresnel matrix has m20 = 0), with
-    /// s = bias·D·G·SO/(4 cosθi cosθo). ñ², 1/(2σ²) and Smith's Λ(θo) are computed once per call, Λ(θi)
-    /// once per θi row, and |r|² as |num|²/|den|² without a complex division. The diffuse and volume
-    /// terms are linear in ρ_D, ρ_V, with node sums precomputed. The test checks this against the
-    /// materials module's integrator, which evaluates shell_target_mueller itself.
+    /// Column 0 of shell_target_mueller (materials/shell_target_math.h) summed over the nodes with that
+    /// header's building blocks (gaussian_slope_falloff, smith_lambda, beard_maxwell_shadowing_reciprocal,
+    /// fresnel_reflectances), arranged for speed (this runs with ceres::Jet in every residual
+    /// evaluation): e0 is unpolarized, so only M00 = s·(Rs+Rp)/2 + ρ_D + 2ρ_V/(cosθi+cosθo) and
+    /// M10 = s·(Rs−Rp)/2·cos2αo are needed (the frame rotations only mix columns 1 and 2, and the Fresnel
+    /// matrix has m20 = 0), with s = bias·D·G·SO/(4 cosθi cosθo). ñ², 1/(2σ²), 1/τ, 1/Ω, D's constant
+    /// 1/(2πσ²) and Smith's Λ(θo) are computed once per call, Λ(θi) once per θi row; D's 1/cos⁴θN is in
+    /// the node weight. The diffuse and volume terms are linear in ρ_D, ρ_V, with node sums precomputed.
+    /// The test checks this against the materials module's integrator, which evaluates
+    /// shell_target_mueller itself.
     template <typename T>
     std::pair<T, T> emissivity(const materials::ShellTargetParameters<T>& p) const {
-        using materials::TinyComplex;
-        using std::exp;
         const T s2 = p.sigma * p.sigma;
         const T inv_2s2 = T(1.0) / (T(2.0) * s2);
         const T d_norm = p.bias / (T(2.0 * kPi) * s2);  // bias / (2πσ²), the constant of D times bias
         const T lambda_o = materials::smith_lambda(p.sigma, m_cot_o);
-        const TinyComplex<T> eps{p.n * p.n - p.k * p.k, T(2.0) * p.n * p.k};  // ñ²
+        const materials::TinyComplex<T> eps{p.n * p.n - p.k * p.k, T(2.0) * p.n * p.k};  // ñ²
         const T inv_tau = T(1.0) / p.tau_rad, inv_omega = T(1.0) / p.omega_rad;
 
         T specular_s0(0.0), specular_s1(0.0);
@@ -62,18 +63,12 @@ public:
                       end = m_nodes.begin() + static_cast<std::ptrdiff_t>(row.end);
                  it != end; ++it) {
                 const Node& nd = *it;
-                const T d = exp(-T(nd.tan2_n) * inv_2s2);
-                const T x = T(nd.theta_n) * inv_omega;
-                const T so = (T(1.0) + x * exp(T(-2.0 * nd.beta) * inv_tau)) / (T(1.0) + x);
-                // Fresnel (materials/fresnel.h): q = √(ñ² − sin²β), r_s = (c−q)/(c+q), r_p = (ñ²c−q)/(ñ²c+q).
-                const TinyComplex<T> q = materials::csqrt(TinyComplex<T>{eps.re - T(nd.sin2_beta), eps.im});
-                const TinyComplex<T> c{T(nd.cos_beta), T(0.0)};
-                const TinyComplex<T> eps_c = materials::scale(eps, nd.cos_beta);
-                const T rs2 = materials::norm2(c - q) / materials::norm2(c + q);
-                const T rp2 = materials::norm2(eps_c - q) / materials::norm2(eps_c + q);
+                const T d = materials::gaussian_slope_falloff(inv_2s2, nd.tan2_n);
+                const T so = materials::beard_maxwell_shadowing_reciprocal(inv_tau, inv_omega, nd.theta_n, nd.beta);
+                const materials::FresnelReflectances<T> r = materials::fresnel_reflectances(eps, nd.cos_beta);
                 const T w = d * so * T(nd.weight_over_c4);
-                row_s0 += w * (rs2 + rp2);
-                row_s1 += w * (rs2 - rp2) * T(nd.cos_2alpha_o);
+                row_s0 += w * (r.rs2 + r.rp2);
+                row_s1 += w * (r.rs2 - r.rp2) * T(nd.cos_2alpha_o);
             }
             specular_s0 += shadow * row_s0;
             specular_s1 += shadow * row_s1;
@@ -90,7 +85,7 @@ public:
 private:
     struct Node {
         double tan2_n, theta_n;        ///< facet tilt
-        double cos_beta, sin2_beta, beta;  ///< incidence on the facet
+        double cos_beta, beta;         ///< incidence on the facet
         double cos_2alpha_o;           ///< facet → macro frame of the exitant beam
         double weight_over_c4;         ///< quadrature weight × cosθi sinθi × 2 / (4 cosθi cosθo cos⁴θN)
     };

@@ -26,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "tirpol/core/geometry.h"
 #include "tirpol/fitting/emissivity_data.h"
 #include "tirpol/fitting/emissivity_quadrature.h"
 #include "tirpol/materials/shell_target_math.h"
@@ -41,6 +42,17 @@ inline constexpr std::size_t kMicrofacetParameterCount = 8;
 std::string_view parameter_name(MicrofacetParameter p);
 /// The parameter called `name`; throws tirpol::Error listing the valid names otherwise.
 MicrofacetParameter parameter_from_name(std::string_view name);
+
+/// Values in MicrofacetParameter order (τ, Ω in degrees, as the fit holds them) → the model's
+/// parameters (τ, Ω in radians); templated for the residual's Jets. The one place the two orders meet.
+template <typename T>
+materials::ShellTargetParameters<T> model_parameters_from_fit_order(const std::array<T, kMicrofacetParameterCount>& v) {
+    const T per_degree(deg_to_rad(1.0));
+    return {v[0], v[1], v[2], v[3], v[4] * per_degree, v[5] * per_degree, v[6], v[7]};
+}
+
+/// The inverse: the model's parameters as values in MicrofacetParameter order (τ, Ω in degrees).
+std::array<double, kMicrofacetParameterCount> fit_order_values(const materials::ShellTargetParameters<double>& p);
 
 /// Starting value, bounds and whether the parameter is held fixed (at `initial`).
 struct ParameterSetting {

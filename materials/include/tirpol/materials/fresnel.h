@@ -47,15 +47,39 @@ struct FresnelAmplitudes {
     TinyComplex<T> rp;
 };
 
+/// The numerators and denominators of r_s, r_p (file comment) for ñ² = `eps` at cosine of incidence
+/// `cos_i` ∈ [0, 1] (T or double): the one place the Fresnel equations are written.
+template <typename T>
+struct FresnelFractions {
+    TinyComplex<T> rs_num, rs_den, rp_num, rp_den;
+};
+
+template <typename T, typename C>
+FresnelFractions<T> fresnel_fractions(const TinyComplex<T>& eps, const C& cos_i) {
+    const TinyComplex<T> c{T(cos_i), T(0)};
+    const TinyComplex<T> q = csqrt(TinyComplex<T>{eps.re - T(1.0 - cos_i * cos_i), eps.im});  // ñ·cosθt
+    const TinyComplex<T> eps_c = scale(eps, cos_i);
+    return {c - q, c + q, eps_c - q, eps_c + q};
+}
+
 /// Amplitude reflection coefficients for index n + i·k at cosine of incidence `cos_i` ∈ [0, 1].
 template <typename T, typename C>
 FresnelAmplitudes<T> fresnel_amplitudes(const T& n, const T& k, const C& cos_i) {
-    const TinyComplex<T> eps{n * n - k * k, T(2) * n * k};  // ñ²
-    const TinyComplex<T> c{T(cos_i), T(0)};
-    const TinyComplex<T> sin2{T(1.0 - cos_i * cos_i), T(0)};
-    const TinyComplex<T> q = csqrt(eps - sin2);
-    const TinyComplex<T> eps_c = eps * c;
-    return {(c - q) / (c + q), (eps_c - q) / (eps_c + q)};
+    const FresnelFractions<T> f = fresnel_fractions(TinyComplex<T>{n * n - k * k, T(2) * n * k}, cos_i);
+    return {f.rs_num / f.rs_den, f.rp_num / f.rp_den};
+}
+
+/// Reflectances Rs = |r_s|², Rp = |r_p|² for ñ² = `eps` (computed once per parameter set by a caller
+/// that loops over angles), as |num|²/|den|² without a complex division.
+template <typename T>
+struct FresnelReflectances {
+    T rs2, rp2;
+};
+
+template <typename T, typename C>
+FresnelReflectances<T> fresnel_reflectances(const TinyComplex<T>& eps, const C& cos_i) {
+    const FresnelFractions<T> f = fresnel_fractions(eps, cos_i);
+    return {norm2(f.rs_num) / norm2(f.rs_den), norm2(f.rp_num) / norm2(f.rp_den)};
 }
 
 /// Mueller matrix of specular reflection in the s/p frames (file comment), templated.

@@ -10,7 +10,6 @@
 /// refractive_index: {n: 1.6, k: 0.1}     # or {file: data/x.yml} (refractiveindex.info / CSV)
 /// parameters: {sigma: 0.3, bias: 1, tau_deg: 15, omega_deg: 60, rho_d: 0.005, rho_v: 0}
 /// notes: "free text"
-/// thermal: {conductivity_w_m_k: 0.2, ...}   # optional, free-form numbers kept for the thermal solver
 /// ```
 
 #include <filesystem>
@@ -32,9 +31,6 @@ struct Material {
     std::string source;   ///< literature source(s) of the values, as written in the file
     std::string notes;    ///< free text (ranges, caveats)
     std::shared_ptr<const PolarizedBrdf> brdf;
-    /// Optional thermal properties (e.g. "conductivity_w_m_k", "density_kg_m3",
-    /// "specific_heat_j_kg_k", "thickness_m"), as numbers with units in their names.
-    std::map<std::string, double> thermal;
     std::filesystem::path file;  ///< where it was loaded from (empty for inline definitions)
 };
 

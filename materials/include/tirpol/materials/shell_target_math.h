@@ -72,13 +72,19 @@ struct MicrofacetGeometry {
 /// Geometry of (wi, wo) in the surface-local frame (pbrdf.h), including the frame rotations.
 MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo);
 
+/// The slope falloff exp(−tan²θN / (2σ²)) of D, given 1/(2σ²) (loops over facets compute it once).
+template <typename T>
+T gaussian_slope_falloff(const T& inv_two_sigma2, double tan2_n) {
+    using std::exp;
+    return exp(-T(tan2_n) * inv_two_sigma2);
+}
+
 /// Gaussian facet-normal density D(θN) (file comment), 1/sr.
 template <typename T>
 T gaussian_facet_density(const T& sigma, double cos_n, double tan2_n) {
-    using std::exp;
     const T s2 = sigma * sigma;
     const double c4 = cos_n * cos_n * cos_n * cos_n;
-    return exp(-tan2_n / (T(2) * s2)) / (T(2.0 * kPi * c4) * s2);
+    return gaussian_slope_falloff(T(1) / (T(2) * s2), tan2_n) / (T(2.0 * kPi * c4) * s2);
 }
 
 /// Smith's Λ for the Gaussian surface at a direction with cotangent `cot_theta` (file comment).
@@ -90,12 +96,19 @@ T smith_lambda(const T& sigma, double cot_theta) {
     return (exp(-a * a) / (a * T(std::sqrt(kPi))) - erfc(a)) * T(0.5);
 }
 
-/// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment).
+/// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment), given 1/τ and 1/Ω in 1/rad
+/// (loops over facets compute them once).
+template <typename T>
+T beard_maxwell_shadowing_reciprocal(const T& inv_tau_rad, const T& inv_omega_rad, double theta_n, double beta) {
+    using std::exp;
+    const T x = T(theta_n) * inv_omega_rad;
+    return (T(1) + x * exp(T(-2.0 * beta) * inv_tau_rad)) / (T(1) + x);
+}
+
+/// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment), τ and Ω in radians.
 template <typename T>
 T beard_maxwell_shadowing(const T& tau_rad, const T& omega_rad, double theta_n, double beta) {
-    using std::exp;
-    const T x = T(theta_n) / omega_rad;
-    return (T(1) + x * exp(T(-2.0 * beta) / tau_rad)) / (T(1) + x);
+    return beard_maxwell_shadowing_reciprocal(T(1) / tau_rad, T(1) / omega_rad, theta_n, beta);
 }
 
 /// The full Mueller BRDF (file comment) in 1/sr; zero matrix when the geometry is not valid.

@@ -1,0 +1,15 @@
+#include "tirpol/core/polarizer_angle.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace tirpol {
+
+std::string polarizer_angle_tag(double angle_deg) {
+    std::string tag = fmt::format("{:g}", polarizer_angle_deg(polarizer_angle_key(angle_deg)));
+    std::replace(tag.begin(), tag.end(), '.', 'p');
+    return tag;
+}
+
+}  // namespace tirpol
