@@ -320,14 +320,7 @@ void fit_paint(Chain& c) {
     write_file_atomic(c.out / "fit" / "fit.json",
                       json_text(fitting::fit_report_json(fit, problem.datasets(), provenance), 2));
     c.result.reduced_chi2 = fit.reduced_chi2;
-    const double truths[] = {true_params.n,
-                             true_params.k,
-                             true_params.sigma,
-                             true_params.bias,
-                             rad_to_deg(true_params.tau_rad),
-                             rad_to_deg(true_params.omega_rad),
-                             true_params.rho_d,
-                             true_params.rho_v};
+    const auto truths = fitting::fit_order_values(true_params);
     for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
         const auto& p = fit.parameters[i];
         c.result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
