@@ -12,29 +12,36 @@
 
 namespace tirpol::acquisition {
 
-DeviceUri parse_device_uri(const std::string& uri) {
+Result<DeviceUri> split_device_uri(const std::string& uri) {
+    const auto invalid = [&](const std::string& what) {
+        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("device URI '{}': {}", uri, what)};
+    };
     DeviceUri out;
     out.text = uri;
     const auto sep = uri.find("://");
-    if (sep == std::string::npos || sep == 0)
-        fail("device URI '{}': expected <scheme>://<target>[?key=value&...]", uri);
+    if (sep == std::string::npos || sep == 0) return invalid("expected <scheme>://<target>[?key=value&...]");
     out.scheme = uri.substr(0, sep);
-    std::string rest = uri.substr(sep + 3);
+    const std::string rest = uri.substr(sep + 3);
     const auto q = rest.find('?');
     out.target = rest.substr(0, q);
     if (q == std::string::npos) return out;
-    std::string query = rest.substr(q + 1);
-    std::size_t start = 0;
-    while (start < query.size()) {
+    const std::string query = rest.substr(q + 1);
+    for (std::size_t start = 0; start < query.size();) {
         const std::size_t end = std::min(query.find('&', start), query.size());
         const std::string pair = query.substr(start, end - start);
-        const auto eq = pair.find('=');
-        if (eq == std::string::npos || eq == 0)
-            fail("device URI '{}': query item '{}' is not key=value", uri, pair);
-        out.query[pair.substr(0, eq)] = pair.substr(eq + 1);
         start = end + 1;
+        if (pair.empty()) continue;  // "a=1&&b=2" or a trailing '&': a harmless typo
+        const auto eq = pair.find('=');
+        if (eq == std::string::npos || eq == 0) return invalid(fmt::format("query item '{}' is not key=value", pair));
+        out.query[pair.substr(0, eq)] = pair.substr(eq + 1);
     }
     return out;
+}
+
+DeviceUri parse_device_uri(const std::string& uri) {
+    auto parsed = split_device_uri(uri);
+    if (!parsed) throw Error(parsed.error().message);
+    return std::move(parsed.value());
 }
 
 void DeviceUri::check_keys(std::initializer_list<const char*> allowed) const {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "tirpol/calibration/region_mean.h"
 #include "tirpol/core/checks.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/emissivity_csv.h"
@@ -24,32 +25,6 @@ PixelRect parse_rect(const ConfigNode& node) {
                         "found [{}]; a fractional rectangle would be truncated silently",
                         limits::kMaxImageSide, fmt::join(v, ", ")));
     return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])};
-}
-
-struct RegionMean {
-    double mean = 0.0, standard_error = 0.0;
-    std::size_t n = 0;
-};
-
-RegionMean region_mean(const Image& image, const std::string& channel, const PixelRect& r, const std::string& what) {
-    if (r.x < 0 || r.y < 0 || r.x + r.width > image.width() || r.y + r.height > image.height())
-        fail("{}: rectangle [{}, {}, {}, {}] is outside the {}×{} image", what, r.x, r.y, r.width, r.height,
-             image.width(), image.height());
-    const auto& plane = image.channel(channel);
-    double sum = 0.0, sum2 = 0.0;
-    std::size_t n = 0;
-    for (int y = r.y; y < r.y + r.height; ++y)
-        for (int x = r.x; x < r.x + r.width; ++x) {
-            const double v = plane[image.index(x, y)];
-            if (!std::isfinite(v)) continue;
-            sum += v;
-            sum2 += v * v;
-            ++n;
-        }
-    if (n == 0) fail("{}: no finite {} pixel in the rectangle", what, channel);
-    const double mean = sum / static_cast<double>(n);
-    const double var = n > 1 ? std::max(0.0, (sum2 - static_cast<double>(n) * mean * mean) / static_cast<double>(n - 1)) : 0.0;
-    return {mean, std::sqrt(var / static_cast<double>(n)), n};
 }
 }  // namespace
 

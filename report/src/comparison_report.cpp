@@ -139,105 +139,98 @@ std::optional<KelvinBias> kelvin_bias(const QuantityStats& s0, const Band& band)
     return k;
 }
 
-}  // namespace
-
-void require_stokes_channels(const Image& image, const std::string& name, const std::string& role) {
-    std::vector<std::string> missing;
-    for (const char* c : {"S0", "S1", "S2"})
-        if (!image.has_channel(c)) missing.emplace_back(c);
-    if (!missing.empty())
-        fail("{}: the {} Stokes image lacks channel{} {}; channels present: {} (expected S0 S1 S2, as written by "
-             "`tirpol {}`)",
-             name, role, missing.size() > 1 ? "s" : "", join(missing), join(image.channel_names()),
-             role == "measured" ? "reduce" : "render");
-    if (image.pixel_count() == 0) fail("{}: the {} Stokes image has no pixels", name, role);
+std::size_t region_index(const std::vector<Region>& regions, const std::string& name) {
+    for (std::size_t r = 0; r < regions.size(); ++r)
+        if (regions[r].name == name) return r;
+    return regions.size();
 }
 
-Comparison compare(const Image& measured_in, const Image& simulated_in, const CompareOptions& options) {
-    require_stokes_channels(measured_in, options.measured_name, "measured");
-    require_stokes_channels(simulated_in, options.simulated_name, "simulated");
-    const int w = measured_in.width(), h = measured_in.height();
-    const std::size_t n = measured_in.pixel_count();
-
+// The comparison's grid, units and regions; a bad polygon is reported before any expensive work.
+Comparison start_comparison(const Image& measured, const Image& simulated, const CompareOptions& options) {
     Comparison comparison;
     CompareResult& result = comparison.result;
-    ComparisonPlanes& planes = comparison.planes;
     result.provenance = options.provenance;
-    result.width = w;
-    result.height = h;
-    result.simulated_width = simulated_in.width();
-    result.simulated_height = simulated_in.height();
+    result.width = measured.width();
+    result.height = measured.height();
+    result.simulated_width = simulated.width();
+    result.simulated_height = simulated.height();
     result.units = "W/(m²·sr)";
-    if (const auto it = measured_in.attributes().find("units");
-        it != measured_in.attributes().end() && std::holds_alternative<std::string>(it->second))
+    if (const auto it = measured.attributes().find("units");
+        it != measured.attributes().end() && std::holds_alternative<std::string>(it->second))
         result.units = std::get<std::string>(it->second);
-
-    // Regions first: a bad polygon is reported before any expensive work.
-    std::vector<Region>& regions = planes.regions;
+    std::vector<Region>& regions = comparison.planes.regions;
     if (options.regions) {
         regions = options.regions->regions;
         result.background = options.regions->background;
     } else {
-        regions.push_back(whole_image_region(w, h));
+        regions.push_back(whole_image_region(result.width, result.height));
     }
-    std::vector<Mask>& masks = planes.masks;
-    for (const auto& region : regions) masks.push_back(region_mask(region, w, h));
-    auto region_index = [&](const std::string& name) {
-        for (std::size_t r = 0; r < regions.size(); ++r)
-            if (regions[r].name == name) return r;
-        return regions.size();
-    };
+    for (const auto& region : regions)
+        comparison.planes.masks.push_back(region_mask(region, result.width, result.height));
+    return comparison;
+}
 
+// Registers the simulation onto the measured grid and derives DoLP and AoP on both.
+void register_planes(Comparison& comparison, const Image& measured, const Image& simulated,
+                     const CompareOptions& options) {
+    CompareResult& result = comparison.result;
     throw_if_cancelled(options.cancel, "comparison");
     result.registration =
         options.registration == RegistrationMethod::CameraModel && options.camera_model
-            ? register_by_camera_model(measured_in, simulated_in, *options.camera_model, options.camera_model_name)
-            : register_images(measured_in, simulated_in, options.registration, options.control_points, options.cancel);
+            ? register_by_camera_model(measured, simulated, *options.camera_model, options.camera_model_name)
+            : register_images(measured, simulated, options.registration, options.control_points, options.cancel);
     throw_if_cancelled(options.cancel, "comparison");
-    planes.measured = measured_in;
-    planes.simulated = resample_to_measured(simulated_in, result.registration, w, h);
-    Image& measured = planes.measured;
-    Image& simulated = planes.simulated;
-    derive_dolp_aop(measured);
-    derive_dolp_aop(simulated);
+    comparison.planes.measured = measured;
+    comparison.planes.simulated = resample_to_measured(simulated, result.registration, result.width, result.height);
+    derive_dolp_aop(comparison.planes.measured);
+    derive_dolp_aop(comparison.planes.simulated);
     if (std::abs(result.registration.rotation_deg) > 0.5)
         result.notes.push_back(fmt::format(
             "the registration rotates the image by {:.2f}°; S1/S2 of the simulation are not rotated back into the "
             "measured frame, so their comparison is biased by that rotation",
             result.registration.rotation_deg));
+}
 
-    // Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2.
-    auto& diffs = planes.difference;
-    auto& z = planes.z;
-    auto& sigma_total = planes.total_variance;
-    std::map<std::string, std::vector<float>> var_measured, var_simulated;
-    const Mask all_pixels(n, 1);
+// Measured variance of quantity `q` when the image has no σ channel: the per-frame σ option, else
+// the scatter in the flat noise region, else Immerkær's estimate.
+std::vector<float> measured_variance_without_channel(const Comparison& comparison, const std::string& q,
+                                                     const CompareOptions& options, std::string& source) {
+    const Image& measured = comparison.planes.measured;
     const std::string noise_region_name =
         options.regions ? (options.regions->noise_region.empty() ? options.regions->background : options.regions->noise_region)
                         : std::string();
+    double sigma = 0.0;
+    if (options.measured_frame_sigma) {
+        sigma = *options.measured_frame_sigma * (q == "S0" ? 1.0 : std::sqrt(2.0));
+        source = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)", *options.measured_frame_sigma);
+    } else if (!noise_region_name.empty()) {
+        const auto& mask = comparison.planes.masks[region_index(comparison.planes.regions, noise_region_name)];
+        sigma = quantity_stats(measured.channel(q), measured.channel(q), mask).measured_std;
+        source = "std of measured " + q + " in flat region '" + noise_region_name + "'";
+    } else {
+        sigma = immerkaer_noise_sigma(measured.channel(q), measured.width(), measured.height());
+        source = "Immerkær noise estimate of measured " + q;
+    }
+    return std::vector<float>(measured.pixel_count(), static_cast<float>(sigma * sigma));
+}
+
+using VarianceByQuantity = std::map<std::string, std::vector<float>>;
+
+// Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2, with where each σ came from.
+void differences_and_z(Comparison& comparison, const Image& measured_in, const Image& simulated_in,
+                       const CompareOptions& options, VarianceByQuantity& var_measured,
+                       VarianceByQuantity& var_simulated) {
+    CompareResult& result = comparison.result;
+    ComparisonPlanes& planes = comparison.planes;
+    const std::size_t n = planes.measured.pixel_count();
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
-        diffs[q] = difference(measured.channel(q), simulated.channel(q), q == "AoP");
+        planes.difference[q] = difference(planes.measured.channel(q), planes.simulated.channel(q), q == "AoP");
     for (const auto& q : kZQuantities) {
         throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
-        auto var_m = variance_channel(measured, q, source.measured);
-        if (!var_m) {
-            double sigma = 0.0;
-            if (options.measured_frame_sigma) {
-                sigma = *options.measured_frame_sigma * (q == "S0" ? 1.0 : std::sqrt(2.0));
-                source.measured = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)",
-                                              *options.measured_frame_sigma);
-            } else if (!noise_region_name.empty()) {
-                const auto st = quantity_stats(measured.channel(q), measured.channel(q), masks[region_index(noise_region_name)]);
-                sigma = st.measured_std;
-                source.measured = "std of measured " + q + " in flat region '" + noise_region_name + "'";
-            } else {
-                sigma = immerkaer_noise_sigma(measured.channel(q), w, h);
-                source.measured = "Immerkær noise estimate of measured " + q;
-            }
-            var_m = std::vector<float>(n, static_cast<float>(sigma * sigma));
-        }
-        auto var_s = variance_channel(simulated, q, source.simulated);
+        auto var_m = variance_channel(planes.measured, q, source.measured);
+        if (!var_m) var_m = measured_variance_without_channel(comparison, q, options, source.measured);
+        auto var_s = variance_channel(planes.simulated, q, source.simulated);
         if (!var_s) {
             source.simulated = "none (σ_s = 0)";
             var_s = std::vector<float>(n, 0.0f);
@@ -248,209 +241,279 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
         source.simulated_sigma_median = median_sqrt(*var_s);
         result.noise[q] = source;
         const double dof_m = variance_dof(measured_in), dof_s = variance_dof(simulated_in);
-        if (std::isfinite(dof_m)) source.measured += fmt::format(" ({:g} degrees of freedom)", dof_m);
-        if (std::isfinite(dof_s)) source.simulated += fmt::format(" ({:g} degrees of freedom)", dof_s);
-        z[q] = z_scores(measured.channel(q), simulated.channel(q), *var_m, *var_s, dof_m, dof_s);
+        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m, *var_s, dof_m, dof_s);
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
-        sigma_total[q] = std::move(total);
+        planes.total_variance[q] = std::move(total);
         var_measured[q] = std::move(*var_m);
         var_simulated[q] = std::move(*var_s);
     }
-    std::vector<float> z_pooled;
-    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), z[q].begin(), z[q].end());
-
-    // Per-region statistics.
-    const std::optional<Band> band = comparison_band(measured_in, simulated_in, options, result);
-    const std::size_t bg = result.background.empty() ? regions.size() : region_index(result.background);
-    for (std::size_t r = 0; r < regions.size(); ++r) {
-        throw_if_cancelled(options.cancel, "comparison");
-        RegionResult rr;
-        rr.name = regions[r].name;
-        rr.pixel_count = static_cast<std::size_t>(std::count(masks[r].begin(), masks[r].end(), 1));
-        for (const auto& q : kComparedQuantities) rr.stats[q] = quantity_stats(measured.channel(q), simulated.channel(q), masks[r]);
-        Mask pooled_mask;
-        for (const auto& q : kZQuantities) {
-            rr.z[q] = z_stats(z[q], masks[r]);
-            pooled_mask.insert(pooled_mask.end(), masks[r].begin(), masks[r].end());
-        }
-        rr.z["all"] = z_stats(z_pooled, pooled_mask);
-        for (const auto& q : kZQuantities) {
-            rr.verdicts[q] = z_verdict(rr.z[q]);
-            rr.verdict = worse(rr.verdict, rr.verdicts[q]);
-        }
-        rr.aop = aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"),
-                           simulated.channel("S2"), var_measured["S1"], var_measured["S2"], var_simulated["S1"],
-                           var_simulated["S2"], masks[r]);
-        if (band) rr.s0_bias_k = kelvin_bias(rr.stats.at("S0"), *band);
-        result.regions.push_back(std::move(rr));
-    }
-    if (bg < regions.size()) {
-        const auto& b = result.regions[bg].stats.at("S1");
-        for (auto& rr : result.regions) {
-            const auto& s = rr.stats.at("S1");
-            if (s.pixel_count == 0 || b.pixel_count == 0) continue;
-            rr.s1_contrast_measured = s.measured_mean - b.measured_mean;
-            rr.s1_contrast_simulated = s.simulated_mean - b.simulated_mean;
-        }
-    }
-    return comparison;
 }
 
-void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir) {
-    CompareResult& result = comparison.result;
-    const ComparisonPlanes& planes = comparison.planes;
+// Statistics, z summary, verdicts, AoP and kelvin bias of region `r`.
+RegionResult region_result(const ComparisonPlanes& planes, std::size_t r, const std::vector<float>& z_pooled,
+                           const VarianceByQuantity& var_measured, const VarianceByQuantity& var_simulated,
+                           const std::optional<Band>& band) {
     const Image& measured = planes.measured;
     const Image& simulated = planes.simulated;
-    const auto& regions = planes.regions;
-    const auto& masks = planes.masks;
-    const auto& diffs = planes.difference;
-    const auto& z = planes.z;
-    const auto& sigma_total = planes.total_variance;
-    const int w = result.width, h = result.height;
-    const std::size_t n = measured.pixel_count();
+    const Mask& mask = planes.masks[r];
+    RegionResult rr;
+    rr.name = planes.regions[r].name;
+    rr.pixel_count = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
+    for (const auto& q : kComparedQuantities)
+        rr.stats[q] = quantity_stats(measured.channel(q), simulated.channel(q), mask);
+    Mask pooled_mask;
+    for (const auto& q : kZQuantities) {
+        rr.z[q] = z_stats(planes.z.at(q), mask);
+        pooled_mask.insert(pooled_mask.end(), mask.begin(), mask.end());
+    }
+    rr.z["all"] = z_stats(z_pooled, pooled_mask);
+    for (const auto& q : kZQuantities) {
+        rr.verdicts[q] = z_verdict(rr.z[q]);
+        rr.verdict = worse(rr.verdict, rr.verdicts[q]);
+    }
+    rr.aop =
+        aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"), simulated.channel("S2"),
+                  var_measured.at("S1"), var_measured.at("S2"), var_simulated.at("S1"), var_simulated.at("S2"), mask);
+    if (band) rr.s0_bias_k = kelvin_bias(rr.stats.at("S0"), *band);
+    return rr;
+}
+
+// S1 contrast of each region against the background region, when there is one.
+void background_contrast(CompareResult& result, const std::vector<Region>& regions) {
+    const std::size_t bg = result.background.empty() ? regions.size() : region_index(regions, result.background);
+    if (bg >= regions.size()) return;
+    const auto& b = result.regions[bg].stats.at("S1");
+    for (auto& rr : result.regions) {
+        const auto& s = rr.stats.at("S1");
+        if (s.pixel_count == 0 || b.pixel_count == 0) continue;
+        rr.s1_contrast_measured = s.measured_mean - b.measured_mean;
+        rr.s1_contrast_simulated = s.simulated_mean - b.simulated_mean;
+    }
+}
+
+// z of S0, S1 and S2 end to end (the pooled sample of the histogram and the "all" statistic).
+std::vector<float> pooled_z(const ComparisonPlanes& planes) {
     std::vector<float> z_pooled;
-    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), z.at(q).begin(), z.at(q).end());
-    std::filesystem::create_directories(report_dir);
+    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), planes.z.at(q).begin(), planes.z.at(q).end());
+    return z_pooled;
+}
+
+// The files of a report being written, and the figures its page will show, in order.
+struct ReportFiles {
+    CompareResult& result;
+    const ComparisonPlanes& planes;
+    std::filesystem::path dir;
     std::vector<detail::Figure> figures;
-    auto png = [&](const std::string& name) {
-        result.pngs.push_back(report_dir / name);
-        return report_dir / name;
-    };
+
+    std::filesystem::path png(const std::string& name) {
+        result.pngs.push_back(dir / name);
+        return dir / name;
+    }
     // A plot: written next to the page as .svg and inlined in it.
-    auto svg_figure = [&](const std::string& section, const std::string& name, std::string svg, std::string caption) {
-        result.svgs.push_back(report_dir / name);
-        write_file_atomic(report_dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
-        figures.push_back({section, report_dir / name, std::move(caption), std::move(svg)});
-    };
-    svg_figure("regions", "regions.svg",
-               detail::svg_region_overview(detail::region_overview(measured.channel("S0"), w, h, regions)),
-               "Measured S0 with the regions of interest (polygons in measured pixel coordinates).");
-
-    const std::map<std::string, QuantityDisplay> display = {{"S0", {result.units, Colormap::Sequential}},
-                                                            {"S1", {result.units, Colormap::Diverging}},
-                                                            {"S2", {result.units, Colormap::Diverging}},
-                                                            {"DoLP", {"", Colormap::Sequential}},
-                                                            {"AoP", {"°", Colormap::Cyclic}}};
-    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
-        const auto& d = display.at(q);
-        const auto pm = detail::display_plane(measured.channel(q), w, h);
-        const auto ps = detail::display_plane(simulated.channel(q), w, h);
-        const auto pd = detail::display_plane(diffs.at(q), w, h);
-        QuicklookOptions shared{d.map, std::nullopt, std::nullopt, "", d.units, 0};
-        if (q == "DoLP") shared.vmin = 0.0;
-        const auto [lo, hi] = shared_range(pm.data, ps.data, shared);
-        shared.vmin = lo;
-        shared.vmax = hi;
-        QuicklookOptions om = shared, os = shared, od{Colormap::Diverging, std::nullopt, std::nullopt,
-                                                       q + " measured - simulated", d.units, 0};
-        om.title = q + " measured";
-        os.title = q + " simulated";
-        if (q == "AoP") {
-            od.vmin = -90.0;
-            od.vmax = 90.0;
-        }
-        const auto [dlo, dhi] = quicklook_range(pd.data, od);
-        od.vmin = dlo;
-        od.vmax = dhi;
-        result.colour_scales[q] = {lo, hi};
-        result.colour_scales[q + "_difference"] = {dlo, dhi};
-        detail::write_panel(png("panel_" + q + ".png"),
-                    {png("measured_" + q + ".png"), png("simulated_" + q + ".png"), png("difference_" + q + ".png")},
-                    {pm, ps, pd}, {om, os, od});
-        const std::string unit_text = d.units.empty() ? "" : " " + d.units;
-        figures.push_back({"images", report_dir / ("panel_" + q + ".png"),
-                           fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
-                                       "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
-                                       q, lo, hi, unit_text, dlo, dhi, unit_text,
-                                       q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : ""),
-                           ""});
+    void svg_figure(const std::string& section, const std::string& name, std::string svg, std::string caption) {
+        result.svgs.push_back(dir / name);
+        write_file_atomic(dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
+        figures.push_back({section, dir / name, std::move(caption), std::move(svg)});
     }
+};
 
-    {
-        std::vector<detail::Plane> z_planes;
-        std::vector<std::filesystem::path> parts;
-        std::vector<QuicklookOptions> opts;
-        for (const auto& q : kZQuantities) {
-            z_planes.push_back(detail::display_plane(z.at(q), w, h));
-            parts.push_back(png("z_" + q + ".png"));
-            opts.push_back({Colormap::Diverging, -5.0, 5.0, "z " + q, "sigma", 0});
-        }
-        result.colour_scales["z"] = {-5.0, 5.0};
-        detail::write_panel(png("panel_z.png"), parts, z_planes, opts);
-        figures.push_back({"z", report_dir / "panel_z.png",
-                           "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
-                           "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels.",
-                           ""});
-        svg_figure("z", "histogram_z.svg",
-                   detail::svg_histogram("z of S0, S1, S2 (all pixels)", "z", z_pooled, -6.0, 6.0, {-3, -2, 0, 2, 3},
-                                         0.0, 1.0),
-                   "Distribution of z over all pixels (bars) against the standard normal density (red curve); grey "
-                   "lines at ±2 and ±3.");
+QuantityDisplay display_of(const std::string& q, const std::string& units) {
+    if (q == "DoLP") return {"", Colormap::Sequential};
+    if (q == "AoP") return {"°", Colormap::Cyclic};
+    return {units, q == "S0" ? Colormap::Sequential : Colormap::Diverging};
+}
+
+void regions_figure(ReportFiles& f) {
+    const auto& r = f.result;
+    f.svg_figure("regions", "regions.svg",
+                 detail::svg_region_overview(
+                     detail::region_overview(f.planes.measured.channel("S0"), r.width, r.height, f.planes.regions)),
+                 "Measured S0 with the regions of interest (polygons in measured pixel coordinates).");
+}
+
+// Measured, simulated and their difference of quantity `q`, the first two on one colour scale.
+void image_panel(ReportFiles& f, const std::string& q) {
+    const int w = f.result.width, h = f.result.height;
+    const QuantityDisplay d = display_of(q, f.result.units);
+    const auto pm = detail::display_plane(f.planes.measured.channel(q), w, h);
+    const auto ps = detail::display_plane(f.planes.simulated.channel(q), w, h);
+    const auto pd = detail::display_plane(f.planes.difference.at(q), w, h);
+    QuicklookOptions shared{d.map, std::nullopt, std::nullopt, "", d.units, 0};
+    if (q == "DoLP") shared.vmin = 0.0;
+    const auto [lo, hi] = shared_range(pm.data, ps.data, shared);
+    shared.vmin = lo;
+    shared.vmax = hi;
+    QuicklookOptions om = shared, os = shared,
+                     od{Colormap::Diverging, std::nullopt, std::nullopt, q + " measured - simulated", d.units, 0};
+    om.title = q + " measured";
+    os.title = q + " simulated";
+    if (q == "AoP") {
+        od.vmin = -90.0;
+        od.vmax = 90.0;
     }
+    const auto [dlo, dhi] = quicklook_range(pd.data, od);
+    od.vmin = dlo;
+    od.vmax = dhi;
+    f.result.colour_scales[q] = {lo, hi};
+    f.result.colour_scales[q + "_difference"] = {dlo, dhi};
+    detail::write_panel(
+        f.png("panel_" + q + ".png"),
+        {f.png("measured_" + q + ".png"), f.png("simulated_" + q + ".png"), f.png("difference_" + q + ".png")},
+        {pm, ps, pd}, {om, os, od});
+    const std::string unit_text = d.units.empty() ? "" : " " + d.units;
+    f.figures.push_back({"images", f.dir / ("panel_" + q + ".png"),
+                         fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
+                                     "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
+                                     q, lo, hi, unit_text, dlo, dhi, unit_text,
+                                     q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : ""),
+                         ""});
+}
 
+void image_panels(ReportFiles& f) {
+    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) image_panel(f, q);
+}
+
+void z_figures(ReportFiles& f) {
+    std::vector<detail::Plane> z_planes;
+    std::vector<std::filesystem::path> parts;
+    std::vector<QuicklookOptions> opts;
+    for (const auto& q : kZQuantities) {
+        z_planes.push_back(detail::display_plane(f.planes.z.at(q), f.result.width, f.result.height));
+        parts.push_back(f.png("z_" + q + ".png"));
+        opts.push_back({Colormap::Diverging, -5.0, 5.0, "z " + q, "sigma", 0});
+    }
+    f.result.colour_scales["z"] = {-5.0, 5.0};
+    detail::write_panel(f.png("panel_z.png"), parts, z_planes, opts);
+    f.figures.push_back({"z", f.dir / "panel_z.png",
+                         "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
+                         "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels.",
+                         ""});
+    f.svg_figure("z", "histogram_z.svg",
+                 detail::svg_histogram("z of S0, S1, S2 (all pixels)", "z", pooled_z(f.planes), -6.0, 6.0,
+                                       {-3, -2, 0, 2, 3}, 0.0, 1.0),
+                 "Distribution of z over all pixels (bars) against the standard normal density (red curve); grey "
+                 "lines at ±2 and ±3.");
+}
+
+void scatter_figures(ReportFiles& f) {
+    const auto& regions = f.planes.regions;
+    const auto& masks = f.planes.masks;
     for (const auto& q : kComparedQuantities) {
         std::vector<detail::ScatterSeries> series;
-        const auto& mq = measured.channel(q);
-        const auto& sq = simulated.channel(q);
+        const auto& mq = f.planes.measured.channel(q);
+        const auto& sq = f.planes.simulated.channel(q);
         for (std::size_t r = 0; r < regions.size(); ++r) {
             detail::ScatterSeries s{regions[r].name, {}, {}};
-            for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t i = 0; i < mq.size(); ++i)
                 if (masks[r][i]) {
                     s.measured.push_back(mq[i]);
                     s.simulated.push_back(sq[i]);
                 }
             series.push_back(std::move(s));
         }
-        const std::string units = display.at(q).units;
-        svg_figure("scatter", "scatter_" + q + ".svg", detail::svg_scatter(q, units, series),
-                   fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q));
+        f.svg_figure("scatter", "scatter_" + q + ".svg",
+                     detail::svg_scatter(q, display_of(q, f.result.units).units, series),
+                     fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q));
     }
-    for (const auto& q : kComparedQuantities) {
-        const auto& d = diffs.at(q);
-        std::vector<float> finite_abs;
-        double bias = 0.0;
-        for (float v : d)
-            if (std::isfinite(v)) {
-                finite_abs.push_back(std::abs(v));
-                bias += v;
-            }
-        bias = finite_abs.empty() ? 0.0 : bias / static_cast<double>(finite_abs.size());
-        double range = 1.0;
-        if (!finite_abs.empty()) {
-            const auto k = static_cast<std::size_t>(0.995 * static_cast<double>(finite_abs.size() - 1));
-            std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k), finite_abs.end());
-            range = finite_abs[k] > 0.0f ? 1.1 * finite_abs[k] : 1.0;
+}
+
+// Histogram of measured − simulated of `q` against the normal density of the stated noise.
+void difference_histogram(ReportFiles& f, const std::string& q) {
+    const auto& d = f.planes.difference.at(q);
+    std::vector<float> finite_abs;
+    double bias = 0.0;
+    for (float v : d)
+        if (std::isfinite(v)) {
+            finite_abs.push_back(std::abs(v));
+            bias += v;
         }
-        const double sigma = sigma_total.count(q) ? median_sqrt(sigma_total.at(q)) : 0.0;
-        const std::string units = display.at(q).units;
-        svg_figure("histograms", "histogram_difference_" + q + ".svg",
-                   detail::svg_histogram(q + ": measured − simulated",
-                                         "difference" + (units.empty() ? "" : " [" + units + "]"), d, -range, range,
-                                         {0.0, bias}, 0.0, sigma),
-                           sigma > 0.0 ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
-                                                     "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
-                                                     q, sigma, bias)
-                                       : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.",
-                                                     q, bias));
+    bias = finite_abs.empty() ? 0.0 : bias / static_cast<double>(finite_abs.size());
+    double range = 1.0;
+    if (!finite_abs.empty()) {
+        const auto k = static_cast<std::size_t>(0.995 * static_cast<double>(finite_abs.size() - 1));
+        std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k), finite_abs.end());
+        range = finite_abs[k] > 0.0f ? 1.1 * finite_abs[k] : 1.0;
     }
+    const auto& total_variance = f.planes.total_variance;
+    const double sigma = total_variance.count(q) ? median_sqrt(total_variance.at(q)) : 0.0;
+    const std::string units = display_of(q, f.result.units).units;
+    f.svg_figure(
+        "histograms", "histogram_difference_" + q + ".svg",
+        detail::svg_histogram(q + ": measured − simulated", "difference" + (units.empty() ? "" : " [" + units + "]"), d,
+                              -range, range, {0.0, bias}, 0.0, sigma),
+        sigma > 0.0 ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
+                                  "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
+                                  q, sigma, bias)
+                    : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.", q, bias));
+}
 
-    // Full-resolution planes behind the figures.
-    Image exr_planes(w, h);
-    exr_planes.attributes()["units"] = result.units;
+void difference_histograms(ReportFiles& f) {
+    for (const auto& q : kComparedQuantities) difference_histogram(f, q);
+}
+
+// Full-resolution planes behind the figures.
+void planes_exr(ReportFiles& f) {
+    Image exr_planes(f.result.width, f.result.height);
+    exr_planes.attributes()["units"] = f.result.units;
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
-        exr_planes.set_channel("measured." + q, measured.channel(q));
-        exr_planes.set_channel("simulated." + q, simulated.channel(q));
-        exr_planes.set_channel("difference." + q, diffs.at(q));
+        exr_planes.set_channel("measured." + q, f.planes.measured.channel(q));
+        exr_planes.set_channel("simulated." + q, f.planes.simulated.channel(q));
+        exr_planes.set_channel("difference." + q, f.planes.difference.at(q));
     }
-    for (const auto& q : kZQuantities) exr_planes.set_channel("z." + q, z.at(q));
-    result.exr = report_dir / "comparison.exr";
-    write_exr(result.exr, exr_planes);
+    for (const auto& q : kZQuantities) exr_planes.set_channel("z." + q, f.planes.z.at(q));
+    f.result.exr = f.dir / "comparison.exr";
+    write_exr(f.result.exr, exr_planes);
+}
 
+// The report, section by section in page order: a new figure is one more entry.
+using Section = void (*)(ReportFiles&);
+constexpr Section kSections[] = {regions_figure,  image_panels,          z_figures,
+                                 scatter_figures, difference_histograms, planes_exr};
+
+}  // namespace
+
+void require_stokes_channels(const Image& image, const std::string& name, const std::string& role) {
+    std::vector<std::string> missing;
+    for (const char* c : {"S0", "S1", "S2"})
+        if (!image.has_channel(c)) missing.emplace_back(c);
+    if (!missing.empty())
+        fail(
+            "{}: the {} Stokes image lacks channel{} {}; channels present: {} (expected S0 S1 S2, as written by "
+            "`tirpol {}`)",
+            name, role, missing.size() > 1 ? "s" : "", join(missing), join(image.channel_names()),
+            role == "measured" ? "reduce" : "render");
+    if (image.pixel_count() == 0) fail("{}: the {} Stokes image has no pixels", name, role);
+}
+
+Comparison compare(const Image& measured_in, const Image& simulated_in, const CompareOptions& options) {
+    require_stokes_channels(measured_in, options.measured_name, "measured");
+    require_stokes_channels(simulated_in, options.simulated_name, "simulated");
+    Comparison comparison = start_comparison(measured_in, simulated_in, options);
+    register_planes(comparison, measured_in, simulated_in, options);
+    VarianceByQuantity var_measured, var_simulated;
+    differences_and_z(comparison, measured_in, simulated_in, options, var_measured, var_simulated);
+    const std::vector<float> z_pooled = pooled_z(comparison.planes);
+    const std::optional<Band> band = comparison_band(measured_in, simulated_in, options, comparison.result);
+    for (std::size_t r = 0; r < comparison.planes.regions.size(); ++r) {
+        throw_if_cancelled(options.cancel, "comparison");
+        comparison.result.regions.push_back(
+            region_result(comparison.planes, r, z_pooled, var_measured, var_simulated, band));
+    }
+    background_contrast(comparison.result, comparison.planes.regions);
+    return comparison;
+}
+
+void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir) {
+    std::filesystem::create_directories(report_dir);
+    ReportFiles files{comparison.result, comparison.planes, report_dir, {}};
+    for (const Section section : kSections) section(files);
+    CompareResult& result = comparison.result;
     result.json = report_dir / "report.json";
     result.html = report_dir / "report.html";
     write_file_atomic(result.json, comparison_json(result));
-    write_file_atomic(result.html, detail::render_html(result, options.measured_name, options.simulated_name, figures));
+    write_file_atomic(result.html,
+                      detail::render_html(result, options.measured_name, options.simulated_name, files.figures));
 }
 
 CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,

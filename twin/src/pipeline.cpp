@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "regions.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/calibration/datasheet_analyzer.h"
+#include "tirpol/calibration/region_mean.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -26,9 +28,8 @@
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/twin/camera_geometry.h"
-#include "tirpol/twin/twin.h"
 #include "tirpol/twin/instrument.h"
-#include "regions.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {
 
@@ -99,34 +100,24 @@ acquisition::CapturePlan write_plan(const fs::path& path, const std::string& ref
     return acquisition::CapturePlan::load(path);
 }
 
-/// Standard error of the ROI mean from the per-pixel σ channel (pixels' noise independent).
+/// Standard error of the ROI mean from the per-pixel σ channel (pixels' noise independent): √(Σσ²)/n.
 double rect_standard_error(const Image& image, const std::string& sigma_channel, const calibration::PixelRect& rect) {
-    const auto& c = image.channel(sigma_channel);
-    double sum_sq = 0.0;
-    int n = 0;
-    for (int y = rect.y; y < rect.y + rect.height; ++y)
-        for (int x = rect.x; x < rect.x + rect.width; ++x) {
-            const double v = c[image.index(x, y)];
-            if (std::isfinite(v)) sum_sq += v * v, ++n;
-        }
-    if (n == 0) fail("twin: no finite {} value in the rectangle", sigma_channel);
-    return std::sqrt(sum_sq) / n;
+    const auto& sigma = image.channel(sigma_channel);
+    const auto variance = calibration::region_mean_of(rect, "twin", sigma_channel, [&](int x, int y) {
+        const double v = sigma[image.index(x, y)];
+        return v * v;
+    });
+    return std::sqrt(variance.mean / static_cast<double>(variance.n));
 }
 
 /// Standard error of the ROI mean of a − b from the scatter of a − b over the ROI.
 double rect_difference_standard_error(const Image& a, const Image& b, const std::string& channel,
                                       const calibration::PixelRect& rect) {
     const auto &ca = a.channel(channel), &cb = b.channel(channel);
-    double sum = 0.0, sum_sq = 0.0;
-    int n = 0;
-    for (int y = rect.y; y < rect.y + rect.height; ++y)
-        for (int x = rect.x; x < rect.x + rect.width; ++x) {
-            const double d = ca[a.index(x, y)] - cb[b.index(x, y)];
-            if (std::isfinite(d)) sum += d, sum_sq += d * d, ++n;
-        }
-    if (n < 2) fail("twin: fewer than 2 finite {} pixels in the rectangle", channel);
-    const double mean = sum / n;
-    return std::sqrt(std::max(0.0, (sum_sq - n * mean * mean) / (n - 1)) / n);
+    const auto difference = calibration::region_mean_of(
+        rect, "twin", channel, [&](int x, int y) { return ca[a.index(x, y)] - cb[b.index(x, y)]; });
+    if (difference.n < 2) fail("twin: fewer than 2 finite {} pixels in the rectangle", channel);
+    return difference.standard_error;
 }
 
 /// The twin's measurement inherits the Monte Carlo noise of the truth render it observes, which its
@@ -248,8 +239,9 @@ void check_target_stokes(Chain& c) {
     if (!target_rect0) fail("twin: the target '{}' is not visible in view 0", c.opt.target);
     for (int k = 0; k < 3; ++k) {
         const std::string s = fmt::format("S{}", k);
-        c.result.target_stokes.measured[k] = rect_mean(c.measured.front(), s, *target_rect0);
-        c.result.target_stokes.truth[k] = rect_mean(c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.measured[k] =
+            calibration::region_mean(c.measured.front(), s, *target_rect0, "twin").mean;
+        c.result.target_stokes.truth[k] = calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.sigma[k] =
             rect_difference_standard_error(c.measured.front(), c.truth.front(), s, *target_rect0);
         c.result.target_stokes.sigma_temporal[k] = rect_standard_error(c.measured.front(), s + "_std", *target_rect0);
@@ -269,8 +261,9 @@ void extract_target_emissivity(Chain& c) {
         calibration::EmissivityTarget et;
         et.name = fmt::format("{}_view{}", c.opt.target, v);
         et.rect = *rect;
-        et.view_angle_deg = rect_mean(c.truth[v], "view_zenith_deg", *rect);
-        et.temperature_k = rect_mean(c.truth[v], "temperature_k", *rect);  // the contact thermometer
+        et.view_angle_deg = calibration::region_mean(c.truth[v], "view_zenith_deg", *rect, "twin").mean;
+        et.temperature_k =
+            calibration::region_mean(c.truth[v], "temperature_k", *rect, "twin").mean;  // the contact thermometer
         et.temperature_std_k = kTargetTemperatureStdK;
         rois.targets.push_back(et);
         const auto e = calibration::extract_emissivity(c.measured[v], rois, c.scene.band).front();

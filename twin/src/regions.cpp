@@ -53,26 +53,10 @@ std::optional<calibration::PixelRect> object_rect(const Image& render, std::size
     return calibration::PixelRect{x0, y0, x1 - x0, y1 - y0};
 }
 
-double rect_mean(const Image& image, const std::string& channel, const calibration::PixelRect& rect) {
-    const auto& c = image.channel(channel);
-    double sum = 0.0;
-    int n = 0;
-    for (int y = rect.y; y < rect.y + rect.height; ++y)
-        for (int x = rect.x; x < rect.x + rect.width; ++x) {
-            const float v = c[image.index(x, y)];
-            if (std::isfinite(v)) sum += v, ++n;
-        }
-    if (n == 0)
-        fail("twin: no finite {} value in the rectangle [{}, {}, {}, {}]", channel, rect.x, rect.y, rect.width,
-             rect.height);
-    return sum / n;
-}
-
 double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
                                const calibration::PixelRect& rect) {
-    const Vec3 normal = Vec3(rect_mean(render, "normal_x", rect), rect_mean(render, "normal_y", rect),
-                             rect_mean(render, "normal_z", rect))
-                            .normalized();
+    const auto mean = [&](const char* channel) { return calibration::region_mean(render, channel, rect, "twin").mean; };
+    const Vec3 normal = Vec3(mean("normal_x"), mean("normal_y"), mean("normal_z")).normalized();
     // The p direction is the normal's component across the ray through the rectangle's centre; its
     // angle is measured in the image Stokes frame of that ray: 0° = camera right projected on the
     // wavefront, 90° toward the image top (ARCHITECTURE.md). Off the optical axis this differs from

@@ -23,9 +23,6 @@ std::size_t object_index(const simulation::Scene& scene, const std::string& name
 /// mixed edge pixels. nullopt when the object covers fewer than 4 such pixels.
 std::optional<calibration::PixelRect> object_rect(const Image& render, std::size_t object);
 
-/// Mean of `channel` over the rectangle (NaNs skipped).
-double rect_mean(const Image& image, const std::string& channel, const calibration::PixelRect& rect);
-
 /// Angle (radians) of the p direction of emission — the mean surface normal's component across the
 /// ray through the rectangle's centre — in that ray's image Stokes frame (0° camera right, 90° image top).
 double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,

@@ -4,6 +4,7 @@
 
 #include "device_uri_query.h"
 #include "scheme_registry.h"
+#include "tirpol/acquisition/device_uri.h"
 #include "tirpol/acquisition/internal/apt_stage.h"
 #include "tirpol/acquisition/internal/elliptec_stage.h"
 #include "tirpol/acquisition/internal/ftdi_port.h"
@@ -13,31 +14,10 @@
 namespace tirpol::acquisition {
 
 Result<StageUri> parse_stage_uri(const std::string& uri) {
-    const auto sep = uri.find("://");
-    if (sep == std::string::npos || sep == 0)
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("'{}': expected a device URI like scheme://path[?key=value]", uri)};
-    StageUri out;
-    out.scheme = uri.substr(0, sep);
-    std::string rest = uri.substr(sep + 3);
-    const auto q = rest.find('?');
-    out.path = rest.substr(0, q);
-    if (q != std::string::npos) {
-        std::string query = rest.substr(q + 1);
-        std::size_t start = 0;
-        while (start <= query.size()) {
-            const auto amp = query.find('&', start);
-            const std::string item = query.substr(start, amp == std::string::npos ? std::string::npos : amp - start);
-            if (!item.empty()) {
-                const auto eq = item.find('=');
-                if (eq == std::string::npos || eq == 0)
-                    return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("'{}': query item '{}' is not key=value", uri, item)};
-                out.query[item.substr(0, eq)] = item.substr(eq + 1);
-            }
-            if (amp == std::string::npos) break;
-            start = amp + 1;
-        }
-    }
-    return out;
+    auto parsed = split_device_uri(uri);
+    if (!parsed) return parsed.error();
+    return StageUri{std::move(parsed.value().scheme), std::move(parsed.value().target),
+                    std::move(parsed.value().query)};
 }
 
 namespace {

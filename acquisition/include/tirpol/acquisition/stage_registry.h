@@ -23,7 +23,8 @@ struct StageUri {
     std::string scheme, path;
     std::map<std::string, std::string> query;
 };
-/// Parses "scheme://path?key=value&..."; InvalidArgument when there is no "://".
+/// split_device_uri() (device_uri.h) with the target named `path`: InvalidArgument when there is no
+/// "://" or a query item is not key=value.
 Result<StageUri> parse_stage_uri(const std::string& uri);
 
 /// Opens the stage a URI names, through the factory registered for its scheme; an unknown scheme is

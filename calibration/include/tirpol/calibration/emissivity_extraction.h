@@ -14,15 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/calibration/region_mean.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::calibration {
-
-/// A pixel rectangle [x, y, width, height] (origin top-left).
-struct PixelRect {
-    int x = 0, y = 0, width = 0, height = 0;
-};
 
 struct EmissivityTarget {
     std::string name;
