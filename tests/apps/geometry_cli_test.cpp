@@ -10,27 +10,16 @@
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/image.h"
+#include "truth_lens.h"
 
 namespace {
 
 using namespace tirpol;
 using tirpol::test::run_cli;
 
-CameraModel lens() {
-    CameraModel m;
-    m.width = 640;
-    m.height = 512;
-    m.fx = 762.0;
-    m.fy = 765.5;
-    m.cx = 331.7;
-    m.cy = 247.2;
-    m.distortion = {-0.32, 0.14, 0.0009, -0.0006, -0.035};
-    return m;
-}
-
 TEST(GeometryCli, PoseFromControlPointsIsWrittenAndPrinted) {
     test::TempDir dir;
-    write_camera_model(dir / "camera.yaml", lens());
+    write_camera_model(dir / "camera.yaml", tirpol::test::truth_lens());
     // Camera 1.5 m up at the origin looking north (x right = east, y down, z forward = north).
     CameraPose truth;
     truth.camera_from_world << 1, 0, 0, 0, 0, -1, 0, 1, 0;
@@ -39,7 +28,7 @@ TEST(GeometryCli, PoseFromControlPointsIsWrittenAndPrinted) {
     std::string csv = "name,x_m,y_m,z_m,u_px,v_px\n";
     const std::vector<Vec3> world = {{-2, 9, 0}, {2, 9, 0}, {-2, 9, 2.5}, {2, 9, 2.5}, {0, 12, 1}, {-2.5, 7, 0.3}, {2.5, 7, 1.8}};  // all inside the 640×512 view
     for (std::size_t i = 0; i < world.size(); ++i) {
-        const Vec2 px = lens().project(truth.camera_from_world * world[i] + truth.translation_m);
+        const Vec2 px = tirpol::test::truth_lens().project(truth.camera_from_world * world[i] + truth.translation_m);
         csv += fmt::format("p{},{},{},{},{:.4f},{:.4f}\n", i, world[i].x(), world[i].y(), world[i].z(), px.x(), px.y());
     }
     test::write_text(dir / "survey.csv", csv);
@@ -54,7 +43,7 @@ TEST(GeometryCli, PoseFromControlPointsIsWrittenAndPrinted) {
 
 TEST(GeometryCli, BadInputExitsOneAndSaysWhy) {
     test::TempDir dir;
-    write_camera_model(dir / "camera.yaml", lens());
+    write_camera_model(dir / "camera.yaml", tirpol::test::truth_lens());
     test::write_text(dir / "three.csv", "name,x_m,y_m,z_m,u_px,v_px\na,0,9,0,300,300\nb,1,9,0,380,300\nc,0,9,1,300,220\n");
     auto run = run_cli(fmt::format("calibrate pose --camera {} --points {} -o {}", (dir / "camera.yaml").string(),
                                    (dir / "three.csv").string(), (dir / "pose.yaml").string()));

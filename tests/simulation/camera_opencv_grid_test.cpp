@@ -11,24 +11,10 @@
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/camera.h"
+#include "truth_lens.h"
 
 namespace tirpol::simulation {
 namespace {
-
-/// A realistic uncooled LWIR lens: 640×512, 17 µm pitch, ~13 mm focal length, barrel distortion, the
-/// principal point off centre (values of the order reported for such cores; the exact numbers are
-/// arbitrary, the test is of consistency with OpenCV).
-CameraModel lwir_lens() {
-    CameraModel m;
-    m.width = 640;
-    m.height = 512;
-    m.fx = 762.0;
-    m.fy = 765.5;
-    m.cx = 331.7;
-    m.cy = 247.2;
-    m.distortion = {-0.32, 0.14, 0.0009, -0.0006, -0.035};
-    return m;
-}
 
 CameraPose some_pose() {
     CameraPose p;
@@ -54,7 +40,7 @@ std::vector<cv::Point2d> opencv_projection(const CameraModel& m, const CameraPos
 }
 
 TEST(CameraOpenCvGrid, RaysGoWhereProjectPointsSays) {
-    const CameraModel model = lwir_lens();
+    const CameraModel model = tirpol::test::truth_lens();
     const CameraPose pose = some_pose();
     const Camera camera = Camera::from_model(model, pose);
     // World points spread over the whole image, corners included (where the distortion is strongest).
@@ -81,7 +67,7 @@ TEST(CameraOpenCvGrid, RaysGoWhereProjectPointsSays) {
 
 TEST(CameraOpenCvGrid, InverseIsExactAtTheCornersOfAStrongLens) {
     // k1 = −0.45: fixed-point iteration alone (cv::undistortPoints' default) leaves ~0.01 px here.
-    CameraModel m = lwir_lens();
+    CameraModel m = tirpol::test::truth_lens();
     m.distortion = {-0.45, 0.25, 0.001, 0.001, -0.08};
     for (const Vec2& px : {Vec2(-0.5, -0.5), Vec2(639.5, 511.5), Vec2(0.0, 400.0), Vec2(320.0, 256.0)}) {
         const Vec2 x = m.undistort(px);
@@ -94,7 +80,7 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
     // the render must sit where cv::projectPoints puts its centre (OpenCV convention: pixel x has its
     // centre at x). Discs of ~3 px radius: their centroid is biased by the distortion by < 0.01 px.
     tirpol::test::TempDir dir;
-    CameraModel model = lwir_lens();
+    CameraModel model = tirpol::test::truth_lens();
     model.width = 160;
     model.height = 128;
     model.fx = 190.0;
@@ -139,7 +125,7 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
 
 TEST(CameraOpenCvGrid, SceneModelAndPoseFilesAreRead) {
     tirpol::test::TempDir dir;
-    write_camera_model(dir / "lens.yaml", lwir_lens());
+    write_camera_model(dir / "lens.yaml", tirpol::test::truth_lens());
     write_camera_pose(dir / "pose.yaml", some_pose());
     const Camera camera = Camera::from_config(ConfigNode::parse("{model: lens.yaml, pose: pose.yaml}", (dir / "scene.yaml").string()));
     EXPECT_EQ(camera.width(), 640);

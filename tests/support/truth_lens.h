@@ -1,5 +1,5 @@
 #pragma once
-// The lens every geometric-calibration test of this module recovers.
+// The lens the geometric-calibration, camera-grid and geometry CLI tests use.
 
 #include "tirpol/core/camera_model.h"
 
