@@ -237,10 +237,13 @@ Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int he
     AnglePlanes planes(inputs, model, drm);
     OutputPlanes outputs = add_output_channels(out, inputs, model, options, planes);
     int unrealizable = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i % static_cast<std::size_t>(width) == 0) throw_if_cancelled(options.cancel, "Stokes reduction");
-        PixelStokes pixel = solve_pixel(planes, i, inputs.have_std);
-        if (propagate_pixel(pixel, i, options.project_to_realizable, outputs)) ++unrealizable;
+    const auto row = static_cast<std::size_t>(width);
+    for (std::size_t start = 0; start < n; start += row) {
+        throw_if_cancelled(options.cancel, "Stokes reduction");  // once per row, not per pixel
+        for (std::size_t i = start; i < start + row; ++i) {
+            PixelStokes pixel = solve_pixel(planes, i, inputs.have_std);
+            if (propagate_pixel(pixel, i, options.project_to_realizable, outputs)) ++unrealizable;
+        }
     }
     write_attributes(out, model, drm, options, unrealizable, wire_grid != nullptr);
     return out;
