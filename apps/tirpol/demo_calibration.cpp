@@ -80,7 +80,7 @@ void demo_calibration(const std::filesystem::path& out_dir) {
                 panel_mean(stokes, "S1_std", x0, x1, y0, y1), panel_mean(naive, "S1", x0, x1, y0, y1));
 
     cal::EmissivityRois rois;
-    rois.reflector = {cam.width / 16 + 2, cam.height / 6 + 4, cam.width / 4 - cam.width / 16 - 4, cam.height * 2 / 3 - 8};
+    rois.reflector.rect = {cam.width / 16 + 2, cam.height / 6 + 4, cam.width / 4 - cam.width / 16 - 4, cam.height * 2 / 3 - 8};
     rois.targets = {{"panel", {x0, y0, x1 - x0, y1 - y0}, 45.0, 300.0, 0.1, std::nullopt}};
     const auto eps = cal::extract_emissivity(stokes, rois, band);
     write_file_atomic(dir / "emissivity.csv", cal::emissivity_csv(eps));

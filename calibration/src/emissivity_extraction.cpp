@@ -33,8 +33,17 @@ EmissivityRois EmissivityRois::load(const std::string& path) {
     root.check_keys({"reflector", "targets"});
     EmissivityRois rois;
     const ConfigNode reflector = root.at("reflector");
-    reflector.check_keys({"rect"});
-    rois.reflector = parse_rect(reflector.at("rect"));
+    reflector.check_keys({"rect", "emissivity", "emissivity_std", "temperature_k", "temperature_std_k"});
+    rois.reflector.rect = parse_rect(reflector.at("rect"));
+    if (reflector.has("emissivity")) rois.reflector.emissivity = reflector.get_in_range("emissivity", 0.0, 0.99);
+    if (reflector.has("emissivity_std"))
+        rois.reflector.emissivity_std = reflector.get_in_range("emissivity_std", 0.0, 1.0);
+    if (reflector.has("temperature_k"))
+        rois.reflector.temperature_k = reflector.get_in_range("temperature_k", 1.0, 2000.0);
+    if (reflector.has("temperature_std_k"))
+        rois.reflector.temperature_std_k = reflector.get_in_range("temperature_std_k", 0.0, 100.0);
+    if (rois.reflector.emissivity > 0.0 && !rois.reflector.temperature_k)
+        reflector.fail("an emissivity > 0 needs the reflector's temperature_k (its emission is removed)");
     for (const ConfigNode& t : root.at("targets").elements()) {
         t.check_keys({"name", "rect", "view_angle_deg", "temperature_k", "temperature_std_k", "blackbody_rect"});
         EmissivityTarget target;
@@ -52,9 +61,27 @@ EmissivityRois EmissivityRois::load(const std::string& path) {
     return rois;
 }
 
+RegionMean downwelled_radiance(const Image& stokes, const EmissivityReflector& reflector, const Band& band) {
+    const double e = reflector.emissivity;
+    if (!(e >= 0.0 && e < 1.0)) fail("reflector: emissivity {} is outside [0, 1)", e);
+    if (e > 0.0 && !reflector.temperature_k)
+        fail("reflector: an emissivity of {} needs the reflector's temperature (its emission is removed)", e);
+    RegionMean dw = region_mean(stokes, "S0", reflector.rect, "reflector");
+    if (e == 0.0) return dw;
+    // S0_r = (1 − ε_r)·L_dw + ε_r·L_BB(T_r) for a reflector in uniform surroundings (Kirchhoff).
+    const double t = *reflector.temperature_k;
+    const double l_r = band.radiance(t);
+    const double s0 = dw.mean;
+    dw.mean = (s0 - e * l_r) / (1.0 - e);
+    dw.standard_error =
+        std::hypot(dw.standard_error / (1.0 - e), e * band.radiance_dT(t) * reflector.temperature_std_k / (1.0 - e),
+                   (s0 - l_r) / ((1.0 - e) * (1.0 - e)) * reflector.emissivity_std);
+    return dw;
+}
+
 std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band) {
     for (const char* c : {"S0", "S1", "S2"}) (void)stokes.channel(c);  // names the missing channel
-    const RegionMean dw = region_mean(stokes, "S0", rois.reflector, "reflector");
+    const RegionMean dw = downwelled_radiance(stokes, rois.reflector, band);
     std::vector<EmissivityResult> results;
     for (const auto& t : rois.targets) {
         EmissivityResult r;
@@ -74,9 +101,10 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
         r.l_dw = dw.mean;
         const double d = r.l_bb - r.l_dw;
         if (!(d > 0.0))
-            fail("target '{}': L_BB = {:.4g} W/(m²·sr) does not exceed the downwelled L_dw = {:.4g}; eq 17 needs the "
-                 "target warmer (in band) than its reflected background",
-                 t.name, r.l_bb, r.l_dw);
+            fail(
+                "target '{}': L_BB = {:.4g} W/(m²·sr) does not exceed the downwelled L_dw = {:.4g}; eq 17 needs the "
+                "target warmer (in band) than its reflected background",
+                t.name, r.l_bb, r.l_dw);
         const RegionMean s0 = region_mean(stokes, "S0", t.rect, t.name);
         const RegionMean s1 = region_mean(stokes, "S1", t.rect, t.name);
         const RegionMean s2 = region_mean(stokes, "S2", t.rect, t.name);
@@ -84,9 +112,9 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
         const double sd = dw.standard_error;
         r.eps_s0 = (s0.mean - r.l_dw) / d;
         // First-order propagation: ∂ε0/∂S0 = 1/D, ∂ε0/∂L_dw = (S0 − L_BB)/D², ∂ε0/∂L_BB = −ε0/D.
-        r.eps_s0_2sigma = 2.0 * std::sqrt(std::pow(s0.standard_error / d, 2) +
-                                          std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
-                                          std::pow(r.eps_s0 / d * sigma_lbb, 2));
+        r.eps_s0_2sigma =
+            2.0 * std::sqrt(std::pow(s0.standard_error / d, 2) + std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
+                            std::pow(r.eps_s0 / d * sigma_lbb, 2));
         auto polarized = [&](const RegionMean& s, double& eps, double& two_sigma) {
             eps = s.mean / d;
             two_sigma = 2.0 * std::sqrt(std::pow(s.standard_error / d, 2) + std::pow(eps / d * sd, 2) +

@@ -167,7 +167,8 @@ void bind_session(py::module_& m) {
         py::arg("root"), py::arg("band"), py::arg("width") = 64, py::arg("height") = 48,
         "Writes the synthetic sessions lab/ (blackbody, no polarizer), polcal/ (blackbody through the polarizer "
         "and a known source) and scene/ (a 300 K panel with ε_S0 = 0.93, ε_S1 = −0.035 in front of a 280 K "
-        "background, an IR reflector at the left) of a simulated uncooled camera (calibration/testing/synthetic_session.h); "
+        "background, an IR reflector at the left) of a simulated uncooled camera "
+        "(calibration/testing/synthetic_session.h); "
         "returns the true scene Stokes image S0 S1 S2.");
 }
 
@@ -198,9 +199,12 @@ py::dict result_dict(const EmissivityResult& r) {
 void bind_emissivity(py::module_& m) {
     m.def(
         "extract_emissivity",
-        [](const py::object& stokes, const py::object& reflector, const py::list& targets, const Band& band) {
+        [](const py::object& stokes, const py::object& reflector, const py::list& targets, const Band& band,
+           double reflector_emissivity, double reflector_emissivity_std, std::optional<double> reflector_temperature_k,
+           double reflector_temperature_std_k) {
             EmissivityRois rois;
-            rois.reflector = rect_of(reflector, "reflector");
+            rois.reflector = {rect_of(reflector, "reflector"), reflector_emissivity, reflector_emissivity_std,
+                              reflector_temperature_k, reflector_temperature_std_k};
             for (const auto& t : targets) {
                 const auto d = t.cast<py::dict>();
                 EmissivityTarget target;
@@ -220,10 +224,14 @@ void bind_emissivity(py::module_& m) {
             return out;
         },
         py::arg("stokes"), py::arg("reflector"), py::arg("targets"), py::arg("band"),
+        py::arg("reflector_emissivity") = 0.0, py::arg("reflector_emissivity_std") = 0.0,
+        py::arg("reflector_temperature_k") = py::none(), py::arg("reflector_temperature_std_k") = 0.5,
         "Polarized emissivity of targets in a reduced Stokes image (paper eq 17): the IR reflector rectangle "
-        "[x, y, w, h] gives the downwelling radiance, each target {name, rect, view_angle_deg, temperature_k "
+        "[x, y, w, h] gives the downwelling radiance (its own emission removed when reflector_emissivity > 0, "
+        "which needs reflector_temperature_k), each target {name, rect, view_angle_deg, temperature_k "
         "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 2σ uncertainties — the rows "
-        "fit_microfacet takes (ε_S1 in the plane-of-emission frame).");
+        "fit_microfacet takes once ε_S1 is rotated into the plane-of-emission frame (here it is in the image "
+        "frame).");
 }
 
 }  // namespace

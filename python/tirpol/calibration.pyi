@@ -132,6 +132,10 @@ def extract_emissivity(
     reflector: Sequence[int],
     targets: Sequence[Mapping[str, object]],
     band: Band,
+    reflector_emissivity: float = 0.0,
+    reflector_emissivity_std: float = 0.0,
+    reflector_temperature_k: Optional[float] = None,
+    reflector_temperature_std_k: float = 0.5,
 ) -> list[dict[str, object]]: ...
 def three_d_noise(frames: npt.ArrayLike, convention: str = "population") -> dict[str, float]: ...
 def temporal_noise(frames: npt.ArrayLike) -> npt.NDArray[np.float32]: ...

@@ -46,7 +46,7 @@ Image scene(const Band& band, double noise, unsigned seed) {
 
 EmissivityRois rois() {
     EmissivityRois r;
-    r.reflector = {2, 2, 20, 36};
+    r.reflector.rect = {2, 2, 20, 36};
     EmissivityTarget contact{"panel_contact", {32, 5, 16, 30}, 40.0, 295.0, 0.1, std::nullopt};
     EmissivityTarget bb{"panel_bb", {32, 5, 16, 30}, 40.0, std::nullopt, 0.5, PixelRect{62, 5, 16, 30}};
     r.targets = {contact, bb};

@@ -52,7 +52,7 @@ TEST(EmissivityRois, EmissivityAboveOneBeyondNoiseIsFlagged) {
         for (int x = 0; x < 20; ++x)
             s0[im.index(x, y)] = static_cast<float>(x < 10 ? l_dw : l_dw + 1.48 * (l_bb - l_dw));
     EmissivityRois rois;
-    rois.reflector = {0, 0, 10, 10};
+    rois.reflector.rect = {0, 0, 10, 10};
     rois.targets = {{"hot_panel", {10, 0, 10, 10}, 30.0, 290.0, 0.5, std::nullopt}};
     const auto results = extract_emissivity(im, rois, band);
     ASSERT_EQ(results.size(), 1u);

@@ -89,7 +89,7 @@ TEST_F(SessionCalibration, PolarimetricCalibrationAndReductionRecoverTheSceneSto
 
     // Emissivity extraction from the reduced image: reflector x 4..15, panel x 24..39.
     EmissivityRois rois;
-    rois.reflector = {5, 10, 9, 28};
+    rois.reflector.rect = {5, 10, 9, 28};
     rois.targets = {{"panel", {26, 12, 12, 24}, 45.0, 300.0, 0.05, std::nullopt}};
     const auto e = extract_emissivity(s, rois, band);
     EXPECT_NEAR(e[0].eps_s0, 0.93, std::max(e[0].eps_s0_2sigma, 0.005));

@@ -51,9 +51,18 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     EXPECT_LT(r.target_stokes.measured[1], 0.0);
 
     ASSERT_EQ(r.emissivity.size(), 3u);
+    // The instrument chain: measured ε against eq 17 on the truth render, within 4 σ of both (their
+    // common contact-temperature terms make this conservative for ε_S0, hardly for ε_S1). Against the
+    // paint's table eq 17 itself is biased under a clear sky (the polarized reflection samples the
+    // cold sky near zenith, the reflector the whole hemisphere): that bias is measured and shown, and
+    // tests/twin/eq17_uniform_surroundings_test.cpp shows it vanishes when the surroundings are uniform.
     for (const auto& e : r.emissivity) {
-        EXPECT_LT(std::abs(e.eps_s0 - e.true_s0), 4.0 * e.eps_s0_sigma) << "view angle " << e.view_angle_deg;
-        EXPECT_LT(std::abs(e.eps_s1 - e.true_s1), 4.0 * e.eps_s1_sigma) << "view angle " << e.view_angle_deg;
+        EXPECT_LT(std::abs(e.eps_s0 - e.method_s0), 4.0 * std::hypot(e.eps_s0_sigma, e.method_s0_sigma))
+            << "view angle " << e.view_angle_deg;
+        EXPECT_LT(std::abs(e.eps_s1 - e.method_s1), 4.0 * std::hypot(e.eps_s1_sigma, e.method_s1_sigma))
+            << "view angle " << e.view_angle_deg;
+        EXPECT_LT(std::abs(e.method_s0 - e.true_s0), 4.0 * e.method_s0_sigma) << "view angle " << e.view_angle_deg;
+        EXPECT_LT(e.method_s1, 0.0) << "view angle " << e.view_angle_deg;  // p-polarized emission
     }
     // Distinct view angles: the series constrains the fit.
     EXPECT_GT(r.emissivity.front().view_angle_deg - r.emissivity.back().view_angle_deg, 15.0);
@@ -90,7 +99,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     EXPECT_NE(paint->verdict, report::ZVerdict::NoData);
 
     // The report is repeatable from the files it names: `tirpol compare` on the measured and simulated
-    // EXRs, the regions YAML and the camera model give the same table (the simulated variance channels carry the σ used).
+    // EXRs, the regions YAML and the camera model give the same table (the simulated variance channels carry the σ
+    // used).
     const auto json = nlohmann::json::parse(read_file(r.report_html.parent_path() / "report.json"));
     report::CompareOptions co;
     co.registration = report::RegistrationMethod::CameraModel;
@@ -105,7 +115,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
         EXPECT_EQ(region.name, jr["name"]);
         for (const char* q : {"S0", "S1", "S2"}) {
             // report.json prints doubles round-trip exactly; EXR planes are float, as in memory.
-            EXPECT_DOUBLE_EQ(region.z.at(q).fraction_above_2, jr["z"][q]["fraction_above_2"].get<double>()) << region.name << " " << q;
+            EXPECT_DOUBLE_EQ(region.z.at(q).fraction_above_2, jr["z"][q]["fraction_above_2"].get<double>())
+                << region.name << " " << q;
             EXPECT_DOUBLE_EQ(region.z.at(q).rms, jr["z"][q]["rms"].get<double>()) << region.name << " " << q;
             EXPECT_DOUBLE_EQ(region.stats.at(q).bias, jr["stats"][q]["bias"].get<double>()) << region.name << " " << q;
         }

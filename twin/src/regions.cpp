@@ -1,6 +1,6 @@
 // Regions of the twin's images from the truth render's geometry channels.
 
-#include "regions.h"
+#include "tirpol/twin/regions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,6 +68,13 @@ double plane_of_emission_angle(const Image& render, const simulation::Camera& ca
     if (up.dot(-camera.world_from_camera().col(1)) < 0.0) up = -up;
     const Vec3 p = across(normal);
     return std::atan2(p.dot(up), p.dot(reference));
+}
+
+PlaneOfEmissionEmissivity in_plane_of_emission(const calibration::EmissivityResult& e, double psi) {
+    // A frame with its 0° axis along s (ψ − 90°): S1' = −(S1 cos 2ψ + S2 sin 2ψ).
+    const double c2 = std::cos(2.0 * psi), s2 = std::sin(2.0 * psi);
+    return {e.eps_s0, e.eps_s0_2sigma / 2.0, -(e.eps_s1 * c2 + e.eps_s2 * s2),
+            std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0};
 }
 
 }  // namespace tirpol::twin

@@ -48,10 +48,12 @@ std::string twin_summary(const TwinResult& r) {
         out += fmt::sprintf("    S%d %9.4f vs %9.4f   (diff %+.4f, σ %.4f of which temporal %.4f, %.1fσ)\n", c,
                             t.measured[c], t.truth[c], t.measured[c] - t.truth[c], t.sigma[c], t.sigma_temporal[c],
                             std::abs(t.measured[c] - t.truth[c]) / t.sigma[c]);
-    out += fmt::sprintf("  polarized emissivity (plane-of-emission frame), extracted vs true paint:\n");
+    out += fmt::sprintf(
+        "  polarized emissivity (plane-of-emission frame): measured | eq 17 on the truth render | true paint\n");
     for (const auto& e : r.emissivity)
-        out += fmt::sprintf("    θ %5.1f°: ε_S0 %.4f ± %.4f (true %.4f)   ε_S1 %+.4f ± %.4f (true %+.4f)\n",
-                            e.view_angle_deg, e.eps_s0, e.eps_s0_sigma, e.true_s0, e.eps_s1, e.eps_s1_sigma, e.true_s1);
+        out += fmt::sprintf("    θ %5.1f°: ε_S0 %.4f ± %.4f | %.4f | %.4f   ε_S1 %+.4f ± %.4f | %+.4f | %+.4f\n",
+                            e.view_angle_deg, e.eps_s0, e.eps_s0_sigma, e.method_s0, e.true_s0, e.eps_s1,
+                            e.eps_s1_sigma, e.method_s1, e.true_s1);
     out += fmt::sprintf("  fit (χ²/dof %.2f):\n", r.reduced_chi2);
     for (const auto& p : r.parameters) {
         if (p.fixed) continue;

@@ -40,13 +40,18 @@ struct TwinOptions {
     int threads = 0;   ///< render threads (0: all cores)
     std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted
     std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
-    std::string tool_version = "tirpol";  ///< written into the report's provenance ("tirpol X.Y.Z")
+    std::string tool_version = "tirpol";                   ///< written into the report's provenance ("tirpol X.Y.Z")
 };
 
-/// Extracted polarized emissivity of the target in one view, with the renderer's truth there.
+/// Extracted polarized emissivity of the target in one view (plane-of-emission frame, σ = 1 standard
+/// uncertainty). Two references separate the instrument from the method: eq 17 applied to the truth
+/// render (`method_*`: a perfect instrument, so eps − method is the instrument chain's error) and the
+/// paint's own directional emissivity (`true_*`: method − true is eq 17's bias, from a downwelling
+/// that is not uniform — docs/twin.md).
 struct TwinEmissivity {
     double view_angle_deg = 0.0;
-    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;  ///< plane-of-emission frame
+    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;              ///< measured sessions
+    double method_s0 = 0.0, method_s0_sigma = 0.0, method_s1 = 0.0, method_s1_sigma = 0.0;  ///< truth render
     double true_s0 = 0.0, true_s1 = 0.0;  ///< the true paint's directional emissivity at that angle
 };
 
@@ -60,7 +65,7 @@ struct TwinParameter {
 struct TwinRegionAgreement {
     std::string name;
     std::size_t pixels = 0;
-    double z_above_2[3] = {0.0, 0.0, 0.0};  ///< fraction of |z| > 2 of S0, S1, S2
+    double z_above_2[3] = {0.0, 0.0, 0.0};                ///< fraction of |z| > 2 of S0, S1, S2
     report::ZVerdict verdict = report::ZVerdict::NoData;  ///< the worst of the three (report::z_verdict)
 };
 
@@ -79,11 +84,11 @@ struct TwinResult {
     std::vector<TwinEmissivity> emissivity;
     std::vector<TwinParameter> parameters;
     double reduced_chi2 = 0.0;
-    CameraGeometryRecovery camera;  ///< the field camera's lens and pose (view 0), true and recovered
+    CameraGeometryRecovery camera;      ///< the field camera's lens and pose (view 0), true and recovered
     report::Registration registration;  ///< of the comparison: by the recovered camera model, with the residual
     std::vector<TwinRegionAgreement> regions;
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
-    std::filesystem::path report_regions;  ///< the report's regions as YAML (for `tirpol compare --rois`)
+    std::filesystem::path report_regions;   ///< the report's regions as YAML (for `tirpol compare --rois`)
     std::map<std::string, double> seconds;  ///< per stage
 };
 
@@ -92,6 +97,5 @@ TwinResult run_twin(const TwinOptions& options);
 
 /// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
 std::string twin_summary(const TwinResult& r);
-
 
 }  // namespace tirpol::twin
