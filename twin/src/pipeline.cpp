@@ -9,9 +9,8 @@
 
 #include "regions.h"
 #include "tirpol/acquisition/capture_plan.h"
-#include "tirpol/calibration/datasheet_analyzer.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/region_mean.h"
-#include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -159,7 +158,7 @@ struct Chain {
     std::uint32_t target_material = 0;
     std::vector<simulation::Camera> cameras;  ///< the field camera in each view
     std::vector<Image> truth;                 ///< renders of the truth, per view
-    std::vector<Image> measured;              ///< reduced Stokes, per view
+    calibration::ChainProducts calibrated;    ///< the calibrations; reduced Stokes (.stokes) per view
     fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
     Image simulated;  ///< the render with the fitted paint, view 0
 };
@@ -214,20 +213,21 @@ void recover_geometry(Chain& c, TwinWorld& world) {
                                               world, c.out / "camera", go);
 }
 
-/// 3. Calibration and reduction to measured Stokes.
+/// 3. Calibration and reduction to measured Stokes (the calibration chain's steps up to the reduction).
 void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
     StageTimer t(c.result, "calibrate and reduce", c.stage);
-    const auto radiometric = calibration::calibrate_radiometric_session(c.sessions / "lab", c.scene.band);
+    calibration::ChainInputs in;
+    in.band = c.scene.band;
+    in.blackbody_sessions = {c.sessions / "lab"};
+    in.polarimetric_session = c.sessions / "view0";
     // The user has the polarizer's datasheet but no known polarized source: its extinction ratio
     // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
     // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
-    const calibration::DatasheetAnalyzer datasheet{world.sensor().analyzer.extinction_ratio, {}};
-    const auto polarimetric = calibration::calibrate_polarimetric_session(c.sessions / "view0", radiometric, datasheet);
-    for (std::size_t v = 0; v < c.views.size(); ++v) {
-        c.measured.push_back(
-            calibration::reduce_session(c.sessions / fmt::format("view{}", v), radiometric, &polarimetric));
-        write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.measured.back());
-    }
+    in.datasheet = calibration::DatasheetAnalyzer{world.sensor().analyzer.extinction_ratio, {}};
+    for (std::size_t v = 0; v < c.views.size(); ++v) in.scene_sessions.push_back(c.sessions / fmt::format("view{}", v));
+    c.calibrated = calibration::run_calibration_chain(in);
+    for (std::size_t v = 0; v < c.views.size(); ++v)
+        write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.calibrated.stokes[v]);
     c.result.measured_exr = c.out / "measured" / "view0_stokes.exr";
 }
 
@@ -240,18 +240,22 @@ void check_target_stokes(Chain& c) {
     for (int k = 0; k < 3; ++k) {
         const std::string s = fmt::format("S{}", k);
         c.result.target_stokes.measured[k] =
-            calibration::region_mean(c.measured.front(), s, *target_rect0, "twin").mean;
+            calibration::region_mean(c.calibrated.stokes.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.truth[k] = calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.sigma[k] =
-            rect_difference_standard_error(c.measured.front(), c.truth.front(), s, *target_rect0);
-        c.result.target_stokes.sigma_temporal[k] = rect_standard_error(c.measured.front(), s + "_std", *target_rect0);
+            rect_difference_standard_error(c.calibrated.stokes.front(), c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.sigma_temporal[k] =
+            rect_standard_error(c.calibrated.stokes.front(), s + "_std", *target_rect0);
     }
 }
 
-/// 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.
+/// 4. Polarized emissivity of the target in each view (the chain's eq 17 step), in the plane-of-emission
+///    frame.
 void extract_target_emissivity(Chain& c) {
     const auto* true_brdf = c.scene.materials[c.target_material].brdf.get();
     StageTimer t(c.result, "extract emissivity", c.stage);
+    calibration::ChainInputs in;
+    in.band = c.scene.band;
     for (std::size_t v = 0; v < c.views.size(); ++v) {
         const auto rect = object_rect(c.truth[v], c.target);
         const auto refl = object_rect(c.truth[v], c.reflector);
@@ -266,10 +270,15 @@ void extract_target_emissivity(Chain& c) {
             calibration::region_mean(c.truth[v], "temperature_k", *rect, "twin").mean;  // the contact thermometer
         et.temperature_std_k = kTargetTemperatureStdK;
         rois.targets.push_back(et);
-        const auto e = calibration::extract_emissivity(c.measured[v], rois, c.scene.band).front();
+        in.rois.push_back(rois);
+    }
+    c.calibrated = calibration::run_calibration_chain(in, std::move(c.calibrated));
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        const calibration::EmissivityTarget& et = in.rois[v].targets.front();
+        const calibration::EmissivityResult& e = c.calibrated.emissivity[v].front();
         // Image frame → plane of emission: the p direction lies at ψ in the image; a frame with its
         // 0° axis along s (ψ − 90°) gives ε_S1 < 0 for p-polarized emission.
-        const double psi = plane_of_emission_angle(c.truth[v], c.cameras[v], *rect);
+        const double psi = plane_of_emission_angle(c.truth[v], c.cameras[v], et.rect);
         const double c2 = std::cos(2.0 * psi), s2 = std::sin(2.0 * psi);
         TwinEmissivity te;
         te.view_angle_deg = e.view_angle_deg;
@@ -361,11 +370,13 @@ void compare_and_report(Chain& c) {
         "`tirpol demo`)",
         c.result.measured_exr.string(), c.result.simulated_exr.string(), c.result.report_regions.string(),
         c.result.camera.lens_file.string(), (c.out / "report").string());
-    co.provenance.inputs.push_back(report::describe_input("measured", c.result.measured_exr, &c.measured.front()));
+    co.provenance.inputs.push_back(
+        report::describe_input("measured", c.result.measured_exr, &c.calibrated.stokes.front()));
     co.provenance.inputs.push_back(report::describe_input("simulated", c.result.simulated_exr, &c.simulated));
     co.provenance.inputs.push_back(report::describe_input("regions", c.result.report_regions));
     co.provenance.inputs.push_back(report::describe_input("camera model", c.result.camera.lens_file));
-    const report::CompareResult cr = write_comparison_report(c.measured.front(), c.simulated, co, c.out / "report");
+    const report::CompareResult cr =
+        write_comparison_report(c.calibrated.stokes.front(), c.simulated, co, c.out / "report");
     c.result.report_html = cr.html;
     c.result.registration = cr.registration;
     for (const auto& r : cr.regions) {
