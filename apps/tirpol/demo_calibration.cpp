@@ -97,9 +97,11 @@ void demo_calibration(const std::filesystem::path& out_dir) {
 
     const auto& eps = products.emissivity.front();
     write_file_atomic(dir / "emissivity.csv", cal::emissivity_csv(eps));
-    std::printf("  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 %+.4f ± %.4f "
-                "(true 0.01), 2σ\n",
-                eps[0].eps_s0, eps[0].eps_s0_2sigma, eps[0].eps_s1, eps[0].eps_s1_2sigma, eps[0].eps_s2, eps[0].eps_s2_2sigma);
+    std::printf(
+        "  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 %+.4f ± %.4f "
+        "(true 0.01), 2σ\n",
+        eps[0].eps_s0, 2.0 * eps[0].eps_s0_std, eps[0].eps_s1, 2.0 * eps[0].eps_s1_std, eps[0].eps_s2,
+        2.0 * eps[0].eps_s2_std);
 
     // NEDT from 64 raw frames of a 300 K blackbody through the same synthetic camera.
     cal::FrameStack stack{cam.width, cam.height, {}};

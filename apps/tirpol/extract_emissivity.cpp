@@ -43,8 +43,9 @@ void run_extract(const EmissivityArgs& a) {
     const auto results = calibration::run_calibration_chain(chain, std::move(given)).emissivity.front();
     write_file_atomic(a.output, calibration::emissivity_csv(results));
     for (const auto& r : results)
-        std::printf("  %-16s θ=%5.1f°  ε_S0 = %.4f ± %.4f  ε_S1 = %+.4f ± %.4f  ε_S2 = %+.4f ± %.4f (2σ)\n", r.name.c_str(),
-                    r.view_angle_deg, r.eps_s0, r.eps_s0_2sigma, r.eps_s1, r.eps_s1_2sigma, r.eps_s2, r.eps_s2_2sigma);
+        std::printf("  %-16s θ=%5.1f°  ε_S0 = %.4f ± %.4f  ε_S1 = %+.4f ± %.4f  ε_S2 = %+.4f ± %.4f (2σ)\n",
+                    r.name.c_str(), r.view_angle_deg, r.eps_s0, 2.0 * r.eps_s0_std, r.eps_s1, 2.0 * r.eps_s1_std,
+                    r.eps_s2, 2.0 * r.eps_s2_std);
     for (const auto& r : results)
         for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::printf("written: %s\n", a.output.c_str());

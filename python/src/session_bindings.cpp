@@ -185,11 +185,11 @@ py::dict result_dict(const EmissivityResult& r) {
     d["l_dw_w_m2_sr"] = r.l_dw;
     d["l_bb_w_m2_sr"] = r.l_bb;
     d["eps_s0"] = r.eps_s0;
-    d["eps_s0_2sigma"] = r.eps_s0_2sigma;
+    d["eps_s0_std"] = r.eps_s0_std;
     d["eps_s1"] = r.eps_s1;
-    d["eps_s1_2sigma"] = r.eps_s1_2sigma;
+    d["eps_s1_std"] = r.eps_s1_std;
     d["eps_s2"] = r.eps_s2;
-    d["eps_s2_2sigma"] = r.eps_s2_2sigma;
+    d["eps_s2_std"] = r.eps_s2_std;
     d["warnings"] = r.warnings;
     return d;
 }
@@ -226,8 +226,9 @@ void bind_emissivity(py::module_& m) {
         py::arg("stokes"), py::arg("reflector"), py::arg("targets"), py::arg("band"),
         "Polarized emissivity of targets in a reduced Stokes image (paper eq 17): the IR reflector rectangle "
         "[x, y, w, h] gives the downwelling radiance, each target {name, rect, view_angle_deg, temperature_k "
-        "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 2σ uncertainties — the rows "
-        "fit_microfacet takes (ε_S1 in the plane-of-emission frame).");
+        "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 1σ uncertainties eps_s0_std, "
+        "eps_s1_std, eps_s2_std; ε_S1 and ε_S2 in the image Stokes frame (fit_microfacet takes ε_S1 in the "
+        "plane-of-emission frame).");
 }
 
 /// The chain's products as a dict; emissivity rows as extract_emissivity returns them.

@@ -283,9 +283,9 @@ void extract_target_emissivity(Chain& c) {
         TwinEmissivity te;
         te.view_angle_deg = e.view_angle_deg;
         te.eps_s0 = e.eps_s0;
-        te.eps_s0_sigma = e.eps_s0_2sigma / 2.0;
+        te.eps_s0_sigma = e.eps_s0_std;
         te.eps_s1 = -(e.eps_s1 * c2 + e.eps_s2 * s2);
-        te.eps_s1_sigma = std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0;
+        te.eps_s1_sigma = std::hypot(e.eps_s1_std * c2, e.eps_s2_std * s2);
         const StokesVector truth_eps =
             materials::directional_emissivity(*true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
         te.true_s0 = truth_eps(0);
