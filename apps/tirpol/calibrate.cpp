@@ -1,14 +1,15 @@
 // `tirpol calibrate radiometric|polarimetric`: blackbody count→radiance calibration and the
 // polarizer/wire-grid calibration from capture sessions (docs/calibration.md).
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
-#include <fmt/format.h>
 #include <memory>
 #include <optional>
 
 #include "cli.h"
-#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::cli {
@@ -27,13 +28,16 @@ void run_radiometric(const RadiometricArgs& a) {
     std::optional<SpectralResponse> rsr;
     if (!a.rsr.empty()) rsr = SpectralResponse::load_csv(a.rsr);
     const Band band(a.band_um[0], a.band_um[1], rsr);
-    calibration::RadiometricOptions options;
-    options.quadratic = a.quadratic;
-    options.saturation_counts = a.saturation_counts;
-    options.fpa_degree = a.fpa_degree;
-    calibration::CalibrationQuality quality;
-    const auto cal =
-        calibration::calibrate_radiometric_sessions({a.sessions.begin(), a.sessions.end()}, band, options, &quality);
+    calibration::ChainInputs chain;
+    chain.band = band;
+    chain.blackbody_sessions = {a.sessions.begin(), a.sessions.end()};
+    chain.radiometric_options.quadratic = a.quadratic;
+    chain.radiometric_options.saturation_counts = a.saturation_counts;
+    chain.radiometric_options.fpa_degree = a.fpa_degree;
+    chain.assess_quality = true;
+    const auto products = calibration::run_calibration_chain(chain);
+    const auto& cal = *products.radiometric;
+    const auto& quality = *products.quality;
     calibration::write_radiometric_calibration(a.output, cal);
     const std::string summary = a.summary.empty() ? calibration::default_summary_dir(a.output) : a.summary;
     calibration::write_calibration_summary(summary, cal, quality);
@@ -68,10 +72,12 @@ struct PolarimetricArgs {
 void run_polarimetric(const PolarimetricArgs& a) {
     if (!a.extinction_ratio && !a.axis_offsets_deg.empty())
         usage_error("--axis-offset-deg", "needs --extinction-ratio (the datasheet's t_max/t_min)");
-    const auto cal = calibration::read_radiometric_calibration(a.calibration);
-    std::optional<calibration::DatasheetAnalyzer> datasheet;
-    if (a.extinction_ratio) datasheet = calibration::DatasheetAnalyzer{*a.extinction_ratio, a.axis_offsets_deg};
-    auto pol = calibration::calibrate_polarimetric_session(a.session, cal, datasheet);
+    calibration::ChainInputs chain;
+    chain.polarimetric_session = a.session;
+    if (a.extinction_ratio) chain.datasheet = calibration::DatasheetAnalyzer{*a.extinction_ratio, a.axis_offsets_deg};
+    calibration::ChainProducts given;
+    given.radiometric = calibration::read_radiometric_calibration(a.calibration);
+    auto pol = *calibration::run_calibration_chain(chain, std::move(given)).polarimetric;
     pol.radiometric_calibration = a.calibration;
     calibration::write_polarimetric_calibration(a.output, pol);
     std::printf("polarimetric calibration of %s: analyzer by %s\n", a.session.c_str(), pol.analyzer_method.c_str());

@@ -8,9 +8,8 @@
 #include <random>
 
 #include "demo_steps.h"
-#include "tirpol/calibration/emissivity_extraction.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/noise.h"
-#include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
@@ -44,14 +43,28 @@ void demo_calibration(const std::filesystem::path& out_dir) {
     std::printf("  simulated sessions: %s/{lab,polcal,scene} (%d×%d, %d frames/record, 14-bit)\n",
                 (dir / "sessions").c_str(), cam.width, cam.height, cam.frames);
 
-    const auto radiometric = cal::calibrate_radiometric_session(dir / "sessions" / "lab", band);
+    const int x0 = 3 * cam.width / 8 + 4, x1 = 5 * cam.width / 8 - 4, y0 = cam.height / 6 + 4,
+              y1 = cam.height - cam.height / 6 - 4;
+    cal::ChainInputs chain;
+    chain.band = band;
+    chain.blackbody_sessions = {dir / "sessions" / "lab"};
+    chain.polarimetric_session = dir / "sessions" / "polcal";
+    chain.scene_sessions = {dir / "sessions" / "scene"};
+    cal::EmissivityRois rois;
+    rois.reflector = {cam.width / 16 + 2, cam.height / 6 + 4, cam.width / 4 - cam.width / 16 - 4,
+                      cam.height * 2 / 3 - 8};
+    rois.targets = {{"panel", {x0, y0, x1 - x0, y1 - y0}, 45.0, 300.0, 0.1, std::nullopt}};
+    chain.rois = {rois};
+    auto products = cal::run_calibration_chain(chain);
+
+    const auto& radiometric = *products.radiometric;
     cal::write_radiometric_calibration((dir / "radiometric.exr").string(), radiometric);
     std::printf("  radiometric: median gain %.2f counts/(W/(m²·sr)) (true mean %.1f); bad pixels found %zu "
                 "(dead %zu, hot %zu, noisy %zu; 3 planted)\n",
                 cal::robust_stats(radiometric.gain).median, cam.gain_mean, radiometric.bad_count(),
                 radiometric.bad_count(cal::kDead), radiometric.bad_count(cal::kHot), radiometric.bad_count(cal::kNoisy));
 
-    auto pol = cal::calibrate_polarimetric_session(dir / "sessions" / "polcal", radiometric);
+    auto& pol = *products.polarimetric;
     pol.radiometric_calibration = "radiometric.exr";
     cal::write_polarimetric_calibration((dir / "polarimetric.yaml").string(), pol);
     double offset = 0.0, er = 0.0;
@@ -62,7 +75,7 @@ void demo_calibration(const std::filesystem::path& out_dir) {
     std::printf("  analyzer (%s): angle offset %.3f° (true %.2f°), extinction ratio %.1f (true %.0f)\n",
                 pol.analyzer_method.c_str(), offset, cam.angle_offset_deg, er, cam.extinction_ratio);
 
-    const Image stokes = cal::reduce_session(dir / "sessions" / "scene", radiometric, &pol);
+    const Image& stokes = products.stokes.front();
     write_exr(dir / "stokes.exr", stokes);
     for (const char* c : {"S0", "S1", "S2", "DoLP"}) {
         QuicklookOptions q;
@@ -70,23 +83,25 @@ void demo_calibration(const std::filesystem::path& out_dir) {
         q.title = c;
         write_quicklook(dir / (std::string(c) + ".png"), stokes.channel(c), stokes.width(), stokes.height(), q);
     }
-    cal::SessionReductionOptions naive_options;
-    naive_options.update_offset = true;
-    const Image naive = cal::reduce_session(dir / "sessions" / "scene", radiometric, nullptr, naive_options);
+    // The same scene without the wire-grid calibration: the chain from the radiometric one, offset updated.
+    cal::ChainInputs naive_chain;
+    naive_chain.scene_sessions = chain.scene_sessions;
+    naive_chain.reduction.update_offset = true;
+    cal::ChainProducts naive_given;
+    naive_given.radiometric = radiometric;
+    const Image naive = cal::run_calibration_chain(naive_chain, std::move(naive_given)).stokes.front();
     write_exr(dir / "stokes_without_wire_grid_removal.exr", naive);
-    const int x0 = 3 * cam.width / 8 + 4, x1 = 5 * cam.width / 8 - 4, y0 = cam.height / 6 + 4, y1 = cam.height - cam.height / 6 - 4;
     std::printf("  panel S1: true %.4f, calibrated %.4f ± %.4f (per pixel), without wire-grid removal %.4f W/(m²·sr)\n",
                 panel_mean(truth, "S1", x0, x1, y0, y1), panel_mean(stokes, "S1", x0, x1, y0, y1),
                 panel_mean(stokes, "S1_std", x0, x1, y0, y1), panel_mean(naive, "S1", x0, x1, y0, y1));
 
-    cal::EmissivityRois rois;
-    rois.reflector.rect = {cam.width / 16 + 2, cam.height / 6 + 4, cam.width / 4 - cam.width / 16 - 4, cam.height * 2 / 3 - 8};
-    rois.targets = {{"panel", {x0, y0, x1 - x0, y1 - y0}, 45.0, 300.0, 0.1, std::nullopt}};
-    const auto eps = cal::extract_emissivity(stokes, rois, band);
+    const auto& eps = products.emissivity.front();
     write_file_atomic(dir / "emissivity.csv", cal::emissivity_csv(eps));
-    std::printf("  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 %+.4f ± %.4f "
-                "(true 0.01), 2σ\n",
-                eps[0].eps_s0, eps[0].eps_s0_2sigma, eps[0].eps_s1, eps[0].eps_s1_2sigma, eps[0].eps_s2, eps[0].eps_s2_2sigma);
+    std::printf(
+        "  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 %+.4f ± %.4f "
+        "(true 0.01), 2σ\n",
+        eps[0].eps_s0, 2.0 * eps[0].eps_s0_std, eps[0].eps_s1, 2.0 * eps[0].eps_s1_std, eps[0].eps_s2,
+        2.0 * eps[0].eps_s2_std);
 
     // NEDT from 64 raw frames of a 300 K blackbody through the same synthetic camera.
     cal::FrameStack stack{cam.width, cam.height, {}};

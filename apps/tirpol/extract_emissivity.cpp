@@ -4,8 +4,7 @@
 #include <memory>
 
 #include "cli.h"
-#include "tirpol/calibration/emissivity_extraction.h"
-#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -19,34 +18,34 @@ struct EmissivityArgs {
 };
 
 void run_extract(const EmissivityArgs& a) {
-    Image stokes;
-    std::optional<Band> band;
+    calibration::ChainInputs chain;
+    calibration::ChainProducts given;
     if (std::filesystem::is_directory(a.input)) {
         if (a.calibration.empty()) usage_error("--calibration", "{} is a session: CAL.exr is needed to reduce it", a.input);
-        const auto cal = calibration::read_radiometric_calibration(a.calibration);
-        std::optional<calibration::PolarimetricCalibration> pol;
-        if (!a.polarimetric.empty()) pol = calibration::read_polarimetric_calibration(a.polarimetric);
-        stokes = calibration::reduce_session(a.input, cal, pol ? &*pol : nullptr);
-        band = cal.band();
+        given = calibration::read_calibration_products(a.calibration, a.polarimetric);
+        chain.band = given.radiometric->band();
+        chain.scene_sessions = {a.input};
     } else {
-        stokes = read_exr(a.input);
-        const auto it = stokes.attributes().find("band_um");
+        given.stokes = {read_exr(a.input)};
+        const auto& attributes = given.stokes.front().attributes();
+        const auto it = attributes.find("band_um");
         if (!a.band_um.empty()) {
-            band = Band(a.band_um[0], a.band_um[1]);
-        } else if (it != stokes.attributes().end() && std::holds_alternative<std::vector<double>>(it->second) &&
+            chain.band = Band(a.band_um[0], a.band_um[1]);
+        } else if (it != attributes.end() && std::holds_alternative<std::vector<double>>(it->second) &&
                    std::get<std::vector<double>>(it->second).size() == 2) {
             const auto& b = std::get<std::vector<double>>(it->second);
-            band = Band(b[0], b[1]);
+            chain.band = Band(b[0], b[1]);
         } else {
             fail("{}: no band_um attribute; give --band-um LO HI", a.input);
         }
     }
-    const auto rois = calibration::EmissivityRois::load(a.rois);
-    const auto results = calibration::extract_emissivity(stokes, rois, *band);
+    chain.rois = {calibration::EmissivityRois::load(a.rois)};
+    const auto results = calibration::run_calibration_chain(chain, std::move(given)).emissivity.front();
     write_file_atomic(a.output, calibration::emissivity_csv(results));
     for (const auto& r : results)
-        std::printf("  %-16s θ=%5.1f°  ε_S0 = %.4f ± %.4f  ε_S1 = %+.4f ± %.4f  ε_S2 = %+.4f ± %.4f (2σ)\n", r.name.c_str(),
-                    r.view_angle_deg, r.eps_s0, r.eps_s0_2sigma, r.eps_s1, r.eps_s1_2sigma, r.eps_s2, r.eps_s2_2sigma);
+        std::printf("  %-16s θ=%5.1f°  ε_S0 = %.4f ± %.4f  ε_S1 = %+.4f ± %.4f  ε_S2 = %+.4f ± %.4f (2σ)\n",
+                    r.name.c_str(), r.view_angle_deg, r.eps_s0, 2.0 * r.eps_s0_std, r.eps_s1, 2.0 * r.eps_s1_std,
+                    r.eps_s2, 2.0 * r.eps_s2_std);
     for (const auto& r : results)
         for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::printf("written: %s\n", a.output.c_str());

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "cli.h"
-#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"
 
@@ -22,16 +22,16 @@ struct ReduceArgs {
 };
 
 void run_reduce(const ReduceArgs& a) {
-    const auto cal = calibration::read_radiometric_calibration(a.calibration);
-    std::optional<calibration::PolarimetricCalibration> pol;
-    if (!a.polarimetric.empty()) pol = calibration::read_polarimetric_calibration(a.polarimetric);
-    calibration::SessionReductionOptions options;
-    options.update_offset = a.update_offset;
-    options.drift_correction = a.drift_correction;
-    options.max_saturated_fraction = a.max_saturated_fraction;
-    options.include_slar = a.slar;
-    options.force_other_camera = a.force;
-    Image stokes = calibration::reduce_session(a.session, cal, pol ? &*pol : nullptr, options);
+    calibration::ChainInputs chain;
+    chain.scene_sessions = {a.session};
+    chain.reduction.update_offset = a.update_offset;
+    chain.reduction.drift_correction = a.drift_correction;
+    chain.reduction.max_saturated_fraction = a.max_saturated_fraction;
+    chain.reduction.include_slar = a.slar;
+    chain.reduction.force_other_camera = a.force;
+    Image stokes =
+        calibration::run_calibration_chain(chain, calibration::read_calibration_products(a.calibration, a.polarimetric))
+            .stokes.front();
     stokes.attributes()["radiometric_calibration"] = a.calibration;
     stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
     write_exr(a.output, stokes);

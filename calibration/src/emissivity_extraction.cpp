@@ -112,17 +112,16 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
         const double sd = dw.standard_error;
         r.eps_s0 = (s0.mean - r.l_dw) / d;
         // First-order propagation: ∂ε0/∂S0 = 1/D, ∂ε0/∂L_dw = (S0 − L_BB)/D², ∂ε0/∂L_BB = −ε0/D.
-        r.eps_s0_2sigma =
-            2.0 * std::sqrt(std::pow(s0.standard_error / d, 2) + std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
-                            std::pow(r.eps_s0 / d * sigma_lbb, 2));
-        auto polarized = [&](const RegionMean& s, double& eps, double& two_sigma) {
+        r.eps_s0_std = std::sqrt(std::pow(s0.standard_error / d, 2) + std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
+                                 std::pow(r.eps_s0 / d * sigma_lbb, 2));
+        auto polarized = [&](const RegionMean& s, double& eps, double& std) {
             eps = s.mean / d;
-            two_sigma = 2.0 * std::sqrt(std::pow(s.standard_error / d, 2) + std::pow(eps / d * sd, 2) +
-                                        std::pow(eps / d * sigma_lbb, 2));
+            std = std::sqrt(std::pow(s.standard_error / d, 2) + std::pow(eps / d * sd, 2) +
+                            std::pow(eps / d * sigma_lbb, 2));
         };
-        polarized(s1, r.eps_s1, r.eps_s1_2sigma);
-        polarized(s2, r.eps_s2, r.eps_s2_2sigma);
-        for (double v : {r.eps_s0, r.eps_s0_2sigma, r.eps_s1, r.eps_s1_2sigma, r.eps_s2, r.eps_s2_2sigma})
+        polarized(s1, r.eps_s1, r.eps_s1_std);
+        polarized(s2, r.eps_s2, r.eps_s2_std);
+        for (double v : {r.eps_s0, r.eps_s0_std, r.eps_s1, r.eps_s1_std, r.eps_s2, r.eps_s2_std})
             check_finite(v, "target '" + t.name + "': emissivity");
         constexpr double tol = limits::kEmissivityTolerance;
         if (r.eps_s0 < -tol || r.eps_s0 > 1.0 + tol)
@@ -139,8 +138,7 @@ std::string emissivity_csv(const std::vector<EmissivityResult>& results) {
     std::vector<EmissivityCsvRow> rows;
     for (const auto& r : results)
         rows.push_back({r.name, r.view_angle_deg, r.temperature_k, r.pixels, r.l_dw, r.l_bb, EmissivityFrame::Image,
-                        r.eps_s0, r.eps_s0_2sigma / 2.0, r.eps_s1, r.eps_s1_2sigma / 2.0, r.eps_s2,
-                        r.eps_s2_2sigma / 2.0, std::nullopt, 0});
+                        r.eps_s0, r.eps_s0_std, r.eps_s1, r.eps_s1_std, r.eps_s2, r.eps_s2_std, std::nullopt, 0});
     return emissivity_csv_text(rows);
 }
 

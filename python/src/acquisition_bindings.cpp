@@ -12,6 +12,7 @@
 #include "interruptible.h"
 #include "tirpol/acquisition/camera_registry.h"
 #include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/twin/scene_camera.h"
 
 namespace py = pybind11;
 
@@ -111,6 +112,9 @@ void bind_stage(py::module_& m) {
 }  // namespace
 
 void bind_acquisition(py::module_& m) {
+    // The renderer-backed sim://<scene.yaml> camera, as the CLI registers it at start-up: open_camera
+    // takes it once the package is imported.
+    twin::register_twin_device_schemes();
     bind_stage(m);
     bind_capture(m);
     py::class_<Camera, std::unique_ptr<Camera>>(m, "Camera",
@@ -158,8 +162,9 @@ void bind_acquisition(py::module_& m) {
         },
         py::arg("uri"),
         "Opens a camera: aravis://<device-id>[?pixel_format=&width=&height=&fps=], v4l2:///dev/videoN, "
-        "sim://uniform?width=&height=&counts=&noise=&fps=. A malformed URI raises tirpol.Error, an absent or "
-        "refusing device tirpol.DeviceError.");
+        "sim://uniform?width=&height=&counts=&noise=&fps=, or sim://<scene.yaml>[?width=&height=&spp=&fps=] (the "
+        "scene rendered once, seen through the digital twin's wire grid and detector). A malformed URI raises "
+        "tirpol.Error, an absent or refusing device tirpol.DeviceError.");
     m.def(
         "list_cameras",
         [] {

@@ -7,8 +7,7 @@
 #include "bindings.h"
 #include "image_conversion.h"
 #include "interruptible.h"
-#include "tirpol/calibration/emissivity_extraction.h"
-#include "tirpol/calibration/session_calibration.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/error.h"
 
@@ -187,51 +186,138 @@ py::dict result_dict(const EmissivityResult& r) {
     d["l_dw_w_m2_sr"] = r.l_dw;
     d["l_bb_w_m2_sr"] = r.l_bb;
     d["eps_s0"] = r.eps_s0;
-    d["eps_s0_2sigma"] = r.eps_s0_2sigma;
+    d["eps_s0_std"] = r.eps_s0_std;
     d["eps_s1"] = r.eps_s1;
-    d["eps_s1_2sigma"] = r.eps_s1_2sigma;
+    d["eps_s1_std"] = r.eps_s1_std;
     d["eps_s2"] = r.eps_s2;
-    d["eps_s2_2sigma"] = r.eps_s2_2sigma;
+    d["eps_s2_std"] = r.eps_s2_std;
     d["warnings"] = r.warnings;
     return d;
+}
+
+/// The regions of eq 17 from Python: the IR reflector rectangle and the targets' dicts.
+/// The reflector as [x, y, w, h], or as the ROI file's mapping {rect, emissivity, emissivity_std,
+/// temperature_k, temperature_std_k} (all but rect optional) to remove its own emission.
+EmissivityReflector reflector_from_python(const py::object& reflector) {
+    if (!py::isinstance<py::dict>(reflector)) return {rect_of(reflector, "reflector")};
+    const auto d = reflector.cast<py::dict>();
+    for (const auto& [key, value] : d) {
+        const auto k = key.cast<std::string>();
+        if (k != "rect" && k != "emissivity" && k != "emissivity_std" && k != "temperature_k" && k != "temperature_std_k")
+            fail("reflector: unknown key '{}' (expected rect, emissivity, emissivity_std, temperature_k, "
+                 "temperature_std_k)", k);
+    }
+    if (!d.contains("rect")) fail("reflector: missing key 'rect'");
+    EmissivityReflector r{rect_of(d["rect"], "reflector.rect")};
+    if (d.contains("emissivity")) r.emissivity = d["emissivity"].cast<double>();
+    if (d.contains("emissivity_std")) r.emissivity_std = d["emissivity_std"].cast<double>();
+    if (d.contains("temperature_k")) r.temperature_k = d["temperature_k"].cast<double>();
+    if (d.contains("temperature_std_k")) r.temperature_std_k = d["temperature_std_k"].cast<double>();
+    return r;
+}
+
+EmissivityRois rois_from_python(const py::object& reflector, const py::list& targets) {
+    EmissivityRois rois;
+    rois.reflector = reflector_from_python(reflector);
+    for (const auto& t : targets) {
+        const auto d = t.cast<py::dict>();
+        EmissivityTarget target;
+        target.name = d["name"].cast<std::string>();
+        target.rect = rect_of(d["rect"], "targets['" + target.name + "'].rect");
+        target.view_angle_deg = d["view_angle_deg"].cast<double>();
+        if (d.contains("temperature_k")) target.temperature_k = d["temperature_k"].cast<double>();
+        if (d.contains("temperature_std_k")) target.temperature_std_k = d["temperature_std_k"].cast<double>();
+        if (d.contains("blackbody_rect"))
+            target.blackbody_rect = rect_of(d["blackbody_rect"], "targets['" + target.name + "'].blackbody_rect");
+        rois.targets.push_back(std::move(target));
+    }
+    return rois;
 }
 
 void bind_emissivity(py::module_& m) {
     m.def(
         "extract_emissivity",
-        [](const py::object& stokes, const py::object& reflector, const py::list& targets, const Band& band,
-           double reflector_emissivity, double reflector_emissivity_std, std::optional<double> reflector_temperature_k,
-           double reflector_temperature_std_k) {
-            EmissivityRois rois;
-            rois.reflector = {rect_of(reflector, "reflector"), reflector_emissivity, reflector_emissivity_std,
-                              reflector_temperature_k, reflector_temperature_std_k};
-            for (const auto& t : targets) {
-                const auto d = t.cast<py::dict>();
-                EmissivityTarget target;
-                target.name = d["name"].cast<std::string>();
-                target.rect = rect_of(d["rect"], "targets['" + target.name + "'].rect");
-                target.view_angle_deg = d["view_angle_deg"].cast<double>();
-                if (d.contains("temperature_k")) target.temperature_k = d["temperature_k"].cast<double>();
-                if (d.contains("temperature_std_k")) target.temperature_std_k = d["temperature_std_k"].cast<double>();
-                if (d.contains("blackbody_rect"))
-                    target.blackbody_rect =
-                        rect_of(d["blackbody_rect"], "targets['" + target.name + "'].blackbody_rect");
-                rois.targets.push_back(std::move(target));
-            }
+        [](const py::object& stokes, const py::object& reflector, const py::list& targets, const Band& band) {
+            const EmissivityRois rois = rois_from_python(reflector, targets);
             const Image image = image_from_python(stokes);
             py::list out;
             for (const auto& r : extract_emissivity(image, rois, band)) out.append(result_dict(r));
             return out;
         },
         py::arg("stokes"), py::arg("reflector"), py::arg("targets"), py::arg("band"),
-        py::arg("reflector_emissivity") = 0.0, py::arg("reflector_emissivity_std") = 0.0,
-        py::arg("reflector_temperature_k") = py::none(), py::arg("reflector_temperature_std_k") = 0.5,
         "Polarized emissivity of targets in a reduced Stokes image (paper eq 17): the IR reflector rectangle "
-        "[x, y, w, h] gives the downwelling radiance (its own emission removed when reflector_emissivity > 0, "
-        "which needs reflector_temperature_k), each target {name, rect, view_angle_deg, temperature_k "
-        "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 2σ uncertainties — the rows "
-        "fit_microfacet takes once ε_S1 is rotated into the plane-of-emission frame (here it is in the image "
-        "frame).");
+        "[x, y, w, h] gives the downwelling radiance (or {rect, emissivity, emissivity_std, temperature_k, "
+        "temperature_std_k}, as in the ROI file, to remove the reflector's own emission), each target {name, rect, view_angle_deg, temperature_k "
+        "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 1σ uncertainties eps_s0_std, "
+        "eps_s1_std, eps_s2_std; ε_S1 and ε_S2 in the image Stokes frame (fit_microfacet takes ε_S1 in the "
+        "plane-of-emission frame).");
+}
+
+/// The chain's products as a dict; emissivity rows as extract_emissivity returns them.
+py::dict products_dict(ChainProducts p) {
+    py::dict d;
+    d["radiometric"] = p.radiometric ? py::cast(std::move(*p.radiometric)) : py::none();
+    d["polarimetric"] = p.polarimetric ? py::cast(std::move(*p.polarimetric)) : py::none();
+    py::list stokes, emissivity;
+    for (auto& image : p.stokes) stokes.append(to_python(std::move(image)));
+    for (const auto& rows : p.emissivity) {
+        py::list out;
+        for (const auto& r : rows) out.append(result_dict(r));
+        emissivity.append(out);
+    }
+    d["stokes"] = stokes;
+    d["emissivity"] = emissivity;
+    return d;
+}
+
+void bind_chain(py::module_& m) {
+    m.def(
+        "calibration_steps",
+        [] {
+            py::list out;
+            for (const auto& s : calibration_steps())
+                out.append(py::dict(py::arg("name") = std::string(s.name), py::arg("needs") = std::string(s.needs),
+                                    py::arg("makes") = std::string(s.makes)));
+            return out;
+        },
+        "The steps of the calibration chain in the order run_chain runs them: [{name, needs, makes}].");
+    m.def(
+        "run_chain",
+        [](const Band& band, const std::vector<std::filesystem::path>& blackbody_sessions,
+           const std::optional<std::filesystem::path>& polarimetric_session,
+           const std::vector<std::filesystem::path>& scene_sessions, const py::sequence& regions,
+           const std::optional<RadiometricCalibration>& radiometric,
+           const std::optional<PolarimetricCalibration>& polarimetric, bool update_offset) {
+            ChainInputs in;
+            in.band = band;
+            in.blackbody_sessions = blackbody_sessions;
+            if (polarimetric_session) in.polarimetric_session = *polarimetric_session;
+            in.scene_sessions = scene_sessions;
+            in.reduction.update_offset = update_offset;
+            for (const auto& r : regions) {
+                const auto d = r.cast<py::dict>();
+                in.rois.push_back(rois_from_python(d["reflector"], d["targets"].cast<py::list>()));
+            }
+            ChainProducts given;
+            given.radiometric = radiometric;
+            given.polarimetric = polarimetric;
+            return products_dict(run_interruptible([&](const std::atomic<bool>& cancel) {
+                ChainInputs with_cancel = in;
+                with_cancel.reduction.cancel = &cancel;
+                return run_calibration_chain(with_cancel, given);
+            }));
+        },
+        py::arg("band"), py::arg("blackbody_sessions") = std::vector<std::filesystem::path>{},
+        py::arg("polarimetric_session") = py::none(), py::arg("scene_sessions") = std::vector<std::filesystem::path>{},
+        py::arg("regions") = py::list(), py::arg("radiometric") = py::none(), py::arg("polarimetric") = py::none(),
+        py::arg("update_offset") = false,
+        "Runs the calibration chain (calibration_steps(), the order the CLI, the demo and the digital twin use): "
+        "radiometric calibration from `blackbody_sessions`, polarimetric calibration from `polarimetric_session`, "
+        "one Stokes image per `scene_sessions` entry, and ε per target (eq 17) for `regions` — one "
+        "{reflector, targets} dict (extract_emissivity's arguments) for every image, or one per image. A step runs "
+        "when its inputs are given; `radiometric`/`polarimetric` given (e.g. read from files) skip their steps. "
+        "Returns {radiometric, polarimetric, stokes: [Image], emissivity: [[row]]}. Releases the GIL; Ctrl-C "
+        "stops the reduction (KeyboardInterrupt).");
 }
 
 }  // namespace
@@ -240,6 +326,7 @@ void bind_calibration_sessions(py::module_& m) {
     bind_radiometric(m);
     bind_session(m);
     bind_emissivity(m);
+    bind_chain(m);
 }
 
 }  // namespace tirpol::python

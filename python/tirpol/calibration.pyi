@@ -132,11 +132,18 @@ def extract_emissivity(
     reflector: Sequence[int],
     targets: Sequence[Mapping[str, object]],
     band: Band,
-    reflector_emissivity: float = 0.0,
-    reflector_emissivity_std: float = 0.0,
-    reflector_temperature_k: Optional[float] = None,
-    reflector_temperature_std_k: float = 0.5,
 ) -> list[dict[str, object]]: ...
+def calibration_steps() -> list[dict[str, str]]: ...
+def run_chain(
+    band: Band,
+    blackbody_sessions: Sequence[PathLike] = (),
+    polarimetric_session: Optional[PathLike] = None,
+    scene_sessions: Sequence[PathLike] = (),
+    regions: Sequence[Mapping[str, object]] = (),
+    radiometric: Optional[RadiometricCalibration] = None,
+    polarimetric: Optional[PolarimetricCalibration] = None,
+    update_offset: bool = False,
+) -> dict[str, object]: ...
 def three_d_noise(frames: npt.ArrayLike, convention: str = "population") -> dict[str, float]: ...
 def temporal_noise(frames: npt.ArrayLike) -> npt.NDArray[np.float32]: ...
 def nedt_map(frames: npt.ArrayLike, responsivity_per_k: Union[float, npt.ArrayLike]) -> npt.NDArray[np.float32]: ...

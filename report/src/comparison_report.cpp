@@ -239,9 +239,11 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
         }
         source.measured_sigma_median = median_sqrt(*var_m);
         source.simulated_sigma_median = median_sqrt(*var_s);
+        source.measured_dof = variance_dof(measured_in);
+        source.simulated_dof = variance_dof(simulated_in);
         result.noise[q] = source;
-        const double dof_m = variance_dof(measured_in), dof_s = variance_dof(simulated_in);
-        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m, *var_s, dof_m, dof_s);
+        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m, *var_s,
+                               source.measured_dof, source.simulated_dof);
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
         planes.total_variance[q] = std::move(total);

@@ -33,6 +33,8 @@ std::string num(double v) {
 }
 std::string percent(double v) { return fmt::format("{:.2f} %", 100.0 * v); }
 
+std::string degrees_of_freedom(double dof) { return std::isfinite(dof) ? fmt::format("{:g}", dof) : "∞"; }
+
 constexpr const char* kStyle = R"css(
 :root { --ink: #1d2330; --muted: #5b6475; --rule: #d5d9e0; --band: #f4f6f9; --ok: #1e7b34; --bad: #b3261e; --warn: #9a5b00; }
 * { box-sizing: border-box; }
@@ -341,14 +343,18 @@ std::string noise_section(const Page& p) {
         "&lt; {} — the stated σ is too large and the test too blunt to see differences of that size; "
         "<span class=\"ok\">consistent with noise</span> otherwise. A region's verdict is the worst of its three.</p>\n",
         kRmsHigh, kRmsLow);
-    h += fmt::format("<table>\n<caption>Noise used [{}]</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">"
-                     "Measured σ from</th><th>Median σ_m</th><th class=\"text\">Simulated σ from</th><th>Median σ_s</th>"
-                     "</tr></thead>\n<tbody>\n",
-                     p.units);
+    h += fmt::format(
+        "<table>\n<caption>Noise used [{}]; degrees of freedom ν of each variance (∞: taken as exact)"
+        "</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">Measured σ from</th><th>Median σ_m</th>"
+        "<th>ν_m</th><th class=\"text\">Simulated σ from</th><th>Median σ_s</th><th>ν_s</th></tr></thead>\n"
+        "<tbody>\n",
+        p.units);
     for (const auto& [q, s] : r.noise)
-        h += fmt::format("<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td class=\"text\">{}</td><td>{}</td></tr>\n",
-                         q, escape(s.measured), num(s.measured_sigma_median), escape(s.simulated),
-                         num(s.simulated_sigma_median));
+        h += fmt::format(
+            "<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td>"
+            "<td>{}</td><td>{}</td></tr>\n",
+            q, escape(s.measured), num(s.measured_sigma_median), degrees_of_freedom(s.measured_dof),
+            escape(s.simulated), num(s.simulated_sigma_median), degrees_of_freedom(s.simulated_dof));
     h += "</tbody>\n</table>\n";
     h += "<table>\n<caption>Fraction of pixels beyond 2σ and 3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
          "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th class=\"text\">Verdict</th>"

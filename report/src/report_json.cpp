@@ -1,3 +1,4 @@
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "tirpol/core/utf8.h"
@@ -8,6 +9,11 @@ namespace tirpol::report {
 namespace {
 
 nlohmann::json optional_number(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+/// Degrees of freedom; null for infinite (a variance taken as exact): JSON has no infinity.
+nlohmann::json degrees_of_freedom(double dof) {
+    return std::isfinite(dof) ? nlohmann::json(dof) : nlohmann::json(nullptr);
+}
 
 nlohmann::json to_json(const QuantityStats& s) {
     return {{"pixel_count", s.pixel_count},   {"measured_mean", s.measured_mean}, {"measured_std", s.measured_std},
@@ -69,7 +75,9 @@ std::string comparison_json(const CompareResult& r) {
         j["noise"][q] = {{"measured_source", s.measured},
                          {"simulated_source", s.simulated},
                          {"measured_sigma_median", s.measured_sigma_median},
-                         {"simulated_sigma_median", s.simulated_sigma_median}};
+                         {"simulated_sigma_median", s.simulated_sigma_median},
+                         {"measured_dof", degrees_of_freedom(s.measured_dof)},
+                         {"simulated_dof", degrees_of_freedom(s.simulated_dof)}};
     j["background"] = r.background.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.background);
     j["expected_fraction_above_2"] = kNormalTailAbove2;
     j["expected_fraction_above_3"] = kNormalTailAbove3;

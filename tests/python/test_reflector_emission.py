@@ -23,8 +23,8 @@ TARGETS = [{"name": "panel", "rect": [21, 1, 18, 18], "view_angle_deg": 40.0, "t
 
 
 def test_reflector_emission_is_removed():
-    [eps] = calibration.extract_emissivity(scene(), reflector=[1, 1, 18, 18], targets=TARGETS, band=BAND,
-                                           reflector_emissivity=0.1, reflector_temperature_k=285.0)
+    reflector = {"rect": [1, 1, 18, 18], "emissivity": 0.1, "temperature_k": 285.0}
+    [eps] = calibration.extract_emissivity(scene(), reflector=reflector, targets=TARGETS, band=BAND)
     assert eps["l_dw_w_m2_sr"] == pytest.approx(BAND.radiance(240.0), abs=1e-4)
     assert eps["eps_s0"] == pytest.approx(0.92, abs=1e-5)
     assert eps["eps_s1"] == pytest.approx(-0.03, abs=1e-5)
@@ -34,5 +34,8 @@ def test_reflector_emission_is_removed():
 
 def test_reflector_emissivity_needs_its_temperature():
     with pytest.raises(tirpol.Error, match="needs the reflector's temperature"):
-        calibration.extract_emissivity(scene(), reflector=[1, 1, 18, 18], targets=TARGETS, band=BAND,
-                                       reflector_emissivity=0.1)
+        calibration.extract_emissivity(scene(), reflector={"rect": [1, 1, 18, 18], "emissivity": 0.1},
+                                       targets=TARGETS, band=BAND)
+    with pytest.raises(tirpol.Error, match="unknown key 'temperature'"):
+        calibration.extract_emissivity(scene(), reflector={"rect": [1, 1, 18, 18], "temperature": 285.0},
+                                       targets=TARGETS, band=BAND)

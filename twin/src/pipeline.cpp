@@ -8,9 +8,8 @@
 #include <cstdlib>
 
 #include "tirpol/acquisition/capture_plan.h"
-#include "tirpol/calibration/datasheet_analyzer.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/region_mean.h"
-#include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -163,7 +162,7 @@ struct Chain {
     std::uint32_t target_material = 0;
     std::vector<simulation::Camera> cameras;  ///< the field camera in each view
     std::vector<Image> truth;                 ///< renders of the truth, per view
-    std::vector<Image> measured;              ///< reduced Stokes, per view
+    calibration::ChainProducts calibrated;    ///< the calibrations; reduced Stokes (.stokes) per view
     fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
     Image simulated;  ///< the render with the fitted paint, view 0
 };
@@ -219,20 +218,21 @@ void recover_geometry(Chain& c, TwinWorld& world) {
                                               world, c.out / "camera", go);
 }
 
-/// 3. Calibration and reduction to measured Stokes.
+/// 3. Calibration and reduction to measured Stokes (the calibration chain's steps up to the reduction).
 void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
     StageTimer t(c.result, "calibrate and reduce", c.stage);
-    const auto radiometric = calibration::calibrate_radiometric_session(c.sessions / "lab", c.scene.band);
+    calibration::ChainInputs in;
+    in.band = c.scene.band;
+    in.blackbody_sessions = {c.sessions / "lab"};
+    in.polarimetric_session = c.sessions / "view0";
     // The user has the polarizer's datasheet but no known polarized source: its extinction ratio
     // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
     // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
-    const calibration::DatasheetAnalyzer datasheet{world.sensor().analyzer.extinction_ratio, {}};
-    const auto polarimetric = calibration::calibrate_polarimetric_session(c.sessions / "view0", radiometric, datasheet);
-    for (std::size_t v = 0; v < c.views.size(); ++v) {
-        c.measured.push_back(
-            calibration::reduce_session(c.sessions / fmt::format("view{}", v), radiometric, &polarimetric));
-        write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.measured.back());
-    }
+    in.datasheet = calibration::DatasheetAnalyzer{world.sensor().analyzer.extinction_ratio, {}};
+    for (std::size_t v = 0; v < c.views.size(); ++v) in.scene_sessions.push_back(c.sessions / fmt::format("view{}", v));
+    c.calibrated = calibration::run_calibration_chain(in);
+    for (std::size_t v = 0; v < c.views.size(); ++v)
+        write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.calibrated.stokes[v]);
     c.result.measured_exr = c.out / "measured" / "view0_stokes.exr";
 }
 
@@ -245,11 +245,12 @@ void check_target_stokes(Chain& c) {
     for (int k = 0; k < 3; ++k) {
         const std::string s = fmt::format("S{}", k);
         c.result.target_stokes.measured[k] =
-            calibration::region_mean(c.measured.front(), s, *target_rect0, "twin").mean;
+            calibration::region_mean(c.calibrated.stokes.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.truth[k] = calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.sigma[k] =
-            rect_difference_standard_error(c.measured.front(), c.truth.front(), s, *target_rect0);
-        c.result.target_stokes.sigma_temporal[k] = rect_standard_error(c.measured.front(), s + "_std", *target_rect0);
+            rect_difference_standard_error(c.calibrated.stokes.front(), c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.sigma_temporal[k] =
+            rect_standard_error(c.calibrated.stokes.front(), s + "_std", *target_rect0);
     }
 }
 
@@ -280,18 +281,22 @@ calibration::EmissivityRois emissivity_rois(const Chain& c, std::size_t v) {
     return rois;
 }
 
-/// 4. Polarized emissivity of the target in each view (paper eq 17), in the plane-of-emission frame.
+/// 4. Polarized emissivity of the target in each view (the chain's eq 17 step) in the plane-of-emission
+///    frame, next to eq 17 on the truth render (a perfect instrument) and the paint's table.
 void extract_target_emissivity(Chain& c) {
     const auto* true_brdf = c.scene.materials[c.target_material].brdf.get();
     StageTimer t(c.result, "extract emissivity", c.stage);
+    calibration::ChainInputs in;
+    in.band = c.scene.band;
+    for (std::size_t v = 0; v < c.views.size(); ++v) in.rois.push_back(emissivity_rois(c, v));
+    c.calibrated = calibration::run_calibration_chain(in, std::move(c.calibrated));
     for (std::size_t v = 0; v < c.views.size(); ++v) {
-        const calibration::EmissivityRois rois = emissivity_rois(c, v);
-        const auto& et = rois.targets.front();
+        const calibration::EmissivityRois& rois = in.rois[v];
+        const calibration::EmissivityTarget& et = rois.targets.front();
         // Image frame → plane of emission: the p direction lies at ψ in the image; a frame with its
         // 0° axis along s (ψ − 90°) gives ε_S1 < 0 for p-polarized emission.
         const double psi = plane_of_emission_angle(c.truth[v], c.cameras[v], et.rect);
-        const auto e =
-            in_plane_of_emission(calibration::extract_emissivity(c.measured[v], rois, c.scene.band).front(), psi);
+        const auto e = in_plane_of_emission(c.calibrated.emissivity[v].front(), psi);
         // The same extraction on the truth render: what eq 17 itself gives with a perfect instrument.
         const auto m =
             in_plane_of_emission(calibration::extract_emissivity(c.truth[v], rois, c.scene.band).front(), psi);
@@ -389,11 +394,13 @@ void compare_and_report(Chain& c) {
         "`tirpol demo`)",
         c.result.measured_exr.string(), c.result.simulated_exr.string(), c.result.report_regions.string(),
         c.result.camera.lens_file.string(), (c.out / "report").string());
-    co.provenance.inputs.push_back(report::describe_input("measured", c.result.measured_exr, &c.measured.front()));
+    co.provenance.inputs.push_back(
+        report::describe_input("measured", c.result.measured_exr, &c.calibrated.stokes.front()));
     co.provenance.inputs.push_back(report::describe_input("simulated", c.result.simulated_exr, &c.simulated));
     co.provenance.inputs.push_back(report::describe_input("regions", c.result.report_regions));
     co.provenance.inputs.push_back(report::describe_input("camera model", c.result.camera.lens_file));
-    const report::CompareResult cr = write_comparison_report(c.measured.front(), c.simulated, co, c.out / "report");
+    const report::CompareResult cr =
+        write_comparison_report(c.calibrated.stokes.front(), c.simulated, co, c.out / "report");
     c.result.report_html = cr.html;
     c.result.registration = cr.registration;
     for (const auto& r : cr.regions) {

@@ -73,8 +73,7 @@ double plane_of_emission_angle(const Image& render, const simulation::Camera& ca
 PlaneOfEmissionEmissivity in_plane_of_emission(const calibration::EmissivityResult& e, double psi) {
     // A frame with its 0° axis along s (ψ − 90°): S1' = −(S1 cos 2ψ + S2 sin 2ψ).
     const double c2 = std::cos(2.0 * psi), s2 = std::sin(2.0 * psi);
-    return {e.eps_s0, e.eps_s0_2sigma / 2.0, -(e.eps_s1 * c2 + e.eps_s2 * s2),
-            std::hypot(e.eps_s1_2sigma * c2, e.eps_s2_2sigma * s2) / 2.0};
+    return {e.eps_s0, e.eps_s0_std, -(e.eps_s1 * c2 + e.eps_s2 * s2), std::hypot(e.eps_s1_std * c2, e.eps_s2_std * s2)};
 }
 
 }  // namespace tirpol::twin

@@ -52,17 +52,17 @@ struct EmissivityRois {
     static EmissivityRois load(const std::string& path);
 };
 
-/// One target's result. `*_2sigma` are 2σ uncertainties: the standard errors of the ROI means (spatial σ/√n)
-/// of the target, the reflector and the blackbody region, and the contact-temperature σ through
-/// dL/dT, propagated to first order.
+/// One target's result. `*_std` are standard (1σ) uncertainties: the standard errors of the ROI means
+/// (spatial σ/√n) of the target, the reflector and the blackbody region, and the contact-temperature σ
+/// through dL/dT, propagated to first order.
 struct EmissivityResult {
     std::string name;
     double view_angle_deg = 0.0, temperature_k = 0.0;
     std::size_t pixels = 0;
     double l_dw = 0.0, l_bb = 0.0;
-    double eps_s0 = 0.0, eps_s0_2sigma = 0.0;
-    double eps_s1 = 0.0, eps_s1_2sigma = 0.0;
-    double eps_s2 = 0.0, eps_s2_2sigma = 0.0;
+    double eps_s0 = 0.0, eps_s0_std = 0.0;
+    double eps_s1 = 0.0, eps_s1_std = 0.0;
+    double eps_s2 = 0.0, eps_s2_std = 0.0;
     /// Physically implausible values (ε_S0 outside [0, 1] beyond limits::kEmissivityTolerance), in
     /// words a person can act on; `fit` refuses such rows.
     std::vector<std::string> warnings;
@@ -76,8 +76,8 @@ RegionMean downwelled_radiance(const Image& stokes, const EmissivityReflector& r
 /// emission must exceed the downwelling) or a non-finite result.
 std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band);
 
-/// The emissivity CSV (tirpol/core/emissivity_csv.h): frame `image`, uncertainties as 1σ (`*_std`,
-/// half the `*_2sigma` above), wavelength_um empty.
+/// The emissivity CSV (tirpol/core/emissivity_csv.h): frame `image`, the 1σ uncertainties above
+/// (`*_std` columns), wavelength_um empty.
 std::string emissivity_csv(const std::vector<EmissivityResult>& results);
 
 }  // namespace tirpol::calibration

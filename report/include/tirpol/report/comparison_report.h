@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,8 +17,8 @@
 #include "tirpol/core/image.h"
 #include "tirpol/report/angle_statistics.h"
 #include "tirpol/report/provenance.h"
-#include "tirpol/report/registration.h"
 #include "tirpol/report/regions.h"
+#include "tirpol/report/registration.h"
 #include "tirpol/report/statistics.h"
 #include "tirpol/report/verdict.h"
 
@@ -68,6 +69,10 @@ struct NoiseSource {
     std::string simulated;  ///< "channel S1_var" or "none (σ_s = 0)"
     double measured_sigma_median = 0.0;
     double simulated_sigma_median = 0.0;
+    /// Degrees of freedom of each variance, as the z statistic uses them: the image's `variance_dof`
+    /// attribute (a render: ⌈spp/2⌉); infinite where the image states none (a variance taken as exact).
+    double measured_dof = std::numeric_limits<double>::infinity();
+    double simulated_dof = std::numeric_limits<double>::infinity();
 };
 
 struct RegionResult {
