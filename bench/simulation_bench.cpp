@@ -179,7 +179,7 @@ double relative_linear_noise(const RenderPair& p, const std::vector<bool>& mask)
 }
 
 /// Mean Stokes of a render pair's average over a region, with standard errors from the pair's
-/// per-pixel differences (each pixel's a − b has twice the variance of their mean, four times halved).
+/// per-pixel differences: Var((a + b)/2) = Var(a − b)/4 for independent seeds.
 struct RegionStokes {
     std::size_t pixels = 0;
     double s0 = 0.0, s0_se = 0.0;               ///< mean S0, W/(m²·sr)
@@ -236,6 +236,7 @@ Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const Re
                         ids.channel("object_id")[i] == static_cast<float>(object) && (2 * x >= ids.width()) == right;
                 }
             const RegionStokes t = region_stokes(tirpol, region), m = region_stokes(mitsuba, region);
+            if (t.pixels == 0) continue;
             const double z0 = (m.s0 - t.s0) / std::hypot(m.s0_se, t.s0_se);
             std::printf("  %-8s %-5s %6zu px  S0 %.4f | %.4f (z %+.1f)", scene.objects[object].name.c_str(),
                         right ? "right" : "left", t.pixels, t.s0, m.s0, z0);
