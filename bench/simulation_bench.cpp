@@ -6,7 +6,8 @@
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
 //    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
-//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped.
+//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped,
+//    after checking per object that both renderers' mean Stokes agree (else no ratio).
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
