@@ -6,25 +6,31 @@
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
 //    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
-//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped.
+//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped,
+//    after checking per object that both renderers' mean Stokes agree (else no ratio).
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/source_tree.h"
+#include "tirpol/core/stokes_frame.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 
@@ -145,36 +151,123 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
 }
 BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Relative linear-polarization noise of one render, from two renders a and b with independent
-/// seeds over the surface pixels `mask`: √(mean over pixels of ((a−b)²/2 in S1 and S2)) / mean S0.
-/// S1² + S2² is invariant under the per-pixel rotation between the two renderers' Stokes frames.
-double relative_linear_noise(const Image& a, const Image& b, const std::vector<bool>& mask, const std::string& suffix) {
+// ---- ReflectionEqualNoise: tirpol against Mitsuba 3 on the same scene ----
+
+const std::array<std::string, 4> kStokesChannels = {"S0", "S1", "S2", "S3"};
+
+/// Two renders of one renderer with independent seeds, channels S0..S3 in tirpol's image Stokes frame.
+struct RenderPair {
+    Image a, b;
+    double seconds = 0.0;      ///< per render: the sample loop's wall time (scene loading, tables excluded)
+    double cpu_seconds = 0.0;  ///< per render, summed over threads (tirpol: pixel loop; Mitsuba: process)
+};
+
+/// Relative linear-polarization noise of one render of `p` over the pixels `mask`:
+/// √(mean over pixels of ((a−b)²/2 in S1 and S2)) / mean S0.
+double relative_linear_noise(const RenderPair& p, const std::vector<bool>& mask) {
     double var = 0.0, s0 = 0.0;
     std::size_t n = 0;
-    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+    for (std::size_t i = 0; i < mask.size(); ++i) {
         if (!mask[i]) continue;
         for (const char* c : {"S1", "S2"}) {
-            const double d = a.channel(c + suffix)[i] - b.channel(c + suffix)[i];
+            const double d = p.a.channel(c)[i] - p.b.channel(c)[i];
             var += 0.5 * d * d;
         }
-        s0 += 0.5 * (a.channel("S0" + suffix)[i] + b.channel("S0" + suffix)[i]);
+        s0 += 0.5 * (p.a.channel("S0")[i] + p.b.channel("S0")[i]);
         ++n;
     }
     return std::sqrt(var / static_cast<double>(n)) / (s0 / static_cast<double>(n));
 }
 
-/// Writes Mitsuba 3's version of reflection_compare.yaml and its zenith-peaked envmap (lat-long,
-/// rows from the zenith down; Mitsuba's envmap is y-up, rotated here to tirpol's z-up).
+/// Mean Stokes of a render pair's average over a region, with standard errors from the pair's
+/// per-pixel differences: Var((a + b)/2) = Var(a − b)/4 for independent seeds.
+struct RegionStokes {
+    std::size_t pixels = 0;
+    double s0 = 0.0, s0_se = 0.0;               ///< mean S0, W/(m²·sr)
+    std::array<double, 3> ratio{}, ratio_se{};  ///< ΣS1/ΣS0, ΣS2/ΣS0, ΣS3/ΣS0 (delta method)
+};
+
+RegionStokes region_stokes(const RenderPair& p, const std::vector<bool>& region) {
+    RegionStokes r;
+    std::array<double, 4> sum{};
+    for (std::size_t i = 0; i < region.size(); ++i) {
+        if (!region[i]) continue;
+        for (std::size_t c = 0; c < 4; ++c)
+            sum[c] += 0.5 * (p.a.channel(kStokesChannels[c])[i] + p.b.channel(kStokesChannels[c])[i]);
+        ++r.pixels;
+    }
+    for (std::size_t c = 1; c < 4; ++c) r.ratio[c - 1] = sum[c] / sum[0];
+    std::array<double, 4> var{};  // of the region sums
+    for (std::size_t i = 0; i < region.size(); ++i) {
+        if (!region[i]) continue;
+        const double d0 = p.a.channel("S0")[i] - p.b.channel("S0")[i];
+        var[0] += 0.25 * d0 * d0;
+        for (std::size_t c = 1; c < 4; ++c) {
+            const double d =
+                p.a.channel(kStokesChannels[c])[i] - p.b.channel(kStokesChannels[c])[i] - r.ratio[c - 1] * d0;
+            var[c] += 0.25 * d * d;
+        }
+    }
+    const auto n = static_cast<double>(r.pixels);
+    r.s0 = sum[0] / n;
+    r.s0_se = std::sqrt(var[0]) / n;
+    for (std::size_t c = 1; c < 4; ++c) r.ratio_se[c - 1] = std::sqrt(var[c]) / sum[0];
+    return r;
+}
+
+/// Worst disagreement between the two renderers over all regions.
+struct Agreement {
+    double max_abs_z = 0.0;             ///< of S0, S1/S0, S2/S0, S3/S0, difference over its standard error
+    double max_relative_ds0 = 0.0;      ///< |ΔS0| / S0
+    double max_ratio_difference = 0.0;  ///< |Δ(Sk/S0)|, k = 1..3
+};
+
+/// Prints, per object and image half, the means of both renderers with the z of their difference.
+Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const RenderPair& mitsuba) {
+    const Image& ids = tirpol.a;  // object hit by each pixel's centre ray (−1: sky)
+    Agreement worst;
+    std::printf("Agreement per region: tirpol | Mitsuba (in tirpol's frame) (z = difference / its standard error)\n");
+    for (std::size_t object = 0; object < scene.objects.size(); ++object)
+        for (const bool right : {false, true}) {
+            std::vector<bool> region(ids.pixel_count());
+            for (int y = 0; y < ids.height(); ++y)
+                for (int x = 0; x < ids.width(); ++x) {
+                    const std::size_t i = ids.index(x, y);
+                    region[i] =
+                        ids.channel("object_id")[i] == static_cast<float>(object) && (2 * x >= ids.width()) == right;
+                }
+            const RegionStokes t = region_stokes(tirpol, region), m = region_stokes(mitsuba, region);
+            if (t.pixels == 0) continue;
+            const double z0 = (m.s0 - t.s0) / std::hypot(m.s0_se, t.s0_se);
+            std::printf("  %-8s %-5s %6zu px  S0 %.4f | %.4f (z %+.1f)", scene.objects[object].name.c_str(),
+                        right ? "right" : "left", t.pixels, t.s0, m.s0, z0);
+            worst.max_abs_z = std::max(worst.max_abs_z, std::abs(z0));
+            worst.max_relative_ds0 = std::max(worst.max_relative_ds0, std::abs(m.s0 - t.s0) / t.s0);
+            for (std::size_t k = 0; k < 3; ++k) {
+                const double d = m.ratio[k] - t.ratio[k], z = d / std::hypot(m.ratio_se[k], t.ratio_se[k]);
+                std::printf("  S%zu/S0 %+.4f | %+.4f (z %+.1f)", k + 1, t.ratio[k], m.ratio[k], z);
+                worst.max_abs_z = std::max(worst.max_abs_z, std::abs(z));
+                worst.max_ratio_difference = std::max(worst.max_ratio_difference, std::abs(d));
+            }
+            std::printf("\n");
+        }
+    return worst;
+}
+
+/// Writes Mitsuba 3's version of reflection_compare.yaml and its envmap of the scene's sky. Mitsuba's
+/// envmap is a lat-long image, y-up (rotated here to tirpol's z-up), whose row r lies at zenith angle
+/// π·r/(rows − 1) (emitters/envmap.cpp: rows are samples from pole to pole, not pixel centres).
 std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene) {
-    const int w = 256, h = 128;
+    const int w = 256, h = 129;
     Image env(w, h);
     for (const char* c : {"R", "G", "B"}) env.add_channel(c);
     for (int y = 0; y < h; ++y) {
-        const double theta = kPi * (y + 0.5) / h;
+        const double theta = kPi * y / (h - 1);
         // Sky radiance at this zenith angle as tirpol sees it, integrated over the band.
         const Vec3 d(std::sin(theta), 0.0, std::cos(theta));
         double l = 0.0;
-        for (const auto& node : scene.band.nodes()) l += node.weight_um * scene.sky.spectral_radiance(node.wavelength_um, d);
+        for (const auto& node : scene.band.nodes())
+            l += node.weight_um * scene.sky.spectral_radiance(node.wavelength_um, d);
         for (int x = 0; x < w; ++x)
             for (const char* c : {"R", "G", "B"}) env.channel(c)[env.index(x, y)] = static_cast<float>(l);
     }
@@ -206,62 +299,152 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
     return dir / "scene.xml";
 }
 
+/// Seconds of Mitsuba's "Rendering finished. (took 2.3456s)" log line (util::time_string's ms/s/m/h).
+double mitsuba_render_seconds(const std::filesystem::path& log_path) {
+    std::ifstream log(log_path);
+    const std::string key = "Rendering finished. (took ";
+    for (std::string line; std::getline(log, line);) {
+        const auto at = line.find(key);
+        if (at == std::string::npos) continue;
+        std::size_t end = 0;
+        const std::string rest = line.substr(at + key.size());
+        const double value = std::stod(rest, &end);
+        const std::string unit = rest.substr(end, rest.find(')') - end);
+        const double scale = unit == "ms" ? 1e-3 : unit == "s" ? 1.0 : unit == "m" ? 60.0 : unit == "h" ? 3600.0 : -1.0;
+        if (scale > 0.0) return value * scale;
+    }
+    throw Error(log_path.string() + ": no \"Rendering finished. (took …)\" line with a time in ms, s, m or h");
+}
+
+/// Mitsuba's Stokes AOVs (stokes integrator, mono: S0.R = S0.G = S0.B), re-expressed per pixel from
+/// Mitsuba's frame (x = ray.d × camera-up) to tirpol's (camera-right projected onto the wavefront),
+/// both for the pixel's centre ray.
+Image in_tirpol_frame(const Image& mitsuba, const Camera& camera) {
+    Image out(mitsuba.width(), mitsuba.height());
+    for (const auto& c : kStokesChannels) out.set_channel(c, mitsuba.channel(c + ".R"));
+    const Vec3 up = -camera.world_from_camera().col(1);  // camera axes: x right, y down, z forward
+    for (int y = 0; y < out.height(); ++y)
+        for (int x = 0; x < out.width(); ++x) {
+            const Vec3 d = camera.ray_direction(x + 0.5, y + 0.5);
+            const StokesFrame from{-d, d.cross(up).normalized()};
+            const std::size_t i = out.index(x, y);
+            float &s1 = out.channel("S1")[i], &s2 = out.channel("S2")[i];
+            const StokesVector s = change_frame(StokesVector(out.channel("S0")[i], s1, s2, out.channel("S3")[i]), from,
+                                                camera.image_frame(d));
+            s1 = static_cast<float>(s[1]);
+            s2 = static_cast<float>(s[2]);
+        }
+    return out;
+}
+
+/// CPU seconds (user + system) of the waited-for child processes so far.
+double children_cpu_seconds() {
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    const auto seconds = [](const timeval& t) {
+        return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+    };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+/// Two Mitsuba 3 renders of `xml` (seeds 1 and 2) with `threads` threads. seconds is Mitsuba's own
+/// render time (its log), without its start-up and scene loading, as tirpol's is without its own;
+/// cpu_seconds is the whole process's (start-up, ~0.05 s, included).
+RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp, int threads,
+                          const Camera& camera) {
+    RenderPair pair;
+    for (const int seed : {1, 2}) {
+        const auto out = xml.parent_path() / ("out" + std::to_string(seed) + ".exr");
+        const auto log = xml.parent_path() / ("out" + std::to_string(seed) + ".log");
+        const std::string command = "'" + executable + "' -m scalar_mono_polarized -t " + std::to_string(threads) +
+                                    " -D spp=" + std::to_string(spp) + " -D seed=" + std::to_string(seed) + " -o '" +
+                                    out.string() + "' '" + xml.string() + "' > '" + log.string() + "' 2>&1";
+        const double cpu_before = children_cpu_seconds();
+        if (std::system(command.c_str()) != 0) throw Error("Mitsuba 3 failed (log: " + log.string() + "): " + command);
+        pair.cpu_seconds += 0.5 * (children_cpu_seconds() - cpu_before);
+        pair.seconds += 0.5 * mitsuba_render_seconds(log);
+        (seed == 1 ? pair.a : pair.b) = in_tirpol_frame(read_exr(out), camera);
+    }
+    return pair;
+}
+
+/// Time to a relative linear-polarization noise of 1 %, from a pair's noise at its spp (σ ∝ 1/√spp).
+double equal_noise_seconds(double seconds, double relative_noise) {
+    return seconds * std::pow(relative_noise / 0.01, 2.0);
+}
+
+// The two renderers' means may differ by their documented model differences (Mitsuba's uncorrelated
+// Smith G on the rough plane: −1 % in S0 at grazing rows, −0.4 % over the plane); a mistranslated
+// scene (sky, index, geometry, frames) differs by far more, and then no ratio is reported.
+constexpr double kMaxRelativeS0Difference = 0.01;
+constexpr double kMaxRatioDifference = 0.005;
+
 void BM_ReflectionEqualNoise(benchmark::State& state) {
-    constexpr double kTargetRelativeNoise = 0.01;
     constexpr int kSpp = 16;
+    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     Scene scene = load_scene(find_config("scenes/reflection_compare.yaml"));
     scene.sampling.samples_per_pixel = kSpp;
-    Image a, b;
-    double seconds = 0.0;
+    RenderOptions options;
+    options.threads = threads;
+    RenderPair tirpol;
     for (auto _ : state) {
         RenderStatistics sa, sb;
         scene.sampling.seed = 1;
-        a = render(scene, {}, &sa);
+        tirpol.a = render(scene, options, &sa);
         scene.sampling.seed = 2;
-        b = render(scene, {}, &sb);
-        seconds = 0.5 * (sa.seconds + sb.seconds);
-        state.SetIterationTime(seconds);
+        tirpol.b = render(scene, options, &sb);
+        tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
+        tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
+        state.SetIterationTime(tirpol.seconds);
     }
-    std::vector<bool> mask(a.pixel_count());
-    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = a.channel("object_id")[i] >= 0.0f;
-    const double noise = relative_linear_noise(a, b, mask, "");
-    const double tirpol_time = seconds * std::pow(noise / kTargetRelativeNoise, 2.0);
+    std::vector<bool> mask(tirpol.a.pixel_count());
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
+    const double noise = relative_linear_noise(tirpol, mask);
+    const double tirpol_time = equal_noise_seconds(tirpol.seconds, noise);
+    state.counters["threads"] = threads;
     state.counters["tirpol_relative_noise"] = noise;
     state.counters["tirpol_equal_noise_s"] = tirpol_time;
-    std::printf("reflection_compare 320x256 %d spp: tirpol %.2f s per render, relative S1/S2 noise %.4f -> %.2f s to 1 %%\n",
-                kSpp, seconds, noise, tirpol_time);
+    std::printf(
+        "reflection_compare 320x256 %d spp, %d threads: tirpol %.2f s per render (%.2f CPU s), relative "
+        "S1/S2 noise %.4f -> %.2f s to 1 %%\n",
+        kSpp, threads, tirpol.seconds, tirpol.cpu_seconds, noise, tirpol_time);
 
     const char* mitsuba = std::getenv("TIRPOL_MITSUBA");
     if (!mitsuba || !*mitsuba) {
-        std::printf("Mitsuba 3 comparison: skipped (set TIRPOL_MITSUBA to a mitsuba executable built with "
-                    "scalar_mono_polarized; docs/simulation.md)\n");
+        std::printf(
+            "Mitsuba 3 comparison: skipped (set TIRPOL_MITSUBA to a mitsuba executable built with "
+            "scalar_mono_polarized; docs/simulation.md)\n");
         return;
     }
     const auto dir = std::filesystem::temp_directory_path() / "tirpol_mitsuba_bench";
     std::filesystem::create_directories(dir);
-    const auto xml = write_mitsuba_scene(dir, scene);
-    std::vector<Image> images;
-    double mitsuba_seconds = 0.0;
-    for (int seed : {1, 2}) {
-        const auto out = dir / ("out" + std::to_string(seed) + ".exr");
-        const std::string command = std::string("'") + mitsuba + "' -m scalar_mono_polarized -D spp=" + std::to_string(kSpp) +
-                                    " -D seed=" + std::to_string(seed) + " -o '" + out.string() + "' '" + xml.string() + "' > /dev/null";
-        const auto start = std::chrono::steady_clock::now();
-        if (std::system(command.c_str()) != 0) {
-            state.SkipWithError(("Mitsuba 3 failed: " + command).c_str());
-            return;
-        }
-        mitsuba_seconds += 0.5 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        images.push_back(read_exr(out));
+    RenderPair other;
+    try {
+        other = render_mitsuba(mitsuba, write_mitsuba_scene(dir, scene), kSpp, threads, scene.camera);
+    } catch (const Error& e) {
+        state.SkipWithError(e.what());
+        return;
     }
-    const double mitsuba_noise = relative_linear_noise(images[0], images[1], mask, ".R");
-    const double mitsuba_time = mitsuba_seconds * std::pow(mitsuba_noise / kTargetRelativeNoise, 2.0);
-    state.counters["mitsuba_relative_noise"] = mitsuba_noise;
-    state.counters["mitsuba_equal_noise_s"] = mitsuba_time;
-    state.counters["tirpol_over_mitsuba"] = tirpol_time / mitsuba_time;
-    std::printf("Mitsuba 3 %d spp: %.2f s per render (process wall time), relative noise %.4f -> %.2f s to 1 %%; "
-                "tirpol/Mitsuba equal-noise time ratio %.2f\n",
-                kSpp, mitsuba_seconds, mitsuba_noise, mitsuba_time, tirpol_time / mitsuba_time);
+    const Agreement agreement = check_agreement(scene, tirpol, other);
+    state.counters["agree_max_abs_z"] = agreement.max_abs_z;
+    state.counters["agree_max_rel_dS0"] = agreement.max_relative_ds0;
+    state.counters["agree_max_d_ratio"] = agreement.max_ratio_difference;
+    if (agreement.max_relative_ds0 > kMaxRelativeS0Difference || agreement.max_ratio_difference > kMaxRatioDifference) {
+        state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
+        return;
+    }
+    const double other_noise = relative_linear_noise(other, mask);
+    const double other_time = equal_noise_seconds(other.seconds, other_noise);
+    const double cpu_ratio =
+        equal_noise_seconds(tirpol.cpu_seconds, noise) / equal_noise_seconds(other.cpu_seconds, other_noise);
+    state.counters["mitsuba_relative_noise"] = other_noise;
+    state.counters["mitsuba_equal_noise_s"] = other_time;
+    state.counters["tirpol_over_mitsuba"] = tirpol_time / other_time;
+    state.counters["tirpol_over_mitsuba_cpu"] = cpu_ratio;
+    std::printf(
+        "Mitsuba 3 %d spp, %d threads: %.2f s per render (%.2f CPU s), relative noise %.4f -> %.2f s to 1 %%\n"
+        "tirpol/Mitsuba equal-noise time ratio %.2f (wall), %.2f (CPU)\n",
+        kSpp, threads, other.seconds, other.cpu_seconds, other_noise, other_time, tirpol_time / other_time, cpu_ratio);
 }
 BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
@@ -25,6 +27,33 @@ TEST(Camera, ImageFrameIsCameraRightAndUp) {
     EXPECT_GT(cam.ray_direction(32.0, 2.0).z(), 0.0);
     // 40° horizontal field of view: the left/right image edges are ±20° off axis.
     EXPECT_NEAR(rad_to_deg(std::acos(cam.ray_direction(64.0, 24.0).dot(d))), 20.0, 1e-9);
+}
+
+// Mitsuba 3's stokes integrator takes x = ray.d × camera-up per ray, tirpol camera-right projected onto
+// the wavefront. For a ray with direction cosines (a, b, c) on camera right, up and forward both axes lie
+// in the wavefront, x_t ∝ R − a·d and x_m ∝ c·R − a·F, so they make the angle φ with
+// cos φ = c / √((1 − a²)(1 − b²)): zero on the centre row and column, of opposite signs in neighbouring
+// quadrants, 5.17° at the corners of a 40° 4:3 view (docs/simulation.md). bench/simulation_bench.cpp
+// rotates Mitsuba's Stokes images by it pixel by pixel.
+TEST(Camera, ImageFrameDiffersFromMitsubasOffAxisOnly) {
+    const Camera cam = Camera::from_config(
+        ConfigNode::parse("{resolution: [320, 240], fov_deg: 40, position: [0, -5, 1.5], look_at: [0, 0, 0.6]}"));
+    const Mat3& axes = cam.world_from_camera();  // columns: right, down, forward
+    const Vec3 right = axes.col(0), up = -axes.col(1), forward = axes.col(2);
+    const auto angle = [&](double u, double v) {
+        const Vec3 d = cam.ray_direction(u, v);
+        return frame_rotation_angle(StokesFrame{-d, d.cross(up).normalized()}, cam.image_frame(d));
+    };
+    for (const auto& [u, v] : {std::pair{160.0, 120.0}, {160.0, 0.0}, {0.0, 120.0}, {0.0, 0.0}, {250.0, 30.0}}) {
+        const Vec3 d = cam.ray_direction(u, v);
+        const double a = d.dot(right), b = d.dot(up), c = d.dot(forward);
+        const double expected = std::acos(std::min(1.0, c / std::sqrt((1 - a * a) * (1 - b * b))));
+        EXPECT_NEAR(std::abs(angle(u, v)), expected, 1e-6) << u << ", " << v;
+        EXPECT_NEAR(angle(u, v), -angle(320.0 - u, v), 1e-9) << "mirror image across the centre column";
+    }
+    EXPECT_NEAR(angle(160.0, 0.0), 0.0, 1e-6);
+    EXPECT_NEAR(angle(0.0, 120.0), 0.0, 1e-6);
+    EXPECT_NEAR(rad_to_deg(std::abs(angle(0.0, 0.0))), 5.17, 0.005);
 }
 
 TEST(Camera, DistortionIsInvertedExactly) {
