@@ -53,7 +53,7 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const StokesFrame& from, co
 
 /// The random numbers of a path that are stratified over the pixel's samples (pixel_strata.h).
 struct StratifiedDraws {
-    double wavelength_u;  ///< picks the wavelength node by inverting the weights' CDF
+    double wavelength_u;            ///< picks the wavelength node by inverting the weights' CDF
     double scatter_u1, scatter_u2;  ///< sample the first reflection whose model is not a pure delta
 };
 
@@ -122,7 +122,7 @@ public:
         StokesFrame frame = camera_frame;
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
-        bool strata_used = false;   // the stratified scatter numbers serve one vertex only
+        bool strata_used = false;    // the stratified scatter numbers serve one vertex only
         const int max_bounces = m_scene.sampling.max_bounces;
         for (int bounce = 0;; ++bounce) {
             ++scene_rays;
@@ -289,10 +289,11 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     RenderStatistics stats;
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
+    const bool control_variate =
+        options.control_variate.value_or(scene.sampling.estimator == Estimator::control_variate);
     std::unique_ptr<const PathTracer> tracer_ptr;
     arena.execute([&] {
-        tracer_ptr =
-            std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, options.control_variate);
+        tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, control_variate);
     });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -398,6 +399,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["variance_dof"] = spp - spp / 2;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
+    attrs["estimator"] = std::string(estimator_name(control_variate ? Estimator::control_variate : Estimator::plain));
     attrs["scene_file"] = scene.file.string();
     attrs["stokes_frame"] = std::string(
         "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image top; S1 = I0 - I90; "

@@ -78,7 +78,8 @@ TEST(ErrorBars, MirrorViewingGlossyPaintHasGaussianZScores) {
 }
 
 /// A metal mirror (n = 12 + 60i, R ≈ 0.99 in the LWIR): a pure delta reflection.
-const char* kMetalMirror = "{name: metal_mirror, source: test, model: smooth_fresnel, refractive_index: {n: 12, k: 60}}";
+const char* kMetalMirror =
+    "{name: metal_mirror, source: test, model: smooth_fresnel, refractive_index: {n: 12, k: 60}}";
 
 TEST(ErrorBars, MirrorViewingRoughPaintHasGaussianZScores) {
     TempDir dir;
@@ -105,8 +106,7 @@ TEST(ErrorBars, EveryLibraryMaterialSeenInAMirrorHasNoFiveSigmaValues) {
     ASSERT_GT(files.size(), 10u);
     for (const auto& file : files) {
         const Scene scene = test::load_scene_text(dir, mirror_over_glossy_paint(kMetalMirror, file.string(), 64));
-        const ZStatistics z =
-            z_statistics(render(scene, test::without_control_variate()), scene.band.radiance(290.0));
+        const ZStatistics z = z_statistics(render(scene, test::without_control_variate()), scene.band.radiance(290.0));
         const std::string what = file.stem().string() + " seen in a metal mirror, 64 spp";
         std::printf("%s: |z| > 5: %zu of %zu values, max |z| %.2f, mean z² %.3f\n", what.c_str(), z.beyond5, z.values,
                     z.max_abs_z, z.mean_z2);
