@@ -1,7 +1,8 @@
 // Renderer speed, as ratios measured in one run (docs/simulation.md "Speed"):
 //  - ShadingOverhead: CPU time of a render's pixel loop over the CPU time of bare rtcIntersect1 /
 //    rtcOccluded1 replaying exactly the rays that render cast (camera, bounce, shadow and auxiliary
-//    rays, recorded in order), both on one thread: what the polarized shading costs per ray.
+//    rays, recorded in order), both on one thread: what the polarized shading costs per ray (median
+//    of 5 repetitions, each one render against 8 replays).
 //  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
@@ -19,6 +20,7 @@
 #include <ctime>
 #include <fstream>
 #include <mutex>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -74,6 +76,10 @@ double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
 }
 
 void BM_ShadingOverhead(benchmark::State& state) {
+    // Each repetition times one render and enough replays of its rays to cost about as much CPU (a
+    // lone 0.07 s replay is at the mercy of the other jobs' cache traffic); the overhead is the median
+    // over the repetitions, and the spread of the repetitions is printed with it.
+    constexpr int kRepetitions = 5, kReplaysPerRepetition = 8;
     Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(320, 256);
     scene.sampling.samples_per_pixel = 8;
@@ -85,20 +91,32 @@ void BM_ShadingOverhead(benchmark::State& state) {
     RenderStatistics stats;
     render(scene, recording, &stats);
     const auto recorded = static_cast<double>(log.rays.size());
-    double render_cpu = 0.0, replay_cpu = 0.0;
+    std::vector<double> render_cpu, replay_cpu, overhead;
     for (auto _ : state) {
-        render(scene, one_thread, &stats);
-        render_cpu = stats.trace_cpu_seconds;
-        replay_cpu = replay_cpu_seconds(*scene.tracer, log);
-        state.SetIterationTime(render_cpu);
+        for (int r = 0; r < kRepetitions; ++r) {
+            render(scene, one_thread, &stats);
+            double replay = 0.0;
+            for (int k = 0; k < kReplaysPerRepetition; ++k) replay += replay_cpu_seconds(*scene.tracer, log);
+            render_cpu.push_back(stats.trace_cpu_seconds);
+            replay_cpu.push_back(replay / kReplaysPerRepetition);
+            overhead.push_back(render_cpu.back() / replay_cpu.back());
+        }
+        state.SetIterationTime(std::accumulate(render_cpu.begin(), render_cpu.end(), 0.0));
     }
+    const auto median = [](std::vector<double> v) {
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    const auto [lo, hi] = std::minmax_element(overhead.begin(), overhead.end());
     state.counters["rays"] = recorded;
-    state.counters["render_cpu_s"] = render_cpu;
-    state.counters["embree_cpu_s"] = replay_cpu;
-    state.counters["overhead"] = render_cpu / replay_cpu;
-    std::printf("shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.2f CPU s, "
-                "bare Embree replay %.2f CPU s, ratio %.2f\n",
-                recorded, recorded / (320.0 * 256.0 * 8.0), render_cpu, replay_cpu, render_cpu / replay_cpu);
+    state.counters["render_cpu_s"] = median(render_cpu);
+    state.counters["embree_cpu_s"] = median(replay_cpu);
+    state.counters["overhead"] = median(overhead);
+    std::printf(
+        "shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.3f CPU s, "
+        "bare Embree replay %.4f CPU s (medians of %d), ratio %.2f (repetitions %.2f-%.2f)\n",
+        recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu), kRepetitions,
+        median(overhead), *lo, *hi);
 }
 BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
