@@ -8,11 +8,15 @@
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
 //    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
 //    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped.
+//  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
+//    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -162,6 +166,91 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
         stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
 }
 BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// Tails of z = (S − truth)/√(var + var_truth) over the surface pixels' S0, S1, S2: the share of |z|
+/// beyond 3 and 5, the largest |z| and the mean z² (a Gaussian: 0.27 %, 5.7e-7, ~4.5 over 10⁴ values, 1).
+struct ZTails {
+    double beyond3 = 0.0, beyond5 = 0.0, max_abs = 0.0, mean_square = 0.0;
+};
+
+/// `truth` is either a reference render (its S*_var adds to the variance) or, when null, the isothermal
+/// enclosure's exact (L_bb, 0, 0). σ is floored at 1e-6·l_bb for pixels with deterministic paths.
+ZTails z_tails(const Image& img, const Image* truth, double l_bb) {
+    const std::array<std::string, 3> stokes{"S0", "S1", "S2"};
+    std::vector<double> z;
+    for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+        if (img.channel("object_id")[i] < 0.0f) continue;
+        for (std::size_t c = 0; c < stokes.size(); ++c) {
+            double expected = c == 0 ? l_bb : 0.0, var = img.channel(stokes[c] + "_var")[i] + 1e-12 * l_bb * l_bb;
+            if (truth) {
+                expected = truth->channel(stokes[c])[i];
+                var += truth->channel(stokes[c] + "_var")[i];
+            }
+            z.push_back(std::abs(img.channel(stokes[c])[i] - expected) / std::sqrt(var));
+        }
+    }
+    ZTails t;
+    for (const double v : z) {
+        t.beyond3 += v > 3.0 ? 1.0 : 0.0;
+        t.beyond5 += v > 5.0 ? 1.0 : 0.0;
+        t.max_abs = std::max(t.max_abs, v);
+        t.mean_square += v * v;
+    }
+    const auto n = static_cast<double>(std::max<std::size_t>(z.size(), 1));
+    t.beyond3 /= n;
+    t.beyond5 /= n;
+    t.mean_square /= n;
+    return t;
+}
+
+/// A metal mirror (n = 12 + 60i) tilted 95° reflects the camera's horizontal view onto a ground of
+/// `material` seen 75–85° off its normal (issue 13's "mirrors viewing glossy paint"), 48×36 pixels.
+Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& material, const std::string& sky,
+                         double ground_k, int spp, std::uint64_t seed) {
+    const std::string yaml = fmt::format(
+        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, seed: {}}}\nmaterials_dir: {}\n"
+        "camera: {{resolution: [48, 36], fov_deg: 30, position: [0, -3, 1.0], look_at: [0, 1, 1.0]}}\nsky: {}\n"
+        "objects:\n  - {{name: ground, geometry: {{type: plane, size: [30, 30]}}, material: {}, temperature: {}}}\n"
+        "  - {{name: mirror, geometry: {{type: plane, size: [4, 3]}}, transform: {{translate: [0, 1, 1.0], "
+        "rotate_deg: [95, 0, 0]}}, material: {{name: metal_mirror, source: bench, model: smooth_fresnel, "
+        "refractive_index: {{n: 12, k: 60}}}}, temperature: 290}}\n",
+        spp, seed, find_config("materials").string(), sky, material, ground_k);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "mirror.yaml") << yaml;
+    return load_scene(dir / "mirror.yaml");
+}
+
+/// Issue 13's error-bar goal as figures: for 16, 64 and 256 spp, the z tails (a) of the isothermal
+/// enclosure (290 K) with the plain estimator, the library's glossy and rough materials as the ground,
+/// and (b) of an open scene (ground at 300 K under a 270 K clear sky, control variate on) against a
+/// 4096-spp reference render with another seed. Not a speed benchmark: it prints figures.
+void BM_ErrorBarTails(benchmark::State& state) {
+    const auto dir = std::filesystem::temp_directory_path() / "tirpol_error_bar_bench";
+    const std::string isothermal_sky = "{type: uniform, temperature: 290}";
+    const std::string open_sky = "{type: clear_sky, air_temperature: 270, zenith_emissivity: 0.65}";
+    RenderOptions plain;
+    plain.control_variate = false;
+    for (auto _ : state) {
+        for (const char* material : {"glossy_black_paint", "automotive_clear_coat", "bare_aluminium", "concrete"}) {
+            Scene reference = mirror_over_ground(dir, material, open_sky, 300.0, 4096, 99);
+            const Image open_reference = render(reference);
+            for (const int spp : {16, 64, 256}) {
+                const Scene isothermal = mirror_over_ground(dir, material, isothermal_sky, 290.0, spp, 7);
+                const ZTails iso = z_tails(render(isothermal, plain), nullptr, isothermal.band.radiance(290.0));
+                const Scene open = mirror_over_ground(dir, material, open_sky, 300.0, spp, 7);
+                const ZTails cv = z_tails(render(open), &open_reference, open.band.radiance(290.0));
+                std::printf(
+                    "%-22s %3d spp | isothermal, plain: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f | "
+                    "open, control variate, vs 4096 spp: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f\n",
+                    material, spp, 100.0 * iso.beyond3, 100.0 * iso.beyond5, iso.max_abs, iso.mean_square,
+                    100.0 * cv.beyond3, 100.0 * cv.beyond5, cv.max_abs, cv.mean_square);
+            }
+        }
+        state.SetIterationTime(1.0);
+    }
+    std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_ErrorBarTails)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// Relative linear-polarization noise of one render, from two renders a and b with independent
 /// seeds over the surface pixels `mask`: √(mean over pixels of ((a−b)²/2 in S1 and S2)) / mean S0.
