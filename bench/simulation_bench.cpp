@@ -1,16 +1,20 @@
 // Renderer speed, as ratios measured in one run (docs/simulation.md "Speed"):
 //  - ShadingOverhead: CPU time of a render's pixel loop over the CPU time of bare rtcIntersect1 /
 //    rtcOccluded1 replaying exactly the rays that render cast (camera, bounce, shadow and auxiliary
-//    rays, recorded in order), both on one thread: what the polarized shading costs per ray.
+//    rays, recorded in order), both on one thread: what the polarized shading costs per ray (median
+//    of 5 repetitions, each one render against 8 replays).
 //  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
 //    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
 //    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped,
 //    after checking per object that both renderers' mean Stokes agree (else no ratio).
+//  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
+//    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -23,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <numeric>
 #include <string>
 #include <thread>
 #include <vector>
@@ -80,6 +85,10 @@ double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
 }
 
 void BM_ShadingOverhead(benchmark::State& state) {
+    // Each repetition times one render and enough replays of its rays to cost about as much CPU (a
+    // lone 0.07 s replay is at the mercy of the other jobs' cache traffic); the overhead is the median
+    // over the repetitions, and the spread of the repetitions is printed with it.
+    constexpr int kRepetitions = 5, kReplaysPerRepetition = 8;
     Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(320, 256);
     scene.sampling.samples_per_pixel = 8;
@@ -91,20 +100,32 @@ void BM_ShadingOverhead(benchmark::State& state) {
     RenderStatistics stats;
     render(scene, recording, &stats);
     const auto recorded = static_cast<double>(log.rays.size());
-    double render_cpu = 0.0, replay_cpu = 0.0;
+    std::vector<double> render_cpu, replay_cpu, overhead;
     for (auto _ : state) {
-        render(scene, one_thread, &stats);
-        render_cpu = stats.trace_cpu_seconds;
-        replay_cpu = replay_cpu_seconds(*scene.tracer, log);
-        state.SetIterationTime(render_cpu);
+        for (int r = 0; r < kRepetitions; ++r) {
+            render(scene, one_thread, &stats);
+            double replay = 0.0;
+            for (int k = 0; k < kReplaysPerRepetition; ++k) replay += replay_cpu_seconds(*scene.tracer, log);
+            render_cpu.push_back(stats.trace_cpu_seconds);
+            replay_cpu.push_back(replay / kReplaysPerRepetition);
+            overhead.push_back(render_cpu.back() / replay_cpu.back());
+        }
+        state.SetIterationTime(std::accumulate(render_cpu.begin(), render_cpu.end(), 0.0));
     }
+    const auto median = [](std::vector<double> v) {
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    const auto [lo, hi] = std::minmax_element(overhead.begin(), overhead.end());
     state.counters["rays"] = recorded;
-    state.counters["render_cpu_s"] = render_cpu;
-    state.counters["embree_cpu_s"] = replay_cpu;
-    state.counters["overhead"] = render_cpu / replay_cpu;
-    std::printf("shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.2f CPU s, "
-                "bare Embree replay %.2f CPU s, ratio %.2f\n",
-                recorded, recorded / (320.0 * 256.0 * 8.0), render_cpu, replay_cpu, render_cpu / replay_cpu);
+    state.counters["render_cpu_s"] = median(render_cpu);
+    state.counters["embree_cpu_s"] = median(replay_cpu);
+    state.counters["overhead"] = median(overhead);
+    std::printf(
+        "shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.3f CPU s, "
+        "bare Embree replay %.4f CPU s (medians of %d), ratio %.2f (repetitions %.2f-%.2f)\n",
+        recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu), kRepetitions,
+        median(overhead), *lo, *hi);
 }
 BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
@@ -129,7 +150,25 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
     scene.camera = scene.camera.resized(640, 512);
     scene.sampling.samples_per_pixel = kPilotSpp;
     RenderStatistics pilot_stats, stats;
-    const double pilot_error = mean_s1_standard_error(render(scene, {}, &pilot_stats));
+    const Image pilot = render(scene, {}, &pilot_stats);
+    const double pilot_error = mean_s1_standard_error(pilot);
+    // The error bars are conservative (docs/simulation.md, "What the variance channels mean"): the S1
+    // noise a second seed actually shows, √(mean (a − b)²/2) over surfaces, against the reported one.
+    Scene second_seed = scene;
+    second_seed.sampling.seed = scene.sampling.seed + 1;
+    const Image pilot_b = render(second_seed);
+    double reported_var = 0.0, actual_var = 0.0;
+    std::size_t surfaces = 0;
+    for (std::size_t i = 0; i < pilot.pixel_count(); ++i)
+        if (pilot.channel("object_id")[i] >= 0.0f) {
+            const double d = pilot.channel("S1")[i] - pilot_b.channel("S1")[i];
+            actual_var += 0.5 * d * d;
+            reported_var += 0.5 * (pilot.channel("S1_var")[i] + pilot_b.channel("S1_var")[i]);
+            ++surfaces;
+        }
+    std::printf("panels_night 640x512 %d spp: rms S1 standard error reported %.4f, shown by two seeds %.4f W/(m2 sr)\n",
+                kPilotSpp, std::sqrt(reported_var / static_cast<double>(surfaces)),
+                std::sqrt(actual_var / static_cast<double>(surfaces)));
     const int spp = static_cast<int>(std::ceil(kPilotSpp * std::pow(pilot_error / kTargetW, 2.0)));
     scene.sampling.samples_per_pixel = spp;
     double error = 0.0;
@@ -150,6 +189,91 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
         stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
 }
 BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// Tails of z = (S − truth)/√(var + var_truth) over the surface pixels' S0, S1, S2: the share of |z|
+/// beyond 3 and 5, the largest |z| and the mean z² (a Gaussian: 0.27 %, 5.7e-7, ~4.5 over 10⁴ values, 1).
+struct ZTails {
+    double beyond3 = 0.0, beyond5 = 0.0, max_abs = 0.0, mean_square = 0.0;
+};
+
+/// `truth` is either a reference render (its S*_var adds to the variance) or, when null, the isothermal
+/// enclosure's exact (L_bb, 0, 0). σ is floored at 1e-6·l_bb for pixels with deterministic paths.
+ZTails z_tails(const Image& img, const Image* truth, double l_bb) {
+    const std::array<std::string, 3> stokes{"S0", "S1", "S2"};
+    std::vector<double> z;
+    for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+        if (img.channel("object_id")[i] < 0.0f) continue;
+        for (std::size_t c = 0; c < stokes.size(); ++c) {
+            double expected = c == 0 ? l_bb : 0.0, var = img.channel(stokes[c] + "_var")[i] + 1e-12 * l_bb * l_bb;
+            if (truth) {
+                expected = truth->channel(stokes[c])[i];
+                var += truth->channel(stokes[c] + "_var")[i];
+            }
+            z.push_back(std::abs(img.channel(stokes[c])[i] - expected) / std::sqrt(var));
+        }
+    }
+    ZTails t;
+    for (const double v : z) {
+        t.beyond3 += v > 3.0 ? 1.0 : 0.0;
+        t.beyond5 += v > 5.0 ? 1.0 : 0.0;
+        t.max_abs = std::max(t.max_abs, v);
+        t.mean_square += v * v;
+    }
+    const auto n = static_cast<double>(std::max<std::size_t>(z.size(), 1));
+    t.beyond3 /= n;
+    t.beyond5 /= n;
+    t.mean_square /= n;
+    return t;
+}
+
+/// A metal mirror (n = 12 + 60i) tilted 95° reflects the camera's horizontal view onto a ground of
+/// `material` seen 75–85° off its normal (issue 13's "mirrors viewing glossy paint"), 48×36 pixels.
+Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& material, const std::string& sky,
+                         double ground_k, int spp, std::uint64_t seed) {
+    const std::string yaml = fmt::format(
+        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, seed: {}}}\nmaterials_dir: {}\n"
+        "camera: {{resolution: [48, 36], fov_deg: 30, position: [0, -3, 1.0], look_at: [0, 1, 1.0]}}\nsky: {}\n"
+        "objects:\n  - {{name: ground, geometry: {{type: plane, size: [30, 30]}}, material: {}, temperature: {}}}\n"
+        "  - {{name: mirror, geometry: {{type: plane, size: [4, 3]}}, transform: {{translate: [0, 1, 1.0], "
+        "rotate_deg: [95, 0, 0]}}, material: {{name: metal_mirror, source: bench, model: smooth_fresnel, "
+        "refractive_index: {{n: 12, k: 60}}}}, temperature: 290}}\n",
+        spp, seed, find_config("materials").string(), sky, material, ground_k);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "mirror.yaml") << yaml;
+    return load_scene(dir / "mirror.yaml");
+}
+
+/// Issue 13's error-bar goal as figures: for 16, 64 and 256 spp, the z tails (a) of the isothermal
+/// enclosure (290 K) with the plain estimator, the library's glossy and rough materials as the ground,
+/// and (b) of an open scene (ground at 300 K under a 270 K clear sky, control variate on) against a
+/// 4096-spp reference render with another seed. Not a speed benchmark: it prints figures.
+void BM_ErrorBarTails(benchmark::State& state) {
+    const auto dir = std::filesystem::temp_directory_path() / "tirpol_error_bar_bench";
+    const std::string isothermal_sky = "{type: uniform, temperature: 290}";
+    const std::string open_sky = "{type: clear_sky, air_temperature: 270, zenith_emissivity: 0.65}";
+    RenderOptions plain;
+    plain.control_variate = false;
+    for (auto _ : state) {
+        for (const char* material : {"glossy_black_paint", "automotive_clear_coat", "bare_aluminium", "concrete"}) {
+            Scene reference = mirror_over_ground(dir, material, open_sky, 300.0, 4096, 99);
+            const Image open_reference = render(reference);
+            for (const int spp : {16, 64, 256}) {
+                const Scene isothermal = mirror_over_ground(dir, material, isothermal_sky, 290.0, spp, 7);
+                const ZTails iso = z_tails(render(isothermal, plain), nullptr, isothermal.band.radiance(290.0));
+                const Scene open = mirror_over_ground(dir, material, open_sky, 300.0, spp, 7);
+                const ZTails cv = z_tails(render(open), &open_reference, open.band.radiance(290.0));
+                std::printf(
+                    "%-22s %3d spp | isothermal, plain: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f | "
+                    "open, control variate, vs 4096 spp: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f\n",
+                    material, spp, 100.0 * iso.beyond3, 100.0 * iso.beyond5, iso.max_abs, iso.mean_square,
+                    100.0 * cv.beyond3, 100.0 * cv.beyond5, cv.max_abs, cv.mean_square);
+            }
+        }
+        state.SetIterationTime(1.0);
+    }
+    std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_ErrorBarTails)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 // ---- ReflectionEqualNoise: tirpol against Mitsuba 3 on the same scene ----
 

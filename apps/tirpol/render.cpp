@@ -22,7 +22,7 @@ struct RenderArgs {
     std::string out_dir;
     std::optional<int> spp, threads, width, height, max_bounces;
     std::optional<std::uint64_t> seed;
-    std::string sensor;
+    std::string sensor, estimator;
     bool quiet = false;
 };
 
@@ -44,6 +44,11 @@ void run_render(const RenderArgs& a) {
         scene.sampling.max_bounces = *a.max_bounces;
     }
     if (a.seed) scene.sampling.seed = *a.seed;
+    if (!a.estimator.empty()) {
+        const auto estimator = simulation::estimator_from_name(a.estimator);
+        if (!estimator) usage_error("--estimator", "expected plain or control-variate, got '{}'", a.estimator);
+        scene.sampling.estimator = *estimator;
+    }
     simulation::RenderOptions options;
     options.threads = a.threads.value_or(0);
     options.show_progress = !a.quiet;
@@ -86,6 +91,9 @@ void register_render(CLI::App& app) {
     cmd->add_option(
         "--max-bounces", args->max_bounces,
         "Safety cap on reflections per path, 0–100000 (overrides sampling.max_bounces; paths end by Russian roulette)");
+    cmd->add_option(
+        "--estimator", args->estimator,
+        "Reflection estimator: control-variate (default, lower noise) or plain (overrides sampling.estimator)");
     cmd->add_option("--sensor", args->sensor, "Sensor-model YAML: also write the polarizer images I(α)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");

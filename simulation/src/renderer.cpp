@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 
+#include "pixel_strata.h"
 #include "surface_basis.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
@@ -50,9 +51,10 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const StokesFrame& from, co
     return out;
 }
 
-struct PixelResult {
-    StokesVector mean = StokesVector::Zero();
-    Eigen::Vector3d variance_of_mean = Eigen::Vector3d::Constant(kNaN);
+/// The random numbers of a path that are stratified over the pixel's samples (pixel_strata.h).
+struct StratifiedDraws {
+    double wavelength_u;            ///< picks the wavelength node by inverting the weights' CDF
+    double scatter_u1, scatter_u2;  ///< sample the first reflection whose model is not a pure delta
 };
 
 /// Everything a path needs that does not change during a render.
@@ -101,10 +103,11 @@ public:
     }
 
     /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
-    /// `wavelength_u` in [0, 1) picks the wavelength node by inverting the weights' CDF.
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, double wavelength_u,
+    /// `strata` in [0, 1) pick the wavelength node and the first non-delta reflection, `rng` the rest.
+    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, const StratifiedDraws& strata,
                        SampleStream& rng, std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
-        const auto node = static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), wavelength_u) - m_cdf.begin());
+        const auto node =
+            static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), strata.wavelength_u) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky& sky = m_scene.sky;
@@ -119,6 +122,7 @@ public:
         StokesFrame frame = camera_frame;
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
+        bool strata_used = false;    // the stratified scatter numbers serve one vertex only
         const int max_bounces = m_scene.sampling.max_bounces;
         for (int bounce = 0;; ++bounce) {
             ++scene_rays;
@@ -167,7 +171,14 @@ public:
                 }
             }
 
-            const materials::BrdfSample s = brdf.sample(wo_local, lambda, rng.next(), rng.next());
+            // A pure-delta reflection ignores its numbers: the stratified pair goes to the first vertex
+            // that draws a lobe and a direction (the glossy paint seen in a mirror), where a pixel's
+            // share of each lobe matters most for its mean and its variance estimate.
+            const bool stratified = !strata_used && !brdf.is_pure_delta();
+            strata_used = strata_used || stratified;
+            const double u1 = stratified ? strata.scatter_u1 : rng.next();
+            const double u2 = stratified ? strata.scatter_u2 : rng.next();
+            const materials::BrdfSample s = brdf.sample(wo_local, lambda, u1, u2);
             if (!(s.pdf > 0.0)) break;
             const Vec3 wi = basis.to_world(s.wi).normalized();
             if (wi.dot(ng) <= 0.0) {  // shading normal sent the path under the surface: L_in = 0 there
@@ -278,10 +289,11 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     RenderStatistics stats;
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
+    const bool control_variate =
+        options.control_variate.value_or(scene.sampling.estimator == Estimator::control_variate);
     std::unique_ptr<const PathTracer> tracer_ptr;
     arena.execute([&] {
-        tracer_ptr =
-            std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, options.control_variate);
+        tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, control_variate);
     });
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -305,20 +317,25 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         const int ty = static_cast<int>(tile_index / static_cast<std::size_t>(tiles_x));
         const std::uint64_t cpu_start_ns = thread_cpu_ns();
         std::uint64_t rays = 0, shadows = 0;
+        detail::PixelStrata strata(spp);
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
                 StokesVector sum = StokesVector::Zero();
                 StratifiedVariance variance(spp);
+                strata.shuffle(seed, i);
                 for (int s = 0; s < spp; ++s) {
                     SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
-                    const double u = x + rng.next(), v = y + rng.next();
-                    // Wavelengths stratified over the pixel's samples: the spectral part of the noise
-                    // falls as 1/spp instead of 1/√spp.
-                    const double wavelength_u = (s + rng.next()) / spp;
+                    using enum detail::StratifiedDimension;
+                    const double u = x + strata.value(subpixel_x, s, rng.next());
+                    const double v = y + strata.value(subpixel_y, s, rng.next());
+                    // Wavelengths stratified in sample order: the spectral part of the noise falls as
+                    // 1/spp instead of 1/√spp, and StratifiedVariance pairs neighbouring strata.
+                    const StratifiedDraws draws{(s + rng.next()) / spp, strata.value(scatter_u1, s, rng.next()),
+                                                strata.value(scatter_u2, s, rng.next())};
                     const Vec3 d = camera.ray_direction(u, v);
                     const StokesVector sample =
-                        tracer.trace(camera.position(), d, camera.image_frame(d), wavelength_u, rng, rays, shadows);
+                        tracer.trace(camera.position(), d, camera.image_frame(d), draws, rng, rays, shadows);
                     sum += sample;
                     variance.add(sample.head<3>());
                 }
@@ -382,6 +399,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["variance_dof"] = spp - spp / 2;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
+    attrs["estimator"] = std::string(estimator_name(control_variate ? Estimator::control_variate : Estimator::plain));
     attrs["scene_file"] = scene.file.string();
     attrs["stokes_frame"] = std::string(
         "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image top; S1 = I0 - I90; "

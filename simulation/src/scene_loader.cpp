@@ -160,12 +160,22 @@ std::string max_bounces_problem(int max_bounces) {
                        kMaxBouncesLimit, max_bounces);
 }
 
+std::string_view estimator_name(Estimator estimator) {
+    return estimator == Estimator::plain ? "plain" : "control-variate";
+}
+
+std::optional<Estimator> estimator_from_name(std::string_view name) {
+    for (const Estimator e : {Estimator::plain, Estimator::control_variate})
+        if (name == estimator_name(e)) return e;
+    return std::nullopt;
+}
+
 namespace {
 
 SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     SamplingSettings s;
     if (!node) return s;
-    node->check_keys({"spp", "max_bounces", "seed"});
+    node->check_keys({"spp", "max_bounces", "seed", "estimator"});
     s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
     if (s.samples_per_pixel < 1) node->at("spp").fail("expected at least 1 sample per pixel");
     s.max_bounces = node->get_or("max_bounces", s.max_bounces);
@@ -174,6 +184,12 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     const int seed = node->get_or("seed", 1);
     if (seed < 0) node->at("seed").fail("expected a non-negative seed");
     s.seed = static_cast<std::uint64_t>(seed);
+    if (node->has("estimator")) {
+        const auto name = node->at("estimator").as<std::string>();
+        const auto estimator = estimator_from_name(name);
+        if (!estimator) node->at("estimator").fail(fmt::format("expected plain or control-variate, got '{}'", name));
+        s.estimator = *estimator;
+    }
     return s;
 }
 

@@ -84,3 +84,20 @@ TEST(Cli, RenderMaxBouncesIsValidatedLikeTheSceneFile) {
         EXPECT_NE(r.out.find("--max-bounces: expected 0–100000"), std::string::npos) << r.out;
     }
 }
+
+// --estimator chooses the reflection estimator (scene file: sampling.estimator); the EXR header records
+// it; an unknown name is a usage error naming the option and the accepted values.
+TEST(Cli, RenderEstimatorIsValidatedAndRecorded) {
+    const tirpol::test::TempDir dir;
+    const auto scene = tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml";
+    const std::string render = "render " + scene.string() + " -o " + (dir / "out").string() + " -q ";
+    const CliRun bad = run_cli(render + "--estimator mcmc");
+    EXPECT_EQ(bad.exit_code, 2) << bad.out;
+    EXPECT_NE(bad.out.find("--estimator: expected plain or control-variate, got 'mcmc'"), std::string::npos) << bad.out;
+    for (const char* estimator : {"plain", "control-variate"}) {
+        const CliRun r = run_cli(render + "--width 8 --height 6 --spp 2 --estimator " + estimator);
+        ASSERT_EQ(r.exit_code, 0) << r.out;
+        const auto header = tirpol::read_exr(dir / "out" / "panels_night.exr").attributes();
+        EXPECT_EQ(std::get<std::string>(header.at("estimator")), estimator);
+    }
+}

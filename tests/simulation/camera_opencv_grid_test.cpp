@@ -79,6 +79,9 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
     // Small hot discs facing the camera in front of a cold wall; the intensity centroid of each disc in
     // the render must sit where cv::projectPoints puts its centre (OpenCV convention: pixel x has its
     // centre at x). Discs of ~3 px radius: their centroid is biased by the distortion by < 0.01 px.
+    // The centroids scatter by up to 0.035 px with the seed (seeds 3–5, 64 spp, 30 coordinates, with
+    // independent or stratified sub-pixel positions alike), so 0.05 px; a half-pixel convention slip
+    // would be 0.5 px.
     tirpol::test::TempDir dir;
     CameraModel model = tirpol::test::truth_lens();
     model.width = 160;
@@ -118,8 +121,8 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
                 sy += w * y;
             }
         ASSERT_GT(sum, 0.0);
-        EXPECT_NEAR(sx / sum, cv_px[i].x, 0.03) << "spot " << i;
-        EXPECT_NEAR(sy / sum, cv_px[i].y, 0.03) << "spot " << i;
+        EXPECT_NEAR(sx / sum, cv_px[i].x, 0.05) << "spot " << i;
+        EXPECT_NEAR(sy / sum, cv_px[i].y, 0.05) << "spot " << i;
     }
 }
 

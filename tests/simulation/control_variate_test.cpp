@@ -114,5 +114,24 @@ TEST(ControlVariate, OpenSceneMatchesThePlainEstimatorWithLowerNoise) {
     EXPECT_LT(var_cv, 0.5 * var_plain);
 }
 
+// The scene file's sampling.estimator chooses the estimator (CLI --estimator overrides it), an explicit
+// RenderOptions::control_variate overrides both, and the EXR header records which one ran.
+TEST(ControlVariate, SceneFileChoosesTheEstimatorAndTheImageRecordsIt) {
+    TempDir dir;
+    Scene scene = open_scene(dir, 1);
+    scene.camera = scene.camera.resized(10, 8);
+    const Image by_default = render(scene);
+    EXPECT_EQ(std::get<std::string>(by_default.attributes().at("estimator")), "control-variate");
+    const Image plain_by_option = render(scene, test::without_control_variate());
+    scene.sampling.estimator = Estimator::plain;
+    const Image plain = render(scene);
+    EXPECT_EQ(std::get<std::string>(plain.attributes().at("estimator")), "plain");
+    EXPECT_EQ(plain.channel("S1"), plain_by_option.channel("S1"));
+    EXPECT_NE(plain.channel("S1"), by_default.channel("S1"));
+    RenderOptions forced;
+    forced.control_variate = true;
+    EXPECT_EQ(render(scene, forced).channel("S1"), by_default.channel("S1"));
+}
+
 }  // namespace
 }  // namespace tirpol::simulation

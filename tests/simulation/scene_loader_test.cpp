@@ -51,6 +51,17 @@ TEST(SceneLoader, UnknownKeyNamesFileLineAndSuggestion) {
     EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:"), HasSubstr("camra"), HasSubstr("camera")));
 }
 
+TEST(SceneLoader, EstimatorIsReadAndAnUnknownOneIsNamed) {
+    TempDir dir;
+    EXPECT_EQ(test::load_scene_text(dir, good_scene()).sampling.estimator, Estimator::control_variate);
+    std::string yaml = good_scene();
+    yaml.replace(yaml.find("seed: 7}"), 8, "seed: 7, estimator: plain}");
+    EXPECT_EQ(test::load_scene_text(dir, yaml).sampling.estimator, Estimator::plain);
+    yaml.replace(yaml.find("plain"), 5, "mcmc");
+    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.estimator"),
+                                           HasSubstr("expected plain or control-variate, got 'mcmc'")));
+}
+
 TEST(SceneLoader, MissingMeshIsAClearError) {
     TempDir dir;
     EXPECT_THAT(error_of(dir, good_scene("", "{type: mesh, file: no_such_car.obj}")),

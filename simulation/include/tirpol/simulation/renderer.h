@@ -54,7 +54,8 @@ struct RenderOptions {
     /// L_ref is the sky along the mirror direction, or the vertex's blackbody radiance when that points
     /// below the horizon. Unbiased either way; on: ~5× lower S1 noise on panels_night at 16 spp, and an
     /// isothermal enclosure renders L_bb exactly. Off: the plain estimator, for tests of the sampling.
-    bool control_variate = true;
+    /// Unset: the scene's sampling.estimator (default on).
+    std::optional<bool> control_variate;
 };
 
 struct RenderStatistics {

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/core/config.h"
@@ -25,6 +26,16 @@ namespace tirpol::simulation {
 inline constexpr int kDefaultMaxBounces = 1000;
 inline constexpr int kMaxBouncesLimit = 100000;
 
+/// How the renderer estimates each vertex's reflected radiance (renderer.h): the plain path-traced
+/// estimate, or with the reflection control variate (e0 − ε)·L_ref, exact by Kirchhoff's law, plus
+/// the sampled reflection of L_in − L_ref (lower noise; docs/simulation.md).
+enum class Estimator { plain, control_variate };
+
+/// The names of scene files and the CLI: "plain", "control-variate".
+std::string_view estimator_name(Estimator estimator);
+/// The estimator called `name`, or nullopt if none is.
+std::optional<Estimator> estimator_from_name(std::string_view name);
+
 struct SamplingSettings {
     int samples_per_pixel = 16;
     /// Safety cap on the reflections followed after the camera's first hit. Paths end by Russian
@@ -32,6 +43,7 @@ struct SamplingSettings {
     /// reflective scenes (an all-aluminium box at 4 bounces: −87 % of L_bb).
     int max_bounces = kDefaultMaxBounces;
     std::uint64_t seed = 1;
+    Estimator estimator = Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
 };
 
 /// Empty if `max_bounces` is acceptable (0–kMaxBouncesLimit), else what was expected; the one rule for
