@@ -33,7 +33,7 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     options.spp = 4;
     options.frames_per_angle = 8;
     options.threads = 2;
-    options.stage_protocol = acquisition::SimProtocol::Elliptec;  // the demo uses APT: both protocols run end to end
+    options.stage_protocol = StageProtocol::Elliptec;  // the demo uses APT: both protocols run end to end
     const TwinResult r = run_twin(options);
     std::printf("%s", twin_summary(r).c_str());
 
