@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // The digital twin end to end at a tiny resolution (issue 9): the measured Stokes of the flat black
 // paint panel must agree with the truth render within the propagated uncertainties, the extracted
 // polarized emissivity with the paint's model (materials::directional_emissivity) within the

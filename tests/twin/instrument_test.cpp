@@ -11,7 +11,7 @@
 #include <chrono>
 
 #include "test_support.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::twin {

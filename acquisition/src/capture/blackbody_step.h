@@ -7,7 +7,7 @@
 #include <functional>
 #include <optional>
 
-#include "tirpol/acquisition/blackbody_wait.h"
+#include "tirpol/acquisition/internal/blackbody_wait.h"
 #include "tirpol/acquisition/capture_plan.h"
 
 namespace tirpol::acquisition::detail {
