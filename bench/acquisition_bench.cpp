@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // Acquisition throughput at 640×512 Mono16 from Aravis's fake GigE Vision camera
 // (arv-fake-gv-camera-0.8 on 127.0.0.1, started here):
 //   Grab/<fps>                 reference: frames delivered by the camera, nothing else done
@@ -20,14 +21,14 @@
 
 #include "../tests/acquisition/fake_gv_camera_process.h"
 #include "tirpol/acquisition/internal/aravis_camera.h"
-#include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/internal/frame_averager.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/frame_gate.h"
+#include "tirpol/acquisition/internal/frame_gate.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/session.h"
 

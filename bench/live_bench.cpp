@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // Does an open live-view page slow the camera? Aravis's fake GigE Vision camera
 // (arv-fake-gv-camera-0.8 on 127.0.0.1, started here) streams 640×512 Mono16 at 30 fps into a
 // LiveView served on loopback. One run measures, in order, three windows of kWindow each:

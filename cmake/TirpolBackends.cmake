@@ -1,6 +1,10 @@
 # Optional device back ends (STYLE.md): TIRPOL_WITH_<NAME> = AUTO (default: on when the library is
 # found, off otherwise), ON (required: configuring fails when it is missing) or OFF. Sets
-# TIRPOL_HAVE_<NAME> and prints one summary line.
+# TIRPOL_HAVE_<NAME> for the whole tree (included by the top-level CMakeLists.txt). A test, benchmark
+# or Python test file that needs a back end says so in a line of its own,
+#   // Requires TIRPOL_WITH_ARAVIS        (C++)        # Requires TIRPOL_WITH_ARAVIS   (Python)
+# and is not built or registered when that back end is off (tirpol_backend_filter), so nothing skips
+# at run time; tirpol_backend_summary() prints the back ends and the files left out in one line.
 
 include(CheckIncludeFileCXX)
 find_package(PkgConfig REQUIRED)
@@ -33,15 +37,53 @@ tirpol_backend(ARAVIS "Aravis 0.8 (GigE Vision / USB3 Vision cameras)" ARAVIS_FO
 tirpol_backend(V4L2 "V4L2 (USB UVC cameras; linux/videodev2.h)" TIRPOL_VIDEODEV2_FOUND "Debian: linux-libc-dev")
 tirpol_backend(LIBUSB "libusb 1.0 (FTDI stages without the kernel driver)" LIBUSB_FOUND "Debian: libusb-1.0-0-dev")
 
-function(tirpol_on_off var out)
-  if(${var})
-    set(${out} on PARENT_SCOPE)
-  else()
-    set(${out} off PARENT_SCOPE)
-  endif()
+# tirpol_backend_filter(<out-var> <group> <files>...): <files> without those that declare a back end
+# that is off ("Requires TIRPOL_WITH_<NAME>" after // or #); those are recorded as "<group>/<file>".
+function(tirpol_backend_filter out group)
+  set(kept)
+  foreach(file ${ARGN})
+    file(STRINGS ${file} requirements REGEX "^(//|#) Requires TIRPOL_WITH_[A-Z0-9]+")
+    set(off)
+    foreach(line ${requirements})
+      string(REGEX MATCH "TIRPOL_WITH_([A-Z0-9]+)" unused "${line}")
+      if(NOT DEFINED TIRPOL_HAVE_${CMAKE_MATCH_1})
+        message(FATAL_ERROR "${file}: '${line}' names no back end (ARAVIS, V4L2 or LIBUSB)")
+      endif()
+      if(NOT TIRPOL_HAVE_${CMAKE_MATCH_1})
+        list(APPEND off ${CMAKE_MATCH_1})
+      endif()
+    endforeach()
+    if(NOT "${off}" STREQUAL "")
+      get_filename_component(name ${file} NAME)
+      set_property(GLOBAL APPEND PROPERTY TIRPOL_LEFT_OUT "${group}/${name}")
+    else()
+      list(APPEND kept ${file})
+    endif()
+  endforeach()
+  set(${out} ${kept} PARENT_SCOPE)
 endfunction()
-tirpol_on_off(TIRPOL_HAVE_ARAVIS aravis_state)
-tirpol_on_off(TIRPOL_HAVE_V4L2 v4l2_state)
-tirpol_on_off(TIRPOL_HAVE_LIBUSB libusb_state)
-message(STATUS "tirpol device back ends: Aravis ${aravis_state}, V4L2 ${v4l2_state}, libusb ${libusb_state} "
-               "(TIRPOL_WITH_ARAVIS/V4L2/LIBUSB=AUTO|ON|OFF)")
+
+# The configure summary: e.g. "tirpol device back ends: Aravis off, V4L2 off, libusb off; not built
+# without them: 2 test files (acquisition/aravis_camera_test.cpp, ...)".
+function(tirpol_backend_summary)
+  set(states)
+  foreach(pair "Aravis;ARAVIS" "V4L2;V4L2" "libusb;LIBUSB")
+    list(GET pair 0 shown)
+    list(GET pair 1 name)
+    if(TIRPOL_HAVE_${name})
+      list(APPEND states "${shown} on")
+    else()
+      list(APPEND states "${shown} off")
+    endif()
+  endforeach()
+  list(JOIN states ", " text)
+  get_property(left_out GLOBAL PROPERTY TIRPOL_LEFT_OUT)
+  if(NOT "${left_out}" STREQUAL "")
+    list(LENGTH left_out count)
+    list(JOIN left_out ", " files)
+    string(APPEND text "; not built without them: ${count} test/benchmark files (${files})")
+  else()
+    string(APPEND text "; every test and benchmark built")
+  endif()
+  message(STATUS "tirpol device back ends: ${text} (TIRPOL_WITH_ARAVIS/V4L2/LIBUSB=AUTO|ON|OFF)")
+endfunction()

@@ -28,6 +28,7 @@ function(tirpol_add_module_tests name)
   endif()
   set(dir ${PROJECT_SOURCE_DIR}/tests/${name})
   file(GLOB test_sources CONFIGURE_DEPENDS ${dir}/*_test.cpp)
+  tirpol_backend_filter(test_sources ${name} ${test_sources})  # files that need a back end that is off
   if(NOT test_sources)
     return()
   endif()

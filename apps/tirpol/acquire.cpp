@@ -13,11 +13,11 @@
 #include <string>
 
 #include "cli.h"
-#include "tirpol/acquisition/blackbody_registry.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/blackbody.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/capture_session.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/core/utf8.h"
 
 namespace tirpol::cli {

@@ -1,7 +1,7 @@
 #include "tirpol/live/live_view.h"
 
-#include "tirpol/acquisition/camera_registry.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::live {

@@ -10,8 +10,8 @@
 #include "device_errors.h"
 #include "image_conversion.h"
 #include "interruptible.h"
-#include "tirpol/acquisition/camera_registry.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/twin/scene_camera.h"
 
 namespace py = pybind11;

@@ -14,7 +14,7 @@
 
 #include "child_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/session.h"
 

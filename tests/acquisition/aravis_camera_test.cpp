@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // The aravis:// camera against Aravis's own fake GigE Vision camera (arv-fake-gv-camera-0.8, started
 // here on 127.0.0.1). Pixel values are checked against the fake's published test pattern, Aravis
 // 0.8.26 src/arvfakecamera.c arv_fake_camera_diagonal_ramp: Mono16 pixel (x, y) of frame id f is
@@ -14,7 +15,7 @@
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/internal/aravis_camera.h"
-#include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/internal/frame_averager.h"
 
 namespace tirpol::acquisition {
 namespace {

@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // FakeGigECameraServer: Aravis's GigE Vision fake camera served in-process with a C++ fill callback;
 // the aravis:// camera receives, over real GVCP/GVSP on loopback, exactly the counts the callback wrote.
 

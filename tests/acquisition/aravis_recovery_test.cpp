@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // Recovery with a real GigE Vision device: Aravis's own fake camera (`arv-fake-gv-camera-0.8 -i
 // 127.0.0.1`, package aravis-tools) as a separate process (issue #12 item 4).
 // - A session killed with SIGKILL keeps the camera's control privilege until its heartbeat times

@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // list_cameras() finds Aravis's fake GigE Vision camera through discovery and open_camera opens it by
 // its aravis:// URI with the query's options applied (built only with Aravis, TIRPOL_WITH_ARAVIS).
 
@@ -7,7 +8,7 @@
 
 #include "fake_gv_camera_process.h"
 #include "open_camera_error.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -12,9 +12,9 @@
 #include "child_process.h"
 #include "pty_device_thread.h"
 #include "test_support.h"
-#include "tirpol/acquisition/blackbody_registry.h"
+#include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
-#include "tirpol/acquisition/blackbody_wait.h"
+#include "tirpol/acquisition/internal/blackbody_wait.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/session.h"
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "open_camera_error.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

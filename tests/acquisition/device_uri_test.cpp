@@ -1,12 +1,11 @@
-// One parser of device URIs: cameras (which throw), stages and blackbodies (errors as values) read
-// the same scheme, target and query from the same text and report a bad URI with the same message.
+// One parser of device URIs: camera factories (parse_device_uri, which throws) and stage and
+// blackbody factories (split_device_uri, errors as values) read the same scheme, target and query
+// from the same text and report a bad URI with the same message.
 
 #include "tirpol/acquisition/device_uri.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include "tirpol/acquisition/stage_registry.h"
 
 namespace tirpol::acquisition {
 namespace {
@@ -22,13 +21,13 @@ TEST(DeviceUri, SplitsSchemeTargetAndQuery) {
     EXPECT_EQ(u.number("counts_per_degree", 0.0), 1000.0);
 }
 
-TEST(DeviceUri, StagesReadTheSameFieldsAsCameras) {
+TEST(DeviceUri, ValueAndThrowingParsersReadTheSameFields) {
     for (const std::string uri : {"sim://", "elliptec:///dev/ttyUSB0?address=0", "aravis://Fake?exposure_us=500&"}) {
         const DeviceUri camera = parse_device_uri(uri);
-        const auto stage = parse_stage_uri(uri);
+        const auto stage = split_device_uri(uri);
         ASSERT_TRUE(stage) << uri << ": " << stage.error().message;
         EXPECT_EQ(stage.value().scheme, camera.scheme) << uri;
-        EXPECT_EQ(stage.value().path, camera.target) << uri;
+        EXPECT_EQ(stage.value().target, camera.target) << uri;
         EXPECT_EQ(stage.value().query, camera.query) << uri;
     }
 }
@@ -45,7 +44,7 @@ TEST(DeviceUri, BadUriIsAValueForStagesAndAnErrorForCamerasWithOneMessage) {
                                                           {"://x", "expected <scheme>://<target>"},
                                                           {"sim://x?a=1&speed", "query item 'speed' is not key=value"},
                                                           {"sim://x?=3", "query item '=3' is not key=value"}}) {
-        const auto stage = parse_stage_uri(uri);
+        const auto stage = split_device_uri(uri);
         ASSERT_FALSE(stage) << uri;
         EXPECT_EQ(stage.error().code, DeviceErrorCode::InvalidArgument);
         EXPECT_THAT(stage.error().message, HasSubstr("device URI '" + uri + "': " + expected));

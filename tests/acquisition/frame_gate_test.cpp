@@ -1,7 +1,7 @@
 // FrameGate (docs/acquisition-cameras.md, "Timing model"): a frame belongs to a step only if the lower
 // bound of its exposure start, reception − 1.5 frame periods, is at or after the step's settle end.
 
-#include "tirpol/acquisition/frame_gate.h"
+#include "tirpol/acquisition/internal/frame_gate.h"
 
 #include <gtest/gtest.h>
 

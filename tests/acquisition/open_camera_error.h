@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::test {

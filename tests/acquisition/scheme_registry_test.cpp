@@ -7,11 +7,11 @@
 #include <chrono>
 
 #include "open_camera_error.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/device_uri.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
@@ -108,6 +108,19 @@ TEST(StageSchemes, UnknownSchemeIsInvalidArgumentListingTheRegisteredOnes) {
         EXPECT_TRUE(contains(schemes, built_in)) << built_in;
     for (const std::string& scheme : schemes)
         EXPECT_NE(stage.error().message.find(scheme), std::string::npos) << stage.error().message;
+}
+
+// The build's back ends (cmake/TirpolBackends.cmake; acquisition/CMakeLists.txt passes them to this
+// file as 0/1) and the registries agree: a back end that is off registers no scheme, so its URIs fail
+// as an unknown scheme that lists what is there, and one that is on is registered.
+TEST(BackEndSchemes, RegisteredExactlyWhenTheBackEndIsBuilt) {
+    EXPECT_EQ(contains(camera_schemes(), "aravis"), TIRPOL_TEST_HAVE_ARAVIS == 1);
+    EXPECT_EQ(contains(camera_schemes(), "v4l2"), TIRPOL_TEST_HAVE_V4L2 == 1);
+    EXPECT_EQ(contains(stage_schemes(), "thorlabs-apt+usb"), TIRPOL_TEST_HAVE_LIBUSB == 1);
+    if (TIRPOL_TEST_HAVE_ARAVIS == 0) {
+        const std::string message = open_camera_error("aravis://Fake");
+        EXPECT_NE(message.find("unknown camera scheme 'aravis'"), std::string::npos) << message;
+    }
 }
 
 }  // namespace

@@ -9,9 +9,9 @@
 #include <thread>
 #include <numbers>
 
-#include "tirpol/acquisition/frame_averager.h"
-#include "tirpol/acquisition/frame_gate.h"
-#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/internal/frame_averager.h"
+#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -15,7 +15,7 @@
 
 #include "test_support.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
@@ -183,10 +183,6 @@ TEST(StageRegistry, RejectsUnknownSchemesAndOptionsByName) {
     auto missing = open_stage("elliptec:///dev/does-not-exist");
     ASSERT_FALSE(missing);
     EXPECT_EQ(missing.error().code, DeviceErrorCode::Disconnected);
-    auto uri = parse_stage_uri("thorlabs-apt+usb://55000123?counts_per_degree=1000&channel=1").value();
-    EXPECT_EQ(uri.scheme, "thorlabs-apt+usb");
-    EXPECT_EQ(uri.path, "55000123");
-    EXPECT_EQ(uri.query.at("counts_per_degree"), "1000");
 }
 
 TEST(SimulatedStage, HomesMovesWrapsAndFailsOnRequest) {

@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_V4L2 (built only with that back end: cmake/TirpolBackends.cmake).
 // The v4l2:// backend against FakeV4l2Device (tests/acquisition/fake_v4l2_device.h), a state machine
 // that follows the kernel's V4L2 API documentation for memory-mapped streaming: formats, REQBUFS/
 // QUERYBUF/mmap/QBUF/STREAMON/DQBUF rules, sequence numbers, EAGAIN and poll timeouts, ENODEV.
@@ -9,7 +10,7 @@
 #include "fake_v4l2_device.h"
 #include "open_camera_error.h"
 #include "test_support.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/v4l2_camera.h"
 #include "tirpol/core/error.h"

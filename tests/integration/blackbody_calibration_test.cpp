@@ -14,11 +14,12 @@
 
 #include "../acquisition/pty_device_thread.h"
 #include "test_support.h"
-#include "tirpol/acquisition/blackbody_registry.h"
+#include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
+#include "tirpol/acquisition/internal/blackbody_wait.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/radiometry.h"
 

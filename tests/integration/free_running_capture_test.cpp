@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // The time-true rig (issue 12): a free-running GigE Vision camera (FakeGigECameraServer over real
 // GVCP/GVSP on loopback, no software trigger, its own 30 Hz clock, a lossy link) looks through a
 // polarizer on the APT stage simulator (real serial driver on a pseudo-terminal) turning at 15°/s, a
@@ -20,10 +21,10 @@
 
 #include "../acquisition/fake_gv_camera_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/session.h"
 

@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // The digital twin end to end at a tiny resolution (issue 9): the measured Stokes of the flat black
 // paint panel must agree with the truth render within the propagated uncertainties, the extracted
 // polarized emissivity with the paint's model (materials::directional_emissivity) within the
@@ -33,7 +34,7 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     options.spp = 4;
     options.frames_per_angle = 8;
     options.threads = 2;
-    options.stage_protocol = acquisition::SimProtocol::Elliptec;  // the demo uses APT: both protocols run end to end
+    options.stage_protocol = StageProtocol::Elliptec;  // the demo uses APT: both protocols run end to end
     const TwinResult r = run_twin(options);
     std::printf("%s", twin_summary(r).c_str());
 

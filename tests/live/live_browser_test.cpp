@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // End to end, as an operator uses it: the real `tirpol live` executable with Aravis's fake GigE Vision
 // camera (arv-fake-gv-camera-0.8, 640×512 Mono16 at 30 fps) and the APT stage simulator on a
 // pseudo-terminal, and headless Chromium as the browser. The page runs in its test mode

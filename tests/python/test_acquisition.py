@@ -1,3 +1,4 @@
+# Requires TIRPOL_WITH_ARAVIS (registered only with that back end: cmake/TirpolBackends.cmake).
 """tirpol.acquisition from Python against Aravis's own fake GigE Vision camera
 (`arv-fake-gv-camera-0.8 -i 127.0.0.1`, a real GVCP/GVSP peer on loopback; `./run` installs
 aravis-tools, and its absence fails this test). Each frame must be the fake's published Mono16 test

@@ -1,3 +1,4 @@
+# Requires TIRPOL_WITH_ARAVIS (registered only with that back end: cmake/TirpolBackends.cmake).
 """tirpol.acquisition.run_capture end to end: Aravis's fake GigE Vision camera (conftest
 fake_gige_camera) looking through the APT stage simulator `tirpol-stage-sim` on a pseudo-terminal (a
 separate process, opened by the real serial driver), as the C++ capture tests run them. Each

@@ -11,7 +11,7 @@
 #include <chrono>
 
 #include "test_support.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::twin {
@@ -82,7 +82,7 @@ TEST(TwinInstrument, CaptureLoopRecordsBlackbodyThenSceneThroughThePtyStage) {
     const double g = sensor.counts->gain_counts_per_radiance, o = sensor.counts->offset_counts;
     TwinWorld world(sensor, band, 4, 3);
     world.set_scene(uniform_scene(4, 3, 10.0));
-    TwinInstrument instrument(world, acquisition::SimProtocol::Apt, false);
+    TwinInstrument instrument(world, StageProtocol::Apt, false);
     EXPECT_NE(instrument.camera_transport().find("FALLBACK"), std::string::npos);
     EXPECT_NE(instrument.stage_description().find("APT"), std::string::npos);
     test::write_text(dir / "plan.yaml",

@@ -11,7 +11,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"

@@ -7,13 +7,17 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <deque>
+#include <thread>
 
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/simulated_camera.h"
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
 #include "tirpol/core/session.h"
@@ -119,11 +123,38 @@ Result<double> WorldReportingStage::position_deg() {
     return r;
 }
 
+/// What TwinInstrument owns, in construction order: the stage simulator serving its pty, the real
+/// serial driver on the other end, the world-reporting stage, and the camera (over loopback GigE
+/// Vision, or in-process). Destroyed in reverse: the camera stops before the world it reads.
+struct TwinInstrument::Devices {
+    Devices(TwinWorld& world, StageProtocol protocol, bool gige);
+    ~Devices();
+    Devices(const Devices&) = delete;
+    Devices& operator=(const Devices&) = delete;
+
+    void open_stage_driver(const std::string& uri);
+    void open_camera_over_gige();
+    void open_in_process_camera(const std::string& why_not);
+
+    TwinWorld& world;
+    StageProtocol protocol;
+    StageSimulator simulator;
+    PseudoTerminal pty;
+    std::atomic<bool> stop{false};
+    std::thread stage_thread;
+    std::unique_ptr<Stage> driver;
+    std::unique_ptr<WorldReportingStage> stage;
+    int gige_lock_fd = -1;
+    std::unique_ptr<FakeGigECameraServer> server;
+    std::unique_ptr<Camera> camera;
+    std::string camera_transport;
+};
+
 namespace {
 
-StageSimulatorOptions simulator_options(SimProtocol protocol) {
+StageSimulatorOptions simulator_options(StageProtocol protocol) {
     StageSimulatorOptions o;
-    o.protocol = protocol;
+    o.protocol = protocol == StageProtocol::Apt ? SimProtocol::Apt : SimProtocol::Elliptec;
     // Faster than a K10CR1 (≈ 10°/s) so the demo does not wait on the mount; ELL14-like for Elliptec.
     o.deg_per_s = 720.0;
     return o;
@@ -131,95 +162,110 @@ StageSimulatorOptions simulator_options(SimProtocol protocol) {
 
 }  // namespace
 
-TwinInstrument::TwinInstrument(TwinWorld& world, SimProtocol protocol, bool gige)
-    : m_world(world), m_protocol(protocol), m_simulator(simulator_options(protocol)) {
-    m_pty.emplace(PseudoTerminal::open().value_or_throw());
-    m_stage_thread = std::thread([this] { serve_stage_simulator(m_simulator, *m_pty, m_stop); });
-    const std::string uri = protocol == SimProtocol::Apt ? "thorlabs-apt://" + m_pty->slave_path()
-                                                         : "elliptec://" + m_pty->slave_path() + "?address=0";
-    try {
-        m_driver = open_stage(uri).value_or_throw();
-    } catch (...) {
-        m_stop = true;
-        m_stage_thread.join();
-        throw;
-    }
-    m_stage = std::make_unique<WorldReportingStage>(*m_driver, m_world);
-
-    const int w = world.width(), h = world.height();
-    std::string why_not;
+TwinInstrument::Devices::Devices(TwinWorld& w, StageProtocol p, bool gige)
+    : world(w), protocol(p), simulator(simulator_options(p)), pty(PseudoTerminal::open().value_or_throw()) {
+    stage_thread = std::thread([this] { serve_stage_simulator(simulator, pty, stop); });
+    open_stage_driver(protocol == StageProtocol::Apt ? "thorlabs-apt://" + pty.slave_path()
+                                                     : "elliptec://" + pty.slave_path() + "?address=0");
     if (gige) {
         try {
-            // One loopback GigE Vision camera at a time on this machine (tests use the same lock).
-            m_gige_lock_fd = ::open("/tmp/tirpol-loopback-gige.lock", O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-            if (m_gige_lock_fd >= 0) ::flock(m_gige_lock_fd, LOCK_EX);
-            m_server = std::make_unique<FakeGigECameraServer>();
-            // Free-running, as a field camera: each frame shows the polarizer where the simulated mount
-            // physically is when the frame is exposed, also mid-move; the capture loop's gate must
-            // discard those (no software trigger needed).
-            m_server->set_fill([this](const FakeGigEFrameRequest&, std::vector<float>& counts) {
-                m_world.fill(m_simulator.physical_angle_deg(StageSimulator::Clock::now()), counts);
-            });
-            const std::string camera_uri =
-                fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}", m_server->device_id(), w, h);
-            auto opened = open_camera(camera_uri);
-            if (!opened.ok()) fail("{}", opened.error().message);
-            m_camera = std::move(opened).value_or_throw();
-            m_camera_transport = fmt::format("GigE Vision on {} ({})", m_server->interface(), camera_uri);
+            open_camera_over_gige();
         } catch (const std::exception& e) {
-            why_not = e.what();
-            m_camera.reset();
-            m_server.reset();
+            camera.reset();
+            server.reset();
+            open_in_process_camera(e.what());
         }
     } else {
-        why_not = "GigE Vision not requested";
-    }
-    if (!m_camera) {
-        SimulatedCameraConfig config;
-        config.name = "twin";
-        config.width = w;
-        config.height = h;
-        config.bits_per_pixel = 16;
-        m_camera = std::make_unique<SimulatedCamera>(
-            config, [this](double angle, std::vector<float>& counts) { m_world.fill(angle, counts); },
-            [this] { return m_simulator.physical_angle_deg(StageSimulator::Clock::now()); });
-        m_camera_transport = "in-process SimulatedCamera (FALLBACK: " + why_not + ")";
+        open_in_process_camera("GigE Vision not requested");
     }
 }
 
-TwinInstrument::~TwinInstrument() {
-    m_camera.reset();
-    m_server.reset();
-    if (m_gige_lock_fd >= 0) ::close(m_gige_lock_fd);
-    m_stage.reset();
-    m_driver.reset();
-    m_stop = true;
-    if (m_stage_thread.joinable()) m_stage_thread.join();
+void TwinInstrument::Devices::open_stage_driver(const std::string& uri) {
+    try {
+        driver = open_stage(uri).value_or_throw();
+    } catch (...) {
+        stop = true;
+        stage_thread.join();
+        throw;
+    }
+    stage = std::make_unique<WorldReportingStage>(*driver, world);
 }
+
+void TwinInstrument::Devices::open_camera_over_gige() {
+    // One loopback GigE Vision camera at a time on this machine (tests use the same lock).
+    gige_lock_fd = ::open("/tmp/tirpol-loopback-gige.lock", O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (gige_lock_fd >= 0) ::flock(gige_lock_fd, LOCK_EX);
+    server = std::make_unique<FakeGigECameraServer>();
+    // Free-running, as a field camera: each frame shows the polarizer where the simulated mount
+    // physically is when the frame is exposed, also mid-move; the capture loop's gate must
+    // discard those (no software trigger needed).
+    server->set_fill([this](const FakeGigEFrameRequest&, std::vector<float>& counts) {
+        world.fill(simulator.physical_angle_deg(StageSimulator::Clock::now()), counts);
+    });
+    const std::string camera_uri = fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}",
+                                               server->device_id(), world.width(), world.height());
+    auto opened = open_camera(camera_uri);
+    if (!opened.ok()) fail("{}", opened.error().message);
+    camera = std::move(opened).value_or_throw();
+    camera_transport = fmt::format("GigE Vision on {} ({})", server->interface(), camera_uri);
+}
+
+void TwinInstrument::Devices::open_in_process_camera(const std::string& why_not) {
+    SimulatedCameraConfig config;
+    config.name = "twin";
+    config.width = world.width();
+    config.height = world.height();
+    config.bits_per_pixel = 16;
+    camera = std::make_unique<SimulatedCamera>(
+        config, [this](double angle, std::vector<float>& counts) { world.fill(angle, counts); },
+        [this] { return simulator.physical_angle_deg(StageSimulator::Clock::now()); });
+    camera_transport = "in-process SimulatedCamera (FALLBACK: " + why_not + ")";
+}
+
+TwinInstrument::Devices::~Devices() {
+    camera.reset();
+    server.reset();
+    if (gige_lock_fd >= 0) ::close(gige_lock_fd);
+    stage.reset();
+    driver.reset();
+    stop = true;
+    if (stage_thread.joinable()) stage_thread.join();
+}
+
+TwinInstrument::TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige)
+    : m_devices(std::make_unique<Devices>(world, protocol, gige)) {}
+
+TwinInstrument::~TwinInstrument() = default;
+
+const std::string& TwinInstrument::camera_transport() const { return m_devices->camera_transport; }
+
+bool TwinInstrument::served_over_gige() const { return m_devices->server != nullptr; }
 
 std::string TwinInstrument::stage_description() const {
-    const StageInfo i = m_driver->info();
+    const StageInfo i = m_devices->driver->info();
     return fmt::format("{} {} (serial {}) over the {} protocol on {} ({})", i.vendor, i.model, i.serial,
-                       m_protocol == SimProtocol::Apt ? "Thorlabs APT" : "Elliptec", m_pty->slave_path(), i.uri);
+                       m_devices->protocol == StageProtocol::Apt ? "Thorlabs APT" : "Elliptec",
+                       m_devices->pty.slave_path(), i.uri);
 }
 
 void TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::path& dir) {
+    Devices& d = *m_devices;
     // The simulated operator: the capture loop asks before each reference step, in plan order.
     std::deque<double> temperatures;
     for (const CaptureStep& s : plan_steps(plan))
         if (s.kind == RecordKind::Blackbody) temperatures.push_back(*s.temperature_k);
-    m_world.set_polarizer_in_beam(plan.metadata.value("polarizer_in_beam", false));
+    d.world.set_polarizer_in_beam(plan.metadata.value("polarizer_in_beam", false));
     std::filesystem::remove_all(dir);
-    SessionWriter session = SessionWriter::create(dir, new_session_manifest(m_camera->info(), m_stage->info(), plan));
+    SessionWriter session = SessionWriter::create(dir, new_session_manifest(d.camera->info(), d.stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.prompt = [&](const std::string& instruction) {
         if (temperatures.empty()) fail("twin: the capture loop asked for an unplanned reference: {}", instruction);
-        m_world.place_blackbody(temperatures.front());
+        d.world.place_blackbody(temperatures.front());
         temperatures.pop_front();
         return true;
     };
-    run_capture(*m_camera, *m_stage, plan, session, options);
+    run_capture(*d.camera, *d.stage, plan, session, options);
 }
 
 }  // namespace tirpol::twin

@@ -2,9 +2,9 @@
 
 #include <mutex>
 
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/device_uri.h"
-#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"

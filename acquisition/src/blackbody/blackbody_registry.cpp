@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/blackbody_registry.h"
+#include "tirpol/acquisition/blackbody.h"
 
 #include <fmt/format.h>
 
@@ -53,7 +53,7 @@ FlukeBlackbodyOptions model_range(const std::string& model) {
     return o;
 }
 
-Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri, const StageUri& u,
+Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri, const DeviceUri& u,
                                                                const std::string& model) {
     if (auto s = detail::check_uri_keys(uri, u, {"baud", "timeout_ms"}); !s) return s.error();
     auto baud = detail::uri_integer(uri, u, "baud", fluke_scpi::kDefaultBaud);
@@ -61,15 +61,15 @@ Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string
     if (!baud) return baud.error();
     if (!timeout) return timeout.error();
     if (timeout.value() < 1) return bad_uri(uri, "timeout_ms must be ≥ 1");
-    if (u.path.empty()) return bad_uri(uri, "expected a serial device path, e.g. fluke-4180:///dev/ttyUSB0");
+    if (u.target.empty()) return bad_uri(uri, "expected a serial device path, e.g. fluke-4180:///dev/ttyUSB0");
     FlukeBlackbodyOptions options = model_range(model);
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
-    auto port = open_serial_port(u.path, SerialSettings{baud.value(), false});
+    auto port = open_serial_port(u.target, SerialSettings{baud.value(), false});
     if (!port) return port.error();
     return open_fluke_blackbody(std::move(port.value()), uri, options);
 }
 
-Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, const StageUri& u) {
+Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, const DeviceUri& u) {
     if (auto s = detail::check_uri_keys(
             uri, u, {"tau_s", "ambient_k", "noise_k", "limit_k", "window_s", "model", "fault", "fault_on_set", "seed"});
         !s)
@@ -116,9 +116,9 @@ Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, co
 }  // namespace
 
 Result<std::unique_ptr<BlackbodyController>> open_blackbody(const std::string& uri) {
-    auto parsed = parse_stage_uri(uri);
+    auto parsed = split_device_uri(uri);
     if (!parsed) return parsed.error();
-    const StageUri& u = parsed.value();
+    const DeviceUri& u = parsed.value();
     if (u.scheme == "fluke-4180") return open_serial_fluke(uri, u, "4180");
     if (u.scheme == "fluke-4181") return open_serial_fluke(uri, u, "4181");
     if (u.scheme == "sim") return open_sim(uri, u);

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/blackbody_wait.h"
+#include "tirpol/acquisition/internal/blackbody_wait.h"
 
 #include <fmt/format.h>
 

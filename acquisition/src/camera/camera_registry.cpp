@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/camera_registry.h"
+#include "tirpol/acquisition/camera.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #ifdef TIRPOL_HAVE_ARAVIS
 #include "tirpol/acquisition/internal/aravis_camera.h"
 #endif
-#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
 #ifdef TIRPOL_HAVE_V4L2
 #include "tirpol/acquisition/internal/v4l2_camera.h"
 #endif

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/simulated_camera.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
 
 #include <fmt/format.h>
 

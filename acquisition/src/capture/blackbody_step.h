@@ -7,8 +7,8 @@
 #include <functional>
 #include <optional>
 
-#include "tirpol/acquisition/blackbody_wait.h"
 #include "tirpol/acquisition/capture_plan.h"
+#include "tirpol/acquisition/internal/blackbody_wait.h"
 
 namespace tirpol::acquisition::detail {
 

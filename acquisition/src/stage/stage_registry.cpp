@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/stage_registry.h"
+#include "tirpol/acquisition/stage.h"
 
 #include <fmt/format.h>
 
@@ -13,13 +13,6 @@
 
 namespace tirpol::acquisition {
 
-Result<StageUri> parse_stage_uri(const std::string& uri) {
-    auto parsed = split_device_uri(uri);
-    if (!parsed) return parsed.error();
-    return StageUri{std::move(parsed.value().scheme), std::move(parsed.value().target),
-                    std::move(parsed.value().query)};
-}
-
 namespace {
 
 using detail::check_uri_keys;
@@ -27,7 +20,7 @@ using detail::uri_integer;
 using detail::uri_number;
 DeviceError bad(const std::string& uri, const std::string& what) { return detail::bad_uri(uri, what); }
 
-Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& u, bool usb) {
+Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const DeviceUri& u, bool usb) {
     if (auto s = check_uri_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
     AptStageOptions options;
     auto cpd = uri_number(uri, u, "counts_per_degree", options.counts_per_degree);
@@ -46,16 +39,16 @@ Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const StageUri& 
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     const SerialSettings settings{115200, true};
 #ifdef TIRPOL_HAVE_LIBUSB
-    auto port = usb ? open_ftdi_usb(u.path, settings) : open_serial_port(u.path, settings);
+    auto port = usb ? open_ftdi_usb(u.target, settings) : open_serial_port(u.target, settings);
 #else
     (void)usb;  // thorlabs-apt+usb is registered only when built with libusb
-    auto port = open_serial_port(u.path, settings);
+    auto port = open_serial_port(u.target, settings);
 #endif
     if (!port) return port.error();
     return open_apt_stage(std::move(port.value()), uri, options);
 }
 
-Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const StageUri& u) {
+Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const DeviceUri& u) {
     if (auto s = check_uri_keys(uri, u, {"address", "timeout_ms"}); !s) return s.error();
     ElliptecStageOptions options;
     auto it = u.query.find("address");
@@ -66,12 +59,12 @@ Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const Stage
     auto timeout = uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
     if (!timeout) return timeout.error();
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
-    auto port = open_serial_port(u.path, SerialSettings{9600, false});
+    auto port = open_serial_port(u.target, SerialSettings{9600, false});
     if (!port) return port.error();
     return open_elliptec_stage(std::move(port.value()), uri, options);
 }
 
-Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& u) {
+Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const DeviceUri& u) {
     if (auto s = check_uri_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
     SimulatedStageOptions options;
     auto speed = uri_number(uri, u, "deg_per_s", 0.0);
@@ -91,7 +84,7 @@ Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const StageUri& 
 template <typename Open>
 StageFactory built_in(Open open) {
     return [open](const std::string& uri) -> Result<std::unique_ptr<Stage>> {
-        auto parsed = parse_stage_uri(uri);
+        auto parsed = split_device_uri(uri);
         if (!parsed) return parsed.error();
         return open(uri, parsed.value());
     };
@@ -101,11 +94,11 @@ StageFactory built_in(Open open) {
 detail::SchemeRegistry<StageFactory>& registry() {
     static detail::SchemeRegistry<StageFactory> table;
     [[maybe_unused]] static const bool built_in_registered = [] {
-        table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const StageUri& u) {
+        table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const DeviceUri& u) {
                                   return open_apt(uri, u, false);
                               }));
 #ifdef TIRPOL_HAVE_LIBUSB
-        table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const StageUri& u) {
+        table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const DeviceUri& u) {
                                   return open_apt(uri, u, true);
                               }));
 #endif
@@ -119,7 +112,7 @@ detail::SchemeRegistry<StageFactory>& registry() {
 }  // namespace
 
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri) {
-    auto parsed = parse_stage_uri(uri);
+    auto parsed = split_device_uri(uri);
     if (!parsed) return parsed.error();
     const StageFactory factory = registry().find(parsed.value().scheme);
     if (!factory)

@@ -40,7 +40,6 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/blackbody_wait.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/session.h"
 
@@ -53,6 +52,16 @@ inline constexpr int kMaxRepeats = 10000;
 inline constexpr double kMaxSettleSeconds = 3600.0;
 inline constexpr double kMaxMoveTimeoutSeconds = 3600.0;  ///< move_timeout_s, home_timeout_s
 inline constexpr double kMaxFrameTimeoutSeconds = 600.0;
+
+/// When a set-point counts as reached (capture plan `references[].controller`).
+struct BlackbodyStabilityCriterion {
+    double tolerance_k = 0.1;    ///< |reading − set-point| ≤ tolerance_k ...
+    double stable_for_s = 30.0;  ///< ... with the controller's stability flag set, without a break for this long
+    double timeout_s = 1800.0;   ///< then give up: Timeout naming the set-point and the last reading
+    double poll_s = 1.0;         ///< controller polling period (also while frames are taken)
+
+    bool operator==(const BlackbodyStabilityCriterion&) const = default;
+};
 
 struct ReferenceSpec {
     RecordKind kind = RecordKind::Blackbody;  ///< Blackbody or Shutter

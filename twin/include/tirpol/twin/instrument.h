@@ -1,24 +1,24 @@
 #pragma once
-/// \file twin_instrument.h
+/// \file instrument.h
 /// The twin's field instrument: what is in front of the camera (the rendered scene or the
 /// blackbody, the polarizer in or out of the beam), the renderer's sensor model as the camera's
 /// detector, a stage decorator that tells the world where the polarizer is, and the devices
 /// themselves — tirpol-stage-sim's engine on a pseudo-terminal opened through the real serial driver,
-/// and the camera served over GigE Vision on loopback (FakeGigECameraServer) opened as aravis://.
+/// and the camera served over GigE Vision on loopback (acquisition's fake GigE server) opened as
+/// aravis://. The simulators are acquisition internals: only twin/src sees them (TwinInstrument's
+/// pimpl), so this header needs nothing but acquisition's public API.
 
-#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
+#include <string>
+#include <vector>
 
-#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture_plan.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
 #include "tirpol/acquisition/stage.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/sensor_model.h"
@@ -93,36 +93,33 @@ private:
     TwinWorld& m_world;
 };
 
+/// The byte protocol the simulated polarizer mount speaks on its pseudo-terminal.
+enum class StageProtocol {
+    Apt,       ///< Thorlabs APT (K10CR1), opened as thorlabs-apt://
+    Elliptec,  ///< Thorlabs Elliptec (ELL14), opened as elliptec://
+};
+
 /// The devices of the twin. Throws tirpol::Error when the stage cannot be opened; a GigE Vision
 /// failure falls back to the in-process SimulatedCamera and says why in `camera_transport()`.
 class TwinInstrument {
 public:
-    TwinInstrument(TwinWorld& world, acquisition::SimProtocol protocol, bool gige);
+    TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige);
     ~TwinInstrument();
     TwinInstrument(const TwinInstrument&) = delete;
     TwinInstrument& operator=(const TwinInstrument&) = delete;
 
-    const std::string& camera_transport() const { return m_camera_transport; }
+    /// "GigE Vision on 127.0.0.1 (aravis://…)" or "in-process SimulatedCamera (FALLBACK: <why>)".
+    const std::string& camera_transport() const;
     std::string stage_description() const;
-    bool served_over_gige() const { return m_server != nullptr; }
+    bool served_over_gige() const;
 
     /// Runs `plan` (the library call behind `tirpol acquire`) into a new session at `dir`; the
     /// simulated operator places the blackbody when the capture loop asks for it.
     void acquire(const acquisition::CapturePlan& plan, const std::filesystem::path& dir);
 
 private:
-    TwinWorld& m_world;
-    acquisition::SimProtocol m_protocol;
-    acquisition::StageSimulator m_simulator;
-    std::optional<acquisition::PseudoTerminal> m_pty;
-    std::atomic<bool> m_stop{false};
-    std::thread m_stage_thread;
-    std::unique_ptr<acquisition::Stage> m_driver;
-    std::unique_ptr<WorldReportingStage> m_stage;
-    int m_gige_lock_fd = -1;
-    std::unique_ptr<acquisition::FakeGigECameraServer> m_server;
-    std::unique_ptr<acquisition::Camera> m_camera;
-    std::string m_camera_transport;
+    struct Devices;  ///< the stage simulator on its pty, the drivers, the fake GigE server (twin/src)
+    std::unique_ptr<Devices> m_devices;
 };
 
 }  // namespace tirpol::twin

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/internal/stage_simulator.h"
 #include "tirpol/report/registration.h"
 #include "tirpol/report/verdict.h"
 #include "tirpol/twin/camera_geometry.h"
+#include "tirpol/twin/instrument.h"
 
 namespace tirpol::twin {
 
@@ -35,7 +35,7 @@ struct TwinOptions {
     /// Camera positions; the first is the scene's (the report compares that view). Empty: the scene's
     /// camera plus two higher ones, so the panel is seen at three view angles.
     std::vector<TwinView> views;
-    acquisition::SimProtocol stage_protocol = acquisition::SimProtocol::Apt;
+    StageProtocol stage_protocol = StageProtocol::Apt;
     bool gige = true;  ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
     int threads = 0;   ///< render threads (0: all cores)
     std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted

@@ -1,6 +1,6 @@
 #pragma once
 /// \file fluke_blackbody.h
-/// The Fluke 4180/4181 driver on an already open byte port (blackbody_registry.h opens it by URI).
+/// The Fluke 4180/4181 driver on an already open byte port (open_blackbody in blackbody.h opens it by URI).
 
 #include <chrono>
 #include <memory>

@@ -2,25 +2,18 @@
 /// \file blackbody_wait.h
 /// Bringing a blackbody controller to a set-point before frames are taken, and summarising what it
 /// read while they were: the plate lags its set-point (a first-order response with a time constant
-/// of minutes), and frames taken before it settles carry the lag into the calibration.
+/// of minutes), and frames taken before it settles carry the lag into the calibration. Internal: the
+/// capture loop calls it for a plan's controlled blackbody steps (BlackbodyStabilityCriterion is in
+/// capture_plan.h).
 
 #include <functional>
 #include <optional>
 
 #include "tirpol/acquisition/blackbody.h"
+#include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {
-
-/// When a set-point counts as reached (capture plan `references[].controller`).
-struct BlackbodyStabilityCriterion {
-    double tolerance_k = 0.1;    ///< |reading − set-point| ≤ tolerance_k ...
-    double stable_for_s = 30.0;  ///< ... with the controller's stability flag set, without a break for this long
-    double timeout_s = 1800.0;   ///< then give up: Timeout naming the set-point and the last reading
-    double poll_s = 1.0;         ///< controller polling period (also while frames are taken)
-
-    bool operator==(const BlackbodyStabilityCriterion&) const = default;
-};
 
 struct SetPointReached {
     double wait_s = 0.0;  ///< from the set-point command until the criterion held
