@@ -71,5 +71,26 @@ TEST(EmissivityRois, EmissivityAboveOneBeyondNoiseIsFlagged) {
     EXPECT_TRUE(extract_emissivity(plausible, rois, band)[0].warnings.empty());
 }
 
+// The reflector's own emission (docs/calibration.md): emissivity needs the reflector's temperature.
+TEST(EmissivityRois, ReflectorEmissionKeysAndErrors) {
+    const std::string targets =
+        "targets:\n  - {name: p, rect: [10, 2, 4, 4], view_angle_deg: 30, temperature_k: 300}\n";
+    test::TempDir dir;
+    test::write_text(dir / "rois.yaml",
+                     "reflector: {rect: [0, 0, 4, 4], emissivity: 0.06, emissivity_std: 0.01, temperature_k: 281.5, "
+                     "temperature_std_k: 0.3}\n" +
+                         targets);
+    const EmissivityRois loaded = EmissivityRois::load((dir / "rois.yaml").string());
+    EXPECT_DOUBLE_EQ(loaded.reflector.emissivity, 0.06);
+    EXPECT_DOUBLE_EQ(loaded.reflector.emissivity_std, 0.01);
+    EXPECT_DOUBLE_EQ(*loaded.reflector.temperature_k, 281.5);
+    EXPECT_DOUBLE_EQ(loaded.reflector.temperature_std_k, 0.3);
+
+    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 0.06}\n" + targets),
+                testing::AllOf(testing::HasSubstr("reflector"), testing::HasSubstr("temperature_k")));
+    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 1.0, temperature_k: 280}\n" + targets),
+                testing::AllOf(testing::HasSubstr("emissivity"), testing::HasSubstr("out of range")));
+}
+
 }  // namespace
 }  // namespace tirpol::calibration

@@ -6,7 +6,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "test_support.h"
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/error.h"
 
@@ -74,36 +73,7 @@ TEST(ReflectorEmission, UncertaintiesPropagate) {
                 std::abs(s0 - band.radiance(kReflectorK)) / ((1.0 - e) * (1.0 - e)) * 0.01, 1e-5);
 }
 
-std::string error_of(const std::string& yaml) {
-    test::TempDir dir;
-    test::write_text(dir / "rois.yaml", yaml);
-    try {
-        EmissivityRois::load((dir / "rois.yaml").string());
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
-TEST(ReflectorEmission, RoiFileKeysAndErrors) {
-    const std::string targets =
-        "targets:\n  - {name: p, rect: [10, 2, 4, 4], view_angle_deg: 30, temperature_k: 300}\n";
-    test::TempDir dir;
-    test::write_text(dir / "rois.yaml",
-                     "reflector: {rect: [0, 0, 4, 4], emissivity: 0.06, emissivity_std: 0.01, temperature_k: 281.5, "
-                     "temperature_std_k: 0.3}\n" +
-                         targets);
-    const EmissivityRois loaded = EmissivityRois::load((dir / "rois.yaml").string());
-    EXPECT_DOUBLE_EQ(loaded.reflector.emissivity, 0.06);
-    EXPECT_DOUBLE_EQ(loaded.reflector.emissivity_std, 0.01);
-    EXPECT_DOUBLE_EQ(*loaded.reflector.temperature_k, 281.5);
-    EXPECT_DOUBLE_EQ(loaded.reflector.temperature_std_k, 0.3);
-
-    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 0.06}\n" + targets),
-                testing::AllOf(testing::HasSubstr("reflector"), testing::HasSubstr("temperature_k")));
-    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 1.0, temperature_k: 280}\n" + targets),
-                testing::AllOf(testing::HasSubstr("emissivity"), testing::HasSubstr("out of range")));
-
+TEST(ReflectorEmission, AnEmissivityWithoutATemperatureIsAnError) {
     const Band band(8.0, 14.0);
     EmissivityReflector bad = rois().reflector;
     bad.temperature_k.reset();
