@@ -28,22 +28,23 @@ PixelRect parse_rect(const ConfigNode& node) {
 }
 }  // namespace
 
+EmissivityReflector EmissivityReflector::from_config(const ConfigNode& node) {
+    node.check_keys({"rect", "emissivity", "emissivity_std", "temperature_k", "temperature_std_k"});
+    EmissivityReflector r{parse_rect(node.at("rect"))};
+    if (node.has("emissivity")) r.emissivity = node.get_in_range("emissivity", 0.0, 0.99);
+    if (node.has("emissivity_std")) r.emissivity_std = node.get_in_range("emissivity_std", 0.0, 1.0);
+    if (node.has("temperature_k")) r.temperature_k = node.get_in_range("temperature_k", 1.0, 2000.0);
+    if (node.has("temperature_std_k")) r.temperature_std_k = node.get_in_range("temperature_std_k", 0.0, 100.0);
+    if (r.emissivity > 0.0 && !r.temperature_k)
+        node.fail("an emissivity > 0 needs the reflector's temperature_k (its emission is removed)");
+    return r;
+}
+
 EmissivityRois EmissivityRois::load(const std::string& path) {
     const ConfigNode root = ConfigNode::load_file(path);
     root.check_keys({"reflector", "targets"});
     EmissivityRois rois;
-    const ConfigNode reflector = root.at("reflector");
-    reflector.check_keys({"rect", "emissivity", "emissivity_std", "temperature_k", "temperature_std_k"});
-    rois.reflector.rect = parse_rect(reflector.at("rect"));
-    if (reflector.has("emissivity")) rois.reflector.emissivity = reflector.get_in_range("emissivity", 0.0, 0.99);
-    if (reflector.has("emissivity_std"))
-        rois.reflector.emissivity_std = reflector.get_in_range("emissivity_std", 0.0, 1.0);
-    if (reflector.has("temperature_k"))
-        rois.reflector.temperature_k = reflector.get_in_range("temperature_k", 1.0, 2000.0);
-    if (reflector.has("temperature_std_k"))
-        rois.reflector.temperature_std_k = reflector.get_in_range("temperature_std_k", 0.0, 100.0);
-    if (rois.reflector.emissivity > 0.0 && !rois.reflector.temperature_k)
-        reflector.fail("an emissivity > 0 needs the reflector's temperature_k (its emission is removed)");
+    rois.reflector = EmissivityReflector::from_config(root.at("reflector"));
     for (const ConfigNode& t : root.at("targets").elements()) {
         t.check_keys({"name", "rect", "view_angle_deg", "temperature_k", "temperature_std_k", "blackbody_rect"});
         EmissivityTarget target;

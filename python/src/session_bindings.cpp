@@ -7,6 +7,7 @@
 #include "bindings.h"
 #include "image_conversion.h"
 #include "interruptible.h"
+#include "python_config.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/error.h"
@@ -195,27 +196,14 @@ py::dict result_dict(const EmissivityResult& r) {
     return d;
 }
 
-/// The regions of eq 17 from Python: the IR reflector rectangle and the targets' dicts.
 /// The reflector as [x, y, w, h], or as the ROI file's mapping {rect, emissivity, emissivity_std,
-/// temperature_k, temperature_std_k} (all but rect optional) to remove its own emission.
+/// temperature_k, temperature_std_k}, read by the ROI file's own parser.
 EmissivityReflector reflector_from_python(const py::object& reflector) {
     if (!py::isinstance<py::dict>(reflector)) return {rect_of(reflector, "reflector")};
-    const auto d = reflector.cast<py::dict>();
-    for (const auto& [key, value] : d) {
-        const auto k = key.cast<std::string>();
-        if (k != "rect" && k != "emissivity" && k != "emissivity_std" && k != "temperature_k" && k != "temperature_std_k")
-            fail("reflector: unknown key '{}' (expected rect, emissivity, emissivity_std, temperature_k, "
-                 "temperature_std_k)", k);
-    }
-    if (!d.contains("rect")) fail("reflector: missing key 'rect'");
-    EmissivityReflector r{rect_of(d["rect"], "reflector.rect")};
-    if (d.contains("emissivity")) r.emissivity = d["emissivity"].cast<double>();
-    if (d.contains("emissivity_std")) r.emissivity_std = d["emissivity_std"].cast<double>();
-    if (d.contains("temperature_k")) r.temperature_k = d["temperature_k"].cast<double>();
-    if (d.contains("temperature_std_k")) r.temperature_std_k = d["temperature_std_k"].cast<double>();
-    return r;
+    return EmissivityReflector::from_config(config_from_python(reflector, "<reflector dict>"));
 }
 
+/// The regions of eq 17 from Python: the IR reflector and the targets' dicts.
 EmissivityRois rois_from_python(const py::object& reflector, const py::list& targets) {
     EmissivityRois rois;
     rois.reflector = reflector_from_python(reflector);
@@ -247,7 +235,8 @@ void bind_emissivity(py::module_& m) {
         py::arg("stokes"), py::arg("reflector"), py::arg("targets"), py::arg("band"),
         "Polarized emissivity of targets in a reduced Stokes image (paper eq 17): the IR reflector rectangle "
         "[x, y, w, h] gives the downwelling radiance (or {rect, emissivity, emissivity_std, temperature_k, "
-        "temperature_std_k}, as in the ROI file, to remove the reflector's own emission), each target {name, rect, view_angle_deg, temperature_k "
+        "temperature_std_k}, as in the ROI file, to remove the reflector's own emission), each target {name, rect, "
+        "view_angle_deg, temperature_k "
         "(contact) or blackbody_rect, temperature_std_k} its ε_S0, ε_S1, ε_S2 with 1σ uncertainties eps_s0_std, "
         "eps_s1_std, eps_s2_std; ε_S1 and ε_S2 in the image Stokes frame (fit_microfacet takes ε_S1 in the "
         "plane-of-emission frame).");

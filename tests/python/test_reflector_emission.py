@@ -39,3 +39,6 @@ def test_reflector_emissivity_needs_its_temperature():
     with pytest.raises(tirpol.Error, match="unknown key 'temperature'"):
         calibration.extract_emissivity(scene(), reflector={"rect": [1, 1, 18, 18], "temperature": 285.0},
                                        targets=TARGETS, band=BAND)
+    with pytest.raises(tirpol.Error, match="out of range"):
+        calibration.extract_emissivity(scene(), reflector={"rect": [1, 1, 18, 18], "emissivity": 1.0,
+                                                           "temperature_k": 285.0}, targets=TARGETS, band=BAND)

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tirpol/calibration/region_mean.h"
+#include "tirpol/core/config.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 
@@ -41,6 +42,9 @@ struct EmissivityReflector {
     double emissivity_std = 0.0;          ///< its standard uncertainty (datasheet)
     std::optional<double> temperature_k;  ///< contact temperature
     double temperature_std_k = 0.5;       ///< its standard uncertainty
+    /// From the ROI file's `reflector` mapping: `rect` and the optional `emissivity`, `emissivity_std`,
+    /// `temperature_k`, `temperature_std_k`; errors name file, line and field.
+    static EmissivityReflector from_config(const ConfigNode& node);
 };
 
 struct EmissivityRois {
