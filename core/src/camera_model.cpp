@@ -1,9 +1,9 @@
 #include "tirpol/core/camera_model.h"
 
-#include <opencv2/core.hpp>
-
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <stdexcept>
+#include <string_view>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -20,10 +20,14 @@ std::size_t distortion_length(const std::string& model) {
 
 std::string distortion_model_of_length(std::size_t length) {
     switch (length) {
-        case 5: return "standard";
-        case 8: return "rational";
-        case 12: return "thin_prism";
-        default: fail("{} distortion coefficients: expected 5 (standard), 8 (rational) or 12 (thin_prism)", length);
+        case 5:
+            return "standard";
+        case 8:
+            return "rational";
+        case 12:
+            return "thin_prism";
+        default:
+            fail("{} distortion coefficients: expected 5 (standard), 8 (rational) or 12 (thin_prism)", length);
     }
 }
 
@@ -53,7 +57,8 @@ Vec2 distort_normalised(const std::vector<double>& d, const Vec2& p) {
 }  // namespace
 
 Vec2 CameraModel::project(const Vec3& point_camera) const {
-    const Vec2 d = distort_normalised(distortion, Vec2(point_camera.x() / point_camera.z(), point_camera.y() / point_camera.z()));
+    const Vec2 d =
+        distort_normalised(distortion, Vec2(point_camera.x() / point_camera.z(), point_camera.y() / point_camera.z()));
     return {fx * d.x() + cx, fy * d.y() + cy};
 }
 
@@ -76,15 +81,18 @@ Vec2 CameraModel::undistort(const Vec2& pixel) const {
         if (residual.norm() < 1e-15) break;
         constexpr double h = 1e-7;
         Eigen::Matrix2d jacobian;
-        jacobian.col(0) = (distort_normalised(distortion, p + Vec2(h, 0)) - distort_normalised(distortion, p - Vec2(h, 0))) / (2 * h);
-        jacobian.col(1) = (distort_normalised(distortion, p + Vec2(0, h)) - distort_normalised(distortion, p - Vec2(0, h))) / (2 * h);
+        jacobian.col(0) =
+            (distort_normalised(distortion, p + Vec2(h, 0)) - distort_normalised(distortion, p - Vec2(h, 0))) / (2 * h);
+        jacobian.col(1) =
+            (distort_normalised(distortion, p + Vec2(0, h)) - distort_normalised(distortion, p - Vec2(0, h))) / (2 * h);
         p -= jacobian.inverse() * residual;
     }
     return p;
 }
 
 void validate_camera_model(const CameraModel& m, const std::string& where) {
-    if (m.width < 1 || m.height < 1) fail("{}: image_width/image_height must be positive, got {}x{}", where, m.width, m.height);
+    if (m.width < 1 || m.height < 1)
+        fail("{}: image_width/image_height must be positive, got {}x{}", where, m.width, m.height);
     if (!(m.fx > 0.0 && m.fy > 0.0 && std::isfinite(m.fx) && std::isfinite(m.fy)))
         fail("{}: camera_matrix focal lengths fx, fy must be positive, got {} {}", where, m.fx, m.fy);
     if (!std::isfinite(m.cx) || !std::isfinite(m.cy)) fail("{}: camera_matrix principal point is not finite", where);
@@ -100,6 +108,18 @@ void validate_camera_model(const CameraModel& m, const std::string& where) {
 namespace {
 cv::FileStorage open_for_reading(const std::filesystem::path& path) {
     const std::string text = read_file(path);
+    // OpenCV 4.6's YAML parser loops forever on a '%' past the first line when a '---' follows (fuzz
+    // regression camera_geometry/percent_then_document_marker.yaml). Only the first line's %YAML
+    // directive has a '%' in these files; one in a comment is harmless.
+    for (std::size_t line_start = text.find('\n'); line_start != std::string::npos;) {
+        const std::size_t end = text.find('\n', line_start + 1);
+        const std::string_view line(text.data() + line_start + 1,
+                                    (end == std::string::npos ? text.size() : end) - line_start - 1);
+        const std::size_t percent = line.find('%');
+        if (percent != std::string_view::npos && percent < line.find('#'))
+            fail("{}: a '%' outside the first line's %YAML directive (only comments may hold one)", path.string());
+        line_start = end;
+    }
     try {
         cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
         if (!fs.isOpened()) fail("{}: not an OpenCV FileStorage YAML file", path.string());
@@ -113,7 +133,8 @@ cv::FileStorage open_for_reading(const std::filesystem::path& path) {
     }
 }
 
-cv::Mat required_mat(const cv::FileStorage& fs, const char* key, int rows, int cols, const std::filesystem::path& path) {
+cv::Mat required_mat(const cv::FileStorage& fs, const char* key, int rows, int cols,
+                     const std::filesystem::path& path) {
     const cv::FileNode n = fs[key];
     if (n.empty()) fail("{}: missing field '{}'", path.string(), key);
     // `n >> m` allocates the declared rows × cols before reading the data: a `cols:` that is not a
@@ -175,8 +196,8 @@ CameraModel read_camera_model(const std::filesystem::path& path) {
         m.width = required_int(fs, "image_width", path);
         m.height = required_int(fs, "image_height", path);
         const cv::Mat k = required_mat(fs, "camera_matrix", 3, 3, path);
-        if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 || k.at<double>(2, 1) != 0.0 ||
-            k.at<double>(2, 2) != 1.0)
+        if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 ||
+            k.at<double>(2, 1) != 0.0 || k.at<double>(2, 2) != 1.0)
             fail("{}: camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)", path.string());
         m.fx = k.at<double>(0, 0);
         m.fy = k.at<double>(1, 1);
@@ -186,12 +207,13 @@ CameraModel read_camera_model(const std::filesystem::path& path) {
         if (!fs["distortion_model"].empty()) {
             const std::string declared = static_cast<std::string>(fs["distortion_model"]);
             if (distortion_length(declared) != m.distortion.size())
-                fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(), declared,
-                     distortion_length(declared), m.distortion.size());
+                fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(),
+                     declared, distortion_length(declared), m.distortion.size());
         }
         m.rms_px = optional_real(fs, "rms_reprojection_error_px");
         if (!fs["views"].empty()) m.views = static_cast<int>(fs["views"]);
-        if (!fs["std_dev_intrinsics"].empty()) m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
+        if (!fs["std_dev_intrinsics"].empty())
+            m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
         if (!fs["target"].empty()) m.target = static_cast<std::string>(fs["target"]);
         validate_camera_model(m, path.string());
         return m;
@@ -201,8 +223,9 @@ CameraModel read_camera_model(const std::filesystem::path& path) {
 void write_camera_model(const std::filesystem::path& path, const CameraModel& m) {
     validate_camera_model(m, path.string());
     cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-    fs.writeComment(" tirpol camera model (docs/camera-geometry.md). OpenCV conventions: pixel (0,0) is the centre\n"
-                    " of the top-left pixel, u right, v down; camera x right, y down, z forward; units pixels.");
+    fs.writeComment(
+        " tirpol camera model (docs/camera-geometry.md). OpenCV conventions: pixel (0,0) is the centre\n"
+        " of the top-left pixel, u right, v down; camera x right, y down, z forward; units pixels.");
     fs << "image_width" << m.width << "image_height" << m.height;
     fs << "camera_matrix" << (cv::Mat_<double>(3, 3) << m.fx, 0.0, m.cx, 0.0, m.fy, m.cy, 0.0, 0.0, 1.0);
     fs << "distortion_model" << m.distortion_model();
@@ -237,8 +260,9 @@ CameraPose read_camera_pose(const std::filesystem::path& path) {
 
 void write_camera_pose(const std::filesystem::path& path, const CameraPose& p) {
     cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-    fs.writeComment(" tirpol camera pose (docs/camera-geometry.md): x_camera = R x_world + t, world frame of the\n"
-                    " scene (x east, y north, z up), camera x right, y down, z forward; metres.");
+    fs.writeComment(
+        " tirpol camera pose (docs/camera-geometry.md): x_camera = R x_world + t, world frame of the\n"
+        " scene (x east, y north, z up), camera x right, y down, z forward; metres.");
     cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F), c(3, 1, CV_64F);
     const Vec3 position = p.position_m();
     for (int i = 0; i < 3; ++i) {
@@ -249,8 +273,10 @@ void write_camera_pose(const std::filesystem::path& path, const CameraPose& p) {
     fs << "rotation_camera_from_world" << r << "translation_m" << t << "camera_position_m" << c;
     if (p.points > 0) {
         fs << "control_points" << p.points << "rms_reprojection_error_px" << p.rms_px;
-        fs << "rotation_sigma_deg" << cv::Mat(cv::Vec3d(p.rotation_sigma_deg.x(), p.rotation_sigma_deg.y(), p.rotation_sigma_deg.z()));
-        fs << "position_sigma_m" << cv::Mat(cv::Vec3d(p.position_sigma_m.x(), p.position_sigma_m.y(), p.position_sigma_m.z()));
+        fs << "rotation_sigma_deg"
+           << cv::Mat(cv::Vec3d(p.rotation_sigma_deg.x(), p.rotation_sigma_deg.y(), p.rotation_sigma_deg.z()));
+        fs << "position_sigma_m"
+           << cv::Mat(cv::Vec3d(p.position_sigma_m.x(), p.position_sigma_m.y(), p.position_sigma_m.z()));
     }
     commit_storage(fs, path);
 }

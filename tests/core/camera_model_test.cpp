@@ -1,11 +1,13 @@
 // Camera model and pose files: round trip, readable by OpenCV's own FileStorage, and clear errors.
 
+#include "tirpol/core/camera_model.h"
+
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <opencv2/core.hpp>
 
 #include "test_support.h"
-#include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol {
@@ -62,6 +64,23 @@ TEST(CameraModelFile, PoseRoundTrips) {
     EXPECT_LT((back.position_m() - p.position_m()).norm(), 1e-12);
 }
 
+// Inputs the fuzzer found (a 48 GB allocation, cv::Exception, std::length_error, a parser that never
+// returned): each is refused with a tirpol::Error naming the file.
+TEST(CameraModelFile, FuzzRegressionsAreRefusedWithAnError) {
+    const auto dir = test::source_dir() / "tests/data/fuzz-regressions/camera_geometry";
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        ++files;
+        try {
+            read_camera_model(entry.path());
+            ADD_FAILURE() << entry.path() << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(entry.path().filename().string()), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_GE(files, 4);
+}
+
 TEST(CameraModelFile, BadFilesNameTheField) {
     test::TempDir dir;
     auto expect_error = [&](const std::string& text, const std::string& needle) {
@@ -76,14 +95,16 @@ TEST(CameraModelFile, BadFilesNameTheField) {
     };
     expect_error("%YAML:1.0\n---\nimage_width: 640\n", "image_height");
     expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\n", "camera_matrix");
-    expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
-                 "  dt: d\n  data: [ 700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
-                 "  rows: 1\n  cols: 4\n  dt: d\n  data: [ 0., 0., 0., 0. ]\n",
-                 "distortion_coefficients");
-    expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
-                 "  dt: d\n  data: [ -700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
-                 "  rows: 1\n  cols: 5\n  dt: d\n  data: [ 0., 0., 0., 0., 0. ]\n",
-                 "fx");
+    expect_error(
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
+        "  dt: d\n  data: [ 700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+        "  rows: 1\n  cols: 4\n  dt: d\n  data: [ 0., 0., 0., 0. ]\n",
+        "distortion_coefficients");
+    expect_error(
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
+        "  dt: d\n  data: [ -700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+        "  rows: 1\n  cols: 5\n  dt: d\n  data: [ 0., 0., 0., 0., 0. ]\n",
+        "fx");
     expect_error("just: text\n", "bad.yaml");
 }
 
