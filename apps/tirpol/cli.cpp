@@ -1,5 +1,6 @@
 #include "cli.h"
 #include "invocation.h"
+#include "numeric_options.h"
 
 #include <glog/logging.h>
 #include <spdlog/spdlog.h>
@@ -113,6 +114,7 @@ int run(int argc, char** argv) {
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [order, add] : commands) add(app);
     accept_comma_lists(app);
+    validate_numeric_options(app);
 
     try {
         app.parse(argc, argv);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "numeric_options.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utc_time.h"
@@ -53,18 +54,6 @@ std::string command_line(const FitArgs& a) {
     return out;
 }
 
-double parse_number(const std::string& text, const std::string& what) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty()) usage_error(what, "\"{}\" is not a number", text);
-    return v;
-}
-
 std::size_t parameter_index(const std::string& option, const std::string& name) {
     return static_cast<std::size_t>(parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
 }
@@ -92,8 +81,8 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
         if (eq == std::string::npos || colon == std::string::npos || colon < eq)
             usage_error("--bound", "{}: expected NAME=LOWER:UPPER, e.g. sigma=0.05:0.8", item);
         auto& s = o.parameters[parameter_index("--bound", item.substr(0, eq))];
-        s.lower = parse_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
-        s.upper = parse_number(item.substr(colon + 1), "--bound " + item);
+        s.lower = parse_finite_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
+        s.upper = parse_finite_number(item.substr(colon + 1), "--bound " + item);
     }
     for (const std::string& name : a.free)
         o.parameters[parameter_index("--free", name)].fixed = false;
@@ -101,7 +90,7 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
         const auto eq = item.find('=');
         auto& s = o.parameters[parameter_index("--fix", item.substr(0, eq))];
         s.fixed = true;
-        if (eq != std::string::npos) s.initial = parse_number(item.substr(eq + 1), "--fix " + item);
+        if (eq != std::string::npos) s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
     }
     return o;
 }

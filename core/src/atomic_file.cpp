@@ -5,9 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "tirpol/core/error.h"
 
@@ -77,15 +75,6 @@ void AtomicFile::commit() {
     std::filesystem::rename(m_temp, m_destination, ec);
     if (ec) fail("{}: cannot move the finished file into place: {}", m_destination.string(), ec.message());
     m_committed = true;
-}
-
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("{}: cannot open for reading ({})", path.string(),
-                  std::filesystem::exists(path) ? "permission denied or not a file" : "no such file");
-    std::ostringstream out;
-    out << in.rdbuf();
-    return out.str();
 }
 
 }  // namespace tirpol

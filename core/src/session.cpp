@@ -15,6 +15,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/utf8.h"
 
@@ -444,6 +445,7 @@ SessionManifest read_manifest_file(const std::filesystem::path& dir) {
     if (!std::filesystem::exists(path))
         fail("{}: no session manifest here (expected a directory written by tirpol acquire)", path.string());
     const std::string text = read_file(path);
+    check_utf8_text(text, path.string());
     json j;
     try {
         j = json::parse(text);

@@ -17,9 +17,12 @@
 #include "surface_basis.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/memory_budget.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/emissivity_cache.h"
+#include "tirpol/simulation/render_memory.h"
 #include "tirpol/simulation/rng.h"
 
 namespace tirpol::simulation {
@@ -281,11 +284,31 @@ struct Channels {
 
 }  // namespace
 
+std::uint64_t render_memory_estimate_bytes(int width, int height, int spp, int threads) {
+    // 17 float channels (Channels), plus at most 4 bytes a pixel more while a quicklook or an EXR
+    // line buffer is written; a thread's PixelStrata holds 4 orders and a scratch copy of spp ints.
+    constexpr std::uint64_t kImageBytesPerPixel = 17 * sizeof(float) + 4 * sizeof(float);
+    constexpr std::uint64_t kStrataBytesPerSample = (detail::kStratifiedDimensions + 1) * sizeof(int);
+    const auto pixels =
+        static_cast<std::uint64_t>(std::max(width, 0)) * static_cast<std::uint64_t>(std::max(height, 0));
+    return pixels * kImageBytesPerPixel + static_cast<std::uint64_t>(std::max(threads, 1)) *
+                                              static_cast<std::uint64_t>(std::max(spp, 0)) * kStrataBytesPerSample;
+}
+
 Band spectral_grid(const Band& band) { return Band(band.lo_um(), band.hi_um(), band.rsr(), kSpectralGridPanel_um); }
 
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    const int spp_requested = scene.sampling.samples_per_pixel;
+    if (spp_requested < 1 || spp_requested > limits::kMaxSamplesPerPixel)
+        fail("sampling.spp {}: expected 1 to {} samples per pixel (limits.h)", spp_requested,
+             limits::kMaxSamplesPerPixel);
+    const int workers = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+    check_memory_estimate(
+        render_memory_estimate_bytes(scene.camera.width(), scene.camera.height(), spp_requested, workers),
+        fmt::format("render of {}×{} pixels at {} spp on {} threads", scene.camera.width(), scene.camera.height(),
+                    spp_requested, workers));
+    tbb::task_arena arena(workers);
     RenderStatistics stats;
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
