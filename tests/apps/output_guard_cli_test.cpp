@@ -123,9 +123,12 @@ TEST_F(OutputGuardCli, EveryWritingSubcommandRefusesToReplaceAnInputWithExitTwo)
         const CliRun r = run_cli(command + " " + row.args);
         EXPECT_EQ(r.exit_code, 2) << "tirpol " << command << " " << row.args << "\n" << r.out;
         EXPECT_THAT(r.out, HasSubstr(row.protected_file.string())) << "tirpol " << command << " " << row.args;
-        if (!folder) EXPECT_EQ(tirpol::read_file(row.protected_file), before) << command;
-        if (row.takes_force)
+        if (!folder) {
+            EXPECT_EQ(tirpol::read_file(row.protected_file), before) << command;
+        }
+        if (row.takes_force) {
             EXPECT_THAT(run_cli(command + " --help").out, HasSubstr("--force")) << command;
+        }
         // An input is never replaced, --force or not.
         if (row.takes_force && row.protected_file.string().find("-out") == std::string::npos) {
             const CliRun forced = run_cli(command + " " + row.args + " --force");
@@ -145,7 +148,7 @@ TEST_F(OutputGuardCli, TheReportedCases) {
     // Another spelling, a symlink and a hard link of the measurement: the same file.
     fs::create_symlink(dir_ / "m.csv", dir_ / "link.csv");
     fs::create_hard_link(dir_ / "m.csv", dir_ / "hard.csv");
-    for (const std::string out : {p("stack/../m.csv"), p("link.csv"), p("hard.csv")}) {
+    for (const std::string& out : {p("stack/../m.csv"), p("link.csv"), p("hard.csv")}) {
         r = run_cli("fit " + p("m.csv") + " -o " + out);
         EXPECT_EQ(r.exit_code, 2) << out << "\n" << r.out;
         EXPECT_THAT(r.out, HasSubstr("is the input DATA (" + p("m.csv") + ")")) << out;
