@@ -1,9 +1,8 @@
 #include "tirpol/core/output_guard.h"
 
+#include <fmt/format.h>
 #include <fnmatch.h>
 #include <sys/stat.h>
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <mutex>

@@ -8,9 +8,9 @@
 /// Refused, whatever --force says: an output that is one of the inputs, an output inside an input
 /// folder (a session), an input inside a folder output under a name the command writes, two outputs on
 /// one path, an output whose path goes through an existing non-folder (`-o afile/x`), a folder output
-/// that exists as a file or a file output that exists as a folder. Refused unless `force`: an existing file at a file output; in a folder output, an
-/// existing entry the command would write (a name matching one of its patterns) that no tirpol command
-/// claimed there before. A folder output keeps every entry it does not claim; what a command claims in
+/// that exists as a file or a file output that exists as a folder. Refused unless `force`: an existing file at a file
+/// output; in a folder output, an existing entry the command would write (a name matching one of its patterns) that no
+/// tirpol command claimed there before. A folder output keeps every entry it does not claim; what a command claims in
 /// a folder is listed in the folder's `.tirpol-outputs` (one pattern a line), so a re-run into its own
 /// folder (render, sweep --resume, compare, demo) is not refused.
 
