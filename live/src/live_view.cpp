@@ -1,6 +1,7 @@
 #include "tirpol/live/live_view.h"
 
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 
@@ -28,7 +29,8 @@ DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) 
 
 LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
     m_camera = open_camera(options.camera_uri).value_or_throw();
-    if (!options.stage_uri.empty()) m_stage = open_stage(options.stage_uri).value_or_throw();
+    if (!options.stage_uri.empty())
+        m_stage = couple_simulated_polarizer(*m_camera, open_stage(options.stage_uri).value_or_throw());
     if (!options.calibration_path.empty())
         m_calibration = calibration::read_radiometric_calibration(options.calibration_path);
     m_converter =

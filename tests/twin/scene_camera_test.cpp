@@ -10,8 +10,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"
@@ -64,6 +67,50 @@ TEST(SceneCamera, FrameCountsFollowTheRenderedRadiance) {
               5.0 / std::sqrt(frame.counts.size()) + 0.5 / sigma);
     // The scene has contrast well above the noise (sky vs panels), so the check above is not vacuous.
     EXPECT_GT(g * 0.5 * tau * (s0_max - s0_min), 50.0 * sigma);
+}
+
+TEST(SceneCamera, FramesFollowACoupledStageSoTheScenesPolarizationAppears) {
+    // Behind a stage, I(0°) − I(90°) = g·(τ − τ/ER)·S1 per pixel (the counts formula above): the
+    // rendered S1 appears in the frames. Before the coupling every frame was exposed at 0° and the
+    // difference was noise only.
+    register_twin_device_schemes();
+    auto camera = acquisition::open_camera("sim://config/scenes/panels_night.yaml?width=24&height=18&spp=2&fps=100").value_or_throw();
+    auto stage = acquisition::couple_simulated_polarizer(*camera, acquisition::open_stage("sim://").value_or_throw());
+    ASSERT_TRUE(stage->home(2s).ok());
+    ASSERT_TRUE(camera->start().ok());
+    constexpr int kFrames = 8;
+    auto mean_frame_at = [&](double angle_deg) {
+        EXPECT_TRUE(stage->move_absolute(angle_deg, 2s).ok());
+        const std::int64_t moved_ns =  // host timestamps are CLOCK_REALTIME
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+        std::vector<double> sum(static_cast<std::size_t>(kWidth * kHeight), 0.0);
+        for (int k = 0; k < kFrames;) {
+            const acquisition::Frame f = camera->grab(10s).value();
+            if (f.host_timestamp_ns <= moved_ns) continue;  // exposed before the move ended
+            for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += f.counts[i] / kFrames;
+            ++k;
+        }
+        return sum;
+    };
+    const std::vector<double> i0 = mean_frame_at(0.0), i90 = mean_frame_at(90.0);
+
+    simulation::Scene scene = simulation::load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(kWidth, kHeight);
+    scene.sampling.samples_per_pixel = kSpp;
+    const Image stokes = simulation::render(scene);
+    const simulation::SensorModel sensor = twin_sensor(scene.band, scene.sky.temperature_k(1.0));
+    const double tau = sensor.analyzer.transmission, tau_min = tau / sensor.analyzer.extinction_ratio;
+    const double g = sensor.counts->gain_counts_per_radiance;
+    const double sigma = g * sensor.counts->nedt_k * scene.band.radiance_dT(sensor.counts->reference_temperature_k);
+    double measured = 0.0, expected = 0.0;
+    for (std::size_t i = 0; i < i0.size(); ++i) {
+        measured += i0[i] - i90[i];
+        expected += g * (tau - tau_min) * stokes.channel("S1")[i];
+    }
+    const auto n = static_cast<double>(i0.size());
+    const double sigma_sum = sigma * std::sqrt(2.0 * n / kFrames);  // two means of kFrames frames, n pixels
+    EXPECT_NEAR(measured, expected, 5.0 * sigma_sum + 0.5 * n);      // + rounding to whole counts
+    EXPECT_GT(std::abs(expected), 20.0 * sigma_sum) << "the scene's S1 must be resolvable for this test to mean anything";
 }
 
 TEST(SceneCamera, OtherSimTargetsStillReachTheBuiltInCamera) {
