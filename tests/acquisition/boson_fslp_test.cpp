@@ -167,7 +167,7 @@ TEST(BosonFslp, BadFramesAreReportedAndTheNextGoodOneIsStillFound) {
     const std::vector<std::uint8_t> bad_escape = {0x8E, 0x00, 0x9E, 0x42, 0x00, 0x00, 0xAE};
     const std::vector<std::uint8_t> too_short = {0x8E, 0x00, 0x12, 0xAE};
     std::vector<std::uint8_t> stream;
-    for (const std::vector<std::uint8_t>* part : {&corrupt, &bad_escape, &too_short, &truncated, &good}) stream.insert(stream.end(), part->begin(), part->end());
+    for (const std::vector<std::uint8_t>* part : std::initializer_list<const std::vector<std::uint8_t>*>{&corrupt, &bad_escape, &too_short, &truncated, &good}) stream.insert(stream.end(), part->begin(), part->end());
     FrameDecoder decoder;
     const auto frames = decoder.feed(stream);
     ASSERT_EQ(frames.size(), 4u);
