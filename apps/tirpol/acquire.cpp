@@ -51,6 +51,8 @@ bool ask_operator(const std::string& instruction) {
 
 void run_acquire(const AcquireArgs& a) {
     using namespace acquisition;
+    // The session writer refuses a non-empty folder (unless resuming): only the inputs are checked here.
+    OutputGuard().input(a.plan, "PLAN").output_session(a.output, "--output").check(false);
     const CapturePlan plan = CapturePlan::load(a.plan);
     const std::filesystem::path dir = a.output;
     if (a.resume && !std::filesystem::exists(dir / kSessionManifestName))
@@ -79,7 +81,7 @@ void run_acquire(const AcquireArgs& a) {
         std::_Exit(1);
     });
     auto camera = open_camera(a.camera).value_or_throw();
-    stage = open_stage(a.stage).value_or_throw();
+    stage = couple_simulated_polarizer(*camera, open_stage(a.stage).value_or_throw());
     stop_on_interrupt.watch(stage.get());
     const CameraInfo camera_info = camera->info();
     std::unique_ptr<BlackbodyController> blackbody;

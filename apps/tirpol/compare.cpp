@@ -22,6 +22,7 @@ struct CompareArgs {
     std::optional<double> measured_sigma;
     std::vector<double> band_um;
     bool json = false;
+    bool force = false;
 };
 
 void run_compare(const CompareArgs& a) {
@@ -54,6 +55,14 @@ void run_compare(const CompareArgs& a) {
         options.measured_frame_sigma = a.measured_sigma;
     }
     if (!a.band_um.empty()) options.band_um = std::array<double, 2>{a.band_um[0], a.band_um[1]};
+    OutputGuard()
+        .input(a.measured, "--measured")
+        .input(a.simulated, "--simulated")
+        .input(a.rois, "--rois")
+        .input(a.control_points, "--control-points")
+        .input(a.camera, "--camera")
+        .output_folder(a.output, "--output", {"report.html", "report.json", "comparison.exr", "*.png", "*.svg"})
+        .check(a.force);
     const Image measured = read_exr(a.measured);
     const Image simulated = read_exr(a.simulated);
     options.provenance.tool_version = version_text();
@@ -121,6 +130,7 @@ void register_compare(CLI::App& app) {
         ->expected(2);
     cmd->add_option("-o,--output", args->output, "Report directory (created)")->required();
     cmd->add_flag("--json", args->json, "Print report.json to stdout instead of the summary");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] { run_compare(*args); });
 }
 

@@ -16,10 +16,12 @@ WIEN_B_UM_K = 2897.771955
 
 
 def test_planck_total_radiance_is_stefan_boltzmann_over_pi():
-    band = core.Band(0.2, 3000.0)
+    band = core.Band(0.2, 1000.0)  # 1000 µm: the longest wavelength a Band accepts
+    c, h, k, lam = 299792458.0, 6.62607015e-34, 1.380649e-23, 1000e-6
     for t in (250.0, 300.0, 1000.0):
-        # The Rayleigh–Jeans tail beyond 3000 µm, 2ckT/(3λ³), added analytically (as the C++ test).
-        tail = 2 * 299792458.0 * 1.380649e-23 * t / (3 * (3000e-6) ** 3)
+        # The tail beyond 1000 µm from the series of Planck's law in x = hc/(λkT) (as the C++ test):
+        # ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵).
+        tail = 2 * c * k * t / (3 * lam**3) - h * c * c / (4 * lam**4) + h * h * c**3 / (30 * k * t * lam**5)
         assert (band.radiance(t) + tail) / (STEFAN_BOLTZMANN * t**4 / math.pi) == pytest.approx(1.0, abs=2e-8)
 
 
