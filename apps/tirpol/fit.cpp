@@ -70,13 +70,8 @@ void apply_init(const std::string& path, double wavelength_um, fitting::Microfac
     for (std::size_t i = 0; i < fitting::kMicrofacetParameterCount; ++i) options.parameters[i].initial = values[i];
 }
 
-fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavelength_um) {
-    fitting::MicrofacetFitOptions o;
-    o.starts = a.starts;
-    o.seed = a.seed;
-    o.quadrature.order = a.order;
-    o.scale_covariance_by_reduced_chi2 = a.scale_covariance;
-    if (!a.init.empty()) apply_init(a.init, first_wavelength_um, o);
+// --bound, --free and --fix: usage errors, so also parsed once before any data file is read.
+void apply_parameter_options(const FitArgs& a, fitting::MicrofacetFitOptions& o) {
     for (const std::string& item : a.bounds) {
         const auto eq = item.find('='), colon = item.find(':');
         if (eq == std::string::npos || colon == std::string::npos || colon < eq)
@@ -93,6 +88,16 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
         s.fixed = true;
         if (eq != std::string::npos) s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
     }
+}
+
+fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavelength_um) {
+    fitting::MicrofacetFitOptions o;
+    o.starts = a.starts;
+    o.seed = a.seed;
+    o.quadrature.order = a.order;
+    o.scale_covariance_by_reduced_chi2 = a.scale_covariance;
+    if (!a.init.empty()) apply_init(a.init, first_wavelength_um, o);
+    apply_parameter_options(a, o);
     return o;
 }
 
@@ -102,6 +107,8 @@ void run_fit(const FitArgs& a) {
     guard.input(a.init, "--init").output_file(a.output, "--output").output_file(a.plot, "--plot").check(a.force);
     if (a.model != "micro-facet" && a.model != "microfacet")
         usage_error("--model", "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
+    fitting::MicrofacetFitOptions usage_check;
+    apply_parameter_options(a, usage_check);
     std::vector<fitting::EmissivityDataset> datasets;
     for (const std::string& file : a.data)
         for (auto& d : fitting::load_emissivity_csv(file, a.wavelength_um)) datasets.push_back(std::move(d));

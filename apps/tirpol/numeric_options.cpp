@@ -83,7 +83,9 @@ CLI::Validator numeric_validator(const OptionLimit* limit) {
 void validate_recursively(CLI::App& app, const std::string& path) {
     for (CLI::Option* option : app.get_options()) {
         if (!is_numeric(*option) || option->get_expected_max() == 0) continue;
-        option->check(numeric_validator(option_limit(path, long_name(*option))));
+        // transform() puts the check first, before an option's own range check ("Value nan not in range"),
+        // so every numeric option refuses nan and inf with the same message.
+        option->transform(numeric_validator(option_limit(path, long_name(*option))));
     }
     for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
         validate_recursively(*sub, path.empty() ? sub->get_name() : path + " " + sub->get_name());

@@ -166,8 +166,8 @@ TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
     const CliRun bad = run_cli("flir-temperature " + (dir / "raw.exr").string() +
                            " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " +
                            (dir / "u.exr").string());
-    EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_NE(bad.out.find("window transmission"), std::string::npos) << bad.out;
+    EXPECT_EQ(bad.exit_code, 2);  // outside the limits table's [0.01, 1]: a usage error (docs/cli.md)
+    EXPECT_NE(bad.out.find("--window-transmission: 0 is outside [0.01, 1]"), std::string::npos) << bad.out;
 }
 
 TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {

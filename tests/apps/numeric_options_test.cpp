@@ -62,9 +62,10 @@ std::vector<NumericOption> numeric_options_in_help(const std::string& path) {
     return out;
 }
 
-std::string repeated(const std::string& value, int times) {
-    std::string out;
-    for (int i = 0; i < times; ++i) out += (i ? " " : "") + value;
+// `--name=V,V,...`: one argument, so a value cannot be taken for a missing positional argument.
+std::string option_with(const std::string& name, const std::string& value, int times) {
+    std::string out = name + "=";
+    for (int i = 0; i < times; ++i) out += (i ? "," : "") + value;
     return out;
 }
 
@@ -83,7 +84,7 @@ TEST(NumericOptions, EveryNumericOptionOfEverySubcommandRefusesNanAndInfinity) {
     for (const std::string& command : all_commands()) {
         for (const NumericOption& o : numeric_options_in_help(command)) {
             for (const std::string bad : {"nan", "inf", "1e400"}) {
-                const std::string args = command + " " + o.name + " " + repeated(bad, o.values);
+                const std::string args = command + " " + option_with(o.name, bad, o.values);
                 const CliRun r = run_cli(args);
                 EXPECT_EQ(r.exit_code, 2) << "tirpol " << args << "\n" << r.out;
                 EXPECT_THAT(r.out, testing::HasSubstr(o.name + ": expected a finite number")) << "tirpol " << args;
@@ -113,7 +114,7 @@ TEST(NumericOptions, OptionsOfTheLimitsTableRefuseValuesBeyondTheirLimit) {
         for (const NumericOption& o : numeric_options_in_help(command)) {
             const auto it = beyond.find(o.name);
             if (it == beyond.end()) continue;
-            const std::string args = command + " " + o.name + " " + repeated(it->second, o.values);
+            const std::string args = command + " " + option_with(o.name, it->second, o.values);
             const CliRun r = run_cli(args);
             EXPECT_EQ(r.exit_code, 2) << "tirpol " << args << "\n" << r.out;
             EXPECT_THAT(r.out, testing::HasSubstr(o.name + ": ")) << "tirpol " << args;
