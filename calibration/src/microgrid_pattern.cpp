@@ -34,9 +34,10 @@ MicrogridPattern::MicrogridPattern(const std::array<double, 4>& angles_deg, std:
     const AnalyzerModel ideal = AnalyzerModel::ideal({angles_deg.begin(), angles_deg.end()});
     const double condition = ideal.condition_number();
     if (!(condition <= kMaxConditionNumber))
-        fail("{}: angles {} do not determine S1 and S2 (condition number {:.3g} of the ideal measurement matrix; "
-             "expected ≤ {:g}, e.g. 0/45/90/135°)",
-             context, angles_text(angles_deg), condition, kMaxConditionNumber);
+        fail(
+            "{}: angles {} do not determine S1 and S2 (condition number {:.3g} of the ideal measurement matrix; "
+            "expected ≤ {:g}, e.g. 0/45/90/135°)",
+            context, angles_text(angles_deg), condition, kMaxConditionNumber);
 }
 
 MicrogridPattern MicrogridPattern::sony_imx250mzr() { return MicrogridPattern({90.0, 45.0, 135.0, 0.0}); }
@@ -54,23 +55,26 @@ MicrogridPattern MicrogridPattern::parse(std::string_view text, std::string_view
         double value = 0.0;
         const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
         if (field.empty() || ec != std::errc() || end != field.data() + field.size() || count >= 4)
-            fail("{}: '{}' is not a microgrid pattern; expected four angles in degrees for cells (0,0),(0,1),(1,0),(1,1) "
-                 "such as \"90,45,135,0\", or \"sony\"",
-                 context, text);
+            fail(
+                "{}: '{}' is not a microgrid pattern; expected four angles in degrees for cells "
+                "(0,0),(0,1),(1,0),(1,1) "
+                "such as \"90,45,135,0\", or \"sony\"",
+                context, text);
         angles[count++] = value;
         start = comma + 1;
     }
     if (count != 4)
-        fail("{}: '{}' has {} angle(s); expected four, for cells (0,0),(0,1),(1,0),(1,1) (e.g. \"90,45,135,0\")", context,
-             text, count);
+        fail("{}: '{}' has {} angle(s); expected four, for cells (0,0),(0,1),(1,0),(1,1) (e.g. \"90,45,135,0\")",
+             context, text, count);
     return MicrogridPattern(angles, context);
 }
 
 MicrogridPattern MicrogridPattern::from_attributes(const Attributes& attributes) {
     const auto it = attributes.find("microgrid_pattern_deg");
     if (it == attributes.end())
-        fail("image header: attribute 'microgrid_pattern_deg' is missing; expected the four analyzer angles of the "
-             "microgrid cell");
+        fail(
+            "image header: attribute 'microgrid_pattern_deg' is missing; expected the four analyzer angles of the "
+            "microgrid cell");
     const auto* values = std::get_if<std::vector<double>>(&it->second);
     if (!values || values->size() != 4)
         fail("image header: attribute 'microgrid_pattern_deg' must be a list of four angles in degrees");

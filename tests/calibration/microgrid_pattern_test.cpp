@@ -1,9 +1,10 @@
 // The microgrid (division-of-focal-plane) 2×2 analyzer pattern: the Sony IMX250MZR layout, parsing,
 // the Stokes-completeness check and the record in an image header.
 
+#include "tirpol/calibration/microgrid_pattern.h"
+
 #include <gtest/gtest.h>
 
-#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -40,7 +41,8 @@ TEST(MicrogridPattern, RefusesWhatCannotMeasureLinearStokes) {
         }
         return std::string("no error");
     };
-    EXPECT_NE(message("0,45,90,45").find("appears at cells (0,1) and (1,1)"), std::string::npos) << message("0,45,90,45");
+    EXPECT_NE(message("0,45,90,45").find("appears at cells (0,1) and (1,1)"), std::string::npos)
+        << message("0,45,90,45");
     EXPECT_NE(message("0,45,90").find("has 3 angle(s)"), std::string::npos);
     EXPECT_NE(message("0,45,90,135,0").find("not a microgrid pattern"), std::string::npos);
     EXPECT_NE(message("0,45,90,180").find("[0°, 180°)"), std::string::npos);
@@ -55,7 +57,8 @@ TEST(MicrogridPattern, RoundTripsThroughImageAttributes) {
     Attributes attributes;
     MicrogridPattern::sony_imx250mzr().write_to(attributes);
     EXPECT_EQ(std::get<std::string>(attributes.at("microgrid_pattern")), "90,45,135,0");
-    EXPECT_EQ(MicrogridPattern::from_attributes(attributes).angles_deg(), MicrogridPattern::sony_imx250mzr().angles_deg());
+    EXPECT_EQ(MicrogridPattern::from_attributes(attributes).angles_deg(),
+              MicrogridPattern::sony_imx250mzr().angles_deg());
     attributes.erase("microgrid_pattern_deg");
     EXPECT_THROW(MicrogridPattern::from_attributes(attributes), Error);
     attributes["microgrid_pattern_deg"] = std::vector<double>{0.0, 45.0, 90.0};
