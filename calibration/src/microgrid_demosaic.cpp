@@ -28,6 +28,16 @@ struct Mosaic {
     }
 };
 
+/// The same frame read without mirroring, for pixels at least 3 from every border (the stencils reach
+/// ±3): most of the frame, so the hot loop skips the border tests.
+struct InteriorMosaic {
+    const float* data;
+    int width;
+    float at(int x, int y) const {
+        return data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+    }
+};
+
 void check_input(std::span<const float> mosaic, int width, int height, std::string_view source) {
     if (width < 4 || height < 4 || width % 2 != 0 || height % 2 != 0)
         fail(
@@ -93,7 +103,8 @@ struct DirectionalEstimate {
     std::array<double, N> own_difference{};  ///< own(p) − own(p + 2s)
     std::array<double, N> gradient{};
     std::size_t count = 0;
-    void add(const Mosaic& m, int x, int y, int dx, int dy, float own) {
+    template <typename Frame>
+    void add(const Frame& m, int x, int y, int dx, int dy, float own) {
         const double near = m.at(x + dx, y + dy);
         const double own_far = m.at(x + 2 * dx, y + 2 * dy);
         const double other_far = m.at(x + 3 * dx, y + 3 * dy);
@@ -124,6 +135,26 @@ struct DirectionalEstimate {
     static constexpr double kEdgeRatio = 8.0;
 };
 
+template <typename Frame>
+void newton_pixel(const Frame& m, int x, int y, std::size_t o, double epsilon, DemosaicedFrame& out) {
+    const int own_cell = (y & 1) * 2 + (x & 1);
+    const float own = m.at(x, y);
+    out.planes[static_cast<std::size_t>(own_cell)][o] = own;
+    DirectionalEstimate<2> horizontal, vertical;
+    DirectionalEstimate<4> diagonal;
+    horizontal.add(m, x, y, -1, 0, own);
+    horizontal.add(m, x, y, 1, 0, own);
+    vertical.add(m, x, y, 0, -1, own);
+    vertical.add(m, x, y, 0, 1, own);
+    diagonal.add(m, x, y, -1, -1, own);
+    diagonal.add(m, x, y, 1, -1, own);
+    diagonal.add(m, x, y, -1, 1, own);
+    diagonal.add(m, x, y, 1, 1, own);
+    out.planes[static_cast<std::size_t>(own_cell ^ 1)][o] = horizontal.value(epsilon);
+    out.planes[static_cast<std::size_t>(own_cell ^ 2)][o] = vertical.value(epsilon);
+    out.planes[static_cast<std::size_t>(own_cell ^ 3)][o] = diagonal.value(epsilon);
+}
+
 void newton(const Mosaic& m, DemosaicedFrame& out) {
     // ε (1 % of the mean signal) keeps flat, noise-free regions (g ≈ 0 on all sides) in the symmetric
     // branch and sets the scale below which a variation is not an edge.
@@ -131,26 +162,15 @@ void newton(const Mosaic& m, DemosaicedFrame& out) {
     const std::size_t n = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height);
     for (std::size_t i = 0; i < n; ++i) mean_abs += std::abs(static_cast<double>(m.data[i]));
     const double epsilon = 1e-2 * (mean_abs / static_cast<double>(n)) + 1e-30;
+    const InteriorMosaic interior{m.data, m.width};
     for (int y = 0; y < m.height; ++y)
         for (int x = 0; x < m.width; ++x) {
             const std::size_t o =
                 static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) + static_cast<std::size_t>(x);
-            const int own_cell = (y & 1) * 2 + (x & 1);
-            const float own = m.at(x, y);
-            out.planes[static_cast<std::size_t>(own_cell)][o] = own;
-            DirectionalEstimate<2> horizontal, vertical;
-            DirectionalEstimate<4> diagonal;
-            horizontal.add(m, x, y, -1, 0, own);
-            horizontal.add(m, x, y, 1, 0, own);
-            vertical.add(m, x, y, 0, -1, own);
-            vertical.add(m, x, y, 0, 1, own);
-            diagonal.add(m, x, y, -1, -1, own);
-            diagonal.add(m, x, y, 1, -1, own);
-            diagonal.add(m, x, y, -1, 1, own);
-            diagonal.add(m, x, y, 1, 1, own);
-            out.planes[static_cast<std::size_t>(own_cell ^ 1)][o] = horizontal.value(epsilon);
-            out.planes[static_cast<std::size_t>(own_cell ^ 2)][o] = vertical.value(epsilon);
-            out.planes[static_cast<std::size_t>(own_cell ^ 3)][o] = diagonal.value(epsilon);
+            if (x >= 3 && y >= 3 && x < m.width - 3 && y < m.height - 3)
+                newton_pixel(interior, x, y, o, epsilon, out);
+            else
+                newton_pixel(m, x, y, o, epsilon, out);
         }
 }
 

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 #include "microgrid_scenes.h"
 #include "tirpol/calibration/microgrid_accuracy.h"
@@ -158,6 +159,39 @@ TEST(MicrogridStokes, RecordsPatternAndMethodAndChecksTheAnalyzerModel) {
     EXPECT_NO_THROW(reduce_microgrid(mosaic, 8, 8, sony, options));
 }
 
+/// A uniform unpolarized field S0 = 100 measured with independent Gaussian noise of σ = 1 per pixel:
+/// every Stokes error is noise, so this shows each method's noise gain.
+StokesErrors measure_noisy_flat(DemosaicMethod method) {
+    const StokesScene scene = testing::integrate_scene(128, 128, [](double, double) {
+        return testing::StokesPoint{100.0, 0.0, 0.0};
+    });
+    std::vector<float> mosaic = microgrid_from_stokes(scene.s0, scene.s1, scene.s2, scene.width, scene.height,
+                                                      MicrogridPattern::sony_imx250mzr());
+    std::mt19937 rng(9);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    for (float& v : mosaic) v += noise(rng);
+    MicrogridReductionOptions options;
+    options.method = method;
+    options.reduction.project_to_realizable = false;
+    const Image stokes =
+        reduce_microgrid(mosaic, scene.width, scene.height, MicrogridPattern::sony_imx250mzr(), options);
+    return compare_to_truth(stokes, scene.s0, scene.s1, scene.s2, scene.width, scene.height, 4);
+}
+
+TEST(MicrogridDemosaic, NoiseGainOfEachMethodIsBounded) {
+    // Ideal analyzers at 0/45/90/135° give σ(S1) = σ(S2) = √2·σ and σ(S0) = σ for one super-pixel of
+    // independent σ noise (S0 = ½ΣI, S1 = I0 − I90). Interpolation averages neighbours, so it may only
+    // lower that, not raise it; the edge-directed weighting may not raise it above super-pixel either.
+    const StokesErrors super_pixel = measure_noisy_flat(DemosaicMethod::SuperPixel);
+    EXPECT_NEAR(super_pixel.s1_rms, std::sqrt(2.0), 0.1);
+    EXPECT_NEAR(super_pixel.s0_rms, 1.0, 0.1);
+    for (DemosaicMethod method : {DemosaicMethod::Bilinear, DemosaicMethod::Newton}) {
+        const StokesErrors e = measure_noisy_flat(method);
+        EXPECT_LT(e.s1_rms, super_pixel.s1_rms * 1.05) << demosaic_method_name(method);
+        EXPECT_LT(e.s2_rms, super_pixel.s2_rms * 1.05) << demosaic_method_name(method);
+    }
+}
+
 TEST(MicrogridAccuracy, TablePerMethod) {
     // Prints the table of docs/microgrid.md; asserts only what the other tests pin.
     struct Case {
@@ -183,6 +217,12 @@ TEST(MicrogridAccuracy, TablePerMethod) {
                         e.dolp_max);
             EXPECT_GT(e.pixels, 0u);
         }
+    for (DemosaicMethod method : kMethods) {
+        const StokesErrors e = measure_noisy_flat(method);
+        std::printf("| flat unpolarized S0 = 100, noise σ = 1 | %s | %.3f | %.3f | %.3f | %.4f | %.4f |\n",
+                    std::string(demosaic_method_name(method)).c_str(), e.s0_rms, e.s1_rms, e.s2_rms, e.dolp_rms,
+                    e.dolp_max);
+    }
 }
 
 }  // namespace
