@@ -95,7 +95,7 @@ void bilinear(const Mosaic& m, DemosaicedFrame& out) {
 /// dominates: an unpolarized edge stays unpolarized.
 ///
 /// Which region a pixel is in is decided, like Li et al.'s edge classifier, by how much the largest
-/// and smallest directional variations differ: ratio (g_max + ε)/(g_min + ε) ≤ 2 is smooth, ≥ 4 an
+/// and smallest directional variations differ: ratio (g_max + ε)/(g_min + ε) ≤ 3 is smooth, ≥ 8 an
 /// edge, and the two estimates are blended linearly in between so the output has no seams.
 template <std::size_t N>
 struct DirectionalEstimate {
