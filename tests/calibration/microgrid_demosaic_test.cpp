@@ -143,6 +143,30 @@ TEST(MicrogridDemosaic, RefusesFramesItCannotDemosaic) {
     EXPECT_EQ(parse_demosaic_method("newton"), DemosaicMethod::Newton);
 }
 
+TEST(MicrogridStokes, SonyLayoutLightPolarizedAlongRowsGivesPositiveS1AndZeroAoP) {
+    // Written by hand, not by the forward model: light fully polarized along the image rows (0°) reads
+    // 1 behind the 0° analyzers (cell (1,1) of the Sony layout), 0 behind 90° ((0,0)) and ½ behind 45°
+    // and 135° (Malus). ARCHITECTURE.md: S1 = I0 − I90 = 1, S2 = I45 − I135 = 0, AoP = 0°.
+    const int w = 8, h = 8;
+    std::vector<float> mosaic(static_cast<std::size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const int cell = (y & 1) * 2 + (x & 1);
+            mosaic[static_cast<std::size_t>(y * w + x)] = cell == 3 ? 1.0f : cell == 0 ? 0.0f : 0.5f;
+        }
+    for (DemosaicMethod method : kMethods) {
+        MicrogridReductionOptions options;
+        options.method = method;
+        const Image stokes = reduce_microgrid(mosaic, w, h, MicrogridPattern::sony_imx250mzr(), options);
+        EXPECT_NEAR(stokes.at("S0", 2, 2), 1.0f, 1e-6) << demosaic_method_name(method);
+        EXPECT_NEAR(stokes.at("S1", 2, 2), 1.0f, 1e-6) << demosaic_method_name(method);
+        EXPECT_NEAR(stokes.at("S2", 2, 2), 0.0f, 1e-6) << demosaic_method_name(method);
+        EXPECT_NEAR(stokes.at("DoLP", 2, 2), 1.0f, 1e-6) << demosaic_method_name(method);
+        const float aop_deg = stokes.at("AoP", 2, 2);  // [0°, 180°): 0° may come out as 180° − tiny
+        EXPECT_LT(std::min(aop_deg, 180.0f - aop_deg), 1e-4f) << demosaic_method_name(method);
+    }
+}
+
 TEST(MicrogridStokes, RecordsPatternAndMethodAndChecksTheAnalyzerModel) {
     const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
     const std::vector<float> mosaic(8 * 8, 10.0f);
