@@ -60,6 +60,7 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
         {"calibrate pose", {"--camera " + exr, "required"}},
         {"compare", {"--measured " + exr + " --simulated " + exr + " --registration sideways -o r", "--registration"}},
         {"demo", {"--no-such-option", "no-such-option"}},
+        {"demosaic", {png + " --pattern sony --method cubic -o d.exr", "--method"}},
         {"devices", {"surplus-argument", "surplus-argument"}},
         {"emissivity", {"flat_black_paint --wavelength-um 10 --angles-deg 0:100:10", "--angles-deg"}},
         {"extract-emissivity", {session + " " + png + " -o e.csv", "--calibration"}},
