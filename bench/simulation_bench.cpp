@@ -17,7 +17,7 @@
 //  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
 //    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) ± its standard error at
 //    8, 32, 128 spp, both estimators.
-//  - ReplicateCount (figures): noise at 64 and 256 spp for 4, 8, 16, 32 replicates.
+//  - ReplicateCount (figures): noise at 64 and 256 spp for 1, 4, 8, 16, 32 replicates.
 //  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare
 //    and panels_night (emission-dominated), and the fitted exponent of noise ∝ spp^a.
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
@@ -706,7 +706,7 @@ void BM_VarianceCalibration(benchmark::State& state) {
 BENCHMARK(BM_VarianceCalibration)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// What the replicate count costs: relative S1/S2 and S0 noise (two seeds, surface pixels) at 64 and
-/// 256 spp with R = 4, 8, 16, 32 replicates, on reflection_compare and panels_night at 160×128. Fewer
+/// 256 spp with R = 1, 4, 8, 16, 32 replicates, on reflection_compare and panels_night at 160×128. Fewer
 /// replicates keep more of the sequence's stratification (lower noise) but give the variance R − 1
 /// degrees of freedom. Figures, not speed.
 void BM_ReplicateCount(benchmark::State& state) {
@@ -715,7 +715,7 @@ void BM_ReplicateCount(benchmark::State& state) {
             Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
             scene.camera = scene.camera.resized(160, 128);
             for (const int spp : {64, 256})
-                for (const int replicates : {4, 8, 16, 32}) {
+                for (const int replicates : {1, 4, 8, 16, 32}) {
                     scene.sampling.samples_per_pixel = spp;
                     scene.sampling.replicates = replicates;
                     RenderPair pair;

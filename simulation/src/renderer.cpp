@@ -18,6 +18,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
 #include "tirpol/core/progress.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/emissivity_cache.h"
 #include "tirpol/simulation/rng.h"
@@ -52,6 +53,14 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const StokesFrame& from, co
     return out;
 }
 
+/// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects' ranges
+/// (290 K without objects).
+double reference_temperature_k(const Scene& scene) {
+    double sum = 0.0;
+    for (const auto& o : scene.objects) sum += 0.5 * (o.temperature.min_k() + o.temperature.max_k());
+    return scene.objects.empty() ? 290.0 : sum / static_cast<double>(scene.objects.size());
+}
+
 /// Everything a path needs that does not change during a render.
 class PathTracer {
 public:
@@ -62,15 +71,28 @@ public:
         // Increasing wavelengths: the emissivity tables' columns.
         std::sort(nodes.begin(), nodes.end(),
                   [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
+        double band_weight_um = 0.0;
+        for (const auto& node : nodes) band_weight_um += node.weight_um;
+        if (!(band_weight_um > 0.0))
+            fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
+        // Nodes are drawn ∝ weight·L_bb(λ, T_ref) with T_ref the objects' mean temperature: a thermal
+        // scene's radiance has nearly Planck's spectral shape, so L(λ)/L_bb(λ, T_ref) changes little
+        // from node to node and the spectral part of the noise, which a replicate of few points
+        // stratifies only coarsely, mostly cancels. Any T_ref is unbiased (the estimate divides by the
+        // probability); uniform in weight where Planck's law underflows (short bands, cold T_ref).
+        const double t_ref_k = reference_temperature_k(scene);
+        std::vector<double> shape;
+        for (const auto& node : nodes) shape.push_back(planck_radiance(node.wavelength_um, t_ref_k));
+        if (!std::all_of(shape.begin(), shape.end(), [](double b) { return std::isfinite(b) && b > 1e-30; }))
+            shape.assign(nodes.size(), 1.0);
         double total = 0.0;
-        for (const auto& node : nodes) {
-            m_wavelengths.push_back(node.wavelength_um);
-            total += node.weight_um;
+        for (std::size_t k = 0; k < nodes.size(); ++k) {
+            m_wavelengths.push_back(nodes[k].wavelength_um);
+            total += nodes[k].weight_um * shape[k];
             m_cdf.push_back(total);
         }
-        if (!(total > 0.0)) fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
         for (auto& c : m_cdf) c /= total;
-        m_band_weight_um = total;
+        for (std::size_t k = 0; k < nodes.size(); ++k) m_node_scale_um.push_back(total / shape[k]);
         for (const auto& m : scene.materials) {
             const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
             if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
@@ -199,7 +221,7 @@ public:
             origin = p;
             direction = wi;
         }
-        return radiance * m_band_weight_um;
+        return radiance * m_node_scale_um[k];
     }
 
 private:
@@ -217,7 +239,7 @@ private:
     RayRecorder* m_recorder;
     bool m_control_variate;
     std::vector<double> m_cdf, m_wavelengths;
-    double m_band_weight_um = 0.0;
+    std::vector<double> m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
 };
 

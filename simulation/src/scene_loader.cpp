@@ -200,10 +200,10 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
         s.estimator = *estimator;
     }
     s.replicates = node->get_or("replicates", s.replicates);
-    if (s.replicates < 2 || s.replicates > kMaxReplicates)
+    if (s.replicates < 1 || s.replicates > kMaxReplicates)
         node->at("replicates")
-            .fail(fmt::format("expected 2–{} independent replicates per pixel (their spread is the variance "
-                              "estimate, with replicates − 1 degrees of freedom), got {}",
+            .fail(fmt::format("expected 1–{} independent replicates per pixel (their spread is the variance "
+                              "estimate, with replicates − 1 degrees of freedom; 1: no variance), got {}",
                               kMaxReplicates, s.replicates));
     return s;
 }

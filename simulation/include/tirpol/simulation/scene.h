@@ -48,8 +48,9 @@ struct SamplingSettings {
     int max_bounces = kDefaultMaxBounces;
     std::uint64_t seed = 1;
     Estimator estimator = Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
-    /// Independently scrambled replicates of each pixel's samples (2–kMaxReplicates); a render uses
-    /// replicate_count() of them.
+    /// Independently scrambled replicates of each pixel's samples (1–kMaxReplicates; 1 keeps all of a
+    /// pixel's samples in one net, the lowest noise, and leaves the variance channels NaN); a render
+    /// uses replicate_count() of them.
     int replicates = kDefaultReplicates;
 };
 
