@@ -78,6 +78,19 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     }
     EXPECT_EQ(free_parameters, 2);  // n and σ
 
+    // The same paint fitted through the renderer (the sky colder at the zenith, the warm ground and the
+    // reflector at 5 °C are rendered, not assumed uniform): within 1σ and 5 % of the truth with
+    // χ²/dof ≤ 1.5, where eq 17's route is inconsistent with its own uncertainties.
+    EXPECT_GT(r.reduced_chi2, 5.0) << "eq 17's route";
+    ASSERT_TRUE(r.render_fit.usable);
+    ASSERT_EQ(r.render_fit.parameters.size(), 2u);
+    EXPECT_LE(r.render_fit.reduced_chi2, 1.5);
+    for (const auto& p : r.render_fit.parameters) {
+        EXPECT_LE(std::abs(p.fitted - p.truth), p.sigma) << p.name << " fitted " << p.fitted << " ± " << p.sigma;
+        EXPECT_LE(std::abs(p.fitted - p.truth), 0.05 * p.truth) << p.name << " fitted " << p.fitted;
+    }
+    EXPECT_TRUE(std::filesystem::is_regular_file(r.fit_comparison));
+
     // Camera geometry (tests/twin checks the recovery at the demo's resolution): recovered within its
     // uncertainty, better than the nominal pose; the comparison used the recovered model, no warp, and
     // the residual misalignment measured from the images is a fraction of a pixel.
@@ -125,8 +138,9 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     }
     // The provenance names those files with their checksums.
     const auto& inputs = json["provenance"]["inputs"];
-    ASSERT_EQ(inputs.size(), 4u);
+    ASSERT_EQ(inputs.size(), 5u);
     EXPECT_EQ(inputs[1]["path"], r.simulated_exr.string());
+    EXPECT_EQ(inputs[4]["path"], r.fit_comparison.string());
     EXPECT_EQ(inputs[1]["sha256"], report::sha256_hex(read_file(r.simulated_exr)));
 }
 

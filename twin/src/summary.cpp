@@ -2,6 +2,7 @@
 
 #include <fmt/printf.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tirpol/twin/twin.h"
@@ -34,6 +35,29 @@ std::string camera_geometry_summary(const CameraGeometryRecovery& c) {
 
 }  // namespace
 
+std::string paint_fit_comparison(const TwinResult& r) {
+    const TwinRenderFit& f = r.render_fit;
+    std::string out = fmt::sprintf(
+        "  paint, eq 17 route (3 emissivity samples) vs fit through the renderer (target Stokes in %zu views), 1σ:\n",
+        r.emissivity.size());
+    for (const auto& p : r.parameters) {
+        if (p.fixed) continue;
+        const auto q = std::find_if(f.parameters.begin(), f.parameters.end(),
+                                    [&](const TwinParameter& t) { return t.name == p.name; });
+        out += fmt::sprintf("    %-6s true %.4f | eq 17 %.4f ± %.4f (%.1fσ, %+.1f %%)", p.name.c_str(), p.truth,
+                            p.fitted, p.sigma, std::abs(p.fitted - p.truth) / p.sigma,
+                            100.0 * (p.fitted / p.truth - 1.0));
+        if (q != f.parameters.end())
+            out += fmt::sprintf(" | renderer %.4f ± %.4f (%.1fσ, %+.1f %%)", q->fitted, q->sigma,
+                                std::abs(q->fitted - q->truth) / q->sigma, 100.0 * (q->fitted / q->truth - 1.0));
+        out += "\n";
+    }
+    out += fmt::sprintf("    χ²/dof      | eq 17 %.2f (dof %d) | renderer %.2f (dof %d), %d renders%s\n", r.reduced_chi2,
+                        r.dof, f.reduced_chi2, f.dof, f.renders, f.usable ? "" : ", NOT CONVERGED");
+    for (const auto& w : f.warnings) out += "    renderer fit warning: " + w + "\n";
+    return out;
+}
+
 std::string twin_summary(const TwinResult& r) {
     std::string out;
     out += fmt::sprintf("  camera: %s\n", r.camera_transport.c_str());
@@ -63,7 +87,8 @@ std::string twin_summary(const TwinResult& r) {
     out += fmt::sprintf("    fixed:");
     for (const auto& p : r.parameters)
         if (p.fixed) out += fmt::sprintf(" %s=%g", p.name.c_str(), p.fitted);
-    out += fmt::sprintf("\n  comparison registration: %s, residual misalignment %.3f px (%s)",
+    out += "\n" + paint_fit_comparison(r);
+    out += fmt::sprintf("  comparison registration: %s, residual misalignment %.3f px (%s)",
                         report::to_string(r.registration.method).c_str(),
                         std::hypot(r.registration.residual_shift_px[0], r.registration.residual_shift_px[1]),
                         r.registration.note.c_str());

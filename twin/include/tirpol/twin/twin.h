@@ -61,6 +61,17 @@ struct TwinParameter {
     bool fixed = false;
 };
 
+/// The fit through the renderer (fitting/render_fit.h) of the same paint, beside eq 17's: the measured
+/// Stokes of the target in every view against renders of the scene with candidate n and σ.
+struct TwinRenderFit {
+    std::vector<TwinParameter> parameters;  ///< n and σ (k, ρ_D and the rest as in the scene's paint)
+    double reduced_chi2 = 0.0;
+    int dof = 0;
+    int renders = 0;
+    bool usable = false;
+    std::vector<std::string> warnings;
+};
+
 /// Agreement of measured and simulated Stokes in one region (from the comparison report).
 struct TwinRegionAgreement {
     std::string name;
@@ -84,16 +95,23 @@ struct TwinResult {
     std::vector<TwinEmissivity> emissivity;
     std::vector<TwinParameter> parameters;
     double reduced_chi2 = 0.0;
+    int dof = 0;                  ///< of the eq-17 fit
+    TwinRenderFit render_fit;     ///< the same paint fitted through the renderer
     CameraGeometryRecovery camera;      ///< the field camera's lens and pose (view 0), true and recovered
     report::Registration registration;  ///< of the comparison: by the recovered camera model, with the residual
     std::vector<TwinRegionAgreement> regions;
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
     std::filesystem::path report_regions;   ///< the report's regions as YAML (for `tirpol compare --rois`)
+    std::filesystem::path fit_comparison;   ///< fit/paint_fits.txt: eq 17 and the renderer fit side by side
     std::map<std::string, double> seconds;  ///< per stage
 };
 
 /// Runs the whole chain. Throws tirpol::Error naming the stage that failed.
 TwinResult run_twin(const TwinOptions& options);
+
+/// The paint's parameters from eq 17's route and from the fit through the renderer, side by side
+/// (true value, each fit's value ± 1σ, χ²/dof): lines of the summary and the file fit/paint_fits.txt.
+std::string paint_fit_comparison(const TwinResult& r);
 
 /// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
 std::string twin_summary(const TwinResult& r);
