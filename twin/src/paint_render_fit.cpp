@@ -12,6 +12,8 @@ namespace tirpol::twin {
 
 namespace {
 
+constexpr std::size_t kMinimumRegionPixels = 10;  ///< fewer: too few for a region mean to mean much
+
 /// The measurement as the fit sees it: S*_std² += the truth render's S*_var.
 Image measured_with_render_noise(const Image& measured, const Image& truth) {
     Image m = measured;
@@ -33,9 +35,15 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
     for (std::size_t v = 0; v < in.cameras.size(); ++v) {
         fitting::RenderFitView view{"view" + std::to_string(v), in.cameras[v],
                                     measured_with_render_noise((*in.measured)[v], (*in.truth)[v]),
-                                    {fitting::object_region((*in.truth)[v], in.target_object, material)}};
-        if (view.regions.back().pixels.empty()) continue;  // not visible in this view
-        views.push_back(std::move(view));
+                                    {}};
+        // The target and every other object painted with it (panels_night's rack): more pixels and
+        // view angles of the same paint.
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+            if (o != in.target_object && scene.objects[o].material != in.target_material) continue;
+            auto region = fitting::object_region((*in.truth)[v], o, scene.objects[o].name);
+            if (region.pixels.size() >= kMinimumRegionPixels) view.regions.push_back(std::move(region));
+        }
+        if (!view.regions.empty()) views.push_back(std::move(view));
     }
     fitting::RenderFitOptions o;
     constexpr double kNLower = 1.2, kNUpper = 2.5, kSigmaLower = 0.05, kSigmaUpper = 1.0;
@@ -45,6 +53,7 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
          std::clamp(in.initial_sigma, kSigmaLower, kSigmaUpper), {}}};
     o.seed = in.seed;
     o.threads = in.threads;
+    o.samples_per_pixel = in.samples_per_pixel;
     const fitting::RenderFitSummary s = fitting::fit_through_renderer(scene, views, o);
     TwinRenderFit r;
     const double truth[] = {in.true_n, in.true_sigma};

@@ -21,10 +21,12 @@ struct PaintRenderFitInputs {
     double initial_n = 1.5, initial_sigma = 0.2;     ///< the eq-17 fit: the first guess
     double true_n = 0.0, true_sigma = 0.0;
     std::uint64_t seed = 1;
+    int samples_per_pixel = 32;  ///< of the fit's renders (only the regions' pixels are traced)
     int threads = 0;
 };
 
-/// Fits n and σ of the target's material to the measured Stokes of the target region in every view.
+/// Fits n and σ of the target's material to the measured Stokes of the target and of every other
+/// object of the same material, in every view.
 /// The measured σ is the reduction's S*_std with the truth render's Monte Carlo variance added (the
 /// twin's measurement observes that render, so it carries its noise).
 TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in);

@@ -374,6 +374,9 @@ void fit_paint_by_rendering(Chain& c) {
         if (p.name == "sigma") in.initial_sigma = p.fitted, in.true_sigma = p.truth;
     }
     in.seed = c.scene.sampling.seed + 2;  // neither the truth's seed nor the re-render's
+    // Four times the truth's samples: only the regions' pixels are traced, so σ_render stays well
+    // below the measurement's for little time.
+    in.samples_per_pixel = 4 * c.opt.spp;
     in.threads = c.opt.threads;
     c.result.render_fit = fit_paint_through_renderer(in);
     c.result.fit_comparison = c.out / "fit" / "paint_fits.txt";
