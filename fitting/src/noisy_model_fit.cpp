@@ -62,9 +62,10 @@ public:
                  p.variance.size(), m_size);
         for (std::size_t j = 0; j < m_size; ++j)
             if (!std::isfinite(p.value[j]) || !std::isfinite(p.variance[j]) || p.variance[j] < 0.0)
-                fail("noisy model fit: the model's value {} is {} with variance {} at parameters ({}); expected "
-                     "finite values and variances ≥ 0",
-                     j, p.value[j], p.variance[j], fmt::join(theta, ", "));
+                fail(
+                    "noisy model fit: the model's value {} is {} with variance {} at parameters ({}); expected "
+                    "finite values and variances ≥ 0",
+                    j, p.value[j], p.variance[j], fmt::join(theta, ", "));
         ++m_evaluations;
         if (m_options.on_evaluation) m_options.on_evaluation(m_evaluations);
         // Only the last few points are asked again (residuals, then the Jacobian there).
@@ -152,7 +153,8 @@ private:
 
 std::vector<double> total_sigma(const std::vector<double>& measured_sigma, const std::vector<double>& model_variance) {
     std::vector<double> s(measured_sigma.size());
-    for (std::size_t j = 0; j < s.size(); ++j) s[j] = std::sqrt(measured_sigma[j] * measured_sigma[j] + model_variance[j]);
+    for (std::size_t j = 0; j < s.size(); ++j)
+        s[j] = std::sqrt(measured_sigma[j] * measured_sigma[j] + model_variance[j]);
     return s;
 }
 
@@ -249,8 +251,8 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
     for (std::size_t i = 0; i < p; ++i) {
         const double width = options.upper[i] - options.lower[i];
         if (theta[i] - options.lower[i] < 1e-6 * width || options.upper[i] - theta[i] < 1e-6 * width)
-            result.warnings.push_back(fmt::format("{} sits on a bound ({}): its σ is not meaningful", options.names[i],
-                                                  theta[i]));
+            result.warnings.push_back(
+                fmt::format("{} sits on a bound ({}): its σ is not meaningful", options.names[i], theta[i]));
     }
     if (result.reduced_chi2 > 3.0)
         result.warnings.push_back(fmt::format(

@@ -29,8 +29,8 @@ std::size_t material_index(const simulation::Scene& scene, const std::string& na
         if (scene.materials[i].name == name) return i;
         names += (i ? ", " : "") + scene.materials[i].name;
     }
-    fail("fit through the renderer: the scene {} has no material named '{}' (materials: {})", scene.file.string(),
-         name, names);
+    fail("fit through the renderer: the scene {} has no material named '{}' (materials: {})", scene.file.string(), name,
+         names);
 }
 
 const materials::MicrofacetBrdf& microfacet_of(const simulation::Scene& scene, const std::string& material) {
@@ -56,18 +56,25 @@ double current_value(const materials::MicrofacetBrdf& brdf, const std::string& m
         case MicrofacetParameter::n:
         case MicrofacetParameter::k: {
             if (!mp.index.is_constant())
-                fail("fit through the renderer: material '{}' has a tabulated refractive index ({}); n and k can be "
-                     "fitted only for a constant index",
-                     material, mp.index.source());
+                fail(
+                    "fit through the renderer: material '{}' has a tabulated refractive index ({}); n and k can be "
+                    "fitted only for a constant index",
+                    material, mp.index.source());
             const materials::ComplexIndex index = mp.index.at(10.0);
             return p == MicrofacetParameter::n ? index.n : index.k;
         }
-        case MicrofacetParameter::sigma: return constant_value(mp.sigma, material, p);
-        case MicrofacetParameter::bias: return constant_value(mp.bias, material, p);
-        case MicrofacetParameter::tau_deg: return constant_value(mp.tau_deg, material, p);
-        case MicrofacetParameter::omega_deg: return constant_value(mp.omega_deg, material, p);
-        case MicrofacetParameter::rho_d: return constant_value(mp.rho_d, material, p);
-        case MicrofacetParameter::rho_v: return constant_value(mp.rho_v, material, p);
+        case MicrofacetParameter::sigma:
+            return constant_value(mp.sigma, material, p);
+        case MicrofacetParameter::bias:
+            return constant_value(mp.bias, material, p);
+        case MicrofacetParameter::tau_deg:
+            return constant_value(mp.tau_deg, material, p);
+        case MicrofacetParameter::omega_deg:
+            return constant_value(mp.omega_deg, material, p);
+        case MicrofacetParameter::rho_d:
+            return constant_value(mp.rho_d, material, p);
+        case MicrofacetParameter::rho_v:
+            return constant_value(mp.rho_v, material, p);
     }
     fail("fit through the renderer: unknown parameter");
 }
@@ -112,9 +119,10 @@ void validate_views(const std::vector<RenderFitView>& views, const RenderFitOpti
         for (int k : options.stokes)
             for (const std::string& c : {std::string(kStokes[k]), std::string(kStokes[k]) + "_std"})
                 if (!m.has_channel(c))
-                    fail("fit through the renderer: view '{}': the measured image has no channel {} (expected S0 S1 "
-                         "S2 and S0_std S1_std S2_std)",
-                         v.name, c);
+                    fail(
+                        "fit through the renderer: view '{}': the measured image has no channel {} (expected S0 S1 "
+                        "S2 and S0_std S1_std S2_std)",
+                        v.name, c);
         if (v.regions.empty()) fail("fit through the renderer: view '{}' has no region to compare", v.name);
         const std::size_t size = static_cast<std::size_t>(m.width()) * static_cast<std::size_t>(m.height());
         for (const RenderFitRegion& r : v.regions) {
@@ -126,10 +134,11 @@ void validate_views(const std::vector<RenderFitView>& views, const RenderFitOpti
                 for (int k : options.stokes) {
                     const double s = m.channel(kStokes[k])[i], sd = m.channel(std::string(kStokes[k]) + "_std")[i];
                     if (!std::isfinite(s) || !std::isfinite(sd) || !(sd > 0.0))
-                        fail("fit through the renderer: view '{}': region '{}': pixel ({}, {}) has {} = {} ± {}; "
-                             "expected a finite value with a finite σ > 0",
-                             v.name, r.name, i % static_cast<std::size_t>(m.width()),
-                             i / static_cast<std::size_t>(m.width()), kStokes[k], s, sd);
+                        fail(
+                            "fit through the renderer: view '{}': region '{}': pixel ({}, {}) has {} = {} ± {}; "
+                            "expected a finite value with a finite σ > 0",
+                            v.name, r.name, i % static_cast<std::size_t>(m.width()),
+                            i / static_cast<std::size_t>(m.width()), kStokes[k], s, sd);
                 }
             }
         }
@@ -160,12 +169,24 @@ std::shared_ptr<const materials::PolarizedBrdf> microfacet_with(
                 mp.index = materials::RefractiveIndexTable::constant(index, mp.index.source());
                 break;
             }
-            case MicrofacetParameter::sigma: mp.sigma = value; break;
-            case MicrofacetParameter::bias: mp.bias = value; break;
-            case MicrofacetParameter::tau_deg: mp.tau_deg = value; break;
-            case MicrofacetParameter::omega_deg: mp.omega_deg = value; break;
-            case MicrofacetParameter::rho_d: mp.rho_d = value; break;
-            case MicrofacetParameter::rho_v: mp.rho_v = value; break;
+            case MicrofacetParameter::sigma:
+                mp.sigma = value;
+                break;
+            case MicrofacetParameter::bias:
+                mp.bias = value;
+                break;
+            case MicrofacetParameter::tau_deg:
+                mp.tau_deg = value;
+                break;
+            case MicrofacetParameter::omega_deg:
+                mp.omega_deg = value;
+                break;
+            case MicrofacetParameter::rho_d:
+                mp.rho_d = value;
+                break;
+            case MicrofacetParameter::rho_v:
+                mp.rho_v = value;
+                break;
         }
     }
     return std::make_shared<materials::MicrofacetBrdf>(std::move(mp));
@@ -291,7 +312,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
     }
 
     std::vector<double> measured, measured_variance;
-    for (const RenderFitView& v : views) append_values(v.measured, v, options, "_std", true, measured, measured_variance);
+    for (const RenderFitView& v : views)
+        append_values(v.measured, v, options, "_std", true, measured, measured_variance);
     std::vector<double> measured_sigma(measured_variance.size());
     std::transform(measured_variance.begin(), measured_variance.end(), measured_sigma.begin(),
                    [](double v) { return std::sqrt(v); });
@@ -300,7 +322,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
     if (options.samples_per_pixel > 0) candidate.sampling.samples_per_pixel = options.samples_per_pixel;
     candidate.sampling.seed = options.seed.value_or(scene.sampling.seed);
     std::map<std::string, std::size_t> fitted_materials;  // name → scene material index
-    for (const RenderFitParameter& p : options.parameters) fitted_materials[p.material] = material_index(scene, p.material);
+    for (const RenderFitParameter& p : options.parameters)
+        fitted_materials[p.material] = material_index(scene, p.material);
 
     // Only the regions' pixels are traced: a pixel's value does not depend on which others are rendered.
     std::vector<std::vector<std::uint8_t>> masks;
@@ -312,17 +335,20 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
 
     int renders = 0;
     // An upper bound for the bar: every solve's iterations, each with its finite differences.
-    const int per_point = 1 + static_cast<int>(fo.initial.size()) * (options.differences == FiniteDifference::central ? 2 : 1);
+    const int per_point =
+        1 + static_cast<int>(fo.initial.size()) * (options.differences == FiniteDifference::central ? 2 : 1);
     const std::size_t bar_total = static_cast<std::size_t>((options.reweight ? 2 : 1) * (options.max_iterations + 2) *
-                                                            per_point * static_cast<int>(views.size()));
+                                                           per_point * static_cast<int>(views.size()));
     std::unique_ptr<ProgressReporter> bar;
-    if (options.show_progress) bar = std::make_unique<ProgressReporter>("fit through the renderer (renders)", bar_total);
+    if (options.show_progress)
+        bar = std::make_unique<ProgressReporter>("fit through the renderer (renders)", bar_total);
 
     const NoisyModel model = [&](const std::vector<double>& theta) {
         for (const auto& [material, index] : fitted_materials) {
             std::vector<std::pair<MicrofacetParameter, double>> values;
             for (std::size_t i = 0; i < options.parameters.size(); ++i)
-                if (options.parameters[i].material == material) values.emplace_back(options.parameters[i].parameter, theta[i]);
+                if (options.parameters[i].material == material)
+                    values.emplace_back(options.parameters[i].parameter, theta[i]);
             candidate.materials[index].brdf = microfacet_with(scene, material, values);
         }
         simulation::RenderOptions ro;
@@ -330,8 +356,10 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
         ro.cancel = options.cancel;
         // The first render loads the unchanged materials' tables (disk cache); later ones keep the
         // candidates' tables in memory only.
-        if (renders > 0) ro.emissivity_cache_dir = std::filesystem::path();
-        else ro.emissivity_cache_dir = options.emissivity_cache_dir;
+        if (renders > 0)
+            ro.emissivity_cache_dir = std::filesystem::path();
+        else
+            ro.emissivity_cache_dir = options.emissivity_cache_dir;
         NoisyPrediction prediction;
         for (std::size_t v = 0; v < views.size(); ++v) {
             candidate.camera = views[v].camera;

@@ -29,11 +29,10 @@ RenderFitView view_of(const simulation::Scene& scene, const py::dict& d, std::si
     }
     if (!d.contains("measured")) fail("{}: no 'measured' image (S0 S1 S2 S0_std S1_std S2_std)", where);
     Image measured = image_from_python(d["measured"]);
-    const simulation::Camera camera =
-        d.contains("camera")
-            ? simulation::Camera::from_config(
-                  config_from_python(d["camera"], std::filesystem::path(fmt::format("<{}.camera>", where))))
-            : scene.camera.resized(measured.width(), measured.height());
+    const simulation::Camera camera = d.contains("camera")
+                                          ? simulation::Camera::from_config(config_from_python(
+                                                d["camera"], std::filesystem::path(fmt::format("<{}.camera>", where))))
+                                          : scene.camera.resized(measured.width(), measured.height());
     RenderFitView v{d.contains("name") ? d["name"].cast<std::string>() : where, camera, std::move(measured), {}};
     if (d.contains("objects"))
         v.regions = object_regions(scene, v.camera, d["objects"].cast<std::vector<std::string>>());
@@ -91,7 +90,8 @@ void bind_render_fit(py::module_& m) {
            const std::vector<int>& stokes, bool pixels, int samples_per_pixel, std::optional<std::uint64_t> seed,
            bool forward, int max_iterations, int threads) {
             RenderFitOptions o;
-            for (const auto& p : parameters) o.parameters.push_back(parameter_of(p.cast<py::dict>(), o.parameters.size()));
+            for (const auto& p : parameters)
+                o.parameters.push_back(parameter_of(p.cast<py::dict>(), o.parameters.size()));
             std::vector<RenderFitView> vs;
             for (const auto& v : views) vs.push_back(view_of(scene, v.cast<py::dict>(), vs.size()));
             o.stokes = stokes;

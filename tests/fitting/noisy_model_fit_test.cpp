@@ -3,6 +3,8 @@
 // (common random numbers: one fixed offset per fit) enters the weights — Press et al., Numerical
 // Recipes 3rd ed., §15.4–15.5.
 
+#include "tirpol/fitting/noisy_model_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -14,7 +16,6 @@
 
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
-#include "tirpol/fitting/noisy_model_fit.h"
 
 using namespace tirpol;
 using namespace tirpol::fitting;
@@ -44,7 +45,7 @@ std::string error_of(const std::function<void()>& f) {
 
 // A straight line y = a + b·x with measurement σ_m and a model variance σ_s² at every point: the
 // fit's covariance must be the closed form (XᵀWX)⁻¹ with W = 1/(σ_m² + σ_s²), and its values the
-// weighted normal equations' solution (finite differences are exact for a linear model).
+// weighted normal equations' solution to 1 % of σ (finite differences are exact for a linear model).
 TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
     const int m = 12;
     const double sigma_m = 0.1, sigma_s = 0.05;
@@ -68,7 +69,9 @@ TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
     const Eigen::Matrix2d expected = (w * X.transpose() * X).inverse();
     const Eigen::Vector2d solution = expected * (w * X.transpose() * Y);
     for (int i = 0; i < 2; ++i) {
-        EXPECT_NEAR(r.values[i], solution(i), 1e-6);
+        // The solver stops at relative parameter changes of 1e-4 (noisy models: finer is noise), so the
+        // values agree to a small fraction of their σ, the covariance to rounding.
+        EXPECT_NEAR(r.values[i], solution(i), 0.01 * std::sqrt(expected(i, i)));
         for (int j = 0; j < 2; ++j) EXPECT_NEAR(r.covariance(i, j), expected(i, j), 1e-6 * std::abs(expected(i, i)));
     }
     EXPECT_EQ(r.dof, m - 2);
@@ -135,9 +138,10 @@ TEST(NoisyModelFit, BadInputNamesTheParameterAndWhatWasExpected) {
     EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, sy, o); }).find("a: finite-difference step 0"),
               std::string::npos);
     o = two_parameter_options(0.0, 0.0);
-    EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, {0.1, 0.0, 0.1}, o); }).find("finite σ > 0"),
-              std::string::npos);
-    EXPECT_NE(error_of([&] { fit_noisy_model(flat, {1.0, 2.0}, {0.1, 0.1}, o); }).find("expected at least 3"),
+    EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, {0.1, 0.0, 0.1}, o); }).find("finite σ > 0"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  fit_noisy_model(flat, {1.0, 2.0}, {0.1, 0.1}, o);
+              }).find("expected at least 3"),
               std::string::npos);
     const NoisyModel short_model = [](const std::vector<double>&) { return NoisyPrediction{{1.0}, {0.0}}; };
     EXPECT_NE(error_of([&] { fit_noisy_model(short_model, y, sy, o); }).find("expected 3"), std::string::npos);

@@ -6,6 +6,8 @@
 // Development used panels_night (the twin's views); ball_on_snow_night was written before it was run
 // and not tuned afterwards.
 
+#include "tirpol/fitting/render_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +16,6 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
-#include "tirpol/fitting/render_fit.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/simulation/renderer.h"
 
@@ -54,8 +55,8 @@ std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
     double cx = 0.0, cy = 0.0;
     for (std::size_t i : r.pixels) cx += static_cast<double>(i % width), cy += static_cast<double>(i / width);
     cx /= static_cast<double>(r.pixels.size()), cy /= static_cast<double>(r.pixels.size());
-    std::vector<RenderFitRegion> out{{r.name + "_top", {}}, {r.name + "_right", {}}, {r.name + "_bottom", {}},
-                                     {r.name + "_left", {}}};
+    std::vector<RenderFitRegion> out{
+        {r.name + "_top", {}}, {r.name + "_right", {}}, {r.name + "_bottom", {}}, {r.name + "_left", {}}};
     for (std::size_t i : r.pixels) {
         const double dx = static_cast<double>(i % width) - cx, dy = static_cast<double>(i / width) - cy;
         const int q = std::abs(dy) > std::abs(dx) ? (dy < 0 ? 0 : 2) : (dx > 0 ? 1 : 3);

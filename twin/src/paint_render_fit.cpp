@@ -33,7 +33,8 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
     const std::string material = scene.materials[in.target_material].name;
     std::vector<fitting::RenderFitView> views;
     for (std::size_t v = 0; v < in.cameras.size(); ++v) {
-        fitting::RenderFitView view{"view" + std::to_string(v), in.cameras[v],
+        fitting::RenderFitView view{"view" + std::to_string(v),
+                                    in.cameras[v],
                                     measured_with_render_noise((*in.measured)[v], (*in.truth)[v]),
                                     {}};
         // The target and every other object painted with it (panels_night's rack): more pixels and
@@ -49,8 +50,12 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
     constexpr double kNLower = 1.2, kNUpper = 2.5, kSigmaLower = 0.05, kSigmaUpper = 1.0;
     o.parameters = {
         {material, fitting::MicrofacetParameter::n, kNLower, kNUpper, std::clamp(in.initial_n, kNLower, kNUpper), {}},
-        {material, fitting::MicrofacetParameter::sigma, kSigmaLower, kSigmaUpper,
-         std::clamp(in.initial_sigma, kSigmaLower, kSigmaUpper), {}}};
+        {material,
+         fitting::MicrofacetParameter::sigma,
+         kSigmaLower,
+         kSigmaUpper,
+         std::clamp(in.initial_sigma, kSigmaLower, kSigmaUpper),
+         {}}};
     o.seed = in.seed;
     o.threads = in.threads;
     o.samples_per_pixel = in.samples_per_pixel;

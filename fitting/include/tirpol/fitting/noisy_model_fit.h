@@ -55,12 +55,12 @@ struct NoisyModelFitOptions {
 
 struct NoisyModelFitResult {
     std::vector<double> values;
-    std::vector<double> sigma;    ///< √diag(covariance); 0 when the covariance is unavailable
-    Eigen::MatrixXd covariance;   ///< (JᵀWJ)⁻¹ at the solution, W from measurement and model variance
+    std::vector<double> sigma;   ///< √diag(covariance); 0 when the covariance is unavailable
+    Eigen::MatrixXd covariance;  ///< (JᵀWJ)⁻¹ at the solution, W from measurement and model variance
     Eigen::MatrixXd correlation;
     bool covariance_available = false;
-    std::vector<double> model;           ///< model values at the solution
-    std::vector<double> model_variance;  ///< their variances (the weights of the last solve)
+    std::vector<double> model;                 ///< model values at the solution
+    std::vector<double> model_variance;        ///< their variances (the weights of the last solve)
     std::vector<double> normalized_residuals;  ///< (measured − model)/√(σ_meas² + σ_model²)
     double chi2 = 0.0;
     int dof = 0;  ///< residuals − parameters
@@ -68,8 +68,8 @@ struct NoisyModelFitResult {
     bool usable = false;      ///< ceres::Solver::Summary::IsSolutionUsable of the last solve
     std::string termination;  ///< its termination type and message
     std::string solver_report;
-    int iterations = 0;  ///< over all solves
-    int evaluations = 0;  ///< model evaluations, the finite differences included
+    int iterations = 0;                 ///< over all solves
+    int evaluations = 0;                ///< model evaluations, the finite differences included
     std::vector<std::string> warnings;  ///< parameters on a bound, rank-deficient Jacobian, χ²/dof > 3
 };
 

@@ -66,13 +66,13 @@ struct RenderFitOptions {
     std::vector<RenderFitParameter> parameters;
     std::vector<int> stokes = {0, 1, 2};  ///< which of S0, S1, S2 to compare
     RenderFitResiduals residuals = RenderFitResiduals::region_means;
-    int samples_per_pixel = 0;  ///< 0: the scene's
+    int samples_per_pixel = 0;          ///< 0: the scene's
     std::optional<std::uint64_t> seed;  ///< the one seed of every evaluation; unset: the scene's
     FiniteDifference differences = FiniteDifference::central;
     int max_iterations = 20;
-    bool reweight = true;  ///< NoisyModelFitOptions::reweight
-    int threads = 0;       ///< render threads (0: all cores)
-    bool show_progress = false;  ///< a progress bar of the renders on stderr (core/progress.h)
+    bool reweight = true;                       ///< NoisyModelFitOptions::reweight
+    int threads = 0;                            ///< render threads (0: all cores)
+    bool show_progress = false;                 ///< a progress bar of the renders on stderr (core/progress.h)
     const std::atomic<bool>* cancel = nullptr;  ///< checked before every render; then throws tirpol::Cancelled
     /// Emissivity-table cache folder for the first render (simulation::RenderOptions); later renders
     /// keep tables in memory only, so the candidate materials' tables do not fill the disk cache.
