@@ -6,11 +6,18 @@
 //  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
-//    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
-//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped,
-//    after checking per object that both renderers' mean Stokes agree (else no ratio).
+//    polarization noise of 1 %, measured from two renders with different seeds, each renderer run at
+//    doubling spp from 16 until its noise is ≤ 1 % and its time interpolated in log-log between the two
+//    runs that bracket 1 % (no 1/√N extrapolation); the same for Mitsuba 3 with each of its samplers
+//    (independent, stratified, multijitter, orthogonal, ldsampler) when TIRPOL_MITSUBA names its
+//    `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per object that
+//    both renderers' mean Stokes agree (else no ratio); the ratio against the best sampler is printed.
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
+//  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
+//    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) at 8, 32, 128 spp.
+//  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare
+//    and panels_night (emission-dominated), and the fitted exponent of noise ∝ spp^a.
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
@@ -26,6 +33,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -381,7 +389,11 @@ Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const Re
 /// Writes Mitsuba 3's version of reflection_compare.yaml and its envmap of the scene's sky. Mitsuba's
 /// envmap is a lat-long image, y-up (rotated here to tirpol's z-up), whose row r lies at zenith angle
 /// π·r/(rows − 1) (emitters/envmap.cpp: rows are samples from pole to pole, not pixel centres).
-std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene) {
+/// `sampler` is the Mitsuba sampler plugin (independent, stratified, multijitter, orthogonal, ldsampler);
+/// Mitsuba rounds sample counts that a sampler cannot take (stratified: a square; orthogonal: a prime
+/// squared), which does not matter here since times are interpolated against the measured noise.
+std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene,
+                                          const std::string& sampler) {
     const int w = 256, h = 129;
     Image env(w, h);
     for (const char* c : {"R", "G", "B"}) env.add_channel(c);
@@ -404,7 +416,7 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
   <sensor type="perspective">
     <float name="fov" value="40"/><string name="fov_axis" value="x"/>
     <transform name="to_world"><lookat origin="0, -5, 1.5" target="0, 0, 0.6" up="0, 0, 1"/></transform>
-    <sampler type="independent"><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
+    <sampler type=")" << sampler << R"("><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
     <film type="hdrfilm"><integer name="width" value="320"/><integer name="height" value="256"/>
       <string name="component_format" value="float32"/><rfilter type="box"/></film>
   </sensor>
@@ -421,6 +433,23 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
 </scene>
 )";
     return dir / "scene.xml";
+}
+
+/// One renderer's runs at doubling spp until the relative noise falls to the target.
+struct NoiseRun {
+    int spp = 0;
+    double noise = 0.0, seconds = 0.0, cpu_seconds = 0.0;
+};
+
+/// Seconds (wall, CPU) to `target` noise, interpolated in log-log between the two runs that bracket it
+/// (the last run is at or below the target, the one before above it); no 1/√N extrapolation.
+std::pair<double, double> bracketed_seconds(const std::vector<NoiseRun>& runs, double target) {
+    if (runs.size() < 2 || runs.back().noise > target || runs[runs.size() - 2].noise <= target)
+        throw Error("no pair of runs brackets the target noise");
+    const NoiseRun &lo = runs[runs.size() - 2], &hi = runs.back();
+    const double f = std::log(target / lo.noise) / std::log(hi.noise / lo.noise);
+    const auto interpolate = [f](double a, double b) { return std::exp(std::log(a) + f * (std::log(b) - std::log(a))); };
+    return {interpolate(lo.seconds, hi.seconds), interpolate(lo.cpu_seconds, hi.cpu_seconds)};
 }
 
 /// Seconds of Mitsuba's "Rendering finished. (took 2.3456s)" log line (util::time_string's ms/s/m/h).
@@ -492,10 +521,8 @@ RenderPair render_mitsuba(const std::string& executable, const std::filesystem::
     return pair;
 }
 
-/// Time to a relative linear-polarization noise of 1 %, from a pair's noise at its spp (σ ∝ 1/√spp).
-double equal_noise_seconds(double seconds, double relative_noise) {
-    return seconds * std::pow(relative_noise / 0.01, 2.0);
-}
+constexpr double kTargetNoise = 0.01;  // relative S1/S2 noise both renderers are run to
+constexpr int kMaxBracketSpp = 1 << 14;
 
 // The two renderers' means may differ by their documented model differences (Mitsuba's uncorrelated
 // Smith G on the rough plane: −1 % in S0 at grazing rows, −0.4 % over the plane); a mistranslated
@@ -504,34 +531,45 @@ constexpr double kMaxRelativeS0Difference = 0.01;
 constexpr double kMaxRatioDifference = 0.005;
 
 void BM_ReflectionEqualNoise(benchmark::State& state) {
-    constexpr int kSpp = 16;
     const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     Scene scene = load_scene(find_config("scenes/reflection_compare.yaml"));
-    scene.sampling.samples_per_pixel = kSpp;
     RenderOptions options;
     options.threads = threads;
-    RenderPair tirpol;
+    std::vector<bool> mask;
+    std::vector<NoiseRun> tirpol_runs;
+    RenderPair tirpol;  // the last run: its means are the ones compared with Mitsuba's
     for (auto _ : state) {
-        RenderStatistics sa, sb;
-        scene.sampling.seed = 1;
-        tirpol.a = render(scene, options, &sa);
-        scene.sampling.seed = 2;
-        tirpol.b = render(scene, options, &sb);
-        tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
-        tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
+        tirpol_runs.clear();
+        for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
+            RenderStatistics sa, sb;
+            scene.sampling.samples_per_pixel = spp;
+            scene.sampling.seed = 1;
+            tirpol.a = render(scene, options, &sa);
+            scene.sampling.seed = 2;
+            tirpol.b = render(scene, options, &sb);
+            if (mask.empty()) {
+                mask.resize(tirpol.a.pixel_count());
+                for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
+            }
+            tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
+            tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
+            tirpol_runs.push_back({spp, relative_linear_noise(tirpol, mask), tirpol.seconds, tirpol.cpu_seconds});
+            std::printf("tirpol %5d spp, %d threads: %.2f s per render (%.2f CPU s), relative S1/S2 noise %.4f\n", spp,
+                        threads, tirpol.seconds, tirpol.cpu_seconds, tirpol_runs.back().noise);
+            if (tirpol_runs.back().noise <= kTargetNoise) break;
+        }
         state.SetIterationTime(tirpol.seconds);
     }
-    std::vector<bool> mask(tirpol.a.pixel_count());
-    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
-    const double noise = relative_linear_noise(tirpol, mask);
-    const double tirpol_time = equal_noise_seconds(tirpol.seconds, noise);
+    if (tirpol_runs.size() < 2) {  // 16 spp already below 1 %: no bracket from above
+        state.SkipWithError("tirpol's first run is already below the target noise: start lower");
+        return;
+    }
+    const auto [tirpol_s, tirpol_cpu_s] = bracketed_seconds(tirpol_runs, kTargetNoise);
     state.counters["threads"] = threads;
-    state.counters["tirpol_relative_noise"] = noise;
-    state.counters["tirpol_equal_noise_s"] = tirpol_time;
-    std::printf(
-        "reflection_compare 320x256 %d spp, %d threads: tirpol %.2f s per render (%.2f CPU s), relative "
-        "S1/S2 noise %.4f -> %.2f s to 1 %%\n",
-        kSpp, threads, tirpol.seconds, tirpol.cpu_seconds, noise, tirpol_time);
+    state.counters["tirpol_equal_noise_s"] = tirpol_s;
+    state.counters["tirpol_equal_noise_cpu_s"] = tirpol_cpu_s;
+    std::printf("tirpol to 1 %% (log-log between %d and %d spp): %.2f s wall, %.2f CPU s\n",
+                tirpol_runs[tirpol_runs.size() - 2].spp, tirpol_runs.back().spp, tirpol_s, tirpol_cpu_s);
 
     const char* mitsuba = std::getenv("TIRPOL_MITSUBA");
     if (!mitsuba || !*mitsuba) {
@@ -542,35 +580,153 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     }
     const auto dir = std::filesystem::temp_directory_path() / "tirpol_mitsuba_bench";
     std::filesystem::create_directories(dir);
-    RenderPair other;
-    try {
-        other = render_mitsuba(mitsuba, write_mitsuba_scene(dir, scene), kSpp, threads, scene.camera);
-    } catch (const Error& e) {
-        state.SkipWithError(e.what());
-        return;
+    double best_cpu_s = std::numeric_limits<double>::infinity();
+    std::string best;
+    for (const std::string sampler : {"independent", "stratified", "multijitter", "orthogonal", "ldsampler"}) {
+        std::vector<NoiseRun> runs;
+        RenderPair other;
+        try {
+            const auto xml = write_mitsuba_scene(dir, scene, sampler);
+            for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
+                other = render_mitsuba(mitsuba, xml, spp, threads, scene.camera);
+                runs.push_back({spp, relative_linear_noise(other, mask), other.seconds, other.cpu_seconds});
+                std::printf("Mitsuba %-11s %5d spp: %.2f s per render (%.2f CPU s), relative noise %.4f\n",
+                            sampler.c_str(), spp, other.seconds, other.cpu_seconds, runs.back().noise);
+                if (runs.back().noise <= kTargetNoise) break;
+            }
+            const Agreement agreement = check_agreement(scene, tirpol, other);
+            if (agreement.max_relative_ds0 > kMaxRelativeS0Difference ||
+                agreement.max_ratio_difference > kMaxRatioDifference) {
+                state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
+                return;
+            }
+            const auto [other_s, other_cpu_s] = bracketed_seconds(runs, kTargetNoise);
+            std::printf("Mitsuba %-11s to 1 %%: %.2f s wall, %.2f CPU s; tirpol/Mitsuba %.2f (wall), %.2f (CPU)\n",
+                        sampler.c_str(), other_s, other_cpu_s, tirpol_s / other_s, tirpol_cpu_s / other_cpu_s);
+            state.counters["tirpol_over_" + sampler + "_cpu"] = tirpol_cpu_s / other_cpu_s;
+            if (other_cpu_s < best_cpu_s) {
+                best_cpu_s = other_cpu_s;
+                best = sampler;
+            }
+        } catch (const Error& e) {
+            state.SkipWithError(e.what());
+            return;
+        }
     }
-    const Agreement agreement = check_agreement(scene, tirpol, other);
-    state.counters["agree_max_abs_z"] = agreement.max_abs_z;
-    state.counters["agree_max_rel_dS0"] = agreement.max_relative_ds0;
-    state.counters["agree_max_d_ratio"] = agreement.max_ratio_difference;
-    if (agreement.max_relative_ds0 > kMaxRelativeS0Difference || agreement.max_ratio_difference > kMaxRatioDifference) {
-        state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
-        return;
-    }
-    const double other_noise = relative_linear_noise(other, mask);
-    const double other_time = equal_noise_seconds(other.seconds, other_noise);
-    const double cpu_ratio =
-        equal_noise_seconds(tirpol.cpu_seconds, noise) / equal_noise_seconds(other.cpu_seconds, other_noise);
-    state.counters["mitsuba_relative_noise"] = other_noise;
-    state.counters["mitsuba_equal_noise_s"] = other_time;
-    state.counters["tirpol_over_mitsuba"] = tirpol_time / other_time;
-    state.counters["tirpol_over_mitsuba_cpu"] = cpu_ratio;
-    std::printf(
-        "Mitsuba 3 %d spp, %d threads: %.2f s per render (%.2f CPU s), relative noise %.4f -> %.2f s to 1 %%\n"
-        "tirpol/Mitsuba equal-noise time ratio %.2f (wall), %.2f (CPU)\n",
-        kSpp, threads, other.seconds, other.cpu_seconds, other_noise, other_time, tirpol_time / other_time, cpu_ratio);
+    state.counters["tirpol_over_best_mitsuba_cpu"] = tirpol_cpu_s / best_cpu_s;
+    std::printf("tirpol/Mitsuba (best sampler: %s) equal-noise CPU time ratio at 1 %%: %.2f\n", best.c_str(),
+                tirpol_cpu_s / best_cpu_s);
 }
 BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+// ---- VarianceCalibration and ConvergenceExponent: the sampler's error bars and convergence ----
+
+/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), two renders
+/// with different seeds: 1 where the variance channels are unbiased.
+double two_seed_ratio(const Image& a, const Image& b, const std::string& c, float material) {
+    double diff = 0.0, var = 0.0;
+    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+        if (a.channel("material_id")[i] != material) continue;
+        const double d = a.channel(c)[i] - b.channel(c)[i];
+        diff += d * d;
+        var += a.channel(c + "_var")[i] + b.channel(c + "_var")[i];
+    }
+    return diff / var;
+}
+
+/// Per material region of panels_night, ball_on_snow_night and vehicles_night at 160×128 (regions of
+/// ≥ 500 pixels), at 8, 32 and 128 spp, both estimators: the two-seed ratio of S0, S1, S2 and the
+/// share of |z| = |a − b|/√(var_a + var_b) beyond 5. Figures, not speed.
+void BM_VarianceCalibration(benchmark::State& state) {
+    for (auto _ : state) {
+        for (const char* name : {"panels_night", "ball_on_snow_night", "vehicles_night"}) {
+            Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
+            scene.camera = scene.camera.resized(160, 128);
+            for (const int spp : {8, 32, 128})
+                for (const bool cv : {false, true}) {
+                    RenderOptions options;
+                    options.control_variate = cv;
+                    scene.sampling.samples_per_pixel = spp;
+                    scene.sampling.seed = 1;
+                    const Image a = render(scene, options);
+                    scene.sampling.seed = 2;
+                    const Image b = render(scene, options);
+                    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+                        const auto id = static_cast<float>(m);
+                        std::size_t pixels = 0, beyond5 = 0, values = 0;
+                        for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+                            if (a.channel("material_id")[i] != id) continue;
+                            ++pixels;
+                            for (const char* c : {"S0", "S1", "S2"}) {
+                                const double d = a.channel(c)[i] - b.channel(c)[i];
+                                const double v = a.channel(std::string(c) + "_var")[i] +
+                                                 b.channel(std::string(c) + "_var")[i];
+                                ++values;
+                                beyond5 += d * d > 25.0 * v ? 1 : 0;
+                            }
+                        }
+                        if (pixels < 500) continue;
+                        std::printf("%-19s %3d spp %-15s %-24s %5zu px: ratio S0 %.3f S1 %.3f S2 %.3f, |z|>5 %.3f %%\n",
+                                    name, spp, cv ? "control-variate" : "plain", scene.materials[m].name.c_str(),
+                                    pixels, two_seed_ratio(a, b, "S0", id), two_seed_ratio(a, b, "S1", id),
+                                    two_seed_ratio(a, b, "S2", id), 100.0 * static_cast<double>(beyond5) / values);
+                    }
+                }
+        }
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_VarianceCalibration)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent of a
+/// least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
+void convergence_exponent(Scene scene, const char* name) {
+    std::vector<double> log_spp, log_noise;
+    for (const int spp : {16, 64, 256}) {
+        scene.sampling.samples_per_pixel = spp;
+        RenderPair pair;
+        RenderStatistics stats;
+        scene.sampling.seed = 1;
+        pair.a = render(scene, {}, &stats);
+        scene.sampling.seed = 2;
+        pair.b = render(scene);
+        std::vector<bool> mask(pair.a.pixel_count());
+        double diff = 0.0, var = 0.0;
+        for (std::size_t i = 0; i < mask.size(); ++i) {
+            mask[i] = pair.a.channel("object_id")[i] >= 0.0f;
+            if (!mask[i]) continue;
+            for (const char* c : {"S1", "S2"}) {
+                const double d = pair.a.channel(c)[i] - pair.b.channel(c)[i];
+                diff += d * d;
+                var += pair.a.channel(std::string(c) + "_var")[i] + pair.b.channel(std::string(c) + "_var")[i];
+            }
+        }
+        const double noise = relative_linear_noise(pair, mask);
+        log_spp.push_back(std::log(spp));
+        log_noise.push_back(std::log(noise));
+        std::printf("%s %d spp: relative S1/S2 noise %.5f, two-seed variance ratio %.3f, %.3f CPU s per render\n", name,
+                    spp, noise, diff / var, stats.trace_cpu_seconds);
+    }
+    const double mx = std::accumulate(log_spp.begin(), log_spp.end(), 0.0) / 3.0;
+    const double my = std::accumulate(log_noise.begin(), log_noise.end(), 0.0) / 3.0;
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        sxy += (log_spp[k] - mx) * (log_noise[k] - my);
+        sxx += (log_spp[k] - mx) * (log_spp[k] - mx);
+    }
+    std::printf("%s: noise ∝ spp^%.3f (16 -> 256 spp; goal ≤ −0.8)\n", name, sxy / sxx);
+}
+
+void BM_ConvergenceExponent(benchmark::State& state) {
+    for (auto _ : state) {
+        convergence_exponent(load_scene(find_config("scenes/reflection_compare.yaml")), "reflection_compare 320x256");
+        Scene panels = load_scene(find_config("scenes/panels_night.yaml"));
+        panels.camera = panels.camera.resized(160, 128);
+        convergence_exponent(panels, "panels_night 160x128");
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_ConvergenceExponent)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 }  // namespace
 
