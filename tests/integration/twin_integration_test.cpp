@@ -148,7 +148,7 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
 
 /// The twin at the size of the tests, compared with a render of the scene file's own materials: the
 /// only model error is what `perturb` changes in the truth. 16 samples per pixel: one point in each of the
-/// renderer's 16 replicates (what 4 rounded up to), so the render's σ has 15 degrees of freedom.
+/// renderer's 16 replicates, so each pixel's render σ has 15 degrees of freedom.
 /// The report is designed for a 5 % false-alarm rate over its nine regions together (Šidák: 0.57 % per
 /// region), so that "no region flagged" and "only the perturbed region flagged" are what a correct report
 /// gives 95 % of the time over noise realisations, not the 63 % of the per-region default (1 − 0.95⁹).
