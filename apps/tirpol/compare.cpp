@@ -1,8 +1,9 @@
 // `tirpol compare`: measured vs simulated Stokes images → a self-contained HTML report, report.json
 // and PNGs (docs/report.md).
 
-#include <cmath>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -86,22 +87,24 @@ void run_compare(const CompareArgs& a) {
                 std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
     if (!g.note.empty()) std::printf("  %s\n", g.note.c_str());
     std::printf("%s\n", summary_paragraph(r).c_str());
-    std::printf("%-16s %9s %16s %-26s %-26s %-26s %s\n", "region", "pixels", "S0 bias [K]", "S0 diff/σ_mean (detect)",
-                "S1 diff/σ_mean (detect)", "S2 diff/σ_mean (detect)", "verdict");
+    // fmt pads by displayed width (σ and ± are one column, two bytes); the name column fits the longest name.
+    std::size_t name_width = 16;
+    for (const auto& region : r.regions) name_width = std::max(name_width, region.name.size());
+    fmt::print("{:<{}} {:>7} {:>14} {:<26} {:<26} {:<26} {}\n", "region", name_width, "pixels", "S0 bias [K]",
+               "S0 diff/σ_mean (detect)", "S1 diff/σ_mean (detect)", "S2 diff/σ_mean (detect)", "verdict");
     for (const auto& region : r.regions) {
         const auto& k = region.s0_bias_k;
         const std::string kelvin = k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
-        std::printf("%-16s %9zu %16s", region.name.c_str(), region.pixel_count, kelvin.c_str());
+        fmt::print("{:<{}} {:>7} {:>14}", region.name, name_width, region.pixel_count, kelvin);
         for (const auto& q : kZQuantities) {
             const auto& v = region.verdicts.at(q);
-            std::printf(" %-26s", fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
+            fmt::print(" {:<26}", fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
                                               v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
                                               v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
                                               : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
-                                                                                               : "")
-                                      .c_str());
+                                                                                               : ""));
         }
-        std::printf(" %s\n", to_string(region.verdict).c_str());
+        fmt::print(" {}\n", to_string(region.verdict));
     }
     for (const auto& note : r.notes) std::printf("note: %s\n", note.c_str());
     std::printf("report: %s\n", r.html.string().c_str());
