@@ -15,7 +15,9 @@
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 //  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
-//    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) at 8, 32, 128 spp.
+//    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) ± its standard error at
+//    8, 32, 128 spp, both estimators.
+//  - ReplicateCount (figures): noise at 64 and 256 spp for 4, 8, 16, 32 replicates.
 //  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare
 //    and panels_night (emission-dominated), and the fitted exponent of noise ∝ spp^a.
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
@@ -621,62 +623,124 @@ BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchma
 
 // ---- VarianceCalibration and ConvergenceExponent: the sampler's error bars and convergence ----
 
-/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), two renders
-/// with different seeds: 1 where the variance channels are unbiased.
-double two_seed_ratio(const Image& a, const Image& b, const std::string& c, float material) {
-    double diff = 0.0, var = 0.0;
-    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
-        if (a.channel("material_id")[i] != material) continue;
-        const double d = a.channel(c)[i] - b.channel(c)[i];
-        diff += d * d;
-        var += a.channel(c + "_var")[i] + b.channel(c + "_var")[i];
+/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), pooled over
+/// render pairs with different seeds (1 where the variance channels are unbiased), and its standard
+/// error √Σ(dᵢ² − r·vᵢ)² / Σvᵢ (delta method over the pixels).
+struct TwoSeedRatio {
+    double ratio = 0.0, standard_error = 0.0;
+    std::size_t values = 0, beyond5 = 0;  ///< |z| = |a − b|/√(var_a + var_b) > 5
+};
+
+TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, const std::string& c, float material) {
+    std::vector<double> d2, v;
+    for (const auto& [a, b] : pairs)
+        for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+            if (a.channel("material_id")[i] != material) continue;
+            const double d = static_cast<double>(a.channel(c)[i]) - b.channel(c)[i];
+            d2.push_back(d * d);
+            v.push_back(static_cast<double>(a.channel(c + "_var")[i]) + b.channel(c + "_var")[i]);
+        }
+    TwoSeedRatio out;
+    const double sum_d2 = std::accumulate(d2.begin(), d2.end(), 0.0), sum_v = std::accumulate(v.begin(), v.end(), 0.0);
+    out.ratio = sum_d2 / sum_v;
+    double spread = 0.0;
+    for (std::size_t i = 0; i < d2.size(); ++i) {
+        spread += std::pow(d2[i] - out.ratio * v[i], 2);
+        out.beyond5 += d2[i] > 25.0 * v[i] ? 1 : 0;
     }
-    return diff / var;
+    out.standard_error = std::sqrt(spread) / sum_v;
+    out.values = d2.size();
+    return out;
 }
 
-/// Per material region of panels_night, ball_on_snow_night and vehicles_night at 160×128 (regions of
-/// ≥ 500 pixels), at 8, 32 and 128 spp, both estimators: the two-seed ratio of S0, S1, S2 and the
-/// share of |z| = |a − b|/√(var_a + var_b) beyond 5. Figures, not speed.
+/// Per material region (≥ 500 pixels) of panels_night, ball_on_snow_night and vehicles_night at their
+/// own 320×256, at 8, 32 and 128 spp, both estimators, two seed pairs: the two-seed ratio of S0, S1, S2
+/// with its standard error, the share of |z| beyond 5, and over the regions χ²/n of (r − 1)/se (1 when
+/// the ratios scatter about 1 as their errors say). Figures, not speed.
 void BM_VarianceCalibration(benchmark::State& state) {
     for (auto _ : state) {
         for (const char* name : {"panels_night", "ball_on_snow_night", "vehicles_night"}) {
             Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
-            scene.camera = scene.camera.resized(160, 128);
             for (const int spp : {8, 32, 128})
                 for (const bool cv : {false, true}) {
                     RenderOptions options;
                     options.control_variate = cv;
                     scene.sampling.samples_per_pixel = spp;
-                    scene.sampling.seed = 1;
-                    const Image a = render(scene, options);
-                    scene.sampling.seed = 2;
-                    const Image b = render(scene, options);
+                    std::vector<std::pair<Image, Image>> pairs;
+                    for (const std::uint64_t seed : {1, 3}) {
+                        scene.sampling.seed = seed;
+                        Image a = render(scene, options);
+                        scene.sampling.seed = seed + 1;
+                        pairs.emplace_back(std::move(a), render(scene, options));
+                    }
+                    double chi2 = 0.0, lowest = 1e9, highest = 0.0;
+                    std::size_t ratios = 0, values = 0, beyond5 = 0;
                     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
                         const auto id = static_cast<float>(m);
-                        std::size_t pixels = 0, beyond5 = 0, values = 0;
-                        for (std::size_t i = 0; i < a.pixel_count(); ++i) {
-                            if (a.channel("material_id")[i] != id) continue;
-                            ++pixels;
-                            for (const char* c : {"S0", "S1", "S2"}) {
-                                const double d = a.channel(c)[i] - b.channel(c)[i];
-                                const double v = a.channel(std::string(c) + "_var")[i] +
-                                                 b.channel(std::string(c) + "_var")[i];
-                                ++values;
-                                beyond5 += d * d > 25.0 * v ? 1 : 0;
-                            }
-                        }
+                        const auto& ids = pairs.front().first.channel("material_id");
+                        const auto pixels = static_cast<std::size_t>(std::count(ids.begin(), ids.end(), id));
                         if (pixels < 500) continue;
-                        std::printf("%-19s %3d spp %-15s %-24s %5zu px: ratio S0 %.3f S1 %.3f S2 %.3f, |z|>5 %.3f %%\n",
-                                    name, spp, cv ? "control-variate" : "plain", scene.materials[m].name.c_str(),
-                                    pixels, two_seed_ratio(a, b, "S0", id), two_seed_ratio(a, b, "S1", id),
-                                    two_seed_ratio(a, b, "S2", id), 100.0 * static_cast<double>(beyond5) / values);
+                        std::string line;
+                        for (const char* c : {"S0", "S1", "S2"}) {
+                            const TwoSeedRatio r = two_seed_ratio(pairs, c, id);
+                            line += fmt::format(" {} {:.3f} ± {:.3f}", c, r.ratio, r.standard_error);
+                            chi2 += std::pow((r.ratio - 1.0) / r.standard_error, 2);
+                            lowest = std::min(lowest, r.ratio);
+                            highest = std::max(highest, r.ratio);
+                            ++ratios;
+                            values += r.values;
+                            beyond5 += r.beyond5;
+                        }
+                        std::printf("%-19s %3d spp %-15s %-24s %5zu px:%s\n", name, spp, cv ? "control-variate" : "plain",
+                                    scene.materials[m].name.c_str(), pixels, line.c_str());
                     }
+                    std::printf("%-19s %3d spp %-15s all regions: ratios %.2f–%.2f, χ²/n of (r − 1)/se %.2f (n = %zu), "
+                                "|z| > 5 in %.4f %% of %zu values\n",
+                                name, spp, cv ? "control-variate" : "plain", lowest, highest, chi2 / ratios, ratios,
+                                100.0 * static_cast<double>(beyond5) / values, values);
                 }
         }
         state.SetIterationTime(1.0);
     }
 }
 BENCHMARK(BM_VarianceCalibration)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// What the replicate count costs: relative S1/S2 and S0 noise (two seeds, surface pixels) at 64 and
+/// 256 spp with R = 4, 8, 16, 32 replicates, on reflection_compare and panels_night at 160×128. Fewer
+/// replicates keep more of the sequence's stratification (lower noise) but give the variance R − 1
+/// degrees of freedom. Figures, not speed.
+void BM_ReplicateCount(benchmark::State& state) {
+    for (auto _ : state) {
+        for (const char* name : {"reflection_compare", "panels_night"}) {
+            Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
+            scene.camera = scene.camera.resized(160, 128);
+            for (const int spp : {64, 256})
+                for (const int replicates : {4, 8, 16, 32}) {
+                    scene.sampling.samples_per_pixel = spp;
+                    scene.sampling.replicates = replicates;
+                    RenderPair pair;
+                    scene.sampling.seed = 1;
+                    pair.a = render(scene);
+                    scene.sampling.seed = 2;
+                    pair.b = render(scene);
+                    std::vector<bool> mask(pair.a.pixel_count());
+                    double d0 = 0.0, s0 = 0.0;
+                    std::size_t n = 0;
+                    for (std::size_t i = 0; i < mask.size(); ++i) {
+                        mask[i] = pair.a.channel("object_id")[i] >= 0.0f;
+                        if (!mask[i]) continue;
+                        d0 += 0.5 * std::pow(pair.a.channel("S0")[i] - pair.b.channel("S0")[i], 2);
+                        s0 += pair.a.channel("S0")[i];
+                        ++n;
+                    }
+                    std::printf("%-18s 160x128 %3d spp, R = %2d: relative noise S1/S2 %.5f, S0 %.6f\n", name, spp,
+                                replicates, relative_linear_noise(pair, mask), std::sqrt(d0 / n) / (s0 / n));
+                }
+        }
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_ReplicateCount)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent of a
 /// least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
