@@ -23,8 +23,10 @@
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/report/comparison_report.h"
+#include "tirpol/report/summary_text.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
+#include "tirpol/twin/calibration_setpoints.h"
 #include "tirpol/twin/camera_geometry.h"
 #include "tirpol/twin/instrument.h"
 #include "tirpol/twin/regions.h"
@@ -176,6 +178,7 @@ void render_truth(Chain& c) {
     for (std::size_t v = 0; v < c.views.size(); ++v) {
         c.cameras.push_back(with_pose_error(view_camera(field_lens, c.views[v])));
         simulation::Scene s = c.scene;
+        if (c.opt.perturb_truth) c.opt.perturb_truth(s);
         s.camera = c.cameras.back();
         c.truth.push_back(simulation::render(s, c.render_options));
         simulation::write_render_outputs(c.out / "truth", fmt::format("view{}", v), c.truth.back());
@@ -186,11 +189,13 @@ void render_truth(Chain& c) {
 void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
     StageTimer t(c.result, "acquire", c.stage);
     world.set_scene(c.truth.front());
+    // The set-points bracket what the camera will see (the truth renders through the instrument), as a
+    // user would choose them from the scene's expected radiances.
+    c.result.blackbody = blackbody_setpoints(c.truth, world.sensor(), c.scene.band);
     // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
-    const auto lab = write_plan(
-        c.sessions / "lab_plan.yaml",
-        reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 20.0, kZeroCelsiusK + 40.0}, 0.0, 2 * c.opt.frames_per_angle),
-        false, "digital twin: laboratory", c.opt.frames_per_angle);
+    const auto lab = write_plan(c.sessions / "lab_plan.yaml",
+                                reference_yaml(c.result.blackbody.radiometric_k, 0.0, 2 * c.opt.frames_per_angle),
+                                false, "digital twin: laboratory", c.opt.frames_per_angle);
     instrument.acquire(lab, c.sessions / "lab");
     c.result.sessions.push_back(c.sessions / "lab");
     for (std::size_t v = 0; v < c.views.size(); ++v) {
@@ -199,7 +204,7 @@ void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
         std::string refs;
         if (v == 0)
             for (double a : {0.0, 45.0, 90.0, 135.0})
-                refs += reference_yaml({kZeroCelsiusK, kZeroCelsiusK + 25.0}, a, 2 * c.opt.frames_per_angle);
+                refs += reference_yaml(c.result.blackbody.polarimetric_k, a, 2 * c.opt.frames_per_angle);
         const std::string name = fmt::format("view{}", v);
         const auto plan = write_plan(c.sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
                                      c.opt.frames_per_angle);
@@ -390,7 +395,7 @@ void render_fitted(Chain& c) {
     const materials::Material fitted = materials::load_material(c.result.fitted_material);
     simulation::Scene s = c.scene;
     s.camera = c.result.camera.camera();
-    s.materials[c.target_material].brdf = fitted.brdf;
+    if (c.opt.render_fitted_target) s.materials[c.target_material].brdf = fitted.brdf;
     s.sampling.seed = c.scene.sampling.seed + 1;
     c.simulated = simulation::render(s, c.render_options);
     add_truth_render_noise(c.simulated, c.truth.front());
@@ -415,6 +420,7 @@ void compare_and_report(Chain& c) {
         if (const auto r = object_rect(c.truth.front(), i)) regions.regions.push_back(rect_region(name.substr(6), *r));
     }
     co.regions = regions;
+    co.design = c.opt.report_design;
     // The regions as a file and the equivalent command, so the report can be repeated from files.
     c.result.report_regions = c.out / "report_regions.yaml";
     write_file_atomic(c.result.report_regions, report::regions_yaml(regions));
@@ -435,10 +441,11 @@ void compare_and_report(Chain& c) {
         write_comparison_report(c.calibrated.stokes.front(), c.simulated, co, c.out / "report");
     c.result.report_html = cr.html;
     c.result.registration = cr.registration;
-    for (const auto& r : cr.regions) {
-        c.result.regions.push_back({r.name, r.pixel_count, r.z.at("S0").fraction_above_2, r.z.at("S1").fraction_above_2,
-                                    r.z.at("S2").fraction_above_2, r.verdict});
-    }
+    for (const auto& r : cr.regions)
+        c.result.regions.push_back(
+            {r.name, r.pixel_count, {r.verdicts.at("S0"), r.verdicts.at("S1"), r.verdicts.at("S2")}, r.verdict});
+    c.result.report_summary = report::summary_paragraph(cr);
+    if (cr.calibration_range) c.result.calibration_outside_fraction = cr.calibration_range->outside_fraction;
 }
 
 void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
