@@ -102,7 +102,7 @@ void run_compare(const CompareArgs& a) {
                                               v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
                                               v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
                                               : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
-                                                                                               : ""));
+                                                                                              : ""));
         }
         fmt::print(" {}\n", to_string(region.verdict));
     }

@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
@@ -259,15 +259,17 @@ TEST(DigitalTwin, ReportFlagsThePerturbedPanelAndOnlyIt) {
     ASSERT_FALSE(r.emissivity.empty());
     const TwinEmissivity& e = r.emissivity.front();
     const double cos_view = std::cos(e.view_angle_deg * std::numbers::pi / 180.0);
-    const double model_s1 = materials::directional_emissivity(materials::MicrofacetBrdf(model_paint), cos_view, 10.0)[1];
+    const double model_s1 =
+        materials::directional_emissivity(materials::MicrofacetBrdf(model_paint), cos_view, 10.0)[1];
     const double true_s1 = materials::directional_emissivity(materials::MicrofacetBrdf(true_paint), cos_view, 10.0)[1];
     const double contrast = r.target_stokes.truth[1] / e.true_s1;
     const double expected_s1 = (true_s1 - model_s1) * contrast;
-    std::printf("  glossy black S1: measured - simulated %+.4f +- %.4f, expected (eps_S1 %.4f -> %.4f at %.1f deg) x "
-                "C %.2f = %+.4f; S0 %+.4f +- %.4f (detectable %.3f)\n",
-                s1.difference, s1.combined.sigma, model_s1, true_s1, e.view_angle_deg, contrast, expected_s1,
-                glossy->quantities[0].mean.difference, glossy->quantities[0].mean.combined.sigma,
-                glossy->quantities[0].mean.detectable_bias);
+    std::printf(
+        "  glossy black S1: measured - simulated %+.4f +- %.4f, expected (eps_S1 %.4f -> %.4f at %.1f deg) x "
+        "C %.2f = %+.4f; S0 %+.4f +- %.4f (detectable %.3f)\n",
+        s1.difference, s1.combined.sigma, model_s1, true_s1, e.view_angle_deg, contrast, expected_s1,
+        glossy->quantities[0].mean.difference, glossy->quantities[0].mean.combined.sigma,
+        glossy->quantities[0].mean.detectable_bias);
     EXPECT_GT(expected_s1, 0.0);  // less polarized emission: S1 (< 0) moves towards 0
     EXPECT_NEAR(s1.difference, expected_s1, 0.4 * expected_s1);
 }
