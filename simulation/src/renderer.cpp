@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -276,6 +277,10 @@ struct Channels {
           material_id(image.add_channel("material_id")), temperature(image.add_channel("temperature_k")) {}
     std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz, &view_zenith,
         &object_id, &material_id, &temperature;
+    std::array<std::vector<float>*, 18> all() {
+        return {&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz,
+                &view_zenith, &object_id, &material_id, &temperature};
+    }
 };
 
 }  // namespace
@@ -305,6 +310,9 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         spdlog::warn("render: {} samples per pixel rounded up to {} ({} replicates of {} points)",
                      scene.sampling.samples_per_pixel, spp, replicates, points);
     const std::uint64_t seed = scene.sampling.seed;
+    if (options.pixel_mask && options.pixel_mask->size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
+        fail("render: the pixel mask has {} entries; expected {}×{} = {}", options.pixel_mask->size(), w, h,
+             static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     Image image(w, h);
     Channels ch(image);
 
@@ -324,6 +332,11 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
+                // A masked pixel skips every replicate: its channels are NaN and it draws no samples.
+                if (options.pixel_mask && !(*options.pixel_mask)[i]) {
+                    for (auto* c : ch.all()) (*c)[i] = static_cast<float>(kNaN);
+                    continue;
+                }
                 ReplicateMean pixel;
                 for (std::uint32_t r = 0; r < static_cast<std::uint32_t>(replicates); ++r) {
                     const ReplicateSampler replicate(seed, i, r, points);

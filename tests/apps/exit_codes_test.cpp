@@ -65,6 +65,7 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
         {"emissivity", {"flat_black_paint --wavelength-um 10 --angles-deg 0:100:10", "--angles-deg"}},
         {"extract-emissivity", {session + " " + png + " -o e.csv", "--calibration"}},
         {"fit", {exr + " --wavelength-um 10 --model lambertian -o f.yaml", "--model"}},
+        {"fit-render", {scene + " --view " + exr + " --region ball --free glossy_black_paint.n=1.2", "--free"}},
         {"flir-temperature", {png + " --planck 1,2,3 -o t.exr", "--planck"}},
         {"info", {"", "required"}},
         {"live", {"", "--camera"}},
