@@ -51,6 +51,8 @@ bool ask_operator(const std::string& instruction) {
 
 void run_acquire(const AcquireArgs& a) {
     using namespace acquisition;
+    // The session writer refuses a non-empty folder (unless resuming): only the inputs are checked here.
+    OutputGuard().input(a.plan, "PLAN").output_session(a.output, "--output").check(false);
     const CapturePlan plan = CapturePlan::load(a.plan);
     const std::filesystem::path dir = a.output;
     if (a.resume && !std::filesystem::exists(dir / kSessionManifestName))

@@ -126,6 +126,10 @@ int run(int argc, char** argv) {
         app.exit(e);
         print_suggestions(app);
         return kExitUsage;
+    } catch (const OutputConflict& e) {
+        // Found from the command line and the file system alone, before any work: a usage error.
+        std::fprintf(stderr, "%s\nRun with --help for more information.\n", e.what());
+        return kExitUsage;
     } catch (const tirpol::Error& e) {
         std::fprintf(stderr, "tirpol: error: %s\n", e.what());
         return kExitError;

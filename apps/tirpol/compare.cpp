@@ -25,6 +25,7 @@ struct CompareArgs {
     double gain_sigma = 0.0, offset_sigma = 0.0, false_alarm = 0.05, power = 0.80;
     std::vector<double> band_um;
     bool json = false;
+    bool force = false;
 };
 
 void run_compare(const CompareArgs& a) {
@@ -68,6 +69,14 @@ void run_compare(const CompareArgs& a) {
     options.design.false_alarm_per_region = a.false_alarm;
     options.design.power = a.power;
     if (!a.band_um.empty()) options.band_um = std::array<double, 2>{a.band_um[0], a.band_um[1]};
+    OutputGuard()
+        .input(a.measured, "--measured")
+        .input(a.simulated, "--simulated")
+        .input(a.rois, "--rois")
+        .input(a.control_points, "--control-points")
+        .input(a.camera, "--camera")
+        .output_folder(a.output, "--output", {"report.html", "report.json", "comparison.exr", "*.png", "*.svg"})
+        .check(a.force);
     const Image measured = read_exr(a.measured);
     const Image simulated = read_exr(a.simulated);
     options.provenance.tool_version = version_text();
@@ -143,6 +152,7 @@ void register_compare(CLI::App& app) {
         ->expected(2);
     cmd->add_option("-o,--output", args->output, "Report directory (created)")->required();
     cmd->add_flag("--json", args->json, "Print report.json to stdout instead of the summary");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] { run_compare(*args); });
 }
 

@@ -33,6 +33,7 @@ struct FitArgs {
     std::string output, plot, name;
     bool scale_covariance = false;
     bool json = false;
+    bool force = false;
 };
 
 // The fit's settings as a command line, for the provenance record.
@@ -107,6 +108,9 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
 }
 
 void run_fit(const FitArgs& a) {
+    OutputGuard guard;
+    for (const std::string& file : a.data) guard.input(file, "DATA");
+    guard.input(a.init, "--init").output_file(a.output, "--output").output_file(a.plot, "--plot").check(a.force);
     if (a.model != "micro-facet" && a.model != "microfacet")
         usage_error("--model", "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
     std::vector<fitting::EmissivityDataset> datasets;
@@ -162,6 +166,7 @@ void register_fit(CLI::App& app) {
     cmd->add_option("--name", args->name, "Material name (default: the output file's stem)");
     cmd->add_option("--plot", args->plot, "PNG plot of data and fit (like the paper's Fig. 1)");
     cmd->add_flag("--json", args->json, "Print the fit report as JSON (keys in docs/fitting.md)");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] {
         run_fit(*args);
     });

@@ -242,7 +242,7 @@ void check_same_camera(const RadiometricCalibration& cal, const SessionManifest&
     if (differences.empty()) return;
     fail(
         "{}: the radiometric calibration was made with another camera ({} differ{}): calibration camera {}; session "
-        "camera {}. Per-pixel gains and offsets belong to one detector; use --force (C++: "
+        "camera {}. Per-pixel gains and offsets belong to one detector; use --other-camera (C++: "
         "SessionReductionOptions::force_other_camera) only if you know they apply",
         manifest_path(dir), fmt::join(differences, ", "), differences.size() == 1 ? "s" : "",
         describe_camera(c.vendor, c.model, c.serial, c.pixel_format, c.bits_per_pixel, cal.width, cal.height),
@@ -273,6 +273,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     out.wire_grid = fit_wire_grid(bb, radiometric.width, radiometric.height, band);
     out.session = dir.string();
     out.created_utc = utc_now_iso8601();
+    out.band_lo_um = radiometric.band_lo_um;
+    out.band_hi_um = radiometric.band_hi_um;
     std::vector<double> angles;
     for (const auto& p : out.wire_grid.positions) angles.push_back(p.angle_deg);
 
@@ -318,6 +320,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
     if (!options.force_other_camera) check_same_camera(radiometric_in, m, dir);
+    if (polarimetric)
+        check_same_band(radiometric_in, "(made " + radiometric_in.created_utc + " for camera " + radiometric_in.camera_id + ")",
+                        *polarimetric, "the polarimetric calibration of " + polarimetric->session);
     RadiometricCalibration radiometric = radiometric_in;
     std::optional<OffsetUpdate> correction;
     if (options.update_offset && polarimetric)

@@ -479,6 +479,46 @@ SessionManifest read_session(const std::filesystem::path& dir) {
     return m;
 }
 
+namespace {
+/// The frame's header mirrors its record and the camera (SessionWriter::add_record): where both say
+/// something, they must agree, or a frame was filed under another record (renamed, copied, the
+/// manifest edited) and would be reduced at the wrong angle or temperature.
+void check_frame_header(const std::filesystem::path& path, const std::filesystem::path& manifest_file,
+                        const SessionManifest& m, const SessionRecord& r, const Attributes& a) {
+    const auto number = [&a](const char* name) -> std::optional<double> {
+        const auto it = a.find(name);
+        if (it == a.end()) return std::nullopt;
+        if (const double* d = std::get_if<double>(&it->second)) return *d;
+        if (const int* i = std::get_if<int>(&it->second)) return *i;
+        return std::nullopt;
+    };
+    const auto text = [&a](const char* name) -> std::optional<std::string> {
+        const auto it = a.find(name);
+        if (it == a.end()) return std::nullopt;
+        if (const std::string* s = std::get_if<std::string>(&it->second)) return *s;
+        return std::nullopt;
+    };
+    const auto disagree = [&](const std::string& field, const std::string& in_header, const std::string& in_manifest) {
+        fail("{}: its header says {} = {} but {} files it as {} with {} = {}; the frame and the manifest disagree (a "
+             "frame file renamed or copied, or the manifest edited): restore the session as it was written",
+             path.string(), field, in_header, manifest_file.string(), r.file, field, in_manifest);
+    };
+    if (const auto kind = text("kind"); kind && *kind != to_string(r.kind)) disagree("kind", *kind, to_string(r.kind));
+    for (const auto& [name, value] : {std::pair<const char*, double>{"angle_deg_requested", r.angle_deg_requested},
+                                      std::pair<const char*, double>{"angle_deg_measured", r.angle_deg_measured}})
+        if (const auto v = number(name); v && std::abs(*v - value) > 1e-6)
+            disagree(name, fmt::format("{:g}°", *v), fmt::format("{:g}°", value));
+    if (const auto t = number("blackbody_temperature_k"); t && r.blackbody_temperature_k &&
+                                                           std::abs(*t - *r.blackbody_temperature_k) > 1e-6)
+        disagree("blackbody_temperature_k", fmt::format("{:g} K", *t), fmt::format("{:g} K", *r.blackbody_temperature_k));
+    if (const auto serial = text("camera_serial"); serial && *serial != m.camera.serial)
+        disagree("camera_serial", "'" + *serial + "'", "'" + m.camera.serial + "' (camera.serial)");
+    const std::string model = m.camera.vendor + " " + m.camera.model;
+    if (const auto header_model = text("camera_model"); header_model && *header_model != model)
+        disagree("camera_model", "'" + *header_model + "'", "'" + model + "' (camera.vendor, camera.model)");
+}
+}  // namespace
+
 Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& m, const SessionRecord& r) {
     const auto path = dir / r.file;
     Image image = read_exr(path);
@@ -487,6 +527,7 @@ Image read_session_frame(const std::filesystem::path& dir, const SessionManifest
     if (image.width() != m.camera.width || image.height() != m.camera.height)
         fail("{}: image is {}×{}, the manifest's camera is {}×{}", path.string(), image.width(), image.height(),
              m.camera.width, m.camera.height);
+    check_frame_header(path, dir / kSessionManifestName, m, r, image.attributes());
     return image;
 }
 

@@ -137,8 +137,9 @@ TEST(CalibrationCli, ReduceWithDriftCorrectionInterpolatesBetweenShutterRecords)
     const CliRun raw = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " -o " + out);
     ASSERT_EQ(raw.exit_code, 0) << raw.out;
     EXPECT_GT(std::abs(band.brightness_temperature(read_exr(out).at("S0", 5, 5)) - 300.0), 1.0);
-    const CliRun r =
-        run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " --drift-correction -o " + out);
+    // The same output again: an existing file is replaced only with --force (docs/cli.md).
+    const CliRun r = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal +
+                             " --drift-correction --force -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(
         r.out.find("drift correction (shutter records (2), interpolated in time): offset shift 48.00 … 72.00 counts"),

@@ -142,7 +142,11 @@ SessionRecord record_from_attributes(const Attributes& attributes, const std::st
 /// every record's frame file present, no file listed twice. Throws tirpol::Error otherwise.
 SessionManifest read_session(const std::filesystem::path& dir);
 
-/// Reads one record's EXR and checks it has `counts` and `counts_std` at the camera's size.
+/// Reads one record's EXR and checks it has `counts` and `counts_std` at the camera's size, and that
+/// what its header says of itself (kind, angle_deg_requested, angle_deg_measured,
+/// blackbody_temperature_k, camera_serial, camera_model; SessionWriter::add_record writes them) agrees
+/// with the manifest's record and camera: tirpol::Error naming the frame, the manifest, the field and
+/// both values otherwise (a frame at 90° filed under 0° would be reduced with S1 negated).
 Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& manifest,
                          const SessionRecord& record);
 
