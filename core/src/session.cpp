@@ -261,11 +261,40 @@ SessionRecord record_from_json(const Fields& f) {
 
 }  // namespace
 
+const char* to_string(FfcEvent::Kind kind) { return kind == FfcEvent::Kind::Scheduled ? "scheduled" : "detected"; }
+
+namespace {
+json ffc_event_to_json(const FfcEvent& e) {
+    return json{{"kind", to_string(e.kind)},
+                {"host_timestamp_ns", e.host_timestamp_ns},
+                {"repeat", e.repeat},
+                {"fpa_temperature_k", optional_number(e.fpa_temperature_k)},
+                {"device_frame_count", e.device_frame_count ? json(*e.device_frame_count) : json(nullptr)},
+                {"reason", e.reason}};
+}
+
+FfcEvent ffc_event_from_json(const Fields& f) {
+    FfcEvent e;
+    const std::string kind = f.string("kind");
+    if (kind != "scheduled" && kind != "detected")
+        f.fail_here(f.field("kind"), fmt::format("expected \"scheduled\" or \"detected\", got \"{}\"", kind));
+    e.kind = kind == "scheduled" ? FfcEvent::Kind::Scheduled : FfcEvent::Kind::Detected;
+    e.host_timestamp_ns = f.integer("host_timestamp_ns", 0);
+    e.repeat = static_cast<int>(f.integer("repeat", 0, std::numeric_limits<int>::max()));
+    e.fpa_temperature_k = f.optional_number("fpa_temperature_k");
+    if (!f.at("device_frame_count").is_null()) e.device_frame_count = f.integer("device_frame_count", 0);
+    e.reason = f.string("reason");
+    return e;
+}
+}  // namespace
+
 json session_to_json(const SessionManifest& m) {
     json planck = json::object();
     for (const auto& [k, v] : m.camera.planck_constants) planck[k] = v;
     json records = json::array();
     for (const auto& r : m.records) records.push_back(record_to_json(r));
+    json ffc_events = json::array();
+    for (const auto& e : m.ffc_events) ffc_events.push_back(ffc_event_to_json(e));
     return json{{"schema", kSessionSchema},
                 {"schema_version", kSessionSchemaVersion},
                 {"created_utc", m.created_utc},
@@ -296,6 +325,7 @@ json session_to_json(const SessionManifest& m) {
                 {"plan", m.plan},
                 {"metadata", m.metadata},
                 {"records", records},
+                {"ffc_events", ffc_events},
                 {"complete", m.complete}};
 }
 
@@ -351,6 +381,12 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
         SessionRecord r = record_from_json(rf);
         if (!files.insert(r.file).second) rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
         m.records.push_back(std::move(r));
+    }
+    if (top.raw().contains("ffc_events")) {
+        const json& events = top.at("ffc_events");
+        if (!events.is_array()) top.fail_here("ffc_events", "expected an array, got " + Fields::describe(events));
+        for (std::size_t i = 0; i < events.size(); ++i)
+            m.ffc_events.push_back(ffc_event_from_json(Fields(events[i], source, fmt::format("ffc_events[{}]", i))));
     }
     m.complete = top.boolean("complete");
     return m;
@@ -674,6 +710,11 @@ void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
     if (!(frame_rate_hz > 0.0) || !std::isfinite(frame_rate_hz))
         fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}", (m_dir / kSessionManifestName).string(), frame_rate_hz);
     m_manifest.camera.frame_rate_hz = frame_rate_hz;
+}
+
+void SessionWriter::add_ffc_event(const FfcEvent& event) {
+    m_manifest.ffc_events.push_back(event);
+    write_manifest();
 }
 
 void SessionWriter::set_metadata(nlohmann::json metadata) {

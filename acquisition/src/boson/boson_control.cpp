@@ -185,6 +185,18 @@ Result<bool> BosonControl::ffc_in_progress() {
 Result<std::uint32_t> BosonControl::last_ffc_frame_count() { return get_u32(kBosonGetLastFfcFrameCount); }
 Result<std::uint32_t> BosonControl::frame_count() { return get_u32(kRoicGetFrameCount); }
 
+Result<std::uint64_t> BosonControl::last_ffc_marker() {
+    auto v = last_ffc_frame_count();
+    if (!v) return v.error();
+    return std::uint64_t{v.value()};
+}
+
+Result<std::uint64_t> BosonControl::device_frame_count() {
+    auto v = frame_count();
+    if (!v) return v.error();
+    return std::uint64_t{v.value()};
+}
+
 Result<BosonFfcState> BosonControl::ffc_state() {
     BosonFfcState state;
     auto status = ffc_status();

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "tirpol/acquisition/internal/boson_fslp.h"
+#include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/internal/byte_port.h"
 
 namespace tirpol::acquisition {
@@ -35,7 +36,8 @@ struct BosonFfcState {
     std::uint32_t last_ffc_frame_count = 0;  ///< frame count when the last FFC ran (0: none yet)
 };
 
-class BosonControl {
+/// Also the capture's FfcControl (ffc.h): manual mode, FFC and wait, FPA, last-FFC frame count.
+class BosonControl final : public FfcControl {
 public:
     /// Takes the port; `name` ("boson:///dev/ttyACM0") prefixes messages.
     BosonControl(std::unique_ptr<BytePort> port, std::string name, BosonControlOptions options = {});
@@ -45,13 +47,13 @@ public:
     /// The part number, trailing NULs and spaces removed ("20640A050-6IAAX").
     Result<std::string> part_number();
     /// BOSON_LOOKUPFPATEMPDEGCX10 converted to kelvin.
-    Result<double> fpa_temperature_k();
+    Result<double> fpa_temperature_k() override;
     Result<boson::FfcMode> ffc_mode();
     Status set_ffc_mode(boson::FfcMode mode);
     /// Starts an FFC; returns when the core acknowledged (the FFC itself runs on, ~0.5 s).
     Status run_ffc();
     /// Runs an FFC and polls until the core reports it complete and no longer in progress.
-    Status run_ffc_and_wait();
+    Status run_ffc_and_wait() override;
     Result<boson::FfcStatus> ffc_status();
     Result<bool> ffc_in_progress();
     Result<std::uint32_t> last_ffc_frame_count();
@@ -62,6 +64,10 @@ public:
     /// FPA change in kelvin that makes the core run an auto FFC.
     Result<double> ffc_temperature_threshold_k();
     Status set_ffc_temperature_threshold_k(double threshold_k);
+
+    Status set_manual_ffc() override { return set_ffc_mode(boson::FfcMode::Manual); }
+    Result<std::uint64_t> last_ffc_marker() override;
+    Result<std::uint64_t> device_frame_count() override;
 
     /// Sends one command and returns its reply's data (at least `reply_bytes` long).
     Result<std::vector<std::uint8_t>> transact(std::uint32_t function, std::vector<std::uint8_t> data,
