@@ -53,10 +53,11 @@ SimulatedStageOptions stage_options() {
 }
 
 struct BosonRig {
-    std::shared_ptr<BosonCoreModel> core = std::make_shared<BosonCoreModel>(core_config());
+    std::shared_ptr<BosonCoreModel> core;
     std::unique_ptr<Stage> stage = make_simulated_stage("sim://", stage_options());
     std::unique_ptr<SimulatedCamera> camera;
-    BosonRig() {
+    explicit BosonRig(const BosonCoreConfig& core_settings = core_config())
+        : core(std::make_shared<BosonCoreModel>(core_settings)) {
         SimulatedCameraConfig config;
         config.name = "boson";
         config.width = kWidth;
@@ -162,6 +163,40 @@ TEST(CaptureFfc, WithoutALinkAnFfcInsideACycleIsDetectedAndTheCycleTakenAgain) {
         EXPECT_LT(std::abs(b.s1), stokes_noise());
         EXPECT_LT(std::abs(b.s2), stokes_noise());
     }
+}
+
+TEST(CaptureFfc, WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoundFromThePreviousCycle) {
+    // A short FFC that starts after the last 45° frame of cycle 2: its shutter frames fall in the move and
+    // settle (never kept) and the offset steps between I45 and I90, which the closure I0 + I90 − I45 − I135
+    // cannot see (the step adds to I90 and I135 alike); the change from cycle 1, unequal across angles, can.
+    test::TempDir tmp;
+    BosonCoreConfig config = core_config();
+    config.ffc_duration_s = 0.01;
+    BosonRig rig(config);
+    bool provoked = false;
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    options.on_progress = [&](const CaptureProgress& p) {
+        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 1 &&
+            p.step->angle_deg == 45.0 && p.frames_kept == kFrames) {
+            rig.core->add_fpa_step_k(0.6);
+            provoked = true;
+        }
+    };
+    FfcOptions ffc;
+    options.ffc = &ffc;
+    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
+    ASSERT_TRUE(provoked);
+    EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
+    EXPECT_EQ(summary.ffc_detected, 1);
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.ffc_events.size(), 1u);
+    EXPECT_EQ(m.ffc_events[0].repeat, 1);
+    EXPECT_NE(m.ffc_events[0].reason.find("changed unequally"), std::string::npos) << m.ffc_events[0].reason;
+    const StokesBias b = bias(tmp / "s", 1);
+    EXPECT_LT(std::abs(b.s1), stokes_noise());
+    EXPECT_LT(std::abs(b.s2), stokes_noise());
 }
 
 TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
