@@ -13,6 +13,7 @@
 /// Every FFC commanded or detected goes into the session (SessionManifest::ffc_events).
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "tirpol/acquisition/result.h"
@@ -56,5 +57,14 @@ struct FfcOptions {
     /// a Boson FFC stays closed about 0.5 s).
     double detection_pause_s = 1.0;
 };
+
+/// Opens a core's control link by URI: `boson:///dev/ttyACM0[?timeout_ms=500]` (a FLIR Boson's USB
+/// CDC-ACM port; the simulator's pseudo-terminal works the same). A malformed URI or unknown scheme
+/// throws tirpol::Error naming it; a port that is absent or a core that does not answer is a DeviceError.
+Result<std::unique_ptr<FfcControl>> open_ffc_control(const std::string& uri);
+
+/// Parses `tirpol acquire --ffc`: "detect" (no link: watch the frames only), "every-cycle", "every:N"
+/// (N ≥ 1 cycles) or "fpa:K" (K > 0 kelvin). Throws tirpol::Error naming the text and the choices.
+FfcOptions parse_ffc_schedule(const std::string& text);
 
 }  // namespace tirpol::acquisition
