@@ -175,6 +175,71 @@ BlackbodyReadings readings_from_json(const Fields& f) {
     return b;
 }
 
+json core_state_to_json(const FrameAudit::CoreState& c) {
+    return json{{"ffc_mode", c.ffc_mode},
+                {"gain_mode", c.gain_mode},
+                {"fpa_temperature_k", c.fpa_temperature_k},
+                {"device_frame_count", c.device_frame_count},
+                {"last_ffc_frame_count", c.last_ffc_frame_count}};
+}
+
+json audit_to_json(const FrameAudit& a) {
+    json fpa = json::array();
+    for (const auto& t : a.fpa_temperature_k) fpa.push_back(optional_number(t));
+    json j{{"frame_id", a.frame_id},
+           {"device_timestamp_ns", a.device_timestamp_ns},
+           {"host_timestamp_ns", a.host_timestamp_ns},
+           {"fpa_temperature_k", fpa},
+           {"incomplete", a.incomplete},
+           {"core_before", a.core_before ? core_state_to_json(*a.core_before) : json(nullptr)},
+           {"core_after", a.core_after ? core_state_to_json(*a.core_after) : json(nullptr)}};
+    return j;
+}
+
+std::optional<FrameAudit::CoreState> core_state_from_json(const Fields& f, const std::string& key) {
+    if (f.at(key).is_null()) return std::nullopt;
+    const Fields c = f.object(key);
+    return FrameAudit::CoreState{c.string("ffc_mode"), c.string("gain_mode"), c.number("fpa_temperature_k"),
+                                 c.integer("device_frame_count", 0), c.integer("last_ffc_frame_count", 0)};
+}
+
+FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
+    FrameAudit a;
+    auto column = [&](const char* key) -> const json& {
+        const json& v = f.at(key);
+        if (!v.is_array()) f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
+        if (static_cast<std::int64_t>(v.size()) != frames)
+            f.fail_here(f.field(key), fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
+        return v;
+    };
+    auto integers = [&](const char* key, std::vector<std::int64_t>& out) {
+        const json& v = column(key);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!v[i].is_number_integer())
+                f.fail_here(fmt::format("{}[{}]", f.field(key), i), "expected an integer, got " + Fields::describe(v[i]));
+            out.push_back(v[i].get<std::int64_t>());
+        }
+    };
+    integers("frame_id", a.frame_id);
+    integers("device_timestamp_ns", a.device_timestamp_ns);
+    integers("host_timestamp_ns", a.host_timestamp_ns);
+    const json& fpa = column("fpa_temperature_k");
+    for (std::size_t i = 0; i < fpa.size(); ++i) {
+        if (fpa[i].is_null()) {
+            a.fpa_temperature_k.emplace_back();
+        } else if (fpa[i].is_number() && std::isfinite(fpa[i].get<double>())) {
+            a.fpa_temperature_k.emplace_back(fpa[i].get<double>());
+        } else {
+            f.fail_here(fmt::format("{}[{}]", f.field("fpa_temperature_k"), i),
+                        "expected a number or null, got " + Fields::describe(fpa[i]));
+        }
+    }
+    a.incomplete = f.integer("incomplete", 0);
+    a.core_before = core_state_from_json(f, "core_before");
+    a.core_after = core_state_from_json(f, "core_after");
+    return a;
+}
+
 json record_to_json(const SessionRecord& r) {
     json j{{"kind", to_string(r.kind)},
                 {"file", r.file},
@@ -189,6 +254,7 @@ json record_to_json(const SessionRecord& r) {
                 {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
     if (r.timing) j["timing"] = timing_to_json(*r.timing);
     if (r.blackbody_readings) j["blackbody_readings"] = readings_to_json(*r.blackbody_readings);
+    if (r.audit) j["audit"] = audit_to_json(*r.audit);
     return j;
 }
 
@@ -255,6 +321,7 @@ SessionRecord record_from_json(const Fields& f) {
         r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
         if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
     }
+    if (f.raw().contains("audit") && !f.raw().at("audit").is_null()) r.audit = audit_from_json(f.object("audit"), r.frames);
     check_record(f, r);
     return r;
 }

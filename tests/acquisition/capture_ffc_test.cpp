@@ -236,6 +236,25 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
         }
     }
     EXPECT_NEAR(*m.ffc_events[2].fpa_temperature_k - *m.ffc_events[0].fpa_temperature_k, 0.6, 0.1);
+    // The audit: every kept frame's id and clocks; the core's state around each step from the link.
+    for (const SessionRecord& r : m.records) {
+        ASSERT_TRUE(r.audit) << r.file;
+        const FrameAudit& a = *r.audit;
+        ASSERT_EQ(a.frame_id.size(), static_cast<std::size_t>(kFrames));
+        for (std::size_t k = 1; k < a.frame_id.size(); ++k) {
+            EXPECT_GT(a.frame_id[k], a.frame_id[k - 1]);
+            EXPECT_GT(a.device_timestamp_ns[k], a.device_timestamp_ns[k - 1]);
+        }
+        EXPECT_EQ(a.host_timestamp_ns.front(), r.first_timestamp_ns);
+        EXPECT_EQ(a.host_timestamp_ns.back(), r.last_timestamp_ns);
+        ASSERT_TRUE(a.core_before && a.core_after) << r.file;
+        EXPECT_EQ(a.core_before->ffc_mode, "manual");
+        EXPECT_EQ(a.core_before->gain_mode, "high");
+        // At 60 Hz the core counts at least the kept frames during the step; no FFC within it.
+        EXPECT_GE(a.core_after->device_frame_count - a.core_before->device_frame_count, kFrames - 1);
+        EXPECT_EQ(a.core_after->last_ffc_frame_count, a.core_before->last_ffc_frame_count);
+        EXPECT_EQ(a.core_before->last_ffc_frame_count, *m.ffc_events[static_cast<std::size_t>(r.repeat)].device_frame_count);
+    }
     for (int repeat : {0, 1, 2}) {
         const StokesBias b = bias(tmp / "s", repeat);
         std::printf("link, cycle %d: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n", repeat + 1, b.s1,

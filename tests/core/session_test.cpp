@@ -240,6 +240,33 @@ TEST(Session, FfcEventsRoundTripAndVersionThreeSessionsWithoutThemRead) {
     EXPECT_TRUE(m.ffc_events.empty());
 }
 
+TEST(Session, FrameAuditRoundTripsAndItsColumnsMustMatchTheFrames) {
+    test::TempDir tmp;
+    const auto dir = tmp / "audit";
+    SessionRecord r = polarizer_record(0.0, 0);
+    r.frames = 2;
+    FrameAudit a;
+    a.frame_id = {41, 43};
+    a.device_timestamp_ns = {1000000123, 1016666789};
+    a.host_timestamp_ns = {1795000000123456789, 1795000000140123456};
+    a.fpa_temperature_k = {308.15, std::nullopt};
+    a.incomplete = 1;
+    a.core_before = FrameAudit::CoreState{"manual", "high", 308.15, 1200, 1100};
+    r.audit = a;
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(r, example_frame(1.0f));
+    }
+    const SessionManifest m = read_session(dir);
+    ASSERT_EQ(m.records.size(), 1u);
+    EXPECT_EQ(m.records[0], r);  // every digit of the 64-bit stamps kept, nulls kept
+    json j = json::parse(read_file(dir / "session.json"));
+    j["records"][0]["audit"]["frame_id"] = json::array({41});
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("records[0].audit.frame_id: expected 2 entries (the record's frames), got 1")));
+}
+
 TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
     // A file-size limit makes write(2) fail as a full disk does (EFBIG instead of ENOSPC; SIGXFSZ ignored).
     test::TempDir tmp;

@@ -197,6 +197,28 @@ Result<std::uint64_t> BosonControl::device_frame_count() {
     return std::uint64_t{v.value()};
 }
 
+Result<FrameAudit::CoreState> BosonControl::core_state() {
+    static constexpr const char* kFfcModes[] = {"manual", "auto", "external", "shutter-test"};
+    static constexpr const char* kGainModes[] = {"high", "low", "auto", "dual", "manual"};
+    FrameAudit::CoreState state;
+    auto ffc = ffc_mode();
+    if (!ffc) return ffc.error();
+    state.ffc_mode = kFfcModes[static_cast<int>(ffc.value())];
+    auto gain = gain_mode();
+    if (!gain) return gain.error();
+    state.gain_mode = kGainModes[static_cast<int>(gain.value())];
+    auto fpa = fpa_temperature_k();
+    if (!fpa) return fpa.error();
+    state.fpa_temperature_k = fpa.value();
+    auto frames = frame_count();
+    if (!frames) return frames.error();
+    state.device_frame_count = frames.value();
+    auto last = last_ffc_frame_count();
+    if (!last) return last.error();
+    state.last_ffc_frame_count = last.value();
+    return state;
+}
+
 Result<BosonFfcState> BosonControl::ffc_state() {
     BosonFfcState state;
     auto status = ffc_status();

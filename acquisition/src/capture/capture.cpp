@@ -274,6 +274,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         double fpa_sum = 0.0;
         int fpa_count = 0;
         std::optional<FfcEvent> spoiled;  // an FFC seen in this step's frames
+        FrameAudit audit;
+        const std::uint64_t incomplete_before = camera.statistics().incomplete;
+        FfcControl* link = options.ffc ? options.ffc->control : nullptr;
+        if (link) audit.core_before = check(link->core_state(), *step, "camera control link");
         while (averager.count() < static_cast<std::uint64_t>(step->frames)) {
             if (interrupted(options))
                 fail("interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps are recorded in {}; run again with --resume",
@@ -298,6 +302,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 }
             }
             averager.add(frame);
+            audit.frame_id.push_back(static_cast<std::int64_t>(frame.frame_id));
+            audit.device_timestamp_ns.push_back(frame.device_timestamp_ns);
+            audit.host_timestamp_ns.push_back(frame.host_timestamp_ns);
+            audit.fpa_temperature_k.push_back(frame.fpa_temperature_k);
             report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()), frame.frame_id);
             if (averager.count() == 1) {
                 record.first_timestamp_ns = frame.host_timestamp_ns;
@@ -339,6 +347,9 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         record.frames = step->frames;
         record.dropped = static_cast<std::int64_t>(camera.statistics().dropped - dropped_before);
         record.timing = timing;
+        audit.incomplete = static_cast<std::int64_t>(camera.statistics().incomplete - incomplete_before);
+        if (link) audit.core_after = check(link->core_state(), *step, "camera control link");
+        record.audit = std::move(audit);
         if (!in_cycle(ti)) {
             commit(*step, record, averager.to_image(), gate.delivered_rate_hz());
             continue;

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "tirpol/acquisition/result.h"
+#include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {
 
@@ -33,6 +34,9 @@ public:
     virtual Result<std::uint64_t> last_ffc_marker() = 0;
     /// The core's own frame counter now.
     virtual Result<std::uint64_t> device_frame_count() = 0;
+    /// FFC and gain modes, FPA temperature, frame count and last-FFC frame count in one go: the
+    /// capture records it before and after each step's frames (SessionRecord::audit).
+    virtual Result<FrameAudit::CoreState> core_state() = 0;
 };
 
 struct FfcOptions {

@@ -29,7 +29,8 @@ inline constexpr const char* kSessionSchema = "tirpol.session";
 /// from v2 on `angle_deg_measured` is the read-back around the gated frames and is what reduction uses.
 /// v3 adds the blackbody controller (`blackbody_controller`) and each controlled record's
 /// `blackbody_readings`; its `blackbody_temperature_k` is then the mean reading during the frames.
-/// v4 adds `ffc_events`: the camera core's flat-field corrections, scheduled or detected.
+/// v4 adds `ffc_events` (the camera core's flat-field corrections, scheduled or detected) and each
+/// record's `audit` (per-frame ids, device and host clocks, FPA; the core's state around the step).
 inline constexpr int kSessionSchemaVersion = 4;
 /// The oldest version still read.
 inline constexpr int kSessionSchemaOldestReadable = 1;
@@ -84,6 +85,29 @@ struct BlackbodyReadings {
     bool operator==(const BlackbodyReadings&) const = default;
 };
 
+/// What the camera said about each kept frame of a record, and the camera core's state around the
+/// step when a control link reports it (schema v4, written by the capture loop). In the manifest only:
+/// a record adopted on resume from its EXR header has none. Per-frame vectors hold one entry per kept
+/// frame, in order (as many as the record's `frames`).
+struct FrameAudit {
+    std::vector<std::int64_t> frame_id;             ///< the device's frame ids, unwrapped
+    std::vector<std::int64_t> device_timestamp_ns;  ///< the device's clock (0 when it has none)
+    std::vector<std::int64_t> host_timestamp_ns;    ///< host CLOCK_REALTIME at reception
+    std::vector<std::optional<double>> fpa_temperature_k;  ///< per frame when the camera reports it
+    std::int64_t incomplete = 0;  ///< frames the camera discarded as damaged during the step
+    /// The core's state from its control link (absent without one), read before and after the frames.
+    struct CoreState {
+        std::string ffc_mode, gain_mode;  ///< "manual", "auto", ...; "high", "low", ...
+        double fpa_temperature_k = 0.0;
+        std::int64_t device_frame_count = 0;
+        std::int64_t last_ffc_frame_count = 0;
+        bool operator==(const CoreState&) const = default;
+    };
+    std::optional<CoreState> core_before, core_after;
+
+    bool operator==(const FrameAudit&) const = default;
+};
+
 /// The blackbody controller as recorded in the manifest (mirrors acquisition::BlackbodyInfo).
 struct SessionBlackbodyController {
     std::string uri, vendor, model, serial, firmware;
@@ -125,6 +149,7 @@ struct SessionRecord {
     std::optional<double> fpa_temperature_k;  ///< mean sensor temperature when the camera reports it
     std::optional<StepTiming> timing;     ///< v2 records written by the capture loop; absent in v1
     std::optional<BlackbodyReadings> blackbody_readings;  ///< v3: set by a blackbody controller
+    std::optional<FrameAudit> audit;      ///< v4: per-frame ids, clocks and FPA; the core's state
 
     bool operator==(const SessionRecord&) const = default;
 };

@@ -68,6 +68,7 @@ public:
     Status set_manual_ffc() override { return set_ffc_mode(boson::FfcMode::Manual); }
     Result<std::uint64_t> last_ffc_marker() override;
     Result<std::uint64_t> device_frame_count() override;
+    Result<FrameAudit::CoreState> core_state() override;
 
     /// Sends one command and returns its reply's data (at least `reply_bytes` long).
     Result<std::vector<std::uint8_t>> transact(std::uint32_t function, std::vector<std::uint8_t> data,
