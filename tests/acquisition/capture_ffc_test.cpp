@@ -264,6 +264,47 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
     }
 }
 
+TEST(CaptureFfc, WithTheLinkAnFfcTheCoreRanInsideACycleIsSeenInItsFrameCountAndTheCycleTakenAgain) {
+    // Something else made the core correct mid-cycle (another program on its port, an external FFC
+    // trigger): the last-FFC frame count moved between the cycle's start and end.
+    test::TempDir tmp;
+    BosonRig rig;
+    test::PtyDeviceThread<BosonSimulator> link_sim(rig.core);
+    auto link = open_boson_control(link_sim.path(), "boson-sim").value_or_throw();
+    bool provoked = false;
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    options.on_progress = [&](const CaptureProgress& p) {
+        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 0 && p.step->angle_deg == 45.0 &&
+            p.frames_kept == 3) {
+            rig.core->run_ffc(Clock::now());
+            provoked = true;
+        }
+    };
+    FfcOptions ffc;
+    ffc.control = link.get();
+    ffc.schedule = FfcOptions::Schedule::EveryN;
+    ffc.every_n_cycles = 10;  // only before the first cycle
+    options.ffc = &ffc;
+    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
+    ASSERT_TRUE(provoked);
+    EXPECT_EQ(summary.ffc_detected, 1);
+    EXPECT_EQ(summary.ffc_scheduled, 2);  // before cycle 1, and before taking it again
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.ffc_events.size(), 3u);
+    EXPECT_EQ(m.ffc_events[0].kind, FfcEvent::Kind::Scheduled);
+    EXPECT_EQ(m.ffc_events[1].kind, FfcEvent::Kind::Detected);
+    EXPECT_NE(m.ffc_events[1].reason.find("last-FFC frame count moved"), std::string::npos) << m.ffc_events[1].reason;
+    EXPECT_EQ(m.ffc_events[2].kind, FfcEvent::Kind::Scheduled);
+    EXPECT_EQ(m.ffc_events[2].repeat, 0);
+    for (int repeat : {0, 1}) {
+        const StokesBias b = bias(tmp / "s", repeat);
+        EXPECT_LT(std::abs(b.s1), stokes_noise());
+        EXPECT_LT(std::abs(b.s2), stokes_noise());
+    }
+}
+
 TEST(CaptureFfc, WithTheLinkTheFpaScheduleRunsAnFfcOnlyWhenTheFpaMoved) {
     test::TempDir tmp;
     BosonRig rig;

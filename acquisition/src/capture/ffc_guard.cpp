@@ -84,6 +84,9 @@ void FfcGuard::begin_step() {
 }
 
 std::optional<std::string> FfcGuard::observe(const Frame& frame) {
+    // With a link the core says when it corrected; frame statistics would only add false alarms (a
+    // scene that changes).
+    if (m_options.control) return std::nullopt;
     double sum = 0.0;
     for (float c : frame.counts) sum += c;
     const double mean = frame.counts.empty() ? 0.0 : sum / static_cast<double>(frame.counts.size());
@@ -115,6 +118,7 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
             if (auto fpa = link->fpa_temperature_k()) e.fpa_temperature_k = fpa.value();
             return std::optional<FfcEvent>(std::move(e));
         }
+        return std::optional<FfcEvent>{};
     }
     // Any linear analyzer passes a + b cos 2θ + c sin 2θ: I0 + I90 = I45 + I135 = 2a.
     const long k0 = angle_key(0), k45 = angle_key(45), k90 = angle_key(90), k135 = angle_key(135);

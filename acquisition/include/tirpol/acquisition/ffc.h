@@ -5,8 +5,9 @@
 /// 0/45/90/135 cycle lands in S1 and S2 (S1 = I0 − I90 takes the step whole when it falls between the
 /// 0° and 90° frames). The capture therefore (CaptureOptions::ffc):
 /// - with a control link (FfcControl): puts the core in manual FFC mode and runs an FFC between
-///   cycles, by the schedule below; a cycle in which the core still ran one is taken again;
-/// - with or without a link: watches the frames for an offset step (a frame mean jumping within a
+///   cycles, by the schedule below; a cycle in which the core still ran one (its last-FFC frame count
+///   moved) is taken again;
+/// - without a link: watches the frames for an offset step (a frame mean jumping within a
 ///   step; for a 0/45/90/135 plan the cycle closure I0 + I90 − I45 − I135, zero for any linear
 ///   analyzer; the change of each angle's mean from the last accepted cycle, equal for all angles
 ///   when the scene holds still) and takes the cycle again when it finds one.
@@ -50,10 +51,11 @@ struct FfcOptions {
     Schedule schedule = Schedule::EveryCycle;
     int every_n_cycles = 1;
     double fpa_delta_k = 0.5;
-    /// A kept frame whose mean differs from its step's mean so far by more than this is an offset step.
+    /// Without a link: a kept frame whose mean differs from its step's mean so far by more than this is
+    /// an offset step.
     double frame_step_counts = 5.0;
-    /// |I0 + I90 − I45 − I135| of the step means, and the spread of the per-angle change from the
-    /// last accepted cycle, above this are an offset step in the cycle.
+    /// Without a link: |I0 + I90 − I45 − I135| of the step means, and the spread of the per-angle change
+    /// from the last accepted cycle, above this are an offset step in the cycle.
     double cycle_step_counts = 5.0;
     /// Attempts of one cycle before the capture gives up (an FFC every cycle means a core out of control).
     int max_cycle_attempts = 4;
