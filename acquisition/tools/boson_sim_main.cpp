@@ -59,12 +59,18 @@ int main(int argc, char** argv) {
             if (options.fault_on_command < 1) usage("--fault-on: expected an integer ≥ 1");
         } else if (arg == "--fault") {
             const std::string f = value();
-            if (f == "none") options.fault = BosonSimFault::None;
-            else if (f == "drop-reply") options.fault = BosonSimFault::DropReply;
-            else if (f == "corrupt-crc") options.fault = BosonSimFault::CorruptCrc;
-            else if (f == "wrong-sequence") options.fault = BosonSimFault::WrongSequence;
-            else if (f == "silent") options.fault = BosonSimFault::Silent;
-            else usage("--fault: expected none, drop-reply, corrupt-crc, wrong-sequence or silent");
+            if (f == "none")
+                options.fault = BosonSimFault::None;
+            else if (f == "drop-reply")
+                options.fault = BosonSimFault::DropReply;
+            else if (f == "corrupt-crc")
+                options.fault = BosonSimFault::CorruptCrc;
+            else if (f == "wrong-sequence")
+                options.fault = BosonSimFault::WrongSequence;
+            else if (f == "silent")
+                options.fault = BosonSimFault::Silent;
+            else
+                usage("--fault: expected none, drop-reply, corrupt-crc, wrong-sequence or silent");
         } else if (arg == "-h" || arg == "--help") {
             usage("help");
         } else {

@@ -1,4 +1,5 @@
-// `tirpol acquire PLAN.yaml --camera URI --stage URI [--blackbody URI] [--camera-control URI] [--ffc SCHEDULE] -o DIR [--resume] [--non-interactive]`:
+// `tirpol acquire PLAN.yaml --camera URI --stage URI [--blackbody URI] [--camera-control URI] [--ffc SCHEDULE]
+//  -o DIR [--resume] [--non-interactive]`:
 // runs a capture plan into a session directory (docs/acquisition-stages.md, docs/session-format.md).
 // Exit codes: 0 session complete; 1 an error (bad plan or URI, device fault, interruption — the
 // message says how many steps are recorded; continue with --resume); 2 bad command-line usage.

@@ -209,14 +209,16 @@ FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
         const json& v = f.at(key);
         if (!v.is_array()) f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
         if (static_cast<std::int64_t>(v.size()) != frames)
-            f.fail_here(f.field(key), fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
+            f.fail_here(f.field(key),
+                        fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
         return v;
     };
     auto integers = [&](const char* key, std::vector<std::int64_t>& out) {
         const json& v = column(key);
         for (std::size_t i = 0; i < v.size(); ++i) {
             if (!v[i].is_number_integer())
-                f.fail_here(fmt::format("{}[{}]", f.field(key), i), "expected an integer, got " + Fields::describe(v[i]));
+                f.fail_here(fmt::format("{}[{}]", f.field(key), i),
+                            "expected an integer, got " + Fields::describe(v[i]));
             out.push_back(v[i].get<std::int64_t>());
         }
     };
@@ -321,7 +323,8 @@ SessionRecord record_from_json(const Fields& f) {
         r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
         if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
     }
-    if (f.raw().contains("audit") && !f.raw().at("audit").is_null()) r.audit = audit_from_json(f.object("audit"), r.frames);
+    if (f.raw().contains("audit") && !f.raw().at("audit").is_null())
+        r.audit = audit_from_json(f.object("audit"), r.frames);
     check_record(f, r);
     return r;
 }

@@ -29,11 +29,11 @@ std::unique_ptr<test::ChildProcess> start_boson_sim(const std::filesystem::path&
 }
 
 int run_acquire(const std::filesystem::path& dir, const std::string& ffc, const char* log) {
-    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
-                                "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://",
-                                "--camera-control", "boson://" + (dir / "boson").string(), "--ffc", ffc, "-o",
-                                (dir / "session").string(), "--non-interactive"},
-                               dir / log);
+    test::ChildProcess acquire(
+        {TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
+         "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://", "--camera-control",
+         "boson://" + (dir / "boson").string(), "--ffc", ffc, "-o", (dir / "session").string(), "--non-interactive"},
+        dir / log);
     return acquire.wait_for(120s).value_or(-1);
 }
 

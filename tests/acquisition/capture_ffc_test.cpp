@@ -26,8 +26,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr double kS0 = 10000.0, kS1 = 300.0, kS2 = -200.0;  // counts
-constexpr double kNoise = 4.0;                             // temporal noise per frame, counts
-constexpr int kFrames = 8;                                 // per angle
+constexpr double kNoise = 4.0;                              // temporal noise per frame, counts
+constexpr int kFrames = 8;                                  // per angle
 constexpr int kWidth = 8, kHeight = 6;
 
 double scene_counts(double theta_deg) {
@@ -126,7 +126,8 @@ TEST(CaptureFfc, WithoutHandlingAnAutoFfcInsideACycleBiasesS1AndS2) {
     BosonRig rig;
     bool provoked = false;
     const auto options = provoking(*rig.core, provoked);
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
     run_capture(*rig.camera, *rig.stage, plan(1), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
@@ -144,7 +145,8 @@ TEST(CaptureFfc, WithoutALinkAnFfcInsideACycleIsDetectedAndTheCycleTakenAgain) {
     auto options = provoking(*rig.core, provoked);
     FfcOptions ffc;  // no control link: detection in the frames only
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
@@ -177,15 +179,16 @@ TEST(CaptureFfc, WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoun
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.on_progress = [&](const CaptureProgress& p) {
-        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 1 &&
-            p.step->angle_deg == 45.0 && p.frames_kept == kFrames) {
+        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 1 && p.step->angle_deg == 45.0 &&
+            p.frames_kept == kFrames) {
             rig.core->add_fpa_step_k(0.6);
             provoked = true;
         }
     };
     FfcOptions ffc;
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
@@ -210,7 +213,8 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
     ffc.control = link.get();
     ffc.schedule = FfcOptions::Schedule::EveryCycle;
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(3), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->ffc_mode(), boson::FfcMode::Manual);
@@ -227,7 +231,8 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
         ASSERT_TRUE(e.device_frame_count);
         ASSERT_TRUE(e.fpa_temperature_k);
         // Each FFC ended before its cycle's first frame: the cycle's records start after it.
-        const auto first = std::find_if(m.records.begin(), m.records.end(), [&](const SessionRecord& r) { return r.repeat == i; });
+        const auto first =
+            std::find_if(m.records.begin(), m.records.end(), [&](const SessionRecord& r) { return r.repeat == i; });
         ASSERT_NE(first, m.records.end());
         EXPECT_GT(first->first_timestamp_ns, e.host_timestamp_ns + 450'000'000) << "cycle " << i + 1;
         if (i > 0) {
@@ -253,7 +258,8 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
         // At 60 Hz the core counts at least the kept frames during the step; no FFC within it.
         EXPECT_GE(a.core_after->device_frame_count - a.core_before->device_frame_count, kFrames - 1);
         EXPECT_EQ(a.core_after->last_ffc_frame_count, a.core_before->last_ffc_frame_count);
-        EXPECT_EQ(a.core_before->last_ffc_frame_count, *m.ffc_events[static_cast<std::size_t>(r.repeat)].device_frame_count);
+        EXPECT_EQ(a.core_before->last_ffc_frame_count,
+                  *m.ffc_events[static_cast<std::size_t>(r.repeat)].device_frame_count);
     }
     for (int repeat : {0, 1, 2}) {
         const StokesBias b = bias(tmp / "s", repeat);
@@ -286,7 +292,8 @@ TEST(CaptureFfc, WithTheLinkAnFfcTheCoreRanInsideACycleIsSeenInItsFrameCountAndT
     ffc.schedule = FfcOptions::Schedule::EveryN;
     ffc.every_n_cycles = 10;  // only before the first cycle
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(summary.ffc_detected, 1);
@@ -317,7 +324,8 @@ TEST(CaptureFfc, WithTheLinkTheFpaScheduleRunsAnFfcOnlyWhenTheFpaMoved) {
     ffc.schedule = FfcOptions::Schedule::FpaDelta;
     ffc.fpa_delta_k = 0.3;
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(3), session, options);
     ASSERT_TRUE(provoked);
     // Cycle 1 (no reference yet) and cycle 2 (the FPA stepped 0.6 K during cycle 1); not cycle 3.
@@ -344,7 +352,8 @@ TEST(CaptureFfc, ACoreThatStopsAnsweringFailsTheStepByName) {
     FfcOptions ffc;
     ffc.control = link.get();
     options.ffc = &ffc;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
     try {
         run_capture(*rig.camera, *rig.stage, plan(1), session, options);
         FAIL() << "expected an error";

@@ -56,9 +56,10 @@ Result<std::vector<std::uint8_t>> BosonControl::transact(std::uint32_t function,
             if (frame.channel != kCommandChannel) continue;  // other channels carry no command replies
             const auto reply = parse_reply(frame.payload);
             if (!reply)
-                return DeviceError{DeviceErrorCode::BadReply,
-                                   fmt::format("{}: the reply to {} has {} payload bytes, fewer than the {}-byte header",
-                                               m_name, fname, frame.payload.size(), kHeaderSize)};
+                return DeviceError{
+                    DeviceErrorCode::BadReply,
+                    fmt::format("{}: the reply to {} has {} payload bytes, fewer than the {}-byte header", m_name,
+                                fname, frame.payload.size(), kHeaderSize)};
             if (reply->sequence != sequence) {
                 // An earlier command that timed out may still be answered late: skip that answer.
                 if (reply->sequence != 0 && reply->sequence <= previous) {
@@ -75,8 +76,8 @@ Result<std::vector<std::uint8_t>> BosonControl::transact(std::uint32_t function,
                                    fmt::format("{}: the reply to {} (sequence {}) names {} instead", m_name, fname,
                                                sequence, function_name(reply->function))};
             if (reply->status != kSuccess)
-                return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: {} failed: {}", m_name, fname,
-                                                                             return_code_name(reply->status))};
+                return DeviceError{DeviceErrorCode::DeviceFault,
+                                   fmt::format("{}: {} failed: {}", m_name, fname, return_code_name(reply->status))};
             if (reply->data.size() < reply_bytes)
                 return DeviceError{DeviceErrorCode::BadReply,
                                    fmt::format("{}: the reply to {} has {} data bytes, expected {}", m_name, fname,
@@ -159,10 +160,10 @@ Status BosonControl::run_ffc_and_wait() {
         if (s.status == FfcStatus::Complete && !s.in_progress && s.last_ffc_frame_count != before.value())
             return ok_status();
         if (Clock::now() - started > m_options.ffc_timeout)
-            return DeviceError{DeviceErrorCode::Timeout,
-                               fmt::format("{}: the FFC did not complete within {} ms (status {}, in progress {})",
-                                           m_name, m_options.ffc_timeout.count(), static_cast<int>(s.status),
-                                           s.in_progress)};
+            return DeviceError{
+                DeviceErrorCode::Timeout,
+                fmt::format("{}: the FFC did not complete within {} ms (status {}, in progress {})", m_name,
+                            m_options.ffc_timeout.count(), static_cast<int>(s.status), s.in_progress)};
         std::this_thread::sleep_for(m_options.ffc_poll);
     }
 }
@@ -245,7 +246,9 @@ Result<GainMode> BosonControl::gain_mode() {
     return static_cast<GainMode>(v.value());
 }
 
-Status BosonControl::set_gain_mode(GainMode mode) { return set_i32(kBosonSetGainMode, static_cast<std::int32_t>(mode)); }
+Status BosonControl::set_gain_mode(GainMode mode) {
+    return set_i32(kBosonSetGainMode, static_cast<std::int32_t>(mode));
+}
 
 Result<double> BosonControl::ffc_temperature_threshold_k() {
     auto data = transact(kBosonGetFfcTempThreshold, {}, 2);

@@ -34,7 +34,8 @@ std::uint32_t BosonCoreModel::frames_at(Clock::time_point now) const {
 
 void BosonCoreModel::start_ffc(Clock::time_point now, bool automatic) {
     m_in_ffc = true;
-    m_ffc_end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_config.ffc_duration_s));
+    m_ffc_end =
+        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_config.ffc_duration_s));
     m_last_ffc_frame = frames_at(now);
     // The FFC measures the shutter now: the drift reference is the FPA temperature at its start.
     m_fpa_at_ffc_k = fpa_k(now);

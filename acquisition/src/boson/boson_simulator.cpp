@@ -37,7 +37,8 @@ Reply BosonSimulator::answer(const Command& c, Clock::time_point now) {
         return ok_reply(c);
     };
     switch (c.function) {
-        case kBosonGetCameraSn: return u32_reply(c, core.config().serial);
+        case kBosonGetCameraSn:
+            return u32_reply(c, core.config().serial);
         case kBosonGetCameraPn: {
             Reply r = ok_reply(c);
             r.data.assign(20, 0);
@@ -49,26 +50,35 @@ Reply BosonSimulator::answer(const Command& c, Clock::time_point now) {
             const double deci_c = std::round((core.fpa_temperature_k(now) - kZeroCelsiusK) * 10.0);
             return u16_reply(c, static_cast<std::uint16_t>(static_cast<std::int16_t>(deci_c)));
         }
-        case kBosonGetFfcMode: return u32_reply(c, static_cast<std::uint32_t>(core.ffc_mode()));
+        case kBosonGetFfcMode:
+            return u32_reply(c, static_cast<std::uint32_t>(core.ffc_mode()));
         case kBosonSetFfcMode:
             return set_enum(static_cast<std::int32_t>(FfcMode::ShutterTest),
                             [&](std::int32_t v) { core.set_ffc_mode(static_cast<FfcMode>(v)); });
-        case kBosonGetGainMode: return u32_reply(c, static_cast<std::uint32_t>(core.gain_mode()));
+        case kBosonGetGainMode:
+            return u32_reply(c, static_cast<std::uint32_t>(core.gain_mode()));
         case kBosonSetGainMode:
             return set_enum(static_cast<std::int32_t>(GainMode::Manual),
                             [&](std::int32_t v) { core.set_gain_mode(static_cast<GainMode>(v)); });
-        case kBosonRunFfc: core.run_ffc(now); return ok_reply(c);
-        case kBosonGetFfcStatus: return u32_reply(c, static_cast<std::uint32_t>(core.ffc_status(now)));
-        case kBosonGetFfcInProgress: return u16_reply(c, core.ffc_in_progress(now) ? 1 : 0);
-        case kBosonGetLastFfcFrameCount: return u32_reply(c, core.last_ffc_frame_count(now));
-        case kRoicGetFrameCount: return u32_reply(c, core.frame_count(now));
+        case kBosonRunFfc:
+            core.run_ffc(now);
+            return ok_reply(c);
+        case kBosonGetFfcStatus:
+            return u32_reply(c, static_cast<std::uint32_t>(core.ffc_status(now)));
+        case kBosonGetFfcInProgress:
+            return u16_reply(c, core.ffc_in_progress(now) ? 1 : 0);
+        case kBosonGetLastFfcFrameCount:
+            return u32_reply(c, core.last_ffc_frame_count(now));
+        case kRoicGetFrameCount:
+            return u32_reply(c, core.frame_count(now));
         case kBosonGetFfcTempThreshold:
             return u16_reply(c, static_cast<std::uint16_t>(std::lround(core.ffc_threshold_k() * 10.0)));
         case kBosonSetFfcTempThreshold:
             if (c.data.size() < 2) return error_reply(c, kCamPackageInsufficientBytes);
             core.set_ffc_threshold_k(read_u16(c.data, 0) / 10.0);
             return ok_reply(c);
-        default: return error_reply(c, kCamDispatchBadCommandId);
+        default:
+            return error_reply(c, kCamDispatchBadCommandId);
     }
 }
 

@@ -28,7 +28,8 @@ Result<std::unique_ptr<FfcControl>> open_ffc_control(const std::string& uri) {
 FfcOptions parse_ffc_schedule(const std::string& text) {
     FfcOptions options;
     auto bad = [&](const char* why) -> FfcOptions {
-        fail("--ffc '{}': {} (expected detect, every-cycle, every:N with N ≥ 1, or fpa:K with K > 0 kelvin)", text, why);
+        fail("--ffc '{}': {} (expected detect, every-cycle, every:N with N ≥ 1, or fpa:K with K > 0 kelvin)", text,
+             why);
     };
     if (text == "detect" || text == "every-cycle") return options;
     const auto colon = text.find(':');

@@ -200,7 +200,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                  "with --resume",
                  step.index + 1, total, step.label, step.repeat + 1, cycle_attempt, event.reason, recorded(), total,
                  session.dir().string());
-        if (!options.ffc->control && !sleep_until_host_ns(host_realtime_ns() + static_cast<std::int64_t>(options.ffc->detection_pause_s * 1e9), options))
+        const auto pause_ns = static_cast<std::int64_t>(options.ffc->detection_pause_s * 1e9);
+        if (!options.ffc->control && !sleep_until_host_ns(host_realtime_ns() + pause_ns, options))
             fail("interrupted while waiting for an FFC to end (step {}/{}, {}); {} of {} steps are recorded in {}; run "
                  "again with --resume",
                  step.index + 1, total, step.label, recorded(), total, session.dir().string());
@@ -297,7 +298,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             }
             if (in_cycle(ti)) {
                 if (auto why = guard->observe(frame)) {
-                    spoiled = guard->detected(step->repeat, fmt::format("step {} ({}): {}", step->index + 1, step->label, *why));
+                    spoiled = guard->detected(step->repeat,
+                                              fmt::format("step {} ({}): {}", step->index + 1, step->label, *why));
                     break;
                 }
             }

@@ -46,7 +46,9 @@ Result<std::optional<FfcEvent>> FfcGuard::before_cycle(int repeat, int cycles_st
         reason = "before taking again a cycle an FFC fell in";
     } else {
         switch (m_options.schedule) {
-            case FfcOptions::Schedule::EveryCycle: reason = "every cycle"; break;
+            case FfcOptions::Schedule::EveryCycle:
+                reason = "every cycle";
+                break;
             case FfcOptions::Schedule::EveryN:
                 if (cycles_started % std::max(1, m_options.every_n_cycles) == 0)
                     reason = fmt::format("every {} cycles", m_options.every_n_cycles);
@@ -112,8 +114,9 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
         auto marker = link->last_ffc_marker();
         if (!marker) return marker.error();
         if (m_marker_at_cycle_start && marker.value() != *m_marker_at_cycle_start) {
-            FfcEvent e = detected(repeat, fmt::format("the core's last-FFC frame count moved from {} to {} during the cycle",
-                                                      *m_marker_at_cycle_start, marker.value()));
+            FfcEvent e =
+                detected(repeat, fmt::format("the core's last-FFC frame count moved from {} to {} during the cycle",
+                                             *m_marker_at_cycle_start, marker.value()));
             e.device_frame_count = static_cast<std::int64_t>(marker.value());
             if (auto fpa = link->fpa_temperature_k()) e.fpa_temperature_k = fpa.value();
             return std::optional<FfcEvent>(std::move(e));
@@ -126,9 +129,9 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
         m_cycle_means.count(k135)) {
         const double closure = m_cycle_means[k0] + m_cycle_means[k90] - m_cycle_means[k45] - m_cycle_means[k135];
         if (std::abs(closure) > m_options.cycle_step_counts)
-            return std::optional<FfcEvent>(detected(
-                repeat, fmt::format("cycle closure I0 + I90 − I45 − I135 = {:+.1f} counts (threshold {})", closure,
-                                    m_options.cycle_step_counts)));
+            return std::optional<FfcEvent>(
+                detected(repeat, fmt::format("cycle closure I0 + I90 − I45 − I135 = {:+.1f} counts (threshold {})",
+                                             closure, m_options.cycle_step_counts)));
     }
     // A still scene changes every angle's mean by the same amount from one cycle to the next (an FFC
     // between cycles included); an offset step inside the cycle changes only the angles after it.

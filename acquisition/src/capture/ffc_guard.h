@@ -28,7 +28,8 @@ public:
     /// Ends the step at `angle_deg` (its mean of frame means is kept for the cycle checks).
     void end_step(double angle_deg);
     /// After the cycle's last step: the event of an FFC found in the cycle (with a link: its last-FFC
-    /// frame count moved; without: the frame statistics of ffc.h), to be taken again, or nullopt (the cycle is accepted and becomes the reference for the next one).
+    /// frame count moved; without: the frame statistics of ffc.h), to be taken again, or nullopt (the cycle is accepted
+    /// and becomes the reference for the next one).
     Result<std::optional<FfcEvent>> end_cycle(int repeat);
     /// Forgets the current cycle's steps (after a detection within a step).
     void abandon_cycle();

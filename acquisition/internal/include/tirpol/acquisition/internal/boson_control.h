@@ -16,8 +16,8 @@
 #include <memory>
 #include <string>
 
-#include "tirpol/acquisition/internal/boson_fslp.h"
 #include "tirpol/acquisition/ffc.h"
+#include "tirpol/acquisition/internal/boson_fslp.h"
 #include "tirpol/acquisition/internal/byte_port.h"
 
 namespace tirpol::acquisition {

@@ -33,10 +33,10 @@ struct BosonCoreConfig {
     boson::FfcMode ffc_mode = boson::FfcMode::Auto;  ///< the Boson's factory default
     double ffc_threshold_k = 1.0;
     double ffc_duration_s = 0.5;
-    double ffc_step_std_counts = 20.0;   ///< frame-wide offset change per FFC, standard deviation
-    double ffc_pixel_std_counts = 2.0;   ///< per-pixel offset change per FFC, standard deviation
-    double offset_counts_per_k = 0.0;    ///< uncorrected offset drift per kelvin of FPA change since the FFC
-    double shutter_counts = 7000.0;      ///< what the sensor sees with the shutter closed
+    double ffc_step_std_counts = 20.0;  ///< frame-wide offset change per FFC, standard deviation
+    double ffc_pixel_std_counts = 2.0;  ///< per-pixel offset change per FFC, standard deviation
+    double offset_counts_per_k = 0.0;   ///< uncorrected offset drift per kelvin of FPA change since the FFC
+    double shutter_counts = 7000.0;     ///< what the sensor sees with the shutter closed
     boson::GainMode gain_mode = boson::GainMode::High;
     std::uint64_t seed = 7;
 };
