@@ -369,10 +369,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     };
     std::map<long, Accumulator> by_angle;
     std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
+    double outside_range = 0.0;  // the largest fraction of a frame's good pixels outside the calibrated range
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
         throw_if_cancelled(options.cancel, "session reduction");
         const RadianceFrame f = to_radiance(dir, m, r, radiometric, drift ? drift_by_file.at(r.file) : 0.0);
+        outside_range = std::max(outside_range, outside_calibrated_range_fraction(radiometric, f.radiance));
         if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
             warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
         const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
@@ -434,6 +436,11 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
     if (!warnings.empty()) a["calibration_warnings"] = warnings;
+    if (!radiometric.temperatures_k.empty()) {
+        const auto [t_lo, t_hi] = std::minmax_element(radiometric.temperatures_k.begin(), radiometric.temperatures_k.end());
+        a["calibration_range_k"] = std::vector<double>{*t_lo, *t_hi};
+        a["calibration_outside_range_fraction"] = outside_range;
+    }
     if (correction) {
         a["offset_update_source"] = correction->source;
         a["offset_update_mean_counts"] = correction->mean_counts;

@@ -176,6 +176,73 @@ BlackbodyReadings readings_from_json(const Fields& f) {
     return b;
 }
 
+json core_state_to_json(const FrameAudit::CoreState& c) {
+    return json{{"ffc_mode", c.ffc_mode},
+                {"gain_mode", c.gain_mode},
+                {"fpa_temperature_k", c.fpa_temperature_k},
+                {"device_frame_count", c.device_frame_count},
+                {"last_ffc_frame_count", c.last_ffc_frame_count}};
+}
+
+json audit_to_json(const FrameAudit& a) {
+    json fpa = json::array();
+    for (const auto& t : a.fpa_temperature_k) fpa.push_back(optional_number(t));
+    json j{{"frame_id", a.frame_id},
+           {"device_timestamp_ns", a.device_timestamp_ns},
+           {"host_timestamp_ns", a.host_timestamp_ns},
+           {"fpa_temperature_k", fpa},
+           {"incomplete", a.incomplete},
+           {"core_before", a.core_before ? core_state_to_json(*a.core_before) : json(nullptr)},
+           {"core_after", a.core_after ? core_state_to_json(*a.core_after) : json(nullptr)}};
+    return j;
+}
+
+std::optional<FrameAudit::CoreState> core_state_from_json(const Fields& f, const std::string& key) {
+    if (f.at(key).is_null()) return std::nullopt;
+    const Fields c = f.object(key);
+    return FrameAudit::CoreState{c.string("ffc_mode"), c.string("gain_mode"), c.number("fpa_temperature_k"),
+                                 c.integer("device_frame_count", 0), c.integer("last_ffc_frame_count", 0)};
+}
+
+FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
+    FrameAudit a;
+    auto column = [&](const char* key) -> const json& {
+        const json& v = f.at(key);
+        if (!v.is_array()) f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
+        if (static_cast<std::int64_t>(v.size()) != frames)
+            f.fail_here(f.field(key),
+                        fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
+        return v;
+    };
+    auto integers = [&](const char* key, std::vector<std::int64_t>& out) {
+        const json& v = column(key);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!v[i].is_number_integer())
+                f.fail_here(fmt::format("{}[{}]", f.field(key), i),
+                            "expected an integer, got " + Fields::describe(v[i]));
+            out.push_back(v[i].get<std::int64_t>());
+        }
+    };
+    integers("frame_id", a.frame_id);
+    integers("device_timestamp_ns", a.device_timestamp_ns);
+    integers("host_timestamp_ns", a.host_timestamp_ns);
+    const json& fpa = column("fpa_temperature_k");
+    for (std::size_t i = 0; i < fpa.size(); ++i) {
+        if (fpa[i].is_null()) {
+            a.fpa_temperature_k.emplace_back();
+        } else if (fpa[i].is_number() && std::isfinite(fpa[i].get<double>())) {
+            a.fpa_temperature_k.emplace_back(fpa[i].get<double>());
+        } else {
+            f.fail_here(fmt::format("{}[{}]", f.field("fpa_temperature_k"), i),
+                        "expected a number or null, got " + Fields::describe(fpa[i]));
+        }
+    }
+    a.incomplete = f.integer("incomplete", 0);
+    a.core_before = core_state_from_json(f, "core_before");
+    a.core_after = core_state_from_json(f, "core_after");
+    return a;
+}
+
 json record_to_json(const SessionRecord& r) {
     json j{{"kind", to_string(r.kind)},
                 {"file", r.file},
@@ -190,6 +257,7 @@ json record_to_json(const SessionRecord& r) {
                 {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
     if (r.timing) j["timing"] = timing_to_json(*r.timing);
     if (r.blackbody_readings) j["blackbody_readings"] = readings_to_json(*r.blackbody_readings);
+    if (r.audit) j["audit"] = audit_to_json(*r.audit);
     return j;
 }
 
@@ -256,10 +324,39 @@ SessionRecord record_from_json(const Fields& f) {
         r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
         if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
     }
+    if (f.raw().contains("audit") && !f.raw().at("audit").is_null())
+        r.audit = audit_from_json(f.object("audit"), r.frames);
     check_record(f, r);
     return r;
 }
 
+}  // namespace
+
+const char* to_string(FfcEvent::Kind kind) { return kind == FfcEvent::Kind::Scheduled ? "scheduled" : "detected"; }
+
+namespace {
+json ffc_event_to_json(const FfcEvent& e) {
+    return json{{"kind", to_string(e.kind)},
+                {"host_timestamp_ns", e.host_timestamp_ns},
+                {"repeat", e.repeat},
+                {"fpa_temperature_k", optional_number(e.fpa_temperature_k)},
+                {"device_frame_count", e.device_frame_count ? json(*e.device_frame_count) : json(nullptr)},
+                {"reason", e.reason}};
+}
+
+FfcEvent ffc_event_from_json(const Fields& f) {
+    FfcEvent e;
+    const std::string kind = f.string("kind");
+    if (kind != "scheduled" && kind != "detected")
+        f.fail_here(f.field("kind"), fmt::format("expected \"scheduled\" or \"detected\", got \"{}\"", kind));
+    e.kind = kind == "scheduled" ? FfcEvent::Kind::Scheduled : FfcEvent::Kind::Detected;
+    e.host_timestamp_ns = f.integer("host_timestamp_ns", 0);
+    e.repeat = static_cast<int>(f.integer("repeat", 0, std::numeric_limits<int>::max()));
+    e.fpa_temperature_k = f.optional_number("fpa_temperature_k");
+    if (!f.at("device_frame_count").is_null()) e.device_frame_count = f.integer("device_frame_count", 0);
+    e.reason = f.string("reason");
+    return e;
+}
 }  // namespace
 
 json session_to_json(const SessionManifest& m) {
@@ -267,6 +364,8 @@ json session_to_json(const SessionManifest& m) {
     for (const auto& [k, v] : m.camera.planck_constants) planck[k] = v;
     json records = json::array();
     for (const auto& r : m.records) records.push_back(record_to_json(r));
+    json ffc_events = json::array();
+    for (const auto& e : m.ffc_events) ffc_events.push_back(ffc_event_to_json(e));
     return json{{"schema", kSessionSchema},
                 {"schema_version", kSessionSchemaVersion},
                 {"created_utc", m.created_utc},
@@ -297,6 +396,7 @@ json session_to_json(const SessionManifest& m) {
                 {"plan", m.plan},
                 {"metadata", m.metadata},
                 {"records", records},
+                {"ffc_events", ffc_events},
                 {"complete", m.complete}};
 }
 
@@ -352,6 +452,12 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
         SessionRecord r = record_from_json(rf);
         if (!files.insert(r.file).second) rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
         m.records.push_back(std::move(r));
+    }
+    if (top.raw().contains("ffc_events")) {
+        const json& events = top.at("ffc_events");
+        if (!events.is_array()) top.fail_here("ffc_events", "expected an array, got " + Fields::describe(events));
+        for (std::size_t i = 0; i < events.size(); ++i)
+            m.ffc_events.push_back(ffc_event_from_json(Fields(events[i], source, fmt::format("ffc_events[{}]", i))));
     }
     m.complete = top.boolean("complete");
     return m;
@@ -717,6 +823,11 @@ void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
     if (!(frame_rate_hz > 0.0) || !std::isfinite(frame_rate_hz))
         fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}", (m_dir / kSessionManifestName).string(), frame_rate_hz);
     m_manifest.camera.frame_rate_hz = frame_rate_hz;
+}
+
+void SessionWriter::add_ffc_event(const FfcEvent& event) {
+    m_manifest.ffc_events.push_back(event);
+    write_manifest();
 }
 
 void SessionWriter::set_metadata(nlohmann::json metadata) {
