@@ -13,9 +13,11 @@ namespace tirpol::cli {
 namespace {
 struct DemosaicArgs {
     std::string input, output, pattern, method = "newton", channel = "counts";
+    bool force = false;
 };
 
 void run_demosaic(const DemosaicArgs& a) {
+    OutputGuard().input(a.input, "INPUT").output_file(a.output, "--output").check(a.force);
     std::optional<calibration::MicrogridPattern> pattern;
     if (!a.pattern.empty())
         pattern = parse_option_value("--pattern", [&] { return calibration::MicrogridPattern::parse(a.pattern); });
@@ -45,6 +47,7 @@ void register_demosaic(CLI::App& app) {
     cmd->add_option("--method", a->method, "Demosaicing: super-pixel, bilinear or newton")->capture_default_str();
     cmd->add_option("--channel", a->channel, "EXR channel holding the frame")->capture_default_str();
     cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
+    add_force_flag(cmd, a->force);
     cmd->callback([a] { run_demosaic(*a); });
 }
 }  // namespace
