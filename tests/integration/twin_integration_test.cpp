@@ -249,7 +249,10 @@ TEST(DigitalTwin, ReportFlagsThePerturbedPanelAndOnlyIt) {
     const report::MeanDifferenceTest& s1 = glossy->quantities[1].mean;
     EXPECT_EQ(s1.verdict, report::Agreement::ExceedsNoise);
     EXPECT_GT(s1.difference, s1.detectable_bias);  // resolved, not a marginal call
-    EXPECT_NE(r.report_summary.find("glossy_black_paint in S1"), std::string::npos) << r.report_summary;
+    // The summary names the region and its S1 difference (S0 may be named too: n − 0.1 also changes ε_S0).
+    const auto named = r.report_summary.find("glossy_black_paint in ");
+    ASSERT_NE(named, std::string::npos) << r.report_summary;
+    EXPECT_NE(r.report_summary.find("S1 by +", named), std::string::npos) << r.report_summary;
 
     // The size of the difference is the physics': Δε_S1 of the paint model between the two indices at the
     // flat black panel's view angle (the glossy panel sits beside it, same tilt and temperature), times
