@@ -23,24 +23,7 @@ namespace fs = std::filesystem;
 using testing::HasSubstr;
 using tirpol::test::CliRun;
 using tirpol::test::run_cli;
-
-/// The names under "Subcommands:" in `tirpol [PATH] --help` (as exit_codes_test reads them).
-std::set<std::string> subcommands_in_help(const std::string& path) {
-    const CliRun help = run_cli(path + " --help", false);
-    std::set<std::string> names;
-    std::istringstream lines(help.out);
-    bool listing = false;
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("Subcommands:", 0) == 0) listing = true;
-        else if (listing && line.rfind("  ", 0) == 0) {
-            std::istringstream words(line);
-            std::string name;
-            words >> name;
-            names.insert(path.empty() ? name : path + " " + name);
-        } else if (listing && !line.empty()) listing = false;
-    }
-    return names;
-}
+using tirpol::test::subcommands_in_help;
 
 struct Row {
     std::string args;     ///< after `tirpol <subcommand>`: an output onto an input or a user's file
