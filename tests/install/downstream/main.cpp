@@ -24,15 +24,18 @@ void check_near(const char* what, double got, double expected, double rel_tol) {
 }  // namespace
 
 int main() {
-    // ∫ L(λ, T) dλ = σT⁴/π, σ = 5.670374419e-8 W m⁻² K⁻⁴ (CODATA 2018). The 0.2–3000 µm band misses the
-    // Rayleigh–Jeans tail beyond 3000 µm, 2ckT/(3λ³), added analytically.
+    // ∫ L(λ, T) dλ = σT⁴/π, σ = 5.670374419e-8 W m⁻² K⁻⁴ (CODATA 2018). The 0.2–1000 µm band (the longest
+    // wavelength a Band accepts) misses the tail beyond Λ = 1000 µm, added from the series of Planck's law
+    // in x = hc/(λkT) < 0.05 there: ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵) − …
     constexpr double kSigmaCodata2018 = 5.670374419e-8;
     constexpr double kPi = 3.14159265358979323846;
-    const tirpol::Band all(0.2, 3000.0, std::nullopt, 1.0);
+    constexpr double c = 299792458.0, k = 1.380649e-23, h = 6.62607015e-34;
+    const tirpol::Band all(0.2, 1000.0, std::nullopt, 1.0);
     const double t_k = 300.0;
-    const double lambda_m = 3000e-6;
-    const double tail = 2.0 * 299792458.0 * 1.380649e-23 * t_k / (3.0 * lambda_m * lambda_m * lambda_m);
-    check_near("band radiance 0.2-3000 um at 300 K, W/(m2 sr)", all.radiance(t_k) + tail,
+    const double l = 1000e-6;
+    const double tail = 2.0 * c * k * t_k / (3.0 * l * l * l) - h * c * c / (4.0 * l * l * l * l) +
+                        h * h * c * c * c / (30.0 * k * t_k * l * l * l * l * l);
+    check_near("band radiance 0.2-1000 um at 300 K plus the tail, W/(m2 sr)", all.radiance(t_k) + tail,
                kSigmaCodata2018 * std::pow(t_k, 4) / kPi, 2e-8);
 
     // Polarizer readings at 0°, 45°, 90°, 135° of light 60 % linearly polarized along 0°:
