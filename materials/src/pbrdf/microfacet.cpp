@@ -13,12 +13,14 @@ namespace {
 MuellerMatrix to_eigen(const Mueller4<double>& m) {
     MuellerMatrix out;
     for (std::size_t r = 0; r < 4; ++r)
-        for (std::size_t c = 0; c < 4; ++c) out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = m[r][c];
+        for (std::size_t c = 0; c < 4; ++c)
+            out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = m[r][c];
     return out;
 }
 }  // namespace
 
-MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters) : m_parameters(std::move(parameters)) {}
+MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters)
+    : m_parameters(std::move(parameters)) {}
 
 ShellTargetParameters<double> MicrofacetBrdf::at(double wavelength_um) const {
     const ComplexIndex index = m_parameters.index.at_clamped(wavelength_um);
@@ -45,45 +47,48 @@ double cotangent(double cos_theta) {
     return sin_theta * 1e8 <= cos_theta ? 1e8 : cos_theta / sin_theta;
 }
 
-/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv function",
-/// GPU Computing Gems 2011): a starting point for Newton steps.
+/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv
+/// function", GPU Computing Gems 2011): a starting point for Newton steps.
 double approximate_inverse_erf(double z) {
     double w = -std::log((1.0 - z) * (1.0 + z)), x;
     if (w < 5.0) {
         w -= 2.5;
         x = 2.81022636e-08;
-        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087, -0.00125372503, -0.00417768164,
-                         0.246640727, 1.50140941})
+        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087,
+                         -0.00125372503, -0.00417768164, 0.246640727, 1.50140941})
             x = c + x * w;
     } else {
         w = std::sqrt(w) - 3.0;
         x = -0.000200214257;
-        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773, -0.0076224613, 0.00943887047,
-                         1.00167406, 2.83297682})
+        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773,
+                         -0.0076224613, 0.00943887047, 1.00167406, 2.83297682})
             x = c + x * w;
     }
     return x * z;
 }
 
-/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation refined by Newton steps on
-/// erf, or on erfc in the upper tail where erf(x) rounds to 1.
+/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation refined by Newton steps
+/// on erf, or on erfc in the upper tail where erf(x) rounds to 1.
 double inverse_erf(double z) {
     if (z < 0.0) return -inverse_erf(-z);
     z = std::min(z, 1.0 - 1e-16);
     double x = approximate_inverse_erf(z);
     for (int i = 0; i < 3; ++i)
-        x -= (z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z) / (2.0 * kInvSqrtPi * std::exp(-x * x));
+        x -= (z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z) /
+             (2.0 * kInvSqrtPi * std::exp(-x * x));
     return x;
 }
 
-/// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along +x):
-/// inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz &
-/// d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Newton
+/// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along
+/// +x): inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz
+/// & d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Newton
 /// steps kept inside a bisection bracket, to |F − u| < 1e-13, so that the map u → x̃ is smooth.
 double visible_slope_x(double cos_theta, double u) {
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
-    const auto unnormalised = [&](double x) { return std::erfc(-x) + tan_theta * kInvSqrtPi * std::exp(-x * x); };
+    const auto unnormalised = [&](double x) {
+        return std::erfc(-x) + tan_theta * kInvSqrtPi * std::exp(-x * x);
+    };
     const double total = unnormalised(cot_theta);
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
     double lo = std::min(-1.0, cot_theta - 1.0), hi = cot_theta;
@@ -118,7 +123,8 @@ Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
         x = r * std::cos(2.0 * kPi * u2);
         y = r * std::sin(2.0 * kPi * u2);
     } else {
-        const double slope_x = visible_slope_x(stretched.z(), u1), slope_y = inverse_erf(2.0 * u2 - 1.0);
+        const double slope_x = visible_slope_x(stretched.z(), u1),
+                     slope_y = inverse_erf(2.0 * u2 - 1.0);
         const double r = std::hypot(stretched.x(), stretched.y());
         const double c = stretched.x() / r, s = stretched.y() / r;
         x = c * slope_x - s * slope_y;
@@ -134,60 +140,65 @@ namespace {
 // specularly, and starving that lobe there made polarized sky reflections arrive as rare, heavy
 // samples (salt-and-pepper S1 on car roofs, the paper's §4.3 artifact).
 double specular_probability(const ShellTargetParameters<double>& p, double cos_o) {
-    const double specular = std::min(1.0, p.bias * fresnel({p.n, p.k}, std::clamp(cos_o, 0.0, 1.0)).R());
+    const double specular =
+        std::min(1.0, p.bias * fresnel({p.n, p.k}, std::clamp(cos_o, 0.0, 1.0)).R());
     // Hemispherical albedo of the diffuse term (π ρ_D) and of the volume term at normal incidence
     // (4π ρ_V (1 − ln 2)).
     const double diffuse = kPi * p.rho_d + 4.0 * kPi * (1.0 - std::log(2.0)) * p.rho_v;
     if (diffuse <= 0.0) return 1.0;
     if (specular <= 0.0) return 0.0;
-    // A defensive mixture (Hesterberg 1995): each lobe keeps at least a quarter of the samples, so its
-    // MIS weight is at most 4× and, with the sampler's strata of a quarter (4 points per replicate, or a
-    // multiple), every replicate draws each lobe a fixed number of times. A lobe drawn by ~1 sample in
-    // 11 (glossy paint at grazing views) made replicates that missed it alike, their spread blind to it.
+    // A defensive mixture (Hesterberg 1995): each lobe keeps at least a quarter of the samples, so
+    // its MIS weight is at most 4× and, with the sampler's strata of a quarter (4 points per
+    // replicate, or a multiple), every replicate draws each lobe a fixed number of times. A lobe
+    // drawn by ~1 sample in 11 (glossy paint at grazing views) made replicates that missed it
+    // alike, their spread blind to it.
     return std::clamp(specular / (specular + diffuse), 0.25, 0.75);
 }
 
 /// How the specular lobe draws its facet normal: from the normals visible from wo (the renderer's
-/// sampler) or from D(h)·cosθh (the smoother map in u that the emissivity quadrature integrates through).
+/// sampler) or from D(h)·cosθh (the smoother map in u that the emissivity quadrature integrates
+/// through).
 enum class FacetSampling { visible, slope };
 
 /// Density of the specular lobe's reflection wi = 2(h·wo)h − wo for wi anywhere on the sphere (the
 /// visible-normal branch also at wi below the horizon, which the sampler folds back up).
-double specular_reflection_pdf(const ShellTargetParameters<double>& p, const Vec3& wi, const Vec3& wo,
-                               FacetSampling facets) {
+double specular_reflection_pdf(const ShellTargetParameters<double>& p, const Vec3& wi,
+                               const Vec3& wo, FacetSampling facets) {
     const Vec3 h = (wi + wo).normalized();
     const double ho = h.dot(wo);
     if (!(ho > 0.0) || !(h.z() > 0.0)) return 0.0;
     const double cos_h = std::max(h.z(), kMinCosine);
     const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
     const double d = gaussian_facet_density(p.sigma, cos_h, tan2);
-    // The reflection has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq 14). Visible normals have
-    // density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the h·wo cancel; slope sampling
-    // has D·cosθh (Torrance & Sparrow 1967).
+    // The reflection has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq 14). Visible normals
+    // have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the h·wo cancel; slope
+    // sampling has D·cosθh (Torrance & Sparrow 1967).
     if (facets == FacetSampling::visible)
-        return d / ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 * std::max(wo.z(), kMinCosine));
+        return d / ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 *
+                    std::max(wo.z(), kMinCosine));
     return d * cos_h / (4.0 * ho);
 }
 
 /// The mirror image of `w` in the tangent plane.
 Vec3 folded(const Vec3& w) { return Vec3(w.x(), w.y(), -w.z()); }
 
-double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi, const Vec3& wo,
-                   FacetSampling facets) {
+double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi,
+                   const Vec3& wo, FacetSampling facets) {
     if (!(wi.z() > 0.0) || !(wo.z() > 0.0)) return 0.0;
     double pdf = 0.0;
     if (p_spec > 0.0) {
         pdf += p_spec * specular_reflection_pdf(p, wi, wo, facets);
-        // A visible normal whose reflection points below the horizon is folded up (sample_mixture), so
-        // wi is also drawn through its mirror image.
-        if (facets == FacetSampling::visible) pdf += p_spec * specular_reflection_pdf(p, folded(wi), wo, facets);
+        // A visible normal whose reflection points below the horizon is folded up (sample_mixture),
+        // so wi is also drawn through its mirror image.
+        if (facets == FacetSampling::visible)
+            pdf += p_spec * specular_reflection_pdf(p, folded(wi), wo, facets);
     }
     if (p_spec < 1.0) pdf += (1.0 - p_spec) * detail::cosine_hemisphere_pdf(wi);
     return pdf;
 }
 
-BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo, double u1, double u2,
-                          FacetSampling facets) {
+BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo,
+                          double u1, double u2, FacetSampling facets) {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
     if (u1 < p_spec) {
@@ -204,10 +215,11 @@ BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec,
         const double ho = h.dot(wo);
         if (!(ho > 0.0)) return s;
         s.wi = (2.0 * ho * h - wo).normalized();
-        // A reflection below the horizon (masked: the model's G is 0 there) would be a wasted, zero-weight
-        // sample: at grazing views 3–7 % of visible normals give one, a rare event that a pixel's few
-        // samples can miss altogether, leaving its variance estimate blind to it. Folding it into the
-        // upper hemisphere keeps every sample and stays unbiased, as mixture_pdf counts both images.
+        // A reflection below the horizon (masked: the model's G is 0 there) would be a wasted,
+        // zero-weight sample: at grazing views 3–7 % of visible normals give one, a rare event that
+        // a pixel's few samples can miss altogether, leaving its variance estimate blind to it.
+        // Folding it into the upper hemisphere keeps every sample and stays unbiased, as
+        // mixture_pdf counts both images.
         if (facets == FacetSampling::visible && s.wi.z() < 0.0) s.wi = folded(s.wi);
         if (!(s.wi.z() > 0.0)) return s;
     } else {
@@ -219,7 +231,8 @@ BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec,
         s.pdf = 0.0;
         return s;
     }
-    s.weight = to_eigen(shell_target_mueller(p, microfacet_geometry(s.wi, wo))) * (s.wi.z() / s.pdf);
+    s.weight =
+        to_eigen(shell_target_mueller(p, microfacet_geometry(s.wi, wo))) * (s.wi.z() / s.pdf);
     return s;
 }
 }  // namespace
@@ -228,12 +241,14 @@ double MicrofacetBrdf::specular_sampling_probability(const Vec3& wo, double wave
     return specular_probability(at(wavelength_um), wo.z());
 }
 
-BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1,
+                                  double u2) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
     return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::visible);
 }
 
-BrdfSample MicrofacetBrdf::quadrature_sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample MicrofacetBrdf::quadrature_sample(const Vec3& wo, double wavelength_um, double u1,
+                                             double u2) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
     return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::slope);
 }
@@ -263,8 +278,9 @@ std::vector<BrdfParameter> MicrofacetBrdf::parameters(double wavelength_um) cons
 
 std::pair<double, double> MicrofacetBrdf::valid_wavelength_range_um() const {
     double lo = m_parameters.index.min_wavelength_um(), hi = m_parameters.index.max_wavelength_um();
-    for (const SpectralValue* v : {&m_parameters.sigma, &m_parameters.bias, &m_parameters.tau_deg,
-                                   &m_parameters.omega_deg, &m_parameters.rho_d, &m_parameters.rho_v}) {
+    for (const SpectralValue* v :
+         {&m_parameters.sigma, &m_parameters.bias, &m_parameters.tau_deg, &m_parameters.omega_deg,
+          &m_parameters.rho_d, &m_parameters.rho_v}) {
         lo = std::max(lo, v->min_wavelength_um());
         hi = std::min(hi, v->max_wavelength_um());
     }
