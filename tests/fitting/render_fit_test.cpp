@@ -174,8 +174,14 @@ TEST(RenderFit, RecoversTheGlossyPaintOfTheBallOnSnow) {
             {"view" + std::to_string(v), cameras[v], std::move(measured), std::move(regions)});
     }
     RenderFitOptions o;
-    o.parameters = {{"glossy_black_paint", MicrofacetParameter::n, 1.2, 2.5, 1.45, {}},
-                    {"glossy_black_paint", MicrofacetParameter::sigma, 0.02, 0.4, 0.08, {}}};
+    o.parameters = {
+        {"glossy_black_paint", MicrofacetParameter::n, 1.2, 2.5, 1.45, {}},
+        {"glossy_black_paint",
+         MicrofacetParameter::sigma,
+         0.02,
+         0.4,
+         1e-4 * static_cast<double>(knob("TIRPOL_RENDER_FIT_TEST_SIGMA_START_1E4", 800)),
+         {}}};
     o.seed = knob("TIRPOL_RENDER_FIT_TEST_FIT_SEED", 7);
     o.samples_per_pixel = static_cast<int>(knob("TIRPOL_RENDER_FIT_TEST_FIT_SPP", 8));
     o.subtract_model_variance = knob("TIRPOL_RENDER_FIT_TEST_SUBTRACT_VARIANCE", 1) != 0;
