@@ -185,6 +185,8 @@ TEST(RenderFit, RecoversTheGlossyPaintOfTheBallOnSnow) {
          0.4,
          1e-4 * static_cast<double>(knob("TIRPOL_RENDER_FIT_TEST_SIGMA_START_1E4", 800)),
          {}}};
+    if (const std::uint64_t step = knob("TIRPOL_RENDER_FIT_TEST_SIGMA_STEP_1E4", 0); step > 0)
+        o.parameters[1].step = 1e-4 * static_cast<double>(step);
     o.seed = knob("TIRPOL_RENDER_FIT_TEST_FIT_SEED", 7);
     o.samples_per_pixel = static_cast<int>(knob("TIRPOL_RENDER_FIT_TEST_FIT_SPP", 8));
     o.subtract_model_variance = knob("TIRPOL_RENDER_FIT_TEST_SUBTRACT_VARIANCE", 1) != 0;
