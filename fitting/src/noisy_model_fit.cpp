@@ -160,6 +160,85 @@ private:
     std::exception_ptr& m_error;
 };
 
+/// Σ_j w_j var_j(θ) of a model evaluation.
+double weighted_variance(const NoisyPrediction& at, const std::vector<double>& sigma) {
+    double sum = 0.0;
+    for (std::size_t j = 0; j < sigma.size(); ++j) sum += at.variance[j] / (sigma[j] * sigma[j]);
+    return sum;
+}
+
+/// Finite-difference gradient of Σ_j w_j var_j(θ) with the data's stencil (the same points, so the
+/// evaluator's cache answers them without a model evaluation).
+std::vector<double> weighted_variance_gradient(ModelEvaluator& evaluate,
+                                               const std::vector<double>& theta,
+                                               const std::vector<double>& sigma,
+                                               const NoisyModelFitOptions& o) {
+    const double center = weighted_variance(evaluate(theta), sigma);
+    std::vector<double> gradient(theta.size());
+    for (std::size_t i = 0; i < theta.size(); ++i) {
+        const double h = o.steps[i];
+        const bool up_ok = theta[i] + h <= o.upper[i], down_ok = theta[i] - h >= o.lower[i];
+        std::vector<double> plus = theta, minus = theta;
+        plus[i] += h;
+        minus[i] -= h;
+        if (o.differences == FiniteDifference::central && up_ok && down_ok)
+            gradient[i] = (weighted_variance(evaluate(plus), sigma) -
+                           weighted_variance(evaluate(minus), sigma)) /
+                          (2.0 * h);
+        else if (up_ok)
+            gradient[i] = (weighted_variance(evaluate(plus), sigma) - center) / h;
+        else
+            gradient[i] = (center - weighted_variance(evaluate(minus), sigma)) / h;
+    }
+    return gradient;
+}
+
+/// The objective's variance term as one residual, r² = C − Σ_j w_j var_j(θ) (noisy_model_fit.h):
+/// a constant C > Σ w var keeps it real; Ceres then minimises the data's squares minus Σ w var.
+class ModelVarianceCost final : public ceres::CostFunction {
+public:
+    ModelVarianceCost(ModelEvaluator& evaluate, const std::vector<double>& sigma, double constant,
+                      const NoisyModelFitOptions& options, std::exception_ptr& error)
+        : m_evaluate(evaluate),
+          m_sigma(sigma),
+          m_constant(constant),
+          m_options(options),
+          m_error(error) {
+        set_num_residuals(1);
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(options.initial.size()));
+    }
+
+    bool Evaluate(double const* const* parameters, double* residuals,
+                  double** jacobians) const override {
+        if (m_error) return false;
+        try {
+            const std::size_t p = m_options.initial.size();
+            const std::vector<double> theta(parameters[0], parameters[0] + p);
+            const double squared = m_constant - weighted_variance(m_evaluate(theta), m_sigma);
+            // Σ w var beyond C (a far step to a much noisier point): the cost is then not this
+            // objective, and Ceres rejects the step.
+            if (!(squared > 0.0)) return false;
+            residuals[0] = std::sqrt(squared);
+            if (!jacobians || !jacobians[0]) return true;
+            const std::vector<double> gradient =
+                weighted_variance_gradient(m_evaluate, theta, m_sigma, m_options);
+            for (std::size_t i = 0; i < p; ++i)
+                jacobians[0][i] = -gradient[i] / (2.0 * residuals[0]);
+            return true;
+        } catch (...) {
+            m_error = std::current_exception();
+            return false;
+        }
+    }
+
+private:
+    ModelEvaluator& m_evaluate;
+    const std::vector<double>& m_sigma;
+    double m_constant;
+    const NoisyModelFitOptions& m_options;
+    std::exception_ptr& m_error;
+};
+
 class StopOnError final : public ceres::IterationCallback {
 public:
     explicit StopOnError(const std::exception_ptr& error) : m_error(error) {}
@@ -202,6 +281,15 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         problem->AddResidualBlock(
             new FiniteDifferenceCost(evaluate, measured, sigma, options, error), nullptr,
             theta.data());
+        if (options.subtract_model_variance) {
+            // C: four times the start's Σ w var plus one per residual (Σ w var ≤ m at the
+            // start), so steps to a few times noisier renders stay inside the objective.
+            const double constant =
+                4.0 * weighted_variance(evaluate(theta), sigma) + static_cast<double>(m);
+            problem->AddResidualBlock(
+                new ModelVarianceCost(evaluate, sigma, constant, options, error), nullptr,
+                theta.data());
+        }
         for (std::size_t i = 0; i < p; ++i) {
             problem->SetParameterLowerBound(theta.data(), static_cast<int>(i), options.lower[i]);
             problem->SetParameterUpperBound(theta.data(), static_cast<int>(i), options.upper[i]);
@@ -227,13 +315,17 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         result.iterations += static_cast<int>(summary.iterations.size());
     }
 
-    // Covariance (JᵀWJ)⁻¹ at the solution, with the weights of the last solve.
+    // Covariance (JᵀWJ)⁻¹ at the solution, with the weights of the last solve, from the data's
+    // residuals alone (the variance term is not a measurement).
+    ceres::Problem data_problem;
+    data_problem.AddResidualBlock(
+        new FiniteDifferenceCost(evaluate, measured, sigma, options, error), nullptr, theta.data());
     ceres::Covariance::Options co;
     co.algorithm_type = ceres::DENSE_SVD;
     co.null_space_rank = -1;
     ceres::Covariance covariance(co);
     const std::vector<std::pair<const double*, const double*>> blocks{{theta.data(), theta.data()}};
-    const bool have_covariance = covariance.Compute(blocks, problem.get());
+    const bool have_covariance = covariance.Compute(blocks, &data_problem);
     if (error) std::rethrow_exception(error);
     const auto n = static_cast<Eigen::Index>(p);
     result.covariance = Eigen::MatrixXd::Zero(n, n);
@@ -246,6 +338,11 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         result.covariance_available = true;
         for (Eigen::Index i = 0; i < n; ++i)
             result.sigma[static_cast<std::size_t>(i)] = std::sqrt(c(i, i));
+        const std::vector<double> gradient =
+            weighted_variance_gradient(evaluate, theta, sigma, options);
+        const Eigen::VectorXd shift =
+            -0.5 * c * Eigen::Map<const Eigen::VectorXd>(gradient.data(), n);
+        result.model_variance_shift.assign(shift.data(), shift.data() + n);
         for (Eigen::Index i = 0; i < n; ++i)
             for (Eigen::Index j = 0; j < n; ++j) {
                 const double d = std::sqrt(c(i, i) * c(j, j));

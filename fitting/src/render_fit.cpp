@@ -326,6 +326,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
     fo.differences = options.differences;
     fo.max_iterations = options.max_iterations;
     fo.reweight = options.reweight;
+    fo.subtract_model_variance = options.subtract_model_variance;
     fo.cancel = options.cancel;
     RenderFitSummary summary;
     for (const RenderFitParameter& p : options.parameters) {
@@ -418,6 +419,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
     for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
         summary.parameters[i].value = fit.values[i];
         summary.parameters[i].sigma = fit.sigma[i];
+        if (!fit.model_variance_shift.empty())
+            summary.parameters[i].variance_shift = fit.model_variance_shift[i];
     }
     summary.covariance = fit.covariance;
     summary.correlation = fit.correlation;
@@ -455,8 +458,10 @@ std::string RenderFitSummary::FullReport() const {
     std::string out = "fit through the renderer\n";
     for (const auto& p : parameters)
         out += fmt::format(
-            "  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g})\n",
-            p.material, p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step);
+            "  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g}; render "
+            "variance's pull {:+.2g})\n",
+            p.material, p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step,
+            p.variance_shift);
     out += fmt::format("  chi2 {:.3f} for {} dof: chi2/dof {:.3f}\n", chi2, dof, reduced_chi2);
     if (parameters.size() > 1 && covariance_available) {
         out += "  correlation:";

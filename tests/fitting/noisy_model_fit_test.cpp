@@ -127,6 +127,51 @@ TEST(NoisyModelFit, RenderNoiseInTheWeightsGivesPullsOfUnitSpread) {
     EXPECT_NEAR(chi2_ignored, 2.0, 0.3);
 }
 
+// A model whose Monte Carlo error grows with the parameter, as a render's does when a wider lobe
+// samples more of the surroundings: y = θ·(1 + s·ε_i) with ε_i fixed per fit (common random
+// numbers), variance (θ·s)². Averaged over ε the plain objective Σ w (y − model)² carries Σ w θ²s²,
+// which pulls its minimum to θ/(1 + s²) (−0.83 σ here); subtracting the model's variance removes
+// the pull, and model_variance_shift predicts it.
+TEST(NoisyModelFit, SubtractingTheModelVarianceRemovesItsPullOnTheMinimum) {
+    const int m = 10, fits = 300;
+    const double theta_true = 1.0, sigma_m = 0.1, s = 0.3;
+    std::mt19937_64 rng(17);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    double pull_plain = 0.0, pull_subtracted = 0.0, shift_predicted = 0.0, shift_seen = 0.0;
+    for (int f = 0; f < fits; ++f) {
+        std::vector<double> y(m), sy(m, sigma_m), eps(m);
+        for (int i = 0; i < m; ++i) y[i] = theta_true + sigma_m * normal(rng), eps[i] = normal(rng);
+        const NoisyModel model = [&](const std::vector<double>& t) {
+            NoisyPrediction p;
+            for (int i = 0; i < m; ++i) {
+                p.value.push_back(t[0] * (1.0 + s * eps[i]));
+                p.variance.push_back(t[0] * t[0] * s * s);
+            }
+            return p;
+        };
+        NoisyModelFitOptions o;
+        o.names = {"theta"};
+        o.initial = {0.8};
+        o.lower = {0.1};
+        o.upper = {3.0};
+        o.steps = {1e-3};
+        o.subtract_model_variance = false;
+        const NoisyModelFitResult plain = fit_noisy_model(model, y, sy, o);
+        o.subtract_model_variance = true;
+        const NoisyModelFitResult subtracted = fit_noisy_model(model, y, sy, o);
+        ASSERT_TRUE(plain.usable && subtracted.usable) << subtracted.termination;
+        ASSERT_EQ(subtracted.model_variance_shift.size(), 1u);
+        pull_plain += (plain.values[0] - theta_true) / plain.sigma[0] / fits;
+        pull_subtracted += (subtracted.values[0] - theta_true) / subtracted.sigma[0] / fits;
+        shift_predicted += subtracted.model_variance_shift[0] / fits;
+        shift_seen += (plain.values[0] - subtracted.values[0]) / fits;
+    }
+    // 300 fits: a mean pull is known to ±0.06 (1σ).
+    EXPECT_LT(pull_plain, -0.6);
+    EXPECT_NEAR(pull_subtracted, 0.0, 0.2);
+    EXPECT_NEAR(shift_seen, shift_predicted, 0.2 * std::abs(shift_predicted));
+}
+
 TEST(NoisyModelFit, BadInputNamesTheParameterAndWhatWasExpected) {
     const NoisyModel flat = [](const std::vector<double>& t) {
         return NoisyPrediction{{t[0], t[0], t[1]}, {0.0, 0.0, 0.0}};

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,36 +39,48 @@ simulation::Camera camera_at(const simulation::Camera& base, const Vec3& positio
                               simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
 }
 
+std::uint64_t knob(const char* name, std::uint64_t fallback);
+
 /// The truth rendered from `camera` with seed `seed`: S0..S2 and, as the measurement's σ, the
-/// render's own per-pixel standard deviation of the mean.
+/// render's own per-pixel standard deviation of the mean (with
+/// TIRPOL_RENDER_FIT_TEST_INDEPENDENT_STD = 1, an experiment: that of an independent render, so
+/// that the weights do not correlate with the measurement's noise).
 Image measured_render(simulation::Scene scene, const simulation::Camera& camera,
                       std::uint64_t seed) {
     scene.camera = camera;
     scene.sampling.seed = seed;
     Image image = simulation::render(scene);
+    std::optional<Image> independent;
+    if (knob("TIRPOL_RENDER_FIT_TEST_INDEPENDENT_STD", 0) != 0) {
+        scene.sampling.seed = seed + 1000003;
+        independent = simulation::render(scene);
+    }
     for (const char* s : {"S0", "S1", "S2"}) {
-        std::vector<float> sd = image.channel(std::string(s) + "_var");
+        std::vector<float> sd =
+            (independent ? *independent : image).channel(std::string(s) + "_var");
         for (float& v : sd) v = std::sqrt(v);
         image.set_channel(std::string(s) + "_std", std::move(sd));
     }
     return image;
 }
 
-/// Offset added to the measurements' seeds, from TIRPOL_RENDER_FIT_TEST_SEED_OFFSET (default 0):
-/// the same tests on other noise realisations, to see how the recovered values scatter
-/// (docs/fitting.md).
-std::uint64_t measurement_seed_offset() {
-    const char* text = std::getenv("TIRPOL_RENDER_FIT_TEST_SEED_OFFSET");
-    if (!text) return 0;
+/// A non-negative integer from the environment variable `name`, or `fallback` when it is unset:
+/// the experiment knobs of docs/fitting.md (other noise realisations, other sample counts).
+std::uint64_t knob(const char* name, std::uint64_t fallback) {
+    const char* text = std::getenv(name);
+    if (!text) return fallback;
     char* end = nullptr;
     const unsigned long long value = std::strtoull(text, &end, 10);
     if (end == text || *end != '\0') {
-        ADD_FAILURE() << "TIRPOL_RENDER_FIT_TEST_SEED_OFFSET='" << text
-                      << "': expected a non-negative integer";
-        return 0;
+        ADD_FAILURE() << name << "='" << text << "': expected a non-negative integer";
+        return fallback;
     }
     return value;
 }
+
+/// Offset added to the measurements' seeds, from TIRPOL_RENDER_FIT_TEST_SEED_OFFSET (default 0):
+/// the same tests on other noise realisations, to see how the recovered values scatter.
+std::uint64_t measurement_seed_offset() { return knob("TIRPOL_RENDER_FIT_TEST_SEED_OFFSET", 0); }
 
 /// Splits a region into four quadrants about its centroid (different view angles on a sphere).
 std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
@@ -93,7 +106,10 @@ void expect_recovered(const RenderFitSummary& s, const std::vector<double>& trut
     ASSERT_TRUE(s.covariance_available) << s.FullReport();
     // The issue asks for the truth within 1σ and 5 %; for one noisy realisation a correct fit
     // misses 1σ in a third of cases, so the test asks for 3σ (0.3 % false failures per parameter)
-    // and prints the pulls that the closing notes report against the 1σ goal.
+    // and prints the pulls that the closing notes report against the 1σ goal. On ball_on_snow the
+    // glossy σ's pulls spread 1.5× wider than a unit normal over ten independent seed pairs (1σ
+    // held in 3, 5 % in 7, 3σ in 9; docs/fitting.md "The ball's σ: noise or method?"), so 1σ
+    // would fail most seeds.
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const auto& p = s.parameters[i];
         std::printf("%s: pull %+.2f σ, %+.2f %% of the truth\n", p.name.c_str(),
@@ -145,7 +161,8 @@ TEST(RenderFit, RecoversThePaintInTheTwinsNonUniformSurroundings) {
 TEST(RenderFit, RecoversTheGlossyPaintOfTheBallOnSnow) {
     simulation::Scene scene = simulation::load_scene(find_config("scenes/ball_on_snow_night.yaml"));
     scene.camera = scene.camera.resized(160, 128);
-    scene.sampling.samples_per_pixel = 8;
+    scene.sampling.samples_per_pixel =
+        static_cast<int>(knob("TIRPOL_RENDER_FIT_TEST_MEASUREMENT_SPP", 8));
     const Vec3 at(0.0, 0.3, 0.3);
     const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
                                                   camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
@@ -160,9 +177,19 @@ TEST(RenderFit, RecoversTheGlossyPaintOfTheBallOnSnow) {
             {"view" + std::to_string(v), cameras[v], std::move(measured), std::move(regions)});
     }
     RenderFitOptions o;
-    o.parameters = {{"glossy_black_paint", MicrofacetParameter::n, 1.2, 2.5, 1.45, {}},
-                    {"glossy_black_paint", MicrofacetParameter::sigma, 0.02, 0.4, 0.08, {}}};
-    o.seed = 7;
+    o.parameters = {
+        {"glossy_black_paint", MicrofacetParameter::n, 1.2, 2.5, 1.45, {}},
+        {"glossy_black_paint",
+         MicrofacetParameter::sigma,
+         0.02,
+         0.4,
+         1e-4 * static_cast<double>(knob("TIRPOL_RENDER_FIT_TEST_SIGMA_START_1E4", 800)),
+         {}}};
+    if (const std::uint64_t step = knob("TIRPOL_RENDER_FIT_TEST_SIGMA_STEP_1E4", 0); step > 0)
+        o.parameters[1].step = 1e-4 * static_cast<double>(step);
+    o.seed = knob("TIRPOL_RENDER_FIT_TEST_FIT_SEED", 7);
+    o.samples_per_pixel = static_cast<int>(knob("TIRPOL_RENDER_FIT_TEST_FIT_SPP", 8));
+    o.subtract_model_variance = knob("TIRPOL_RENDER_FIT_TEST_SUBTRACT_VARIANCE", 1) != 0;
     expect_recovered(fit_through_renderer(scene, views, o), {1.55, 0.05});
 }
 

@@ -14,6 +14,16 @@
 /// near the solution, so it acts as a second measurement error: the covariance (JᵀWJ)⁻¹ from
 /// ceres::Covariance, with W = 1/(σ_meas² + σ_model²), includes it (Press et al., Numerical Recipes
 /// 3rd ed., §15.4–15.5).
+///
+/// "Nearly": the error e(θ) moves with θ, and its spread with it. Averaged over the model's random
+/// numbers the objective is Σ w_j [(measured_j − E model_j(θ))² + Var model_j(θ)] (+ the
+/// measurement's variance, which does not depend on θ), so its minimum is pulled towards parameters
+/// whose renders are less noisy, by δθ = −½ (JᵀWJ)⁻¹ ∇_θ Σ w_j Var model_j(θ). The fit removes that
+/// term (`subtract_model_variance`): it minimises Σ w_j (measured_j − model_j(θ))² − Σ w_j
+/// var_j(θ), with var_j the model's own unbiased variance estimate under the same random numbers
+/// (the second sum enters Ceres as one extra residual √(C − Σ w_j var_j(θ)) with a constant C;
+/// its derivatives come from the same finite-difference evaluations, so it costs no model
+/// evaluation).
 
 #include <Eigen/Core>
 #include <atomic>
@@ -48,6 +58,9 @@ struct NoisyModelFitOptions {
     int max_iterations = 30;  ///< per solve
     bool reweight =
         true;  ///< re-evaluate the model variances at the first solution and solve again
+    /// Subtract Σ w_j var_j(θ) from the objective (above), so that the model's noise does not pull
+    /// the minimum towards less noisy parameters. Off: the plain weighted least squares.
+    bool subtract_model_variance = true;
     /// Called after every model evaluation with the number made so far (progress bars).
     std::function<void(int evaluations)> on_evaluation;
     /// Checked before every model evaluation; once set the fit throws tirpol::Cancelled. Null:
@@ -73,6 +86,10 @@ struct NoisyModelFitResult {
     std::string solver_report;
     int iterations = 0;   ///< over all solves
     int evaluations = 0;  ///< model evaluations, the finite differences included
+    /// −½ (JᵀWJ)⁻¹ ∇_θ Σ w_j var_j(θ) at the solution: the first-order shift of the plain weighted
+    /// least squares' minimum by the model's variance (what `subtract_model_variance` removes);
+    /// empty when the covariance is unavailable.
+    std::vector<double> model_variance_shift;
     std::vector<std::string>
         warnings;  ///< parameters on a bound, rank-deficient Jacobian, χ²/dof > 3
 };

@@ -73,7 +73,10 @@ struct RenderFitOptions {
     std::optional<std::uint64_t> seed;  ///< the one seed of every evaluation; unset: the scene's
     FiniteDifference differences = FiniteDifference::central;
     int max_iterations = 20;
-    bool reweight = true;        ///< NoisyModelFitOptions::reweight
+    bool reweight = true;  ///< NoisyModelFitOptions::reweight
+    /// NoisyModelFitOptions::subtract_model_variance: remove the render variance's pull on the
+    /// minimum (noisy_model_fit.h).
+    bool subtract_model_variance = true;
     int threads = 0;             ///< render threads (0: all cores)
     bool show_progress = false;  ///< a progress bar of the renders on stderr (core/progress.h)
     const std::atomic<bool>* cancel =
@@ -89,6 +92,9 @@ struct RenderFitParameterResult {
     std::string material;
     std::string name;  ///< "n", "sigma", …
     double initial = 0.0, value = 0.0, sigma = 0.0, lower = 0.0, upper = 0.0, step = 0.0;
+    /// NoisyModelFitResult::model_variance_shift: how far the render's variance would pull a plain
+    /// least-squares minimum (removed when subtract_model_variance is set); 0 without covariance.
+    double variance_shift = 0.0;
 };
 
 /// One compared value at the solution.
