@@ -299,12 +299,18 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
 
 LiveServer::~LiveServer() { stop(); }
 
-std::string LiveServer::url() const {
-    const std::string address = reachable_address(m_bind_address);
-    const std::string host = address.find(':') != std::string::npos ? "[" + address + "]" : address;
-    std::string url = "http://" + host + ":" + std::to_string(m_port) + "/";
-    if (!m_token.empty()) url += "?token=" + m_token;
-    return url;
+std::string LiveServer::url() const { return urls().front(); }
+
+std::vector<std::string> LiveServer::urls() const {
+    std::vector<std::string> urls;
+    for (const std::string& address : reachable_addresses(m_bind_address)) {
+        const std::string host =
+            address.find(':') != std::string::npos ? "[" + address + "]" : address;
+        std::string url = "http://" + host + ":" + std::to_string(m_port) + "/";
+        if (!m_token.empty()) url += "?token=" + m_token;
+        urls.push_back(std::move(url));
+    }
+    return urls;
 }
 
 void LiveServer::run() { m_impl->server.listen_after_bind(); }

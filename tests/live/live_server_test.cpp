@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <functional>
 #include <thread>
 
@@ -97,6 +98,18 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
     EXPECT_NE(s.server.url().find("?token=" + token), std::string::npos);
     // The URL to open names an address of this machine another one can reach, never the wildcard.
     EXPECT_EQ(s.server.url().find("0.0.0.0"), std::string::npos) << s.server.url();
+    // Every URL printed names a non-loopback address of this machine (or 127.0.0.1 without one).
+    const std::vector<std::string> urls = s.server.urls();
+    ASSERT_FALSE(urls.empty());
+    EXPECT_EQ(urls.front(), s.server.url());
+    const std::vector<std::string> own = interface_addresses();
+    for (const std::string& address : reachable_addresses("0.0.0.0")) {
+        EXPECT_NE(address, "0.0.0.0");
+        if (address == "127.0.0.1") continue;
+        EXPECT_FALSE(is_loopback_address(address)) << address;
+        EXPECT_NE(std::find(own.begin(), own.end(), address), own.end()) << address;
+    }
+    EXPECT_EQ(reachable_addresses("192.0.2.7"), std::vector<std::string>{"192.0.2.7"});
     httplib::Client client("127.0.0.1", s.server.port());
     for (const char* path :
          {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {
