@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 #include <thread>
+#include <vector>
 
 #include "cli.h"
 #include "tirpol/live/live_server.h"
@@ -35,7 +36,10 @@ void run_live(LiveArgs a) {
     a.view.unit = live::parse_display_unit(a.show);
     live::LiveView view(a.view);
     live::LiveServer server(view, a.server);
-    std::printf("tirpol live: open %s\n", server.url().c_str());
+    const std::vector<std::string> urls = server.urls();
+    std::printf("tirpol live: open %s\n", urls.front().c_str());
+    for (std::size_t i = 1; i < urls.size(); ++i)
+        std::printf("tirpol live: or, from another network of this machine, %s\n", urls[i].c_str());
     if (!server.token().empty())
         std::printf("tirpol live: bound to %s: every request needs the access token %s\n",
                     a.server.bind_address.c_str(), server.token().c_str());

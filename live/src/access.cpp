@@ -6,6 +6,7 @@
 #include <netinet/in.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <random>
 
@@ -41,16 +42,25 @@ std::string host_name() {
 }
 
 std::string reachable_address(const std::string& bind_address) {
+    return reachable_addresses(bind_address).front();
+}
+
+std::vector<std::string> reachable_addresses(const std::string& bind_address) {
     if (bind_address != "0.0.0.0" && bind_address != "::" && !bind_address.empty())
-        return bind_address;
-    std::string ipv6;
+        return {bind_address};
+    std::vector<std::string> ipv4, ipv6;
     for (const std::string& a : interface_addresses()) {
         if (is_loopback_address(a)) continue;
-        if (a.find(':') == std::string::npos) return a;
-        // A link-local IPv6 address needs a zone index a browser cannot take in a URL.
-        if (ipv6.empty() && a.rfind("fe80", 0) != 0) ipv6 = a;
+        if (a.find(':') == std::string::npos) {
+            if (std::find(ipv4.begin(), ipv4.end(), a) == ipv4.end()) ipv4.push_back(a);
+        } else if (a.rfind("fe80", 0) != 0 &&  // link-local needs a zone index no URL can carry
+                   std::find(ipv6.begin(), ipv6.end(), a) == ipv6.end()) {
+            ipv6.push_back(a);
+        }
     }
-    return ipv6.empty() ? "127.0.0.1" : ipv6;
+    ipv4.insert(ipv4.end(), ipv6.begin(), ipv6.end());
+    if (ipv4.empty()) ipv4.push_back("127.0.0.1");
+    return ipv4;
 }
 
 std::string make_access_token() {

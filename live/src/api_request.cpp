@@ -26,6 +26,33 @@ std::uint64_t parse_after(const std::optional<std::string>& value) {
     return after;
 }
 
+RegionRequest parse_region_request(const std::optional<std::string>& x0,
+                                   const std::optional<std::string>& y0,
+                                   const std::optional<std::string>& x1,
+                                   const std::optional<std::string>& y1,
+                                   const std::optional<std::string>& dolp_min) {
+    auto integer = [](const char* name, const std::optional<std::string>& value) {
+        if (!value) fail("region: {} is required (a pixel coordinate)", name);
+        int v = 0;
+        const char* end = value->data() + value->size();
+        const auto r = std::from_chars(value->data(), end, v);
+        if (value->empty() || r.ec != std::errc() || r.ptr != end)
+            fail("region: {} must be an integer pixel coordinate, got '{}'", name, excerpt(*value));
+        return v;
+    };
+    RegionRequest request;
+    request.region = {integer("x0", x0), integer("y0", y0), integer("x1", x1), integer("y1", y1)};
+    if (dolp_min) {
+        double v = 0.0;
+        const char* end = dolp_min->data() + dolp_min->size();
+        const auto r = std::from_chars(dolp_min->data(), end, v);
+        if (dolp_min->empty() || r.ec != std::errc() || r.ptr != end || !(v >= 0.0 && v <= 1.0))
+            fail("region: dolp_min must be a DoLP in [0, 1], got '{}'", excerpt(*dolp_min));
+        request.dolp_min = v;
+    }
+    return request;
+}
+
 CaptureRequest parse_capture_request(std::string_view body) {
     const auto json = nlohmann::json::parse(body, nullptr, false);
     if (json.is_discarded() || !json.is_object())

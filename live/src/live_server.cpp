@@ -224,6 +224,16 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
     server.Get("/api/stokes", image_handler([&view](std::uint64_t after) {
                    return view.stokes_after(after, kLongPoll);
                }));
+    server.Get("/api/region", [&view](const httplib::Request& req, httplib::Response& res) {
+        try {
+            const RegionRequest r =
+                parse_region_request(param(req, "x0"), param(req, "y0"), param(req, "x1"),
+                                     param(req, "y1"), param(req, "dolp_min"));
+            send_json(res, view.region(r.region, r.dolp_min));
+        } catch (const Error& e) {
+            send_error(res, e);
+        }
+    });
     const std::size_t max_body = options.limits.max_body_bytes;
     server.Post("/api/capture/start",
                 [&view, max_body](const httplib::Request&, httplib::Response& res,
@@ -289,12 +299,18 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
 
 LiveServer::~LiveServer() { stop(); }
 
-std::string LiveServer::url() const {
-    const std::string address = reachable_address(m_bind_address);
-    const std::string host = address.find(':') != std::string::npos ? "[" + address + "]" : address;
-    std::string url = "http://" + host + ":" + std::to_string(m_port) + "/";
-    if (!m_token.empty()) url += "?token=" + m_token;
-    return url;
+std::string LiveServer::url() const { return urls().front(); }
+
+std::vector<std::string> LiveServer::urls() const {
+    std::vector<std::string> urls;
+    for (const std::string& address : reachable_addresses(m_bind_address)) {
+        const std::string host =
+            address.find(':') != std::string::npos ? "[" + address + "]" : address;
+        std::string url = "http://" + host + ":" + std::to_string(m_port) + "/";
+        if (!m_token.empty()) url += "?token=" + m_token;
+        urls.push_back(std::move(url));
+    }
+    return urls;
 }
 
 void LiveServer::run() { m_impl->server.listen_after_bind(); }

@@ -115,6 +115,18 @@ EncodedImage LiveView::stokes_after(std::uint64_t after, std::chrono::millisecon
         [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
 }
 
+nlohmann::json LiveView::region(const PixelRegion& region, double dolp_min) const {
+    const auto frame = m_feed->latest().latest().value;
+    if (!frame) fail("region: no frame from the camera yet");
+    const DisplayImage live = m_converter->frame_image(*frame);
+    std::optional<DisplayImage> cycle;
+    if (m_cycle)
+        if (const auto stokes = m_cycle->stokes().latest().value)
+            cycle = stokes_image(
+                *stokes, m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)");
+    return region_readout(&live, cycle ? &*cycle : nullptr, region, dolp_min);
+}
+
 nlohmann::json LiveView::describe() const {
     const CameraInfo& c = m_feed->camera_info();
     nlohmann::json j;

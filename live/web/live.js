@@ -10,9 +10,13 @@ function api(path) {
   if (!token) return path;
   return path + (path.includes('?') ? '&' : '?') + 'token=' + encodeURIComponent(token);
 }
-// ?still=1 (screenshots with chromium --virtual-time-budget): stop polling once there is something to
-// show, so the network goes idle and the budget can run out.
-const still = params.has('still');
+// Still mode (screenshots with chromium --screenshot --virtual-time-budget): stop polling once there
+// is something to show. Chromium's virtual time stands still while a request is pending, and the
+// page always has a long poll pending, so without this the budget never runs out. On by default in
+// headless Chromium (the only browser that shoots this way), unless the address asks for a live
+// page (observe=ID, the tests' pages, or live=1); ?still=1 asks for it in any browser.
+const still = params.has('still') ||
+  (/HeadlessChrome/.test(navigator.userAgent) && !params.has('observe') && !params.has('live'));
 const enough = () => state.framesShown >= 3 && state.status && (!state.describe.stage || state.stokesShown >= 1);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const nextPaint = () => new Promise((r) => requestAnimationFrame(r));
@@ -59,12 +63,16 @@ const INFERNO = [[0, 0, 4], [40, 11, 84], [101, 21, 110], [159, 42, 99], [212, 7
   [250, 193, 39], [252, 255, 164]];
 const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
 const DIVERGING = [[33, 102, 172], [146, 197, 222], [247, 247, 247], [244, 165, 130], [178, 24, 43]];
+const GREY = [[0, 0, 0], [255, 255, 255]];
 const CYCLIC = [[230, 60, 60], [230, 200, 40], [60, 200, 90], [50, 120, 230], [200, 60, 200], [230, 60, 60]];
 function makeLut(stops) {
   const lut = new Uint8Array(256 * 3);
   for (let i = 0; i < 256; i++) lut.set(lerpStops(stops, i / 255), 3 * i);
   return lut;
 }
+const PALETTES = { inferno: makeLut(INFERNO), grey: makeLut(GREY) };
+// AoP pixels whose DoLP is below the threshold: the angle of noise, drawn in this grey.
+const MASKED = [64, 64, 64];
 const LUTS = { S0: makeLut(INFERNO), S1: makeLut(DIVERGING), S2: makeLut(DIVERGING), DoLP: makeLut(VIRIDIS),
   AoP: makeLut(CYCLIC) };
 
@@ -72,6 +80,10 @@ const LUTS = { S0: makeLut(INFERNO), S1: makeLut(DIVERGING), S2: makeLut(DIVERGI
 // (a hot spot does not flatten the scene), S1/S2 symmetric about 0, DoLP from 0, AoP 0–180°.
 function displayRange(c, name) {
   if (name === 'AoP') return [0, 180];
+  if (name === 'S0' && $('span-mode').value === 'lock') {
+    const lo = Number($('span-lo').value), hi = Number($('span-hi').value);
+    if (isFinite(lo) && isFinite(hi) && hi > lo) return [lo, hi];
+  }
   const bins = new Uint32Array(1024);
   let n = 0;
   for (const code of c.codes) if (code >= CODE_FIRST && code !== CODE_SATURATED) { bins[(code - CODE_FIRST) >> 6]++; n++; }
@@ -86,9 +98,10 @@ function displayRange(c, name) {
 
 // ---- shared view: zoom and region apply to every image --------------------------------------
 const state = { s0: null, stokes: null, view: { x: 0, y: 0, scale: 1 }, region: null, cursor: null,
-  framesShown: 0, stokesShown: 0, describe: null, status: null };
+  framesShown: 0, stokesShown: 0, describe: null, status: null, focus: [], regionReadout: null };
 
-function paint(canvas, header, channel, range, lut) {
+// `masked(i)`: pixel i is drawn in the MASKED grey (AoP where DoLP is below the threshold).
+function paint(canvas, header, channel, range, lut, masked) {
   const w = header.width, h = header.height;
   if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
   const off = paint.off || (paint.off = document.createElement('canvas'));
@@ -103,6 +116,7 @@ function paint(canvas, header, channel, range, lut) {
     if (code === CODE_SATURATED) { px[o + 1] = 255; continue; }
     if (code === CODE_DEAD) { px[o + 1] = 128; px[o + 2] = 255; continue; }
     if (code === CODE_NONE) continue;
+    if (masked && masked(i)) { px[o] = MASKED[0]; px[o + 1] = MASKED[1]; px[o + 2] = MASKED[2]; continue; }
     const j = 3 * Math.min(255, Math.max(0, Math.round((codeValue(channel, code) - lo) * k)));
     px[o] = lut[j]; px[o + 1] = lut[j + 1]; px[o + 2] = lut[j + 2];
   }
@@ -122,22 +136,24 @@ function paint(canvas, header, channel, range, lut) {
   }
 }
 
-function drawColorbar(range, units) {
-  const canvas = $('colorbar'), ctx = canvas.getContext('2d');
+function drawColorbar(canvas, range, units, lut) {
+  const ctx = canvas.getContext('2d');
   ctx.fillStyle = '#111'; ctx.fillRect(0, 0, canvas.width, canvas.height);
-  const lut = LUTS.S0;
   for (let x = 0; x < canvas.width; x++) {
     const j = 3 * Math.round(255 * x / (canvas.width - 1));
     ctx.fillStyle = `rgb(${lut[j]},${lut[j + 1]},${lut[j + 2]})`;
     ctx.fillRect(x, 0, 1, 20);
   }
   ctx.fillStyle = '#ddd'; ctx.font = '12px system-ui';
-  for (let i = 0; i <= 4; i++) {
-    const x = i * (canvas.width - 1) / 4, v = range[0] + i * (range[1] - range[0]) / 4;
+  const ticks = canvas.width < 400 ? 2 : 4;  // the Stokes thumbnails' bars have room for three labels
+  for (let i = 0; i <= ticks; i++) {
+    const x = i * (canvas.width - 1) / ticks, v = range[0] + i * (range[1] - range[0]) / ticks;
     ctx.fillRect(x, 20, 1, 5);
-    ctx.textAlign = i === 0 ? 'left' : i === 4 ? 'right' : 'center';
-    ctx.fillText(fmt(v) + (i === 4 && units ? ' ' + units : ''), x, 38);
+    ctx.textAlign = i === 0 ? 'left' : i === ticks ? 'right' : 'center';
+    ctx.fillText(fmt(v) + (i === ticks && units ? ' ' + units : ''), x, 38);
   }
+  canvas.dataset.range = JSON.stringify(range);
+  canvas.dataset.units = units;
 }
 
 function drawHistogram(channel, range) {
@@ -182,15 +198,19 @@ function drawFpa(samples) {
 
 function redraw() {
   if (state.s0 && state.s0.channels && state.s0.channels.length) {
-    const c = state.s0.channels[0], range = displayRange(c, 'S0');
-    paint($('s0'), state.s0, c, range, LUTS.S0);
-    drawColorbar(range, c.units);
+    const c = state.s0.channels[0], range = displayRange(c, 'S0'), lut = PALETTES[$('palette').value];
+    paint($('s0'), state.s0, c, range, lut);
+    drawColorbar($('colorbar'), range, c.units, lut);
     drawHistogram(c, range);
   }
   if (state.stokes) {
+    const dolp = state.stokes.channels.find((c) => c.name === 'DoLP'), dolpMin = Number($('dolp-min').value) || 0;
+    const masked = (i) => !(codeValue(dolp, dolp.codes[i]) >= dolpMin);
     for (const c of state.stokes.channels) {
       const range = displayRange(c, c.name);
-      paint($('st-' + c.name), state.stokes, c, range, LUTS[c.name]);
+      const lut = c.name === 'S0' ? PALETTES[$('palette').value] : LUTS[c.name];
+      paint($('st-' + c.name), state.stokes, c, range, lut, c.name === 'AoP' && dolp ? masked : null);
+      drawColorbar($('cb-' + c.name), range, c.name === 'DoLP' ? 'fraction' : c.units, lut);
       $('r-' + c.name).textContent = `${fmt(range[0])} … ${fmt(range[1])} ${c.units}`;
     }
   }
@@ -212,27 +232,54 @@ function valuesAt(x, y) {
   one(state.s0); one(state.stokes);
   return lines;
 }
-function regionMeans(r) {
-  const lines = [`x ${r.x0}–${r.x1}, y ${r.y0}–${r.y1} (${(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1)} px)`];
-  const one = (img, label) => {
-    if (!img) return;
-    for (const c of img.channels) {
-      let s = 0, s2 = 0, n = 0;
-      for (let y = Math.max(0, r.y0); y <= Math.min(img.height - 1, r.y1); y++)
-        for (let x = Math.max(0, r.x0); x <= Math.min(img.width - 1, r.x1); x++) {
-          const v = codeValue(c, c.codes[y * img.width + x]);
-          if (isFinite(v)) { s += v; s2 += v * v; n++; }
-        }
-      const m = n ? s / n : NaN, sd = n > 1 ? Math.sqrt(Math.max(0, (s2 - n * m * m) / (n - 1))) : NaN;
-      lines.push(`${label}${c.name.padEnd(5)} mean ${fmt(m)} ± ${fmt(sd)} ${c.units} (${n} px)`);
+// The region readout is computed by the server (GET /api/region, live/src/region_statistics.cpp):
+// AoP with circular statistics over the pixels with DoLP ≥ the threshold, and the focus metric.
+function focusRegion() {
+  if (state.region) return state.region;
+  const w = state.s0.width, h = state.s0.height;
+  return { x0: w >> 2, y0: h >> 2, x1: (3 * w >> 2) - 1, y1: (3 * h >> 2) - 1 };
+}
+async function fetchRegion() {
+  if (!state.s0 || fetchRegion.busy) return;
+  fetchRegion.busy = true;
+  try {
+    const r = focusRegion(), q = `x0=${r.x0}&y0=${r.y0}&x1=${r.x1}&y1=${r.y1}&dolp_min=${Number($('dolp-min').value) || 0}`;
+    const j = await (await fetch(api('/api/region?' + q), { cache: 'no-store' })).json();
+    if (j.error) { $('error').textContent = j.error; return; }
+    state.regionReadout = j;
+    if (j.focus && j.focus.value != null) {
+      state.focus.push(j.focus.value);
+      if (state.focus.length > 300) state.focus.shift();
+      drawFocus(j.focus.units);
+    }
+    updateReadouts();
+  } catch (e) { $('error').textContent = String(e); } finally { fetchRegion.busy = false; }
+}
+function regionLines(j) {
+  const [x0, y0, x1, y1] = j.region, lines = [`x ${x0}–${x1}, y ${y0}–${y1} (${(x1 - x0 + 1) * (y1 - y0 + 1)} px)`];
+  const one = (group, label) => {
+    for (const [name, s] of Object.entries(group || {})) {
+      const extra = s.circular ? ` circular, ${s.masked} px with DoLP < ${j.dolp_min} left out` : '';
+      lines.push(`${label}${name.padEnd(5)} mean ${fmt(s.mean)} ± ${fmt(s.std)} ${s.units} (${s.count} px${extra})`);
     }
   };
-  one(state.s0, 'live  '); one(state.stokes, 'cycle ');
+  one(j.live, 'live  '); one(j.cycle, 'cycle ');
+  if (j.focus) lines.push(`focus ${fmt(j.focus.value)} ${j.focus.units}`);
   return lines;
+}
+function drawFocus(units) {
+  const canvas = $('focus-plot'), ctx = canvas.getContext('2d'), W = canvas.width, H = canvas.height, f = state.focus;
+  ctx.fillStyle = '#000'; ctx.fillRect(0, 0, W, H);
+  const lo = Math.min(...f), hi = Math.max(...f), span = hi > lo ? hi - lo : 1;
+  ctx.strokeStyle = '#fc6'; ctx.beginPath();
+  f.forEach((v, i) => { const x = i / 299 * (W - 1), y = 4 + (hi - v) / span * (H - 22); if (i) ctx.lineTo(x, y); else ctx.moveTo(x, y); });
+  ctx.stroke();
+  ctx.fillStyle = '#aaa'; ctx.font = '11px system-ui'; ctx.textAlign = 'left';
+  ctx.fillText(`now ${fmt(f[f.length - 1])}  max ${fmt(hi)} ${units}`, 2, H - 2);
 }
 function updateReadouts() {
   if (state.cursor) $('readout').textContent = `x ${state.cursor.x}, y ${state.cursor.y}\n` + valuesAt(state.cursor.x, state.cursor.y).join('\n');
-  if (state.region) $('region').textContent = regionMeans(state.region).join('\n');
+  if (state.region && state.regionReadout) $('region').textContent = regionLines(state.regionReadout).join('\n');
 }
 function attachInteraction(canvas) {
   let drag = null;
@@ -241,7 +288,9 @@ function attachInteraction(canvas) {
     if (drag) {
       const p = state.cursor;
       state.region = { x0: Math.min(drag.x, p.x), y0: Math.min(drag.y, p.y), x1: Math.max(drag.x, p.x), y1: Math.max(drag.y, p.y) };
+      state.focus = [];
       redraw();
+      fetchRegion();
     } else updateReadouts();
   });
   canvas.addEventListener('mousedown', (e) => { drag = pixelAt(canvas, e); });
@@ -254,7 +303,7 @@ function attachInteraction(canvas) {
     if (scale === 1) { v.x = 0; v.y = 0; }
     redraw();
   }, { passive: false });
-  canvas.addEventListener('dblclick', () => { state.view = { x: 0, y: 0, scale: 1 }; state.region = null; $('region').textContent = 'drag over an image'; redraw(); });
+  canvas.addEventListener('dblclick', () => { state.view = { x: 0, y: 0, scale: 1 }; state.region = null; state.focus = []; $('region').textContent = 'drag over an image'; redraw(); });
 }
 
 // ---- polling loops: each asks for the next image after drawing the last (display pace) -------
@@ -320,6 +369,25 @@ function paintedFraction(canvas) {
   for (let i = 0; i < d.length; i += 4) if (d[i] || d[i + 1] || d[i + 2]) lit++;
   return lit / (d.length / 4);
 }
+// The share of a canvas's pixels drawn in colour `rgb`, and whether every pixel is grey (r = g = b).
+function colourShare(canvas, rgb) {
+  const d = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+  let n = 0;
+  for (let i = 0; i < d.length; i += 4) if (d[i] === rgb[0] && d[i + 1] === rgb[1] && d[i + 2] === rgb[2]) n++;
+  return n / (d.length / 4);
+}
+function allGrey(canvas) {
+  const d = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+  for (let i = 0; i < d.length; i += 4) if (d[i] !== d[i + 1] || d[i + 1] !== d[i + 2]) return false;
+  return true;
+}
+function colourBars() {
+  const out = {};
+  for (const c of document.querySelectorAll('canvas#colorbar, canvas.bar'))
+    if (c.dataset.range) out[c.id] = { range: JSON.parse(c.dataset.range), units: c.dataset.units };
+  return out;
+}
+
 // Drags a region over pixels (100, 80)–(139, 119) of the S0 image and zooms once at its centre with
 // synthetic mouse events, as an operator's mouse would.
 function exerciseMouse() {
@@ -352,6 +420,7 @@ async function observeLoop(client) {
       clickedStop = true;
     }
     if (!mouse && state.framesShown > 0 && params.has('mouse')) mouse = exerciseMouse();
+    if (mouse) mouse.region = $('region').textContent.split('\n');
     const cx = Math.floor($('s0').width / 2), cy = Math.floor($('s0').height / 2);
     const dolp = state.stokes && state.stokes.channels.find((c) => c.name === 'DoLP');
     const obs = {
@@ -361,12 +430,27 @@ async function observeLoop(client) {
       dolp_range: dolp ? [dolp.min, dolp.max] : null, center_readout: valuesAt(cx, cy),
       stage: state.status && state.status.stage, capture: k || null, clicked_start: clickedStart, clicked_stop: clickedStop,
       capture_message: $('capture-message').textContent, mouse,
+      focus: { n: state.focus.length, last: state.focus.length ? state.focus[state.focus.length - 1] : null },
+      s0_grey: state.framesShown > 0 && allGrey($('s0')), colorbars: colourBars(), region_readout: state.regionReadout,
+      aop_masked: state.stokes ? colourShare($('st-AoP'), MASKED) : null,
     };
     try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
   }
 }
 
 async function main() {
+  // The controls can be preset from the address (also what the tests use): palette=grey,
+  // span=LO,HI (locks the S0 span), dolp_min=X (the AoP mask threshold).
+  if (params.has('palette')) $('palette').value = params.get('palette');
+  if (params.has('span')) { const [lo, hi] = params.get('span').split(','); $('span-mode').value = 'lock'; $('span-lo').value = lo; $('span-hi').value = hi; }
+  if (params.has('dolp_min')) $('dolp-min').value = params.get('dolp_min');
+  // Lock keeps the span shown when it was chosen, ready to edit.
+  $('span-mode').addEventListener('change', () => {
+    const r = JSON.parse($('colorbar').dataset.range || 'null');
+    if ($('span-mode').value === 'lock' && r && !$('span-lo').value) { $('span-lo').value = fmt(r[0]); $('span-hi').value = fmt(r[1]); }
+    redraw();
+  });
+  for (const id of ['palette', 'span-lo', 'span-hi', 'dolp-min']) $(id).addEventListener('change', () => { redraw(); fetchRegion(); });
   const d = await (await fetch(api('/api/describe'))).json();
   state.describe = d;
   $('camera').textContent = `${d.camera.vendor} ${d.camera.model} ${d.camera.width}×${d.camera.height} ${d.camera.pixel_format}`;
@@ -387,6 +471,7 @@ async function main() {
     $('frame-id').textContent = img.frame_id;
     $('shown').textContent = state.framesShown;
     redraw();
+    fetchRegion();
   });
   statusLoop();
   if (params.has('observe')) observeLoop(params.get('observe'));

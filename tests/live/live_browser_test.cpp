@@ -11,6 +11,8 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -19,6 +21,7 @@
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
 #include "tirpol/core/session.h"
+#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 namespace {
@@ -72,9 +75,8 @@ protected:
     std::string stage_uri() const { return "thorlabs-apt://" + (dir() / "stage").string(); }
 
     /// Starts `tirpol live` and reads the port (and token) it prints.
-    void start_live(std::vector<std::string> extra) {
-        std::vector<std::string> args{TIRPOL_CLI_PATH, "live",   "--camera",
-                                      kCameraUri,      "--port", "0"};
+    void start_live(std::vector<std::string> extra, const std::string& camera = kCameraUri) {
+        std::vector<std::string> args{TIRPOL_CLI_PATH, "live", "--camera", camera, "--port", "0"};
         args.insert(args.end(), extra.begin(), extra.end());
         m_live = std::make_unique<test::ChildProcess>(args, dir() / "live.log");
         const std::regex printed(R"(open http://[^:]+:(\d+)/(\?token=([0-9a-f]+))?)");
@@ -109,8 +111,9 @@ protected:
             dir() / ("chromium-" + name + ".log")));
     }
 
-    /// A screenshot by a fresh browser in the page's still mode: it stops polling once it has drawn
-    /// frames (and a Stokes cycle, with a stage), then the virtual time budget runs out.
+    /// A screenshot by a fresh browser, as docs/live.md says to take one (no `?still=1`): headless,
+    /// the page stops polling once it has drawn frames (and a Stokes cycle, with a stage), then
+    /// the virtual time budget runs out.
     void screenshot(const std::string& file, const std::string& query) {
         const auto out = std::filesystem::path(TIRPOL_ARTEFACT_DIR) / file;
         std::filesystem::remove(out);
@@ -118,7 +121,7 @@ protected:
             {m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--user-data-dir=" + (dir() / "chromium-shot").string(), "--hide-scrollbars",
              "--window-size=1100,950", "--virtual-time-budget=20000",
-             "--screenshot=" + out.string(), page_url("still=1" + query)},
+             "--screenshot=" + out.string(), page_url(query)},
             dir() / "chromium-shot.log");
         ASSERT_TRUE(shot.wait_for(120s).has_value()) << "chromium --screenshot did not finish";
         ASSERT_TRUE(std::filesystem::exists(out)) << read_text(dir() / "chromium-shot.log");
@@ -171,7 +174,9 @@ bool shows_frames(const json& obs, const std::string& client, int frames) {
 TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
     start_live({});
     open_browser("a", "observe=a&mouse=1");
-    open_browser("b", "observe=b");
+    // Page b locks the S0 span and picks the grey palette from its address (the same controls as
+    // the page's selects).
+    open_browser("b", "observe=b&palette=grey&span=1000,3000");
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) { return shows_frames(o, "a", 3) && shows_frames(o, "b", 3); }, 90s, obs))
@@ -201,6 +206,22 @@ TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
         << mouse.dump(1);
     EXPECT_EQ(mouse["cursor"][0], "x 139, y 119");
     EXPECT_DOUBLE_EQ(mouse["zoom"].get<double>(), 1.25);
+    // The region readout comes from the server (GET /api/region) for the region dragged.
+    const json& readout = obs["a"]["region_readout"];
+    ASSERT_TRUE(readout.is_object()) << obs["a"].dump(1);
+    EXPECT_EQ(readout["region"], json::array({100, 80, 139, 119}));
+    EXPECT_EQ(readout["live"]["S0"]["count"], 1600);
+    // Focus: one gradient-energy sample per frame drawn, of the moving test ramp (non-zero).
+    EXPECT_GE(obs["a"]["focus"]["n"].get<int>(), 3) << obs["a"].dump(1);
+    EXPECT_GT(obs["a"]["focus"]["last"].get<double>(), 0.0);
+    EXPECT_EQ(readout["focus"]["units"], "(counts/px)²");
+    // Page b: the locked span is the colour bar's, drawn in grey; page a keeps inferno and auto.
+    EXPECT_EQ(obs["b"]["colorbars"]["colorbar"]["range"], json::array({1000, 3000}))
+        << obs["b"].dump(1);
+    EXPECT_EQ(obs["b"]["colorbars"]["colorbar"]["units"], "counts");
+    EXPECT_TRUE(obs["b"]["s0_grey"].get<bool>());
+    EXPECT_FALSE(obs["a"]["s0_grey"].get<bool>());
+    EXPECT_NE(obs["a"]["colorbars"]["colorbar"]["range"], json::array({1000, 3000}));
     screenshot("live_s0.png", "");
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 }
@@ -210,18 +231,43 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0.1\n");
     start_live({"--stage", stage_uri(), "--frames-per-angle", "2", "--settle-s", "0.1"});
     const auto session = dir() / "session";
-    open_browser("s", "observe=s&capture_plan=" + (dir() / "plan.yaml").string() +
-                          "&capture_output=" + session.string());
+    open_browser("s", "observe=s&mouse=1&dolp_min=0&capture_plan=" +
+                          (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
+    // Page m masks AoP wherever DoLP < 1, i.e. (nearly) everywhere.
+    open_browser("m", "observe=m&dolp_min=1");
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {
             return o.contains("s") && o["s"]["capture"].is_object() &&
                    o["s"]["capture"]["phase"] == "complete" &&
                    o["s"]["stokes_shown"].get<int>() >= 1 &&
-                   o["s"]["dolp_painted"].get<double>() > 0.5;
+                   o["s"]["dolp_painted"].get<double>() > 0.5 && o.contains("m") &&
+                   o["m"]["aop_masked"].is_number() && o["s"]["region_readout"].is_object() &&
+                   o["s"]["region_readout"].contains("cycle");
         },
         180s, obs))
         << obs.dump(1) << read_text(dir() / "live.log");
+    // The AoP mask: none at threshold 0 (every finite DoLP is ≥ 0), nearly all at 1.
+    EXPECT_LT(obs["s"]["aop_masked"].get<double>(), 0.05) << obs["s"].dump(1);
+    EXPECT_GT(obs["m"]["aop_masked"].get<double>(), 0.9) << obs["m"].dump(1);
+    // A colour bar with units under every image; DoLP from 0, AoP over 0–180°, S1/S2 about 0.
+    const json& bars = obs["s"]["colorbars"];
+    for (const char* name : {"colorbar", "cb-S0", "cb-S1", "cb-S2", "cb-DoLP", "cb-AoP"})
+        EXPECT_TRUE(bars.contains(name)) << name << " " << bars.dump(1);
+    EXPECT_EQ(bars["cb-DoLP"]["range"][0], 0);
+    EXPECT_EQ(bars["cb-AoP"]["range"], json::array({0, 180}));
+    EXPECT_EQ(bars["cb-AoP"]["units"], "deg");
+    EXPECT_EQ(bars["cb-S1"]["units"], "counts");
+    EXPECT_DOUBLE_EQ(bars["cb-S1"]["range"][0].get<double>(),
+                     -bars["cb-S1"]["range"][1].get<double>());
+    // The region readout's AoP: circular statistics over the dragged 40×40 pixels.
+    const json& aop = obs["s"]["region_readout"]["cycle"]["AoP"];
+    EXPECT_TRUE(aop["circular"].get<bool>()) << aop.dump();
+    EXPECT_LE(aop["count"].get<int>() + aop["masked"].get<int>(), 1600);
+    if (aop["mean"].is_number()) {
+        EXPECT_GE(aop["mean"].get<double>(), 0.0);
+        EXPECT_LT(aop["mean"].get<double>(), 180.0);
+    }
     // DoLP is a fraction: its range lies in [0, 1] (the realizable projection of reduce_stokes).
     EXPECT_GE(obs["s"]["dolp_range"][0].get<double>(), 0.0);
     EXPECT_LE(obs["s"]["dolp_range"][1].get<double>(), 1.0);
@@ -273,9 +319,61 @@ TEST_F(LiveEndToEnd, ACaptureStoppedFromThePageResumesWithTirpolAcquire) {
         EXPECT_EQ(m.records[i], partial.records[i]);
 }
 
+// The digital twin's renderer-backed camera behind the in-process simulated stage, as a user tries
+// `tirpol live` without hardware: config/scenes/panels_before_trees.yaml at 80×64, 2 samples per
+// pixel. Its middle quarter (three painted panels tilted 30° on asphalt seen at a grazing angle)
+// is partially polarized, so the page shows DoLP that is not noise. (At this geometry most of it
+// comes from the ground; the panels' own DoLP is within the per-pixel noise at 2 spp — see
+// build/test-artefacts/live/live_scene.png.)
+TEST_F(LiveEndToEnd, TheSceneCameraBehindASimulatedStageShowsPolarization) {
+    const std::string scene =
+        std::filesystem::path(TIRPOL_SOURCE_DIR) / "config/scenes/panels_before_trees.yaml";
+    start_live({"--stage", "sim://", "--frames-per-angle", "2", "--settle-s", "0"},
+               "sim://" + scene + "?width=80&height=64&spp=2&fps=10");
+    open_browser("p", "observe=p&dolp_min=0");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("p") && o["p"]["stokes_shown"].get<int>() >= 2 &&
+                   o["p"]["dolp_painted"].get<double>() > 0.5;
+        },
+        240s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    // The server's readout over the middle quarter (the page's default focus region): its mean S1,
+    // S2 differ from 0 by far more than their standard errors (each pixel alone is noisy at 2
+    // samples per pixel), and DoLP is drawn from 0.
+    const json& cycle = obs["p"]["region_readout"]["cycle"];
+    ASSERT_TRUE(cycle.is_object()) << obs["p"].dump(1);
+    const double n = cycle["S1"]["count"].get<double>();
+    ASSERT_GT(n, 100.0);
+    const double s1 = cycle["S1"]["mean"], s2 = cycle["S2"]["mean"];
+    const double sd1 = cycle["S1"]["std"], sd2 = cycle["S2"]["std"];
+    const double polarized = std::hypot(s1, s2),
+                 standard_error = std::hypot(sd1, sd2) / std::sqrt(n);
+    EXPECT_GT(polarized, 5.0 * standard_error) << cycle.dump(1);
+    EXPECT_GT(polarized / cycle["S0"]["mean"].get<double>(), 1e-3) << cycle.dump(1);
+    EXPECT_GT(obs["p"]["dolp_range"][1].get<double>(), 0.0);
+    EXPECT_EQ(obs["p"]["colorbars"]["cb-DoLP"]["range"][0], 0);
+    screenshot("live_scene.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
 TEST_F(LiveEndToEnd, BeyondLoopbackOnlyRequestsWithTheTokenAreServed) {
     start_live({"--bind", "0.0.0.0"});
     ASSERT_EQ(m_token.size(), 32u) << read_text(dir() / "live.log");
+    // What the operator opens from a tablet: this machine's network addresses, never 0.0.0.0.
+    const std::string printed = read_text(dir() / "live.log");
+    EXPECT_EQ(printed.find("http://0.0.0.0"), std::string::npos) << printed;
+    const std::vector<std::string> own = interface_addresses();
+    const std::regex printed_url(R"(http://\[?([0-9A-Fa-f.:]+?)\]?:\d+/\?token=)");
+    int urls = 0;
+    for (auto it = std::sregex_iterator(printed.begin(), printed.end(), printed_url);
+         it != std::sregex_iterator(); ++it, ++urls) {
+        const std::string host = (*it)[1];
+        EXPECT_TRUE(host == "127.0.0.1" || std::find(own.begin(), own.end(), host) != own.end())
+            << host << " is not an address of this machine";
+    }
+    EXPECT_GE(urls, 1) << printed;
     httplib::Client client("127.0.0.1", m_port);
     auto refused = client.Get("/");
     ASSERT_TRUE(refused);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <functional>
 #include <thread>
 
@@ -65,6 +66,31 @@ TEST(LiveServer, ServesThePageAndNewerFramesOnLoopback) {
     EXPECT_NE(capture->body.find("--stage"), std::string::npos) << capture->body;
 }
 
+TEST(LiveServer, TheRegionReadoutAveragesTheLatestFrameAndRefusesBadQueriesByName) {
+    Served s("127.0.0.1");
+    httplib::Client client("127.0.0.1", s.server.port());
+    ASSERT_EQ(client.Get("/api/frame?after=0")->status, 200);  // a frame has arrived
+    auto r = client.Get("/api/region?x0=2&y0=3&x1=11&y1=12&dolp_min=0.05");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << r->body;
+    const auto j = nlohmann::json::parse(r->body);
+    EXPECT_EQ(j["live"]["S0"]["count"], 100);
+    EXPECT_NEAR(j["live"]["S0"]["mean"].get<double>(), 1500.0, 20.0);  // 1500 counts ± noise
+    EXPECT_EQ(j["live"]["S0"]["units"], "counts");
+    // A flat field: the gradient energy is that of the noise alone, 4σ² for independent pixels.
+    const double sigma = j["live"]["S0"]["std"];
+    EXPECT_NEAR(j["focus"]["value"].get<double>(), 4.0 * sigma * sigma, 2.0 * sigma * sigma);
+    EXPECT_FALSE(j.contains("cycle")) << "no stage, no cycle";
+    for (const char* bad : {"/api/region?x0=2&y0=3&x1=11", "/api/region?x0=a&y0=3&x1=11&y1=12",
+                            "/api/region?x0=0&y0=0&x1=1&y1=1&dolp_min=2",
+                            "/api/region?x0=500&y0=500&x1=600&y1=600"}) {
+        auto b = client.Get(bad);
+        ASSERT_TRUE(b) << bad;
+        EXPECT_EQ(b->status, 400) << bad;
+        EXPECT_NE(b->body.find("region"), std::string::npos) << bad << ": " << b->body;
+    }
+}
+
 TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
     Served s("0.0.0.0");
     const std::string token = s.server.token();
@@ -72,6 +98,18 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
     EXPECT_NE(s.server.url().find("?token=" + token), std::string::npos);
     // The URL to open names an address of this machine another one can reach, never the wildcard.
     EXPECT_EQ(s.server.url().find("0.0.0.0"), std::string::npos) << s.server.url();
+    // Every URL printed names a non-loopback address of this machine (or 127.0.0.1 without one).
+    const std::vector<std::string> urls = s.server.urls();
+    ASSERT_FALSE(urls.empty());
+    EXPECT_EQ(urls.front(), s.server.url());
+    const std::vector<std::string> own = interface_addresses();
+    for (const std::string& address : reachable_addresses("0.0.0.0")) {
+        EXPECT_NE(address, "0.0.0.0");
+        if (address == "127.0.0.1") continue;
+        EXPECT_FALSE(is_loopback_address(address)) << address;
+        EXPECT_NE(std::find(own.begin(), own.end(), address), own.end()) << address;
+    }
+    EXPECT_EQ(reachable_addresses("192.0.2.7"), std::vector<std::string>{"192.0.2.7"});
     httplib::Client client("127.0.0.1", s.server.port());
     for (const char* path :
          {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {

@@ -26,6 +26,12 @@ std::string host_name();
 /// (else the first non-loopback IPv6 one, else 127.0.0.1).
 std::string reachable_address(const std::string& bind_address);
 
+/// Every address another machine could use: for a wildcard bind each non-loopback IPv4 address of
+/// an interface, then each non-loopback, non-link-local IPv6 one (a laptop on Ethernet and Wi-Fi
+/// has several; the operator picks the one of the tablet's network); else reachable_address alone.
+/// Never empty; the first is reachable_address(bind_address).
+std::vector<std::string> reachable_addresses(const std::string& bind_address);
+
 /// 128 random bits from std::random_device as 32 hexadecimal digits.
 std::string make_access_token();
 

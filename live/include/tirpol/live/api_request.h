@@ -13,12 +13,25 @@
 #include <string_view>
 
 #include "tirpol/live/capture_control.h"
+#include "tirpol/live/region_statistics.h"
 
 namespace tirpol::live {
 
 /// `?after=SEQ`: a decimal sequence number (digits only, fits 64 bits); absent = 0. Throws
 /// otherwise, since "-1" or "1e9" would silently mean "wait for a frame that never comes".
 std::uint64_t parse_after(const std::optional<std::string>& value);
+
+/// The query of GET /api/region: `x0`, `y0`, `x1`, `y1` (decimal integers, corners included, all
+/// required) and `dolp_min` (a number in [0, 1]; absent = 0). Throws naming the parameter.
+struct RegionRequest {
+    PixelRegion region;
+    double dolp_min = 0.0;
+};
+RegionRequest parse_region_request(const std::optional<std::string>& x0,
+                                   const std::optional<std::string>& y0,
+                                   const std::optional<std::string>& x1,
+                                   const std::optional<std::string>& y1,
+                                   const std::optional<std::string>& dolp_min);
 
 /// The body of POST /api/capture/start: a JSON object {plan: string, output: string, resume: bool?}
 /// with no other keys.

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "tirpol/live/live_view.h"
 #include "tirpol/live/request_policy.h"
@@ -44,6 +45,9 @@ public:
     /// The address to open in a browser, with the token when one is required: for a wildcard bind
     /// (0.0.0.0) this machine's network address (reachable_address), not 0.0.0.0.
     std::string url() const;
+    /// url() first, then the same for every other address of this machine a wildcard bind is
+    /// reachable at (reachable_addresses): a laptop on Ethernet and Wi-Fi prints both.
+    std::vector<std::string> urls() const;
 
     /// Serves until stop() (from another thread or a signal-watching thread).
     void run();

@@ -17,6 +17,7 @@
 #include "tirpol/live/display_frame.h"
 #include "tirpol/live/frame_feed.h"
 #include "tirpol/live/polarizer_cycle.h"
+#include "tirpol/live/region_statistics.h"
 
 namespace tirpol::live {
 
@@ -57,6 +58,10 @@ public:
     /// Camera, statistics, FPA history, stage and capture state as JSON (docs/live.md lists the
     /// fields).
     nlohmann::json status() const;
+    /// The region readout (region_statistics.h) over the latest S0 frame and the latest cycle.
+    /// Throws tirpol::Error for a region outside the image or a bad threshold, or when there is no
+    /// frame yet.
+    nlohmann::json region(const PixelRegion& region, double dolp_min) const;
     /// Static facts for the page: camera, units, whether a stage is present, the capture form
     /// defaults.
     nlohmann::json describe() const;
