@@ -88,6 +88,19 @@ double Sky::spectral_radiance(double wavelength_um, const Vec3& direction) const
     return emissivity(c) * planck_radiance(wavelength_um, temperature_k(c));
 }
 
+Sky::AtWavelength Sky::at_wavelength(double wavelength_um) const {
+    AtWavelength sky;
+    sky.m_sky = this;
+    sky.m_wavelength_um = wavelength_um;
+    if (m_kind != Kind::Table) sky.m_blackbody = planck_radiance(wavelength_um, m_temperature_k);
+    return sky;
+}
+
+double Sky::AtWavelength::spectral_radiance(const Vec3& direction) const {
+    if (m_sky->m_kind == Kind::Table) return m_sky->spectral_radiance(m_wavelength_um, direction);
+    return m_sky->emissivity(direction.z()) * m_blackbody;
+}
+
 Sun Sun::from_config(const ConfigNode& node, const Band& band) {
     node.check_keys({"elevation_deg", "azimuth_deg", "direction", "temperature", "radiance", "solid_angle_sr",
                      "transmittance"});

@@ -33,6 +33,22 @@ public:
     /// Spectral radiance, W/(m²·sr·µm), seen along the world direction `direction` (pointing to the sky).
     double spectral_radiance(double wavelength_um, const Vec3& direction) const;
 
+    /// The sky at one wavelength with Planck's law evaluated once where the temperature does not depend
+    /// on the direction (uniform and clear skies): what a renderer keeps per wavelength node.
+    class AtWavelength {
+    public:
+        /// Same value as Sky::spectral_radiance(wavelength_um, direction), W/(m²·sr·µm).
+        double spectral_radiance(const Vec3& direction) const;
+
+    private:
+        friend class Sky;
+        const Sky* m_sky = nullptr;
+        double m_wavelength_um = 0.0;
+        double m_blackbody = 0.0;  ///< L_bb(λ, T) for the uniform and clear skies
+    };
+    /// The sky at `wavelength_um`; refers to this Sky, which must outlive it.
+    AtWavelength at_wavelength(double wavelength_um) const;
+
     /// Effective emissivity and temperature at zenith angle θ given by cos θ.
     double emissivity(double cos_zenith) const;
     double temperature_k(double cos_zenith) const;
