@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "../tests/acquisition/fake_gv_camera_process.h"
 #include "tirpol/acquisition/internal/aravis_camera.h"
@@ -64,10 +65,21 @@ struct FakeCamera {
     }
 };
 
-FakeCamera& fake_camera() {
-    static FakeCamera camera;
+/// The shared fake camera, started on first use. GatedCapture serves GVCP on the same loopback port from
+/// inside this process and takes the same inter-process lock (an flock on a second descriptor, which
+/// would wait forever for the one held here): it stops this camera first with release_fake_camera().
+std::optional<FakeCamera>& fake_camera_slot() {
+    static std::optional<FakeCamera> camera;
     return camera;
 }
+
+FakeCamera& fake_camera() {
+    auto& slot = fake_camera_slot();
+    if (!slot) slot.emplace();
+    return *slot;
+}
+
+void release_fake_camera() { fake_camera_slot().reset(); }
 
 std::unique_ptr<Camera> open_streaming_camera(benchmark::State& state, double fps) {
     if (!fake_camera().problem.empty()) {
@@ -264,6 +276,7 @@ BENCHMARK(FourAngleSet)->Args({360, 60})->Args({90, 60})->Iterations(3)->UseReal
 // first row, 100 × the stage's physical angle when it was exposed: a record with any frame from
 // another angle has counts_std ≠ 0 there or a mean ≠ 100 × its angle. foreign_records counts them (0).
 void GatedCapture(benchmark::State& state) {
+    release_fake_camera();
     test::LoopbackGigELock gige_lock;
     std::unique_ptr<FakeGigECameraServer> server;
     try {

@@ -6,11 +6,20 @@
 //  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
-//    polarization noise of 1 %, measured from two renders with different seeds; the same for Mitsuba 3
-//    when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized), else skipped,
-//    after checking per object that both renderers' mean Stokes agree (else no ratio).
+//    polarization noise of 1 %, measured from two renders with different seeds, each renderer run at
+//    doubling spp from 16 until its noise is ≤ 1 % and its time interpolated in log-log between the two
+//    runs that bracket 1 % (no 1/√N extrapolation); the same for Mitsuba 3 with each of its samplers
+//    (independent, stratified, multijitter, orthogonal, ldsampler) when TIRPOL_MITSUBA names its
+//    `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per object that
+//    both renderers' mean Stokes agree (else no ratio); the ratio against the best sampler is printed.
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
+//  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
+//    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) ± its standard error at
+//    8, 32, 128 spp, both estimators.
+//  - ReplicateCount (figures): noise at 64 and 256 spp for 1, 4, 8, 16, 32 replicates.
+//  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare
+//    and panels_night (emission-dominated), and the fitted exponent of noise ∝ spp^a.
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
@@ -26,6 +35,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -381,7 +391,11 @@ Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const Re
 /// Writes Mitsuba 3's version of reflection_compare.yaml and its envmap of the scene's sky. Mitsuba's
 /// envmap is a lat-long image, y-up (rotated here to tirpol's z-up), whose row r lies at zenith angle
 /// π·r/(rows − 1) (emitters/envmap.cpp: rows are samples from pole to pole, not pixel centres).
-std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene) {
+/// `sampler` is the Mitsuba sampler plugin (independent, stratified, multijitter, orthogonal, ldsampler);
+/// Mitsuba rounds sample counts that a sampler cannot take (stratified: a square; orthogonal: a prime
+/// squared), which does not matter here since times are interpolated against the measured noise.
+std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene,
+                                          const std::string& sampler) {
     const int w = 256, h = 129;
     Image env(w, h);
     for (const char* c : {"R", "G", "B"}) env.add_channel(c);
@@ -404,7 +418,7 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
   <sensor type="perspective">
     <float name="fov" value="40"/><string name="fov_axis" value="x"/>
     <transform name="to_world"><lookat origin="0, -5, 1.5" target="0, 0, 0.6" up="0, 0, 1"/></transform>
-    <sampler type="independent"><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
+    <sampler type=")" << sampler << R"("><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
     <film type="hdrfilm"><integer name="width" value="320"/><integer name="height" value="256"/>
       <string name="component_format" value="float32"/><rfilter type="box"/></film>
   </sensor>
@@ -421,6 +435,23 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
 </scene>
 )";
     return dir / "scene.xml";
+}
+
+/// One renderer's runs at doubling spp until the relative noise falls to the target.
+struct NoiseRun {
+    int spp = 0;
+    double noise = 0.0, seconds = 0.0, cpu_seconds = 0.0;
+};
+
+/// Seconds (wall, CPU) to `target` noise, interpolated in log-log between the two runs that bracket it
+/// (the last run is at or below the target, the one before above it); no 1/√N extrapolation.
+std::pair<double, double> bracketed_seconds(const std::vector<NoiseRun>& runs, double target) {
+    if (runs.size() < 2 || runs.back().noise > target || runs[runs.size() - 2].noise <= target)
+        throw Error("no pair of runs brackets the target noise");
+    const NoiseRun &lo = runs[runs.size() - 2], &hi = runs.back();
+    const double f = std::log(target / lo.noise) / std::log(hi.noise / lo.noise);
+    const auto interpolate = [f](double a, double b) { return std::exp(std::log(a) + f * (std::log(b) - std::log(a))); };
+    return {interpolate(lo.seconds, hi.seconds), interpolate(lo.cpu_seconds, hi.cpu_seconds)};
 }
 
 /// Seconds of Mitsuba's "Rendering finished. (took 2.3456s)" log line (util::time_string's ms/s/m/h).
@@ -492,10 +523,8 @@ RenderPair render_mitsuba(const std::string& executable, const std::filesystem::
     return pair;
 }
 
-/// Time to a relative linear-polarization noise of 1 %, from a pair's noise at its spp (σ ∝ 1/√spp).
-double equal_noise_seconds(double seconds, double relative_noise) {
-    return seconds * std::pow(relative_noise / 0.01, 2.0);
-}
+constexpr double kTargetNoise = 0.01;  // relative S1/S2 noise both renderers are run to
+constexpr int kMaxBracketSpp = 1 << 14;
 
 // The two renderers' means may differ by their documented model differences (Mitsuba's uncorrelated
 // Smith G on the rough plane: −1 % in S0 at grazing rows, −0.4 % over the plane); a mistranslated
@@ -504,34 +533,45 @@ constexpr double kMaxRelativeS0Difference = 0.01;
 constexpr double kMaxRatioDifference = 0.005;
 
 void BM_ReflectionEqualNoise(benchmark::State& state) {
-    constexpr int kSpp = 16;
     const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     Scene scene = load_scene(find_config("scenes/reflection_compare.yaml"));
-    scene.sampling.samples_per_pixel = kSpp;
     RenderOptions options;
     options.threads = threads;
-    RenderPair tirpol;
+    std::vector<bool> mask;
+    std::vector<NoiseRun> tirpol_runs;
+    RenderPair tirpol;  // the last run: its means are the ones compared with Mitsuba's
     for (auto _ : state) {
-        RenderStatistics sa, sb;
-        scene.sampling.seed = 1;
-        tirpol.a = render(scene, options, &sa);
-        scene.sampling.seed = 2;
-        tirpol.b = render(scene, options, &sb);
-        tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
-        tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
+        tirpol_runs.clear();
+        for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
+            RenderStatistics sa, sb;
+            scene.sampling.samples_per_pixel = spp;
+            scene.sampling.seed = 1;
+            tirpol.a = render(scene, options, &sa);
+            scene.sampling.seed = 2;
+            tirpol.b = render(scene, options, &sb);
+            if (mask.empty()) {
+                mask.resize(tirpol.a.pixel_count());
+                for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
+            }
+            tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
+            tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
+            tirpol_runs.push_back({spp, relative_linear_noise(tirpol, mask), tirpol.seconds, tirpol.cpu_seconds});
+            std::printf("tirpol %5d spp, %d threads: %.2f s per render (%.2f CPU s), relative S1/S2 noise %.4f\n", spp,
+                        threads, tirpol.seconds, tirpol.cpu_seconds, tirpol_runs.back().noise);
+            if (tirpol_runs.back().noise <= kTargetNoise) break;
+        }
         state.SetIterationTime(tirpol.seconds);
     }
-    std::vector<bool> mask(tirpol.a.pixel_count());
-    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
-    const double noise = relative_linear_noise(tirpol, mask);
-    const double tirpol_time = equal_noise_seconds(tirpol.seconds, noise);
+    if (tirpol_runs.size() < 2) {  // 16 spp already below 1 %: no bracket from above
+        state.SkipWithError("tirpol's first run is already below the target noise: start lower");
+        return;
+    }
+    const auto [tirpol_s, tirpol_cpu_s] = bracketed_seconds(tirpol_runs, kTargetNoise);
     state.counters["threads"] = threads;
-    state.counters["tirpol_relative_noise"] = noise;
-    state.counters["tirpol_equal_noise_s"] = tirpol_time;
-    std::printf(
-        "reflection_compare 320x256 %d spp, %d threads: tirpol %.2f s per render (%.2f CPU s), relative "
-        "S1/S2 noise %.4f -> %.2f s to 1 %%\n",
-        kSpp, threads, tirpol.seconds, tirpol.cpu_seconds, noise, tirpol_time);
+    state.counters["tirpol_equal_noise_s"] = tirpol_s;
+    state.counters["tirpol_equal_noise_cpu_s"] = tirpol_cpu_s;
+    std::printf("tirpol to 1 %% (log-log between %d and %d spp): %.2f s wall, %.2f CPU s\n",
+                tirpol_runs[tirpol_runs.size() - 2].spp, tirpol_runs.back().spp, tirpol_s, tirpol_cpu_s);
 
     const char* mitsuba = std::getenv("TIRPOL_MITSUBA");
     if (!mitsuba || !*mitsuba) {
@@ -542,35 +582,215 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     }
     const auto dir = std::filesystem::temp_directory_path() / "tirpol_mitsuba_bench";
     std::filesystem::create_directories(dir);
-    RenderPair other;
-    try {
-        other = render_mitsuba(mitsuba, write_mitsuba_scene(dir, scene), kSpp, threads, scene.camera);
-    } catch (const Error& e) {
-        state.SkipWithError(e.what());
-        return;
+    double best_cpu_s = std::numeric_limits<double>::infinity();
+    std::string best;
+    for (const std::string sampler : {"independent", "stratified", "multijitter", "orthogonal", "ldsampler"}) {
+        std::vector<NoiseRun> runs;
+        RenderPair other;
+        try {
+            const auto xml = write_mitsuba_scene(dir, scene, sampler);
+            for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
+                other = render_mitsuba(mitsuba, xml, spp, threads, scene.camera);
+                runs.push_back({spp, relative_linear_noise(other, mask), other.seconds, other.cpu_seconds});
+                std::printf("Mitsuba %-11s %5d spp: %.2f s per render (%.2f CPU s), relative noise %.4f\n",
+                            sampler.c_str(), spp, other.seconds, other.cpu_seconds, runs.back().noise);
+                if (runs.back().noise <= kTargetNoise) break;
+            }
+            const Agreement agreement = check_agreement(scene, tirpol, other);
+            if (agreement.max_relative_ds0 > kMaxRelativeS0Difference ||
+                agreement.max_ratio_difference > kMaxRatioDifference) {
+                state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
+                return;
+            }
+            const auto [other_s, other_cpu_s] = bracketed_seconds(runs, kTargetNoise);
+            std::printf("Mitsuba %-11s to 1 %%: %.2f s wall, %.2f CPU s; tirpol/Mitsuba %.2f (wall), %.2f (CPU)\n",
+                        sampler.c_str(), other_s, other_cpu_s, tirpol_s / other_s, tirpol_cpu_s / other_cpu_s);
+            state.counters["tirpol_over_" + sampler + "_cpu"] = tirpol_cpu_s / other_cpu_s;
+            if (other_cpu_s < best_cpu_s) {
+                best_cpu_s = other_cpu_s;
+                best = sampler;
+            }
+        } catch (const Error& e) {
+            state.SkipWithError(e.what());
+            return;
+        }
     }
-    const Agreement agreement = check_agreement(scene, tirpol, other);
-    state.counters["agree_max_abs_z"] = agreement.max_abs_z;
-    state.counters["agree_max_rel_dS0"] = agreement.max_relative_ds0;
-    state.counters["agree_max_d_ratio"] = agreement.max_ratio_difference;
-    if (agreement.max_relative_ds0 > kMaxRelativeS0Difference || agreement.max_ratio_difference > kMaxRatioDifference) {
-        state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
-        return;
-    }
-    const double other_noise = relative_linear_noise(other, mask);
-    const double other_time = equal_noise_seconds(other.seconds, other_noise);
-    const double cpu_ratio =
-        equal_noise_seconds(tirpol.cpu_seconds, noise) / equal_noise_seconds(other.cpu_seconds, other_noise);
-    state.counters["mitsuba_relative_noise"] = other_noise;
-    state.counters["mitsuba_equal_noise_s"] = other_time;
-    state.counters["tirpol_over_mitsuba"] = tirpol_time / other_time;
-    state.counters["tirpol_over_mitsuba_cpu"] = cpu_ratio;
-    std::printf(
-        "Mitsuba 3 %d spp, %d threads: %.2f s per render (%.2f CPU s), relative noise %.4f -> %.2f s to 1 %%\n"
-        "tirpol/Mitsuba equal-noise time ratio %.2f (wall), %.2f (CPU)\n",
-        kSpp, threads, other.seconds, other.cpu_seconds, other_noise, other_time, tirpol_time / other_time, cpu_ratio);
+    state.counters["tirpol_over_best_mitsuba_cpu"] = tirpol_cpu_s / best_cpu_s;
+    std::printf("tirpol/Mitsuba (best sampler: %s) equal-noise CPU time ratio at 1 %%: %.2f\n", best.c_str(),
+                tirpol_cpu_s / best_cpu_s);
 }
 BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+// ---- VarianceCalibration and ConvergenceExponent: the sampler's error bars and convergence ----
+
+/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), pooled over
+/// render pairs with different seeds (1 where the variance channels are unbiased), and its standard
+/// error √Σ(dᵢ² − r·vᵢ)² / Σvᵢ (delta method over the pixels).
+struct TwoSeedRatio {
+    double ratio = 0.0, standard_error = 0.0;
+    std::size_t values = 0, beyond5 = 0;  ///< |z| = |a − b|/√(var_a + var_b) > 5
+};
+
+TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, const std::string& c, float material) {
+    std::vector<double> d2, v;
+    for (const auto& [a, b] : pairs)
+        for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+            if (a.channel("material_id")[i] != material) continue;
+            const double d = static_cast<double>(a.channel(c)[i]) - b.channel(c)[i];
+            d2.push_back(d * d);
+            v.push_back(static_cast<double>(a.channel(c + "_var")[i]) + b.channel(c + "_var")[i]);
+        }
+    TwoSeedRatio out;
+    const double sum_d2 = std::accumulate(d2.begin(), d2.end(), 0.0), sum_v = std::accumulate(v.begin(), v.end(), 0.0);
+    out.ratio = sum_d2 / sum_v;
+    double spread = 0.0;
+    for (std::size_t i = 0; i < d2.size(); ++i) {
+        spread += std::pow(d2[i] - out.ratio * v[i], 2);
+        out.beyond5 += d2[i] > 25.0 * v[i] ? 1 : 0;
+    }
+    out.standard_error = std::sqrt(spread) / sum_v;
+    out.values = d2.size();
+    return out;
+}
+
+/// Per material region (≥ 500 pixels) of panels_night, ball_on_snow_night and vehicles_night at their
+/// own 320×256, at 8, 32 and 128 spp, both estimators, two seed pairs: the two-seed ratio of S0, S1, S2
+/// with its standard error, the share of |z| beyond 5, and over the regions χ²/n of (r − 1)/se (1 when
+/// the ratios scatter about 1 as their errors say). Figures, not speed.
+void BM_VarianceCalibration(benchmark::State& state) {
+    for (auto _ : state) {
+        for (const char* name : {"panels_night", "ball_on_snow_night", "vehicles_night"}) {
+            Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
+            for (const int spp : {8, 32, 128})
+                for (const bool cv : {false, true}) {
+                    RenderOptions options;
+                    options.control_variate = cv;
+                    scene.sampling.samples_per_pixel = spp;
+                    std::vector<std::pair<Image, Image>> pairs;
+                    for (const std::uint64_t seed : {1, 3}) {
+                        scene.sampling.seed = seed;
+                        Image a = render(scene, options);
+                        scene.sampling.seed = seed + 1;
+                        pairs.emplace_back(std::move(a), render(scene, options));
+                    }
+                    double chi2 = 0.0, lowest = 1e9, highest = 0.0;
+                    std::size_t ratios = 0, values = 0, beyond5 = 0;
+                    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+                        const auto id = static_cast<float>(m);
+                        const auto& ids = pairs.front().first.channel("material_id");
+                        const auto pixels = static_cast<std::size_t>(std::count(ids.begin(), ids.end(), id));
+                        if (pixels < 500) continue;
+                        std::string line;
+                        for (const char* c : {"S0", "S1", "S2"}) {
+                            const TwoSeedRatio r = two_seed_ratio(pairs, c, id);
+                            line += fmt::format(" {} {:.3f} ± {:.3f}", c, r.ratio, r.standard_error);
+                            chi2 += std::pow((r.ratio - 1.0) / r.standard_error, 2);
+                            lowest = std::min(lowest, r.ratio);
+                            highest = std::max(highest, r.ratio);
+                            ++ratios;
+                            values += r.values;
+                            beyond5 += r.beyond5;
+                        }
+                        std::printf("%-19s %3d spp %-15s %-24s %5zu px:%s\n", name, spp, cv ? "control-variate" : "plain",
+                                    scene.materials[m].name.c_str(), pixels, line.c_str());
+                    }
+                    std::printf("%-19s %3d spp %-15s all regions: ratios %.2f–%.2f, χ²/n of (r − 1)/se %.2f (n = %zu), "
+                                "|z| > 5 in %.4f %% of %zu values\n",
+                                name, spp, cv ? "control-variate" : "plain", lowest, highest, chi2 / ratios, ratios,
+                                100.0 * static_cast<double>(beyond5) / values, values);
+                }
+        }
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_VarianceCalibration)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// What the replicate count costs: relative S1/S2 and S0 noise (two seeds, surface pixels) at 64 and
+/// 256 spp with R = 1, 4, 8, 16, 32 replicates, on reflection_compare and panels_night at 160×128. Fewer
+/// replicates keep more of the sequence's stratification (lower noise) but give the variance R − 1
+/// degrees of freedom. Figures, not speed.
+void BM_ReplicateCount(benchmark::State& state) {
+    for (auto _ : state) {
+        for (const char* name : {"reflection_compare", "panels_night"}) {
+            Scene scene = load_scene(find_config(std::string("scenes/") + name + ".yaml"));
+            scene.camera = scene.camera.resized(160, 128);
+            for (const int spp : {64, 256})
+                for (const int replicates : {1, 4, 8, 16, 32}) {
+                    scene.sampling.samples_per_pixel = spp;
+                    scene.sampling.replicates = replicates;
+                    RenderPair pair;
+                    scene.sampling.seed = 1;
+                    pair.a = render(scene);
+                    scene.sampling.seed = 2;
+                    pair.b = render(scene);
+                    std::vector<bool> mask(pair.a.pixel_count());
+                    double d0 = 0.0, s0 = 0.0;
+                    std::size_t n = 0;
+                    for (std::size_t i = 0; i < mask.size(); ++i) {
+                        mask[i] = pair.a.channel("object_id")[i] >= 0.0f;
+                        if (!mask[i]) continue;
+                        d0 += 0.5 * std::pow(pair.a.channel("S0")[i] - pair.b.channel("S0")[i], 2);
+                        s0 += pair.a.channel("S0")[i];
+                        ++n;
+                    }
+                    std::printf("%-18s 160x128 %3d spp, R = %2d: relative noise S1/S2 %.5f, S0 %.6f\n", name, spp,
+                                replicates, relative_linear_noise(pair, mask), std::sqrt(d0 / n) / (s0 / n));
+                }
+        }
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_ReplicateCount)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent of a
+/// least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
+void convergence_exponent(Scene scene, const char* name) {
+    std::vector<double> log_spp, log_noise;
+    for (const int spp : {16, 64, 256}) {
+        scene.sampling.samples_per_pixel = spp;
+        RenderPair pair;
+        RenderStatistics stats;
+        scene.sampling.seed = 1;
+        pair.a = render(scene, {}, &stats);
+        scene.sampling.seed = 2;
+        pair.b = render(scene);
+        std::vector<bool> mask(pair.a.pixel_count());
+        double diff = 0.0, var = 0.0;
+        for (std::size_t i = 0; i < mask.size(); ++i) {
+            mask[i] = pair.a.channel("object_id")[i] >= 0.0f;
+            if (!mask[i]) continue;
+            for (const char* c : {"S1", "S2"}) {
+                const double d = pair.a.channel(c)[i] - pair.b.channel(c)[i];
+                diff += d * d;
+                var += pair.a.channel(std::string(c) + "_var")[i] + pair.b.channel(std::string(c) + "_var")[i];
+            }
+        }
+        const double noise = relative_linear_noise(pair, mask);
+        log_spp.push_back(std::log(spp));
+        log_noise.push_back(std::log(noise));
+        std::printf("%s %d spp: relative S1/S2 noise %.5f, two-seed variance ratio %.3f, %.3f CPU s per render\n", name,
+                    spp, noise, diff / var, stats.trace_cpu_seconds);
+    }
+    const double mx = std::accumulate(log_spp.begin(), log_spp.end(), 0.0) / 3.0;
+    const double my = std::accumulate(log_noise.begin(), log_noise.end(), 0.0) / 3.0;
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        sxy += (log_spp[k] - mx) * (log_noise[k] - my);
+        sxx += (log_spp[k] - mx) * (log_spp[k] - mx);
+    }
+    std::printf("%s: noise ∝ spp^%.3f (16 -> 256 spp; goal ≤ −0.8)\n", name, sxy / sxx);
+}
+
+void BM_ConvergenceExponent(benchmark::State& state) {
+    for (auto _ : state) {
+        convergence_exponent(load_scene(find_config("scenes/reflection_compare.yaml")), "reflection_compare 320x256");
+        Scene panels = load_scene(find_config("scenes/panels_night.yaml"));
+        panels.camera = panels.camera.resized(160, 128);
+        convergence_exponent(panels, "panels_night 160x128");
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_ConvergenceExponent)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 }  // namespace
 

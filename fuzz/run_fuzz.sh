@@ -4,6 +4,8 @@
 # the input libFuzzer saved; keep it as tests/data/fuzz-regressions/<target>/<name> once fixed, so
 # the fuzz_replay.<target> ctest test replays it in every build.
 #   fuzz/run_fuzz.sh BUILD_DIR [SECONDS_PER_TARGET]        (default TIRPOL_FUZZ_SECONDS or 12)
+# With TIRPOL_FUZZ_RUNS=N each target runs exactly N inputs from the fixed seed instead of for a time,
+# so the result depends only on the tree, not on the machine's speed (what `./run test` uses).
 set -uo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$(cd "${1:?usage: fuzz/run_fuzz.sh BUILD_DIR [SECONDS_PER_TARGET]}" && pwd)
@@ -32,6 +34,8 @@ seeds_of() {  # the seed folders of a target: fuzz/corpus/<t>, tests/data/fuzz-r
   for d in "${dirs[@]}"; do [[ -d $d ]] && echo "$d"; done  # libFuzzer stops at a missing folder
 }
 
+budget=(-max_total_time="$SECONDS_PER_TARGET")
+[[ -n ${TIRPOL_FUZZ_RUNS:-} ]] && budget=(-runs="$TIRPOL_FUZZ_RUNS")
 failed=0
 printf '%-18s %10s %8s %6s %5s  %s\n' target inputs crashes hangs ooms result | tee "$OUT/summary.txt"
 for t in "${targets[@]}"; do
@@ -44,7 +48,7 @@ for t in "${targets[@]}"; do
   # (the real files are smaller), so a run explores structure rather than size.
   mkdir -p "$OUT/$t/tmp"
   ( cd "$OUT/$t" && TMPDIR="$OUT/$t/tmp" timeout $((SECONDS_PER_TARGET + 120)) "$BUILD/fuzz/tirpol_fuzz_$t" \
-      -seed="${TIRPOL_FUZZ_SEED:-1}" -max_total_time="$SECONDS_PER_TARGET" -rss_limit_mb="$RSS_LIMIT_MB" \
+      -seed="${TIRPOL_FUZZ_SEED:-1}" "${budget[@]}" -rss_limit_mb="$RSS_LIMIT_MB" \
       -timeout="$HANG_S" -max_len=65536 \
       -print_final_stats=1 -artifact_prefix="$OUT/$t/artifacts/" "$OUT/$t/corpus" "${seeds[@]}" ) \
       >"$OUT/$t/log.txt" 2>&1
@@ -66,4 +70,4 @@ if ((failed)); then
   echo "run_fuzz: a target found a crash, hang or out-of-memory input; see the artifact named above" >&2
   exit 1
 fi
-echo "run_fuzz: all ${#targets[@]} targets ran ${SECONDS_PER_TARGET}s each without a finding (summary: $OUT/summary.txt)"
+echo "run_fuzz: all ${#targets[@]} targets ran ${TIRPOL_FUZZ_RUNS:-${SECONDS_PER_TARGET}s} ${TIRPOL_FUZZ_RUNS:+inputs} each without a finding (summary: $OUT/summary.txt)"

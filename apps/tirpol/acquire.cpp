@@ -79,7 +79,7 @@ void run_acquire(const AcquireArgs& a) {
         std::_Exit(1);
     });
     auto camera = open_camera(a.camera).value_or_throw();
-    stage = open_stage(a.stage).value_or_throw();
+    stage = couple_simulated_polarizer(*camera, open_stage(a.stage).value_or_throw());
     stop_on_interrupt.watch(stage.get());
     const CameraInfo camera_info = camera->info();
     std::unique_ptr<BlackbodyController> blackbody;

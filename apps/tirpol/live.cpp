@@ -25,6 +25,12 @@ struct LiveArgs {
 };
 
 void run_live(LiveArgs a) {
+    try {
+        live::validate(a.view);
+        live::validate(a.server);
+    } catch (const Error& e) {
+        throw CLI::ValidationError(e.what());
+    }
     a.view.unit = live::parse_display_unit(a.show);
     live::LiveView view(a.view);
     live::LiveServer server(view, a.server);
@@ -66,10 +72,10 @@ void register_live(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--plan", a->view.default_plan, "Capture plan prefilled in the page's capture form");
     cmd->add_option("-o,--output", a->view.default_output, "Session directory prefilled in the page's capture form");
-    cmd->add_option("--port", a->server.port, "TCP port (0: pick a free one; the address is printed)")
+    cmd->add_option("--port", a->server.port, "TCP port 1-65535 (0: pick a free one; the address is printed)")
         ->capture_default_str();
     cmd->add_option("--bind", a->server.bind_address,
-                    "Address to listen on; anything but loopback requires the printed access token")
+                    "Address to listen on; anything but loopback requires the access token in the printed URL")
         ->capture_default_str();
     cmd->callback([a] { run_live(*a); });
 }

@@ -67,8 +67,9 @@ void run_render(const RenderArgs& a) {
         }
     }
     std::printf(
-        "rendered %s: %d×%d, %d spp, %.2f s (%.2f s emissivity tables: %d built, %d from the cache), %.3g Mrays/s\n",
-        a.scene.c_str(), image.width(), image.height(), scene.sampling.samples_per_pixel, stats.seconds,
+        "rendered %s: %d×%d, %d spp (%d replicates), %.2f s (%.2f s emissivity tables: %d built, %d from the cache), %.3g Mrays/s\n",
+        a.scene.c_str(), image.width(), image.height(), simulation::rendered_samples_per_pixel(scene.sampling),
+        simulation::replicate_count(scene.sampling), stats.seconds,
         stats.setup_seconds, stats.emissivity_tables_built,
         stats.emissivity_tables_from_disk + stats.emissivity_tables_from_memory,
         1e-6 * static_cast<double>(stats.scene_rays + stats.shadow_rays) /

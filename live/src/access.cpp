@@ -1,11 +1,54 @@
 #include "tirpol/live/access.h"
 
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netinet/in.h>
+#include <unistd.h>
+
+#include <array>
 #include <random>
 
 namespace tirpol::live {
 
 bool is_loopback_address(const std::string& address) {
     return address == "localhost" || address == "::1" || address.rfind("127.", 0) == 0;
+}
+
+std::vector<std::string> interface_addresses() {
+    std::vector<std::string> addresses;
+    ifaddrs* list = nullptr;
+    if (::getifaddrs(&list) != 0) return addresses;
+    for (const ifaddrs* a = list; a != nullptr; a = a->ifa_next) {
+        if (a->ifa_addr == nullptr || (a->ifa_flags & IFF_UP) == 0) continue;
+        std::array<char, INET6_ADDRSTRLEN> text{};
+        const int family = a->ifa_addr->sa_family;
+        const void* raw = nullptr;
+        if (family == AF_INET) raw = &reinterpret_cast<const sockaddr_in*>(a->ifa_addr)->sin_addr;
+        if (family == AF_INET6) raw = &reinterpret_cast<const sockaddr_in6*>(a->ifa_addr)->sin6_addr;
+        if (raw != nullptr && ::inet_ntop(family, raw, text.data(), text.size()) != nullptr)
+            addresses.emplace_back(text.data());
+    }
+    ::freeifaddrs(list);
+    return addresses;
+}
+
+std::string host_name() {
+    std::array<char, 256> name{};
+    if (::gethostname(name.data(), name.size() - 1) != 0) return "";
+    return name.data();
+}
+
+std::string reachable_address(const std::string& bind_address) {
+    if (bind_address != "0.0.0.0" && bind_address != "::" && !bind_address.empty()) return bind_address;
+    std::string ipv6;
+    for (const std::string& a : interface_addresses()) {
+        if (is_loopback_address(a)) continue;
+        if (a.find(':') == std::string::npos) return a;
+        // A link-local IPv6 address needs a zone index a browser cannot take in a URL.
+        if (ipv6.empty() && a.rfind("fe80", 0) != 0) ipv6 = a;
+    }
+    return ipv6.empty() ? "127.0.0.1" : ipv6;
 }
 
 std::string make_access_token() {

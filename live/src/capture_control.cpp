@@ -3,10 +3,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
+
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/capture_session.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/utf8.h"
 #include "tirpol/live/tapped_camera.h"
 
 namespace tirpol::live {
@@ -16,6 +19,46 @@ using namespace acquisition;
 namespace {
 /// After Stop, how long the run may take to end before the log says a device is not returning.
 constexpr std::chrono::milliseconds kStopGrace{10000};
+
+/// The first string in `json` (a key or a value) that is not valid UTF-8, as a dotted path
+/// ("metadata.site"); empty when there is none.
+std::string invalid_utf8_field(const nlohmann::json& json, const std::string& path) {
+    if (json.is_string()) return is_valid_utf8(json.get_ref<const std::string&>()) ? "" : path;
+    if (json.is_object()) {
+        for (const auto& [key, value] : json.items()) {
+            const std::string field = path + "." + valid_utf8(key);
+            if (!is_valid_utf8(key)) return field;
+            if (std::string bad = invalid_utf8_field(value, field); !bad.empty()) return bad;
+        }
+    }
+    if (json.is_array()) {
+        for (std::size_t i = 0; i < json.size(); ++i)
+            if (std::string bad = invalid_utf8_field(json[i], path + "[" + std::to_string(i) + "]"); !bad.empty())
+                return bad;
+    }
+    return "";
+}
+
+/// The plan named by a request from the page. Its own error messages quote the file (a line of it, a
+/// key), and the page may have named any file the server can read, so the page is only told that the
+/// file is not a capture plan; the reason goes to the terminal running tirpol live.
+CapturePlan load_plan_for_page(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) fail("capture plan {}: no such file", path.string());
+    CapturePlan plan;
+    try {
+        plan = CapturePlan::load(path);
+    } catch (const Error& e) {
+        spdlog::warn("live view: capture plan {} refused: {}", path.string(), e.what());
+        fail("capture plan {}: not a valid capture plan (the terminal running tirpol live says why; the page is "
+             "never shown a file's contents)",
+             path.string());
+    }
+    // The plan goes into session.json, which must be UTF-8 JSON: name the field instead of failing there.
+    if (const std::string field = invalid_utf8_field(plan.metadata, "metadata"); !field.empty())
+        fail("capture plan {}: {} is not valid UTF-8 text", path.string(), field);
+    return plan;
+}
 }  // namespace
 
 const char* to_string(CapturePhase phase) {
@@ -49,7 +92,7 @@ void CaptureControl::start(const CaptureRequest& request) {
     if (m_state.phase == CapturePhase::Running || m_state.phase == CapturePhase::Stopping)
         fail("live view: a capture into {} is running; stop it first", m_state.output);
     if (m_thread.joinable()) m_thread.join();
-    const CapturePlan plan = CapturePlan::load(request.plan);
+    const CapturePlan plan = load_plan_for_page(request.plan);
     auto session = std::make_shared<SessionWriter>(
         open_capture_session(request.output, m_feed.camera_info(), m_stage.info(), plan, request.resume));
     m_stop = false;

@@ -1,6 +1,9 @@
 #include "tirpol/live/live_view.h"
 
+#include <cmath>
+
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 
@@ -26,9 +29,26 @@ DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) 
 }
 }  // namespace
 
+void validate(const LiveViewOptions& options) {
+    if (options.camera_uri.empty()) fail("--camera: expected a camera URI");
+    const CycleOptions& c = options.cycle;
+    if (c.frames_per_angle < 1) fail("--frames-per-angle: expected an integer ≥ 1, got {}", c.frames_per_angle);
+    if (!std::isfinite(c.settle_s) || c.settle_s < 0.0)
+        fail("--settle-s: expected a finite number of seconds ≥ 0, got {}", c.settle_s);
+    for (const auto& [name, seconds] : {std::pair{"move timeout", c.move_timeout_s},
+                                        std::pair{"home timeout", c.home_timeout_s},
+                                        std::pair{"frame timeout", c.frame_timeout_s}})
+        if (!std::isfinite(seconds) || seconds <= 0.0)
+            fail("live view: the {} must be a finite number of seconds > 0, got {}", name, seconds);
+    for (const double angle_deg : c.angles_deg)
+        if (!std::isfinite(angle_deg)) fail("live view: polarizer angle {} is not a finite number of degrees", angle_deg);
+}
+
 LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
+    validate(options);
     m_camera = open_camera(options.camera_uri).value_or_throw();
-    if (!options.stage_uri.empty()) m_stage = open_stage(options.stage_uri).value_or_throw();
+    if (!options.stage_uri.empty())
+        m_stage = couple_simulated_polarizer(*m_camera, open_stage(options.stage_uri).value_or_throw());
     if (!options.calibration_path.empty())
         m_calibration = calibration::read_radiometric_calibration(options.calibration_path);
     m_converter =

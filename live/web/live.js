@@ -362,7 +362,7 @@ async function observeLoop(client) {
       stage: state.status && state.status.stage, capture: k || null, clicked_start: clickedStart, clicked_stop: clickedStop,
       capture_message: $('capture-message').textContent, mouse,
     };
-    try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
+    try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
   }
 }
 

@@ -82,8 +82,11 @@ std::string HeatedBoard::write(const std::filesystem::path& dir) const {
 
 std::string board_scene(const std::string& board_object, const std::filesystem::path& materials_dir,
                         const std::string& lens, const Vec3& position, const Vec3& look_at, const Vec3& up, int spp) {
+    // Board frames stand in for a camera's S0 frames, which have no per-pixel error bars: one replicate
+    // keeps all of a pixel's samples in one net, so the squares' edges are placed by the sequence's
+    // sub-pixel strata (8 one-point replicates at 8 spp gave 0.21 px RMS reprojection error).
     return fmt::format(
-        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, max_bounces: 0, seed: 1}}\nmaterials_dir: {}\n"
+        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, replicates: 1, max_bounces: 0, seed: 1}}\nmaterials_dir: {}\n"
         "camera: {{model: {}, position: [{}, {}, {}], look_at: [{}, {}, {}], up: [{}, {}, {}]}}\n"
         "sky: {{type: uniform, temperature: 230}}\nobjects:\n{}",
         spp, materials_dir.string(), lens, position.x(), position.y(), position.z(), look_at.x(), look_at.y(),

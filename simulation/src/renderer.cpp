@@ -13,14 +13,16 @@
 #include <limits>
 #include <memory>
 
-#include "pixel_strata.h"
 #include "surface_basis.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/log.h"
 #include "tirpol/core/progress.h"
+#include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/emissivity_cache.h"
 #include "tirpol/simulation/rng.h"
+#include "tirpol/simulation/sobol_sampler.h"
 
 namespace tirpol::simulation {
 
@@ -56,11 +58,13 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& 
     return out;
 }
 
-/// The random numbers of a path that are stratified over the pixel's samples (pixel_strata.h).
-struct StratifiedDraws {
-    double wavelength_u;            ///< picks the wavelength node by inverting the weights' CDF
-    double scatter_u1, scatter_u2;  ///< sample the first reflection whose model is not a pure delta
-};
+/// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects' ranges
+/// (290 K without objects).
+double reference_temperature_k(const Scene& scene) {
+    double sum = 0.0;
+    for (const auto& o : scene.objects) sum += 0.5 * (o.temperature.min_k() + o.temperature.max_k());
+    return scene.objects.empty() ? 290.0 : sum / static_cast<double>(scene.objects.size());
+}
 
 /// Everything a path needs that does not change during a render.
 class PathTracer {
@@ -72,15 +76,28 @@ public:
         // Increasing wavelengths: the emissivity tables' columns.
         std::sort(nodes.begin(), nodes.end(),
                   [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
+        double band_weight_um = 0.0;
+        for (const auto& node : nodes) band_weight_um += node.weight_um;
+        if (!(band_weight_um > 0.0))
+            fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
+        // Nodes are drawn ∝ weight·L_bb(λ, T_ref) with T_ref the objects' mean temperature: a thermal
+        // scene's radiance has nearly Planck's spectral shape, so L(λ)/L_bb(λ, T_ref) changes little
+        // from node to node and the spectral part of the noise, which a replicate of few points
+        // stratifies only coarsely, mostly cancels. Any T_ref is unbiased (the estimate divides by the
+        // probability); uniform in weight where Planck's law underflows (short bands, cold T_ref).
+        const double t_ref_k = reference_temperature_k(scene);
+        std::vector<double> shape;
+        for (const auto& node : nodes) shape.push_back(planck_radiance(node.wavelength_um, t_ref_k));
+        if (!std::all_of(shape.begin(), shape.end(), [](double b) { return std::isfinite(b) && b > 1e-30; }))
+            shape.assign(nodes.size(), 1.0);
         double total = 0.0;
-        for (const auto& node : nodes) {
-            m_wavelengths.push_back(node.wavelength_um);
-            total += node.weight_um;
+        for (std::size_t k = 0; k < nodes.size(); ++k) {
+            m_wavelengths.push_back(nodes[k].wavelength_um);
+            total += nodes[k].weight_um * shape[k];
             m_cdf.push_back(total);
         }
-        if (!(total > 0.0)) fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
         for (auto& c : m_cdf) c /= total;
-        m_band_weight_um = total;
+        for (std::size_t k = 0; k < nodes.size(); ++k) m_node_scale_um.push_back(total / shape[k]);
         // What depends only on the wavelength node (and an object's constant temperature) is evaluated
         // here once instead of at every hit: Planck's law for the sky, the sun and each object.
         const std::size_t node_count = m_wavelengths.size();
@@ -122,11 +139,11 @@ public:
     }
 
     /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
-    /// `strata` in [0, 1) pick the wavelength node and the first non-delta reflection, `rng` the rest.
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, const StratifiedDraws& strata,
-                       SampleStream& rng, std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
+    /// `sampler` gives the wavelength node's number and each bounce's (sobol_sampler.h).
+    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, PathSampler& sampler,
+                       std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
         const auto node =
-            static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), strata.wavelength_u) - m_cdf.begin());
+            static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky::AtWavelength& sky = m_sky_at_node[k];
@@ -141,7 +158,6 @@ public:
         Vec3 frame_reference = camera_frame.reference;  // of the frame throughput takes its Stokes in
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
-        bool strata_used = false;    // the stratified scatter numbers serve one vertex only
         const int max_bounces = m_scene.sampling.max_bounces;
         for (int bounce = 0;; ++bounce) {
             ++scene_rays;
@@ -190,13 +206,9 @@ public:
                 }
             }
 
-            // A pure-delta reflection ignores its numbers: the stratified pair goes to the first vertex
-            // that draws a lobe and a direction (the glossy paint seen in a mirror), where a pixel's
-            // share of each lobe matters most for its mean and its variance estimate.
-            const bool stratified = !strata_used && !brdf.is_pure_delta();
-            strata_used = strata_used || stratified;
-            const double u1 = stratified ? strata.scatter_u1 : rng.next();
-            const double u2 = stratified ? strata.scatter_u2 : rng.next();
+            // Every bounce has its own pair of the scrambled sequence, so the lobe choice behind a
+            // mirror (the glossy paint seen in it) is as evenly spread over a pixel's samples as the first.
+            const auto [u1, u2] = sampler.scatter(bounce);
             const materials::BrdfSample s = brdf.sample(wo_local, lambda, u1, u2);
             if (!(s.pdf > 0.0)) break;
             const Vec3 wi = basis.to_world(s.wi).normalized();
@@ -220,7 +232,7 @@ public:
             if (bounce >= 2) {
                 constexpr double kMinSurvival = 0.25;
                 const double survive = std::clamp(throughput(0, 0), kMinSurvival, 1.0);
-                if (!(survive > 0.0) || rng.next() >= survive) break;
+                if (!(survive > 0.0) || sampler.roulette(bounce) >= survive) break;
                 throughput /= survive;
             }
             // The control variate's −L_ref, carried by the same (roulette-weighted) throughput as the
@@ -229,7 +241,7 @@ public:
             origin = p;
             direction = wi;
         }
-        return radiance * m_band_weight_um;
+        return radiance * m_node_scale_um[k];
     }
 
 private:
@@ -255,58 +267,45 @@ private:
     RayRecorder* m_recorder;
     bool m_control_variate;
     std::vector<double> m_cdf, m_wavelengths;
-    double m_band_weight_um = 0.0;
+    std::vector<double> m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
     std::vector<Sky::AtWavelength> m_sky_at_node;  // per wavelength node
     std::vector<double> m_sun_at_node;             // sun's spectral radiance per node (0 without a sun)
     std::vector<double> m_object_blackbody;        // [object][node]: L_bb at a constant temperature, else NaN
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
 };
 
-/// Variance of a pixel's mean over spp samples drawn from spp wavelength strata, by collapsing
-/// adjacent strata into groups of two (the last of three when spp is odd): Var(mean) ≈ Σ_groups
-/// m/(m − 1)·Σ_i (x_i − x̄_g)² / spp² (Cochran, Sampling Techniques, 3rd ed. 1977, §5A.12). Its
-/// expectation is the true variance plus the squared differences between paired strata's means,
-/// so it stays conservative, but unlike the independent-sample variance it does not count the
-/// spectral spread that stratification removes from the mean. NaN with one sample.
-class StratifiedVariance {
+/// Mean of a pixel and the variance of that mean from R i.i.d. replicate means m_r (each the mean of
+/// an independently scrambled set of points): m̄ = Σ m_r / R, Var(m̄) = Σ (m_r − m̄)² / (R(R − 1)),
+/// unbiased because the replicates are independent and identically distributed (L'Ecuyer & Lemieux
+/// 2002). Welford's update keeps it exact in floating point. NaN variance with one replicate.
+class ReplicateMean {
 public:
-    explicit StratifiedVariance(int spp) : m_spp(spp) {}
-
-    void add(const Eigen::Vector3d& x) {
-        m_group[m_size++] = x;
-        // A pair followed by exactly one more sample (odd spp) waits for it: the last group has three.
-        const bool wait_for_last = m_size == 2 && m_index + 2 == m_spp;
-        ++m_index;
-        if (m_size < 2 || wait_for_last) return;
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (int i = 0; i < m_size; ++i) mean += m_group[i];
-        mean /= m_size;
-        Eigen::Vector3d ss = Eigen::Vector3d::Zero();
-        for (int i = 0; i < m_size; ++i) ss += (m_group[i] - mean).cwiseAbs2();
-        m_total += ss * (m_size / (m_size - 1.0));
-        m_size = 0;
+    void add(const StokesVector& replicate_mean) {
+        ++m_count;
+        const StokesVector delta = replicate_mean - m_mean;
+        m_mean += delta / m_count;
+        m_sum_squares += delta.cwiseProduct(replicate_mean - m_mean);
     }
-
-    Eigen::Vector3d of_mean() const {
-        if (m_spp < 2) return Eigen::Vector3d::Constant(kNaN);
-        return m_total / (static_cast<double>(m_spp) * m_spp);
+    const StokesVector& mean() const { return m_mean; }
+    StokesVector variance_of_mean() const {
+        if (m_count < 2) return StokesVector::Constant(kNaN);
+        return m_sum_squares / (m_count * (m_count - 1.0));
     }
 
 private:
-    int m_spp, m_index = 0, m_size = 0;
-    Eigen::Vector3d m_group[3];
-    Eigen::Vector3d m_total = Eigen::Vector3d::Zero();
+    int m_count = 0;
+    StokesVector m_mean = StokesVector::Zero(), m_sum_squares = StokesVector::Zero();
 };
 
 struct Channels {
     explicit Channels(Image& image)
         : s0(image.add_channel("S0")), s1(image.add_channel("S1")), s2(image.add_channel("S2")), s3(image.add_channel("S3")),
           dolp(image.add_channel("DoLP")), aop(image.add_channel("AoP")), s0_var(image.add_channel("S0_var")),
-          s1_var(image.add_channel("S1_var")), s2_var(image.add_channel("S2_var")), depth(image.add_channel("depth")),
+          s1_var(image.add_channel("S1_var")), s2_var(image.add_channel("S2_var")), s3_var(image.add_channel("S3_var")), depth(image.add_channel("depth")),
           nx(image.add_channel("normal_x")), ny(image.add_channel("normal_y")), nz(image.add_channel("normal_z")),
           view_zenith(image.add_channel("view_zenith_deg")), object_id(image.add_channel("object_id")),
           material_id(image.add_channel("material_id")), temperature(image.add_channel("temperature_k")) {}
-    std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &depth, &nx, &ny, &nz, &view_zenith,
+    std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz, &view_zenith,
         &object_id, &material_id, &temperature;
 };
 
@@ -330,7 +329,12 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
     const int w = camera.width(), h = camera.height();
-    const int spp = scene.sampling.samples_per_pixel;
+    const int replicates = replicate_count(scene.sampling);
+    const int spp = rendered_samples_per_pixel(scene.sampling);
+    const auto points = static_cast<std::uint32_t>(spp / replicates);  // per replicate
+    if (spp != scene.sampling.samples_per_pixel)
+        spdlog::warn("render: {} samples per pixel rounded up to {} ({} replicates of {} points)",
+                     scene.sampling.samples_per_pixel, spp, replicates, points);
     const std::uint64_t seed = scene.sampling.seed;
     Image image(w, h);
     Channels ch(image);
@@ -348,39 +352,34 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         const int ty = static_cast<int>(tile_index / static_cast<std::size_t>(tiles_x));
         const std::uint64_t cpu_start_ns = thread_cpu_ns();
         std::uint64_t rays = 0, shadows = 0;
-        detail::PixelStrata strata(spp);
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
-                StokesVector sum = StokesVector::Zero();
-                StratifiedVariance variance(spp);
-                strata.shuffle(seed, i);
-                for (int s = 0; s < spp; ++s) {
-                    SampleStream rng(seed, i, static_cast<std::uint64_t>(s));
-                    using enum detail::StratifiedDimension;
-                    const double u = x + strata.value(subpixel_x, s, rng.next());
-                    const double v = y + strata.value(subpixel_y, s, rng.next());
-                    // Wavelengths stratified in sample order: the spectral part of the noise falls as
-                    // 1/spp instead of 1/√spp, and StratifiedVariance pairs neighbouring strata.
-                    const StratifiedDraws draws{(s + rng.next()) / spp, strata.value(scatter_u1, s, rng.next()),
-                                                strata.value(scatter_u2, s, rng.next())};
-                    const Vec3 d = camera.ray_direction(u, v);
-                    const StokesVector sample =
-                        tracer.trace(camera.position(), d, camera.image_frame(d), draws, rng, rays, shadows);
-                    sum += sample;
-                    variance.add(sample.head<3>());
+                ReplicateMean pixel;
+                for (std::uint32_t r = 0; r < static_cast<std::uint32_t>(replicates); ++r) {
+                    const ReplicateSampler replicate(seed, i, r, points);
+                    StokesVector sum = StokesVector::Zero();
+                    for (std::uint32_t s = 0; s < points; ++s) {
+                        SampleStream rng(seed, i, std::uint64_t{r} * points + s);  // bounces past kSobolBounces
+                        PathSampler sampler(replicate, s, rng);
+                        const auto [du, dv] = sampler.subpixel();
+                        const Vec3 d = camera.ray_direction(x + du, y + dv);
+                        sum += tracer.trace(camera.position(), d, camera.image_frame(d), sampler, rays, shadows);
+                    }
+                    pixel.add(sum / points);
                 }
-                const StokesVector mean = sum / spp;
+                const StokesVector& mean = pixel.mean();
                 ch.s0[i] = static_cast<float>(mean[0]);
                 ch.s1[i] = static_cast<float>(mean[1]);
                 ch.s2[i] = static_cast<float>(mean[2]);
                 ch.s3[i] = static_cast<float>(mean[3]);
                 ch.dolp[i] = static_cast<float>(tirpol::dolp(mean));
                 ch.aop[i] = static_cast<float>(aop_deg_0_180(mean));
-                const Eigen::Vector3d var = variance.of_mean();
+                const StokesVector var = pixel.variance_of_mean();
                 ch.s0_var[i] = static_cast<float>(var[0]);
                 ch.s1_var[i] = static_cast<float>(var[1]);
                 ch.s2_var[i] = static_cast<float>(var[2]);
+                ch.s3_var[i] = static_cast<float>(var[3]);
 
                 // Auxiliary channels from the pixel-centre ray.
                 const Vec3 d = camera.ray_direction(x + 0.5, y + 0.5);
@@ -425,9 +424,10 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["band_um"] = std::vector<double>{scene.band.lo_um(), scene.band.hi_um()};
     attrs["band_rsr"] = std::string(scene.band.rsr() ? "yes" : "none");
     attrs["spp"] = spp;
-    // Degrees of freedom of the S*_var channels: one per pair of strata (two for a closing triple), so
-    // that a comparison can allow for the heavier tails of a ratio with an estimated variance.
-    attrs["variance_dof"] = spp - spp / 2;
+    // Degrees of freedom of the S*_var channels (R − 1 for R i.i.d. replicates), so that a comparison
+    // can allow for the Student-t tails of a ratio with an estimated variance.
+    attrs["variance_dof"] = replicates - 1;
+    attrs["replicates"] = replicates;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
     attrs["estimator"] = std::string(estimator_name(control_variate ? Estimator::control_variate : Estimator::plain));

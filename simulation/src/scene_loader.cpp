@@ -170,12 +170,21 @@ std::optional<Estimator> estimator_from_name(std::string_view name) {
     return std::nullopt;
 }
 
+int replicate_count(const SamplingSettings& sampling) {
+    return std::max(1, std::min(sampling.replicates, sampling.samples_per_pixel));
+}
+
+int rendered_samples_per_pixel(const SamplingSettings& sampling) {
+    const int r = replicate_count(sampling);
+    return (sampling.samples_per_pixel + r - 1) / r * r;
+}
+
 namespace {
 
 SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     SamplingSettings s;
     if (!node) return s;
-    node->check_keys({"spp", "max_bounces", "seed", "estimator"});
+    node->check_keys({"spp", "max_bounces", "seed", "estimator", "replicates"});
     s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
     if (s.samples_per_pixel < 1) node->at("spp").fail("expected at least 1 sample per pixel");
     s.max_bounces = node->get_or("max_bounces", s.max_bounces);
@@ -190,6 +199,12 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
         if (!estimator) node->at("estimator").fail(fmt::format("expected plain or control-variate, got '{}'", name));
         s.estimator = *estimator;
     }
+    s.replicates = node->get_or("replicates", s.replicates);
+    if (s.replicates < 1 || s.replicates > kMaxReplicates)
+        node->at("replicates")
+            .fail(fmt::format("expected 1–{} independent replicates per pixel (their spread is the variance "
+                              "estimate, with replicates − 1 degrees of freedom; 1: no variance), got {}",
+                              kMaxReplicates, s.replicates));
     return s;
 }
 

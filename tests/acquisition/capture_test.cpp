@@ -8,6 +8,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <csignal>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -412,6 +415,51 @@ TEST(Capture, AngleReadBackOutsideToleranceStopsTheStep) {
     options.progress_stream = nullptr;
     EXPECT_THAT([&] { run_capture(*rig.camera, stage, plan, session, options); },
                 ::testing::ThrowsMessage<Error>(HasSubstr("reads 0.3000° after settling (moved to 0.0000°")));
+}
+
+TEST(Capture, AFailedWriteNamesTheStepWhoseFileItWas) {
+    // Records are written on a thread behind the capture, so a full disk surfaces one or two steps
+    // later; the message must still name the step whose file could not be written. A file-size limit
+    // makes write(2) fail as a full disk does (EFBIG; SIGXFSZ ignored): the 45° frame is random 16-bit
+    // texture (≥ 40 KB however compressed), the others are flat (a few hundred bytes).
+    test::TempDir tmp;
+    auto stage = make_simulated_stage("sim://", {});
+    SimulatedCameraConfig config;
+    config.width = 160;
+    config.height = 128;
+    config.frame_rate_hz = 500.0;
+    SimulatedCamera camera(
+        config,
+        [](double angle, std::vector<float>& out) {
+            std::uint32_t state = 12345;
+            for (auto& v : out) {
+                state = state * 1664525u + 1013904223u;
+                v = std::abs(angle - 45.0) < 1.0 ? static_cast<float>(state >> 16) : 1000.0f;
+            }
+        },
+        simulated_stage_angle_source(*stage));
+    CapturePlan plan;
+    plan.settle_s = 0;
+    plan.frames_per_angle = 2;
+    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+    auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limited = old;
+    limited.rlim_cur = 16 * 1024;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
+    std::string error;
+    try {
+        run_capture(camera, *stage, plan, session, options);
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, old_handler);
+    EXPECT_THAT(error, AllOf(HasSubstr("step 2/4 (polarizer 45°"), HasSubstr("writing the session failed")));
+    EXPECT_EQ(read_session(tmp / "s").records.size(), 1u);
 }
 
 }  // namespace

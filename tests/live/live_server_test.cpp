@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "decoded_image.h"
+#include "served_live_view.h"
 #include "tirpol/core/error.h"
 #include "tirpol/live/access.h"
 
@@ -20,31 +21,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr const char* kCamera = "sim://uniform?width=32&height=24&counts=1500&noise=2&fps=50&fpa_k=300";
-
-/// A LiveView + LiveServer serving on their own thread for the duration of a test.
-struct Served {
-    LiveView view;
-    LiveServer server;
-    std::thread thread;
-    explicit Served(const std::string& bind) : view(options()), server(view, {bind, 0}) {
-        thread = std::thread([this] { server.run(); });
-        for (int i = 0; i < 200; ++i) {  // listen_after_bind starts accepting at once; give it a moment
-            httplib::Client probe("127.0.0.1", server.port());
-            if (probe.Get("/live.css")) break;
-            std::this_thread::sleep_for(10ms);
-        }
-    }
-    ~Served() {
-        server.stop();
-        thread.join();
-    }
-    static LiveViewOptions options() {
-        LiveViewOptions o;
-        o.camera_uri = kCamera;
-        return o;
-    }
-};
+using Served = test::ServedLiveView;
+constexpr const char* kCamera = test::kLiveTestCamera;
 
 TEST(LiveServer, ServesThePageAndNewerFramesOnLoopback) {
     Served s("127.0.0.1");
@@ -79,7 +57,8 @@ TEST(LiveServer, ServesThePageAndNewerFramesOnLoopback) {
     EXPECT_FALSE(status.contains("stage"));
     // No stage: Stokes never arrives (204 after the long poll) and capture is refused with a reason.
     EXPECT_EQ(client.Get("/api/stokes?after=0")->status, 204);
-    auto capture = client.Post("/api/capture/start", R"({"plan":"p.yaml","output":"o"})", "application/json");
+    auto capture = client.Post("/api/capture/start", {{"Origin", s.origin()}}, R"({"plan":"p.yaml","output":"o"})",
+                               "application/json");
     ASSERT_TRUE(capture);
     EXPECT_EQ(capture->status, 400);
     EXPECT_NE(capture->body.find("--stage"), std::string::npos) << capture->body;
@@ -90,6 +69,8 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
     const std::string token = s.server.token();
     ASSERT_EQ(token.size(), 32u);
     EXPECT_NE(s.server.url().find("?token=" + token), std::string::npos);
+    // The URL to open names an address of this machine another one can reach, never the wildcard.
+    EXPECT_EQ(s.server.url().find("0.0.0.0"), std::string::npos) << s.server.url();
     httplib::Client client("127.0.0.1", s.server.port());
     for (const char* path : {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {
         auto r = client.Get(path);
@@ -156,7 +137,7 @@ TEST(LiveView, BadInputsAreErrorsNamingWhatIsWrong) {
 
 TEST(LiveServer, APortInUseIsAnErrorNamingIt) {
     Served first("127.0.0.1");
-    LiveView view(Served::options());
+    LiveView view(test::live_test_options());
     const std::string message = error_of([&] { LiveServer second(view, {"127.0.0.1", first.server.port()}); });
     EXPECT_NE(message.find(std::to_string(first.server.port())), std::string::npos) << message;
 }

@@ -62,6 +62,17 @@ TEST(SceneLoader, EstimatorIsReadAndAnUnknownOneIsNamed) {
                                            HasSubstr("expected plain or control-variate, got 'mcmc'")));
 }
 
+TEST(SceneLoader, ReplicatesAreReadAndOutOfRangeCountsAreNamed) {
+    TempDir dir;
+    EXPECT_EQ(test::load_scene_text(dir, good_scene()).sampling.replicates, kDefaultReplicates);
+    std::string yaml = good_scene();
+    yaml.replace(yaml.find("seed: 7}"), 8, "seed: 7, replicates: 1}");
+    EXPECT_EQ(test::load_scene_text(dir, yaml).sampling.replicates, 1);
+    yaml.replace(yaml.find("replicates: 1"), 13, "replicates: 0");
+    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.replicates"),
+                                           HasSubstr("expected 1–1024"), HasSubstr("got 0")));
+}
+
 TEST(SceneLoader, MissingMeshIsAClearError) {
     TempDir dir;
     EXPECT_THAT(error_of(dir, good_scene("", "{type: mesh, file: no_such_car.obj}")),

@@ -10,8 +10,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"
@@ -25,6 +28,33 @@ using namespace std::chrono_literals;
 
 constexpr int kWidth = 24, kHeight = 18, kSpp = 2;
 
+/// The scene camera's own render of panels_night at kWidth × kHeight, kSpp (the renderer is deterministic
+/// for a scene and its settings), and the twin instrument's constants that turn it into counts.
+struct ExpectedCounts {
+    Image stokes;
+    double tau, tau_min;  ///< the wire grid's transmissions along and across its axis
+    double g, o;          ///< detector gain (counts per W/(m²·sr)) and offset
+    double grid;          ///< what the grid reflects and emits, W/(m²·sr)
+    double sigma;         ///< temporal noise of one frame, counts
+};
+
+ExpectedCounts expected_counts() {
+    simulation::Scene scene = simulation::load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(kWidth, kHeight);
+    scene.sampling.samples_per_pixel = kSpp;
+    const simulation::SensorModel sensor = twin_sensor(scene.band, scene.sky.temperature_k(1.0));
+    ExpectedCounts e;
+    e.stokes = simulation::render(scene);
+    e.tau = sensor.analyzer.transmission;
+    e.tau_min = e.tau / sensor.analyzer.extinction_ratio;
+    e.g = sensor.counts->gain_counts_per_radiance;
+    e.o = sensor.counts->offset_counts;
+    e.grid = sensor.background.reflectance * sensor.background.reflected_radiance +
+             sensor.background.emissivity * scene.band.radiance(sensor.background.temperature_k);
+    e.sigma = e.g * sensor.counts->nedt_k * scene.band.radiance_dT(sensor.counts->reference_temperature_k);
+    return e;
+}
+
 TEST(SceneCamera, FrameCountsFollowTheRenderedRadiance) {
     register_twin_device_schemes();
     auto opened = acquisition::open_camera("sim://config/scenes/panels_night.yaml?width=24&height=18&spp=2&fps=50");
@@ -35,17 +65,9 @@ TEST(SceneCamera, FrameCountsFollowTheRenderedRadiance) {
     const acquisition::Frame frame = camera.grab(10s).value();
     ASSERT_EQ(frame.counts.size(), static_cast<std::size_t>(kWidth * kHeight));
 
-    // The same render, made here (the renderer is deterministic for a scene and its settings).
-    simulation::Scene scene = simulation::load_scene(find_config("scenes/panels_night.yaml"));
-    scene.camera = scene.camera.resized(kWidth, kHeight);
-    scene.sampling.samples_per_pixel = kSpp;
-    const Image stokes = simulation::render(scene);
-    const simulation::SensorModel sensor = twin_sensor(scene.band, scene.sky.temperature_k(1.0));
-    const double tau = sensor.analyzer.transmission, tau_min = tau / sensor.analyzer.extinction_ratio;
-    const double g = sensor.counts->gain_counts_per_radiance, o = sensor.counts->offset_counts;
-    const double grid = sensor.background.reflectance * sensor.background.reflected_radiance +
-                        sensor.background.emissivity * scene.band.radiance(sensor.background.temperature_k);
-    const double sigma = g * sensor.counts->nedt_k * scene.band.radiance_dT(sensor.counts->reference_temperature_k);
+    const ExpectedCounts e = expected_counts();
+    const Image& stokes = e.stokes;
+    const double tau = e.tau, tau_min = e.tau_min, g = e.g, o = e.o, grid = e.grid, sigma = e.sigma;
     ASSERT_GT(sigma, 0.0);
 
     const auto& s0 = stokes.channel("S0");
@@ -64,6 +86,44 @@ TEST(SceneCamera, FrameCountsFollowTheRenderedRadiance) {
               5.0 / std::sqrt(frame.counts.size()) + 0.5 / sigma);
     // The scene has contrast well above the noise (sky vs panels), so the check above is not vacuous.
     EXPECT_GT(g * 0.5 * tau * (s0_max - s0_min), 50.0 * sigma);
+}
+
+TEST(SceneCamera, FramesFollowACoupledStageSoTheScenesPolarizationAppears) {
+    // Behind a stage, I(0°) − I(90°) = g·(τ − τ/ER)·S1 per pixel (the counts formula above): the
+    // rendered S1 appears in the frames. Before the coupling every frame was exposed at 0° and the
+    // difference was noise only.
+    register_twin_device_schemes();
+    auto camera = acquisition::open_camera("sim://config/scenes/panels_night.yaml?width=24&height=18&spp=2&fps=100").value_or_throw();
+    auto stage = acquisition::couple_simulated_polarizer(*camera, acquisition::open_stage("sim://").value_or_throw());
+    ASSERT_TRUE(stage->home(2s).ok());
+    ASSERT_TRUE(camera->start().ok());
+    constexpr int kFrames = 8;
+    auto mean_frame_at = [&](double angle_deg) {
+        EXPECT_TRUE(stage->move_absolute(angle_deg, 2s).ok());
+        const std::int64_t moved_ns =  // host timestamps are CLOCK_REALTIME
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+        std::vector<double> sum(static_cast<std::size_t>(kWidth * kHeight), 0.0);
+        for (int k = 0; k < kFrames;) {
+            const acquisition::Frame f = camera->grab(10s).value();
+            if (f.host_timestamp_ns <= moved_ns) continue;  // exposed before the move ended
+            for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += f.counts[i] / kFrames;
+            ++k;
+        }
+        return sum;
+    };
+    const std::vector<double> i0 = mean_frame_at(0.0), i90 = mean_frame_at(90.0);
+
+    const ExpectedCounts e = expected_counts();
+    const auto& s1 = e.stokes.channel("S1");
+    double measured = 0.0, expected = 0.0;
+    for (std::size_t i = 0; i < i0.size(); ++i) {
+        measured += i0[i] - i90[i];
+        expected += e.g * (e.tau - e.tau_min) * s1[i];
+    }
+    const auto n = static_cast<double>(i0.size());
+    const double sigma_sum = e.sigma * std::sqrt(2.0 * n / kFrames);  // two means of kFrames frames, n pixels
+    EXPECT_NEAR(measured, expected, 5.0 * sigma_sum + 0.5 * n);      // + rounding to whole counts
+    EXPECT_GT(std::abs(expected), 20.0 * sigma_sum) << "the scene's S1 must be resolvable for this test to mean anything";
 }
 
 TEST(SceneCamera, OtherSimTargetsStillReachTheBuiltInCamera) {

@@ -147,15 +147,27 @@ void SimulatedCamera::expose_frames() {
     }
 }
 
+void SimulatedCamera::set_angle_source(AngleSource angle) {
+    std::lock_guard lock(m_mutex);
+    m_angle = std::move(angle);
+}
+
+bool SimulatedCamera::has_angle_source() const {
+    std::lock_guard lock(m_mutex);
+    return static_cast<bool>(m_angle);
+}
+
 std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
     const std::size_t n = static_cast<std::size_t>(m_config.width) * static_cast<std::size_t>(m_config.height);
     m_expected.assign(n, 0.0f);
-    const double angle_deg = m_angle ? m_angle() : 0.0;
     FrameGenerator generator;
+    AngleSource angle;
     {
         std::lock_guard lock(m_mutex);
         generator = m_generator;
+        angle = m_angle;
     }
+    const double angle_deg = angle ? angle() : 0.0;
     generator(angle_deg, m_expected);
     if (m_expected.size() != n) {
         spdlog::error("sim://{}: the frame generator returned {} values for {}×{} pixels", m_config.name, m_expected.size(),

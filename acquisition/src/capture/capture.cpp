@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -124,7 +125,12 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                  motion, step.index + 1, total, step.label, status.error().message, recorded(), total, session.dir().string());
         step_failed(step, "stage", status.error());
     };
-    auto write_failed = [&](const CaptureStep& step, const Error& e) {
+    // Names the step whose record failed to write (the writer runs behind: the step being captured
+    // when its error surfaces is usually a later one).
+    auto write_failed = [&](const CaptureStep& current, const Error& e) {
+        const std::string file = writer.failed_file();
+        const auto failed = std::find_if(todo.begin(), todo.end(), [&](const CaptureStep* s) { return s->file == file; });
+        const CaptureStep& step = failed != todo.end() ? **failed : current;
         fail("step {}/{} ({}): writing the session failed: {}. {} of {} steps are recorded in {}; free disk space if it "
              "is full and run again with --resume",
              step.index + 1, total, step.label, e.what(), session.manifest().records.size(), total, session.dir().string());

@@ -39,6 +39,11 @@ void RecordWriter::flush() {
     rethrow_locked(lock);
 }
 
+std::string RecordWriter::failed_file() const {
+    std::lock_guard lock(m_mutex);
+    return m_failed_file;
+}
+
 std::size_t RecordWriter::records() const {
     std::lock_guard lock(m_mutex);
     return m_written + m_queue.size() + (m_busy ? 1 : 0);
@@ -70,9 +75,10 @@ void RecordWriter::run() {
         }
         lock.lock();
         m_busy = false;
-        if (error)
+        if (error) {
             m_error = error;
-        else
+            m_failed_file = item.record.file;
+        } else
             ++m_written;
         m_changed.notify_all();
     }

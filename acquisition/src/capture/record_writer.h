@@ -7,6 +7,7 @@
 #include <exception>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "tirpol/core/session.h"
@@ -29,6 +30,9 @@ public:
     void flush();
     /// Records in the session, written or queued: for messages while writes are in flight.
     std::size_t records() const;
+    /// The file of the record whose write failed (empty while none has): the write runs behind the
+    /// capture, so the step being captured when the error surfaces is usually a later one.
+    std::string failed_file() const;
 
 private:
     void run();
@@ -47,6 +51,7 @@ private:
     bool m_busy = false, m_stop = false;
     std::size_t m_written;
     std::exception_ptr m_error;
+    std::string m_failed_file;
     std::thread m_thread;
 };
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -79,6 +80,17 @@ SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& 
 /// Checks that a session being resumed was started with this plan and an identical camera format;
 /// throws tirpol::Error naming what differs.
 void check_resumable(const SessionManifest& manifest, const CameraInfo& camera, const CapturePlan& plan);
+
+/// Puts a simulated camera (`sim://`, the twin's `sim://<scene.yaml>`) behind the polarizer that
+/// `stage` turns, so that each frame shows the scene through the polarizer where the stage has it
+/// when the frame is exposed: an in-process `sim://` stage gives its time-true angle (also mid-move);
+/// a driver stage (Thorlabs APT, Elliptec — e.g. tirpol-stage-sim on a pseudo-terminal) the last
+/// angle its driver moved to or read back (frames taken during a move show the previous angle; the
+/// capture's frame gate discards those anyway). A camera that is not simulated, or one given an angle
+/// source of its own, is left alone. Returns the stage to use from now on (`stage` itself, or a
+/// wrapper that forwards every call to it); the coupling ends when that stage is destroyed.
+std::unique_ptr<Stage> couple_simulated_polarizer(Camera& camera, std::unique_ptr<Stage> stage);
+
 
 /// Runs every step of `plan` that `session` does not have yet, then marks the session complete.
 CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan, SessionWriter& session,

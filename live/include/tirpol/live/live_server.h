@@ -15,18 +15,24 @@
 #include <string>
 
 #include "tirpol/live/live_view.h"
+#include "tirpol/live/request_policy.h"
 
 namespace tirpol::live {
 
 struct ServerOptions {
     std::string bind_address = "127.0.0.1";
-    int port = 0;  ///< 0: the system picks a free port
+    int port = 0;  ///< 1–65535, or 0: the system picks a free port
+    RequestLimits limits;
 };
+
+/// Throws tirpol::Error naming the option (`--port`, `--bind`) when a value is out of range.
+void validate(const ServerOptions& options);
 
 class LiveServer {
 public:
-    /// Binds now (tirpol::Error naming the address and port when it cannot). A token is made and
-    /// required when `bind_address` is not loopback (access.h).
+    /// Validates the options and binds now (tirpol::Error naming the address and port when it cannot).
+    /// A token is made and required when `bind_address` is not loopback (access.h); every request
+    /// passes RequestPolicy (request_policy.h) before its body is read.
     LiveServer(LiveView& view, const ServerOptions& options);
     ~LiveServer();
     LiveServer(const LiveServer&) = delete;
@@ -35,12 +41,15 @@ public:
     int port() const { return m_port; }
     /// Empty when none is required.
     const std::string& token() const { return m_token; }
-    /// The address to open in a browser, with the token when one is required.
+    /// The address to open in a browser, with the token when one is required: for a wildcard bind
+    /// (0.0.0.0) this machine's network address (reachable_address), not 0.0.0.0.
     std::string url() const;
 
     /// Serves until stop() (from another thread or a signal-watching thread).
     void run();
     void stop();
+    /// Connections being served now (for tests of the connection limit).
+    std::size_t open_connections() const;
 
 private:
     struct Impl;

@@ -29,6 +29,10 @@ struct LiveViewOptions {
     std::string default_plan, default_output;  ///< prefilled in the page's capture form
 };
 
+/// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value when a
+/// number is not finite or out of range: NaN would otherwise pass every comparison and mean "no wait".
+void validate(const LiveViewOptions& options);
+
 /// An encoded image and the LatestSlot sequence it came from.
 struct EncodedImage {
     std::uint64_t sequence = 0;
@@ -37,8 +41,8 @@ struct EncodedImage {
 
 class LiveView {
 public:
-    /// Opens the devices and the calibration and starts streaming (and cycling, with a stage). Throws
-    /// tirpol::Error naming the URI or file that failed.
+    /// Validates the options, opens the devices and the calibration and starts streaming (and cycling,
+    /// with a stage). Throws tirpol::Error naming the option, URI or file that failed.
     explicit LiveView(const LiveViewOptions& options);
     ~LiveView();
     LiveView(const LiveView&) = delete;

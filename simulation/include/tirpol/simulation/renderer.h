@@ -80,11 +80,15 @@ Band spectral_grid(const Band& band);
 
 /// Renders `scene` at its camera's resolution with its sampling settings. Returns an image with the
 /// channels S0 S1 S2 S3 (camera frame: 0° along image +x, 90° toward the image top; band radiance
-/// W/(m²·sr)), DoLP, AoP (degrees, [0, 180)), S0_var S1_var S2_var (variance of the per-pixel mean;
-/// NaN with one sample per pixel), depth (m along the pixel-centre ray), normal_x/y/z (world, facing
-/// the camera), view_zenith_deg, object_id, material_id (−1 on sky), temperature_k; NaN on sky
-/// pixels for the geometric channels. Header attributes: units, band, spp, seed, bounces, scene file.
-/// The result is identical for any thread count and tile size (counter-based random numbers).
+/// W/(m²·sr)), DoLP, AoP (degrees, [0, 180)), S0_var S1_var S2_var S3_var (unbiased variance of the
+/// per-pixel mean from the spread of replicate_count() independently scrambled replicates, with
+/// replicates − 1 degrees of freedom, attribute `variance_dof`; NaN with one sample per pixel), depth
+/// (m along the pixel-centre ray), normal_x/y/z (world, facing the camera), view_zenith_deg, object_id,
+/// material_id (−1 on sky), temperature_k; NaN on sky pixels for the geometric channels. Header
+/// attributes: units, band, spp (rendered_samples_per_pixel), replicates, variance_dof, seed, bounces,
+/// scene file. The result is identical for any thread count and tile size (every random number is a
+/// function of seed, pixel, replicate, sample and dimension: sobol_sampler.h), and memory does not
+/// grow with spp.
 /// Throws tirpol::Error before rendering if a material does not cover the band, tirpol::Cancelled
 /// if `options.cancel` was set.
 Image render(const Scene& scene, const RenderOptions& options = {}, RenderStatistics* statistics = nullptr);

@@ -25,6 +25,10 @@ namespace tirpol::simulation {
 /// Default and largest allowed `max_bounces`: a safety cap, not a sampling setting.
 inline constexpr int kDefaultMaxBounces = 1000;
 inline constexpr int kMaxBouncesLimit = 100000;
+/// Default `sampling.replicates`: independent randomised replicates per pixel, whose spread is the
+/// variance channels' estimate (renderer.h; docs/simulation.md says why 16).
+inline constexpr int kDefaultReplicates = 16;
+inline constexpr int kMaxReplicates = 1024;
 
 /// How the renderer estimates each vertex's reflected radiance (renderer.h): the plain path-traced
 /// estimate, or with the reflection control variate (e0 − ε)·L_ref, exact by Kirchhoff's law, plus
@@ -44,7 +48,18 @@ struct SamplingSettings {
     int max_bounces = kDefaultMaxBounces;
     std::uint64_t seed = 1;
     Estimator estimator = Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
+    /// Independently scrambled replicates of each pixel's samples (1–kMaxReplicates; 1 keeps all of a
+    /// pixel's samples in one net, the lowest noise, and leaves the variance channels NaN); a render
+    /// uses replicate_count() of them.
+    int replicates = kDefaultReplicates;
 };
+
+/// Replicates a render draws: min(replicates, spp) (one replicate per sample at low spp).
+int replicate_count(const SamplingSettings& sampling);
+/// Samples per pixel a render draws: spp rounded up to a multiple of replicate_count(), so that every
+/// replicate has the same number of points (identically distributed replicate means: the variance
+/// estimate's degrees of freedom are exactly replicates − 1). The EXR's `spp` records this count.
+int rendered_samples_per_pixel(const SamplingSettings& sampling);
 
 /// Empty if `max_bounces` is acceptable (0–kMaxBouncesLimit), else what was expected; the one rule for
 /// the scene file's sampling.max_bounces and the CLI's --max-bounces.

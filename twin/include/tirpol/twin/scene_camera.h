@@ -5,7 +5,8 @@
 ///   sim://<scene.yaml>[?width=W&height=H&spp=N&fps=F&buffers=Q]
 /// The scene is rendered once when the camera opens (its own camera, resized to W×H; N samples per
 /// pixel); every frame is then the twin instrument's detector looking at that Stokes image through
-/// the wire grid at the polarizer angle (0° without a stage): counts of twin_sensor(), with a fresh
+/// the wire grid at the polarizer angle (0° until acquisition::couple_simulated_polarizer puts it behind
+/// a stage, as `tirpol acquire` and `tirpol live` do): counts of twin_sensor(), with a fresh
 /// temporal-noise realisation per frame. A relative path is taken from the working directory and,
 /// when it starts with `config/` and is not there, from the source tree's config/ folder.
 /// Other `sim://` targets (sim://uniform) go to the factory registered before.

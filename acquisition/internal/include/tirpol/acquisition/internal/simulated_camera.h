@@ -65,6 +65,9 @@ public:
     Result<Frame> grab(std::chrono::milliseconds timeout) override;
     StreamStatistics statistics() const override;
     std::optional<double> device_temperature_k() override { return m_config.fpa_temperature_k; }
+    /// Replaces the polarizer-angle source (empty: 0°). Safe while streaming: the next frame uses it.
+    void set_angle_source(AngleSource angle);
+    bool has_angle_source() const;
 
 private:
     void expose_frames();  ///< the camera's thread
@@ -72,7 +75,7 @@ private:
 
     SimulatedCameraConfig m_config;
     FrameGenerator m_generator;       ///< guarded by m_mutex
-    AngleSource m_angle;
+    AngleSource m_angle;              ///< guarded by m_mutex
     mutable std::mutex m_mutex;
     std::condition_variable m_changed;
     bool m_streaming = false;         ///< guarded by m_mutex
