@@ -42,8 +42,9 @@ std::uint64_t thread_cpu_ns() {
 
 /// m · R, where R = frame_rotation(frame_rotation_angle(from, to)) re-expresses Stokes given in `from`
 /// = surface_frame(k, n) in a frame `to` of the same propagation k given by its reference axis (any
-/// length). R only mixes S1 and S2, so only m's columns 1 and 2 change, and cos 2α, sin 2α come from
-/// dot products (no trig): surface_frame's reference is n × k normalised and its second axis
+/// length, and any component along k, which drops out of the dot products with vectors across k).
+/// R only mixes S1 and S2, so only m's columns 1 and 2 change, and cos 2α, sin 2α come from dot
+/// products (no trig): surface_frame's reference is n × k normalised and its second axis
 /// k × reference, and the lengths cancel in (c² − s²)/(c² + s²) and 2cs/(c² + s²), so neither frame
 /// is normalised. Where n × k vanishes (a beam along the normal) surface_frame's fallback axis is used.
 MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& n, const Vec3& to_reference) {
@@ -138,9 +139,13 @@ public:
         }
     }
 
-    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
+    /// One sample of the band radiance arriving at the camera along `direction`, in the camera's Stokes
+    /// frame of that ray (Camera::image_frame), given by `camera_right`, the camera's x axis: image_frame's
+    /// reference is that axis with its component along the ray removed and normalised, and the frame
+    /// rotations (times_rotation) need neither, as only its dot products with vectors across the ray
+    /// enter them;
     /// `sampler` gives the wavelength node's number and each bounce's (sobol_sampler.h).
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame, PathSampler& sampler,
+    StokesVector trace(Vec3 origin, Vec3 direction, const Vec3& camera_right, PathSampler& sampler,
                        std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
         const auto node =
             static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
@@ -155,7 +160,7 @@ public:
         // rotation, from its own s/p frame of the same ray (paper eq 12's two rotations through the
         // world frame compose into this one).
         MuellerMatrix throughput = MuellerMatrix::Identity();
-        Vec3 frame_reference = camera_frame.reference;  // of the frame throughput takes its Stokes in
+        Vec3 frame_reference = camera_right;  // of the frame throughput takes its Stokes in
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
         const int max_bounces = m_scene.sampling.max_bounces;
@@ -328,6 +333,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
+    const Vec3 camera_right = camera.world_from_camera().col(0);  // never along a ray: every ray looks forward
     const int w = camera.width(), h = camera.height();
     const int replicates = replicate_count(scene.sampling);
     const int spp = rendered_samples_per_pixel(scene.sampling);
@@ -364,7 +370,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                         PathSampler sampler(replicate, s, rng);
                         const auto [du, dv] = sampler.subpixel();
                         const Vec3 d = camera.ray_direction(x + du, y + dv);
-                        sum += tracer.trace(camera.position(), d, camera.image_frame(d), sampler, rays, shadows);
+                        sum += tracer.trace(camera.position(), d, camera_right, sampler, rays, shadows);
                     }
                     pixel.add(sum / points);
                 }

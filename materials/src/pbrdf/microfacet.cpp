@@ -119,8 +119,10 @@ double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
     };
     const double theta = std::acos(cos_theta), erf_cot = 1.0 - smith.erfc_a;
     const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
+    // (1 − u)^fit as exp(fit·log1p(−u)): the starting point only (the steps below converge to the same
+    // x̃), and cheaper than pow, which guards a double-precision result that is not needed here.
     double x = approximate_inverse_erf(
-        std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
+        std::clamp(erf_cot - (1.0 + erf_cot) * std::exp(fit * std::log1p(-u)), -1.0 + 1e-16, 1.0 - 1e-16));
     if (!(x < hi)) {
         bracket_below();
         x = 0.5 * (lo + hi);
@@ -209,7 +211,11 @@ Vec3 folded(const Vec3& w) { return Vec3(w.x(), w.y(), -w.z()); }
 /// Density of the visible-normal reflection wi = 2(h·wo)h − wo at a wi below the horizon (given as its
 /// folded image `wi_below`), which the sampler folds back up; `lambda_o` is Smith's Λ(wo).
 double masked_reflection_pdf(double sigma, const Vec3& wi_below, const Vec3& wo, double cos_o, double lambda_o) {
-    const Vec3 h = (wi_below + wo).normalized();
+    // The half vector's signs are those of the unnormalised sum: about half the samples (wi above wo's
+    // elevation) have no folded image, and are told so before the normalisation and D's exponential.
+    const Vec3 sum = wi_below + wo;
+    if (!(sum.z() > 0.0) || !(sum.dot(wo) > 0.0)) return 0.0;
+    const Vec3 h = sum.normalized();
     if (!(h.dot(wo) > 0.0) || !(h.z() > 0.0)) return 0.0;
     const double cos_h = std::max(h.z(), kMinCosine);
     const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
