@@ -13,11 +13,13 @@ function(tirpol_add_module name)
   add_library(tirpol_${name} STATIC ${sources})
   add_library(tirpol::${name} ALIAS tirpol_${name})
   target_include_directories(tirpol_${name}
-    PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   target_link_libraries(tirpol_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
   target_compile_options(tirpol_${name} PRIVATE ${TIRPOL_WARNINGS})
-  set_target_properties(tirpol_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  # Installed and exported as tirpol::<name> (cmake/TirpolInstall.cmake).
+  set_target_properties(tirpol_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON EXPORT_NAME ${name})
+  set_property(GLOBAL APPEND PROPERTY TIRPOL_INSTALLED_MODULES ${name})
   tirpol_add_module_tests(${name} tirpol::${name} ${ARG_TEST_DEPS})
 endfunction()
 

@@ -1,4 +1,5 @@
-// `tirpol acquire PLAN.yaml --camera URI --stage URI [--blackbody URI] -o DIR [--resume] [--non-interactive]`:
+// `tirpol acquire PLAN.yaml --camera URI --stage URI [--blackbody URI] [--camera-control URI] [--ffc SCHEDULE]
+//  -o DIR [--resume] [--non-interactive]`:
 // runs a capture plan into a session directory (docs/acquisition-stages.md, docs/session-format.md).
 // Exit codes: 0 session complete; 1 an error (bad plan or URI, device fault, interruption — the
 // message says how many steps are recorded; continue with --resume); 2 bad command-line usage.
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli.h"
@@ -17,6 +19,7 @@
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/capture_session.h"
+#include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
@@ -38,7 +41,7 @@ extern "C" void on_interrupt(int sig) {
 }
 
 struct AcquireArgs {
-    std::string plan, camera, stage, blackbody, output;
+    std::string plan, camera, stage, blackbody, output, camera_control, ffc;
     bool resume = false, non_interactive = false;
 };
 
@@ -51,6 +54,8 @@ bool ask_operator(const std::string& instruction) {
 
 void run_acquire(const AcquireArgs& a) {
     using namespace acquisition;
+    // The session writer refuses a non-empty folder (unless resuming): only the inputs are checked here.
+    OutputGuard().input(a.plan, "PLAN").output_session(a.output, "--output").check(false);
     const CapturePlan plan = CapturePlan::load(a.plan);
     const std::filesystem::path dir = a.output;
     if (a.resume && !std::filesystem::exists(dir / kSessionManifestName))
@@ -93,7 +98,16 @@ void run_acquire(const AcquireArgs& a) {
             std::fprintf(stderr, "tirpol acquire: recovered %s (written just before the interruption)\n", file.c_str());
     }
 
+    std::unique_ptr<FfcControl> camera_control;
+    if (!a.camera_control.empty()) camera_control = open_ffc_control(a.camera_control).value_or_throw();
+    std::optional<FfcOptions> ffc;
+    if (!a.ffc.empty() || camera_control) ffc = parse_ffc_schedule(a.ffc.empty() ? "every-cycle" : a.ffc);
+    if (ffc) ffc->control = camera_control.get();
+    if (ffc && a.ffc == "detect" && camera_control)
+        fail("--ffc detect watches the frames only; leave out --camera-control, or choose a schedule for the link");
+
     CaptureOptions options;
+    options.ffc = ffc ? &*ffc : nullptr;
     if (!a.non_interactive) options.prompt = ask_operator;
     options.interrupt = &g_interrupted;
     options.blackbody = blackbody.get();
@@ -104,6 +118,9 @@ void run_acquire(const AcquireArgs& a) {
                 s.steps_already_recorded);
     std::printf("  frames averaged now: %llu, dropped by the camera: %llu\n", static_cast<unsigned long long>(s.frames),
                 static_cast<unsigned long long>(s.dropped));
+    if (ffc)
+        std::printf("  flat-field corrections: %d scheduled between cycles, %d detected inside a cycle (retaken)\n",
+                    s.ffc_scheduled, s.ffc_detected);
 }
 
 void register_acquire(CLI::App& app) {
@@ -118,6 +135,12 @@ void register_acquire(CLI::App& app) {
                     "blackbody temperatures and waits for stability (docs/acquisition-blackbody.md)");
     cmd->add_option("-o,--output", args->output, "Session directory (new and empty, or an interrupted session with --resume)")->required();
     cmd->add_flag("--resume", args->resume, "Continue an interrupted session: skips recorded steps, keeps everything written");
+    cmd->add_option("--camera-control", args->camera_control,
+                    "The camera core's control link (boson:///dev/ttyACM0): manual FFC, run between polarizer "
+                    "cycles (docs/acquisition-cameras.md, FLIR Boson)");
+    cmd->add_option("--ffc", args->ffc,
+                    "Flat-field corrections: detect (no link: find them in the frames, retake the cycle), "
+                    "every-cycle (default with --camera-control), every:N, fpa:K (when the FPA moved > K kelvin)");
     cmd->add_flag("--non-interactive", args->non_interactive, "Do not prompt before reference (blackbody/shutter) frames");
     cmd->callback([args] { run_acquire(*args); });
 }

@@ -32,7 +32,7 @@ Vec3 direction(const std::vector<double>& theta_phi_deg, const char* option) {
 void run_brdf(const BrdfArgs& a) {
     const materials::Material m = materials::load_material(materials::material_file(a.material));
     const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
-    if (a.wavelength_um < lo || a.wavelength_um > hi)
+    if (!(a.wavelength_um >= lo && a.wavelength_um <= hi))
         fail("--wavelength-um {}: outside the material's data range {}–{} µm", a.wavelength_um, lo, hi);
     const Vec3 wi = direction(a.incident_deg, "--incident-deg"), wo = direction(a.exitant_deg, "--exitant-deg");
     const MuellerMatrix f = m.brdf->eval(wi, wo, a.wavelength_um);

@@ -21,10 +21,18 @@ struct RadiometricArgs {
     int fpa_degree = 0;
     std::vector<double> band_um{8.0, 14.0};
     bool quadratic = false;
+    bool force = false;
     std::optional<double> saturation_counts;
 };
 
 void run_radiometric(const RadiometricArgs& a) {
+    const std::string summary = a.summary.empty() ? calibration::default_summary_dir(a.output) : a.summary;
+    OutputGuard guard;
+    for (const std::string& session : a.sessions) guard.input(session, "SESSION");
+    guard.input(a.rsr, "--rsr")
+        .output_file(a.output, "--output")
+        .output_folder(summary, "--summary", {"index.html", "maps.exr", "nedt.png", "bad_pixels.png", "residuals.png"})
+        .check(a.force);
     std::optional<SpectralResponse> rsr;
     if (!a.rsr.empty()) rsr = SpectralResponse::load_csv(a.rsr);
     const Band band(a.band_um[0], a.band_um[1], rsr);
@@ -39,7 +47,6 @@ void run_radiometric(const RadiometricArgs& a) {
     const auto& cal = *products.radiometric;
     const auto& quality = *products.quality;
     calibration::write_radiometric_calibration(a.output, cal);
-    const std::string summary = a.summary.empty() ? calibration::default_summary_dir(a.output) : a.summary;
     calibration::write_calibration_summary(summary, cal, quality);
     const auto gain = calibration::robust_stats(cal.gain);
     const auto residual = calibration::robust_stats(cal.residual_rms);
@@ -67,9 +74,16 @@ struct PolarimetricArgs {
     std::string session, calibration, output;
     std::optional<double> extinction_ratio;
     std::vector<double> axis_offsets_deg;
+    bool force = false;
 };
 
 void run_polarimetric(const PolarimetricArgs& a) {
+    OutputGuard()
+        .input(a.session, "SESSION")
+        .input(a.calibration, "--calibration")
+        .output_file(a.output, "--output")
+        .output_file(calibration::polarimetric_maps_path(a.output), "--output (maps)")
+        .check(a.force);
     if (!a.extinction_ratio && !a.axis_offsets_deg.empty())
         usage_error("--axis-offset-deg", "needs --extinction-ratio (the datasheet's t_max/t_min)");
     calibration::ChainInputs chain;
@@ -108,6 +122,7 @@ void register_calibrate(CLI::App& app) {
         ->capture_default_str();
     rad->add_option("--summary", r->summary, "Directory of the one-page HTML/PNG summary (default: next to -o, .summary)");
     rad->add_option("--saturation-counts", r->saturation_counts, "Saturation level (default 2^bits − 1 of the camera)");
+    add_force_flag(rad, r->force);
     rad->callback([r] { run_radiometric(*r); });
 
     auto p = std::make_shared<PolarimetricArgs>();
@@ -121,6 +136,7 @@ void register_calibrate(CLI::App& app) {
                     "Datasheet extinction ratio t_max/t_min of the polarizer, used without known-source records");
     pol->add_option("--axis-offset-deg", p->axis_offsets_deg,
                     "Datasheet/mount axis offset(s) in degrees: one for all angles or one per angle (ascending)");
+    add_force_flag(pol, p->force);
     pol->callback([p] { run_polarimetric(*p); });
 }
 }  // namespace

@@ -15,11 +15,14 @@ namespace {
 struct GeometricArgs {
     std::vector<std::string> frames;
     std::string target, output, distortion_model = "standard";
-    bool fix_k3 = false, zero_tangential = false;
+    bool fix_k3 = false, zero_tangential = false, force = false;
     int min_views = 5;
 };
 
 void run_geometric(const GeometricArgs& a) {
+    OutputGuard guard;
+    for (const std::string& frame : a.frames) guard.input(frame, "FRAMES");
+    guard.output_file(a.output, "--output").check(a.force);
     calibration::GeometricCalibrationOptions options;
     options.distortion_model = a.distortion_model;
     options.fix_k3 = a.fix_k3;
@@ -47,9 +50,11 @@ void run_geometric(const GeometricArgs& a) {
 struct PoseArgs {
     std::string camera, points, output;
     double ransac_threshold_px = 3.0;
+    bool force = false;
 };
 
 void run_pose(const PoseArgs& a) {
+    OutputGuard().input(a.camera, "--camera").input(a.points, "--points").output_file(a.output, "--output").check(a.force);
     const CameraModel model = read_camera_model(a.camera);
     const auto points = calibration::read_control_points(a.points);
     calibration::PoseOptions options;
@@ -84,6 +89,7 @@ void register_calibrate_geometry(CLI::App& app) {
     geo->add_flag("--fix-k3", g->fix_k3, "Keep k3 = 0 (few views or a narrow lens)");
     geo->add_flag("--zero-tangential", g->zero_tangential, "Keep p1 = p2 = 0");
     geo->add_option("--min-views", g->min_views, "Fewer frames with the target is an error")->capture_default_str();
+    add_force_flag(geo, g->force);
     geo->callback([g] { run_geometric(*g); });
 
     auto p = std::make_shared<PoseArgs>();
@@ -94,6 +100,7 @@ void register_calibrate_geometry(CLI::App& app) {
         ->check(CLI::ExistingFile);
     pose->add_option("-o,--output", p->output, "Camera pose YAML to write")->required();
     pose->add_option("--ransac-threshold-px", p->ransac_threshold_px, "Outlier threshold")->capture_default_str();
+    add_force_flag(pose, p->force);
     pose->callback([p] { run_pose(*p); });
 }
 }  // namespace

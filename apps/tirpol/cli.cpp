@@ -1,5 +1,6 @@
 #include "cli.h"
 #include "invocation.h"
+#include "numeric_options.h"
 
 #include <glog/logging.h>
 #include <spdlog/spdlog.h>
@@ -113,6 +114,7 @@ int run(int argc, char** argv) {
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& [order, add] : commands) add(app);
     accept_comma_lists(app);
+    validate_numeric_options(app);
 
     try {
         app.parse(argc, argv);
@@ -125,6 +127,10 @@ int run(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         app.exit(e);
         print_suggestions(app);
+        return kExitUsage;
+    } catch (const OutputConflict& e) {
+        // Found from the command line and the file system alone, before any work: a usage error.
+        std::fprintf(stderr, "%s\nRun with --help for more information.\n", e.what());
         return kExitUsage;
     } catch (const tirpol::Error& e) {
         std::fprintf(stderr, "tirpol: error: %s\n", e.what());

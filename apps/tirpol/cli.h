@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::cli {
 
@@ -37,6 +38,14 @@ auto parse_option_value(const std::string& option, Parse&& parse) {
         const std::string message = e.what();
         throw message.rfind(option, 0) == 0 ? CLI::ValidationError(message) : CLI::ValidationError(option, message);
     }
+}
+
+/// The `--force` flag of a command that writes: existing files at its outputs may be replaced (its
+/// inputs never; tirpol::OutputGuard). Every writing subcommand adds it and passes it to
+/// OutputGuard::check() before any work; an OutputConflict exits 2 (cli.cpp).
+inline CLI::Option* add_force_flag(CLI::App* command, bool& force) {
+    return command->add_flag("--force", force,
+                             "Replace existing files at the outputs (an input is never replaced; docs/cli.md)");
 }
 
 using CommandRegistration = std::function<void(CLI::App&)>;

@@ -1,8 +1,9 @@
 // `tirpol compare`: measured vs simulated Stokes images → a self-contained HTML report, report.json
 // and PNGs (docs/report.md).
 
-#include <cmath>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/report/comparison_report.h"
+#include "tirpol/report/summary_text.h"
 
 namespace tirpol::cli {
 
@@ -20,8 +22,10 @@ namespace {
 struct CompareArgs {
     std::string measured, simulated, rois, control_points, camera, registration, output;
     std::optional<double> measured_sigma;
+    double gain_sigma = 0.0, offset_sigma = 0.0, false_alarm = 0.05, power = 0.80;
     std::vector<double> band_um;
     bool json = false;
+    bool force = false;
 };
 
 void run_compare(const CompareArgs& a) {
@@ -53,7 +57,26 @@ void run_compare(const CompareArgs& a) {
             usage_error("--measured-sigma", "expected a positive radiance in W/(m²·sr), got {}", *a.measured_sigma);
         options.measured_frame_sigma = a.measured_sigma;
     }
+    if (!(a.gain_sigma >= 0.0 && a.gain_sigma < 1.0))
+        usage_error("--gain-sigma", "expected a relative gain uncertainty in [0, 1), got {}", a.gain_sigma);
+    if (!(a.offset_sigma >= 0.0) || !std::isfinite(a.offset_sigma))
+        usage_error("--offset-sigma", "expected a non-negative radiance in W/(m²·sr), got {}", a.offset_sigma);
+    if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5))
+        usage_error("--false-alarm", "expected a probability in (0, 0.5), got {}", a.false_alarm);
+    if (!(a.power > 0.5 && a.power < 1.0)) usage_error("--power", "expected a probability in (0.5, 1), got {}", a.power);
+    options.measured_gain_sigma_relative = a.gain_sigma;
+    options.measured_offset_sigma = a.offset_sigma;
+    options.design.false_alarm_per_region = a.false_alarm;
+    options.design.power = a.power;
     if (!a.band_um.empty()) options.band_um = std::array<double, 2>{a.band_um[0], a.band_um[1]};
+    OutputGuard()
+        .input(a.measured, "--measured")
+        .input(a.simulated, "--simulated")
+        .input(a.rois, "--rois")
+        .input(a.control_points, "--control-points")
+        .input(a.camera, "--camera")
+        .output_folder(a.output, "--output", {"report.html", "report.json", "comparison.exr", "*.png", "*.svg"})
+        .check(a.force);
     const Image measured = read_exr(a.measured);
     const Image simulated = read_exr(a.simulated);
     options.provenance.tool_version = version_text();
@@ -72,23 +95,25 @@ void run_compare(const CompareArgs& a) {
     std::printf("registration: %s (%s), residual misalignment %.3f px\n", to_string(g.method).c_str(), g.model.c_str(),
                 std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
     if (!g.note.empty()) std::printf("  %s\n", g.note.c_str());
-    std::printf("%-16s %9s %12s %16s %-22s %-22s %-22s %s\n", "region", "pixels", "S0 bias", "S0 bias [K]", "S0",
-                "S1", "S2", "verdict");
+    std::printf("%s\n", summary_paragraph(r).c_str());
+    // fmt pads by displayed width (σ and ± are one column, two bytes); the name column fits the longest name.
+    std::size_t name_width = 16;
+    for (const auto& region : r.regions) name_width = std::max(name_width, region.name.size());
+    fmt::print("{:<{}} {:>7} {:>14} {:<26} {:<26} {:<26} {}\n", "region", name_width, "pixels", "S0 bias [K]",
+               "S0 diff/σ_mean (detect)", "S1 diff/σ_mean (detect)", "S2 diff/σ_mean (detect)", "verdict");
     for (const auto& region : r.regions) {
         const auto& k = region.s0_bias_k;
         const std::string kelvin = k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
-        std::printf("%-16s %9zu %12.4g %16s", region.name.c_str(), region.pixel_count, region.stats.at("S0").bias,
-                    kelvin.c_str());
+        fmt::print("{:<{}} {:>7} {:>14}", region.name, name_width, region.pixel_count, kelvin);
         for (const auto& q : kZQuantities) {
-            const auto& z = region.z.at(q);
-            std::printf(" %-22s", fmt::format("{:.1f}% rms {:.2f} {}", 100.0 * z.fraction_above_2, z.rms,
-                                              region.verdicts.at(q) == ZVerdict::Consistent          ? "ok"
-                                              : region.verdicts.at(q) == ZVerdict::SigmaOverestimated ? "sigma-high"
-                                              : region.verdicts.at(q) == ZVerdict::ExceedsNoise       ? "EXCEEDS"
-                                                                                                      : "-")
-                                      .c_str());
+            const auto& v = region.verdicts.at(q);
+            fmt::print(" {:<26}", fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
+                                              v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
+                                              v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
+                                              : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
+                                                                                              : ""));
         }
-        std::printf(" %s\n", to_string(region.verdict).c_str());
+        fmt::print(" {}\n", to_string(region.verdict));
     }
     for (const auto& note : r.notes) std::printf("note: %s\n", note.c_str());
     std::printf("report: %s\n", r.html.string().c_str());
@@ -117,10 +142,17 @@ void register_compare(CLI::App& app) {
         ->check(CLI::IsMember({"none", "auto", "control-points", "camera-model"}));
     cmd->add_option("--measured-sigma", args->measured_sigma,
                     "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has no *_std channels");
+    cmd->add_option("--gain-sigma", args->gain_sigma,
+                    "Relative calibration gain uncertainty common to every pixel (e.g. 0.005), default 0");
+    cmd->add_option("--offset-sigma", args->offset_sigma,
+                    "S0 calibration offset uncertainty common to every pixel, W/(m²·sr), default 0");
+    cmd->add_option("--false-alarm", args->false_alarm, "False-alarm probability per region (default 0.05)");
+    cmd->add_option("--power", args->power, "Power at which the detectable bias is quoted (default 0.80)");
     cmd->add_option("--band-um", args->band_um, "Band LO HI in µm for the S0 bias in kelvin (default: the EXRs' band_um)")
         ->expected(2);
     cmd->add_option("-o,--output", args->output, "Report directory (created)")->required();
     cmd->add_flag("--json", args->json, "Print report.json to stdout instead of the summary");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] { run_compare(*args); });
 }
 

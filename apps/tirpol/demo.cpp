@@ -14,9 +14,16 @@ namespace tirpol::cli {
 namespace {
 void register_demo(CLI::App& app) {
     auto out_dir = std::make_shared<std::string>("demo-output");
+    auto force = std::make_shared<bool>(false);
     auto* cmd = app.add_subcommand("demo", "Run the built-in end-to-end demonstration");
     cmd->add_option("-o,--output", *out_dir, "Output folder")->capture_default_str();
-    cmd->callback([out_dir] {
+    add_force_flag(cmd, *force);
+    cmd->callback([out_dir, force] {
+        OutputGuard()
+            .output_folder(*out_dir, "--output",
+                           {"acquisition", "analyzer", "calibration", "fitting", "materials", "radiometry",
+                            "simulation", "thermal", "twin"})
+            .check(*force);
         const std::filesystem::path dir = std::filesystem::absolute(*out_dir);
         std::filesystem::create_directories(dir);
         std::printf("tirpol demo → %s\n", dir.c_str());

@@ -27,9 +27,16 @@ struct EmissivityArgs {
     double temperature_k = 300.0;
     std::string csv, plot;
     bool json = false;
+    bool force = false;
 };
 
 void run_emissivity(const EmissivityArgs& a) {
+    OutputGuard()
+        .input(a.material, "MATERIAL")
+        .input(a.rsr, "--rsr")
+        .output_file(a.csv, "--csv")
+        .output_file(a.plot, "--plot")
+        .check(a.force);
     const materials::Material m = materials::load_material(materials::material_file(a.material));
     const std::vector<double> angles =
         parse_option_value("--angles-deg", [&] { return materials::parse_angles_deg(a.angles); });
@@ -96,6 +103,7 @@ void register_emissivity(CLI::App& app) {
     cmd->add_option("--csv", args->csv, "Write angle_deg,e_s0,e_s1,e_s2,e_s3,dolp,dhr to this CSV");
     cmd->add_option("--plot", args->plot, "Write a PNG plot of e_s0 and e_s1 vs angle (paper Fig. 1)");
     cmd->add_flag("--json", args->json, "Print JSON (keys in docs/materials.md)");
+    add_force_flag(cmd, args->force);
     cmd->callback([args, wl, band] {
         if (wl->count() == 0 && band->count() == 0) throw CLI::RequiredError("one of --wavelength-um or --band-um");
         run_emissivity(*args);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "numeric_options.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utc_time.h"
@@ -33,6 +34,7 @@ struct FitArgs {
     std::string output, plot, name;
     bool scale_covariance = false;
     bool json = false;
+    bool force = false;
 };
 
 // The fit's settings as a command line, for the provenance record.
@@ -53,18 +55,6 @@ std::string command_line(const FitArgs& a) {
     return out;
 }
 
-double parse_number(const std::string& text, const std::string& what) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty()) usage_error(what, "\"{}\" is not a number", text);
-    return v;
-}
-
 std::size_t parameter_index(const std::string& option, const std::string& name) {
     return static_cast<std::size_t>(parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
 }
@@ -80,20 +70,15 @@ void apply_init(const std::string& path, double wavelength_um, fitting::Microfac
     for (std::size_t i = 0; i < fitting::kMicrofacetParameterCount; ++i) options.parameters[i].initial = values[i];
 }
 
-fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavelength_um) {
-    fitting::MicrofacetFitOptions o;
-    o.starts = a.starts;
-    o.seed = a.seed;
-    o.quadrature.order = a.order;
-    o.scale_covariance_by_reduced_chi2 = a.scale_covariance;
-    if (!a.init.empty()) apply_init(a.init, first_wavelength_um, o);
+// --bound, --free and --fix: usage errors, so also parsed once before any data file is read.
+void apply_parameter_options(const FitArgs& a, fitting::MicrofacetFitOptions& o) {
     for (const std::string& item : a.bounds) {
         const auto eq = item.find('='), colon = item.find(':');
         if (eq == std::string::npos || colon == std::string::npos || colon < eq)
             usage_error("--bound", "{}: expected NAME=LOWER:UPPER, e.g. sigma=0.05:0.8", item);
         auto& s = o.parameters[parameter_index("--bound", item.substr(0, eq))];
-        s.lower = parse_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
-        s.upper = parse_number(item.substr(colon + 1), "--bound " + item);
+        s.lower = parse_finite_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
+        s.upper = parse_finite_number(item.substr(colon + 1), "--bound " + item);
     }
     for (const std::string& name : a.free)
         o.parameters[parameter_index("--free", name)].fixed = false;
@@ -101,14 +86,29 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
         const auto eq = item.find('=');
         auto& s = o.parameters[parameter_index("--fix", item.substr(0, eq))];
         s.fixed = true;
-        if (eq != std::string::npos) s.initial = parse_number(item.substr(eq + 1), "--fix " + item);
+        if (eq != std::string::npos) s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
     }
+}
+
+fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavelength_um) {
+    fitting::MicrofacetFitOptions o;
+    o.starts = a.starts;
+    o.seed = a.seed;
+    o.quadrature.order = a.order;
+    o.scale_covariance_by_reduced_chi2 = a.scale_covariance;
+    if (!a.init.empty()) apply_init(a.init, first_wavelength_um, o);
+    apply_parameter_options(a, o);
     return o;
 }
 
 void run_fit(const FitArgs& a) {
+    OutputGuard guard;
+    for (const std::string& file : a.data) guard.input(file, "DATA");
+    guard.input(a.init, "--init").output_file(a.output, "--output").output_file(a.plot, "--plot").check(a.force);
     if (a.model != "micro-facet" && a.model != "microfacet")
         usage_error("--model", "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
+    fitting::MicrofacetFitOptions usage_check;
+    apply_parameter_options(a, usage_check);
     std::vector<fitting::EmissivityDataset> datasets;
     for (const std::string& file : a.data)
         for (auto& d : fitting::load_emissivity_csv(file, a.wavelength_um)) datasets.push_back(std::move(d));
@@ -162,6 +162,7 @@ void register_fit(CLI::App& app) {
     cmd->add_option("--name", args->name, "Material name (default: the output file's stem)");
     cmd->add_option("--plot", args->plot, "PNG plot of data and fit (like the paper's Fig. 1)");
     cmd->add_flag("--json", args->json, "Print the fit report as JSON (keys in docs/fitting.md)");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] {
         run_fit(*args);
     });

@@ -20,9 +20,11 @@ struct FlirArgs {
     std::vector<double> planck;
     double emissivity = 1.0, distance_m = 0.0, reflected_c = 20.0, humidity_pct = 50.0, window_transmission = 1.0;
     std::optional<double> atmosphere_c, window_c;
+    bool force = false;
 };
 
 void run_flir(const FlirArgs& a) {
+    OutputGuard().input(a.image, "RAW_IMAGE").output_file(a.output, "--output").check(a.force);
     const calibration::FlirPlanck p{a.planck[0], a.planck[1], a.planck[2], a.planck[3], a.planck[4]};
     calibration::FlirConditions c;
     c.emissivity = a.emissivity;
@@ -79,6 +81,7 @@ void register_flir(CLI::App& app) {
     cmd->add_option("--window-transmission", a->window_transmission, "External IR window transmission (0, 1]")
         ->capture_default_str();
     cmd->add_option("-o,--output", a->output, "Output EXR (temperature_k)")->required();
+    add_force_flag(cmd, a->force);
     cmd->callback([a] { run_flir(*a); });
 }
 }  // namespace

@@ -23,6 +23,7 @@ struct NoiseArgs {
     std::optional<double> temperature_k, fpa_temperature_k;
     std::vector<int> raw_shape;
     std::size_t raw_header_bytes = 0;
+    bool force = false;
 };
 
 nlohmann::json to_json(const calibration::ThreeDNoise& d) {
@@ -31,6 +32,12 @@ nlohmann::json to_json(const calibration::ThreeDNoise& d) {
 }
 
 void run_noise(const NoiseArgs& a) {
+    OutputGuard()
+        .input(a.stack, "STACK")
+        .input(a.calibration, "--calibration")
+        .output_file(a.output, "--output")
+        .output_file(a.nedt_map, "--nedt-map")
+        .check(a.force);
     std::optional<calibration::RawFrameFormat> raw;
     if (!a.raw_shape.empty())
         raw = calibration::RawFrameFormat{a.raw_shape[0], a.raw_shape[1], calibration::raw_type_from_string(a.raw_type),
@@ -112,6 +119,7 @@ void register_noise(CLI::App& app) {
     cmd->add_option("--temperature-k", a->temperature_k,
                     "Blackbody temperature of the stack, reported (default: the mean brightness temperature)");
     cmd->add_option("--nedt-map", a->nedt_map, "Also write the per-pixel NEDT EXR here");
+    add_force_flag(cmd, a->force);
     cmd->callback([a] { run_noise(*a); });
 }
 }  // namespace

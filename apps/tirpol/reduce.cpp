@@ -17,18 +17,27 @@ struct ReduceArgs {
     bool update_offset = false;
     bool drift_correction = false;
     bool slar = false;
+    bool other_camera = false;
     bool force = false;
     double max_saturated_fraction = 0.01;
 };
 
 void run_reduce(const ReduceArgs& a) {
+    OutputGuard()
+        .input(a.session, "SESSION")
+        .input(a.calibration, "--calibration")
+        .input(a.polarimetric, "--polarimetric")
+        .input(a.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(a.polarimetric), "--polarimetric maps")
+        .output_file(a.output, "--output")
+        .output_folder(a.quicklooks, "--quicklooks", {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
+        .check(a.force);
     calibration::ChainInputs chain;
     chain.scene_sessions = {a.session};
     chain.reduction.update_offset = a.update_offset;
     chain.reduction.drift_correction = a.drift_correction;
     chain.reduction.max_saturated_fraction = a.max_saturated_fraction;
     chain.reduction.include_slar = a.slar;
-    chain.reduction.force_other_camera = a.force;
+    chain.reduction.force_other_camera = a.other_camera;
     Image stokes =
         calibration::run_calibration_chain(chain, calibration::read_calibration_products(a.calibration, a.polarimetric))
             .stokes.front();
@@ -76,7 +85,9 @@ void register_reduce(CLI::App& app) {
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction, "Error above this saturated fraction")
         ->capture_default_str();
     cmd->add_flag("--slar", a->slar, "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");
-    cmd->add_flag("--force", a->force, "Apply a calibration made with another camera (serial/model/bit depth differ)");
+    cmd->add_flag("--other-camera", a->other_camera,
+                  "Apply a calibration made with another camera (serial/model/bit depth differ)");
+    add_force_flag(cmd, a->force);
     cmd->add_option("--quicklooks", a->quicklooks, "Also write S0/S1/S2/DoLP/AoP PNGs to this folder");
     cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
     cmd->callback([a] { run_reduce(*a); });

@@ -24,6 +24,7 @@ struct RenderArgs {
     std::optional<std::uint64_t> seed;
     std::string sensor, estimator;
     bool quiet = false;
+    bool force = false;
 };
 
 void run_render(const RenderArgs& a) {
@@ -49,13 +50,18 @@ void run_render(const RenderArgs& a) {
         if (!estimator) usage_error("--estimator", "expected plain or control-variate, got '{}'", a.estimator);
         scene.sampling.estimator = *estimator;
     }
+    const std::string stem = std::filesystem::path(a.scene).stem().string();
+    OutputGuard()
+        .input(a.scene, "SCENE")
+        .input(a.sensor, "--sensor")
+        .output_folder(a.out_dir, "--output", {stem + ".exr", stem + "_*.png", stem + "_pol*.exr"})
+        .check(a.force);
     simulation::RenderOptions options;
     options.threads = a.threads.value_or(0);
     options.show_progress = !a.quiet;
     simulation::RenderStatistics stats;
     const Image image = simulation::render(scene, options, &stats);
 
-    const std::string stem = std::filesystem::path(a.scene).stem().string();
     const auto written = simulation::write_render_outputs(a.out_dir, stem, image);
     if (!a.sensor.empty()) {
         const auto model = simulation::SensorModel::from_config(ConfigNode::load_file(a.sensor));
@@ -98,6 +104,7 @@ void register_render(CLI::App& app) {
     cmd->add_option("--sensor", args->sensor, "Sensor-model YAML: also write the polarizer images I(α)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] {
         if (args->out_dir.empty()) throw CLI::RequiredError("--output");
         run_render(*args);

@@ -17,10 +17,17 @@ struct SweepArgs {
     int threads = 0;
     bool resume = false;
     bool quiet = false;
+    bool force = false;
 };
 
 void run_sweep_command(const SweepArgs& a) {
     const sweep::SweepSpec spec = sweep::load_sweep(a.sweep_file);
+    OutputGuard()
+        .input(a.sweep_file, "SWEEP")
+        .output_folder(a.out_dir, "--output",
+                       {"manifest.json", "results.csv", "results.json", "contact_sheet_*.png", "points", "plots",
+                        "tiles", "animation"})
+        .check(a.force);
     const sweep::SweepSummary summary = sweep::run_sweep(spec, a.out_dir, {a.threads, a.resume, !a.quiet});
     if (!summary.is_root) return;
     std::printf("sweep %s: %zu points on %d rank(s) × %d thread(s) in %.1f s: %zu rendered, %zu resumed, %zu failed\n",
@@ -45,6 +52,7 @@ void register_sweep(CLI::App& app) {
                     "Renderer threads per rank (default: cores / ranks on this machine); images do not depend on it");
     cmd->add_flag("--resume", args->resume, "Continue the sweep in the output folder; finished points are kept");
     cmd->add_flag("-q,--quiet", args->quiet, "No line per finished point");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] { run_sweep_command(*args); });
 }
 }  // namespace

@@ -27,9 +27,11 @@ std::optional<double> frame_fpa_temperature_k(const Image& raw, std::optional<do
 struct TemperatureArgs {
     std::string image, calibration, output, channel = "counts";
     std::optional<double> fpa_temperature_k;
+    bool force = false;
 };
 
 void run_temperature(const TemperatureArgs& a) {
+    OutputGuard().input(a.image, "IMAGE").input(a.calibration, "--calibration").output_file(a.output, "--output").check(a.force);
     const auto cal = calibration::read_radiometric_calibration(a.calibration);
     const Image raw = read_raw_image(a.image, "counts", a.channel);
     if (raw.width() != cal.width || raw.height() != cal.height)
@@ -69,6 +71,7 @@ void register_temperature(CLI::App& app) {
                     "Camera FPA temperature of the image (default: the EXR's fpa_temperature_k attribute); needed by an "
                     "FPA-dependent calibration");
     cmd->add_option("-o,--output", a->output, "Output EXR (radiance, temperature_k)")->required();
+    add_force_flag(cmd, a->force);
     cmd->callback([a] { run_temperature(*a); });
 }
 }  // namespace

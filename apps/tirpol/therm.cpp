@@ -31,6 +31,7 @@ struct ThermArgs {
     std::string plot;
     std::string export_dir;
     bool json = false;
+    bool force = false;
 };
 
 struct ObjectResult {
@@ -105,6 +106,12 @@ void run_therm_on_scene(const ThermArgs& a) {
 }
 
 void run_therm(const ThermArgs& a) {
+    OutputGuard()
+        .input(a.file, "FILE")
+        .output_file(a.csv, "--csv")
+        .output_file(a.plot, "--plot")
+        .output_folder(a.export_dir, "--export-dir", {"*.csv", "*.exr"})
+        .check(a.force);
     if (ConfigNode::load_file(a.file).has("camera")) return run_therm_on_scene(a);
     if (!a.export_dir.empty()) fail("--export-dir needs a scene file with predicted temperatures");
     const thermal::ThermalScene scene = thermal::load_thermal_scene(a.file);
@@ -169,6 +176,7 @@ void register_therm(CLI::App& app) {
     cmd->add_option("--export-dir", args->export_dir,
                      "Scene files: write predicted temperatures as <object>.csv (vertex_csv) / <object>.exr (texture)");
     cmd->add_flag("--json", args->json, "Print JSON (keys in docs/thermal.md)");
+    add_force_flag(cmd, args->force);
     cmd->callback([args] { run_therm(*args); });
 }
 

@@ -78,6 +78,8 @@ ChainProducts read_calibration_products(const std::filesystem::path& radiometric
     ChainProducts p;
     if (!radiometric_exr.empty()) p.radiometric = read_radiometric_calibration(radiometric_exr.string());
     if (!polarimetric_yaml.empty()) p.polarimetric = read_polarimetric_calibration(polarimetric_yaml.string());
+    if (p.radiometric && p.polarimetric)
+        check_same_band(*p.radiometric, radiometric_exr.string(), *p.polarimetric, polarimetric_yaml.string());
     return p;
 }
 

@@ -106,6 +106,18 @@ CalibrationQuality assess_calibration(const RadiometricCalibration& cal, const s
     return q;
 }
 
+double outside_calibrated_range_fraction(const RadiometricCalibration& cal, const std::vector<float>& radiance) {
+    if (cal.radiances_w_m2_sr.empty()) return 0.0;
+    const auto [lo, hi] = std::minmax_element(cal.radiances_w_m2_sr.begin(), cal.radiances_w_m2_sr.end());
+    std::size_t outside = 0, good = 0;
+    for (std::size_t i = 0; i < radiance.size() && i < cal.bad.size(); ++i) {
+        if (cal.bad[i] != 0.0f || !std::isfinite(radiance[i])) continue;
+        ++good;
+        outside += radiance[i] < *lo || radiance[i] > *hi;
+    }
+    return good ? static_cast<double>(outside) / static_cast<double>(good) : 0.0;
+}
+
 std::optional<std::string> extrapolation_warning(const RadiometricCalibration& cal, const std::vector<float>& radiance,
                                                  std::optional<double> fpa_temperature_k) {
     if (cal.radiances_w_m2_sr.empty()) return std::nullopt;

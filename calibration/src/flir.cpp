@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::calibration {
@@ -55,15 +56,26 @@ double flir_temperature_from_raw(const FlirPlanck& p, double raw, const FlirCond
 }
 
 void validate_flir(const FlirPlanck& p, const FlirConditions& c) {
-    if (!(p.r1 > 0.0) || !(p.r2 > 0.0) || !(p.b > 0.0))
-        fail("FLIR Planck constants R1={}, R2={}, B={}: expected all > 0", p.r1, p.r2, p.b);
-    if (!(c.emissivity > 0.0 && c.emissivity <= 1.0)) fail("emissivity {}: expected a value in (0, 1]", c.emissivity);
-    if (!(c.window_transmission > 0.0 && c.window_transmission <= 1.0))
-        fail("window transmission {}: expected a value in (0, 1]", c.window_transmission);
-    if (!(c.distance_m >= 0.0)) fail("distance {} m: expected ≥ 0", c.distance_m);
+    if (!(p.r1 > 0.0) || !(p.r2 > 0.0) || !(p.b > 0.0) || !std::isfinite(p.r1 * p.r2 * p.b))
+        fail("FLIR Planck constants R1={}, R2={}, B={}: expected all finite and > 0", p.r1, p.r2, p.b);
+    if (!std::isfinite(p.f) || !std::isfinite(p.o))
+        fail("FLIR Planck constants F={}, O={}: expected finite numbers", p.f, p.o);
+    // The object signal is (signal − (1 − ε)·reflected − …) / ε: below limits::kMinCorrectionEmissivity
+    // one count of noise becomes ≥ 100 counts, and ε = 1e-300 overflows to an all-NaN image.
+    if (!(c.emissivity >= limits::kMinCorrectionEmissivity && c.emissivity <= 1.0))
+        fail(
+            "emissivity {}: expected a value in [{}, 1] (below {}, the reflected term dominates and 1/ε amplifies "
+            "noise beyond use)",
+            c.emissivity, limits::kMinCorrectionEmissivity, limits::kMinCorrectionEmissivity);
+    if (!(c.window_transmission >= limits::kMinCorrectionEmissivity && c.window_transmission <= 1.0))
+        fail("window transmission {}: expected a value in [{}, 1]", c.window_transmission,
+             limits::kMinCorrectionEmissivity);
+    if (!(c.distance_m >= 0.0 && std::isfinite(c.distance_m)))
+        fail("distance {} m: expected finite and ≥ 0", c.distance_m);
     if (!(c.humidity_pct >= 0.0 && c.humidity_pct <= 100.0)) fail("relative humidity {} %: expected 0–100", c.humidity_pct);
     for (double t : {c.reflected_k, c.atmosphere_k, c.window_k})
-        if (!(t > 0.0)) fail("temperature {} K: expected > 0 K", t);
+        if (!(t >= limits::kMinTemperatureK && t <= limits::kMaxTemperatureK))
+            fail("temperature {} K: expected {} to {} K", t, limits::kMinTemperatureK, limits::kMaxTemperatureK);
 }
 
 }  // namespace tirpol::calibration

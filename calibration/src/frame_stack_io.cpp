@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
@@ -40,6 +42,8 @@ FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
         fail("{}: raw frame shape {}×{}; expected a width and a height ≥ 1", path.string(), raw.width, raw.height);
     const std::size_t n = static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
     const std::size_t frame_bytes = n * bytes_per_value(raw.type);
+    // A raw stack has no fixed size limit: its decoded floats must fit in memory instead.
+    check_input_file(path, std::numeric_limits<std::uintmax_t>::max());
     const std::size_t size = fs::file_size(path);
     if (size < raw.header_bytes || (size - raw.header_bytes) % frame_bytes != 0)
         fail(

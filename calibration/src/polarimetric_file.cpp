@@ -54,7 +54,9 @@ void write_polarimetric_calibration(const std::string& yaml_path, const Polarime
       << "created_utc: " << quoted(cal.created_utc) << "\n"
       << "session: " << quoted(cal.session) << "\n"
       << "radiometric_calibration: " << quoted(cal.radiometric_calibration) << "\n"
-      << "maps: " << quoted(std::filesystem::path(maps_path).filename().string()) << "\n"
+      << "maps: " << quoted(std::filesystem::path(maps_path).filename().string()) << "\n";
+    if (cal.band_known()) y << "band_um: [" << cal.band_lo_um << ", " << cal.band_hi_um << "]\n";
+    y
       << "analyzer:\n  method: " << quoted(cal.analyzer_method) << "\n  positions:\n";
     for (const auto& p : cal.analyzer.positions) {
         const double er = p.extinction_ratio();
@@ -68,15 +70,38 @@ void write_polarimetric_calibration(const std::string& yaml_path, const Polarime
     write_file_atomic(yaml_path, y.str());
 }
 
+void check_same_band(const RadiometricCalibration& radiometric, const std::string& radiometric_name,
+                     const PolarimetricCalibration& polarimetric, const std::string& polarimetric_name) {
+    if (!polarimetric.band_known()) return;
+    if (std::abs(polarimetric.band_lo_um - radiometric.band_lo_um) <= 1e-6 &&
+        std::abs(polarimetric.band_hi_um - radiometric.band_hi_um) <= 1e-6)
+        return;
+    fail("{} is a polarimetric calibration for {:g}–{:g} µm (made with {}) but the radiometric calibration {} is "
+         "for {:g}–{:g} µm; its wire-grid τ and B maps hold only in their own band: make the polarimetric "
+         "calibration again with this radiometric calibration",
+         polarimetric_name, polarimetric.band_lo_um, polarimetric.band_hi_um,
+         polarimetric.radiometric_calibration.empty() ? "an unnamed radiometric calibration"
+                                                      : polarimetric.radiometric_calibration,
+         radiometric_name, radiometric.band_lo_um, radiometric.band_hi_um);
+}
+
 PolarimetricCalibration read_polarimetric_calibration(const std::string& yaml_path) {
     const ConfigNode root = ConfigNode::load_file(yaml_path);
-    root.check_keys({"tirpol_calibration", "created_utc", "session", "radiometric_calibration", "maps", "analyzer"});
+    root.check_keys(
+        {"tirpol_calibration", "created_utc", "session", "radiometric_calibration", "maps", "band_um", "analyzer"});
     if (root.get<std::string>("tirpol_calibration") != "polarimetric")
         root.at("tirpol_calibration").fail("expected 'polarimetric'");
     PolarimetricCalibration cal;
     cal.created_utc = root.get<std::string>("created_utc");
     cal.session = root.get<std::string>("session");
     cal.radiometric_calibration = root.get<std::string>("radiometric_calibration");
+    if (root.has("band_um")) {
+        const auto band = root.get<std::vector<double>>("band_um");
+        if (band.size() != 2 || !(band[0] > 0.0) || !(band[1] > band[0]) || !std::isfinite(band[1]))
+            root.at("band_um").fail("expected [LO, HI] in micrometres with 0 < LO < HI");
+        cal.band_lo_um = band[0];
+        cal.band_hi_um = band[1];
+    }
     const ConfigNode analyzer = root.at("analyzer");
     analyzer.check_keys({"method", "positions"});
     cal.analyzer_method = analyzer.get<std::string>("method");

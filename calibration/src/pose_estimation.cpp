@@ -9,10 +9,12 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 
 namespace tirpol::calibration {
 
 std::vector<ControlPoint> read_control_points(const std::filesystem::path& path) {
+    check_input_file(path);
     std::ifstream in(path);
     if (!in) fail("{}: cannot open the control-point file", path.string());
     std::vector<ControlPoint> points;

@@ -54,6 +54,47 @@ double robust_floor(const RobustStats& s, double floor) { return std::max(s.sigm
 constexpr double kFpaSpanWarningK = 1.0;
 }  // namespace
 
+namespace {
+/// A warmer blackbody gives more counts: a gain ≤ 0 (or not finite) for most pixels means the records'
+/// temperatures do not belong to their frames (swapped, mistyped), and every NEDT would be undefined.
+/// Names the records that break the order (spatial median counts against temperature).
+void check_physical_gain(const std::vector<BlackbodyFrame>& frames, const std::vector<float>& gain) {
+    std::size_t unphysical = 0;
+    for (float g : gain)
+        if (!(g > 0.0f) || !std::isfinite(g)) ++unphysical;
+    if (2 * unphysical <= gain.size()) return;
+    std::vector<double> median(frames.size());
+    for (std::size_t j = 0; j < frames.size(); ++j) {
+        std::vector<float> counts;
+        for (float c : frames[j].counts)
+            if (std::isfinite(c)) counts.push_back(c);
+        median[j] = robust_stats(counts).median;
+    }
+    std::vector<std::string> inversions;
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        for (std::size_t j = 0; j < frames.size(); ++j)
+            if (frames[i].temperature_k < frames[j].temperature_k && median[i] >= median[j])
+                inversions.push_back(fmt::format("{} at {:g} K reads a median of {:.1f} counts, not less than {} at {:g} K "
+                                                 "({:.1f} counts)",
+                                                 frames[i].source, frames[i].temperature_k, median[i], frames[j].source,
+                                                 frames[j].temperature_k, median[j]));
+    std::string records;
+    if (inversions.empty()) {
+        for (std::size_t j = 0; j < frames.size(); ++j)
+            records += fmt::format("{}{} at {:g} K ({:.1f} counts)", j ? ", " : "", frames[j].source,
+                                   frames[j].temperature_k, median[j]);
+    } else {
+        const std::size_t shown = std::min<std::size_t>(inversions.size(), 3);
+        for (std::size_t k = 0; k < shown; ++k) records += (k ? "; " : "") + inversions[k];
+        if (inversions.size() > shown) records += fmt::format("; and {} more such pair(s)", inversions.size() - shown);
+    }
+    fail("radiometric calibration: the fit gives a gain ≤ 0 or not finite (counts falling as the blackbody warms, "
+         "NEDT undefined) for {} of {} pixels: the blackbody records do not agree with their temperatures: {}. Are "
+         "temperatures swapped or mistyped in the session manifest? No calibration written",
+         unphysical, gain.size(), records);
+}
+}  // namespace
+
 RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width, int height,
                                        const Band& band, const RadiometricOptions& options) {
     if (options.fpa_degree < 0 || options.fpa_degree > 2)
@@ -173,6 +214,8 @@ RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames
         }
         cal.fit_quality[i] = quality;
     }
+
+    check_physical_gain(frames, cal.gain);
 
     // Bad-pixel detection on robust statistics (median, 1.4826·MAD) of the good pixels' maps.
     const BadPixelThresholds& th = options.thresholds;

@@ -242,7 +242,7 @@ void check_same_camera(const RadiometricCalibration& cal, const SessionManifest&
     if (differences.empty()) return;
     fail(
         "{}: the radiometric calibration was made with another camera ({} differ{}): calibration camera {}; session "
-        "camera {}. Per-pixel gains and offsets belong to one detector; use --force (C++: "
+        "camera {}. Per-pixel gains and offsets belong to one detector; use --other-camera (C++: "
         "SessionReductionOptions::force_other_camera) only if you know they apply",
         manifest_path(dir), fmt::join(differences, ", "), differences.size() == 1 ? "s" : "",
         describe_camera(c.vendor, c.model, c.serial, c.pixel_format, c.bits_per_pixel, cal.width, cal.height),
@@ -273,6 +273,8 @@ PolarimetricCalibration calibrate_polarimetric_session(const fs::path& dir, cons
     out.wire_grid = fit_wire_grid(bb, radiometric.width, radiometric.height, band);
     out.session = dir.string();
     out.created_utc = utc_now_iso8601();
+    out.band_lo_um = radiometric.band_lo_um;
+    out.band_hi_um = radiometric.band_hi_um;
     std::vector<double> angles;
     for (const auto& p : out.wire_grid.positions) angles.push_back(p.angle_deg);
 
@@ -318,6 +320,9 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
                      const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options) {
     const SessionManifest m = read_session(dir);
     if (!options.force_other_camera) check_same_camera(radiometric_in, m, dir);
+    if (polarimetric)
+        check_same_band(radiometric_in, "(made " + radiometric_in.created_utc + " for camera " + radiometric_in.camera_id + ")",
+                        *polarimetric, "the polarimetric calibration of " + polarimetric->session);
     RadiometricCalibration radiometric = radiometric_in;
     std::optional<OffsetUpdate> correction;
     if (options.update_offset && polarimetric)
@@ -364,10 +369,12 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     };
     std::map<long, Accumulator> by_angle;
     std::string warnings;  // no silent extrapolation of the radiometric model (docs/calibration.md)
+    double outside_range = 0.0;  // the largest fraction of a frame's good pixels outside the calibrated range
     for (const auto& r : m.records) {
         if (r.kind != RecordKind::Polarizer || sources.count(r.repeat)) continue;
         throw_if_cancelled(options.cancel, "session reduction");
         const RadianceFrame f = to_radiance(dir, m, r, radiometric, drift ? drift_by_file.at(r.file) : 0.0);
+        outside_range = std::max(outside_range, outside_calibrated_range_fraction(radiometric, f.radiance));
         if (const auto w = extrapolation_warning(radiometric, f.radiance, r.fpa_temperature_k))
             warnings += (warnings.empty() ? "" : "\n") + r.file + ": " + *w;
         const std::size_t sat = static_cast<std::size_t>(std::count(f.saturated.begin(), f.saturated.end(), 1));
@@ -429,6 +436,11 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
     if (!warnings.empty()) a["calibration_warnings"] = warnings;
+    if (!radiometric.temperatures_k.empty()) {
+        const auto [t_lo, t_hi] = std::minmax_element(radiometric.temperatures_k.begin(), radiometric.temperatures_k.end());
+        a["calibration_range_k"] = std::vector<double>{*t_lo, *t_hi};
+        a["calibration_outside_range_fraction"] = outside_range;
+    }
     if (correction) {
         a["offset_update_source"] = correction->source;
         a["offset_update_mean_counts"] = correction->mean_counts;

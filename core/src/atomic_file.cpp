@@ -1,19 +1,25 @@
 #include "tirpol/core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
+#include <mutex>
 #include <random>
-#include <sstream>
+#include <set>
 
+#include "output_claims.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol {
 
 namespace {
+/// When this process started (static initialisation): a temporary file older than this was not made by it.
+const std::filesystem::file_time_type g_process_start = std::filesystem::file_time_type::clock::now();
+
 std::filesystem::path temp_name_for(const std::filesystem::path& destination) {
     static thread_local std::mt19937_64 rng{std::random_device{}()};
     auto name = "." + destination.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
@@ -37,7 +43,56 @@ void ensure_parent(const std::filesystem::path& path) {
     std::filesystem::create_directories(path.parent_path(), ec);
     if (ec) fail("{}: cannot create directory '{}': {}", path.string(), path.parent_path().string(), ec.message());
 }
+
+/// Once per folder and process, on its first atomic write there.
+void sweep_folder_once(const std::filesystem::path& folder) {
+    static std::mutex mutex;
+    static std::set<std::filesystem::path> swept;
+    std::error_code ec;
+    const auto key = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!swept.insert(key).second) return;
+    }
+    remove_abandoned_temp_files(folder.empty() ? "." : folder);
+}
 }  // namespace
+
+std::optional<long> temp_file_owner_pid(const std::string& name) {
+    // ".<destination>.tmp-<pid>-<random><extension>", as temp_name_for makes them.
+    if (name.size() < 8 || name.front() != '.') return std::nullopt;
+    const auto tag = name.rfind(".tmp-");
+    if (tag == std::string::npos || tag == 0) return std::nullopt;
+    std::size_t i = tag + 5, pid_end = i;
+    while (pid_end < name.size() && std::isdigit(static_cast<unsigned char>(name[pid_end]))) ++pid_end;
+    if (pid_end == i || pid_end - i > 9 || pid_end >= name.size() || name[pid_end] != '-') return std::nullopt;
+    std::size_t random_end = pid_end + 1;
+    while (random_end < name.size() && std::isdigit(static_cast<unsigned char>(name[random_end]))) ++random_end;
+    if (random_end == pid_end + 1) return std::nullopt;
+    // What follows is the destination's extension, if any.
+    const std::string rest = name.substr(random_end);
+    if (!rest.empty() && (rest.front() != '.' || rest.find('/') != std::string::npos)) return std::nullopt;
+    return std::stol(name.substr(i, pid_end - i));
+}
+
+std::size_t remove_abandoned_temp_files(const std::filesystem::path& folder) {
+    std::size_t removed = 0;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+        std::error_code e;
+        if (!entry.is_regular_file(e)) continue;
+        const auto pid = temp_file_owner_pid(entry.path().filename().string());
+        if (!pid) continue;
+        // Made before this process started, by a process that no longer runs (a pid in use by another
+        // process keeps the file: it may be that writer's, still at work).
+        const auto written = std::filesystem::last_write_time(entry.path(), e);
+        if (e || written >= g_process_start) continue;
+        const bool alive = *pid != ::getpid() && (::kill(static_cast<pid_t>(*pid), 0) == 0 || errno == EPERM);
+        if (alive) continue;
+        if (std::filesystem::remove(entry.path(), e)) ++removed;
+    }
+    return removed;
+}
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
     AtomicFile file(path);
@@ -60,7 +115,9 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 }
 
 AtomicFile::AtomicFile(std::filesystem::path destination) : m_destination(std::move(destination)) {
+    detail::write_output_claims_before(m_destination);
     ensure_parent(m_destination);
+    sweep_folder_once(m_destination.parent_path());
     m_temp = temp_name_for(m_destination);
 }
 
@@ -77,15 +134,6 @@ void AtomicFile::commit() {
     std::filesystem::rename(m_temp, m_destination, ec);
     if (ec) fail("{}: cannot move the finished file into place: {}", m_destination.string(), ec.message());
     m_committed = true;
-}
-
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("{}: cannot open for reading ({})", path.string(),
-                  std::filesystem::exists(path) ? "permission denied or not a file" : "no such file");
-    std::ostringstream out;
-    out << in.rdbuf();
-    return out.str();
 }
 
 }  // namespace tirpol

@@ -1,11 +1,11 @@
 #include "tirpol/core/camera_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <stdexcept>
-#include <string_view>
 
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol {
@@ -106,83 +106,44 @@ void validate_camera_model(const CameraModel& m, const std::string& where) {
 }
 
 namespace {
-cv::FileStorage open_for_reading(const std::filesystem::path& path) {
-    const std::string text = read_file(path);
-    // OpenCV 4.6's YAML parser loops forever on a '%' past the first line when a '---' follows (fuzz
-    // regression camera_geometry/percent_then_document_marker.yaml). Only the first line's %YAML
-    // directive has a '%' in these files; one in a comment is harmless.
-    for (std::size_t line_start = text.find('\n'); line_start != std::string::npos;) {
-        const std::size_t end = text.find('\n', line_start + 1);
-        const std::string_view line(text.data() + line_start + 1,
-                                    (end == std::string::npos ? text.size() : end) - line_start - 1);
-        const std::size_t percent = line.find('%');
-        if (percent != std::string_view::npos && percent < line.find('#'))
-            fail("{}: a '%' outside the first line's %YAML directive (only comments may hold one)", path.string());
-        line_start = end;
-    }
-    try {
-        cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-        if (!fs.isOpened()) fail("{}: not an OpenCV FileStorage YAML file", path.string());
-        return fs;
-    } catch (const cv::Exception& e) {
-        fail("{}: not readable as OpenCV FileStorage YAML: {}", path.string(), e.err);
-    } catch (const std::logic_error& e) {
-        // OpenCV's YAML parser also throws std::length_error on some malformed text (fuzz regression
-        // camera_geometry/parser_length_error.yaml).
-        fail("{}: not readable as OpenCV FileStorage YAML ({})", path.string(), e.what());
-    }
+// Reading: yaml-cpp through ConfigNode (errors with file, line and field), not cv::FileStorage,
+// whose YAML parser has looped for ever on malformed text (a '%' followed by '--' or '---', fuzz
+// regressions camera_geometry/percent_*). The files stay OpenCV's layout, written by
+// cv::FileStorage below: a `%YAML:1.0` first line and `!!opencv-matrix` maps of rows, cols, dt, data.
+
+// OpenCV writes its directive as `%YAML:1.0`, which is not YAML 1.x syntax (`%YAML 1.0`); it is
+// the only directive OpenCV writes and carries nothing, so the first line is blanked (line numbers
+// in messages stay those of the file). Any other '%' is yaml-cpp's to judge.
+ConfigNode parse_opencv_yaml(const std::filesystem::path& path) {
+    std::string text = read_file(path);
+    if (text.rfind("%YAML:", 0) == 0) text.replace(0, std::min(text.find('\n'), text.size()), "");
+    const ConfigNode root = ConfigNode::parse(text, path.string());
+    if (!root.is_map()) fail("{}: expected a camera file: a YAML mapping of named fields", path.string());
+    return root;
 }
 
-cv::Mat required_mat(const cv::FileStorage& fs, const char* key, int rows, int cols,
-                     const std::filesystem::path& path) {
-    const cv::FileNode n = fs[key];
-    if (n.empty()) fail("{}: missing field '{}'", path.string(), key);
-    // `n >> m` allocates the declared rows × cols before reading the data: a `cols:` that is not a
-    // number (fuzz regression camera_geometry/matrix_cols_not_a_number.yaml) asked for 48 GB. Check the
-    // declaration against the data first.
-    if (!n.isMap()) fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix)", path.string(), key);
-    const cv::FileNode declared_rows = n["rows"], declared_cols = n["cols"], data = n["data"];
-    if (!declared_rows.isInt() || !declared_cols.isInt() || !data.isSeq())
-        fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix with integer rows, cols and a data list)",
-             path.string(), key);
-    const int r = static_cast<int>(declared_rows), c = static_cast<int>(declared_cols);
-    if (r < 1 || c < 1 || static_cast<long long>(r) * c != static_cast<long long>(data.size()))
-        fail("{}: field '{}' declares {}x{} values but its data holds {}", path.string(), key, r, c, data.size());
-    cv::Mat m;
-    try {
-        n >> m;
-    } catch (const cv::Exception&) {
-        fail("{}: field '{}' is not an OpenCV matrix (!!opencv-matrix)", path.string(), key);
-    }
-    if (rows > 0 && (m.rows != rows || m.cols != cols))
-        fail("{}: field '{}' must be {}x{}, got {}x{}", path.string(), key, rows, cols, m.rows, m.cols);
-    m.convertTo(m, CV_64F);
-    return m;
+// An OpenCV matrix (`!!opencv-matrix`: rows, cols, dt, data in row-major order) of `rows`×`cols`
+// (any shape when rows is 0), as a row-major vector.
+std::vector<double> required_matrix(const ConfigNode& root, const char* key, int rows, int cols) {
+    const ConfigNode n = root.at(key);
+    if (!n.is_map()) n.fail("expected an OpenCV matrix (!!opencv-matrix with integer rows, cols and a data list)");
+    n.check_keys({"rows", "cols", "dt", "data"});
+    const int r = n.get<int>("rows"), c = n.get<int>("cols");
+    const std::string dt = n.get_or<std::string>("dt", "d");
+    if (dt != "d" && dt != "f" && dt != "i")
+        n.at("dt").fail("expected an element type d (double), f (float) or i (int), got '" + dt + "'");
+    const ConfigNode data = n.at("data");
+    if (!data.is_sequence()) data.fail("expected a list of numbers");
+    const std::size_t count = data.elements().size();
+    if (r < 1 || c < 1 || static_cast<long long>(r) * c != static_cast<long long>(count))
+        n.fail(fmt::format("declares {}x{} values but its data holds {}", r, c, count));
+    if (rows > 0 && (r != rows || c != cols)) n.fail(fmt::format("must be {}x{}, got {}x{}", rows, cols, r, c));
+    return data.as<std::vector<double>>();
 }
 
-int required_int(const cv::FileStorage& fs, const char* key, const std::filesystem::path& path) {
-    const cv::FileNode n = fs[key];
-    if (n.empty() || !n.isInt()) fail("{}: missing or non-integer field '{}'", path.string(), key);
-    return static_cast<int>(n);
-}
+int required_int(const ConfigNode& root, const char* key) { return root.get<int>(key); }
 
-double optional_real(const cv::FileStorage& fs, const char* key) {
-    const cv::FileNode n = fs[key];
-    return n.isReal() || n.isInt() ? static_cast<double>(n) : 0.0;
-}
-
-// OpenCV's FileNode asserts (cv::Exception) on shapes it does not expect, e.g. a key looked up in a
-// node that is a list: such a file is malformed (fuzz target camera_geometry), not a crash.
-template <typename Read>
-auto reading(const std::filesystem::path& path, Read read) {
-    try {
-        return read();
-    } catch (const cv::Exception& e) {
-        fail("{}: malformed camera file: {}", path.string(), e.err);
-    }
-}
-
-std::vector<double> to_vector(const cv::Mat& m) { return std::vector<double>(m.begin<double>(), m.end<double>()); }
+double optional_real(const ConfigNode& root, const char* key) { return root.get_or<double>(key, 0.0); }
 
 void commit_storage(cv::FileStorage& fs, const std::filesystem::path& path) {
     write_file_atomic(path, fs.releaseAndGetString());
@@ -190,34 +151,30 @@ void commit_storage(cv::FileStorage& fs, const std::filesystem::path& path) {
 }  // namespace
 
 CameraModel read_camera_model(const std::filesystem::path& path) {
-    return reading(path, [&] {
-        cv::FileStorage fs = open_for_reading(path);
-        CameraModel m;
-        m.width = required_int(fs, "image_width", path);
-        m.height = required_int(fs, "image_height", path);
-        const cv::Mat k = required_mat(fs, "camera_matrix", 3, 3, path);
-        if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 ||
-            k.at<double>(2, 1) != 0.0 || k.at<double>(2, 2) != 1.0)
-            fail("{}: camera_matrix must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)", path.string());
-        m.fx = k.at<double>(0, 0);
-        m.fy = k.at<double>(1, 1);
-        m.cx = k.at<double>(0, 2);
-        m.cy = k.at<double>(1, 2);
-        m.distortion = to_vector(required_mat(fs, "distortion_coefficients", 0, 0, path));
-        if (!fs["distortion_model"].empty()) {
-            const std::string declared = static_cast<std::string>(fs["distortion_model"]);
-            if (distortion_length(declared) != m.distortion.size())
-                fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(),
-                     declared, distortion_length(declared), m.distortion.size());
-        }
-        m.rms_px = optional_real(fs, "rms_reprojection_error_px");
-        if (!fs["views"].empty()) m.views = static_cast<int>(fs["views"]);
-        if (!fs["std_dev_intrinsics"].empty())
-            m.std_dev = to_vector(required_mat(fs, "std_dev_intrinsics", 0, 0, path));
-        if (!fs["target"].empty()) m.target = static_cast<std::string>(fs["target"]);
-        validate_camera_model(m, path.string());
-        return m;
-    });
+    const ConfigNode fs = parse_opencv_yaml(path);
+    CameraModel m;
+    m.width = required_int(fs, "image_width");
+    m.height = required_int(fs, "image_height");
+    const std::vector<double> k = required_matrix(fs, "camera_matrix", 3, 3);
+    if (k[1] != 0.0 || k[3] != 0.0 || k[6] != 0.0 || k[7] != 0.0 || k[8] != 1.0)
+        fs.at("camera_matrix").fail("must be [fx 0 cx; 0 fy cy; 0 0 1] (no skew)");
+    m.fx = k[0];
+    m.fy = k[4];
+    m.cx = k[2];
+    m.cy = k[5];
+    m.distortion = required_matrix(fs, "distortion_coefficients", 0, 0);
+    if (fs.has("distortion_model")) {
+        const std::string declared = fs.get<std::string>("distortion_model");
+        if (distortion_length(declared) != m.distortion.size())
+            fail("{}: distortion_model '{}' needs {} coefficients, distortion_coefficients has {}", path.string(),
+                 declared, distortion_length(declared), m.distortion.size());
+    }
+    m.rms_px = optional_real(fs, "rms_reprojection_error_px");
+    m.views = fs.get_or<int>("views", 0);
+    if (fs.has("std_dev_intrinsics")) m.std_dev = required_matrix(fs, "std_dev_intrinsics", 0, 0);
+    m.target = fs.get_or<std::string>("target", "");
+    validate_camera_model(m, path.string());
+    return m;
 }
 
 void write_camera_model(const std::filesystem::path& path, const CameraModel& m) {
@@ -239,23 +196,21 @@ void write_camera_model(const std::filesystem::path& path, const CameraModel& m)
 }
 
 CameraPose read_camera_pose(const std::filesystem::path& path) {
-    return reading(path, [&] {
-        cv::FileStorage fs = open_for_reading(path);
-        CameraPose p;
-        const cv::Mat r = required_mat(fs, "rotation_camera_from_world", 3, 3, path);
-        const cv::Mat t = required_mat(fs, "translation_m", 3, 1, path);
-        for (int i = 0; i < 3; ++i) {
-            p.translation_m[i] = t.at<double>(i);
-            for (int j = 0; j < 3; ++j) p.camera_from_world(i, j) = r.at<double>(i, j);
-        }
-        if ((p.camera_from_world * p.camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
-            p.camera_from_world.determinant() < 0.0)
-            fail("{}: rotation_camera_from_world is not a proper rotation (R·Rᵀ = I, det R = +1)", path.string());
-        if (!p.translation_m.allFinite()) fail("{}: translation_m is not finite", path.string());
-        p.rms_px = optional_real(fs, "rms_reprojection_error_px");
-        if (!fs["control_points"].empty()) p.points = static_cast<int>(fs["control_points"]);
-        return p;
-    });
+    const ConfigNode fs = parse_opencv_yaml(path);
+    CameraPose p;
+    const std::vector<double> r = required_matrix(fs, "rotation_camera_from_world", 3, 3);
+    const std::vector<double> t = required_matrix(fs, "translation_m", 3, 1);
+    for (int i = 0; i < 3; ++i) {
+        p.translation_m[i] = t[static_cast<std::size_t>(i)];
+        for (int j = 0; j < 3; ++j) p.camera_from_world(i, j) = r[static_cast<std::size_t>(3 * i + j)];
+    }
+    if ((p.camera_from_world * p.camera_from_world.transpose() - Mat3::Identity()).norm() > 1e-6 ||
+        p.camera_from_world.determinant() < 0.0)
+        fail("{}: rotation_camera_from_world is not a proper rotation (R·Rᵀ = I, det R = +1)", path.string());
+    if (!p.translation_m.allFinite()) fail("{}: translation_m is not finite", path.string());
+    p.rms_px = optional_real(fs, "rms_reprojection_error_px");
+    p.points = fs.get_or<int>("control_points", 0);
+    return p;
 }
 
 void write_camera_pose(const std::filesystem::path& path, const CameraPose& p) {

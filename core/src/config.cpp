@@ -12,6 +12,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 
 namespace tirpol {
 
@@ -73,6 +74,7 @@ void check_unique_keys(const YAML::Node& node, const std::string& source, std::u
 
 ConfigNode ConfigNode::parse(std::string_view text, std::string source_name) {
     auto source = std::make_shared<Source>(Source{source_name, source_name});
+    check_utf8_text(text, source_name);
     try {
         auto node = std::make_unique<YAML::Node>(YAML::Load(std::string(text)));
         std::unordered_set<std::size_t> visited;

@@ -18,7 +18,9 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
+#include "tirpol/core/utf8.h"
 
 namespace tirpol {
 
@@ -129,6 +131,17 @@ void check_declared_size(const std::filesystem::path& path, std::int64_t width, 
 
 void write_exr(const std::filesystem::path& path, const Image& image) {
     if (image.channel_names().empty()) fail("{}: refusing to write an image with no channels", path.string());
+    // OpenEXR stores names as NUL-terminated UTF-8: a name with a NUL would be cut short (and two
+    // channels could collide), invalid UTF-8 would be unreadable to other tools.
+    const auto check_name = [&](const std::string& name, const char* kind) {
+        if (name.empty()) fail("{}: an empty {} name", path.string(), kind);
+        if (name.find('\0') != std::string::npos)
+            fail("{}: {} name '{}' contains a NUL byte; EXR names cannot", path.string(), kind,
+                 valid_utf8(name.substr(0, name.find('\0'))) + "\\0…");
+        if (!is_valid_utf8(name)) fail("{}: {} name '{}' is not valid UTF-8", path.string(), kind, valid_utf8(name));
+    };
+    for (const std::string& name : image.channel_names()) check_name(name, "channel");
+    for (const auto& [name, value] : image.attributes()) check_name(name, "attribute");
     AtomicFile file(path);
     try {
         Imf::Header header(image.width(), image.height());
@@ -164,7 +177,7 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
 }
 
 Image read_exr(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) fail("{}: no such file", path.string());
+    check_input_file(path, limits::kMaxImageFileBytes);
     bool tiled = false, deep = false, multipart = false;
     if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multipart))
         fail("{}: not an OpenEXR file (bad magic number or header)", path.string());

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
 
 namespace tirpol {
@@ -68,6 +69,7 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 }  // namespace
 
 SpectralResponse SpectralResponse::load_csv(const std::filesystem::path& path) {
+    check_input_file(path);
     std::ifstream in(path);
     if (!in) fail("{}: cannot open spectral response file", path.string());
     std::string line;
@@ -132,12 +134,22 @@ constexpr std::array<double, 4> kGlW = {0.3626837833783620, 0.3137066458778873, 
 
 Band::Band(double lo_um, double hi_um, std::optional<SpectralResponse> rsr, double max_panel_um)
     : m_lo_um(lo_um), m_hi_um(hi_um), m_rsr(std::move(rsr)) {
-    if (!(lo_um > 0.0) || !(hi_um > lo_um) || !std::isfinite(hi_um))
-        fail("band: expected 0 < lo < hi in micrometres, got [{}, {}]", lo_um, hi_um);
+    if (!(lo_um >= limits::kMinWavelengthUm && hi_um <= limits::kMaxWavelengthUm && lo_um < hi_um))
+        fail("band: expected {} ≤ lo < hi ≤ {} in micrometres, got [{}, {}]", limits::kMinWavelengthUm,
+             limits::kMaxWavelengthUm, lo_um, hi_um);
+    if (!(max_panel_um > 0.0 && std::isfinite(max_panel_um)))
+        fail("band: quadrature panel width {} µm must be positive", max_panel_um);
     std::vector<double> breaks = {lo_um, hi_um};
     if (m_rsr)
         for (double w : m_rsr->wavelengths_um())
             if (w > lo_um && w < hi_um) breaks.push_back(w);
+    // Bound the grid before building it: every panel holds 2·kGlX.size() nodes.
+    const double panels_bound = (hi_um - lo_um) / max_panel_um + static_cast<double>(breaks.size());
+    if (panels_bound * 2.0 * static_cast<double>(kGlX.size()) > static_cast<double>(limits::kMaxBandNodes))
+        fail(
+            "band [{}, {}] µm: {:.0f} quadrature panels of ≤ {} µm (plus the RSR's knots) exceed the {} spectral "
+            "nodes tirpol integrates a band with; use a narrower band or a coarser RSR",
+            lo_um, hi_um, panels_bound, max_panel_um, limits::kMaxBandNodes);
     std::sort(breaks.begin(), breaks.end());
     for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {
         const double a = breaks[p], b = breaks[p + 1];

@@ -11,6 +11,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
 #include "png_read.h"
 
@@ -76,6 +77,7 @@ Image counts_image(const detail::PngCounts& png, const std::string& channel_name
 }  // namespace
 
 Image read_raw_image(const std::filesystem::path& path, const std::string& channel_name, const std::string& exr_channel) {
+    check_input_file(path, limits::kMaxImageFileBytes);
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".exr") {

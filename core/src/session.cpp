@@ -15,6 +15,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/utf8.h"
 
@@ -175,6 +176,73 @@ BlackbodyReadings readings_from_json(const Fields& f) {
     return b;
 }
 
+json core_state_to_json(const FrameAudit::CoreState& c) {
+    return json{{"ffc_mode", c.ffc_mode},
+                {"gain_mode", c.gain_mode},
+                {"fpa_temperature_k", c.fpa_temperature_k},
+                {"device_frame_count", c.device_frame_count},
+                {"last_ffc_frame_count", c.last_ffc_frame_count}};
+}
+
+json audit_to_json(const FrameAudit& a) {
+    json fpa = json::array();
+    for (const auto& t : a.fpa_temperature_k) fpa.push_back(optional_number(t));
+    json j{{"frame_id", a.frame_id},
+           {"device_timestamp_ns", a.device_timestamp_ns},
+           {"host_timestamp_ns", a.host_timestamp_ns},
+           {"fpa_temperature_k", fpa},
+           {"incomplete", a.incomplete},
+           {"core_before", a.core_before ? core_state_to_json(*a.core_before) : json(nullptr)},
+           {"core_after", a.core_after ? core_state_to_json(*a.core_after) : json(nullptr)}};
+    return j;
+}
+
+std::optional<FrameAudit::CoreState> core_state_from_json(const Fields& f, const std::string& key) {
+    if (f.at(key).is_null()) return std::nullopt;
+    const Fields c = f.object(key);
+    return FrameAudit::CoreState{c.string("ffc_mode"), c.string("gain_mode"), c.number("fpa_temperature_k"),
+                                 c.integer("device_frame_count", 0), c.integer("last_ffc_frame_count", 0)};
+}
+
+FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
+    FrameAudit a;
+    auto column = [&](const char* key) -> const json& {
+        const json& v = f.at(key);
+        if (!v.is_array()) f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
+        if (static_cast<std::int64_t>(v.size()) != frames)
+            f.fail_here(f.field(key),
+                        fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
+        return v;
+    };
+    auto integers = [&](const char* key, std::vector<std::int64_t>& out) {
+        const json& v = column(key);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!v[i].is_number_integer())
+                f.fail_here(fmt::format("{}[{}]", f.field(key), i),
+                            "expected an integer, got " + Fields::describe(v[i]));
+            out.push_back(v[i].get<std::int64_t>());
+        }
+    };
+    integers("frame_id", a.frame_id);
+    integers("device_timestamp_ns", a.device_timestamp_ns);
+    integers("host_timestamp_ns", a.host_timestamp_ns);
+    const json& fpa = column("fpa_temperature_k");
+    for (std::size_t i = 0; i < fpa.size(); ++i) {
+        if (fpa[i].is_null()) {
+            a.fpa_temperature_k.emplace_back();
+        } else if (fpa[i].is_number() && std::isfinite(fpa[i].get<double>())) {
+            a.fpa_temperature_k.emplace_back(fpa[i].get<double>());
+        } else {
+            f.fail_here(fmt::format("{}[{}]", f.field("fpa_temperature_k"), i),
+                        "expected a number or null, got " + Fields::describe(fpa[i]));
+        }
+    }
+    a.incomplete = f.integer("incomplete", 0);
+    a.core_before = core_state_from_json(f, "core_before");
+    a.core_after = core_state_from_json(f, "core_after");
+    return a;
+}
+
 json record_to_json(const SessionRecord& r) {
     json j{{"kind", to_string(r.kind)},
                 {"file", r.file},
@@ -189,6 +257,7 @@ json record_to_json(const SessionRecord& r) {
                 {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
     if (r.timing) j["timing"] = timing_to_json(*r.timing);
     if (r.blackbody_readings) j["blackbody_readings"] = readings_to_json(*r.blackbody_readings);
+    if (r.audit) j["audit"] = audit_to_json(*r.audit);
     return j;
 }
 
@@ -255,10 +324,39 @@ SessionRecord record_from_json(const Fields& f) {
         r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
         if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
     }
+    if (f.raw().contains("audit") && !f.raw().at("audit").is_null())
+        r.audit = audit_from_json(f.object("audit"), r.frames);
     check_record(f, r);
     return r;
 }
 
+}  // namespace
+
+const char* to_string(FfcEvent::Kind kind) { return kind == FfcEvent::Kind::Scheduled ? "scheduled" : "detected"; }
+
+namespace {
+json ffc_event_to_json(const FfcEvent& e) {
+    return json{{"kind", to_string(e.kind)},
+                {"host_timestamp_ns", e.host_timestamp_ns},
+                {"repeat", e.repeat},
+                {"fpa_temperature_k", optional_number(e.fpa_temperature_k)},
+                {"device_frame_count", e.device_frame_count ? json(*e.device_frame_count) : json(nullptr)},
+                {"reason", e.reason}};
+}
+
+FfcEvent ffc_event_from_json(const Fields& f) {
+    FfcEvent e;
+    const std::string kind = f.string("kind");
+    if (kind != "scheduled" && kind != "detected")
+        f.fail_here(f.field("kind"), fmt::format("expected \"scheduled\" or \"detected\", got \"{}\"", kind));
+    e.kind = kind == "scheduled" ? FfcEvent::Kind::Scheduled : FfcEvent::Kind::Detected;
+    e.host_timestamp_ns = f.integer("host_timestamp_ns", 0);
+    e.repeat = static_cast<int>(f.integer("repeat", 0, std::numeric_limits<int>::max()));
+    e.fpa_temperature_k = f.optional_number("fpa_temperature_k");
+    if (!f.at("device_frame_count").is_null()) e.device_frame_count = f.integer("device_frame_count", 0);
+    e.reason = f.string("reason");
+    return e;
+}
 }  // namespace
 
 json session_to_json(const SessionManifest& m) {
@@ -266,6 +364,8 @@ json session_to_json(const SessionManifest& m) {
     for (const auto& [k, v] : m.camera.planck_constants) planck[k] = v;
     json records = json::array();
     for (const auto& r : m.records) records.push_back(record_to_json(r));
+    json ffc_events = json::array();
+    for (const auto& e : m.ffc_events) ffc_events.push_back(ffc_event_to_json(e));
     return json{{"schema", kSessionSchema},
                 {"schema_version", kSessionSchemaVersion},
                 {"created_utc", m.created_utc},
@@ -296,6 +396,7 @@ json session_to_json(const SessionManifest& m) {
                 {"plan", m.plan},
                 {"metadata", m.metadata},
                 {"records", records},
+                {"ffc_events", ffc_events},
                 {"complete", m.complete}};
 }
 
@@ -351,6 +452,12 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
         SessionRecord r = record_from_json(rf);
         if (!files.insert(r.file).second) rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
         m.records.push_back(std::move(r));
+    }
+    if (top.raw().contains("ffc_events")) {
+        const json& events = top.at("ffc_events");
+        if (!events.is_array()) top.fail_here("ffc_events", "expected an array, got " + Fields::describe(events));
+        for (std::size_t i = 0; i < events.size(); ++i)
+            m.ffc_events.push_back(ffc_event_from_json(Fields(events[i], source, fmt::format("ffc_events[{}]", i))));
     }
     m.complete = top.boolean("complete");
     return m;
@@ -444,6 +551,7 @@ SessionManifest read_manifest_file(const std::filesystem::path& dir) {
     if (!std::filesystem::exists(path))
         fail("{}: no session manifest here (expected a directory written by tirpol acquire)", path.string());
     const std::string text = read_file(path);
+    check_utf8_text(text, path.string());
     json j;
     try {
         j = json::parse(text);
@@ -479,6 +587,46 @@ SessionManifest read_session(const std::filesystem::path& dir) {
     return m;
 }
 
+namespace {
+/// The frame's header mirrors its record and the camera (SessionWriter::add_record): where both say
+/// something, they must agree, or a frame was filed under another record (renamed, copied, the
+/// manifest edited) and would be reduced at the wrong angle or temperature.
+void check_frame_header(const std::filesystem::path& path, const std::filesystem::path& manifest_file,
+                        const SessionManifest& m, const SessionRecord& r, const Attributes& a) {
+    const auto number = [&a](const char* name) -> std::optional<double> {
+        const auto it = a.find(name);
+        if (it == a.end()) return std::nullopt;
+        if (const double* d = std::get_if<double>(&it->second)) return *d;
+        if (const int* i = std::get_if<int>(&it->second)) return *i;
+        return std::nullopt;
+    };
+    const auto text = [&a](const char* name) -> std::optional<std::string> {
+        const auto it = a.find(name);
+        if (it == a.end()) return std::nullopt;
+        if (const std::string* s = std::get_if<std::string>(&it->second)) return *s;
+        return std::nullopt;
+    };
+    const auto disagree = [&](const std::string& field, const std::string& in_header, const std::string& in_manifest) {
+        fail("{}: its header says {} = {} but {} files it as {} with {} = {}; the frame and the manifest disagree (a "
+             "frame file renamed or copied, or the manifest edited): restore the session as it was written",
+             path.string(), field, in_header, manifest_file.string(), r.file, field, in_manifest);
+    };
+    if (const auto kind = text("kind"); kind && *kind != to_string(r.kind)) disagree("kind", *kind, to_string(r.kind));
+    for (const auto& [name, value] : {std::pair<const char*, double>{"angle_deg_requested", r.angle_deg_requested},
+                                      std::pair<const char*, double>{"angle_deg_measured", r.angle_deg_measured}})
+        if (const auto v = number(name); v && std::abs(*v - value) > 1e-6)
+            disagree(name, fmt::format("{:g}°", *v), fmt::format("{:g}°", value));
+    if (const auto t = number("blackbody_temperature_k"); t && r.blackbody_temperature_k &&
+                                                           std::abs(*t - *r.blackbody_temperature_k) > 1e-6)
+        disagree("blackbody_temperature_k", fmt::format("{:g} K", *t), fmt::format("{:g} K", *r.blackbody_temperature_k));
+    if (const auto serial = text("camera_serial"); serial && *serial != m.camera.serial)
+        disagree("camera_serial", "'" + *serial + "'", "'" + m.camera.serial + "' (camera.serial)");
+    const std::string model = m.camera.vendor + " " + m.camera.model;
+    if (const auto header_model = text("camera_model"); header_model && *header_model != model)
+        disagree("camera_model", "'" + *header_model + "'", "'" + model + "' (camera.vendor, camera.model)");
+}
+}  // namespace
+
 Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& m, const SessionRecord& r) {
     const auto path = dir / r.file;
     Image image = read_exr(path);
@@ -487,6 +635,7 @@ Image read_session_frame(const std::filesystem::path& dir, const SessionManifest
     if (image.width() != m.camera.width || image.height() != m.camera.height)
         fail("{}: image is {}×{}, the manifest's camera is {}×{}", path.string(), image.width(), image.height(),
              m.camera.width, m.camera.height);
+    check_frame_header(path, dir / kSessionManifestName, m, r, image.attributes());
     return image;
 }
 
@@ -674,6 +823,11 @@ void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
     if (!(frame_rate_hz > 0.0) || !std::isfinite(frame_rate_hz))
         fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}", (m_dir / kSessionManifestName).string(), frame_rate_hz);
     m_manifest.camera.frame_rate_hz = frame_rate_hz;
+}
+
+void SessionWriter::add_ffc_event(const FfcEvent& event) {
+    m_manifest.ffc_events.push_back(event);
+    write_manifest();
 }
 
 void SessionWriter::set_metadata(nlohmann::json metadata) {

@@ -8,6 +8,7 @@
 #include "latin_hypercube.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::fitting {
 
@@ -237,7 +238,8 @@ MicrofacetFitProblem::MicrofacetFitProblem(std::vector<EmissivityDataset> datase
     : m(std::make_unique<Impl>()) {
     if (datasets.empty()) fail("no emissivity data to fit");
     for (const EmissivityDataset& d : datasets) validate_dataset(d);
-    if (options.starts < 1) fail("--starts: expected at least 1 start, got {}", options.starts);
+    if (options.starts < 1 || options.starts > limits::kMaxFitStarts)
+        fail("--starts: expected 1 to {} starts (limits.h), got {}", limits::kMaxFitStarts, options.starts);
     if (options.max_iterations < 1) fail("max_iterations: expected at least 1, got {}", options.max_iterations);
     std::size_t free = 0;
     for (std::size_t p = 0; p < kMicrofacetParameterCount; ++p) {

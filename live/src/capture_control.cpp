@@ -50,6 +50,10 @@ CapturePlan load_plan_for_page(const std::filesystem::path& path) {
         plan = CapturePlan::load(path);
     } catch (const Error& e) {
         spdlog::warn("live view: capture plan {} refused: {}", path.string(), e.what());
+        // The reader's invalid-UTF-8 error gives a position and a byte value, never a line of the file.
+        const std::string message = e.what();
+        if (message.rfind(path.string() + ":", 0) == 0 && message.find(": invalid UTF-8 (byte 0x") != std::string::npos)
+            fail("capture plan {}", message);
         fail("capture plan {}: not a valid capture plan (the terminal running tirpol live says why; the page is "
              "never shown a file's contents)",
              path.string());

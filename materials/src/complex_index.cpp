@@ -10,6 +10,7 @@
 #include "interpolation.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 
 namespace tirpol::materials {
 
@@ -161,6 +162,7 @@ RefractiveIndexTable::RefractiveIndexTable(std::vector<double> wavelength_um, st
 }
 
 RefractiveIndexTable RefractiveIndexTable::load(const std::filesystem::path& path) {
+    check_input_file(path);
     const auto ext = path.extension().string();
     if (ext == ".yml" || ext == ".yaml") return load_refractiveindex_yaml(path);
     if (ext == ".csv") return load_csv(path);

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
 #include "tirpol/materials/emissivity.h"
@@ -37,8 +38,11 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
         if (parts.size() != 3) fail("angle specification \"{}\": expected START:STOP:STEP", spec);
         const double start = parse_number(parts[0], spec), stop = parse_number(parts[1], spec),
                      step = parse_number(parts[2], spec);
-        if (!(step > 0.0) || stop < start)
-            fail("angle specification \"{}\": expected START ≤ STOP and STEP > 0", spec);
+        if (!(step > 0.0) || !(stop >= start) || !std::isfinite(start) || !std::isfinite(stop))
+            fail("angle specification \"{}\": expected finite START ≤ STOP and STEP > 0", spec);
+        constexpr double kMaxAngles = 100000;
+        if ((stop - start) / step > kMaxAngles)
+            fail("angle specification \"{}\": more than {} angles; use a larger STEP", spec, kMaxAngles);
         const auto n = static_cast<long>(std::floor((stop - start) / step + 1e-9));
         for (long i = 0; i <= n; ++i) angles.push_back(start + static_cast<double>(i) * step);
     } else {
@@ -48,14 +52,14 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
     }
     if (angles.empty()) fail("angle specification \"{}\": no angles", spec);
     for (double a : angles)
-        if (a < 0.0 || a > 90.0) fail("angle specification \"{}\": {}° is outside [0, 90]", spec, a);
+        if (!(a >= 0.0 && a <= 90.0)) fail("angle specification \"{}\": {}° is outside [0, 90]", spec, a);
     return angles;
 }
 
 std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf, const std::vector<double>& angles_deg,
                                             double wavelength_um) {
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
-    if (wavelength_um < lo || wavelength_um > hi)
+    if (!(wavelength_um >= lo && wavelength_um <= hi))
         fail("wavelength {} µm is outside the {} model's data range {}–{} µm", wavelength_um, brdf.model(), lo, hi);
     std::vector<EmissivityRow> rows;
     for (double a : angles_deg) rows.push_back(make_row(a, directional_emissivity(brdf, std::cos(deg_to_rad(a)), wavelength_um)));
@@ -64,6 +68,7 @@ std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf, const std
 
 std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf, const std::vector<double>& angles_deg,
                                             const Band& band, double temperature_k) {
+    check_temperature_k(temperature_k, "emissivity curve: Planck weighting temperature");
     const EmissivityTable table(brdf, EmissivityTable::wavelengths_for_band(band));
     std::vector<EmissivityRow> rows;
     for (double a : angles_deg)

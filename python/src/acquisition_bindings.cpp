@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 
 #include "bindings.h"
@@ -11,6 +12,7 @@
 #include "image_conversion.h"
 #include "interruptible.h"
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/twin/scene_camera.h"
 
@@ -49,7 +51,13 @@ py::dict frame_dict(acquisition::Frame&& frame) {
 
 void check(acquisition::Status&& status) { value_or_raise(std::move(status)); }
 
-std::chrono::milliseconds milliseconds(double seconds) {
+/// A timeout argument as milliseconds: finite and in [0, max_s] (the capture plan's limits), else
+/// ValueError naming the argument as Python spells it. A NaN or 1e300 would otherwise become a
+/// nonsense (or undefined) integer count of milliseconds.
+std::chrono::milliseconds milliseconds(double seconds, const char* argument, double max_s) {
+    if (!(seconds >= 0.0 && seconds <= max_s))
+        throw py::value_error(
+            fmt::format("{}: expected a finite number of seconds in [0, {}], got {}", argument, max_s, seconds));
     return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
 }
 
@@ -78,14 +86,19 @@ void bind_stage(py::module_& m) {
         .def(
             "home",
             [](Stage& s, double timeout_s) {
-                interruptible_motion(s, [&] { return s.home(milliseconds(timeout_s)); });
+                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
+                interruptible_motion(s, [&] { return s.home(timeout); });
             },
             py::arg("timeout_s") = 60.0, "Homes the stage; Ctrl-C stops it (KeyboardInterrupt, stage stopped).")
         .def_property_readonly("is_homed", &Stage::is_homed)
         .def(
             "move_absolute",
             [](Stage& s, double angle_deg, double timeout_s) {
-                interruptible_motion(s, [&] { return s.move_absolute(angle_deg, milliseconds(timeout_s)); });
+                if (!std::isfinite(angle_deg))
+                    throw py::value_error(
+                        fmt::format("angle_deg: expected a finite angle in degrees, got {}", angle_deg));
+                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
+                interruptible_motion(s, [&] { return s.move_absolute(angle_deg, timeout); });
             },
             py::arg("angle_deg"), py::arg("timeout_s") = 60.0,
             "Moves to angle_deg and waits until the move is done; Ctrl-C stops the stage (KeyboardInterrupt).")
@@ -133,9 +146,10 @@ void bind_acquisition(py::module_& m) {
         .def(
             "grab",
             [](Camera& c, double timeout_s) {
+                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxFrameTimeoutSeconds);
                 acquisition::Result<acquisition::Frame> frame = [&] {
                     py::gil_scoped_release release;
-                    return c.grab(std::chrono::milliseconds(static_cast<long>(timeout_s * 1000.0)));
+                    return c.grab(timeout);
                 }();
                 return frame_dict(value_or_raise(std::move(frame)));
             },

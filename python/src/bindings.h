@@ -16,6 +16,7 @@ void bind_calibration_sessions(pybind11::module_& m);  ///< sessions and counts;
 void bind_noise(pybind11::module_& m);                 ///< 3D noise, NEDT; called by bind_calibration
 void bind_wire_grid(pybind11::module_& m);             ///< τ/B from arrays; called by bind_calibration
 void bind_fitting(pybind11::module_& m);
+void bind_render_fit(pybind11::module_& m);  ///< fit through the renderer; called by bind_fitting
 void bind_acquisition(pybind11::module_& m);
 void bind_capture(pybind11::module_& m);  ///< run_capture; called by bind_acquisition
 void bind_report(pybind11::module_& m);

@@ -49,11 +49,13 @@ void bind_stokes(py::module_& m) {
         "dolp",
         [](const DoubleArray& s) { return map_stokes<double>(s, "dolp", [](const auto& v) { return dolp(v); }); },
         py::arg("stokes"),
-        "Degree of linear polarization √(S1²+S2²)/S0 of Stokes vectors of shape (..., 4) or (..., 3); 0 where S0 ≤ 0.");
+        "Degree of linear polarization √(S1²+S2²)/S0 of Stokes vectors of shape (..., 4) or (..., 3); 0 where S0 ≤ 0, "
+        "NaN where a component is NaN (an unmeasured pixel is not an unpolarized one).");
     m.def(
         "dop", [](const DoubleArray& s) { return map_stokes<double>(s, "dop", [](const auto& v) { return dop(v); }); },
         py::arg("stokes"),
-        "Degree of polarization √(S1²+S2²+S3²)/S0 of Stokes vectors of shape (..., 4); 0 where S0 ≤ 0.");
+        "Degree of polarization √(S1²+S2²+S3²)/S0 of Stokes vectors of shape (..., 4); 0 where S0 ≤ 0, NaN where a "
+        "component is NaN.");
     m.def(
         "aop_deg",
         [](const DoubleArray& s) {

@@ -203,6 +203,7 @@ void bind_fit(py::module_& m) {
 void bind_fitting(py::module_& m) {
     bind_fit_result(m);
     bind_fit(m);
+    bind_render_fit(m);
 }
 
 }  // namespace tirpol::python

@@ -78,6 +78,25 @@ py::object to_python(Image&& image) {
     return py::module_::import("tirpol.image").attr("Image")(channels, attributes);
 }
 
+namespace {
+// A channel name as UTF-8: only str is a name (str(b"x") would silently become "b'x'"), and a str
+// holding a lone surrogate (bytes decoded with surrogateescape) has no UTF-8 form. A NUL is refused
+// by write_exr itself, whoever calls it.
+std::string channel_name(const py::handle& key) {
+    if (!py::isinstance<py::str>(key))
+        fail("image: channel names must be str, got {} {}",
+             py::str(py::type::of(key).attr("__name__")).cast<std::string>(), py::repr(key).cast<std::string>());
+    PyObject* utf8 = PyUnicode_AsUTF8String(key.ptr());
+    if (!utf8) {
+        PyErr_Clear();
+        fail("image: channel name {} is not valid UTF-8 (it holds a lone surrogate)",
+             py::repr(key).cast<std::string>());
+    }
+    const auto bytes = py::reinterpret_steal<py::bytes>(utf8);
+    return bytes.cast<std::string>();
+}
+}  // namespace
+
 Image from_python(const py::handle& channels, const py::handle& attributes) {
     if (!py::isinstance<py::dict>(channels) && !py::hasattr(channels, "items"))
         fail("image: expected a mapping of channel name to 2-D array");
@@ -85,7 +104,7 @@ Image from_python(const py::handle& channels, const py::handle& attributes) {
     std::vector<std::pair<std::string, std::vector<float>>> planes;
     for (const auto& item : channels.attr("items")()) {
         const auto pair = item.cast<py::tuple>();
-        const auto name = py::str(pair[0]).cast<std::string>();
+        const auto name = channel_name(pair[0]);
         planes.emplace_back(name, plane_from_array(pair[1], "channel '" + name + "'", width, height));
     }
     if (planes.empty()) fail("image: no channels (an EXR needs at least one)");

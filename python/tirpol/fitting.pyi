@@ -1,9 +1,11 @@
 """Type stubs of tirpol.fitting (bindings of tirpol::fitting)."""
 
-from typing import Mapping, Sequence, Tuple
+from typing import Any, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
+
+from .simulation import Scene
 
 class FitResult:
     @property
@@ -58,3 +60,15 @@ def fit_microfacet_joint(
     seed: int = 1,
     scale_covariance_by_reduced_chi2: bool = False,
 ) -> FitResult: ...
+def fit_through_renderer(
+    scene: Scene,
+    views: Sequence[Mapping[str, Any]],
+    parameters: Sequence[Mapping[str, Any]],
+    stokes: Sequence[int] = ...,
+    pixels: bool = False,
+    samples_per_pixel: int = 0,
+    seed: Optional[int] = None,
+    forward: bool = False,
+    max_iterations: int = 20,
+    threads: int = 0,
+) -> dict[str, Any]: ...

@@ -139,6 +139,45 @@ std::optional<KelvinBias> kelvin_bias(const QuantityStats& s0, const Band& band)
     return k;
 }
 
+// The calibration's range attributes of a reduced Stokes image (calibration/session_calibration.cpp).
+std::optional<CalibrationRange> calibration_range(const Image& measured) {
+    const auto& a = measured.attributes();
+    const auto fraction = a.find("calibration_outside_range_fraction");
+    const auto range = a.find("calibration_range_k");
+    if (fraction == a.end() || range == a.end() || !std::holds_alternative<double>(fraction->second) ||
+        !std::holds_alternative<std::vector<double>>(range->second))
+        return std::nullopt;
+    const auto& k = std::get<std::vector<double>>(range->second);
+    if (k.size() != 2) return std::nullopt;
+    return CalibrationRange{std::get<double>(fraction->second), k[0], k[1]};
+}
+
+std::string text_attribute(const Image& image, const std::string& name) {
+    const auto it = image.attributes().find(name);
+    if (it == image.attributes().end() || !std::holds_alternative<std::string>(it->second)) return "";
+    return std::get<std::string>(it->second);
+}
+
+// What each side's σ holds, in words: the measured image's `std_includes` (written by the reduction)
+// plus the common calibration terms given; the render's variance is Monte Carlo noise only.
+void describe_sigma_contents(CompareResult& result, const Image& measured, const Image& simulated,
+                             const CompareOptions& options) {
+    std::string m = text_attribute(measured, "std_includes");
+    if (m.empty()) m = "the measured image's σ channels or the noise estimate named per quantity";
+    m += " (independent from pixel to pixel)";
+    if (options.measured_gain_sigma_relative > 0.0 || options.measured_offset_sigma > 0.0)
+        m += fmt::format("; common to each region: calibration gain {:.3g} % and S0 offset {:.3g} {}",
+                         100.0 * options.measured_gain_sigma_relative, options.measured_offset_sigma, result.units);
+    else
+        m += "; no calibration error common to a region was given (gain/offset σ 0)";
+    m += "; registration: the residual misalignment times each region's mean gradient";
+    result.measured_sigma_contains = m;
+    std::string s = "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "
+                    "temperatures, sky, geometry)";
+    if (const std::string note = text_attribute(simulated, "variance_note"); !note.empty()) s += "; " + note;
+    result.simulated_sigma_contains = s;
+}
+
 std::size_t region_index(const std::vector<Region>& regions, const std::string& name) {
     for (std::size_t r = 0; r < regions.size(); ++r)
         if (regions[r].name == name) return r;
@@ -194,7 +233,8 @@ void register_planes(Comparison& comparison, const Image& measured, const Image&
 // Measured variance of quantity `q` when the image has no σ channel: the per-frame σ option, else
 // the scatter in the flat noise region, else Immerkær's estimate.
 std::vector<float> measured_variance_without_channel(const Comparison& comparison, const std::string& q,
-                                                     const CompareOptions& options, std::string& source) {
+                                                     const CompareOptions& options, NoiseSource& noise) {
+    std::string& source = noise.measured;
     const Image& measured = comparison.planes.measured;
     const std::string noise_region_name =
         options.regions ? (options.regions->noise_region.empty() ? options.regions->background : options.regions->noise_region)
@@ -205,11 +245,15 @@ std::vector<float> measured_variance_without_channel(const Comparison& compariso
         source = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)", *options.measured_frame_sigma);
     } else if (!noise_region_name.empty()) {
         const auto& mask = comparison.planes.masks[region_index(comparison.planes.regions, noise_region_name)];
-        sigma = quantity_stats(measured.channel(q), measured.channel(q), mask).measured_std;
+        const QuantityStats flat = quantity_stats(measured.channel(q), measured.channel(q), mask);
+        sigma = flat.measured_std;
         source = "std of measured " + q + " in flat region '" + noise_region_name + "'";
+        noise.measured_shared = true;
+        noise.measured_dof = flat.pixel_count > 1 ? static_cast<double>(flat.pixel_count - 1) : kInfiniteDof;
     } else {
         sigma = immerkaer_noise_sigma(measured.channel(q), measured.width(), measured.height());
         source = "Immerkær noise estimate of measured " + q;
+        noise.measured_shared = true;  // from the whole image: its own dof is large, taken as ∞
     }
     return std::vector<float>(measured.pixel_count(), static_cast<float>(sigma * sigma));
 }
@@ -228,8 +272,9 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
     for (const auto& q : kZQuantities) {
         throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
+        source.measured_dof = variance_dof(measured_in);
         auto var_m = variance_channel(planes.measured, q, source.measured);
-        if (!var_m) var_m = measured_variance_without_channel(comparison, q, options, source.measured);
+        if (!var_m) var_m = measured_variance_without_channel(comparison, q, options, source);
         auto var_s = variance_channel(planes.simulated, q, source.simulated);
         if (!var_s) {
             source.simulated = "none (σ_s = 0)";
@@ -239,11 +284,11 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
         }
         source.measured_sigma_median = median_sqrt(*var_m);
         source.simulated_sigma_median = median_sqrt(*var_s);
-        source.measured_dof = variance_dof(measured_in);
         source.simulated_dof = variance_dof(simulated_in);
         result.noise[q] = source;
+        // Per pixel, a shared measured σ counts as exact: its estimation error is common to the pixels.
         planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m, *var_s,
-                               source.measured_dof, source.simulated_dof);
+                               source.measured_shared ? kInfiniteDof : source.measured_dof, source.simulated_dof);
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
         planes.total_variance[q] = std::move(total);
@@ -252,10 +297,59 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
     }
 }
 
+// Mean gradient (per pixel, x and y) of `plane` over the masked pixels whose central differences are finite.
+std::array<double, 2> mean_gradient(const std::vector<float>& plane, int width, int height, const Mask& mask) {
+    double gx = 0.0, gy = 0.0;
+    std::size_t nx = 0, ny = 0;
+    const auto at = [&](int x, int y) { return plane[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                                     static_cast<std::size_t>(x)]; };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            if (!mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)])
+                continue;
+            if (x > 0 && x + 1 < width && std::isfinite(at(x + 1, y)) && std::isfinite(at(x - 1, y))) {
+                gx += 0.5 * (static_cast<double>(at(x + 1, y)) - at(x - 1, y));
+                ++nx;
+            }
+            if (y > 0 && y + 1 < height && std::isfinite(at(x, y + 1)) && std::isfinite(at(x, y - 1))) {
+                gy += 0.5 * (static_cast<double>(at(x, y + 1)) - at(x, y - 1));
+                ++ny;
+            }
+        }
+    return {nx ? gx / static_cast<double>(nx) : 0.0, ny ? gy / static_cast<double>(ny) : 0.0};
+}
+
+// The region-mean test and σ diagnostic of quantity `q` in region `r`. Common to the region's pixels:
+// the calibration's gain (all of S0..S2) and offset (S0; it cancels in S1 = I0 − I90, S2 = I45 − I135)
+// and the residual misalignment, which moves the region over the simulation's mean gradient.
+QuantityVerdict quantity_verdict(const ComparisonPlanes& planes, const CompareResult& result,
+                                 const CompareOptions& options, std::size_t r, const std::string& q,
+                                 const VarianceByQuantity& var_measured, const VarianceByQuantity& var_simulated,
+                                 const QuantityStats& stats) {
+    const Mask& mask = planes.masks[r];
+    const NoiseSource& noise = result.noise.at(q);
+    MeanDifferenceInputs in;
+    in.measured = &planes.measured.channel(q);
+    in.simulated = &planes.simulated.channel(q);
+    in.measured_variance = &var_measured.at(q);
+    in.simulated_variance = &var_simulated.at(q);
+    in.mask = &mask;
+    in.measured_dof = noise.measured_dof;
+    in.simulated_dof = noise.simulated_dof;
+    in.measured_variance_shared = noise.measured_shared;
+    const double gain = options.measured_gain_sigma_relative * std::abs(stats.measured_mean);
+    const double offset = q == "S0" ? options.measured_offset_sigma : 0.0;
+    in.measured_common.sigma = std::hypot(gain, offset);
+    const auto g = mean_gradient(*in.simulated, result.width, result.height, mask);
+    in.registration.sigma =
+        std::abs(result.registration.residual_shift_px[0] * g[0] + result.registration.residual_shift_px[1] * g[1]);
+    return {test_mean_difference(in, options.design), sigma_diagnostic(planes.z.at(q), mask)};
+}
+
 // Statistics, z summary, verdicts, AoP and kelvin bias of region `r`.
-RegionResult region_result(const ComparisonPlanes& planes, std::size_t r, const std::vector<float>& z_pooled,
-                           const VarianceByQuantity& var_measured, const VarianceByQuantity& var_simulated,
-                           const std::optional<Band>& band) {
+RegionResult region_result(const ComparisonPlanes& planes, const CompareResult& result, const CompareOptions& options,
+                           std::size_t r, const std::vector<float>& z_pooled, const VarianceByQuantity& var_measured,
+                           const VarianceByQuantity& var_simulated, const std::optional<Band>& band) {
     const Image& measured = planes.measured;
     const Image& simulated = planes.simulated;
     const Mask& mask = planes.masks[r];
@@ -271,8 +365,8 @@ RegionResult region_result(const ComparisonPlanes& planes, std::size_t r, const 
     }
     rr.z["all"] = z_stats(z_pooled, pooled_mask);
     for (const auto& q : kZQuantities) {
-        rr.verdicts[q] = z_verdict(rr.z[q]);
-        rr.verdict = worse(rr.verdict, rr.verdicts[q]);
+        rr.verdicts[q] = quantity_verdict(planes, result, options, r, q, var_measured, var_simulated, rr.stats.at(q));
+        rr.verdict = worse(rr.verdict, rr.verdicts[q].mean.verdict);
     }
     rr.aop =
         aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"), simulated.channel("S2"),
@@ -492,6 +586,9 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
     require_stokes_channels(measured_in, options.measured_name, "measured");
     require_stokes_channels(simulated_in, options.simulated_name, "simulated");
     Comparison comparison = start_comparison(measured_in, simulated_in, options);
+    comparison.result.design = options.design;
+    comparison.result.calibration_range = calibration_range(measured_in);
+    describe_sigma_contents(comparison.result, measured_in, simulated_in, options);
     register_planes(comparison, measured_in, simulated_in, options);
     VarianceByQuantity var_measured, var_simulated;
     differences_and_z(comparison, measured_in, simulated_in, options, var_measured, var_simulated);
@@ -500,7 +597,8 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
     for (std::size_t r = 0; r < comparison.planes.regions.size(); ++r) {
         throw_if_cancelled(options.cancel, "comparison");
         comparison.result.regions.push_back(
-            region_result(comparison.planes, r, z_pooled, var_measured, var_simulated, band));
+            region_result(comparison.planes, comparison.result, options, r, z_pooled, var_measured, var_simulated,
+                          band));
     }
     background_contrast(comparison.result, comparison.planes.regions);
     return comparison;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "figures.h"
+#include "tirpol/report/summary_text.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/utf8.h"
 
@@ -64,7 +65,8 @@ figure img { display: block; max-width: 100%; height: auto; border: 1px solid va
 figcaption { color: var(--muted); font-size: 13.5px; margin-top: 5px; }
 .grid { display: grid; grid-template-columns: repeat(auto-fit, minmax(360px, 1fr)); gap: 8px 18px; }
 .notes li { margin-bottom: 4px; }
-.summary td:first-child { width: 30%; }
+.summary td:first-child { width: 22%; }
+p.answer { font-size: 16px; background: var(--band); border-left: 4px solid var(--ink); padding: 10px 14px; }
 footer { margin-top: 36px; color: var(--muted); font-size: 13px; border-top: 1px solid var(--rule); padding-top: 8px; }
 @media print {
   @page { size: A4; margin: 14mm; }
@@ -134,18 +136,22 @@ std::string swatch(std::size_t index) {
     return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
 }
 
-const char* verdict_class(ZVerdict v) {
+const char* verdict_class(Agreement v) {
     switch (v) {
-        case ZVerdict::Consistent: return "ok";
-        case ZVerdict::SigmaOverestimated: return "warn";
-        case ZVerdict::ExceedsNoise: return "bad";
-        case ZVerdict::NoData: break;
+        case Agreement::ConsistentWithNoise: return "ok";
+        case Agreement::ExceedsNoise: return "bad";
+        case Agreement::NoData: break;
     }
     return "muted";
 }
 
-std::string verdict_span(ZVerdict v) {
+std::string verdict_span(Agreement v) {
     return fmt::format("<span class=\"{}\">{}</span>", verdict_class(v), escape(to_string(v)));
+}
+
+std::string sigma_span(SigmaCheck c) {
+    const char* css = c == SigmaCheck::Plausible ? "ok" : c == SigmaCheck::NoData ? "muted" : "warn";
+    return fmt::format("<span class=\"{}\">{}</span>", css, escape(to_string(c)));
 }
 
 std::string kelvin_text(const std::optional<KelvinBias>& k) {
@@ -166,7 +172,8 @@ std::string header_section(const Page& p) {
 std::string summary_section(const Page& p) {
     const auto& r = p.r;
     const auto& g = r.registration;
-    std::string h = "<section id=\"summary\">\n<h2>Summary</h2>\n<table class=\"summary\">\n<tbody>\n";
+    std::string h = "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"answer\">" +
+                    escape(summary_paragraph(r)) + "</p>\n<table class=\"summary\">\n<tbody>\n";
     h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n", escape(to_string(g.method)),
                      escape(g.model), escape(g.note));
     h += fmt::format("<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
@@ -176,10 +183,13 @@ std::string summary_section(const Page& p) {
     for (std::size_t i = 0; i < r.regions.size(); ++i) {
         const auto& region = r.regions[i];
         std::string per_quantity;
-        for (const auto& q : kZQuantities)
-            per_quantity += fmt::format("{}{}: {} ({})", per_quantity.empty() ? "" : "; ", q,
-                                        verdict_span(region.verdicts.at(q)), escape(explain(region.verdicts.at(q), region.z.at(q))));
-        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong> — {}. S0 bias {} {}{}</td></tr>\n",
+        for (const auto& q : kZQuantities) {
+            const auto& v = region.verdicts.at(q);
+            per_quantity += fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
+                                        verdict_span(v.mean.verdict), escape(explain(v.mean)), sigma_span(v.sigma.verdict),
+                                        escape(explain(v.sigma)));
+        }
+        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} {}{}</td></tr>\n",
                          swatch(i), escape(region.name), verdict_span(region.verdict), per_quantity,
                          num(region.stats.at("S0").bias), p.units,
                          region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
@@ -331,18 +341,40 @@ std::string aop_section(const Page& p) {
 std::string noise_section(const Page& p) {
     const auto& r = p.r;
     std::string h = fmt::format(
-        "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p>Per pixel, z = (m − s)/√(σ_m² + "
-        "σ_s²) with σ_m the measurement uncertainty and σ_s the standard error of the simulation's Monte-Carlo mean. "
-        "Where a variance is itself estimated from few samples (a render's has ⌈spp/2⌉ degrees of freedom), that ratio "
-        "follows Student's t with Welch–Satterthwaite degrees of freedom and is mapped to the normal z of the same tail "
-        "probability, so the thresholds below hold at any spp. "
-        "If the simulation is right and the noise Gaussian, |z| &gt; 2 in 4.55 % and |z| &gt; 3 in 0.27 % of pixels "
-        "and RMS z = 1. Each of S0, S1, S2 gets its own verdict (a pooled one can hide a quantity that alone exceeds "
-        "the noise): <span class=\"bad\">exceeds noise</span> when the |z| &gt; 2 fraction is more than three binomial "
-        "standard deviations above 4.55 % or RMS z &gt; {}; <span class=\"warn\">σ overestimated</span> when RMS z "
-        "&lt; {} — the stated σ is too large and the test too blunt to see differences of that size; "
-        "<span class=\"ok\">consistent with noise</span> otherwise. A region's verdict is the worst of its three.</p>\n",
-        kRmsHigh, kRmsLow);
+        "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p><strong>Agreement</strong> (the "
+        "verdict): per region and quantity, the mean difference d = mean(m − s) is tested against the standard "
+        "uncertainty of that mean, σ_mean² = Σσ_m²/n² + Σσ_s²/n² + σ_common² + σ_registration² — the measured and "
+        "simulated per-pixel noise is independent from pixel to pixel and averages down, the calibration's gain and "
+        "offset errors and the misalignment are common to the region and do not. Its degrees of freedom ν follow "
+        "Welch–Satterthwaite; <span class=\"bad\">exceeds noise</span> when |d|/σ_mean &gt; t<sub>1−α/2, ν</sub>, with "
+        "α = {:.2f} % per quantity ({:.0f} % per region over S0, S1, S2, Šidák); otherwise <span class=\"ok\">"
+        "consistent with noise</span>. The detectable bias (t<sub>1−α/2, ν</sub> + t<sub>{:.2f}, ν</sub>)·σ_mean is "
+        "the smallest real difference found with {:.0f} % probability. <strong>σ diagnostic</strong> (separate): the "
+        "per-pixel z = (m − s)/√(σ_m² + σ_s²), mapped from Student's t to the normal when a variance is estimated, "
+        "has variance 1 about its mean when σ is right; a variance more than 3 of its sampling σ √(2/(n − 1)) away "
+        "from 1, with a σ factor beyond {:.2f}, reads <span class=\"warn\">σ overestimated</span> or <span "
+        "class=\"warn\">σ underestimated</span>.</p>\n",
+        100.0 * r.design.false_alarm_per_quantity(), 100.0 * r.design.false_alarm_per_region, r.design.power,
+        100.0 * r.design.power, kSigmaFactorTolerance);
+    h += fmt::format("<table>\n<caption>Region-mean tests [{}]</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
+                     "<th>Pixels</th><th>Mean difference</th><th>σ_mean</th><th>of which measured / common / simulated "
+                     "/ registration</th><th>ν</th><th>t</th><th>p</th><th>Detectable bias</th><th class=\"text\">"
+                     "Verdict</th><th class=\"text\">σ diagnostic</th></tr></thead>\n<tbody>\n",
+                     p.units);
+    for (std::size_t i = 0; i < r.regions.size(); ++i)
+        for (const auto& q : kZQuantities) {
+            const auto& v = r.regions[i].verdicts.at(q);
+            const auto& t = v.mean;
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} / {} / {} / {}</td>"
+                             "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td><td class=\"text\">"
+                             "{} (z variance {})</td></tr>\n",
+                             swatch(i), escape(r.regions[i].name), q, t.pixel_count, num(t.difference),
+                             num(t.combined.sigma), num(t.measured_independent.sigma), num(t.measured_common.sigma),
+                             num(t.simulated.sigma), num(t.registration.sigma), degrees_of_freedom(t.combined.dof),
+                             num(t.t), num(t.p_value), num(t.detectable_bias), verdict_span(t.verdict),
+                             sigma_span(v.sigma.verdict), num(v.sigma.z_variance));
+        }
+    h += "</tbody>\n</table>\n";
     h += fmt::format(
         "<table>\n<caption>Noise used [{}]; degrees of freedom ν of each variance (∞: taken as exact)"
         "</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">Measured σ from</th><th>Median σ_m</th>"
@@ -357,7 +389,7 @@ std::string noise_section(const Page& p) {
             escape(s.simulated), num(s.simulated_sigma_median), degrees_of_freedom(s.simulated_dof));
     h += "</tbody>\n</table>\n";
     h += "<table>\n<caption>Fraction of pixels beyond 2σ and 3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
-         "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th class=\"text\">Verdict</th>"
+         "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th class=\"text\">σ diagnostic</th>"
          "</tr></thead>\n<tbody>\n";
     for (std::size_t i = 0; i < r.regions.size(); ++i)
         for (const auto& q : {"S0", "S1", "S2", "all"}) {
@@ -367,7 +399,7 @@ std::string noise_section(const Page& p) {
                              "<td class=\"text\">{}</td></tr>\n",
                              swatch(i), escape(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q, z.pixel_count,
                              percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
-                             pooled ? "(reference only)" : verdict_span(r.regions[i].verdicts.at(q)));
+                             pooled ? "(reference only)" : sigma_span(r.regions[i].verdicts.at(q).sigma.verdict));
         }
     h += fmt::format("<tr><td>expected (noise only)</td><td></td><td></td><td>{}</td><td>{}</td><td>0</td><td>1</td>"
                      "<td></td></tr>\n</tbody>\n</table>\n",

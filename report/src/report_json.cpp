@@ -3,6 +3,7 @@
 
 #include "tirpol/core/utf8.h"
 #include "tirpol/report/comparison_report.h"
+#include "tirpol/report/summary_text.h"
 
 namespace tirpol::report {
 
@@ -23,8 +24,34 @@ nlohmann::json to_json(const QuantityStats& s) {
 
 nlohmann::json to_json(const ZStats& z) {
     return {{"pixel_count", z.pixel_count}, {"fraction_above_2", z.fraction_above_2},
-            {"fraction_above_3", z.fraction_above_3}, {"mean", z.mean}, {"rms", z.rms},
-            {"consistent_with_noise", consistent_with_noise(z)}, {"verdict", to_string(z_verdict(z))}};
+            {"fraction_above_3", z.fraction_above_3}, {"mean", z.mean}, {"rms", z.rms}};
+}
+
+nlohmann::json to_json(const UncertaintyComponent& u) {
+    return {{"sigma", u.sigma}, {"dof", degrees_of_freedom(u.dof)}};
+}
+
+nlohmann::json to_json(const QuantityVerdict& v) {
+    const auto& t = v.mean;
+    const auto& d = v.sigma;
+    return {{"verdict", to_string(t.verdict)},
+            {"mean_difference", t.difference},
+            {"pixel_count", t.pixel_count},
+            {"sigma_mean", to_json(t.combined)},
+            {"sigma_measured_independent", to_json(t.measured_independent)},
+            {"sigma_measured_common", to_json(t.measured_common)},
+            {"sigma_simulated", to_json(t.simulated)},
+            {"sigma_registration", to_json(t.registration)},
+            {"t", t.t},
+            {"p_value", t.p_value},
+            {"critical_t", t.critical_t},
+            {"false_alarm", t.false_alarm},
+            {"power", t.power},
+            {"detectable_bias", t.detectable_bias},
+            {"sigma_check", to_string(d.verdict)},
+            {"z_variance", d.z_variance},
+            {"z_variance_sigma", d.z_variance_sigma},
+            {"sigma_factor", d.sigma_factor}};
 }
 
 nlohmann::json to_json(const AopStats& a) {
@@ -77,7 +104,17 @@ std::string comparison_json(const CompareResult& r) {
                          {"measured_sigma_median", s.measured_sigma_median},
                          {"simulated_sigma_median", s.simulated_sigma_median},
                          {"measured_dof", degrees_of_freedom(s.measured_dof)},
-                         {"simulated_dof", degrees_of_freedom(s.simulated_dof)}};
+                         {"simulated_dof", degrees_of_freedom(s.simulated_dof)},
+                         {"measured_shared", s.measured_shared}};
+    j["summary"] = summary_paragraph(r);
+    j["design"] = {{"false_alarm_per_region", r.design.false_alarm_per_region},
+                   {"false_alarm_per_quantity", r.design.false_alarm_per_quantity()},
+                   {"power", r.design.power}};
+    j["sigma_contains"] = {{"measured", r.measured_sigma_contains}, {"simulated", r.simulated_sigma_contains}};
+    if (const auto& c = r.calibration_range)
+        j["calibration_range"] = {{"outside_fraction", c->outside_fraction}, {"range_k", {c->lo_k, c->hi_k}}};
+    else
+        j["calibration_range"] = nullptr;
     j["background"] = r.background.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.background);
     j["expected_fraction_above_2"] = kNormalTailAbove2;
     j["expected_fraction_above_3"] = kNormalTailAbove3;
@@ -92,6 +129,7 @@ std::string comparison_json(const CompareResult& r) {
         else
             jr["s1_contrast"] = nullptr;
         for (const auto& [q, z] : region.z) jr["z"][q] = to_json(z);
+        for (const auto& [q, v] : region.verdicts) jr["verdicts"][q] = to_json(v);
         jr["verdict"] = to_string(region.verdict);
         jr["aop"] = to_json(region.aop);
         if (const auto& k = region.s0_bias_k)

@@ -6,42 +6,53 @@
 
 namespace tirpol::report {
 
-ZVerdict z_verdict(const ZStats& z) {
-    if (z.pixel_count == 0) return ZVerdict::NoData;
-    const double rms_se = 1.0 / std::sqrt(2.0 * static_cast<double>(z.pixel_count));
-    if (!consistent_with_noise(z) || (z.rms > kRmsHigh && z.rms - 3.0 * rms_se > 1.0)) return ZVerdict::ExceedsNoise;
-    if (z.rms < kRmsLow && z.rms + 3.0 * rms_se < 1.0) return ZVerdict::SigmaOverestimated;
-    return ZVerdict::Consistent;
-}
+namespace {
+std::string dof_text(double dof) { return std::isfinite(dof) ? fmt::format("{:.0f}", dof) : "∞"; }
+}  // namespace
 
-ZVerdict worse(ZVerdict a, ZVerdict b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+Agreement worse(Agreement a, Agreement b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
-std::string to_string(ZVerdict verdict) {
-    switch (verdict) {
-        case ZVerdict::NoData: return "no data";
-        case ZVerdict::Consistent: return "consistent with noise";
-        case ZVerdict::SigmaOverestimated: return "σ overestimated";
-        case ZVerdict::ExceedsNoise: return "exceeds noise";
+std::string to_string(Agreement agreement) {
+    switch (agreement) {
+        case Agreement::NoData: return "no data";
+        case Agreement::ConsistentWithNoise: return "consistent with noise";
+        case Agreement::ExceedsNoise: return "exceeds noise";
     }
     return "?";
 }
 
-std::string explain(ZVerdict verdict, const ZStats& z) {
-    switch (verdict) {
-        case ZVerdict::NoData: return "no pixel has a finite z";
-        case ZVerdict::Consistent:
-            return fmt::format("|z| > 2 in {:.2f} % (noise alone: 4.55 %), RMS z = {:.2f}", 100.0 * z.fraction_above_2,
-                               z.rms);
-        case ZVerdict::SigmaOverestimated:
-            return fmt::format("RMS z = {:.2f} (expected 1): the stated σ is about {:.1f}× too large, so this test "
-                               "cannot detect differences smaller than that",
-                               z.rms, 1.0 / std::max(z.rms, 1e-6));
-        case ZVerdict::ExceedsNoise:
-            return z.rms > kRmsHigh
-                       ? fmt::format("|z| > 2 in {:.2f} % (noise alone: 4.55 %), RMS z = {:.2f} ≫ 1",
-                                     100.0 * z.fraction_above_2, z.rms)
-                       : fmt::format("|z| > 2 in {:.2f} % (noise alone: 4.55 %), RMS z = {:.2f}",
-                                     100.0 * z.fraction_above_2, z.rms);
+std::string to_string(SigmaCheck check) {
+    switch (check) {
+        case SigmaCheck::NoData: return "no data";
+        case SigmaCheck::Plausible: return "σ plausible";
+        case SigmaCheck::Overestimated: return "σ overestimated";
+        case SigmaCheck::Underestimated: return "σ underestimated";
+    }
+    return "?";
+}
+
+std::string explain(const MeanDifferenceTest& t) {
+    if (t.verdict == Agreement::NoData) return "no pixel where both images have data";
+    return fmt::format("mean difference {:.4g} ± {:.2g} (t = {:.2f}, ν = {}, p = {:.2g}); detectable bias {:.2g} at "
+                       "{:.1f} % false alarm, {:.0f} % power",
+                       t.difference, t.combined.sigma, t.t, dof_text(t.combined.dof), t.p_value, t.detectable_bias,
+                       100.0 * t.false_alarm, 100.0 * t.power);
+}
+
+std::string explain(const SigmaDiagnostic& d) {
+    switch (d.verdict) {
+        case SigmaCheck::NoData: return "too few pixels for a σ diagnostic";
+        case SigmaCheck::Plausible:
+            return fmt::format("z scatters with σ {:.2f} (expected 1; variance {:.2f} ± {:.2f})", d.sigma_factor,
+                               d.z_variance, d.z_variance_sigma);
+        case SigmaCheck::Overestimated:
+            return fmt::format("z scatters with σ {:.2f} (expected 1; variance {:.2f} ± {:.2f}): the stated per-pixel "
+                               "σ is about {:.1f}× too large",
+                               d.sigma_factor, d.z_variance, d.z_variance_sigma, 1.0 / std::max(d.sigma_factor, 1e-6));
+        case SigmaCheck::Underestimated:
+            return fmt::format("z scatters with σ {:.2f} (expected 1; variance {:.2f} ± {:.2f}): the stated per-pixel "
+                               "σ is about {:.1f}× too small, or the difference varies within the region",
+                               d.sigma_factor, d.z_variance, d.z_variance_sigma, d.sigma_factor);
     }
     return "";
 }

@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,11 +17,14 @@
 #include "surface_basis.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/log.h"
+#include "tirpol/core/memory_budget.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/emissivity_cache.h"
+#include "tirpol/simulation/render_memory.h"
 #include "tirpol/simulation/rng.h"
 #include "tirpol/simulation/sobol_sampler.h"
 
@@ -312,15 +316,37 @@ struct Channels {
           material_id(image.add_channel("material_id")), temperature(image.add_channel("temperature_k")) {}
     std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz, &view_zenith,
         &object_id, &material_id, &temperature;
+    std::array<std::vector<float>*, 18> all() {
+        return {&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz,
+                &view_zenith, &object_id, &material_id, &temperature};
+    }
 };
 
 }  // namespace
+
+std::uint64_t render_memory_estimate_bytes(int width, int height) {
+    // 18 float channels (Channels), plus at most 4 bytes a pixel more while a quicklook or an EXR line
+    // buffer is written. Samples cost nothing: the sampler computes every number (sobol_sampler.h).
+    constexpr std::uint64_t kImageBytesPerPixel = 18 * sizeof(float) + 4 * sizeof(float);
+    const auto pixels =
+        static_cast<std::uint64_t>(std::max(width, 0)) * static_cast<std::uint64_t>(std::max(height, 0));
+    return pixels * kImageBytesPerPixel;
+}
 
 Band spectral_grid(const Band& band) { return Band(band.lo_um(), band.hi_um(), band.rsr(), kSpectralGridPanel_um); }
 
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::info::default_concurrency());
+    const int spp_requested = scene.sampling.samples_per_pixel;
+    if (spp_requested < 1 || spp_requested > limits::kMaxSamplesPerPixel)
+        fail("sampling.spp {}: expected 1 to {} samples per pixel (limits.h)", spp_requested,
+             limits::kMaxSamplesPerPixel);
+    const int workers = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+    check_memory_estimate(
+        render_memory_estimate_bytes(scene.camera.width(), scene.camera.height()),
+        fmt::format("render of {}×{} pixels at {} spp on {} threads", scene.camera.width(), scene.camera.height(),
+                    spp_requested, workers));
+    tbb::task_arena arena(workers);
     RenderStatistics stats;
     const std::filesystem::path cache_dir =
         options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
@@ -342,6 +368,9 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         spdlog::warn("render: {} samples per pixel rounded up to {} ({} replicates of {} points)",
                      scene.sampling.samples_per_pixel, spp, replicates, points);
     const std::uint64_t seed = scene.sampling.seed;
+    if (options.pixel_mask && options.pixel_mask->size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
+        fail("render: the pixel mask has {} entries; expected {}×{} = {}", options.pixel_mask->size(), w, h,
+             static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     Image image(w, h);
     Channels ch(image);
 
@@ -361,6 +390,11 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
+                // A masked pixel skips every replicate: its channels are NaN and it draws no samples.
+                if (options.pixel_mask && !(*options.pixel_mask)[i]) {
+                    for (auto* c : ch.all()) (*c)[i] = static_cast<float>(kNaN);
+                    continue;
+                }
                 ReplicateMean pixel;
                 for (std::uint32_t r = 0; r < static_cast<std::uint32_t>(replicates); ++r) {
                     const ReplicateSampler replicate(seed, i, r, points);

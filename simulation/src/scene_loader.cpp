@@ -186,7 +186,8 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     if (!node) return s;
     node->check_keys({"spp", "max_bounces", "seed", "estimator", "replicates"});
     s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
-    if (s.samples_per_pixel < 1) node->at("spp").fail("expected at least 1 sample per pixel");
+    if (s.samples_per_pixel < 1 || s.samples_per_pixel > limits::kMaxSamplesPerPixel)
+        node->at("spp").fail(fmt::format("expected 1 to {} samples per pixel (limits.h)", limits::kMaxSamplesPerPixel));
     s.max_bounces = node->get_or("max_bounces", s.max_bounces);
     if (const std::string problem = max_bounces_problem(s.max_bounces); !problem.empty())
         node->at("max_bounces").fail(problem);

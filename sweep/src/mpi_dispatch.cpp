@@ -53,6 +53,13 @@ void MpiSession::barrier() const {
     if (m_active) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
 
+bool MpiSession::broadcast_from_root(bool value) const {
+    if (!m_active) return value;
+    int flag = value ? 1 : 0;
+    check(MPI_Bcast(&flag, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+    return flag != 0;
+}
+
 int MpiSession::local_ranks() {
     for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "SLURM_NTASKS_PER_NODE"})
         if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));

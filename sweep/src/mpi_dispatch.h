@@ -22,6 +22,8 @@ public:
     int size() const { return m_size; }
     /// Waits for every rank (no-op without MPI).
     void barrier() const;
+    /// Rank 0's `value`, on every rank (`value` itself without MPI).
+    bool broadcast_from_root(bool value) const;
     /// Ranks of this job on this machine (threads default to cores / local ranks).
     static int local_ranks();
 

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <thread>
 
 #include "manifest.h"
 #include "mpi_dispatch.h"
 #include "point_render.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/folder_lock.h"
 #include "tirpol/sweep/sweep_results.h"
 
 namespace tirpol::sweep {
@@ -21,6 +24,19 @@ void count(SweepSummary& summary) {
         summary.rendered += r.status == "rendered";
         summary.resumed += r.status == "resumed";
         summary.failed += r.status == "failed";
+    }
+}
+
+/// Point folders that killed runs left half written (render_point's ".<id>.partial-<pid>"): with the
+/// folder lock held, no other run is writing them.
+void remove_abandoned_partial_points(const std::filesystem::path& out_dir) {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(out_dir / "points", ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() > 1 && name.front() == '.' && name.find(".partial-") != std::string::npos) {
+            std::error_code ignored;
+            std::filesystem::remove_all(entry.path(), ignored);
+        }
     }
 }
 
@@ -38,6 +54,19 @@ SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_d
     if (exists) detail::check_same_sweep(manifest, spec, points);
 
     detail::MpiSession mpi;
+    // One run per folder: rank 0 holds OUT/.lock until the sweep ends; every rank learns whether it got it.
+    std::optional<FolderLock> lock;
+    std::string lock_error;
+    if (mpi.rank() == 0) {
+        try {
+            lock.emplace(out_dir, "a tirpol sweep");
+            remove_abandoned_partial_points(out_dir);
+        } catch (const Error& e) {
+            lock_error = e.what();
+        }
+    }
+    if (!mpi.broadcast_from_root(lock_error.empty()))
+        fail("{}", lock_error.empty() ? out_dir.string() + ": rank 0 could not lock the sweep folder" : lock_error);
     SweepSummary summary;
     summary.is_root = mpi.rank() == 0;
     summary.ranks = mpi.size();

@@ -137,8 +137,9 @@ TEST(CalibrationCli, ReduceWithDriftCorrectionInterpolatesBetweenShutterRecords)
     const CliRun raw = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " -o " + out);
     ASSERT_EQ(raw.exit_code, 0) << raw.out;
     EXPECT_GT(std::abs(band.brightness_temperature(read_exr(out).at("S0", 5, 5)) - 300.0), 1.0);
-    const CliRun r =
-        run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal + " --drift-correction -o " + out);
+    // The same output again: an existing file is replaced only with --force (docs/cli.md).
+    const CliRun r = run_cli("reduce " + (dir / "scene").string() + " --calibration " + cal +
+                             " --drift-correction --force -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_NE(
         r.out.find("drift correction (shutter records (2), interpolated in time): offset shift 48.00 … 72.00 counts"),
@@ -165,8 +166,8 @@ TEST(CalibrationCli, FlirTemperatureOfARawExrWithSc660Constants) {
     const CliRun bad = run_cli("flir-temperature " + (dir / "raw.exr").string() +
                            " --planck 21106.77,0.012545258,1501,1,-7340 --window-transmission 0 -o " +
                            (dir / "u.exr").string());
-    EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_NE(bad.out.find("window transmission"), std::string::npos) << bad.out;
+    EXPECT_EQ(bad.exit_code, 2);  // outside the limits table's [0.01, 1]: a usage error (docs/cli.md)
+    EXPECT_NE(bad.out.find("--window-transmission: 0 is outside [0.01, 1]"), std::string::npos) << bad.out;
 }
 
 TEST(CalibrationCli, NoiseReportGivesNedtFromAFrameStack) {

@@ -18,29 +18,12 @@ namespace {
 
 using tirpol::test::CliRun;
 using tirpol::test::run_cli;
+using tirpol::test::subcommands_in_help;
 
 struct BadUsage {
     std::string args;      ///< after `tirpol <subcommand>`
     std::string message;   ///< part of what the user must be told
 };
-
-/// The names under "Subcommands:" in `tirpol [PATH] --help`.
-std::set<std::string> subcommands_in_help(const std::string& path) {
-    const CliRun help = run_cli(path + " --help", false);
-    std::set<std::string> names;
-    std::istringstream lines(help.out);
-    bool listing = false;
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("Subcommands:", 0) == 0) listing = true;
-        else if (listing && line.rfind("  ", 0) == 0) {
-            std::istringstream words(line);
-            std::string name;
-            words >> name;
-            names.insert(path.empty() ? name : path + " " + name);
-        } else if (listing && !line.empty()) listing = false;
-    }
-    return names;
-}
 
 TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
     const auto data = tirpol::test::source_dir() / "tests/data/fuzz-regressions";
@@ -60,10 +43,12 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
         {"calibrate pose", {"--camera " + exr, "required"}},
         {"compare", {"--measured " + exr + " --simulated " + exr + " --registration sideways -o r", "--registration"}},
         {"demo", {"--no-such-option", "no-such-option"}},
+        {"demosaic", {png + " --pattern sony --method cubic -o d.exr", "--method"}},
         {"devices", {"surplus-argument", "surplus-argument"}},
         {"emissivity", {"flat_black_paint --wavelength-um 10 --angles-deg 0:100:10", "--angles-deg"}},
         {"extract-emissivity", {session + " " + png + " -o e.csv", "--calibration"}},
         {"fit", {exr + " --wavelength-um 10 --model lambertian -o f.yaml", "--model"}},
+        {"fit-render", {scene + " --view " + exr + " --region ball --free glossy_black_paint.n=1.2", "--free"}},
         {"flir-temperature", {png + " --planck 1,2,3 -o t.exr", "--planck"}},
         {"info", {"", "required"}},
         {"live", {"", "--camera"}},

@@ -111,6 +111,20 @@ TEST(CalibrationQuality, ApplyingBeyondTheCalibratedRangeWarnsWithTheRange) {
     ASSERT_TRUE(cold);
     EXPECT_THAT(*cold, testing::HasSubstr("283.15–333.15 K"));
     EXPECT_THAT(*cold, testing::HasSubstr(fmt::format("{} below", kW * kH)));
+    // The same count as a fraction, for the Stokes EXR's calibration_outside_range_fraction.
+    EXPECT_EQ(outside_calibrated_range_fraction(cal, radiance_of(250.0, 303.0)), 1.0);
+    EXPECT_EQ(outside_calibrated_range_fraction(cal, radiance_of(300.0, 303.0)), 0.0);
+    auto half = radiance_of(300.0, 303.0);
+    const auto cold_half = radiance_of(250.0, 303.0);
+    for (std::size_t i = 0; i < half.size() / 2; ++i) half[i] = cold_half[i];
+    std::size_t good = 0, good_cold = 0;
+    for (std::size_t i = 0; i < half.size(); ++i) {
+        if (cal.bad[i] != 0.0f) continue;
+        ++good;
+        good_cold += i < half.size() / 2;
+    }
+    EXPECT_NEAR(outside_calibrated_range_fraction(cal, half),
+                static_cast<double>(good_cold) / static_cast<double>(good), 1e-12);
     const auto hot_camera = extrapolation_warning(cal, radiance_of(300.0, 315.0), 315.0);
     ASSERT_TRUE(hot_camera);
     EXPECT_THAT(*hot_camera, testing::HasSubstr("FPA temperature 315.00 K is outside the calibrated FPA range"));

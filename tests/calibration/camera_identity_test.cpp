@@ -12,6 +12,7 @@
 #include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 
 namespace tirpol::calibration {
 namespace {
@@ -32,6 +33,14 @@ protected:
         auto manifest = nlohmann::json::parse(read_file(tmp / "scene" / "session.json"));
         manifest["camera"][field] = value;
         write_file_atomic(tmp / "scene" / "session.json", manifest.dump());
+        // The frames' headers name the camera too (read_session_frame compares them): another camera's
+        // session says so in both places.
+        if (field == "serial")
+            for (const auto& entry : std::filesystem::directory_iterator(tmp / "scene" / "frames")) {
+                Image frame = read_exr(entry.path());
+                frame.attributes()["camera_serial"] = value.get<std::string>();
+                write_exr(entry.path(), frame);
+            }
         return tmp / "scene";
     }
     static test::TempDir* dir_;
@@ -61,7 +70,7 @@ TEST_F(CameraIdentity, AnotherCameraOfTheSameSizeIsRefusedNamingBoth) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), testing::AllOf(testing::HasSubstr("another camera (serial differs)"),
                                              testing::HasSubstr("'" + cal.camera.serial + "'"),
-                                             testing::HasSubstr("'OTHER-9999'"), testing::HasSubstr("--force")));
+                                             testing::HasSubstr("'OTHER-9999'"), testing::HasSubstr("--other-camera")));
     }
     EXPECT_THROW(calibrate_polarimetric_session(session, cal), Error);
     SessionReductionOptions forced;

@@ -2,12 +2,14 @@
 
 #include "tirpol/core/camera_model.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <opencv2/core.hpp>
 
 #include "test_support.h"
+#include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol {
@@ -64,8 +66,9 @@ TEST(CameraModelFile, PoseRoundTrips) {
     EXPECT_LT((back.position_m() - p.position_m()).norm(), 1e-12);
 }
 
-// Inputs the fuzzer found (a 48 GB allocation, cv::Exception, std::length_error, a parser that never
-// returned): each is refused with a tirpol::Error naming the file.
+// Inputs the fuzzer found (a 48 GB allocation, cv::Exception, std::length_error, OpenCV's parser that
+// never returned on a '%' followed by '---' or by '--'): each is refused with a tirpol::Error naming
+// the file. The files are read by yaml-cpp now; no input reaches OpenCV's YAML parser.
 TEST(CameraModelFile, FuzzRegressionsAreRefusedWithAnError) {
     const auto dir = test::source_dir() / "tests/data/fuzz-regressions/camera_geometry";
     int files = 0;
@@ -78,7 +81,51 @@ TEST(CameraModelFile, FuzzRegressionsAreRefusedWithAnError) {
             EXPECT_NE(std::string(e.what()).find(entry.path().filename().string()), std::string::npos) << e.what();
         }
     }
-    EXPECT_GE(files, 4);
+    EXPECT_GE(files, 5);
+}
+
+// What OpenCV itself writes, as a user's calibration script would (cv::FileStorage, a float matrix,
+// long data lists that OpenCV wraps over several lines), reads back through yaml-cpp unchanged.
+TEST(CameraModelFile, ReadsWhatOpenCvWrites) {
+    test::TempDir dir;
+    const auto path = dir / "opencv.yaml";
+    {
+        cv::FileStorage fs(path.string(), cv::FileStorage::WRITE);
+        fs << "image_width" << 320 << "image_height" << 256;
+        fs << "camera_matrix" << (cv::Mat_<float>(3, 3) << 400.5f, 0.f, 159.5f, 0.f, 401.25f, 127.5f, 0.f, 0.f, 1.f);
+        fs << "distortion_coefficients"
+           << (cv::Mat_<double>(1, 8) << -0.31, 0.12, 1.5e-3, -2.5e-4, -0.021, 0.0, 0.0, 1.0 / 3.0);
+        fs << "target"
+           << "checkerboard:9x6:0.04";
+    }
+    ASSERT_EQ(read_file(path).rfind("%YAML:1.0", 0), 0u) << "OpenCV's own directive line";
+    const CameraModel m = read_camera_model(path);
+    EXPECT_EQ(m.width, 320);
+    EXPECT_EQ(m.fx, 400.5);
+    EXPECT_EQ(m.fy, 401.25);
+    EXPECT_EQ(m.cy, 127.5);
+    ASSERT_EQ(m.distortion.size(), 8u);
+    EXPECT_EQ(m.distortion_model(), "rational");
+    EXPECT_EQ(m.distortion[0], -0.31);
+    EXPECT_EQ(m.distortion[7], 1.0 / 3.0);  // OpenCV writes 17 significant digits: exact round trip
+    EXPECT_EQ(m.target, "checkerboard:9x6:0.04");
+}
+
+// The input that made OpenCV's parser loop for ever ('%' then '--', issue's 177 bytes) and variants
+// of it: each returns, and with an error naming the file and the line.
+TEST(CameraModelFile, PercentSignsAnywhereReturnWithAnError) {
+    test::TempDir dir;
+    const std::string body =
+        "image_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n";
+    for (const std::string tail : {"  -#%--\n", "  %---\n", "%\n---\n", "  - %--\n", "%TAG ! x\n--\n"}) {
+        test::write_text(dir / "pct.yaml", "%YAML:1.0\n---\n" + body + tail);
+        try {
+            (void)read_camera_model(dir / "pct.yaml");
+            ADD_FAILURE() << "accepted: " << tail;
+        } catch (const Error& e) {
+            EXPECT_THAT(std::string(e.what()), testing::HasSubstr("pct.yaml:")) << tail;
+        }
+    }
 }
 
 TEST(CameraModelFile, BadFilesNameTheField) {

@@ -33,13 +33,18 @@ TEST(Planck, StefanBoltzmannConstantFollowsFromTheExactConstants) {
 }
 
 TEST(Planck, TotalRadianceIsStefanBoltzmannOverPi) {
-    // ∫ L(λ,T) dλ = σT⁴/π for a Lambertian blackbody. The band 0.2–3000 µm misses the Rayleigh–Jeans
-    // tail beyond 3000 µm, ∫ 2ckT/λ⁴ dλ = 2ckT/(3λ³) (a few 1e-7 of the total), added analytically.
-    const Band all(0.2, 3000.0, std::nullopt, 1.0);
+    // ∫ L(λ,T) dλ = σT⁴/π for a Lambertian blackbody. The band 0.2–1000 µm (the longest wavelength a Band
+    // accepts) misses the tail beyond Λ = 1000 µm, about 6e-6 of the total, added analytically from the
+    // series of Planck's law in x = hc/(λkT) < 0.06 there: L = (2ckT/λ⁴)(1 − x/2 + x²/12 − …), so
+    // ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵) (next term below 1e-12 of the total).
+    const Band all(0.2, 1000.0, std::nullopt, 1.0);
     for (double t : {250.0, 300.0, 400.0}) {
         const double expected = kSigmaCodata2018 * std::pow(t, 4) / kPi;
-        const double lambda_m = 3000e-6;
-        const double tail = 2.0 * kSpeedOfLight * kBoltzmannK * t / (3.0 * lambda_m * lambda_m * lambda_m);
+        const double lambda_m = 1000e-6;
+        const double c = kSpeedOfLight, h = kPlanckH, k = kBoltzmannK;
+        const double tail = 2.0 * c * k * t / (3.0 * std::pow(lambda_m, 3)) -
+                            h * c * c / (4.0 * std::pow(lambda_m, 4)) +
+                            h * h * c * c * c / (30.0 * k * t * std::pow(lambda_m, 5));
         EXPECT_NEAR((all.radiance(t) + tail) / expected, 1.0, 2e-8) << "T = " << t;
     }
 }

@@ -92,8 +92,9 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     // The manifest is the documented schema, field for field.
     const json j = json::parse(read_file(dir / "session.json"));
     EXPECT_EQ(j.at("schema"), "tirpol.session");
-    EXPECT_EQ(j.at("schema_version"), 3);
+    EXPECT_EQ(j.at("schema_version"), 4);
     EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
+    EXPECT_TRUE(j.at("ffc_events").is_array());
     EXPECT_EQ(j.at("records")[0].at("file"), "frames/pol_000.0deg_r0.exr");
 }
 
@@ -119,7 +120,7 @@ TEST(Session, StepTimingRoundTripsThroughTheManifestAndTheFrameHeader) {
         writer.add_record(r, example_frame(1.0f));
     }
     const SessionManifest m = read_session(tmp / "s");
-    EXPECT_EQ(m.schema_version, 3);
+    EXPECT_EQ(m.schema_version, kSessionSchemaVersion);
     ASSERT_EQ(m.records.size(), 1u);
     EXPECT_EQ(m.records[0], r);  // every ns digit kept
     EXPECT_EQ(m.camera.frame_rate_hz.value_or(0.0), 29.7);
@@ -208,6 +209,62 @@ TEST(Session, VersionTwoSessionsReadAndResume) {
     auto writer = SessionWriter::resume(dir);
     writer.add_record(polarizer_record(45.0, 0), example_frame(2.0f));
     EXPECT_EQ(read_session(dir).records.size(), 2u);
+}
+
+TEST(Session, FfcEventsRoundTripAndVersionThreeSessionsWithoutThemRead) {
+    // v4 adds ffc_events: every flat-field correction, scheduled or detected, kept exactly.
+    test::TempDir tmp;
+    const auto dir = tmp / "ffc";
+    const FfcEvent scheduled{FfcEvent::Kind::Scheduled, 1795000000123456789, 0, 308.25, 1234, "every cycle"};
+    const FfcEvent detected{FfcEvent::Kind::Detected, 1795000001123456789, 1, std::nullopt, std::nullopt,
+                            "frame mean stepped by 23.4 counts"};
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_ffc_event(scheduled);
+        writer.add_ffc_event(detected);
+    }
+    SessionManifest m = read_session(dir);
+    ASSERT_EQ(m.ffc_events.size(), 2u);
+    EXPECT_EQ(m.ffc_events[0], scheduled);
+    EXPECT_EQ(m.ffc_events[1], detected);
+    json j = json::parse(read_file(dir / "session.json"));
+    j["ffc_events"][0]["kind"] = "maybe";
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("ffc_events[0].kind: expected \"scheduled\" or \"detected\"")));
+    j["schema_version"] = 3;
+    j.erase("ffc_events");
+    write_file_atomic(dir / "session.json", j.dump(2));
+    m = read_session(dir);
+    EXPECT_EQ(m.schema_version, 3);
+    EXPECT_TRUE(m.ffc_events.empty());
+}
+
+TEST(Session, FrameAuditRoundTripsAndItsColumnsMustMatchTheFrames) {
+    test::TempDir tmp;
+    const auto dir = tmp / "audit";
+    SessionRecord r = polarizer_record(0.0, 0);
+    r.frames = 2;
+    FrameAudit a;
+    a.frame_id = {41, 43};
+    a.device_timestamp_ns = {1000000123, 1016666789};
+    a.host_timestamp_ns = {1795000000123456789, 1795000000140123456};
+    a.fpa_temperature_k = {308.15, std::nullopt};
+    a.incomplete = 1;
+    a.core_before = FrameAudit::CoreState{"manual", "high", 308.15, 1200, 1100};
+    r.audit = a;
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(r, example_frame(1.0f));
+    }
+    const SessionManifest m = read_session(dir);
+    ASSERT_EQ(m.records.size(), 1u);
+    EXPECT_EQ(m.records[0], r);  // every digit of the 64-bit stamps kept, nulls kept
+    json j = json::parse(read_file(dir / "session.json"));
+    j["records"][0]["audit"]["frame_id"] = json::array({41});
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("records[0].audit.frame_id: expected 2 entries (the record's frames), got 1")));
 }
 
 TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
@@ -343,9 +400,9 @@ TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
 
 TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
     json j = manifest();
-    j["schema_version"] = 4;
+    j["schema_version"] = 5;
     write(j);
-    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 3, got 4"));
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 4, got 5"));
     j["schema"] = "something.else";
     write(j);
     EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));

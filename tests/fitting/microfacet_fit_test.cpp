@@ -14,6 +14,7 @@
 #include "synthetic_emissivity.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
@@ -68,10 +69,10 @@ TEST(MicrofacetFit, RecoversPaintFromNoiseFreeData) {
 }
 
 TEST(MicrofacetFit, ACancelFlagStopsTheFitDuringItsIterations) {
-    // Thousands of starts would take hours: only the flag, set from another thread (as Ctrl-C does
-    // from Python) and read by the Ceres iteration callback, ends this solve.
+    // The most starts the limits table allows would take hours: only the flag, set from another thread
+    // (as Ctrl-C does from Python) and read by the Ceres iteration callback, ends this solve.
     const EmissivityDataset data = test::clean_dataset(test::paint_truth(), test::fig1_angles(), 0.003, 0.002);
-    MicrofacetFitOptions options = fast_options(100000);
+    MicrofacetFitOptions options = fast_options(limits::kMaxFitStarts);
     std::atomic<bool> cancel{false};
     options.cancel = &cancel;
     const MicrofacetFitProblem problem({data}, options);

@@ -65,6 +65,21 @@ def test_simulated_camera_streams_its_uniform_level():
     assert stack.std() == pytest.approx(2.0, rel=0.1)
 
 
+def test_timeouts_must_be_finite_non_negative_seconds():
+    # grab(nan) said "no frame within -9223372036854775808 ms"; the argument is named as Python spells it.
+    camera = acquisition.open_camera("sim://uniform?width=4&height=4&counts=1000&noise=0&fps=200&seed=1")
+    stage = acquisition.open_stage("sim://?deg_per_s=720&start_deg=0")
+    for bad in (float("nan"), float("inf"), -1.0, 1e300):
+        with pytest.raises(ValueError, match=r"^timeout_s: expected a finite number of seconds in \[0, 600\]"):
+            camera.grab(timeout_s=bad)
+        with pytest.raises(ValueError, match=r"^timeout_s: expected a finite number of seconds in \[0, 3600\]"):
+            stage.home(timeout_s=bad)
+        with pytest.raises(ValueError, match=r"^timeout_s: "):
+            stage.move_absolute(10.0, timeout_s=bad)
+    with pytest.raises(ValueError, match=r"^angle_deg: expected a finite angle"):
+        stage.move_absolute(float("nan"), timeout_s=10)
+
+
 def test_stage_moves_and_reads_back():
     stage = acquisition.open_stage("sim://?deg_per_s=720&start_deg=0")
     stage.home(timeout_s=10)

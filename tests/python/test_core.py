@@ -16,10 +16,12 @@ WIEN_B_UM_K = 2897.771955
 
 
 def test_planck_total_radiance_is_stefan_boltzmann_over_pi():
-    band = core.Band(0.2, 3000.0)
+    band = core.Band(0.2, 1000.0)  # 1000 µm: the longest wavelength a Band accepts
+    c, h, k, lam = 299792458.0, 6.62607015e-34, 1.380649e-23, 1000e-6
     for t in (250.0, 300.0, 1000.0):
-        # The Rayleigh–Jeans tail beyond 3000 µm, 2ckT/(3λ³), added analytically (as the C++ test).
-        tail = 2 * 299792458.0 * 1.380649e-23 * t / (3 * (3000e-6) ** 3)
+        # The tail beyond 1000 µm from the series of Planck's law in x = hc/(λkT) (as the C++ test):
+        # ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵).
+        tail = 2 * c * k * t / (3 * lam**3) - h * c * c / (4 * lam**4) + h * h * c**3 / (30 * k * t * lam**5)
         assert (band.radiance(t) + tail) / (STEFAN_BOLTZMANN * t**4 / math.pi) == pytest.approx(1.0, abs=2e-8)
 
 
@@ -106,3 +108,28 @@ def test_exr_round_trip_is_exact(tmp_path):
     # An Image carries its attributes through a second write.
     core.write_exr(tmp_path / "again.exr", image)
     assert core.read_exr(tmp_path / "again.exr").attributes["band_um"] == [8.0, 14.0]
+
+
+def test_nan_stokes_give_nan_degree_and_angle_not_unpolarized():
+    # A dead pixel (NaN) must stay visibly missing: DoLP 0 would read as "unpolarized".
+    nan = float("nan")
+    assert math.isnan(core.dolp(np.array([nan] * 4)))
+    assert math.isnan(core.dop(np.array([nan] * 4)))
+    assert math.isnan(core.aop_deg(np.array([nan] * 4)))
+    assert math.isnan(core.dolp(np.array([1.0, nan, 0.0, 0.0])))
+    # Finite pixels next to it keep their values (Malus: S1 = 0.5 S0 → DoLP 0.5, AoP 0°).
+    both = core.dolp(np.array([[nan, 0.0, 0.0, 0.0], [2.0, 1.0, 0.0, 0.0]]))
+    assert math.isnan(both[0]) and both[1] == pytest.approx(0.5)
+
+
+def test_write_exr_refuses_a_channel_name_it_cannot_store(tmp_path):
+    plane = np.zeros((2, 3), np.float32)
+    # OpenEXR names are NUL-terminated: "S0\0x" would be stored as "S0" (colliding with a real S0).
+    with pytest.raises(tirpol.Error, match="NUL"):
+        core.write_exr(tmp_path / "nul.exr", {"S0": plane, "S0\0x": plane})
+    # Invalid UTF-8 reaches Python as bytes or as a str with a lone surrogate (surrogateescape).
+    with pytest.raises(tirpol.Error, match="not valid UTF-8"):
+        core.write_exr(tmp_path / "latin1.exr", {b"temp\xe9rature".decode("utf-8", "surrogateescape"): plane})
+    with pytest.raises(tirpol.Error, match="channel names must be str, got bytes"):
+        core.write_exr(tmp_path / "bytes.exr", {b"S0": plane})
+    assert not list(tmp_path.iterdir())  # nothing written, no temp file left

@@ -41,10 +41,10 @@ def test_noise_of_the_stated_sigma_is_consistent():
 def test_an_s1_offset_is_measured():
     measured, simulated = images(s1_offset=0.05)
     region = report.compare(measured, simulated, registration="none").statistics["regions"][0]
-    assert region["z"]["S1"]["verdict"] != "consistent with noise"
+    assert region["verdicts"]["S1"]["verdict"] == "exceeds noise"
     s1 = region["stats"]["S1"]
     assert s1["bias"] == pytest.approx(0.05, abs=4 * s1["bias_sigma"])
-    assert region["z"]["S0"]["verdict"] == "consistent with noise"
+    assert region["verdicts"]["S0"]["verdict"] == "consistent with noise"
 
 
 def test_html_report_and_json_agree(tmp_path):

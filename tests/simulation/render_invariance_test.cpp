@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "scene_fixtures.h"
+#include "tirpol/core/error.h"
 
 namespace tirpol::simulation {
 namespace {
@@ -49,6 +50,37 @@ TEST(RenderInvariance, SameImageForOneAndTwoThreadsAndAnyTiling) {
         const auto& pb = b.channel(name);
         for (std::size_t i = 0; i < pa.size(); ++i)
             ASSERT_TRUE(pa[i] == pb[i] || (std::isnan(pa[i]) && std::isnan(pb[i]))) << name << " pixel " << i;
+    }
+}
+
+// A pixel mask (what the fit through the renderer uses to trace only its regions) leaves the traced
+// pixels bit-identical to the full render and NaN elsewhere; a mask of the wrong size is an error.
+TEST(RenderInvariance, MaskedPixelsAreTheFullRendersAndTheRestIsNaN) {
+    TempDir dir;
+    const Scene scene = test::load_scene_text(dir, rotated_scene(0.0));
+    const Image full = render(scene);
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(full.width()) * static_cast<std::size_t>(full.height()), 0);
+    for (std::size_t i = 0; i < mask.size(); i += 7) mask[i] = 1;
+    RenderOptions masked;
+    masked.pixel_mask = &mask;
+    masked.tile_size = 5;
+    const Image part = render(scene, masked);
+    for (const auto& name : full.channel_names()) {
+        const auto& pf = full.channel(name);
+        const auto& pp = part.channel(name);
+        for (std::size_t i = 0; i < pf.size(); ++i) {
+            if (mask[i])
+                ASSERT_TRUE(pf[i] == pp[i] || (std::isnan(pf[i]) && std::isnan(pp[i]))) << name << " pixel " << i;
+            else
+                ASSERT_TRUE(std::isnan(pp[i])) << name << " pixel " << i << " outside the mask";
+        }
+    }
+    mask.pop_back();
+    try {
+        render(scene, masked);
+        FAIL() << "a mask of the wrong size was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pixel mask has"), std::string::npos) << e.what();
     }
 }
 

@@ -6,6 +6,7 @@
 
 #include "csv_fields.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/sky_longwave.h"
 #include "tirpol/thermal/weather.h"
@@ -56,6 +57,7 @@ struct FieldReader {
 }  // namespace
 
 WeatherSeries load_epw(const std::filesystem::path& path, std::optional<int> year) {
+    check_input_file(path);
     std::ifstream in(path);
     if (!in) fail("cannot open weather file {}", path.string());
     const std::string file = path.string();

@@ -44,6 +44,16 @@ double polynomial(double x, double a, double b, double c, double d) {
 SolarPosition solar_position(const SpaInput& in) {
     if (!(std::abs(in.latitude_deg) <= 90.0)) fail("SPA: latitude {}° outside −90…90°", in.latitude_deg);
     if (!(std::abs(in.longitude_deg) <= 180.0)) fail("SPA: longitude {}° outside −180…180°", in.longitude_deg);
+    // The input ranges of NREL's SPA (Reda & Andreas 2008, Table 1 / spa.c validate_inputs); NaN fails each.
+    if (!std::isfinite(in.unix_seconds)) fail("SPA: time {} is not a finite number of seconds", in.unix_seconds);
+    if (!(in.elevation_m >= -6500000.0 && std::isfinite(in.elevation_m)))
+        fail("SPA: elevation {} m outside −6 500 000 m…+∞ (finite)", in.elevation_m);
+    if (!(in.pressure_mbar >= 0.0 && in.pressure_mbar <= 5000.0))
+        fail("SPA: pressure {} mbar outside 0…5000 mbar", in.pressure_mbar);
+    if (!(in.temperature_c >= -273.0 && in.temperature_c <= 6000.0))
+        fail("SPA: temperature {} °C outside −273…6000 °C", in.temperature_c);
+    if (!(std::abs(in.delta_t_s) <= 8000.0)) fail("SPA: ΔT {} s outside −8000…8000 s", in.delta_t_s);
+    if (!(std::abs(in.delta_ut1_s) <= 1.0)) fail("SPA: ΔUT1 {} s outside −1…1 s", in.delta_ut1_s);
     SolarPosition out;
 
     // 3.1 Julian and Julian Ephemeris Day, century, millennium (eqs. 4–8). UT1 = UTC + ΔUT1.
@@ -155,6 +165,8 @@ SolarPosition solar_position(const SpaInput& in) {
 }
 
 double incidence_angle_deg(const SolarPosition& sun, double tilt_deg, double surface_azimuth_deg) {
+    if (!std::isfinite(tilt_deg) || !std::isfinite(surface_azimuth_deg))
+        fail("surface tilt {}° and azimuth {}°: expected finite angles", tilt_deg, surface_azimuth_deg);
     // Eq. 47 with γ (from south) = Γ (from north) − 180°: cos(Γ − 180° − γ_s) = cos(Φ − γ_n).
     const double c = cos_deg(sun.zenith_deg) * cos_deg(tilt_deg) +
                      sin_deg(tilt_deg) * sin_deg(sun.zenith_deg) * cos_deg(sun.azimuth_deg - surface_azimuth_deg);

@@ -8,6 +8,7 @@
 #include "csv_fields.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/input_file.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/sky_longwave.h"
 #include "tirpol/thermal/solar_position.h"
@@ -37,6 +38,7 @@ const std::map<std::string, Range> kRanges = {
 }  // namespace
 
 WeatherSeries load_weather_csv(const std::filesystem::path& path, const Site& site, double max_gap_h) {
+    check_input_file(path);
     std::ifstream in(path);
     if (!in) fail("cannot open weather file {}", path.string());
     const std::string file = path.string();

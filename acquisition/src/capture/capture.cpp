@@ -9,6 +9,7 @@
 
 #include "tirpol/acquisition/internal/angles.h"
 #include "capture/blackbody_step.h"
+#include "capture/ffc_guard.h"
 #include "capture/record_writer.h"
 #include "tirpol/acquisition/internal/frame_averager.h"
 #include "tirpol/acquisition/internal/frame_gate.h"
@@ -147,7 +148,82 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     FrameGate gate(camera.info().frame_rate_hz);
     const auto settle_ns = static_cast<std::int64_t>(std::llround(plan.settle_s * 1e9));
     const auto frame_timeout_ns = static_cast<std::int64_t>(std::llround(plan.frame_timeout_s * 1e9));
-    for (const CaptureStep* step : todo) {
+    // Flat-field corrections: a cycle is the run of polarizer steps of one repeat; its records are held
+    // until the cycle proves free of FFCs, and it is taken again from its first step when it is not.
+    std::optional<detail::FfcGuard> guard;
+    if (options.ffc) guard.emplace(*options.ffc);
+    auto in_cycle = [&](std::size_t i) { return guard && todo[i]->kind == RecordKind::Polarizer; };
+    auto same_cycle = [&](std::size_t a, std::size_t b) {
+        return in_cycle(a) && in_cycle(b) && todo[a]->repeat == todo[b]->repeat;
+    };
+    struct HeldRecord {
+        const CaptureStep* step;
+        SessionRecord record;
+        Image image;
+        std::optional<double> rate_hz;
+    };
+    std::vector<HeldRecord> held;
+    std::size_t cycle_start = 0;
+    int cycles_started = 0, cycle_attempt = 0;
+    auto commit = [&](const CaptureStep& step, SessionRecord record, Image image, std::optional<double> rate_hz) {
+        try {
+            writer.submit(record, std::move(image), rate_hz);
+        } catch (const Error& e) {
+            write_failed(step, e);
+        }
+        summary.steps_recorded++;
+        summary.frames += static_cast<std::uint64_t>(step.frames);
+        summary.dropped += static_cast<std::uint64_t>(record.dropped);
+        summary.stale_discarded += static_cast<std::uint64_t>(record.timing->stale_frames_discarded);
+        if (progress) progress->advance();
+        report(CaptureProgress::Event::StepRecorded, step, step.frames, 0);
+    };
+    auto record_ffc = [&](const CaptureStep& step, const FfcEvent& event) {
+        try {
+            writer.flush();  // the session is written by one thread at a time
+            session.add_ffc_event(event);
+        } catch (const Error& e) {
+            write_failed(step, e);
+        }
+        spdlog::info("{} FFC (cycle {}): {}", to_string(event.kind), event.repeat + 1, event.reason);
+    };
+    // An FFC inside the cycle: its held records are dropped and the cycle starts again; returns the index
+    // of the cycle's first step.
+    auto retake_cycle = [&](const CaptureStep& step, const FfcEvent& event) {
+        record_ffc(step, event);
+        ++summary.ffc_detected;
+        held.clear();
+        guard->abandon_cycle();
+        if (++cycle_attempt >= options.ffc->max_cycle_attempts)
+            fail("step {}/{} ({}): an FFC fell inside polarizer cycle {} in each of {} attempts (last: {}); {} of {} "
+                 "steps are recorded in {}; put the core in manual FFC (or give its control link) and run again "
+                 "with --resume",
+                 step.index + 1, total, step.label, step.repeat + 1, cycle_attempt, event.reason, recorded(), total,
+                 session.dir().string());
+        const auto pause_ns = static_cast<std::int64_t>(options.ffc->detection_pause_s * 1e9);
+        if (!options.ffc->control && !sleep_until_host_ns(host_realtime_ns() + pause_ns, options))
+            fail("interrupted while waiting for an FFC to end (step {}/{}, {}); {} of {} steps are recorded in {}; run "
+                 "again with --resume",
+                 step.index + 1, total, step.label, recorded(), total, session.dir().string());
+        return cycle_start;
+    };
+    for (std::size_t ti = 0; ti < todo.size(); ++ti) {
+        const CaptureStep* step = todo[ti];
+        if (in_cycle(ti) && (ti == 0 || !same_cycle(ti - 1, ti))) {
+            const bool retry = ti == cycle_start && cycle_attempt > 0;
+            if (!retry) {
+                cycle_start = ti;
+                cycle_attempt = 0;
+            }
+            auto scheduled = guard->before_cycle(step->repeat, cycles_started, retry);
+            if (!scheduled) step_failed(*step, "camera control link", scheduled.error());
+            if (scheduled.value()) {
+                record_ffc(*step, *scheduled.value());
+                ++summary.ffc_scheduled;
+            }
+            if (!retry) ++cycles_started;
+        }
+        if (in_cycle(ti)) guard->begin_step();
         if (interrupted(options))
             fail("interrupted before step {}/{} ({}); {} of {} steps are recorded in {}; run again with --resume", step->index + 1,
                  total, step->label, recorded(), total, session.dir().string());
@@ -198,6 +274,11 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         SessionRecord record;
         double fpa_sum = 0.0;
         int fpa_count = 0;
+        std::optional<FfcEvent> spoiled;  // an FFC seen in this step's frames
+        FrameAudit audit;
+        const std::uint64_t incomplete_before = camera.statistics().incomplete;
+        FfcControl* link = options.ffc ? options.ffc->control : nullptr;
+        if (link) audit.core_before = check(link->core_state(), *step, "camera control link");
         while (averager.count() < static_cast<std::uint64_t>(step->frames)) {
             if (interrupted(options))
                 fail("interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps are recorded in {}; run again with --resume",
@@ -215,7 +296,18 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                                              timing.stale_frames_discarded)});
                 continue;
             }
+            if (in_cycle(ti)) {
+                if (auto why = guard->observe(frame)) {
+                    spoiled = guard->detected(step->repeat,
+                                              fmt::format("step {} ({}): {}", step->index + 1, step->label, *why));
+                    break;
+                }
+            }
             averager.add(frame);
+            audit.frame_id.push_back(static_cast<std::int64_t>(frame.frame_id));
+            audit.device_timestamp_ns.push_back(frame.device_timestamp_ns);
+            audit.host_timestamp_ns.push_back(frame.host_timestamp_ns);
+            audit.fpa_temperature_k.push_back(frame.fpa_temperature_k);
             report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()), frame.frame_id);
             if (averager.count() == 1) {
                 record.first_timestamp_ns = frame.host_timestamp_ns;
@@ -226,6 +318,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 fpa_sum += *frame.fpa_temperature_k;
                 ++fpa_count;
             }
+        }
+        if (spoiled) {
+            ti = retake_cycle(*step, *spoiled) - 1;  // the loop's ++ti brings it to the cycle's first step
+            continue;
         }
         if (blackbody) check(blackbody->finish(), *step, "blackbody");
         timing.angle_deg_after_frames = read_angle("after the frames");
@@ -253,17 +349,25 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         record.frames = step->frames;
         record.dropped = static_cast<std::int64_t>(camera.statistics().dropped - dropped_before);
         record.timing = timing;
-        try {
-            writer.submit(record, averager.to_image(), gate.delivered_rate_hz());
-        } catch (const Error& e) {
-            write_failed(*step, e);
+        audit.incomplete = static_cast<std::int64_t>(camera.statistics().incomplete - incomplete_before);
+        if (link) audit.core_after = check(link->core_state(), *step, "camera control link");
+        record.audit = std::move(audit);
+        if (!in_cycle(ti)) {
+            commit(*step, record, averager.to_image(), gate.delivered_rate_hz());
+            continue;
         }
-        summary.steps_recorded++;
-        summary.frames += static_cast<std::uint64_t>(step->frames);
-        summary.dropped += static_cast<std::uint64_t>(record.dropped);
-        summary.stale_discarded += static_cast<std::uint64_t>(timing.stale_frames_discarded);
-        if (progress) progress->advance();
-        report(CaptureProgress::Event::StepRecorded, *step, step->frames, 0);
+        guard->end_step(step->angle_deg);
+        held.push_back({step, record, averager.to_image(), gate.delivered_rate_hz()});
+        if (ti + 1 < todo.size() && same_cycle(ti, ti + 1)) continue;
+        auto found = guard->end_cycle(step->repeat);
+        if (!found) step_failed(*step, "camera control link", found.error());
+        if (found.value()) {
+            ti = retake_cycle(*step, *found.value()) - 1;
+            continue;
+        }
+        for (auto& h : held) commit(*h.step, std::move(h.record), std::move(h.image), h.rate_hz);
+        held.clear();
+        cycle_attempt = 0;
     }
     try {
         writer.flush();

@@ -19,6 +19,7 @@
 #include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture_plan.h"
+#include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
@@ -55,6 +56,11 @@ struct CaptureOptions {
     /// notebook's progress bar). An exception it throws ends the capture like a device error: the
     /// steps recorded before stay and the session resumes. Empty: not called.
     std::function<void(const CaptureProgress&)> on_progress;
+    /// Flat-field corrections (ffc.h): set, the polarizer steps of each plan repeat are one cycle whose
+    /// records are written only once the cycle is free of FFCs; FFCs are scheduled between cycles
+    /// through `ffc->control` when given, and a cycle an FFC fell in is taken again. Null: frames are
+    /// not watched for FFCs (a core left in auto FFC can bias S1 and S2).
+    const FfcOptions* ffc = nullptr;
 };
 
 struct CaptureSummary {
@@ -64,6 +70,8 @@ struct CaptureSummary {
     std::uint64_t frames = 0, dropped = 0;   ///< by this run
     std::uint64_t stale_discarded = 0;       ///< frames exposed before their step's settle end, by this run
     std::optional<double> delivered_frame_rate_hz;  ///< measured from the frames' reception times
+    int ffc_scheduled = 0;    ///< FFCs run between cycles by this run (CaptureOptions::ffc)
+    int ffc_detected = 0;     ///< FFCs found inside a cycle, each followed by taking that cycle again
 };
 
 /// Bytes a session of `steps` records of width × height frames may need (EXR upper bound).

@@ -40,6 +40,10 @@ inline constexpr double kStructuredResidualMk = 10.0;
 /// ≥ 3 blackbody temperatures) for `cal` fitted from `frames` (the same frames, same order).
 CalibrationQuality assess_calibration(const RadiometricCalibration& cal, const std::vector<BlackbodyFrame>& frames);
 
+/// Fraction (0..1) of `radiance`'s good, finite pixels outside the calibrated blackbody radiance range
+/// (their radiance is extrapolated); 0 when the calibration has no set-points or no good pixel.
+double outside_calibrated_range_fraction(const RadiometricCalibration& cal, const std::vector<float>& radiance);
+
 /// A warning when `radiance` (from counts_to_radiance) holds good pixels outside the calibrated
 /// blackbody radiance range, or `fpa_temperature_k` lies outside the calibrated FPA range by more
 /// than 0.5 K; names the calibrated range in kelvin. std::nullopt when all is inside.

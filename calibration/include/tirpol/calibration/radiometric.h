@@ -90,7 +90,9 @@ struct RadiometricCalibration {
 
 /// Fits the per-pixel model to ≥ 2 blackbody frames at distinct temperatures (≥ 3 for the quadratic
 /// model). Throws tirpol::Error naming the frame for: fewer temperatures than needed, size mismatch,
-/// NaN/inf counts, or too many saturated pixels. Bad pixels are detected as documented in BadPixel.
+/// NaN/inf counts, too many saturated pixels, or a gain ≤ 0 or not finite for most pixels (the records'
+/// temperatures do not belong to their frames; the message names the records whose median counts fall
+/// as the temperature rises). Bad pixels are detected as documented in BadPixel.
 RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width, int height,
                                        const Band& band, const RadiometricOptions& options = {});
 

@@ -5,9 +5,23 @@
 /// disk, permissions) leaves the old file untouched and throws tirpol::Error naming the path.
 
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <string_view>
 
 namespace tirpol {
+
+/// The first atomic write into a folder by a process also removes the temporary files that killed
+/// writes left there (remove_abandoned_temp_files).
+
+/// The process id in the name of one of these temporary files (".<name>.tmp-<pid>-<random><ext>"), or
+/// std::nullopt for any other name.
+std::optional<long> temp_file_owner_pid(const std::string& file_name);
+
+/// Removes from `folder` the temporary files of atomic writes that can no longer finish: named as
+/// above, last written before this process started, and whose process is not running (a live pid
+/// keeps its files: another run may be writing them). Returns how many were removed.
+std::size_t remove_abandoned_temp_files(const std::filesystem::path& folder);
 
 /// Writes `content` to `path` atomically.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);

@@ -8,7 +8,7 @@
 /// atomically, so after a crash (kill -9, power loss) the manifest lists only complete frames. A frame
 /// file that reached the disk but not the manifest is recovered on resume from its own header, which
 /// mirrors its record. An existing frame file is never overwritten.
-/// (Schema "tirpol.session" version 3; versions 1 and 2 still read.)
+/// (Schema "tirpol.session" version 4; versions 1 to 3 still read.)
 
 #include <cstdint>
 #include <filesystem>
@@ -29,7 +29,9 @@ inline constexpr const char* kSessionSchema = "tirpol.session";
 /// from v2 on `angle_deg_measured` is the read-back around the gated frames and is what reduction uses.
 /// v3 adds the blackbody controller (`blackbody_controller`) and each controlled record's
 /// `blackbody_readings`; its `blackbody_temperature_k` is then the mean reading during the frames.
-inline constexpr int kSessionSchemaVersion = 3;
+/// v4 adds `ffc_events` (the camera core's flat-field corrections, scheduled or detected) and each
+/// record's `audit` (per-frame ids, device and host clocks, FPA; the core's state around the step).
+inline constexpr int kSessionSchemaVersion = 4;
 /// The oldest version still read.
 inline constexpr int kSessionSchemaOldestReadable = 1;
 inline constexpr const char* kSessionManifestName = "session.json";
@@ -83,12 +85,54 @@ struct BlackbodyReadings {
     bool operator==(const BlackbodyReadings&) const = default;
 };
 
+/// What the camera said about each kept frame of a record, and the camera core's state around the
+/// step when a control link reports it (schema v4, written by the capture loop). In the manifest only:
+/// a record adopted on resume from its EXR header has none. Per-frame vectors hold one entry per kept
+/// frame, in order (as many as the record's `frames`).
+struct FrameAudit {
+    std::vector<std::int64_t> frame_id;             ///< the device's frame ids, unwrapped
+    std::vector<std::int64_t> device_timestamp_ns;  ///< the device's clock (0 when it has none)
+    std::vector<std::int64_t> host_timestamp_ns;    ///< host CLOCK_REALTIME at reception
+    std::vector<std::optional<double>> fpa_temperature_k;  ///< per frame when the camera reports it
+    std::int64_t incomplete = 0;  ///< frames the camera discarded as damaged during the step
+    /// The core's state from its control link (absent without one), read before and after the frames.
+    struct CoreState {
+        std::string ffc_mode, gain_mode;  ///< "manual", "auto", ...; "high", "low", ...
+        double fpa_temperature_k = 0.0;
+        std::int64_t device_frame_count = 0;
+        std::int64_t last_ffc_frame_count = 0;
+        bool operator==(const CoreState&) const = default;
+    };
+    std::optional<CoreState> core_before, core_after;
+
+    bool operator==(const FrameAudit&) const = default;
+};
+
 /// The blackbody controller as recorded in the manifest (mirrors acquisition::BlackbodyInfo).
 struct SessionBlackbodyController {
     std::string uri, vendor, model, serial, firmware;
 
     bool operator==(const SessionBlackbodyController&) const = default;
 };
+
+/// A flat-field correction (FFC) of the camera core during the capture (schema v4). An FFC shifts every
+/// pixel's offset, so the polarizer cycle it falls in is biased; the capture schedules FFCs between
+/// cycles and repeats a cycle an FFC was detected in (docs/acquisition-cameras.md, "FLIR Boson").
+struct FfcEvent {
+    enum class Kind {
+        Scheduled,  ///< commanded by the capture between polarizer cycles
+        Detected,   ///< found in a cycle (control link or frame data); that cycle was taken again
+    };
+    Kind kind = Kind::Scheduled;
+    std::int64_t host_timestamp_ns = 0;  ///< host CLOCK_REALTIME when it was commanded or detected
+    int repeat = 0;                      ///< the polarizer cycle (plan repeat) it preceded or fell in
+    std::optional<double> fpa_temperature_k;         ///< the core's FPA temperature then, when known
+    std::optional<std::int64_t> device_frame_count;  ///< the core's frame counter at the FFC, when known
+    std::string reason;  ///< why: "every cycle", "FPA moved 0.62 K", "frame mean stepped by 23.4 counts", ...
+
+    bool operator==(const FfcEvent&) const = default;
+};
+const char* to_string(FfcEvent::Kind kind);  ///< "scheduled", "detected"
 
 /// One recorded step: N frames averaged into one EXR.
 struct SessionRecord {
@@ -105,13 +149,14 @@ struct SessionRecord {
     std::optional<double> fpa_temperature_k;  ///< mean sensor temperature when the camera reports it
     std::optional<StepTiming> timing;     ///< v2 records written by the capture loop; absent in v1
     std::optional<BlackbodyReadings> blackbody_readings;  ///< v3: set by a blackbody controller
+    std::optional<FrameAudit> audit;      ///< v4: per-frame ids, clocks and FPA; the core's state
 
     bool operator==(const SessionRecord&) const = default;
 };
 
 /// The whole manifest.
 struct SessionManifest {
-    int schema_version = kSessionSchemaVersion;  ///< as read (1 to 3); always written as kSessionSchemaVersion
+    int schema_version = kSessionSchemaVersion;  ///< as read (1 to 4); always written as kSessionSchemaVersion
     std::string created_utc;     ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
     SessionCamera camera;
     SessionStage stage;
@@ -119,6 +164,7 @@ struct SessionManifest {
     nlohmann::json plan = nlohmann::json::object();      ///< the capture plan as run
     nlohmann::json metadata = nlohmann::json::object();  ///< free form (site, operator, targets, ...)
     std::vector<SessionRecord> records;
+    std::vector<FfcEvent> ffc_events;  ///< v4; empty when the camera core reports none
     bool complete = false;
 };
 
@@ -127,7 +173,7 @@ struct SessionManifest {
 /// frames that may have been exposed during the move.
 double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record);
 
-/// Manifest ⇄ JSON (schema v3; v1 and v2 read). `from_json` validates everything and throws tirpol::Error naming
+/// Manifest ⇄ JSON (schema v4; v1 to v3 read). `from_json` validates everything and throws tirpol::Error naming
 /// `source` (the file) and the field, e.g. "DIR/session.json: records[2].frames: expected an integer ≥ 1".
 nlohmann::json session_to_json(const SessionManifest& manifest);
 SessionManifest session_from_json(const nlohmann::json& json, const std::string& source);
@@ -142,7 +188,11 @@ SessionRecord record_from_attributes(const Attributes& attributes, const std::st
 /// every record's frame file present, no file listed twice. Throws tirpol::Error otherwise.
 SessionManifest read_session(const std::filesystem::path& dir);
 
-/// Reads one record's EXR and checks it has `counts` and `counts_std` at the camera's size.
+/// Reads one record's EXR and checks it has `counts` and `counts_std` at the camera's size, and that
+/// what its header says of itself (kind, angle_deg_requested, angle_deg_measured,
+/// blackbody_temperature_k, camera_serial, camera_model; SessionWriter::add_record writes them) agrees
+/// with the manifest's record and camera: tirpol::Error naming the frame, the manifest, the field and
+/// both values otherwise (a frame at 90° filed under 0° would be reduced with S1 negated).
 Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& manifest,
                          const SessionRecord& record);
 
@@ -182,6 +232,8 @@ public:
     /// Sets the frame rate the camera delivered (measured, Hz); written with the next manifest
     /// write (add_record, mark_complete).
     void set_camera_frame_rate(double frame_rate_hz);
+    /// Appends a flat-field correction event and rewrites the manifest.
+    void add_ffc_event(const FfcEvent& event);
     /// Replaces the free-form metadata and rewrites the manifest.
     void set_metadata(nlohmann::json metadata);
     /// Marks the session complete and rewrites the manifest.

@@ -18,10 +18,10 @@ inline StokesVector unpolarized(double s0) { return {s0, 0.0, 0.0, 0.0}; }
 /// angle of polarization `aop_rad` from the frame's reference axis.
 StokesVector linearly_polarized(double s0, double dolp, double aop_rad);
 
-/// Degree of linear polarization √(S1²+S2²)/S0; 0 where S0 ≤ 0.
+/// Degree of linear polarization √(S1²+S2²)/S0; 0 where S0 ≤ 0; NaN where S0, S1 or S2 is NaN.
 double dolp(const StokesVector& s);
 
-/// Degree of polarization √(S1²+S2²+S3²)/S0; 0 where S0 ≤ 0.
+/// Degree of polarization √(S1²+S2²+S3²)/S0; 0 where S0 ≤ 0; NaN where a component is NaN.
 double dop(const StokesVector& s);
 
 /// Angle of linear polarization ½·atan2(S2, S1) in radians, in (−π/2, π/2].

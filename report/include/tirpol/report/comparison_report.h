@@ -41,6 +41,13 @@ struct CompareOptions {
     /// radiance noise σ_I of one polarizer frame (NEDT × dL/dT), W/(m²·sr). With the four-angle
     /// reduction of paper eqs 14–16, σ(S0) = σ_I and σ(S1) = σ(S2) = √2 σ_I.
     std::optional<double> measured_frame_sigma;
+    /// Measurement errors common to every pixel of a region (they do not average down over its pixels):
+    /// a relative gain uncertainty (e.g. 0.005 from the blackbody's temperature and emissivity), which
+    /// scales S0, S1 and S2, and an offset uncertainty of S0 in the units of S0 (it cancels in S1, S2).
+    double measured_gain_sigma_relative = 0.0;
+    double measured_offset_sigma = 0.0;
+    /// False-alarm rate per region and power of the region-mean test (verdict.h).
+    TestDesign design;
     /// Names shown in the report and in error messages (usually the file paths).
     std::string measured_name = "measured";
     std::string simulated_name = "simulated";
@@ -73,6 +80,8 @@ struct NoiseSource {
     /// attribute (a render: ⌈spp/2⌉); infinite where the image states none (a variance taken as exact).
     double measured_dof = std::numeric_limits<double>::infinity();
     double simulated_dof = std::numeric_limits<double>::infinity();
+    /// The measured σ is one estimate for all pixels (a flat region's scatter), not a per-pixel one.
+    bool measured_shared = false;
 };
 
 struct RegionResult {
@@ -82,10 +91,19 @@ struct RegionResult {
     /// mean S1(region) − mean S1(background), W/(m²·sr); absent without a background region.
     std::optional<double> s1_contrast_measured, s1_contrast_simulated;
     std::map<std::string, ZStats> z;  ///< by quantity (kZQuantities) and "all" (pooled, for reference only)
-    std::map<std::string, ZVerdict> verdicts;  ///< by quantity (kZQuantities)
-    ZVerdict verdict = ZVerdict::NoData;       ///< the worst of `verdicts` (never the pooled z)
+    /// By quantity (kZQuantities): the region-mean agreement test and the per-pixel σ diagnostic.
+    std::map<std::string, QuantityVerdict> verdicts;
+    Agreement verdict = Agreement::NoData;  ///< ExceedsNoise when any quantity's mean test exceeds
     AopStats aop;                              ///< AoP over significantly polarized pixels
     std::optional<KelvinBias> s0_bias_k;       ///< absent without a band or a positive simulated S0
+};
+
+/// The measured image's radiometric calibration range (attributes written by the calibration's
+/// reduction): the fraction of the reduced frames' good pixels whose radiance lay outside the
+/// blackbody set-points' radiance range, i.e. was extrapolated.
+struct CalibrationRange {
+    double outside_fraction = 0.0;  ///< largest over the reduced frames, 0..1
+    double lo_k = 0.0, hi_k = 0.0;  ///< blackbody set-points, lowest and highest
 };
 
 struct CompareResult {
@@ -100,6 +118,10 @@ struct CompareResult {
     std::vector<std::filesystem::path> pngs;  ///< image figures
     std::vector<std::filesystem::path> svgs;  ///< plots (scatter, histograms), also inlined in the page
     std::vector<std::string> notes;        ///< warnings shown in the report (e.g. no simulation variance)
+    std::optional<CalibrationRange> calibration_range;  ///< absent when the measured image does not say
+    TestDesign design;                     ///< of the region-mean tests
+    /// What the σ of each side contains, in words (for the Summary and report.json).
+    std::string measured_sigma_contains, simulated_sigma_contains;
     /// Colour-scale limits [min, max] of the figures: "S0" (shared by measured and simulated),
     /// "S0_difference", …, "z"; in the units of the quantity.
     std::map<std::string, std::array<double, 2>> colour_scales;

@@ -1,39 +1,38 @@
 #pragma once
 /// \file verdict.h
-/// The verdict on one quantity's z statistic: do the measured − simulated differences exceed the
-/// stated noise, and is the stated noise itself plausible? A pooled verdict over S0, S1, S2 can hide a
-/// quantity that alone exceeds the noise, so verdicts are per quantity; a region's verdict is the
-/// worst of its quantities.
+/// A region's verdict on one quantity, in two separate parts: the agreement (is the region-mean
+/// difference within the noise of both sides, with the bias the test could have detected) and the
+/// σ diagnostic (is the stated per-pixel σ plausible, from the scatter of z). A region's agreement is
+/// "exceeds noise" when any of S0, S1, S2 exceeds it; each quantity is tested at the Šidák level that
+/// keeps the region's false-alarm rate at the design's.
 
 #include <string>
 
-#include "tirpol/report/statistics.h"
+#include "tirpol/report/mean_difference_test.h"
 
 namespace tirpol::report {
 
-/// RMS z below this with the fraction test passed: σ is overestimated (z ~ N(0, 1) has RMS 1).
-inline constexpr double kRmsLow = 0.7;
-/// RMS z above this: the differences or σ are wrong even if few pixels pass |z| > 2 (heavy tails).
-inline constexpr double kRmsHigh = 1.5;
-
-enum class ZVerdict {
-    NoData,              ///< no pixel with a valid z
-    Consistent,          ///< |z| > 2 fraction as expected from noise and RMS z compatible with 1
-    SigmaOverestimated,  ///< fraction fine but RMS z < kRmsLow: the stated σ is too large, the test is blunt
-    ExceedsNoise,        ///< |z| > 2 fraction beyond noise, or RMS z > kRmsHigh
+/// The verdict of one quantity in one region.
+struct QuantityVerdict {
+    MeanDifferenceTest mean;  ///< the agreement test of the region mean
+    SigmaDiagnostic sigma;    ///< the plausibility of the per-pixel σ
 };
 
-/// Classifies `z`. The RMS thresholds apply only when they are also more than three standard
-/// errors of the RMS (1/√(2n) for n normal values) away from 1, so a handful of pixels never flags.
-ZVerdict z_verdict(const ZStats& z);
+/// The worse of two agreements (ExceedsNoise > ConsistentWithNoise > NoData).
+Agreement worse(Agreement a, Agreement b);
 
-/// The worse of two verdicts (ExceedsNoise > SigmaOverestimated > Consistent > NoData).
-ZVerdict worse(ZVerdict a, ZVerdict b);
+/// "no data", "consistent with noise", "exceeds noise".
+std::string to_string(Agreement agreement);
 
-/// "no data", "consistent with noise", "σ overestimated", "exceeds noise".
-std::string to_string(ZVerdict verdict);
+/// "no data", "σ plausible", "σ overestimated", "σ underestimated".
+std::string to_string(SigmaCheck check);
 
-/// One sentence explaining `verdict` for `z` (e.g. "RMS z = 0.45: the stated σ is about 2.2× too large").
-std::string explain(ZVerdict verdict, const ZStats& z);
+/// One sentence on the agreement, e.g. "mean difference −0.012 ± 0.004 (t = −3.0, ν = 812, p = 0.003;
+/// detectable bias 0.013 at 1.7 % false alarm, 80 % power)".
+std::string explain(const MeanDifferenceTest& test);
+
+/// One sentence on the σ diagnostic, e.g. "z scatters with σ 0.45 (expected 1 ± 0.05): the stated σ is
+/// about 2.2× too large".
+std::string explain(const SigmaDiagnostic& diagnostic);
 
 }  // namespace tirpol::report

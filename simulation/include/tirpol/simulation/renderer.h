@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tirpol/core/image.h"
 #include "tirpol/simulation/scene.h"
@@ -56,6 +57,10 @@ struct RenderOptions {
     /// isothermal enclosure renders L_bb exactly. Off: the plain estimator, for tests of the sampling.
     /// Unset: the scene's sampling.estimator (default on).
     std::optional<bool> control_variate;
+    /// Not owned; null: every pixel. Otherwise width·height entries (row-major): only pixels with a
+    /// nonzero entry are traced, the others hold NaN in every channel. A traced pixel's values do not
+    /// depend on the mask (its random numbers are its own), so a fit can render only its regions.
+    const std::vector<std::uint8_t>* pixel_mask = nullptr;
 };
 
 struct RenderStatistics {

@@ -10,12 +10,15 @@
 /// step and the Python bindings only call run_twin() and print twin_summary().
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "tirpol/report/registration.h"
 #include "tirpol/report/verdict.h"
+#include "tirpol/simulation/scene.h"
+#include "tirpol/twin/calibration_setpoints.h"
 #include "tirpol/twin/camera_geometry.h"
 #include "tirpol/twin/instrument.h"
 
@@ -41,6 +44,16 @@ struct TwinOptions {
     std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted
     std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
     std::string tool_version = "tirpol";                   ///< written into the report's provenance ("tirpol X.Y.Z")
+    /// Changes the truth only (e.g. a material's roughness), not the scene the fitted render uses: what a
+    /// real scene differs by from its model. The report should flag the regions it touches. Null: none.
+    std::function<void(simulation::Scene&)> perturb_truth;
+    /// Compare against a render with the fitted target paint (true, the chain's point). False: the
+    /// comparison render keeps every material of the scene file, so the only difference between model
+    /// and truth is `perturb_truth` — the report's false alarms and detections are then its own, free of
+    /// the fit's method bias (eq 17's, docs/twin.md).
+    bool render_fitted_target = true;
+    /// False-alarm rate per region and power of the report's region-mean tests.
+    report::TestDesign report_design;
 };
 
 /// Extracted polarized emissivity of the target in one view (plane-of-emission frame, σ = 1 standard
@@ -61,12 +74,23 @@ struct TwinParameter {
     bool fixed = false;
 };
 
+/// The fit through the renderer (fitting/render_fit.h) of the same paint, beside eq 17's: the measured
+/// Stokes of the target in every view against renders of the scene with candidate n and σ.
+struct TwinRenderFit {
+    std::vector<TwinParameter> parameters;  ///< n and σ (k, ρ_D and the rest as in the scene's paint)
+    double reduced_chi2 = 0.0;
+    int dof = 0;
+    int renders = 0;
+    bool usable = false;
+    std::vector<std::string> warnings;
+};
+
 /// Agreement of measured and simulated Stokes in one region (from the comparison report).
 struct TwinRegionAgreement {
     std::string name;
     std::size_t pixels = 0;
-    double z_above_2[3] = {0.0, 0.0, 0.0};                ///< fraction of |z| > 2 of S0, S1, S2
-    report::ZVerdict verdict = report::ZVerdict::NoData;  ///< the worst of the three (report::z_verdict)
+    report::QuantityVerdict quantities[3];                 ///< S0, S1, S2: region-mean test and σ diagnostic
+    report::Agreement verdict = report::Agreement::NoData;  ///< ExceedsNoise when any quantity exceeds
 };
 
 /// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
@@ -84,16 +108,26 @@ struct TwinResult {
     std::vector<TwinEmissivity> emissivity;
     std::vector<TwinParameter> parameters;
     double reduced_chi2 = 0.0;
+    int dof = 0;                  ///< of the eq-17 fit
+    TwinRenderFit render_fit;     ///< the same paint fitted through the renderer
     CameraGeometryRecovery camera;      ///< the field camera's lens and pose (view 0), true and recovered
     report::Registration registration;  ///< of the comparison: by the recovered camera model, with the residual
     std::vector<TwinRegionAgreement> regions;
+    std::string report_summary;           ///< the report's Summary paragraph
+    BlackbodySetpoints blackbody;         ///< the calibration set-points, derived from the truth renders
+    double calibration_outside_fraction = 0.0;  ///< of view 0's reduced frames (the reduction's attribute)
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
     std::filesystem::path report_regions;   ///< the report's regions as YAML (for `tirpol compare --rois`)
+    std::filesystem::path fit_comparison;   ///< fit/paint_fits.txt: eq 17 and the renderer fit side by side
     std::map<std::string, double> seconds;  ///< per stage
 };
 
 /// Runs the whole chain. Throws tirpol::Error naming the stage that failed.
 TwinResult run_twin(const TwinOptions& options);
+
+/// The paint's parameters from eq 17's route and from the fit through the renderer, side by side
+/// (true value, each fit's value ± 1σ, χ²/dof): lines of the summary and the file fit/paint_fits.txt.
+std::string paint_fit_comparison(const TwinResult& r);
 
 /// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
 std::string twin_summary(const TwinResult& r);

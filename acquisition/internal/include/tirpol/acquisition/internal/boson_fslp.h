@@ -10,8 +10,9 @@
 ///   and the 12-byte command/reply headers are from the connector and dispatcher; function codes, enums
 ///   and return codes from the three headers.
 /// - flirpy, github.com/LJMUAstroecology/flirpy, flirpy/camera/boson.py: the same frame layout
-///   (">BBIII" header, CRC by `binascii.crc_hqx(..., 0x1D0F)` from the channel byte on, ">HB" footer)
-///   and BOSON_GETLASTFFCFRAMECOUNT (0x0005005D), which the 2015 SDK header lacks.
+///   (">BBIII" header, CRC by `binascii.crc_hqx(..., 0x1D0F)` from the channel byte on, ">HB" footer),
+///   BOSON_GETLASTFFCFRAMECOUNT (0x0005005D), which the 2015 SDK header lacks, and the 20-byte part
+///   number of BOSON_GETCAMERAPN (0x00050004).
 ///
 /// Frame: 0x8E, channel, payload..., CRC hi, CRC lo, 0xAE. The CRC is CRC-16/CCITT (polynomial 0x1021,
 /// not reflected, no final xor) started at 0x1D0F, i.e. CRC-16/AUG-CCITT, over the unescaped channel
@@ -50,6 +51,7 @@ enum FunctionCode : std::uint32_t {
     kGaoGetAveragerState = 0x0000000C,       ///< -> (u32)
     kRoicGetFrameCount = 0x00020002,         ///< -> (u32) frames since power-up
     kBosonGetCameraSn = 0x00050002,          ///< -> (u32)
+    kBosonGetCameraPn = 0x00050004,          ///< -> (20 bytes ASCII, NUL-padded; flirpy get_part_number)
     kBosonRunFfc = 0x00050007,               ///< no data either way
     kBosonSetFfcTempThreshold = 0x00050008,  ///< (u16, FPA change in 0.1 °C that triggers an auto FFC)
     kBosonGetFfcTempThreshold = 0x00050009,  ///< -> (u16)

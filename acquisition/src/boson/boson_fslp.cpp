@@ -57,6 +57,7 @@ const char* function_name(std::uint32_t function) {
         case kGaoGetAveragerState: return "GAO_GETAVERAGERSTATE";
         case kRoicGetFrameCount: return "ROIC_GETFRAMECOUNT";
         case kBosonGetCameraSn: return "BOSON_GETCAMERASN";
+        case kBosonGetCameraPn: return "BOSON_GETCAMERAPN";
         case kBosonRunFfc: return "BOSON_RUNFFC";
         case kBosonSetFfcTempThreshold: return "BOSON_SETFFCTEMPTHRESHOLD";
         case kBosonGetFfcTempThreshold: return "BOSON_GETFFCTEMPTHRESHOLD";
