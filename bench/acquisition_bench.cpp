@@ -6,37 +6,36 @@
 //                              written every 16 frames, as a capture session does per angle
 //   AverageWriteExrOnly        the same processing on frames already in memory: the pipeline's own
 //                              ceiling without camera or network
-// camera_fps is the rate the camera produced frames during the same run, from its frame ids and device
-// timestamps (the fake paces itself to period boundaries and slows down, without skipping ids, when it
-// lacks CPU time: on a loaded 2-core machine it competes with the pipeline).
-// Each iteration is one frame; items_per_second is the sustained frame rate. Compare the two at the
-// same requested rate: equal rates with dropped = incomplete = 0 mean the pipeline keeps up with the
-// camera; the requested rate of 1000 Hz (the fake's maximum, AcquisitionFramePeriod ≥ 1000 µs) shows
-// the ceiling of camera + network stack + pipeline on this machine.
+// camera_fps is the rate the camera produced frames during the same run, from its frame ids and
+// device timestamps (the fake paces itself to period boundaries and slows down, without skipping
+// ids, when it lacks CPU time: on a loaded 2-core machine it competes with the pipeline). Each
+// iteration is one frame; items_per_second is the sustained frame rate. Compare the two at the same
+// requested rate: equal rates with dropped = incomplete = 0 mean the pipeline keeps up with the
+// camera; the requested rate of 1000 Hz (the fake's maximum, AcquisitionFramePeriod ≥ 1000 µs)
+// shows the ceiling of camera + network stack + pipeline on this machine.
 
 #include <benchmark/benchmark.h>
-
-#include <filesystem>
-#include <memory>
-#include <optional>
-
-#include "../tests/acquisition/fake_gv_camera_process.h"
-#include "tirpol/acquisition/internal/aravis_camera.h"
-#include "tirpol/acquisition/internal/frame_averager.h"
-#include "tirpol/core/exr_io.h"
-#include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/internal/frame_gate.h"
-#include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
-#include "tirpol/acquisition/stage.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
-#include "tirpol/core/session.h"
 
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
 #include <thread>
+
+#include "../tests/acquisition/fake_gv_camera_process.h"
+#include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/internal/aravis_camera.h"
+#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/internal/frame_averager.h"
+#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/internal/sim_stage.h"
+#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/stage.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/core/session.h"
 
 namespace {
 
@@ -56,7 +55,8 @@ struct FakeCamera {
     FakeCamera() {
         const auto binary = test::find_fake_gv_camera_binary();
         if (!binary) {
-            problem = std::string(test::kFakeGvCameraBinary) + " not found (Debian package aravis-tools)";
+            problem =
+                std::string(test::kFakeGvCameraBinary) + " not found (Debian package aravis-tools)";
             return;
         }
         lock = std::make_unique<test::LoopbackGigELock>();
@@ -65,9 +65,10 @@ struct FakeCamera {
     }
 };
 
-/// The shared fake camera, started on first use. GatedCapture serves GVCP on the same loopback port from
-/// inside this process and takes the same inter-process lock (an flock on a second descriptor, which
-/// would wait forever for the one held here): it stops this camera first with release_fake_camera().
+/// The shared fake camera, started on first use. GatedCapture serves GVCP on the same loopback port
+/// from inside this process and takes the same inter-process lock (an flock on a second descriptor,
+/// which would wait forever for the one held here): it stops this camera first with
+/// release_fake_camera().
 std::optional<FakeCamera>& fake_camera_slot() {
     static std::optional<FakeCamera> camera;
     return camera;
@@ -117,7 +118,9 @@ struct RateProbe {
         last_ns = f.device_timestamp_ns;
     }
     double fps() const {
-        return last_ns > first_ns ? static_cast<double>(last_id - first_id) * 1e9 / static_cast<double>(last_ns - first_ns) : 0.0;
+        return last_ns > first_ns ? static_cast<double>(last_id - first_id) * 1e9 /
+                                        static_cast<double>(last_ns - first_ns)
+                                  : 0.0;
     }
 };
 
@@ -165,7 +168,8 @@ void GrabAverageWriteExr(benchmark::State& state) {
         probe.see(frame.value());
         averager.add(frame.value());
         if (averager.count() == kFramesPerExr) {
-            write_exr(dir / ("angle_" + std::to_string(written++ % 4) + ".exr"), averager.to_image());
+            write_exr(dir / ("angle_" + std::to_string(written++ % 4) + ".exr"),
+                      averager.to_image());
             averager.reset();
         }
     }
@@ -179,7 +183,8 @@ void AverageWriteExrOnly(benchmark::State& state) {
     frame.width = kWidth;
     frame.height = kHeight;
     frame.counts.resize(static_cast<std::size_t>(kWidth) * kHeight);
-    for (std::size_t i = 0; i < frame.counts.size(); ++i) frame.counts[i] = static_cast<float>((i * 7919u) % 65536u);
+    for (std::size_t i = 0; i < frame.counts.size(); ++i)
+        frame.counts[i] = static_cast<float>((i * 7919u) % 65536u);
     const auto dir = std::filesystem::temp_directory_path() / "tirpol-acquisition-bench-only";
     std::filesystem::create_directories(dir);
     FrameAverager averager;
@@ -187,7 +192,8 @@ void AverageWriteExrOnly(benchmark::State& state) {
     for (auto _ : state) {
         averager.add(frame);
         if (averager.count() == kFramesPerExr) {
-            write_exr(dir / ("angle_" + std::to_string(written++ % 4) + ".exr"), averager.to_image());
+            write_exr(dir / ("angle_" + std::to_string(written++ % 4) + ".exr"),
+                      averager.to_image());
             averager.reset();
         }
     }
@@ -195,22 +201,35 @@ void AverageWriteExrOnly(benchmark::State& state) {
     std::filesystem::remove_all(dir);
 }
 
-BENCHMARK(AverageWriteExrOnly)->Iterations(kFramesPerRun)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(Grab)->Arg(30)->Arg(60)->Arg(120)->Arg(1000)->Iterations(kFramesPerRun)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(AverageWriteExrOnly)
+    ->Iterations(kFramesPerRun)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(Grab)
+    ->Arg(30)
+    ->Arg(60)
+    ->Arg(120)
+    ->Arg(1000)
+    ->Iterations(kFramesPerRun)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(GrabAverageWriteExr)
-    ->Arg(30)->Arg(60)->Arg(120)->Arg(1000)
+    ->Arg(30)
+    ->Arg(60)
+    ->Arg(120)
+    ->Arg(1000)
     ->Iterations(kFramesPerRun)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-
-// ---- Full 4-angle set: capture loop overhead -------------------------------------------------------
-// FourAngleSet/<deg_per_s>/<fps>: one iteration = run_capture of the default 0/45/90/135 plan
-// (16 frames per angle, no settle) into a fresh session: APT stage = the tirpol-stage-sim engine on a
-// pseudo-terminal driven through the real serial code; camera = a 640×512 simulated camera free-running
-// at <fps>. Reference in the same run: the time the devices alone need, Σ|Δθ|/speed + frames/fps.
-// overhead_ratio = measured / reference (1.0 = no overhead; the remainder is serial round trips, the
-// frames the gate discards after each move (≈ 1.5 periods), averaging and the 4 EXR + manifest writes).
+// ---- Full 4-angle set: capture loop overhead
+// ------------------------------------------------------- FourAngleSet/<deg_per_s>/<fps>: one
+// iteration = run_capture of the default 0/45/90/135 plan (16 frames per angle, no settle) into a
+// fresh session: APT stage = the tirpol-stage-sim engine on a pseudo-terminal driven through the
+// real serial code; camera = a 640×512 simulated camera free-running at <fps>. Reference in the
+// same run: the time the devices alone need, Σ|Δθ|/speed + frames/fps. overhead_ratio = measured /
+// reference (1.0 = no overhead; the remainder is serial round trips, the frames the gate discards
+// after each move (≈ 1.5 periods), averaging and the 4 EXR + manifest writes).
 
 void FourAngleSet(benchmark::State& state) {
     const double deg_per_s = static_cast<double>(state.range(0));
@@ -226,14 +245,17 @@ void FourAngleSet(benchmark::State& state) {
     {
         auto stage = open_stage("thorlabs-apt://" + pty.slave_path()).value_or_throw();
         stage->home(std::chrono::seconds(10)).value_or_throw();
-        stage->move_absolute(135.0, std::chrono::seconds(10)).value_or_throw();  // where each set ends
+        stage->move_absolute(135.0, std::chrono::seconds(10))
+            .value_or_throw();  // where each set ends
         SimulatedCameraConfig config;
         config.width = kWidth;
         config.height = kHeight;
         config.noise_std_counts = 20.0;
         config.frame_rate_hz = fps;  // free-running on its own clock
         SimulatedCamera camera(config, [](double a, std::vector<float>& out) {
-            std::fill(out.begin(), out.end(), static_cast<float>(8000.0 + 500.0 * std::cos(2.0 * a * 3.14159265358979 / 180.0)));
+            std::fill(
+                out.begin(), out.end(),
+                static_cast<float>(8000.0 + 500.0 * std::cos(2.0 * a * 3.14159265358979 / 180.0)));
         });
         CapturePlan plan;
         plan.settle_s = 0.0;
@@ -245,27 +267,38 @@ void FourAngleSet(benchmark::State& state) {
         double measured_s = 0.0;
         for (auto _ : state) {
             const auto t0 = std::chrono::steady_clock::now();
-            auto session = SessionWriter::create(root / std::to_string(run++), new_session_manifest(camera.info(), stage->info(), plan));
+            auto session =
+                SessionWriter::create(root / std::to_string(run++),
+                                      new_session_manifest(camera.info(), stage->info(), plan));
             CaptureOptions options;
             options.progress_stream = nullptr;
             run_capture(camera, *stage, plan, session, options);
-            measured_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            measured_s +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         std::filesystem::remove_all(root);
         state.counters["reference_s"] = reference_s;
         state.counters["measured_s"] = measured_s / static_cast<double>(state.iterations());
-        state.counters["overhead_ratio"] = measured_s / static_cast<double>(state.iterations()) / reference_s;
+        state.counters["overhead_ratio"] =
+            measured_s / static_cast<double>(state.iterations()) / reference_s;
     }
     stop = true;
     server.join();
 }
-BENCHMARK(FourAngleSet)->Args({360, 60})->Args({90, 60})->Iterations(3)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(FourAngleSet)
+    ->Args({360, 60})
+    ->Args({90, 60})
+    ->Iterations(3)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
-// ---- Gated capture at the camera's full rate --------------------------------------------------------
-// GatedCapture/<fps>: the in-process fake GigE Vision camera (FakeGigECameraServer, 640×512 Mono16,
-// free-running at <fps> requested — 1000 is its maximum — over real GVSP on loopback) looks through a
-// sim:// stage turning at 360°/s. In the same run:
-//   1. the camera alone, before and after the capture: 300 frames grabbed and thrown away each time;
+// ---- Gated capture at the camera's full rate
+// -------------------------------------------------------- GatedCapture/<fps>: the in-process fake
+// GigE Vision camera (FakeGigECameraServer, 640×512 Mono16, free-running at <fps> requested — 1000
+// is its maximum — over real GVSP on loopback) looks through a sim:// stage turning at 360°/s. In
+// the same run:
+//   1. the camera alone, before and after the capture: 300 frames grabbed and thrown away each
+//   time;
 //      camera_fps = the mean of the two, in frames per second of reception time (what the camera +
 //      network deliver on this machine now; the load of a shared machine drifts);
 //   2. run_capture of 0/45/90/135° × 2 repeats × 64 frames, settle 0, EXR + manifest written by the
@@ -274,7 +307,8 @@ BENCHMARK(FourAngleSet)->Args({360, 60})->Args({90, 60})->Iterations(3)->UseReal
 // ratio = capture_fps / camera_fps (issue 12 asks ≥ 0.95); dropped = frames the stream lost during
 // the capture (EXR writing stalling the grab shows up here). Each frame carries, noise-free in its
 // first row, 100 × the stage's physical angle when it was exposed: a record with any frame from
-// another angle has counts_std ≠ 0 there or a mean ≠ 100 × its angle. foreign_records counts them (0).
+// another angle has counts_std ≠ 0 there or a mean ≠ 100 × its angle. foreign_records counts them
+// (0).
 void GatedCapture(benchmark::State& state) {
     release_fake_camera();
     test::LoopbackGigELock gige_lock;
@@ -332,7 +366,8 @@ void GatedCapture(benchmark::State& state) {
         const double before_fps = camera_alone_fps();
         // 2. The capture.
         const auto dir = root / std::to_string(run++);
-        auto session = SessionWriter::create(dir, new_session_manifest(camera.info(), stage->info(), plan));
+        auto session =
+            SessionWriter::create(dir, new_session_manifest(camera.info(), stage->info(), plan));
         CaptureOptions capture_options;
         capture_options.progress_stream = nullptr;
         const std::uint64_t dropped_before = camera.statistics().dropped;

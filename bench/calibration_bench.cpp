@@ -44,7 +44,8 @@ const Session& session() {
         s.grid.width = kW;
         s.grid.height = kH;
         for (double a : kAngles) {
-            s.grid.positions.push_back({a, std::vector<float>(kN, 0.8f), std::vector<float>(kN, 3.0f), {}});
+            s.grid.positions.push_back(
+                {a, std::vector<float>(kN, 0.8f), std::vector<float>(kN, 3.0f), {}});
             AnalyzerImage im{a, {}, {}, "bench"};
             for (std::size_t i = 0; i < kN; ++i) {
                 im.signal.push_back(5000.0f + 100.0f * (20.0f + 0.1f * unit(rng)));
@@ -64,13 +65,16 @@ void BM_MemoryCopyOfInputs(benchmark::State& state) {
     for (auto _ : state) {
         for (std::size_t k = 0; k < 4; ++k) {
             std::memcpy(dst.data() + (2 * k) * kN, s.counts[k].signal.data(), kN * sizeof(float));
-            std::memcpy(dst.data() + (2 * k + 1) * kN, s.counts[k].signal_std.data(), kN * sizeof(float));
+            std::memcpy(dst.data() + (2 * k + 1) * kN, s.counts[k].signal_std.data(),
+                        kN * sizeof(float));
         }
         benchmark::DoNotOptimize(dst.data());
         benchmark::ClobberMemory();
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN * 8 * sizeof(float)));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
+    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN * 8 * sizeof(float)));
 }
 
 // Stokes reduction with wire-grid correction and uncertainty propagation (S0..AoP + 5 σ channels).
@@ -80,22 +84,28 @@ void BM_ReduceStokesWithUncertainties(benchmark::State& state) {
         Image out = reduce_stokes(s.counts, kW, kH, s.model, &s.grid);
         benchmark::DoNotOptimize(out.channel("S1").data());
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN * 8 * sizeof(float)));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
+    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN * 8 * sizeof(float)));
 }
 
-// The whole in-memory `reduce`: counts → radiance (with bad-pixel replacement) per angle, then Stokes.
+// The whole in-memory `reduce`: counts → radiance (with bad-pixel replacement) per angle, then
+// Stokes.
 void BM_CountsToStokes(benchmark::State& state) {
     const Session& s = session();
     for (auto _ : state) {
         std::vector<AnalyzerImage> radiance;
         for (const auto& im : s.counts)
-            radiance.push_back({im.angle_deg, counts_to_radiance(s.radiometric, im.signal), im.signal_std, im.source});
+            radiance.push_back({im.angle_deg, counts_to_radiance(s.radiometric, im.signal),
+                                im.signal_std, im.source});
         Image out = reduce_stokes(radiance, kW, kH, s.model, &s.grid);
         benchmark::DoNotOptimize(out.channel("S1").data());
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN * 8 * sizeof(float)));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
+    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN * 8 * sizeof(float)));
 }
 
 // Counts → radiance of the 4 angle images alone.
@@ -106,11 +116,13 @@ void BM_CountsToRadiance(benchmark::State& state) {
             auto radiance = counts_to_radiance(s.radiometric, im.signal);
             benchmark::DoNotOptimize(radiance.data());
         }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
 }
 
 // FPA-temperature-dependent calibration (issue 15): blackbody at 8 set-points × 3 camera
-// temperatures on a 640×512 camera, the frames held in memory as `calibrate radiometric` holds them.
+// temperatures on a 640×512 camera, the frames held in memory as `calibrate radiometric` holds
+// them.
 struct FpaCalibrationInputs {
     std::vector<BlackbodyFrame> frames;
     RadiometricCalibration fitted;
@@ -127,7 +139,8 @@ const FpaCalibrationInputs& fpa_inputs() {
         const Band band(8.0, 14.0);
         unsigned seed = 1;
         for (double fpa : {295.65, 303.15, 310.65})
-            for (int j = 0; j < 8; ++j) in.frames.push_back(truth.frame(band, 278.15 + 8.0 * j, fpa, ++seed));
+            for (int j = 0; j < 8; ++j)
+                in.frames.push_back(truth.frame(band, 278.15 + 8.0 * j, fpa, ++seed));
         RadiometricOptions options;
         options.fpa_degree = 1;
         in.fitted = fit_radiometric(in.frames, kW, kH, band, options);
@@ -137,7 +150,8 @@ const FpaCalibrationInputs& fpa_inputs() {
     return instance;
 }
 
-// The fit: design and its pseudo-inverse once, then a 4×24 product per pixel, residuals, bad pixels.
+// The fit: design and its pseudo-inverse once, then a 4×24 product per pixel, residuals, bad
+// pixels.
 void BM_FitFpaCalibration_8SetPoints_3CameraTemperatures(benchmark::State& state) {
     const auto& in = fpa_inputs();
     RadiometricOptions options;
@@ -146,7 +160,8 @@ void BM_FitFpaCalibration_8SetPoints_3CameraTemperatures(benchmark::State& state
         auto cal = fit_radiometric(in.frames, kW, kH, Band(8.0, 14.0), options);
         benchmark::DoNotOptimize(cal.gain.data());
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
 }
 
 // Applying it to one frame at its own FPA temperature; items/s ÷ kN = frames per second, to set
@@ -157,20 +172,25 @@ void BM_ApplyFpaCalibrationPerFrame(benchmark::State& state) {
         auto radiance = counts_to_radiance(in.fitted, in.scene.counts, in.scene.fpa_temperature_k);
         benchmark::DoNotOptimize(radiance.data());
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
-    state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
+    state.counters["frames_per_s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // Reference in the same run: the single-state inverse of the same frame.
 void BM_ApplySingleStateCalibrationPerFrame(benchmark::State& state) {
     const auto& in = fpa_inputs();
-    const RadiometricCalibration single = at_fpa_temperature(in.fitted, in.scene.fpa_temperature_k, "bench");
+    const RadiometricCalibration single =
+        at_fpa_temperature(in.fitted, in.scene.fpa_temperature_k, "bench");
     for (auto _ : state) {
         auto radiance = counts_to_radiance(single, in.scene.counts);
         benchmark::DoNotOptimize(radiance.data());
     }
-    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kN));
-    state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(kN));
+    state.counters["frames_per_s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 BENCHMARK(BM_MemoryCopyOfInputs)->Unit(benchmark::kMillisecond);

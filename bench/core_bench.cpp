@@ -1,5 +1,6 @@
 // Core throughput: Planck, band radiance, brightness temperature, Stokes frame changes, EXR writes.
-// Each group carries its own reference (a single Planck evaluation, a memcpy) so figures read as ratios.
+// Each group carries its own reference (a single Planck evaluation, a memcpy) so figures read as
+// ratios.
 
 #include <benchmark/benchmark.h>
 
@@ -54,7 +55,8 @@ void BM_StokesChangeFrame(benchmark::State& state) {
     std::size_t i = 0;
     for (auto _ : state) {
         const Vec3& k = dirs[i++ & 1023];
-        benchmark::DoNotOptimize(change_frame(s, world_frame(k), surface_frame(k, dirs[(i * 7) & 1023])));
+        benchmark::DoNotOptimize(
+            change_frame(s, world_frame(k), surface_frame(k, dirs[(i * 7) & 1023])));
     }
 }
 BENCHMARK(BM_StokesChangeFrame);
@@ -78,7 +80,8 @@ void BM_WriteStokesExr640x512(benchmark::State& state) {
     const auto path = std::filesystem::temp_directory_path() / "tirpol-bench.exr";
     for (auto _ : state) write_exr(path, img);
     std::filesystem::remove(path);
-    state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * img.pixel_count() * 6 * sizeof(float)));
+    state.SetBytesProcessed(
+        static_cast<int64_t>(state.iterations() * img.pixel_count() * 6 * sizeof(float)));
 }
 BENCHMARK(BM_WriteStokesExr640x512)->Unit(benchmark::kMillisecond);
 

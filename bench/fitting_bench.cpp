@@ -23,15 +23,16 @@ using namespace tirpol::fitting;
 // The flat black paint of config/materials (n 1.6, k 0.1, σ 0.35) with a small diffuse term,
 // 20 angles 0–85.5°, noise of a good measurement.
 EmissivityDataset paint_measurement() {
-    const materials::ShellTargetParameters<double> truth{1.6, 0.1, 0.35, 1.0, deg_to_rad(90.0), deg_to_rad(1e6),
-                                                         0.005, 0.0};
+    const materials::ShellTargetParameters<double> truth{
+        1.6, 0.1, 0.35, 1.0, deg_to_rad(90.0), deg_to_rad(1e6), 0.005, 0.0};
     std::mt19937_64 rng(20);
     std::normal_distribution<double> normal;
     EmissivityDataset d{"bench", 10.0, {}};
     for (int i = 0; i < 20; ++i) {
         const double a = 4.5 * i;
         const auto [s0, s1] = EmissivityQuadrature(deg_to_rad(a)).emissivity(truth);
-        d.samples.push_back({a, s0 + 0.004 * normal(rng), 0.004, s1 + 0.002 * normal(rng), 0.002, ""});
+        d.samples.push_back(
+            {a, s0 + 0.004 * normal(rng), 0.004, s1 + 0.002 * normal(rng), 0.002, ""});
     }
     return d;
 }
@@ -58,8 +59,12 @@ void fit_sixteen_starts(benchmark::State& state, Derivatives derivatives) {
     state.counters["starts_reaching_best"] = fraction;
 }
 
-void BM_Fit16Starts_AutoDiff(benchmark::State& state) { fit_sixteen_starts(state, Derivatives::Automatic); }
-void BM_Fit16Starts_NumericDiff(benchmark::State& state) { fit_sixteen_starts(state, Derivatives::Numeric); }
+void BM_Fit16Starts_AutoDiff(benchmark::State& state) {
+    fit_sixteen_starts(state, Derivatives::Automatic);
+}
+void BM_Fit16Starts_NumericDiff(benchmark::State& state) {
+    fit_sixteen_starts(state, Derivatives::Numeric);
+}
 
 void evaluations(benchmark::State& state, Derivatives derivatives) {
     const MicrofacetFitProblem problem({paint_measurement()}, options(derivatives));
@@ -73,11 +78,16 @@ void evaluations(benchmark::State& state, Derivatives derivatives) {
         benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_ResidualJacobian_AutoDiff(benchmark::State& state) { evaluations(state, Derivatives::Automatic); }
-void BM_ResidualJacobian_NumericDiff(benchmark::State& state) { evaluations(state, Derivatives::Numeric); }
+void BM_ResidualJacobian_AutoDiff(benchmark::State& state) {
+    evaluations(state, Derivatives::Automatic);
+}
+void BM_ResidualJacobian_NumericDiff(benchmark::State& state) {
+    evaluations(state, Derivatives::Numeric);
+}
 
-// The twin's three camera positions; the measurement is the truth rendered with its own seed, its σ the
-// render's own; the emissivity tables of the unchanged materials come from the disk cache (as in use).
+// The twin's three camera positions; the measurement is the truth rendered with its own seed, its σ
+// the render's own; the emissivity tables of the unchanged materials come from the disk cache (as
+// in use).
 void BM_RenderFit_3Views_160x120_2Params(benchmark::State& state) {
     simulation::Scene scene = simulation::load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(160, 120);
@@ -87,10 +97,12 @@ void BM_RenderFit_3Views_160x120_2Params(benchmark::State& state) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i)
         if (scene.objects[i].name == "panel_flat_black_paint") panel = i;
     std::vector<RenderFitView> views;
-    for (const Vec3& position : {Vec3(0.0, -6.0, 1.6), Vec3(0.0, -5.0, 3.4), Vec3(0.0, -3.8, 4.6)}) {
+    for (const Vec3& position :
+         {Vec3(0.0, -6.0, 1.6), Vec3(0.0, -5.0, 3.4), Vec3(0.0, -3.8, 4.6)}) {
         simulation::Scene s = scene;
-        s.camera = simulation::Camera(scene.camera.width(), scene.camera.height(), scene.camera.intrinsics(), position,
-                                      simulation::Camera::look_at(position, at, Vec3(0.0, 0.0, 1.0)));
+        s.camera = simulation::Camera(
+            scene.camera.width(), scene.camera.height(), scene.camera.intrinsics(), position,
+            simulation::Camera::look_at(position, at, Vec3(0.0, 0.0, 1.0)));
         s.sampling.seed = 1000 + views.size();
         Image measured = simulation::render(s);
         for (const char* k : {"S0", "S1", "S2"}) {
@@ -116,7 +128,10 @@ void BM_RenderFit_3Views_160x120_2Params(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_RenderFit_3Views_160x120_2Params)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_RenderFit_3Views_160x120_2Params)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 BENCHMARK(BM_Fit16Starts_AutoDiff)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_Fit16Starts_NumericDiff)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_ResidualJacobian_AutoDiff)->Unit(benchmark::kMillisecond);

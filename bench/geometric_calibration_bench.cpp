@@ -1,7 +1,8 @@
 // Detection + calibration of 20 views of a 640×512 checkerboard (issue 14: ≤ 2 s on 2 cores),
 // against a copy of the same 20 frames measured in the same run (the cost of touching the input).
-// Frames are rasterised through a distorted LWIR lens (core CameraModel) with 4×4 supersampled edges,
-// optical blur ignored; a 14-bit pedestal, 60 counts of contrast and inverted polarity as in the field.
+// Frames are rasterised through a distorted LWIR lens (core CameraModel) with 4×4 supersampled
+// edges, optical blur ignored; a 14-bit pedestal, 60 counts of contrast and inverted polarity as in
+// the field.
 
 #include <benchmark/benchmark.h>
 
@@ -49,8 +50,10 @@ const std::vector<std::vector<float>>& frames() {
         std::normal_distribution<float> noise(0.0f, 2.0f);
         for (int v = 0; v < kViews; ++v) {
             const double tilt = deg_to_rad(20.0 + 4.0 * (v % 5)), axis = 2.0 * kPi * v / kViews;
-            const Mat3 r = Eigen::AngleAxisd(tilt, Vec3(std::cos(axis), std::sin(axis), 0)).toRotationMatrix();
-            const Vec3 centre(0.03 * std::cos(3 * axis), 0.02 * std::sin(2 * axis), 0.85 + 0.02 * (v % 3));
+            const Mat3 r =
+                Eigen::AngleAxisd(tilt, Vec3(std::cos(axis), std::sin(axis), 0)).toRotationMatrix();
+            const Vec3 centre(0.03 * std::cos(3 * axis), 0.02 * std::sin(2 * axis),
+                              0.85 + 0.02 * (v % 3));
             const Vec3 normal = r.col(2), ex = r.col(0), ey = r.col(1);
             std::vector<float> frame(static_cast<std::size_t>(kW) * kH, 0.0f);
             for (std::size_t i = 0; i < rays.size(); ++i) {

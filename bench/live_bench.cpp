@@ -5,14 +5,14 @@
 //   reference  no page open            frames the grab thread received per second
 //   page       headless Chromium(s) showing the page (S0 drawn at the browser's pace)
 //   reference  no page again           (the two references are averaged: drift cancels)
-// Counters: ref_fps, page_fps, ratio = page_fps / ref_fps (issue 17 asks ≥ 0.98), dropped (frames the
-// stream lost in the page window), cam_ref_fps / cam_page_fps (the rate the fake camera itself produced,
-// from frame ids over device time: the fake is a process on the same 2 cores and slows down, without
-// skipping ids, when Chromium takes its CPU — a real camera does not), shown_fps (frames the page drew
-// per second), and the server
-// process's CPU use (user + system time of every thread of this process — Aravis's stream thread, the
-// grab thread, the HTTP threads — over wall time, in % of one core) with and without the page.
-// Chromium's own CPU is not counted: it is the browser's, as on the operator's laptop.
+// Counters: ref_fps, page_fps, ratio = page_fps / ref_fps (issue 17 asks ≥ 0.98), dropped (frames
+// the stream lost in the page window), cam_ref_fps / cam_page_fps (the rate the fake camera itself
+// produced, from frame ids over device time: the fake is a process on the same 2 cores and slows
+// down, without skipping ids, when Chromium takes its CPU — a real camera does not), shown_fps
+// (frames the page drew per second), and the server process's CPU use (user + system time of every
+// thread of this process — Aravis's stream thread, the grab thread, the HTTP threads — over wall
+// time, in % of one core) with and without the page. Chromium's own CPU is not counted: it is the
+// browser's, as on the operator's laptop.
 
 #include <benchmark/benchmark.h>
 #include <httplib.h>
@@ -32,7 +32,8 @@ using namespace tirpol;
 using namespace std::chrono_literals;
 
 constexpr auto kWindow = 8s;
-constexpr const char* kCameraUri = "aravis://Aravis-Fake-GV01?pixel_format=Mono16&width=640&height=512&fps=30";
+constexpr const char* kCameraUri =
+    "aravis://Aravis-Fake-GV01?pixel_format=Mono16&width=640&height=512&fps=30";
 
 double cpu_seconds() {
     rusage u{};
@@ -50,7 +51,8 @@ std::string find_chromium() {
 
 struct Window {
     double fps = 0.0, cpu_percent = 0.0;
-    double camera_fps = 0.0;  ///< frames the camera produced per second of its own clock (frame ids, device timestamps)
+    double camera_fps = 0.0;  ///< frames the camera produced per second of its own clock (frame
+                              ///< ids, device timestamps)
     std::uint64_t dropped = 0;
 };
 
@@ -61,14 +63,20 @@ Window measure(const live::LiveView& view) {
     const auto t0 = std::chrono::steady_clock::now();
     std::this_thread::sleep_for(kWindow);
     const auto s1 = view.status()["camera"];
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Window w;
-    w.fps = static_cast<double>(s1["grabbed"].get<std::uint64_t>() - s0["grabbed"].get<std::uint64_t>()) / wall;
+    w.fps = static_cast<double>(s1["grabbed"].get<std::uint64_t>() -
+                                s0["grabbed"].get<std::uint64_t>()) /
+            wall;
     w.cpu_percent = 100.0 * (cpu_seconds() - cpu0) / wall;
     w.dropped = s1["dropped"].get<std::uint64_t>() - s0["dropped"].get<std::uint64_t>();
-    const auto device_ns = s1["device_timestamp_ns"].get<std::int64_t>() - s0["device_timestamp_ns"].get<std::int64_t>();
+    const auto device_ns = s1["device_timestamp_ns"].get<std::int64_t>() -
+                           s0["device_timestamp_ns"].get<std::int64_t>();
     if (device_ns > 0)
-        w.camera_fps = 1e9 * static_cast<double>(s1["frame_id"].get<std::uint64_t>() - s0["frame_id"].get<std::uint64_t>()) /
+        w.camera_fps = 1e9 *
+                       static_cast<double>(s1["frame_id"].get<std::uint64_t>() -
+                                           s0["frame_id"].get<std::uint64_t>()) /
                        static_cast<double>(device_ns);
     return w;
 }
@@ -100,8 +108,8 @@ void LiveViewPageOpen(benchmark::State& state) {
     live::LiveView view(options);
     live::LiveServer server(view, {});
     std::thread serving([&] { server.run(); });
-    const auto profile_root =
-        std::filesystem::temp_directory_path() / ("tirpol-live-bench-" + std::to_string(::getpid()));
+    const auto profile_root = std::filesystem::temp_directory_path() /
+                              ("tirpol-live-bench-" + std::to_string(::getpid()));
 
     for (auto _ : state) {
         std::this_thread::sleep_for(2s);  // stream start-up
@@ -110,12 +118,14 @@ void LiveViewPageOpen(benchmark::State& state) {
         for (int p = 0; p < pages; ++p) {
             const std::string id = "bench" + std::to_string(p);
             browsers.push_back(std::make_unique<test::ChildProcess>(
-                std::vector<std::string>{chromium, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                                         "--user-data-dir=" + (profile_root / id).string(), "--window-size=1400,1300",
-                                         "http://127.0.0.1:" + std::to_string(server.port()) + "/?observe=" + id},
+                std::vector<std::string>{
+                    chromium, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                    "--user-data-dir=" + (profile_root / id).string(), "--window-size=1400,1300",
+                    "http://127.0.0.1:" + std::to_string(server.port()) + "/?observe=" + id},
                 "/dev/null"));
         }
-        for (int i = 0; i < 300 && frames_shown(server.port(), "bench0") < 5; ++i) std::this_thread::sleep_for(100ms);
+        for (int i = 0; i < 300 && frames_shown(server.port(), "bench0") < 5; ++i)
+            std::this_thread::sleep_for(100ms);
         const int shown0 = frames_shown(server.port(), "bench0");
         const Window page = measure(view);
         const int shown1 = frames_shown(server.port(), "bench0");
@@ -129,7 +139,8 @@ void LiveViewPageOpen(benchmark::State& state) {
         state.counters["dropped"] = static_cast<double>(page.dropped);
         state.counters["cam_ref_fps"] = 0.5 * (before.camera_fps + after.camera_fps);
         state.counters["cam_page_fps"] = page.camera_fps;
-        // Of the frames the camera produced while the page was open, the share the live view received.
+        // Of the frames the camera produced while the page was open, the share the live view
+        // received.
         state.counters["kept"] = page.camera_fps > 0.0 ? page.fps / page.camera_fps : 0.0;
         state.counters["shown_fps"] =
             static_cast<double>(shown1 - shown0) / std::chrono::duration<double>(kWindow).count();

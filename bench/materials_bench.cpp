@@ -1,7 +1,7 @@
-// Materials throughput and accuracy: Mueller BRDF evaluations per second (reference in the same run:
-// the closed-form Fresnel Mueller matrix alone and a Lambertian), the time to build one material's
-// emissivity table for the 8–14 µm band, per-hit table lookups, and the table's accuracy against a
-// brute-force hemispherical integration computed in the same run (reported as counters).
+// Materials throughput and accuracy: Mueller BRDF evaluations per second (reference in the same
+// run: the closed-form Fresnel Mueller matrix alone and a Lambertian), the time to build one
+// material's emissivity table for the 8–14 µm band, per-hit table lookups, and the table's accuracy
+// against a brute-force hemispherical integration computed in the same run (reported as counters).
 
 #include <benchmark/benchmark.h>
 
@@ -83,11 +83,11 @@ void BM_MicrofacetSample(benchmark::State& state) {
 }
 BENCHMARK(BM_MicrofacetSample);
 
-// One table for the 8–14 µm band (0.5 µm steps = 13 wavelengths, 65 angles; table build uses all cores). The paint's parameters
-// are spectrally constant (one column is integrated, the others reuse it); water's index is tabulated
-// (every column integrated, smooth Fresnel: exact, one sample each); a micro-facet model with a
-// tabulated index is the worst case (every column integrated). Wall time ("Time") is the figure to
-// read: the CPU column counts the calling thread only.
+// One table for the 8–14 µm band (0.5 µm steps = 13 wavelengths, 65 angles; table build uses all
+// cores). The paint's parameters are spectrally constant (one column is integrated, the others
+// reuse it); water's index is tabulated (every column integrated, smooth Fresnel: exact, one sample
+// each); a micro-facet model with a tabulated index is the worst case (every column integrated).
+// Wall time ("Time") is the figure to read: the CPU column counts the calling thread only.
 void BM_EmissivityTableBand_FlatBlackPaint(benchmark::State& state) {
     const MicrofacetBrdf paint = flat_black_paint();
     const auto wl = EmissivityTable::wavelengths_for_band(Band(8.0, 14.0));
@@ -108,8 +108,9 @@ void BM_EmissivityTableBand_SpectralMicrofacet(benchmark::State& state) {
 BENCHMARK(BM_EmissivityTableBand_SpectralMicrofacet)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_EmissivityTableBand_Water(benchmark::State& state) {
-    const SmoothFresnelBrdf water(RefractiveIndexTable({8.0, 10.0, 12.0, 14.0}, {1.291, 1.218, 1.111, 1.210},
-                                                       {0.0343, 0.0508, 0.199, 0.370}, "Hale & Querry 1973"));
+    const SmoothFresnelBrdf water(
+        RefractiveIndexTable({8.0, 10.0, 12.0, 14.0}, {1.291, 1.218, 1.111, 1.210},
+                             {0.0343, 0.0508, 0.199, 0.370}, "Hale & Querry 1973"));
     const auto wl = EmissivityTable::wavelengths_for_band(Band(8.0, 14.0));
     for (auto _ : state) benchmark::DoNotOptimize(EmissivityTable(water, wl));
 }
@@ -140,7 +141,8 @@ void BM_EmissivityBandAverageLookup(benchmark::State& state) {
 }
 BENCHMARK(BM_EmissivityBandAverageLookup);
 
-void BM_EmissivityWeightedLookup(benchmark::State& state) {  // band weights precomputed once per (band, T)
+void BM_EmissivityWeightedLookup(
+    benchmark::State& state) {  // band weights precomputed once per (band, T)
     const MicrofacetBrdf paint = flat_black_paint();
     const Band band(8.0, 14.0);
     const EmissivityTable table(paint, EmissivityTable::wavelengths_for_band(band));
@@ -154,9 +156,10 @@ void BM_EmissivityWeightedLookup(benchmark::State& state) {  // band weights pre
 }
 BENCHMARK(BM_EmissivityWeightedLookup);
 
-// Accuracy in the same run: the table (default quadrature) against a brute-force midpoint integration
-// of eval over 600 × 1200 (θi, φi) cells at 0, 30, 60, 80, 85, 89 degrees. Counters: max |Δε_S0|,
-// max |Δε_S1| over those angles; the timed part is the brute-force reference for one angle.
+// Accuracy in the same run: the table (default quadrature) against a brute-force midpoint
+// integration of eval over 600 × 1200 (θi, φi) cells at 0, 30, 60, 80, 85, 89 degrees. Counters:
+// max |Δε_S0|, max |Δε_S1| over those angles; the timed part is the brute-force reference for one
+// angle.
 void BM_AccuracyVsBruteForce(benchmark::State& state) {
     const MicrofacetBrdf paint = flat_black_paint();
     const EmissivityTable table(paint, {10.0});

@@ -1,6 +1,7 @@
-// Microgrid (division-of-focal-plane) frames of 640×512 (an LWIR microgrid bolometer's size): demosaicing
-// alone and demosaicing + Stokes reduction (S0 S1 S2 DoLP AoP) per method, and the per-super-pixel
-// reduction with a per-pixel analyzer calibration, on one core. items_per_second = frames/s.
+// Microgrid (division-of-focal-plane) frames of 640×512 (an LWIR microgrid bolometer's size):
+// demosaicing alone and demosaicing + Stokes reduction (S0 S1 S2 DoLP AoP) per method, and the
+// per-super-pixel reduction with a per-pixel analyzer calibration, on one core. items_per_second =
+// frames/s.
 
 #include <benchmark/benchmark.h>
 
@@ -27,9 +28,10 @@ const std::vector<float>& frame() {
         std::normal_distribution<float> noise(0.0f, 20.0f);
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * kW + static_cast<std::size_t>(x);
-                s0[i] = 20000.0f + 5000.0f * std::sin(0.05f * static_cast<float>(x)) + (x > kW / 2 ? 8000.0f : 0.0f) +
-                        noise(rng);
+                const std::size_t i =
+                    static_cast<std::size_t>(y) * kW + static_cast<std::size_t>(x);
+                s0[i] = 20000.0f + 5000.0f * std::sin(0.05f * static_cast<float>(x)) +
+                        (x > kW / 2 ? 8000.0f : 0.0f) + noise(rng);
                 s1[i] = 0.1f * s0[i] * std::cos(0.02f * static_cast<float>(y));
                 s2[i] = 0.05f * s0[i];
             }
@@ -41,7 +43,8 @@ const std::vector<float>& frame() {
 void BM_Demosaic(benchmark::State& state) {
     const auto method = static_cast<DemosaicMethod>(state.range(0));
     const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
-    for (auto _ : state) benchmark::DoNotOptimize(demosaic_microgrid(frame(), kW, kH, sony, method));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(demosaic_microgrid(frame(), kW, kH, sony, method));
     state.SetItemsProcessed(state.iterations());
     state.SetLabel(std::string(demosaic_method_name(method)));
 }

@@ -1,12 +1,13 @@
 // Overhead of the Python binding of Stokes reduction: tirpol.calibration.reduce called from an
 // embedded interpreter on numpy arrays vs the C++ reduce_stokes on the same data, 640×512, 4 angles
-// with σ images. Each iteration runs one C++ call and one Python call back to back and times each by
-// the CPU time of this process (user + system, page faults included): the Python call reduces on a
-// worker thread while the calling thread waits for Ctrl-C (interruptible.h), so the CPU time of all
-// threads is what both paths cost; on a shared machine wall time mostly measures the other users.
-// The counter `python_over_cpp` is the ratio of the summed times (target ≤ 1.05); `*_wall_ms` are
-// reported for reference. What the Python path adds: viewing the float32 numpy inputs (no copy),
-// starting the worker thread and wrapping the outputs (moved, not copied) as arrays.
+// with σ images. Each iteration runs one C++ call and one Python call back to back and times each
+// by the CPU time of this process (user + system, page faults included): the Python call reduces on
+// a worker thread while the calling thread waits for Ctrl-C (interruptible.h), so the CPU time of
+// all threads is what both paths cost; on a shared machine wall time mostly measures the other
+// users. The counter `python_over_cpp` is the ratio of the summed times (target ≤ 1.05);
+// `*_wall_ms` are reported for reference. What the Python path adds: viewing the float32 numpy
+// inputs (no copy), starting the worker thread and wrapping the outputs (moved, not copied) as
+// arrays.
 
 #include <benchmark/benchmark.h>
 #include <pybind11/embed.h>
@@ -36,8 +37,9 @@ std::vector<AnalyzerImage> analyzer_images() {
         AnalyzerImage a;
         a.angle_deg = angle;
         for (int i = 0; i < kW * kH; ++i) {
-            a.signal.push_back(10.0f + 0.5f * static_cast<float>(std::cos(2.0 * angle * 3.14159265 / 180.0)) +
-                               noise(rng));
+            a.signal.push_back(
+                10.0f + 0.5f * static_cast<float>(std::cos(2.0 * angle * 3.14159265 / 180.0)) +
+                noise(rng));
             a.signal_std.push_back(0.05f);
         }
         images.push_back(std::move(a));
@@ -58,7 +60,8 @@ double process_cpu_seconds() {
 }
 
 double wall_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
 }
 
 void BM_ReducePythonVsCpp(benchmark::State& state) {
@@ -73,10 +76,11 @@ void BM_ReducePythonVsCpp(benchmark::State& state) {
     double cpp_s = 0.0, python_s = 0.0, cpp_wall_s = 0.0, python_wall_s = 0.0;
     for (auto _ : state) {
         double cpu = process_cpu_seconds(), wall = wall_seconds();
-        // On a worker thread as the binding runs it (interruptible.h): both then allocate their outputs
-        // from a thread's malloc arena, whose page reuse differs from the main thread's.
-        benchmark::DoNotOptimize(
-            std::async(std::launch::async, [&] { return reduce_stokes(images, kW, kH, model); }).get());
+        // On a worker thread as the binding runs it (interruptible.h): both then allocate their
+        // outputs from a thread's malloc arena, whose page reuse differs from the main thread's.
+        benchmark::DoNotOptimize(std::async(std::launch::async, [&] {
+                                     return reduce_stokes(images, kW, kH, model);
+                                 }).get());
         cpp_s += process_cpu_seconds() - cpu;
         cpp_wall_s += wall_seconds() - wall;
         cpu = process_cpu_seconds();

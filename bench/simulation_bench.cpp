@@ -3,15 +3,17 @@
 //    rtcOccluded1 replaying exactly the rays that render cast (camera, bounce, shadow and auxiliary
 //    rays, recorded in order), both on one thread: what the polarized shading costs per ray (median
 //    of 5 repetitions, each one render against 8 replays).
-//  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error of
+//  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error
+//  of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise: config/scenes/reflection_compare.yaml, the time to a relative linear-
-//    polarization noise of 1 %, measured from two renders with different seeds, each renderer run at
-//    doubling spp from 16 until its noise is ≤ 1 % and its time interpolated in log-log between the two
-//    runs that bracket 1 % (no 1/√N extrapolation); the same for Mitsuba 3 with each of its samplers
-//    (independent, stratified, multijitter, orthogonal, ldsampler) when TIRPOL_MITSUBA names its
-//    `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per object that
-//    both renderers' mean Stokes agree (else no ratio); the ratio against the best sampler is printed.
+//    polarization noise of 1 %, measured from two renders with different seeds, each renderer run
+//    at doubling spp from 16 until its noise is ≤ 1 % and its time interpolated in log-log between
+//    the two runs that bracket 1 % (no 1/√N extrapolation); the same for Mitsuba 3 with each of its
+//    samplers (independent, stratified, multijitter, orthogonal, ldsampler) when TIRPOL_MITSUBA
+//    names its `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per
+//    object that both renderers' mean Stokes agree (else no ratio); the ratio against the best
+//    sampler is printed.
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 //  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
@@ -69,9 +71,10 @@ public:
     };
     void record(const Vec3& o, const Vec3& d, double /*t_max*/, bool occlusion) override {
         const std::lock_guard lock(m_mutex);
-        rays.push_back({{static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z())},
-                        {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())},
-                        occlusion});
+        rays.push_back(
+            {{static_cast<float>(o.x()), static_cast<float>(o.y()), static_cast<float>(o.z())},
+             {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())},
+             occlusion});
     }
     std::vector<Ray> rays;
 
@@ -84,7 +87,8 @@ double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
     const double start = thread_cpu_seconds();
     double checksum = 0.0;
     for (const auto& r : log.rays) {
-        const Vec3 o(r.origin[0], r.origin[1], r.origin[2]), d(r.direction[0], r.direction[1], r.direction[2]);
+        const Vec3 o(r.origin[0], r.origin[1], r.origin[2]),
+            d(r.direction[0], r.direction[1], r.direction[2]);
         if (r.occlusion)
             checksum += tracer.occluded(o, d, 0.0, 1e30) ? 1.0 : 0.0;
         else
@@ -96,8 +100,8 @@ double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
 
 void BM_ShadingOverhead(benchmark::State& state) {
     // Each repetition times one render and enough replays of its rays to cost about as much CPU (a
-    // lone 0.07 s replay is at the mercy of the other jobs' cache traffic); the overhead is the median
-    // over the repetitions, and the spread of the repetitions is printed with it.
+    // lone 0.07 s replay is at the mercy of the other jobs' cache traffic); the overhead is the
+    // median over the repetitions, and the spread of the repetitions is printed with it.
     constexpr int kRepetitions = 5, kReplaysPerRepetition = 8;
     Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(320, 256);
@@ -115,7 +119,8 @@ void BM_ShadingOverhead(benchmark::State& state) {
         for (int r = 0; r < kRepetitions; ++r) {
             render(scene, one_thread, &stats);
             double replay = 0.0;
-            for (int k = 0; k < kReplaysPerRepetition; ++k) replay += replay_cpu_seconds(*scene.tracer, log);
+            for (int k = 0; k < kReplaysPerRepetition; ++k)
+                replay += replay_cpu_seconds(*scene.tracer, log);
             render_cpu.push_back(stats.trace_cpu_seconds);
             replay_cpu.push_back(replay / kReplaysPerRepetition);
             overhead.push_back(render_cpu.back() / replay_cpu.back());
@@ -132,10 +137,11 @@ void BM_ShadingOverhead(benchmark::State& state) {
     state.counters["embree_cpu_s"] = median(replay_cpu);
     state.counters["overhead"] = median(overhead);
     std::printf(
-        "shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render %.3f CPU s, "
+        "shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render "
+        "%.3f CPU s, "
         "bare Embree replay %.4f CPU s (medians of %d), ratio %.2f (repetitions %.2f-%.2f)\n",
-        recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu), kRepetitions,
-        median(overhead), *lo, *hi);
+        recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu),
+        kRepetitions, median(overhead), *lo, *hi);
 }
 BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
@@ -153,8 +159,9 @@ double mean_s1_standard_error(const Image& img) {
 
 void BM_PanelsNightEqualNoise(benchmark::State& state) {
     constexpr double kTargetW = 0.042;  // W/(m²·sr): ≈ 50 mK NEDT in 8–14 µm near 280 K (issue 13)
-    // 16, not 8: the mean of √var over pixels is biased low by few-dof variance estimates (c4 ≈ 0.94
-    // at 4 dof), so an 8-spp pilot predicted too few samples (63 spp → 0.0455 instead of 0.042).
+    // 16, not 8: the mean of √var over pixels is biased low by few-dof variance estimates (c4 ≈
+    // 0.94 at 4 dof), so an 8-spp pilot predicted too few samples (63 spp → 0.0455 instead of
+    // 0.042).
     constexpr int kPilotSpp = 16;
     Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(640, 512);
@@ -162,8 +169,9 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
     RenderStatistics pilot_stats, stats;
     const Image pilot = render(scene, {}, &pilot_stats);
     const double pilot_error = mean_s1_standard_error(pilot);
-    // The error bars are conservative (docs/simulation.md, "What the variance channels mean"): the S1
-    // noise a second seed actually shows, √(mean (a − b)²/2) over surfaces, against the reported one.
+    // The error bars are conservative (docs/simulation.md, "What the variance channels mean"): the
+    // S1 noise a second seed actually shows, √(mean (a − b)²/2) over surfaces, against the reported
+    // one.
     Scene second_seed = scene;
     second_seed.sampling.seed = scene.sampling.seed + 1;
     const Image pilot_b = render(second_seed);
@@ -176,9 +184,11 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
             reported_var += 0.5 * (pilot.channel("S1_var")[i] + pilot_b.channel("S1_var")[i]);
             ++surfaces;
         }
-    std::printf("panels_night 640x512 %d spp: rms S1 standard error reported %.4f, shown by two seeds %.4f W/(m2 sr)\n",
-                kPilotSpp, std::sqrt(reported_var / static_cast<double>(surfaces)),
-                std::sqrt(actual_var / static_cast<double>(surfaces)));
+    std::printf(
+        "panels_night 640x512 %d spp: rms S1 standard error reported %.4f, shown by two seeds %.4f "
+        "W/(m2 sr)\n",
+        kPilotSpp, std::sqrt(reported_var / static_cast<double>(surfaces)),
+        std::sqrt(actual_var / static_cast<double>(surfaces)));
     const int spp = static_cast<int>(std::ceil(kPilotSpp * std::pow(pilot_error / kTargetW, 2.0)));
     scene.sampling.samples_per_pixel = spp;
     double error = 0.0;
@@ -193,28 +203,32 @@ void BM_PanelsNightEqualNoise(benchmark::State& state) {
     state.counters["cpu_s_per_Mpath"] = stats.trace_cpu_seconds / (640.0 * 512.0 * spp * 1e-6);
     state.counters["trace_cpu_s"] = stats.trace_cpu_seconds;
     std::printf(
-        "panels_night 640x512: pilot %d spp -> mean S1 std error %.4f; %d spp -> %.4f W/(m2 sr) in %.2f s "
+        "panels_night 640x512: pilot %d spp -> mean S1 std error %.4f; %d spp -> %.4f W/(m2 sr) in "
+        "%.2f s "
         "(%.2f s emissivity tables, %.1f CPU s tracing, i.e. %.1f s on 2 otherwise idle cores)\n",
-        kPilotSpp, pilot_error, spp, error, stats.seconds, stats.setup_seconds, stats.trace_cpu_seconds,
-        stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
+        kPilotSpp, pilot_error, spp, error, stats.seconds, stats.setup_seconds,
+        stats.trace_cpu_seconds, stats.setup_seconds + 0.5 * stats.trace_cpu_seconds);
 }
 BENCHMARK(BM_PanelsNightEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Tails of z = (S − truth)/√(var + var_truth) over the surface pixels' S0, S1, S2: the share of |z|
-/// beyond 3 and 5, the largest |z| and the mean z² (a Gaussian: 0.27 %, 5.7e-7, ~4.5 over 10⁴ values, 1).
+/// Tails of z = (S − truth)/√(var + var_truth) over the surface pixels' S0, S1, S2: the share of
+/// |z| beyond 3 and 5, the largest |z| and the mean z² (a Gaussian: 0.27 %, 5.7e-7, ~4.5 over 10⁴
+/// values, 1).
 struct ZTails {
     double beyond3 = 0.0, beyond5 = 0.0, max_abs = 0.0, mean_square = 0.0;
 };
 
-/// `truth` is either a reference render (its S*_var adds to the variance) or, when null, the isothermal
-/// enclosure's exact (L_bb, 0, 0). σ is floored at 1e-6·l_bb for pixels with deterministic paths.
+/// `truth` is either a reference render (its S*_var adds to the variance) or, when null, the
+/// isothermal enclosure's exact (L_bb, 0, 0). σ is floored at 1e-6·l_bb for pixels with
+/// deterministic paths.
 ZTails z_tails(const Image& img, const Image* truth, double l_bb) {
     const std::array<std::string, 3> stokes{"S0", "S1", "S2"};
     std::vector<double> z;
     for (std::size_t i = 0; i < img.pixel_count(); ++i) {
         if (img.channel("object_id")[i] < 0.0f) continue;
         for (std::size_t c = 0; c < stokes.size(); ++c) {
-            double expected = c == 0 ? l_bb : 0.0, var = img.channel(stokes[c] + "_var")[i] + 1e-12 * l_bb * l_bb;
+            double expected = c == 0 ? l_bb : 0.0,
+                   var = img.channel(stokes[c] + "_var")[i] + 1e-12 * l_bb * l_bb;
             if (truth) {
                 expected = truth->channel(stokes[c])[i];
                 var += truth->channel(stokes[c] + "_var")[i];
@@ -238,14 +252,18 @@ ZTails z_tails(const Image& img, const Image* truth, double l_bb) {
 
 /// A metal mirror (n = 12 + 60i) tilted 95° reflects the camera's horizontal view onto a ground of
 /// `material` seen 75–85° off its normal (issue 13's "mirrors viewing glossy paint"), 48×36 pixels.
-Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& material, const std::string& sky,
-                         double ground_k, int spp, std::uint64_t seed) {
+Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& material,
+                         const std::string& sky, double ground_k, int spp, std::uint64_t seed) {
     const std::string yaml = fmt::format(
         "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, seed: {}}}\nmaterials_dir: {}\n"
-        "camera: {{resolution: [48, 36], fov_deg: 30, position: [0, -3, 1.0], look_at: [0, 1, 1.0]}}\nsky: {}\n"
-        "objects:\n  - {{name: ground, geometry: {{type: plane, size: [30, 30]}}, material: {}, temperature: {}}}\n"
-        "  - {{name: mirror, geometry: {{type: plane, size: [4, 3]}}, transform: {{translate: [0, 1, 1.0], "
-        "rotate_deg: [95, 0, 0]}}, material: {{name: metal_mirror, source: bench, model: smooth_fresnel, "
+        "camera: {{resolution: [48, 36], fov_deg: 30, position: [0, -3, 1.0], look_at: [0, 1, "
+        "1.0]}}\nsky: {}\n"
+        "objects:\n  - {{name: ground, geometry: {{type: plane, size: [30, 30]}}, material: {}, "
+        "temperature: {}}}\n"
+        "  - {{name: mirror, geometry: {{type: plane, size: [4, 3]}}, transform: {{translate: [0, "
+        "1, 1.0], "
+        "rotate_deg: [95, 0, 0]}}, material: {{name: metal_mirror, source: bench, model: "
+        "smooth_fresnel, "
         "refractive_index: {{n: 12, k: 60}}}}, temperature: 290}}\n",
         spp, seed, find_config("materials").string(), sky, material, ground_k);
     std::filesystem::create_directories(dir);
@@ -254,9 +272,9 @@ Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& ma
 }
 
 /// Issue 13's error-bar goal as figures: for 16, 64 and 256 spp, the z tails (a) of the isothermal
-/// enclosure (290 K) with the plain estimator, the library's glossy and rough materials as the ground,
-/// and (b) of an open scene (ground at 300 K under a 270 K clear sky, control variate on) against a
-/// 4096-spp reference render with another seed. Not a speed benchmark: it prints figures.
+/// enclosure (290 K) with the plain estimator, the library's glossy and rough materials as the
+/// ground, and (b) of an open scene (ground at 300 K under a 270 K clear sky, control variate on)
+/// against a 4096-spp reference render with another seed. Not a speed benchmark: it prints figures.
 void BM_ErrorBarTails(benchmark::State& state) {
     const auto dir = std::filesystem::temp_directory_path() / "tirpol_error_bar_bench";
     const std::string isothermal_sky = "{type: uniform, temperature: 290}";
@@ -264,19 +282,25 @@ void BM_ErrorBarTails(benchmark::State& state) {
     RenderOptions plain;
     plain.control_variate = false;
     for (auto _ : state) {
-        for (const char* material : {"glossy_black_paint", "automotive_clear_coat", "bare_aluminium", "concrete"}) {
+        for (const char* material :
+             {"glossy_black_paint", "automotive_clear_coat", "bare_aluminium", "concrete"}) {
             Scene reference = mirror_over_ground(dir, material, open_sky, 300.0, 4096, 99);
             const Image open_reference = render(reference);
             for (const int spp : {16, 64, 256}) {
-                const Scene isothermal = mirror_over_ground(dir, material, isothermal_sky, 290.0, spp, 7);
-                const ZTails iso = z_tails(render(isothermal, plain), nullptr, isothermal.band.radiance(290.0));
+                const Scene isothermal =
+                    mirror_over_ground(dir, material, isothermal_sky, 290.0, spp, 7);
+                const ZTails iso =
+                    z_tails(render(isothermal, plain), nullptr, isothermal.band.radiance(290.0));
                 const Scene open = mirror_over_ground(dir, material, open_sky, 300.0, spp, 7);
                 const ZTails cv = z_tails(render(open), &open_reference, open.band.radiance(290.0));
                 std::printf(
-                    "%-22s %3d spp | isothermal, plain: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f | "
-                    "open, control variate, vs 4096 spp: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, mean z2 %.3f\n",
-                    material, spp, 100.0 * iso.beyond3, 100.0 * iso.beyond5, iso.max_abs, iso.mean_square,
-                    100.0 * cv.beyond3, 100.0 * cv.beyond5, cv.max_abs, cv.mean_square);
+                    "%-22s %3d spp | isothermal, plain: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, "
+                    "mean z2 %.3f | "
+                    "open, control variate, vs 4096 spp: |z|>3 %.3f %%, |z|>5 %.3f %%, max %.2f, "
+                    "mean z2 %.3f\n",
+                    material, spp, 100.0 * iso.beyond3, 100.0 * iso.beyond5, iso.max_abs,
+                    iso.mean_square, 100.0 * cv.beyond3, 100.0 * cv.beyond5, cv.max_abs,
+                    cv.mean_square);
             }
         }
         state.SetIterationTime(1.0);
@@ -289,11 +313,14 @@ BENCHMARK(BM_ErrorBarTails)->Iterations(1)->UseManualTime()->Unit(benchmark::kSe
 
 const std::array<std::string, 4> kStokesChannels = {"S0", "S1", "S2", "S3"};
 
-/// Two renders of one renderer with independent seeds, channels S0..S3 in tirpol's image Stokes frame.
+/// Two renders of one renderer with independent seeds, channels S0..S3 in tirpol's image Stokes
+/// frame.
 struct RenderPair {
     Image a, b;
-    double seconds = 0.0;      ///< per render: the sample loop's wall time (scene loading, tables excluded)
-    double cpu_seconds = 0.0;  ///< per render, summed over threads (tirpol: pixel loop; Mitsuba: process)
+    double seconds =
+        0.0;  ///< per render: the sample loop's wall time (scene loading, tables excluded)
+    double cpu_seconds =
+        0.0;  ///< per render, summed over threads (tirpol: pixel loop; Mitsuba: process)
 };
 
 /// Relative linear-polarization noise of one render of `p` over the pixels `mask`:
@@ -327,7 +354,8 @@ RegionStokes region_stokes(const RenderPair& p, const std::vector<bool>& region)
     for (std::size_t i = 0; i < region.size(); ++i) {
         if (!region[i]) continue;
         for (std::size_t c = 0; c < 4; ++c)
-            sum[c] += 0.5 * (p.a.channel(kStokesChannels[c])[i] + p.b.channel(kStokesChannels[c])[i]);
+            sum[c] +=
+                0.5 * (p.a.channel(kStokesChannels[c])[i] + p.b.channel(kStokesChannels[c])[i]);
         ++r.pixels;
     }
     for (std::size_t c = 1; c < 4; ++c) r.ratio[c - 1] = sum[c] / sum[0];
@@ -337,8 +365,8 @@ RegionStokes region_stokes(const RenderPair& p, const std::vector<bool>& region)
         const double d0 = p.a.channel("S0")[i] - p.b.channel("S0")[i];
         var[0] += 0.25 * d0 * d0;
         for (std::size_t c = 1; c < 4; ++c) {
-            const double d =
-                p.a.channel(kStokesChannels[c])[i] - p.b.channel(kStokesChannels[c])[i] - r.ratio[c - 1] * d0;
+            const double d = p.a.channel(kStokesChannels[c])[i] -
+                             p.b.channel(kStokesChannels[c])[i] - r.ratio[c - 1] * d0;
             var[c] += 0.25 * d * d;
         }
     }
@@ -351,7 +379,7 @@ RegionStokes region_stokes(const RenderPair& p, const std::vector<bool>& region)
 
 /// Worst disagreement between the two renderers over all regions.
 struct Agreement {
-    double max_abs_z = 0.0;             ///< of S0, S1/S0, S2/S0, S3/S0, difference over its standard error
+    double max_abs_z = 0.0;  ///< of S0, S1/S0, S2/S0, S3/S0, difference over its standard error
     double max_relative_ds0 = 0.0;      ///< |ΔS0| / S0
     double max_ratio_difference = 0.0;  ///< |Δ(Sk/S0)|, k = 1..3
 };
@@ -360,25 +388,30 @@ struct Agreement {
 Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const RenderPair& mitsuba) {
     const Image& ids = tirpol.a;  // object hit by each pixel's centre ray (−1: sky)
     Agreement worst;
-    std::printf("Agreement per region: tirpol | Mitsuba (in tirpol's frame) (z = difference / its standard error)\n");
+    std::printf(
+        "Agreement per region: tirpol | Mitsuba (in tirpol's frame) (z = difference / its standard "
+        "error)\n");
     for (std::size_t object = 0; object < scene.objects.size(); ++object)
         for (const bool right : {false, true}) {
             std::vector<bool> region(ids.pixel_count());
             for (int y = 0; y < ids.height(); ++y)
                 for (int x = 0; x < ids.width(); ++x) {
                     const std::size_t i = ids.index(x, y);
-                    region[i] =
-                        ids.channel("object_id")[i] == static_cast<float>(object) && (2 * x >= ids.width()) == right;
+                    region[i] = ids.channel("object_id")[i] == static_cast<float>(object) &&
+                                (2 * x >= ids.width()) == right;
                 }
-            const RegionStokes t = region_stokes(tirpol, region), m = region_stokes(mitsuba, region);
+            const RegionStokes t = region_stokes(tirpol, region),
+                               m = region_stokes(mitsuba, region);
             if (t.pixels == 0) continue;
             const double z0 = (m.s0 - t.s0) / std::hypot(m.s0_se, t.s0_se);
-            std::printf("  %-8s %-5s %6zu px  S0 %.4f | %.4f (z %+.1f)", scene.objects[object].name.c_str(),
-                        right ? "right" : "left", t.pixels, t.s0, m.s0, z0);
+            std::printf("  %-8s %-5s %6zu px  S0 %.4f | %.4f (z %+.1f)",
+                        scene.objects[object].name.c_str(), right ? "right" : "left", t.pixels,
+                        t.s0, m.s0, z0);
             worst.max_abs_z = std::max(worst.max_abs_z, std::abs(z0));
             worst.max_relative_ds0 = std::max(worst.max_relative_ds0, std::abs(m.s0 - t.s0) / t.s0);
             for (std::size_t k = 0; k < 3; ++k) {
-                const double d = m.ratio[k] - t.ratio[k], z = d / std::hypot(m.ratio_se[k], t.ratio_se[k]);
+                const double d = m.ratio[k] - t.ratio[k],
+                             z = d / std::hypot(m.ratio_se[k], t.ratio_se[k]);
                 std::printf("  S%zu/S0 %+.4f | %+.4f (z %+.1f)", k + 1, t.ratio[k], m.ratio[k], z);
                 worst.max_abs_z = std::max(worst.max_abs_z, std::abs(z));
                 worst.max_ratio_difference = std::max(worst.max_ratio_difference, std::abs(d));
@@ -388,12 +421,13 @@ Agreement check_agreement(const Scene& scene, const RenderPair& tirpol, const Re
     return worst;
 }
 
-/// Writes Mitsuba 3's version of reflection_compare.yaml and its envmap of the scene's sky. Mitsuba's
-/// envmap is a lat-long image, y-up (rotated here to tirpol's z-up), whose row r lies at zenith angle
-/// π·r/(rows − 1) (emitters/envmap.cpp: rows are samples from pole to pole, not pixel centres).
-/// `sampler` is the Mitsuba sampler plugin (independent, stratified, multijitter, orthogonal, ldsampler);
-/// Mitsuba rounds sample counts that a sampler cannot take (stratified: a square; orthogonal: a prime
-/// squared), which does not matter here since times are interpolated against the measured noise.
+/// Writes Mitsuba 3's version of reflection_compare.yaml and its envmap of the scene's sky.
+/// Mitsuba's envmap is a lat-long image, y-up (rotated here to tirpol's z-up), whose row r lies at
+/// zenith angle π·r/(rows − 1) (emitters/envmap.cpp: rows are samples from pole to pole, not pixel
+/// centres). `sampler` is the Mitsuba sampler plugin (independent, stratified, multijitter,
+/// orthogonal, ldsampler); Mitsuba rounds sample counts that a sampler cannot take (stratified: a
+/// square; orthogonal: a prime squared), which does not matter here since times are interpolated
+/// against the measured noise.
 std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, const Scene& scene,
                                           const std::string& sampler) {
     const int w = 256, h = 129;
@@ -407,7 +441,8 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
         for (const auto& node : scene.band.nodes())
             l += node.weight_um * scene.sky.spectral_radiance(node.wavelength_um, d);
         for (int x = 0; x < w; ++x)
-            for (const char* c : {"R", "G", "B"}) env.channel(c)[env.index(x, y)] = static_cast<float>(l);
+            for (const char* c : {"R", "G", "B"})
+                env.channel(c)[env.index(x, y)] = static_cast<float>(l);
     }
     write_exr(dir / "sky.exr", env);
     std::ofstream xml(dir / "scene.xml");
@@ -418,7 +453,9 @@ std::filesystem::path write_mitsuba_scene(const std::filesystem::path& dir, cons
   <sensor type="perspective">
     <float name="fov" value="40"/><string name="fov_axis" value="x"/>
     <transform name="to_world"><lookat origin="0, -5, 1.5" target="0, 0, 0.6" up="0, 0, 1"/></transform>
-    <sampler type=")" << sampler << R"("><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
+    <sampler type=")"
+        << sampler
+        << R"("><integer name="sample_count" value="$spp"/><integer name="seed" value="$seed"/></sampler>
     <film type="hdrfilm"><integer name="width" value="320"/><integer name="height" value="256"/>
       <string name="component_format" value="float32"/><rfilter type="box"/></film>
   </sensor>
@@ -443,18 +480,21 @@ struct NoiseRun {
     double noise = 0.0, seconds = 0.0, cpu_seconds = 0.0;
 };
 
-/// Seconds (wall, CPU) to `target` noise, interpolated in log-log between the two runs that bracket it
-/// (the last run is at or below the target, the one before above it); no 1/√N extrapolation.
+/// Seconds (wall, CPU) to `target` noise, interpolated in log-log between the two runs that bracket
+/// it (the last run is at or below the target, the one before above it); no 1/√N extrapolation.
 std::pair<double, double> bracketed_seconds(const std::vector<NoiseRun>& runs, double target) {
     if (runs.size() < 2 || runs.back().noise > target || runs[runs.size() - 2].noise <= target)
         throw Error("no pair of runs brackets the target noise");
     const NoiseRun &lo = runs[runs.size() - 2], &hi = runs.back();
     const double f = std::log(target / lo.noise) / std::log(hi.noise / lo.noise);
-    const auto interpolate = [f](double a, double b) { return std::exp(std::log(a) + f * (std::log(b) - std::log(a))); };
+    const auto interpolate = [f](double a, double b) {
+        return std::exp(std::log(a) + f * (std::log(b) - std::log(a)));
+    };
     return {interpolate(lo.seconds, hi.seconds), interpolate(lo.cpu_seconds, hi.cpu_seconds)};
 }
 
-/// Seconds of Mitsuba's "Rendering finished. (took 2.3456s)" log line (util::time_string's ms/s/m/h).
+/// Seconds of Mitsuba's "Rendering finished. (took 2.3456s)" log line (util::time_string's
+/// ms/s/m/h).
 double mitsuba_render_seconds(const std::filesystem::path& log_path) {
     std::ifstream log(log_path);
     const std::string key = "Rendering finished. (took ";
@@ -465,10 +505,15 @@ double mitsuba_render_seconds(const std::filesystem::path& log_path) {
         const std::string rest = line.substr(at + key.size());
         const double value = std::stod(rest, &end);
         const std::string unit = rest.substr(end, rest.find(')') - end);
-        const double scale = unit == "ms" ? 1e-3 : unit == "s" ? 1.0 : unit == "m" ? 60.0 : unit == "h" ? 3600.0 : -1.0;
+        const double scale = unit == "ms"  ? 1e-3
+                             : unit == "s" ? 1.0
+                             : unit == "m" ? 60.0
+                             : unit == "h" ? 3600.0
+                                           : -1.0;
         if (scale > 0.0) return value * scale;
     }
-    throw Error(log_path.string() + ": no \"Rendering finished. (took …)\" line with a time in ms, s, m or h");
+    throw Error(log_path.string() +
+                ": no \"Rendering finished. (took …)\" line with a time in ms, s, m or h");
 }
 
 /// Mitsuba's Stokes AOVs (stokes integrator, mono: S0.R = S0.G = S0.B), re-expressed per pixel from
@@ -484,8 +529,9 @@ Image in_tirpol_frame(const Image& mitsuba, const Camera& camera) {
             const StokesFrame from{-d, d.cross(up).normalized()};
             const std::size_t i = out.index(x, y);
             float &s1 = out.channel("S1")[i], &s2 = out.channel("S2")[i];
-            const StokesVector s = change_frame(StokesVector(out.channel("S0")[i], s1, s2, out.channel("S3")[i]), from,
-                                                camera.image_frame(d));
+            const StokesVector s =
+                change_frame(StokesVector(out.channel("S0")[i], s1, s2, out.channel("S3")[i]), from,
+                             camera.image_frame(d));
             s1 = static_cast<float>(s[1]);
             s2 = static_cast<float>(s[2]);
         }
@@ -505,17 +551,19 @@ double children_cpu_seconds() {
 /// Two Mitsuba 3 renders of `xml` (seeds 1 and 2) with `threads` threads. seconds is Mitsuba's own
 /// render time (its log), without its start-up and scene loading, as tirpol's is without its own;
 /// cpu_seconds is the whole process's (start-up, ~0.05 s, included).
-RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp, int threads,
-                          const Camera& camera) {
+RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp,
+                          int threads, const Camera& camera) {
     RenderPair pair;
     for (const int seed : {1, 2}) {
         const auto out = xml.parent_path() / ("out" + std::to_string(seed) + ".exr");
         const auto log = xml.parent_path() / ("out" + std::to_string(seed) + ".log");
-        const std::string command = "'" + executable + "' -m scalar_mono_polarized -t " + std::to_string(threads) +
-                                    " -D spp=" + std::to_string(spp) + " -D seed=" + std::to_string(seed) + " -o '" +
-                                    out.string() + "' '" + xml.string() + "' > '" + log.string() + "' 2>&1";
+        const std::string command = "'" + executable + "' -m scalar_mono_polarized -t " +
+                                    std::to_string(threads) + " -D spp=" + std::to_string(spp) +
+                                    " -D seed=" + std::to_string(seed) + " -o '" + out.string() +
+                                    "' '" + xml.string() + "' > '" + log.string() + "' 2>&1";
         const double cpu_before = children_cpu_seconds();
-        if (std::system(command.c_str()) != 0) throw Error("Mitsuba 3 failed (log: " + log.string() + "): " + command);
+        if (std::system(command.c_str()) != 0)
+            throw Error("Mitsuba 3 failed (log: " + log.string() + "): " + command);
         pair.cpu_seconds += 0.5 * (children_cpu_seconds() - cpu_before);
         pair.seconds += 0.5 * mitsuba_render_seconds(log);
         (seed == 1 ? pair.a : pair.b) = in_tirpol_frame(read_exr(out), camera);
@@ -551,13 +599,17 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
             tirpol.b = render(scene, options, &sb);
             if (mask.empty()) {
                 mask.resize(tirpol.a.pixel_count());
-                for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
+                for (std::size_t i = 0; i < mask.size(); ++i)
+                    mask[i] = tirpol.a.channel("object_id")[i] >= 0.0f;
             }
             tirpol.seconds = 0.5 * (sa.seconds - sa.setup_seconds + sb.seconds - sb.setup_seconds);
             tirpol.cpu_seconds = 0.5 * (sa.trace_cpu_seconds + sb.trace_cpu_seconds);
-            tirpol_runs.push_back({spp, relative_linear_noise(tirpol, mask), tirpol.seconds, tirpol.cpu_seconds});
-            std::printf("tirpol %5d spp, %d threads: %.2f s per render (%.2f CPU s), relative S1/S2 noise %.4f\n", spp,
-                        threads, tirpol.seconds, tirpol.cpu_seconds, tirpol_runs.back().noise);
+            tirpol_runs.push_back(
+                {spp, relative_linear_noise(tirpol, mask), tirpol.seconds, tirpol.cpu_seconds});
+            std::printf(
+                "tirpol %5d spp, %d threads: %.2f s per render (%.2f CPU s), relative S1/S2 noise "
+                "%.4f\n",
+                spp, threads, tirpol.seconds, tirpol.cpu_seconds, tirpol_runs.back().noise);
             if (tirpol_runs.back().noise <= kTargetNoise) break;
         }
         state.SetIterationTime(tirpol.seconds);
@@ -571,7 +623,8 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     state.counters["tirpol_equal_noise_s"] = tirpol_s;
     state.counters["tirpol_equal_noise_cpu_s"] = tirpol_cpu_s;
     std::printf("tirpol to 1 %% (log-log between %d and %d spp): %.2f s wall, %.2f CPU s\n",
-                tirpol_runs[tirpol_runs.size() - 2].spp, tirpol_runs.back().spp, tirpol_s, tirpol_cpu_s);
+                tirpol_runs[tirpol_runs.size() - 2].spp, tirpol_runs.back().spp, tirpol_s,
+                tirpol_cpu_s);
 
     const char* mitsuba = std::getenv("TIRPOL_MITSUBA");
     if (!mitsuba || !*mitsuba) {
@@ -584,27 +637,35 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     std::filesystem::create_directories(dir);
     double best_cpu_s = std::numeric_limits<double>::infinity();
     std::string best;
-    for (const std::string sampler : {"independent", "stratified", "multijitter", "orthogonal", "ldsampler"}) {
+    for (const std::string sampler :
+         {"independent", "stratified", "multijitter", "orthogonal", "ldsampler"}) {
         std::vector<NoiseRun> runs;
         RenderPair other;
         try {
             const auto xml = write_mitsuba_scene(dir, scene, sampler);
             for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
                 other = render_mitsuba(mitsuba, xml, spp, threads, scene.camera);
-                runs.push_back({spp, relative_linear_noise(other, mask), other.seconds, other.cpu_seconds});
-                std::printf("Mitsuba %-11s %5d spp: %.2f s per render (%.2f CPU s), relative noise %.4f\n",
-                            sampler.c_str(), spp, other.seconds, other.cpu_seconds, runs.back().noise);
+                runs.push_back(
+                    {spp, relative_linear_noise(other, mask), other.seconds, other.cpu_seconds});
+                std::printf(
+                    "Mitsuba %-11s %5d spp: %.2f s per render (%.2f CPU s), relative noise %.4f\n",
+                    sampler.c_str(), spp, other.seconds, other.cpu_seconds, runs.back().noise);
                 if (runs.back().noise <= kTargetNoise) break;
             }
             const Agreement agreement = check_agreement(scene, tirpol, other);
             if (agreement.max_relative_ds0 > kMaxRelativeS0Difference ||
                 agreement.max_ratio_difference > kMaxRatioDifference) {
-                state.SkipWithError("tirpol and Mitsuba 3 disagree on the means (table above): different scenes, no ratio");
+                state.SkipWithError(
+                    "tirpol and Mitsuba 3 disagree on the means (table above): different scenes, "
+                    "no ratio");
                 return;
             }
             const auto [other_s, other_cpu_s] = bracketed_seconds(runs, kTargetNoise);
-            std::printf("Mitsuba %-11s to 1 %%: %.2f s wall, %.2f CPU s; tirpol/Mitsuba %.2f (wall), %.2f (CPU)\n",
-                        sampler.c_str(), other_s, other_cpu_s, tirpol_s / other_s, tirpol_cpu_s / other_cpu_s);
+            std::printf(
+                "Mitsuba %-11s to 1 %%: %.2f s wall, %.2f CPU s; tirpol/Mitsuba %.2f (wall), %.2f "
+                "(CPU)\n",
+                sampler.c_str(), other_s, other_cpu_s, tirpol_s / other_s,
+                tirpol_cpu_s / other_cpu_s);
             state.counters["tirpol_over_" + sampler + "_cpu"] = tirpol_cpu_s / other_cpu_s;
             if (other_cpu_s < best_cpu_s) {
                 best_cpu_s = other_cpu_s;
@@ -616,22 +677,23 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
         }
     }
     state.counters["tirpol_over_best_mitsuba_cpu"] = tirpol_cpu_s / best_cpu_s;
-    std::printf("tirpol/Mitsuba (best sampler: %s) equal-noise CPU time ratio at 1 %%: %.2f\n", best.c_str(),
-                tirpol_cpu_s / best_cpu_s);
+    std::printf("tirpol/Mitsuba (best sampler: %s) equal-noise CPU time ratio at 1 %%: %.2f\n",
+                best.c_str(), tirpol_cpu_s / best_cpu_s);
 }
 BENCHMARK(BM_ReflectionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 // ---- VarianceCalibration and ConvergenceExponent: the sampler's error bars and convergence ----
 
-/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), pooled over
-/// render pairs with different seeds (1 where the variance channels are unbiased), and its standard
-/// error √Σ(dᵢ² − r·vᵢ)² / Σvᵢ (delta method over the pixels).
+/// Σ(a − b)² / Σ(var_a + var_b) of channel `c` over the pixels of `material` (material_id), pooled
+/// over render pairs with different seeds (1 where the variance channels are unbiased), and its
+/// standard error √Σ(dᵢ² − r·vᵢ)² / Σvᵢ (delta method over the pixels).
 struct TwoSeedRatio {
     double ratio = 0.0, standard_error = 0.0;
     std::size_t values = 0, beyond5 = 0;  ///< |z| = |a − b|/√(var_a + var_b) > 5
 };
 
-TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, const std::string& c, float material) {
+TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, const std::string& c,
+                            float material) {
     std::vector<double> d2, v;
     for (const auto& [a, b] : pairs)
         for (std::size_t i = 0; i < a.pixel_count(); ++i) {
@@ -641,7 +703,8 @@ TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, c
             v.push_back(static_cast<double>(a.channel(c + "_var")[i]) + b.channel(c + "_var")[i]);
         }
     TwoSeedRatio out;
-    const double sum_d2 = std::accumulate(d2.begin(), d2.end(), 0.0), sum_v = std::accumulate(v.begin(), v.end(), 0.0);
+    const double sum_d2 = std::accumulate(d2.begin(), d2.end(), 0.0),
+                 sum_v = std::accumulate(v.begin(), v.end(), 0.0);
     out.ratio = sum_d2 / sum_v;
     double spread = 0.0;
     for (std::size_t i = 0; i < d2.size(); ++i) {
@@ -653,10 +716,10 @@ TwoSeedRatio two_seed_ratio(const std::vector<std::pair<Image, Image>>& pairs, c
     return out;
 }
 
-/// Per material region (≥ 500 pixels) of panels_night, ball_on_snow_night and vehicles_night at their
-/// own 320×256, at 8, 32 and 128 spp, both estimators, two seed pairs: the two-seed ratio of S0, S1, S2
-/// with its standard error, the share of |z| beyond 5, and over the regions χ²/n of (r − 1)/se (1 when
-/// the ratios scatter about 1 as their errors say). Figures, not speed.
+/// Per material region (≥ 500 pixels) of panels_night, ball_on_snow_night and vehicles_night at
+/// their own 320×256, at 8, 32 and 128 spp, both estimators, two seed pairs: the two-seed ratio of
+/// S0, S1, S2 with its standard error, the share of |z| beyond 5, and over the regions χ²/n of (r −
+/// 1)/se (1 when the ratios scatter about 1 as their errors say). Figures, not speed.
 void BM_VarianceCalibration(benchmark::State& state) {
     for (auto _ : state) {
         for (const char* name : {"panels_night", "ball_on_snow_night", "vehicles_night"}) {
@@ -678,12 +741,14 @@ void BM_VarianceCalibration(benchmark::State& state) {
                     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
                         const auto id = static_cast<float>(m);
                         const auto& ids = pairs.front().first.channel("material_id");
-                        const auto pixels = static_cast<std::size_t>(std::count(ids.begin(), ids.end(), id));
+                        const auto pixels =
+                            static_cast<std::size_t>(std::count(ids.begin(), ids.end(), id));
                         if (pixels < 500) continue;
                         std::string line;
                         for (const char* c : {"S0", "S1", "S2"}) {
                             const TwoSeedRatio r = two_seed_ratio(pairs, c, id);
-                            line += fmt::format(" {} {:.3f} ± {:.3f}", c, r.ratio, r.standard_error);
+                            line +=
+                                fmt::format(" {} {:.3f} ± {:.3f}", c, r.ratio, r.standard_error);
                             chi2 += std::pow((r.ratio - 1.0) / r.standard_error, 2);
                             lowest = std::min(lowest, r.ratio);
                             highest = std::max(highest, r.ratio);
@@ -691,13 +756,16 @@ void BM_VarianceCalibration(benchmark::State& state) {
                             values += r.values;
                             beyond5 += r.beyond5;
                         }
-                        std::printf("%-19s %3d spp %-15s %-24s %5zu px:%s\n", name, spp, cv ? "control-variate" : "plain",
+                        std::printf("%-19s %3d spp %-15s %-24s %5zu px:%s\n", name, spp,
+                                    cv ? "control-variate" : "plain",
                                     scene.materials[m].name.c_str(), pixels, line.c_str());
                     }
-                    std::printf("%-19s %3d spp %-15s all regions: ratios %.2f–%.2f, χ²/n of (r − 1)/se %.2f (n = %zu), "
-                                "|z| > 5 in %.4f %% of %zu values\n",
-                                name, spp, cv ? "control-variate" : "plain", lowest, highest, chi2 / ratios, ratios,
-                                100.0 * static_cast<double>(beyond5) / values, values);
+                    std::printf(
+                        "%-19s %3d spp %-15s all regions: ratios %.2f–%.2f, χ²/n of (r − 1)/se "
+                        "%.2f (n = %zu), "
+                        "|z| > 5 in %.4f %% of %zu values\n",
+                        name, spp, cv ? "control-variate" : "plain", lowest, highest, chi2 / ratios,
+                        ratios, 100.0 * static_cast<double>(beyond5) / values, values);
                 }
         }
         state.SetIterationTime(1.0);
@@ -705,10 +773,10 @@ void BM_VarianceCalibration(benchmark::State& state) {
 }
 BENCHMARK(BM_VarianceCalibration)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// What the replicate count costs: relative S1/S2 and S0 noise (two seeds, surface pixels) at 64 and
-/// 256 spp with R = 1, 4, 8, 16, 32 replicates, on reflection_compare and panels_night at 160×128. Fewer
-/// replicates keep more of the sequence's stratification (lower noise) but give the variance R − 1
-/// degrees of freedom. Figures, not speed.
+/// What the replicate count costs: relative S1/S2 and S0 noise (two seeds, surface pixels) at 64
+/// and 256 spp with R = 1, 4, 8, 16, 32 replicates, on reflection_compare and panels_night at
+/// 160×128. Fewer replicates keep more of the sequence's stratification (lower noise) but give the
+/// variance R − 1 degrees of freedom. Figures, not speed.
 void BM_ReplicateCount(benchmark::State& state) {
     for (auto _ : state) {
         for (const char* name : {"reflection_compare", "panels_night"}) {
@@ -733,8 +801,10 @@ void BM_ReplicateCount(benchmark::State& state) {
                         s0 += pair.a.channel("S0")[i];
                         ++n;
                     }
-                    std::printf("%-18s 160x128 %3d spp, R = %2d: relative noise S1/S2 %.5f, S0 %.6f\n", name, spp,
-                                replicates, relative_linear_noise(pair, mask), std::sqrt(d0 / n) / (s0 / n));
+                    std::printf(
+                        "%-18s 160x128 %3d spp, R = %2d: relative noise S1/S2 %.5f, S0 %.6f\n",
+                        name, spp, replicates, relative_linear_noise(pair, mask),
+                        std::sqrt(d0 / n) / (s0 / n));
                 }
         }
         state.SetIterationTime(1.0);
@@ -742,8 +812,8 @@ void BM_ReplicateCount(benchmark::State& state) {
 }
 BENCHMARK(BM_ReplicateCount)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent of a
-/// least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
+/// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent
+/// of a least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
 void convergence_exponent(Scene scene, const char* name) {
     std::vector<double> log_spp, log_noise;
     for (const int spp : {16, 64, 256}) {
@@ -762,14 +832,17 @@ void convergence_exponent(Scene scene, const char* name) {
             for (const char* c : {"S1", "S2"}) {
                 const double d = pair.a.channel(c)[i] - pair.b.channel(c)[i];
                 diff += d * d;
-                var += pair.a.channel(std::string(c) + "_var")[i] + pair.b.channel(std::string(c) + "_var")[i];
+                var += pair.a.channel(std::string(c) + "_var")[i] +
+                       pair.b.channel(std::string(c) + "_var")[i];
             }
         }
         const double noise = relative_linear_noise(pair, mask);
         log_spp.push_back(std::log(spp));
         log_noise.push_back(std::log(noise));
-        std::printf("%s %d spp: relative S1/S2 noise %.5f, two-seed variance ratio %.3f, %.3f CPU s per render\n", name,
-                    spp, noise, diff / var, stats.trace_cpu_seconds);
+        std::printf(
+            "%s %d spp: relative S1/S2 noise %.5f, two-seed variance ratio %.3f, %.3f CPU s per "
+            "render\n",
+            name, spp, noise, diff / var, stats.trace_cpu_seconds);
     }
     const double mx = std::accumulate(log_spp.begin(), log_spp.end(), 0.0) / 3.0;
     const double my = std::accumulate(log_noise.begin(), log_noise.end(), 0.0) / 3.0;
@@ -783,7 +856,8 @@ void convergence_exponent(Scene scene, const char* name) {
 
 void BM_ConvergenceExponent(benchmark::State& state) {
     for (auto _ : state) {
-        convergence_exponent(load_scene(find_config("scenes/reflection_compare.yaml")), "reflection_compare 320x256");
+        convergence_exponent(load_scene(find_config("scenes/reflection_compare.yaml")),
+                             "reflection_compare 320x256");
         Scene panels = load_scene(find_config("scenes/panels_night.yaml"));
         panels.camera = panels.camera.resized(160, 128);
         convergence_exponent(panels, "panels_night 160x128");

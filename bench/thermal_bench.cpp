@@ -3,11 +3,9 @@
 // read as ratios. The cost added to a render is this spin-up per distinct (material, orientation).
 
 #include <benchmark/benchmark.h>
-
 #include <fmt/format.h>
 
 #include <cmath>
-
 #include <filesystem>
 
 #include "tirpol/core/source_tree.h"
@@ -78,7 +76,8 @@ void BM_SlabStepReference(benchmark::State& state) {
     f.air_temperature_k = 275.0;
     f.convection_w_m2_k = 10.0;
     for (auto _ : state) {
-        f.absorbed_shortwave_w_m2 = f.absorbed_shortwave_w_m2 > 500.0 ? 0.0 : f.absorbed_shortwave_w_m2 + 1.0;
+        f.absorbed_shortwave_w_m2 =
+            f.absorbed_shortwave_w_m2 > 500.0 ? 0.0 : f.absorbed_shortwave_w_m2 + 1.0;
         benchmark::DoNotOptimize(slab.step(300.0, f, 1.0).newton_iterations);
     }
 }
@@ -103,7 +102,8 @@ void BM_SpinUp24h_100Facets(benchmark::State& state) {
         }
         benchmark::DoNotOptimize(sum);
     }
-    state.counters["facet_steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+    state.counters["facet_steps_per_s"] =
+        benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SpinUp24h_100Facets)->Unit(benchmark::kMillisecond);
 
@@ -118,26 +118,34 @@ void BM_SpinUp24h_100Facets_Batched(benchmark::State& state) {
     std::vector<FacetRequest> requests;
     for (const auto& mat : materials)
         for (int o = 0; o < 10; ++o)
-            requests.push_back({&mat, Facet{o < 2 ? 180.0 * o : 90.0, o < 2 ? 180.0 : 45.0 * (o - 2)}, {}});
+            requests.push_back(
+                {&mat, Facet{o < 2 ? 180.0 * o : 90.0, o < 2 ? 180.0 : 45.0 * (o - 2)}, {}});
     long steps = 0;
     for (auto _ : state) {
-        benchmark::DoNotOptimize(predict_surface_temperatures(weather, requests, at, options).front());
-        steps += static_cast<long>(requests.size()) * static_cast<long>(24 * 3600 / options.time_step_s);
+        benchmark::DoNotOptimize(
+            predict_surface_temperatures(weather, requests, at, options).front());
+        steps +=
+            static_cast<long>(requests.size()) * static_cast<long>(24 * 3600 / options.time_step_s);
     }
-    state.counters["facet_steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+    state.counters["facet_steps_per_s"] =
+        benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SpinUp24h_100Facets_Batched)->Unit(benchmark::kMillisecond);
 
 // The cost the thermal model adds to a render: loading the ball-on-snow day scene with predicted
-// temperatures (1152-texel sphere map + mesh vertices, 24 h spin-up each) against loading the same scene
-// and rendering it at 32×24, 2 spp (wall-clock: the renderer runs on all cores).
-std::filesystem::path predicted_scene() { return find_config("thermal/ball_on_snow_day_predicted.yaml"); }
+// temperatures (1152-texel sphere map + mesh vertices, 24 h spin-up each) against loading the same
+// scene and rendering it at 32×24, 2 spp (wall-clock: the renderer runs on all cores).
+std::filesystem::path predicted_scene() {
+    return find_config("thermal/ball_on_snow_day_predicted.yaml");
+}
 
 void BM_BallOnSnowSceneLoadWithPredictedTemperatures(benchmark::State& state) {
     const auto path = predicted_scene();
     for (auto _ : state) benchmark::DoNotOptimize(simulation::load_scene(path).objects.size());
 }
-BENCHMARK(BM_BallOnSnowSceneLoadWithPredictedTemperatures)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BallOnSnowSceneLoadWithPredictedTemperatures)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_BallOnSnowRender32x24x2spp(benchmark::State& state) {
     simulation::Scene scene = simulation::load_scene(predicted_scene());

@@ -26,7 +26,8 @@ std::filesystem::path source_dir();
 std::filesystem::path scratch_dir();
 
 /// Writes the input to scratch_dir()/name and returns that path.
-std::filesystem::path write_input(const std::string& name, const std::uint8_t* data, std::size_t size);
+std::filesystem::path write_input(const std::string& name, const std::uint8_t* data,
+                                  std::size_t size);
 
 /// Runs `parse`; tirpol::Error is the expected way to reject input, anything else propagates.
 template <typename F>

@@ -16,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 namespace {
 void replay(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
     std::printf("replay %s (%zu bytes)\n", file.c_str(), bytes.size());
     std::fflush(stdout);
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
@@ -30,7 +31,8 @@ int main(int argc, char** argv) {
         if (std::filesystem::is_directory(arg)) {
             std::vector<std::filesystem::path> files;
             for (const auto& e : std::filesystem::recursive_directory_iterator(arg))
-                if (e.is_regular_file() && e.path().filename() != ".keep") files.push_back(e.path());
+                if (e.is_regular_file() && e.path().filename() != ".keep")
+                    files.push_back(e.path());
             std::sort(files.begin(), files.end());
             for (const auto& f : files) replay(f), ++count;
         } else if (std::filesystem::is_regular_file(arg)) {

@@ -14,12 +14,14 @@ namespace tirpol::acquisition {
 
 Result<DeviceUri> split_device_uri(const std::string& uri) {
     const auto invalid = [&](const std::string& what) {
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("device URI '{}': {}", uri, what)};
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           fmt::format("device URI '{}': {}", uri, what)};
     };
     DeviceUri out;
     out.text = uri;
     const auto sep = uri.find("://");
-    if (sep == std::string::npos || sep == 0) return invalid("expected <scheme>://<target>[?key=value&...]");
+    if (sep == std::string::npos || sep == 0)
+        return invalid("expected <scheme>://<target>[?key=value&...]");
     out.scheme = uri.substr(0, sep);
     const std::string rest = uri.substr(sep + 3);
     const auto q = rest.find('?');
@@ -32,7 +34,8 @@ Result<DeviceUri> split_device_uri(const std::string& uri) {
         start = end + 1;
         if (pair.empty()) continue;  // "a=1&&b=2" or a trailing '&': a harmless typo
         const auto eq = pair.find('=');
-        if (eq == std::string::npos || eq == 0) return invalid(fmt::format("query item '{}' is not key=value", pair));
+        if (eq == std::string::npos || eq == 0)
+            return invalid(fmt::format("query item '{}' is not key=value", pair));
         out.query[pair.substr(0, eq)] = pair.substr(eq + 1);
     }
     return out;
@@ -68,7 +71,8 @@ int DeviceUri::integer(const std::string& key, int fallback) const {
     const auto it = query.find(key);
     if (it == query.end()) return fallback;
     int v = 0;
-    const auto [ptr, ec] = std::from_chars(it->second.data(), it->second.data() + it->second.size(), v);
+    const auto [ptr, ec] =
+        std::from_chars(it->second.data(), it->second.data() + it->second.size(), v);
     if (ec != std::errc() || ptr != it->second.data() + it->second.size())
         fail("device URI '{}': '{}={}' is not an integer", text, key, it->second);
     return v;

@@ -10,7 +10,8 @@ DeviceError bad_uri(const std::string& uri, const std::string& what) {
     return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {}", uri, what)};
 }
 
-Result<double> uri_number(const std::string& uri, const DeviceUri& u, const std::string& key, double fallback) {
+Result<double> uri_number(const std::string& uri, const DeviceUri& u, const std::string& key,
+                          double fallback) {
     auto it = u.query.find(key);
     if (it == u.query.end()) return fallback;
     double v = 0;
@@ -21,7 +22,8 @@ Result<double> uri_number(const std::string& uri, const DeviceUri& u, const std:
     return v;
 }
 
-Result<int> uri_integer(const std::string& uri, const DeviceUri& u, const std::string& key, int fallback) {
+Result<int> uri_integer(const std::string& uri, const DeviceUri& u, const std::string& key,
+                        int fallback) {
     auto it = u.query.find(key);
     if (it == u.query.end()) return fallback;
     int v = 0;
@@ -34,7 +36,8 @@ Result<int> uri_integer(const std::string& uri, const DeviceUri& u, const std::s
     return v;
 }
 
-Status check_uri_keys(const std::string& uri, const DeviceUri& u, const std::set<std::string>& allowed) {
+Status check_uri_keys(const std::string& uri, const DeviceUri& u,
+                      const std::set<std::string>& allowed) {
     for (const auto& [k, v] : u.query)
         if (!allowed.count(k)) {
             std::string list;

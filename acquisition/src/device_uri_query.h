@@ -11,10 +11,13 @@ namespace tirpol::acquisition::detail {
 
 DeviceError bad_uri(const std::string& uri, const std::string& what);
 /// The key's value as a number, `fallback` when absent; InvalidArgument naming the key otherwise.
-Result<double> uri_number(const std::string& uri, const DeviceUri& u, const std::string& key, double fallback);
+Result<double> uri_number(const std::string& uri, const DeviceUri& u, const std::string& key,
+                          double fallback);
 /// ... as a decimal or 0x-prefixed hexadecimal integer.
-Result<int> uri_integer(const std::string& uri, const DeviceUri& u, const std::string& key, int fallback);
+Result<int> uri_integer(const std::string& uri, const DeviceUri& u, const std::string& key,
+                        int fallback);
 /// InvalidArgument naming the first key not in `allowed`, and listing the known ones.
-Status check_uri_keys(const std::string& uri, const DeviceUri& u, const std::set<std::string>& allowed);
+Status check_uri_keys(const std::string& uri, const DeviceUri& u,
+                      const std::set<std::string>& allowed);
 
 }  // namespace tirpol::acquisition::detail

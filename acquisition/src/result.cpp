@@ -4,14 +4,22 @@ namespace tirpol::acquisition {
 
 const char* to_string(DeviceErrorCode code) {
     switch (code) {
-        case DeviceErrorCode::Timeout: return "timeout";
-        case DeviceErrorCode::BadReply: return "bad reply";
-        case DeviceErrorCode::DeviceFault: return "device fault";
-        case DeviceErrorCode::Disconnected: return "disconnected";
-        case DeviceErrorCode::NotSupported: return "not supported";
-        case DeviceErrorCode::InvalidArgument: return "invalid argument";
-        case DeviceErrorCode::IoError: return "I/O error";
-        case DeviceErrorCode::Stopped: return "stopped";
+        case DeviceErrorCode::Timeout:
+            return "timeout";
+        case DeviceErrorCode::BadReply:
+            return "bad reply";
+        case DeviceErrorCode::DeviceFault:
+            return "device fault";
+        case DeviceErrorCode::Disconnected:
+            return "disconnected";
+        case DeviceErrorCode::NotSupported:
+            return "not supported";
+        case DeviceErrorCode::InvalidArgument:
+            return "invalid argument";
+        case DeviceErrorCode::IoError:
+            return "I/O error";
+        case DeviceErrorCode::Stopped:
+            return "stopped";
     }
     return "unknown device error";
 }

@@ -19,9 +19,11 @@ class SchemeRegistry {
 public:
     /// Adds or replaces the factory of `scheme`; returns the replaced one (empty if none). Throws
     /// tirpol::Error, naming `caller`, for a name that is not a URI scheme or an empty factory.
-    Factory register_scheme(const std::string& scheme, Factory factory, const char* caller = "register_scheme") {
+    Factory register_scheme(const std::string& scheme, Factory factory,
+                            const char* caller = "register_scheme") {
         if (scheme.empty() || scheme.find_first_of(":/?") != std::string::npos)
-            fail("{}: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", caller, scheme);
+            fail("{}: '{}' is not a URI scheme (expected a name without ':', '/' or '?')", caller,
+                 scheme);
         if (!factory) fail("{}: empty factory for scheme '{}'", caller, scheme);
         std::lock_guard lock(m_mutex);
         Factory& slot = m_factories[scheme];
@@ -44,9 +46,10 @@ public:
     }
 
     /// "unknown <kind> scheme 'x' in '<uri>' (known schemes: a, b, c)".
-    std::string unknown_scheme_message(const char* kind, const std::string& scheme, const std::string& uri) const {
-        return fmt::format("device URI '{}': unknown {} scheme '{}' (known schemes: {})", uri, kind, scheme,
-                           fmt::join(schemes(), ", "));
+    std::string unknown_scheme_message(const char* kind, const std::string& scheme,
+                                       const std::string& uri) const {
+        return fmt::format("device URI '{}': unknown {} scheme '{}' (known schemes: {})", uri, kind,
+                           scheme, fmt::join(schemes(), ", "));
     }
 
 private:

@@ -12,12 +12,14 @@
 namespace {
 
 [[noreturn]] void usage(const char* message) {
-    std::fprintf(stderr,
-                 "tirpol-blackbody-sim: %s\n"
-                 "usage: tirpol-blackbody-sim [--model 4180|4181] [--link PATH] [--tau-s S] [--ambient-k K]\n"
-                 "       [--noise-k K] [--limit-k K] [--window-s S] [--sample-period-s S]\n"
-                 "       [--fault none|over-temperature|no-reply|garbled] [--fault-on-set N] [--seed N]\n",
-                 message);
+    std::fprintf(
+        stderr,
+        "tirpol-blackbody-sim: %s\n"
+        "usage: tirpol-blackbody-sim [--model 4180|4181] [--link PATH] [--tau-s S] [--ambient-k "
+        "K]\n"
+        "       [--noise-k K] [--limit-k K] [--window-s S] [--sample-period-s S]\n"
+        "       [--fault none|over-temperature|no-reply|garbled] [--fault-on-set N] [--seed N]\n",
+        message);
     std::exit(2);
 }
 
@@ -30,7 +32,8 @@ std::string value_after(int& i, int argc, char** argv) {
 double positive(const std::string& flag, const std::string& text) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !(v >= 0.0)) usage((flag + ": expected a number ≥ 0").c_str());
+    if (end == text.c_str() || *end != '\0' || !(v >= 0.0))
+        usage((flag + ": expected a number ≥ 0").c_str());
     return v;
 }
 

@@ -1,8 +1,8 @@
 // tirpol-boson-sim: the control link of a FLIR Boson core (FSLP over its CDC-ACM port) on a
 // pseudo-terminal, for tests and for trying tirpol without hardware. Prints the device path on the
-// first line of stdout; open it with `boson://<path>` (tirpol acquire --camera-control). The video of
-// this core is not served (a separate process cannot share it with a sim:// camera): FFCs run and are
-// reported, frames are untouched.
+// first line of stdout; open it with `boson://<path>` (tirpol acquire --camera-control). The video
+// of this core is not served (a separate process cannot share it with a sim:// camera): FFCs run
+// and are reported, frames are untouched.
 
 #include <cstdio>
 #include <cstdlib>
@@ -14,11 +14,13 @@
 namespace {
 
 [[noreturn]] void usage(const char* message) {
-    std::fprintf(stderr,
-                 "tirpol-boson-sim: %s\n"
-                 "usage: tirpol-boson-sim [--link PATH] [--fpa-k K] [--drift-k-per-s R] [--threshold-k K]\n"
-                 "       [--ffc-s S] [--fault none|drop-reply|corrupt-crc|wrong-sequence|silent] [--fault-on N]\n",
-                 message);
+    std::fprintf(
+        stderr,
+        "tirpol-boson-sim: %s\n"
+        "usage: tirpol-boson-sim [--link PATH] [--fpa-k K] [--drift-k-per-s R] [--threshold-k K]\n"
+        "       [--ffc-s S] [--fault none|drop-reply|corrupt-crc|wrong-sequence|silent] "
+        "[--fault-on N]\n",
+        message);
     std::exit(2);
 }
 

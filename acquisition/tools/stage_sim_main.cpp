@@ -1,7 +1,8 @@
 // tirpol-stage-sim: a Thorlabs APT or Elliptec rotation stage on a pseudo-terminal, for tests and
 // for trying tirpol without hardware. Prints the device path on the first line of stdout.
 //
-//   tirpol-stage-sim --protocol apt|elliptec [--link PATH] [--fault no-reply|busy|error|disconnect-mid-move]
+//   tirpol-stage-sim --protocol apt|elliptec [--link PATH] [--fault
+//   no-reply|busy|error|disconnect-mid-move]
 //                    [--fault-on-move N] [--move-deg-per-s V] [--address A]
 
 #include <cstdio>
@@ -13,12 +14,13 @@
 namespace {
 
 [[noreturn]] void usage(const char* message) {
-    std::fprintf(stderr,
-                 "tirpol-stage-sim: %s\n"
-                 "usage: tirpol-stage-sim --protocol apt|elliptec [--link PATH]\n"
-                 "       [--fault none|no-reply|busy|error|disconnect-mid-move] [--fault-on-move N]\n"
-                 "       [--move-deg-per-s V] [--address 0-F]\n",
-                 message);
+    std::fprintf(
+        stderr,
+        "tirpol-stage-sim: %s\n"
+        "usage: tirpol-stage-sim --protocol apt|elliptec [--link PATH]\n"
+        "       [--fault none|no-reply|busy|error|disconnect-mid-move] [--fault-on-move N]\n"
+        "       [--move-deg-per-s V] [--address 0-F]\n",
+        message);
     std::exit(2);
 }
 

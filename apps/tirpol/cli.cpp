@@ -1,6 +1,4 @@
 #include "cli.h"
-#include "invocation.h"
-#include "numeric_options.h"
 
 #include <glog/logging.h>
 #include <spdlog/spdlog.h>
@@ -9,6 +7,8 @@
 #include <cstdio>
 #include <opencv2/core/utils/logger.hpp>
 
+#include "invocation.h"
+#include "numeric_options.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
@@ -29,9 +29,9 @@ std::string& command_line_storage() {
 }
 
 // Libraries under the CLI write to stderr on their own: glog (through Ceres) warns "Logging before
-// InitGoogleLogging" and would log to files in /tmp once initialised; OpenCV prints info lines. Route
-// them to stderr at the level the user asked for, and give spdlog a plain "tirpol: level: message"
-// pattern (timestamps only when debugging).
+// InitGoogleLogging" and would log to files in /tmp once initialised; OpenCV prints info lines.
+// Route them to stderr at the level the user asked for, and give spdlog a plain "tirpol: level:
+// message" pattern (timestamps only when debugging).
 void quiet_libraries(const char* argv0, const std::string& log_level) {
     const bool debugging = log_level == "debug" || log_level == "trace";
     FLAGS_logtostderr = true;
@@ -53,7 +53,8 @@ std::vector<std::string> option_names(const CLI::App& app) {
 
 std::vector<std::string> subcommand_names(const CLI::App& app) {
     std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+        names.push_back(sub->get_name());
     return names;
 }
 
@@ -66,12 +67,14 @@ void print_suggestions(CLI::App& app) {
             const std::string name = arg.substr(0, arg.find('='));
             const std::string hint = closest_match(name, option_names(*deepest));
             if (!hint.empty())
-                std::fprintf(stderr, "tirpol: unknown option '%s' for '%s'; did you mean '%s'?\n", name.c_str(),
-                             deepest == &app ? "tirpol" : deepest->get_name().c_str(), hint.c_str());
+                std::fprintf(stderr, "tirpol: unknown option '%s' for '%s'; did you mean '%s'?\n",
+                             name.c_str(), deepest == &app ? "tirpol" : deepest->get_name().c_str(),
+                             hint.c_str());
         } else if (deepest->get_subcommands([](const CLI::App*) { return true; }).size() > 0) {
             const std::string hint = closest_match(arg, subcommand_names(*deepest));
             if (!hint.empty())
-                std::fprintf(stderr, "tirpol: unknown subcommand '%s'; did you mean '%s'?\n", arg.c_str(), hint.c_str());
+                std::fprintf(stderr, "tirpol: unknown subcommand '%s'; did you mean '%s'?\n",
+                             arg.c_str(), hint.c_str());
         }
     }
 }
@@ -80,7 +83,8 @@ void print_suggestions(CLI::App& app) {
 void accept_comma_lists(CLI::App& app) {
     for (CLI::Option* o : app.get_options())
         if (o->get_expected_max() > 1 && o->get_delimiter() == '\0') o->delimiter(',');
-    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) accept_comma_lists(*sub);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        accept_comma_lists(*sub);
 }
 }  // namespace
 
@@ -96,14 +100,17 @@ bool register_command(int order, CommandRegistration registration) {
 int run(int argc, char** argv) {
     command_line_storage() = report::quoted_command_line(argc, argv);
     quiet_libraries(argv[0], "info");
-    twin::register_twin_device_schemes();  // `--camera sim://<scene.yaml>` wherever a camera URI is taken
+    twin::register_twin_device_schemes();  // `--camera sim://<scene.yaml>` wherever a camera URI is
+                                           // taken
     CLI::App app{"tirpol — thermal-infrared polarimetry with the instrument in the loop"};
     app.require_subcommand(1);
     app.set_version_flag("--version", version_text());
-    app.footer("Exit codes: 0 success, 1 error in an input, a file or a device, 2 bad command-line usage "
-               "(docs/cli.md).");
+    app.footer(
+        "Exit codes: 0 success, 1 error in an input, a file or a device, 2 bad command-line usage "
+        "(docs/cli.md).");
     std::string log_level = "info";
-    app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")->capture_default_str();
+    app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
+        ->capture_default_str();
     app.parse_complete_callback([&] {
         set_log_level(log_level);
         quiet_libraries(argv[0], log_level);

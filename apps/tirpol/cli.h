@@ -1,7 +1,8 @@
 #pragma once
 // The `tirpol` command line: one CLI11 app, one file per subcommand. Each subcommand file registers
-// itself with TIRPOL_REGISTER_COMMAND(order, function) where function(CLI::App&) adds the subcommand
-// and its callback; `order` sorts the --help listing (pipeline order). No central list to edit.
+// itself with TIRPOL_REGISTER_COMMAND(order, function) where function(CLI::App&) adds the
+// subcommand and its callback; `order` sorts the --help listing (pipeline order). No central list
+// to edit.
 
 #include <fmt/format.h>
 
@@ -24,7 +25,8 @@ int run(int argc, char** argv);
 /// A usage error found after parsing (a value outside its range, options that conflict or need each
 /// other): exit 2 with CLI11's "OPTION: message" and "Run with --help", like CLI11's own checks.
 template <typename... Args>
-[[noreturn]] void usage_error(const std::string& option, fmt::format_string<Args...> format, Args&&... args) {
+[[noreturn]] void usage_error(const std::string& option, fmt::format_string<Args...> format,
+                              Args&&... args) {
     throw CLI::ValidationError(option, fmt::format(format, std::forward<Args>(args)...));
 }
 
@@ -36,7 +38,8 @@ auto parse_option_value(const std::string& option, Parse&& parse) {
         return parse();
     } catch (const Error& e) {
         const std::string message = e.what();
-        throw message.rfind(option, 0) == 0 ? CLI::ValidationError(message) : CLI::ValidationError(option, message);
+        throw message.rfind(option, 0) == 0 ? CLI::ValidationError(message)
+                                            : CLI::ValidationError(option, message);
     }
 }
 
@@ -44,8 +47,9 @@ auto parse_option_value(const std::string& option, Parse&& parse) {
 /// inputs never; tirpol::OutputGuard). Every writing subcommand adds it and passes it to
 /// OutputGuard::check() before any work; an OutputConflict exits 2 (cli.cpp).
 inline CLI::Option* add_force_flag(CLI::App* command, bool& force) {
-    return command->add_flag("--force", force,
-                             "Replace existing files at the outputs (an input is never replaced; docs/cli.md)");
+    return command->add_flag(
+        "--force", force,
+        "Replace existing files at the outputs (an input is never replaced; docs/cli.md)");
 }
 
 using CommandRegistration = std::function<void(CLI::App&)>;
@@ -56,6 +60,6 @@ bool register_command(int order, CommandRegistration registration);
 
 #define TIRPOL_CONCAT_INNER(a, b) a##b
 #define TIRPOL_CONCAT(a, b) TIRPOL_CONCAT_INNER(a, b)
-#define TIRPOL_REGISTER_COMMAND(order, function) \
+#define TIRPOL_REGISTER_COMMAND(order, function)                            \
     static const bool TIRPOL_CONCAT(tirpol_command_registered_, __LINE__) = \
         ::tirpol::cli::register_command(order, function)

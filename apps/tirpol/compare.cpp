@@ -39,31 +39,38 @@ void run_compare(const CompareArgs& a) {
         options.camera_model_name = a.camera;
     }
     // Default: the camera model when given, else control points when given, else automatic.
-    options.registration = !a.registration.empty()
-                               ? parse_option_value("--registration",
-                                                    [&] { return parse_registration_method(a.registration); })
-                           : !a.camera.empty()          ? RegistrationMethod::CameraModel
-                           : !a.control_points.empty() ? RegistrationMethod::ControlPoints
-                                                        : RegistrationMethod::Auto;
+    options.registration =
+        !a.registration.empty()
+            ? parse_option_value("--registration",
+                                 [&] { return parse_registration_method(a.registration); })
+        : !a.camera.empty()         ? RegistrationMethod::CameraModel
+        : !a.control_points.empty() ? RegistrationMethod::ControlPoints
+                                    : RegistrationMethod::Auto;
     if (options.registration == RegistrationMethod::ControlPoints && a.control_points.empty())
         usage_error("--registration", "control-points needs --control-points CP.yaml");
     if (options.registration == RegistrationMethod::CameraModel && a.camera.empty())
         usage_error("--registration", "camera-model needs --camera CAM.yaml");
     if (!a.camera.empty() && options.registration != RegistrationMethod::CameraModel)
-        usage_error("--camera", "a camera model registers by the model: leave out --registration or give camera-model");
+        usage_error(
+            "--camera",
+            "a camera model registers by the model: leave out --registration or give camera-model");
     if (!a.rois.empty()) options.regions = load_regions(a.rois);
     if (a.measured_sigma) {
         if (!(*a.measured_sigma > 0.0) || !std::isfinite(*a.measured_sigma))
-            usage_error("--measured-sigma", "expected a positive radiance in W/(m²·sr), got {}", *a.measured_sigma);
+            usage_error("--measured-sigma", "expected a positive radiance in W/(m²·sr), got {}",
+                        *a.measured_sigma);
         options.measured_frame_sigma = a.measured_sigma;
     }
     if (!(a.gain_sigma >= 0.0 && a.gain_sigma < 1.0))
-        usage_error("--gain-sigma", "expected a relative gain uncertainty in [0, 1), got {}", a.gain_sigma);
+        usage_error("--gain-sigma", "expected a relative gain uncertainty in [0, 1), got {}",
+                    a.gain_sigma);
     if (!(a.offset_sigma >= 0.0) || !std::isfinite(a.offset_sigma))
-        usage_error("--offset-sigma", "expected a non-negative radiance in W/(m²·sr), got {}", a.offset_sigma);
+        usage_error("--offset-sigma", "expected a non-negative radiance in W/(m²·sr), got {}",
+                    a.offset_sigma);
     if (!(a.false_alarm > 0.0 && a.false_alarm < 0.5))
         usage_error("--false-alarm", "expected a probability in (0, 0.5), got {}", a.false_alarm);
-    if (!(a.power > 0.5 && a.power < 1.0)) usage_error("--power", "expected a probability in (0.5, 1), got {}", a.power);
+    if (!(a.power > 0.5 && a.power < 1.0))
+        usage_error("--power", "expected a probability in (0.5, 1), got {}", a.power);
     options.measured_gain_sigma_relative = a.gain_sigma;
     options.measured_offset_sigma = a.offset_sigma;
     options.design.false_alarm_per_region = a.false_alarm;
@@ -75,7 +82,8 @@ void run_compare(const CompareArgs& a) {
         .input(a.rois, "--rois")
         .input(a.control_points, "--control-points")
         .input(a.camera, "--camera")
-        .output_folder(a.output, "--output", {"report.html", "report.json", "comparison.exr", "*.png", "*.svg"})
+        .output_folder(a.output, "--output",
+                       {"report.html", "report.json", "comparison.exr", "*.png", "*.svg"})
         .check(a.force);
     const Image measured = read_exr(a.measured);
     const Image simulated = read_exr(a.simulated);
@@ -84,34 +92,41 @@ void run_compare(const CompareArgs& a) {
     options.provenance.inputs.push_back(describe_input("measured", a.measured, &measured));
     options.provenance.inputs.push_back(describe_input("simulated", a.simulated, &simulated));
     if (!a.rois.empty()) options.provenance.inputs.push_back(describe_input("regions", a.rois));
-    if (!a.control_points.empty()) options.provenance.inputs.push_back(describe_input("control points", a.control_points));
-    if (!a.camera.empty()) options.provenance.inputs.push_back(describe_input("camera model", a.camera));
+    if (!a.control_points.empty())
+        options.provenance.inputs.push_back(describe_input("control points", a.control_points));
+    if (!a.camera.empty())
+        options.provenance.inputs.push_back(describe_input("camera model", a.camera));
     const CompareResult r = write_comparison_report(measured, simulated, options, a.output);
     if (a.json) {
         std::printf("%s", comparison_json(r).c_str());
         return;
     }
     const auto& g = r.registration;
-    std::printf("registration: %s (%s), residual misalignment %.3f px\n", to_string(g.method).c_str(), g.model.c_str(),
+    std::printf("registration: %s (%s), residual misalignment %.3f px\n",
+                to_string(g.method).c_str(), g.model.c_str(),
                 std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
     if (!g.note.empty()) std::printf("  %s\n", g.note.c_str());
     std::printf("%s\n", summary_paragraph(r).c_str());
-    // fmt pads by displayed width (σ and ± are one column, two bytes); the name column fits the longest name.
+    // fmt pads by displayed width (σ and ± are one column, two bytes); the name column fits the
+    // longest name.
     std::size_t name_width = 16;
     for (const auto& region : r.regions) name_width = std::max(name_width, region.name.size());
-    fmt::print("{:<{}} {:>7} {:>14} {:<26} {:<26} {:<26} {}\n", "region", name_width, "pixels", "S0 bias [K]",
-               "S0 diff/σ_mean (detect)", "S1 diff/σ_mean (detect)", "S2 diff/σ_mean (detect)", "verdict");
+    fmt::print("{:<{}} {:>7} {:>14} {:<26} {:<26} {:<26} {}\n", "region", name_width, "pixels",
+               "S0 bias [K]", "S0 diff/σ_mean (detect)", "S1 diff/σ_mean (detect)",
+               "S2 diff/σ_mean (detect)", "verdict");
     for (const auto& region : r.regions) {
         const auto& k = region.s0_bias_k;
-        const std::string kelvin = k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
+        const std::string kelvin =
+            k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
         fmt::print("{:<{}} {:>7} {:>14}", region.name, name_width, region.pixel_count, kelvin);
         for (const auto& q : kZQuantities) {
             const auto& v = region.verdicts.at(q);
-            fmt::print(" {:<26}", fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
-                                              v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
-                                              v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
-                                              : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
-                                                                                              : ""));
+            fmt::print(" {:<26}",
+                       fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
+                                   v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
+                                   v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
+                                   : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
+                                                                                   : ""));
         }
         fmt::print(" {}\n", to_string(region.verdict));
     }
@@ -121,34 +136,45 @@ void run_compare(const CompareArgs& a) {
 
 void register_compare(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
-    auto* cmd = app.add_subcommand("compare", "Measured vs simulated Stokes images → HTML report with statistics");
+    auto* cmd = app.add_subcommand(
+        "compare", "Measured vs simulated Stokes images → HTML report with statistics");
     cmd->add_option("--measured", args->measured, "Measured Stokes EXR (from `tirpol reduce`)")
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("--simulated", args->simulated, "Simulated Stokes EXR (from `tirpol render`)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--rois", args->rois, "Regions of interest YAML (named polygons in measured pixels)")
+    cmd->add_option("--rois", args->rois,
+                    "Regions of interest YAML (named polygons in measured pixels)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--control-points", args->control_points, "Control points YAML (measured ↔ simulated pixels)")
+    cmd->add_option("--control-points", args->control_points,
+                    "Control points YAML (measured ↔ simulated pixels)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--camera", args->camera,
-                    "The measured camera's model YAML (`tirpol calibrate geometric`) the simulation was rendered through: "
+                    "The measured camera's model YAML (`tirpol calibrate geometric`) the "
+                    "simulation was rendered through: "
                     "no warp, the residual misalignment is measured")
         ->check(CLI::ExistingFile);
     cmd->add_option("--registration", args->registration,
-                    "none | auto | control-points | camera-model (default: camera-model with --camera, else control-points "
+                    "none | auto | control-points | camera-model (default: camera-model with "
+                    "--camera, else control-points "
                     "if given, else auto)")
         ->check(CLI::IsMember({"none", "auto", "control-points", "camera-model"}));
     cmd->add_option("--measured-sigma", args->measured_sigma,
-                    "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has no *_std channels");
-    cmd->add_option("--gain-sigma", args->gain_sigma,
-                    "Relative calibration gain uncertainty common to every pixel (e.g. 0.005), default 0");
-    cmd->add_option("--offset-sigma", args->offset_sigma,
-                    "S0 calibration offset uncertainty common to every pixel, W/(m²·sr), default 0");
-    cmd->add_option("--false-alarm", args->false_alarm, "False-alarm probability per region (default 0.05)");
-    cmd->add_option("--power", args->power, "Power at which the detectable bias is quoted (default 0.80)");
-    cmd->add_option("--band-um", args->band_um, "Band LO HI in µm for the S0 bias in kelvin (default: the EXRs' band_um)")
+                    "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has "
+                    "no *_std channels");
+    cmd->add_option(
+        "--gain-sigma", args->gain_sigma,
+        "Relative calibration gain uncertainty common to every pixel (e.g. 0.005), default 0");
+    cmd->add_option(
+        "--offset-sigma", args->offset_sigma,
+        "S0 calibration offset uncertainty common to every pixel, W/(m²·sr), default 0");
+    cmd->add_option("--false-alarm", args->false_alarm,
+                    "False-alarm probability per region (default 0.05)");
+    cmd->add_option("--power", args->power,
+                    "Power at which the detectable bias is quoted (default 0.80)");
+    cmd->add_option("--band-um", args->band_um,
+                    "Band LO HI in µm for the S0 bias in kelvin (default: the EXRs' band_um)")
         ->expected(2);
     cmd->add_option("-o,--output", args->output, "Report directory (created)")->required();
     cmd->add_flag("--json", args->json, "Print report.json to stdout instead of the summary");

@@ -1,5 +1,5 @@
-// `tirpol demo`: runs what exists of the pipeline end to end on built-in data and writes the results
-// under one output folder. Each module extends it (see docs/demo.md).
+// `tirpol demo`: runs what exists of the pipeline end to end on built-in data and writes the
+// results under one output folder. Each module extends it (see docs/demo.md).
 
 #include <cmath>
 #include <cstdio>
@@ -21,8 +21,8 @@ void register_demo(CLI::App& app) {
     cmd->callback([out_dir, force] {
         OutputGuard()
             .output_folder(*out_dir, "--output",
-                           {"acquisition", "analyzer", "calibration", "fitting", "materials", "radiometry",
-                            "simulation", "thermal", "twin"})
+                           {"acquisition", "analyzer", "calibration", "fitting", "materials",
+                            "radiometry", "simulation", "thermal", "twin"})
             .check(*force);
         const std::filesystem::path dir = std::filesystem::absolute(*out_dir);
         std::filesystem::create_directories(dir);

@@ -12,8 +12,8 @@
 #include "demo_steps.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/simulated_camera.h"
-#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::cli {
@@ -30,8 +30,8 @@ void scene(double theta_deg, std::vector<float>& counts) {
     const double c = std::cos(2.0 * (theta_deg - kPanelAopDeg) * std::numbers::pi / 180.0);
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
-            counts[static_cast<std::size_t>(y * kWidth + x)] =
-                static_cast<float>(in_panel(x, y) ? 0.5 * kPanel * (1.0 + kPanelDolp * c) : 0.5 * kBackground);
+            counts[static_cast<std::size_t>(y * kWidth + x)] = static_cast<float>(
+                in_panel(x, y) ? 0.5 * kPanel * (1.0 + kPanelDolp * c) : 0.5 * kBackground);
 }
 
 void demo_acquisition(const std::filesystem::path& out_dir) {
@@ -60,7 +60,9 @@ void demo_acquisition(const std::filesystem::path& out_dir) {
     config.noise_std_counts = 8.0;
     config.fpa_temperature_k = 306.5;
     // Free-running: the camera sees the mount where it physically is, also while it turns.
-    SimulatedCamera camera(config, scene, [&simulator] { return simulator.physical_angle_deg(StageSimulator::Clock::now()); });
+    SimulatedCamera camera(config, scene, [&simulator] {
+        return simulator.physical_angle_deg(StageSimulator::Clock::now());
+    });
 
     CapturePlan plan;
     plan.frames_per_angle = 16;
@@ -68,20 +70,23 @@ void demo_acquisition(const std::filesystem::path& out_dir) {
     plan.metadata = {{"site", "demo"}, {"targets", {"panel, vertically polarized emission"}}};
     const auto dir = out_dir / "acquisition" / "session";
     std::filesystem::remove_all(dir);
-    auto session = SessionWriter::create(dir, new_session_manifest(camera.info(), stage->info(), plan));
+    auto session =
+        SessionWriter::create(dir, new_session_manifest(camera.info(), stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     const auto summary = run_capture(camera, *stage, plan, session, options);
 
     const SessionManifest m = read_session(dir);
     std::vector<std::vector<float>> means;
-    for (const auto& r : m.records) means.push_back(read_session_frame(dir, m, r).channel("counts"));
+    for (const auto& r : m.records)
+        means.push_back(read_session_frame(dir, m, r).channel("counts"));
     double s1_panel = 0, s2_panel = 0, s0_panel = 0, s1_bg = 0;
     int n_panel = 0, n_bg = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const auto i = static_cast<std::size_t>(y * kWidth + x);
-            const double s0 = means[0][i] + means[2][i], s1 = means[0][i] - means[2][i], s2 = means[1][i] - means[3][i];
+            const double s0 = means[0][i] + means[2][i], s1 = means[0][i] - means[2][i],
+                         s2 = means[1][i] - means[3][i];
             if (in_panel(x, y)) {
                 s0_panel += s0, s1_panel += s1, s2_panel += s2, ++n_panel;
             } else {
@@ -90,18 +95,24 @@ void demo_acquisition(const std::filesystem::path& out_dir) {
         }
     const double dolp = std::hypot(s1_panel, s2_panel) / s0_panel;
     const double aop = 0.5 * std::atan2(s2_panel, s1_panel) * 180.0 / std::numbers::pi;
-    std::printf("  stage: %s %s (serial %s, firmware %s) over the APT protocol on %s\n", m.stage.vendor.c_str(),
-                m.stage.model.c_str(), m.stage.serial.c_str(), m.stage.firmware.c_str(), pty.slave_path().c_str());
-    std::printf("  recorded %zu steps × %d frames; angles read back:", summary.steps_recorded, plan.frames_per_angle);
+    std::printf("  stage: %s %s (serial %s, firmware %s) over the APT protocol on %s\n",
+                m.stage.vendor.c_str(), m.stage.model.c_str(), m.stage.serial.c_str(),
+                m.stage.firmware.c_str(), pty.slave_path().c_str());
+    std::printf("  recorded %zu steps × %d frames; angles read back:", summary.steps_recorded,
+                plan.frames_per_angle);
     for (const auto& r : m.records) std::printf(" %.4f°", r.angle_deg_measured);
-    std::printf("\n  panel: DoLP %.4f (true %.2f), AoP %.2f° (true %.0f°, S1 < 0: vertical); background mean S1 %.2f counts (true 0)\n",
-                dolp, kPanelDolp, aop < 0 ? aop + 180.0 : aop, kPanelAopDeg, s1_bg / n_bg);
+    std::printf(
+        "\n  panel: DoLP %.4f (true %.2f), AoP %.2f° (true %.0f°, S1 < 0: vertical); background "
+        "mean S1 %.2f counts (true 0)\n",
+        dolp, kPanelDolp, aop < 0 ? aop + 180.0 : aop, kPanelAopDeg, s1_bg / n_bg);
     std::printf("  session: %s\n", dir.c_str());
 }
 
 }  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(400, "Acquisition: 0/45/90/135° session with a simulated K10CR1 (APT protocol on a pty) and camera",
-                          demo_acquisition);
+TIRPOL_REGISTER_DEMO_STEP(
+    400,
+    "Acquisition: 0/45/90/135° session with a simulated K10CR1 (APT protocol on a pty) and camera",
+    demo_acquisition);
 
 }  // namespace tirpol::cli

@@ -21,7 +21,8 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
     const double s0 = band.radiance(300.0);
     const double angles_deg[4] = {0.0, 45.0, 90.0, 135.0};
     MuellerMatrix analyzer[4];
-    for (int a = 0; a < 4; ++a) analyzer[a] = polarizer_with_extinction(deg_to_rad(angles_deg[a]), 0.7, 400.0);
+    for (int a = 0; a < 4; ++a)
+        analyzer[a] = polarizer_with_extinction(deg_to_rad(angles_deg[a]), 0.7, 400.0);
 
     Image truth(kW, kH), measured(kW, kH);
     for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
@@ -35,10 +36,12 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
             const StokesVector s = linearly_polarized(s0, degree, aop);
             double intensity[4];
             for (int a = 0; a < 4; ++a) intensity[a] = (analyzer[a] * s)[0];
-            // Eqs 14–16 assume an ideal polarizer of unit transmission; the wire grid transmits 70 %.
+            // Eqs 14–16 assume an ideal polarizer of unit transmission; the wire grid transmits 70
+            // %.
             const double t = 0.7;
-            const StokesVector r{0.5 * (intensity[0] + intensity[1] + intensity[2] + intensity[3]) / t,
-                                 (intensity[0] - intensity[2]) / t, (intensity[1] - intensity[3]) / t, 0.0};
+            const StokesVector r{
+                0.5 * (intensity[0] + intensity[1] + intensity[2] + intensity[3]) / t,
+                (intensity[0] - intensity[2]) / t, (intensity[1] - intensity[3]) / t, 0.0};
             const std::size_t i = truth.index(x, y);
             for (auto* pair : {&truth, &measured}) {
                 const StokesVector& v = pair == &truth ? s : r;
@@ -63,15 +66,22 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
         q.colormap = default_colormap(c);
         q.title = std::string(c) + " reduced";
         q.units = std::string(c) == "AoP" ? "°" : (std::string(c) == "DoLP" ? "" : "W/(m²·sr)");
-        if (std::string(c) == "DoLP") { q.vmin = 0.0; q.vmax = 0.3; }
+        if (std::string(c) == "DoLP") {
+            q.vmin = 0.0;
+            q.vmax = 0.3;
+        }
         write_quicklook(dir / (std::string(c) + ".png"), measured.channel(c), kW, kH, q);
     }
-    std::printf("  400:1 wire grid, ideal reduction: worst DoLP error %.4f (of DoLP ≤ 0.3)\n", worst_dolp_error);
-    std::printf("  images: %s/{stokes_truth,stokes_reduced_ideal_eqs}.exr and quicklooks *.png\n", dir.c_str());
+    std::printf("  400:1 wire grid, ideal reduction: worst DoLP error %.4f (of DoLP ≤ 0.3)\n",
+                worst_dolp_error);
+    std::printf("  images: %s/{stokes_truth,stokes_reduced_ideal_eqs}.exr and quicklooks *.png\n",
+                dir.c_str());
 }
 
 }  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(150, "Polarimetry: a wire-grid analyzer at 0/45/90/135° and Stokes reduction (eqs 14–16)", demo_analyzer);
+TIRPOL_REGISTER_DEMO_STEP(
+    150, "Polarimetry: a wire-grid analyzer at 0/45/90/135° and Stokes reduction (eqs 14–16)",
+    demo_analyzer);
 
 }  // namespace tirpol::cli

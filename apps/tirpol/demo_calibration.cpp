@@ -36,7 +36,8 @@ void demo_calibration(const std::filesystem::path& out_dir) {
     cal::SyntheticCamera cam;
     cam.width = 160;
     cam.height = 120;
-    cam.dead_x = 20, cam.dead_y = 15, cam.hot_x = 100, cam.hot_y = 90, cam.noisy_x = 140, cam.noisy_y = 30;
+    cam.dead_x = 20, cam.dead_y = 15, cam.hot_x = 100, cam.hot_y = 90, cam.noisy_x = 140,
+    cam.noisy_y = 30;
     const Band band(8.0, 14.0);
     const Image truth = cal::synthetic_panel_scene(cam.width, cam.height, band);
     cal::write_synthetic_sessions(dir / "sessions", cam, truth, band);
@@ -59,10 +60,12 @@ void demo_calibration(const std::filesystem::path& out_dir) {
 
     const auto& radiometric = *products.radiometric;
     cal::write_radiometric_calibration((dir / "radiometric.exr").string(), radiometric);
-    std::printf("  radiometric: median gain %.2f counts/(W/(m²·sr)) (true mean %.1f); bad pixels found %zu "
-                "(dead %zu, hot %zu, noisy %zu; 3 planted)\n",
-                cal::robust_stats(radiometric.gain).median, cam.gain_mean, radiometric.bad_count(),
-                radiometric.bad_count(cal::kDead), radiometric.bad_count(cal::kHot), radiometric.bad_count(cal::kNoisy));
+    std::printf(
+        "  radiometric: median gain %.2f counts/(W/(m²·sr)) (true mean %.1f); bad pixels found %zu "
+        "(dead %zu, hot %zu, noisy %zu; 3 planted)\n",
+        cal::robust_stats(radiometric.gain).median, cam.gain_mean, radiometric.bad_count(),
+        radiometric.bad_count(cal::kDead), radiometric.bad_count(cal::kHot),
+        radiometric.bad_count(cal::kNoisy));
 
     auto& pol = *products.polarimetric;
     pol.radiometric_calibration = "radiometric.exr";
@@ -72,8 +75,9 @@ void demo_calibration(const std::filesystem::path& out_dir) {
         offset += (p.axis_angle_deg - p.nominal_angle_deg) / 4.0;
         er += p.extinction_ratio() / 4.0;
     }
-    std::printf("  analyzer (%s): angle offset %.3f° (true %.2f°), extinction ratio %.1f (true %.0f)\n",
-                pol.analyzer_method.c_str(), offset, cam.angle_offset_deg, er, cam.extinction_ratio);
+    std::printf(
+        "  analyzer (%s): angle offset %.3f° (true %.2f°), extinction ratio %.1f (true %.0f)\n",
+        pol.analyzer_method.c_str(), offset, cam.angle_offset_deg, er, cam.extinction_ratio);
 
     const Image& stokes = products.stokes.front();
     write_exr(dir / "stokes.exr", stokes);
@@ -81,27 +85,33 @@ void demo_calibration(const std::filesystem::path& out_dir) {
         QuicklookOptions q;
         q.colormap = default_colormap(c);
         q.title = c;
-        write_quicklook(dir / (std::string(c) + ".png"), stokes.channel(c), stokes.width(), stokes.height(), q);
+        write_quicklook(dir / (std::string(c) + ".png"), stokes.channel(c), stokes.width(),
+                        stokes.height(), q);
     }
-    // The same scene without the wire-grid calibration: the chain from the radiometric one, offset updated.
+    // The same scene without the wire-grid calibration: the chain from the radiometric one, offset
+    // updated.
     cal::ChainInputs naive_chain;
     naive_chain.scene_sessions = chain.scene_sessions;
     naive_chain.reduction.update_offset = true;
     cal::ChainProducts naive_given;
     naive_given.radiometric = radiometric;
-    const Image naive = cal::run_calibration_chain(naive_chain, std::move(naive_given)).stokes.front();
+    const Image naive =
+        cal::run_calibration_chain(naive_chain, std::move(naive_given)).stokes.front();
     write_exr(dir / "stokes_without_wire_grid_removal.exr", naive);
-    std::printf("  panel S1: true %.4f, calibrated %.4f ± %.4f (per pixel), without wire-grid removal %.4f W/(m²·sr)\n",
-                panel_mean(truth, "S1", x0, x1, y0, y1), panel_mean(stokes, "S1", x0, x1, y0, y1),
-                panel_mean(stokes, "S1_std", x0, x1, y0, y1), panel_mean(naive, "S1", x0, x1, y0, y1));
+    std::printf(
+        "  panel S1: true %.4f, calibrated %.4f ± %.4f (per pixel), without wire-grid removal %.4f "
+        "W/(m²·sr)\n",
+        panel_mean(truth, "S1", x0, x1, y0, y1), panel_mean(stokes, "S1", x0, x1, y0, y1),
+        panel_mean(stokes, "S1_std", x0, x1, y0, y1), panel_mean(naive, "S1", x0, x1, y0, y1));
 
     const auto& eps = products.emissivity.front();
     write_file_atomic(dir / "emissivity.csv", cal::emissivity_csv(eps));
     std::printf(
-        "  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 %+.4f ± %.4f "
+        "  emissivity (eq 17): ε_S0 %.4f ± %.4f (true 0.93), ε_S1 %+.4f ± %.4f (true −0.035), ε_S2 "
+        "%+.4f ± %.4f "
         "(true 0.01), 2σ\n",
-        eps[0].eps_s0, 2.0 * eps[0].eps_s0_std, eps[0].eps_s1, 2.0 * eps[0].eps_s1_std, eps[0].eps_s2,
-        2.0 * eps[0].eps_s2_std);
+        eps[0].eps_s0, 2.0 * eps[0].eps_s0_std, eps[0].eps_s1, 2.0 * eps[0].eps_s1_std,
+        eps[0].eps_s2, 2.0 * eps[0].eps_s2_std);
 
     // NEDT from 64 raw frames of a 300 K blackbody through the same synthetic camera.
     cal::FrameStack stack{cam.width, cam.height, {}};
@@ -111,22 +121,33 @@ void demo_calibration(const std::filesystem::path& out_dir) {
     for (int t = 0; t < 64; ++t) {
         std::vector<float> f(radiometric.gain.size());
         for (std::size_t i = 0; i < f.size(); ++i)
-            f[i] = static_cast<float>(radiometric.offset[i] + radiometric.gain[i] * l300 + cam.noise_counts * unit(rng));
+            f[i] = static_cast<float>(radiometric.offset[i] + radiometric.gain[i] * l300 +
+                                      cam.noise_counts * unit(rng));
         stack.frames.push_back(std::move(f));
     }
     std::vector<float> responsivity(radiometric.gain.size());
     for (std::size_t i = 0; i < responsivity.size(); ++i)
-        responsivity[i] = radiometric.bad[i] != 0.0f ? 0.0f : static_cast<float>(radiometric.gain[i] * band.radiance_dT(300.0));
+        responsivity[i] = radiometric.bad[i] != 0.0f
+                              ? 0.0f
+                              : static_cast<float>(radiometric.gain[i] * band.radiance_dT(300.0));
     const auto nedt = cal::finite_median(cal::nedt_map(cal::temporal_noise(stack), responsivity));
     const auto curve = cal::nedt_vs_averaging(stack, responsivity);
-    std::printf("  NEDT: %.1f mK per frame (true %.1f mK); %.1f mK averaging %d frames (white noise: %.1f mK)\n",
-                1e3 * nedt, 1e3 * cam.noise_counts / (cam.gain_mean * band.radiance_dT(300.0)),
-                1e3 * curve.back().median_nedt_k, curve.back().frames_averaged, 1e3 * curve.back().white_noise_k);
-    std::printf("  files: %s/{radiometric.exr, polarimetric.yaml, stokes.exr, emissivity.csv, S0..DoLP.png}\n", dir.c_str());
+    std::printf(
+        "  NEDT: %.1f mK per frame (true %.1f mK); %.1f mK averaging %d frames (white noise: %.1f "
+        "mK)\n",
+        1e3 * nedt, 1e3 * cam.noise_counts / (cam.gain_mean * band.radiance_dT(300.0)),
+        1e3 * curve.back().median_nedt_k, curve.back().frames_averaged,
+        1e3 * curve.back().white_noise_k);
+    std::printf(
+        "  files: %s/{radiometric.exr, polarimetric.yaml, stokes.exr, emissivity.csv, "
+        "S0..DoLP.png}\n",
+        dir.c_str());
 }
 }  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(500, "Calibration: blackbody radiometry, wire-grid removal, Stokes reduction, emissivity (eq 17)",
-                          demo_calibration);
+TIRPOL_REGISTER_DEMO_STEP(
+    500,
+    "Calibration: blackbody radiometry, wire-grid removal, Stokes reduction, emissivity (eq 17)",
+    demo_calibration);
 
 }  // namespace tirpol::cli

@@ -18,7 +18,8 @@ bool register_demo_step(DemoStep step) {
 
 std::vector<DemoStep> demo_steps() {
     auto steps = registry();
-    std::stable_sort(steps.begin(), steps.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+    std::stable_sort(steps.begin(), steps.end(),
+                     [](const auto& a, const auto& b) { return a.order < b.order; });
     return steps;
 }
 

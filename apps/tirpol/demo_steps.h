@@ -25,6 +25,6 @@ std::vector<DemoStep> demo_steps();
 
 }  // namespace tirpol::cli
 
-#define TIRPOL_REGISTER_DEMO_STEP(order, title, function) \
+#define TIRPOL_REGISTER_DEMO_STEP(order, title, function)                \
     static const bool TIRPOL_CONCAT(tirpol_demo_registered_, __LINE__) = \
         ::tirpol::cli::register_demo_step({order, title, function})

@@ -23,7 +23,9 @@ void demo_twin(const std::filesystem::path& out_dir) {
 
 }  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(
-    800, "Digital twin: render → GigE camera + pty stage → acquire → calibrate → fit → re-render → compare", demo_twin);
+TIRPOL_REGISTER_DEMO_STEP(800,
+                          "Digital twin: render → GigE camera + pty stage → acquire → calibrate → "
+                          "fit → re-render → compare",
+                          demo_twin);
 
 }  // namespace tirpol::cli

@@ -56,18 +56,22 @@ std::string command_line(const FitArgs& a) {
 }
 
 std::size_t parameter_index(const std::string& option, const std::string& name) {
-    return static_cast<std::size_t>(parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
+    return static_cast<std::size_t>(
+        parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
 }
 
-// Initial values from a material file (--init): the micro-facet parameters at the data's first wavelength.
-void apply_init(const std::string& path, double wavelength_um, fitting::MicrofacetFitOptions& options) {
+// Initial values from a material file (--init): the micro-facet parameters at the data's first
+// wavelength.
+void apply_init(const std::string& path, double wavelength_um,
+                fitting::MicrofacetFitOptions& options) {
     const materials::Material material = materials::load_material(materials::material_file(path));
     const auto* brdf = dynamic_cast<const materials::MicrofacetBrdf*>(material.brdf.get());
     if (!brdf)
-        fail("--init {}: model \"{}\" is not the micro-facet model; expected `model: microfacet`", path,
-             material.brdf->model());
+        fail("--init {}: model \"{}\" is not the micro-facet model; expected `model: microfacet`",
+             path, material.brdf->model());
     const auto values = fitting::fit_order_values(brdf->at(wavelength_um));
-    for (std::size_t i = 0; i < fitting::kMicrofacetParameterCount; ++i) options.parameters[i].initial = values[i];
+    for (std::size_t i = 0; i < fitting::kMicrofacetParameterCount; ++i)
+        options.parameters[i].initial = values[i];
 }
 
 // --bound, --free and --fix: usage errors, so also parsed once before any data file is read.
@@ -86,7 +90,8 @@ void apply_parameter_options(const FitArgs& a, fitting::MicrofacetFitOptions& o)
         const auto eq = item.find('=');
         auto& s = o.parameters[parameter_index("--fix", item.substr(0, eq))];
         s.fixed = true;
-        if (eq != std::string::npos) s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
+        if (eq != std::string::npos)
+            s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
     }
 }
 
@@ -104,14 +109,19 @@ fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavele
 void run_fit(const FitArgs& a) {
     OutputGuard guard;
     for (const std::string& file : a.data) guard.input(file, "DATA");
-    guard.input(a.init, "--init").output_file(a.output, "--output").output_file(a.plot, "--plot").check(a.force);
+    guard.input(a.init, "--init")
+        .output_file(a.output, "--output")
+        .output_file(a.plot, "--plot")
+        .check(a.force);
     if (a.model != "micro-facet" && a.model != "microfacet")
-        usage_error("--model", "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
+        usage_error("--model",
+                    "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
     fitting::MicrofacetFitOptions usage_check;
     apply_parameter_options(a, usage_check);
     std::vector<fitting::EmissivityDataset> datasets;
     for (const std::string& file : a.data)
-        for (auto& d : fitting::load_emissivity_csv(file, a.wavelength_um)) datasets.push_back(std::move(d));
+        for (auto& d : fitting::load_emissivity_csv(file, a.wavelength_um))
+            datasets.push_back(std::move(d));
     const fitting::MicrofacetFitOptions options = options_from(a, datasets.front().wavelength_um);
     const fitting::MicrofacetFitProblem problem(datasets, options);
     const fitting::MicrofacetFitResult result = problem.solve();
@@ -122,7 +132,8 @@ void run_fit(const FitArgs& a) {
     write_file_atomic(a.output, fitting::fitted_material_yaml(name, result, provenance));
     if (!a.plot.empty())
         fitting::write_fit_plot(a.plot, problem.datasets(), result,
-                                fmt::format("{}: polarized emissivity, measured and fitted", name), options.quadrature);
+                                fmt::format("{}: polarized emissivity, measured and fitted", name),
+                                options.quadrature);
     if (a.json) {
         nlohmann::json j = fitting::fit_report_json(result, problem.datasets(), provenance);
         j["material_file"] = a.output;
@@ -133,39 +144,46 @@ void run_fit(const FitArgs& a) {
         std::printf("material: %s\n", a.output.c_str());
         if (!a.plot.empty()) std::printf("plot: %s\n", a.plot.c_str());
     }
-    if (!result.usable) fail("the fit did not converge to a usable solution ({})", result.termination);
+    if (!result.usable)
+        fail("the fit did not converge to a usable solution ({})", result.termination);
 }
 
 void register_fit(CLI::App& app) {
     auto args = std::make_shared<FitArgs>();
-    auto* cmd = app.add_subcommand("fit", "Fit micro-facet pBRDF parameters to measured polarized emissivity");
-    cmd->add_option("data", args->data, "Emissivity CSV(s) from `tirpol extract-emissivity` (docs/fitting.md)")
+    auto* cmd = app.add_subcommand(
+        "fit", "Fit micro-facet pBRDF parameters to measured polarized emissivity");
+    cmd->add_option("data", args->data,
+                    "Emissivity CSV(s) from `tirpol extract-emissivity` (docs/fitting.md)")
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("--model", args->model, "Model to fit (micro-facet)")->capture_default_str();
-    cmd->add_option("--fix", args->fix, "Hold parameters fixed: NAME[=VALUE],... (n k sigma bias tau_deg omega_deg "
-                                        "rho_d rho_v)")
+    cmd->add_option("--fix", args->fix,
+                    "Hold parameters fixed: NAME[=VALUE],... (n k sigma bias tau_deg omega_deg "
+                    "rho_d rho_v)")
         ->delimiter(',');
-    cmd->add_option("--free", args->free, "Free parameters that are fixed by default: NAME,...")->delimiter(',');
+    cmd->add_option("--free", args->free, "Free parameters that are fixed by default: NAME,...")
+        ->delimiter(',');
     cmd->add_option("--bound", args->bounds, "Bounds: NAME=LOWER:UPPER,...")->delimiter(',');
-    cmd->add_option("--init", args->init,
-                    "Material YAML or library name whose micro-facet parameters are the first start");
-    cmd->add_option("--starts", args->starts, "Number of starts (initial + Latin hypercube)")->capture_default_str();
+    cmd->add_option(
+        "--init", args->init,
+        "Material YAML or library name whose micro-facet parameters are the first start");
+    cmd->add_option("--starts", args->starts, "Number of starts (initial + Latin hypercube)")
+        ->capture_default_str();
     cmd->add_option("--seed", args->seed, "Seed of the Latin hypercube")->capture_default_str();
-    cmd->add_option("--quadrature-order", args->order, "Gauss–Legendre nodes per panel")->capture_default_str();
+    cmd->add_option("--quadrature-order", args->order, "Gauss–Legendre nodes per panel")
+        ->capture_default_str();
     cmd->add_option("--wavelength-um", args->wavelength_um,
                     "Effective wavelength of data without a wavelength_um column")
         ->capture_default_str();
-    cmd->add_flag("--scale-covariance", args->scale_covariance,
-                  "Scale the covariance by chi2/dof (when the stated uncertainties are not trusted)");
+    cmd->add_flag(
+        "--scale-covariance", args->scale_covariance,
+        "Scale the covariance by chi2/dof (when the stated uncertainties are not trusted)");
     cmd->add_option("-o,--output", args->output, "Fitted material YAML")->required();
     cmd->add_option("--name", args->name, "Material name (default: the output file's stem)");
     cmd->add_option("--plot", args->plot, "PNG plot of data and fit (like the paper's Fig. 1)");
     cmd->add_flag("--json", args->json, "Print the fit report as JSON (keys in docs/fitting.md)");
     add_force_flag(cmd, args->force);
-    cmd->callback([args] {
-        run_fit(*args);
-    });
+    cmd->callback([args] { run_fit(*args); });
 }
 
 }  // namespace

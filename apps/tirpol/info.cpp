@@ -20,15 +20,19 @@ std::string attribute_text(const AttributeValue& v) {
     return std::visit(
         [](const auto& x) -> std::string {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, std::string>) return "\"" + x + "\"";
+            if constexpr (std::is_same_v<T, std::string>)
+                return "\"" + x + "\"";
             else if constexpr (std::is_same_v<T, std::vector<double>>)
                 return json_text(nlohmann::json(x));
-            else return fmt::format("{}", x);
+            else
+                return fmt::format("{}", x);
         },
         v);
 }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json finite_or_null(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 void run_info(const std::string& path, bool json) {
     const Image image = read_exr(path);
@@ -36,12 +40,13 @@ void run_info(const std::string& path, bool json) {
     out["file"] = path;
     out["width"] = image.width();
     out["height"] = image.height();
-    for (const auto& [name, value] : image.attributes()) out["attributes"][name] = attribute_json(value);
+    for (const auto& [name, value] : image.attributes())
+        out["attributes"][name] = attribute_json(value);
     for (const auto& name : image.channel_names()) {
         const ChannelStats s = channel_stats(image.channel(name));
         out["channels"][name] = {{"min", finite_or_null(s.min)}, {"mean", finite_or_null(s.mean)},
                                  {"max", finite_or_null(s.max)}, {"std", finite_or_null(s.std)},
-                                 {"nan_count", s.nan_count},      {"inf_count", s.inf_count}};
+                                 {"nan_count", s.nan_count},     {"inf_count", s.inf_count}};
     }
     if (json) {
         std::printf("%s\n", json_text(out, 2).c_str());
@@ -55,8 +60,8 @@ void run_info(const std::string& path, bool json) {
     std::printf("%-12s %14s %14s %14s %12s %8s\n", "channel", "min", "mean", "max", "std", "NaN");
     for (const auto& name : image.channel_names()) {
         const ChannelStats s = channel_stats(image.channel(name));
-        std::printf("%-12s %14.6g %14.6g %14.6g %12.4g %8zu\n", name.c_str(), s.min, s.mean, s.max, s.std,
-                    s.nan_count);
+        std::printf("%-12s %14.6g %14.6g %14.6g %12.4g %8zu\n", name.c_str(), s.min, s.mean, s.max,
+                    s.std, s.nan_count);
     }
 }
 }  // namespace
@@ -65,7 +70,8 @@ namespace {
 void register_info(CLI::App& app) {
     auto path = std::make_shared<std::string>();
     auto json = std::make_shared<bool>(false);
-    auto* cmd = app.add_subcommand("info", "Describe an EXR image: size, channels, header, statistics");
+    auto* cmd =
+        app.add_subcommand("info", "Describe an EXR image: size, channels, header, statistics");
     cmd->add_option("FILE", *path, "OpenEXR file")->required();
     cmd->add_flag("--json", *json, "Print JSON");
     cmd->callback([path, json] { run_info(*path, *json); });

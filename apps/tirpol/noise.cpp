@@ -1,6 +1,8 @@
 // `tirpol noise`: temporal noise, NEDT and the 3D noise decomposition from a stack of frames of a
 // uniform blackbody (docs/calibration.md).
 
+#include "tirpol/calibration/noise.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -8,7 +10,6 @@
 
 #include "cli.h"
 #include "tirpol/calibration/frame_stack_io.h"
-#include "tirpol/calibration/noise.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -27,8 +28,9 @@ struct NoiseArgs {
 };
 
 nlohmann::json to_json(const calibration::ThreeDNoise& d) {
-    return {{"sigma_t", d.sigma_t},   {"sigma_v", d.sigma_v},   {"sigma_h", d.sigma_h},   {"sigma_tv", d.sigma_tv},
-            {"sigma_th", d.sigma_th}, {"sigma_vh", d.sigma_vh}, {"sigma_tvh", d.sigma_tvh}, {"sigma_total", d.sigma_total}};
+    return {{"sigma_t", d.sigma_t},     {"sigma_v", d.sigma_v},        {"sigma_h", d.sigma_h},
+            {"sigma_tv", d.sigma_tv},   {"sigma_th", d.sigma_th},      {"sigma_vh", d.sigma_vh},
+            {"sigma_tvh", d.sigma_tvh}, {"sigma_total", d.sigma_total}};
 }
 
 void run_noise(const NoiseArgs& a) {
@@ -40,11 +42,12 @@ void run_noise(const NoiseArgs& a) {
         .check(a.force);
     std::optional<calibration::RawFrameFormat> raw;
     if (!a.raw_shape.empty())
-        raw = calibration::RawFrameFormat{a.raw_shape[0], a.raw_shape[1], calibration::raw_type_from_string(a.raw_type),
+        raw = calibration::RawFrameFormat{a.raw_shape[0], a.raw_shape[1],
+                                          calibration::raw_type_from_string(a.raw_type),
                                           a.raw_header_bytes};
     const auto stack = calibration::load_frame_stack(a.stack, raw);
-    const auto convention =
-        a.convention == "sample" ? calibration::NoiseConvention::Sample : calibration::NoiseConvention::Population;
+    const auto convention = a.convention == "sample" ? calibration::NoiseConvention::Sample
+                                                     : calibration::NoiseConvention::Population;
     const auto d3 = calibration::three_d_noise(stack, convention);
     const auto sigma = calibration::temporal_noise(stack);
     nlohmann::json out;
@@ -74,7 +77,8 @@ void run_noise(const NoiseArgs& a) {
         out["three_d_noise_k"] = to_json(d3k);
         nlohmann::json curve = nlohmann::json::array();
         for (const auto& p : calibration::nedt_vs_averaging(kelvin, good))
-            curve.push_back({{"frames_averaged", p.frames_averaged}, {"nedt_median_k", p.median_nedt_k},
+            curve.push_back({{"frames_averaged", p.frames_averaged},
+                             {"nedt_median_k", p.median_nedt_k},
                              {"white_noise_k", p.white_noise_k}});
         out["nedt_vs_frames_averaged"] = curve;
         if (!a.nedt_map.empty()) {
@@ -84,40 +88,53 @@ void run_noise(const NoiseArgs& a) {
             map.attributes()["units_nedt_k"] = std::string("K");
             write_exr(a.nedt_map, map);
         }
-        std::printf("NEDT median %.1f mK at %.2f K; 3D noise (mK, %s): σ_tvh %.1f, σ_vh %.1f, σ_t %.1f\n",
-                    1e3 * out["nedt_median_k"].get<double>(), d3k.mean, calibration::to_string(convention),
-                    1e3 * d3k.sigma_tvh, 1e3 * d3k.sigma_vh, 1e3 * d3k.sigma_t);
+        std::printf(
+            "NEDT median %.1f mK at %.2f K; 3D noise (mK, %s): σ_tvh %.1f, σ_vh %.1f, σ_t %.1f\n",
+            1e3 * out["nedt_median_k"].get<double>(), d3k.mean, calibration::to_string(convention),
+            1e3 * d3k.sigma_tvh, 1e3 * d3k.sigma_vh, 1e3 * d3k.sigma_t);
     }
     write_file_atomic(a.output, json_text(out, 2) + "\n");
-    std::printf("%zu frames; 3D noise (counts, %s): σ_tvh %.3g, σ_vh %.3g, σ_v %.3g, σ_h %.3g, σ_t %.3g, σ_tv %.3g, "
-                "σ_th %.3g → %s\n",
-                stack.frames.size(), calibration::to_string(convention), d3.sigma_tvh, d3.sigma_vh, d3.sigma_v,
-                d3.sigma_h, d3.sigma_t, d3.sigma_tv, d3.sigma_th, a.output.c_str());
+    std::printf(
+        "%zu frames; 3D noise (counts, %s): σ_tvh %.3g, σ_vh %.3g, σ_v %.3g, σ_h %.3g, σ_t %.3g, "
+        "σ_tv %.3g, "
+        "σ_th %.3g → %s\n",
+        stack.frames.size(), calibration::to_string(convention), d3.sigma_tvh, d3.sigma_vh,
+        d3.sigma_v, d3.sigma_h, d3.sigma_t, d3.sigma_tv, d3.sigma_th, a.output.c_str());
 }
 
 void register_noise(CLI::App& app) {
     auto a = std::make_shared<NoiseArgs>();
-    auto* cmd = app.add_subcommand("noise", "NEDT and 3D noise from a frame stack of a uniform blackbody");
+    auto* cmd =
+        app.add_subcommand("noise", "NEDT and 3D noise from a frame stack of a uniform blackbody");
     cmd->add_option("STACK", a->stack,
-                    "Directory of frames (EXR channel counts, PNG, TIFF), one EXR with frame_* channels, or a raw file "
+                    "Directory of frames (EXR channel counts, PNG, TIFF), one EXR with frame_* "
+                    "channels, or a raw file "
                     "(--raw-shape)")
         ->required()
         ->check(CLI::ExistingPath);
-    cmd->add_option("--raw-shape", a->raw_shape, "STACK is a headerless raw file of frames WIDTH HEIGHT")->expected(2);
-    cmd->add_option("--raw-type", a->raw_type, "Raw value type: uint8, uint16, float32 (little-endian)")
+    cmd->add_option("--raw-shape", a->raw_shape,
+                    "STACK is a headerless raw file of frames WIDTH HEIGHT")
+        ->expected(2);
+    cmd->add_option("--raw-type", a->raw_type,
+                    "Raw value type: uint8, uint16, float32 (little-endian)")
         ->check(CLI::IsMember({"uint8", "uint16", "float32"}))
         ->capture_default_str();
-    cmd->add_option("--raw-header-bytes", a->raw_header_bytes, "Bytes to skip at the start of the raw file");
+    cmd->add_option("--raw-header-bytes", a->raw_header_bytes,
+                    "Bytes to skip at the start of the raw file");
     cmd->add_option("--convention", a->convention,
-                    "3D-noise σ normalisation: sample (N-1, as pyradi ry3dnoise) or population (N, D'Agostino & Webb)")
+                    "3D-noise σ normalisation: sample (N-1, as pyradi ry3dnoise) or population (N, "
+                    "D'Agostino & Webb)")
         ->check(CLI::IsMember({"sample", "population"}))
         ->capture_default_str();
-    cmd->add_option("--fpa-temperature-k", a->fpa_temperature_k, "Camera FPA temperature (FPA-dependent calibrations)");
+    cmd->add_option("--fpa-temperature-k", a->fpa_temperature_k,
+                    "Camera FPA temperature (FPA-dependent calibrations)");
     cmd->add_option("-o,--output", a->output, "Report JSON")->required();
-    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR (for NEDT in kelvin)")
+    cmd->add_option("--calibration", a->calibration,
+                    "Radiometric calibration EXR (for NEDT in kelvin)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--temperature-k", a->temperature_k,
-                    "Blackbody temperature of the stack, reported (default: the mean brightness temperature)");
+    cmd->add_option(
+        "--temperature-k", a->temperature_k,
+        "Blackbody temperature of the stack, reported (default: the mean brightness temperature)");
     cmd->add_option("--nedt-map", a->nedt_map, "Also write the per-pixel NEDT EXR here");
     add_force_flag(cmd, a->force);
     cmd->callback([a] { run_noise(*a); });

@@ -22,10 +22,13 @@ namespace lim = ::tirpol::limits;
 const std::map<std::pair<std::string, std::string>, OptionLimit>& limit_table() {
     static const std::map<std::pair<std::string, std::string>, OptionLimit> table = {
         {{"*", "--band-um"},
-         {lim::kMinWavelengthUm, lim::kMaxWavelengthUm, "a wavelength in micrometres (0.1 µm far UV to 1 mm)"}},
+         {lim::kMinWavelengthUm, lim::kMaxWavelengthUm,
+          "a wavelength in micrometres (0.1 µm far UV to 1 mm)"}},
         {{"*", "--wavelength-um"},
-         {lim::kMinWavelengthUm, lim::kMaxWavelengthUm, "a wavelength in micrometres (0.1 µm far UV to 1 mm)"}},
-        {{"*", "--temperature-k"}, {lim::kMinTemperatureK, lim::kMaxTemperatureK, "a physical temperature in kelvin"}},
+         {lim::kMinWavelengthUm, lim::kMaxWavelengthUm,
+          "a wavelength in micrometres (0.1 µm far UV to 1 mm)"}},
+        {{"*", "--temperature-k"},
+         {lim::kMinTemperatureK, lim::kMaxTemperatureK, "a physical temperature in kelvin"}},
         {{"*", "--fpa-temperature-k"},
          {lim::kMinTemperatureK, lim::kMaxTemperatureK, "a physical temperature in kelvin"}},
         {{"*", "--spp"}, {1, lim::kMaxSamplesPerPixel, "samples per pixel"}},
@@ -37,7 +40,8 @@ const std::map<std::pair<std::string, std::string>, OptionLimit>& limit_table() 
          {lim::kMinCorrectionEmissivity, 1.0,
           "an emissivity the correction can divide by (below 0.01 the reflected term dominates)"}},
         {{"flir-temperature", "--window-transmission"},
-         {lim::kMinCorrectionEmissivity, 1.0, "a window transmission the correction can divide by"}},
+         {lim::kMinCorrectionEmissivity, 1.0,
+          "a window transmission the correction can divide by"}},
     };
     return table;
 }
@@ -61,7 +65,8 @@ std::optional<double> number_in(const std::string& text) {
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
     if (end != text.c_str() + text.size()) return std::nullopt;
-    if (errno == ERANGE && std::isinf(value)) return value;  // overflow: refused below as not finite
+    if (errno == ERANGE && std::isinf(value))
+        return value;  // overflow: refused below as not finite
     return value;
 }
 
@@ -71,10 +76,11 @@ CLI::Validator numeric_validator(const OptionLimit* limit) {
         [limit](std::string& text) -> std::string {
             const std::optional<double> value = number_in(text);
             if (!value) return {};
-            if (!std::isfinite(*value)) return fmt::format("expected a finite number, got '{}'", text);
+            if (!std::isfinite(*value))
+                return fmt::format("expected a finite number, got '{}'", text);
             if (limit && !(*value >= limit->lo && *value <= limit->hi))
-                return fmt::format("{} is outside [{}, {}], {} (limits table in docs/cli.md)", text, limit->lo,
-                                   limit->hi, limit->why);
+                return fmt::format("{} is outside [{}, {}], {} (limits table in docs/cli.md)", text,
+                                   limit->lo, limit->hi, limit->why);
             return {};
         },
         "", "finite number");
@@ -83,8 +89,8 @@ CLI::Validator numeric_validator(const OptionLimit* limit) {
 void validate_recursively(CLI::App& app, const std::string& path) {
     for (CLI::Option* option : app.get_options()) {
         if (!is_numeric(*option) || option->get_expected_max() == 0) continue;
-        // transform() puts the check first, before an option's own range check ("Value nan not in range"),
-        // so every numeric option refuses nan and inf with the same message.
+        // transform() puts the check first, before an option's own range check ("Value nan not in
+        // range"), so every numeric option refuses nan and inf with the same message.
         option->transform(numeric_validator(option_limit(path, long_name(*option))));
     }
     for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))

@@ -27,9 +27,11 @@ void run_reduce(const ReduceArgs& a) {
         .input(a.session, "SESSION")
         .input(a.calibration, "--calibration")
         .input(a.polarimetric, "--polarimetric")
-        .input(a.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(a.polarimetric), "--polarimetric maps")
+        .input(a.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(a.polarimetric),
+               "--polarimetric maps")
         .output_file(a.output, "--output")
-        .output_folder(a.quicklooks, "--quicklooks", {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
+        .output_folder(a.quicklooks, "--quicklooks",
+                       {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
         .check(a.force);
     calibration::ChainInputs chain;
     chain.scene_sessions = {a.session};
@@ -38,13 +40,14 @@ void run_reduce(const ReduceArgs& a) {
     chain.reduction.max_saturated_fraction = a.max_saturated_fraction;
     chain.reduction.include_slar = a.slar;
     chain.reduction.force_other_camera = a.other_camera;
-    Image stokes =
-        calibration::run_calibration_chain(chain, calibration::read_calibration_products(a.calibration, a.polarimetric))
-            .stokes.front();
+    Image stokes = calibration::run_calibration_chain(
+                       chain, calibration::read_calibration_products(a.calibration, a.polarimetric))
+                       .stokes.front();
     stokes.attributes()["radiometric_calibration"] = a.calibration;
     stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
     write_exr(a.output, stokes);
-    if (const auto it = stokes.attributes().find("calibration_warnings"); it != stokes.attributes().end())
+    if (const auto it = stokes.attributes().find("calibration_warnings");
+        it != stokes.attributes().end())
         std::printf("warning: %s\n", std::get<std::string>(it->second).c_str());
     if (!a.quicklooks.empty())
         for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
@@ -52,43 +55,60 @@ void run_reduce(const ReduceArgs& a) {
             q.colormap = default_colormap(c);
             q.title = c;
             q.units = std::string(c) == "AoP" ? "deg" : std::string(c) == "DoLP" ? "" : "W/(m²·sr)";
-            write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"), stokes.channel(c),
-                            stokes.width(), stokes.height(), q);
+            write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"),
+                            stokes.channel(c), stokes.width(), stokes.height(), q);
         }
-    if (const auto it = stokes.attributes().find("drift_offset_counts"); it != stokes.attributes().end()) {
+    if (const auto it = stokes.attributes().find("drift_offset_counts");
+        it != stokes.attributes().end()) {
         const auto& shift = std::get<std::vector<double>>(it->second);
-        const auto& sigma = std::get<std::vector<double>>(stokes.attributes().at("drift_offset_sigma_counts"));
+        const auto& sigma =
+            std::get<std::vector<double>>(stokes.attributes().at("drift_offset_sigma_counts"));
         const auto [lo, hi] = std::minmax_element(shift.begin(), shift.end());
-        std::printf("drift correction (%s): offset shift %.2f … %.2f counts over %zu records, σ ≤ %.3f counts\n",
-                    std::get<std::string>(stokes.attributes().at("drift_correction_source")).c_str(), *lo, *hi,
-                    shift.size(), *std::max_element(sigma.begin(), sigma.end()));
+        std::printf(
+            "drift correction (%s): offset shift %.2f … %.2f counts over %zu records, σ ≤ %.3f "
+            "counts\n",
+            std::get<std::string>(stokes.attributes().at("drift_correction_source")).c_str(), *lo,
+            *hi, shift.size(), *std::max_element(sigma.begin(), sigma.end()));
     }
     const auto s0 = channel_stats(stokes.channel("S0"));
     const auto dolp = channel_stats(stokes.channel("DoLP"));
-    std::printf("Stokes %d×%d: S0 mean %.4g W/(m²·sr), DoLP mean %.4f; %d unrealizable pixel(s) projected, %d saturated → %s\n",
-                stokes.width(), stokes.height(), s0.mean, dolp.mean,
-                std::get<int>(stokes.attributes().at("unrealizable_pixels")),
-                std::get<int>(stokes.attributes().at("saturated_pixels")), a.output.c_str());
+    std::printf(
+        "Stokes %d×%d: S0 mean %.4g W/(m²·sr), DoLP mean %.4f; %d unrealizable pixel(s) projected, "
+        "%d saturated → %s\n",
+        stokes.width(), stokes.height(), s0.mean, dolp.mean,
+        std::get<int>(stokes.attributes().at("unrealizable_pixels")),
+        std::get<int>(stokes.attributes().at("saturated_pixels")), a.output.c_str());
 }
 
 void register_reduce(CLI::App& app) {
     auto a = std::make_shared<ReduceArgs>();
-    auto* cmd = app.add_subcommand("reduce", "Session → Stokes EXR (S0 S1 S2 DoLP AoP and uncertainties)");
-    cmd->add_option("SESSION", a->session, "Session directory with polarizer records")->required()->check(CLI::ExistingDirectory);
-    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--polarimetric", a->polarimetric, "Polarimetric calibration YAML (wire-grid removal, analyzer model)")
+    auto* cmd =
+        app.add_subcommand("reduce", "Session → Stokes EXR (S0 S1 S2 DoLP AoP and uncertainties)");
+    cmd->add_option("SESSION", a->session, "Session directory with polarizer records")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR")
+        ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_flag("--update-offset", a->update_offset, "Update the offset from the session's shutter/blackbody record");
+    cmd->add_option("--polarimetric", a->polarimetric,
+                    "Polarimetric calibration YAML (wire-grid removal, analyzer model)")
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("--update-offset", a->update_offset,
+                  "Update the offset from the session's shutter/blackbody record");
     cmd->add_flag("--drift-correction", a->drift_correction,
-                  "Correct each record for the offset drift during the session (plan scene_reference region, else "
+                  "Correct each record for the offset drift during the session (plan "
+                  "scene_reference region, else "
                   "interleaved shutter records with a temperature)");
-    cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction, "Error above this saturated fraction")
+    cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction,
+                    "Error above this saturated fraction")
         ->capture_default_str();
-    cmd->add_flag("--slar", a->slar, "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");
+    cmd->add_flag("--slar", a->slar,
+                  "Also write L_SLAR_<angle> channels (wire-grid-corrected radiance per angle)");
     cmd->add_flag("--other-camera", a->other_camera,
                   "Apply a calibration made with another camera (serial/model/bit depth differ)");
     add_force_flag(cmd, a->force);
-    cmd->add_option("--quicklooks", a->quicklooks, "Also write S0/S1/S2/DoLP/AoP PNGs to this folder");
+    cmd->add_option("--quicklooks", a->quicklooks,
+                    "Also write S0/S1/S2/DoLP/AoP PNGs to this folder");
     cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
     cmd->callback([a] { run_reduce(*a); });
 }

@@ -1,6 +1,7 @@
-// `tirpol sweep SWEEP.yaml -o OUT [--resume] [--threads N]`: renders every point of a sweep (time of day,
-// materials, camera, band, sensor NEDT) with its statistics, plots, contact sheets and, for a time-of-day
-// sweep, an animation (docs/sweep.md). Under `mpirun -np N` the points are spread over the ranks.
+// `tirpol sweep SWEEP.yaml -o OUT [--resume] [--threads N]`: renders every point of a sweep (time
+// of day, materials, camera, band, sensor NEDT) with its statistics, plots, contact sheets and, for
+// a time-of-day sweep, an animation (docs/sweep.md). Under `mpirun -np N` the points are spread
+// over the ranks.
 
 #include <cstdio>
 
@@ -25,32 +26,41 @@ void run_sweep_command(const SweepArgs& a) {
     OutputGuard()
         .input(a.sweep_file, "SWEEP")
         .output_folder(a.out_dir, "--output",
-                       {"manifest.json", "results.csv", "results.json", "contact_sheet_*.png", "points", "plots",
-                        "tiles", "animation"})
+                       {"manifest.json", "results.csv", "results.json", "contact_sheet_*.png",
+                        "points", "plots", "tiles", "animation"})
         .check(a.force);
-    const sweep::SweepSummary summary = sweep::run_sweep(spec, a.out_dir, {a.threads, a.resume, !a.quiet});
+    const sweep::SweepSummary summary =
+        sweep::run_sweep(spec, a.out_dir, {a.threads, a.resume, !a.quiet});
     if (!summary.is_root) return;
-    std::printf("sweep %s: %zu points on %d rank(s) × %d thread(s) in %.1f s: %zu rendered, %zu resumed, %zu failed\n",
-                a.sweep_file.c_str(), summary.points.size(), summary.ranks, summary.threads, summary.wall_seconds,
-                summary.rendered, summary.resumed, summary.failed);
+    std::printf(
+        "sweep %s: %zu points on %d rank(s) × %d thread(s) in %.1f s: %zu rendered, %zu resumed, "
+        "%zu failed\n",
+        a.sweep_file.c_str(), summary.points.size(), summary.ranks, summary.threads,
+        summary.wall_seconds, summary.rendered, summary.resumed, summary.failed);
     for (const auto& p : summary.outputs)
         if (p.parent_path() == std::filesystem::path(a.out_dir)) std::printf("  %s\n", p.c_str());
     if (summary.failed == 0) return;
     for (const auto& r : summary.points)
-        if (r.status == "failed") std::printf("  FAILED %s: %s\n", r.point.id.c_str(), r.error.c_str());
-    fail("{} of {} points failed (listed above and in {}/manifest.json)", summary.failed, summary.points.size(),
-         a.out_dir);
+        if (r.status == "failed")
+            std::printf("  FAILED %s: %s\n", r.point.id.c_str(), r.error.c_str());
+    fail("{} of {} points failed (listed above and in {}/manifest.json)", summary.failed,
+         summary.points.size(), a.out_dir);
 }
 
 void register_sweep(CLI::App& app) {
     auto args = std::make_shared<SweepArgs>();
-    auto* cmd =
-        app.add_subcommand("sweep", "Render a sweep of a scene over time of day, materials, camera, band, NEDT");
-    cmd->add_option("sweep", args->sweep_file, "Sweep YAML (docs/sweep.md)")->required()->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", args->out_dir, "Output folder (points/, manifest.json, results)")->required();
+    auto* cmd = app.add_subcommand(
+        "sweep", "Render a sweep of a scene over time of day, materials, camera, band, NEDT");
+    cmd->add_option("sweep", args->sweep_file, "Sweep YAML (docs/sweep.md)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("-o,--output", args->out_dir, "Output folder (points/, manifest.json, results)")
+        ->required();
     cmd->add_option("--threads", args->threads,
-                    "Renderer threads per rank (default: cores / ranks on this machine); images do not depend on it");
-    cmd->add_flag("--resume", args->resume, "Continue the sweep in the output folder; finished points are kept");
+                    "Renderer threads per rank (default: cores / ranks on this machine); images do "
+                    "not depend on it");
+    cmd->add_flag("--resume", args->resume,
+                  "Continue the sweep in the output folder; finished points are kept");
     cmd->add_flag("-q,--quiet", args->quiet, "No line per finished point");
     add_force_flag(cmd, args->force);
     cmd->callback([args] { run_sweep_command(*args); });

@@ -31,12 +31,16 @@ struct TemperatureArgs {
 };
 
 void run_temperature(const TemperatureArgs& a) {
-    OutputGuard().input(a.image, "IMAGE").input(a.calibration, "--calibration").output_file(a.output, "--output").check(a.force);
+    OutputGuard()
+        .input(a.image, "IMAGE")
+        .input(a.calibration, "--calibration")
+        .output_file(a.output, "--output")
+        .check(a.force);
     const auto cal = calibration::read_radiometric_calibration(a.calibration);
     const Image raw = read_raw_image(a.image, "counts", a.channel);
     if (raw.width() != cal.width || raw.height() != cal.height)
-        fail("{}: image is {}×{} but calibration {} is {}×{}", a.image, raw.width(), raw.height(), a.calibration,
-             cal.width, cal.height);
+        fail("{}: image is {}×{} but calibration {} is {}×{}", a.image, raw.width(), raw.height(),
+             a.calibration, cal.width, cal.height);
     const auto fpa_k = frame_fpa_temperature_k(raw, a.fpa_temperature_k);
     const auto radiance = calibration::counts_to_radiance(cal, raw.channel("counts"), fpa_k);
     const auto warning = calibration::extrapolation_warning(cal, radiance, fpa_k);
@@ -45,7 +49,8 @@ void run_temperature(const TemperatureArgs& a) {
     out.set_channel("temperature_k", calibration::brightness_temperature(cal.band(), radiance));
     if (channel_stats(out.channel("temperature_k")).finite_count == 0)
         fail(
-            "{}: no pixel gives a finite brightness temperature with calibration {} (counts below its offsets "
+            "{}: no pixel gives a finite brightness temperature with calibration {} (counts below "
+            "its offsets "
             "everywhere: another camera, bit depth or gain setting?); nothing written",
             a.image, a.calibration);
     out.attributes()["units_radiance"] = std::string("W/(m^2 sr)");
@@ -57,18 +62,24 @@ void run_temperature(const TemperatureArgs& a) {
     write_exr(a.output, out);
     if (warning) std::printf("warning: %s\n", warning->c_str());
     const auto stats = channel_stats(out.channel("temperature_k"));
-    std::printf("brightness temperature: min %.2f K, mean %.2f K, max %.2f K → %s\n", stats.min, stats.mean, stats.max,
-                a.output.c_str());
+    std::printf("brightness temperature: min %.2f K, mean %.2f K, max %.2f K → %s\n", stats.min,
+                stats.mean, stats.max, a.output.c_str());
 }
 
 void register_temperature(CLI::App& app) {
     auto a = std::make_shared<TemperatureArgs>();
-    auto* cmd = app.add_subcommand("temperature", "Brightness-temperature image from counts and a radiometric calibration");
-    cmd->add_option("IMAGE", a->image, "Raw image: EXR (channel --channel), 16-bit PNG or TIFF")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR")->required()->check(CLI::ExistingFile);
+    auto* cmd = app.add_subcommand(
+        "temperature", "Brightness-temperature image from counts and a radiometric calibration");
+    cmd->add_option("IMAGE", a->image, "Raw image: EXR (channel --channel), 16-bit PNG or TIFF")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--calibration", a->calibration, "Radiometric calibration EXR")
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("--channel", a->channel, "EXR channel holding counts")->capture_default_str();
     cmd->add_option("--fpa-temperature-k", a->fpa_temperature_k,
-                    "Camera FPA temperature of the image (default: the EXR's fpa_temperature_k attribute); needed by an "
+                    "Camera FPA temperature of the image (default: the EXR's fpa_temperature_k "
+                    "attribute); needed by an "
                     "FPA-dependent calibration");
     cmd->add_option("-o,--output", a->output, "Output EXR (radiance, temperature_k)")->required();
     add_force_flag(cmd, a->force);

@@ -33,21 +33,25 @@ std::size_t bytes_per_value(RawFrameFormat::Type type) {
 
 std::string lower_extension(const fs::path& p) {
     std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return e;
 }
 
 FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
     if (raw.width < 1 || raw.height < 1)
-        fail("{}: raw frame shape {}×{}; expected a width and a height ≥ 1", path.string(), raw.width, raw.height);
-    const std::size_t n = static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
+        fail("{}: raw frame shape {}×{}; expected a width and a height ≥ 1", path.string(),
+             raw.width, raw.height);
+    const std::size_t n =
+        static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
     const std::size_t frame_bytes = n * bytes_per_value(raw.type);
     // A raw stack has no fixed size limit: its decoded floats must fit in memory instead.
     check_input_file(path, std::numeric_limits<std::uintmax_t>::max());
     const std::size_t size = fs::file_size(path);
     if (size < raw.header_bytes || (size - raw.header_bytes) % frame_bytes != 0)
         fail(
-            "{}: {} bytes is not {} header bytes + a whole number of {}×{} frames of {} bytes each; check the shape, "
+            "{}: {} bytes is not {} header bytes + a whole number of {}×{} frames of {} bytes "
+            "each; check the shape, "
             "the value type and the header size",
             path.string(), size, raw.header_bytes, raw.width, raw.height, frame_bytes);
     std::ifstream in(path, std::ios::binary);
@@ -57,7 +61,8 @@ FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
     stack.height = raw.height;
     std::vector<unsigned char> buffer(frame_bytes);
     for (std::size_t f = 0; f < (size - raw.header_bytes) / frame_bytes; ++f) {
-        if (!in.read(reinterpret_cast<char*>(buffer.data()), static_cast<std::streamsize>(frame_bytes)))
+        if (!in.read(reinterpret_cast<char*>(buffer.data()),
+                     static_cast<std::streamsize>(frame_bytes)))
             fail("{}: read failed at frame {}", path.string(), f);
         std::vector<float> frame(n);
         for (std::size_t i = 0; i < n; ++i) {
@@ -70,9 +75,10 @@ FrameStack load_raw(const fs::path& path, const RawFrameFormat& raw) {
                     frame[i] = static_cast<float>(b[0] | (b[1] << 8));
                     break;
                 case RawFrameFormat::Type::Float32: {
-                    const std::uint32_t bits =
-                        static_cast<std::uint32_t>(b[0]) | (static_cast<std::uint32_t>(b[1]) << 8) |
-                        (static_cast<std::uint32_t>(b[2]) << 16) | (static_cast<std::uint32_t>(b[3]) << 24);
+                    const std::uint32_t bits = static_cast<std::uint32_t>(b[0]) |
+                                               (static_cast<std::uint32_t>(b[1]) << 8) |
+                                               (static_cast<std::uint32_t>(b[2]) << 16) |
+                                               (static_cast<std::uint32_t>(b[3]) << 24);
                     std::memcpy(&frame[i], &bits, 4);
                     break;
                 }
@@ -98,10 +104,13 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
     } else if (fs::is_directory(path)) {
         std::vector<fs::path> files;
         for (const auto& e : fs::directory_iterator(path))
-            if (e.is_regular_file() && kFrameExtensions.count(lower_extension(e.path()))) files.push_back(e.path());
+            if (e.is_regular_file() && kFrameExtensions.count(lower_extension(e.path())))
+                files.push_back(e.path());
         if (files.empty())
-            fail("{}: no frame files (.exr, .png, .tif, .tiff); for a raw file give its shape (--raw-shape)",
-                 path.string());
+            fail(
+                "{}: no frame files (.exr, .png, .tif, .tiff); for a raw file give its shape "
+                "(--raw-shape)",
+                path.string());
         std::sort(files.begin(), files.end());
         for (const auto& f : files) {
             const Image im = read_raw_image(f, "counts", "counts");
@@ -110,8 +119,8 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
                 stack.height = im.height();
             }
             if (im.width() != stack.width || im.height() != stack.height)
-                fail("{}: frame is {}×{}, the first frame of the stack is {}×{}", f.string(), im.width(), im.height(),
-                     stack.width, stack.height);
+                fail("{}: frame is {}×{}, the first frame of the stack is {}×{}", f.string(),
+                     im.width(), im.height(), stack.width, stack.height);
             stack.frames.push_back(im.channel("counts"));
         }
     } else if (lower_extension(path) == ".exr") {
@@ -125,7 +134,8 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
         for (const auto& n : names) stack.frames.push_back(im.channel(n));
     } else {
         fail(
-            "{}: expected a directory of frames, an EXR with frame_* channels, or a raw file with its shape "
+            "{}: expected a directory of frames, an EXR with frame_* channels, or a raw file with "
+            "its shape "
             "(--raw-shape)",
             path.string());
     }
@@ -136,7 +146,8 @@ FrameStack load_frame_stack(const fs::path& path, const std::optional<RawFrameFo
 FrameStack temperature_stack(const FrameStack& counts, const RadiometricCalibration& cal,
                              std::optional<double> fpa_temperature_k) {
     if (counts.width != cal.width || counts.height != cal.height)
-        fail("the stack is {}×{} but the calibration is {}×{}", counts.width, counts.height, cal.width, cal.height);
+        fail("the stack is {}×{} but the calibration is {}×{}", counts.width, counts.height,
+             cal.width, cal.height);
     FrameStack out;
     out.width = counts.width;
     out.height = counts.height;

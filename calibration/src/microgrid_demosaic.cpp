@@ -28,58 +28,67 @@ struct Mosaic {
     }
 };
 
-/// The same frame read without mirroring, for pixels at least 3 from every border (the stencils reach
-/// ±3): most of the frame, so the hot loop skips the border tests.
+/// The same frame read without mirroring, for pixels at least 3 from every border (the stencils
+/// reach ±3): most of the frame, so the hot loop skips the border tests.
 struct InteriorMosaic {
     const float* data;
     int width;
     float at(int x, int y) const {
-        return data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+        return data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                    static_cast<std::size_t>(x)];
     }
 };
 
 void check_input(std::span<const float> mosaic, int width, int height, std::string_view source) {
     if (width < 4 || height < 4 || width % 2 != 0 || height % 2 != 0)
         fail(
-            "{}: {}×{} pixels; a microgrid frame must have an even width and height of at least 4 (whole 2×2 "
+            "{}: {}×{} pixels; a microgrid frame must have an even width and height of at least 4 "
+            "(whole 2×2 "
             "cells)",
             source, width, height);
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (mosaic.size() != n)
-        fail("{}: {} values for a {}×{} frame; expected {}", source, mosaic.size(), width, height, n);
+        fail("{}: {} values for a {}×{} frame; expected {}", source, mosaic.size(), width, height,
+             n);
     for (std::size_t i = 0; i < n; ++i)
         if (!std::isfinite(mosaic[i]))
-            fail("{}: pixel (x={}, y={}) is {}; expected finite values", source, i % static_cast<std::size_t>(width),
-                 i / static_cast<std::size_t>(width), mosaic[i]);
+            fail("{}: pixel (x={}, y={}) is {}; expected finite values", source,
+                 i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width),
+                 mosaic[i]);
 }
 
 void super_pixel(const Mosaic& m, DemosaicedFrame& out) {
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
             const std::size_t o =
-                static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) + static_cast<std::size_t>(x);
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) +
+                static_cast<std::size_t>(x);
             for (int cell = 0; cell < 4; ++cell)
-                out.planes[static_cast<std::size_t>(cell)][o] = m.at(2 * x + (cell & 1), 2 * y + (cell >> 1));
+                out.planes[static_cast<std::size_t>(cell)][o] =
+                    m.at(2 * x + (cell & 1), 2 * y + (cell >> 1));
         }
 }
 
 void bilinear(const Mosaic& m, DemosaicedFrame& out) {
     for (int y = 0; y < m.height; ++y)
         for (int x = 0; x < m.width; ++x) {
-            const std::size_t o =
-                static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) + static_cast<std::size_t>(x);
+            const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
+                                  static_cast<std::size_t>(x);
             const int own = (y & 1) * 2 + (x & 1);
             out.planes[static_cast<std::size_t>(own)][o] = m.at(x, y);
-            out.planes[static_cast<std::size_t>(own ^ 1)][o] = 0.5f * (m.at(x - 1, y) + m.at(x + 1, y));
-            out.planes[static_cast<std::size_t>(own ^ 2)][o] = 0.5f * (m.at(x, y - 1) + m.at(x, y + 1));
+            out.planes[static_cast<std::size_t>(own ^ 1)][o] =
+                0.5f * (m.at(x - 1, y) + m.at(x + 1, y));
+            out.planes[static_cast<std::size_t>(own ^ 2)][o] =
+                0.5f * (m.at(x, y - 1) + m.at(x, y + 1));
             out.planes[static_cast<std::size_t>(own ^ 3)][o] =
-                0.25f * (m.at(x - 1, y - 1) + m.at(x + 1, y - 1) + m.at(x - 1, y + 1) + m.at(x + 1, y + 1));
+                0.25f *
+                (m.at(x - 1, y - 1) + m.at(x + 1, y - 1) + m.at(x - 1, y + 1) + m.at(x + 1, y + 1));
         }
 }
 
-/// Estimates of another analyzer's value at p = (x, y) from the directions s in which it sits at the
-/// neighbour q = p + s, in the polarization-difference domain: the difference (other − own) is taken
-/// at q and carried to p.
+/// Estimates of another analyzer's value at p = (x, y) from the directions s in which it sits at
+/// the neighbour q = p + s, in the polarization-difference domain: the difference (other − own) is
+/// taken at q and carried to p.
 ///
 /// Smooth region: own(q) is the quadratic (second-order Newton) polynomial through own(p − 2s),
 /// own(p), own(p + 2s), and the two opposite directions are averaged, which gives
@@ -89,8 +98,9 @@ void bilinear(const Mosaic& m, DemosaicedFrame& out) {
 /// this is the mean of other(q) + ⅜(own(p) − own(p+2s)).
 ///
 /// Edge: the symmetric stencil mixes both sides of an edge into a false polarization difference.
-/// There each direction's one-sided estimate other(q) + ½(own(p) − own(p+2s)) (own(q) linear between
-/// p and p + 2s, so it never reaches across p) is weighted by 1/(ε + g_s)², g_s = |own(p) − own(p+2s)|
+/// There each direction's one-sided estimate other(q) + ½(own(p) − own(p+2s)) (own(q) linear
+/// between p and p + 2s, so it never reaches across p) is weighted by 1/(ε + g_s)², g_s = |own(p) −
+/// own(p+2s)|
 /// + |other(q) − other(q+2s)| the variation along s, and the side that does not cross the edge
 /// dominates: an unpolarized edge stays unpolarized.
 ///
@@ -120,7 +130,8 @@ struct DirectionalEstimate {
             g_max = std::max(g_max, g);
         }
         const double ratio = (g_max + epsilon) / (g_min + epsilon);
-        const double edge = std::clamp((ratio - kSmoothRatio) / (kEdgeRatio - kSmoothRatio), 0.0, 1.0);
+        const double edge =
+            std::clamp((ratio - kSmoothRatio) / (kEdgeRatio - kSmoothRatio), 0.0, 1.0);
         double smooth = 0.0, weighted = 0.0, weight_sum = 0.0;
         for (std::size_t i = 0; i < N; ++i) {
             smooth += other[i] + 0.375 * own_difference[i];
@@ -136,7 +147,8 @@ struct DirectionalEstimate {
 };
 
 template <typename Frame>
-void newton_pixel(const Frame& m, int x, int y, std::size_t o, double epsilon, DemosaicedFrame& out) {
+void newton_pixel(const Frame& m, int x, int y, std::size_t o, double epsilon,
+                  DemosaicedFrame& out) {
     const int own_cell = (y & 1) * 2 + (x & 1);
     const float own = m.at(x, y);
     out.planes[static_cast<std::size_t>(own_cell)][o] = own;
@@ -156,8 +168,8 @@ void newton_pixel(const Frame& m, int x, int y, std::size_t o, double epsilon, D
 }
 
 void newton(const Mosaic& m, DemosaicedFrame& out) {
-    // ε (1 % of the mean signal) keeps flat, noise-free regions (g ≈ 0 on all sides) in the symmetric
-    // branch and sets the scale below which a variation is not an edge.
+    // ε (1 % of the mean signal) keeps flat, noise-free regions (g ≈ 0 on all sides) in the
+    // symmetric branch and sets the scale below which a variation is not an edge.
     double mean_abs = 0.0;
     const std::size_t n = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height);
     for (std::size_t i = 0; i < n; ++i) mean_abs += std::abs(static_cast<double>(m.data[i]));
@@ -165,8 +177,8 @@ void newton(const Mosaic& m, DemosaicedFrame& out) {
     const InteriorMosaic interior{m.data, m.width};
     for (int y = 0; y < m.height; ++y)
         for (int x = 0; x < m.width; ++x) {
-            const std::size_t o =
-                static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) + static_cast<std::size_t>(x);
+            const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
+                                  static_cast<std::size_t>(x);
             if (x >= 3 && y >= 3 && x < m.width - 3 && y < m.height - 3)
                 newton_pixel(interior, x, y, o, epsilon, out);
             else
@@ -195,20 +207,24 @@ std::string_view demosaic_method_reference(DemosaicMethod method) {
         case DemosaicMethod::Bilinear:
             return "Ratliff, LaCasse & Tyo, Opt. Express 17(11), 9112-9125 (2009)";
         case DemosaicMethod::Newton:
-            return "after Li, Zhao, Pan & Kong, Opt. Express 27(2), 1376-1391 (2019): edge-directed Newton "
+            return "after Li, Zhao, Pan & Kong, Opt. Express 27(2), 1376-1391 (2019): "
+                   "edge-directed Newton "
                    "interpolation of polarization differences";
     }
     return "";
 }
 
 DemosaicMethod parse_demosaic_method(std::string_view text, std::string_view context) {
-    for (DemosaicMethod m : {DemosaicMethod::SuperPixel, DemosaicMethod::Bilinear, DemosaicMethod::Newton})
+    for (DemosaicMethod m :
+         {DemosaicMethod::SuperPixel, DemosaicMethod::Bilinear, DemosaicMethod::Newton})
         if (text == demosaic_method_name(m)) return m;
-    fail("{}: unknown demosaicing method '{}'; expected super-pixel, bilinear or newton", context, text);
+    fail("{}: unknown demosaicing method '{}'; expected super-pixel, bilinear or newton", context,
+         text);
 }
 
 DemosaicedFrame demosaic_microgrid(std::span<const float> mosaic, int width, int height,
-                                   const MicrogridPattern& pattern, DemosaicMethod method, std::string_view source) {
+                                   const MicrogridPattern& pattern, DemosaicMethod method,
+                                   std::string_view source) {
     check_input(mosaic, width, height, source);
     DemosaicedFrame out;
     out.method = method;
@@ -217,7 +233,8 @@ DemosaicedFrame demosaic_microgrid(std::span<const float> mosaic, int width, int
     out.width = half ? width / 2 : width;
     out.height = half ? height / 2 : height;
     for (auto& plane : out.planes)
-        plane.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), 0.0f);
+        plane.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height),
+                     0.0f);
     const Mosaic m{mosaic.data(), width, height};
     switch (method) {
         case DemosaicMethod::SuperPixel:

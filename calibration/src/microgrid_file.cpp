@@ -5,7 +5,8 @@
 
 namespace tirpol::calibration {
 
-Image reduce_microgrid_file(const std::filesystem::path& input, const std::optional<MicrogridPattern>& pattern,
+Image reduce_microgrid_file(const std::filesystem::path& input,
+                            const std::optional<MicrogridPattern>& pattern,
                             MicrogridReductionOptions options, const std::string& exr_channel) {
     const Image frame = read_raw_image(input, "counts", exr_channel);
     const Attributes& header = frame.attributes();
@@ -19,21 +20,25 @@ Image reduce_microgrid_file(const std::filesystem::path& input, const std::optio
     }
     if (pattern && recorded && pattern->angles_deg() != recorded->angles_deg())
         fail(
-            "{}: the header records the microgrid pattern {} but {} was given; expected the same pattern (or give none "
+            "{}: the header records the microgrid pattern {} but {} was given; expected the same "
+            "pattern (or give none "
             "to use the recorded one)",
             input.string(), recorded->text(), pattern->text());
     if (!pattern && !recorded)
         fail(
-            "{}: no microgrid pattern given and none recorded in the file (attribute microgrid_pattern_deg); expected "
+            "{}: no microgrid pattern given and none recorded in the file (attribute "
+            "microgrid_pattern_deg); expected "
             "the four angles of the 2×2 cell, e.g. 90,45,135,0 for a Sony IMX250MZR",
             input.string());
     const MicrogridPattern& used = pattern ? *pattern : *recorded;
     const auto units = header.find("units");
-    options.reduction.units = units != header.end() && std::holds_alternative<std::string>(units->second)
-                                  ? std::get<std::string>(units->second)
-                                  : std::string("counts");
+    options.reduction.units =
+        units != header.end() && std::holds_alternative<std::string>(units->second)
+            ? std::get<std::string>(units->second)
+            : std::string("counts");
     options.source = input.string();
-    Image stokes = reduce_microgrid(frame.channel("counts"), frame.width(), frame.height(), used, options);
+    Image stokes =
+        reduce_microgrid(frame.channel("counts"), frame.width(), frame.height(), used, options);
     stokes.attributes()["source_file"] = input.string();
     if (const auto bits = header.find("source_depth_bits"); bits != header.end())
         stokes.attributes()["source_depth_bits"] = bits->second;

@@ -20,27 +20,34 @@ std::string angles_text(const std::array<double, 4>& a) {
 }
 }  // namespace
 
-MicrogridPattern::MicrogridPattern(const std::array<double, 4>& angles_deg, std::string_view context)
+MicrogridPattern::MicrogridPattern(const std::array<double, 4>& angles_deg,
+                                   std::string_view context)
     : m_angles_deg(angles_deg) {
     for (std::size_t i = 0; i < 4; ++i) {
         const double a = angles_deg[i];
         if (!std::isfinite(a) || a < 0.0 || a >= 180.0)
-            fail("{}: angle at cell ({},{}) is {:g}°; expected a finite angle in [0°, 180°)", context, i / 2, i % 2, a);
+            fail("{}: angle at cell ({},{}) is {:g}°; expected a finite angle in [0°, 180°)",
+                 context, i / 2, i % 2, a);
         for (std::size_t j = 0; j < i; ++j)
             if (same_polarizer_angle(a, angles_deg[j]))
-                fail("{}: angle {:g}° appears at cells ({},{}) and ({},{}); expected four distinct analyzer angles",
-                     context, a, j / 2, j % 2, i / 2, i % 2);
+                fail(
+                    "{}: angle {:g}° appears at cells ({},{}) and ({},{}); expected four distinct "
+                    "analyzer angles",
+                    context, a, j / 2, j % 2, i / 2, i % 2);
     }
     const AnalyzerModel ideal = AnalyzerModel::ideal({angles_deg.begin(), angles_deg.end()});
     const double condition = ideal.condition_number();
     if (!(condition <= kMaxConditionNumber))
         fail(
-            "{}: angles {} do not determine S1 and S2 (condition number {:.3g} of the ideal measurement matrix; "
+            "{}: angles {} do not determine S1 and S2 (condition number {:.3g} of the ideal "
+            "measurement matrix; "
             "expected ≤ {:g}, e.g. 0/45/90/135°)",
             context, angles_text(angles_deg), condition, kMaxConditionNumber);
 }
 
-MicrogridPattern MicrogridPattern::sony_imx250mzr() { return MicrogridPattern({90.0, 45.0, 135.0, 0.0}); }
+MicrogridPattern MicrogridPattern::sony_imx250mzr() {
+    return MicrogridPattern({90.0, 45.0, 135.0, 0.0});
+}
 
 MicrogridPattern MicrogridPattern::parse(std::string_view text, std::string_view context) {
     if (text == "sony" || text == "imx250mzr") return sony_imx250mzr();
@@ -64,8 +71,10 @@ MicrogridPattern MicrogridPattern::parse(std::string_view text, std::string_view
         start = comma + 1;
     }
     if (count != 4)
-        fail("{}: '{}' has {} angle(s); expected four, for cells (0,0),(0,1),(1,0),(1,1) (e.g. \"90,45,135,0\")",
-             context, text, count);
+        fail(
+            "{}: '{}' has {} angle(s); expected four, for cells (0,0),(0,1),(1,0),(1,1) (e.g. "
+            "\"90,45,135,0\")",
+            context, text, count);
     return MicrogridPattern(angles, context);
 }
 
@@ -73,11 +82,14 @@ MicrogridPattern MicrogridPattern::from_attributes(const Attributes& attributes)
     const auto it = attributes.find("microgrid_pattern_deg");
     if (it == attributes.end())
         fail(
-            "image header: attribute 'microgrid_pattern_deg' is missing; expected the four analyzer angles of the "
+            "image header: attribute 'microgrid_pattern_deg' is missing; expected the four "
+            "analyzer angles of the "
             "microgrid cell");
     const auto* values = std::get_if<std::vector<double>>(&it->second);
     if (!values || values->size() != 4)
-        fail("image header: attribute 'microgrid_pattern_deg' must be a list of four angles in degrees");
+        fail(
+            "image header: attribute 'microgrid_pattern_deg' must be a list of four angles in "
+            "degrees");
     return MicrogridPattern({(*values)[0], (*values)[1], (*values)[2], (*values)[3]},
                             "image header attribute 'microgrid_pattern_deg'");
 }
@@ -92,7 +104,8 @@ std::string MicrogridPattern::text() const { return angles_text(m_angles_deg); }
 
 void MicrogridPattern::write_to(Attributes& attributes) const {
     attributes["microgrid_pattern"] = text();
-    attributes["microgrid_pattern_deg"] = std::vector<double>(m_angles_deg.begin(), m_angles_deg.end());
+    attributes["microgrid_pattern_deg"] =
+        std::vector<double>(m_angles_deg.begin(), m_angles_deg.end());
 }
 
 }  // namespace tirpol::calibration

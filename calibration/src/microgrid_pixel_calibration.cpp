@@ -23,9 +23,9 @@ float MicrogridPixelCalibration::diattenuation(std::size_t i) const {
 }
 
 float MicrogridPixelCalibration::axis_angle_deg(std::size_t i) const {
-    return static_cast<float>(
-        wrap_0_180(0.5 * std::atan2(static_cast<double>(analysis[2][i]), static_cast<double>(analysis[1][i])) * 180.0 /
-                   std::numbers::pi));
+    return static_cast<float>(wrap_0_180(
+        0.5 * std::atan2(static_cast<double>(analysis[2][i]), static_cast<double>(analysis[1][i])) *
+        180.0 / std::numbers::pi));
 }
 
 Image MicrogridPixelCalibration::to_image() const {
@@ -60,22 +60,24 @@ MicrogridPixelCalibration MicrogridPixelCalibration::from_image(const Image& ima
     return c;
 }
 
-MicrogridPixelCalibration calibrate_microgrid_pixels(const std::vector<MicrogridFlatField>& flat_fields, int width,
-                                                     int height, bool fit_background) {
+MicrogridPixelCalibration calibrate_microgrid_pixels(
+    const std::vector<MicrogridFlatField>& flat_fields, int width, int height,
+    bool fit_background) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     const Eigen::Index unknowns = fit_background ? 4 : 3;
     const auto sources = static_cast<Eigen::Index>(flat_fields.size());
     if (sources < unknowns)
         fail(
-            "microgrid pixel calibration: {} flat field(s); expected at least {} (a reference polarizer at ≥ 3 "
+            "microgrid pixel calibration: {} flat field(s); expected at least {} (a reference "
+            "polarizer at ≥ 3 "
             "angles{})",
             sources, unknowns, fit_background ? " and a second source radiance" : "");
     Eigen::MatrixXd design(sources, unknowns);
     for (Eigen::Index j = 0; j < sources; ++j) {
         const auto& ff = flat_fields[static_cast<std::size_t>(j)];
         if (ff.frame.size() != n)
-            fail("microgrid pixel calibration: flat field {} has {} values; expected {}×{} = {}", j, ff.frame.size(),
-                 width, height, n);
+            fail("microgrid pixel calibration: flat field {} has {} values; expected {}×{} = {}", j,
+                 ff.frame.size(), width, height, n);
         if (!ff.source_stokes.allFinite())
             fail("microgrid pixel calibration: flat field {}: source Stokes is not finite", j);
         design.row(j).head<3>() = ff.source_stokes.transpose();
@@ -84,11 +86,13 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(const std::vector<Microgrid
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
     if (qr.rank() < unknowns)
         fail(
-            "microgrid pixel calibration: the sources do not span (S0, S1, S2{}): rank {} of {}; use a reference "
+            "microgrid pixel calibration: the sources do not span (S0, S1, S2{}): rank {} of {}; "
+            "use a reference "
             "polarizer at ≥ 3 angles{}",
             fit_background ? ", background" : "", qr.rank(), unknowns,
             fit_background ? " and at least two source radiances" : "");
-    const Eigen::MatrixXd pinv = design.completeOrthogonalDecomposition().pseudoInverse();  // unknowns × sources
+    const Eigen::MatrixXd pinv =
+        design.completeOrthogonalDecomposition().pseudoInverse();  // unknowns × sources
     MicrogridPixelCalibration c;
     c.width = width;
     c.height = height;
@@ -100,12 +104,13 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(const std::vector<Microgrid
         for (Eigen::Index j = 0; j < sources; ++j) {
             const float v = flat_fields[static_cast<std::size_t>(j)].frame[i];
             if (!std::isfinite(v))
-                fail("microgrid pixel calibration: flat field {}: pixel (x={}, y={}) is not finite", j,
-                     i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width));
+                fail("microgrid pixel calibration: flat field {}: pixel (x={}, y={}) is not finite",
+                     j, i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width));
             values(j) = v;
         }
         const Eigen::VectorXd fit = pinv * values;
-        for (std::size_t k = 0; k < 3; ++k) c.analysis[k][i] = static_cast<float>(fit(static_cast<Eigen::Index>(k)));
+        for (std::size_t k = 0; k < 3; ++k)
+            c.analysis[k][i] = static_cast<float>(fit(static_cast<Eigen::Index>(k)));
         if (fit_background) c.background[i] = static_cast<float>(fit(3));
         sum_sq += (design * fit - values).squaredNorm();
     }
@@ -113,16 +118,17 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(const std::vector<Microgrid
     return c;
 }
 
-Image reduce_microgrid_per_pixel(std::span<const float> mosaic, const MicrogridPixelCalibration& calibration) {
+Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
+                                 const MicrogridPixelCalibration& calibration) {
     const int width = calibration.width, height = calibration.height;
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (mosaic.size() != n)
-        fail("microgrid frame has {} values; the per-pixel calibration is {}×{} ({} values)", mosaic.size(), width,
-             height, n);
+        fail("microgrid frame has {} values; the per-pixel calibration is {}×{} ({} values)",
+             mosaic.size(), width, height, n);
     for (std::size_t i = 0; i < n; ++i)
         if (!std::isfinite(mosaic[i]))
-            fail("microgrid frame: pixel (x={}, y={}) is not finite", i % static_cast<std::size_t>(width),
-                 i / static_cast<std::size_t>(width));
+            fail("microgrid frame: pixel (x={}, y={}) is not finite",
+                 i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width));
     Image out(width / 2, height / 2);
     auto& s0 = out.add_channel("S0");
     auto& s1 = out.add_channel("S1");
@@ -135,9 +141,11 @@ Image reduce_microgrid_per_pixel(std::span<const float> mosaic, const MicrogridP
             Eigen::Matrix<double, 4, 3> w;
             Eigen::Vector4d signal;
             for (int k = 0; k < 4; ++k) {
-                const std::size_t i = static_cast<std::size_t>(2 * cy + (k >> 1)) * static_cast<std::size_t>(width) +
-                                      static_cast<std::size_t>(2 * cx + (k & 1));
-                for (int m = 0; m < 3; ++m) w(k, m) = calibration.analysis[static_cast<std::size_t>(m)][i];
+                const std::size_t i =
+                    static_cast<std::size_t>(2 * cy + (k >> 1)) * static_cast<std::size_t>(width) +
+                    static_cast<std::size_t>(2 * cx + (k & 1));
+                for (int m = 0; m < 3; ++m)
+                    w(k, m) = calibration.analysis[static_cast<std::size_t>(m)][i];
                 signal(k) = static_cast<double>(mosaic[i]) - calibration.background[i];
             }
             const std::size_t o = out.index(cx, cy);
@@ -152,12 +160,13 @@ Image reduce_microgrid_per_pixel(std::span<const float> mosaic, const MicrogridP
             s1[o] = static_cast<float>(s(1));
             s2[o] = static_cast<float>(s(2));
             dolp[o] = s(0) > 0.0 ? static_cast<float>(std::hypot(s(1), s(2)) / s(0)) : kNaN;
-            aop[o] = static_cast<float>(wrap_0_180(0.5 * std::atan2(s(2), s(1)) * 180.0 / std::numbers::pi));
+            aop[o] = static_cast<float>(
+                wrap_0_180(0.5 * std::atan2(s(2), s(1)) * 180.0 / std::numbers::pi));
         }
     out.attributes()["demosaic_method"] = std::string("super-pixel");
     out.attributes()["analyzer_model"] = std::string("per-pixel");
-    out.attributes()["demosaic_reference"] =
-        std::string("Powell & Gruev, Opt. Express 21(18), 21039 (2013): per-super-pixel calibration matrix");
+    out.attributes()["demosaic_reference"] = std::string(
+        "Powell & Gruev, Opt. Express 21(18), 21039 (2013): per-super-pixel calibration matrix");
     out.attributes()["singular_cells"] = singular;
     return out;
 }

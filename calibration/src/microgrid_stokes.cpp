@@ -13,8 +13,10 @@ std::vector<float> microgrid_from_stokes(std::span<const float> s0, std::span<co
                                          const MicrogridPattern& pattern) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (width <= 0 || height <= 0 || s0.size() != n || s1.size() != n || s2.size() != n)
-        fail("microgrid_from_stokes: Stokes planes of {}, {} and {} values for a {}×{} frame; expected {} each",
-             s0.size(), s1.size(), s2.size(), width, height, n);
+        fail(
+            "microgrid_from_stokes: Stokes planes of {}, {} and {} values for a {}×{} frame; "
+            "expected {} each",
+            s0.size(), s1.size(), s2.size(), width, height, n);
     std::array<double, 4> cos2{}, sin2{};
     for (std::size_t c = 0; c < 4; ++c) {
         const double theta = pattern.angles_deg()[c] * std::numbers::pi / 180.0;
@@ -24,16 +26,16 @@ std::vector<float> microgrid_from_stokes(std::span<const float> s0, std::span<co
     std::vector<float> mosaic(n);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const std::size_t i =
-                static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(x);
             const std::size_t c = static_cast<std::size_t>((y & 1) * 2 + (x & 1));
             mosaic[i] = static_cast<float>(0.5 * (s0[i] + s1[i] * cos2[c] + s2[i] * sin2[c]));
         }
     return mosaic;
 }
 
-Image reduce_microgrid(std::span<const float> mosaic, int width, int height, const MicrogridPattern& pattern,
-                       const MicrogridReductionOptions& options) {
+Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
+                       const MicrogridPattern& pattern, const MicrogridReductionOptions& options) {
     AnalyzerModel model = options.analyzer;
     if (model.positions.empty()) {
         model = AnalyzerModel::ideal({pattern.angles_deg().begin(), pattern.angles_deg().end()});
@@ -43,17 +45,21 @@ Image reduce_microgrid(std::span<const float> mosaic, int width, int height, con
                  model.positions.size(), pattern.text());
         for (const auto& position : model.positions) pattern.cell_of(position.nominal_angle_deg);
     }
-    const DemosaicedFrame frame = demosaic_microgrid(mosaic, width, height, pattern, options.method, options.source);
+    const DemosaicedFrame frame =
+        demosaic_microgrid(mosaic, width, height, pattern, options.method, options.source);
     std::vector<AnalyzerPlanes> planes;
     for (std::size_t c = 0; c < 4; ++c)
-        planes.push_back({frame.angles_deg[c],
-                          frame.planes[c],
-                          {},
-                          fmt::format("{} ({:g}° demosaiced)", options.source, frame.angles_deg[c])});
-    Image stokes = reduce_stokes(planes, frame.width, frame.height, model, nullptr, options.reduction);
+        planes.push_back(
+            {frame.angles_deg[c],
+             frame.planes[c],
+             {},
+             fmt::format("{} ({:g}° demosaiced)", options.source, frame.angles_deg[c])});
+    Image stokes =
+        reduce_stokes(planes, frame.width, frame.height, model, nullptr, options.reduction);
     pattern.write_to(stokes.attributes());
     stokes.attributes()["demosaic_method"] = std::string(demosaic_method_name(options.method));
-    stokes.attributes()["demosaic_reference"] = std::string(demosaic_method_reference(options.method));
+    stokes.attributes()["demosaic_reference"] =
+        std::string(demosaic_method_reference(options.method));
     return stokes;
 }
 

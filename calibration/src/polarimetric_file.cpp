@@ -29,7 +29,8 @@ std::string polarimetric_maps_path(const std::string& yaml_path) {
     return (p.parent_path() / (p.stem().string() + ".maps.exr")).string();
 }
 
-void write_polarimetric_calibration(const std::string& yaml_path, const PolarimetricCalibration& cal) {
+void write_polarimetric_calibration(const std::string& yaml_path,
+                                    const PolarimetricCalibration& cal) {
     Image maps(cal.wire_grid.width, cal.wire_grid.height);
     for (const auto& p : cal.wire_grid.positions) {
         maps.set_channel("tau_" + polarizer_angle_tag(p.angle_deg), p.tau);
@@ -56,14 +57,14 @@ void write_polarimetric_calibration(const std::string& yaml_path, const Polarime
       << "radiometric_calibration: " << quoted(cal.radiometric_calibration) << "\n"
       << "maps: " << quoted(std::filesystem::path(maps_path).filename().string()) << "\n";
     if (cal.band_known()) y << "band_um: [" << cal.band_lo_um << ", " << cal.band_hi_um << "]\n";
-    y
-      << "analyzer:\n  method: " << quoted(cal.analyzer_method) << "\n  positions:\n";
+    y << "analyzer:\n  method: " << quoted(cal.analyzer_method) << "\n  positions:\n";
     for (const auto& p : cal.analyzer.positions) {
         const double er = p.extinction_ratio();
         y << "    - nominal_angle_deg: " << p.nominal_angle_deg << "\n"
           << "      axis_angle_deg: " << p.axis_angle_deg << "\n"
           << "      diattenuation: " << p.diattenuation << "\n"
-          << "      extinction_ratio: " << (std::isfinite(er) ? fmt::format("{:.6g}", er) : std::string(".inf")) << "\n"
+          << "      extinction_ratio: "
+          << (std::isfinite(er) ? fmt::format("{:.6g}", er) : std::string(".inf")) << "\n"
           << "      relative_transmission: " << p.relative_transmission << "\n"
           << "      background: " << p.background << "\n";
     }
@@ -71,24 +72,28 @@ void write_polarimetric_calibration(const std::string& yaml_path, const Polarime
 }
 
 void check_same_band(const RadiometricCalibration& radiometric, const std::string& radiometric_name,
-                     const PolarimetricCalibration& polarimetric, const std::string& polarimetric_name) {
+                     const PolarimetricCalibration& polarimetric,
+                     const std::string& polarimetric_name) {
     if (!polarimetric.band_known()) return;
     if (std::abs(polarimetric.band_lo_um - radiometric.band_lo_um) <= 1e-6 &&
         std::abs(polarimetric.band_hi_um - radiometric.band_hi_um) <= 1e-6)
         return;
-    fail("{} is a polarimetric calibration for {:g}–{:g} µm (made with {}) but the radiometric calibration {} is "
-         "for {:g}–{:g} µm; its wire-grid τ and B maps hold only in their own band: make the polarimetric "
-         "calibration again with this radiometric calibration",
-         polarimetric_name, polarimetric.band_lo_um, polarimetric.band_hi_um,
-         polarimetric.radiometric_calibration.empty() ? "an unnamed radiometric calibration"
-                                                      : polarimetric.radiometric_calibration,
-         radiometric_name, radiometric.band_lo_um, radiometric.band_hi_um);
+    fail(
+        "{} is a polarimetric calibration for {:g}–{:g} µm (made with {}) but the radiometric "
+        "calibration {} is "
+        "for {:g}–{:g} µm; its wire-grid τ and B maps hold only in their own band: make the "
+        "polarimetric "
+        "calibration again with this radiometric calibration",
+        polarimetric_name, polarimetric.band_lo_um, polarimetric.band_hi_um,
+        polarimetric.radiometric_calibration.empty() ? "an unnamed radiometric calibration"
+                                                     : polarimetric.radiometric_calibration,
+        radiometric_name, radiometric.band_lo_um, radiometric.band_hi_um);
 }
 
 PolarimetricCalibration read_polarimetric_calibration(const std::string& yaml_path) {
     const ConfigNode root = ConfigNode::load_file(yaml_path);
-    root.check_keys(
-        {"tirpol_calibration", "created_utc", "session", "radiometric_calibration", "maps", "band_um", "analyzer"});
+    root.check_keys({"tirpol_calibration", "created_utc", "session", "radiometric_calibration",
+                     "maps", "band_um", "analyzer"});
     if (root.get<std::string>("tirpol_calibration") != "polarimetric")
         root.at("tirpol_calibration").fail("expected 'polarimetric'");
     PolarimetricCalibration cal;
@@ -123,12 +128,14 @@ PolarimetricCalibration read_polarimetric_calibration(const std::string& yaml_pa
     for (const auto& p : cal.analyzer.positions) {
         const std::string tag = polarizer_angle_tag(p.nominal_angle_deg);
         if (!maps.has_channel("tau_" + tag))
-            fail("{}: no channel tau_{} for analyzer angle {:g}° listed in {}", maps_path, tag, p.nominal_angle_deg,
-                 yaml_path);
-        WireGridPosition pos{p.nominal_angle_deg, maps.channel("tau_" + tag), maps.channel("B_" + tag),
-                             maps.channel("residual_" + tag)};
-        // Maps written before tirpol recorded the fit's covariance have none; reductions then state so.
-        if (maps.has_channel("tau_var_" + tag) && maps.has_channel("B_var_" + tag) && maps.has_channel("tau_B_cov_" + tag)) {
+            fail("{}: no channel tau_{} for analyzer angle {:g}° listed in {}", maps_path, tag,
+                 p.nominal_angle_deg, yaml_path);
+        WireGridPosition pos{p.nominal_angle_deg, maps.channel("tau_" + tag),
+                             maps.channel("B_" + tag), maps.channel("residual_" + tag)};
+        // Maps written before tirpol recorded the fit's covariance have none; reductions then state
+        // so.
+        if (maps.has_channel("tau_var_" + tag) && maps.has_channel("B_var_" + tag) &&
+            maps.has_channel("tau_B_cov_" + tag)) {
             pos.tau_var = maps.channel("tau_var_" + tag);
             pos.background_var = maps.channel("B_var_" + tag);
             pos.tau_background_cov = maps.channel("tau_B_cov_" + tag);

@@ -1,11 +1,10 @@
 #include "tirpol/calibration/pose_estimation.h"
 
-#include <opencv2/calib3d.hpp>
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <fstream>
+#include <opencv2/calib3d.hpp>
 #include <sstream>
 
 #include "tirpol/core/error.h"
@@ -30,11 +29,14 @@ std::vector<ControlPoint> read_control_points(const std::filesystem::path& path)
         for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
         if (!header_seen) {
             if (line != "name,x_m,y_m,z_m,u_px,v_px")
-                fail("{}:{}: expected the header name,x_m,y_m,z_m,u_px,v_px, got '{}'", path.string(), line_no, line);
+                fail("{}:{}: expected the header name,x_m,y_m,z_m,u_px,v_px, got '{}'",
+                     path.string(), line_no, line);
             header_seen = true;
             continue;
         }
-        if (cells.size() != 6) fail("{}:{}: expected 6 columns (name,x_m,y_m,z_m,u_px,v_px), got {}", path.string(), line_no, cells.size());
+        if (cells.size() != 6)
+            fail("{}:{}: expected 6 columns (name,x_m,y_m,z_m,u_px,v_px), got {}", path.string(),
+                 line_no, cells.size());
         static const char* columns[] = {"name", "x_m", "y_m", "z_m", "u_px", "v_px"};
         double v[5];
         for (int i = 0; i < 5; ++i) {
@@ -45,11 +47,14 @@ std::vector<ControlPoint> read_control_points(const std::filesystem::path& path)
                 used = 0;
             }
             if (used == 0 || !std::isfinite(v[i]))
-                fail("{}:{}: column {} '{}' is not a number", path.string(), line_no, columns[i + 1], cells[static_cast<std::size_t>(i + 1)]);
+                fail("{}:{}: column {} '{}' is not a number", path.string(), line_no,
+                     columns[i + 1], cells[static_cast<std::size_t>(i + 1)]);
         }
         points.push_back({cells[0], Vec3(v[0], v[1], v[2]), Vec2(v[3], v[4])});
     }
-    if (!header_seen) fail("{}: empty control-point file (expected the header name,x_m,y_m,z_m,u_px,v_px)", path.string());
+    if (!header_seen)
+        fail("{}: empty control-point file (expected the header name,x_m,y_m,z_m,u_px,v_px)",
+             path.string());
     return points;
 }
 
@@ -72,21 +77,30 @@ bool coplanar(const std::vector<ControlPoint>& points) {
 
 void check_input(const CameraModel& model, const std::vector<ControlPoint>& points) {
     validate_camera_model(model, "camera model");
-    if (points.size() < 4) fail("pose: {} control point(s), need at least 4 (6 or more, spread in depth, recommended)", points.size());
+    if (points.size() < 4)
+        fail("pose: {} control point(s), need at least 4 (6 or more, spread in depth, recommended)",
+             points.size());
     for (const auto& p : points)
-        if (p.pixel.x() < -0.5 || p.pixel.y() < -0.5 || p.pixel.x() > model.width - 0.5 || p.pixel.y() > model.height - 0.5)
-            fail("pose: control point '{}' at pixel ({}, {}) is outside the {}x{} image", p.name, p.pixel.x(), p.pixel.y(),
-                 model.width, model.height);
+        if (p.pixel.x() < -0.5 || p.pixel.y() < -0.5 || p.pixel.x() > model.width - 0.5 ||
+            p.pixel.y() > model.height - 0.5)
+            fail("pose: control point '{}' at pixel ({}, {}) is outside the {}x{} image", p.name,
+                 p.pixel.x(), p.pixel.y(), model.width, model.height);
     // Collinear (or coincident) world points leave a rotation about their line free.
     const Eigen::Vector3d ev = scatter_eigenvalues(points);
     if (ev[2] <= 0.0 || ev[1] < 1e-6 * ev[2])
-        fail("pose: the {} control points are collinear or coincident in the world; survey points spread over an area", points.size());
+        fail(
+            "pose: the {} control points are collinear or coincident in the world; survey points "
+            "spread over an area",
+            points.size());
 }
 
-cv::Mat camera_matrix(const CameraModel& m) { return (cv::Mat_<double>(3, 3) << m.fx, 0, m.cx, 0, m.fy, m.cy, 0, 0, 1); }
+cv::Mat camera_matrix(const CameraModel& m) {
+    return (cv::Mat_<double>(3, 3) << m.fx, 0, m.cx, 0, m.fy, m.cy, 0, 0, 1);
+}
 }  // namespace
 
-PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoint>& points, const PoseOptions& options) {
+PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoint>& points,
+                         const PoseOptions& options) {
     check_input(model, points);
     std::vector<cv::Point3d> world;
     std::vector<cv::Point2d> pixels;
@@ -97,23 +111,29 @@ PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoin
     const cv::Mat k = camera_matrix(model), dist(model.distortion, true);
     cv::Mat rvec, tvec;
     std::vector<int> inlier_index;
-    // EPnP's minimal sets of (nearly) coplanar points are degenerate and can return the mirrored pose;
-    // IPPE (Collins & Bartoli, IJCV 109(3), 2014) is the planar solver.
-    const int method = points.size() == 4 ? cv::SOLVEPNP_AP3P : coplanar(points) ? cv::SOLVEPNP_IPPE : cv::SOLVEPNP_EPNP;
+    // EPnP's minimal sets of (nearly) coplanar points are degenerate and can return the mirrored
+    // pose; IPPE (Collins & Bartoli, IJCV 109(3), 2014) is the planar solver.
+    const int method = points.size() == 4 ? cv::SOLVEPNP_AP3P
+                       : coplanar(points) ? cv::SOLVEPNP_IPPE
+                                          : cv::SOLVEPNP_EPNP;
     const bool ok = cv::solvePnPRansac(world, pixels, k, dist, rvec, tvec, false, 1000,
-                                       static_cast<float>(options.ransac_threshold_px), 0.999, inlier_index, method);
+                                       static_cast<float>(options.ransac_threshold_px), 0.999,
+                                       inlier_index, method);
     if (!ok || inlier_index.size() < 4)
-        fail("pose: no pose explains at least 4 of the {} control points within {} px; check the pixel picks and that "
-             "the points are in the scene's world frame",
-             points.size(), options.ransac_threshold_px);
+        fail(
+            "pose: no pose explains at least 4 of the {} control points within {} px; check the "
+            "pixel picks and that "
+            "the points are in the scene's world frame",
+            points.size(), options.ransac_threshold_px);
     std::vector<cv::Point3d> world_in;
     std::vector<cv::Point2d> pixels_in;
     for (int i : inlier_index) {
         world_in.push_back(world[static_cast<std::size_t>(i)]);
         pixels_in.push_back(pixels[static_cast<std::size_t>(i)]);
     }
-    cv::solvePnPRefineLM(world_in, pixels_in, k, dist, rvec, tvec,
-                         cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-12));
+    cv::solvePnPRefineLM(
+        world_in, pixels_in, k, dist, rvec, tvec,
+        cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-12));
 
     PoseResult result;
     cv::Mat r;
@@ -125,11 +145,14 @@ PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoin
     }
     std::string behind;
     for (const auto& p : points)
-        if ((pose.camera_from_world * p.world_m + pose.translation_m).z() <= 0.0) behind += " '" + p.name + "'";
+        if ((pose.camera_from_world * p.world_m + pose.translation_m).z() <= 0.0)
+            behind += " '" + p.name + "'";
     if (!behind.empty())
-        fail("pose: the best pose puts control point(s){} on or behind the camera; check their world coordinates "
-             "(scene frame, z up) and pixel picks",
-             behind);
+        fail(
+            "pose: the best pose puts control point(s){} on or behind the camera; check their "
+            "world coordinates "
+            "(scene frame, z up) and pixel picks",
+            behind);
 
     std::vector<cv::Point2d> projected;
     cv::projectPoints(world, rvec, tvec, k, dist, projected);
@@ -155,7 +178,8 @@ PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoin
     const double sigma2 = dof > 0.0 ? sum2 / dof : 0.0;
     const Eigen::Matrix<double, 6, 6> cov = sigma2 * (j.transpose() * j).inverse();
     // A small rvec perturbation is (to first order) a rotation about the camera axes.
-    for (int i = 0; i < 3; ++i) pose.rotation_sigma_deg[i] = rad_to_deg(std::sqrt(std::max(cov(i, i), 0.0)));
+    for (int i = 0; i < 3; ++i)
+        pose.rotation_sigma_deg[i] = rad_to_deg(std::sqrt(std::max(cov(i, i), 0.0)));
     // Camera centre C = −Rᵀt: propagate through a numeric Jacobian dC/d(rvec, t).
     auto centre = [&](const Eigen::Matrix<double, 6, 1>& x) {
         cv::Mat rv = (cv::Mat_<double>(3, 1) << x[0], x[1], x[2]), rr;
@@ -166,7 +190,8 @@ PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoin
         return Vec3(-rm.transpose() * Vec3(x[3], x[4], x[5]));
     };
     Eigen::Matrix<double, 6, 1> x0;
-    x0 << rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2), tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2);
+    x0 << rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2), tvec.at<double>(0),
+        tvec.at<double>(1), tvec.at<double>(2);
     Eigen::Matrix<double, 3, 6> dc;
     for (int c = 0; c < 6; ++c) {
         Eigen::Matrix<double, 6, 1> dx = Eigen::Matrix<double, 6, 1>::Zero();

@@ -13,12 +13,15 @@ constexpr const char* kKind = "radiometric";
 // 1: one camera state (no format_version attribute); 2: adds the FPA-temperature dependence.
 constexpr int kFormatVersion = 2;
 
-std::string fpa_channel(const char* plane, int power) { return fmt::format("{}_fpa{}", plane, power); }
+std::string fpa_channel(const char* plane, int power) {
+    return fmt::format("{}_fpa{}", plane, power);
+}
 
 template <typename T>
 const T& attribute(const Image& image, const std::string& path, const std::string& name) {
     const auto it = image.attributes().find(name);
-    if (it == image.attributes().end()) fail("{}: missing attribute '{}' of a radiometric calibration", path, name);
+    if (it == image.attributes().end())
+        fail("{}: missing attribute '{}' of a radiometric calibration", path, name);
     const T* value = std::get_if<T>(&it->second);
     if (!value) fail("{}: attribute '{}' has the wrong type", path, name);
     return *value;
@@ -34,7 +37,8 @@ void write_radiometric_calibration(const std::string& path, const RadiometricCal
     image.set_channel("residual_rms", cal.residual_rms);
     image.set_channel("fit_quality", cal.fit_quality);
     for (int e = 1; e <= cal.fpa_degree(); ++e) {
-        image.set_channel(fpa_channel("offset", e), cal.offset_fpa[static_cast<std::size_t>(e - 1)]);
+        image.set_channel(fpa_channel("offset", e),
+                          cal.offset_fpa[static_cast<std::size_t>(e - 1)]);
         image.set_channel(fpa_channel("gain", e), cal.gain_fpa[static_cast<std::size_t>(e - 1)]);
     }
     auto& a = image.attributes();
@@ -42,7 +46,8 @@ void write_radiometric_calibration(const std::string& path, const RadiometricCal
     a["format_version"] = kFormatVersion;
     a["fpa_degree"] = cal.fpa_degree();
     if (cal.fpa_degree() > 0) {
-        a["fpa_model"] = std::string("gain, offset polynomial in (T_fpa - fpa_reference_k); Nugent, Shaw & Pust 2013");
+        a["fpa_model"] = std::string(
+            "gain, offset polynomial in (T_fpa - fpa_reference_k); Nugent, Shaw & Pust 2013");
         a["fpa_reference_k"] = cal.fpa_reference_k;
         a["fpa_min_k"] = cal.fpa_min_k;  // doubles: an EXR float vector would round them
         a["fpa_max_k"] = cal.fpa_max_k;
@@ -81,11 +86,14 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
     const auto& kind = attribute<std::string>(image, path, "tirpol_calibration");
     if (kind != kKind) fail("{}: tirpol_calibration = '{}'; expected '{}'", path, kind, kKind);
     int version = 1;
-    if (image.attributes().count("format_version")) version = attribute<int>(image, path, "format_version");
+    if (image.attributes().count("format_version"))
+        version = attribute<int>(image, path, "format_version");
     if (version < 1 || version > kFormatVersion)
-        fail("{}: format_version = {}; this tirpol reads radiometric calibrations of version 1 to {} (written by a "
-             "newer tirpol?)",
-             path, version, kFormatVersion);
+        fail(
+            "{}: format_version = {}; this tirpol reads radiometric calibrations of version 1 to "
+            "{} (written by a "
+            "newer tirpol?)",
+            path, version, kFormatVersion);
     RadiometricCalibration cal;
     cal.width = image.width();
     cal.height = image.height();
@@ -98,7 +106,8 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
     cal.temperatures_k = attribute<std::vector<double>>(image, path, "temperatures_k");
     cal.radiances_w_m2_sr = attribute<std::vector<double>>(image, path, "radiances_w_m2_sr");
     const auto& band = attribute<std::vector<double>>(image, path, "band_um");
-    if (band.size() != 2 || !(band[0] < band[1])) fail("{}: band_um must be [lo, hi] with lo < hi", path);
+    if (band.size() != 2 || !(band[0] < band[1]))
+        fail("{}: band_um must be [lo, hi] with lo < hi", path);
     cal.band_lo_um = band[0];
     cal.band_hi_um = band[1];
     cal.rsr_wavelength_um = attribute<std::vector<double>>(image, path, "rsr_wavelength_um");
@@ -127,7 +136,8 @@ RadiometricCalibration read_radiometric_calibration(const std::string& path) {
         for (const char* plane : {"offset", "gain"}) {
             const std::string name = fpa_channel(plane, e);
             if (!image.has_channel(name))
-                fail("{}: missing channel '{}' of an FPA-dependent calibration (fpa_degree {})", path, name, degree);
+                fail("{}: missing channel '{}' of an FPA-dependent calibration (fpa_degree {})",
+                     path, name, degree);
             (plane[0] == 'o' ? cal.offset_fpa : cal.gain_fpa).push_back(image.channel(name));
         }
     return cal;

@@ -21,22 +21,23 @@ const AnalyzerPlanes& image_for(const std::vector<AnalyzerPlanes>& images, doubl
     for (const auto& im : images)
         if (same_polarizer_angle(im.angle_deg, angle_deg)) return im;
     std::string present;
-    for (const auto& im : images) present += (present.empty() ? "" : ", ") + fmt::format("{:g}°", im.angle_deg);
-    fail("no image at analyzer angle {:g}° (the analyzer model needs it); images present at: {}", angle_deg,
-         present.empty() ? "none" : present);
+    for (const auto& im : images)
+        present += (present.empty() ? "" : ", ") + fmt::format("{:g}°", im.angle_deg);
+    fail("no image at analyzer angle {:g}° (the analyzer model needs it); images present at: {}",
+         angle_deg, present.empty() ? "none" : present);
 }
 
 /// The inputs in the model's angle order, checked before anything is computed.
 struct ValidatedInputs {
     std::vector<const AnalyzerPlanes*> images;
     std::vector<const WireGridPosition*> grid;  ///< empty without a wire-grid calibration
-    bool have_std = true;          ///< every image has its σ plane
-    bool grid_covariance = false;  ///< every grid position has the fit's (co)variances
+    bool have_std = true;                       ///< every image has its σ plane
+    bool grid_covariance = false;               ///< every grid position has the fit's (co)variances
 };
 
 /// Validates everything first: no partial output for a bad input.
-ValidatedInputs validate(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
-                         const WireGridCalibration* wire_grid) {
+ValidatedInputs validate(const std::vector<AnalyzerPlanes>& images, int width, int height,
+                         const AnalyzerModel& model, const WireGridCalibration* wire_grid) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     ValidatedInputs v;
     for (const auto& pos : model.positions) {
@@ -50,14 +51,14 @@ ValidatedInputs validate(const std::vector<AnalyzerPlanes>& images, int width, i
         if (wire_grid) {
             const WireGridPosition& g = wire_grid->at(pos.nominal_angle_deg);
             if (g.tau.size() != n)
-                fail("wire-grid calibration is {}×{}; the images are {}×{}", wire_grid->width, wire_grid->height, width,
-                     height);
+                fail("wire-grid calibration is {}×{}; the images are {}×{}", wire_grid->width,
+                     wire_grid->height, width, height);
             v.grid.push_back(&g);
         }
     }
     // The wire-grid fit's own error, when known, is part of every reduced image's uncertainty.
-    v.grid_covariance =
-        wire_grid && std::all_of(v.grid.begin(), v.grid.end(), [](const auto* g) { return g->has_covariance(); });
+    v.grid_covariance = wire_grid && std::all_of(v.grid.begin(), v.grid.end(),
+                                                 [](const auto* g) { return g->has_covariance(); });
     return v;
 }
 
@@ -70,9 +71,17 @@ struct AnglePlanes {
     std::vector<float*> slar;  ///< L_SLAR outputs, null when not requested
 
     AnglePlanes(const ValidatedInputs& v, const AnalyzerModel& model, const Eigen::Matrix3Xd& drm)
-        : n_angles(model.positions.size()), w(3 * n_angles), tau_const(n_angles), b_const(n_angles),
-          signal(n_angles), sigma(n_angles, nullptr), tau(n_angles, nullptr), b(n_angles, nullptr),
-          tau_var(n_angles, nullptr), b_var(n_angles, nullptr), tau_b_cov(n_angles, nullptr),
+        : n_angles(model.positions.size()),
+          w(3 * n_angles),
+          tau_const(n_angles),
+          b_const(n_angles),
+          signal(n_angles),
+          sigma(n_angles, nullptr),
+          tau(n_angles, nullptr),
+          b(n_angles, nullptr),
+          tau_var(n_angles, nullptr),
+          b_var(n_angles, nullptr),
+          tau_b_cov(n_angles, nullptr),
           slar(n_angles, nullptr) {
         for (std::size_t k = 0; k < n_angles; ++k) {
             for (std::size_t r = 0; r < 3; ++r)
@@ -115,10 +124,11 @@ PixelStokes solve_pixel(const AnglePlanes& p, std::size_t i, bool have_std) {
         r.s[2] += wk[2] * l;
         if (have_std) {
             // Independent per-angle errors: Cov(S) = W⁺·diag(σ²)·W⁺ᵀ (Tyo et al. 2006, §4.3). With
-            // the grid's fitted (τ, B) uncertain too (each angle fitted from its own frames), first order
-            // in l = (I − B)/τ: Var l = (σ_I² + Var B + l² Var τ + 2 l Cov(τ, B)) / τ².
+            // the grid's fitted (τ, B) uncertain too (each angle fitted from its own frames), first
+            // order in l = (I − B)/τ: Var l = (σ_I² + Var B + l² Var τ + 2 l Cov(τ, B)) / τ².
             double var = static_cast<double>(p.sigma[k][i]) * p.sigma[k][i];
-            if (p.tau_var[k]) var += p.b_var[k][i] + l * l * p.tau_var[k][i] + 2.0 * l * p.tau_b_cov[k][i];
+            if (p.tau_var[k])
+                var += p.b_var[k][i] + l * l * p.tau_var[k][i] + 2.0 * l * p.tau_b_cov[k][i];
             var /= tau * tau;
             r.c00 += wk[0] * wk[0] * var;
             r.c11 += wk[1] * wk[1] * var;
@@ -134,16 +144,18 @@ PixelStokes solve_pixel(const AnglePlanes& p, std::size_t i, bool have_std) {
 /// The output planes; the σ planes are null without input σ.
 struct OutputPlanes {
     std::vector<float>&s0, &s1, &s2, &dolp, &aop;
-    std::vector<float>*s0_std = nullptr, *s1_std = nullptr, *s2_std = nullptr, *dolp_std = nullptr, *aop_std = nullptr;
+    std::vector<float>*s0_std = nullptr, *s1_std = nullptr, *s2_std = nullptr, *dolp_std = nullptr,
+    *aop_std = nullptr;
 };
 
 OutputPlanes add_output_channels(Image& out, const ValidatedInputs& v, const AnalyzerModel& model,
                                  const ReductionOptions& options, AnglePlanes& planes) {
-    OutputPlanes o{out.add_channel("S0"), out.add_channel("S1"), out.add_channel("S2"), out.add_channel("DoLP"),
-                   out.add_channel("AoP")};
+    OutputPlanes o{out.add_channel("S0"), out.add_channel("S1"), out.add_channel("S2"),
+                   out.add_channel("DoLP"), out.add_channel("AoP")};
     if (v.have_std) {
         out.attributes()["std_includes"] = std::string(
-            v.grid_covariance ? "temporal noise and the wire-grid calibration's fit error" : "temporal noise");
+            v.grid_covariance ? "temporal noise and the wire-grid calibration's fit error"
+                              : "temporal noise");
         o.s0_std = &out.add_channel("S0_std");
         o.s1_std = &out.add_channel("S1_std");
         o.s2_std = &out.add_channel("S2_std");
@@ -152,7 +164,9 @@ OutputPlanes add_output_channels(Image& out, const ValidatedInputs& v, const Ana
     }
     if (options.include_slar)
         for (std::size_t k = 0; k < planes.n_angles; ++k)
-            planes.slar[k] = out.add_channel("L_SLAR_" + polarizer_angle_tag(model.positions[k].nominal_angle_deg)).data();
+            planes.slar[k] = out.add_channel("L_SLAR_" + polarizer_angle_tag(
+                                                             model.positions[k].nominal_angle_deg))
+                                 .data();
     return o;
 }
 
@@ -188,7 +202,8 @@ bool propagate_pixel(PixelStokes& r, std::size_t i, bool project_to_realizable, 
         (*o.dolp_std)[i] = static_cast<float>(std::sqrt(std::max(0.0, var_dolp)));
         // Where DoLP ≈ its noise the linearisation diverges; an AoP known to nothing is uniform on
         // [0°, 180°), σ = 180°/√12, the cap.
-        (*o.aop_std)[i] = static_cast<float>(std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(std::max(0.0, var_aop)))));
+        (*o.aop_std)[i] = static_cast<float>(
+            std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(std::max(0.0, var_aop)))));
     } else {
         (*o.dolp_std)[i] = kNaN;
         (*o.aop_std)[i] = static_cast<float>(kAopStdCapDeg);
@@ -205,8 +220,9 @@ void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matri
     a["units_S2"] = options.units;
     a["units_DoLP"] = std::string("1");
     a["units_AoP"] = std::string("deg");
-    a["stokes_convention"] =
-        std::string("S1 = I0 - I90, S2 = I45 - I135; 0 deg along image rows (+x), 90 deg to the top of the image");
+    a["stokes_convention"] = std::string(
+        "S1 = I0 - I90, S2 = I45 - I135; 0 deg along image rows (+x), 90 deg to the top of the "
+        "image");
     std::vector<double> angles, drm_values;
     for (const auto& p : model.positions) angles.push_back(p.nominal_angle_deg);
     for (Eigen::Index r = 0; r < 3; ++r)
@@ -219,16 +235,19 @@ void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matri
 
 }  // namespace
 
-Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height, const AnalyzerModel& model,
-                    const WireGridCalibration* wire_grid, const ReductionOptions& options) {
+Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,
+                    const AnalyzerModel& model, const WireGridCalibration* wire_grid,
+                    const ReductionOptions& options) {
     std::vector<AnalyzerPlanes> views;
     views.reserve(images.size());
-    for (const AnalyzerImage& im : images) views.push_back({im.angle_deg, im.signal, im.signal_std, im.source});
+    for (const AnalyzerImage& im : images)
+        views.push_back({im.angle_deg, im.signal, im.signal_std, im.source});
     return reduce_stokes(views, width, height, model, wire_grid, options);
 }
 
-Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
-                    const WireGridCalibration* wire_grid, const ReductionOptions& options) {
+Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height,
+                    const AnalyzerModel& model, const WireGridCalibration* wire_grid,
+                    const ReductionOptions& options) {
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     const Eigen::Matrix3Xd drm = model.data_reduction_matrix();
     const ValidatedInputs inputs = validate(images, width, height, model, wire_grid);

@@ -10,7 +10,8 @@ namespace tirpol::calibration {
 DriftingCameraTruth::DriftingCameraTruth(const DriftingCamera& cam) : m_cam(cam) {
     std::mt19937 rng(cam.seed);
     std::normal_distribution<double> unit(0.0, 1.0);
-    const std::size_t n = static_cast<std::size_t>(cam.width) * static_cast<std::size_t>(cam.height);
+    const std::size_t n =
+        static_cast<std::size_t>(cam.width) * static_cast<std::size_t>(cam.height);
     for (std::size_t i = 0; i < n; ++i) {
         m_g0.push_back(cam.gain_mean * (1.0 + cam.gain_rel_std * unit(rng)));
         m_o0.push_back(cam.offset_mean + cam.offset_std * unit(rng));
@@ -24,7 +25,8 @@ double DriftingCameraTruth::counts(std::size_t i, double radiance, double fpa_k)
     return m_o0[i] + m_o1[i] * dt + m_g0[i] * (1.0 + m_gamma[i] * dt) * radiance;
 }
 
-BlackbodyFrame DriftingCameraTruth::frame(const Band& band, double scene_k, double fpa_k, unsigned seed) const {
+BlackbodyFrame DriftingCameraTruth::frame(const Band& band, double scene_k, double fpa_k,
+                                          unsigned seed) const {
     std::mt19937 rng(seed);
     std::normal_distribution<double> unit(0.0, 1.0);
     const double l = band.radiance(scene_k);

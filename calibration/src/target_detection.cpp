@@ -1,17 +1,16 @@
 #include "tirpol/calibration/target_detection.h"
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/features2d.hpp>
-#include <opencv2/imgproc.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 #include <thread>
-#include <cmath>
-
-#include <fmt/format.h>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -29,7 +28,8 @@ cv::Mat stretched(const std::vector<float>& plane, int width, int height) {
         if (std::isfinite(v)) finite.push_back(v);
     if (finite.size() < plane.size() / 2) return {};
     auto quantile = [&](double q) {
-        auto it = finite.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(finite.size() - 1));
+        auto it = finite.begin() +
+                  static_cast<std::ptrdiff_t>(q * static_cast<double>(finite.size() - 1));
         std::nth_element(finite.begin(), it, finite.end());
         return *it;
     };
@@ -40,7 +40,8 @@ cv::Mat stretched(const std::vector<float>& plane, int width, int height) {
     for (int y = 0; y < height; ++y) {
         auto* row = out.ptr<float>(y);
         for (int x = 0; x < width; ++x) {
-            const float v = plane[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+            const float v = plane[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(x)];
             row[x] = std::isfinite(v) ? std::clamp((v - lo) * scale, 0.0f, 255.0f) : 127.5f;
         }
     }
@@ -52,7 +53,8 @@ cv::Mat stretched(const std::vector<float>& plane, int width, int height) {
 int subpixel_half_window(const std::vector<cv::Point2f>& corners, int columns) {
     double min_d = 1e9;
     for (std::size_t i = 0; i + 1 < corners.size(); ++i)
-        if ((static_cast<int>(i) + 1) % columns != 0) min_d = std::min(min_d, cv::norm(corners[i + 1] - corners[i]));
+        if ((static_cast<int>(i) + 1) % columns != 0)
+            min_d = std::min(min_d, cv::norm(corners[i + 1] - corners[i]));
     return std::clamp(static_cast<int>(min_d * 0.4), 2, 10);
 }
 
@@ -61,13 +63,14 @@ int subpixel_half_window(const std::vector<cv::Point2f>& corners, int columns) {
 /// ≥ 10 px at 256 rows. The corners are refined at full resolution either way.
 constexpr int kCoarseSearchMinRows = 480;
 
-/// Inner corners by OpenCV's sector-based detector (findChessboardCornersSB: Duda & Frese, "Accurate
-/// Detection and Localization of Checkerboard Corners for Calibration", BMVC 2018). It responds to
-/// corners whatever the polarity, so a hot-squares board on a cold border is found as is. The
-/// quad-based findChessboardCorners is not used: it needs dark squares inside a light border, and on
-/// the other polarity its search fails only after every dilation and threshold (3–5 s CPU per
-/// 640×512 frame, profiled for issue 14) — the fast check passes, since a board is there.
-std::optional<std::vector<cv::Point2f>> find_checkerboard_corners(const cv::Mat& image_8u, const cv::Size& size) {
+/// Inner corners by OpenCV's sector-based detector (findChessboardCornersSB: Duda & Frese,
+/// "Accurate Detection and Localization of Checkerboard Corners for Calibration", BMVC 2018). It
+/// responds to corners whatever the polarity, so a hot-squares board on a cold border is found as
+/// is. The quad-based findChessboardCorners is not used: it needs dark squares inside a light
+/// border, and on the other polarity its search fails only after every dilation and threshold (3–5
+/// s CPU per 640×512 frame, profiled for issue 14) — the fast check passes, since a board is there.
+std::optional<std::vector<cv::Point2f>> find_checkerboard_corners(const cv::Mat& image_8u,
+                                                                  const cv::Size& size) {
     std::vector<cv::Point2f> corners;
     if (image_8u.rows >= kCoarseSearchMinRows) {
         cv::Mat half;
@@ -79,12 +82,14 @@ std::optional<std::vector<cv::Point2f>> find_checkerboard_corners(const cv::Mat&
         }
     }
     // Small, blurred or steeply tilted boards: the exhaustive search at full resolution.
-    if (cv::findChessboardCornersSB(image_8u, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE))
+    if (cv::findChessboardCornersSB(image_8u, size, corners,
+                                    cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE))
         return corners;
     return std::nullopt;
 }
 
-std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_f, const cv::Size& size) {
+std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_f,
+                                                          const cv::Size& size) {
     cv::Mat image_8u;
     image_f.convertTo(image_8u, CV_8U);
     auto corners = find_checkerboard_corners(image_8u, size);
@@ -101,8 +106,8 @@ std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_f
 /// between blobs and 25 px² of area would drop them), tilted views turn them into ellipses
 /// (inertia ratio cos(tilt)), and noise roughens their edges (convexity). `hot_discs`: hot discs on
 /// a cold plate (a heated plate behind a mask with holes) or the inverse.
-std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size, bool asymmetric,
-                                                     bool hot_discs) {
+std::optional<std::vector<cv::Point2f>> find_circles(const cv::Mat& image_f, const cv::Size& size,
+                                                     bool asymmetric, bool hot_discs) {
     cv::Mat image_8u;
     image_f.convertTo(image_8u, CV_8U);
     cv::SimpleBlobDetector::Params params;
@@ -134,7 +139,8 @@ std::optional<TargetView> detect_target(const std::vector<float>& plane, int wid
         found = find_checkerboard(image, size);  // either polarity
     } else {
         for (bool hot_discs : {true, false}) {
-            found = find_circles(image, size, target.kind == CalibrationTarget::Kind::AsymmetricCircles, hot_discs);
+            found = find_circles(
+                image, size, target.kind == CalibrationTarget::Kind::AsymmetricCircles, hot_discs);
             if (found) break;
         }
     }
@@ -145,9 +151,9 @@ std::optional<TargetView> detect_target(const std::vector<float>& plane, int wid
     return view;
 }
 
-std::vector<std::optional<TargetView>> detect_target_views(const std::vector<std::vector<float>>& planes, int width,
-                                                           int height, const CalibrationTarget& target,
-                                                           const std::vector<std::string>& names) {
+std::vector<std::optional<TargetView>> detect_target_views(
+    const std::vector<std::vector<float>>& planes, int width, int height,
+    const CalibrationTarget& target, const std::vector<std::string>& names) {
     std::vector<std::optional<TargetView>> out(planes.size());
     std::atomic<std::size_t> next{0};
     std::exception_ptr error;
@@ -155,14 +161,17 @@ std::vector<std::optional<TargetView>> detect_target_views(const std::vector<std
     auto worker = [&] {
         for (std::size_t i = next++; i < planes.size(); i = next++) {
             try {
-                out[i] = detect_target(planes[i], width, height, target, i < names.size() ? names[i] : fmt::format("view {}", i));
+                out[i] = detect_target(planes[i], width, height, target,
+                                       i < names.size() ? names[i] : fmt::format("view {}", i));
             } catch (...) {
                 const std::lock_guard lock(error_mutex);
                 if (!error) error = std::current_exception();
             }
         }
     };
-    const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(std::max<std::size_t>(planes.size(), 1)));
+    const unsigned threads =
+        std::clamp(std::thread::hardware_concurrency(), 1u,
+                   static_cast<unsigned>(std::max<std::size_t>(planes.size(), 1)));
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
     worker();
@@ -173,7 +182,8 @@ std::vector<std::optional<TargetView>> detect_target_views(const std::vector<std
 
 Image read_calibration_frame(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".exr") {
         Image image = read_exr(path);
         for (const char* channel : {"counts", "S0"})

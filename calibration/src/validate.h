@@ -14,14 +14,15 @@ namespace tirpol::calibration::detail {
 inline void check_plane(std::span<const float> plane, std::size_t expected, const std::string& what,
                         int width, int height) {
     if (plane.size() != expected)
-        fail("{}: image has {} pixels, expected {} ({}×{}, the size of the other images)", what, plane.size(),
-             expected, width, height);
+        fail("{}: image has {} pixels, expected {} ({}×{}, the size of the other images)", what,
+             plane.size(), expected, width, height);
     std::size_t bad = 0, first = 0;
     for (std::size_t i = 0; i < plane.size(); ++i)
         if (!std::isfinite(plane[i]) && bad++ == 0) first = i;
     if (bad > 0)
-        fail("{}: {} pixel(s) are NaN or infinite (first at x={}, y={}); expected finite values", what, bad,
-             first % static_cast<std::size_t>(width), first / static_cast<std::size_t>(width));
+        fail("{}: {} pixel(s) are NaN or infinite (first at x={}, y={}); expected finite values",
+             what, bad, first % static_cast<std::size_t>(width),
+             first / static_cast<std::size_t>(width));
 }
 
 }  // namespace tirpol::calibration::detail

@@ -17,8 +17,10 @@
 namespace tirpol {
 
 namespace {
-/// When this process started (static initialisation): a temporary file older than this was not made by it.
-const std::filesystem::file_time_type g_process_start = std::filesystem::file_time_type::clock::now();
+/// When this process started (static initialisation): a temporary file older than this was not made
+/// by it.
+const std::filesystem::file_time_type g_process_start =
+    std::filesystem::file_time_type::clock::now();
 
 std::filesystem::path temp_name_for(const std::filesystem::path& destination) {
     static thread_local std::mt19937_64 rng{std::random_device{}()};
@@ -41,7 +43,9 @@ void ensure_parent(const std::filesystem::path& path) {
     if (!path.has_parent_path()) return;
     std::error_code ec;
     std::filesystem::create_directories(path.parent_path(), ec);
-    if (ec) fail("{}: cannot create directory '{}': {}", path.string(), path.parent_path().string(), ec.message());
+    if (ec)
+        fail("{}: cannot create directory '{}': {}", path.string(), path.parent_path().string(),
+             ec.message());
 }
 
 /// Once per folder and process, on its first atomic write there.
@@ -64,14 +68,18 @@ std::optional<long> temp_file_owner_pid(const std::string& name) {
     const auto tag = name.rfind(".tmp-");
     if (tag == std::string::npos || tag == 0) return std::nullopt;
     std::size_t i = tag + 5, pid_end = i;
-    while (pid_end < name.size() && std::isdigit(static_cast<unsigned char>(name[pid_end]))) ++pid_end;
-    if (pid_end == i || pid_end - i > 9 || pid_end >= name.size() || name[pid_end] != '-') return std::nullopt;
+    while (pid_end < name.size() && std::isdigit(static_cast<unsigned char>(name[pid_end])))
+        ++pid_end;
+    if (pid_end == i || pid_end - i > 9 || pid_end >= name.size() || name[pid_end] != '-')
+        return std::nullopt;
     std::size_t random_end = pid_end + 1;
-    while (random_end < name.size() && std::isdigit(static_cast<unsigned char>(name[random_end]))) ++random_end;
+    while (random_end < name.size() && std::isdigit(static_cast<unsigned char>(name[random_end])))
+        ++random_end;
     if (random_end == pid_end + 1) return std::nullopt;
     // What follows is the destination's extension, if any.
     const std::string rest = name.substr(random_end);
-    if (!rest.empty() && (rest.front() != '.' || rest.find('/') != std::string::npos)) return std::nullopt;
+    if (!rest.empty() && (rest.front() != '.' || rest.find('/') != std::string::npos))
+        return std::nullopt;
     return std::stol(name.substr(i, pid_end - i));
 }
 
@@ -83,11 +91,12 @@ std::size_t remove_abandoned_temp_files(const std::filesystem::path& folder) {
         if (!entry.is_regular_file(e)) continue;
         const auto pid = temp_file_owner_pid(entry.path().filename().string());
         if (!pid) continue;
-        // Made before this process started, by a process that no longer runs (a pid in use by another
-        // process keeps the file: it may be that writer's, still at work).
+        // Made before this process started, by a process that no longer runs (a pid in use by
+        // another process keeps the file: it may be that writer's, still at work).
         const auto written = std::filesystem::last_write_time(entry.path(), e);
         if (e || written >= g_process_start) continue;
-        const bool alive = *pid != ::getpid() && (::kill(static_cast<pid_t>(*pid), 0) == 0 || errno == EPERM);
+        const bool alive =
+            *pid != ::getpid() && (::kill(static_cast<pid_t>(*pid), 0) == 0 || errno == EPERM);
         if (alive) continue;
         if (std::filesystem::remove(entry.path(), e)) ++removed;
     }
@@ -105,12 +114,13 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
             if (errno == EINTR) continue;
             const int err = errno;
             ::close(fd);
-            fail("{}: write failed after {} of {} bytes: {}", path.string(), written, content.size(),
-                 std::strerror(err));
+            fail("{}: write failed after {} of {} bytes: {}", path.string(), written,
+                 content.size(), std::strerror(err));
         }
         written += static_cast<std::size_t>(n);
     }
-    if (::close(fd) != 0) fail("{}: write failed on close: {}", path.string(), std::strerror(errno));
+    if (::close(fd) != 0)
+        fail("{}: write failed on close: {}", path.string(), std::strerror(errno));
     file.commit();
 }
 
@@ -132,7 +142,9 @@ void AtomicFile::commit() {
     fsync_path(m_temp);
     std::error_code ec;
     std::filesystem::rename(m_temp, m_destination, ec);
-    if (ec) fail("{}: cannot move the finished file into place: {}", m_destination.string(), ec.message());
+    if (ec)
+        fail("{}: cannot move the finished file into place: {}", m_destination.string(),
+             ec.message());
     m_committed = true;
 }
 

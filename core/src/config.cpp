@@ -21,7 +21,8 @@ struct ConfigNode::Source {
     std::string display_name;
 };
 
-ConfigNode::ConfigNode(std::shared_ptr<const Source> source, std::unique_ptr<YAML::Node> node, std::string path)
+ConfigNode::ConfigNode(std::shared_ptr<const Source> source, std::unique_ptr<YAML::Node> node,
+                       std::string path)
     : m_source(std::move(source)), m_node(std::move(node)), m_path(std::move(path)) {}
 ConfigNode::ConfigNode(const ConfigNode& o)
     : m_source(o.m_source), m_node(std::make_unique<YAML::Node>(*o.m_node)), m_path(o.m_path) {}
@@ -40,17 +41,24 @@ ConfigNode::~ConfigNode() = default;
 namespace {
 std::string describe(const YAML::Node& node) {
     switch (node.Type()) {
-        case YAML::NodeType::Null: return "nothing (null)";
-        case YAML::NodeType::Sequence: return "a list";
-        case YAML::NodeType::Map: return "a mapping";
-        case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-        default: return "an undefined value";
+        case YAML::NodeType::Null:
+            return "nothing (null)";
+        case YAML::NodeType::Sequence:
+            return "a list";
+        case YAML::NodeType::Map:
+            return "a mapping";
+        case YAML::NodeType::Scalar:
+            return "'" + node.Scalar() + "'";
+        default:
+            return "an undefined value";
     }
 }
 
 // yaml-cpp keeps every pair of a mapping and its lookups return the first: a repeated key would be
-// silently dropped. Each collection is visited once (aliases share nodes, so a YAML bomb stays linear).
-void check_unique_keys(const YAML::Node& node, const std::string& source, std::unordered_set<std::size_t>& visited) {
+// silently dropped. Each collection is visited once (aliases share nodes, so a YAML bomb stays
+// linear).
+void check_unique_keys(const YAML::Node& node, const std::string& source,
+                       std::unordered_set<std::size_t>& visited) {
     if (!node.IsMap() && !node.IsSequence()) return;
     if (!visited.insert(static_cast<std::size_t>(node.Mark().pos)).second) return;
     if (node.IsSequence()) {
@@ -63,9 +71,10 @@ void check_unique_keys(const YAML::Node& node, const std::string& source, std::u
             const auto [it, inserted] = seen.emplace(kv.first.Scalar(), kv.first.Mark());
             if (!inserted)
                 tirpol::fail(
-                    "{}:{}:{}: duplicate key '{}' (first given at {}:{}:{}); each key may appear once in a mapping",
-                    source, kv.first.Mark().line + 1, kv.first.Mark().column + 1, kv.first.Scalar(), source,
-                    it->second.line + 1, it->second.column + 1);
+                    "{}:{}:{}: duplicate key '{}' (first given at {}:{}:{}); each key may appear "
+                    "once in a mapping",
+                    source, kv.first.Mark().line + 1, kv.first.Mark().column + 1, kv.first.Scalar(),
+                    source, it->second.line + 1, it->second.column + 1);
         }
         check_unique_keys(kv.second, source, visited);
     }
@@ -81,7 +90,8 @@ ConfigNode ConfigNode::parse(std::string_view text, std::string source_name) {
         check_unique_keys(*node, source_name, visited);
         return ConfigNode(std::move(source), std::move(node), "");
     } catch (const YAML::Exception& e) {
-        tirpol::fail("{}:{}:{}: YAML syntax error: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg);
+        tirpol::fail("{}:{}:{}: YAML syntax error: {}", source_name, e.mark.line + 1,
+                     e.mark.column + 1, e.msg);
     }
 }
 
@@ -108,8 +118,9 @@ std::optional<ConfigNode> ConfigNode::find(std::string_view key) const {
         if (m_node->IsNull()) return std::nullopt;
         fail(fmt::format("expected a mapping with a field '{}', found {}", key, describe(*m_node)));
     }
-    // Const lookup: yaml-cpp's non-const operator[] adds an (undefined) entry for a missing key, allocated in
-    // this node's memory; a tree shared with another (with_value) would keep a dangling entry.
+    // Const lookup: yaml-cpp's non-const operator[] adds an (undefined) entry for a missing key,
+    // allocated in this node's memory; a tree shared with another (with_value) would keep a
+    // dangling entry.
     YAML::Node child = std::as_const(*m_node)[std::string(key)];
     if (!child) return std::nullopt;
     return ConfigNode(m_source, std::make_unique<YAML::Node>(child), child_path(key));
@@ -125,7 +136,8 @@ std::vector<ConfigNode> ConfigNode::elements() const {
     if (!m_node->IsSequence()) fail("expected a list, found " + describe(*m_node));
     std::vector<ConfigNode> out;
     for (std::size_t i = 0; i < m_node->size(); ++i)
-        out.emplace_back(ConfigNode(m_source, std::make_unique<YAML::Node>(std::as_const(*m_node)[i]),
+        out.emplace_back(ConfigNode(m_source,
+                                    std::make_unique<YAML::Node>(std::as_const(*m_node)[i]),
                                     m_path + "[" + std::to_string(i) + "]"));
     return out;
 }
@@ -185,7 +197,9 @@ std::vector<std::string> ConfigNode::as<std::vector<std::string>>() const {
 double ConfigNode::get_in_range(std::string_view key, double lo, double hi) const {
     auto child = at(key);
     const double v = child.as<double>();
-    if (v < lo || v > hi) child.fail(fmt::format("value {} is out of range: expected a number in [{}, {}]", v, lo, hi));
+    if (v < lo || v > hi)
+        child.fail(
+            fmt::format("value {} is out of range: expected a number in [{}, {}]", v, lo, hi));
     return v;
 }
 
@@ -214,7 +228,8 @@ std::vector<std::string> path_steps(std::string_view path) {
     std::vector<std::string> steps;
     std::string current;
     auto flush = [&] {
-        if (current.empty()) tirpol::fail("parameter path '{}': empty step (expected key.key[name].key)", path);
+        if (current.empty())
+            tirpol::fail("parameter path '{}': empty step (expected key.key[name].key)", path);
         steps.push_back(current);
         current.clear();
     };
@@ -226,7 +241,8 @@ std::vector<std::string> path_steps(std::string_view path) {
             if (!current.empty()) flush();
             const std::size_t close = path.find(']', i);
             if (close == std::string_view::npos || close == i + 1)
-                tirpol::fail("parameter path '{}': expected [index] or [name] after position {}", path, i);
+                tirpol::fail("parameter path '{}': expected [index] or [name] after position {}",
+                             path, i);
             steps.emplace_back(path.substr(i, close - i + 1));
             i = close;
         } else {
@@ -240,7 +256,9 @@ std::vector<std::string> path_steps(std::string_view path) {
 /// Index of the element of `list` selected by "[2]" or "[ball]" (its `name` field).
 std::size_t list_index(const YAML::Node& list, const std::string& step, const std::string& where) {
     const std::string key = step.substr(1, step.size() - 2);
-    if (!list.IsSequence()) tirpol::fail("{}: '{}' selects a list element, but this is {}", where, step, describe(list));
+    if (!list.IsSequence())
+        tirpol::fail("{}: '{}' selects a list element, but this is {}", where, step,
+                     describe(list));
     std::vector<std::string> names;
     for (std::size_t i = 0; i < list.size(); ++i) {
         if (std::to_string(i) == key) return i;
@@ -250,26 +268,28 @@ std::size_t list_index(const YAML::Node& list, const std::string& step, const st
         }
     }
     const std::string hint = closest_match(key, names);
-    tirpol::fail("{}: no element '{}' in this list of {} (names: {}){}", where, key, list.size(), fmt::join(names, ", "),
-                 hint.empty() ? "" : " — did you mean '" + hint + "'?");
+    tirpol::fail("{}: no element '{}' in this list of {} (names: {}){}", where, key, list.size(),
+                 fmt::join(names, ", "), hint.empty() ? "" : " — did you mean '" + hint + "'?");
 }
 
-/// `node` with the node at steps[i…] replaced by `value`. Only the collections along the path are new;
-/// every other node (and `value`) is shared, so it keeps its file position for error messages.
+/// `node` with the node at steps[i…] replaced by `value`. Only the collections along the path are
+/// new; every other node (and `value`) is shared, so it keeps its file position for error messages.
 YAML::Node replaced(const YAML::Node& node, const std::vector<std::string>& steps, std::size_t i,
                     const YAML::Node& value, const std::string& where) {
     if (i == steps.size()) return value;
     const std::string& step = steps[i];
     const std::string here = where.empty() ? step : where + (step.front() == '[' ? "" : ".") + step;
     if (step.front() == '[') {
-        const std::size_t selected = list_index(node, step, where.empty() ? "the top level" : where);
+        const std::size_t selected =
+            list_index(node, step, where.empty() ? "the top level" : where);
         YAML::Node copy(YAML::NodeType::Sequence);
         for (std::size_t k = 0; k < node.size(); ++k)
             copy.push_back(k == selected ? replaced(node[k], steps, i + 1, value, here) : node[k]);
         return copy;
     }
     const std::string parent = where.empty() ? "the top level" : where;
-    if (!node.IsMap()) tirpol::fail("{}: '{}' is a field, but this is {}", parent, step, describe(node));
+    if (!node.IsMap())
+        tirpol::fail("{}: '{}' is a field, but this is {}", parent, step, describe(node));
     std::vector<std::string> keys;
     for (const auto& kv : node) keys.push_back(kv.first.Scalar());
     if (std::find(keys.begin(), keys.end(), step) == keys.end()) {
@@ -279,7 +299,9 @@ YAML::Node replaced(const YAML::Node& node, const std::vector<std::string>& step
     }
     YAML::Node copy(YAML::NodeType::Map);
     for (const auto& kv : node)
-        copy.force_insert(kv.first, kv.first.Scalar() == step ? replaced(kv.second, steps, i + 1, value, here) : kv.second);
+        copy.force_insert(kv.first, kv.first.Scalar() == step
+                                        ? replaced(kv.second, steps, i + 1, value, here)
+                                        : kv.second);
     return copy;
 }
 }  // namespace
@@ -315,7 +337,8 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
         for (std::size_t i = 1; i <= a.size(); ++i) {
             cur[0] = i;
             for (std::size_t j = 1; j <= b.size(); ++j)
-                cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                cur[j] = std::min(
+                    {prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
             std::swap(prev, cur);
         }
         return prev[b.size()];

@@ -10,9 +10,10 @@ namespace tirpol {
 
 Image::Image(int width, int height) : m_width(width), m_height(height) {
     if (width <= 0 || height <= 0) fail("image size must be positive, got {}×{}", width, height);
-    if (width > limits::kMaxImageSide || height > limits::kMaxImageSide || pixel_count() > limits::kMaxImagePixels)
-        fail("image size {}×{} exceeds tirpol's limits ({} pixels a side, {} pixels in all)", width, height,
-             limits::kMaxImageSide, limits::kMaxImagePixels);
+    if (width > limits::kMaxImageSide || height > limits::kMaxImageSide ||
+        pixel_count() > limits::kMaxImagePixels)
+        fail("image size {}×{} exceeds tirpol's limits ({} pixels a side, {} pixels in all)", width,
+             height, limits::kMaxImageSide, limits::kMaxImagePixels);
 }
 
 std::vector<float>& Image::add_channel(const std::string& name, float value) {
@@ -23,8 +24,8 @@ std::vector<float>& Image::add_channel(const std::string& name, float value) {
 
 void Image::set_channel(const std::string& name, std::vector<float> data) {
     if (data.size() != pixel_count())
-        fail("channel '{}' has {} values, the {}×{} image needs {}", name, data.size(), m_width, m_height,
-             pixel_count());
+        fail("channel '{}' has {} values, the {}×{} image needs {}", name, data.size(), m_width,
+             m_height, pixel_count());
     if (!has_channel(name)) m_names.push_back(name);
     m_planes[name] = std::move(data);
 }
@@ -36,7 +37,8 @@ const std::vector<float>& Image::channel(const std::string& name) const {
     if (it == m_planes.end()) {
         std::string present;
         for (const auto& n : m_names) present += (present.empty() ? "" : ", ") + n;
-        fail("image has no channel '{}' (channels present: {})", name, present.empty() ? "none" : present);
+        fail("image has no channel '{}' (channels present: {})", name,
+             present.empty() ? "none" : present);
     }
     return it->second;
 }
@@ -51,8 +53,14 @@ ChannelStats channel_stats(const std::vector<float>& plane) {
     s.min = std::numeric_limits<double>::infinity();
     s.max = -std::numeric_limits<double>::infinity();
     for (float v : plane) {
-        if (std::isnan(v)) { ++s.nan_count; continue; }
-        if (std::isinf(v)) { ++s.inf_count; continue; }
+        if (std::isnan(v)) {
+            ++s.nan_count;
+            continue;
+        }
+        if (std::isinf(v)) {
+            ++s.inf_count;
+            continue;
+        }
         ++s.finite_count;
         sum += v;
         sum2 += static_cast<double>(v) * v;

@@ -24,16 +24,20 @@ const char* kind_of(mode_t mode) {
 }
 
 std::string size_text(std::uintmax_t bytes) {
-    if (bytes >= (std::uintmax_t{1} << 20)) return fmt::format("{:.1f} MiB", static_cast<double>(bytes) / (1 << 20));
+    if (bytes >= (std::uintmax_t{1} << 20))
+        return fmt::format("{:.1f} MiB", static_cast<double>(bytes) / (1 << 20));
     return fmt::format("{} bytes", bytes);
 }
 
-void check_stat(const std::filesystem::path& path, const struct stat& st, std::uintmax_t max_bytes) {
+void check_stat(const std::filesystem::path& path, const struct stat& st,
+                std::uintmax_t max_bytes) {
     if (!S_ISREG(st.st_mode))
-        fail("{}: is {}; tirpol reads inputs only from regular files", path.string(), kind_of(st.st_mode));
+        fail("{}: is {}; tirpol reads inputs only from regular files", path.string(),
+             kind_of(st.st_mode));
     if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
-        fail("{}: {} is larger than the {} tirpol reads from an input of this kind (limits.h)", path.string(),
-             size_text(static_cast<std::uintmax_t>(st.st_size)), size_text(max_bytes));
+        fail("{}: {} is larger than the {} tirpol reads from an input of this kind (limits.h)",
+             path.string(), size_text(static_cast<std::uintmax_t>(st.st_size)),
+             size_text(max_bytes));
 }
 
 [[noreturn]] void fail_errno(const std::filesystem::path& path, int err) {
@@ -80,12 +84,14 @@ std::string read_input_file(const std::filesystem::path& path, std::uintmax_t ma
         used += static_cast<std::size_t>(n);
     }
     if (used > max_bytes)
-        fail("{}: grew past the {} tirpol reads from an input of this kind while it was read", path.string(),
-             size_text(max_bytes));
+        fail("{}: grew past the {} tirpol reads from an input of this kind while it was read",
+             path.string(), size_text(max_bytes));
     text.resize(used);
     return text;
 }
 
-std::string read_file(const std::filesystem::path& path) { return read_input_file(path, limits::kMaxTextFileBytes); }
+std::string read_file(const std::filesystem::path& path) {
+    return read_input_file(path, limits::kMaxTextFileBytes);
+}
 
 }  // namespace tirpol

@@ -29,10 +29,11 @@ void check_memory_estimate(std::uint64_t estimate_bytes, std::string_view what,
     if (static_cast<double>(estimate_bytes) <= budget) return;
     constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
     fail(
-        "{}: needs an estimated {:.2f} GiB of memory, more than the {:.2f} GiB this machine has available "
+        "{}: needs an estimated {:.2f} GiB of memory, more than the {:.2f} GiB this machine has "
+        "available "
         "({:.0f} % of MemAvailable, {:.2f} GiB); reduce the size or free memory",
-        what, static_cast<double>(estimate_bytes) / kGiB, budget / kGiB, 100.0 * limits::kMaxMemoryFraction,
-        static_cast<double>(*available_bytes) / kGiB);
+        what, static_cast<double>(estimate_bytes) / kGiB, budget / kGiB,
+        100.0 * limits::kMaxMemoryFraction, static_cast<double>(*available_bytes) / kGiB);
 }
 
 }  // namespace tirpol

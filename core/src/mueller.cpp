@@ -24,7 +24,8 @@ MuellerMatrix rotate_element(const MuellerMatrix& m, double angle_rad) {
 
 MuellerMatrix linear_diattenuator(double axis_rad, double t_max, double t_min) {
     if (!(t_max >= 0.0 && t_min >= 0.0 && t_max <= 1.0 && t_min <= 1.0))
-        fail("linear_diattenuator: transmittances must lie in [0, 1], got t_max={} t_min={}", t_max, t_min);
+        fail("linear_diattenuator: transmittances must lie in [0, 1], got t_max={} t_min={}", t_max,
+             t_min);
     const double a = 0.5 * (t_max + t_min), b = 0.5 * (t_max - t_min), c = std::sqrt(t_max * t_min);
     MuellerMatrix m;
     m << a, b, 0, 0,  //
@@ -36,7 +37,8 @@ MuellerMatrix linear_diattenuator(double axis_rad, double t_max, double t_min) {
 
 MuellerMatrix linear_polarizer(double axis_rad) { return linear_diattenuator(axis_rad, 1.0, 0.0); }
 
-MuellerMatrix polarizer_with_extinction(double axis_rad, double transmission, double extinction_ratio) {
+MuellerMatrix polarizer_with_extinction(double axis_rad, double transmission,
+                                        double extinction_ratio) {
     if (!(extinction_ratio >= 1.0))
         fail("polarizer extinction ratio must be ≥ 1 (t_max/t_min), got {}", extinction_ratio);
     return linear_diattenuator(axis_rad, transmission, transmission / extinction_ratio);
@@ -79,7 +81,10 @@ MuellerMatrix mueller_from_jones(const JonesMatrix& j) {
     const JonesMatrix jh = j.adjoint();
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-            m(a, b) = 0.5 * (s[static_cast<std::size_t>(a)] * j * s[static_cast<std::size_t>(b)] * jh).trace().real();
+            m(a, b) =
+                0.5 * (s[static_cast<std::size_t>(a)] * j * s[static_cast<std::size_t>(b)] * jh)
+                          .trace()
+                          .real();
     return m;
 }
 
@@ -100,7 +105,8 @@ Eigen::Matrix4cd cloude_coherency(const MuellerMatrix& m) {
 
 bool is_physically_realizable(const MuellerMatrix& m, double rel_tol) {
     if (!m.allFinite() || m(0, 0) < 0.0) return false;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix4cd> solver(cloude_coherency(m), Eigen::EigenvaluesOnly);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix4cd> solver(cloude_coherency(m),
+                                                           Eigen::EigenvaluesOnly);
     return solver.eigenvalues().minCoeff() >= -rel_tol * std::max(m(0, 0), 1e-300);
 }
 

@@ -60,8 +60,8 @@ std::vector<std::string> read_ledger(const fs::path& folder) {
     return patterns;
 }
 
-/// Folder outputs whose check passed, waiting for their first file: their ledger is written then, so a
-/// command that fails before writing anything leaves no trace (not even the folder).
+/// Folder outputs whose check passed, waiting for their first file: their ledger is written then,
+/// so a command that fails before writing anything leaves no trace (not even the folder).
 struct PendingClaims {
     std::mutex mutex;
     std::vector<std::pair<fs::path, std::vector<std::string>>> folders;
@@ -77,7 +77,8 @@ void write_ledger(const fs::path& folder, const std::vector<std::string>& claime
     for (const auto& p : claimed)
         if (std::find(patterns.begin(), patterns.end(), p) == patterns.end()) patterns.push_back(p);
     if (patterns.size() == before && fs::exists(folder / kOutputLedgerName)) return;
-    std::string text = "# names tirpol commands write in this folder (docs/cli.md); other entries are kept\n";
+    std::string text =
+        "# names tirpol commands write in this folder (docs/cli.md); other entries are kept\n";
     for (const auto& p : patterns) text += p + "\n";
     write_file_atomic(folder / kOutputLedgerName, text);
 }
@@ -106,8 +107,10 @@ OutputGuard& OutputGuard::output_file(const fs::path& path, std::string option) 
     return *this;
 }
 
-OutputGuard& OutputGuard::output_folder(const fs::path& path, std::string option, std::vector<std::string> patterns) {
-    if (!path.empty()) m_outputs.push_back({path, std::move(option), Kind::Folder, std::move(patterns)});
+OutputGuard& OutputGuard::output_folder(const fs::path& path, std::string option,
+                                        std::vector<std::string> patterns) {
+    if (!path.empty())
+        m_outputs.push_back({path, std::move(option), Kind::Folder, std::move(patterns)});
     return *this;
 }
 
@@ -123,10 +126,12 @@ void OutputGuard::check(bool force) const {
         std::optional<FileId> id;
     };
     std::vector<ResolvedInput> inputs;
-    for (const auto& in : m_inputs) inputs.push_back({&in, resolved_path(in.path), file_id(in.path)});
+    for (const auto& in : m_inputs)
+        inputs.push_back({&in, resolved_path(in.path), file_id(in.path)});
 
     const auto conflict = [](const Output& out, const std::string& problem) {
-        throw OutputConflict(out.option, fmt::format("{} {}: {}", out.option, out.path.string(), problem));
+        throw OutputConflict(out.option,
+                             fmt::format("{} {}: {}", out.option, out.path.string(), problem));
     };
     const auto force_hint = "; pass --force to replace it, or choose another output";
 
@@ -137,20 +142,26 @@ void OutputGuard::check(bool force) const {
         std::error_code ec;
 
         for (const auto& [other, other_out] : seen) {
-            const auto under = [](const fs::path& file, const fs::path& folder, const Output& folder_out) {
-                return folder_out.kind == Kind::Folder && file != folder && is_within(file, folder) &&
-                       matches_any(file.lexically_relative(folder).begin()->string(), folder_out.patterns);
+            const auto under = [](const fs::path& file, const fs::path& folder,
+                                  const Output& folder_out) {
+                return folder_out.kind == Kind::Folder && file != folder &&
+                       is_within(file, folder) &&
+                       matches_any(file.lexically_relative(folder).begin()->string(),
+                                   folder_out.patterns);
             };
-            if (other == resolved || under(resolved, other, *other_out) || under(other, resolved, out))
-                conflict(out, fmt::format("is also written as {} ({}); each output needs its own path",
-                                          other_out->option, other_out->path.string()));
+            if (other == resolved || under(resolved, other, *other_out) ||
+                under(other, resolved, out))
+                conflict(out,
+                         fmt::format("is also written as {} ({}); each output needs its own path",
+                                     other_out->option, other_out->path.string()));
         }
         seen.emplace_back(resolved, &out);
 
         // Every existing folder on the way must be a folder, or the write fails after the work.
         for (fs::path p = resolved.parent_path(); !p.empty(); p = p.parent_path()) {
             if (fs::exists(p, ec)) {
-                if (!fs::is_directory(p, ec)) conflict(out, fmt::format("{} is not a folder", p.string()));
+                if (!fs::is_directory(p, ec))
+                    conflict(out, fmt::format("{} is not a folder", p.string()));
                 break;
             }
             if (p == p.root_path()) break;
@@ -158,29 +169,37 @@ void OutputGuard::check(bool force) const {
 
         for (const auto& in : inputs) {
             if (resolved == in.path || same_file(id, in.id))
-                conflict(out, fmt::format("is the input {} ({}); an output never replaces an input of its command",
-                                          in.input->what, in.input->path.string()));
+                conflict(
+                    out,
+                    fmt::format(
+                        "is the input {} ({}); an output never replaces an input of its command",
+                        in.input->what, in.input->path.string()));
             if (in.id && in.id->directory && is_within(resolved, in.path))
-                conflict(out, fmt::format("lies inside the input folder {} ({}); write outside it", in.input->what,
-                                          in.input->path.string()));
+                conflict(out, fmt::format("lies inside the input folder {} ({}); write outside it",
+                                          in.input->what, in.input->path.string()));
         }
 
         if (out.kind == Kind::File) {
             if (id && id->directory) conflict(out, "is a folder; expected a file name");
-            if (id && !force) conflict(out, fmt::format("exists and was not written by this run{}", force_hint));
+            if (id && !force)
+                conflict(out, fmt::format("exists and was not written by this run{}", force_hint));
             continue;
         }
         if (id && !id->directory) conflict(out, "exists and is not a folder");
         if (out.kind == Kind::Session || !id) continue;
 
-        // A folder output: inputs inside it must not be under a name it writes; existing entries it would
-        // write must have been claimed by tirpol before (the ledger) or be allowed by --force.
+        // A folder output: inputs inside it must not be under a name it writes; existing entries it
+        // would write must have been claimed by tirpol before (the ledger) or be allowed by
+        // --force.
         for (const auto& in : inputs) {
             if (!is_within(in.path, resolved) || in.path == resolved) continue;
             const std::string top = in.path.lexically_relative(resolved).begin()->string();
             if (matches_any(top, out.patterns))
-                conflict(out, fmt::format("would write {} over the input {} ({}); an output never replaces an input",
-                                          (out.path / top).string(), in.input->what, in.input->path.string()));
+                conflict(
+                    out,
+                    fmt::format(
+                        "would write {} over the input {} ({}); an output never replaces an input",
+                        (out.path / top).string(), in.input->what, in.input->path.string()));
         }
         const std::vector<std::string> owned = read_ledger(resolved);
         for (const auto& entry : fs::directory_iterator(resolved, ec)) {
@@ -190,17 +209,22 @@ void OutputGuard::check(bool force) const {
             const auto entry_id = file_id(entry.path());
             for (const auto& in : inputs)
                 if (same_file(entry_id, in.id))
-                    conflict(out, fmt::format("would write {}, which is the input {} ({})", shown.string(),
-                                              in.input->what, in.input->path.string()));
+                    conflict(out,
+                             fmt::format("would write {}, which is the input {} ({})",
+                                         shown.string(), in.input->what, in.input->path.string()));
             if (!force && !matches_any(name, owned))
-                conflict(out, fmt::format("holds {}, which this command would replace and no tirpol command wrote{}",
-                                          shown.string(), force_hint));
+                conflict(
+                    out,
+                    fmt::format(
+                        "holds {}, which this command would replace and no tirpol command wrote{}",
+                        shown.string(), force_hint));
         }
     }
     auto& pending = pending_claims();
     const std::lock_guard<std::mutex> lock(pending.mutex);
     for (const Output& out : m_outputs)
-        if (out.kind == Kind::Folder) pending.folders.emplace_back(resolved_path(out.path), out.patterns);
+        if (out.kind == Kind::Folder)
+            pending.folders.emplace_back(resolved_path(out.path), out.patterns);
 }
 
 namespace detail {
@@ -220,7 +244,8 @@ void write_output_claims_before(const fs::path& destination) {
             }
         }
     }
-    // Outside the lock: the ledger is itself written atomically (and comes back here, with nothing due).
+    // Outside the lock: the ledger is itself written atomically (and comes back here, with nothing
+    // due).
     for (const auto& [folder, patterns] : due) write_ledger(folder, patterns);
 }
 }  // namespace detail

@@ -31,7 +31,8 @@ QuadratureRule gauss_legendre(int n) {
         }
         const auto k = static_cast<std::size_t>(i);
         rule.nodes[k] = 0.5 * (1.0 - x);
-        rule.weights[k] = 1.0 / ((1.0 - x * x) * derivative * derivative);  // 2/((1−x²)P'²), halved for [0, 1]
+        rule.weights[k] =
+            1.0 / ((1.0 - x * x) * derivative * derivative);  // 2/((1−x²)P'²), halved for [0, 1]
     }
     return rule;
 }

@@ -42,7 +42,8 @@ cv::Mat lut_for(Colormap map) {
     if (map == Colormap::Diverging) {
         for (int i = 0; i < 256; ++i) lut.at<cv::Vec3b>(0, i) = coolwarm(i / 255.0);
     } else {
-        cv::applyColorMap(gray, lut, map == Colormap::Cyclic ? cv::COLORMAP_TWILIGHT : cv::COLORMAP_INFERNO);
+        cv::applyColorMap(gray, lut,
+                          map == Colormap::Cyclic ? cv::COLORMAP_TWILIGHT : cv::COLORMAP_INFERNO);
     }
     return lut;
 }
@@ -52,14 +53,28 @@ std::string ascii(const std::string& text) {
     std::string out;
     for (std::size_t i = 0; i < text.size();) {
         auto starts = [&](const char* s) { return text.compare(i, std::strlen(s), s) == 0; };
-        if (starts("²")) { out += "^2"; i += std::strlen("²"); }
-        else if (starts("³")) { out += "^3"; i += std::strlen("³"); }
-        else if (starts("·")) { out += " "; i += std::strlen("·"); }
-        else if (starts("µ")) { out += "u"; i += std::strlen("µ"); }
-        else if (starts("°")) { out += "deg"; i += std::strlen("°"); }
-        else if (starts("ε")) { out += "e"; i += std::strlen("ε"); }
-        else if (static_cast<unsigned char>(text[i]) < 128) out += text[i++];
-        else ++i;
+        if (starts("²")) {
+            out += "^2";
+            i += std::strlen("²");
+        } else if (starts("³")) {
+            out += "^3";
+            i += std::strlen("³");
+        } else if (starts("·")) {
+            out += " ";
+            i += std::strlen("·");
+        } else if (starts("µ")) {
+            out += "u";
+            i += std::strlen("µ");
+        } else if (starts("°")) {
+            out += "deg";
+            i += std::strlen("°");
+        } else if (starts("ε")) {
+            out += "e";
+            i += std::strlen("ε");
+        } else if (static_cast<unsigned char>(text[i]) < 128)
+            out += text[i++];
+        else
+            ++i;
     }
     return out;
 }
@@ -67,8 +82,10 @@ std::string ascii(const std::string& text) {
 std::string tick_label(double v) {
     char buf[32];
     const double a = std::abs(v);
-    if (a != 0.0 && (a < 1e-2 || a >= 1e4)) std::snprintf(buf, sizeof buf, "%.2e", v);
-    else std::snprintf(buf, sizeof buf, "%.3g", v);
+    if (a != 0.0 && (a < 1e-2 || a >= 1e4))
+        std::snprintf(buf, sizeof buf, "%.2e", v);
+    else
+        std::snprintf(buf, sizeof buf, "%.3g", v);
     return buf;
 }
 
@@ -76,20 +93,24 @@ std::string tick_label(double v) {
 
 Colormap default_colormap(const std::string& name) {
     if (name == "AoP") return Colormap::Cyclic;
-    if (name == "S1" || name == "S2" || name == "S3" || name.rfind("diff", 0) == 0 || name.rfind("delta", 0) == 0)
+    if (name == "S1" || name == "S2" || name == "S3" || name.rfind("diff", 0) == 0 ||
+        name.rfind("delta", 0) == 0)
         return Colormap::Diverging;
     return Colormap::Sequential;
 }
 
-std::pair<double, double> quicklook_range(const std::vector<float>& data, const QuicklookOptions& options) {
+std::pair<double, double> quicklook_range(const std::vector<float>& data,
+                                          const QuicklookOptions& options) {
     std::vector<float> finite;
     finite.reserve(data.size());
     for (float v : data)
-        if (std::isfinite(v)) finite.push_back(options.colormap == Colormap::Diverging ? std::abs(v) : v);
+        if (std::isfinite(v))
+            finite.push_back(options.colormap == Colormap::Diverging ? std::abs(v) : v);
     auto pct = [&](double p) {
         if (finite.empty()) return 0.0;
         auto k = static_cast<std::size_t>(p * static_cast<double>(finite.size() - 1));
-        std::nth_element(finite.begin(), finite.begin() + static_cast<std::ptrdiff_t>(k), finite.end());
+        std::nth_element(finite.begin(), finite.begin() + static_cast<std::ptrdiff_t>(k),
+                         finite.end());
         return static_cast<double>(finite[k]);
     };
     double lo, hi;
@@ -114,10 +135,11 @@ std::pair<double, double> quicklook_range(const std::vector<float>& data, const 
     return {lo, hi};
 }
 
-void write_quicklook(const std::filesystem::path& path, const std::vector<float>& data, int width, int height,
-                     const QuicklookOptions& options) {
+void write_quicklook(const std::filesystem::path& path, const std::vector<float>& data, int width,
+                     int height, const QuicklookOptions& options) {
     if (data.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
-        fail("{}: quicklook data has {} values for a {}×{} image", path.string(), data.size(), width, height);
+        fail("{}: quicklook data has {} values for a {}×{} image", path.string(), data.size(),
+             width, height);
     const auto [lo, hi] = quicklook_range(data, options);
     const cv::Mat lut = lut_for(options.colormap);
 
@@ -126,25 +148,30 @@ void write_quicklook(const std::filesystem::path& path, const std::vector<float>
     cv::Mat img(height, width, CV_8UC3);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const float v = data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+            const float v = data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                 static_cast<std::size_t>(x)];
             if (!std::isfinite(v)) {
                 img.at<cv::Vec3b>(y, x) = {128, 128, 128};
                 continue;
             }
-            const int idx = static_cast<int>(std::lround(std::clamp((v - lo) / (hi - lo), 0.0, 1.0) * 255.0));
+            const int idx =
+                static_cast<int>(std::lround(std::clamp((v - lo) / (hi - lo), 0.0, 1.0) * 255.0));
             img.at<cv::Vec3b>(y, x) = lut.at<cv::Vec3b>(0, idx);
         }
     if (scale > 1) cv::resize(img, img, {width * scale, height * scale}, 0, 0, cv::INTER_NEAREST);
 
     // Canvas: title on top, image, colorbar with three ticks on the right.
     const int pad = 10, title_h = 28, bar_w = 18, label_w = 90;
-    const int canvas_w = img.cols + 2 * pad + bar_w + label_w, canvas_h = std::max(img.rows, 120) + title_h + 2 * pad;
+    const int canvas_w = img.cols + 2 * pad + bar_w + label_w,
+              canvas_h = std::max(img.rows, 120) + title_h + 2 * pad;
     cv::Mat canvas(canvas_h, canvas_w, CV_8UC3, cv::Scalar(255, 255, 255));
     img.copyTo(canvas(cv::Rect(pad, title_h + pad, img.cols, img.rows)));
     const int bar_x = img.cols + 2 * pad, bar_y = title_h + pad, bar_h = img.rows;
     for (int y = 0; y < bar_h; ++y) {
-        const int idx = static_cast<int>(std::lround(255.0 * (1.0 - static_cast<double>(y) / std::max(1, bar_h - 1))));
-        cv::line(canvas, {bar_x, bar_y + y}, {bar_x + bar_w - 1, bar_y + y}, cv::Scalar(lut.at<cv::Vec3b>(0, idx)));
+        const int idx = static_cast<int>(
+            std::lround(255.0 * (1.0 - static_cast<double>(y) / std::max(1, bar_h - 1))));
+        cv::line(canvas, {bar_x, bar_y + y}, {bar_x + bar_w - 1, bar_y + y},
+                 cv::Scalar(lut.at<cv::Vec3b>(0, idx)));
     }
     cv::rectangle(canvas, {bar_x, bar_y, bar_w, bar_h}, cv::Scalar(0, 0, 0));
     const auto font = cv::FONT_HERSHEY_SIMPLEX;
@@ -152,7 +179,8 @@ void write_quicklook(const std::filesystem::path& path, const std::vector<float>
         const double v = hi - (hi - lo) * k / 2.0;
         const int y = bar_y + (bar_h - 1) * k / 2;
         cv::line(canvas, {bar_x + bar_w, y}, {bar_x + bar_w + 4, y}, cv::Scalar(0, 0, 0));
-        cv::putText(canvas, tick_label(v), {bar_x + bar_w + 6, y + 5}, font, 0.4, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+        cv::putText(canvas, tick_label(v), {bar_x + bar_w + 6, y + 5}, font, 0.4,
+                    cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     }
     std::string title = ascii(options.title);
     if (!options.units.empty()) title += " [" + ascii(options.units) + "]";
@@ -165,7 +193,8 @@ void write_quicklook(const std::filesystem::path& path, const std::vector<float>
     } catch (const cv::Exception& e) {
         fail("{}: writing PNG failed: {}", path.string(), e.what());
     }
-    if (!ok) fail("{}: writing PNG failed (OpenCV could not encode or write the file)", path.string());
+    if (!ok)
+        fail("{}: writing PNG failed (OpenCV could not encode or write the file)", path.string());
     file.commit();
 }
 

@@ -25,9 +25,12 @@ using nlohmann::json;
 
 const char* to_string(RecordKind kind) {
     switch (kind) {
-        case RecordKind::Polarizer: return "polarizer";
-        case RecordKind::Blackbody: return "blackbody";
-        case RecordKind::Shutter: return "shutter";
+        case RecordKind::Polarizer:
+            return "polarizer";
+        case RecordKind::Blackbody:
+            return "blackbody";
+        case RecordKind::Shutter:
+            return "shutter";
     }
     return "?";
 }
@@ -47,9 +50,11 @@ std::string session_frame_file(const std::string& stem) {
     if (stem.empty() || stem.front() == '.')
         fail("session frame name '{}': expected a non-empty name not starting with '.'", stem);
     for (char c : stem) {
-        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' ||
-                        c == '_' || c == '+' || c == '-';
-        if (!ok) fail("session frame name '{}': character '{}' not allowed (use A-Z a-z 0-9 . _ + -)", stem, c);
+        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                        (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '+' || c == '-';
+        if (!ok)
+            fail("session frame name '{}': character '{}' not allowed (use A-Z a-z 0-9 . _ + -)",
+                 stem, c);
     }
     return "frames/" + stem + ".exr";
 }
@@ -63,7 +68,8 @@ json optional_number(const std::optional<double>& v) { return v ? json(*v) : jso
 /// Typed access to one JSON object with errors "<source>: <path>.<key>: expected ..., got ...".
 class Fields {
 public:
-    Fields(const json& j, std::string source, std::string path) : m_j(j), m_source(std::move(source)), m_path(std::move(path)) {
+    Fields(const json& j, std::string source, std::string path)
+        : m_j(j), m_source(std::move(source)), m_path(std::move(path)) {
         if (!m_j.is_object()) fail_here(m_path, "expected an object, got " + describe(m_j));
     }
     const json& at(const std::string& key) const {
@@ -90,12 +96,16 @@ public:
     std::int64_t integer(const std::string& key, std::int64_t min,
                          std::int64_t max = std::numeric_limits<std::int64_t>::max()) const {
         const json& v = at(key);
-        if (!v.is_number_integer()) fail_here(field(key), "expected an integer, got " + describe(v));
+        if (!v.is_number_integer())
+            fail_here(field(key), "expected an integer, got " + describe(v));
         if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
-            fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, json_text(v)));
+            fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max,
+                                              json_text(v)));
         const auto i = v.get<std::int64_t>();
         if (i < min) fail_here(field(key), fmt::format("expected an integer ≥ {}, got {}", min, i));
-        if (i > max) fail_here(field(key), fmt::format("expected an integer in [{}, {}], got {}", min, max, i));
+        if (i > max)
+            fail_here(field(key),
+                      fmt::format("expected an integer in [{}, {}], got {}", min, max, i));
         return i;
     }
     bool boolean(const std::string& key) const {
@@ -104,7 +114,9 @@ public:
         return v.get<bool>();
     }
     Fields object(const std::string& key) const { return Fields(at(key), m_source, field(key)); }
-    std::string field(const std::string& key) const { return m_path.empty() ? key : m_path + "." + key; }
+    std::string field(const std::string& key) const {
+        return m_path.empty() ? key : m_path + "." + key;
+    }
     [[noreturn]] void fail_here(const std::string& path, const std::string& message) const {
         fail("{}: {}: {}", m_source, path.empty() ? "(top level)" : path, message);
     }
@@ -143,14 +155,21 @@ StepTiming timing_from_json(const Fields& f) {
     t.stale_frames_discarded = f.integer("stale_frames_discarded", 0);
     for (const char* key : {"angle_deg_before_frames", "angle_deg_after_frames"}) {
         const double a = f.number(key);
-        if (!(a > -360.0 && a < 720.0)) f.fail_here(f.field(key), fmt::format("expected an angle in degrees, got {}", a));
+        if (!(a > -360.0 && a < 720.0))
+            f.fail_here(f.field(key), fmt::format("expected an angle in degrees, got {}", a));
     }
     return t;
 }
 
 json readings_to_json(const BlackbodyReadings& b) {
-    return json{{"set_point_k", b.set_point_k}, {"mean_k", b.mean_k}, {"std_k", b.std_k}, {"min_k", b.min_k},
-                {"max_k", b.max_k},             {"readings", b.readings}, {"stable", b.stable}, {"wait_s", b.wait_s}};
+    return json{{"set_point_k", b.set_point_k},
+                {"mean_k", b.mean_k},
+                {"std_k", b.std_k},
+                {"min_k", b.min_k},
+                {"max_k", b.max_k},
+                {"readings", b.readings},
+                {"stable", b.stable},
+                {"wait_s", b.wait_s}};
 }
 
 BlackbodyReadings readings_from_json(const Fields& f) {
@@ -166,13 +185,18 @@ BlackbodyReadings readings_from_json(const Fields& f) {
     for (const char* key : {"set_point_k", "mean_k", "min_k", "max_k"}) {
         const double t = f.number(key);
         if (!(t >= limits::kMinTemperatureK && t <= limits::kMaxTemperatureK))
-            f.fail_here(f.field(key), fmt::format("expected a temperature in [{}, {}] K, got {}", limits::kMinTemperatureK,
-                                                  limits::kMaxTemperatureK, t));
+            f.fail_here(f.field(key),
+                        fmt::format("expected a temperature in [{}, {}] K, got {}",
+                                    limits::kMinTemperatureK, limits::kMaxTemperatureK, t));
     }
     if (!(b.min_k <= b.mean_k && b.mean_k <= b.max_k))
-        f.fail_here(f.field("mean_k"), fmt::format("expected min_k ≤ mean_k ≤ max_k, got {} ≤ {} ≤ {}", b.min_k, b.mean_k, b.max_k));
-    if (!(b.std_k >= 0.0)) f.fail_here(f.field("std_k"), fmt::format("expected ≥ 0, got {}", b.std_k));
-    if (!(b.wait_s >= 0.0)) f.fail_here(f.field("wait_s"), fmt::format("expected ≥ 0 s, got {}", b.wait_s));
+        f.fail_here(f.field("mean_k"),
+                    fmt::format("expected min_k ≤ mean_k ≤ max_k, got {} ≤ {} ≤ {}", b.min_k,
+                                b.mean_k, b.max_k));
+    if (!(b.std_k >= 0.0))
+        f.fail_here(f.field("std_k"), fmt::format("expected ≥ 0, got {}", b.std_k));
+    if (!(b.wait_s >= 0.0))
+        f.fail_here(f.field("wait_s"), fmt::format("expected ≥ 0 s, got {}", b.wait_s));
     return b;
 }
 
@@ -200,18 +224,21 @@ json audit_to_json(const FrameAudit& a) {
 std::optional<FrameAudit::CoreState> core_state_from_json(const Fields& f, const std::string& key) {
     if (f.at(key).is_null()) return std::nullopt;
     const Fields c = f.object(key);
-    return FrameAudit::CoreState{c.string("ffc_mode"), c.string("gain_mode"), c.number("fpa_temperature_k"),
-                                 c.integer("device_frame_count", 0), c.integer("last_ffc_frame_count", 0)};
+    return FrameAudit::CoreState{c.string("ffc_mode"), c.string("gain_mode"),
+                                 c.number("fpa_temperature_k"), c.integer("device_frame_count", 0),
+                                 c.integer("last_ffc_frame_count", 0)};
 }
 
 FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
     FrameAudit a;
     auto column = [&](const char* key) -> const json& {
         const json& v = f.at(key);
-        if (!v.is_array()) f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
+        if (!v.is_array())
+            f.fail_here(f.field(key), "expected an array, got " + Fields::describe(v));
         if (static_cast<std::int64_t>(v.size()) != frames)
-            f.fail_here(f.field(key),
-                        fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
+            f.fail_here(
+                f.field(key),
+                fmt::format("expected {} entries (the record's frames), got {}", frames, v.size()));
         return v;
     };
     auto integers = [&](const char* key, std::vector<std::int64_t>& out) {
@@ -245,16 +272,16 @@ FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
 
 json record_to_json(const SessionRecord& r) {
     json j{{"kind", to_string(r.kind)},
-                {"file", r.file},
-                {"angle_deg_requested", r.angle_deg_requested},
-                {"angle_deg_measured", r.angle_deg_measured},
-                {"repeat", r.repeat},
-                {"blackbody_temperature_k", optional_number(r.blackbody_temperature_k)},
-                {"frames", r.frames},
-                {"dropped", r.dropped},
-                {"first_timestamp_ns", r.first_timestamp_ns},
-                {"last_timestamp_ns", r.last_timestamp_ns},
-                {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
+           {"file", r.file},
+           {"angle_deg_requested", r.angle_deg_requested},
+           {"angle_deg_measured", r.angle_deg_measured},
+           {"repeat", r.repeat},
+           {"blackbody_temperature_k", optional_number(r.blackbody_temperature_k)},
+           {"frames", r.frames},
+           {"dropped", r.dropped},
+           {"first_timestamp_ns", r.first_timestamp_ns},
+           {"last_timestamp_ns", r.last_timestamp_ns},
+           {"fpa_temperature_k", optional_number(r.fpa_temperature_k)}};
     if (r.timing) j["timing"] = timing_to_json(*r.timing);
     if (r.blackbody_readings) j["blackbody_readings"] = readings_to_json(*r.blackbody_readings);
     if (r.audit) j["audit"] = audit_to_json(*r.audit);
@@ -263,10 +290,12 @@ json record_to_json(const SessionRecord& r) {
 
 void check_frame_path(const Fields& f, const std::string& key, const std::string& file) {
     const std::string prefix = "frames/", suffix = ".exr";
-    const bool shaped = file.size() > prefix.size() + suffix.size() && file.compare(0, prefix.size(), prefix) == 0 &&
+    const bool shaped = file.size() > prefix.size() + suffix.size() &&
+                        file.compare(0, prefix.size(), prefix) == 0 &&
                         file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0;
     if (!shaped) f.fail_here(f.field(key), "expected \"frames/<name>.exr\", got \"" + file + "\"");
-    const std::string stem = file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
+    const std::string stem =
+        file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
     try {
         session_frame_file(stem);
     } catch (const Error& e) {
@@ -277,31 +306,43 @@ void check_frame_path(const Fields& f, const std::string& key, const std::string
 // Record semantics shared by the manifest and EXR-header readers.
 void check_record(const Fields& f, const SessionRecord& r) {
     if (!(r.angle_deg_requested >= 0.0 && r.angle_deg_requested < 360.0))
-        f.fail_here(f.field("angle_deg_requested"), fmt::format("expected an angle in [0, 360) degrees, got {}", r.angle_deg_requested));
+        f.fail_here(
+            f.field("angle_deg_requested"),
+            fmt::format("expected an angle in [0, 360) degrees, got {}", r.angle_deg_requested));
     if (!(r.angle_deg_measured > -360.0 && r.angle_deg_measured < 720.0))
-        f.fail_here(f.field("angle_deg_measured"), fmt::format("expected an angle in degrees, got {}", r.angle_deg_measured));
+        f.fail_here(f.field("angle_deg_measured"),
+                    fmt::format("expected an angle in degrees, got {}", r.angle_deg_measured));
     if (r.kind == RecordKind::Polarizer && r.blackbody_temperature_k)
         f.fail_here(f.field("blackbody_temperature_k"), "expected null for a polarizer record");
     if (r.kind == RecordKind::Blackbody && !r.blackbody_temperature_k)
-        f.fail_here(f.field("blackbody_temperature_k"), "expected a temperature in kelvin for a blackbody record, got null");
-    const auto in_range = [](double t_k) { return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK; };
-    if (r.blackbody_temperature_k && !in_range(*r.blackbody_temperature_k))
         f.fail_here(f.field("blackbody_temperature_k"),
-                    fmt::format("expected a temperature in [{}, {}] K, got {}", limits::kMinTemperatureK,
-                                limits::kMaxTemperatureK, *r.blackbody_temperature_k));
+                    "expected a temperature in kelvin for a blackbody record, got null");
+    const auto in_range = [](double t_k) {
+        return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK;
+    };
+    if (r.blackbody_temperature_k && !in_range(*r.blackbody_temperature_k))
+        f.fail_here(
+            f.field("blackbody_temperature_k"),
+            fmt::format("expected a temperature in [{}, {}] K, got {}", limits::kMinTemperatureK,
+                        limits::kMaxTemperatureK, *r.blackbody_temperature_k));
     if (r.fpa_temperature_k && !in_range(*r.fpa_temperature_k))
-        f.fail_here(f.field("fpa_temperature_k"),
-                    fmt::format("expected a temperature in [{}, {}] K or null, got {}", limits::kMinTemperatureK,
-                                limits::kMaxTemperatureK, *r.fpa_temperature_k));
+        f.fail_here(
+            f.field("fpa_temperature_k"),
+            fmt::format("expected a temperature in [{}, {}] K or null, got {}",
+                        limits::kMinTemperatureK, limits::kMaxTemperatureK, *r.fpa_temperature_k));
     if (r.last_timestamp_ns < r.first_timestamp_ns)
-        f.fail_here(f.field("last_timestamp_ns"), fmt::format("expected ≥ first_timestamp_ns ({}), got {}", r.first_timestamp_ns, r.last_timestamp_ns));
+        f.fail_here(f.field("last_timestamp_ns"),
+                    fmt::format("expected ≥ first_timestamp_ns ({}), got {}", r.first_timestamp_ns,
+                                r.last_timestamp_ns));
 }
 
 SessionRecord record_from_json(const Fields& f) {
     SessionRecord r;
     const std::string kind = f.string("kind");
     const auto parsed = record_kind_from_string(kind);
-    if (!parsed) f.fail_here(f.field("kind"), "expected \"polarizer\", \"blackbody\" or \"shutter\", got \"" + kind + "\"");
+    if (!parsed)
+        f.fail_here(f.field("kind"),
+                    "expected \"polarizer\", \"blackbody\" or \"shutter\", got \"" + kind + "\"");
     r.kind = *parsed;
     r.file = f.string("file");
     check_frame_path(f, "file", r.file);
@@ -317,12 +358,15 @@ SessionRecord record_from_json(const Fields& f) {
     if (f.raw().contains("timing") && !f.raw().at("timing").is_null()) {
         r.timing = timing_from_json(f.object("timing"));
         if (r.first_timestamp_ns < r.timing->settle_end_ns)
-            f.fail_here(f.field("first_timestamp_ns"), fmt::format("expected ≥ timing.settle_end_ns ({}), got {} (a frame received before the stage settled)",
-                                                                  r.timing->settle_end_ns, r.first_timestamp_ns));
+            f.fail_here(f.field("first_timestamp_ns"),
+                        fmt::format("expected ≥ timing.settle_end_ns ({}), got {} (a frame "
+                                    "received before the stage settled)",
+                                    r.timing->settle_end_ns, r.first_timestamp_ns));
     }
     if (f.raw().contains("blackbody_readings") && !f.raw().at("blackbody_readings").is_null()) {
         r.blackbody_readings = readings_from_json(f.object("blackbody_readings"));
-        if (r.kind == RecordKind::Polarizer) f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
+        if (r.kind == RecordKind::Polarizer)
+            f.fail_here(f.field("blackbody_readings"), "expected none for a polarizer record");
     }
     if (f.raw().contains("audit") && !f.raw().at("audit").is_null())
         r.audit = audit_from_json(f.object("audit"), r.frames);
@@ -332,28 +376,33 @@ SessionRecord record_from_json(const Fields& f) {
 
 }  // namespace
 
-const char* to_string(FfcEvent::Kind kind) { return kind == FfcEvent::Kind::Scheduled ? "scheduled" : "detected"; }
+const char* to_string(FfcEvent::Kind kind) {
+    return kind == FfcEvent::Kind::Scheduled ? "scheduled" : "detected";
+}
 
 namespace {
 json ffc_event_to_json(const FfcEvent& e) {
-    return json{{"kind", to_string(e.kind)},
-                {"host_timestamp_ns", e.host_timestamp_ns},
-                {"repeat", e.repeat},
-                {"fpa_temperature_k", optional_number(e.fpa_temperature_k)},
-                {"device_frame_count", e.device_frame_count ? json(*e.device_frame_count) : json(nullptr)},
-                {"reason", e.reason}};
+    return json{
+        {"kind", to_string(e.kind)},
+        {"host_timestamp_ns", e.host_timestamp_ns},
+        {"repeat", e.repeat},
+        {"fpa_temperature_k", optional_number(e.fpa_temperature_k)},
+        {"device_frame_count", e.device_frame_count ? json(*e.device_frame_count) : json(nullptr)},
+        {"reason", e.reason}};
 }
 
 FfcEvent ffc_event_from_json(const Fields& f) {
     FfcEvent e;
     const std::string kind = f.string("kind");
     if (kind != "scheduled" && kind != "detected")
-        f.fail_here(f.field("kind"), fmt::format("expected \"scheduled\" or \"detected\", got \"{}\"", kind));
+        f.fail_here(f.field("kind"),
+                    fmt::format("expected \"scheduled\" or \"detected\", got \"{}\"", kind));
     e.kind = kind == "scheduled" ? FfcEvent::Kind::Scheduled : FfcEvent::Kind::Detected;
     e.host_timestamp_ns = f.integer("host_timestamp_ns", 0);
     e.repeat = static_cast<int>(f.integer("repeat", 0, std::numeric_limits<int>::max()));
     e.fpa_temperature_k = f.optional_number("fpa_temperature_k");
-    if (!f.at("device_frame_count").is_null()) e.device_frame_count = f.integer("device_frame_count", 0);
+    if (!f.at("device_frame_count").is_null())
+        e.device_frame_count = f.integer("device_frame_count", 0);
     e.reason = f.string("reason");
     return e;
 }
@@ -387,12 +436,13 @@ json session_to_json(const SessionManifest& m) {
                   {"serial", m.stage.serial},
                   {"firmware", m.stage.firmware},
                   {"counts_per_degree", m.stage.counts_per_degree}}},
-                {"blackbody_controller", m.blackbody_controller ? json{{"uri", m.blackbody_controller->uri},
-                                                                      {"vendor", m.blackbody_controller->vendor},
-                                                                      {"model", m.blackbody_controller->model},
-                                                                      {"serial", m.blackbody_controller->serial},
-                                                                      {"firmware", m.blackbody_controller->firmware}}
-                                                                : json(nullptr)},
+                {"blackbody_controller", m.blackbody_controller
+                                             ? json{{"uri", m.blackbody_controller->uri},
+                                                    {"vendor", m.blackbody_controller->vendor},
+                                                    {"model", m.blackbody_controller->model},
+                                                    {"serial", m.blackbody_controller->serial},
+                                                    {"firmware", m.blackbody_controller->firmware}}
+                                             : json(nullptr)},
                 {"plan", m.plan},
                 {"metadata", m.metadata},
                 {"records", records},
@@ -404,11 +454,14 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     const Fields top(j, source, "");
     const std::string schema = top.string("schema");
     if (schema != kSessionSchema)
-        top.fail_here("schema", fmt::format("expected \"{}\", got \"{}\" (not a tirpol session manifest)", kSessionSchema, schema));
+        top.fail_here("schema",
+                      fmt::format("expected \"{}\", got \"{}\" (not a tirpol session manifest)",
+                                  kSessionSchema, schema));
     const std::int64_t version = top.integer("schema_version", 1);
     if (version < kSessionSchemaOldestReadable || version > kSessionSchemaVersion)
-        top.fail_here("schema_version", fmt::format("expected {} to {}, got {} (written by a newer or older tirpol)",
-                                                    kSessionSchemaOldestReadable, kSessionSchemaVersion, version));
+        top.fail_here("schema_version",
+                      fmt::format("expected {} to {}, got {} (written by a newer or older tirpol)",
+                                  kSessionSchemaOldestReadable, kSessionSchemaVersion, version));
     SessionManifest m;
     m.schema_version = static_cast<int>(version);
     m.created_utc = top.string("created_utc");
@@ -434,30 +487,38 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     m.stage.firmware = stage.string("firmware");
     m.stage.counts_per_degree = stage.number("counts_per_degree");
     if (!(m.stage.counts_per_degree > 0.0))
-        stage.fail_here(stage.field("counts_per_degree"), fmt::format("expected a positive number, got {}", m.stage.counts_per_degree));
+        stage.fail_here(
+            stage.field("counts_per_degree"),
+            fmt::format("expected a positive number, got {}", m.stage.counts_per_degree));
 
-    if (top.raw().contains("blackbody_controller") && !top.raw().at("blackbody_controller").is_null()) {
+    if (top.raw().contains("blackbody_controller") &&
+        !top.raw().at("blackbody_controller").is_null()) {
         const Fields bb = top.object("blackbody_controller");
-        m.blackbody_controller = SessionBlackbodyController{bb.string("uri"), bb.string("vendor"), bb.string("model"),
-                                                            bb.string("serial"), bb.string("firmware")};
+        m.blackbody_controller =
+            SessionBlackbodyController{bb.string("uri"), bb.string("vendor"), bb.string("model"),
+                                       bb.string("serial"), bb.string("firmware")};
     }
     m.plan = top.object("plan").raw();
     m.metadata = top.object("metadata").raw();
 
     const json& records = top.at("records");
-    if (!records.is_array()) top.fail_here("records", "expected an array, got " + Fields::describe(records));
+    if (!records.is_array())
+        top.fail_here("records", "expected an array, got " + Fields::describe(records));
     std::set<std::string> files;
     for (std::size_t i = 0; i < records.size(); ++i) {
         const Fields rf(records[i], source, fmt::format("records[{}]", i));
         SessionRecord r = record_from_json(rf);
-        if (!files.insert(r.file).second) rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
+        if (!files.insert(r.file).second)
+            rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
         m.records.push_back(std::move(r));
     }
     if (top.raw().contains("ffc_events")) {
         const json& events = top.at("ffc_events");
-        if (!events.is_array()) top.fail_here("ffc_events", "expected an array, got " + Fields::describe(events));
+        if (!events.is_array())
+            top.fail_here("ffc_events", "expected an array, got " + Fields::describe(events));
         for (std::size_t i = 0; i < events.size(); ++i)
-            m.ffc_events.push_back(ffc_event_from_json(Fields(events[i], source, fmt::format("ffc_events[{}]", i))));
+            m.ffc_events.push_back(
+                ffc_event_from_json(Fields(events[i], source, fmt::format("ffc_events[{}]", i))));
     }
     m.complete = top.boolean("complete");
     return m;
@@ -471,34 +532,46 @@ void record_to_attributes(const SessionRecord& r, Attributes& a) {
     a["angle_deg_requested"] = r.angle_deg_requested;
     a["angle_deg_measured"] = r.angle_deg_measured;
     a["repeat"] = r.repeat;
-    if (r.blackbody_temperature_k) a["blackbody_temperature_k"] = *r.blackbody_temperature_k;
-    else a.erase("blackbody_temperature_k");
+    if (r.blackbody_temperature_k)
+        a["blackbody_temperature_k"] = *r.blackbody_temperature_k;
+    else
+        a.erase("blackbody_temperature_k");
     // Counts and timestamps go through text: EXR ints are 32-bit, doubles lose ns after 2^53.
     a["frames"] = std::to_string(r.frames);
     a["dropped"] = std::to_string(r.dropped);
     a["first_timestamp_ns"] = std::to_string(r.first_timestamp_ns);
     a["last_timestamp_ns"] = std::to_string(r.last_timestamp_ns);
-    if (r.fpa_temperature_k) a["fpa_temperature_k"] = *r.fpa_temperature_k;
-    else a.erase("fpa_temperature_k");
+    if (r.fpa_temperature_k)
+        a["fpa_temperature_k"] = *r.fpa_temperature_k;
+    else
+        a.erase("fpa_temperature_k");
     const json timing = timing_to_json(r.timing.value_or(StepTiming{}));
     for (const auto& [key, value] : timing.items()) {
         const std::string name = "timing_" + key;
-        if (!r.timing) a.erase(name);
-        else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
-        else a[name] = value.get<double>();
+        if (!r.timing)
+            a.erase(name);
+        else if (value.is_number_integer())
+            a[name] = std::to_string(value.get<std::int64_t>());
+        else
+            a[name] = value.get<double>();
     }
     const json readings = readings_to_json(r.blackbody_readings.value_or(BlackbodyReadings{}));
     for (const auto& [key, value] : readings.items()) {
         const std::string name = "blackbody_readings_" + key;
-        if (!r.blackbody_readings) a.erase(name);
-        else if (value.is_boolean()) a[name] = value.get<bool>() ? 1 : 0;
-        else if (value.is_number_integer()) a[name] = std::to_string(value.get<std::int64_t>());
-        else a[name] = value.get<double>();
+        if (!r.blackbody_readings)
+            a.erase(name);
+        else if (value.is_boolean())
+            a[name] = value.get<bool>() ? 1 : 0;
+        else if (value.is_number_integer())
+            a[name] = std::to_string(value.get<std::int64_t>());
+        else
+            a[name] = value.get<double>();
     }
     a["units"] = std::string("counts");
 }
 
-SessionRecord record_from_attributes(const Attributes& a, const std::string& file, const std::string& source) {
+SessionRecord record_from_attributes(const Attributes& a, const std::string& file,
+                                     const std::string& source) {
     // Rebuild the JSON record from the header and validate it with the manifest's rules.
     json j = json::object();
     j["file"] = file;
@@ -519,7 +592,8 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
     const json readings_keys = readings_to_json({});  // named: items() of a temporary would dangle
     for (const auto& [key, unused] : readings_keys.items())
         if (auto it = j.find("blackbody_readings_" + key); it != j.end()) {
-            readings[key] = key == "stable" && it->is_number_integer() ? json(it->get<int>() != 0) : *it;
+            readings[key] =
+                key == "stable" && it->is_number_integer() ? json(it->get<int>() != 0) : *it;
             j.erase(it);
         }
     if (!readings.empty()) j["blackbody_readings"] = readings;
@@ -531,14 +605,18 @@ SessionRecord record_from_attributes(const Attributes& a, const std::string& fil
         errno = 0;
         const long long v = std::strtoll(text.c_str(), &end, 10);
         if (text.empty() || *end != '\0' || errno != 0)
-            fail("{}: header attribute {}: expected a decimal integer, got \"{}\"", source, name, text);
+            fail("{}: header attribute {}: expected a decimal integer, got \"{}\"", source, name,
+                 text);
         *it = static_cast<std::int64_t>(v);
     };
-    for (const char* key : {"frames", "dropped", "first_timestamp_ns", "last_timestamp_ns"}) decimal(j, key, key);
+    for (const char* key : {"frames", "dropped", "first_timestamp_ns", "last_timestamp_ns"})
+        decimal(j, key, key);
     if (j.contains("timing"))
-        for (const char* key : {"move_start_ns", "move_end_ns", "settle_end_ns", "exposure_window_ns", "stale_frames_discarded"})
+        for (const char* key : {"move_start_ns", "move_end_ns", "settle_end_ns",
+                                "exposure_window_ns", "stale_frames_discarded"})
             decimal(j["timing"], key, std::string("timing_") + key);
-    if (j.contains("blackbody_readings")) decimal(j["blackbody_readings"], "readings", "blackbody_readings_readings");
+    if (j.contains("blackbody_readings"))
+        decimal(j["blackbody_readings"], "readings", "blackbody_readings_readings");
     return record_from_json(Fields(j, source, "header"));
 }
 
@@ -549,15 +627,16 @@ namespace {
 SessionManifest read_manifest_file(const std::filesystem::path& dir) {
     const auto path = dir / kSessionManifestName;
     if (!std::filesystem::exists(path))
-        fail("{}: no session manifest here (expected a directory written by tirpol acquire)", path.string());
+        fail("{}: no session manifest here (expected a directory written by tirpol acquire)",
+             path.string());
     const std::string text = read_file(path);
     check_utf8_text(text, path.string());
     json j;
     try {
         j = json::parse(text);
     } catch (const json::parse_error& e) {
-        fail("{}: not valid JSON (truncated or corrupt manifest?) at byte {} of {}: {}", path.string(), e.byte,
-             text.size(), e.what());
+        fail("{}: not valid JSON (truncated or corrupt manifest?) at byte {} of {}: {}",
+             path.string(), e.byte, text.size(), e.what());
     }
     return session_from_json(j, path.string());
 }
@@ -575,7 +654,8 @@ void check_frame_files_exist(const std::filesystem::path& dir, const SessionMani
         const auto p = dir / m.records[i].file;
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec))
-            fail("{}: records[{}].file: frame file {} is missing", (dir / kSessionManifestName).string(), i, p.string());
+            fail("{}: records[{}].file: frame file {} is missing",
+                 (dir / kSessionManifestName).string(), i, p.string());
     }
 }
 
@@ -591,8 +671,9 @@ namespace {
 /// The frame's header mirrors its record and the camera (SessionWriter::add_record): where both say
 /// something, they must agree, or a frame was filed under another record (renamed, copied, the
 /// manifest edited) and would be reduced at the wrong angle or temperature.
-void check_frame_header(const std::filesystem::path& path, const std::filesystem::path& manifest_file,
-                        const SessionManifest& m, const SessionRecord& r, const Attributes& a) {
+void check_frame_header(const std::filesystem::path& path,
+                        const std::filesystem::path& manifest_file, const SessionManifest& m,
+                        const SessionRecord& r, const Attributes& a) {
     const auto number = [&a](const char* name) -> std::optional<double> {
         const auto it = a.find(name);
         if (it == a.end()) return std::nullopt;
@@ -606,35 +687,46 @@ void check_frame_header(const std::filesystem::path& path, const std::filesystem
         if (const std::string* s = std::get_if<std::string>(&it->second)) return *s;
         return std::nullopt;
     };
-    const auto disagree = [&](const std::string& field, const std::string& in_header, const std::string& in_manifest) {
-        fail("{}: its header says {} = {} but {} files it as {} with {} = {}; the frame and the manifest disagree (a "
-             "frame file renamed or copied, or the manifest edited): restore the session as it was written",
-             path.string(), field, in_header, manifest_file.string(), r.file, field, in_manifest);
+    const auto disagree = [&](const std::string& field, const std::string& in_header,
+                              const std::string& in_manifest) {
+        fail(
+            "{}: its header says {} = {} but {} files it as {} with {} = {}; the frame and the "
+            "manifest disagree (a "
+            "frame file renamed or copied, or the manifest edited): restore the session as it was "
+            "written",
+            path.string(), field, in_header, manifest_file.string(), r.file, field, in_manifest);
     };
-    if (const auto kind = text("kind"); kind && *kind != to_string(r.kind)) disagree("kind", *kind, to_string(r.kind));
-    for (const auto& [name, value] : {std::pair<const char*, double>{"angle_deg_requested", r.angle_deg_requested},
-                                      std::pair<const char*, double>{"angle_deg_measured", r.angle_deg_measured}})
+    if (const auto kind = text("kind"); kind && *kind != to_string(r.kind))
+        disagree("kind", *kind, to_string(r.kind));
+    for (const auto& [name, value] :
+         {std::pair<const char*, double>{"angle_deg_requested", r.angle_deg_requested},
+          std::pair<const char*, double>{"angle_deg_measured", r.angle_deg_measured}})
         if (const auto v = number(name); v && std::abs(*v - value) > 1e-6)
             disagree(name, fmt::format("{:g}°", *v), fmt::format("{:g}°", value));
-    if (const auto t = number("blackbody_temperature_k"); t && r.blackbody_temperature_k &&
-                                                           std::abs(*t - *r.blackbody_temperature_k) > 1e-6)
-        disagree("blackbody_temperature_k", fmt::format("{:g} K", *t), fmt::format("{:g} K", *r.blackbody_temperature_k));
+    if (const auto t = number("blackbody_temperature_k");
+        t && r.blackbody_temperature_k && std::abs(*t - *r.blackbody_temperature_k) > 1e-6)
+        disagree("blackbody_temperature_k", fmt::format("{:g} K", *t),
+                 fmt::format("{:g} K", *r.blackbody_temperature_k));
     if (const auto serial = text("camera_serial"); serial && *serial != m.camera.serial)
         disagree("camera_serial", "'" + *serial + "'", "'" + m.camera.serial + "' (camera.serial)");
     const std::string model = m.camera.vendor + " " + m.camera.model;
     if (const auto header_model = text("camera_model"); header_model && *header_model != model)
-        disagree("camera_model", "'" + *header_model + "'", "'" + model + "' (camera.vendor, camera.model)");
+        disagree("camera_model", "'" + *header_model + "'",
+                 "'" + model + "' (camera.vendor, camera.model)");
 }
 }  // namespace
 
-Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& m, const SessionRecord& r) {
+Image read_session_frame(const std::filesystem::path& dir, const SessionManifest& m,
+                         const SessionRecord& r) {
     const auto path = dir / r.file;
     Image image = read_exr(path);
     for (const char* channel : {"counts", "counts_std"})
-        if (!image.has_channel(channel)) fail("{}: missing channel '{}' (a session frame has counts and counts_std)", path.string(), channel);
+        if (!image.has_channel(channel))
+            fail("{}: missing channel '{}' (a session frame has counts and counts_std)",
+                 path.string(), channel);
     if (image.width() != m.camera.width || image.height() != m.camera.height)
-        fail("{}: image is {}×{}, the manifest's camera is {}×{}", path.string(), image.width(), image.height(),
-             m.camera.width, m.camera.height);
+        fail("{}: image is {}×{}, the manifest's camera is {}×{}", path.string(), image.width(),
+             image.height(), m.camera.width, m.camera.height);
     check_frame_header(path, dir / kSessionManifestName, m, r, image.attributes());
     return image;
 }
@@ -647,7 +739,8 @@ struct SessionWriter::Lock {
     explicit Lock(const std::filesystem::path& dir) {
         const auto path = dir / ".lock";
         fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-        if (fd < 0) fail("{}: cannot create the session lock: {}", path.string(), std::strerror(errno));
+        if (fd < 0)
+            fail("{}: cannot create the session lock: {}", path.string(), std::strerror(errno));
         if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
             ::close(fd);
             fail("{}: another process is writing this session", dir.string());
@@ -660,7 +753,8 @@ struct SessionWriter::Lock {
     Lock& operator=(const Lock&) = delete;
 };
 
-SessionWriter::SessionWriter(std::filesystem::path dir, SessionManifest manifest, std::unique_ptr<Lock> lock)
+SessionWriter::SessionWriter(std::filesystem::path dir, SessionManifest manifest,
+                             std::unique_ptr<Lock> lock)
     : m_dir(std::move(dir)), m_manifest(std::move(manifest)), m_lock(std::move(lock)) {}
 SessionWriter::SessionWriter(SessionWriter&&) noexcept = default;
 SessionWriter& SessionWriter::operator=(SessionWriter&&) noexcept = default;
@@ -668,7 +762,9 @@ SessionWriter::~SessionWriter() = default;
 
 namespace {
 /// A hidden sibling that create() builds a session in before renaming it into place.
-std::string creating_prefix(const std::filesystem::path& dir) { return "." + dir.filename().string() + ".creating-"; }
+std::string creating_prefix(const std::filesystem::path& dir) {
+    return "." + dir.filename().string() + ".creating-";
+}
 
 /// Removes what earlier crashed create() calls for `dir` left: siblings nobody holds the lock of.
 void remove_abandoned_creations(const std::filesystem::path& dir) {
@@ -689,10 +785,13 @@ SessionWriter SessionWriter::create(const std::filesystem::path& dir_in, Session
     const std::filesystem::path dir = dir_in.has_filename() ? dir_in : dir_in.parent_path();
     std::error_code ec;
     if (std::filesystem::exists(dir, ec)) {
-        if (!std::filesystem::is_directory(dir, ec)) fail("{}: exists and is not a directory", dir.string());
+        if (!std::filesystem::is_directory(dir, ec))
+            fail("{}: exists and is not a directory", dir.string());
         if (!std::filesystem::is_empty(dir, ec))
-            fail("{}: directory exists and is not empty; refusing to start a new session there "
-                 "(use --resume to continue a session, or choose a new directory)", dir.string());
+            fail(
+                "{}: directory exists and is not empty; refusing to start a new session there "
+                "(use --resume to continue a session, or choose a new directory)",
+                dir.string());
     }
     if (dir.has_parent_path()) {
         std::filesystem::create_directories(dir.parent_path(), ec);
@@ -726,7 +825,10 @@ SessionWriter SessionWriter::create(const std::filesystem::path& dir_in, Session
     if (::rename(staging.c_str(), dir.c_str()) != 0) {
         const int err = errno;
         if (err == ENOTEMPTY || err == EEXIST)
-            fail("{}: another session appeared here while this one was being created; refusing to mix them", dir.string());
+            fail(
+                "{}: another session appeared here while this one was being created; refusing to "
+                "mix them",
+                dir.string());
         fail("{}: cannot move the new session into place: {}", dir.string(), std::strerror(err));
     }
     cleanup.armed = false;
@@ -738,16 +840,21 @@ SessionWriter SessionWriter::resume(const std::filesystem::path& dir) {
     auto lock = std::make_unique<Lock>(dir);
     SessionManifest manifest = read_manifest_file(dir);
     if (manifest.schema_version < 2)
-        fail("{}: a schema v{} session (written before frames were gated on the end of each move); it reads, "
-             "but resuming would mix two timing models: finish it with the tirpol that started it, or start a new session",
-             (dir / kSessionManifestName).string(), manifest.schema_version);
+        fail(
+            "{}: a schema v{} session (written before frames were gated on the end of each move); "
+            "it reads, "
+            "but resuming would mix two timing models: finish it with the tirpol that started it, "
+            "or start a new session",
+            (dir / kSessionManifestName).string(), manifest.schema_version);
     check_frame_files_exist(dir, manifest);
     SessionWriter writer(dir, std::move(manifest), std::move(lock));
     std::error_code ec;
-    // Manifest temporaries of an interrupted atomic write (write_file_atomic's ".session.json.tmp-*").
+    // Manifest temporaries of an interrupted atomic write (write_file_atomic's
+    // ".session.json.tmp-*").
     const std::string manifest_tmp = std::string(".") + kSessionManifestName + ".tmp-";
     for (const auto& entry : std::filesystem::directory_iterator(dir))
-        if (entry.path().filename().string().rfind(manifest_tmp, 0) == 0) std::filesystem::remove(entry.path(), ec);
+        if (entry.path().filename().string().rfind(manifest_tmp, 0) == 0)
+            std::filesystem::remove(entry.path(), ec);
     const auto frames = dir / "frames";
     std::filesystem::create_directories(frames, ec);
     std::vector<std::filesystem::path> candidates;
@@ -759,7 +866,8 @@ SessionWriter SessionWriter::resume(const std::filesystem::path& dir) {
             std::filesystem::remove(entry.path(), ec);
             continue;
         }
-        if (entry.path().extension() == ".exr" && !writer.has_record("frames/" + name)) candidates.push_back(entry.path());
+        if (entry.path().extension() == ".exr" && !writer.has_record("frames/" + name))
+            candidates.push_back(entry.path());
     }
     std::sort(candidates.begin(), candidates.end());
     for (const auto& path : candidates) {
@@ -781,20 +889,24 @@ bool SessionWriter::has_record(const std::string& file) const {
 
 void SessionWriter::add_record(const SessionRecord& record, const Image& frame) {
     const std::string source = (m_dir / kSessionManifestName).string();
-    if (m_manifest.complete) fail("{}: the session is complete; refusing to add {}", source, record.file);
+    if (m_manifest.complete)
+        fail("{}: the session is complete; refusing to add {}", source, record.file);
     // Validate the record as the reader will.
     record_from_json(Fields(record_to_json(record), source, "new record"));
-    if (has_record(record.file)) fail("{}: {} is already recorded; refusing to overwrite it", source, record.file);
+    if (has_record(record.file))
+        fail("{}: {} is already recorded; refusing to overwrite it", source, record.file);
     for (const char* channel : {"counts", "counts_std"})
-        if (!frame.has_channel(channel)) fail("{}: frame for {} lacks channel '{}'", source, record.file, channel);
+        if (!frame.has_channel(channel))
+            fail("{}: frame for {} lacks channel '{}'", source, record.file, channel);
     if (frame.width() != m_manifest.camera.width || frame.height() != m_manifest.camera.height)
-        fail("{}: frame for {} is {}×{}, the camera is {}×{}", source, record.file, frame.width(), frame.height(),
-             m_manifest.camera.width, m_manifest.camera.height);
+        fail("{}: frame for {} is {}×{}, the camera is {}×{}", source, record.file, frame.width(),
+             frame.height(), m_manifest.camera.width, m_manifest.camera.height);
 
     Image annotated = frame;
     record_to_attributes(record, annotated.attributes());
     annotated.attributes()["camera_uri"] = m_manifest.camera.uri;
-    annotated.attributes()["camera_model"] = m_manifest.camera.vendor + " " + m_manifest.camera.model;
+    annotated.attributes()["camera_model"] =
+        m_manifest.camera.vendor + " " + m_manifest.camera.model;
     annotated.attributes()["camera_serial"] = m_manifest.camera.serial;
     annotated.attributes()["stage_uri"] = m_manifest.stage.uri;
     annotated.attributes()["stage_model"] = m_manifest.stage.vendor + " " + m_manifest.stage.model;
@@ -803,13 +915,16 @@ void SessionWriter::add_record(const SessionRecord& record, const Image& frame) 
     // write_exr renames over its destination; to never overwrite, write a hidden file and hard-link
     // it into place: link() fails with EEXIST instead of replacing.
     const auto final_path = m_dir / record.file;
-    const auto staged = final_path.parent_path() / fmt::format(".{}.staged.exr", final_path.filename().string());
+    const auto staged =
+        final_path.parent_path() / fmt::format(".{}.staged.exr", final_path.filename().string());
     write_exr(staged, annotated);
     if (::link(staged.c_str(), final_path.c_str()) != 0) {
         const int err = errno;
         std::error_code ec;
         std::filesystem::remove(staged, ec);
-        if (err == EEXIST) fail("{}: {} already exists on disk; refusing to overwrite it", source, final_path.string());
+        if (err == EEXIST)
+            fail("{}: {} already exists on disk; refusing to overwrite it", source,
+                 final_path.string());
         fail("{}: cannot place {}: {}", source, final_path.string(), std::strerror(err));
     }
     std::error_code ec;
@@ -821,7 +936,8 @@ void SessionWriter::add_record(const SessionRecord& record, const Image& frame) 
 
 void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
     if (!(frame_rate_hz > 0.0) || !std::isfinite(frame_rate_hz))
-        fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}", (m_dir / kSessionManifestName).string(), frame_rate_hz);
+        fail("{}: camera.frame_rate_hz: expected a measured rate > 0 Hz, got {}",
+             (m_dir / kSessionManifestName).string(), frame_rate_hz);
     m_manifest.camera.frame_rate_hz = frame_rate_hz;
 }
 
@@ -841,7 +957,8 @@ void SessionWriter::mark_complete() {
 }
 
 void SessionWriter::write_manifest() const {
-    write_file_atomic(m_dir / kSessionManifestName, json_text(session_to_json(m_manifest), 2) + "\n");
+    write_file_atomic(m_dir / kSessionManifestName,
+                      json_text(session_to_json(m_manifest), 2) + "\n");
 }
 
 }  // namespace tirpol

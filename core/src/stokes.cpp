@@ -13,7 +13,8 @@ StokesVector linearly_polarized(double s0, double degree, double aop) {
 
 // A NaN component (a dead or unmeasured pixel) gives NaN, never 0: 0 would read as "unpolarized".
 double dolp(const StokesVector& s) {
-    if (std::isnan(s[0]) || std::isnan(s[1]) || std::isnan(s[2])) return std::numeric_limits<double>::quiet_NaN();
+    if (std::isnan(s[0]) || std::isnan(s[1]) || std::isnan(s[2]))
+        return std::numeric_limits<double>::quiet_NaN();
     return s[0] > 0.0 ? std::hypot(s[1], s[2]) / s[0] : 0.0;
 }
 

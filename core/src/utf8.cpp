@@ -72,11 +72,15 @@ void check_utf8_text(std::string_view text, std::string_view source) {
     const std::size_t bad = first_invalid_utf8(text);
     if (bad == std::string_view::npos) return;
     const std::string_view before = text.substr(0, bad);
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
     const std::size_t line_start = before.rfind('\n');
-    const std::size_t column = bad - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
-    fail("{}:{}:{}: invalid UTF-8 (byte 0x{:02X}); the file must be UTF-8 text (re-save it as UTF-8)", source, line,
-         column, static_cast<unsigned>(static_cast<unsigned char>(text[bad])));
+    const std::size_t column =
+        bad - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+    fail(
+        "{}:{}:{}: invalid UTF-8 (byte 0x{:02X}); the file must be UTF-8 text (re-save it as "
+        "UTF-8)",
+        source, line, column, static_cast<unsigned>(static_cast<unsigned char>(text[bad])));
 }
 
 bool is_valid_utf8(std::string_view text) {

@@ -19,13 +19,15 @@ std::vector<double> panel_edges(double lo, double hi, std::vector<double> inner)
     for (double e : inner)
         if (e >= lo && e <= hi) edges.push_back(e);
     std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-6; }),
-                edges.end());
+    edges.erase(
+        std::unique(edges.begin(), edges.end(), [](double a, double b) { return b - a < 1e-6; }),
+        edges.end());
     return edges;
 }
 }  // namespace
 
-EmissivityQuadrature::EmissivityQuadrature(double emission_angle_rad, const QuadratureOptions& options)
+EmissivityQuadrature::EmissivityQuadrature(double emission_angle_rad,
+                                           const QuadratureOptions& options)
     : m_emission_angle_rad(emission_angle_rad) {
     if (!(emission_angle_rad >= 0.0 && emission_angle_rad <= kHalfPi))
         fail("emission angle {} rad is outside [0, π/2]", emission_angle_rad);

@@ -13,7 +13,8 @@ using P = MicrofacetParameter;
 
 std::string plus_minus(const FittedParameter& f) {
     if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);
-    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.sigma, f.at_bound ? " [at bound]" : "");
+    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.sigma,
+                       f.at_bound ? " [at bound]" : "");
 }
 
 std::string free_names(const MicrofacetFitResult& r) {
@@ -35,32 +36,39 @@ std::string fitted_material_yaml(const std::string& name, const MicrofacetFitRes
     materials::MicrofacetMaterialRecord m;
     m.name = name;
     auto& comments = m.comment_lines;
-    comments.push_back("Fitted by `tirpol fit` (docs/fitting.md): micro-facet pBRDF parameters from measured polarized");
-    comments.push_back("emissivity by weighted least squares (Ceres), uncertainties from the covariance at the minimum.");
+    comments.push_back(
+        "Fitted by `tirpol fit` (docs/fitting.md): micro-facet pBRDF parameters from measured "
+        "polarized");
+    comments.push_back(
+        "emissivity by weighted least squares (Ceres), uncertainties from the covariance at the "
+        "minimum.");
     comments.push_back("data: " + join(provenance.data_files, ", "));
     comments.push_back("date: " + provenance.date_utc);
     if (!provenance.command.empty()) comments.push_back("command: " + provenance.command);
-    comments.push_back(fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}; termination: {}", r.chi2, r.dof,
-                                   r.reduced_chi2, r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "",
+    comments.push_back(fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}; termination: {}",
+                                   r.chi2, r.dof, r.reduced_chi2,
+                                   r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "",
                                    r.termination));
-    comments.push_back(fmt::format("starts: {}, fraction reaching the best minimum: {:.2f}", r.starts.size(),
-                                   r.fraction_reaching_best));
+    comments.push_back(fmt::format("starts: {}, fraction reaching the best minimum: {:.2f}",
+                                   r.starts.size(), r.fraction_reaching_best));
     if (r.covariance_available) {
         comments.push_back("correlation of the free parameters (" + free_names(r) + "):");
         for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
             std::string row = " ";
-            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) row += fmt::format(" {:+.3f}", r.correlation(i, j));
+            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j)
+                row += fmt::format(" {:+.3f}", r.correlation(i, j));
             comments.push_back(row);
         }
     }
     comments.push_back("residuals per angle, (model - measured)/sigma for eps_S0 and eps_S1:");
     for (const SampleFit& s : r.samples)
-        comments.push_back(fmt::format("  dataset {} angle {:5.1f} deg: {:+.2f} {:+.2f}", s.dataset, s.angle_deg,
-                                       s.residual_s0, s.residual_s1));
+        comments.push_back(fmt::format("  dataset {} angle {:5.1f} deg: {:+.2f} {:+.2f}", s.dataset,
+                                       s.angle_deg, s.residual_s0, s.residual_s1));
 
-    m.source = fmt::format("tirpol fit of {} on {}: micro-facet model, chi2/dof = {:.3g} (dof {}), {}",
-                           join(provenance.data_files, ", "), provenance.date_utc, r.reduced_chi2, r.dof,
-                           r.usable ? "converged" : "NOT CONVERGED");
+    m.source =
+        fmt::format("tirpol fit of {} on {}: micro-facet model, chi2/dof = {:.3g} (dof {}), {}",
+                    join(provenance.data_files, ", "), provenance.date_utc, r.reduced_chi2, r.dof,
+                    r.usable ? "converged" : "NOT CONVERGED");
     std::vector<std::string> notes;
     for (const FittedParameter& f : r.parameters) notes.push_back(plus_minus(f));
     m.notes = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
@@ -79,7 +87,8 @@ std::string fitted_material_yaml(const std::string& name, const MicrofacetFitRes
     return materials::microfacet_material_yaml(m);
 }
 
-nlohmann::json fit_report_json(const MicrofacetFitResult& r, const std::vector<EmissivityDataset>& datasets,
+nlohmann::json fit_report_json(const MicrofacetFitResult& r,
+                               const std::vector<EmissivityDataset>& datasets,
                                const FitProvenance& provenance) {
     nlohmann::json j;
     j["model"] = "micro-facet";
@@ -97,8 +106,9 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r, const std::vector<E
     j["wavelengths_um"] = r.wavelengths_um;
     nlohmann::json params = nlohmann::json::array();
     for (const FittedParameter& f : r.parameters) {
-        nlohmann::json p{{"name", f.name},   {"value", f.value}, {"fixed", f.fixed},       {"sigma", f.sigma},
-                         {"lower", f.lower}, {"upper", f.upper}, {"at_bound", f.at_bound}};
+        nlohmann::json p{{"name", f.name},        {"value", f.value}, {"fixed", f.fixed},
+                         {"sigma", f.sigma},      {"lower", f.lower}, {"upper", f.upper},
+                         {"at_bound", f.at_bound}};
         if (!f.fixed) p["interval_2sigma"] = {f.value - 2.0 * f.sigma, f.value + 2.0 * f.sigma};
         if (f.wavelength_um) p["wavelength_um"] = *f.wavelength_um;
         params.push_back(p);
@@ -137,16 +147,20 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r, const std::vector<E
                           {"iterations", s.iterations},
                           {"reached_best", s.reached_best},
                           {"termination", s.termination}});
-    j["starts"] = {{"count", r.starts.size()}, {"fraction_reaching_best", r.fraction_reaching_best}, {"outcomes", starts}};
+    j["starts"] = {{"count", r.starts.size()},
+                   {"fraction_reaching_best", r.fraction_reaching_best},
+                   {"outcomes", starts}};
     j["evaluations"] = {{"residual", r.residual_evaluations}, {"jacobian", r.jacobian_evaluations}};
     j["warnings"] = r.warnings;
     return j;
 }
 
-std::string fit_report_text(const MicrofacetFitResult& r, const std::vector<EmissivityDataset>& datasets) {
+std::string fit_report_text(const MicrofacetFitResult& r,
+                            const std::vector<EmissivityDataset>& datasets) {
     std::ostringstream out;
     out << fmt::format("termination: {}{}\n", r.termination, r.usable ? "" : "  (NOT USABLE)");
-    out << fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}\n", r.chi2, r.dof, r.reduced_chi2,
+    out << fmt::format("chi2 = {:.4g}, dof = {}, chi2/dof = {:.4g}{}\n", r.chi2, r.dof,
+                       r.reduced_chi2,
                        r.covariance_scaled ? " (covariance scaled by chi2/dof)" : "");
     out << fmt::format("starts: {}, reaching the best minimum: {:.0f}%\n", r.starts.size(),
                        100.0 * r.fraction_reaching_best);
@@ -155,23 +169,26 @@ std::string fit_report_text(const MicrofacetFitResult& r, const std::vector<Emis
         if (f.fixed) {
             out << fmt::format("  {:<14} {:>12.6g}   (fixed)\n", f.name, f.value);
         } else {
-            out << fmt::format("  {:<14} {:>12.6g}   [{:.6g}, {:.6g}]{}\n", f.name, f.value, f.value - 2.0 * f.sigma,
-                               f.value + 2.0 * f.sigma, f.at_bound ? "  at bound" : "");
+            out << fmt::format("  {:<14} {:>12.6g}   [{:.6g}, {:.6g}]{}\n", f.name, f.value,
+                               f.value - 2.0 * f.sigma, f.value + 2.0 * f.sigma,
+                               f.at_bound ? "  at bound" : "");
         }
     }
     if (r.covariance_available && r.free_indices.size() > 1) {
         out << "correlation (" << free_names(r) << "):\n";
         for (Eigen::Index i = 0; i < r.correlation.rows(); ++i) {
             out << " ";
-            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j) out << fmt::format(" {:+.3f}", r.correlation(i, j));
+            for (Eigen::Index j = 0; j < r.correlation.cols(); ++j)
+                out << fmt::format(" {:+.3f}", r.correlation(i, j));
             out << '\n';
         }
     }
     out << "angle   eps_S0 meas   model   resid | eps_S1 meas   model   resid\n";
     for (const SampleFit& s : r.samples) {
         const EmissivitySample& m = datasets.at(s.dataset).samples.at(s.sample);
-        out << fmt::format("{:5.1f}   {:9.4f} {:9.4f} {:+6.2f}  | {:9.4f} {:9.4f} {:+6.2f}\n", s.angle_deg, m.e_s0,
-                           s.model_s0, s.residual_s0, m.e_s1, s.model_s1, s.residual_s1);
+        out << fmt::format("{:5.1f}   {:9.4f} {:9.4f} {:+6.2f}  | {:9.4f} {:9.4f} {:+6.2f}\n",
+                           s.angle_deg, m.e_s0, s.model_s0, s.residual_s0, m.e_s1, s.model_s1,
+                           s.residual_s1);
     }
     for (const std::string& w : r.warnings) out << "warning: " << w << '\n';
     return out.str();

@@ -17,7 +17,8 @@ constexpr int kWidth = 1000, kPanelHeight = 380, kTop = 50;
 constexpr int kLeft = 95, kRight = 30, kPanelGap = 40;
 const cv::Scalar kBlack(0, 0, 0), kGrey(200, 200, 200);
 // Colour-blind-safe palette (Okabe & Ito 2008), BGR.
-const cv::Scalar kPalette[] = {{178, 114, 0}, {0, 94, 213}, {115, 158, 0}, {167, 121, 204}, {66, 228, 240}};
+const cv::Scalar kPalette[] = {
+    {178, 114, 0}, {0, 94, 213}, {115, 158, 0}, {167, 121, 204}, {66, 228, 240}};
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 struct Axis {
@@ -31,7 +32,8 @@ struct Panel {
         return box.x + static_cast<int>(std::lround((v - x.lo) / (x.hi - x.lo) * box.width));
     }
     int py(double v) const {
-        return box.y + box.height - static_cast<int>(std::lround((v - y.lo) / (y.hi - y.lo) * box.height));
+        return box.y + box.height -
+               static_cast<int>(std::lround((v - y.lo) / (y.hi - y.lo) * box.height));
     }
 };
 
@@ -42,8 +44,8 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, bool x_
         cv::line(img, {x, p.box.y + p.box.height}, {x, p.box.y + p.box.height - 6}, kBlack, 1);
         cv::line(img, {x, p.box.y + 1}, {x, p.box.y + p.box.height - 7}, kGrey, 1);
         const std::string s = fmt::format("{:g}", t);
-        cv::putText(img, s, {x - 5 * static_cast<int>(s.size()), p.box.y + p.box.height + 20}, kFont, 0.45, kBlack,
-                    1, cv::LINE_AA);
+        cv::putText(img, s, {x - 5 * static_cast<int>(s.size()), p.box.y + p.box.height + 20},
+                    kFont, 0.45, kBlack, 1, cv::LINE_AA);
     }
     for (double t : nice_ticks(p.y.lo, p.y.hi, 6)) {
         if (t < p.y.lo || t > p.y.hi) continue;
@@ -51,19 +53,20 @@ void draw_axes(cv::Mat& img, const Panel& p, const std::string& y_label, bool x_
         cv::line(img, {p.box.x, y}, {p.box.x + 6, y}, kBlack, 1);
         cv::line(img, {p.box.x + 7, y}, {p.box.x + p.box.width - 1, y}, kGrey, 1);
         const std::string s = fmt::format("{:.3g}", std::abs(t) < 1e-12 ? 0.0 : t);
-        cv::putText(img, s, {p.box.x - 10 - 9 * static_cast<int>(s.size()), y + 5}, kFont, 0.45, kBlack, 1,
-                    cv::LINE_AA);
+        cv::putText(img, s, {p.box.x - 10 - 9 * static_cast<int>(s.size()), y + 5}, kFont, 0.45,
+                    kBlack, 1, cv::LINE_AA);
     }
     cv::putText(img, y_label, {8, p.box.y - 10}, kFont, 0.55, kBlack, 1, cv::LINE_AA);
     if (x_label)
-        cv::putText(img, "view angle from the surface normal (deg)", {p.box.x + p.box.width / 2 - 170,
-                                                                    p.box.y + p.box.height + 42},
-                    kFont, 0.55, kBlack, 1, cv::LINE_AA);
+        cv::putText(img, "view angle from the surface normal (deg)",
+                    {p.box.x + p.box.width / 2 - 170, p.box.y + p.box.height + 42}, kFont, 0.55,
+                    kBlack, 1, cv::LINE_AA);
 }
 
 }  // namespace
 
-void write_fit_plot(const std::filesystem::path& png, const std::vector<EmissivityDataset>& datasets,
+void write_fit_plot(const std::filesystem::path& png,
+                    const std::vector<EmissivityDataset>& datasets,
                     const MicrofacetFitResult& result, const std::string& title,
                     const QuadratureOptions& quadrature) {
     // Model curves per band.
@@ -72,7 +75,8 @@ void write_fit_plot(const std::filesystem::path& png, const std::vector<Emissivi
     std::vector<std::vector<std::pair<double, double>>> curves(result.wavelengths_um.size());
     for (double a : angles) {
         const EmissivityQuadrature q(deg_to_rad(a), quadrature);
-        for (std::size_t b = 0; b < curves.size(); ++b) curves[b].push_back(q.emissivity(result.model_parameters(b)));
+        for (std::size_t b = 0; b < curves.size(); ++b)
+            curves[b].push_back(q.emissivity(result.model_parameters(b)));
     }
 
     // Ranges covering data (with 2σ bars) and curves.
@@ -125,12 +129,15 @@ void write_fit_plot(const std::filesystem::path& png, const std::vector<Emissivi
             result.wavelengths_um.begin());
         const cv::Scalar colour = kPalette[band % std::size(kPalette)];
         for (const auto& s : d.samples) {
-            for (const auto& [panel, v, sg] :
-                 {std::tuple{&top, s.e_s0, s.e_s0_sigma}, std::tuple{&bottom, s.e_s1, s.e_s1_sigma}}) {
+            for (const auto& [panel, v, sg] : {std::tuple{&top, s.e_s0, s.e_s0_sigma},
+                                               std::tuple{&bottom, s.e_s1, s.e_s1_sigma}}) {
                 const int x = panel->px(s.angle_deg);
-                cv::line(img, {x, panel->py(v - 2 * sg)}, {x, panel->py(v + 2 * sg)}, kBlack, 1, cv::LINE_AA);
-                cv::line(img, {x - 4, panel->py(v - 2 * sg)}, {x + 4, panel->py(v - 2 * sg)}, kBlack, 1);
-                cv::line(img, {x - 4, panel->py(v + 2 * sg)}, {x + 4, panel->py(v + 2 * sg)}, kBlack, 1);
+                cv::line(img, {x, panel->py(v - 2 * sg)}, {x, panel->py(v + 2 * sg)}, kBlack, 1,
+                         cv::LINE_AA);
+                cv::line(img, {x - 4, panel->py(v - 2 * sg)}, {x + 4, panel->py(v - 2 * sg)},
+                         kBlack, 1);
+                cv::line(img, {x - 4, panel->py(v + 2 * sg)}, {x + 4, panel->py(v + 2 * sg)},
+                         kBlack, 1);
                 cv::circle(img, {x, panel->py(v)}, 4, colour, cv::FILLED, cv::LINE_AA);
                 cv::circle(img, {x, panel->py(v)}, 4, kBlack, 1, cv::LINE_AA);
             }
@@ -142,20 +149,24 @@ void write_fit_plot(const std::filesystem::path& png, const std::vector<Emissivi
     const int lx = top.box.x + 15;
     cv::circle(img, {lx + 12, ly}, 4, kBlack, 1, cv::LINE_AA);
     cv::line(img, {lx + 12, ly - 9}, {lx + 12, ly + 9}, kBlack, 1);
-    cv::putText(img, "measured, 2-sigma error bars", {lx + 35, ly + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
+    cv::putText(img, "measured, 2-sigma error bars", {lx + 35, ly + 5}, kFont, 0.45, kBlack, 1,
+                cv::LINE_AA);
     for (std::size_t b = 0; b < curves.size(); ++b) {
         ly += 22;
         cv::line(img, {lx, ly}, {lx + 25, ly}, kPalette[b % std::size(kPalette)], 2, cv::LINE_AA);
-        cv::putText(img,
-                    fmt::format("micro-facet fit{} (chi2/dof = {:.2f})",
-                                curves.size() > 1 ? fmt::format(" at {:g} um", result.wavelengths_um[b]) : "",
-                                result.reduced_chi2),
-                    {lx + 35, ly + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
+        cv::putText(
+            img,
+            fmt::format(
+                "micro-facet fit{} (chi2/dof = {:.2f})",
+                curves.size() > 1 ? fmt::format(" at {:g} um", result.wavelengths_um[b]) : "",
+                result.reduced_chi2),
+            {lx + 35, ly + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
     }
 
     std::vector<unsigned char> buffer;
     if (!cv::imencode(".png", img, buffer)) fail("{}: PNG encoding failed", png.string());
-    write_file_atomic(png, std::string_view(reinterpret_cast<const char*>(buffer.data()), buffer.size()));
+    write_file_atomic(
+        png, std::string_view(reinterpret_cast<const char*>(buffer.data()), buffer.size()));
 }
 
 }  // namespace tirpol::fitting

@@ -5,7 +5,8 @@
 
 namespace tirpol::fitting::detail {
 
-std::vector<std::vector<double>> latin_hypercube(std::size_t points, std::size_t dimensions, std::uint64_t seed) {
+std::vector<std::vector<double>> latin_hypercube(std::size_t points, std::size_t dimensions,
+                                                 std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
     std::vector<std::vector<double>> out(points, std::vector<double>(dimensions));

@@ -29,20 +29,22 @@ std::string_view parameter_name(MicrofacetParameter p) { return kNames[to_index(
 MicrofacetParameter parameter_from_name(std::string_view name) {
     for (std::size_t i = 0; i < kNames.size(); ++i)
         if (kNames[i] == name) return static_cast<MicrofacetParameter>(i);
-    fail("unknown micro-facet parameter \"{}\"; expected one of n, k, sigma, bias, tau_deg, omega_deg, rho_d, rho_v",
-         name);
+    fail(
+        "unknown micro-facet parameter \"{}\"; expected one of n, k, sigma, bias, tau_deg, "
+        "omega_deg, rho_d, rho_v",
+        name);
 }
 
 std::array<ParameterSetting, kMicrofacetParameterCount> default_parameter_settings() {
     return {{
-        {1.5, 1.05, 4.0, false},    // n
-        {0.1, 0.0, 2.0, false},     // k
-        {0.2, 0.05, 1.0, false},    // sigma
-        {1.0, 0.0, 1.0, true},      // bias
-        {90.0, 1.0, 180.0, true},   // tau_deg
-        {1e6, 1.0, 1e6, true},      // omega_deg
+        {1.5, 1.05, 4.0, false},        // n
+        {0.1, 0.0, 2.0, false},         // k
+        {0.2, 0.05, 1.0, false},        // sigma
+        {1.0, 0.0, 1.0, true},          // bias
+        {90.0, 1.0, 180.0, true},       // tau_deg
+        {1e6, 1.0, 1e6, true},          // omega_deg
         {0.01, 0.0, 1.0 / kPi, false},  // rho_d
-        {0.0, 0.0, 1.0, true},      // rho_v
+        {0.0, 0.0, 1.0, true},          // rho_v
     }};
 }
 
@@ -56,15 +58,18 @@ const FittedParameter& MicrofacetFitResult::get(MicrofacetParameter p, std::size
     fail("fit result has no parameter {} for band {}", parameter_name(p), band);
 }
 
-materials::ShellTargetParameters<double> MicrofacetFitResult::model_parameters(std::size_t band) const {
+materials::ShellTargetParameters<double> MicrofacetFitResult::model_parameters(
+    std::size_t band) const {
     std::array<double, kMicrofacetParameterCount> values{};
     for (std::size_t i = 0; i < kMicrofacetParameterCount; ++i)
         values[i] = get(static_cast<MicrofacetParameter>(i), band).value;
     return model_parameters_from_fit_order(values);
 }
 
-std::array<double, kMicrofacetParameterCount> fit_order_values(const materials::ShellTargetParameters<double>& p) {
-    return {p.n, p.k, p.sigma, p.bias, rad_to_deg(p.tau_rad), rad_to_deg(p.omega_rad), p.rho_d, p.rho_v};
+std::array<double, kMicrofacetParameterCount> fit_order_values(
+    const materials::ShellTargetParameters<double>& p) {
+    return {p.n,     p.k,    p.sigma, p.bias, rad_to_deg(p.tau_rad), rad_to_deg(p.omega_rad),
+            p.rho_d, p.rho_v};
 }
 
 struct MicrofacetFitProblem::Impl {
@@ -80,21 +85,25 @@ struct MicrofacetFitProblem::Impl {
     std::size_t band_count() const { return wavelengths.size(); }
     std::size_t value_count() const { return 2 * band_count() + kMicrofacetParameterCount - 2; }
 
-    // Index into the value vector of parameter `p` for band `band`: per-band n, k first, then shared.
+    // Index into the value vector of parameter `p` for band `band`: per-band n, k first, then
+    // shared.
     std::size_t value_index(MicrofacetParameter p, std::size_t band) const {
         if (p == MicrofacetParameter::n) return 2 * band;
         if (p == MicrofacetParameter::k) return 2 * band + 1;
         return 2 * band_count() + to_index(p) - 2;
     }
     MicrofacetParameter kind_of(std::size_t value) const {
-        if (value < 2 * band_count()) return value % 2 == 0 ? MicrofacetParameter::n : MicrofacetParameter::k;
+        if (value < 2 * band_count())
+            return value % 2 == 0 ? MicrofacetParameter::n : MicrofacetParameter::k;
         return static_cast<MicrofacetParameter>(value - 2 * band_count() + 2);
     }
     std::optional<std::size_t> band_of(std::size_t value) const {
         if (value < 2 * band_count()) return value / 2;
         return std::nullopt;
     }
-    const ParameterSetting& setting(std::size_t value) const { return options.parameters[to_index(kind_of(value))]; }
+    const ParameterSetting& setting(std::size_t value) const {
+        return options.parameters[to_index(kind_of(value))];
+    }
 
     std::string value_name(std::size_t value) const {
         const std::string base(parameter_name(kind_of(value)));
@@ -110,15 +119,17 @@ struct MicrofacetFitProblem::Impl {
         return out;
     }
 
-    std::array<double*, kMicrofacetParameterCount> blocks_for(std::vector<double>& values, std::size_t band) const {
+    std::array<double*, kMicrofacetParameterCount> blocks_for(std::vector<double>& values,
+                                                              std::size_t band) const {
         std::array<double*, kMicrofacetParameterCount> out{};
         for (std::size_t p = 0; p < kMicrofacetParameterCount; ++p)
             out[p] = &values[value_index(static_cast<MicrofacetParameter>(p), band)];
         return out;
     }
 
-    // A Ceres problem over `values` (which must outlive it). `for_solving`: fixed parameters constant
-    // and bounds set; otherwise every block is variable (for evaluation and covariance of all columns).
+    // A Ceres problem over `values` (which must outlive it). `for_solving`: fixed parameters
+    // constant and bounds set; otherwise every block is variable (for evaluation and covariance of
+    // all columns).
     std::unique_ptr<ceres::Problem> build(std::vector<double>& values, bool for_solving) const {
         ceres::Problem::Options po;
         po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -126,7 +137,8 @@ struct MicrofacetFitProblem::Impl {
         for (std::size_t v = 0; v < value_count(); ++v) problem->AddParameterBlock(&values[v], 1);
         for (std::size_t r = 0; r < costs.size(); ++r) {
             const auto blocks = blocks_for(values, dataset_band[sample_of[r].first]);
-            problem->AddResidualBlock(costs[r].get(), nullptr, std::vector<double*>(blocks.begin(), blocks.end()));
+            problem->AddResidualBlock(costs[r].get(), nullptr,
+                                      std::vector<double*>(blocks.begin(), blocks.end()));
         }
         if (for_solving)
             for (std::size_t v = 0; v < value_count(); ++v) {
@@ -186,29 +198,35 @@ struct MicrofacetFitProblem::Impl {
         auto problem = build(best, true);
         std::vector<std::pair<const double*, const double*>> pairs;
         for (std::size_t i = 0; i < free.size(); ++i)
-            for (std::size_t j = i; j < free.size(); ++j) pairs.emplace_back(&best[free[i]], &best[free[j]]);
+            for (std::size_t j = i; j < free.size(); ++j)
+                pairs.emplace_back(&best[free[i]], &best[free[j]]);
 
-        // SPARSE_QR drops the constant (fixed) blocks' columns and fails on a rank-deficient Jacobian;
-        // DENSE_SVD would see the fixed blocks as zero columns, so it serves only as the fallback.
+        // SPARSE_QR drops the constant (fixed) blocks' columns and fails on a rank-deficient
+        // Jacobian; DENSE_SVD would see the fixed blocks as zero columns, so it serves only as the
+        // fallback.
         ceres::Covariance::Options co;
         co.algorithm_type = ceres::SPARSE_QR;
         co.num_threads = 1;
         auto cov = std::make_unique<ceres::Covariance>(co);
         bool ok = cov->Compute(pairs, problem.get());
         if (!ok) {
-            // Rank-deficient Jacobian: some combination of parameters does not change the residuals.
-            // The Moore–Penrose pseudo-inverse still gives the uncertainty of the identifiable part.
+            // Rank-deficient Jacobian: some combination of parameters does not change the
+            // residuals. The Moore–Penrose pseudo-inverse still gives the uncertainty of the
+            // identifiable part.
             co.algorithm_type = ceres::DENSE_SVD;
             co.null_space_rank = -1;
             cov = std::make_unique<ceres::Covariance>(co);
             ok = cov->Compute(pairs, problem.get());
             result.warnings.push_back(
-                "the Jacobian is rank-deficient at the minimum: the data do not determine every free parameter; "
-                "uncertainties come from the pseudo-inverse and are not reliable (fix one of the correlated "
+                "the Jacobian is rank-deficient at the minimum: the data do not determine every "
+                "free parameter; "
+                "uncertainties come from the pseudo-inverse and are not reliable (fix one of the "
+                "correlated "
                 "parameters with --fix)");
         }
         if (!ok) {
-            result.warnings.push_back("covariance could not be computed: uncertainties are unavailable");
+            result.warnings.push_back(
+                "covariance could not be computed: uncertainties are unavailable");
             return;
         }
         const auto n = static_cast<Eigen::Index>(free.size());
@@ -234,24 +252,29 @@ struct MicrofacetFitProblem::Impl {
     }
 };
 
-MicrofacetFitProblem::MicrofacetFitProblem(std::vector<EmissivityDataset> datasets, MicrofacetFitOptions options)
+MicrofacetFitProblem::MicrofacetFitProblem(std::vector<EmissivityDataset> datasets,
+                                           MicrofacetFitOptions options)
     : m(std::make_unique<Impl>()) {
     if (datasets.empty()) fail("no emissivity data to fit");
     for (const EmissivityDataset& d : datasets) validate_dataset(d);
     if (options.starts < 1 || options.starts > limits::kMaxFitStarts)
-        fail("--starts: expected 1 to {} starts (limits.h), got {}", limits::kMaxFitStarts, options.starts);
-    if (options.max_iterations < 1) fail("max_iterations: expected at least 1, got {}", options.max_iterations);
+        fail("--starts: expected 1 to {} starts (limits.h), got {}", limits::kMaxFitStarts,
+             options.starts);
+    if (options.max_iterations < 1)
+        fail("max_iterations: expected at least 1, got {}", options.max_iterations);
     std::size_t free = 0;
     for (std::size_t p = 0; p < kMicrofacetParameterCount; ++p) {
         const ParameterSetting& s = options.parameters[p];
         const std::string_view name = kNames[p];
         if (!std::isfinite(s.initial) || !std::isfinite(s.lower) || !std::isfinite(s.upper))
-            fail("parameter {}: initial value and bounds must be finite (got {} in [{}, {}])", name, s.initial, s.lower,
-                 s.upper);
+            fail("parameter {}: initial value and bounds must be finite (got {} in [{}, {}])", name,
+                 s.initial, s.lower, s.upper);
         if (!(s.lower <= s.initial && s.initial <= s.upper))
-            fail("parameter {}: value {} lies outside its bounds [{}, {}]", name, s.initial, s.lower, s.upper);
+            fail("parameter {}: value {} lies outside its bounds [{}, {}]", name, s.initial,
+                 s.lower, s.upper);
         if (!s.fixed && !(s.lower < s.upper))
-            fail("parameter {}: a free parameter needs lower < upper (got [{}, {}])", name, s.lower, s.upper);
+            fail("parameter {}: a free parameter needs lower < upper (got [{}, {}])", name, s.lower,
+                 s.upper);
         if (!s.fixed) ++free;
     }
     if (free == 0) fail("every parameter is fixed: nothing to fit (free some with --free)");
@@ -268,18 +291,20 @@ MicrofacetFitProblem::MicrofacetFitProblem(std::vector<EmissivityDataset> datase
         const EmissivityDataset& d = m->datasets[di];
         m->dataset_band.push_back(band_of_wavelength.at(d.wavelength_um));
         for (std::size_t si = 0; si < d.samples.size(); ++si) {
-            m->quadratures.push_back(
-                std::make_unique<EmissivityQuadrature>(deg_to_rad(d.samples[si].angle_deg), options.quadrature));
+            m->quadratures.push_back(std::make_unique<EmissivityQuadrature>(
+                deg_to_rad(d.samples[si].angle_deg), options.quadrature));
             m->sample_of.emplace_back(di, si);
-            m->costs.push_back(
-                detail::make_cost_function({m->quadratures.back().get(), d.samples[si]}, options.derivatives));
+            m->costs.push_back(detail::make_cost_function(
+                {m->quadratures.back().get(), d.samples[si]}, options.derivatives));
         }
     }
     const std::size_t free_values = m->free_values().size();
     if (residual_count() <= free_values)
-        fail("{} samples give {} residuals (ε_S0 and ε_S1 per angle) for {} free parameters: a fit needs more "
-             "residuals than free parameters; measure more angles or fix parameters with --fix",
-             m->costs.size(), residual_count(), free_values);
+        fail(
+            "{} samples give {} residuals (ε_S0 and ε_S1 per angle) for {} free parameters: a fit "
+            "needs more "
+            "residuals than free parameters; measure more angles or fix parameters with --fix",
+            m->costs.size(), residual_count(), free_values);
 }
 
 MicrofacetFitProblem::~MicrofacetFitProblem() = default;
@@ -297,13 +322,15 @@ std::size_t MicrofacetFitProblem::free_parameter_count() const { return m->free_
 const std::vector<EmissivityDataset>& MicrofacetFitProblem::datasets() const { return m->datasets; }
 const std::vector<double>& MicrofacetFitProblem::wavelengths_um() const { return m->wavelengths; }
 
-void MicrofacetFitProblem::evaluate(const std::vector<double>& values, std::vector<double>* residuals,
+void MicrofacetFitProblem::evaluate(const std::vector<double>& values,
+                                    std::vector<double>* residuals,
                                     std::vector<double>* jacobian) const {
     if (values.size() != m->value_count())
         fail("evaluate: expected {} parameter values, got {}", m->value_count(), values.size());
     std::vector<double> work = values;
-    // Fixed parameters are constant blocks, as in the fit: Ceres leaves their columns zero and does not
-    // differentiate with respect to them, so the cost of a call is the cost of one fit iteration.
+    // Fixed parameters are constant blocks, as in the fit: Ceres leaves their columns zero and does
+    // not differentiate with respect to them, so the cost of a call is the cost of one fit
+    // iteration.
     auto problem = m->build(work, true);
     ceres::Problem::EvaluateOptions eo;
     for (double& v : work) eo.parameter_blocks.push_back(&v);
@@ -315,10 +342,11 @@ void MicrofacetFitProblem::evaluate(const std::vector<double>& values, std::vect
     if (jacobian) {
         jacobian->assign(r.size() * values.size(), 0.0);
         for (int row = 0; row < crs.num_rows; ++row)
-            for (int i = crs.rows[static_cast<std::size_t>(row)]; i < crs.rows[static_cast<std::size_t>(row) + 1];
-                 ++i) {
+            for (int i = crs.rows[static_cast<std::size_t>(row)];
+                 i < crs.rows[static_cast<std::size_t>(row) + 1]; ++i) {
                 const auto col = static_cast<std::size_t>(crs.cols[static_cast<std::size_t>(i)]);
-                (*jacobian)[static_cast<std::size_t>(row) * values.size() + col] = crs.values[static_cast<std::size_t>(i)];
+                (*jacobian)[static_cast<std::size_t>(row) * values.size() + col] =
+                    crs.values[static_cast<std::size_t>(i)];
             }
     }
 }
@@ -326,10 +354,12 @@ void MicrofacetFitProblem::evaluate(const std::vector<double>& values, std::vect
 GradientCheckReport MicrofacetFitProblem::check_gradients(const std::vector<double>& values,
                                                           double relative_precision) const {
     if (values.size() != m->value_count())
-        fail("check_gradients: expected {} parameter values, got {}", m->value_count(), values.size());
+        fail("check_gradients: expected {} parameter values, got {}", m->value_count(),
+             values.size());
     GradientCheckReport report;
-    // GradientChecker differentiates numerically by Ridders' extrapolation; its default first step (1 % of
-    // the value) is too coarse for the Gaussian tails of D(θN) in σ and biases the estimate by ~1e-3.
+    // GradientChecker differentiates numerically by Ridders' extrapolation; its default first step
+    // (1 % of the value) is too coarse for the Gaussian tails of D(θN) in σ and biases the estimate
+    // by ~1e-3.
     ceres::NumericDiffOptions nd;
     nd.ridders_relative_initial_step_size = 1e-3;
     std::vector<double> work = values;
@@ -337,11 +367,13 @@ GradientCheckReport MicrofacetFitProblem::check_gradients(const std::vector<doub
         const auto blocks = m->blocks_for(work, m->dataset_band[m->sample_of[r].first]);
         std::array<const double*, kMicrofacetParameterCount> params{};
         std::copy(blocks.begin(), blocks.end(), params.begin());
-        const ceres::GradientChecker checker(m->costs[r].get(),
-                                             static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), nd);
+        const ceres::GradientChecker checker(
+            m->costs[r].get(), static_cast<const std::vector<const ceres::Manifold*>*>(nullptr),
+            nd);
         ceres::GradientChecker::ProbeResults results;
         const bool ok = checker.Probe(params.data(), relative_precision, &results);
-        report.worst_relative_error = std::max(report.worst_relative_error, results.maximum_relative_error);
+        report.worst_relative_error =
+            std::max(report.worst_relative_error, results.maximum_relative_error);
         if (!ok && report.ok) {
             report.ok = false;
             report.first_error = results.error_log;
@@ -357,7 +389,8 @@ class AbortWhenCancelled final : public ceres::IterationCallback {
 public:
     explicit AbortWhenCancelled(const std::atomic<bool>* cancel) : m_cancel(cancel) {}
     ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-        return m_cancel && m_cancel->load(std::memory_order_relaxed) ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+        return m_cancel && m_cancel->load(std::memory_order_relaxed) ? ceres::SOLVER_ABORT
+                                                                     : ceres::SOLVER_CONTINUE;
     }
 
 private:
@@ -390,12 +423,14 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         outcome.chi2 = 2.0 * summary.final_cost;
         outcome.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
         outcome.termination =
-            std::string(ceres::TerminationTypeToString(summary.termination_type)) + ": " + summary.message;
+            std::string(ceres::TerminationTypeToString(summary.termination_type)) + ": " +
+            summary.message;
         outcome.iterations = static_cast<int>(summary.iterations.size());
         result.residual_evaluations += std::max(0, summary.num_residual_evaluations);
         result.jacobian_evaluations += std::max(0, summary.num_jacobian_evaluations);
         // Prefer usable solutions; among them the lowest χ².
-        if ((outcome.usable && !best_usable) || (outcome.usable == best_usable && outcome.chi2 < best_chi2)) {
+        if ((outcome.usable && !best_usable) ||
+            (outcome.usable == best_usable && outcome.chi2 < best_chi2)) {
             best = values;
             best_chi2 = outcome.chi2;
             best_usable = outcome.usable;
@@ -410,16 +445,19 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         s.reached_best = s.usable && same_minimum(s.chi2, best_chi2);
         if (s.reached_best) ++reached;
     }
-    result.fraction_reaching_best = static_cast<double>(reached) / static_cast<double>(result.starts.size());
+    result.fraction_reaching_best =
+        static_cast<double>(reached) / static_cast<double>(result.starts.size());
     if (!best_usable)
         result.warnings.push_back("no start gave a usable solution (" + result.termination +
                                   "): the parameters below are not a fit");
 
     // Non-finite residuals make Ceres' covariance factorise a matrix of NaN (Eigen's JacobiSVD then
     // crashed): a solution that is not finite is an error, and only a usable one gets a covariance.
-    if (!std::isfinite(best_chi2) || !std::all_of(best.begin(), best.end(), [](double v) { return std::isfinite(v); }))
+    if (!std::isfinite(best_chi2) ||
+        !std::all_of(best.begin(), best.end(), [](double v) { return std::isfinite(v); }))
         fail(
-            "the fit gave no finite solution (chi2 = {}, {}): check the data for values far outside the model's "
+            "the fit gave no finite solution (chi2 = {}, {}): check the data for values far "
+            "outside the model's "
             "range",
             best_chi2, result.termination);
     result.chi2 = best_chi2;
@@ -429,19 +467,22 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         im.covariance(result, best);
     else
         result.warnings.push_back(
-            "covariance not computed: the solution is not usable, so uncertainties are unavailable");
+            "covariance not computed: the solution is not usable, so uncertainties are "
+            "unavailable");
 
     for (std::size_t v = 0; v < im.value_count(); ++v) {
         const ParameterSetting& s = im.setting(v);
         FittedParameter f;
         f.name = im.value_name(v);
         f.kind = im.kind_of(v);
-        if (const auto band = im.band_of(v); band && im.band_count() > 1) f.wavelength_um = im.wavelengths[*band];
+        if (const auto band = im.band_of(v); band && im.band_count() > 1)
+            f.wavelength_um = im.wavelengths[*band];
         f.value = best[v];
         f.fixed = s.fixed;
         f.lower = s.lower;
         f.upper = s.upper;
-        f.at_bound = !s.fixed && std::min(f.value - s.lower, s.upper - f.value) <= 1e-6 * (s.upper - s.lower);
+        f.at_bound = !s.fixed &&
+                     std::min(f.value - s.lower, s.upper - f.value) <= 1e-6 * (s.upper - s.lower);
         result.parameters.push_back(f);
     }
     for (std::size_t i = 0; i < free.size(); ++i) {
@@ -455,10 +496,11 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
     // Warnings a person must see next to the numbers.
     for (const FittedParameter& f : result.parameters)
         if (f.at_bound)
-            result.warnings.push_back(fmt::format(
-                "{} = {:g} sits on a bound of [{:g}, {:g}]: its uncertainty is not meaningful (the fit wants to go "
-                "further; widen the bound or fix it)",
-                f.name, f.value, f.lower, f.upper));
+            result.warnings.push_back(
+                fmt::format("{} = {:g} sits on a bound of [{:g}, {:g}]: its uncertainty is not "
+                            "meaningful (the fit wants to go "
+                            "further; widen the bound or fix it)",
+                            f.name, f.value, f.lower, f.upper));
     if (result.covariance_available)
         for (std::size_t i = 0; i < free.size(); ++i)
             for (std::size_t j = i + 1; j < free.size(); ++j) {
@@ -466,13 +508,15 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
                     result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
                 if (std::abs(rho) > im.options.correlation_warning)
                     result.warnings.push_back(fmt::format(
-                        "{} and {} are degenerate (correlation {:+.3f}): the data constrain a combination of them "
+                        "{} and {} are degenerate (correlation {:+.3f}): the data constrain a "
+                        "combination of them "
                         "rather than each; consider fixing one (--fix)",
                         result.parameters[free[i]].name, result.parameters[free[j]].name, rho));
             }
     if (result.dof > 0 && result.reduced_chi2 > 3.0)
         result.warnings.push_back(fmt::format(
-            "chi2/dof = {:.2f} is well above 1: the model does not describe the data within the stated uncertainties "
+            "chi2/dof = {:.2f} is well above 1: the model does not describe the data within the "
+            "stated uncertainties "
             "(or they are underestimated; --scale-covariance scales the covariance by chi2/dof)",
             result.reduced_chi2));
 
@@ -480,9 +524,10 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
     for (std::size_t r = 0; r < im.costs.size(); ++r) {
         const auto [di, si] = im.sample_of[r];
         const EmissivitySample& s = im.datasets[di].samples[si];
-        const auto [s0, s1] = im.quadratures[r]->emissivity(result.model_parameters(im.dataset_band[di]));
-        result.samples.push_back(
-            {di, si, s.angle_deg, s0, s1, (s0 - s.e_s0) / s.e_s0_sigma, (s1 - s.e_s1) / s.e_s1_sigma});
+        const auto [s0, s1] =
+            im.quadratures[r]->emissivity(result.model_parameters(im.dataset_band[di]));
+        result.samples.push_back({di, si, s.angle_deg, s0, s1, (s0 - s.e_s0) / s.e_s0_sigma,
+                                  (s1 - s.e_s1) / s.e_s1_sigma});
     }
     return result;
 }

@@ -23,27 +23,38 @@ void validate(const std::vector<double>& measured, const std::vector<double>& me
     const std::size_t p = o.initial.size();
     if (p == 0) fail("noisy model fit: no parameters to fit");
     if (o.names.size() != p || o.lower.size() != p || o.upper.size() != p || o.steps.size() != p)
-        fail("noisy model fit: names, initial, lower, upper and steps must have one entry per parameter ({})", p);
+        fail(
+            "noisy model fit: names, initial, lower, upper and steps must have one entry per "
+            "parameter ({})",
+            p);
     if (measured.size() != measured_sigma.size())
-        fail("noisy model fit: {} measured values but {} uncertainties", measured.size(), measured_sigma.size());
+        fail("noisy model fit: {} measured values but {} uncertainties", measured.size(),
+             measured_sigma.size());
     if (measured.size() < p + 1)
-        fail("noisy model fit: {} residuals for {} free parameters; expected at least {}", measured.size(), p, p + 1);
+        fail("noisy model fit: {} residuals for {} free parameters; expected at least {}",
+             measured.size(), p, p + 1);
     for (std::size_t j = 0; j < measured.size(); ++j)
-        if (!std::isfinite(measured[j]) || !(measured_sigma[j] > 0.0) || !std::isfinite(measured_sigma[j]))
-            fail("noisy model fit: measured value {} is {} ± {}; expected a finite value with a finite σ > 0", j,
-                 measured[j], measured_sigma[j]);
+        if (!std::isfinite(measured[j]) || !(measured_sigma[j] > 0.0) ||
+            !std::isfinite(measured_sigma[j]))
+            fail(
+                "noisy model fit: measured value {} is {} ± {}; expected a finite value with a "
+                "finite σ > 0",
+                j, measured[j], measured_sigma[j]);
     for (std::size_t i = 0; i < p; ++i) {
         if (!std::isfinite(o.lower[i]) || !std::isfinite(o.upper[i]) || !(o.lower[i] < o.upper[i]))
-            fail("noisy model fit: parameter {}: bounds [{}, {}] are not finite and ordered", o.names[i], o.lower[i],
-                 o.upper[i]);
+            fail("noisy model fit: parameter {}: bounds [{}, {}] are not finite and ordered",
+                 o.names[i], o.lower[i], o.upper[i]);
         if (!(o.initial[i] >= o.lower[i] && o.initial[i] <= o.upper[i]))
-            fail("noisy model fit: parameter {}: initial value {} outside its bounds [{}, {}]", o.names[i],
-                 o.initial[i], o.lower[i], o.upper[i]);
+            fail("noisy model fit: parameter {}: initial value {} outside its bounds [{}, {}]",
+                 o.names[i], o.initial[i], o.lower[i], o.upper[i]);
         if (!(o.steps[i] > 0.0) || !(o.steps[i] < o.upper[i] - o.lower[i]))
-            fail("noisy model fit: parameter {}: finite-difference step {} must be > 0 and below the bounds' width {}",
-                 o.names[i], o.steps[i], o.upper[i] - o.lower[i]);
+            fail(
+                "noisy model fit: parameter {}: finite-difference step {} must be > 0 and below "
+                "the bounds' width {}",
+                o.names[i], o.steps[i], o.upper[i] - o.lower[i]);
     }
-    if (o.max_iterations < 1) fail("noisy model fit: max_iterations must be at least 1, got {}", o.max_iterations);
+    if (o.max_iterations < 1)
+        fail("noisy model fit: max_iterations must be at least 1, got {}", o.max_iterations);
 }
 
 /// Evaluates the model once per distinct parameter vector (Ceres asks for residuals and Jacobian at
@@ -58,12 +69,13 @@ public:
         throw_if_cancelled(m_options.cancel, "fit through the renderer");
         NoisyPrediction p = m_model(theta);
         if (p.value.size() != m_size || p.variance.size() != m_size)
-            fail("noisy model fit: the model returned {} values and {} variances; expected {}", p.value.size(),
-                 p.variance.size(), m_size);
+            fail("noisy model fit: the model returned {} values and {} variances; expected {}",
+                 p.value.size(), p.variance.size(), m_size);
         for (std::size_t j = 0; j < m_size; ++j)
             if (!std::isfinite(p.value[j]) || !std::isfinite(p.variance[j]) || p.variance[j] < 0.0)
                 fail(
-                    "noisy model fit: the model's value {} is {} with variance {} at parameters ({}); expected "
+                    "noisy model fit: the model's value {} is {} with variance {} at parameters "
+                    "({}); expected "
                     "finite values and variances ≥ 0",
                     j, p.value[j], p.variance[j], fmt::join(theta, ", "));
         ++m_evaluations;
@@ -90,23 +102,31 @@ public:
     FiniteDifferenceCost(ModelEvaluator& evaluate, const std::vector<double>& measured,
                          const std::vector<double>& sigma, const NoisyModelFitOptions& options,
                          std::exception_ptr& error)
-        : m_evaluate(evaluate), m_measured(measured), m_sigma(sigma), m_options(options), m_error(error) {
+        : m_evaluate(evaluate),
+          m_measured(measured),
+          m_sigma(sigma),
+          m_options(options),
+          m_error(error) {
         set_num_residuals(static_cast<int>(measured.size()));
         mutable_parameter_block_sizes()->push_back(static_cast<int>(options.initial.size()));
     }
 
-    bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    bool Evaluate(double const* const* parameters, double* residuals,
+                  double** jacobians) const override {
         if (m_error) return false;
         try {
             const std::size_t p = m_options.initial.size(), m = m_measured.size();
             const std::vector<double> theta(parameters[0], parameters[0] + p);
             const NoisyPrediction& at = m_evaluate(theta);
-            for (std::size_t j = 0; j < m; ++j) residuals[j] = (m_measured[j] - at.value[j]) / m_sigma[j];
+            for (std::size_t j = 0; j < m; ++j)
+                residuals[j] = (m_measured[j] - at.value[j]) / m_sigma[j];
             if (!jacobians || !jacobians[0]) return true;
-            const std::vector<double> center = at.value;  // the cache may drop `at` while differencing
+            const std::vector<double> center =
+                at.value;  // the cache may drop `at` while differencing
             for (std::size_t i = 0; i < p; ++i) {
                 const double h = m_options.steps[i];
-                const bool up_ok = theta[i] + h <= m_options.upper[i], down_ok = theta[i] - h >= m_options.lower[i];
+                const bool up_ok = theta[i] + h <= m_options.upper[i],
+                           down_ok = theta[i] - h >= m_options.lower[i];
                 std::vector<double> plus = theta, minus = theta;
                 plus[i] += h;
                 minus[i] -= h;
@@ -151,7 +171,8 @@ private:
     const std::exception_ptr& m_error;
 };
 
-std::vector<double> total_sigma(const std::vector<double>& measured_sigma, const std::vector<double>& model_variance) {
+std::vector<double> total_sigma(const std::vector<double>& measured_sigma,
+                                const std::vector<double>& model_variance) {
     std::vector<double> s(measured_sigma.size());
     for (std::size_t j = 0; j < s.size(); ++j)
         s[j] = std::sqrt(measured_sigma[j] * measured_sigma[j] + model_variance[j]);
@@ -161,7 +182,8 @@ std::vector<double> total_sigma(const std::vector<double>& measured_sigma, const
 }  // namespace
 
 NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<double>& measured,
-                                    const std::vector<double>& measured_sigma, const NoisyModelFitOptions& options) {
+                                    const std::vector<double>& measured_sigma,
+                                    const NoisyModelFitOptions& options) {
     validate(measured, measured_sigma, options);
     const std::size_t p = options.initial.size(), m = measured.size();
     ModelEvaluator evaluate(model, m, options);
@@ -177,8 +199,9 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         sigma = total_sigma(measured_sigma, evaluate(theta).variance);
         ceres::Problem::Options po;
         problem = std::make_unique<ceres::Problem>(po);
-        problem->AddResidualBlock(new FiniteDifferenceCost(evaluate, measured, sigma, options, error), nullptr,
-                                  theta.data());
+        problem->AddResidualBlock(
+            new FiniteDifferenceCost(evaluate, measured, sigma, options, error), nullptr,
+            theta.data());
         for (std::size_t i = 0; i < p; ++i) {
             problem->SetParameterLowerBound(theta.data(), static_cast<int>(i), options.lower[i]);
             problem->SetParameterUpperBound(theta.data(), static_cast<int>(i), options.upper[i]);
@@ -198,8 +221,8 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         ceres::Solve(so, problem.get(), &summary);
         if (error) std::rethrow_exception(error);
         result.usable = summary.IsSolutionUsable();
-        result.termination =
-            fmt::format("{}: {}", ceres::TerminationTypeToString(summary.termination_type), summary.message);
+        result.termination = fmt::format(
+            "{}: {}", ceres::TerminationTypeToString(summary.termination_type), summary.message);
         result.solver_report = summary.BriefReport();
         result.iterations += static_cast<int>(summary.iterations.size());
     }
@@ -221,7 +244,8 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         covariance.GetCovarianceBlock(theta.data(), theta.data(), c.data());
         result.covariance = c;
         result.covariance_available = true;
-        for (Eigen::Index i = 0; i < n; ++i) result.sigma[static_cast<std::size_t>(i)] = std::sqrt(c(i, i));
+        for (Eigen::Index i = 0; i < n; ++i)
+            result.sigma[static_cast<std::size_t>(i)] = std::sqrt(c(i, i));
         for (Eigen::Index i = 0; i < n; ++i)
             for (Eigen::Index j = 0; j < n; ++j) {
                 const double d = std::sqrt(c(i, i) * c(j, j));
@@ -229,10 +253,12 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
             }
         if ((c.diagonal().array() <= 0.0).any())
             result.warnings.push_back(
-                "the Jacobian is rank-deficient at the solution: some parameter does not change the residuals "
+                "the Jacobian is rank-deficient at the solution: some parameter does not change "
+                "the residuals "
                 "(σ from the pseudo-inverse, not reliable)");
     } else {
-        result.warnings.push_back("covariance could not be computed: uncertainties are unavailable");
+        result.warnings.push_back(
+            "covariance could not be computed: uncertainties are unavailable");
     }
 
     const NoisyPrediction& at = evaluate(theta);
@@ -250,14 +276,18 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
     result.evaluations = evaluate.evaluations();
     for (std::size_t i = 0; i < p; ++i) {
         const double width = options.upper[i] - options.lower[i];
-        if (theta[i] - options.lower[i] < 1e-6 * width || options.upper[i] - theta[i] < 1e-6 * width)
-            result.warnings.push_back(
-                fmt::format("{} sits on a bound ({}): its σ is not meaningful", options.names[i], theta[i]));
+        if (theta[i] - options.lower[i] < 1e-6 * width ||
+            options.upper[i] - theta[i] < 1e-6 * width)
+            result.warnings.push_back(fmt::format(
+                "{} sits on a bound ({}): its σ is not meaningful", options.names[i], theta[i]));
     }
     if (result.reduced_chi2 > 3.0)
         result.warnings.push_back(fmt::format(
-            "χ²/dof = {:.2f}: the model does not describe the data within their uncertainties", result.reduced_chi2));
-    if (!result.usable) result.warnings.push_back("the solver did not reach a usable solution: " + result.termination);
+            "χ²/dof = {:.2f}: the model does not describe the data within their uncertainties",
+            result.reduced_chi2));
+    if (!result.usable)
+        result.warnings.push_back("the solver did not reach a usable solution: " +
+                                  result.termination);
     return result;
 }
 

@@ -29,35 +29,44 @@ std::size_t material_index(const simulation::Scene& scene, const std::string& na
         if (scene.materials[i].name == name) return i;
         names += (i ? ", " : "") + scene.materials[i].name;
     }
-    fail("fit through the renderer: the scene {} has no material named '{}' (materials: {})", scene.file.string(), name,
-         names);
+    fail("fit through the renderer: the scene {} has no material named '{}' (materials: {})",
+         scene.file.string(), name, names);
 }
 
-const materials::MicrofacetBrdf& microfacet_of(const simulation::Scene& scene, const std::string& material) {
-    const auto* brdf =
-        dynamic_cast<const materials::MicrofacetBrdf*>(scene.materials[material_index(scene, material)].brdf.get());
+const materials::MicrofacetBrdf& microfacet_of(const simulation::Scene& scene,
+                                               const std::string& material) {
+    const auto* brdf = dynamic_cast<const materials::MicrofacetBrdf*>(
+        scene.materials[material_index(scene, material)].brdf.get());
     if (!brdf)
-        fail("fit through the renderer: material '{}' is the {} model; only micro-facet materials can be fitted",
-             material, scene.materials[material_index(scene, material)].brdf->model());
+        fail(
+            "fit through the renderer: material '{}' is the {} model; only micro-facet materials "
+            "can be fitted",
+            material, scene.materials[material_index(scene, material)].brdf->model());
     return *brdf;
 }
 
-/// A constant spectral value of `material`, or an error: a fit of one number cannot stand for a table.
-double constant_value(const materials::SpectralValue& v, const std::string& material, MicrofacetParameter p) {
+/// A constant spectral value of `material`, or an error: a fit of one number cannot stand for a
+/// table.
+double constant_value(const materials::SpectralValue& v, const std::string& material,
+                      MicrofacetParameter p) {
     if (!v.is_constant())
-        fail("fit through the renderer: {} of material '{}' varies with wavelength; only constant values can be fitted",
-             parameter_name(p), material);
+        fail(
+            "fit through the renderer: {} of material '{}' varies with wavelength; only constant "
+            "values can be fitted",
+            parameter_name(p), material);
     return v.at(10.0);
 }
 
-double current_value(const materials::MicrofacetBrdf& brdf, const std::string& material, MicrofacetParameter p) {
+double current_value(const materials::MicrofacetBrdf& brdf, const std::string& material,
+                     MicrofacetParameter p) {
     const materials::MicrofacetParameters& mp = brdf.spectral_parameters();
     switch (p) {
         case MicrofacetParameter::n:
         case MicrofacetParameter::k: {
             if (!mp.index.is_constant())
                 fail(
-                    "fit through the renderer: material '{}' has a tabulated refractive index ({}); n and k can be "
+                    "fit through the renderer: material '{}' has a tabulated refractive index "
+                    "({}); n and k can be "
                     "fitted only for a constant index",
                     material, mp.index.source());
             const materials::ComplexIndex index = mp.index.at(10.0);
@@ -80,10 +89,11 @@ double current_value(const materials::MicrofacetBrdf& brdf, const std::string& m
 }
 
 /// Region means (or pixels) of the chosen Stokes components, and their variances from `variance`
-/// (a per-pixel variance of the value; null → 0), in the fixed order view, region, component, pixel.
+/// (a per-pixel variance of the value; null → 0), in the fixed order view, region, component,
+/// pixel.
 void append_values(const Image& image, const RenderFitView& view, const RenderFitOptions& options,
-                   const std::string& variance_suffix, bool variance_is_std, std::vector<double>& values,
-                   std::vector<double>& variances) {
+                   const std::string& variance_suffix, bool variance_is_std,
+                   std::vector<double>& values, std::vector<double>& variances) {
     for (const RenderFitRegion& region : view.regions)
         for (int k : options.stokes) {
             const auto& s = image.channel(kStokes[k]);
@@ -93,7 +103,8 @@ void append_values(const Image& image, const RenderFitView& view, const RenderFi
                 return variance_is_std ? x * x : x;
             };
             if (options.residuals == RenderFitResiduals::pixels) {
-                for (std::size_t i : region.pixels) values.push_back(s[i]), variances.push_back(var(i));
+                for (std::size_t i : region.pixels)
+                    values.push_back(s[i]), variances.push_back(var(i));
                 continue;
             }
             double sum = 0.0, sum_var = 0.0;
@@ -110,32 +121,41 @@ void validate_views(const std::vector<RenderFitView>& views, const RenderFitOpti
     if (views.empty()) fail("fit through the renderer: no measured view");
     if (options.stokes.empty()) fail("fit through the renderer: no Stokes component to compare");
     for (int k : options.stokes)
-        if (k < 0 || k > 2) fail("fit through the renderer: Stokes component {} (expected 0, 1 or 2)", k);
+        if (k < 0 || k > 2)
+            fail("fit through the renderer: Stokes component {} (expected 0, 1 or 2)", k);
     for (const RenderFitView& v : views) {
         const Image& m = v.measured;
         if (m.width() != v.camera.width() || m.height() != v.camera.height())
-            fail("fit through the renderer: view '{}': measured image {}×{} but camera {}×{}", v.name, m.width(),
-                 m.height(), v.camera.width(), v.camera.height());
+            fail("fit through the renderer: view '{}': measured image {}×{} but camera {}×{}",
+                 v.name, m.width(), m.height(), v.camera.width(), v.camera.height());
         for (int k : options.stokes)
             for (const std::string& c : {std::string(kStokes[k]), std::string(kStokes[k]) + "_std"})
                 if (!m.has_channel(c))
                     fail(
-                        "fit through the renderer: view '{}': the measured image has no channel {} (expected S0 S1 "
+                        "fit through the renderer: view '{}': the measured image has no channel {} "
+                        "(expected S0 S1 "
                         "S2 and S0_std S1_std S2_std)",
                         v.name, c);
-        if (v.regions.empty()) fail("fit through the renderer: view '{}' has no region to compare", v.name);
-        const std::size_t size = static_cast<std::size_t>(m.width()) * static_cast<std::size_t>(m.height());
+        if (v.regions.empty())
+            fail("fit through the renderer: view '{}' has no region to compare", v.name);
+        const std::size_t size =
+            static_cast<std::size_t>(m.width()) * static_cast<std::size_t>(m.height());
         for (const RenderFitRegion& r : v.regions) {
-            if (r.pixels.empty()) fail("fit through the renderer: view '{}': region '{}' is empty", v.name, r.name);
+            if (r.pixels.empty())
+                fail("fit through the renderer: view '{}': region '{}' is empty", v.name, r.name);
             for (std::size_t i : r.pixels) {
                 if (i >= size)
-                    fail("fit through the renderer: view '{}': region '{}' has pixel {} outside the {}×{} image",
-                         v.name, r.name, i, m.width(), m.height());
+                    fail(
+                        "fit through the renderer: view '{}': region '{}' has pixel {} outside the "
+                        "{}×{} image",
+                        v.name, r.name, i, m.width(), m.height());
                 for (int k : options.stokes) {
-                    const double s = m.channel(kStokes[k])[i], sd = m.channel(std::string(kStokes[k]) + "_std")[i];
+                    const double s = m.channel(kStokes[k])[i],
+                                 sd = m.channel(std::string(kStokes[k]) + "_std")[i];
                     if (!std::isfinite(s) || !std::isfinite(sd) || !(sd > 0.0))
                         fail(
-                            "fit through the renderer: view '{}': region '{}': pixel ({}, {}) has {} = {} ± {}; "
+                            "fit through the renderer: view '{}': region '{}': pixel ({}, {}) has "
+                            "{} = {} ± {}; "
                             "expected a finite value with a finite σ > 0",
                             v.name, r.name, i % static_cast<std::size_t>(m.width()),
                             i / static_cast<std::size_t>(m.width()), kStokes[k], s, sd);
@@ -200,13 +220,15 @@ RenderFitRegion object_region(const Image& render, std::size_t object_index, std
         for (int x = 1; x + 1 < render.width(); ++x) {
             bool inside = true;
             for (int dy = -1; dy <= 1 && inside; ++dy)
-                for (int dx = -1; dx <= 1 && inside; ++dx) inside = id[render.index(x + dx, y + dy)] == object;
+                for (int dx = -1; dx <= 1 && inside; ++dx)
+                    inside = id[render.index(x + dx, y + dy)] == object;
             if (inside) region.pixels.push_back(render.index(x, y));
         }
     return region;
 }
 
-std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene, const simulation::Camera& camera,
+std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene,
+                                            const simulation::Camera& camera,
                                             const std::vector<std::string>& objects) {
     simulation::Scene geometry = scene;
     geometry.camera = camera;
@@ -221,26 +243,30 @@ std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene, cons
             names += (i ? ", " : "") + scene.objects[i].name;
         }
         if (index == scene.objects.size())
-            fail("fit through the renderer: the scene {} has no object named '{}' (objects: {})", scene.file.string(),
-                 name, names);
+            fail("fit through the renderer: the scene {} has no object named '{}' (objects: {})",
+                 scene.file.string(), name, names);
         regions.push_back(object_region(render, index, name));
         if (regions.back().pixels.empty())
-            fail("fit through the renderer: object '{}' covers no interior pixel of the {}×{} view", name,
-                 camera.width(), camera.height());
+            fail("fit through the renderer: object '{}' covers no interior pixel of the {}×{} view",
+                 name, camera.width(), camera.height());
     }
     return regions;
 }
 
-RenderFitView load_render_fit_view(const simulation::Scene& scene, const std::filesystem::path& measured_exr,
-                                   const std::filesystem::path& camera_model, const std::filesystem::path& pose,
+RenderFitView load_render_fit_view(const simulation::Scene& scene,
+                                   const std::filesystem::path& measured_exr,
+                                   const std::filesystem::path& camera_model,
+                                   const std::filesystem::path& pose,
                                    const std::vector<std::string>& objects) {
     const std::string name = measured_exr.filename().string();
     Image measured = read_exr(measured_exr);
     if (camera_model.empty() != pose.empty())
-        fail("fit through the renderer: view {}: give both a camera model and a pose, or neither", name);
+        fail("fit through the renderer: view {}: give both a camera model and a pose, or neither",
+             name);
     const simulation::Camera camera =
         camera_model.empty() ? scene.camera.resized(measured.width(), measured.height())
-                             : simulation::Camera::from_model(read_camera_model(camera_model), read_camera_pose(pose));
+                             : simulation::Camera::from_model(read_camera_model(camera_model),
+                                                              read_camera_pose(pose));
     RenderFitView view{name, camera, std::move(measured), {}};
     view.regions = object_regions(scene, view.camera, objects);
     return view;
@@ -249,10 +275,13 @@ RenderFitView load_render_fit_view(const simulation::Scene& scene, const std::fi
 RenderFitParameter parse_render_fit_parameter(const std::string& text) {
     const auto dot = text.find('.'), eq = text.find('=');
     const auto bad = [&](const std::string& why) {
-        fail("'{}': {}; expected MATERIAL.PARAMETER=LOWER:UPPER[:INITIAL], e.g. flat_black_paint.sigma=0.05:1", text,
-             why);
+        fail(
+            "'{}': {}; expected MATERIAL.PARAMETER=LOWER:UPPER[:INITIAL], e.g. "
+            "flat_black_paint.sigma=0.05:1",
+            text, why);
     };
-    if (dot == std::string::npos || eq == std::string::npos || eq < dot) bad("no MATERIAL.PARAMETER= part");
+    if (dot == std::string::npos || eq == std::string::npos || eq < dot)
+        bad("no MATERIAL.PARAMETER= part");
     RenderFitParameter p;
     p.material = text.substr(0, dot);
     if (p.material.empty()) bad("no material name");
@@ -261,7 +290,8 @@ RenderFitParameter parse_render_fit_parameter(const std::string& text) {
     std::size_t from = eq + 1;
     while (true) {
         const auto colon = text.find(':', from);
-        const std::string part = text.substr(from, colon == std::string::npos ? std::string::npos : colon - from);
+        const std::string part =
+            text.substr(from, colon == std::string::npos ? std::string::npos : colon - from);
         std::size_t used = 0;
         double v = 0.0;
         try {
@@ -269,7 +299,8 @@ RenderFitParameter parse_render_fit_parameter(const std::string& text) {
         } catch (const std::exception&) {
             used = 0;
         }
-        if (part.empty() || used != part.size() || !std::isfinite(v)) bad(fmt::format("'{}' is not a number", part));
+        if (part.empty() || used != part.size() || !std::isfinite(v))
+            bad(fmt::format("'{}' is not a number", part));
         numbers.push_back(v);
         if (colon == std::string::npos) break;
         from = colon + 1;
@@ -281,7 +312,8 @@ RenderFitParameter parse_render_fit_parameter(const std::string& text) {
     return p;
 }
 
-RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std::vector<RenderFitView>& views,
+RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
+                                      const std::vector<RenderFitView>& views,
                                       const RenderFitOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     validate_views(views, options);
@@ -297,18 +329,20 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
     fo.cancel = options.cancel;
     RenderFitSummary summary;
     for (const RenderFitParameter& p : options.parameters) {
-        const double current = current_value(microfacet_of(scene, p.material), p.material, p.parameter);
+        const double current =
+            current_value(microfacet_of(scene, p.material), p.material, p.parameter);
         const double initial = p.initial.value_or(current);
         const std::string name = fmt::format("{}.{}", p.material, parameter_name(p.parameter));
         for (const std::string& earlier : fo.names)
-            if (earlier == name) fail("fit through the renderer: parameter {} is listed twice", name);
+            if (earlier == name)
+                fail("fit through the renderer: parameter {} is listed twice", name);
         fo.names.push_back(name);
         fo.initial.push_back(initial);
         fo.lower.push_back(p.lower);
         fo.upper.push_back(p.upper);
         fo.steps.push_back(p.step.value_or(default_step(initial, p.lower, p.upper)));
-        summary.parameters.push_back({p.material, std::string(parameter_name(p.parameter)), initial, 0.0, 0.0, p.lower,
-                                      p.upper, fo.steps.back()});
+        summary.parameters.push_back({p.material, std::string(parameter_name(p.parameter)), initial,
+                                      0.0, 0.0, p.lower, p.upper, fo.steps.back()});
     }
 
     std::vector<double> measured, measured_variance;
@@ -319,26 +353,31 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
                    [](double v) { return std::sqrt(v); });
 
     simulation::Scene candidate = scene;
-    if (options.samples_per_pixel > 0) candidate.sampling.samples_per_pixel = options.samples_per_pixel;
+    if (options.samples_per_pixel > 0)
+        candidate.sampling.samples_per_pixel = options.samples_per_pixel;
     candidate.sampling.seed = options.seed.value_or(scene.sampling.seed);
     std::map<std::string, std::size_t> fitted_materials;  // name → scene material index
     for (const RenderFitParameter& p : options.parameters)
         fitted_materials[p.material] = material_index(scene, p.material);
 
-    // Only the regions' pixels are traced: a pixel's value does not depend on which others are rendered.
+    // Only the regions' pixels are traced: a pixel's value does not depend on which others are
+    // rendered.
     std::vector<std::vector<std::uint8_t>> masks;
     for (const RenderFitView& v : views) {
-        masks.emplace_back(static_cast<std::size_t>(v.camera.width()) * static_cast<std::size_t>(v.camera.height()), 0);
+        masks.emplace_back(static_cast<std::size_t>(v.camera.width()) *
+                               static_cast<std::size_t>(v.camera.height()),
+                           0);
         for (const RenderFitRegion& r : v.regions)
             for (std::size_t i : r.pixels) masks.back()[i] = 1;
     }
 
     int renders = 0;
     // An upper bound for the bar: every solve's iterations, each with its finite differences.
-    const int per_point =
-        1 + static_cast<int>(fo.initial.size()) * (options.differences == FiniteDifference::central ? 2 : 1);
-    const std::size_t bar_total = static_cast<std::size_t>((options.reweight ? 2 : 1) * (options.max_iterations + 2) *
-                                                           per_point * static_cast<int>(views.size()));
+    const int per_point = 1 + static_cast<int>(fo.initial.size()) *
+                                  (options.differences == FiniteDifference::central ? 2 : 1);
+    const std::size_t bar_total =
+        static_cast<std::size_t>((options.reweight ? 2 : 1) * (options.max_iterations + 2) *
+                                 per_point * static_cast<int>(views.size()));
     std::unique_ptr<ProgressReporter> bar;
     if (options.show_progress)
         bar = std::make_unique<ProgressReporter>("fit through the renderer (renders)", bar_total);
@@ -367,7 +406,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
             const Image rendered = simulation::render(candidate, ro);
             ++renders;
             if (bar) bar->advance();
-            append_values(rendered, views[v], options, "_var", false, prediction.value, prediction.variance);
+            append_values(rendered, views[v], options, "_var", false, prediction.value,
+                          prediction.variance);
         }
         return prediction;
     };
@@ -396,8 +436,9 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
         for (std::size_t r = 0; r < views[v].regions.size(); ++r)
             for (int k : options.stokes) {
                 const auto one = [&](std::size_t pixel) {
-                    summary.comparisons.push_back({v, r, k, pixel, measured[j], fit.model[j], measured_sigma[j],
-                                                   std::sqrt(fit.model_variance[j]), fit.normalized_residuals[j]});
+                    summary.comparisons.push_back(
+                        {v, r, k, pixel, measured[j], fit.model[j], measured_sigma[j],
+                         std::sqrt(fit.model_variance[j]), fit.normalized_residuals[j]});
                     ++j;
                 };
                 if (options.residuals == RenderFitResiduals::pixels)
@@ -405,27 +446,31 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std:
                 else
                     one(0);
             }
-    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
 }
 
 std::string RenderFitSummary::FullReport() const {
     std::string out = "fit through the renderer\n";
     for (const auto& p : parameters)
-        out += fmt::format("  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g})\n", p.material,
-                           p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step);
+        out += fmt::format(
+            "  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g})\n",
+            p.material, p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step);
     out += fmt::format("  chi2 {:.3f} for {} dof: chi2/dof {:.3f}\n", chi2, dof, reduced_chi2);
     if (parameters.size() > 1 && covariance_available) {
         out += "  correlation:";
         for (Eigen::Index i = 0; i < correlation.rows(); ++i)
             for (Eigen::Index k = i + 1; k < correlation.cols(); ++k)
-                out += fmt::format(" {}.{}~{}.{} {:+.3f}", parameters[static_cast<std::size_t>(i)].material,
+                out += fmt::format(" {}.{}~{}.{} {:+.3f}",
+                                   parameters[static_cast<std::size_t>(i)].material,
                                    parameters[static_cast<std::size_t>(i)].name,
                                    parameters[static_cast<std::size_t>(k)].material,
                                    parameters[static_cast<std::size_t>(k)].name, correlation(i, k));
         out += "\n";
     }
-    out += fmt::format("  {} renders, {} iterations, {:.1f} s; {}\n", renders, iterations, seconds, termination);
+    out += fmt::format("  {} renders, {} iterations, {:.1f} s; {}\n", renders, iterations, seconds,
+                       termination);
     for (const auto& w : warnings) out += "  warning: " + w + "\n";
     return out;
 }

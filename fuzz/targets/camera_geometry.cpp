@@ -1,6 +1,6 @@
-// Fuzz target: the calibrated camera's YAML files (core/camera_model.h), each input read as a camera
-// model and as a camera pose. A model that reads must pass its own validation and survive a write →
-// read round trip (calibration writes these files, simulation reads them back).
+// Fuzz target: the calibrated camera's YAML files (core/camera_model.h), each input read as a
+// camera model and as a camera pose. A model that reads must pass its own validation and survive a
+// write → read round trip (calibration writes these files, simulation reads them back).
 #include "fuzz_support.h"
 #include "tirpol/core/camera_model.h"
 

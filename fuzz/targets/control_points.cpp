@@ -7,7 +7,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const auto csv = tirpol::fuzz::write_input("control_points.csv", data, size);
-    tirpol::fuzz::expect_clean_rejection([&] { (void)tirpol::calibration::read_control_points(csv); });
+    tirpol::fuzz::expect_clean_rejection(
+        [&] { (void)tirpol::calibration::read_control_points(csv); });
     const auto yaml = tirpol::fuzz::write_input("control_points.yaml", data, size);
     tirpol::fuzz::expect_clean_rejection([&] { (void)tirpol::report::load_control_points(yaml); });
     return 0;

@@ -8,7 +8,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto path = tirpol::fuzz::write_input("image.exr", data, size);
     tirpol::fuzz::expect_clean_rejection([&] {
         const tirpol::Image image = tirpol::read_exr(path);
-        for (const auto& name : image.channel_names()) (void)tirpol::channel_stats(image.channel(name));
+        for (const auto& name : image.channel_names())
+            (void)tirpol::channel_stats(image.channel(name));
         (void)tirpol::json_text(tirpol::attributes_json(image.attributes()));
     });
     return 0;

@@ -1,12 +1,14 @@
-// Fuzz target: the Fluke 4180/4181 blackbody's serial replies (acquisition/fluke_scpi.h), line by line
-// as the driver reads them (LF-terminated, a CR before it dropped), through every reply parser; and
-// each line as a command header, as the simulator canonicalises what the driver sends. Invariants:
-// a parsed number is finite, an error entry survives format_error → parse_error unchanged.
+// Fuzz target: the Fluke 4180/4181 blackbody's serial replies (acquisition/fluke_scpi.h), line by
+// line as the driver reads them (LF-terminated, a CR before it dropped), through every reply
+// parser; and each line as a command header, as the simulator canonicalises what the driver sends.
+// Invariants: a parsed number is finite, an error entry survives format_error → parse_error
+// unchanged.
+#include "tirpol/acquisition/internal/fluke_scpi.h"
+
 #include <cmath>
 #include <string>
 
 #include "fuzz_support.h"
-#include "tirpol/acquisition/internal/fluke_scpi.h"
 
 namespace fs = tirpol::acquisition::fluke_scpi;
 

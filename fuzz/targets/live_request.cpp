@@ -34,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string_view rest = tirpol::fuzz::as_text(data, size);
     const std::string after = take_line(rest), cookie = take_line(rest), client = take_line(rest);
     parse_or_answer_400([&] { (void)live::parse_after(after); });
-    (void)live::request_authorised("0123456789abcdef0123456789abcdef", "", "", cookie, "tirpol_token");
+    (void)live::request_authorised("0123456789abcdef0123456789abcdef", "", "", cookie,
+                                   "tirpol_token");
     (void)live::cookie_value(cookie, "tirpol_token");
     parse_or_answer_400([&] {
         const auto request = live::parse_capture_request(rest);

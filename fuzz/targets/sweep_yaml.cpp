@@ -1,7 +1,7 @@
 // Fuzz target: sweep files (sweep::load_sweep), their points and each point's scene (point_config).
-// The input is written next to links to the shipped scenes, materials and thermal scenes, so seeds name
-// a real base scene as `scene: scenes/<file>.yaml` (`thermal/<file>.yaml` for a time axis) and every
-// check against the base scene runs.
+// The input is written next to links to the shipped scenes, materials and thermal scenes, so seeds
+// name a real base scene as `scene: scenes/<file>.yaml` (`thermal/<file>.yaml` for a time axis) and
+// every check against the base scene runs.
 #include <filesystem>
 
 #include "fuzz_support.h"
@@ -14,8 +14,8 @@ void link_config_folders() {
             const auto link = tirpol::fuzz::scratch_dir() / folder;
             std::error_code ignored;
             std::filesystem::remove(link, ignored);
-            std::filesystem::create_directory_symlink(tirpol::fuzz::source_dir() / "config" / folder,
-                                                      link);
+            std::filesystem::create_directory_symlink(
+                tirpol::fuzz::source_dir() / "config" / folder, link);
         }
         return true;
     }();

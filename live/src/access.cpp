@@ -25,7 +25,8 @@ std::vector<std::string> interface_addresses() {
         const int family = a->ifa_addr->sa_family;
         const void* raw = nullptr;
         if (family == AF_INET) raw = &reinterpret_cast<const sockaddr_in*>(a->ifa_addr)->sin_addr;
-        if (family == AF_INET6) raw = &reinterpret_cast<const sockaddr_in6*>(a->ifa_addr)->sin6_addr;
+        if (family == AF_INET6)
+            raw = &reinterpret_cast<const sockaddr_in6*>(a->ifa_addr)->sin6_addr;
         if (raw != nullptr && ::inet_ntop(family, raw, text.data(), text.size()) != nullptr)
             addresses.emplace_back(text.data());
     }
@@ -40,7 +41,8 @@ std::string host_name() {
 }
 
 std::string reachable_address(const std::string& bind_address) {
-    if (bind_address != "0.0.0.0" && bind_address != "::" && !bind_address.empty()) return bind_address;
+    if (bind_address != "0.0.0.0" && bind_address != "::" && !bind_address.empty())
+        return bind_address;
     std::string ipv6;
     for (const std::string& a : interface_addresses()) {
         if (is_loopback_address(a)) continue;
@@ -62,7 +64,8 @@ std::string make_access_token() {
 bool token_matches(const std::string& presented, const std::string& token) {
     if (presented.size() != token.size() || token.empty()) return false;
     unsigned char diff = 0;
-    for (std::size_t i = 0; i < token.size(); ++i) diff |= static_cast<unsigned char>(presented[i] ^ token[i]);
+    for (std::size_t i = 0; i < token.size(); ++i)
+        diff |= static_cast<unsigned char>(presented[i] ^ token[i]);
     return diff == 0;
 }
 

@@ -29,7 +29,8 @@ std::uint64_t parse_after(const std::optional<std::string>& value) {
 CaptureRequest parse_capture_request(std::string_view body) {
     const auto json = nlohmann::json::parse(body, nullptr, false);
     if (json.is_discarded() || !json.is_object())
-        fail("capture request: expected a JSON object {{plan, output, resume}}, got '{}'", excerpt(body));
+        fail("capture request: expected a JSON object {{plan, output, resume}}, got '{}'",
+             excerpt(body));
     for (const auto& [key, value] : json.items())
         if (key != "plan" && key != "output" && key != "resume")
             fail("capture request: unknown key '{}' (expected plan, output, resume)", excerpt(key));
@@ -37,8 +38,10 @@ CaptureRequest parse_capture_request(std::string_view body) {
     for (const char* key : {"plan", "output"}) {
         const auto it = json.find(key);
         if (it == json.end() || !it->is_string() || it->get_ref<const std::string&>().empty())
-            fail("capture request: '{}' must be a non-empty string (a path on the machine running tirpol live)",
-                 key);
+            fail(
+                "capture request: '{}' must be a non-empty string (a path on the machine running "
+                "tirpol live)",
+                key);
     }
     request.plan = json["plan"].get<std::string>();
     request.output = json["output"].get<std::string>();
@@ -63,19 +66,24 @@ std::string cookie_value(std::string_view header, std::string_view name) {
         std::size_t start = at;
         while (start < end && header[start] == ' ') ++start;
         const std::string_view cookie = header.substr(start, end - start);
-        if (cookie.size() > name.size() && cookie.substr(0, name.size()) == name && cookie[name.size()] == '=')
+        if (cookie.size() > name.size() && cookie.substr(0, name.size()) == name &&
+            cookie[name.size()] == '=')
             return std::string(cookie.substr(name.size() + 1));
         at = end + 1;
     }
     return "";
 }
 
-bool request_authorised(const std::string& token, const std::string& query_token, const std::string& header_token,
-                        const std::string& cookie_header, std::string_view cookie_name) {
-    return token.empty() || token_matches(query_token, token) || token_matches(header_token, token) ||
+bool request_authorised(const std::string& token, const std::string& query_token,
+                        const std::string& header_token, const std::string& cookie_header,
+                        std::string_view cookie_name) {
+    return token.empty() || token_matches(query_token, token) ||
+           token_matches(header_token, token) ||
            token_matches(cookie_value(cookie_header, cookie_name), token);
 }
 
-std::string error_body(std::string_view message) { return json_text({{"error", std::string(message)}}); }
+std::string error_body(std::string_view message) {
+    return json_text({{"error", std::string(message)}});
+}
 
 }  // namespace tirpol::live

@@ -33,32 +33,39 @@ std::string invalid_utf8_field(const nlohmann::json& json, const std::string& pa
     }
     if (json.is_array()) {
         for (std::size_t i = 0; i < json.size(); ++i)
-            if (std::string bad = invalid_utf8_field(json[i], path + "[" + std::to_string(i) + "]"); !bad.empty())
+            if (std::string bad = invalid_utf8_field(json[i], path + "[" + std::to_string(i) + "]");
+                !bad.empty())
                 return bad;
     }
     return "";
 }
 
-/// The plan named by a request from the page. Its own error messages quote the file (a line of it, a
-/// key), and the page may have named any file the server can read, so the page is only told that the
-/// file is not a capture plan; the reason goes to the terminal running tirpol live.
+/// The plan named by a request from the page. Its own error messages quote the file (a line of it,
+/// a key), and the page may have named any file the server can read, so the page is only told that
+/// the file is not a capture plan; the reason goes to the terminal running tirpol live.
 CapturePlan load_plan_for_page(const std::filesystem::path& path) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) fail("capture plan {}: no such file", path.string());
+    if (!std::filesystem::is_regular_file(path, ec))
+        fail("capture plan {}: no such file", path.string());
     CapturePlan plan;
     try {
         plan = CapturePlan::load(path);
     } catch (const Error& e) {
         spdlog::warn("live view: capture plan {} refused: {}", path.string(), e.what());
-        // The reader's invalid-UTF-8 error gives a position and a byte value, never a line of the file.
+        // The reader's invalid-UTF-8 error gives a position and a byte value, never a line of the
+        // file.
         const std::string message = e.what();
-        if (message.rfind(path.string() + ":", 0) == 0 && message.find(": invalid UTF-8 (byte 0x") != std::string::npos)
+        if (message.rfind(path.string() + ":", 0) == 0 &&
+            message.find(": invalid UTF-8 (byte 0x") != std::string::npos)
             fail("capture plan {}", message);
-        fail("capture plan {}: not a valid capture plan (the terminal running tirpol live says why; the page is "
-             "never shown a file's contents)",
-             path.string());
+        fail(
+            "capture plan {}: not a valid capture plan (the terminal running tirpol live says why; "
+            "the page is "
+            "never shown a file's contents)",
+            path.string());
     }
-    // The plan goes into session.json, which must be UTF-8 JSON: name the field instead of failing there.
+    // The plan goes into session.json, which must be UTF-8 JSON: name the field instead of failing
+    // there.
     if (const std::string field = invalid_utf8_field(plan.metadata, "metadata"); !field.empty())
         fail("capture plan {}: {} is not valid UTF-8 text", path.string(), field);
     return plan;
@@ -97,8 +104,8 @@ void CaptureControl::start(const CaptureRequest& request) {
         fail("live view: a capture into {} is running; stop it first", m_state.output);
     if (m_thread.joinable()) m_thread.join();
     const CapturePlan plan = load_plan_for_page(request.plan);
-    auto session = std::make_shared<SessionWriter>(
-        open_capture_session(request.output, m_feed.camera_info(), m_stage.info(), plan, request.resume));
+    auto session = std::make_shared<SessionWriter>(open_capture_session(
+        request.output, m_feed.camera_info(), m_stage.info(), plan, request.resume));
     m_stop = false;
     m_state = {CapturePhase::Running, plan_steps(plan).size(), session->manifest().records.size(),
                request.output.string(), ""};
@@ -106,8 +113,10 @@ void CaptureControl::start(const CaptureRequest& request) {
         if (m_cycle) m_cycle->pause();
         try {
             StopOnInterrupt stopper(m_stop, kStopGrace, [] {
-                spdlog::warn("live view: the capture has not ended {} s after Stop; a device is not returning",
-                             kStopGrace.count() / 1000);
+                spdlog::warn(
+                    "live view: the capture has not ended {} s after Stop; a device is not "
+                    "returning",
+                    kStopGrace.count() / 1000);
             });
             stopper.watch(&m_stage);
             TappedCamera camera(m_feed);
@@ -115,12 +124,14 @@ void CaptureControl::start(const CaptureRequest& request) {
             options.progress_stream = nullptr;
             options.interrupt = &m_stop;
             const CaptureSummary s = run_capture(camera, m_stage, plan, *session, options);
-            finish(CapturePhase::Complete,
-                   fmt::format("session complete: {} steps ({} recorded now), {} frames, {} dropped", s.steps_total,
-                               s.steps_recorded, s.frames, s.dropped));
+            finish(
+                CapturePhase::Complete,
+                fmt::format("session complete: {} steps ({} recorded now), {} frames, {} dropped",
+                            s.steps_total, s.steps_recorded, s.frames, s.dropped));
         } catch (const Error& e) {
             finish(m_stop ? CapturePhase::Stopped : CapturePhase::Failed, e.what());
-        } catch (const std::exception& e) {  // e.g. a full disk (std::filesystem_error): shown, not fatal
+        } catch (const std::exception&
+                     e) {  // e.g. a full disk (std::filesystem_error): shown, not fatal
             finish(CapturePhase::Failed, e.what());
         }
         if (m_cycle) m_cycle->resume();

@@ -26,13 +26,16 @@ DisplayUnit parse_display_unit(const std::string& text) {
 }
 
 DisplayConverter::DisplayConverter(const acquisition::CameraInfo& camera,
-                                   const calibration::RadiometricCalibration* calibration, DisplayUnit unit)
+                                   const calibration::RadiometricCalibration* calibration,
+                                   DisplayUnit unit)
     : m_calibration(calibration), m_unit(unit), m_width(camera.width), m_height(camera.height) {
     if (unit != DisplayUnit::Counts && calibration == nullptr)
-        fail("live view: showing radiance or temperature needs a radiometric calibration (--calibration)");
+        fail(
+            "live view: showing radiance or temperature needs a radiometric calibration "
+            "(--calibration)");
     if (calibration && (calibration->width != camera.width || calibration->height != camera.height))
-        fail("live view: the calibration is {}×{} pixels but the camera {} streams {}×{}", calibration->width,
-             calibration->height, camera.uri, camera.width, camera.height);
+        fail("live view: the calibration is {}×{} pixels but the camera {} streams {}×{}",
+             calibration->width, calibration->height, camera.uri, camera.width, camera.height);
     // Integer formats clip at full scale; a float camera (bits 0 or ≥ 24) has no saturation code.
     if (camera.bits_per_pixel >= 1 && camera.bits_per_pixel <= 23)
         m_saturation_counts = std::ldexp(1.0, camera.bits_per_pixel) - 1.0;
@@ -80,7 +83,8 @@ DisplayImage DisplayConverter::frame_image(const acquisition::Frame& frame) cons
     DisplayImage image;
     image.width = frame.width;
     image.height = frame.height;
-    image.channels.push_back({"S0", units(), convert(frame.counts, frame.fpa_temperature_k), flags(frame.counts)});
+    image.channels.push_back(
+        {"S0", units(), convert(frame.counts, frame.fpa_temperature_k), flags(frame.counts)});
     image.info["frame_id"] = frame.frame_id;
     image.info["host_timestamp_ns"] = frame.host_timestamp_ns;
     if (frame.fpa_temperature_k) image.info["fpa_temperature_k"] = *frame.fpa_temperature_k;
@@ -88,7 +92,8 @@ DisplayImage DisplayConverter::frame_image(const acquisition::Frame& frame) cons
 }
 
 std::string encode_display_image(const DisplayImage& image) {
-    const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    const std::size_t pixels =
+        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
     nlohmann::json header = image.info;
     header["width"] = image.width;
     header["height"] = image.height;
@@ -96,9 +101,11 @@ std::string encode_display_image(const DisplayImage& image) {
     std::vector<std::vector<std::uint16_t>> codes;
     for (const auto& c : image.channels) {
         if (c.values.size() != pixels || (!c.flags.empty() && c.flags.size() != pixels))
-            fail("live view: channel {} has {} values for a {}×{} image", c.name, c.values.size(), image.width,
-                 image.height);
-        auto flag = [&](std::size_t i) { return c.flags.empty() ? std::uint8_t{kPixelOk} : c.flags[i]; };
+            fail("live view: channel {} has {} values for a {}×{} image", c.name, c.values.size(),
+                 image.width, image.height);
+        auto flag = [&](std::size_t i) {
+            return c.flags.empty() ? std::uint8_t{kPixelOk} : c.flags[i];
+        };
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < pixels; ++i)
             if (flag(i) == kPixelOk && std::isfinite(c.values[i])) {
@@ -116,13 +123,16 @@ std::string encode_display_image(const DisplayImage& image) {
             else if (!std::isfinite(c.values[i]))
                 q[i] = kCodeNone;
             else
-                q[i] = static_cast<std::uint16_t>(kCodeFirst + std::lround((c.values[i] - lo) * scale));
+                q[i] = static_cast<std::uint16_t>(kCodeFirst +
+                                                  std::lround((c.values[i] - lo) * scale));
         }
         codes.push_back(std::move(q));
-        header["channels"].push_back({{"name", c.name}, {"units", c.units}, {"min", lo}, {"max", hi}});
+        header["channels"].push_back(
+            {{"name", c.name}, {"units", c.units}, {"min", lo}, {"max", hi}});
     }
     std::string text = header.dump();
-    if (text.size() % 2 != 0) text.push_back(' ');  // u16 data stays 2-byte aligned for the page's Uint16Array
+    if (text.size() % 2 != 0)
+        text.push_back(' ');  // u16 data stays 2-byte aligned for the page's Uint16Array
     std::string out = "TPLV";
     append_u32(out, static_cast<std::uint32_t>(text.size()));
     out += text;

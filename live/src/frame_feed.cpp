@@ -13,8 +13,8 @@ constexpr std::chrono::milliseconds kGrabTimeout{500};
 Result<Frame> FrameTap::next(std::chrono::milliseconds timeout) {
     std::unique_lock lock(m_mutex);
     if (!m_pushed.wait_for(lock, timeout, [&] { return !m_frames.empty(); }))
-        return DeviceError{DeviceErrorCode::Timeout,
-                           "live view: no frame from the camera within " + std::to_string(timeout.count()) + " ms"};
+        return DeviceError{DeviceErrorCode::Timeout, "live view: no frame from the camera within " +
+                                                         std::to_string(timeout.count()) + " ms"};
     Frame frame = std::move(m_frames.front());
     m_frames.pop_front();
     return frame;
@@ -72,7 +72,8 @@ void FrameFeed::run() {
         if (!grabbed) {
             std::lock_guard lock(m_mutex);
             m_camera_stats = camera_stats;
-            if (grabbed.error().code != DeviceErrorCode::Timeout) m_last_error = grabbed.error().message;
+            if (grabbed.error().code != DeviceErrorCode::Timeout)
+                m_last_error = grabbed.error().message;
             continue;
         }
         auto frame = std::make_shared<const Frame>(std::move(grabbed.value()));
@@ -83,7 +84,8 @@ void FrameFeed::run() {
             ++m_grabbed;
             m_camera_stats = camera_stats;
             m_recent_ns.push_back(frame->host_timestamp_ns);
-            while (m_recent_ns.size() > 2 && m_recent_ns.back() - m_recent_ns.front() > kRateWindowNs)
+            while (m_recent_ns.size() > 2 &&
+                   m_recent_ns.back() - m_recent_ns.front() > kRateWindowNs)
                 m_recent_ns.pop_front();
             std::erase_if(m_taps, [](const auto& t) { return t.expired(); });
             for (const auto& t : m_taps)
@@ -99,7 +101,8 @@ void FrameFeed::record_fpa(const Frame& frame) {
     if (now < m_next_fpa) return;
     m_next_fpa = now + std::chrono::seconds(1);
     // The frame's own stamp when the back end attaches one; else a register read (once a second).
-    const std::optional<double> t = frame.fpa_temperature_k ? frame.fpa_temperature_k : m_camera.device_temperature_k();
+    const std::optional<double> t =
+        frame.fpa_temperature_k ? frame.fpa_temperature_k : m_camera.device_temperature_k();
     if (!t) return;
     std::lock_guard lock(m_mutex);
     m_fpa.push_back({std::chrono::duration<double>(now - m_started).count(), *t});

@@ -18,7 +18,8 @@ using Clock = std::chrono::steady_clock;
 /// Waits are cut into slices so that a stopping server ends its connections promptly.
 constexpr std::chrono::milliseconds kWaitSlice{100};
 /// After a refusal, how long the bytes a client is still sending are read and discarded before the
-/// socket closes, so that the close does not reset the connection before the client read the answer.
+/// socket closes, so that the close does not reset the connection before the client read the
+/// answer.
 constexpr std::chrono::milliseconds kLingerTime{300};
 constexpr std::size_t kLingerBytes = 256 * 1024;
 /// Chunk-size lines and trailers of a chunked body, on top of the body limit.
@@ -42,15 +43,17 @@ void address_of(const sockaddr_storage& addr, std::string& ip, int& port) {
 }
 
 /// A socket read through a buffer, with a byte budget and deadlines per request: the head (request
-/// line and headers, up to the blank line) at most `max_head_bytes` within `head_timeout` of its first
-/// byte, the body at most the body limit, the request and its answer within `request_timeout`. A read
-/// past a budget or a deadline fails (-1), which ends the request and the connection.
+/// line and headers, up to the blank line) at most `max_head_bytes` within `head_timeout` of its
+/// first byte, the body at most the body limit, the request and its answer within
+/// `request_timeout`. A read past a budget or a deadline fails (-1), which ends the request and the
+/// connection.
 class BoundedStream final : public httplib::Stream {
 public:
     BoundedStream(socket_t sock, const RequestLimits& limits, std::function<bool()> stopping)
         : m_sock(sock), m_limits(limits), m_stopping(std::move(stopping)) {}
 
-    /// Waits up to `idle` for the next request's first byte; false when none came or the server stops.
+    /// Waits up to `idle` for the next request's first byte; false when none came or the server
+    /// stops.
     bool wait_for_request(std::chrono::milliseconds idle) {
         if (m_begin < m_end) return true;
         return wait(POLLIN, Clock::now() + idle) && fill() > 0;
@@ -105,12 +108,14 @@ public:
     void get_remote_ip_and_port(std::string& ip, int& port) const override {
         sockaddr_storage addr{};
         socklen_t len = sizeof(addr);
-        if (::getpeername(m_sock, reinterpret_cast<sockaddr*>(&addr), &len) == 0) address_of(addr, ip, port);
+        if (::getpeername(m_sock, reinterpret_cast<sockaddr*>(&addr), &len) == 0)
+            address_of(addr, ip, port);
     }
     void get_local_ip_and_port(std::string& ip, int& port) const override {
         sockaddr_storage addr{};
         socklen_t len = sizeof(addr);
-        if (::getsockname(m_sock, reinterpret_cast<sockaddr*>(&addr), &len) == 0) address_of(addr, ip, port);
+        if (::getsockname(m_sock, reinterpret_cast<sockaddr*>(&addr), &len) == 0)
+            address_of(addr, ip, port);
     }
     socket_t socket() const override { return m_sock; }
 
@@ -119,10 +124,12 @@ private:
         return m_in_body ? m_request_deadline : std::min(m_head_deadline, m_request_deadline);
     }
 
-    /// Polls for `events` in slices until `deadline`; false at the deadline, on an error or when stopping.
+    /// Polls for `events` in slices until `deadline`; false at the deadline, on an error or when
+    /// stopping.
     bool wait(short events, Clock::time_point deadline) const {
         while (!m_stopping()) {
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+            const auto left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
             if (left.count() <= 0) return false;
             pollfd p{m_sock, events, 0};
             const int r = ::poll(&p, 1, static_cast<int>(std::min(left, kWaitSlice).count()));
@@ -161,7 +168,8 @@ void close_lingering(socket_t sock) {
     std::array<char, 4096> discard{};
     std::size_t drained = 0;
     while (drained < kLingerBytes) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
         if (left.count() <= 0) break;
         pollfd p{sock, POLLIN, 0};
         if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
@@ -201,8 +209,10 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
     } count(m_open);
     if (count.value > m_limits.max_connections) {
         static constexpr char kBusy[] =
-            "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\nRetry-After: 1\r\n\r\n";
-        [[maybe_unused]] const ssize_t ignored = ::send(sock, kBusy, sizeof(kBusy) - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+            "HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: "
+            "close\r\nRetry-After: 1\r\n\r\n";
+        [[maybe_unused]] const ssize_t ignored =
+            ::send(sock, kBusy, sizeof(kBusy) - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
         close_lingering(sock);
         return false;
     }

@@ -3,9 +3,9 @@
 // cpp-httplib 0.11 reads the request line and each header line into a buffer that grows until a
 // newline arrives, keeps a connection for up to five requests of five seconds' silence each on a
 // fixed pool of threads, and after answering a request without reading its body reads that body as
-// the next request. So the server here replaces its per-connection loop (process_and_close_socket, a
-// virtual the library provides for this) with one that reads through a BoundedStream — the request
-// head capped in bytes and time, the body in bytes, the whole exchange in time — closes the
+// the next request. So the server here replaces its per-connection loop (process_and_close_socket,
+// a virtual the library provides for this) with one that reads through a BoundedStream — the
+// request head capped in bytes and time, the body in bytes, the whole exchange in time — closes the
 // connection after every refusal, and runs each connection on its own thread up to a connection cap
 // (beyond it a connection is answered 503 and closed at once), so idle or slow connections cannot
 // starve the others.
@@ -25,8 +25,9 @@ public:
     explicit GuardedServer(const RequestLimits& limits);
     ~GuardedServer() override;
 
-    /// Sets the listening socket's accept queue to `backlog` (after binding; cpp-httplib listens with a
-    /// queue of 5, so a burst of connections has the kernel drop SYNs, which clients retry only after 1 s).
+    /// Sets the listening socket's accept queue to `backlog` (after binding; cpp-httplib listens
+    /// with a queue of 5, so a burst of connections has the kernel drop SYNs, which clients retry
+    /// only after 1 s).
     void set_listen_backlog(int backlog);
     /// Connections being served now.
     std::size_t open_connections() const { return m_open; }

@@ -16,7 +16,8 @@
 
 namespace tirpol::live {
 
-std::string_view embedded_file(std::string_view name);  // generated from web/ (cmake/EmbedFiles.cmake)
+std::string_view embedded_file(
+    std::string_view name);  // generated from web/ (cmake/EmbedFiles.cmake)
 
 namespace {
 /// How long a request for a newer image waits before answering 204: short enough that a page whose
@@ -55,17 +56,21 @@ std::optional<std::string> read_body(const httplib::ContentReader& reader, httpl
         return true;
     });
     if (too_large) {
-        send_refusal(res, {413, fmt::format("request body exceeds the limit of {} bytes", max_bytes)});
+        send_refusal(res,
+                     {413, fmt::format("request body exceeds the limit of {} bytes", max_bytes)});
         return std::nullopt;
     }
     if (!complete) {
-        send_refusal(res, {400, "the request body could not be read (malformed chunks, or the client stopped)"});
+        send_refusal(
+            res,
+            {400, "the request body could not be read (malformed chunks, or the client stopped)"});
         return std::nullopt;
     }
     return body;
 }
 
-RequestFacts facts_of(const httplib::Request& req, const std::string& token, const char* cookie_name) {
+RequestFacts facts_of(const httplib::Request& req, const std::string& token,
+                      const char* cookie_name) {
     RequestFacts f;
     f.method = req.method;
     f.host = req.get_header_value("Host");
@@ -76,7 +81,8 @@ RequestFacts facts_of(const httplib::Request& req, const std::string& token, con
     if (!token.empty()) {
         f.explicit_token = token_matches(req.get_param_value("token"), token) ||
                            token_matches(req.get_header_value("X-Tirpol-Token"), token);
-        f.cookie_token = token_matches(cookie_value(req.get_header_value("Cookie"), cookie_name), token);
+        f.cookie_token =
+            token_matches(cookie_value(req.get_header_value("Cookie"), cookie_name), token);
     }
     return f;
 }
@@ -93,15 +99,18 @@ void send_image(httplib::Response& res, const EncodedImage& image) {
     }
     res.set_header("X-Sequence", std::to_string(image.sequence));
     res.set_header("Cache-Control", "no-store");
-    // The shared buffer stays alive until the provider has written it (one copy per frame in total).
+    // The shared buffer stays alive until the provider has written it (one copy per frame in
+    // total).
     const auto bytes = image.bytes;
-    res.set_content_provider(bytes->size(), "application/octet-stream",
-                             [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                                 return sink.write(bytes->data() + offset, length);
-                             });
+    res.set_content_provider(
+        bytes->size(), "application/octet-stream",
+        [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+            return sink.write(bytes->data() + offset, length);
+        });
 }
 
-/// Serves an image stream: the frame after ?after=SEQ from `next`, or 400 for a bad sequence number.
+/// Serves an image stream: the frame after ?after=SEQ from `next`, or 400 for a bad sequence
+/// number.
 template <typename Next>
 auto image_handler(Next next) {
     return [next](const httplib::Request& req, httplib::Response& res) {
@@ -120,10 +129,12 @@ auto image_handler(Next next) {
 void validate(const ServerOptions& options) {
     if (options.port < 0 || options.port > 65535)
         fail("--port: expected a TCP port 1–65535 (or 0 for a free one), got {}", options.port);
-    if (options.bind_address.empty()) fail("--bind: expected an address (127.0.0.1, 0.0.0.0, ::1, …), got ''");
+    if (options.bind_address.empty())
+        fail("--bind: expected an address (127.0.0.1, 0.0.0.0, ::1, …), got ''");
     const RequestLimits& l = options.limits;
-    if (l.max_body_bytes == 0 || l.max_head_bytes == 0 || l.max_connections == 0 || l.idle_timeout.count() <= 0 ||
-        l.head_timeout.count() <= 0 || l.request_timeout.count() <= 0)
+    if (l.max_body_bytes == 0 || l.max_head_bytes == 0 || l.max_connections == 0 ||
+        l.idle_timeout.count() <= 0 || l.head_timeout.count() <= 0 ||
+        l.request_timeout.count() <= 0)
         fail("live view: every request limit must be positive");
 }
 
@@ -135,45 +146,50 @@ struct LiveServer::Impl {
     std::map<std::string, nlohmann::json> observations;
 };
 
-LiveServer::LiveServer(LiveView& view, const ServerOptions& options) : m_bind_address(options.bind_address) {
+LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
+    : m_bind_address(options.bind_address) {
     validate(options);
     m_impl = std::make_unique<Impl>(options.limits);
     if (!is_loopback_address(options.bind_address)) m_token = make_access_token();
     auto& server = m_impl->server;
-    // httplib's default also sets SO_REUSEPORT, which lets a second `tirpol live` bind the same port and
-    // silently share its connections; SO_REUSEADDR alone still allows a quick restart.
+    // httplib's default also sets SO_REUSEPORT, which lets a second `tirpol live` bind the same
+    // port and silently share its connections; SO_REUSEADDR alone still allows a quick restart.
     server.set_socket_options([](socket_t sock) {
         const int yes = 1;
         ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
     });
 
-    // Every request passes the policy on its line and headers, before any body is read; the same check
-    // answers "Expect: 100-continue", so a refused client never sends its body.
+    // Every request passes the policy on its line and headers, before any body is read; the same
+    // check answers "Expect: 100-continue", so a refused client never sends its body.
     auto refusal_of = [this](const httplib::Request& req) {
         return m_impl->policy->check(facts_of(req, m_token, kTokenCookie));
     };
-    server.set_pre_routing_handler([this, refusal_of](const httplib::Request& req, httplib::Response& res) {
-        if (const auto refusal = refusal_of(req)) {
-            send_refusal(res, *refusal);
-            return httplib::Server::HandlerResponse::Handled;
-        }
-        if (!m_token.empty() && token_matches(req.get_param_value("token"), m_token)) {
-            // The page's own files (<script src>, <link href>) carry no query: the cookie covers them.
-            res.set_header("Set-Cookie",
-                           std::string(kTokenCookie) + "=" + m_token + "; HttpOnly; SameSite=Strict; Path=/");
-        }
-        return httplib::Server::HandlerResponse::Unhandled;
-    });
-    server.set_expect_100_continue_handler([refusal_of](const httplib::Request& req, httplib::Response& res) {
-        if (const auto refusal = refusal_of(req)) {
-            send_refusal(res, *refusal);
-            return refusal->status;
-        }
-        return 100;
-    });
-    // An exception that is not a tirpol::Error is a bug: its text goes to the operator's terminal, never
-    // to the client (httplib's default puts it in a response header).
-    server.set_exception_handler([](const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
+    server.set_pre_routing_handler(
+        [this, refusal_of](const httplib::Request& req, httplib::Response& res) {
+            if (const auto refusal = refusal_of(req)) {
+                send_refusal(res, *refusal);
+                return httplib::Server::HandlerResponse::Handled;
+            }
+            if (!m_token.empty() && token_matches(req.get_param_value("token"), m_token)) {
+                // The page's own files (<script src>, <link href>) carry no query: the cookie
+                // covers them.
+                res.set_header("Set-Cookie", std::string(kTokenCookie) + "=" + m_token +
+                                                 "; HttpOnly; SameSite=Strict; Path=/");
+            }
+            return httplib::Server::HandlerResponse::Unhandled;
+        });
+    server.set_expect_100_continue_handler(
+        [refusal_of](const httplib::Request& req, httplib::Response& res) {
+            if (const auto refusal = refusal_of(req)) {
+                send_refusal(res, *refusal);
+                return refusal->status;
+            }
+            return 100;
+        });
+    // An exception that is not a tirpol::Error is a bug: its text goes to the operator's terminal,
+    // never to the client (httplib's default puts it in a response header).
+    server.set_exception_handler([](const httplib::Request& req, httplib::Response& res,
+                                    std::exception_ptr ep) {
         std::string what = "unknown exception";
         try {
             std::rethrow_exception(ep);
@@ -196,39 +212,46 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options) : m_bind_ad
     server.Get("/live.js", serve_file("live.js", "text/javascript; charset=utf-8"));
     server.Get("/live.css", serve_file("live.css", "text/css; charset=utf-8"));
 
-    server.Get("/api/describe",
-               [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.describe()); });
-    server.Get("/api/status",
-               [&view](const httplib::Request&, httplib::Response& res) { send_json(res, view.status()); });
-    server.Get("/api/frame", image_handler([&view](std::uint64_t after) { return view.frame_after(after, kLongPoll); }));
-    server.Get("/api/stokes",
-               image_handler([&view](std::uint64_t after) { return view.stokes_after(after, kLongPoll); }));
+    server.Get("/api/describe", [&view](const httplib::Request&, httplib::Response& res) {
+        send_json(res, view.describe());
+    });
+    server.Get("/api/status", [&view](const httplib::Request&, httplib::Response& res) {
+        send_json(res, view.status());
+    });
+    server.Get("/api/frame", image_handler([&view](std::uint64_t after) {
+                   return view.frame_after(after, kLongPoll);
+               }));
+    server.Get("/api/stokes", image_handler([&view](std::uint64_t after) {
+                   return view.stokes_after(after, kLongPoll);
+               }));
     const std::size_t max_body = options.limits.max_body_bytes;
-    server.Post("/api/capture/start", [&view, max_body](const httplib::Request&, httplib::Response& res,
-                                                         const httplib::ContentReader& reader) {
-        const auto body = read_body(reader, res, max_body);
-        if (!body) return;
-        try {
-            view.capture().start(parse_capture_request(*body));
-            send_json(res, view.status());
-        } catch (const Error& e) {
-            send_error(res, e);
-        }
-    });
-    server.Post("/api/capture/stop", [&view, max_body](const httplib::Request&, httplib::Response& res,
-                                                        const httplib::ContentReader& reader) {
-        if (!read_body(reader, res, max_body)) return;
-        try {
-            view.capture().stop();
-            send_json(res, view.status());
-        } catch (const Error& e) {
-            send_error(res, e);
-        }
-    });
+    server.Post("/api/capture/start",
+                [&view, max_body](const httplib::Request&, httplib::Response& res,
+                                  const httplib::ContentReader& reader) {
+                    const auto body = read_body(reader, res, max_body);
+                    if (!body) return;
+                    try {
+                        view.capture().start(parse_capture_request(*body));
+                        send_json(res, view.status());
+                    } catch (const Error& e) {
+                        send_error(res, e);
+                    }
+                });
+    server.Post("/api/capture/stop",
+                [&view, max_body](const httplib::Request&, httplib::Response& res,
+                                  const httplib::ContentReader& reader) {
+                    if (!read_body(reader, res, max_body)) return;
+                    try {
+                        view.capture().stop();
+                        send_json(res, view.status());
+                    } catch (const Error& e) {
+                        send_error(res, e);
+                    }
+                });
     const std::size_t max_clients = options.limits.max_observation_clients;
-    server.Post("/api/observations", [this, max_body, max_clients](const httplib::Request& req,
-                                                                   httplib::Response& res,
-                                                                   const httplib::ContentReader& reader) {
+    server.Post("/api/observations", [this, max_body, max_clients](
+                                         const httplib::Request& req, httplib::Response& res,
+                                         const httplib::ContentReader& reader) {
         const auto text = read_body(reader, res, max_body);
         if (!text) return;
         nlohmann::json body;
@@ -241,8 +264,9 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options) : m_bind_ad
         std::lock_guard lock(m_impl->observations_mutex);
         const std::string client = req.get_param_value("client");
         if (!m_impl->observations.count(client) && m_impl->observations.size() >= max_clients) {
-            send_refusal(res, {429, fmt::format("observations: {} clients already report; no more are kept",
-                                                max_clients)});
+            send_refusal(
+                res, {429, fmt::format("observations: {} clients already report; no more are kept",
+                                       max_clients)});
             return;
         }
         m_impl->observations[client] = std::move(body);
@@ -253,11 +277,12 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options) : m_bind_ad
         send_json(res, nlohmann::json(m_impl->observations));
     });
 
-    m_port = options.port == 0 ? server.bind_to_any_port(options.bind_address)
-                               : (server.bind_to_port(options.bind_address, options.port) ? options.port : -1);
+    m_port = options.port == 0
+                 ? server.bind_to_any_port(options.bind_address)
+                 : (server.bind_to_port(options.bind_address, options.port) ? options.port : -1);
     if (m_port <= 0)
-        fail("live view: cannot listen on {} port {} (in use, or not an address of this machine)", options.bind_address,
-             options.port);
+        fail("live view: cannot listen on {} port {} (in use, or not an address of this machine)",
+             options.bind_address, options.port);
     server.set_listen_backlog(static_cast<int>(options.limits.max_connections) * 2);
     m_impl->policy.emplace(allowed_hosts(options.bind_address, m_port), m_token, options.limits);
 }

@@ -21,9 +21,15 @@ DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) 
     image.height = stokes.height();
     for (const char* name : {"S0", "S1", "S2", "DoLP", "AoP"}) {
         const std::string n = name;
-        image.channels.push_back({n, n == "DoLP" ? "" : n == "AoP" ? "deg" : signal_units, stokes.channel(n), {}});
+        image.channels.push_back({n,
+                                  n == "DoLP"  ? ""
+                                  : n == "AoP" ? "deg"
+                                               : signal_units,
+                                  stokes.channel(n),
+                                  {}});
     }
-    if (const auto it = stokes.attributes().find("analyzer_angles_deg"); it != stokes.attributes().end())
+    if (const auto it = stokes.attributes().find("analyzer_angles_deg");
+        it != stokes.attributes().end())
         image.info["analyzer_angles_deg"] = std::get<std::vector<double>>(it->second);
     return image;
 }
@@ -32,27 +38,30 @@ DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) 
 void validate(const LiveViewOptions& options) {
     if (options.camera_uri.empty()) fail("--camera: expected a camera URI");
     const CycleOptions& c = options.cycle;
-    if (c.frames_per_angle < 1) fail("--frames-per-angle: expected an integer ≥ 1, got {}", c.frames_per_angle);
+    if (c.frames_per_angle < 1)
+        fail("--frames-per-angle: expected an integer ≥ 1, got {}", c.frames_per_angle);
     if (!std::isfinite(c.settle_s) || c.settle_s < 0.0)
         fail("--settle-s: expected a finite number of seconds ≥ 0, got {}", c.settle_s);
-    for (const auto& [name, seconds] : {std::pair{"move timeout", c.move_timeout_s},
-                                        std::pair{"home timeout", c.home_timeout_s},
-                                        std::pair{"frame timeout", c.frame_timeout_s}})
+    for (const auto& [name, seconds] :
+         {std::pair{"move timeout", c.move_timeout_s}, std::pair{"home timeout", c.home_timeout_s},
+          std::pair{"frame timeout", c.frame_timeout_s}})
         if (!std::isfinite(seconds) || seconds <= 0.0)
             fail("live view: the {} must be a finite number of seconds > 0, got {}", name, seconds);
     for (const double angle_deg : c.angles_deg)
-        if (!std::isfinite(angle_deg)) fail("live view: polarizer angle {} is not a finite number of degrees", angle_deg);
+        if (!std::isfinite(angle_deg))
+            fail("live view: polarizer angle {} is not a finite number of degrees", angle_deg);
 }
 
 LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
     validate(options);
     m_camera = open_camera(options.camera_uri).value_or_throw();
     if (!options.stage_uri.empty())
-        m_stage = couple_simulated_polarizer(*m_camera, open_stage(options.stage_uri).value_or_throw());
+        m_stage =
+            couple_simulated_polarizer(*m_camera, open_stage(options.stage_uri).value_or_throw());
     if (!options.calibration_path.empty())
         m_calibration = calibration::read_radiometric_calibration(options.calibration_path);
-    m_converter =
-        std::make_unique<DisplayConverter>(m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
+    m_converter = std::make_unique<DisplayConverter>(
+        m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
     m_feed = std::make_unique<FrameFeed>(*m_camera);
     if (m_stage) {
         m_cycle = std::make_unique<PolarizerCycle>(*m_feed, *m_stage, *m_converter, options.cycle);
@@ -80,7 +89,8 @@ EncodedImage LiveView::encoded_after(const LatestSlot<T>& slot, Cache& cache, st
     if (snapshot.sequence <= after || !snapshot.value) return {snapshot.sequence, nullptr};
     std::lock_guard lock(cache.mutex);
     if (cache.image.sequence != snapshot.sequence)
-        cache.image = {snapshot.sequence, std::make_shared<const std::string>(encode(*snapshot.value))};
+        cache.image = {snapshot.sequence,
+                       std::make_shared<const std::string>(encode(*snapshot.value))};
     return cache.image;
 }
 
@@ -88,7 +98,8 @@ EncodedImage LiveView::frame_after(std::uint64_t after, std::chrono::millisecond
     return encoded_after(m_feed->latest(), m_frame_cache, after, timeout, [&](const Frame& frame) {
         try {
             return encode_display_image(m_converter->frame_image(frame));
-        } catch (const Error& e) {  // e.g. an FPA-dependent calibration and a frame without FPA temperature
+        } catch (const Error&
+                     e) {  // e.g. an FPA-dependent calibration and a frame without FPA temperature
             DisplayImage image;
             image.info["error"] = e.what();
             return encode_display_image(image);
@@ -99,8 +110,9 @@ EncodedImage LiveView::frame_after(std::uint64_t after, std::chrono::millisecond
 EncodedImage LiveView::stokes_after(std::uint64_t after, std::chrono::milliseconds timeout) {
     if (!m_cycle) return {};
     const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
-    return encoded_after(m_cycle->stokes(), m_stokes_cache, after, timeout,
-                         [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
+    return encoded_after(
+        m_cycle->stokes(), m_stokes_cache, after, timeout,
+        [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
 }
 
 nlohmann::json LiveView::describe() const {
@@ -108,10 +120,12 @@ nlohmann::json LiveView::describe() const {
     nlohmann::json j;
     j["camera"] = {{"uri", c.uri},     {"vendor", c.vendor}, {"model", c.model},
                    {"width", c.width}, {"height", c.height}, {"pixel_format", c.pixel_format}};
-    j["camera"]["frame_rate_hz"] = c.frame_rate_hz ? nlohmann::json(*c.frame_rate_hz) : nlohmann::json();
+    j["camera"]["frame_rate_hz"] =
+        c.frame_rate_hz ? nlohmann::json(*c.frame_rate_hz) : nlohmann::json();
     j["units"] = m_converter->units();
-    j["saturation_counts"] =
-        m_converter->saturation_counts() ? nlohmann::json(*m_converter->saturation_counts()) : nlohmann::json();
+    j["saturation_counts"] = m_converter->saturation_counts()
+                                 ? nlohmann::json(*m_converter->saturation_counts())
+                                 : nlohmann::json();
     j["calibration"] = m_options.calibration_path;
     j["stage"] = m_stage ? nlohmann::json(m_stage->info().uri) : nlohmann::json();
     j["angles_deg"] = m_options.cycle.angles_deg;
@@ -128,14 +142,16 @@ nlohmann::json LiveView::status() const {
                    {"incomplete", s.incomplete},
                    {"grabbed", s.grabbed},
                    {"error", s.last_error}};
-    j["camera"]["frame_rate_hz"] = s.frame_rate_hz ? nlohmann::json(*s.frame_rate_hz) : nlohmann::json();
+    j["camera"]["frame_rate_hz"] =
+        s.frame_rate_hz ? nlohmann::json(*s.frame_rate_hz) : nlohmann::json();
     if (const auto latest = m_feed->latest().latest().value) {
         j["camera"]["frame_id"] = latest->frame_id;
         j["camera"]["device_timestamp_ns"] = latest->device_timestamp_ns;
     }
     auto fpa = nlohmann::json::array();
     const auto history = m_feed->fpa_history();
-    for (std::size_t i = history.size() > kFpaSamplesInStatus ? history.size() - kFpaSamplesInStatus : 0;
+    for (std::size_t i = history.size() > kFpaSamplesInStatus ? history.size() - kFpaSamplesInStatus
+                                                              : 0;
          i < history.size(); ++i)
         fpa.push_back({history[i].time_s, history[i].temperature_k});
     j["fpa_temperature_k"] = std::move(fpa);

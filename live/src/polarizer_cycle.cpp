@@ -20,10 +20,12 @@ std::chrono::milliseconds to_ms(double seconds) {
 constexpr std::chrono::milliseconds kPausePoll{50};
 }  // namespace
 
-PolarizerCycle::PolarizerCycle(FrameFeed& feed, Stage& stage, const DisplayConverter& converter, CycleOptions options)
+PolarizerCycle::PolarizerCycle(FrameFeed& feed, Stage& stage, const DisplayConverter& converter,
+                               CycleOptions options)
     : m_feed(feed), m_stage(stage), m_converter(converter), m_options(std::move(options)) {
     if (m_options.angles_deg.size() < 3)
-        fail("live view: a Stokes image needs at least 3 polarizer angles, got {}", m_options.angles_deg.size());
+        fail("live view: a Stokes image needs at least 3 polarizer angles, got {}",
+             m_options.angles_deg.size());
     if (m_options.frames_per_angle < 1)
         fail("live view: frames per angle must be at least 1, got {}", m_options.frames_per_angle);
 }
@@ -88,14 +90,16 @@ void PolarizerCycle::run() {
 bool PolarizerCycle::run_cycle(FrameTap& tap) {
     auto device_failed = [&](const std::string& what, const DeviceError& e) {
         std::lock_guard lock(m_mutex);
-        if (e.code == DeviceErrorCode::Stopped && !keep_going()) return false;  // our own stop(), not a fault
+        if (e.code == DeviceErrorCode::Stopped && !keep_going())
+            return false;  // our own stop(), not a fault
         m_status.state = "failed";
         m_status.error = fmt::format("{}: {}: {}", what, to_string(e.code), e.message);
         return false;
     };
     if (!m_stage.is_homed()) {
         set_state("homing");
-        if (auto s = m_stage.home(to_ms(m_options.home_timeout_s)); !s) return device_failed("homing", s.error());
+        if (auto s = m_stage.home(to_ms(m_options.home_timeout_s)); !s)
+            return device_failed("homing", s.error());
     }
     FrameGate gate(m_feed.camera_info().frame_rate_hz);
     std::vector<calibration::AnalyzerImage> images;
@@ -116,7 +120,8 @@ bool PolarizerCycle::run_cycle(FrameTap& tap) {
             if (!keep_going()) return false;
             auto frame = tap.next(to_ms(m_options.frame_timeout_s));
             if (!frame) return device_failed("camera", frame.error());
-            if (!gate.exposed_after(frame.value(), settle_end_ns)) continue;  // exposed while the stage moved
+            if (!gate.exposed_after(frame.value(), settle_end_ns))
+                continue;  // exposed while the stage moved
             averager.add(frame.value());
             fpa_k = frame.value().fpa_temperature_k;
         }
@@ -130,9 +135,9 @@ bool PolarizerCycle::run_cycle(FrameTap& tap) {
     calibration::ReductionOptions options;
     options.units = m_converter.unit() == DisplayUnit::Counts ? "counts" : "W/(m^2 sr)";
     try {
-        m_stokes.publish(std::make_shared<Image>(
-            calibration::reduce_stokes(images, m_feed.camera_info().width, m_feed.camera_info().height,
-                                       calibration::AnalyzerModel::ideal(measured_deg), nullptr, options)));
+        m_stokes.publish(std::make_shared<Image>(calibration::reduce_stokes(
+            images, m_feed.camera_info().width, m_feed.camera_info().height,
+            calibration::AnalyzerModel::ideal(measured_deg), nullptr, options)));
     } catch (const Error& e) {
         std::lock_guard lock(m_mutex);
         m_status.state = "failed";

@@ -6,9 +6,9 @@ using namespace acquisition;
 
 Status TappedCamera::set_pixel_format(const std::string& format) {
     if (format == m_feed.camera_info().pixel_format) return ok_status();
-    return DeviceError{DeviceErrorCode::NotSupported, "live view: the camera streams " +
-                                                          m_feed.camera_info().pixel_format + "; it cannot switch to " +
-                                                          format + " while the page is live"};
+    return DeviceError{DeviceErrorCode::NotSupported,
+                       "live view: the camera streams " + m_feed.camera_info().pixel_format +
+                           "; it cannot switch to " + format + " while the page is live"};
 }
 
 Status TappedCamera::set_frame_rate(double hz) {
@@ -16,7 +16,8 @@ Status TappedCamera::set_frame_rate(double hz) {
     if (rate && *rate == hz) return ok_status();
     return DeviceError{
         DeviceErrorCode::NotSupported,
-        "live view: the camera's frame rate is fixed while the page is live (asked " + std::to_string(hz) + " Hz)"};
+        "live view: the camera's frame rate is fixed while the page is live (asked " +
+            std::to_string(hz) + " Hz)"};
 }
 
 Status TappedCamera::start() {
@@ -30,7 +31,8 @@ Status TappedCamera::stop() {
 }
 
 Result<Frame> TappedCamera::grab(std::chrono::milliseconds timeout) {
-    if (!m_tap) return DeviceError{DeviceErrorCode::InvalidArgument, "live view: grab() before start()"};
+    if (!m_tap)
+        return DeviceError{DeviceErrorCode::InvalidArgument, "live view: grab() before start()"};
     return m_tap->next(timeout);
 }
 

@@ -21,7 +21,8 @@ struct Rows {
     std::vector<std::vector<double>> columns;
 };
 
-// Parses whitespace-separated numeric rows ("λ n k" or "λ v") of a refractiveindex.info `data:` block.
+// Parses whitespace-separated numeric rows ("λ n k" or "λ v") of a refractiveindex.info `data:`
+// block.
 Rows parse_rows(const std::string& block, std::size_t expected_columns, const std::string& where) {
     Rows rows;
     rows.columns.resize(expected_columns - 1);
@@ -36,7 +37,8 @@ Rows parse_rows(const std::string& block, std::size_t expected_columns, const st
         double v;
         while (fields >> v) values.push_back(v);
         if (!fields.eof() || values.size() != expected_columns)
-            fail("{}: data row {} \"{}\": expected {} numbers", where, line_no, line, expected_columns);
+            fail("{}: data row {} \"{}\": expected {} numbers", where, line_no, line,
+                 expected_columns);
         rows.wavelength_um.push_back(values[0]);
         for (std::size_t c = 1; c < expected_columns; ++c) rows.columns[c - 1].push_back(values[c]);
     }
@@ -57,9 +59,10 @@ RefractiveIndexTable load_refractiveindex_yaml(const std::filesystem::path& path
         } else if (type == "tabulated k") {
             k_only = parse_rows(entry.get<std::string>("data"), 2, where);
         } else {
-            entry.at("type").fail("unsupported DATA type \"" + type +
-                                  "\" (tirpol reads \"tabulated nk\", \"tabulated n\" and \"tabulated k\"; "
-                                  "tabulate formula data first)");
+            entry.at("type").fail(
+                "unsupported DATA type \"" + type +
+                "\" (tirpol reads \"tabulated nk\", \"tabulated n\" and \"tabulated k\"; "
+                "tabulate formula data first)");
         }
     }
     const std::string source = path.string();
@@ -110,27 +113,28 @@ RefractiveIndexTable load_csv(const std::filesystem::path& path) {
                 if (cells[c] == "k") col_k = c;
             }
             if (col_wl == kNone || col_n == kNone || col_k == kNone)
-                fail("{}:{}: expected a header naming the columns wavelength_um, n, k; got \"{}\"", path.string(),
-                     line_no, line);
+                fail("{}:{}: expected a header naming the columns wavelength_um, n, k; got \"{}\"",
+                     path.string(), line_no, line);
             continue;
         }
         auto number = [&](std::size_t c, const char* name) {
-            if (c >= cells.size())
-                fail("{}:{}: missing column {}", path.string(), line_no, name);
+            if (c >= cells.size()) fail("{}:{}: missing column {}", path.string(), line_no, name);
             try {
                 std::size_t used = 0;
                 const double v = std::stod(cells[c], &used);
                 if (used != cells[c].size()) throw std::invalid_argument(name);
                 return v;
             } catch (const std::exception&) {
-                fail("{}:{}: {}: expected a number, got \"{}\"", path.string(), line_no, name, cells[c]);
+                fail("{}:{}: {}: expected a number, got \"{}\"", path.string(), line_no, name,
+                     cells[c]);
             }
         };
         wl.push_back(number(col_wl, "wavelength_um"));
         n.push_back(number(col_n, "n"));
         k.push_back(number(col_k, "k"));
     }
-    if (col_wl == kNone) fail("{}: empty refractive-index CSV (expected header wavelength_um,n,k)", path.string());
+    if (col_wl == kNone)
+        fail("{}: empty refractive-index CSV (expected header wavelength_um,n,k)", path.string());
     return RefractiveIndexTable(wl, n, k, path.string());
 }
 
@@ -138,7 +142,8 @@ RefractiveIndexTable load_csv(const std::filesystem::path& path) {
 
 RefractiveIndexTable RefractiveIndexTable::constant(ComplexIndex index, std::string source) {
     if (!(index.n > 0.0) || !(index.k >= 0.0) || !std::isfinite(index.n) || !std::isfinite(index.k))
-        fail("{}: refractive index n = {}, k = {}: expected n > 0 and k ≥ 0", source, index.n, index.k);
+        fail("{}: refractive index n = {}, k = {}: expected n > 0 and k ≥ 0", source, index.n,
+             index.k);
     RefractiveIndexTable t;
     t.m_constant = index;
     t.m_source = std::move(source);
@@ -147,17 +152,21 @@ RefractiveIndexTable RefractiveIndexTable::constant(ComplexIndex index, std::str
 
 RefractiveIndexTable::RefractiveIndexTable(std::vector<double> wavelength_um, std::vector<double> n,
                                            std::vector<double> k, std::string source)
-    : m_wavelength_um(std::move(wavelength_um)), m_n(std::move(n)), m_k(std::move(k)), m_source(std::move(source)) {
+    : m_wavelength_um(std::move(wavelength_um)),
+      m_n(std::move(n)),
+      m_k(std::move(k)),
+      m_source(std::move(source)) {
     if (m_wavelength_um.size() != m_n.size() || m_n.size() != m_k.size())
         fail("{}: refractive-index table columns have different lengths", m_source);
-    if (m_wavelength_um.size() < 2) fail("{}: refractive-index table needs at least 2 rows", m_source);
+    if (m_wavelength_um.size() < 2)
+        fail("{}: refractive-index table needs at least 2 rows", m_source);
     for (std::size_t i = 0; i < m_wavelength_um.size(); ++i) {
         if (i > 0 && !(m_wavelength_um[i] > m_wavelength_um[i - 1]))
-            fail("{}: wavelengths must increase strictly (row {}: {} µm after {} µm)", m_source, i + 1,
-                 m_wavelength_um[i], m_wavelength_um[i - 1]);
+            fail("{}: wavelengths must increase strictly (row {}: {} µm after {} µm)", m_source,
+                 i + 1, m_wavelength_um[i], m_wavelength_um[i - 1]);
         if (!(m_n[i] > 0.0) || !(m_k[i] >= 0.0))
-            fail("{}: row {} (λ = {} µm): n = {}, k = {}: expected n > 0 and k ≥ 0", m_source, i + 1,
-                 m_wavelength_um[i], m_n[i], m_k[i]);
+            fail("{}: row {} (λ = {} µm): n = {}, k = {}: expected n > 0 and k ≥ 0", m_source,
+                 i + 1, m_wavelength_um[i], m_n[i], m_k[i]);
     }
 }
 
@@ -166,8 +175,10 @@ RefractiveIndexTable RefractiveIndexTable::load(const std::filesystem::path& pat
     const auto ext = path.extension().string();
     if (ext == ".yml" || ext == ".yaml") return load_refractiveindex_yaml(path);
     if (ext == ".csv") return load_csv(path);
-    fail("{}: unknown refractive-index file type (expected .yml/.yaml from refractiveindex.info or .csv)",
-         path.string());
+    fail(
+        "{}: unknown refractive-index file type (expected .yml/.yaml from refractiveindex.info or "
+        ".csv)",
+        path.string());
 }
 
 ComplexIndex RefractiveIndexTable::at(double wavelength_um) const {
@@ -190,7 +201,9 @@ bool RefractiveIndexTable::covers(double lo_um, double hi_um) const {
     return lo_um >= m_wavelength_um.front() - slack && hi_um <= m_wavelength_um.back() + slack;
 }
 
-double RefractiveIndexTable::min_wavelength_um() const { return is_constant() ? 0.0 : m_wavelength_um.front(); }
+double RefractiveIndexTable::min_wavelength_um() const {
+    return is_constant() ? 0.0 : m_wavelength_um.front();
+}
 double RefractiveIndexTable::max_wavelength_um() const {
     return is_constant() ? std::numeric_limits<double>::infinity() : m_wavelength_um.back();
 }

@@ -11,7 +11,8 @@
 
 namespace tirpol::materials {
 
-StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta,
+                                            double wavelength_um,
                                             const EmissivityOptions& options) {
     const double c = std::clamp(cos_theta, kMinCosine, 1.0);
     const Vec3 wo(std::sqrt(std::max(0.0, 1.0 - c * c)), 0.0, c);
@@ -23,7 +24,8 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
     const QuadratureRule base = gauss_legendre(order);
     // Mirror symmetry (is_isotropic): integrate u2 ∈ [0, ½] with the same node density and double.
     const bool mirror = brdf.is_isotropic();
-    const int azimuth_panels = std::max(1, mirror ? (options.azimuth_panels + 1) / 2 : options.azimuth_panels);
+    const int azimuth_panels =
+        std::max(1, mirror ? (options.azimuth_panels + 1) / 2 : options.azimuth_panels);
     const QuadratureRule azimuth = composite_rule(base, azimuth_panels, 0.0, mirror ? 0.5 : 1.0);
 
     std::vector<double> breaks = brdf.sample_u1_breaks(wo, wavelength_um);
@@ -37,13 +39,15 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
         // cosine-weighted lobe reaches the horizon (there a volume term ∝ 1/cosθi at grazing view
         // becomes the smooth integrand 2(1 − v)/(1 − v)) and the specular lobe has its slope tail.
         const double a = breaks[piece], width = breaks[piece + 1] - breaks[piece];
-        const QuadratureRule radial = composite_rule(base, std::max(1, options.radial_panels), 0.0, 1.0);
+        const QuadratureRule radial =
+            composite_rule(base, std::max(1, options.radial_panels), 0.0, 1.0);
         for (std::size_t i = 0; i < radial.nodes.size(); ++i) {
             const double one_minus_v = 1.0 - radial.nodes[i];
             const double u1 = a + width * (1.0 - one_minus_v * one_minus_v);
             const double w1 = radial.weights[i] * width * 2.0 * one_minus_v;
             for (std::size_t j = 0; j < azimuth.nodes.size(); ++j) {
-                const BrdfSample s = brdf.quadrature_sample(wo, wavelength_um, u1, azimuth.nodes[j]);
+                const BrdfSample s =
+                    brdf.quadrature_sample(wo, wavelength_um, u1, azimuth.nodes[j]);
                 if (!(s.pdf > 0.0)) continue;
                 sum += (w1 * azimuth.weights[j]) * s.weight.col(0);
             }
@@ -56,12 +60,14 @@ StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double co
     return sum;
 }
 
-StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
-                                    const EmissivityOptions& options) {
-    return unpolarized(1.0) - hemispherical_reflected_stokes(brdf, cos_theta, wavelength_um, options);
+StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta,
+                                    double wavelength_um, const EmissivityOptions& options) {
+    return unpolarized(1.0) -
+           hemispherical_reflected_stokes(brdf, cos_theta, wavelength_um, options);
 }
 
-double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta,
+                                             double wavelength_um,
                                              const EmissivityOptions& options) {
     return hemispherical_reflected_stokes(brdf, cos_theta, wavelength_um, options)(0);
 }
@@ -84,11 +90,12 @@ bool same_parameters(const std::vector<BrdfParameter>& a, const std::vector<Brdf
 
 void EmissivityTable::init_grid(int angle_nodes) {
     if (m_wavelengths_um.empty()) fail("EmissivityTable: empty wavelength list");
-    if (angle_nodes < 4) fail("EmissivityTable: angle_nodes = {}: expected at least 4", angle_nodes);
+    if (angle_nodes < 4)
+        fail("EmissivityTable: angle_nodes = {}: expected at least 4", angle_nodes);
     for (std::size_t i = 1; i < m_wavelengths_um.size(); ++i)
         if (!(m_wavelengths_um[i] > m_wavelengths_um[i - 1]))
-            fail("EmissivityTable: wavelengths must increase ({} µm after {} µm)", m_wavelengths_um[i],
-                 m_wavelengths_um[i - 1]);
+            fail("EmissivityTable: wavelengths must increase ({} µm after {} µm)",
+                 m_wavelengths_um[i], m_wavelengths_um[i - 1]);
     const auto n = static_cast<std::size_t>(angle_nodes);
     m_angles_rad.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
@@ -111,15 +118,15 @@ EmissivityTable EmissivityTable::from_values(std::vector<double> wavelengths_um,
     return table;
 }
 
-EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes,
-                                 const EmissivityOptions& options)
+EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um,
+                                 int angle_nodes, const EmissivityOptions& options)
     : m_wavelengths_um(std::move(wavelengths_um)) {
     init_grid(angle_nodes);
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
     for (const double w : m_wavelengths_um)
         if (w < lo * (1.0 - 1e-9) || w > hi * (1.0 + 1e-9))
-            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm", w, brdf.model(), lo,
-                 hi);
+            fail("EmissivityTable: wavelength {} µm is outside the {} model's data range {}–{} µm",
+                 w, brdf.model(), lo, hi);
     const std::size_t n = m_angles_rad.size();
     m_values.resize(n * m_wavelengths_um.size());
     // Columns whose parameters equal the previous column's are copied afterwards.
@@ -138,7 +145,8 @@ EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> 
     auto worker = [&] {
         for (std::size_t k = next++; k < jobs.size(); k = next++) {
             const std::size_t w = jobs[k] / n, j = jobs[k] % n;
-            m_values[jobs[k]] = directional_emissivity(brdf, std::cos(m_angles_rad[j]), m_wavelengths_um[w], options);
+            m_values[jobs[k]] = directional_emissivity(brdf, std::cos(m_angles_rad[j]),
+                                                       m_wavelengths_um[w], options);
         }
     };
     const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
@@ -147,8 +155,9 @@ EmissivityTable::EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> 
     worker();
     for (auto& t : pool) t.join();
     for (std::size_t w = 1; w < m_wavelengths_um.size(); ++w)
-        if (reuse[w]) std::copy_n(m_values.begin() + static_cast<std::ptrdiff_t>((w - 1) * n), n,
-                                  m_values.begin() + static_cast<std::ptrdiff_t>(w * n));
+        if (reuse[w])
+            std::copy_n(m_values.begin() + static_cast<std::ptrdiff_t>((w - 1) * n), n,
+                        m_values.begin() + static_cast<std::ptrdiff_t>(w * n));
 }
 
 double EmissivityTable::position(double cos_theta) const {
@@ -171,7 +180,8 @@ StokesVector EmissivityTable::at_position(double p, std::size_t wavelength_index
 }
 
 StokesVector EmissivityTable::at(double cos_theta, std::size_t wavelength_index) const {
-    return at_position(position(cos_theta), std::min(wavelength_index, m_wavelengths_um.size() - 1));
+    return at_position(position(cos_theta),
+                       std::min(wavelength_index, m_wavelengths_um.size() - 1));
 }
 
 namespace {
@@ -179,7 +189,8 @@ namespace {
 std::pair<std::size_t, double> bracket(const std::vector<double>& wl, double wavelength_um) {
     if (wl.size() == 1 || wavelength_um <= wl.front()) return {0, 0.0};
     if (wavelength_um >= wl.back()) return {wl.size() - 2, 1.0};
-    const auto i = static_cast<std::size_t>(std::upper_bound(wl.begin(), wl.end(), wavelength_um) - wl.begin());
+    const auto i = static_cast<std::size_t>(std::upper_bound(wl.begin(), wl.end(), wavelength_um) -
+                                            wl.begin());
     return {i - 1, (wavelength_um - wl[i - 1]) / (wl[i] - wl[i - 1])};
 }
 }  // namespace
@@ -191,7 +202,8 @@ StokesVector EmissivityTable::at_wavelength(double cos_theta, double wavelength_
     return (1.0 - t) * at_position(p, i) + t * at_position(p, i + 1);
 }
 
-StokesVector EmissivityTable::band_average(double cos_theta, const Band& band, double temperature_k) const {
+StokesVector EmissivityTable::band_average(double cos_theta, const Band& band,
+                                           double temperature_k) const {
     const double p = position(cos_theta);
     if (m_wavelengths_um.size() == 1) return at_position(p, 0);
     StokesVector num = StokesVector::Zero();
@@ -202,7 +214,8 @@ StokesVector EmissivityTable::band_average(double cos_theta, const Band& band, d
         num += (w * (1.0 - t)) * at_position(p, i) + (w * t) * at_position(p, i + 1);
         den += w;
     }
-    return den > 0.0 ? StokesVector(num / den) : at_wavelength(cos_theta, 0.5 * (band.lo_um() + band.hi_um()));
+    return den > 0.0 ? StokesVector(num / den)
+                     : at_wavelength(cos_theta, 0.5 * (band.lo_um() + band.hi_um()));
 }
 
 std::vector<double> EmissivityTable::band_weights(const Band& band, double temperature_k) const {
@@ -224,7 +237,8 @@ std::vector<double> EmissivityTable::band_weights(const Band& band, double tempe
     return weights;
 }
 
-StokesVector EmissivityTable::at_weighted(double cos_theta, const std::vector<double>& weights) const {
+StokesVector EmissivityTable::at_weighted(double cos_theta,
+                                          const std::vector<double>& weights) const {
     const double p = position(cos_theta);
     StokesVector sum = StokesVector::Zero();
     const std::size_t n = std::min(weights.size(), m_wavelengths_um.size());

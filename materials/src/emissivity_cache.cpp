@@ -18,7 +18,8 @@ namespace {
 
 constexpr std::string_view kMagic = "tirpol-emtab\n";
 
-/// FNV-1a, 64 bit (Fowler, Noll, Vo); two offset bases give the 128-bit key and an independent checksum.
+/// FNV-1a, 64 bit (Fowler, Noll, Vo); two offset bases give the 128-bit key and an independent
+/// checksum.
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t basis = 0xcbf29ce484222325ULL) {
     std::uint64_t h = basis;
     for (const char c : bytes) {
@@ -30,17 +31,19 @@ std::uint64_t fnv1a(std::string_view bytes, std::uint64_t basis = 0xcbf29ce48422
 constexpr std::uint64_t kSecondBasis = 0x84222325cbf29ce4ULL;
 
 /// Everything that determines a table's values, as text (hex floats: exact).
-std::string key_text(const PolarizedBrdf& brdf, const std::vector<double>& wavelengths_um, int angle_nodes,
-                     const EmissivityOptions& options) {
+std::string key_text(const PolarizedBrdf& brdf, const std::vector<double>& wavelengths_um,
+                     int angle_nodes, const EmissivityOptions& options) {
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
-    std::string text =
-        fmt::format("tirpol emissivity table v{}\nmodel {}\nrange {:a} {:a}\nangles {}\nquadrature {} {} {}\n",
-                    kEmissivityCacheVersion, brdf.model(), lo, hi, angle_nodes, options.radial_panels,
-                    options.azimuth_panels, options.order);
-    text += fmt::format("delta {} {} isotropic {}\n", brdf.has_delta(), brdf.is_pure_delta(), brdf.is_isotropic());
+    std::string text = fmt::format(
+        "tirpol emissivity table v{}\nmodel {}\nrange {:a} {:a}\nangles {}\nquadrature {} {} {}\n",
+        kEmissivityCacheVersion, brdf.model(), lo, hi, angle_nodes, options.radial_panels,
+        options.azimuth_panels, options.order);
+    text += fmt::format("delta {} {} isotropic {}\n", brdf.has_delta(), brdf.is_pure_delta(),
+                        brdf.is_isotropic());
     for (const double w : wavelengths_um) {
         text += fmt::format("{:a}", w);
-        for (const BrdfParameter& p : brdf.parameters(w)) text += fmt::format(" {}={:a}", p.name, p.value);
+        for (const BrdfParameter& p : brdf.parameters(w))
+            text += fmt::format(" {}={:a}", p.name, p.value);
         text += '\n';
     }
     return text;
@@ -74,7 +77,8 @@ std::string serialize(const EmissivityTable& table, const std::string& key) {
 
 /// The stored table if `bytes` is a complete, uncorrupted entry for `key` at `wavelengths_um`.
 std::shared_ptr<const EmissivityTable> deserialize(std::string_view bytes, const std::string& key,
-                                                   const std::vector<double>& wavelengths_um, int angle_nodes) {
+                                                   const std::vector<double>& wavelengths_um,
+                                                   int angle_nodes) {
     if (bytes.size() < kMagic.size() + 8) return nullptr;
     std::uint64_t checksum = 0;
     std::memcpy(&checksum, bytes.data() + bytes.size() - 8, 8);
@@ -88,8 +92,11 @@ std::shared_ptr<const EmissivityTable> deserialize(std::string_view bytes, const
     in.remove_prefix(key.size());
     std::uint64_t n_wavelengths = 0, n_angles = 0;
     if (!take(in, n_wavelengths) || !take(in, n_angles)) return nullptr;
-    if (n_wavelengths != wavelengths_um.size() || n_angles != static_cast<std::uint64_t>(angle_nodes)) return nullptr;
-    if (in.size() != (n_wavelengths + n_wavelengths * n_angles * 4) * sizeof(double)) return nullptr;
+    if (n_wavelengths != wavelengths_um.size() ||
+        n_angles != static_cast<std::uint64_t>(angle_nodes))
+        return nullptr;
+    if (in.size() != (n_wavelengths + n_wavelengths * n_angles * 4) * sizeof(double))
+        return nullptr;
     std::vector<double> stored_wavelengths(n_wavelengths);
     for (double& w : stored_wavelengths) take(in, w);
     if (stored_wavelengths != wavelengths_um) return nullptr;
@@ -97,8 +104,8 @@ std::shared_ptr<const EmissivityTable> deserialize(std::string_view bytes, const
     for (StokesVector& v : values)
         for (int c = 0; c < 4; ++c) take(in, v[c]);
     try {
-        return std::make_shared<const EmissivityTable>(
-            EmissivityTable::from_values(std::move(stored_wavelengths), angle_nodes, std::move(values)));
+        return std::make_shared<const EmissivityTable>(EmissivityTable::from_values(
+            std::move(stored_wavelengths), angle_nodes, std::move(values)));
     } catch (const Error&) {
         return nullptr;  // e.g. a non-finite value
     }
@@ -117,22 +124,27 @@ MemoryCache& memory_cache() {
 }  // namespace
 
 std::filesystem::path default_emissivity_cache_directory() {
-    if (const char* dir = std::getenv("TIRPOL_CACHE_DIR"); dir && *dir) return std::filesystem::path(dir);
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg && std::filesystem::path(xdg).is_absolute())
+    if (const char* dir = std::getenv("TIRPOL_CACHE_DIR"); dir && *dir)
+        return std::filesystem::path(dir);
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME");
+        xdg && *xdg && std::filesystem::path(xdg).is_absolute())
         return std::filesystem::path(xdg) / "tirpol";
-    if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "tirpol";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::filesystem::path(home) / ".cache" / "tirpol";
     return {};
 }
 
-std::string emissivity_table_key(const PolarizedBrdf& brdf, const std::vector<double>& wavelengths_um, int angle_nodes,
+std::string emissivity_table_key(const PolarizedBrdf& brdf,
+                                 const std::vector<double>& wavelengths_um, int angle_nodes,
                                  const EmissivityOptions& options) {
     const std::string text = key_text(brdf, wavelengths_um, angle_nodes, options);
     return fmt::format("{:016x}{:016x}", fnv1a(text), fnv1a(text, kSecondBasis));
 }
 
-CachedEmissivityTable cached_emissivity_table(const PolarizedBrdf& brdf, const std::vector<double>& wavelengths_um,
-                                              const std::filesystem::path& directory, int angle_nodes,
-                                              const EmissivityOptions& options) {
+CachedEmissivityTable cached_emissivity_table(const PolarizedBrdf& brdf,
+                                              const std::vector<double>& wavelengths_um,
+                                              const std::filesystem::path& directory,
+                                              int angle_nodes, const EmissivityOptions& options) {
     const std::string key = emissivity_table_key(brdf, wavelengths_um, angle_nodes, options);
     MemoryCache& memory = memory_cache();
     {
@@ -157,16 +169,20 @@ CachedEmissivityTable cached_emissivity_table(const PolarizedBrdf& brdf, const s
         }
     }
     if (!result.table) {
-        result.table = std::make_shared<const EmissivityTable>(brdf, wavelengths_um, angle_nodes, options);
-        result.source = file_present ? EmissivityCacheSource::rebuilt_corrupt : EmissivityCacheSource::built;
-        if (file_present) spdlog::warn("emissivity cache: {} was invalid; rebuilt it", file.string());
+        result.table =
+            std::make_shared<const EmissivityTable>(brdf, wavelengths_um, angle_nodes, options);
+        result.source =
+            file_present ? EmissivityCacheSource::rebuilt_corrupt : EmissivityCacheSource::built;
+        if (file_present)
+            spdlog::warn("emissivity cache: {} was invalid; rebuilt it", file.string());
         if (!file.empty()) {
             try {
                 std::filesystem::create_directories(directory);
                 write_file_atomic(file, serialize(*result.table, key));
             } catch (const std::exception& e) {
-                spdlog::warn("emissivity cache: cannot store {} ({}); tables will be rebuilt next time", file.string(),
-                             e.what());
+                spdlog::warn(
+                    "emissivity cache: cannot store {} ({}); tables will be rebuilt next time",
+                    file.string(), e.what());
             }
         }
     }

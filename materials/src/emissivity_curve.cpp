@@ -1,9 +1,9 @@
 #include "tirpol/materials/emissivity_curve.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
@@ -20,7 +20,8 @@ double parse_number(const std::string& text, const std::string& spec) {
         if (used == text.size() && std::isfinite(v)) return v;
     } catch (const std::exception&) {
     }
-    fail("angle specification \"{}\": \"{}\" is not a number (expected e.g. 0,45,60 or 0:85:5)", spec, text);
+    fail("angle specification \"{}\": \"{}\" is not a number (expected e.g. 0,45,60 or 0:85:5)",
+         spec, text);
 }
 
 EmissivityRow make_row(double angle_deg, const StokesVector& e) {
@@ -42,7 +43,8 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
             fail("angle specification \"{}\": expected finite START ≤ STOP and STEP > 0", spec);
         constexpr double kMaxAngles = 100000;
         if ((stop - start) / step > kMaxAngles)
-            fail("angle specification \"{}\": more than {} angles; use a larger STEP", spec, kMaxAngles);
+            fail("angle specification \"{}\": more than {} angles; use a larger STEP", spec,
+                 kMaxAngles);
         const auto n = static_cast<long>(std::floor((stop - start) / step + 1e-9));
         for (long i = 0; i <= n; ++i) angles.push_back(start + static_cast<double>(i) * step);
     } else {
@@ -52,40 +54,47 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
     }
     if (angles.empty()) fail("angle specification \"{}\": no angles", spec);
     for (double a : angles)
-        if (!(a >= 0.0 && a <= 90.0)) fail("angle specification \"{}\": {}° is outside [0, 90]", spec, a);
+        if (!(a >= 0.0 && a <= 90.0))
+            fail("angle specification \"{}\": {}° is outside [0, 90]", spec, a);
     return angles;
 }
 
-std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf, const std::vector<double>& angles_deg,
+std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf,
+                                            const std::vector<double>& angles_deg,
                                             double wavelength_um) {
     const auto [lo, hi] = brdf.valid_wavelength_range_um();
     if (!(wavelength_um >= lo && wavelength_um <= hi))
-        fail("wavelength {} µm is outside the {} model's data range {}–{} µm", wavelength_um, brdf.model(), lo, hi);
+        fail("wavelength {} µm is outside the {} model's data range {}–{} µm", wavelength_um,
+             brdf.model(), lo, hi);
     std::vector<EmissivityRow> rows;
-    for (double a : angles_deg) rows.push_back(make_row(a, directional_emissivity(brdf, std::cos(deg_to_rad(a)), wavelength_um)));
+    for (double a : angles_deg)
+        rows.push_back(
+            make_row(a, directional_emissivity(brdf, std::cos(deg_to_rad(a)), wavelength_um)));
     return rows;
 }
 
-std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf, const std::vector<double>& angles_deg,
-                                            const Band& band, double temperature_k) {
+std::vector<EmissivityRow> emissivity_curve(const PolarizedBrdf& brdf,
+                                            const std::vector<double>& angles_deg, const Band& band,
+                                            double temperature_k) {
     check_temperature_k(temperature_k, "emissivity curve: Planck weighting temperature");
     const EmissivityTable table(brdf, EmissivityTable::wavelengths_for_band(band));
     std::vector<EmissivityRow> rows;
     for (double a : angles_deg)
-        rows.push_back(make_row(a, table.band_average(std::cos(deg_to_rad(a)), band, temperature_k)));
+        rows.push_back(
+            make_row(a, table.band_average(std::cos(deg_to_rad(a)), band, temperature_k)));
     return rows;
 }
 
 std::string emissivity_csv(const std::vector<EmissivityRow>& rows) {
     std::string out = "angle_deg,e_s0,e_s1,e_s2,e_s3,dolp,dhr\n";
     for (const auto& r : rows)
-        out += fmt::format("{},{:.8f},{:.8f},{:.8f},{:.8f},{:.8f},{:.8f}\n", r.angle_deg, r.e(0), r.e(1), r.e(2), r.e(3),
-                           r.dolp, r.dhr);
+        out += fmt::format("{},{:.8f},{:.8f},{:.8f},{:.8f},{:.8f},{:.8f}\n", r.angle_deg, r.e(0),
+                           r.e(1), r.e(2), r.e(3), r.dolp, r.dhr);
     return out;
 }
 
-void write_emissivity_plot(const std::filesystem::path& path, const std::vector<EmissivityRow>& rows,
-                           const std::string& title) {
+void write_emissivity_plot(const std::filesystem::path& path,
+                           const std::vector<EmissivityRow>& rows, const std::string& title) {
     PlotSeries s0{"emissivity S0", {}, {}, {31, 119, 180}, rows.size() <= 30};
     PlotSeries s1{"emissivity S1", {}, {}, {214, 39, 40}, rows.size() <= 30};
     double lowest = 0.0;

@@ -19,7 +19,8 @@ MuellerMatrix fresnel_mueller(const ComplexIndex& index, double cos_i) {
     const Mueller4<double> m = fresnel_mueller_t(index.n, index.k, std::clamp(cos_i, 0.0, 1.0));
     MuellerMatrix out;
     for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) out(r, c) = m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
+        for (int c = 0; c < 4; ++c)
+            out(r, c) = m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
     return out;
 }
 

@@ -7,7 +7,8 @@
 namespace tirpol::materials::detail {
 
 /// Linear interpolation of y(x) on increasing x, clamped to the end values outside.
-inline double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double at) {
+inline double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y,
+                                 double at) {
     if (at <= x.front()) return y.front();
     if (at >= x.back()) return y.back();
     const auto it = std::upper_bound(x.begin(), x.end(), at);

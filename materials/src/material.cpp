@@ -23,7 +23,8 @@ RefractiveIndexTable index_from_config(const ConfigNode& node) {
         return RefractiveIndexTable::load(node.resolve_path(node.get<std::string>("file")));
     }
     if (node.has("wavelength_um")) {
-        return RefractiveIndexTable(node.get<std::vector<double>>("wavelength_um"), node.get<std::vector<double>>("n"),
+        return RefractiveIndexTable(node.get<std::vector<double>>("wavelength_um"),
+                                    node.get<std::vector<double>>("n"),
                                     node.get<std::vector<double>>("k"), where);
     }
     const double n = node.get_in_range("n", 1e-6, 1e6);
@@ -31,7 +32,8 @@ RefractiveIndexTable index_from_config(const ConfigNode& node) {
     return RefractiveIndexTable::constant({n, k}, where);
 }
 
-SpectralValue parameter(const ConfigNode& params, std::string_view key, double fallback, double lo, double hi) {
+SpectralValue parameter(const ConfigNode& params, std::string_view key, double fallback, double lo,
+                        double hi) {
     const auto node = params.find(key);
     return node ? SpectralValue::from_config(*node, lo, hi) : SpectralValue(fallback);
 }
@@ -50,11 +52,13 @@ void check_energy(const PolarizedBrdf& brdf, const ConfigNode& node) {
     coarse.azimuth_panels = 4;
     for (double wl : wavelengths)
         for (double angle_deg : {0.0, 60.0, 85.0, 89.9}) {
-            const double dhr = directional_hemispherical_reflectance(brdf, std::cos(deg_to_rad(angle_deg)), wl, coarse);
+            const double dhr = directional_hemispherical_reflectance(
+                brdf, std::cos(deg_to_rad(angle_deg)), wl, coarse);
             if (dhr > 1.0 + 2e-3)
-                node.fail(fmt::format("the parameters reflect more than they receive: directional-hemispherical "
-                                      "reflectance {:.4f} > 1 at {} µm, {}° (lower rho_d, rho_v or bias)",
-                                      dhr, wl, angle_deg));
+                node.fail(fmt::format(
+                    "the parameters reflect more than they receive: directional-hemispherical "
+                    "reflectance {:.4f} > 1 at {} µm, {}° (lower rho_d, rho_v or bias)",
+                    dhr, wl, angle_deg));
         }
 }
 
@@ -62,14 +66,17 @@ std::shared_ptr<const PolarizedBrdf> brdf_from_config(const ConfigNode& node) {
     const auto model = node.get<std::string>("model");
     const auto params = node.find("parameters");
     if (model == "smooth_fresnel") {
-        if (params) params->fail("the smooth_fresnel model has no parameters besides refractive_index");
+        if (params)
+            params->fail("the smooth_fresnel model has no parameters besides refractive_index");
         return std::make_shared<SmoothFresnelBrdf>(index_from_config(node.at("refractive_index")));
     }
     if (model == "lambertian") {
-        if (node.has("refractive_index")) node.at("refractive_index").fail("the lambertian model has no refractive index");
+        if (node.has("refractive_index"))
+            node.at("refractive_index").fail("the lambertian model has no refractive index");
         if (!params) node.fail("missing field `parameters` (lambertian needs `reflectance`)");
         params->check_keys({"reflectance"});
-        return std::make_shared<LambertianBrdf>(SpectralValue::from_config(params->at("reflectance"), 0.0, 1.0));
+        return std::make_shared<LambertianBrdf>(
+            SpectralValue::from_config(params->at("reflectance"), 0.0, 1.0));
     }
     if (model == "microfacet") {
         if (!params) node.fail("missing field `parameters` (microfacet needs at least `sigma`)");
@@ -86,25 +93,31 @@ std::shared_ptr<const PolarizedBrdf> brdf_from_config(const ConfigNode& node) {
         check_energy(*brdf, *params);
         return brdf;
     }
-    node.at("model").fail("unknown model \"" + model + "\" (expected smooth_fresnel, microfacet or lambertian)");
+    node.at("model").fail("unknown model \"" + model +
+                          "\" (expected smooth_fresnel, microfacet or lambertian)");
 }
 
 }  // namespace
 
 Material material_from_config(const ConfigNode& node, const std::string& fallback_name) {
     if (!node.is_map()) node.fail("expected a material mapping (name, source, model, ...)");
-    // Thermal properties live with the slab solver's layered materials, not here (docs/materials.md).
+    // Thermal properties live with the slab solver's layered materials, not here
+    // (docs/materials.md).
     if (node.has("thermal"))
         node.at("thermal").fail(
-            "a material file no longer carries `thermal`: give the layers (thickness_m, conductivity_w_m_k, "
-            "density_kg_m3, specific_heat_j_kg_k) in the scene's `thermal_materials` (docs/thermal.md)");
-    node.check_keys({"name", "description", "source", "model", "refractive_index", "parameters", "notes"});
+            "a material file no longer carries `thermal`: give the layers (thickness_m, "
+            "conductivity_w_m_k, "
+            "density_kg_m3, specific_heat_j_kg_k) in the scene's `thermal_materials` "
+            "(docs/thermal.md)");
+    node.check_keys(
+        {"name", "description", "source", "model", "refractive_index", "parameters", "notes"});
     Material m;
     m.name = node.get_or<std::string>("name", fallback_name);
     if (m.name.empty()) node.fail("missing field `name`");
     m.source = node.get<std::string>("source");
     m.notes = node.get_or<std::string>("notes", "");
-    if (const auto d = node.find("description")) m.notes = d->as<std::string>() + (m.notes.empty() ? "" : "\n" + m.notes);
+    if (const auto d = node.find("description"))
+        m.notes = d->as<std::string>() + (m.notes.empty() ? "" : "\n" + m.notes);
     m.brdf = brdf_from_config(node);
     m.file = node.file();
     return m;
@@ -120,7 +133,8 @@ MaterialLibrary MaterialLibrary::load_directory(const std::filesystem::path& dir
     std::vector<std::filesystem::path> files;
     for (const auto& entry : std::filesystem::directory_iterator(directory)) {
         const auto ext = entry.path().extension().string();
-        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml")) files.push_back(entry.path());
+        if (entry.is_regular_file() && (ext == ".yaml" || ext == ".yml"))
+            files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
     MaterialLibrary library;
@@ -146,7 +160,8 @@ const Material& MaterialLibrary::get(const std::string& name) const {
         for (const auto& [n, _] : m_materials) known += (known.empty() ? "" : ", ") + n;
         const std::string hint = closest_match(name, names());
         fail("unknown material \"{}\"{}; known materials: {}", name,
-             hint.empty() ? "" : " (did you mean \"" + hint + "\"?)", known.empty() ? "(none)" : known);
+             hint.empty() ? "" : " (did you mean \"" + hint + "\"?)",
+             known.empty() ? "(none)" : known);
     }
     return it->second;
 }

@@ -21,24 +21,26 @@ std::string number_list(const std::vector<double>& values) {
 
 void check_finite(const MicrofacetMaterialRecord& m, const char* field, double value) {
     if (!std::isfinite(value))
-        fail("material \"{}\": {} = {} cannot be written (expected a finite number)", m.name, field, value);
+        fail("material \"{}\": {} = {} cannot be written (expected a finite number)", m.name, field,
+             value);
 }
 
 }  // namespace
 
 std::string microfacet_material_yaml(const MicrofacetMaterialRecord& m) {
     if (m.name.empty()) fail("material file: the material needs a name");
-    if (m.wavelengths_um.empty() || m.n.size() != m.wavelengths_um.size() || m.k.size() != m.wavelengths_um.size())
-        fail("material \"{}\": {} wavelengths, {} n and {} k values (expected equal, at least one)", m.name,
-             m.wavelengths_um.size(), m.n.size(), m.k.size());
+    if (m.wavelengths_um.empty() || m.n.size() != m.wavelengths_um.size() ||
+        m.k.size() != m.wavelengths_um.size())
+        fail("material \"{}\": {} wavelengths, {} n and {} k values (expected equal, at least one)",
+             m.name, m.wavelengths_um.size(), m.n.size(), m.k.size());
     for (std::size_t i = 0; i < m.wavelengths_um.size(); ++i) {
         check_finite(m, "wavelength_um", m.wavelengths_um[i]);
         check_finite(m, "n", m.n[i]);
         check_finite(m, "k", m.k[i]);
     }
-    const std::pair<const char*, double> parameters[] = {{"sigma", m.sigma},     {"bias", m.bias},
-                                                         {"tau_deg", m.tau_deg}, {"omega_deg", m.omega_deg},
-                                                         {"rho_d", m.rho_d},     {"rho_v", m.rho_v}};
+    const std::pair<const char*, double> parameters[] = {
+        {"sigma", m.sigma},         {"bias", m.bias},   {"tau_deg", m.tau_deg},
+        {"omega_deg", m.omega_deg}, {"rho_d", m.rho_d}, {"rho_v", m.rho_v}};
     for (const auto& [field, value] : parameters) check_finite(m, field, value);
 
     std::ostringstream out;
@@ -53,11 +55,12 @@ std::string microfacet_material_yaml(const MicrofacetMaterialRecord& m) {
     if (m.wavelengths_um.size() == 1) {
         out << fmt::format("refractive_index: {{n: {}, k: {}}}\n", m.n[0], m.k[0]);
     } else {
-        out << "refractive_index:\n  wavelength_um: " << number_list(m.wavelengths_um) << "\n  n: " << number_list(m.n)
-            << "\n  k: " << number_list(m.k) << '\n';
+        out << "refractive_index:\n  wavelength_um: " << number_list(m.wavelengths_um)
+            << "\n  n: " << number_list(m.n) << "\n  k: " << number_list(m.k) << '\n';
     }
     out << "parameters:\n";
-    for (const auto& [field, value] : parameters) out << "  " << field << ": " << fmt::format("{}", value) << '\n';
+    for (const auto& [field, value] : parameters)
+        out << "  " << field << ": " << fmt::format("{}", value) << '\n';
     return out.str();
 }
 

@@ -57,20 +57,23 @@ void check(acquisition::Status&& status) { value_or_raise(std::move(status)); }
 std::chrono::milliseconds milliseconds(double seconds, const char* argument, double max_s) {
     if (!(seconds >= 0.0 && seconds <= max_s))
         throw py::value_error(
-            fmt::format("{}: expected a finite number of seconds in [0, {}], got {}", argument, max_s, seconds));
+            fmt::format("{}: expected a finite number of seconds in [0, {}], got {}", argument,
+                        max_s, seconds));
     return std::chrono::milliseconds(static_cast<long>(seconds * 1000.0));
 }
 
 /// A stage motion that Ctrl-C stops: the signal makes the calling thread send Stage::stop(), so the
 /// motion ends (DeviceErrorCode::Stopped) with the stage standing where it stopped.
-void interruptible_motion(acquisition::Stage& stage, const std::function<acquisition::Status()>& motion) {
-    check(run_interruptible([&](const std::atomic<bool>&) { return motion(); }, [&] { stage.stop(); }));
+void interruptible_motion(acquisition::Stage& stage,
+                          const std::function<acquisition::Status()>& motion) {
+    check(run_interruptible([&](const std::atomic<bool>&) { return motion(); },
+                            [&] { stage.stop(); }));
 }
 
 void bind_stage(py::module_& m) {
     using acquisition::Stage;
-    py::class_<Stage, std::unique_ptr<Stage>>(m, "Stage",
-                                              "A rotation stage opened by URI (docs/acquisition-stages.md).")
+    py::class_<Stage, std::unique_ptr<Stage>>(
+        m, "Stage", "A rotation stage opened by URI (docs/acquisition-stages.md).")
         .def_property_readonly("info",
                                [](const Stage& s) {
                                    const auto i = s.info();
@@ -86,22 +89,26 @@ void bind_stage(py::module_& m) {
         .def(
             "home",
             [](Stage& s, double timeout_s) {
-                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
+                const auto timeout =
+                    milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
                 interruptible_motion(s, [&] { return s.home(timeout); });
             },
-            py::arg("timeout_s") = 60.0, "Homes the stage; Ctrl-C stops it (KeyboardInterrupt, stage stopped).")
+            py::arg("timeout_s") = 60.0,
+            "Homes the stage; Ctrl-C stops it (KeyboardInterrupt, stage stopped).")
         .def_property_readonly("is_homed", &Stage::is_homed)
         .def(
             "move_absolute",
             [](Stage& s, double angle_deg, double timeout_s) {
                 if (!std::isfinite(angle_deg))
-                    throw py::value_error(
-                        fmt::format("angle_deg: expected a finite angle in degrees, got {}", angle_deg));
-                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
+                    throw py::value_error(fmt::format(
+                        "angle_deg: expected a finite angle in degrees, got {}", angle_deg));
+                const auto timeout =
+                    milliseconds(timeout_s, "timeout_s", acquisition::kMaxMoveTimeoutSeconds);
                 interruptible_motion(s, [&] { return s.move_absolute(angle_deg, timeout); });
             },
             py::arg("angle_deg"), py::arg("timeout_s") = 60.0,
-            "Moves to angle_deg and waits until the move is done; Ctrl-C stops the stage (KeyboardInterrupt).")
+            "Moves to angle_deg and waits until the move is done; Ctrl-C stops the stage "
+            "(KeyboardInterrupt).")
         .def(
             "position_deg",
             [](Stage& s) {
@@ -118,27 +125,31 @@ void bind_stage(py::module_& m) {
             return value_or_raise(acquisition::open_stage(uri));
         },
         py::arg("uri"),
-        "Opens a rotation stage: thorlabs-apt:///dev/ttyUSB0, elliptec:///dev/ttyUSB0, sim://?deg_per_s=&start_deg= "
+        "Opens a rotation stage: thorlabs-apt:///dev/ttyUSB0, elliptec:///dev/ttyUSB0, "
+        "sim://?deg_per_s=&start_deg= "
         "(docs/acquisition-stages.md). Device failures raise tirpol.DeviceError.");
 }
 
 }  // namespace
 
 void bind_acquisition(py::module_& m) {
-    // The renderer-backed sim://<scene.yaml> camera, as the CLI registers it at start-up: open_camera
-    // takes it once the package is imported.
+    // The renderer-backed sim://<scene.yaml> camera, as the CLI registers it at start-up:
+    // open_camera takes it once the package is imported.
     twin::register_twin_device_schemes();
     bind_stage(m);
     bind_capture(m);
-    py::class_<Camera, std::unique_ptr<Camera>>(m, "Camera",
-                                                "A camera opened by URI (docs/acquisition-cameras.md). Use it as a "
-                                                "context manager to stop streaming on exit.")
+    py::class_<Camera, std::unique_ptr<Camera>>(
+        m, "Camera",
+        "A camera opened by URI (docs/acquisition-cameras.md). Use it as a "
+        "context manager to stop streaming on exit.")
         .def_property_readonly("info", [](const Camera& c) { return info_dict(c.info()); })
         .def(
-            "set_pixel_format", [](Camera& c, const std::string& f) { check(c.set_pixel_format(f)); },
+            "set_pixel_format",
+            [](Camera& c, const std::string& f) { check(c.set_pixel_format(f)); },
             py::arg("format"))
         .def(
-            "set_frame_rate", [](Camera& c, double hz) { check(c.set_frame_rate(hz)); }, py::arg("hz"))
+            "set_frame_rate", [](Camera& c, double hz) { check(c.set_frame_rate(hz)); },
+            py::arg("hz"))
         .def(
             "start", [](Camera& c) { check(c.start()); }, "Starts streaming.")
         .def(
@@ -146,7 +157,8 @@ void bind_acquisition(py::module_& m) {
         .def(
             "grab",
             [](Camera& c, double timeout_s) {
-                const auto timeout = milliseconds(timeout_s, "timeout_s", acquisition::kMaxFrameTimeoutSeconds);
+                const auto timeout =
+                    milliseconds(timeout_s, "timeout_s", acquisition::kMaxFrameTimeoutSeconds);
                 acquisition::Result<acquisition::Frame> frame = [&] {
                     py::gil_scoped_release release;
                     return c.grab(timeout);
@@ -154,8 +166,10 @@ void bind_acquisition(py::module_& m) {
                 return frame_dict(value_or_raise(std::move(frame)));
             },
             py::arg("timeout_s") = 2.0,
-            "The next complete frame: {'counts': float32 (H, W), 'frame_id' (monotonic), 'device_timestamp_ns', "
-            "'host_timestamp_ns', 'fpa_temperature_k'}. Raises tirpol.DeviceError (code 'timeout', ...) otherwise.")
+            "The next complete frame: {'counts': float32 (H, W), 'frame_id' (monotonic), "
+            "'device_timestamp_ns', "
+            "'host_timestamp_ns', 'fpa_temperature_k'}. Raises tirpol.DeviceError (code 'timeout', "
+            "...) otherwise.")
         .def("statistics",
              [](const Camera& c) {
                  const auto s = c.statistics();
@@ -175,9 +189,12 @@ void bind_acquisition(py::module_& m) {
             return value_or_raise(acquisition::open_camera(uri));
         },
         py::arg("uri"),
-        "Opens a camera: aravis://<device-id>[?pixel_format=&width=&height=&fps=], v4l2:///dev/videoN, "
-        "sim://uniform?width=&height=&counts=&noise=&fps=, or sim://<scene.yaml>[?width=&height=&spp=&fps=] (the "
-        "scene rendered once, seen through the digital twin's wire grid and detector). A malformed URI raises "
+        "Opens a camera: aravis://<device-id>[?pixel_format=&width=&height=&fps=], "
+        "v4l2:///dev/videoN, "
+        "sim://uniform?width=&height=&counts=&noise=&fps=, or "
+        "sim://<scene.yaml>[?width=&height=&spp=&fps=] (the "
+        "scene rendered once, seen through the digital twin's wire grid and detector). A malformed "
+        "URI raises "
         "tirpol.Error, an absent or refusing device tirpol.DeviceError.");
     m.def(
         "list_cameras",
@@ -189,11 +206,14 @@ void bind_acquisition(py::module_& m) {
             }
             py::list out;
             for (const auto& c : cameras)
-                out.append(py::dict(py::arg("uri") = c.uri, py::arg("description") = c.description));
+                out.append(
+                    py::dict(py::arg("uri") = c.uri, py::arg("description") = c.description));
             return out;
         },
-        "Cameras reachable now: Aravis discovery (GigE Vision, USB3 Vision; takes about 1 s) and the V4L2 capture "
-        "devices among /dev/video*, as a list of {'uri': pass to open_camera, 'description': vendor, model, "
+        "Cameras reachable now: Aravis discovery (GigE Vision, USB3 Vision; takes about 1 s) and "
+        "the V4L2 capture "
+        "devices among /dev/video*, as a list of {'uri': pass to open_camera, 'description': "
+        "vendor, model, "
         "address or driver}. Releases the GIL.");
 }
 

@@ -22,20 +22,24 @@ using calibration::AnalyzerModel;
 using calibration::AnalyzerPosition;
 
 void bind_analyzer(py::module_& m) {
-    py::class_<AnalyzerPosition>(m, "AnalyzerPosition", "Model of one analyzer position (calibration/analyzer.h).")
+    py::class_<AnalyzerPosition>(m, "AnalyzerPosition",
+                                 "Model of one analyzer position (calibration/analyzer.h).")
         .def_readonly("nominal_angle_deg", &AnalyzerPosition::nominal_angle_deg)
         .def_readonly("axis_angle_deg", &AnalyzerPosition::axis_angle_deg)
         .def_readonly("diattenuation", &AnalyzerPosition::diattenuation)
         .def_readonly("relative_transmission", &AnalyzerPosition::relative_transmission)
         .def_readonly("background", &AnalyzerPosition::background)
         .def_property_readonly("extinction_ratio", &AnalyzerPosition::extinction_ratio);
-    py::class_<AnalyzerModel>(m, "AnalyzerModel",
-                              "The rotating polarizer: one AnalyzerPosition per angle; its data-reduction matrix W⁺ "
-                              "turns N ≥ 3 analyzer images into (S0, S1, S2).")
+    py::class_<AnalyzerModel>(
+        m, "AnalyzerModel",
+        "The rotating polarizer: one AnalyzerPosition per angle; its data-reduction matrix W⁺ "
+        "turns N ≥ 3 analyzer images into (S0, S1, S2).")
         .def_static("ideal", &AnalyzerModel::ideal, py::arg("angles_deg"),
-                    "An ideal polarizer at the given angles (for 0/45/90/135 the DRM is Gartley et al. eqs 14–16).")
-        .def_static("non_ideal", &AnalyzerModel::non_ideal, py::arg("angles_deg"), py::arg("extinction_ratio"),
-                    py::arg("angle_offset_deg") = 0.0, py::arg("t_max") = 1.0,
+                    "An ideal polarizer at the given angles (for 0/45/90/135 the DRM is Gartley et "
+                    "al. eqs 14–16).")
+        .def_static("non_ideal", &AnalyzerModel::non_ideal, py::arg("angles_deg"),
+                    py::arg("extinction_ratio"), py::arg("angle_offset_deg") = 0.0,
+                    py::arg("t_max") = 1.0,
                     "A polarizer with an extinction ratio and an axis offset at every position.")
         .def_static(
             "estimate",
@@ -43,36 +47,46 @@ void bind_analyzer(py::module_& m) {
                const Eigen::MatrixXd& intensities) {
                 if (intensities.rows() != source_stokes.rows() ||
                     intensities.cols() != static_cast<Eigen::Index>(angles_deg.size()))
-                    fail("intensities: expected shape ({}, {}) (one row per source, one column per angle), got "
-                         "({}, {})",
-                         source_stokes.rows(), angles_deg.size(), intensities.rows(), intensities.cols());
+                    fail(
+                        "intensities: expected shape ({}, {}) (one row per source, one column per "
+                        "angle), got "
+                        "({}, {})",
+                        source_stokes.rows(), angles_deg.size(), intensities.rows(),
+                        intensities.cols());
                 std::vector<calibration::KnownSourceMeasurement> measurements;
                 for (Eigen::Index j = 0; j < source_stokes.rows(); ++j) {
                     const Eigen::RowVectorXd row = intensities.row(j);
-                    measurements.push_back({source_stokes.row(j).transpose(), {row.data(), row.data() + row.size()}});
+                    measurements.push_back(
+                        {source_stokes.row(j).transpose(), {row.data(), row.data() + row.size()}});
                 }
                 return calibration::estimate_analyzer(angles_deg, measurements);
             },
             py::arg("angles_deg"), py::arg("source_stokes"), py::arg("intensities"),
-            "Least-squares analyzer model from known polarized sources (the polarimetric calibration's analyzer "
-            "step, from arrays): `source_stokes` (J, 3) = (S0, S1, S2) of each source in the camera frame, "
-            "`intensities` (J, N) its mean measurement at each angle. Per position the axis angle, diattenuation, "
-            "transmission and background are fitted; needs ≥ 4 sources spanning two intensities and two "
+            "Least-squares analyzer model from known polarized sources (the polarimetric "
+            "calibration's analyzer "
+            "step, from arrays): `source_stokes` (J, 3) = (S0, S1, S2) of each source in the "
+            "camera frame, "
+            "`intensities` (J, N) its mean measurement at each angle. Per position the axis angle, "
+            "diattenuation, "
+            "transmission and background are fitted; needs ≥ 4 sources spanning two intensities "
+            "and two "
             "polarization orientations.")
         .def_readonly("positions", &AnalyzerModel::positions)
         .def("data_reduction_matrix", &AnalyzerModel::data_reduction_matrix, "W⁺, shape (3, N).")
         .def("condition_number", &AnalyzerModel::condition_number);
 }
 
-/// The analyzer images of `images` (angle_deg → (H, W) array) with their σ from `stds` (same keys), as
-/// views of float32 arrays kept in `arrays`: float32 C-contiguous inputs are not copied (the
+/// The analyzer images of `images` (angle_deg → (H, W) array) with their σ from `stds` (same keys),
+/// as views of float32 arrays kept in `arrays`: float32 C-contiguous inputs are not copied (the
 /// overhead bench/python_bench.cpp measures).
-std::vector<calibration::AnalyzerPlanes> analyzer_planes(const py::dict& images, const py::object& stds,
-                                                         std::vector<py::array_t<float>>& arrays, int& width,
-                                                         int& height) {
+std::vector<calibration::AnalyzerPlanes> analyzer_planes(const py::dict& images,
+                                                         const py::object& stds,
+                                                         std::vector<py::array_t<float>>& arrays,
+                                                         int& width, int& height) {
     const auto view = [&](const py::handle& value, const std::string& what) {
         arrays.push_back(float_plane(value, what, width, height));
-        return std::span<const float>(arrays.back().data(), static_cast<std::size_t>(arrays.back().size()));
+        return std::span<const float>(arrays.back().data(),
+                                      static_cast<std::size_t>(arrays.back().size()));
     };
     std::vector<calibration::AnalyzerPlanes> out;
     for (const auto& [key, value] : images) {
@@ -83,7 +97,8 @@ std::vector<calibration::AnalyzerPlanes> analyzer_planes(const py::dict& images,
         if (!stds.is_none()) {
             const auto std_dict = stds.cast<py::dict>();
             if (!std_dict.contains(key))
-                fail("stds: no array for angle {} (every image needs its σ, or pass none)", a.angle_deg);
+                fail("stds: no array for angle {} (every image needs its σ, or pass none)",
+                     a.angle_deg);
             a.signal_std = view(std_dict[key], fmt::format("stds[{}]", a.angle_deg));
         }
         out.push_back(std::move(a));
@@ -99,7 +114,8 @@ void bind_reduce(py::module_& m) {
            bool project_to_realizable, bool include_slar, const std::string& units,
            const calibration::WireGridCalibration* wire_grid) {
             int width = 0, height = 0;
-            std::vector<py::array_t<float>> arrays;  // owns what the views see until the end of the call
+            std::vector<py::array_t<float>>
+                arrays;  // owns what the views see until the end of the call
             const auto inputs = analyzer_planes(images, stds, arrays, width, height);
             if (!model) {
                 std::vector<double> angles;
@@ -119,13 +135,18 @@ void bind_reduce(py::module_& m) {
             return to_python(std::move(result));
         },
         py::arg("images"), py::arg("stds") = py::none(), py::arg("model") = py::none(),
-        py::arg("project_to_realizable") = true, py::arg("include_slar") = false, py::arg("units") = "W/(m^2 sr)",
-        py::arg("wire_grid") = py::none(),
-        "Stokes reduction S = W⁺·I per pixel (Tyo et al. 2006 §4) of analyzer images {angle_deg: (H, W) array}, "
-        "with σ images `stds` (same keys) propagated to S0_std S1_std S2_std DoLP_std AoP_std. Default model: an "
-        "ideal polarizer at the given angles. Returns a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, "
-        "S1 = I0 − I90, S2 = I45 − I135). With `wire_grid` (fit_wire_grid), each image is first corrected to "
-        "L_SLAR = (I − B)/τ and the grid fit's covariance adds to the σ. Releases the GIL; Ctrl-C stops it "
+        py::arg("project_to_realizable") = true, py::arg("include_slar") = false,
+        py::arg("units") = "W/(m^2 sr)", py::arg("wire_grid") = py::none(),
+        "Stokes reduction S = W⁺·I per pixel (Tyo et al. 2006 §4) of analyzer images {angle_deg: "
+        "(H, W) array}, "
+        "with σ images `stds` (same keys) propagated to S0_std S1_std S2_std DoLP_std AoP_std. "
+        "Default model: an "
+        "ideal polarizer at the given angles. Returns a tirpol.Image with S0 S1 S2 DoLP AoP "
+        "(camera frame, "
+        "S1 = I0 − I90, S2 = I45 − I135). With `wire_grid` (fit_wire_grid), each image is first "
+        "corrected to "
+        "L_SLAR = (I − B)/τ and the grid fit's covariance adds to the σ. Releases the GIL; Ctrl-C "
+        "stops it "
         "(KeyboardInterrupt).");
 }
 

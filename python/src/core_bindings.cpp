@@ -33,8 +33,10 @@ template <typename T, typename F>
 py::array_t<T> map_stokes(const DoubleArray& s, const char* function, F&& f) {
     const py::ssize_t n = s.ndim() > 0 ? s.shape(s.ndim() - 1) : 0;
     if (n != 3 && n != 4)
-        fail("{}: expected Stokes vectors along the last axis, shape (..., 4) or (..., 3), got last axis {}", function,
-             n);
+        fail(
+            "{}: expected Stokes vectors along the last axis, shape (..., 4) or (..., 3), got last "
+            "axis {}",
+            function, n);
     std::vector<py::ssize_t> shape(s.shape(), s.shape() + s.ndim() - 1);
     py::array_t<T> out(shape);
     const double* in = s.data();
@@ -47,14 +49,21 @@ py::array_t<T> map_stokes(const DoubleArray& s, const char* function, F&& f) {
 void bind_stokes(py::module_& m) {
     m.def(
         "dolp",
-        [](const DoubleArray& s) { return map_stokes<double>(s, "dolp", [](const auto& v) { return dolp(v); }); },
+        [](const DoubleArray& s) {
+            return map_stokes<double>(s, "dolp", [](const auto& v) { return dolp(v); });
+        },
         py::arg("stokes"),
-        "Degree of linear polarization √(S1²+S2²)/S0 of Stokes vectors of shape (..., 4) or (..., 3); 0 where S0 ≤ 0, "
+        "Degree of linear polarization √(S1²+S2²)/S0 of Stokes vectors of shape (..., 4) or (..., "
+        "3); 0 where S0 ≤ 0, "
         "NaN where a component is NaN (an unmeasured pixel is not an unpolarized one).");
     m.def(
-        "dop", [](const DoubleArray& s) { return map_stokes<double>(s, "dop", [](const auto& v) { return dop(v); }); },
+        "dop",
+        [](const DoubleArray& s) {
+            return map_stokes<double>(s, "dop", [](const auto& v) { return dop(v); });
+        },
         py::arg("stokes"),
-        "Degree of polarization √(S1²+S2²+S3²)/S0 of Stokes vectors of shape (..., 4); 0 where S0 ≤ 0, NaN where a "
+        "Degree of polarization √(S1²+S2²+S3²)/S0 of Stokes vectors of shape (..., 4); 0 where S0 "
+        "≤ 0, NaN where a "
         "component is NaN.");
     m.def(
         "aop_deg",
@@ -62,14 +71,17 @@ void bind_stokes(py::module_& m) {
             return map_stokes<double>(s, "aop_deg", [](const auto& v) { return aop_deg_0_180(v); });
         },
         py::arg("stokes"),
-        "Angle of linear polarization ½·atan2(S2, S1) in degrees, in [0, 180) (the AoP image channel's convention), "
+        "Angle of linear polarization ½·atan2(S2, S1) in degrees, in [0, 180) (the AoP image "
+        "channel's convention), "
         "counter-clockwise from the frame's reference axis looking into the beam.");
     m.def(
         "is_realizable",
         [](const DoubleArray& s) {
-            return map_stokes<bool>(s, "is_realizable", [](const auto& v) { return is_realizable(v, 1e-9); });
+            return map_stokes<bool>(s, "is_realizable",
+                                    [](const auto& v) { return is_realizable(v, 1e-9); });
         },
-        py::arg("stokes"), "S0 ≥ 0 and S0 ≥ √(S1²+S2²+S3²) (relative tolerance 1e-9), per Stokes vector.");
+        py::arg("stokes"),
+        "S0 ≥ 0 and S0 ≥ √(S1²+S2²+S3²) (relative tolerance 1e-9), per Stokes vector.");
     m.def(
         "linearly_polarized",
         [](double s0, double dolp_value, double aop_deg) {
@@ -81,16 +93,21 @@ void bind_stokes(py::module_& m) {
 
 void bind_mueller(py::module_& m) {
     m.def(
-        "frame_rotation", [](double angle_deg) { return frame_rotation(deg_to_rad(angle_deg)); }, py::arg("angle_deg"),
-        "Mueller matrix (4, 4) rotating the Stokes reference frame by angle_deg counter-clockwise looking into the "
+        "frame_rotation", [](double angle_deg) { return frame_rotation(deg_to_rad(angle_deg)); },
+        py::arg("angle_deg"),
+        "Mueller matrix (4, 4) rotating the Stokes reference frame by angle_deg counter-clockwise "
+        "looking into the "
         "beam (Gartley et al. eq 11).");
     m.def(
         "rotate_element",
-        [](const MuellerMatrix& mm, double angle_deg) { return rotate_element(mm, deg_to_rad(angle_deg)); },
+        [](const MuellerMatrix& mm, double angle_deg) {
+            return rotate_element(mm, deg_to_rad(angle_deg));
+        },
         py::arg("mueller"), py::arg("angle_deg"),
         "The element `mueller` physically rotated by angle_deg: R(−θ)·M·R(θ).");
     m.def(
-        "linear_polarizer", [](double axis_deg) { return linear_polarizer(deg_to_rad(axis_deg)); }, py::arg("axis_deg"),
+        "linear_polarizer", [](double axis_deg) { return linear_polarizer(deg_to_rad(axis_deg)); },
+        py::arg("axis_deg"),
         "Ideal linear polarizer with its transmission axis at axis_deg (Malus's law).");
     m.def(
         "linear_diattenuator",
@@ -98,7 +115,8 @@ void bind_mueller(py::module_& m) {
             return linear_diattenuator(deg_to_rad(axis_deg), t_max, t_min);
         },
         py::arg("axis_deg"), py::arg("t_max"), py::arg("t_min"),
-        "Linear diattenuator with intensity transmittances t_max along, t_min across the axis (Chipman et al. 2018, "
+        "Linear diattenuator with intensity transmittances t_max along, t_min across the axis "
+        "(Chipman et al. 2018, "
         "eq 6.35).");
     m.def(
         "polarizer_with_extinction",
@@ -106,20 +124,24 @@ void bind_mueller(py::module_& m) {
             return polarizer_with_extinction(deg_to_rad(axis_deg), transmission, extinction_ratio);
         },
         py::arg("axis_deg"), py::arg("transmission"), py::arg("extinction_ratio"),
-        "Non-ideal polarizer: major transmittance and extinction ratio t_max/t_min (400 for the paper's wire grid).");
+        "Non-ideal polarizer: major transmittance and extinction ratio t_max/t_min (400 for the "
+        "paper's wire grid).");
     m.def(
         "linear_retarder",
         [](double fast_axis_deg, double retardance_deg) {
             return linear_retarder(deg_to_rad(fast_axis_deg), deg_to_rad(retardance_deg));
         },
         py::arg("fast_axis_deg"), py::arg("retardance_deg"),
-        "Linear retarder (Collett's form, exp(i(ωt − kz)) convention: a quarter-wave plate at +45° turns horizontal "
+        "Linear retarder (Collett's form, exp(i(ωt − kz)) convention: a quarter-wave plate at +45° "
+        "turns horizontal "
         "light into S3 = −1).");
-    m.def("depolarizer", &depolarizer, py::arg("retained_fraction"), "Partial depolarizer diag(1, a, a, a).");
-    m.def(
-        "mueller_from_jones", &mueller_from_jones, py::arg("jones"),
-        "Mueller matrix (4, 4) of a complex Jones matrix (2, 2), M_ij = ½·tr(σ_i J σ_j J†) (Chipman et al. eq 6.99).");
-    m.def("is_physically_realizable", &is_physically_realizable, py::arg("mueller"), py::arg("rel_tol") = 1e-9,
+    m.def("depolarizer", &depolarizer, py::arg("retained_fraction"),
+          "Partial depolarizer diag(1, a, a, a).");
+    m.def("mueller_from_jones", &mueller_from_jones, py::arg("jones"),
+          "Mueller matrix (4, 4) of a complex Jones matrix (2, 2), M_ij = ½·tr(σ_i J σ_j J†) "
+          "(Chipman et al. eq 6.99).");
+    m.def("is_physically_realizable", &is_physically_realizable, py::arg("mueller"),
+          py::arg("rel_tol") = 1e-9,
           "Every eigenvalue of the Cloude coherency matrix ≥ −rel_tol·m00 (Cloude 1986).");
 }
 
@@ -130,10 +152,15 @@ py::object vectorized(F&& f, const py::object& x) {
 }
 
 void bind_radiometry(py::module_& m) {
-    m.def("planck_radiance", py::vectorize(&planck_radiance), py::arg("wavelength_um"), py::arg("temperature_k"),
-          "Planck spectral radiance W/(m²·sr·µm) of a blackbody (CODATA 2018 constants); arrays broadcast.");
-    py::class_<Band>(m, "Band", "A spectral band [lo_um, hi_um] µm with an optional relative spectral response (RSR).")
-        .def(py::init([](double lo_um, double hi_um, std::optional<std::vector<double>> rsr_wavelength_um,
+    m.def("planck_radiance", py::vectorize(&planck_radiance), py::arg("wavelength_um"),
+          py::arg("temperature_k"),
+          "Planck spectral radiance W/(m²·sr·µm) of a blackbody (CODATA 2018 constants); arrays "
+          "broadcast.");
+    py::class_<Band>(
+        m, "Band",
+        "A spectral band [lo_um, hi_um] µm with an optional relative spectral response (RSR).")
+        .def(py::init([](double lo_um, double hi_um,
+                         std::optional<std::vector<double>> rsr_wavelength_um,
                          std::optional<std::vector<double>> rsr_response) {
                  if (rsr_wavelength_um.has_value() != rsr_response.has_value())
                      fail("Band: give both rsr_wavelength_um and rsr_response, or neither");
@@ -145,11 +172,15 @@ void bind_radiometry(py::module_& m) {
              py::arg("rsr_response") = py::none())
         .def_property_readonly("lo_um", &Band::lo_um)
         .def_property_readonly("hi_um", &Band::hi_um)
-        .def_property_readonly("effective_width_um", &Band::effective_width_um, "∫ R(λ) dλ over the band, µm.")
+        .def_property_readonly("effective_width_um", &Band::effective_width_um,
+                               "∫ R(λ) dλ over the band, µm.")
         .def(
             "radiance",
-            [](const Band& b, const py::object& t) { return vectorized([&b](double v) { return b.radiance(v); }, t); },
-            py::arg("temperature_k"), "Band radiance ∫ R(λ) L_bb(λ, T) dλ in W/(m²·sr), for a number or an array.")
+            [](const Band& b, const py::object& t) {
+                return vectorized([&b](double v) { return b.radiance(v); }, t);
+            },
+            py::arg("temperature_k"),
+            "Band radiance ∫ R(λ) L_bb(λ, T) dλ in W/(m²·sr), for a number or an array.")
         .def(
             "radiance_dT",
             [](const Band& b, const py::object& t) {
@@ -162,30 +193,38 @@ void bind_radiometry(py::module_& m) {
                 return vectorized([&b](double v) { return b.brightness_temperature(v); }, l);
             },
             py::arg("radiance_w_m2_sr"),
-            "The temperature (K) whose band radiance equals the given one, to 1e-6 K; NaN for radiance ≤ 0 or not "
+            "The temperature (K) whose band radiance equals the given one, to 1e-6 K; NaN for "
+            "radiance ≤ 0 or not "
             "finite. Inverse of radiance().")
         .def("__repr__", [](const Band& b) {
-            return fmt::format("Band(lo_um={}, hi_um={}{})", b.lo_um(), b.hi_um(), b.rsr() ? ", with RSR" : "");
+            return fmt::format("Band(lo_um={}, hi_um={}{})", b.lo_um(), b.hi_um(),
+                               b.rsr() ? ", with RSR" : "");
         });
 }
 
 void bind_exr(py::module_& m) {
     m.def(
-        "read_exr", [](const std::filesystem::path& path) { return to_python(read_exr(path)); }, py::arg("path"),
-        "Reads an OpenEXR file into a tirpol.Image: channel name → float32 array (H, W), header attributes in "
+        "read_exr", [](const std::filesystem::path& path) { return to_python(read_exr(path)); },
+        py::arg("path"),
+        "Reads an OpenEXR file into a tirpol.Image: channel name → float32 array (H, W), header "
+        "attributes in "
         ".attributes. Raises tirpol.Error naming the file if it is missing, truncated or corrupt.");
     m.def(
         "write_exr",
-        [](const std::filesystem::path& path, const py::object& channels, const py::object& attributes) {
-            const py::object attrs =
-                attributes.is_none() && py::hasattr(channels, "attributes") ? channels.attr("attributes") : attributes;
+        [](const std::filesystem::path& path, const py::object& channels,
+           const py::object& attributes) {
+            const py::object attrs = attributes.is_none() && py::hasattr(channels, "attributes")
+                                         ? channels.attr("attributes")
+                                         : attributes;
             Image image = from_python(channels, attrs);
             py::gil_scoped_release release;
             write_exr(path, image);
         },
         py::arg("path"), py::arg("image"), py::arg("attributes") = py::none(),
-        "Writes channels (a mapping name → 2-D array, all the same shape; stored as 32-bit float, so float32 data "
-        "round-trips exactly) and header attributes (int, float, str or a sequence of floats; default: "
+        "Writes channels (a mapping name → 2-D array, all the same shape; stored as 32-bit float, "
+        "so float32 data "
+        "round-trips exactly) and header attributes (int, float, str or a sequence of floats; "
+        "default: "
         "image.attributes when `image` is a tirpol.Image) atomically to an OpenEXR file.");
 }
 

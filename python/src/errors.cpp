@@ -13,13 +13,16 @@ namespace tirpol::python {
 void bind_errors(py::module_& m) {
     auto& error = py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
     error.doc() =
-        "Bad input to tirpol (a config, a file, an array of the wrong shape, a device reply). The message "
-        "names the file, the field and what was expected, exactly as the C++ library and the CLI print it.";
+        "Bad input to tirpol (a config, a file, an array of the wrong shape, a device reply). The "
+        "message "
+        "names the file, the field and what was expected, exactly as the C++ library and the CLI "
+        "print it.";
     auto& cancelled = py::register_exception<Cancelled>(m, "Cancelled", error.ptr());
     cancelled.doc() = "A long computation was stopped by its cancellation flag before it finished.";
     static py::exception<DeviceFailure> device_error(m, "DeviceError", error.ptr());
     device_error.doc() =
-        "A camera or stage failed (timeout, bad reply, fault, disconnected, ...): `code` names the kind, the "
+        "A camera or stage failed (timeout, bad reply, fault, disconnected, ...): `code` names the "
+        "kind, the "
         "message the device and what happened.";
     py::register_exception_translator([](std::exception_ptr p) {
         try {

@@ -22,12 +22,14 @@ inline constexpr std::chrono::milliseconds kSignalPollPeriod{50};
 /// Runs `work(cancel)` (which must not touch Python objects) and returns its result. Exceptions of
 /// `work` propagate unchanged, except when a signal handler raised: then its exception
 /// (KeyboardInterrupt) replaces whatever the stopped work threw. `on_interrupt` runs on the calling
-/// thread right after `cancel` is set, for work blocked where no flag is read (a stage move: stop it).
+/// thread right after `cancel` is set, for work blocked where no flag is read (a stage move: stop
+/// it).
 template <typename Work, typename OnInterrupt = void (*)()>
 auto run_interruptible(
     Work&& work, OnInterrupt&& on_interrupt = [] {}) {
     std::atomic<bool> cancel{false};
-    auto result = std::async(std::launch::async, [&] { return work(static_cast<const std::atomic<bool>&>(cancel)); });
+    auto result = std::async(std::launch::async,
+                             [&] { return work(static_cast<const std::atomic<bool>&>(cancel)); });
     for (;;) {
         bool done = false;
         {
@@ -44,7 +46,8 @@ auto run_interruptible(
             }
             try {
                 result.get();
-            } catch (const std::exception&) {  // the stopped work's Cancelled: the interrupt is the news
+            } catch (
+                const std::exception&) {  // the stopped work's Cancelled: the interrupt is the news
             }
             throw pybind11::error_already_set();
         }

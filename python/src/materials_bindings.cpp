@@ -27,14 +27,15 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 /// Shape (...) of an array of 3-vectors (..., 3); tirpol::Error naming `what` otherwise.
 std::vector<py::ssize_t> vector_batch_shape(const DoubleArray& a, const char* what) {
     if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
-        fail("{}: expected directions of shape (..., 3), got {} dimensions with last axis {}", what, a.ndim(),
-             a.ndim() > 0 ? a.shape(a.ndim() - 1) : 0);
+        fail("{}: expected directions of shape (..., 3), got {} dimensions with last axis {}", what,
+             a.ndim(), a.ndim() > 0 ? a.shape(a.ndim() - 1) : 0);
     return {a.shape(), a.shape() + a.ndim() - 1};
 }
 
 Vec3 unit_direction(const double* p, const char* what) {
     const Vec3 v(p[0], p[1], p[2]);
-    if (!(v.norm() > 0.0) || !std::isfinite(v.norm())) fail("{}: a direction is zero or not finite", what);
+    if (!(v.norm() > 0.0) || !std::isfinite(v.norm()))
+        fail("{}: a direction is zero or not finite", what);
     return v.normalized();
 }
 
@@ -56,19 +57,22 @@ py::array_t<double> stokes_per_angle(const DoubleArray& theta_deg, F&& f) {
 
 py::dict parameters_of(const Material& m, double wavelength_um) {
     py::dict out;
-    for (const auto& p : m.brdf->parameters(wavelength_um)) out[py::str(p.name)] = py::make_tuple(p.value, p.unit);
+    for (const auto& p : m.brdf->parameters(wavelength_um))
+        out[py::str(p.name)] = py::make_tuple(p.value, p.unit);
     return out;
 }
 
 void bind_material(py::module_& m) {
-    py::class_<Material>(m, "Material", "A material: its polarized BRDF model, parameters and literature source.")
+    py::class_<Material>(m, "Material",
+                         "A material: its polarized BRDF model, parameters and literature source.")
         .def_readonly("name", &Material::name)
         .def_readonly("source", &Material::source)
         .def_readonly("notes", &Material::notes)
         .def_readonly("file", &Material::file)
         .def_property_readonly("model", [](const Material& mat) { return mat.brdf->model(); })
-        .def_property_readonly("valid_wavelength_range_um",
-                               [](const Material& mat) { return mat.brdf->valid_wavelength_range_um(); })
+        .def_property_readonly(
+            "valid_wavelength_range_um",
+            [](const Material& mat) { return mat.brdf->valid_wavelength_range_um(); })
         .def("parameters", &parameters_of, py::arg("wavelength_um"),
              "Model parameters at a wavelength: name → (value, unit).")
         .def(
@@ -79,8 +83,10 @@ void bind_material(py::module_& m) {
                 });
             },
             py::arg("theta_deg"), py::arg("wavelength_um"),
-            "Polarized directional emissivity ε(θ) = e0 − ∫M·e0 cosθi dωi (Gartley et al. eq 5 as Stokes) for "
-            "emission angles theta_deg (any shape, degrees from the normal) → shape (..., 4), in the frame of "
+            "Polarized directional emissivity ε(θ) = e0 − ∫M·e0 cosθi dωi (Gartley et al. eq 5 as "
+            "Stokes) for "
+            "emission angles theta_deg (any shape, degrees from the normal) → shape (..., 4), in "
+            "the frame of "
             "the plane of emission: S1 < 0 is emission polarized in that plane.")
         .def(
             "reflected_stokes",
@@ -90,11 +96,13 @@ void bind_material(py::module_& m) {
                 });
             },
             py::arg("theta_deg"), py::arg("wavelength_um"),
-            "∫ M(ωi→ωo)·e0 cosθi dωi towards theta_deg under uniform unpolarized unit radiance → (..., 4); "
+            "∫ M(ωi→ωo)·e0 cosθi dωi towards theta_deg under uniform unpolarized unit radiance → "
+            "(..., 4); "
             "S0 is the directional-hemispherical reflectance (paper eq 2).")
         .def(
             "mueller_brdf",
-            [](const Material& mat, const DoubleArray& wi, const DoubleArray& wo, double wavelength_um) {
+            [](const Material& mat, const DoubleArray& wi, const DoubleArray& wo,
+               double wavelength_um) {
                 const auto batch = vector_batch_shape(wi, "wi");
                 if (vector_batch_shape(wo, "wo") != batch) fail("wi and wo: shapes differ");
                 auto shape = batch;
@@ -104,30 +112,36 @@ void bind_material(py::module_& m) {
                 const std::size_t n = static_cast<std::size_t>(wi.size() / 3);
                 double* o = out.mutable_data();
                 for (std::size_t i = 0; i < n; ++i, o += 16) {
-                    const MuellerMatrix mm = mat.brdf->eval(unit_direction(wi.data() + 3 * i, "wi"),
-                                                            unit_direction(wo.data() + 3 * i, "wo"), wavelength_um);
+                    const MuellerMatrix mm =
+                        mat.brdf->eval(unit_direction(wi.data() + 3 * i, "wi"),
+                                       unit_direction(wo.data() + 3 * i, "wo"), wavelength_um);
                     for (int r = 0; r < 4; ++r)
                         for (int c = 0; c < 4; ++c) o[4 * r + c] = mm(r, c);
                 }
                 return out;
             },
             py::arg("wi"), py::arg("wo"), py::arg("wavelength_um"),
-            "The Mueller pBRDF M(wi→wo) in 1/sr for arrays of surface-local directions of shape (..., 3) (z = "
-            "normal, both away from the surface; normalised here) → (..., 4, 4). Incident Stokes in "
+            "The Mueller pBRDF M(wi→wo) in 1/sr for arrays of surface-local directions of shape "
+            "(..., 3) (z = "
+            "normal, both away from the surface; normalised here) → (..., 4, 4). Incident Stokes "
+            "in "
             "surface_frame(−wi, z), reflected in surface_frame(wo, z) (materials/pbrdf.h).")
         .def("__repr__", [](const Material& mat) {
             return fmt::format("<tirpol.materials.Material {} ({})>", mat.name, mat.brdf->model());
         });
 
-    m.def("load_material", &materials::load_material, py::arg("path"), "Loads one material YAML file.");
+    m.def("load_material", &materials::load_material, py::arg("path"),
+          "Loads one material YAML file.");
     m.def(
         "material_from_dict",
         [](const py::dict& d, const std::filesystem::path& base_dir) {
-            return materials::material_from_config(config_from_python(
-                d, std::filesystem::absolute(base_dir).lexically_normal() / "<material from a Python dict>"));
+            return materials::material_from_config(
+                config_from_python(d, std::filesystem::absolute(base_dir).lexically_normal() /
+                                          "<material from a Python dict>"));
         },
         py::arg("material"), py::arg("base_dir") = std::filesystem::path("."),
-        "A material from a dict with the keys of a material file (docs/materials.md); relative data paths "
+        "A material from a dict with the keys of a material file (docs/materials.md); relative "
+        "data paths "
         "resolve against base_dir.");
     m.def(
         "load_library",
@@ -137,7 +151,8 @@ void bind_material(py::module_& m) {
             for (const auto& name : library.names()) out[py::str(name)] = library.get(name);
             return out;
         },
-        py::arg("directory"), "Every material file of a folder (e.g. config/materials) as a dict name → Material.");
+        py::arg("directory"),
+        "Every material file of a folder (e.g. config/materials) as a dict name → Material.");
 }
 
 }  // namespace

@@ -18,22 +18,27 @@ struct Submodule {
 // In dependency order: a submodule's functions may take classes of an earlier one (core.Band).
 constexpr Submodule kSubmodules[] = {
     {"core", "Stokes/Mueller algebra, Planck radiometry, EXR I/O", tirpol::python::bind_core},
-    {"materials", "Material files, polarized emissivity, Mueller pBRDF", tirpol::python::bind_materials},
+    {"materials", "Material files, polarized emissivity, Mueller pBRDF",
+     tirpol::python::bind_materials},
     {"simulation", "Scenes and the polarized path tracer", tirpol::python::bind_simulation},
-    {"calibration", "Analyzer model, radiometric calibration, Stokes reduction", tirpol::python::bind_calibration},
+    {"calibration", "Analyzer model, radiometric calibration, Stokes reduction",
+     tirpol::python::bind_calibration},
     {"fitting", "Fits of pBRDF parameters with uncertainties", tirpol::python::bind_fitting},
-    {"acquisition", "Cameras and stages by URI, frames as arrays", tirpol::python::bind_acquisition},
+    {"acquisition", "Cameras and stages by URI, frames as arrays",
+     tirpol::python::bind_acquisition},
     {"report", "Measured-vs-simulated comparison and HTML report", tirpol::python::bind_report},
 };
 
 }  // namespace
 
 PYBIND11_MODULE(_tirpol, m) {
-    m.doc() = "tirpol's C++ library (pybind11). Use the package `tirpol`, which re-exports this module.";
+    m.doc() =
+        "tirpol's C++ library (pybind11). Use the package `tirpol`, which re-exports this module.";
     tirpol::python::bind_errors(m);
     for (const Submodule& s : kSubmodules) {
         py::module_ sub = m.def_submodule(s.name, s.doc);
-        py::module_::import("sys").attr("modules")[py::str(std::string("tirpol._tirpol.") + s.name)] = sub;
+        py::module_::import("sys").attr(
+            "modules")[py::str(std::string("tirpol._tirpol.") + s.name)] = sub;
         s.bind(sub);
     }
 }

@@ -13,8 +13,9 @@
 
 namespace tirpol::python {
 
-/// `config` (dict, list, numbers, strings) as a ConfigNode. Messages name `source_name` as the file;
-/// relative paths inside resolve against its directory.
-ConfigNode config_from_python(const pybind11::handle& config, const std::filesystem::path& source_name);
+/// `config` (dict, list, numbers, strings) as a ConfigNode. Messages name `source_name` as the
+/// file; relative paths inside resolve against its directory.
+ConfigNode config_from_python(const pybind11::handle& config,
+                              const std::filesystem::path& source_name);
 
 }  // namespace tirpol::python

@@ -1,5 +1,5 @@
-// tirpol.report: the measured-vs-simulated comparison. compare() computes (statistics as a dict with
-// the keys of report.json, docs/report.md); Comparison.write_html() presents.
+// tirpol.report: the measured-vs-simulated comparison. compare() computes (statistics as a dict
+// with the keys of report.json, docs/report.md); Comparison.write_html() presents.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -23,17 +23,20 @@ struct PyComparison {
     CompareOptions options;
 
     py::object statistics() const {
-        return py::module_::import("json").attr("loads")(report::comparison_json(comparison.result));
+        return py::module_::import("json").attr("loads")(
+            report::comparison_json(comparison.result));
     }
 };
 
 }  // namespace
 
 void bind_report(py::module_& m) {
-    py::class_<PyComparison>(m, "Comparison", "A measured-vs-simulated comparison (report/comparison_report.h).")
-        .def_property_readonly("statistics", &PyComparison::statistics,
-                               "Every number of the comparison as a dict: the content of report.json (keys in "
-                               "docs/report.md): registration, noise sources, per-region statistics, z and verdicts.")
+    py::class_<PyComparison>(m, "Comparison",
+                             "A measured-vs-simulated comparison (report/comparison_report.h).")
+        .def_property_readonly(
+            "statistics", &PyComparison::statistics,
+            "Every number of the comparison as a dict: the content of report.json (keys in "
+            "docs/report.md): registration, noise sources, per-region statistics, z and verdicts.")
         .def(
             "write_html",
             [](PyComparison& c, const std::filesystem::path& report_dir) {
@@ -44,7 +47,8 @@ void bind_report(py::module_& m) {
                 return c.comparison.result.html;
             },
             py::arg("report_dir"),
-            "Writes report.html, report.json, comparison.exr and the figures into report_dir; returns the HTML path.");
+            "Writes report.html, report.json, comparison.exr and the figures into report_dir; "
+            "returns the HTML path.");
     m.def(
         "compare",
         [](const py::object& measured, const py::object& simulated, const std::string& registration,
@@ -68,10 +72,13 @@ void bind_report(py::module_& m) {
         py::arg("measured"), py::arg("simulated"), py::arg("registration") = "auto",
         py::arg("measured_frame_sigma") = py::none(), py::arg("band_um") = py::none(),
         py::arg("measured_name") = "measured", py::arg("simulated_name") = "simulated",
-        "Compares a measured Stokes image with a simulated one (tirpol.Image or dicts with S0 S1 S2 and, for "
-        "z statistics, S*_std / S*_var): registration ('auto': ECC on S0 gradients; 'none': identity, same size), "
+        "Compares a measured Stokes image with a simulated one (tirpol.Image or dicts with S0 S1 "
+        "S2 and, for "
+        "z statistics, S*_std / S*_var): registration ('auto': ECC on S0 gradients; 'none': "
+        "identity, same size), "
         "per-region statistics, z maps and verdicts. Writes "
-        "nothing; see Comparison.statistics and Comparison.write_html. Releases the GIL; Ctrl-C stops it between "
+        "nothing; see Comparison.statistics and Comparison.write_html. Releases the GIL; Ctrl-C "
+        "stops it between "
         "its stages (KeyboardInterrupt).");
 }
 

@@ -23,7 +23,8 @@ using simulation::Scene;
 /// A dict's stand-in file name: relative paths (meshes, materials_dir, the default ../materials)
 /// resolve against `base_dir`, and messages say where the dict came from.
 std::filesystem::path dict_source(const std::filesystem::path& base_dir, const char* what) {
-    return std::filesystem::absolute(base_dir).lexically_normal() / fmt::format("<{} from a Python dict>", what);
+    return std::filesystem::absolute(base_dir).lexically_normal() /
+           fmt::format("<{} from a Python dict>", what);
 }
 
 void check_positive(const char* field, long long value) {
@@ -31,14 +32,18 @@ void check_positive(const char* field, long long value) {
 }
 
 void bind_scene(py::module_& m) {
-    py::class_<Scene>(m, "Scene",
-                      "A scene ready to render (docs/scene-format.md). Camera and sampling can be overridden "
-                      "before render().")
+    py::class_<Scene>(
+        m, "Scene",
+        "A scene ready to render (docs/scene-format.md). Camera and sampling can be overridden "
+        "before render().")
         .def_property_readonly(
-            "file", [](const Scene& s) { return s.file; }, "The scene file (or the dict's stand-in).")
+            "file", [](const Scene& s) { return s.file; },
+            "The scene file (or the dict's stand-in).")
         .def_property_readonly("width", [](const Scene& s) { return s.camera.width(); })
         .def_property_readonly("height", [](const Scene& s) { return s.camera.height(); })
-        .def_property_readonly("band_um", [](const Scene& s) { return py::make_tuple(s.band.lo_um(), s.band.hi_um()); })
+        .def_property_readonly(
+            "band_um",
+            [](const Scene& s) { return py::make_tuple(s.band.lo_um(), s.band.hi_um()); })
         .def_property_readonly("object_names",
                                [](const Scene& s) {
                                    std::vector<std::string> names;
@@ -54,7 +59,8 @@ void bind_scene(py::module_& m) {
             "Samples per pixel.")
         .def_property(
             "seed", [](const Scene& s) { return s.sampling.seed; },
-            [](Scene& s, std::uint64_t seed) { s.sampling.seed = seed; }, "Random seed (renders are reproducible).")
+            [](Scene& s, std::uint64_t seed) { s.sampling.seed = seed; },
+            "Random seed (renders are reproducible).")
         .def_property(
             "max_bounces", [](const Scene& s) { return s.sampling.max_bounces; },
             [](Scene& s, int bounces) {
@@ -66,10 +72,12 @@ void bind_scene(py::module_& m) {
         .def(
             "set_camera",
             [](Scene& s, const py::dict& camera, const std::filesystem::path& base_dir) {
-                s.camera = simulation::Camera::from_config(config_from_python(camera, dict_source(base_dir, "camera")));
+                s.camera = simulation::Camera::from_config(
+                    config_from_python(camera, dict_source(base_dir, "camera")));
             },
             py::arg("camera"), py::arg("base_dir") = std::filesystem::path("."),
-            "Replaces the camera by one given as the scene file's `camera` mapping, e.g. {'resolution': [64, 48], "
+            "Replaces the camera by one given as the scene file's `camera` mapping, e.g. "
+            "{'resolution': [64, 48], "
             "'fov_deg': 22, 'position': [0, -3, 1], 'look_at': [0, 0, 0.3]}.")
         .def(
             "resize",
@@ -78,29 +86,37 @@ void bind_scene(py::module_& m) {
                 check_positive("height", height);
                 s.camera = s.camera.resized(width, height);
             },
-            py::arg("width"), py::arg("height"), "Same view at another resolution (intrinsics scaled).")
+            py::arg("width"), py::arg("height"),
+            "Same view at another resolution (intrinsics scaled).")
         .def("__repr__", [](const Scene& s) {
-            return fmt::format("<tirpol.simulation.Scene {} {}x{} spp={} objects={}>", s.file.filename().string(),
-                               s.camera.width(), s.camera.height(), s.sampling.samples_per_pixel, s.objects.size());
+            return fmt::format("<tirpol.simulation.Scene {} {}x{} spp={} objects={}>",
+                               s.file.filename().string(), s.camera.width(), s.camera.height(),
+                               s.sampling.samples_per_pixel, s.objects.size());
         });
 
     m.def(
-        "load_scene", [](const std::filesystem::path& path) { return simulation::load_scene(path); }, py::arg("path"),
-        "Loads a YAML scene file. Raises tirpol.Error naming the file, line and field for any mistake.");
+        "load_scene",
+        [](const std::filesystem::path& path) { return simulation::load_scene(path); },
+        py::arg("path"),
+        "Loads a YAML scene file. Raises tirpol.Error naming the file, line and field for any "
+        "mistake.");
     m.def(
         "scene_from_dict",
         [](const py::dict& scene, const std::filesystem::path& base_dir) {
-            return simulation::load_scene(config_from_python(scene, dict_source(base_dir, "scene")));
+            return simulation::load_scene(
+                config_from_python(scene, dict_source(base_dir, "scene")));
         },
         py::arg("scene"), py::arg("base_dir") = std::filesystem::path("."),
-        "Loads a scene given as a dict with the keys of the YAML format (the same loader and checks). Relative "
+        "Loads a scene given as a dict with the keys of the YAML format (the same loader and "
+        "checks). Relative "
         "paths, and the default material folder ../materials, resolve against base_dir.");
 }
 
 void bind_render(py::module_& m) {
     m.def(
         "render",
-        [](const Scene& scene, int threads, int tile_size, std::optional<std::filesystem::path> emissivity_cache_dir) {
+        [](const Scene& scene, int threads, int tile_size,
+           std::optional<std::filesystem::path> emissivity_cache_dir) {
             simulation::RenderOptions options;
             options.threads = threads;
             options.tile_size = tile_size;
@@ -114,9 +130,12 @@ void bind_render(py::module_& m) {
         },
         py::arg("scene"), py::arg("threads") = 0, py::arg("tile_size") = 16,
         py::arg("emissivity_cache_dir") = py::none(),
-        "Renders the scene. Returns a tirpol.Image of float32 arrays (H, W): S0 S1 S2 S3 (camera frame: 0° along "
-        "image +x, 90° toward the image top; band radiance W/(m²·sr)), DoLP, AoP (degrees), S0_var S1_var S2_var "
-        "(variance of the pixel mean), depth, normal_x/y/z, view_zenith_deg, object_id, material_id, temperature_k; "
+        "Renders the scene. Returns a tirpol.Image of float32 arrays (H, W): S0 S1 S2 S3 (camera "
+        "frame: 0° along "
+        "image +x, 90° toward the image top; band radiance W/(m²·sr)), DoLP, AoP (degrees), S0_var "
+        "S1_var S2_var "
+        "(variance of the pixel mean), depth, normal_x/y/z, view_zenith_deg, object_id, "
+        "material_id, temperature_k; "
         "header attributes in .attributes. Releases the GIL; Ctrl-C stops it (KeyboardInterrupt).");
 }
 

@@ -20,10 +20,11 @@ using namespace tirpol::calibration;
 
 /// One map of position `angle_deg` as an (H, W) array (a copy: the calibration keeps its own);
 /// `square_root`: of a variance map, the standard uncertainty.
-py::array_t<float> map_of(const WireGridCalibration& cal, double angle_deg, std::vector<float> WireGridPosition::*map,
-                          bool square_root = false) {
+py::array_t<float> map_of(const WireGridCalibration& cal, double angle_deg,
+                          std::vector<float> WireGridPosition::*map, bool square_root = false) {
     const WireGridPosition& p = cal.at(angle_deg);
-    if ((p.*map).empty()) fail("wire grid at {}°: no covariance (the frames had no σ images)", angle_deg);
+    if ((p.*map).empty())
+        fail("wire grid at {}°: no covariance (the frames had no σ images)", angle_deg);
     std::vector<float> values = p.*map;
     if (square_root)
         for (float& v : values) v = std::sqrt(v);
@@ -33,9 +34,10 @@ py::array_t<float> map_of(const WireGridCalibration& cal, double angle_deg, std:
 }  // namespace
 
 void bind_wire_grid(py::module_& m) {
-    py::class_<WireGridCalibration>(m, "WireGridCalibration",
-                                    "Per-pixel transmittance τ(α) and additive background B(α) of the wire grid at "
-                                    "each analyzer angle (calibration/wire_grid.h): I(α) = τ(α)·a(α)·S + B(α).")
+    py::class_<WireGridCalibration>(
+        m, "WireGridCalibration",
+        "Per-pixel transmittance τ(α) and additive background B(α) of the wire grid at "
+        "each analyzer angle (calibration/wire_grid.h): I(α) = τ(α)·a(α)·S + B(α).")
         .def_readonly("width", &WireGridCalibration::width)
         .def_readonly("height", &WireGridCalibration::height)
         .def_property_readonly("angles_deg",
@@ -45,19 +47,28 @@ void bind_wire_grid(py::module_& m) {
                                    return angles;
                                })
         .def(
-            "tau", [](const WireGridCalibration& c, double a) { return map_of(c, a, &WireGridPosition::tau); },
+            "tau",
+            [](const WireGridCalibration& c, double a) {
+                return map_of(c, a, &WireGridPosition::tau);
+            },
             py::arg("angle_deg"), "τ (H, W), dimensionless.")
         .def(
             "background",
-            [](const WireGridCalibration& c, double a) { return map_of(c, a, &WireGridPosition::background); },
+            [](const WireGridCalibration& c, double a) {
+                return map_of(c, a, &WireGridPosition::background);
+            },
             py::arg("angle_deg"), "B (H, W), units of the signal.")
         .def(
             "residual_rms",
-            [](const WireGridCalibration& c, double a) { return map_of(c, a, &WireGridPosition::residual_rms); },
+            [](const WireGridCalibration& c, double a) {
+                return map_of(c, a, &WireGridPosition::residual_rms);
+            },
             py::arg("angle_deg"), "RMS of the fit residuals (H, W), units of the signal.")
         .def(
             "tau_std",
-            [](const WireGridCalibration& c, double a) { return map_of(c, a, &WireGridPosition::tau_var, true); },
+            [](const WireGridCalibration& c, double a) {
+                return map_of(c, a, &WireGridPosition::tau_var, true);
+            },
             py::arg("angle_deg"), "Standard uncertainty of τ (H, W) from the frames' σ images.")
         .def(
             "background_std",
@@ -80,20 +91,27 @@ void bind_wire_grid(py::module_& m) {
                 if (!stds.is_none()) {
                     const auto std_dict = stds.cast<py::dict>();
                     if (!std_dict.contains(key))
-                        fail("stds: no array for {} (every frame needs its σ, or pass none)", f.source);
-                    f.signal_std = plane_from_array(std_dict[key], "stds" + f.source.substr(6), width, height);
+                        fail("stds: no array for {} (every frame needs its σ, or pass none)",
+                             f.source);
+                    f.signal_std =
+                        plane_from_array(std_dict[key], "stds" + f.source.substr(6), width, height);
                 }
                 inputs.push_back(std::move(f));
             }
             if (inputs.empty())
-                fail("frames: no blackbody frames (expected a dict (angle_deg, temperature_k) → 2-D array)");
+                fail(
+                    "frames: no blackbody frames (expected a dict (angle_deg, temperature_k) → 2-D "
+                    "array)");
             py::gil_scoped_release release;
             return fit_wire_grid(inputs, width, height, band);
         },
         py::arg("frames"), py::arg("band"), py::arg("stds") = py::none(),
-        "Fits τ(α) and B(α) per pixel, signal = τ·½·L_band(T) + B, to blackbody frames through the polarizer given "
-        "as {(angle_deg, temperature_k): (H, W) array} (radiance from a radiometric calibration, or counts), ≥ 2 "
-        "temperatures per angle; with σ images `stds` (same keys) also the τ/B covariance. Pass the result to "
+        "Fits τ(α) and B(α) per pixel, signal = τ·½·L_band(T) + B, to blackbody frames through the "
+        "polarizer given "
+        "as {(angle_deg, temperature_k): (H, W) array} (radiance from a radiometric calibration, "
+        "or counts), ≥ 2 "
+        "temperatures per angle; with σ images `stds` (same keys) also the τ/B covariance. Pass "
+        "the result to "
         "reduce(..., wire_grid=) to remove the grid (L_SLAR = (I − B)/τ).");
 }
 

@@ -12,8 +12,10 @@ namespace {
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 bool significant(float s1, float s2, float var_s1, float var_s2) {
-    const double noise = std::sqrt(0.5 * (static_cast<double>(var_s1) + static_cast<double>(var_s2)));
-    return std::hypot(static_cast<double>(s1), static_cast<double>(s2)) > kAopSignificanceSigma * noise;
+    const double noise =
+        std::sqrt(0.5 * (static_cast<double>(var_s1) + static_cast<double>(var_s2)));
+    return std::hypot(static_cast<double>(s1), static_cast<double>(s2)) >
+           kAopSignificanceSigma * noise;
 }
 
 // Axial mean in degrees in [lo, lo + 180) from the sum of unit phasors of the doubled angle.
@@ -28,8 +30,10 @@ double axial_mean_deg(std::complex<double> sum, double lo) {
 
 AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<float>& measured_s2,
                    const std::vector<float>& simulated_s1, const std::vector<float>& simulated_s2,
-                   const std::vector<float>& measured_var_s1, const std::vector<float>& measured_var_s2,
-                   const std::vector<float>& simulated_var_s1, const std::vector<float>& simulated_var_s2,
+                   const std::vector<float>& measured_var_s1,
+                   const std::vector<float>& measured_var_s2,
+                   const std::vector<float>& simulated_var_s1,
+                   const std::vector<float>& simulated_var_s2,
                    const std::vector<std::uint8_t>& mask) {
     AopStats st;
     // The phasor of the doubled AoP is (S1, S2)/|P|, so the angle itself is never formed and the
@@ -37,8 +41,10 @@ AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<floa
     std::complex<double> sum_m, sum_s, sum_d;
     for (std::size_t i = 0; i < mask.size(); ++i) {
         if (!mask[i]) continue;
-        const float m1 = measured_s1[i], m2 = measured_s2[i], s1 = simulated_s1[i], s2 = simulated_s2[i];
-        if (!std::isfinite(m1) || !std::isfinite(m2) || !std::isfinite(s1) || !std::isfinite(s2)) continue;
+        const float m1 = measured_s1[i], m2 = measured_s2[i], s1 = simulated_s1[i],
+                    s2 = simulated_s2[i];
+        if (!std::isfinite(m1) || !std::isfinite(m2) || !std::isfinite(s1) || !std::isfinite(s2))
+            continue;
         ++st.region_pixel_count;
         if (!significant(m1, m2, measured_var_s1[i], measured_var_s2[i]) ||
             !significant(s1, s2, simulated_var_s1[i], simulated_var_s2[i]))

@@ -37,7 +37,8 @@ void derive_dolp_aop(Image& image) {
     for (std::size_t i = 0; i < s0.size(); ++i) {
         if (!std::isfinite(s0[i]) || !std::isfinite(s1[i]) || !std::isfinite(s2[i])) continue;
         dolp[i] = s0[i] > 0.0f ? std::hypot(s1[i], s2[i]) / s0[i] : 0.0f;
-        double a = 0.5 * std::atan2(static_cast<double>(s2[i]), static_cast<double>(s1[i])) * 180.0 / std::numbers::pi;
+        double a = 0.5 * std::atan2(static_cast<double>(s2[i]), static_cast<double>(s1[i])) *
+                   180.0 / std::numbers::pi;
         if (a < 0.0) a += 180.0;
         aop[i] = static_cast<float>(a);
     }
@@ -45,7 +46,8 @@ void derive_dolp_aop(Image& image) {
     image.set_channel("AoP", std::move(aop));
 }
 
-std::vector<float> difference(const std::vector<float>& m, const std::vector<float>& s, bool angle) {
+std::vector<float> difference(const std::vector<float>& m, const std::vector<float>& s,
+                              bool angle) {
     std::vector<float> d(m.size());
     for (std::size_t i = 0; i < m.size(); ++i) {
         float v = m[i] - s[i];
@@ -56,7 +58,8 @@ std::vector<float> difference(const std::vector<float>& m, const std::vector<flo
 }
 
 // Variance plane of quantity `q` from a Q_std or Q_var channel, if the image has one.
-std::optional<std::vector<float>> variance_channel(const Image& image, const std::string& q, std::string& source) {
+std::optional<std::vector<float>> variance_channel(const Image& image, const std::string& q,
+                                                   std::string& source) {
     if (image.has_channel(q + "_std")) {
         auto v = image.channel(q + "_std");
         for (auto& x : v) x *= x;
@@ -75,8 +78,10 @@ std::optional<std::vector<float>> variance_channel(const Image& image, const std
 double variance_dof(const Image& image) {
     const auto it = image.attributes().find("variance_dof");
     if (it == image.attributes().end()) return std::numeric_limits<double>::infinity();
-    if (const auto* i = std::get_if<int>(&it->second)) return *i > 0 ? *i : std::numeric_limits<double>::infinity();
-    if (const auto* d = std::get_if<double>(&it->second)) return *d > 0.0 ? *d : std::numeric_limits<double>::infinity();
+    if (const auto* i = std::get_if<int>(&it->second))
+        return *i > 0 ? *i : std::numeric_limits<double>::infinity();
+    if (const auto* d = std::get_if<double>(&it->second))
+        return *d > 0.0 ? *d : std::numeric_limits<double>::infinity();
     return std::numeric_limits<double>::infinity();
 }
 
@@ -101,14 +106,18 @@ struct QuantityDisplay {
     Colormap map;
 };
 
-// The band for the kelvin bias: the option, else the measured then the simulated `band_um` attribute.
-std::optional<Band> comparison_band(const Image& measured, const Image& simulated, const CompareOptions& options,
-                                    CompareResult& result) {
+// The band for the kelvin bias: the option, else the measured then the simulated `band_um`
+// attribute.
+std::optional<Band> comparison_band(const Image& measured, const Image& simulated,
+                                    const CompareOptions& options, CompareResult& result) {
     auto from_attribute = [](const Image& image) -> std::optional<std::array<double, 2>> {
         const auto it = image.attributes().find("band_um");
-        if (it == image.attributes().end() || !std::holds_alternative<std::vector<double>>(it->second)) return std::nullopt;
+        if (it == image.attributes().end() ||
+            !std::holds_alternative<std::vector<double>>(it->second))
+            return std::nullopt;
         const auto& v = std::get<std::vector<double>>(it->second);
-        if (v.size() != 2 || !(v[0] > 0.0) || !(v[0] < v[1]) || !std::isfinite(v[1])) return std::nullopt;
+        if (v.size() != 2 || !(v[0] > 0.0) || !(v[0] < v[1]) || !std::isfinite(v[1]))
+            return std::nullopt;
         return std::array<double, 2>{v[0], v[1]};
     };
     if (options.band_um) {
@@ -121,8 +130,9 @@ std::optional<Band> comparison_band(const Image& measured, const Image& simulate
         result.band_um = s;
         result.band_source = "band_um attribute of " + options.simulated_name;
     } else {
-        result.notes.push_back("no spectral band (no band_um attribute in either image, no --band-um): the S0 bias "
-                               "is not converted to kelvin");
+        result.notes.push_back(
+            "no spectral band (no band_um attribute in either image, no --band-um): the S0 bias "
+            "is not converted to kelvin");
         return std::nullopt;
     }
     return Band((*result.band_um)[0], (*result.band_um)[1]);
@@ -139,12 +149,14 @@ std::optional<KelvinBias> kelvin_bias(const QuantityStats& s0, const Band& band)
     return k;
 }
 
-// The calibration's range attributes of a reduced Stokes image (calibration/session_calibration.cpp).
+// The calibration's range attributes of a reduced Stokes image
+// (calibration/session_calibration.cpp).
 std::optional<CalibrationRange> calibration_range(const Image& measured) {
     const auto& a = measured.attributes();
     const auto fraction = a.find("calibration_outside_range_fraction");
     const auto range = a.find("calibration_range_k");
-    if (fraction == a.end() || range == a.end() || !std::holds_alternative<double>(fraction->second) ||
+    if (fraction == a.end() || range == a.end() ||
+        !std::holds_alternative<double>(fraction->second) ||
         !std::holds_alternative<std::vector<double>>(range->second))
         return std::nullopt;
     const auto& k = std::get<std::vector<double>>(range->second);
@@ -154,27 +166,33 @@ std::optional<CalibrationRange> calibration_range(const Image& measured) {
 
 std::string text_attribute(const Image& image, const std::string& name) {
     const auto it = image.attributes().find(name);
-    if (it == image.attributes().end() || !std::holds_alternative<std::string>(it->second)) return "";
+    if (it == image.attributes().end() || !std::holds_alternative<std::string>(it->second))
+        return "";
     return std::get<std::string>(it->second);
 }
 
-// What each side's σ holds, in words: the measured image's `std_includes` (written by the reduction)
-// plus the common calibration terms given; the render's variance is Monte Carlo noise only.
+// What each side's σ holds, in words: the measured image's `std_includes` (written by the
+// reduction) plus the common calibration terms given; the render's variance is Monte Carlo noise
+// only.
 void describe_sigma_contents(CompareResult& result, const Image& measured, const Image& simulated,
                              const CompareOptions& options) {
     std::string m = text_attribute(measured, "std_includes");
     if (m.empty()) m = "the measured image's σ channels or the noise estimate named per quantity";
     m += " (independent from pixel to pixel)";
     if (options.measured_gain_sigma_relative > 0.0 || options.measured_offset_sigma > 0.0)
-        m += fmt::format("; common to each region: calibration gain {:.3g} % and S0 offset {:.3g} {}",
-                         100.0 * options.measured_gain_sigma_relative, options.measured_offset_sigma, result.units);
+        m += fmt::format(
+            "; common to each region: calibration gain {:.3g} % and S0 offset {:.3g} {}",
+            100.0 * options.measured_gain_sigma_relative, options.measured_offset_sigma,
+            result.units);
     else
         m += "; no calibration error common to a region was given (gain/offset σ 0)";
     m += "; registration: the residual misalignment times each region's mean gradient";
     result.measured_sigma_contains = m;
-    std::string s = "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "
-                    "temperatures, sky, geometry)";
-    if (const std::string note = text_attribute(simulated, "variance_note"); !note.empty()) s += "; " + note;
+    std::string s =
+        "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "
+        "temperatures, sky, geometry)";
+    if (const std::string note = text_attribute(simulated, "variance_note"); !note.empty())
+        s += "; " + note;
     result.simulated_sigma_contains = s;
 }
 
@@ -185,7 +203,8 @@ std::size_t region_index(const std::vector<Region>& regions, const std::string& 
 }
 
 // The comparison's grid, units and regions; a bad polygon is reported before any expensive work.
-Comparison start_comparison(const Image& measured, const Image& simulated, const CompareOptions& options) {
+Comparison start_comparison(const Image& measured, const Image& simulated,
+                            const CompareOptions& options) {
     Comparison comparison;
     CompareResult& result = comparison.result;
     result.provenance = options.provenance;
@@ -216,40 +235,50 @@ void register_planes(Comparison& comparison, const Image& measured, const Image&
     throw_if_cancelled(options.cancel, "comparison");
     result.registration =
         options.registration == RegistrationMethod::CameraModel && options.camera_model
-            ? register_by_camera_model(measured, simulated, *options.camera_model, options.camera_model_name)
-            : register_images(measured, simulated, options.registration, options.control_points, options.cancel);
+            ? register_by_camera_model(measured, simulated, *options.camera_model,
+                                       options.camera_model_name)
+            : register_images(measured, simulated, options.registration, options.control_points,
+                              options.cancel);
     throw_if_cancelled(options.cancel, "comparison");
     comparison.planes.measured = measured;
-    comparison.planes.simulated = resample_to_measured(simulated, result.registration, result.width, result.height);
+    comparison.planes.simulated =
+        resample_to_measured(simulated, result.registration, result.width, result.height);
     derive_dolp_aop(comparison.planes.measured);
     derive_dolp_aop(comparison.planes.simulated);
     if (std::abs(result.registration.rotation_deg) > 0.5)
-        result.notes.push_back(fmt::format(
-            "the registration rotates the image by {:.2f}°; S1/S2 of the simulation are not rotated back into the "
-            "measured frame, so their comparison is biased by that rotation",
-            result.registration.rotation_deg));
+        result.notes.push_back(
+            fmt::format("the registration rotates the image by {:.2f}°; S1/S2 of the simulation "
+                        "are not rotated back into the "
+                        "measured frame, so their comparison is biased by that rotation",
+                        result.registration.rotation_deg));
 }
 
 // Measured variance of quantity `q` when the image has no σ channel: the per-frame σ option, else
 // the scatter in the flat noise region, else Immerkær's estimate.
-std::vector<float> measured_variance_without_channel(const Comparison& comparison, const std::string& q,
-                                                     const CompareOptions& options, NoiseSource& noise) {
+std::vector<float> measured_variance_without_channel(const Comparison& comparison,
+                                                     const std::string& q,
+                                                     const CompareOptions& options,
+                                                     NoiseSource& noise) {
     std::string& source = noise.measured;
     const Image& measured = comparison.planes.measured;
     const std::string noise_region_name =
-        options.regions ? (options.regions->noise_region.empty() ? options.regions->background : options.regions->noise_region)
+        options.regions ? (options.regions->noise_region.empty() ? options.regions->background
+                                                                 : options.regions->noise_region)
                         : std::string();
     double sigma = 0.0;
     if (options.measured_frame_sigma) {
         sigma = *options.measured_frame_sigma * (q == "S0" ? 1.0 : std::sqrt(2.0));
-        source = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)", *options.measured_frame_sigma);
+        source = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)",
+                             *options.measured_frame_sigma);
     } else if (!noise_region_name.empty()) {
-        const auto& mask = comparison.planes.masks[region_index(comparison.planes.regions, noise_region_name)];
+        const auto& mask =
+            comparison.planes.masks[region_index(comparison.planes.regions, noise_region_name)];
         const QuantityStats flat = quantity_stats(measured.channel(q), measured.channel(q), mask);
         sigma = flat.measured_std;
         source = "std of measured " + q + " in flat region '" + noise_region_name + "'";
         noise.measured_shared = true;
-        noise.measured_dof = flat.pixel_count > 1 ? static_cast<double>(flat.pixel_count - 1) : kInfiniteDof;
+        noise.measured_dof =
+            flat.pixel_count > 1 ? static_cast<double>(flat.pixel_count - 1) : kInfiniteDof;
     } else {
         sigma = immerkaer_noise_sigma(measured.channel(q), measured.width(), measured.height());
         source = "Immerkær noise estimate of measured " + q;
@@ -268,7 +297,8 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
     ComparisonPlanes& planes = comparison.planes;
     const std::size_t n = planes.measured.pixel_count();
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
-        planes.difference[q] = difference(planes.measured.channel(q), planes.simulated.channel(q), q == "AoP");
+        planes.difference[q] =
+            difference(planes.measured.channel(q), planes.simulated.channel(q), q == "AoP");
     for (const auto& q : kZQuantities) {
         throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
@@ -279,16 +309,19 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
         if (!var_s) {
             source.simulated = "none (σ_s = 0)";
             var_s = std::vector<float>(n, 0.0f);
-            result.notes.push_back(fmt::format("{} has no {}_var channel: the z statistic of {} ignores Monte-Carlo noise",
-                                               options.simulated_name, q, q));
+            result.notes.push_back(fmt::format(
+                "{} has no {}_var channel: the z statistic of {} ignores Monte-Carlo noise",
+                options.simulated_name, q, q));
         }
         source.measured_sigma_median = median_sqrt(*var_m);
         source.simulated_sigma_median = median_sqrt(*var_s);
         source.simulated_dof = variance_dof(simulated_in);
         result.noise[q] = source;
-        // Per pixel, a shared measured σ counts as exact: its estimation error is common to the pixels.
-        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m, *var_s,
-                               source.measured_shared ? kInfiniteDof : source.measured_dof, source.simulated_dof);
+        // Per pixel, a shared measured σ counts as exact: its estimation error is common to the
+        // pixels.
+        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m,
+                               *var_s, source.measured_shared ? kInfiniteDof : source.measured_dof,
+                               source.simulated_dof);
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
         planes.total_variance[q] = std::move(total);
@@ -297,21 +330,28 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
     }
 }
 
-// Mean gradient (per pixel, x and y) of `plane` over the masked pixels whose central differences are finite.
-std::array<double, 2> mean_gradient(const std::vector<float>& plane, int width, int height, const Mask& mask) {
+// Mean gradient (per pixel, x and y) of `plane` over the masked pixels whose central differences
+// are finite.
+std::array<double, 2> mean_gradient(const std::vector<float>& plane, int width, int height,
+                                    const Mask& mask) {
     double gx = 0.0, gy = 0.0;
     std::size_t nx = 0, ny = 0;
-    const auto at = [&](int x, int y) { return plane[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                                     static_cast<std::size_t>(x)]; };
+    const auto at = [&](int x, int y) {
+        return plane[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                     static_cast<std::size_t>(x)];
+    };
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            if (!mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)])
+            if (!mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                      static_cast<std::size_t>(x)])
                 continue;
-            if (x > 0 && x + 1 < width && std::isfinite(at(x + 1, y)) && std::isfinite(at(x - 1, y))) {
+            if (x > 0 && x + 1 < width && std::isfinite(at(x + 1, y)) &&
+                std::isfinite(at(x - 1, y))) {
                 gx += 0.5 * (static_cast<double>(at(x + 1, y)) - at(x - 1, y));
                 ++nx;
             }
-            if (y > 0 && y + 1 < height && std::isfinite(at(x, y + 1)) && std::isfinite(at(x, y - 1))) {
+            if (y > 0 && y + 1 < height && std::isfinite(at(x, y + 1)) &&
+                std::isfinite(at(x, y - 1))) {
                 gy += 0.5 * (static_cast<double>(at(x, y + 1)) - at(x, y - 1));
                 ++ny;
             }
@@ -319,12 +359,14 @@ std::array<double, 2> mean_gradient(const std::vector<float>& plane, int width, 
     return {nx ? gx / static_cast<double>(nx) : 0.0, ny ? gy / static_cast<double>(ny) : 0.0};
 }
 
-// The region-mean test and σ diagnostic of quantity `q` in region `r`. Common to the region's pixels:
-// the calibration's gain (all of S0..S2) and offset (S0; it cancels in S1 = I0 − I90, S2 = I45 − I135)
-// and the residual misalignment, which moves the region over the simulation's mean gradient.
+// The region-mean test and σ diagnostic of quantity `q` in region `r`. Common to the region's
+// pixels: the calibration's gain (all of S0..S2) and offset (S0; it cancels in S1 = I0 − I90, S2 =
+// I45 − I135) and the residual misalignment, which moves the region over the simulation's mean
+// gradient.
 QuantityVerdict quantity_verdict(const ComparisonPlanes& planes, const CompareResult& result,
                                  const CompareOptions& options, std::size_t r, const std::string& q,
-                                 const VarianceByQuantity& var_measured, const VarianceByQuantity& var_simulated,
+                                 const VarianceByQuantity& var_measured,
+                                 const VarianceByQuantity& var_simulated,
                                  const QuantityStats& stats) {
     const Mask& mask = planes.masks[r];
     const NoiseSource& noise = result.noise.at(q);
@@ -341,15 +383,18 @@ QuantityVerdict quantity_verdict(const ComparisonPlanes& planes, const CompareRe
     const double offset = q == "S0" ? options.measured_offset_sigma : 0.0;
     in.measured_common.sigma = std::hypot(gain, offset);
     const auto g = mean_gradient(*in.simulated, result.width, result.height, mask);
-    in.registration.sigma =
-        std::abs(result.registration.residual_shift_px[0] * g[0] + result.registration.residual_shift_px[1] * g[1]);
+    in.registration.sigma = std::abs(result.registration.residual_shift_px[0] * g[0] +
+                                     result.registration.residual_shift_px[1] * g[1]);
     return {test_mean_difference(in, options.design), sigma_diagnostic(planes.z.at(q), mask)};
 }
 
 // Statistics, z summary, verdicts, AoP and kelvin bias of region `r`.
-RegionResult region_result(const ComparisonPlanes& planes, const CompareResult& result, const CompareOptions& options,
-                           std::size_t r, const std::vector<float>& z_pooled, const VarianceByQuantity& var_measured,
-                           const VarianceByQuantity& var_simulated, const std::optional<Band>& band) {
+RegionResult region_result(const ComparisonPlanes& planes, const CompareResult& result,
+                           const CompareOptions& options, std::size_t r,
+                           const std::vector<float>& z_pooled,
+                           const VarianceByQuantity& var_measured,
+                           const VarianceByQuantity& var_simulated,
+                           const std::optional<Band>& band) {
     const Image& measured = planes.measured;
     const Image& simulated = planes.simulated;
     const Mask& mask = planes.masks[r];
@@ -365,19 +410,21 @@ RegionResult region_result(const ComparisonPlanes& planes, const CompareResult& 
     }
     rr.z["all"] = z_stats(z_pooled, pooled_mask);
     for (const auto& q : kZQuantities) {
-        rr.verdicts[q] = quantity_verdict(planes, result, options, r, q, var_measured, var_simulated, rr.stats.at(q));
+        rr.verdicts[q] = quantity_verdict(planes, result, options, r, q, var_measured,
+                                          var_simulated, rr.stats.at(q));
         rr.verdict = worse(rr.verdict, rr.verdicts[q].mean.verdict);
     }
-    rr.aop =
-        aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"), simulated.channel("S2"),
-                  var_measured.at("S1"), var_measured.at("S2"), var_simulated.at("S1"), var_simulated.at("S2"), mask);
+    rr.aop = aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"),
+                       simulated.channel("S2"), var_measured.at("S1"), var_measured.at("S2"),
+                       var_simulated.at("S1"), var_simulated.at("S2"), mask);
     if (band) rr.s0_bias_k = kelvin_bias(rr.stats.at("S0"), *band);
     return rr;
 }
 
 // S1 contrast of each region against the background region, when there is one.
 void background_contrast(CompareResult& result, const std::vector<Region>& regions) {
-    const std::size_t bg = result.background.empty() ? regions.size() : region_index(regions, result.background);
+    const std::size_t bg =
+        result.background.empty() ? regions.size() : region_index(regions, result.background);
     if (bg >= regions.size()) return;
     const auto& b = result.regions[bg].stats.at("S1");
     for (auto& rr : result.regions) {
@@ -391,7 +438,8 @@ void background_contrast(CompareResult& result, const std::vector<Region>& regio
 // z of S0, S1 and S2 end to end (the pooled sample of the histogram and the "all" statistic).
 std::vector<float> pooled_z(const ComparisonPlanes& planes) {
     std::vector<float> z_pooled;
-    for (const auto& q : kZQuantities) z_pooled.insert(z_pooled.end(), planes.z.at(q).begin(), planes.z.at(q).end());
+    for (const auto& q : kZQuantities)
+        z_pooled.insert(z_pooled.end(), planes.z.at(q).begin(), planes.z.at(q).end());
     return z_pooled;
 }
 
@@ -407,7 +455,8 @@ struct ReportFiles {
         return dir / name;
     }
     // A plot: written next to the page as .svg and inlined in it.
-    void svg_figure(const std::string& section, const std::string& name, std::string svg, std::string caption) {
+    void svg_figure(const std::string& section, const std::string& name, std::string svg,
+                    std::string caption) {
         result.svgs.push_back(dir / name);
         write_file_atomic(dir / name, "<svg xmlns=\"http://www.w3.org/2000/svg\" " + svg.substr(5));
         figures.push_back({section, dir / name, std::move(caption), std::move(svg)});
@@ -422,10 +471,11 @@ QuantityDisplay display_of(const std::string& q, const std::string& units) {
 
 void regions_figure(ReportFiles& f) {
     const auto& r = f.result;
-    f.svg_figure("regions", "regions.svg",
-                 detail::svg_region_overview(
-                     detail::region_overview(f.planes.measured.channel("S0"), r.width, r.height, f.planes.regions)),
-                 "Measured S0 with the regions of interest (polygons in measured pixel coordinates).");
+    f.svg_figure(
+        "regions", "regions.svg",
+        detail::svg_region_overview(detail::region_overview(f.planes.measured.channel("S0"),
+                                                            r.width, r.height, f.planes.regions)),
+        "Measured S0 with the regions of interest (polygons in measured pixel coordinates).");
 }
 
 // Measured, simulated and their difference of quantity `q`, the first two on one colour scale.
@@ -441,7 +491,8 @@ void image_panel(ReportFiles& f, const std::string& q) {
     shared.vmin = lo;
     shared.vmax = hi;
     QuicklookOptions om = shared, os = shared,
-                     od{Colormap::Diverging, std::nullopt, std::nullopt, q + " measured - simulated", d.units, 0};
+                     od{Colormap::Diverging,         std::nullopt, std::nullopt,
+                        q + " measured - simulated", d.units,      0};
     om.title = q + " measured";
     os.title = q + " simulated";
     if (q == "AoP") {
@@ -453,21 +504,23 @@ void image_panel(ReportFiles& f, const std::string& q) {
     od.vmax = dhi;
     f.result.colour_scales[q] = {lo, hi};
     f.result.colour_scales[q + "_difference"] = {dlo, dhi};
-    detail::write_panel(
-        f.png("panel_" + q + ".png"),
-        {f.png("measured_" + q + ".png"), f.png("simulated_" + q + ".png"), f.png("difference_" + q + ".png")},
-        {pm, ps, pd}, {om, os, od});
+    detail::write_panel(f.png("panel_" + q + ".png"),
+                        {f.png("measured_" + q + ".png"), f.png("simulated_" + q + ".png"),
+                         f.png("difference_" + q + ".png")},
+                        {pm, ps, pd}, {om, os, od});
     const std::string unit_text = d.units.empty() ? "" : " " + d.units;
-    f.figures.push_back({"images", f.dir / ("panel_" + q + ".png"),
-                         fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
-                                     "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
-                                     q, lo, hi, unit_text, dlo, dhi, unit_text,
-                                     q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : ""),
-                         ""});
+    f.figures.push_back(
+        {"images", f.dir / ("panel_" + q + ".png"),
+         fmt::format("{}: measured (left) and registered simulation (centre) on one colour scale "
+                     "{:.4g} to {:.4g}{}; right: measured − simulated, {:.4g} to {:.4g}{}{}.",
+                     q, lo, hi, unit_text, dlo, dhi, unit_text,
+                     q == "AoP" ? " (wrapped to ±90°; meaningless where DoLP ≈ 0)" : ""),
+         ""});
 }
 
 void image_panels(ReportFiles& f) {
-    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) image_panel(f, q);
+    for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
+        image_panel(f, q);
 }
 
 void z_figures(ReportFiles& f) {
@@ -475,20 +528,23 @@ void z_figures(ReportFiles& f) {
     std::vector<std::filesystem::path> parts;
     std::vector<QuicklookOptions> opts;
     for (const auto& q : kZQuantities) {
-        z_planes.push_back(detail::display_plane(f.planes.z.at(q), f.result.width, f.result.height));
+        z_planes.push_back(
+            detail::display_plane(f.planes.z.at(q), f.result.width, f.result.height));
         parts.push_back(f.png("z_" + q + ".png"));
         opts.push_back({Colormap::Diverging, -5.0, 5.0, "z " + q, "sigma", 0});
     }
     f.result.colour_scales["z"] = {-5.0, 5.0};
     detail::write_panel(f.png("panel_z.png"), parts, z_planes, opts);
-    f.figures.push_back({"z", f.dir / "panel_z.png",
-                         "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
-                         "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels.",
-                         ""});
+    f.figures.push_back(
+        {"z", f.dir / "panel_z.png",
+         "z = (measured − simulated)/√(σ_m² + σ_s²) for S0, S1 and S2, colour scale −5 to 5. "
+         "Where the simulation is right, z is standard normal: |z| > 2 in 4.55 % of pixels.",
+         ""});
     f.svg_figure("z", "histogram_z.svg",
-                 detail::svg_histogram("z of S0, S1, S2 (all pixels)", "z", pooled_z(f.planes), -6.0, 6.0,
-                                       {-3, -2, 0, 2, 3}, 0.0, 1.0),
-                 "Distribution of z over all pixels (bars) against the standard normal density (red curve); grey "
+                 detail::svg_histogram("z of S0, S1, S2 (all pixels)", "z", pooled_z(f.planes),
+                                       -6.0, 6.0, {-3, -2, 0, 2, 3}, 0.0, 1.0),
+                 "Distribution of z over all pixels (bars) against the standard normal density "
+                 "(red curve); grey "
                  "lines at ±2 and ±3.");
 }
 
@@ -508,9 +564,12 @@ void scatter_figures(ReportFiles& f) {
                 }
             series.push_back(std::move(s));
         }
-        f.svg_figure("scatter", "scatter_" + q + ".svg",
-                     detail::svg_scatter(q, display_of(q, f.result.units).units, series),
-                     fmt::format("{}: simulated against measured per pixel, one colour per region; dashed: 1:1.", q));
+        f.svg_figure(
+            "scatter", "scatter_" + q + ".svg",
+            detail::svg_scatter(q, display_of(q, f.result.units).units, series),
+            fmt::format(
+                "{}: simulated against measured per pixel, one colour per region; dashed: 1:1.",
+                q));
     }
 }
 
@@ -528,7 +587,8 @@ void difference_histogram(ReportFiles& f, const std::string& q) {
     double range = 1.0;
     if (!finite_abs.empty()) {
         const auto k = static_cast<std::size_t>(0.995 * static_cast<double>(finite_abs.size() - 1));
-        std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k), finite_abs.end());
+        std::nth_element(finite_abs.begin(), finite_abs.begin() + static_cast<std::ptrdiff_t>(k),
+                         finite_abs.end());
         range = finite_abs[k] > 0.0f ? 1.1 * finite_abs[k] : 1.0;
     }
     const auto& total_variance = f.planes.total_variance;
@@ -536,12 +596,15 @@ void difference_histogram(ReportFiles& f, const std::string& q) {
     const std::string units = display_of(q, f.result.units).units;
     f.svg_figure(
         "histograms", "histogram_difference_" + q + ".svg",
-        detail::svg_histogram(q + ": measured − simulated", "difference" + (units.empty() ? "" : " [" + units + "]"), d,
-                              -range, range, {0.0, bias}, 0.0, sigma),
-        sigma > 0.0 ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
-                                  "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
-                                  q, sigma, bias)
-                    : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.", q, bias));
+        detail::svg_histogram(q + ": measured − simulated",
+                              "difference" + (units.empty() ? "" : " [" + units + "]"), d, -range,
+                              range, {0.0, bias}, 0.0, sigma),
+        sigma > 0.0
+            ? fmt::format("{}: measured − simulated over all pixels; red: the normal density "
+                          "expected from noise alone (σ = {:.3g}); grey: 0 and the mean {:.3g}.",
+                          q, sigma, bias)
+            : fmt::format("{}: measured − simulated over all pixels; grey: 0 and the mean {:.3g}.",
+                          q, bias));
 }
 
 void difference_histograms(ReportFiles& f) {
@@ -575,14 +638,16 @@ void require_stokes_channels(const Image& image, const std::string& name, const 
         if (!image.has_channel(c)) missing.emplace_back(c);
     if (!missing.empty())
         fail(
-            "{}: the {} Stokes image lacks channel{} {}; channels present: {} (expected S0 S1 S2, as written by "
+            "{}: the {} Stokes image lacks channel{} {}; channels present: {} (expected S0 S1 S2, "
+            "as written by "
             "`tirpol {}`)",
             name, role, missing.size() > 1 ? "s" : "", join(missing), join(image.channel_names()),
             role == "measured" ? "reduce" : "render");
     if (image.pixel_count() == 0) fail("{}: the {} Stokes image has no pixels", name, role);
 }
 
-Comparison compare(const Image& measured_in, const Image& simulated_in, const CompareOptions& options) {
+Comparison compare(const Image& measured_in, const Image& simulated_in,
+                   const CompareOptions& options) {
     require_stokes_channels(measured_in, options.measured_name, "measured");
     require_stokes_channels(simulated_in, options.simulated_name, "simulated");
     Comparison comparison = start_comparison(measured_in, simulated_in, options);
@@ -593,18 +658,20 @@ Comparison compare(const Image& measured_in, const Image& simulated_in, const Co
     VarianceByQuantity var_measured, var_simulated;
     differences_and_z(comparison, measured_in, simulated_in, options, var_measured, var_simulated);
     const std::vector<float> z_pooled = pooled_z(comparison.planes);
-    const std::optional<Band> band = comparison_band(measured_in, simulated_in, options, comparison.result);
+    const std::optional<Band> band =
+        comparison_band(measured_in, simulated_in, options, comparison.result);
     for (std::size_t r = 0; r < comparison.planes.regions.size(); ++r) {
         throw_if_cancelled(options.cancel, "comparison");
-        comparison.result.regions.push_back(
-            region_result(comparison.planes, comparison.result, options, r, z_pooled, var_measured, var_simulated,
-                          band));
+        comparison.result.regions.push_back(region_result(comparison.planes, comparison.result,
+                                                          options, r, z_pooled, var_measured,
+                                                          var_simulated, band));
     }
     background_contrast(comparison.result, comparison.planes.regions);
     return comparison;
 }
 
-void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir) {
+void write_report(Comparison& comparison, const CompareOptions& options,
+                  const std::filesystem::path& report_dir) {
     std::filesystem::create_directories(report_dir);
     ReportFiles files{comparison.result, comparison.planes, report_dir, {}};
     for (const Section section : kSections) section(files);
@@ -612,11 +679,12 @@ void write_report(Comparison& comparison, const CompareOptions& options, const s
     result.json = report_dir / "report.json";
     result.html = report_dir / "report.html";
     write_file_atomic(result.json, comparison_json(result));
-    write_file_atomic(result.html,
-                      detail::render_html(result, options.measured_name, options.simulated_name, files.figures));
+    write_file_atomic(result.html, detail::render_html(result, options.measured_name,
+                                                       options.simulated_name, files.figures));
 }
 
-CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,
+CompareResult write_comparison_report(const Image& measured, const Image& simulated,
+                                      const CompareOptions& options,
                                       const std::filesystem::path& report_dir) {
     Comparison comparison = compare(measured, simulated, options);
     write_report(comparison, options, report_dir);

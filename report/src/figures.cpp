@@ -23,7 +23,8 @@ void write_png(const std::filesystem::path& path, const cv::Mat& image) {
     } catch (const cv::Exception& e) {
         fail("{}: writing PNG failed: {}", path.string(), e.what());
     }
-    if (!ok) fail("{}: writing PNG failed (OpenCV could not encode or write the file)", path.string());
+    if (!ok)
+        fail("{}: writing PNG failed (OpenCV could not encode or write the file)", path.string());
     file.commit();
 }
 
@@ -33,14 +34,14 @@ cv::Mat read_png(const std::filesystem::path& path) {
     return image;
 }
 
-
 }  // namespace
 
 std::pair<double, double> percentile_range(std::vector<float> values, double lo_p, double hi_p) {
     if (values.empty()) return {0.0, 1.0};
     auto pick = [&](double p) {
         const auto k = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1));
-        std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+        std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
+                         values.end());
         return static_cast<double>(values[k]);
     };
     double lo = pick(lo_p), hi = pick(hi_p);
@@ -66,9 +67,9 @@ Plane display_plane(const std::vector<float>& data, int width, int height) {
 
 std::vector<int> region_colour(std::size_t index) {
     // Tableau 10 (sRGB), as BGR.
-    static constexpr int kRgb[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
-                                         {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {127, 127, 127},
-                                         {188, 189, 34},  {23, 190, 207}};
+    static constexpr int kRgb[10][3] = {
+        {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
+        {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
     const auto& c = kRgb[index % 10];
     return {c[2], c[1], c[0]};
 }
@@ -78,8 +79,9 @@ std::string region_colour_css(std::size_t index) {
     return fmt::format("#{:02x}{:02x}{:02x}", bgr[2], bgr[1], bgr[0]);
 }
 
-void write_panel(const std::filesystem::path& panel, const std::vector<std::filesystem::path>& parts,
-                 const std::vector<Plane>& planes, const std::vector<QuicklookOptions>& options) {
+void write_panel(const std::filesystem::path& panel,
+                 const std::vector<std::filesystem::path>& parts, const std::vector<Plane>& planes,
+                 const std::vector<QuicklookOptions>& options) {
     std::vector<cv::Mat> images;
     int height = 0;
     for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -98,7 +100,8 @@ void write_panel(const std::filesystem::path& panel, const std::vector<std::file
     write_png(panel, out);
 }
 
-RegionOverview region_overview(const std::vector<float>& s0, int width, int height, const std::vector<Region>& regions) {
+RegionOverview region_overview(const std::vector<float>& s0, int width, int height,
+                               const std::vector<Region>& regions) {
     // Drawn larger than the panels (long side kOverviewSide) so that region names stay legible.
     constexpr int kOverviewSide = 560;
     const double f = static_cast<double>(kOverviewSide) / std::max(width, height);
@@ -109,11 +112,15 @@ RegionOverview region_overview(const std::vector<float>& s0, int width, int heig
     cv::Mat grey(height, width, CV_8UC1);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const float v = s0[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
-            grey.at<uchar>(y, x) = std::isfinite(v) ? cv::saturate_cast<uchar>(40.0 + 200.0 * std::clamp((v - lo) / (hi - lo), 0.0, 1.0))
-                                                    : uchar{128};
+            const float v = s0[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                               static_cast<std::size_t>(x)];
+            grey.at<uchar>(y, x) =
+                std::isfinite(v) ? cv::saturate_cast<uchar>(
+                                       40.0 + 200.0 * std::clamp((v - lo) / (hi - lo), 0.0, 1.0))
+                                 : uchar{128};
         }
-    const cv::Size shown(std::max(1, static_cast<int>(std::lround(width * f))), std::max(1, static_cast<int>(std::lround(height * f))));
+    const cv::Size shown(std::max(1, static_cast<int>(std::lround(width * f))),
+                         std::max(1, static_cast<int>(std::lround(height * f))));
     cv::resize(grey, grey, shown, 0, 0, f < 1.0 ? cv::INTER_AREA : cv::INTER_NEAREST);
     cv::cvtColor(grey, grey, cv::COLOR_GRAY2BGR);
     const int pad = 10;
@@ -127,12 +134,14 @@ RegionOverview region_overview(const std::vector<float>& s0, int width, int heig
         for (const auto& p : regions[r].polygon)
             pts.emplace_back(pad + static_cast<int>(std::lround((p.x + 0.5) * f)),
                              pad + static_cast<int>(std::lround((p.y + 0.5) * f)));
-        cv::polylines(canvas, std::vector<std::vector<cv::Point>>{pts}, true, colour, 2, cv::LINE_AA);
+        cv::polylines(canvas, std::vector<std::vector<cv::Point>>{pts}, true, colour, 2,
+                      cv::LINE_AA);
         const cv::Point label = pts.front() + cv::Point(4, 17);
         overview.labels.push_back({regions[r].name, label.x, label.y, region_colour_css(r)});
     }
     std::vector<uchar> bytes;
-    if (!cv::imencode(".png", canvas, bytes)) fail("region overview: OpenCV could not encode the PNG");
+    if (!cv::imencode(".png", canvas, bytes))
+        fail("region overview: OpenCV could not encode the PNG");
     overview.png.assign(bytes.begin(), bytes.end());
     overview.width = canvas.cols;
     overview.height = canvas.rows;

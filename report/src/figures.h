@@ -1,7 +1,7 @@
 #pragma once
 // Image figures of the comparison report, drawn with OpenCV (colour maps and colorbars from core's
-// quicklook); line-art plots and the region names are SVG (svg_plot.h). Private to the report module.
-// Text drawn by OpenCV is ASCII only (colour-bar numbers and units).
+// quicklook); line-art plots and the region names are SVG (svg_plot.h). Private to the report
+// module. Text drawn by OpenCV is ASCII only (colour-bar numbers and units).
 
 #include <cstdint>
 #include <filesystem>
@@ -30,14 +30,16 @@ std::vector<int> region_colour(std::size_t index);
 /// The same as a CSS "#rrggbb".
 std::string region_colour_css(std::size_t index);
 
-/// Writes the quicklooks of `planes` (same height) to `parts` and their horizontal composition to `panel`.
-void write_panel(const std::filesystem::path& panel, const std::vector<std::filesystem::path>& parts,
-                 const std::vector<Plane>& planes, const std::vector<QuicklookOptions>& options);
+/// Writes the quicklooks of `planes` (same height) to `parts` and their horizontal composition to
+/// `panel`.
+void write_panel(const std::filesystem::path& panel,
+                 const std::vector<std::filesystem::path>& parts, const std::vector<Plane>& planes,
+                 const std::vector<QuicklookOptions>& options);
 
 /// Measured S0 in grey with the region polygons outlined, as PNG bytes; the names are not drawn
 /// (Hershey fonts are ASCII only) but returned with their anchors for the SVG overlay (svg_plot.h).
 struct RegionOverview {
-    std::string png;    ///< encoded PNG
+    std::string png;            ///< encoded PNG
     int width = 0, height = 0;  ///< of the PNG, pixels
     struct Label {
         std::string name;
@@ -46,7 +48,8 @@ struct RegionOverview {
     };
     std::vector<Label> labels;
 };
-RegionOverview region_overview(const std::vector<float>& s0, int width, int height, const std::vector<Region>& regions);
+RegionOverview region_overview(const std::vector<float>& s0, int width, int height,
+                               const std::vector<Region>& regions);
 
 /// One set of scatter points: (measured, simulated) pairs of one region.
 struct ScatterSeries {

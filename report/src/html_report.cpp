@@ -1,14 +1,14 @@
 #include "html_report.h"
 
 #include <fmt/format.h>
-#include <functional>
 
 #include <cmath>
+#include <functional>
 
 #include "figures.h"
-#include "tirpol/report/summary_text.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/utf8.h"
+#include "tirpol/report/summary_text.h"
 
 namespace tirpol::report::detail {
 
@@ -18,11 +18,20 @@ std::string escape(std::string_view text) {
     std::string out;
     for (char c : valid_utf8(text)) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -34,7 +43,9 @@ std::string num(double v) {
 }
 std::string percent(double v) { return fmt::format("{:.2f} %", 100.0 * v); }
 
-std::string degrees_of_freedom(double dof) { return std::isfinite(dof) ? fmt::format("{:g}", dof) : "∞"; }
+std::string degrees_of_freedom(double dof) {
+    return std::isfinite(dof) ? fmt::format("{:g}", dof) : "∞";
+}
 
 constexpr const char* kStyle = R"css(
 :root { --ink: #1d2330; --muted: #5b6475; --rule: #d5d9e0; --band: #f4f6f9; --ok: #1e7b34; --bad: #b3261e; --warn: #9a5b00; }
@@ -82,7 +93,8 @@ footer { margin-top: 36px; color: var(--muted); font-size: 13px; border-top: 1px
 }  // namespace
 
 std::string base64_encode(std::string_view bytes) {
-    static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static constexpr char kAlphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     out.reserve((bytes.size() + 2) / 3 * 4);
     std::size_t i = 0;
@@ -97,7 +109,8 @@ std::string base64_encode(std::string_view bytes) {
     }
     if (const std::size_t rest = bytes.size() - i; rest > 0) {
         std::uint32_t v = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
-        if (rest == 2) v |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+        if (rest == 2)
+            v |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
         out += kAlphabet[(v >> 18) & 63];
         out += kAlphabet[(v >> 12) & 63];
         out += rest == 2 ? kAlphabet[(v >> 6) & 63] : '=';
@@ -123,24 +136,32 @@ std::string figures_of(const Page& p, const std::string& section, bool grid) {
     for (const auto& f : p.figures) {
         if (f.section != section) continue;
         if (!f.svg.empty())
-            h += fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", f.svg, escape(f.caption));
+            h += fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", f.svg,
+                             escape(f.caption));
         else
-            h += fmt::format("<figure><img src=\"data:image/png;base64,{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                             base64_encode(read_file(f.file)), escape(f.file.filename().string()), escape(f.caption));
+            h += fmt::format(
+                "<figure><img src=\"data:image/png;base64,{}\" "
+                "alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
+                base64_encode(read_file(f.file)), escape(f.file.filename().string()),
+                escape(f.caption));
     }
     if (grid) h += "</div>\n";
     return h;
 }
 
 std::string swatch(std::size_t index) {
-    return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>", region_colour_css(index));
+    return fmt::format("<span class=\"swatch\" style=\"background:{}\"></span>",
+                       region_colour_css(index));
 }
 
 const char* verdict_class(Agreement v) {
     switch (v) {
-        case Agreement::ConsistentWithNoise: return "ok";
-        case Agreement::ExceedsNoise: return "bad";
-        case Agreement::NoData: break;
+        case Agreement::ConsistentWithNoise:
+            return "ok";
+        case Agreement::ExceedsNoise:
+            return "bad";
+        case Agreement::NoData:
+            break;
     }
     return "muted";
 }
@@ -150,7 +171,9 @@ std::string verdict_span(Agreement v) {
 }
 
 std::string sigma_span(SigmaCheck c) {
-    const char* css = c == SigmaCheck::Plausible ? "ok" : c == SigmaCheck::NoData ? "muted" : "warn";
+    const char* css = c == SigmaCheck::Plausible ? "ok"
+                      : c == SigmaCheck::NoData  ? "muted"
+                                                 : "warn";
     return fmt::format("<span class=\"{}\">{}</span>", css, escape(to_string(c)));
 }
 
@@ -161,12 +184,15 @@ std::string kelvin_text(const std::optional<KelvinBias>& k) {
 
 std::string header_section(const Page& p) {
     const auto& r = p.r;
-    return fmt::format("<header>\n<h1>Measured vs simulated Stokes images</h1>\n<p class=\"meta\">Measured <code>{}</code> "
-                       "({}×{}) · simulated <code>{}</code> ({}×{}) · Stokes in {} · written by <code>{}</code></p>\n"
-                       "</header>\n",
-                       escape(p.measured_name), r.width, r.height, escape(p.simulated_name), r.simulated_width,
-                       r.simulated_height, p.units,
-                       escape(r.provenance.tool_version.empty() ? "tirpol compare" : r.provenance.tool_version));
+    return fmt::format(
+        "<header>\n<h1>Measured vs simulated Stokes images</h1>\n<p class=\"meta\">Measured "
+        "<code>{}</code> "
+        "({}×{}) · simulated <code>{}</code> ({}×{}) · Stokes in {} · written by "
+        "<code>{}</code></p>\n"
+        "</header>\n",
+        escape(p.measured_name), r.width, r.height, escape(p.simulated_name), r.simulated_width,
+        r.simulated_height, p.units,
+        escape(r.provenance.tool_version.empty() ? "tirpol compare" : r.provenance.tool_version));
 }
 
 std::string summary_section(const Page& p) {
@@ -174,25 +200,29 @@ std::string summary_section(const Page& p) {
     const auto& g = r.registration;
     std::string h = "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"answer\">" +
                     escape(summary_paragraph(r)) + "</p>\n<table class=\"summary\">\n<tbody>\n";
-    h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n", escape(to_string(g.method)),
-                     escape(g.model), escape(g.note));
-    h += fmt::format("<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
-                     "correlation of S0 gradients after registration)</td></tr>\n",
-                     num(std::hypot(g.residual_shift_px[0], g.residual_shift_px[1])), num(g.residual_shift_px[0]),
-                     num(g.residual_shift_px[1]));
+    h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n",
+                     escape(to_string(g.method)), escape(g.model), escape(g.note));
+    h += fmt::format(
+        "<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
+        "correlation of S0 gradients after registration)</td></tr>\n",
+        num(std::hypot(g.residual_shift_px[0], g.residual_shift_px[1])),
+        num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
     for (std::size_t i = 0; i < r.regions.size(); ++i) {
         const auto& region = r.regions[i];
         std::string per_quantity;
         for (const auto& q : kZQuantities) {
             const auto& v = region.verdicts.at(q);
-            per_quantity += fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
-                                        verdict_span(v.mean.verdict), escape(explain(v.mean)), sigma_span(v.sigma.verdict),
-                                        escape(explain(v.sigma)));
+            per_quantity +=
+                fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
+                            verdict_span(v.mean.verdict), escape(explain(v.mean)),
+                            sigma_span(v.sigma.verdict), escape(explain(v.sigma)));
         }
-        h += fmt::format("<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} {}{}</td></tr>\n",
-                         swatch(i), escape(region.name), verdict_span(region.verdict), per_quantity,
-                         num(region.stats.at("S0").bias), p.units,
-                         region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
+        h += fmt::format(
+            "<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} "
+            "{}{}</td></tr>\n",
+            swatch(i), escape(region.name), verdict_span(region.verdict), per_quantity,
+            num(region.stats.at("S0").bias), p.units,
+            region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
     }
     h += "</tbody>\n</table>\n";
     if (!r.notes.empty()) {
@@ -205,30 +235,40 @@ std::string summary_section(const Page& p) {
 
 std::string provenance_section(const Page& p) {
     const auto& pv = p.r.provenance;
-    std::string h = "<section id=\"provenance\">\n<h2>Provenance</h2>\n<table class=\"summary\">\n<tbody>\n";
-    h += fmt::format("<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
-                     pv.tool_version.empty() ? "tirpol report library (no CLI)" : escape(pv.tool_version));
+    std::string h =
+        "<section id=\"provenance\">\n<h2>Provenance</h2>\n<table class=\"summary\">\n<tbody>\n";
+    h += fmt::format(
+        "<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
+        pv.tool_version.empty() ? "tirpol report library (no CLI)" : escape(pv.tool_version));
     if (!pv.command_line.empty())
-        h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n", escape(pv.command_line));
+        h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n",
+                         escape(pv.command_line));
     if (p.r.band_um)
-        h += fmt::format("<tr><td>Band</td><td class=\"text\">{}–{} µm (from {})</td></tr>\n", num((*p.r.band_um)[0]),
-                         num((*p.r.band_um)[1]), escape(p.r.band_source));
+        h += fmt::format("<tr><td>Band</td><td class=\"text\">{}–{} µm (from {})</td></tr>\n",
+                         num((*p.r.band_um)[0]), num((*p.r.band_um)[1]), escape(p.r.band_source));
     h += "</tbody>\n</table>\n";
-    if (pv.inputs.empty()) return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
-    h += "<table>\n<caption>Input files</caption>\n<thead><tr><th class=\"text\">Role</th><th class=\"text\">File</th>"
+    if (pv.inputs.empty())
+        return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
+    h += "<table>\n<caption>Input files</caption>\n<thead><tr><th class=\"text\">Role</th><th "
+         "class=\"text\">File</th>"
          "<th>Bytes</th><th class=\"text\">SHA-256</th></tr></thead>\n<tbody>\n";
     for (const auto& f : pv.inputs)
-        h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td><td>{}</td><td class=\"text\"><code>{}"
-                         "</code></td></tr>\n",
-                         escape(f.role), escape(f.path.string()), f.size_bytes, f.sha256);
+        h += fmt::format(
+            "<tr><td>{}</td><td class=\"text\"><code>{}</code></td><td>{}</td><td "
+            "class=\"text\"><code>{}"
+            "</code></td></tr>\n",
+            escape(f.role), escape(f.path.string()), f.size_bytes, f.sha256);
     h += "</tbody>\n</table>\n";
     for (const auto& f : pv.inputs) {
         if (f.attributes.empty()) continue;
-        h += fmt::format("<table>\n<caption>Header of the {} file (scene, band, spp, seed, capture time, calibration "
-                         "files — as written by the tool that made it)</caption>\n<tbody>\n",
-                         escape(f.role));
+        h += fmt::format(
+            "<table>\n<caption>Header of the {} file (scene, band, spp, seed, capture time, "
+            "calibration "
+            "files — as written by the tool that made it)</caption>\n<tbody>\n",
+            escape(f.role));
         for (const auto& [name, value] : f.attributes)
-            h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td></tr>\n", escape(name), escape(value));
+            h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td></tr>\n",
+                             escape(name), escape(value));
         h += "</tbody>\n</table>\n";
     }
     return h + "</section>\n";
@@ -236,80 +276,104 @@ std::string provenance_section(const Page& p) {
 
 std::string registration_section(const Page& p) {
     const auto& g = p.r.registration;
-    std::string h = "<section id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th>"
-                    "<th>Value</th></tr></thead>\n<tbody>\n";
-    h += fmt::format("<tr><td>Method / model</td><td>{} / {}</td></tr>\n", escape(to_string(g.method)), escape(g.model));
+    std::string h =
+        "<section "
+        "id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th>"
+        "<th>Value</th></tr></thead>\n<tbody>\n";
+    h += fmt::format("<tr><td>Method / model</td><td>{} / {}</td></tr>\n",
+                     escape(to_string(g.method)), escape(g.model));
     const auto& m = g.measured_to_simulated;
-    h += fmt::format("<tr><td>H (measured → simulated pixels)</td><td><code>[{} {} {}; {} {} {}; {} {} {}]</code></td></tr>\n",
-                     num(m[0]), num(m[1]), num(m[2]), num(m[3]), num(m[4]), num(m[5]), num(m[6]), num(m[7]), num(m[8]));
-    h += fmt::format("<tr><td>Largest corner displacement [px]</td><td>{}</td></tr>\n", num(g.max_corner_displacement_px));
+    h += fmt::format(
+        "<tr><td>H (measured → simulated pixels)</td><td><code>[{} {} {}; {} {} {}; {} {} "
+        "{}]</code></td></tr>\n",
+        num(m[0]), num(m[1]), num(m[2]), num(m[3]), num(m[4]), num(m[5]), num(m[6]), num(m[7]),
+        num(m[8]));
+    h += fmt::format("<tr><td>Largest corner displacement [px]</td><td>{}</td></tr>\n",
+                     num(g.max_corner_displacement_px));
     h += fmt::format("<tr><td>Rotation [°]</td><td>{}</td></tr>\n", num(g.rotation_deg));
     h += fmt::format("<tr><td>Control-point RMS residual [px]</td><td>{}</td></tr>\n",
                      g.control_point_rms_px ? num(*g.control_point_rms_px) : "–");
     h += fmt::format("<tr><td>ECC correlation coefficient</td><td>{}</td></tr>\n",
                      g.ecc_correlation ? num(*g.ecc_correlation) : "–");
     if (g.identity_edge_mismatch && g.registered_edge_mismatch)
-        h += fmt::format("<tr><td>S0 edge mismatch, identity / ECC warp</td><td>{} / {}</td></tr>\n",
-                         num(*g.identity_edge_mismatch), num(*g.registered_edge_mismatch));
-    h += fmt::format("<tr><td>Residual shift after registration (dx, dy) [px]</td><td>{}, {}</td></tr>\n",
-                     num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
+        h +=
+            fmt::format("<tr><td>S0 edge mismatch, identity / ECC warp</td><td>{} / {}</td></tr>\n",
+                        num(*g.identity_edge_mismatch), num(*g.registered_edge_mismatch));
+    h += fmt::format(
+        "<tr><td>Residual shift after registration (dx, dy) [px]</td><td>{}, {}</td></tr>\n",
+        num(g.residual_shift_px[0]), num(g.residual_shift_px[1]));
     return h + "</tbody>\n</table>\n</section>\n";
 }
 
 std::string regions_section(const Page& p) {
-    return "<section id=\"regions\">\n<h2>Regions of interest</h2>\n" + figures_of(p, "regions", false) + "</section>\n";
+    return "<section id=\"regions\">\n<h2>Regions of interest</h2>\n" +
+           figures_of(p, "regions", false) + "</section>\n";
 }
 
 std::string images_section(const Page& p) {
-    return "<section id=\"images\">\n<h2>Stokes images side by side</h2>\n<p>Measured and registered simulated images "
+    return "<section id=\"images\">\n<h2>Stokes images side by side</h2>\n<p>Measured and "
+           "registered simulated images "
            "share one colour scale per quantity; differences are measured − simulated.</p>\n" +
            figures_of(p, "images", false) + "</section>\n";
 }
 
 std::string statistics_section(const Page& p) {
     const auto& r = p.r;
-    std::string h = "<section id=\"statistics\">\n<h2>Region statistics</h2>\n<p>Means and standard deviations over the "
-                    "pixels of each region where both images have data; bias = mean(m − s) ± its standard error "
-                    "(pixels treated as independent), RMSE = √mean((m − s)²).</p>\n";
+    std::string h =
+        "<section id=\"statistics\">\n<h2>Region statistics</h2>\n<p>Means and standard deviations "
+        "over the "
+        "pixels of each region where both images have data; bias = mean(m − s) ± its standard "
+        "error "
+        "(pixels treated as independent), RMSE = √mean((m − s)²).</p>\n";
     for (const auto& q : kComparedQuantities) {
         const std::string qu = q == "DoLP" ? "dimensionless" : p.units;
-        h += fmt::format("<table>\n<caption>{} [{}]</caption>\n<thead><tr><th>Region</th><th>Pixels</th>"
-                         "<th>Measured mean</th><th>Measured std</th><th>Simulated mean</th><th>Simulated std</th>"
-                         "<th>Bias</th><th>RMSE</th></tr></thead>\n<tbody>\n",
-                         q, qu);
+        h += fmt::format(
+            "<table>\n<caption>{} [{}]</caption>\n<thead><tr><th>Region</th><th>Pixels</th>"
+            "<th>Measured mean</th><th>Measured std</th><th>Simulated mean</th><th>Simulated "
+            "std</th>"
+            "<th>Bias</th><th>RMSE</th></tr></thead>\n<tbody>\n",
+            q, qu);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& s = r.regions[i].stats.at(q);
-            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ± {}</td>"
-                             "<td>{}</td></tr>\n",
-                             swatch(i), escape(r.regions[i].name), s.pixel_count, num(s.measured_mean),
-                             num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias),
-                             num(s.bias_sigma), num(s.rmse));
+            h += fmt::format(
+                "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ± "
+                "{}</td>"
+                "<td>{}</td></tr>\n",
+                swatch(i), escape(r.regions[i].name), s.pixel_count, num(s.measured_mean),
+                num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias),
+                num(s.bias_sigma), num(s.rmse));
         }
         h += "</tbody>\n</table>\n";
     }
     if (r.band_um) {
-        h += fmt::format("<table>\n<caption>S0 bias as a brightness-temperature difference ({}–{} µm band, box "
-                         "response)</caption>\n<thead><tr><th>Region</th><th>T_b of simulated S0 [K]</th><th>dL/dT "
-                         "[W/(m²·sr·K)]</th><th>S0 bias [K]</th></tr></thead>\n<tbody>\n",
-                         num((*r.band_um)[0]), num((*r.band_um)[1]));
+        h += fmt::format(
+            "<table>\n<caption>S0 bias as a brightness-temperature difference ({}–{} µm band, box "
+            "response)</caption>\n<thead><tr><th>Region</th><th>T_b of simulated S0 "
+            "[K]</th><th>dL/dT "
+            "[W/(m²·sr·K)]</th><th>S0 bias [K]</th></tr></thead>\n<tbody>\n",
+            num((*r.band_um)[0]), num((*r.band_um)[1]));
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& k = r.regions[i].s0_bias_k;
             h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i),
-                             escape(r.regions[i].name), k ? num(k->temperature_k) : "–", k ? num(k->radiance_dT) : "–",
-                             kelvin_text(k));
+                             escape(r.regions[i].name), k ? num(k->temperature_k) : "–",
+                             k ? num(k->radiance_dT) : "–", kelvin_text(k));
         }
         h += "</tbody>\n</table>\n";
     }
     if (!r.background.empty()) {
-        h += fmt::format("<table>\n<caption>S1 contrast against the background region “{}” [{}]</caption>\n<thead><tr>"
-                         "<th>Region</th><th>Measured</th><th>Simulated</th><th>Measured − simulated</th></tr></thead>\n"
-                         "<tbody>\n",
-                         escape(r.background), p.units);
+        h += fmt::format(
+            "<table>\n<caption>S1 contrast against the background region “{}” "
+            "[{}]</caption>\n<thead><tr>"
+            "<th>Region</th><th>Measured</th><th>Simulated</th><th>Measured − "
+            "simulated</th></tr></thead>\n"
+            "<tbody>\n",
+            escape(r.background), p.units);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& region = r.regions[i];
             if (region.name == r.background || !region.s1_contrast_measured) continue;
-            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i), escape(region.name),
-                             num(*region.s1_contrast_measured), num(*region.s1_contrast_simulated),
+            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i),
+                             escape(region.name), num(*region.s1_contrast_measured),
+                             num(*region.s1_contrast_simulated),
                              num(*region.s1_contrast_measured - *region.s1_contrast_simulated));
         }
         h += "</tbody>\n</table>\n";
@@ -320,20 +384,26 @@ std::string statistics_section(const Page& p) {
 std::string aop_section(const Page& p) {
     const auto& r = p.r;
     std::string h = fmt::format(
-        "<section id=\"aop\">\n<h2>Angle of polarization</h2>\n<p>AoP is an axial angle (θ and θ + 180° are the "
-        "same): means and spreads are taken on 2θ (Mardia &amp; Jupp, <i>Directional Statistics</i>, §9.3.2), over the "
-        "pixels where √(S1² + S2²) exceeds {:.0f} σ of its noise in <em>both</em> images — elsewhere AoP is the angle "
-        "of noise.</p>\n<table>\n<thead><tr><th>Region</th><th>Polarized pixels</th><th>Measured mean [°]</th>"
-        "<th>Simulated mean [°]</th><th>Mean difference [°]</th><th>Circular std of difference [°]</th></tr></thead>\n"
+        "<section id=\"aop\">\n<h2>Angle of polarization</h2>\n<p>AoP is an axial angle (θ and θ + "
+        "180° are the "
+        "same): means and spreads are taken on 2θ (Mardia &amp; Jupp, <i>Directional "
+        "Statistics</i>, §9.3.2), over the "
+        "pixels where √(S1² + S2²) exceeds {:.0f} σ of its noise in <em>both</em> images — "
+        "elsewhere AoP is the angle "
+        "of noise.</p>\n<table>\n<thead><tr><th>Region</th><th>Polarized pixels</th><th>Measured "
+        "mean [°]</th>"
+        "<th>Simulated mean [°]</th><th>Mean difference [°]</th><th>Circular std of difference "
+        "[°]</th></tr></thead>\n"
         "<tbody>\n",
         kAopSignificanceSigma);
     for (std::size_t i = 0; i < r.regions.size(); ++i) {
         const auto& a = r.regions[i].aop;
         const bool any = a.pixel_count > 0;
-        h += fmt::format("<tr><td>{}{}</td><td>{} of {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                         swatch(i), escape(r.regions[i].name), a.pixel_count, a.region_pixel_count,
-                         any ? num(a.measured_mean_deg) : "–", any ? num(a.simulated_mean_deg) : "–",
-                         any ? num(a.difference_mean_deg) : "–", any ? num(a.difference_std_deg) : "–");
+        h += fmt::format(
+            "<tr><td>{}{}</td><td>{} of {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+            swatch(i), escape(r.regions[i].name), a.pixel_count, a.region_pixel_count,
+            any ? num(a.measured_mean_deg) : "–", any ? num(a.simulated_mean_deg) : "–",
+            any ? num(a.difference_mean_deg) : "–", any ? num(a.difference_std_deg) : "–");
     }
     return h + "</tbody>\n</table>\n</section>\n";
 }
@@ -341,101 +411,140 @@ std::string aop_section(const Page& p) {
 std::string noise_section(const Page& p) {
     const auto& r = p.r;
     std::string h = fmt::format(
-        "<section id=\"noise\">\n<h2>Do the differences exceed the noise?</h2>\n<p><strong>Agreement</strong> (the "
-        "verdict): per region and quantity, the mean difference d = mean(m − s) is tested against the standard "
-        "uncertainty of that mean, σ_mean² = Σσ_m²/n² + Σσ_s²/n² + σ_common² + σ_registration² — the measured and "
-        "simulated per-pixel noise is independent from pixel to pixel and averages down, the calibration's gain and "
-        "offset errors and the misalignment are common to the region and do not. Its degrees of freedom ν follow "
-        "Welch–Satterthwaite; <span class=\"bad\">exceeds noise</span> when |d|/σ_mean &gt; t<sub>1−α/2, ν</sub>, with "
-        "α = {:.2f} % per quantity ({:.0f} % per region over S0, S1, S2, Šidák); otherwise <span class=\"ok\">"
-        "consistent with noise</span>. The detectable bias (t<sub>1−α/2, ν</sub> + t<sub>{:.2f}, ν</sub>)·σ_mean is "
-        "the smallest real difference found with {:.0f} % probability. <strong>σ diagnostic</strong> (separate): the "
-        "per-pixel z = (m − s)/√(σ_m² + σ_s²), mapped from Student's t to the normal when a variance is estimated, "
-        "has variance 1 about its mean when σ is right; a variance more than 3 of its sampling σ √(2/(n − 1)) away "
-        "from 1, with a σ factor beyond {:.2f}, reads <span class=\"warn\">σ overestimated</span> or <span "
+        "<section id=\"noise\">\n<h2>Do the differences exceed the "
+        "noise?</h2>\n<p><strong>Agreement</strong> (the "
+        "verdict): per region and quantity, the mean difference d = mean(m − s) is tested against "
+        "the standard "
+        "uncertainty of that mean, σ_mean² = Σσ_m²/n² + Σσ_s²/n² + σ_common² + σ_registration² — "
+        "the measured and "
+        "simulated per-pixel noise is independent from pixel to pixel and averages down, the "
+        "calibration's gain and "
+        "offset errors and the misalignment are common to the region and do not. Its degrees of "
+        "freedom ν follow "
+        "Welch–Satterthwaite; <span class=\"bad\">exceeds noise</span> when |d|/σ_mean &gt; "
+        "t<sub>1−α/2, ν</sub>, with "
+        "α = {:.2f} % per quantity ({:.0f} % per region over S0, S1, S2, Šidák); otherwise <span "
+        "class=\"ok\">"
+        "consistent with noise</span>. The detectable bias (t<sub>1−α/2, ν</sub> + t<sub>{:.2f}, "
+        "ν</sub>)·σ_mean is "
+        "the smallest real difference found with {:.0f} % probability. <strong>σ "
+        "diagnostic</strong> (separate): the "
+        "per-pixel z = (m − s)/√(σ_m² + σ_s²), mapped from Student's t to the normal when a "
+        "variance is estimated, "
+        "has variance 1 about its mean when σ is right; a variance more than 3 of its sampling σ "
+        "√(2/(n − 1)) away "
+        "from 1, with a σ factor beyond {:.2f}, reads <span class=\"warn\">σ overestimated</span> "
+        "or <span "
         "class=\"warn\">σ underestimated</span>.</p>\n",
-        100.0 * r.design.false_alarm_per_quantity(), 100.0 * r.design.false_alarm_per_region, r.design.power,
-        100.0 * r.design.power, kSigmaFactorTolerance);
-    h += fmt::format("<table>\n<caption>Region-mean tests [{}]</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
-                     "<th>Pixels</th><th>Mean difference</th><th>σ_mean</th><th>of which measured / common / simulated "
-                     "/ registration</th><th>ν</th><th>t</th><th>p</th><th>Detectable bias</th><th class=\"text\">"
-                     "Verdict</th><th class=\"text\">σ diagnostic</th></tr></thead>\n<tbody>\n",
-                     p.units);
+        100.0 * r.design.false_alarm_per_quantity(), 100.0 * r.design.false_alarm_per_region,
+        r.design.power, 100.0 * r.design.power, kSigmaFactorTolerance);
+    h += fmt::format(
+        "<table>\n<caption>Region-mean tests "
+        "[{}]</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
+        "<th>Pixels</th><th>Mean difference</th><th>σ_mean</th><th>of which measured / common / "
+        "simulated "
+        "/ registration</th><th>ν</th><th>t</th><th>p</th><th>Detectable bias</th><th "
+        "class=\"text\">"
+        "Verdict</th><th class=\"text\">σ diagnostic</th></tr></thead>\n<tbody>\n",
+        p.units);
     for (std::size_t i = 0; i < r.regions.size(); ++i)
         for (const auto& q : kZQuantities) {
             const auto& v = r.regions[i].verdicts.at(q);
             const auto& t = v.mean;
-            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} / {} / {} / {}</td>"
-                             "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td><td class=\"text\">"
-                             "{} (z variance {})</td></tr>\n",
-                             swatch(i), escape(r.regions[i].name), q, t.pixel_count, num(t.difference),
-                             num(t.combined.sigma), num(t.measured_independent.sigma), num(t.measured_common.sigma),
-                             num(t.simulated.sigma), num(t.registration.sigma), degrees_of_freedom(t.combined.dof),
-                             num(t.t), num(t.p_value), num(t.detectable_bias), verdict_span(t.verdict),
-                             sigma_span(v.sigma.verdict), num(v.sigma.z_variance));
+            h += fmt::format(
+                "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} / {} / {} / "
+                "{}</td>"
+                "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td><td "
+                "class=\"text\">"
+                "{} (z variance {})</td></tr>\n",
+                swatch(i), escape(r.regions[i].name), q, t.pixel_count, num(t.difference),
+                num(t.combined.sigma), num(t.measured_independent.sigma),
+                num(t.measured_common.sigma), num(t.simulated.sigma), num(t.registration.sigma),
+                degrees_of_freedom(t.combined.dof), num(t.t), num(t.p_value),
+                num(t.detectable_bias), verdict_span(t.verdict), sigma_span(v.sigma.verdict),
+                num(v.sigma.z_variance));
         }
     h += "</tbody>\n</table>\n";
     h += fmt::format(
-        "<table>\n<caption>Noise used [{}]; degrees of freedom ν of each variance (∞: taken as exact)"
-        "</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">Measured σ from</th><th>Median σ_m</th>"
-        "<th>ν_m</th><th class=\"text\">Simulated σ from</th><th>Median σ_s</th><th>ν_s</th></tr></thead>\n"
+        "<table>\n<caption>Noise used [{}]; degrees of freedom ν of each variance (∞: taken as "
+        "exact)"
+        "</caption>\n<thead><tr><th>Quantity</th><th class=\"text\">Measured σ from</th><th>Median "
+        "σ_m</th>"
+        "<th>ν_m</th><th class=\"text\">Simulated σ from</th><th>Median "
+        "σ_s</th><th>ν_s</th></tr></thead>\n"
         "<tbody>\n",
         p.units);
     for (const auto& [q, s] : r.noise)
         h += fmt::format(
-            "<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td>"
+            "<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td>{}</td><td "
+            "class=\"text\">{}</td>"
             "<td>{}</td><td>{}</td></tr>\n",
             q, escape(s.measured), num(s.measured_sigma_median), degrees_of_freedom(s.measured_dof),
-            escape(s.simulated), num(s.simulated_sigma_median), degrees_of_freedom(s.simulated_dof));
+            escape(s.simulated), num(s.simulated_sigma_median),
+            degrees_of_freedom(s.simulated_dof));
     h += "</tbody>\n</table>\n";
-    h += "<table>\n<caption>Fraction of pixels beyond 2σ and 3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
-         "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th class=\"text\">σ diagnostic</th>"
+    h += "<table>\n<caption>Fraction of pixels beyond 2σ and "
+         "3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
+         "<th>Pixels</th><th>|z| &gt; 2</th><th>|z| &gt; 3</th><th>Mean z</th><th>RMS z</th><th "
+         "class=\"text\">σ diagnostic</th>"
          "</tr></thead>\n<tbody>\n";
     for (std::size_t i = 0; i < r.regions.size(); ++i)
         for (const auto& q : {"S0", "S1", "S2", "all"}) {
             const auto& z = r.regions[i].z.at(q);
             const bool pooled = std::string(q) == "all";
-            h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-                             "<td class=\"text\">{}</td></tr>\n",
-                             swatch(i), escape(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q, z.pixel_count,
-                             percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
-                             pooled ? "(reference only)" : sigma_span(r.regions[i].verdicts.at(q).sigma.verdict));
+            h += fmt::format(
+                "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</"
+                "td>"
+                "<td class=\"text\">{}</td></tr>\n",
+                swatch(i), escape(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q, z.pixel_count,
+                percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
+                pooled ? "(reference only)"
+                       : sigma_span(r.regions[i].verdicts.at(q).sigma.verdict));
         }
-    h += fmt::format("<tr><td>expected (noise only)</td><td></td><td></td><td>{}</td><td>{}</td><td>0</td><td>1</td>"
-                     "<td></td></tr>\n</tbody>\n</table>\n",
-                     percent(kNormalTailAbove2), percent(kNormalTailAbove3));
+    h += fmt::format(
+        "<tr><td>expected (noise "
+        "only)</td><td></td><td></td><td>{}</td><td>{}</td><td>0</td><td>1</td>"
+        "<td></td></tr>\n</tbody>\n</table>\n",
+        percent(kNormalTailAbove2), percent(kNormalTailAbove3));
     return h + figures_of(p, "z", false) + "</section>\n";
 }
 
 std::string scatter_section(const Page& p) {
-    return "<section id=\"scatter\">\n<h2>Scatter plots</h2>\n" + figures_of(p, "scatter", true) + "</section>\n";
-}
-
-std::string histograms_section(const Page& p) {
-    return "<section id=\"histograms\">\n<h2>Histograms of the differences</h2>\n" + figures_of(p, "histograms", true) +
+    return "<section id=\"scatter\">\n<h2>Scatter plots</h2>\n" + figures_of(p, "scatter", true) +
            "</section>\n";
 }
 
+std::string histograms_section(const Page& p) {
+    return "<section id=\"histograms\">\n<h2>Histograms of the differences</h2>\n" +
+           figures_of(p, "histograms", true) + "</section>\n";
+}
+
 std::string footer_section(const Page&) {
-    return "<footer>Files next to this page: <code>report.json</code> (every number above), <code>comparison.exr</code> "
-           "(full-resolution measured, registered simulated, difference and z planes) and the PNG figures. Stokes "
-           "convention: S1 = I0 − I90, S2 = I45 − I135 in the camera frame (polarizer 0° along image rows); DoLP and "
+    return "<footer>Files next to this page: <code>report.json</code> (every number above), "
+           "<code>comparison.exr</code> "
+           "(full-resolution measured, registered simulated, difference and z planes) and the PNG "
+           "figures. Stokes "
+           "convention: S1 = I0 − I90, S2 = I45 − I135 in the camera frame (polarizer 0° along "
+           "image rows); DoLP and "
            "AoP are recomputed from S0, S1, S2 after registration.</footer>\n";
 }
 
 // The page, top to bottom: a new section is one function and one entry here.
 const std::vector<std::function<std::string(const Page&)>> kSections = {
-    header_section,     summary_section, provenance_section, registration_section, regions_section, images_section,
-    statistics_section, aop_section,     noise_section,      scatter_section,      histograms_section, footer_section};
+    header_section,  summary_section, provenance_section, registration_section,
+    regions_section, images_section,  statistics_section, aop_section,
+    noise_section,   scatter_section, histograms_section, footer_section};
 
 }  // namespace
 
-std::string render_html(const CompareResult& r, const std::string& measured_name, const std::string& simulated_name,
-                        const std::vector<Figure>& figures) {
+std::string render_html(const CompareResult& r, const std::string& measured_name,
+                        const std::string& simulated_name, const std::vector<Figure>& figures) {
     const Page page{r, measured_name, simulated_name, figures, escape(r.units)};
-    std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                    "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name), escape(simulated_name));
+    std::string h =
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name),
+                     escape(simulated_name));
     h += fmt::format("<style>{}</style>\n</head>\n<body>\n", kStyle);
     for (const auto& section : kSections) h += section(page);
     return h + "</body>\n</html>\n";

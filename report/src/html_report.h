@@ -11,7 +11,7 @@
 namespace tirpol::report::detail {
 
 struct Figure {
-    std::string section;  ///< "regions", "images", "z", "scatter", "histograms"
+    std::string section;         ///< "regions", "images", "z", "scatter", "histograms"
     std::filesystem::path file;  ///< the PNG, or the .svg copy of `svg`
     std::string caption;         ///< HTML-escaped by the writer
     std::string svg;             ///< inline SVG plot; empty for a PNG figure
@@ -20,8 +20,8 @@ struct Figure {
 /// RFC 4648 base64 of `bytes` (standard alphabet, padded).
 std::string base64_encode(std::string_view bytes);
 
-/// The whole page for `result`, with `figures` embedded in their sections, in order (PNGs as data URIs,
-/// plots as inline SVG).
+/// The whole page for `result`, with `figures` embedded in their sections, in order (PNGs as data
+/// URIs, plots as inline SVG).
 std::string render_html(const CompareResult& result, const std::string& measured_name,
                         const std::string& simulated_name, const std::vector<Figure>& figures);
 

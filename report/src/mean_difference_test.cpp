@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <unsupported/Eigen/SpecialFunctions>
 
 namespace tirpol::report {
@@ -25,7 +24,8 @@ UncertaintyComponent combine(const std::vector<UncertaintyComponent>& components
     return out;
 }
 
-UncertaintyComponent mean_of_independent(const std::vector<float>& variance, const std::vector<std::uint8_t>& valid,
+UncertaintyComponent mean_of_independent(const std::vector<float>& variance,
+                                         const std::vector<std::uint8_t>& valid,
                                          double dof_per_pixel) {
     double sum = 0.0, sum_squares = 0.0;
     std::size_t n = 0;
@@ -39,7 +39,8 @@ UncertaintyComponent mean_of_independent(const std::vector<float>& variance, con
     UncertaintyComponent out;
     if (n == 0) return out;
     out.sigma = std::sqrt(sum) / static_cast<double>(n);
-    if (std::isfinite(dof_per_pixel) && sum_squares > 0.0) out.dof = sum * sum / (sum_squares / dof_per_pixel);
+    if (std::isfinite(dof_per_pixel) && sum_squares > 0.0)
+        out.dof = sum * sum / (sum_squares / dof_per_pixel);
     return out;
 }
 
@@ -83,27 +84,32 @@ MeanDifferenceTest test_mean_difference(const MeanDifferenceInputs& in, const Te
     r.power = design.power;
     if (r.pixel_count == 0) return r;
     r.difference = sum / static_cast<double>(r.pixel_count);
-    r.measured_independent = mean_of_independent(*in.measured_variance, valid,
-                                                 in.measured_variance_shared ? kInfiniteDof : in.measured_dof);
+    r.measured_independent = mean_of_independent(
+        *in.measured_variance, valid, in.measured_variance_shared ? kInfiniteDof : in.measured_dof);
     if (in.measured_variance_shared) r.measured_independent.dof = in.measured_dof;
     r.simulated = mean_of_independent(*in.simulated_variance, valid, in.simulated_dof);
     r.measured_common = in.measured_common;
     r.registration = in.registration;
     r.combined = combine({r.measured_independent, r.measured_common, r.simulated, r.registration});
     r.critical_t = student_t_quantile(1.0 - 0.5 * r.false_alarm, r.combined.dof);
-    r.detectable_bias = (r.critical_t + student_t_quantile(design.power, r.combined.dof)) * r.combined.sigma;
+    r.detectable_bias =
+        (r.critical_t + student_t_quantile(design.power, r.combined.dof)) * r.combined.sigma;
     if (!(r.combined.sigma > 0.0)) {
         // No stated noise at all: any difference exceeds it, none does not.
-        r.t = r.difference == 0.0 ? 0.0 : std::copysign(std::numeric_limits<double>::infinity(), r.difference);
+        r.t = r.difference == 0.0
+                  ? 0.0
+                  : std::copysign(std::numeric_limits<double>::infinity(), r.difference);
     } else {
         r.t = r.difference / r.combined.sigma;
     }
     r.p_value = student_t_two_sided_tail(r.t, r.combined.dof);
-    r.verdict = std::abs(r.t) > r.critical_t ? Agreement::ExceedsNoise : Agreement::ConsistentWithNoise;
+    r.verdict =
+        std::abs(r.t) > r.critical_t ? Agreement::ExceedsNoise : Agreement::ConsistentWithNoise;
     return r;
 }
 
-SigmaDiagnostic sigma_diagnostic(const std::vector<float>& z, const std::vector<std::uint8_t>& mask) {
+SigmaDiagnostic sigma_diagnostic(const std::vector<float>& z,
+                                 const std::vector<std::uint8_t>& mask) {
     SigmaDiagnostic d;
     double sum = 0.0;
     for (std::size_t i = 0; i < z.size(); ++i)

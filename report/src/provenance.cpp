@@ -14,7 +14,8 @@ std::string attribute_text(const AttributeValue& value) {
                 return x;
             } else if constexpr (std::is_same_v<T, std::vector<double>>) {
                 std::string out = "[";
-                for (std::size_t i = 0; i < x.size(); ++i) out += fmt::format("{}{:.10g}", i ? ", " : "", x[i]);
+                for (std::size_t i = 0; i < x.size(); ++i)
+                    out += fmt::format("{}{:.10g}", i ? ", " : "", x[i]);
                 return out + "]";
             } else if constexpr (std::is_same_v<T, double>) {
                 return fmt::format("{:.10g}", x);
@@ -25,7 +26,8 @@ std::string attribute_text(const AttributeValue& value) {
         value);
 }
 
-InputFile describe_input(const std::string& role, const std::filesystem::path& path, const Image* header) {
+InputFile describe_input(const std::string& role, const std::filesystem::path& path,
+                         const Image* header) {
     InputFile file;
     file.role = role;
     file.path = path;
@@ -33,7 +35,8 @@ InputFile describe_input(const std::string& role, const std::filesystem::path& p
     file.sha256 = sha256_hex(bytes);
     file.size_bytes = bytes.size();
     if (header)
-        for (const auto& [name, value] : header->attributes()) file.attributes.emplace_back(name, attribute_text(value));
+        for (const auto& [name, value] : header->attributes())
+            file.attributes.emplace_back(name, attribute_text(value));
     return file;
 }
 
@@ -41,8 +44,10 @@ std::string quoted_command_line(int argc, const char* const* argv) {
     std::string line;
     for (int i = 0; i < argc; ++i) {
         const std::string_view arg = argv[i];
-        const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                                "0123456789-_./=:,+@%") == std::string_view::npos;
+        const bool plain =
+            !arg.empty() && arg.find_first_not_of(
+                                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                "0123456789-_./=:,+@%") == std::string_view::npos;
         if (i) line += ' ';
         if (plain) {
             line += arg;

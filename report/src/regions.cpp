@@ -14,8 +14,10 @@ namespace {
 
 PixelPoint parse_point(const ConfigNode& node) {
     const auto xy = node.as<std::vector<double>>();
-    if (xy.size() != 2) node.fail(fmt::format("expected a point [x, y] in pixels, got {} numbers", xy.size()));
-    if (!std::isfinite(xy[0]) || !std::isfinite(xy[1])) node.fail("expected finite pixel coordinates");
+    if (xy.size() != 2)
+        node.fail(fmt::format("expected a point [x, y] in pixels, got {} numbers", xy.size()));
+    if (!std::isfinite(xy[0]) || !std::isfinite(xy[1]))
+        node.fail("expected finite pixel coordinates");
     return {xy[0], xy[1]};
 }
 
@@ -35,7 +37,8 @@ std::string regions_yaml(const RegionSet& set) {
     for (const auto& region : set.regions) {
         y += "  - name: " + quoted(region.name) + "\n    polygon: [";
         for (std::size_t i = 0; i < region.polygon.size(); ++i)
-            y += fmt::format("{}[{:.17g}, {:.17g}]", i ? ", " : "", region.polygon[i].x, region.polygon[i].y);
+            y += fmt::format("{}[{:.17g}, {:.17g}]", i ? ", " : "", region.polygon[i].x,
+                             region.polygon[i].y);
         y += "]\n";
     }
     if (!set.background.empty()) y += "background: " + quoted(set.background) + "\n";
@@ -44,7 +47,9 @@ std::string regions_yaml(const RegionSet& set) {
 }
 
 RegionSet parse_regions(const ConfigNode& root) {
-    if (!root.is_map()) root.fail("expected a mapping with 'regions' (and optionally 'background', 'noise_region')");
+    if (!root.is_map())
+        root.fail(
+            "expected a mapping with 'regions' (and optionally 'background', 'noise_region')");
     root.check_keys({"regions", "background", "noise_region"});
     RegionSet set;
     const ConfigNode list = root.at("regions");
@@ -58,12 +63,14 @@ RegionSet parse_regions(const ConfigNode& root) {
         region.name = item.get<std::string>("name");
         region.location = item.location() + ": " + item.path();
         if (region.name.empty()) item.at("name").fail("expected a non-empty region name");
-        if (!names.insert(region.name).second) item.at("name").fail(fmt::format("duplicate region name '{}'", region.name));
+        if (!names.insert(region.name).second)
+            item.at("name").fail(fmt::format("duplicate region name '{}'", region.name));
         const ConfigNode polygon = item.at("polygon");
         for (const auto& vertex : polygon.elements()) region.polygon.push_back(parse_point(vertex));
         if (region.polygon.size() < 3)
-            polygon.fail(fmt::format("expected a polygon of at least 3 vertices [[x, y], ...], got {}",
-                                     region.polygon.size()));
+            polygon.fail(
+                fmt::format("expected a polygon of at least 3 vertices [[x, y], ...], got {}",
+                            region.polygon.size()));
         set.regions.push_back(std::move(region));
     }
     auto named_region = [&](std::string_view key) -> std::string {
@@ -73,7 +80,8 @@ RegionSet parse_regions(const ConfigNode& root) {
         if (!names.count(name)) {
             std::vector<std::string> all(names.begin(), names.end());
             const auto hint = closest_match(name, all);
-            node->fail(fmt::format("'{}' names no region{}", name, hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
+            node->fail(fmt::format("'{}' names no region{}", name,
+                                   hint.empty() ? "" : " (did you mean '" + hint + "'?)"));
         }
         return name;
     };
@@ -82,15 +90,19 @@ RegionSet parse_regions(const ConfigNode& root) {
     return set;
 }
 
-RegionSet load_regions(const std::filesystem::path& path) { return parse_regions(ConfigNode::load_file(path)); }
+RegionSet load_regions(const std::filesystem::path& path) {
+    return parse_regions(ConfigNode::load_file(path));
+}
 
 std::vector<std::uint8_t> region_mask(const Region& region, int width, int height) {
     std::vector<cv::Point2f> contour;
     double x_lo = width, x_hi = -1, y_lo = height, y_hi = -1;
     for (const auto& p : region.polygon) {
         if (p.x < -0.5 || p.y < -0.5 || p.x > width - 0.5 || p.y > height - 0.5)
-            fail("{}: region '{}' has vertex ({}, {}) outside the {}×{} measured image (x in [0, {}], y in [0, {}])",
-                 region.location, region.name, p.x, p.y, width, height, width - 1, height - 1);
+            fail(
+                "{}: region '{}' has vertex ({}, {}) outside the {}×{} measured image (x in [0, "
+                "{}], y in [0, {}])",
+                region.location, region.name, p.x, p.y, width, height, width - 1, height - 1);
         contour.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
         x_lo = std::min(x_lo, p.x);
         x_hi = std::max(x_hi, p.x);
@@ -104,15 +116,21 @@ std::vector<std::uint8_t> region_mask(const Region& region, int width, int heigh
         twice_area += a.x * b.y - b.x * a.y;
     }
     if (std::abs(twice_area) < 1e-9)
-        fail("{}: region '{}' is empty: its polygon has zero area (collinear or repeated vertices)", region.location,
-             region.name);
+        fail("{}: region '{}' is empty: its polygon has zero area (collinear or repeated vertices)",
+             region.location, region.name);
     // A pixel belongs to the region when its centre is inside the polygon or on its edge.
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+    std::vector<std::uint8_t> mask(
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
     std::size_t count = 0;
-    for (int y = std::max(0, static_cast<int>(std::ceil(y_lo))); y <= std::min(height - 1, static_cast<int>(std::floor(y_hi))); ++y)
-        for (int x = std::max(0, static_cast<int>(std::ceil(x_lo))); x <= std::min(width - 1, static_cast<int>(std::floor(x_hi))); ++x)
-            if (cv::pointPolygonTest(contour, cv::Point2f(static_cast<float>(x), static_cast<float>(y)), false) >= 0) {
-                mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = 1;
+    for (int y = std::max(0, static_cast<int>(std::ceil(y_lo)));
+         y <= std::min(height - 1, static_cast<int>(std::floor(y_hi))); ++y)
+        for (int x = std::max(0, static_cast<int>(std::ceil(x_lo)));
+             x <= std::min(width - 1, static_cast<int>(std::floor(x_hi))); ++x)
+            if (cv::pointPolygonTest(contour,
+                                     cv::Point2f(static_cast<float>(x), static_cast<float>(y)),
+                                     false) >= 0) {
+                mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                     static_cast<std::size_t>(x)] = 1;
                 ++count;
             }
     if (count == 0)

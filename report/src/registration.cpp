@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <variant>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+#include <variant>
 
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
@@ -28,7 +28,8 @@ cv::Mat plane(const Image& image, const std::string& name) {
 cv::Mat finite_mask(const cv::Mat& m) {
     cv::Mat mask(m.size(), CV_8U);
     for (int y = 0; y < m.rows; ++y)
-        for (int x = 0; x < m.cols; ++x) mask.at<uchar>(y, x) = std::isfinite(m.at<float>(y, x)) ? 255 : 0;
+        for (int x = 0; x < m.cols; ++x)
+            mask.at<uchar>(y, x) = std::isfinite(m.at<float>(y, x)) ? 255 : 0;
     return mask;
 }
 
@@ -66,8 +67,8 @@ cv::Point2d apply(const cv::Matx33d& h, cv::Point2d p) {
 
 double max_corner_displacement(const cv::Matx33d& h, int width, int height) {
     double worst = 0.0;
-    for (const cv::Point2d c : {cv::Point2d(0, 0), cv::Point2d(width - 1, 0), cv::Point2d(0, height - 1),
-                                cv::Point2d(width - 1, height - 1)})
+    for (const cv::Point2d c : {cv::Point2d(0, 0), cv::Point2d(width - 1, 0),
+                                cv::Point2d(0, height - 1), cv::Point2d(width - 1, height - 1)})
         worst = std::max(worst, cv::norm(apply(h, c) - c));
     return worst;
 }
@@ -113,9 +114,12 @@ cv::Matx33d from_warp(const cv::Mat& w) {
 
 const char* motion_name(int motion) {
     switch (motion) {
-        case cv::MOTION_HOMOGRAPHY: return "homography";
-        case cv::MOTION_AFFINE: return "affine";
-        default: return "translation";
+        case cv::MOTION_HOMOGRAPHY:
+            return "homography";
+        case cv::MOTION_AFFINE:
+            return "affine";
+        default:
+            return "translation";
     }
 }
 
@@ -159,24 +163,30 @@ EccOutcome ecc_register(const cv::Mat& templ, const cv::Mat& input, const cv::Ma
                 throw_if_cancelled(cancel, "registration");
                 cv::Mat w = to_warp(to_level(h, l), motion);
                 // Coarse levels do the travelling; the full-resolution level only polishes.
-                const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, l == 0 ? 25 : 100, 1e-6);
-                rho = cv::findTransformECC(templs[static_cast<std::size_t>(l)], inputs[static_cast<std::size_t>(l)], w,
-                                           motion, criteria, masks[static_cast<std::size_t>(l)], 5);
+                const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                                                l == 0 ? 25 : 100, 1e-6);
+                rho = cv::findTransformECC(templs[static_cast<std::size_t>(l)],
+                                           inputs[static_cast<std::size_t>(l)], w, motion, criteria,
+                                           masks[static_cast<std::size_t>(l)], 5);
                 h = from_level(from_warp(w), l);
             }
             const double moved = max_corner_displacement(initial.inv() * h, templ.cols, templ.rows);
             if (!std::isfinite(moved) || moved > limit) {
-                failures += fmt::format("ECC {} diverged (corner moved {:.1f} px); ", motion_name(motion), moved);
+                failures += fmt::format("ECC {} diverged (corner moved {:.1f} px); ",
+                                        motion_name(motion), moved);
                 continue;
             }
-            return {h, rho, motion, failures.empty() ? std::string() : failures + "used " + motion_name(motion)};
+            return {h, rho, motion,
+                    failures.empty() ? std::string() : failures + "used " + motion_name(motion)};
         } catch (const cv::Exception& e) {
             failures += fmt::format("ECC {} did not converge; ", motion_name(motion));
         }
     }
-    fail("automatic registration failed ({}); give control points (--control-points CP.yaml with ≥ 4 pairs "
-         "measured (x, y) ↔ simulated (x, y))",
-         failures);
+    fail(
+        "automatic registration failed ({}); give control points (--control-points CP.yaml with ≥ "
+        "4 pairs "
+        "measured (x, y) ↔ simulated (x, y))",
+        failures);
 }
 
 // Residual misalignment: phase correlation between the measured S0 gradient and the registered
@@ -196,15 +206,16 @@ std::array<double, 2> residual_shift(const Image& measured, const Image& registe
 }
 
 // Mismatch of the S0 edges after mapping the simulation through `h`: mean squared difference of the
-// gradient magnitudes of both images blurred at σ = 2 px, over pixels at least 6 px from missing data.
-// The blur makes the smoothing of a sub-pixel bilinear resampling negligible, so an aligned noisy
-// pair does not look "better" warped just because interpolation averages its noise.
-double edge_mismatch(const Image& measured, const Image& simulated, const cv::Matx33d& h, const cv::Mat& valid) {
+// gradient magnitudes of both images blurred at σ = 2 px, over pixels at least 6 px from missing
+// data. The blur makes the smoothing of a sub-pixel bilinear resampling negligible, so an aligned
+// noisy pair does not look "better" warped just because interpolation averages its noise.
+double edge_mismatch(const Image& measured, const Image& simulated, const cv::Matx33d& h,
+                     const cv::Mat& valid) {
     const cv::Mat m = plane(measured, "S0");
     cv::Mat s = plane(simulated, "S0");
     if (h != cv::Matx33d::eye())
-        cv::warpPerspective(s.clone(), s, h, m.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT,
-                            cv::Scalar(kNaN));
+        cv::warpPerspective(s.clone(), s, h, m.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                            cv::BORDER_CONSTANT, cv::Scalar(kNaN));
     auto edges = [](const cv::Mat& img) {
         cv::Mat smooth, gx, gy, mag;
         cv::GaussianBlur(fill_non_finite(img, finite_mask(img)), smooth, {0, 0}, 2.0);
@@ -225,22 +236,28 @@ RegistrationMethod parse_registration_method(std::string_view text) {
     if (text == "auto") return RegistrationMethod::Auto;
     if (text == "control-points") return RegistrationMethod::ControlPoints;
     if (text == "camera-model") return RegistrationMethod::CameraModel;
-    fail("registration method '{}': expected one of none, auto, control-points, camera-model", text);
+    fail("registration method '{}': expected one of none, auto, control-points, camera-model",
+         text);
 }
 
 std::string to_string(RegistrationMethod method) {
     switch (method) {
-        case RegistrationMethod::None: return "none";
-        case RegistrationMethod::Auto: return "auto";
-        case RegistrationMethod::ControlPoints: return "control-points";
-        case RegistrationMethod::CameraModel: return "camera-model";
+        case RegistrationMethod::None:
+            return "none";
+        case RegistrationMethod::Auto:
+            return "auto";
+        case RegistrationMethod::ControlPoints:
+            return "control-points";
+        case RegistrationMethod::CameraModel:
+            return "camera-model";
     }
     return "?";
 }
 
 std::vector<ControlPoint> load_control_points(const std::filesystem::path& path) {
     const ConfigNode root = ConfigNode::load_file(path);
-    if (!root.is_sequence()) root.fail("expected a list of {measured: [x, y], simulated: [x, y]} pairs");
+    if (!root.is_sequence())
+        root.fail("expected a list of {measured: [x, y], simulated: [x, y]} pairs");
     std::vector<ControlPoint> points;
     for (const auto& item : root.elements()) {
         if (!item.is_map()) item.fail("expected a mapping {measured: [x, y], simulated: [x, y]}");
@@ -257,8 +274,10 @@ std::vector<ControlPoint> load_control_points(const std::filesystem::path& path)
     return points;
 }
 
-Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,
-                             const std::vector<ControlPoint>& control_points, const std::atomic<bool>* cancel) {
+Registration register_images(const Image& measured, const Image& simulated,
+                             RegistrationMethod method,
+                             const std::vector<ControlPoint>& control_points,
+                             const std::atomic<bool>* cancel) {
     const int w = measured.width(), h = measured.height();
     const bool same_size = w == simulated.width() && h == simulated.height();
     Registration reg;
@@ -269,14 +288,18 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         fail("registration 'camera-model' needs the measured camera's model (--camera CAM.yaml)");
     if (method == RegistrationMethod::None) {
         if (!same_size)
-            fail("the measured image is {}×{} and the simulated one {}×{}: registration 'none' needs equal sizes; "
-                 "use --registration auto or give control points (--control-points CP.yaml)",
-                 w, h, simulated.width(), simulated.height());
+            fail(
+                "the measured image is {}×{} and the simulated one {}×{}: registration 'none' "
+                "needs equal sizes; "
+                "use --registration auto or give control points (--control-points CP.yaml)",
+                w, h, simulated.width(), simulated.height());
         reg.note = "no registration requested: pixel grids compared as they are";
     } else if (method == RegistrationMethod::ControlPoints) {
         if (control_points.size() < 4)
-            fail("control points: a homography needs at least 4 pairs measured (x, y) ↔ simulated (x, y), got {}",
-                 control_points.size());
+            fail(
+                "control points: a homography needs at least 4 pairs measured (x, y) ↔ simulated "
+                "(x, y), got {}",
+                control_points.size());
         std::vector<cv::Point2d> src, dst;
         for (const auto& cp : control_points) {
             src.emplace_back(cp.measured.x, cp.measured.y);
@@ -284,8 +307,10 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         }
         const cv::Mat hm = cv::findHomography(src, dst, 0);
         if (hm.empty())
-            fail("control points: no homography fits the {} pairs (are the points collinear or repeated?)",
-                 control_points.size());
+            fail(
+                "control points: no homography fits the {} pairs (are the points collinear or "
+                "repeated?)",
+                control_points.size());
         homography = cv::Matx33d(hm);
         double sum2 = 0.0;
         for (std::size_t i = 0; i < src.size(); ++i) {
@@ -299,17 +324,22 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         const double aspect_m = static_cast<double>(w) / h;
         const double aspect_s = static_cast<double>(simulated.width()) / simulated.height();
         if (!same_size && std::abs(aspect_m / aspect_s - 1.0) > 0.01)
-            fail("the measured image is {}×{} (aspect {:.3f}) and the simulated one {}×{} (aspect {:.3f}): automatic "
-                 "registration needs equal aspect ratios; give control points (--control-points CP.yaml with ≥ 4 "
-                 "pairs measured (x, y) ↔ simulated (x, y))",
-                 w, h, aspect_m, simulated.width(), simulated.height(), aspect_s);
+            fail(
+                "the measured image is {}×{} (aspect {:.3f}) and the simulated one {}×{} (aspect "
+                "{:.3f}): automatic "
+                "registration needs equal aspect ratios; give control points (--control-points "
+                "CP.yaml with ≥ 4 "
+                "pairs measured (x, y) ↔ simulated (x, y))",
+                w, h, aspect_m, simulated.width(), simulated.height(), aspect_s);
         const cv::Mat m_s0 = plane(measured, "S0");
         cv::Mat templ = gradient_magnitude(m_s0);
         cv::Mat input = gradient_magnitude(plane(simulated, "S0"));
-        // Measured grid → resized simulated grid → simulated grid (pixel centres map to pixel centres).
+        // Measured grid → resized simulated grid → simulated grid (pixel centres map to pixel
+        // centres).
         cv::Matx33d prescale = cv::Matx33d::eye();
         if (!same_size) {
-            const double kx = static_cast<double>(simulated.width()) / w, ky = static_cast<double>(simulated.height()) / h;
+            const double kx = static_cast<double>(simulated.width()) / w,
+                         ky = static_cast<double>(simulated.height()) / h;
             cv::resize(input, input, templ.size(), 0, 0, cv::INTER_AREA);
             prescale = cv::Matx33d(kx, 0, 0.5 * kx - 0.5, 0, ky, 0.5 * ky - 0.5, 0, 0, 1);
         }
@@ -317,40 +347,58 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
         homography = prescale * ecc.h;
         reg.ecc_correlation = ecc.correlation;
         reg.model = motion_name(ecc.motion);
-        reg.note = ecc.note.empty() ? fmt::format("ECC {} on S0 gradient magnitude", reg.model) : ecc.note;
+        reg.note =
+            ecc.note.empty() ? fmt::format("ECC {} on S0 gradient magnitude", reg.model) : ecc.note;
         if (!same_size)
-            reg.note += fmt::format("; simulated {}×{} resized to {}×{} first", simulated.width(), simulated.height(), w, h);
+            reg.note += fmt::format("; simulated {}×{} resized to {}×{} first", simulated.width(),
+                                    simulated.height(), w, h);
         if (same_size) {
-            // Keep the pixel grids as they are unless the warp matches the edges significantly better.
+            // Keep the pixel grids as they are unless the warp matches the edges significantly
+            // better.
             cv::Mat warped = plane(simulated, "S0");
             cv::warpPerspective(warped.clone(), warped, homography, warped.size(),
-                                cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(kNaN));
-            cv::Mat valid = finite_mask(m_s0) & finite_mask(plane(simulated, "S0")) & finite_mask(warped);
+                                cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT,
+                                cv::Scalar(kNaN));
+            cv::Mat valid =
+                finite_mask(m_s0) & finite_mask(plane(simulated, "S0")) & finite_mask(warped);
             cv::erode(valid, valid, cv::getStructuringElement(cv::MORPH_RECT, {13, 13}));
             const double displacement = max_corner_displacement(homography, w, h);
             if (cv::countNonZero(valid) >= 64) {
-                reg.identity_edge_mismatch = edge_mismatch(measured, simulated, cv::Matx33d::eye(), valid);
-                reg.registered_edge_mismatch = edge_mismatch(measured, simulated, homography, valid);
+                reg.identity_edge_mismatch =
+                    edge_mismatch(measured, simulated, cv::Matx33d::eye(), valid);
+                reg.registered_edge_mismatch =
+                    edge_mismatch(measured, simulated, homography, valid);
             }
-            const bool improves = reg.identity_edge_mismatch && reg.registered_edge_mismatch &&
-                                  *reg.registered_edge_mismatch < (1.0 - kRegistrationMinImprovement) * *reg.identity_edge_mismatch;
+            const bool improves =
+                reg.identity_edge_mismatch && reg.registered_edge_mismatch &&
+                *reg.registered_edge_mismatch <
+                    (1.0 - kRegistrationMinImprovement) * *reg.identity_edge_mismatch;
             if (displacement < 0.05 || !improves) {
-                const std::string found = fmt::format("ECC found a {} moving the corners by up to {:.2f} px", reg.model,
-                                                      displacement);
+                const std::string found =
+                    fmt::format("ECC found a {} moving the corners by up to {:.2f} px", reg.model,
+                                displacement);
                 homography = cv::Matx33d::eye();
                 reg.model = "identity";
-                reg.note = displacement < 0.05
-                               ? "images already match (ECC displacement < 0.05 px everywhere): identity used"
-                           : reg.identity_edge_mismatch && reg.registered_edge_mismatch
-                               ? fmt::format("images already aligned: {}, but it reduces the S0 edge mismatch by only "
-                                             "{:.1f} % (< {:.0f} %), so the pixel grids are compared as they are",
-                                             found, 100.0 * (1.0 - *reg.registered_edge_mismatch / *reg.identity_edge_mismatch),
-                                             100.0 * kRegistrationMinImprovement)
-                               : fmt::format("{}, but too few valid pixels to show it improves the match: identity used",
-                                             found);
+                reg.note =
+                    displacement < 0.05 ? "images already match (ECC displacement < 0.05 px "
+                                          "everywhere): identity used"
+                    : reg.identity_edge_mismatch && reg.registered_edge_mismatch
+                        ? fmt::format(
+                              "images already aligned: {}, but it reduces the S0 edge mismatch by "
+                              "only "
+                              "{:.1f} % (< {:.0f} %), so the pixel grids are compared as they are",
+                              found,
+                              100.0 * (1.0 -
+                                       *reg.registered_edge_mismatch / *reg.identity_edge_mismatch),
+                              100.0 * kRegistrationMinImprovement)
+                        : fmt::format(
+                              "{}, but too few valid pixels to show it improves the match: "
+                              "identity used",
+                              found);
             } else {
-                reg.note += fmt::format("; reduces the S0 edge mismatch by {:.1f} % against identity",
-                                        100.0 * (1.0 - *reg.registered_edge_mismatch / *reg.identity_edge_mismatch));
+                reg.note += fmt::format(
+                    "; reduces the S0 edge mismatch by {:.1f} % against identity",
+                    100.0 * (1.0 - *reg.registered_edge_mismatch / *reg.identity_edge_mismatch));
             }
         }
     }
@@ -365,52 +413,71 @@ Registration register_images(const Image& measured, const Image& simulated, Regi
 
 namespace {
 
-/// The renderer's camera attribute `name` of `simulated`, checked against `expected` to float precision.
-void check_camera_attribute(const Image& simulated, const std::string& name, const std::vector<double>& expected,
-                            const std::string& camera_name, const std::string& what) {
+/// The renderer's camera attribute `name` of `simulated`, checked against `expected` to float
+/// precision.
+void check_camera_attribute(const Image& simulated, const std::string& name,
+                            const std::vector<double>& expected, const std::string& camera_name,
+                            const std::string& what) {
     const auto it = simulated.attributes().find(name);
-    const auto* values = it == simulated.attributes().end() ? nullptr : std::get_if<std::vector<double>>(&it->second);
+    const auto* values = it == simulated.attributes().end()
+                             ? nullptr
+                             : std::get_if<std::vector<double>>(&it->second);
     if (!values)
-        fail("registration by camera model {}: the simulated image has no '{}' header attribute; render it through "
-             "that model (scene `camera: {{model: {}}}`) with this version of tirpol",
-             camera_name, name, camera_name);
-    // Missing trailing coefficients are zero (the renderer writes the shortest OpenCV layout that holds them).
-    const auto at = [](const std::vector<double>& v, std::size_t i) { return i < v.size() ? v[i] : 0.0; };
+        fail(
+            "registration by camera model {}: the simulated image has no '{}' header attribute; "
+            "render it through "
+            "that model (scene `camera: {{model: {}}}`) with this version of tirpol",
+            camera_name, name, camera_name);
+    // Missing trailing coefficients are zero (the renderer writes the shortest OpenCV layout that
+    // holds them).
+    const auto at = [](const std::vector<double>& v, std::size_t i) {
+        return i < v.size() ? v[i] : 0.0;
+    };
     bool same = true;
     for (std::size_t i = 0; same && i < std::max(values->size(), expected.size()); ++i)
-        same = std::abs(at(*values, i) - at(expected, i)) <= 1e-6 * std::max(std::abs(at(expected, i)), 1e-3);
+        same = std::abs(at(*values, i) - at(expected, i)) <=
+               1e-6 * std::max(std::abs(at(expected, i)), 1e-3);
     if (!same)
-        fail("registration by camera model {}: the simulated image was rendered with {} [{}], the model has [{}]; "
-             "render the simulation through the same camera model",
-             camera_name, what, fmt::join(*values, ", "), fmt::join(expected, ", "));
+        fail(
+            "registration by camera model {}: the simulated image was rendered with {} [{}], the "
+            "model has [{}]; "
+            "render the simulation through the same camera model",
+            camera_name, what, fmt::join(*values, ", "), fmt::join(expected, ", "));
 }
 
 }  // namespace
 
-Registration register_by_camera_model(const Image& measured, const Image& simulated, const CameraModel& camera,
-                                      const std::string& camera_name) {
+Registration register_by_camera_model(const Image& measured, const Image& simulated,
+                                      const CameraModel& camera, const std::string& camera_name) {
     const int w = measured.width(), h = measured.height();
     if (w != camera.width || h != camera.height)
-        fail("registration by camera model {}: the model is {}×{} pixels, the measured image {}×{}", camera_name,
-             camera.width, camera.height, w, h);
+        fail("registration by camera model {}: the model is {}×{} pixels, the measured image {}×{}",
+             camera_name, camera.width, camera.height, w, h);
     if (simulated.width() != w || simulated.height() != h)
-        fail("registration by camera model {}: the simulated image is {}×{}, the model and the measured image {}×{}",
-             camera_name, simulated.width(), simulated.height(), w, h);
-    check_camera_attribute(simulated, "camera_intrinsics_px", {camera.fx, camera.fy, camera.cx, camera.cy}, camera_name,
+        fail(
+            "registration by camera model {}: the simulated image is {}×{}, the model and the "
+            "measured image {}×{}",
+            camera_name, simulated.width(), simulated.height(), w, h);
+    check_camera_attribute(simulated, "camera_intrinsics_px",
+                           {camera.fx, camera.fy, camera.cx, camera.cy}, camera_name,
                            "intrinsics fx fy cx cy");
-    check_camera_attribute(simulated, "camera_distortion", camera.distortion, camera_name, "distortion");
+    check_camera_attribute(simulated, "camera_distortion", camera.distortion, camera_name,
+                           "distortion");
     Registration reg;
     reg.method = RegistrationMethod::CameraModel;
     reg.note = fmt::format(
-        "simulation rendered through the calibrated camera model {} (fx {:.2f} fy {:.2f} cx {:.2f} cy {:.2f} px, {} "
+        "simulation rendered through the calibrated camera model {} (fx {:.2f} fy {:.2f} cx {:.2f} "
+        "cy {:.2f} px, {} "
         "distortion): it lies on the measured pixel grid, no warp",
         camera_name, camera.fx, camera.fy, camera.cx, camera.cy, camera.distortion_model());
     reg.residual_shift_px = residual_shift(measured, simulated);
     return reg;
 }
 
-Image resample_to_measured(const Image& simulated, const Registration& registration, int width, int height) {
-    if (registration.model == "identity" && simulated.width() == width && simulated.height() == height)
+Image resample_to_measured(const Image& simulated, const Registration& registration, int width,
+                           int height) {
+    if (registration.model == "identity" && simulated.width() == width &&
+        simulated.height() == height)
         return simulated;
     Image out(width, height);
     out.attributes() = simulated.attributes();
@@ -418,16 +485,20 @@ Image resample_to_measured(const Image& simulated, const Registration& registrat
     // Bilinear interpolation with weights w_k of independent samples of variance v has variance
     // Σ w_k² v, not Σ w_k v: for locally constant v that is the interpolated variance times
     // ((1−fx)² + fx²)((1−fy)² + fy²), with (fx, fy) the fractional source position.
-    std::vector<float> variance_factor(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    std::vector<float> variance_factor(static_cast<std::size_t>(width) *
+                                       static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const cv::Point2d src = apply(h, {static_cast<double>(x), static_cast<double>(y)});
             const double fx = src.x - std::floor(src.x), fy = src.y - std::floor(src.y);
-            variance_factor[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-                static_cast<float>(((1 - fx) * (1 - fx) + fx * fx) * ((1 - fy) * (1 - fy) + fy * fy));
+            variance_factor[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                            static_cast<std::size_t>(x)] =
+                static_cast<float>(((1 - fx) * (1 - fx) + fx * fx) *
+                                   ((1 - fy) * (1 - fy) + fy * fy));
         }
     auto ends_with = [](const std::string& name, std::string_view suffix) {
-        return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+        return name.size() > suffix.size() &&
+               name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
     };
     for (const auto& name : simulated.channel_names()) {
         const bool label = name == "object_id" || name == "material_id";

@@ -9,7 +9,9 @@ namespace tirpol::report {
 
 namespace {
 
-nlohmann::json optional_number(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+nlohmann::json optional_number(const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
 
 /// Degrees of freedom; null for infinite (a variance taken as exact): JSON has no infinity.
 nlohmann::json degrees_of_freedom(double dof) {
@@ -17,14 +19,22 @@ nlohmann::json degrees_of_freedom(double dof) {
 }
 
 nlohmann::json to_json(const QuantityStats& s) {
-    return {{"pixel_count", s.pixel_count},   {"measured_mean", s.measured_mean}, {"measured_std", s.measured_std},
-            {"simulated_mean", s.simulated_mean}, {"simulated_std", s.simulated_std}, {"bias", s.bias},
-            {"rmse", s.rmse}, {"bias_sigma", s.bias_sigma}};
+    return {{"pixel_count", s.pixel_count},
+            {"measured_mean", s.measured_mean},
+            {"measured_std", s.measured_std},
+            {"simulated_mean", s.simulated_mean},
+            {"simulated_std", s.simulated_std},
+            {"bias", s.bias},
+            {"rmse", s.rmse},
+            {"bias_sigma", s.bias_sigma}};
 }
 
 nlohmann::json to_json(const ZStats& z) {
-    return {{"pixel_count", z.pixel_count}, {"fraction_above_2", z.fraction_above_2},
-            {"fraction_above_3", z.fraction_above_3}, {"mean", z.mean}, {"rms", z.rms}};
+    return {{"pixel_count", z.pixel_count},
+            {"fraction_above_2", z.fraction_above_2},
+            {"fraction_above_3", z.fraction_above_3},
+            {"mean", z.mean},
+            {"rms", z.rms}};
 }
 
 nlohmann::json to_json(const UncertaintyComponent& u) {
@@ -56,11 +66,18 @@ nlohmann::json to_json(const QuantityVerdict& v) {
 
 nlohmann::json to_json(const AopStats& a) {
     if (a.pixel_count == 0)
-        return {{"region_pixel_count", a.region_pixel_count}, {"pixel_count", 0}, {"measured_mean_deg", nullptr},
-                {"simulated_mean_deg", nullptr}, {"difference_mean_deg", nullptr}, {"difference_std_deg", nullptr}};
-    return {{"region_pixel_count", a.region_pixel_count}, {"pixel_count", a.pixel_count},
-            {"measured_mean_deg", a.measured_mean_deg},   {"simulated_mean_deg", a.simulated_mean_deg},
-            {"difference_mean_deg", a.difference_mean_deg}, {"difference_std_deg", a.difference_std_deg}};
+        return {{"region_pixel_count", a.region_pixel_count},
+                {"pixel_count", 0},
+                {"measured_mean_deg", nullptr},
+                {"simulated_mean_deg", nullptr},
+                {"difference_mean_deg", nullptr},
+                {"difference_std_deg", nullptr}};
+    return {{"region_pixel_count", a.region_pixel_count},
+            {"pixel_count", a.pixel_count},
+            {"measured_mean_deg", a.measured_mean_deg},
+            {"simulated_mean_deg", a.simulated_mean_deg},
+            {"difference_mean_deg", a.difference_mean_deg},
+            {"difference_std_deg", a.difference_std_deg}};
 }
 
 nlohmann::json to_json(const Provenance& p) {
@@ -68,8 +85,11 @@ nlohmann::json to_json(const Provenance& p) {
     for (const auto& f : p.inputs) {
         nlohmann::json attributes = nlohmann::json::object();
         for (const auto& [name, value] : f.attributes) attributes[name] = value;
-        inputs.push_back({{"role", f.role}, {"path", f.path.string()}, {"sha256", f.sha256},
-                          {"size_bytes", f.size_bytes}, {"attributes", attributes}});
+        inputs.push_back({{"role", f.role},
+                          {"path", f.path.string()},
+                          {"sha256", f.sha256},
+                          {"size_bytes", f.size_bytes},
+                          {"attributes", attributes}});
     }
     return {{"tool_version", p.tool_version}, {"command_line", p.command_line}, {"inputs", inputs}};
 }
@@ -110,9 +130,11 @@ std::string comparison_json(const CompareResult& r) {
     j["design"] = {{"false_alarm_per_region", r.design.false_alarm_per_region},
                    {"false_alarm_per_quantity", r.design.false_alarm_per_quantity()},
                    {"power", r.design.power}};
-    j["sigma_contains"] = {{"measured", r.measured_sigma_contains}, {"simulated", r.simulated_sigma_contains}};
+    j["sigma_contains"] = {{"measured", r.measured_sigma_contains},
+                           {"simulated", r.simulated_sigma_contains}};
     if (const auto& c = r.calibration_range)
-        j["calibration_range"] = {{"outside_fraction", c->outside_fraction}, {"range_k", {c->lo_k, c->hi_k}}};
+        j["calibration_range"] = {{"outside_fraction", c->outside_fraction},
+                                  {"range_k", {c->lo_k, c->hi_k}}};
     else
         j["calibration_range"] = nullptr;
     j["background"] = r.background.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.background);
@@ -123,9 +145,10 @@ std::string comparison_json(const CompareResult& r) {
         nlohmann::json jr{{"name", region.name}, {"pixel_count", region.pixel_count}};
         for (const auto& [q, s] : region.stats) jr["stats"][q] = to_json(s);
         if (region.s1_contrast_measured && region.s1_contrast_simulated)
-            jr["s1_contrast"] = {{"measured", *region.s1_contrast_measured},
-                                 {"simulated", *region.s1_contrast_simulated},
-                                 {"difference", *region.s1_contrast_measured - *region.s1_contrast_simulated}};
+            jr["s1_contrast"] = {
+                {"measured", *region.s1_contrast_measured},
+                {"simulated", *region.s1_contrast_simulated},
+                {"difference", *region.s1_contrast_measured - *region.s1_contrast_simulated}};
         else
             jr["s1_contrast"] = nullptr;
         for (const auto& [q, z] : region.z) jr["z"][q] = to_json(z);
@@ -133,8 +156,10 @@ std::string comparison_json(const CompareResult& r) {
         jr["verdict"] = to_string(region.verdict);
         jr["aop"] = to_json(region.aop);
         if (const auto& k = region.s0_bias_k)
-            jr["s0_bias_k"] = {{"temperature_k", k->temperature_k}, {"radiance_dT_w_m2_sr_k", k->radiance_dT},
-                               {"bias_k", k->bias_k}, {"bias_sigma_k", k->bias_sigma_k}};
+            jr["s0_bias_k"] = {{"temperature_k", k->temperature_k},
+                               {"radiance_dT_w_m2_sr_k", k->radiance_dT},
+                               {"bias_k", k->bias_k},
+                               {"bias_sigma_k", k->bias_sigma_k}};
         else
             jr["s0_bias_k"] = nullptr;
         j["regions"].push_back(std::move(jr));

@@ -1,8 +1,9 @@
 // SHA-256 (FIPS 180-4 §6.2) for the checksums in the report's provenance.
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cstdint>
-#include <fmt/format.h>
 
 #include "tirpol/report/provenance.h"
 
@@ -34,9 +35,10 @@ void compress(std::array<std::uint32_t, 8>& h, const unsigned char* block) {
     }
     auto [a, b, c, d, e, f, g, hh] = h;
     for (std::size_t t = 0; t < 64; ++t) {
-        const std::uint32_t t1 = hh + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) +
-                                 kRoundConstants[t] + w[t];
-        const std::uint32_t t2 = (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
+        const std::uint32_t t1 = hh + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) +
+                                 ((e & f) ^ (~e & g)) + kRoundConstants[t] + w[t];
+        const std::uint32_t t2 =
+            (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
         hh = g;
         g = f;
         f = e;
@@ -64,7 +66,9 @@ std::string sha256_hex(std::string_view bytes) {
     tail[rest] = 0x80;
     const std::size_t tail_size = rest + 1 + 8 <= 64 ? 64 : 128;
     const std::uint64_t bits = static_cast<std::uint64_t>(bytes.size()) * 8;
-    for (int i = 0; i < 8; ++i) tail[tail_size - 1 - static_cast<std::size_t>(i)] = static_cast<unsigned char>(bits >> (8 * i));
+    for (int i = 0; i < 8; ++i)
+        tail[tail_size - 1 - static_cast<std::size_t>(i)] =
+            static_cast<unsigned char>(bits >> (8 * i));
     for (std::size_t i = 0; i < tail_size; i += 64) compress(h, tail.data() + i);
     std::string hex;
     for (std::uint32_t word : h) hex += fmt::format("{:08x}", word);

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-
 #include <unsupported/Eigen/SpecialFunctions>
 
 namespace tirpol::report {
 
-QuantityStats quantity_stats(const std::vector<float>& measured, const std::vector<float>& simulated,
+QuantityStats quantity_stats(const std::vector<float>& measured,
+                             const std::vector<float>& simulated,
                              const std::vector<std::uint8_t>& mask) {
     // Two passes (means, then centred sums) so that large offsets like S0 ≈ 30 W/(m²·sr) with
     // millikelvin-level differences do not lose precision.
@@ -39,11 +39,13 @@ QuantityStats quantity_stats(const std::vector<float>& measured, const std::vect
     st.simulated_std = std::sqrt(var_s / n);
     st.bias = sum_d / n;
     st.rmse = std::sqrt(sum_d2 / n);
-    if (st.pixel_count > 1) st.bias_sigma = std::sqrt(std::max(0.0, sum_d2 - n * st.bias * st.bias) / (n - 1.0) / n);
+    if (st.pixel_count > 1)
+        st.bias_sigma = std::sqrt(std::max(0.0, sum_d2 - n * st.bias * st.bias) / (n - 1.0) / n);
     return st;
 }
 
-std::optional<double> masked_mean(const std::vector<float>& data, const std::vector<std::uint8_t>& mask) {
+std::optional<double> masked_mean(const std::vector<float>& data,
+                                  const std::vector<std::uint8_t>& mask) {
     double sum = 0.0;
     std::size_t n = 0;
     for (std::size_t i = 0; i < data.size(); ++i)
@@ -64,17 +66,22 @@ double normal_equivalent_of_t(double t, double dof) {
 }
 
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
-                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance,
-                            double measured_dof, double simulated_dof) {
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance, double measured_dof,
+                            double simulated_dof) {
     std::vector<float> z(measured.size(), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t i = 0; i < measured.size(); ++i) {
         const double vm = measured_variance[i], vs = simulated_variance[i];
         const double var = vm + vs;
-        if (!std::isfinite(measured[i]) || !std::isfinite(simulated[i]) || !std::isfinite(var) || !(var > 0.0))
+        if (!std::isfinite(measured[i]) || !std::isfinite(simulated[i]) || !std::isfinite(var) ||
+            !(var > 0.0))
             continue;
-        const double ratio = (static_cast<double>(measured[i]) - static_cast<double>(simulated[i])) / std::sqrt(var);
-        const double inverse_dof = vm * vm / measured_dof + vs * vs / simulated_dof;  // 0 for infinite dof
-        z[i] = static_cast<float>(inverse_dof > 0.0 ? normal_equivalent_of_t(ratio, var * var / inverse_dof) : ratio);
+        const double ratio =
+            (static_cast<double>(measured[i]) - static_cast<double>(simulated[i])) / std::sqrt(var);
+        const double inverse_dof =
+            vm * vm / measured_dof + vs * vs / simulated_dof;  // 0 for infinite dof
+        z[i] = static_cast<float>(
+            inverse_dof > 0.0 ? normal_equivalent_of_t(ratio, var * var / inverse_dof) : ratio);
     }
     return z;
 }
@@ -104,7 +111,8 @@ ZStats z_stats(const std::vector<float>& z, const std::vector<std::uint8_t>& mas
 bool consistent_with_noise(const ZStats& z) {
     if (z.pixel_count == 0) return true;
     const double p = kNormalTailAbove2;
-    return z.fraction_above_2 <= p + 3.0 * std::sqrt(p * (1.0 - p) / static_cast<double>(z.pixel_count));
+    return z.fraction_above_2 <=
+           p + 3.0 * std::sqrt(p * (1.0 - p) / static_cast<double>(z.pixel_count));
 }
 
 double immerkaer_noise_sigma(const std::vector<float>& data, int width, int height) {
@@ -117,8 +125,9 @@ double immerkaer_noise_sigma(const std::vector<float>& data, int width, int heig
             bool finite = true;
             for (int dy = -1; dy <= 1 && finite; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const float v = data[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(width) +
-                                         static_cast<std::size_t>(x + dx)];
+                    const float v =
+                        data[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(width) +
+                             static_cast<std::size_t>(x + dx)];
                     if (!std::isfinite(v)) {
                         finite = false;
                         break;

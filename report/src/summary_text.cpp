@@ -1,8 +1,9 @@
 #include "tirpol/report/summary_text.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 namespace tirpol::report {
 
@@ -21,22 +22,27 @@ std::string exceeding_quantities(const RegionResult& region, const std::string& 
     for (const auto& q : kZQuantities) {
         const auto& t = region.verdicts.at(q).mean;
         if (t.verdict != Agreement::ExceedsNoise) continue;
-        parts.push_back(fmt::format("{} by {:+.3g} {} ({:.1f} σ of the region mean)", q, t.difference, units, t.t));
+        parts.push_back(fmt::format("{} by {:+.3g} {} ({:.1f} σ of the region mean)", q,
+                                    t.difference, units, t.t));
     }
     return join_names(parts);
 }
 
 std::string calibration_sentence(const CompareResult& r) {
     if (!r.calibration_range)
-        return "The measured image does not state its radiometric calibration range, so extrapolation beyond the "
+        return "The measured image does not state its radiometric calibration range, so "
+               "extrapolation beyond the "
                "blackbody set-points cannot be checked. ";
     const auto& c = *r.calibration_range;
     if (c.outside_fraction <= 0.0)
-        return fmt::format("Every measured pixel lies inside the blackbody calibration range ({:.1f}–{:.1f} K). ",
-                           c.lo_k, c.hi_k);
-    return fmt::format("{:.1f} % of the measured pixels lie outside the blackbody calibration range ({:.1f}–{:.1f} K): "
-                       "their radiances are extrapolated from the calibration, an error no σ here contains. ",
-                       100.0 * c.outside_fraction, c.lo_k, c.hi_k);
+        return fmt::format(
+            "Every measured pixel lies inside the blackbody calibration range ({:.1f}–{:.1f} K). ",
+            c.lo_k, c.hi_k);
+    return fmt::format(
+        "{:.1f} % of the measured pixels lie outside the blackbody calibration range "
+        "({:.1f}–{:.1f} K): "
+        "their radiances are extrapolated from the calibration, an error no σ here contains. ",
+        100.0 * c.outside_fraction, c.lo_k, c.hi_k);
 }
 
 std::string power_sentence(const CompareResult& r) {
@@ -49,14 +55,18 @@ std::string power_sentence(const CompareResult& r) {
             lo = std::min(lo, t.detectable_bias);
             hi = std::max(hi, t.detectable_bias);
         }
-        if (hi > 0.0) ranges += fmt::format("{}{} {:.2g}–{:.2g}", ranges.empty() ? "" : ", ", q, lo, hi);
+        if (hi > 0.0)
+            ranges += fmt::format("{}{} {:.2g}–{:.2g}", ranges.empty() ? "" : ", ", q, lo, hi);
     }
     if (ranges.empty()) return "";
-    return fmt::format("With {:.0f} % false alarms per region ({:.1f} % per quantity) and {:.0f} % power, the smallest "
-                       "region-mean bias the tests detect is {} {}; a smaller real difference would read \"consistent "
-                       "with noise\". ",
-                       100.0 * r.design.false_alarm_per_region, 100.0 * r.design.false_alarm_per_quantity(),
-                       100.0 * r.design.power, ranges, r.units);
+    return fmt::format(
+        "With {:.0f} % false alarms per region ({:.1f} % per quantity) and {:.0f} % power, the "
+        "smallest "
+        "region-mean bias the tests detect is {} {}; a smaller real difference would read "
+        "\"consistent "
+        "with noise\". ",
+        100.0 * r.design.false_alarm_per_region, 100.0 * r.design.false_alarm_per_quantity(),
+        100.0 * r.design.power, ranges, r.units);
 }
 
 std::string sigma_diagnostic_sentence(const CompareResult& r) {
@@ -72,8 +82,10 @@ std::string sigma_diagnostic_sentence(const CompareResult& r) {
         out += "Per-pixel σ overestimated (z scatters less than 1) in " + join_names(over) +
                ": the per-pixel check is blunt there; the region-mean verdicts are conservative. ";
     if (!under.empty())
-        out += "Per-pixel σ underestimated, or the difference varies within the region, in " + join_names(under) + ". ";
-    if (over.empty() && under.empty()) out += "The per-pixel σ is plausible in every region (z scatters as N(0, 1)). ";
+        out += "Per-pixel σ underestimated, or the difference varies within the region, in " +
+               join_names(under) + ". ";
+    if (over.empty() && under.empty())
+        out += "The per-pixel σ is plausible in every region (z scatters as N(0, 1)). ";
     return out;
 }
 
@@ -89,20 +101,24 @@ std::string summary_paragraph(const CompareResult& r) {
     }
     std::string out;
     if (exceed.empty())
-        out += fmt::format("All {} regions agree with the simulation within the noise{}. ", agree.size(),
-                           agree.empty() ? "" : " (" + join_names(agree) + ")");
+        out += fmt::format("All {} regions agree with the simulation within the noise{}. ",
+                           agree.size(), agree.empty() ? "" : " (" + join_names(agree) + ")");
     else {
-        out += fmt::format("{} of {} regions differ from the simulation by more than the noise: ", exceed.size(),
-                           r.regions.size());
+        out += fmt::format("{} of {} regions differ from the simulation by more than the noise: ",
+                           exceed.size(), r.regions.size());
         for (std::size_t i = 0; i < exceed.size(); ++i)
-            out += (i ? "; " : "") + exceed[i]->name + " in " + exceeding_quantities(*exceed[i], r.units);
-        out += ". The measurement or the model differs there (material, temperature, geometry or calibration: the "
-               "σ do not contain these). ";
+            out += (i ? "; " : "") + exceed[i]->name + " in " +
+                   exceeding_quantities(*exceed[i], r.units);
+        out +=
+            ". The measurement or the model differs there (material, temperature, geometry or "
+            "calibration: the "
+            "σ do not contain these). ";
         if (!agree.empty()) out += "Within the noise: " + join_names(agree) + ". ";
     }
     if (!no_data.empty()) out += "No data in " + join_names(no_data) + ". ";
     out += calibration_sentence(r);
-    out += "Measured σ: " + r.measured_sigma_contains + ". Simulated σ: " + r.simulated_sigma_contains + ". ";
+    out += "Measured σ: " + r.measured_sigma_contains +
+           ". Simulated σ: " + r.simulated_sigma_contains + ". ";
     out += power_sentence(r);
     out += sigma_diagnostic_sentence(r);
     if (!out.empty() && out.back() == ' ') out.pop_back();

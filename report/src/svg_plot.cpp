@@ -1,9 +1,10 @@
 #include "svg_plot.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <fmt/format.h>
 #include <numbers>
 
 #include "html_report.h"
@@ -22,11 +23,20 @@ std::string escape(const std::string& text) {
     std::string out;
     for (char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -35,38 +45,51 @@ std::string escape(const std::string& text) {
 struct Frame {
     double x_lo, x_hi, y_lo, y_hi;
     double x(double v) const { return kLeft + (v - x_lo) / (x_hi - x_lo) * kPlotWidth; }
-    double y(double v) const { return kTop + kPlotHeight - (v - y_lo) / (y_hi - y_lo) * kPlotHeight; }
+    double y(double v) const {
+        return kTop + kPlotHeight - (v - y_lo) / (y_hi - y_lo) * kPlotHeight;
+    }
 };
 
-// Axes box, grid lines at the ticks, tick labels and axis titles. Labels sit outside the box in fixed
-// margins sized for "−0.0025"-long numbers, so they neither overlap each other nor get clipped.
-std::string axes(const Frame& f, const std::string& title, const std::string& x_label, const std::string& y_label) {
-    std::string s = fmt::format("<text x=\"{}\" y=\"22\" font-size=\"15\" font-weight=\"600\">{}</text>\n", kLeft,
-                                escape(title));
+// Axes box, grid lines at the ticks, tick labels and axis titles. Labels sit outside the box in
+// fixed margins sized for "−0.0025"-long numbers, so they neither overlap each other nor get
+// clipped.
+std::string axes(const Frame& f, const std::string& title, const std::string& x_label,
+                 const std::string& y_label) {
+    std::string s =
+        fmt::format("<text x=\"{}\" y=\"22\" font-size=\"15\" font-weight=\"600\">{}</text>\n",
+                    kLeft, escape(title));
     const auto xt = nice_ticks(f.x_lo, f.x_hi), yt = nice_ticks(f.y_lo, f.y_hi);
-    const double xs = xt.size() > 1 ? xt[1] - xt[0] : f.x_hi - f.x_lo, ys = yt.size() > 1 ? yt[1] - yt[0] : f.y_hi - f.y_lo;
+    const double xs = xt.size() > 1 ? xt[1] - xt[0] : f.x_hi - f.x_lo,
+                 ys = yt.size() > 1 ? yt[1] - yt[0] : f.y_hi - f.y_lo;
     for (double v : xt)
-        s += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#e3e6eb\"/>"
-                         "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"12\" text-anchor=\"middle\">{4}</text>\n",
-                         f.x(v), kTop, kTop + kPlotHeight, kTop + kPlotHeight + 16, tick_label(v, xs));
+        s += fmt::format(
+            "<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#e3e6eb\"/>"
+            "<text x=\"{0:.1f}\" y=\"{3}\" font-size=\"12\" text-anchor=\"middle\">{4}</text>\n",
+            f.x(v), kTop, kTop + kPlotHeight, kTop + kPlotHeight + 16, tick_label(v, xs));
     for (double v : yt)
-        s += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2:.1f}\" y2=\"{2:.1f}\" stroke=\"#e3e6eb\"/>"
-                         "<text x=\"{3}\" y=\"{2:.1f}\" dy=\"4\" font-size=\"12\" text-anchor=\"end\">{4}</text>\n",
-                         kLeft, kLeft + kPlotWidth, f.y(v), kLeft - 6, tick_label(v, ys));
-    s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#5b6475\"/>\n", kLeft,
-                     kTop, kPlotWidth, kPlotHeight);
+        s += fmt::format(
+            "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2:.1f}\" y2=\"{2:.1f}\" stroke=\"#e3e6eb\"/>"
+            "<text x=\"{3}\" y=\"{2:.1f}\" dy=\"4\" font-size=\"12\" "
+            "text-anchor=\"end\">{4}</text>\n",
+            kLeft, kLeft + kPlotWidth, f.y(v), kLeft - 6, tick_label(v, ys));
+    s += fmt::format(
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#5b6475\"/>\n",
+        kLeft, kTop, kPlotWidth, kPlotHeight);
     s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"13\" text-anchor=\"middle\">{}</text>\n",
                      kLeft + kPlotWidth / 2, kTop + kPlotHeight + 38, escape(x_label));
-    s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" font-size=\"13\" text-anchor=\"middle\">{}</text>\n",
-                     kTop + kPlotHeight / 2, escape(y_label));
+    s += fmt::format(
+        "<text transform=\"translate(16 {}) rotate(-90)\" font-size=\"13\" "
+        "text-anchor=\"middle\">{}</text>\n",
+        kTop + kPlotHeight / 2, escape(y_label));
     return s;
 }
 
 std::string open_svg(double height, const std::string& label) {
     // No xmlns: inline SVG in HTML needs none (the .svg files get it when written).
-    return fmt::format("<svg viewBox=\"0 0 {} {}\" role=\"img\" aria-label=\"{}\" "
-                       "{} fill=\"#1d2330\" style=\"width:100%;height:auto;max-width:{}px\">\n",
-                       kWidth, height, escape(label), kFont, kWidth);
+    return fmt::format(
+        "<svg viewBox=\"0 0 {} {}\" role=\"img\" aria-label=\"{}\" "
+        "{} fill=\"#1d2330\" style=\"width:100%;height:auto;max-width:{}px\">\n",
+        kWidth, height, escape(label), kFont, kWidth);
 }
 
 std::pair<double, double> padded(double lo, double hi) {
@@ -102,13 +125,15 @@ std::string tick_label(double value, double step) {
     if (a >= 1e5 || a < 1e-4) return fmt::format("{:.3g}", value);
     // Decimals the step needs (2.5 × 10^k needs one more than 10^k).
     int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(a) + 1e-9)));
-    if (std::abs(a / std::pow(10.0, -decimals) - std::round(a / std::pow(10.0, -decimals))) > 1e-6) ++decimals;
+    if (std::abs(a / std::pow(10.0, -decimals) - std::round(a / std::pow(10.0, -decimals))) > 1e-6)
+        ++decimals;
     std::string text = fmt::format("{:.{}f}", value, decimals);
     if (value < 0) text = "−" + text.substr(1);  // a real minus sign
     return text;
 }
 
-std::string svg_scatter(const std::string& title, const std::string& units, const std::vector<ScatterSeries>& series) {
+std::string svg_scatter(const std::string& title, const std::string& units,
+                        const std::vector<ScatterSeries>& series) {
     constexpr std::size_t kMaxPointsPerSeries = 1500;
     std::vector<float> all;
     for (const auto& s : series)
@@ -126,34 +151,41 @@ std::string svg_scatter(const std::string& title, const std::string& units, cons
     const double height = legend_top + 18.0 * static_cast<double>(series.size()) + 6;
     std::string s = open_svg(height, title + " scatter");
     s += axes(f, title, "measured" + unit_suffix, "simulated" + unit_suffix);
-    s += fmt::format("<defs><clipPath id=\"clip-{0}\"><rect x=\"{1}\" y=\"{2}\" width=\"{3}\" height=\"{4}\"/></clipPath>"
-                     "</defs>\n<g clip-path=\"url(#clip-{0})\">\n",
-                     std::hash<std::string>{}(title) % 1000000, kLeft, kTop, kPlotWidth, kPlotHeight);
-    s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#5b6475\" "
-                     "stroke-dasharray=\"5 4\"/>\n",
-                     f.x(lo), f.y(lo), f.x(hi), f.y(hi));
+    s += fmt::format(
+        "<defs><clipPath id=\"clip-{0}\"><rect x=\"{1}\" y=\"{2}\" width=\"{3}\" "
+        "height=\"{4}\"/></clipPath>"
+        "</defs>\n<g clip-path=\"url(#clip-{0})\">\n",
+        std::hash<std::string>{}(title) % 1000000, kLeft, kTop, kPlotWidth, kPlotHeight);
+    s += fmt::format(
+        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#5b6475\" "
+        "stroke-dasharray=\"5 4\"/>\n",
+        f.x(lo), f.y(lo), f.x(hi), f.y(hi));
     for (std::size_t r = 0; r < series.size(); ++r) {
         const auto& ser = series[r];
         s += fmt::format("<g fill=\"{}\" fill-opacity=\"0.55\">", region_colour_css(r));
-        const std::size_t stride = std::max<std::size_t>(1, ser.measured.size() / kMaxPointsPerSeries);
+        const std::size_t stride =
+            std::max<std::size_t>(1, ser.measured.size() / kMaxPointsPerSeries);
         for (std::size_t i = 0; i < ser.measured.size(); i += stride)
             if (std::isfinite(ser.measured[i]) && std::isfinite(ser.simulated[i]))
-                s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"1.8\"/>", f.x(ser.measured[i]),
-                                 f.y(ser.simulated[i]));
+                s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"1.8\"/>",
+                                 f.x(ser.measured[i]), f.y(ser.simulated[i]));
         s += "</g>\n";
     }
     s += "</g>\n";
     for (std::size_t r = 0; r < series.size(); ++r) {
         const double y = legend_top + 18.0 * static_cast<double>(r);
-        s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"11\" height=\"11\" rx=\"2\" fill=\"{}\"/><text x=\"{}\" y=\"{}\" "
-                         "font-size=\"13\">{}</text>\n",
-                         kLeft, y, region_colour_css(r), kLeft + 17, y + 10, escape(series[r].name));
+        s += fmt::format(
+            "<rect x=\"{}\" y=\"{}\" width=\"11\" height=\"11\" rx=\"2\" fill=\"{}\"/><text "
+            "x=\"{}\" y=\"{}\" "
+            "font-size=\"13\">{}</text>\n",
+            kLeft, y, region_colour_css(r), kLeft + 17, y + 10, escape(series[r].name));
     }
     return s + "</svg>\n";
 }
 
-std::string svg_histogram(const std::string& title, const std::string& x_label, const std::vector<float>& values,
-                          double lo, double hi, const std::vector<double>& markers, double gaussian_mean,
+std::string svg_histogram(const std::string& title, const std::string& x_label,
+                          const std::vector<float>& values, double lo, double hi,
+                          const std::vector<double>& markers, double gaussian_mean,
                           double gaussian_sigma) {
     constexpr int kBins = 60;
     std::vector<double> density(kBins, 0.0);
@@ -177,23 +209,27 @@ std::string svg_histogram(const std::string& title, const std::string& x_label, 
     s += axes(f, title, x_label, "density");
     s += "<g fill=\"#4e79a7\" fill-opacity=\"0.75\">";
     for (int b = 0; b < kBins; ++b) {
-        const double x0 = f.x(lo + b * width), x1 = f.x(lo + (b + 1) * width), y = f.y(density[static_cast<std::size_t>(b)]);
-        s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/>", x0, y,
-                         std::max(0.0, x1 - x0 - 0.5), kTop + kPlotHeight - y);
+        const double x0 = f.x(lo + b * width), x1 = f.x(lo + (b + 1) * width),
+                     y = f.y(density[static_cast<std::size_t>(b)]);
+        s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/>", x0,
+                         y, std::max(0.0, x1 - x0 - 0.5), kTop + kPlotHeight - y);
     }
     s += "</g>\n";
     for (double m : markers)
         if (m >= lo && m <= hi)
-            s += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#8a919e\" "
-                             "stroke-width=\"1.5\"/>\n",
-                             f.x(m), kTop, kTop + kPlotHeight);
+            s += fmt::format(
+                "<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"#8a919e\" "
+                "stroke-width=\"1.5\"/>\n",
+                f.x(m), kTop, kTop + kPlotHeight);
     if (gaussian_sigma > 0.0) {
         std::string points;
         for (int k = 0; k <= 200; ++k) {
             const double x = lo + (hi - lo) * k / 200.0;
             points += fmt::format("{:.1f},{:.1f} ", f.x(x), f.y(gauss(x)));
         }
-        s += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\"/>\n", points);
+        s += fmt::format(
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\"/>\n",
+            points);
     }
     return s + "</svg>\n";
 }
@@ -205,7 +241,8 @@ std::string svg_region_overview(const RegionOverview& overview) {
         overview.width, overview.height, base64_encode(overview.png));
     for (const auto& label : overview.labels)
         svg += fmt::format(
-            "<text x=\"{}\" y=\"{}\" {} font-size=\"15\" fill=\"{}\" stroke=\"white\" stroke-width=\"3.5\" "
+            "<text x=\"{}\" y=\"{}\" {} font-size=\"15\" fill=\"{}\" stroke=\"white\" "
+            "stroke-width=\"3.5\" "
             "paint-order=\"stroke\">{}</text>",
             label.x, label.y, kFont, label.colour_css, escape(valid_utf8(label.name)));
     return svg + "</svg>";

@@ -39,26 +39,30 @@ std::vector<std::vector<double>> read_csv_columns(const std::filesystem::path& p
             for (const auto& c : columns) {
                 std::size_t i = 0;
                 while (i < fields.size() && fields[i] != c) ++i;
-                if (i == fields.size()) fail("{}:{}: header has no column '{}' (expected columns: {})", path.string(), line_no, c,
-                                             fmt::join(columns, ", "));
+                if (i == fields.size())
+                    fail("{}:{}: header has no column '{}' (expected columns: {})", path.string(),
+                         line_no, c, fmt::join(columns, ", "));
                 index.push_back(i);
             }
             continue;
         }
         if (out.front().size() == limits::kMaxCsvRows)
-            fail("{}:{}: more than {} data rows; tirpol reads tables up to that size", path.string(), line_no,
-                 limits::kMaxCsvRows);
+            fail("{}:{}: more than {} data rows; tirpol reads tables up to that size",
+                 path.string(), line_no, limits::kMaxCsvRows);
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            if (index[c] >= fields.size()) fail("{}:{}: missing value for column '{}'", path.string(), line_no, columns[c]);
+            if (index[c] >= fields.size())
+                fail("{}:{}: missing value for column '{}'", path.string(), line_no, columns[c]);
             const std::string& f = fields[index[c]];
             double v = 0.0;
             const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
             if (ec != std::errc() || ptr != f.data() + f.size())
-                fail("{}:{}: column '{}': expected a number, got \"{}\"", path.string(), line_no, columns[c], f);
+                fail("{}:{}: column '{}': expected a number, got \"{}\"", path.string(), line_no,
+                     columns[c], f);
             out[c].push_back(v);
         }
     }
-    if (index.empty()) fail("{}: no header line (expected columns: {})", path.string(), fmt::join(columns, ", "));
+    if (index.empty())
+        fail("{}: no header line (expected columns: {})", path.string(), fmt::join(columns, ", "));
     if (out.front().empty()) fail("{}: no data rows", path.string());
     return out;
 }

@@ -24,7 +24,8 @@ std::string HeatedBoard::target() const {
 }
 
 namespace {
-/// Square (i, j) of the board (1-based: the cold border is row and column 0) is hot on a checkerboard.
+/// Square (i, j) of the board (1-based: the cold border is row and column 0) is hot on a
+/// checkerboard.
 bool hot_square(int i, int j) { return (i + j) % 2 == 0; }
 }  // namespace
 
@@ -40,7 +41,8 @@ std::vector<Vec3> HeatedBoard::features() const {
     };
     for (int j = 1; j <= squares_y; ++j)
         for (int i = 1; i <= squares_x; ++i) {
-            const double x = -0.5 * size_x() + (i + 0.5) * square_m, y = -0.5 * size_y() + (j + 0.5) * square_m;
+            const double x = -0.5 * size_x() + (i + 0.5) * square_m,
+                         y = -0.5 * size_y() + (j + 0.5) * square_m;
             if (pattern == Pattern::Checkerboard) {
                 if (i < squares_x && j < squares_y) at(x + 0.5 * square_m, y + 0.5 * square_m);
             } else if (pattern == Pattern::Circles || hot_square(i, j)) {
@@ -67,45 +69,54 @@ std::string HeatedBoard::write(const std::filesystem::path& dir) const {
                 const double cx = (i + 0.5) * texels_per_square, cy = (j + 0.5) * texels_per_square;
                 for (int sy = 0; sy < kSub; ++sy)
                     for (int sx = 0; sx < kSub; ++sx)
-                        hot += std::hypot(x + (sx + 0.5) / kSub - cx, y + (sy + 0.5) / kSub - cy) < radius_texels;
+                        hot += std::hypot(x + (sx + 0.5) / kSub - cx, y + (sy + 0.5) / kSub - cy) <
+                               radius_texels;
                 hot /= kSub * kSub;
             }
             t[map.index(x, y)] = static_cast<float>(cold_k + hot * (hot_k - cold_k));
         }
     write_exr(dir / "board_temperature.exr", map);
     return fmt::format(
-        "  - {{name: board, geometry: {{type: plane, size: [{}, {}]}}, transform: {{rotate_deg: [{}, 0, 0], translate: "
-        "[{}, {}, {}]}}, material: flat_black_paint, temperature: {{texture: board_temperature.exr, channel: "
+        "  - {{name: board, geometry: {{type: plane, size: [{}, {}]}}, transform: {{rotate_deg: "
+        "[{}, 0, 0], translate: "
+        "[{}, {}, {}]}}, material: flat_black_paint, temperature: {{texture: "
+        "board_temperature.exr, channel: "
         "temperature_k}}}}\n",
         size_x(), size_y(), standing ? 90 : 0, centre.x(), centre.y(), centre.z());
 }
 
 std::string board_scene(const std::string& board_object, const std::filesystem::path& materials_dir,
-                        const std::string& lens, const Vec3& position, const Vec3& look_at, const Vec3& up, int spp) {
-    // Board frames stand in for a camera's S0 frames, which have no per-pixel error bars: one replicate
-    // keeps all of a pixel's samples in one net, so the squares' edges are placed by the sequence's
-    // sub-pixel strata (8 one-point replicates at 8 spp gave 0.21 px RMS reprojection error).
+                        const std::string& lens, const Vec3& position, const Vec3& look_at,
+                        const Vec3& up, int spp) {
+    // Board frames stand in for a camera's S0 frames, which have no per-pixel error bars: one
+    // replicate keeps all of a pixel's samples in one net, so the squares' edges are placed by the
+    // sequence's sub-pixel strata (8 one-point replicates at 8 spp gave 0.21 px RMS reprojection
+    // error).
     return fmt::format(
-        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, replicates: 1, max_bounces: 0, seed: 1}}\nmaterials_dir: {}\n"
+        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: {}, replicates: 1, max_bounces: 0, seed: "
+        "1}}\nmaterials_dir: {}\n"
         "camera: {{model: {}, position: [{}, {}, {}], look_at: [{}, {}, {}], up: [{}, {}, {}]}}\n"
         "sky: {{type: uniform, temperature: 230}}\nobjects:\n{}",
-        spp, materials_dir.string(), lens, position.x(), position.y(), position.z(), look_at.x(), look_at.y(),
-        look_at.z(), up.x(), up.y(), up.z(), board_object);
+        spp, materials_dir.string(), lens, position.x(), position.y(), position.z(), look_at.x(),
+        look_at.y(), look_at.z(), up.x(), up.y(), up.z(), board_object);
 }
 
-std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px, double max_tilt_deg,
-                                               double roll_spread_deg) {
+std::vector<BoardView> board_calibration_views(int count, double fx_px, int width_px,
+                                               double max_tilt_deg, double roll_spread_deg) {
     // Distances and shifts scale with fx / width, so the board covers the same part of any frame.
     const double scale = (fx_px / width_px) / (762.0 / 640.0);
     std::vector<BoardView> views;
     for (int i = 0; i < count; ++i) {
-        const double tilt = deg_to_rad(20.0 + (max_tilt_deg - 20.0) * (i % 5) / 4.0), azimuth = 2.0 * kPi * i / count;
+        const double tilt = deg_to_rad(20.0 + (max_tilt_deg - 20.0) * (i % 5) / 4.0),
+                     azimuth = 2.0 * kPi * i / count;
         const double distance = scale * (1.1 + 0.04 * (i % 4));
-        const Vec3 position =
-            distance * Vec3(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
-        const Vec3 look_at = scale * Vec3(0.05 * std::cos(3.0 * azimuth), 0.035 * std::sin(2.0 * azimuth), 0.0);
+        const Vec3 position = distance * Vec3(std::sin(tilt) * std::cos(azimuth),
+                                              std::sin(tilt) * std::sin(azimuth), std::cos(tilt));
+        const Vec3 look_at =
+            scale * Vec3(0.05 * std::cos(3.0 * azimuth), 0.035 * std::sin(2.0 * azimuth), 0.0);
         const double roll = deg_to_rad(90.0 + roll_spread_deg * std::sin(1.7 * i));
-        views.push_back({position, look_at, Vec3(std::cos(azimuth + roll), std::sin(azimuth + roll), 0.0)});
+        views.push_back(
+            {position, look_at, Vec3(std::cos(azimuth + roll), std::sin(azimuth + roll), 0.0)});
     }
     return views;
 }

@@ -10,8 +10,9 @@
 
 namespace tirpol::simulation::detail {
 
-/// Resolves names against the material library in `materials_dir`, paths relative to the scene file,
-/// inline mappings in place. Identical references share one SceneMaterial (deduplicated by key).
+/// Resolves names against the material library in `materials_dir`, paths relative to the scene
+/// file, inline mappings in place. Identical references share one SceneMaterial (deduplicated by
+/// key).
 class MaterialResolver {
 public:
     explicit MaterialResolver(std::filesystem::path materials_dir);

@@ -12,7 +12,8 @@ namespace tirpol::simulation {
 
 Mat3 Transform::rotation_from_euler_deg(const Vec3& angles_deg) {
     using Eigen::AngleAxisd;
-    return (AngleAxisd(deg_to_rad(angles_deg.z()), Vec3::UnitZ()) * AngleAxisd(deg_to_rad(angles_deg.y()), Vec3::UnitY()) *
+    return (AngleAxisd(deg_to_rad(angles_deg.z()), Vec3::UnitZ()) *
+            AngleAxisd(deg_to_rad(angles_deg.y()), Vec3::UnitY()) *
             AngleAxisd(deg_to_rad(angles_deg.x()), Vec3::UnitX()))
         .toRotationMatrix();
 }
@@ -105,7 +106,8 @@ TriangleMesh make_cylinder(double radius, double height, int segments, bool caps
             m.positions.insert(m.positions.end(), cap.positions.begin(), cap.positions.end());
             m.normals.insert(m.normals.end(), cap.normals.begin(), cap.normals.end());
             m.uvs.insert(m.uvs.end(), cap.uvs.begin(), cap.uvs.end());
-            for (const auto& tri : cap.triangles) m.triangles.push_back({base + tri[0], base + tri[1], base + tri[2]});
+            for (const auto& tri : cap.triangles)
+                m.triangles.push_back({base + tri[0], base + tri[1], base + tri[2]});
         }
     }
     return m;
@@ -115,9 +117,9 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path)) fail("mesh file not found: {}", path.string());
     Assimp::Importer importer;
     // No vertex joining or re-ordering: per-vertex data files refer to the file's vertex order.
-    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_GenNormals |
-                                                                aiProcess_PreTransformVertices |
-                                                                aiProcess_SortByPType);
+    const aiScene* scene = importer.ReadFile(
+        path.string(), aiProcess_Triangulate | aiProcess_GenNormals |
+                           aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (!scene) fail("cannot read mesh {}: {}", path.string(), importer.GetErrorString());
     TriangleMesh m;
     for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
@@ -137,7 +139,8 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
             if (face.mNumIndices != 3) continue;
-            m.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+            m.triangles.push_back(
+                {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
         }
     }
     if (m.triangles.empty()) fail("mesh {} has no triangles", path.string());

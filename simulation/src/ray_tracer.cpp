@@ -26,7 +26,9 @@ void embree_error(void*, RTCError code, const char* message) {
 
 RayTracer::RayTracer() : m_embree(std::make_unique<EmbreeHandles>()) {
     m_embree->device = rtcNewDevice(nullptr);
-    if (!m_embree->device) fail("Embree: cannot create a device (error {})", static_cast<int>(rtcGetDeviceError(nullptr)));
+    if (!m_embree->device)
+        fail("Embree: cannot create a device (error {})",
+             static_cast<int>(rtcGetDeviceError(nullptr)));
     rtcSetDeviceErrorFunction(m_embree->device, embree_error, nullptr);
     m_embree->scene = rtcNewScene(m_embree->device);
     rtcSetSceneBuildQuality(m_embree->scene, RTC_BUILD_QUALITY_HIGH);
@@ -40,19 +42,24 @@ RayTracer::~RayTracer() {
 std::uint32_t RayTracer::add_mesh(TriangleMesh mesh) {
     if (m_committed) fail("RayTracer: add_mesh after commit");
     RTCGeometry geom = rtcNewGeometry(m_embree->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                 3 * sizeof(float), mesh.positions.size()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-        for (int c = 0; c < 3; ++c) vertices[3 * i + static_cast<std::size_t>(c)] = static_cast<float>(mesh.positions[i][c]);
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                   3 * sizeof(unsigned), mesh.triangles.size()));
+        for (int c = 0; c < 3; ++c)
+            vertices[3 * i + static_cast<std::size_t>(c)] =
+                static_cast<float>(mesh.positions[i][c]);
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangles.size()));
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
         for (std::size_t c = 0; c < 3; ++c) indices[3 * i + c] = mesh.triangles[i][c];
     rtcCommitGeometry(geom);
     const auto id = static_cast<std::uint32_t>(m_objects.size());
     rtcAttachGeometryByID(m_embree->scene, geom, id);
     rtcReleaseGeometry(geom);
-    m_embree->buffer_bytes += mesh.positions.size() * 3 * sizeof(float) + mesh.triangles.size() * 3 * sizeof(unsigned);
+    m_embree->buffer_bytes +=
+        mesh.positions.size() * 3 * sizeof(float) + mesh.triangles.size() * 3 * sizeof(unsigned);
     m_objects.push_back(Object{std::move(mesh), false, Vec3::Zero(), 0.0});
     return id;
 }
@@ -61,8 +68,8 @@ std::uint32_t RayTracer::add_sphere(const Vec3& center, double radius) {
     if (m_committed) fail("RayTracer: add_sphere after commit");
     if (!(radius > 0.0)) fail("RayTracer: sphere radius must be positive, got {}", radius);
     RTCGeometry geom = rtcNewGeometry(m_embree->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* p = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    auto* p = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
     p[0] = static_cast<float>(center.x());
     p[1] = static_cast<float>(center.y());
     p[2] = static_cast<float>(center.z());
@@ -79,7 +86,8 @@ std::uint32_t RayTracer::add_sphere(const Vec3& center, double radius) {
 void RayTracer::commit() {
     rtcCommitScene(m_embree->scene);
     const RTCError err = rtcGetDeviceError(m_embree->device);
-    if (err != RTC_ERROR_NONE) fail("Embree: building the BVH failed (error {})", static_cast<int>(err));
+    if (err != RTC_ERROR_NONE)
+        fail("Embree: building the BVH failed (error {})", static_cast<int>(err));
     m_committed = true;
 }
 
@@ -101,8 +109,8 @@ RTCRay make_ray(const Vec3& o, const Vec3& d, double t_min, double t_max) {
 }
 }  // namespace
 
-std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& direction, double t_min,
-                                               double t_max) const {
+std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& direction,
+                                               double t_min, double t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -123,7 +131,8 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
         const Vec3 n = (hit.position - obj.center).normalized();
         hit.position = obj.center + obj.radius * n;
         hit.geometric_normal = hit.shading_normal = n;
-        hit.uv = Eigen::Vector2d(0.5 + std::atan2(n.y(), n.x()) / (2.0 * kPi), std::acos(std::clamp(n.z(), -1.0, 1.0)) / kPi);
+        hit.uv = Eigen::Vector2d(0.5 + std::atan2(n.y(), n.x()) / (2.0 * kPi),
+                                 std::acos(std::clamp(n.z(), -1.0, 1.0)) / kPi);
         return hit;
     }
     hit.b1 = rh.hit.u;
@@ -135,13 +144,16 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
     const Vec3& p2 = obj.mesh.positions[tri[2]];
     hit.geometric_normal = (p1 - p0).cross(p2 - p0).normalized();
     hit.position = b0 * p0 + hit.b1 * p1 + hit.b2 * p2;
-    Vec3 ns = b0 * obj.mesh.normals[tri[0]] + hit.b1 * obj.mesh.normals[tri[1]] + hit.b2 * obj.mesh.normals[tri[2]];
+    Vec3 ns = b0 * obj.mesh.normals[tri[0]] + hit.b1 * obj.mesh.normals[tri[1]] +
+              hit.b2 * obj.mesh.normals[tri[2]];
     hit.shading_normal = ns.squaredNorm() > 1e-20 ? ns.normalized() : hit.geometric_normal;
-    hit.uv = b0 * obj.mesh.uvs[tri[0]] + hit.b1 * obj.mesh.uvs[tri[1]] + hit.b2 * obj.mesh.uvs[tri[2]];
+    hit.uv =
+        b0 * obj.mesh.uvs[tri[0]] + hit.b1 * obj.mesh.uvs[tri[1]] + hit.b2 * obj.mesh.uvs[tri[2]];
     return hit;
 }
 
-double RayTracer::nearest_distance(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const {
+double RayTracer::nearest_distance(const Vec3& origin, const Vec3& direction, double t_min,
+                                   double t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -149,10 +161,12 @@ double RayTracer::nearest_distance(const Vec3& origin, const Vec3& direction, do
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_embree->scene, &context, &rh);
-    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<double>::infinity() : rh.ray.tfar;
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<double>::infinity()
+                                                    : rh.ray.tfar;
 }
 
-bool RayTracer::occluded(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const {
+bool RayTracer::occluded(const Vec3& origin, const Vec3& direction, double t_min,
+                         double t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r = make_ray(origin, direction, t_min, t_max);

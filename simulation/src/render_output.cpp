@@ -5,7 +5,8 @@
 
 namespace tirpol::simulation {
 
-std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::path& out_dir, const std::string& stem,
+std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::path& out_dir,
+                                                        const std::string& stem,
                                                         const Image& image) {
     std::filesystem::create_directories(out_dir);
     std::vector<std::filesystem::path> written;
@@ -15,8 +16,9 @@ std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::p
         const char* channel;
         const char* units;
     };
-    for (const Look& look : {Look{"S0", "W/(m²·sr)"}, Look{"S1", "W/(m²·sr)"}, Look{"S2", "W/(m²·sr)"}, Look{"DoLP", ""},
-                             Look{"AoP", "deg"}, Look{"temperature_k", "K"}}) {
+    for (const Look& look :
+         {Look{"S0", "W/(m²·sr)"}, Look{"S1", "W/(m²·sr)"}, Look{"S2", "W/(m²·sr)"},
+          Look{"DoLP", ""}, Look{"AoP", "deg"}, Look{"temperature_k", "K"}}) {
         if (!image.has_channel(look.channel)) continue;
         QuicklookOptions q;
         q.colormap = default_colormap(look.channel);
@@ -27,7 +29,8 @@ std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::p
             q.vmax = 180.0;
         }
         written.push_back(out_dir / (stem + "_" + look.channel + ".png"));
-        write_quicklook(written.back(), image.channel(look.channel), image.width(), image.height(), q);
+        write_quicklook(written.back(), image.channel(look.channel), image.width(), image.height(),
+                        q);
     }
     return written;
 }

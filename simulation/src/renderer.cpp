@@ -41,20 +41,24 @@ double ray_epsilon(const Vec3& p) { return 1e-5 * (1.0 + p.cwiseAbs().maxCoeff()
 std::uint64_t thread_cpu_ns() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ULL + static_cast<std::uint64_t>(t.tv_nsec);
+    return static_cast<std::uint64_t>(t.tv_sec) * 1000000000ULL +
+           static_cast<std::uint64_t>(t.tv_nsec);
 }
 
-/// m · R, where R = frame_rotation(frame_rotation_angle(from, to)) re-expresses Stokes given in `from`
-/// = surface_frame(k, n) in a frame `to` of the same propagation k given by its reference axis (any
-/// length, and any component along k, which drops out of the dot products with vectors across k).
-/// R only mixes S1 and S2, so only m's columns 1 and 2 change, and cos 2α, sin 2α come from dot
-/// products (no trig): surface_frame's reference is n × k normalised and its second axis
+/// m · R, where R = frame_rotation(frame_rotation_angle(from, to)) re-expresses Stokes given in
+/// `from` = surface_frame(k, n) in a frame `to` of the same propagation k given by its reference
+/// axis (any length, and any component along k, which drops out of the dot products with vectors
+/// across k). R only mixes S1 and S2, so only m's columns 1 and 2 change, and cos 2α, sin 2α come
+/// from dot products (no trig): surface_frame's reference is n × k normalised and its second axis
 /// k × reference, and the lengths cancel in (c² − s²)/(c² + s²) and 2cs/(c² + s²), so neither frame
-/// is normalised. Where n × k vanishes (a beam along the normal) surface_frame's fallback axis is used.
-MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& n, const Vec3& to_reference) {
+/// is normalised. Where n × k vanishes (a beam along the normal) surface_frame's fallback axis is
+/// used.
+MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& n,
+                             const Vec3& to_reference) {
     Vec3 from_reference = n.cross(k);
     if (!(from_reference.squaredNorm() > 1e-280)) from_reference = surface_frame(k, n).reference;
-    const double c = to_reference.dot(from_reference), s = to_reference.dot(k.cross(from_reference));
+    const double c = to_reference.dot(from_reference),
+                 s = to_reference.dot(k.cross(from_reference));
     const double norm = c * c + s * s;
     const double c2 = (c * c - s * s) / norm, s2 = 2.0 * c * s / norm;
     MuellerMatrix out = m;
@@ -63,11 +67,12 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& 
     return out;
 }
 
-/// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects' ranges
-/// (290 K without objects).
+/// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects'
+/// ranges (290 K without objects).
 double reference_temperature_k(const Scene& scene) {
     double sum = 0.0;
-    for (const auto& o : scene.objects) sum += 0.5 * (o.temperature.min_k() + o.temperature.max_k());
+    for (const auto& o : scene.objects)
+        sum += 0.5 * (o.temperature.min_k() + o.temperature.max_k());
     return scene.objects.empty() ? 290.0 : sum / static_cast<double>(scene.objects.size());
 }
 
@@ -79,21 +84,26 @@ public:
         : m_scene(scene), m_recorder(recorder), m_control_variate(control_variate) {
         std::vector<BandNode> nodes = spectral_grid(scene.band).nodes();
         // Increasing wavelengths: the emissivity tables' columns.
-        std::sort(nodes.begin(), nodes.end(),
-                  [](const BandNode& a, const BandNode& b) { return a.wavelength_um < b.wavelength_um; });
+        std::sort(nodes.begin(), nodes.end(), [](const BandNode& a, const BandNode& b) {
+            return a.wavelength_um < b.wavelength_um;
+        });
         double band_weight_um = 0.0;
         for (const auto& node : nodes) band_weight_um += node.weight_um;
         if (!(band_weight_um > 0.0))
-            fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(), scene.band.hi_um());
-        // Nodes are drawn ∝ weight·L_bb(λ, T_ref) with T_ref the objects' mean temperature: a thermal
-        // scene's radiance has nearly Planck's spectral shape, so L(λ)/L_bb(λ, T_ref) changes little
-        // from node to node and the spectral part of the noise, which a replicate of few points
-        // stratifies only coarsely, mostly cancels. Any T_ref is unbiased (the estimate divides by the
-        // probability); uniform in weight where Planck's law underflows (short bands, cold T_ref).
+            fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(),
+                 scene.band.hi_um());
+        // Nodes are drawn ∝ weight·L_bb(λ, T_ref) with T_ref the objects' mean temperature: a
+        // thermal scene's radiance has nearly Planck's spectral shape, so L(λ)/L_bb(λ, T_ref)
+        // changes little from node to node and the spectral part of the noise, which a replicate of
+        // few points stratifies only coarsely, mostly cancels. Any T_ref is unbiased (the estimate
+        // divides by the probability); uniform in weight where Planck's law underflows (short
+        // bands, cold T_ref).
         const double t_ref_k = reference_temperature_k(scene);
         std::vector<double> shape;
-        for (const auto& node : nodes) shape.push_back(planck_radiance(node.wavelength_um, t_ref_k));
-        if (!std::all_of(shape.begin(), shape.end(), [](double b) { return std::isfinite(b) && b > 1e-30; }))
+        for (const auto& node : nodes)
+            shape.push_back(planck_radiance(node.wavelength_um, t_ref_k));
+        if (!std::all_of(shape.begin(), shape.end(),
+                         [](double b) { return std::isfinite(b) && b > 1e-30; }))
             shape.assign(nodes.size(), 1.0);
         double total = 0.0;
         for (std::size_t k = 0; k < nodes.size(); ++k) {
@@ -103,8 +113,9 @@ public:
         }
         for (auto& c : m_cdf) c /= total;
         for (std::size_t k = 0; k < nodes.size(); ++k) m_node_scale_um.push_back(total / shape[k]);
-        // What depends only on the wavelength node (and an object's constant temperature) is evaluated
-        // here once instead of at every hit: Planck's law for the sky, the sun and each object.
+        // What depends only on the wavelength node (and an object's constant temperature) is
+        // evaluated here once instead of at every hit: Planck's law for the sky, the sun and each
+        // object.
         const std::size_t node_count = m_wavelengths.size();
         for (const double lambda : m_wavelengths) {
             m_sky_at_node.push_back(scene.sky.at_wavelength(lambda));
@@ -115,13 +126,16 @@ public:
             const TemperatureField& field = scene.objects[o].temperature;
             if (!field.is_constant()) continue;
             for (std::size_t k = 0; k < node_count; ++k)
-                m_object_blackbody[o * node_count + k] = planck_radiance(m_wavelengths[k], field.min_k());
+                m_object_blackbody[o * node_count + k] =
+                    planck_radiance(m_wavelengths[k], field.min_k());
         }
         for (const auto& m : scene.materials) {
             const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
             if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
-                fail("material '{}' ({}) is defined over {}–{} µm, which does not cover the band {}–{} µm", m.name, m.source, lo,
-                     hi, scene.band.lo_um(), scene.band.hi_um());
+                fail(
+                    "material '{}' ({}) is defined over {}–{} µm, which does not cover the band "
+                    "{}–{} µm",
+                    m.name, m.source, lo, hi, scene.band.lo_um(), scene.band.hi_um());
         }
         // Emission is looked up at exactly the path's wavelength node (a table column per node), so
         // ε + ρ = 1 holds per path and an isothermal enclosure is a blackbody whatever n,k(λ) does.
@@ -129,7 +143,8 @@ public:
         m_emissivity.resize(scene.materials.size());
         std::vector<materials::EmissivityCacheSource> sources(scene.materials.size());
         tbb::parallel_for(std::size_t{0}, scene.materials.size(), [&](std::size_t i) {
-            auto cached = materials::cached_emissivity_table(*scene.materials[i].brdf, m_wavelengths, cache_dir);
+            auto cached = materials::cached_emissivity_table(*scene.materials[i].brdf,
+                                                             m_wavelengths, cache_dir);
             m_emissivity[i] = std::move(cached.table);
             sources[i] = cached.source;
         });
@@ -143,26 +158,26 @@ public:
         }
     }
 
-    /// One sample of the band radiance arriving at the camera along `direction`, in the camera's Stokes
-    /// frame of that ray (Camera::image_frame), given by `camera_right`, the camera's x axis: image_frame's
-    /// reference is that axis with its component along the ray removed and normalised, and the frame
-    /// rotations (times_rotation) need neither, as only its dot products with vectors across the ray
-    /// enter them;
-    /// `sampler` gives the wavelength node's number and each bounce's (sobol_sampler.h).
+    /// One sample of the band radiance arriving at the camera along `direction`, in the camera's
+    /// Stokes frame of that ray (Camera::image_frame), given by `camera_right`, the camera's x
+    /// axis: image_frame's reference is that axis with its component along the ray removed and
+    /// normalised, and the frame rotations (times_rotation) need neither, as only its dot products
+    /// with vectors across the ray enter them; `sampler` gives the wavelength node's number and
+    /// each bounce's (sobol_sampler.h).
     StokesVector trace(Vec3 origin, Vec3 direction, const Vec3& camera_right, PathSampler& sampler,
                        std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
-        const auto node =
-            static_cast<std::size_t>(std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
+        const auto node = static_cast<std::size_t>(
+            std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky::AtWavelength& sky = m_sky_at_node[k];
         const Sun* sun = m_scene.sun ? &*m_scene.sun : nullptr;
         const double sun_radiance = m_sun_at_node[k];
 
-        // Maps Stokes of light travelling along −direction, given in `frame`, to the camera frame. The
-        // frame is the s/p frame of the last surface (first: the camera's), so each vertex needs one
-        // rotation, from its own s/p frame of the same ray (paper eq 12's two rotations through the
-        // world frame compose into this one).
+        // Maps Stokes of light travelling along −direction, given in `frame`, to the camera frame.
+        // The frame is the s/p frame of the last surface (first: the camera's), so each vertex
+        // needs one rotation, from its own s/p frame of the same ray (paper eq 12's two rotations
+        // through the world frame compose into this one).
         MuellerMatrix throughput = MuellerMatrix::Identity();
         Vec3 frame_reference = camera_right;  // of the frame throughput takes its Stokes in
         StokesVector radiance = StokesVector::Zero();
@@ -174,13 +189,16 @@ public:
             const auto hit = m_scene.tracer->intersect(origin, direction);
             if (!hit) {
                 double l = sky.spectral_radiance(direction);
-                if (sun && last_was_delta && direction.dot(sun->direction) >= sun->cos_angular_radius()) l += sun_radiance;
+                if (sun && last_was_delta &&
+                    direction.dot(sun->direction) >= sun->cos_angular_radius())
+                    l += sun_radiance;
                 radiance += throughput.col(0) * l;
                 break;
             }
             const Vec3 wo = -direction;
             Vec3 ng = hit->geometric_normal, ns = hit->shading_normal;
-            if (ng.dot(wo) < 0.0) {  // back face of a thin surface: shade the side the ray came from
+            if (ng.dot(wo) <
+                0.0) {  // back face of a thin surface: shade the side the ray came from
                 ng = -ng;
                 ns = -ns;
             }
@@ -191,16 +209,21 @@ public:
             const materials::PolarizedBrdf& brdf = *m_scene.materials[object.material].brdf;
             const double blackbody = object_blackbody(*hit, k);
 
-            // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into the ray's frame.
+            // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into
+            // the ray's frame.
             const MuellerMatrix leaving = times_rotation(throughput, wo, n, frame_reference);
-            const StokesVector emissivity = m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
+            const StokesVector emissivity =
+                m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
             radiance += leaving * emissivity * blackbody;  // eq 13
-            if (bounce >= max_bounces) break;  // safety cap only: Russian roulette ends paths (below)
+            if (bounce >= max_bounces)
+                break;  // safety cap only: Russian roulette ends paths (below)
 
             // Control variate for the reflected radiance ∫M·L_in·cosθi dωi (renderer.h): its exact
-            // value for an unpolarized incident radiance L_ref, (e0 − ε)·L_ref by Kirchhoff's law (the
-            // same table as the emission), plus the sampled estimate of ∫M·(L_in − L_ref)·cosθi dωi.
-            const double l_ref = m_control_variate ? reference_radiance(wo, n, sky, blackbody) : 0.0;
+            // value for an unpolarized incident radiance L_ref, (e0 − ε)·L_ref by Kirchhoff's law
+            // (the same table as the emission), plus the sampled estimate of ∫M·(L_in −
+            // L_ref)·cosθi dωi.
+            const double l_ref =
+                m_control_variate ? reference_radiance(wo, n, sky, blackbody) : 0.0;
             radiance += leaving * (StokesVector::UnitX() - emissivity) * l_ref;
 
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
@@ -210,42 +233,50 @@ public:
                 if (!m_scene.tracer->occluded(p, sun->direction, 0.0, 1e30)) {
                     const Vec3 wi_local = basis.to_local(sun->direction);
                     const MuellerMatrix f = brdf.eval(wi_local, wo_local, lambda);
-                    // The sun is unpolarized: only the first column of M acts, in any incident frame.
-                    radiance += leaving * f.col(0) * (wi_local.z() * sun->solid_angle_sr * sun_radiance);
+                    // The sun is unpolarized: only the first column of M acts, in any incident
+                    // frame.
+                    radiance +=
+                        leaving * f.col(0) * (wi_local.z() * sun->solid_angle_sr * sun_radiance);
                 }
             }
 
             // Every bounce has its own pair of the scrambled sequence, so the lobe choice behind a
-            // mirror (the glossy paint seen in it) is as evenly spread over a pixel's samples as the first.
+            // mirror (the glossy paint seen in it) is as evenly spread over a pixel's samples as
+            // the first.
             const auto [u1, u2] = sampler.scatter(bounce);
             const materials::BrdfSample s = brdf.sample(wo_local, lambda, u1, u2);
             if (!(s.pdf > 0.0)) break;
             const Vec3 wi = basis.to_world(s.wi).normalized();
-            if (wi.dot(ng) <= 0.0) {  // shading normal sent the path under the surface: L_in = 0 there
+            if (wi.dot(ng) <=
+                0.0) {  // shading normal sent the path under the surface: L_in = 0 there
                 radiance -= leaving * s.weight.col(0) * l_ref;
                 break;
             }
-            // eq 12: incident light travels along −wi; the pBRDF takes its Stokes in surface_frame(−wi, n).
+            // eq 12: incident light travels along −wi; the pBRDF takes its Stokes in
+            // surface_frame(−wi, n).
             throughput = leaving * s.weight;
             frame_reference = n.cross(-wi);
-            if (!(frame_reference.squaredNorm() > 1e-280)) frame_reference = surface_frame(-wi, n).reference;
+            if (!(frame_reference.squaredNorm() > 1e-280))
+                frame_reference = surface_frame(-wi, n).reference;
             last_was_delta = s.is_delta;
 
             // Russian roulette after the third hit ends paths without bias: a path survives with
-            // probability q = clamp(S0 throughput, 0.25, 1) and is then weighted by 1/q (Arvo & Kirk,
-            // SIGGRAPH 1990). Deep mirror traps (a closed metal box) are followed as far as they carry
-            // radiance, where a fixed bounce limit would drop it. The floor keeps survivors' weights
-            // bounded (≤ 4× the throughput): with q = throughput alone a grey diffuse enclosure
-            // (albedo 0.3) kept 1 path in 37 at ×37 weight, and pixels that drew no survivor read
-            // 1 % low with a variance estimate that could not show it. Cost: ≤ 1.33 extra hits a path.
+            // probability q = clamp(S0 throughput, 0.25, 1) and is then weighted by 1/q (Arvo &
+            // Kirk, SIGGRAPH 1990). Deep mirror traps (a closed metal box) are followed as far as
+            // they carry radiance, where a fixed bounce limit would drop it. The floor keeps
+            // survivors' weights bounded (≤ 4× the throughput): with q = throughput alone a grey
+            // diffuse enclosure (albedo 0.3) kept 1 path in 37 at ×37 weight, and pixels that drew
+            // no survivor read 1 % low with a variance estimate that could not show it. Cost:
+            // ≤ 1.33 extra hits a path.
             if (bounce >= 2) {
                 constexpr double kMinSurvival = 0.25;
                 const double survive = std::clamp(throughput(0, 0), kMinSurvival, 1.0);
                 if (!(survive > 0.0) || sampler.roulette(bounce) >= survive) break;
                 throughput /= survive;
             }
-            // The control variate's −L_ref, carried by the same (roulette-weighted) throughput as the
-            // L_in that the continuing path collects; unpolarized, so only the first column acts.
+            // The control variate's −L_ref, carried by the same (roulette-weighted) throughput as
+            // the L_in that the continuing path collects; unpolarized, so only the first column
+            // acts.
             radiance -= throughput.col(0) * l_ref;
             origin = p;
             direction = wi;
@@ -254,12 +285,13 @@ public:
     }
 
 private:
-    /// L_ref of the control variate at a vertex (any value that does not depend on the sampled wi keeps
-    /// the estimate unbiased; the closer to the incident radiance, the lower the variance): the sky along
-    /// the mirror direction of wo, where most of a glossy lobe looks in an open scene, or the vertex's
-    /// own blackbody radiance when that direction is below the horizon (ground, walls, closed scenes,
-    /// where the surroundings are near the surface's temperature).
-    double reference_radiance(const Vec3& wo, const Vec3& n, const Sky::AtWavelength& sky, double blackbody) const {
+    /// L_ref of the control variate at a vertex (any value that does not depend on the sampled wi
+    /// keeps the estimate unbiased; the closer to the incident radiance, the lower the variance):
+    /// the sky along the mirror direction of wo, where most of a glossy lobe looks in an open
+    /// scene, or the vertex's own blackbody radiance when that direction is below the horizon
+    /// (ground, walls, closed scenes, where the surroundings are near the surface's temperature).
+    double reference_radiance(const Vec3& wo, const Vec3& n, const Sky::AtWavelength& sky,
+                              double blackbody) const {
         const Vec3 mirror = 2.0 * n.dot(wo) * n - wo;
         return mirror.z() > 0.0 ? sky.spectral_radiance(mirror) : blackbody;
     }
@@ -268,7 +300,8 @@ private:
     double object_blackbody(const SurfaceHit& hit, std::size_t k) const {
         const double tabulated = m_object_blackbody[hit.object * m_wavelengths.size() + k];
         if (!std::isnan(tabulated)) return tabulated;
-        const double temperature = m_scene.objects[hit.object].temperature.at(hit, m_scene.tracer->mesh(hit.object));
+        const double temperature =
+            m_scene.objects[hit.object].temperature.at(hit, m_scene.tracer->mesh(hit.object));
         return planck_radiance(m_wavelengths[k], temperature);
     }
 
@@ -276,15 +309,17 @@ private:
     RayRecorder* m_recorder;
     bool m_control_variate;
     std::vector<double> m_cdf, m_wavelengths;
-    std::vector<double> m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
+    std::vector<double>
+        m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
     std::vector<Sky::AtWavelength> m_sky_at_node;  // per wavelength node
-    std::vector<double> m_sun_at_node;             // sun's spectral radiance per node (0 without a sun)
-    std::vector<double> m_object_blackbody;        // [object][node]: L_bb at a constant temperature, else NaN
+    std::vector<double> m_sun_at_node;  // sun's spectral radiance per node (0 without a sun)
+    std::vector<double>
+        m_object_blackbody;  // [object][node]: L_bb at a constant temperature, else NaN
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
 };
 
-/// Mean of a pixel and the variance of that mean from R i.i.d. replicate means m_r (each the mean of
-/// an independently scrambled set of points): m̄ = Σ m_r / R, Var(m̄) = Σ (m_r − m̄)² / (R(R − 1)),
+/// Mean of a pixel and the variance of that mean from R i.i.d. replicate means m_r (each the mean
+/// of an independently scrambled set of points): m̄ = Σ m_r / R, Var(m̄) = Σ (m_r − m̄)² / (R(R − 1)),
 /// unbiased because the replicates are independent and identically distributed (L'Ecuyer & Lemieux
 /// 2002). Welford's update keeps it exact in floating point. NaN variance with one replicate.
 class ReplicateMean {
@@ -308,32 +343,48 @@ private:
 
 struct Channels {
     explicit Channels(Image& image)
-        : s0(image.add_channel("S0")), s1(image.add_channel("S1")), s2(image.add_channel("S2")), s3(image.add_channel("S3")),
-          dolp(image.add_channel("DoLP")), aop(image.add_channel("AoP")), s0_var(image.add_channel("S0_var")),
-          s1_var(image.add_channel("S1_var")), s2_var(image.add_channel("S2_var")), s3_var(image.add_channel("S3_var")), depth(image.add_channel("depth")),
-          nx(image.add_channel("normal_x")), ny(image.add_channel("normal_y")), nz(image.add_channel("normal_z")),
-          view_zenith(image.add_channel("view_zenith_deg")), object_id(image.add_channel("object_id")),
-          material_id(image.add_channel("material_id")), temperature(image.add_channel("temperature_k")) {}
-    std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz, &view_zenith,
-        &object_id, &material_id, &temperature;
+        : s0(image.add_channel("S0")),
+          s1(image.add_channel("S1")),
+          s2(image.add_channel("S2")),
+          s3(image.add_channel("S3")),
+          dolp(image.add_channel("DoLP")),
+          aop(image.add_channel("AoP")),
+          s0_var(image.add_channel("S0_var")),
+          s1_var(image.add_channel("S1_var")),
+          s2_var(image.add_channel("S2_var")),
+          s3_var(image.add_channel("S3_var")),
+          depth(image.add_channel("depth")),
+          nx(image.add_channel("normal_x")),
+          ny(image.add_channel("normal_y")),
+          nz(image.add_channel("normal_z")),
+          view_zenith(image.add_channel("view_zenith_deg")),
+          object_id(image.add_channel("object_id")),
+          material_id(image.add_channel("material_id")),
+          temperature(image.add_channel("temperature_k")) {}
+    std::vector<float>&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth,
+        &nx, &ny, &nz, &view_zenith, &object_id, &material_id, &temperature;
     std::array<std::vector<float>*, 18> all() {
-        return {&s0, &s1, &s2, &s3, &dolp, &aop, &s0_var, &s1_var, &s2_var, &s3_var, &depth, &nx, &ny, &nz,
-                &view_zenith, &object_id, &material_id, &temperature};
+        return {&s0,     &s1,     &s2,          &s3,        &dolp,        &aop,
+                &s0_var, &s1_var, &s2_var,      &s3_var,    &depth,       &nx,
+                &ny,     &nz,     &view_zenith, &object_id, &material_id, &temperature};
     }
 };
 
 }  // namespace
 
 std::uint64_t render_memory_estimate_bytes(int width, int height) {
-    // 18 float channels (Channels), plus at most 4 bytes a pixel more while a quicklook or an EXR line
-    // buffer is written. Samples cost nothing: the sampler computes every number (sobol_sampler.h).
+    // 18 float channels (Channels), plus at most 4 bytes a pixel more while a quicklook or an EXR
+    // line buffer is written. Samples cost nothing: the sampler computes every number
+    // (sobol_sampler.h).
     constexpr std::uint64_t kImageBytesPerPixel = 18 * sizeof(float) + 4 * sizeof(float);
-    const auto pixels =
-        static_cast<std::uint64_t>(std::max(width, 0)) * static_cast<std::uint64_t>(std::max(height, 0));
+    const auto pixels = static_cast<std::uint64_t>(std::max(width, 0)) *
+                        static_cast<std::uint64_t>(std::max(height, 0));
     return pixels * kImageBytesPerPixel;
 }
 
-Band spectral_grid(const Band& band) { return Band(band.lo_um(), band.hi_um(), band.rsr(), kSpectralGridPanel_um); }
+Band spectral_grid(const Band& band) {
+    return Band(band.lo_um(), band.hi_um(), band.rsr(), kSpectralGridPanel_um);
+}
 
 Image render(const Scene& scene, const RenderOptions& options, RenderStatistics* statistics) {
     const auto start = std::chrono::steady_clock::now();
@@ -344,22 +395,26 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const int workers = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
     check_memory_estimate(
         render_memory_estimate_bytes(scene.camera.width(), scene.camera.height()),
-        fmt::format("render of {}×{} pixels at {} spp on {} threads", scene.camera.width(), scene.camera.height(),
-                    spp_requested, workers));
+        fmt::format("render of {}×{} pixels at {} spp on {} threads", scene.camera.width(),
+                    scene.camera.height(), spp_requested, workers));
     tbb::task_arena arena(workers);
     RenderStatistics stats;
-    const std::filesystem::path cache_dir =
-        options.emissivity_cache_dir ? *options.emissivity_cache_dir : materials::default_emissivity_cache_directory();
+    const std::filesystem::path cache_dir = options.emissivity_cache_dir
+                                                ? *options.emissivity_cache_dir
+                                                : materials::default_emissivity_cache_directory();
     const bool control_variate =
         options.control_variate.value_or(scene.sampling.estimator == Estimator::control_variate);
     std::unique_ptr<const PathTracer> tracer_ptr;
     arena.execute([&] {
-        tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats, options.ray_recorder, control_variate);
+        tracer_ptr = std::make_unique<const PathTracer>(scene, cache_dir, stats,
+                                                        options.ray_recorder, control_variate);
     });
     const PathTracer& tracer = *tracer_ptr;
-    const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double setup_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
-    const Vec3 camera_right = camera.world_from_camera().col(0);  // never along a ray: every ray looks forward
+    const Vec3 camera_right =
+        camera.world_from_camera().col(0);  // never along a ray: every ray looks forward
     const int w = camera.width(), h = camera.height();
     const int replicates = replicate_count(scene.sampling);
     const int spp = rendered_samples_per_pixel(scene.sampling);
@@ -368,8 +423,10 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         spdlog::warn("render: {} samples per pixel rounded up to {} ({} replicates of {} points)",
                      scene.sampling.samples_per_pixel, spp, replicates, points);
     const std::uint64_t seed = scene.sampling.seed;
-    if (options.pixel_mask && options.pixel_mask->size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
-        fail("render: the pixel mask has {} entries; expected {}×{} = {}", options.pixel_mask->size(), w, h,
+    if (options.pixel_mask &&
+        options.pixel_mask->size() != static_cast<std::size_t>(w) * static_cast<std::size_t>(h))
+        fail("render: the pixel mask has {} entries; expected {}×{} = {}",
+             options.pixel_mask->size(), w, h,
              static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     Image image(w, h);
     Channels ch(image);
@@ -390,7 +447,8 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         for (int y = ty * tile; y < std::min(h, (ty + 1) * tile); ++y) {
             for (int x = tx * tile; x < std::min(w, (tx + 1) * tile); ++x) {
                 const std::size_t i = image.index(x, y);
-                // A masked pixel skips every replicate: its channels are NaN and it draws no samples.
+                // A masked pixel skips every replicate: its channels are NaN and it draws no
+                // samples.
                 if (options.pixel_mask && !(*options.pixel_mask)[i]) {
                     for (auto* c : ch.all()) (*c)[i] = static_cast<float>(kNaN);
                     continue;
@@ -400,11 +458,13 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                     const ReplicateSampler replicate(seed, i, r, points);
                     StokesVector sum = StokesVector::Zero();
                     for (std::uint32_t s = 0; s < points; ++s) {
-                        SampleStream rng(seed, i, std::uint64_t{r} * points + s);  // bounces past kSobolBounces
+                        SampleStream rng(
+                            seed, i, std::uint64_t{r} * points + s);  // bounces past kSobolBounces
                         PathSampler sampler(replicate, s, rng);
                         const auto [du, dv] = sampler.subpixel();
                         const Vec3 d = camera.ray_direction(x + du, y + dv);
-                        sum += tracer.trace(camera.position(), d, camera_right, sampler, rays, shadows);
+                        sum += tracer.trace(camera.position(), d, camera_right, sampler, rays,
+                                            shadows);
                     }
                     pixel.add(sum / points);
                 }
@@ -424,7 +484,8 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                 // Auxiliary channels from the pixel-centre ray.
                 const Vec3 d = camera.ray_direction(x + 0.5, y + 0.5);
                 ++rays;
-                if (options.ray_recorder) options.ray_recorder->record(camera.position(), d, 1e30, false);
+                if (options.ray_recorder)
+                    options.ray_recorder->record(camera.position(), d, 1e30, false);
                 const auto hit = scene.tracer->intersect(camera.position(), d);
                 if (hit) {
                     Vec3 n = hit->shading_normal;
@@ -434,12 +495,15 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                     ch.nx[i] = static_cast<float>(n.x());
                     ch.ny[i] = static_cast<float>(n.y());
                     ch.nz[i] = static_cast<float>(n.z());
-                    ch.view_zenith[i] = static_cast<float>(rad_to_deg(std::acos(std::clamp(-n.dot(d), -1.0, 1.0))));
+                    ch.view_zenith[i] =
+                        static_cast<float>(rad_to_deg(std::acos(std::clamp(-n.dot(d), -1.0, 1.0))));
                     ch.object_id[i] = static_cast<float>(hit->object);
                     ch.material_id[i] = static_cast<float>(obj.material);
-                    ch.temperature[i] = static_cast<float>(obj.temperature.at(*hit, scene.tracer->mesh(hit->object)));
+                    ch.temperature[i] = static_cast<float>(
+                        obj.temperature.at(*hit, scene.tracer->mesh(hit->object)));
                 } else {
-                    for (auto* c : {&ch.depth, &ch.nx, &ch.ny, &ch.nz, &ch.view_zenith, &ch.temperature})
+                    for (auto* c :
+                         {&ch.depth, &ch.nx, &ch.ny, &ch.nz, &ch.view_zenith, &ch.temperature})
                         (*c)[i] = static_cast<float>(kNaN);
                     ch.object_id[i] = ch.material_id[i] = -1.0f;
                 }
@@ -452,9 +516,10 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     };
 
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
-        });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tile_count, 1),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              for (std::size_t t = r.begin(); t != r.end(); ++t) render_tile(t);
+                          });
     });
     if (options.cancel && options.cancel->load()) throw Cancelled("render cancelled");
     if (progress) progress->finish();
@@ -464,16 +529,18 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     attrs["band_um"] = std::vector<double>{scene.band.lo_um(), scene.band.hi_um()};
     attrs["band_rsr"] = std::string(scene.band.rsr() ? "yes" : "none");
     attrs["spp"] = spp;
-    // Degrees of freedom of the S*_var channels (R − 1 for R i.i.d. replicates), so that a comparison
-    // can allow for the Student-t tails of a ratio with an estimated variance.
+    // Degrees of freedom of the S*_var channels (R − 1 for R i.i.d. replicates), so that a
+    // comparison can allow for the Student-t tails of a ratio with an estimated variance.
     attrs["variance_dof"] = replicates - 1;
     attrs["replicates"] = replicates;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
-    attrs["estimator"] = std::string(estimator_name(control_variate ? Estimator::control_variate : Estimator::plain));
+    attrs["estimator"] = std::string(
+        estimator_name(control_variate ? Estimator::control_variate : Estimator::plain));
     attrs["scene_file"] = scene.file.string();
     attrs["stokes_frame"] = std::string(
-        "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image top; S1 = I0 - I90; "
+        "camera: 0 deg = camera right projected onto each ray wavefront, 90 deg toward the image "
+        "top; S1 = I0 - I90; "
         "S3 > 0 right-circular seen by the receiver");
     attrs["renderer"] = std::string("tirpol polarized path tracer (Embree 3, TBB)");
     // The lens rendered through (OpenCV pixel convention), so a comparison can check that it is the
@@ -484,10 +551,12 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
 
     if (statistics) {
         *statistics = stats;
-        statistics->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        statistics->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         statistics->setup_seconds = setup_seconds;
         statistics->trace_cpu_seconds = static_cast<double>(trace_cpu_ns.load()) * 1e-9;
-        statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * static_cast<std::uint64_t>(spp);
+        statistics->camera_rays = static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) *
+                                  static_cast<std::uint64_t>(spp);
         statistics->scene_rays = scene_rays.load();
         statistics->shadow_rays = shadow_rays.load();
     }

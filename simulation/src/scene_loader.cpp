@@ -10,8 +10,8 @@
 #include "tirpol/core/limits.h"
 #include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/temperature_value.h"
 #include "tirpol/simulation/scene_thermal.h"
+#include "tirpol/simulation/temperature_value.h"
 
 namespace tirpol::simulation {
 
@@ -28,7 +28,8 @@ Transform transform_of(const std::optional<ConfigNode>& node) {
     if (!node) return t;
     node->check_keys({"translate", "rotate_deg", "scale"});
     if (auto n = node->find("translate")) t.translate = vec3_of(*n);
-    if (auto n = node->find("rotate_deg")) t.rotation = Transform::rotation_from_euler_deg(vec3_of(*n));
+    if (auto n = node->find("rotate_deg"))
+        t.rotation = Transform::rotation_from_euler_deg(vec3_of(*n));
     if (auto n = node->find("scale")) {
         t.scale = n->is_sequence() ? vec3_of(*n) : Vec3::Constant(n->as<double>());
         if (t.scale.cwiseAbs().minCoeff() <= 0.0) n->fail("scale factors must be non-zero");
@@ -38,18 +39,21 @@ Transform transform_of(const std::optional<ConfigNode>& node) {
 
 int segments_of(const ConfigNode& g) {
     const double s = g.get_or("segments", 96.0);
-    if (s < 3 || s > 100000 || s != std::floor(s)) g.at("segments").fail("expected an integer number of segments ≥ 3");
+    if (s < 3 || s > 100000 || s != std::floor(s))
+        g.at("segments").fail("expected an integer number of segments ≥ 3");
     return static_cast<int>(s);
 }
 
 /// Adds the object's geometry to the tracer; returns true if it is an analytic sphere. The vertex
 /// positions before the transform go to `object_positions` (per-vertex data files refer to them).
-bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, std::vector<Vec3>& object_positions) {
+bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer,
+                  std::vector<Vec3>& object_positions) {
     const std::string type = g.get<std::string>("type");
     TriangleMesh mesh;
     if (type == "sphere") {
         g.check_keys({"type", "radius"});
-        if (!t.uniform_scale()) g.fail("a sphere needs a uniform scale (use a mesh for ellipsoids)");
+        if (!t.uniform_scale())
+            g.fail("a sphere needs a uniform scale (use a mesh for ellipsoids)");
         tracer.add_sphere(t.translate, g.get_in_range("radius", 1e-9, 1e9) * std::abs(t.scale.x()));
         return true;
     }
@@ -57,7 +61,8 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, st
         g.check_keys({"type", "file"});
         const ConfigNode file = g.at("file");
         const auto path = g.resolve_path(file.as<std::string>());
-        if (!std::filesystem::is_regular_file(path)) file.fail("mesh file not found: " + path.string());
+        if (!std::filesystem::is_regular_file(path))
+            file.fail("mesh file not found: " + path.string());
         mesh = load_mesh_file(path);
     } else if (type == "box") {
         g.check_keys({"type", "size"});
@@ -67,17 +72,20 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, st
     } else if (type == "plane") {
         g.check_keys({"type", "size"});
         const auto s = g.get<std::vector<double>>("size");
-        if (s.size() != 2 || s[0] <= 0.0 || s[1] <= 0.0) g.at("size").fail("expected [size_x, size_y], positive");
+        if (s.size() != 2 || s[0] <= 0.0 || s[1] <= 0.0)
+            g.at("size").fail("expected [size_x, size_y], positive");
         mesh = make_plane(s[0], s[1]);
     } else if (type == "disk") {
         g.check_keys({"type", "radius", "segments"});
         mesh = make_disk(g.get_in_range("radius", 1e-9, 1e9), segments_of(g));
     } else if (type == "cylinder") {
         g.check_keys({"type", "radius", "height", "segments", "caps"});
-        mesh = make_cylinder(g.get_in_range("radius", 1e-9, 1e9), g.get_in_range("height", 1e-9, 1e9), segments_of(g),
-                             g.get_or("caps", true));
+        mesh =
+            make_cylinder(g.get_in_range("radius", 1e-9, 1e9), g.get_in_range("height", 1e-9, 1e9),
+                          segments_of(g), g.get_or("caps", true));
     } else {
-        g.at("type").fail("unknown geometry type \"" + type + "\" (expected mesh, sphere, box, plane, disk or cylinder)");
+        g.at("type").fail("unknown geometry type \"" + type +
+                          "\" (expected mesh, sphere, box, plane, disk or cylinder)");
     }
     object_positions = mesh.positions;
     transform_mesh(mesh, t);
@@ -85,7 +93,9 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer, st
     return false;
 }
 
-bool in_temperature_range(double t_k) { return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK; }
+bool in_temperature_range(double t_k) {
+    return t_k >= limits::kMinTemperatureK && t_k <= limits::kMaxTemperatureK;
+}
 
 /// Per-vertex temperatures from a CSV of points (x, y, z in the mesh file's units, temperature_k):
 /// each vertex takes the value of the point at its position, so the file does not depend on how a
@@ -98,14 +108,16 @@ std::vector<double> vertex_temperatures(const ConfigNode& node, const std::files
     const double cell = 1e-6 * std::max(extent, 1.0);
     using Key = std::tuple<long long, long long, long long>;
     const auto key = [&](const Vec3& p) {
-        return Key{std::llround(p.x() / cell), std::llround(p.y() / cell), std::llround(p.z() / cell)};
+        return Key{std::llround(p.x() / cell), std::llround(p.y() / cell),
+                   std::llround(p.z() / cell)};
     };
     std::map<Key, double> points;
     for (std::size_t i = 0; i < cols[0].size(); ++i) {
         if (!in_temperature_range(cols[3][i]))
-            node.fail(fmt::format("{}: row {}: temperature {} K is outside the physical range [{}, {}] K",
-                                  path.string(), i + 1, cols[3][i], limits::kMinTemperatureK,
-                                  limits::kMaxTemperatureK));
+            node.fail(
+                fmt::format("{}: row {}: temperature {} K is outside the physical range [{}, {}] K",
+                            path.string(), i + 1, cols[3][i], limits::kMinTemperatureK,
+                            limits::kMaxTemperatureK));
         points[key(Vec3(cols[0][i], cols[1][i], cols[2][i]))] = cols[3][i];
     }
     std::vector<double> out;
@@ -115,40 +127,58 @@ std::vector<double> vertex_temperatures(const ConfigNode& node, const std::files
         for (long long dx = -1; dx <= 1 && !found; ++dx)
             for (long long dy = -1; dy <= 1 && !found; ++dy)
                 for (long long dz = -1; dz <= 1 && !found; ++dz)
-                    if (auto it = points.find(Key{kx + dx, ky + dy, kz + dz}); it != points.end()) found = it->second;
+                    if (auto it = points.find(Key{kx + dx, ky + dy, kz + dz}); it != points.end())
+                        found = it->second;
         if (!found)
-            node.fail(fmt::format("{} has no temperature for mesh vertex {} at ({}, {}, {})", path.string(), v,
-                                  positions[v].x(), positions[v].y(), positions[v].z()));
+            node.fail(fmt::format("{} has no temperature for mesh vertex {} at ({}, {}, {})",
+                                  path.string(), v, positions[v].x(), positions[v].y(),
+                                  positions[v].z()));
         out.push_back(*found);
     }
     return out;
 }
 
-TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const std::vector<Vec3>& object_positions,
-                                bool has_weather) {
+TemperatureField temperature_of(const ConfigNode& node, bool is_sphere,
+                                const std::vector<Vec3>& object_positions, bool has_weather) {
     if (is_predicted_temperature(node)) {
-        if (!has_weather) node.fail("\"predicted\" temperatures need the thermal solver's inputs: a `weather` entry and a `time` in the scene");
-        return TemperatureField::constant(0.0);  // filled in by apply_scene_thermal once the geometry exists
+        if (!has_weather)
+            node.fail(
+                "\"predicted\" temperatures need the thermal solver's inputs: a `weather` entry "
+                "and a `time` in the scene");
+        return TemperatureField::constant(
+            0.0);  // filled in by apply_scene_thermal once the geometry exists
     }
     if (node.is_scalar()) return TemperatureField::constant(temperature_k_from_config(node));
-    if (!node.is_map()) node.fail("expected a temperature value, {vertex_csv: FILE} or {texture: FILE.exr, channel: NAME}");
+    if (!node.is_map())
+        node.fail(
+            "expected a temperature value, {vertex_csv: FILE} or {texture: FILE.exr, channel: "
+            "NAME}");
     node.check_keys({"vertex_csv", "texture", "channel"});
-    if (node.has("vertex_csv") == node.has("texture")) node.fail("give exactly one of vertex_csv or texture");
+    if (node.has("vertex_csv") == node.has("texture"))
+        node.fail("give exactly one of vertex_csv or texture");
     if (node.has("vertex_csv")) {
-        if (is_sphere) node.fail("per-vertex temperatures need a triangle mesh (an analytic sphere has no vertices)");
+        if (is_sphere)
+            node.fail(
+                "per-vertex temperatures need a triangle mesh (an analytic sphere has no "
+                "vertices)");
         const auto path = node.resolve_path(node.get<std::string>("vertex_csv"));
-        if (!std::filesystem::is_regular_file(path)) node.at("vertex_csv").fail("file not found: " + path.string());
-        return TemperatureField::per_vertex(vertex_temperatures(node.at("vertex_csv"), path, object_positions));
+        if (!std::filesystem::is_regular_file(path))
+            node.at("vertex_csv").fail("file not found: " + path.string());
+        return TemperatureField::per_vertex(
+            vertex_temperatures(node.at("vertex_csv"), path, object_positions));
     }
     const auto path = node.resolve_path(node.get<std::string>("texture"));
-    if (!std::filesystem::is_regular_file(path)) node.at("texture").fail("file not found: " + path.string());
+    if (!std::filesystem::is_regular_file(path))
+        node.at("texture").fail("file not found: " + path.string());
     const Image map = read_exr(path);
     const std::string channel = node.get_or<std::string>("channel", "temperature_k");
-    if (!map.has_channel(channel)) node.fail(fmt::format("{} has no channel '{}'", path.string(), channel));
+    if (!map.has_channel(channel))
+        node.fail(fmt::format("{} has no channel '{}'", path.string(), channel));
     for (float v : map.channel(channel))
         if (!in_temperature_range(v))
-            node.at("texture").fail(fmt::format("{}: temperature {} K is outside the physical range [{}, {}] K",
-                                                path.string(), v, limits::kMinTemperatureK, limits::kMaxTemperatureK));
+            node.at("texture").fail(
+                fmt::format("{}: temperature {} K is outside the physical range [{}, {}] K",
+                            path.string(), v, limits::kMinTemperatureK, limits::kMaxTemperatureK));
     return TemperatureField::texture(map.channel(channel), map.width(), map.height());
 }
 
@@ -156,8 +186,9 @@ TemperatureField temperature_of(const ConfigNode& node, bool is_sphere, const st
 
 std::string max_bounces_problem(int max_bounces) {
     if (max_bounces >= 0 && max_bounces <= kMaxBouncesLimit) return {};
-    return fmt::format("expected 0–{} reflections (a safety cap: paths end by Russian roulette), got {}",
-                       kMaxBouncesLimit, max_bounces);
+    return fmt::format(
+        "expected 0–{} reflections (a safety cap: paths end by Russian roulette), got {}",
+        kMaxBouncesLimit, max_bounces);
 }
 
 std::string_view estimator_name(Estimator estimator) {
@@ -187,7 +218,8 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     node->check_keys({"spp", "max_bounces", "seed", "estimator", "replicates"});
     s.samples_per_pixel = node->get_or("spp", s.samples_per_pixel);
     if (s.samples_per_pixel < 1 || s.samples_per_pixel > limits::kMaxSamplesPerPixel)
-        node->at("spp").fail(fmt::format("expected 1 to {} samples per pixel (limits.h)", limits::kMaxSamplesPerPixel));
+        node->at("spp").fail(fmt::format("expected 1 to {} samples per pixel (limits.h)",
+                                         limits::kMaxSamplesPerPixel));
     s.max_bounces = node->get_or("max_bounces", s.max_bounces);
     if (const std::string problem = max_bounces_problem(s.max_bounces); !problem.empty())
         node->at("max_bounces").fail(problem);
@@ -197,15 +229,18 @@ SamplingSettings sampling_of(const std::optional<ConfigNode>& node) {
     if (node->has("estimator")) {
         const auto name = node->at("estimator").as<std::string>();
         const auto estimator = estimator_from_name(name);
-        if (!estimator) node->at("estimator").fail(fmt::format("expected plain or control-variate, got '{}'", name));
+        if (!estimator)
+            node->at("estimator")
+                .fail(fmt::format("expected plain or control-variate, got '{}'", name));
         s.estimator = *estimator;
     }
     s.replicates = node->get_or("replicates", s.replicates);
     if (s.replicates < 1 || s.replicates > kMaxReplicates)
         node->at("replicates")
-            .fail(fmt::format("expected 1–{} independent replicates per pixel (their spread is the variance "
-                              "estimate, with replicates − 1 degrees of freedom; 1: no variance), got {}",
-                              kMaxReplicates, s.replicates));
+            .fail(fmt::format(
+                "expected 1–{} independent replicates per pixel (their spread is the variance "
+                "estimate, with replicates − 1 degrees of freedom; 1: no variance), got {}",
+                kMaxReplicates, s.replicates));
     return s;
 }
 
@@ -217,7 +252,8 @@ Band band_of(const ConfigNode& node) {
     std::optional<SpectralResponse> rsr;
     if (auto r = node.find("rsr")) {
         const auto path = r->resolve_path(r->as<std::string>());
-        if (!std::filesystem::is_regular_file(path)) r->fail("RSR file not found: " + path.string());
+        if (!std::filesystem::is_regular_file(path))
+            r->fail("RSR file not found: " + path.string());
         rsr = SpectralResponse::load_csv(path);
     }
     return Band(lo, hi, rsr);
@@ -225,24 +261,29 @@ Band band_of(const ConfigNode& node) {
 
 }  // namespace
 
-Scene load_scene(const std::filesystem::path& path) { return load_scene(ConfigNode::load_file(path)); }
+Scene load_scene(const std::filesystem::path& path) {
+    return load_scene(ConfigNode::load_file(path));
+}
 
 Scene load_scene(const ConfigNode& root) {
-    std::vector<std::string> keys = {"band", "sampling", "camera", "sky", "sun", "materials_dir", "objects"};
+    std::vector<std::string> keys = {"band", "sampling",      "camera", "sky",
+                                     "sun",  "materials_dir", "objects"};
     keys.insert(keys.end(), std::begin(kThermalSceneKeys), std::end(kThermalSceneKeys));
     root.check_keys(keys);
     const bool has_weather = root.has("weather");
     Band band = band_of(root.at("band"));
     Camera camera = Camera::from_config(root.at("camera"));
     // With a `weather` entry and no `sky`, apply_scene_thermal sets the sky from the weather.
-    Sky sky = has_weather && !root.has("sky") ? Sky::uniform(1.0) : Sky::from_config(root.at("sky"), band);
+    Sky sky = has_weather && !root.has("sky") ? Sky::uniform(1.0)
+                                              : Sky::from_config(root.at("sky"), band);
     std::optional<Sun> sun;
     if (auto s = root.find("sun")) sun = Sun::from_config(*s, band);
 
     std::filesystem::path materials_dir = root.resolve_path("../materials");
     if (auto d = root.find("materials_dir")) {
         materials_dir = d->resolve_path(d->as<std::string>());
-        if (!std::filesystem::is_directory(materials_dir)) d->fail("materials directory not found: " + materials_dir.string());
+        if (!std::filesystem::is_directory(materials_dir))
+            d->fail("materials directory not found: " + materials_dir.string());
     }
     detail::MaterialResolver resolver(materials_dir);
 
@@ -257,14 +298,23 @@ Scene load_scene(const ConfigNode& root) {
         SceneObject obj;
         obj.name = o.get_or<std::string>("name", fmt::format("object{}", objects.size()));
         std::vector<Vec3> object_positions;
-        const bool is_sphere = add_geometry(o.at("geometry"), transform_of(o.find("transform")), *tracer, object_positions);
+        const bool is_sphere = add_geometry(o.at("geometry"), transform_of(o.find("transform")),
+                                            *tracer, object_positions);
         obj.material = resolver.resolve(o.at("material"), materials);
-        obj.temperature = temperature_of(o.at("temperature"), is_sphere, object_positions, has_weather);
+        obj.temperature =
+            temperature_of(o.at("temperature"), is_sphere, object_positions, has_weather);
         objects.push_back(std::move(obj));
     }
     tracer->commit();
-    Scene scene{std::filesystem::absolute(root.file()), camera, band, sky, sun, sampling_of(root.find("sampling")),
-                std::move(materials), std::move(objects), std::move(tracer)};
+    Scene scene{std::filesystem::absolute(root.file()),
+                camera,
+                band,
+                sky,
+                sun,
+                sampling_of(root.find("sampling")),
+                std::move(materials),
+                std::move(objects),
+                std::move(tracer)};
     if (has_weather) apply_scene_thermal(root, scene);
     return scene;
 }

@@ -31,13 +31,15 @@ thermal::Facet facet_of(const Vec3& n) {
 }
 
 // Shadow of the direct sun at a surface point, by the scene's ray tracer (1 shadowed, 0 lit).
-thermal::ShadowFunction shadow_at(const RayTracer& tracer, const Vec3& position, const Vec3& normal) {
+thermal::ShadowFunction shadow_at(const RayTracer& tracer, const Vec3& position,
+                                  const Vec3& normal) {
     return [&tracer, p = Vec3(position + 1e-4 * normal)](double, const Vec3& sun) {
         return tracer.occluded(p, sun, 1e-6, 1e30) ? 1.0 : 0.0;
     };
 }
 
-const ThermalMaterial& thermal_material_for(const ConfigNode& node, const std::string& scene_material,
+const ThermalMaterial& thermal_material_for(const ConfigNode& node,
+                                            const std::string& scene_material,
                                             const std::vector<ThermalMaterial>& materials) {
     const std::string name = node.is_scalar() ? scene_material : node.get<std::string>("predicted");
     for (const auto& m : materials)
@@ -45,7 +47,8 @@ const ThermalMaterial& thermal_material_for(const ConfigNode& node, const std::s
     std::vector<std::string> names;
     for (const auto& m : materials) names.push_back(m.name);
     const std::string hint = closest_match(name, names);
-    node.fail("no thermal material '" + name + "' in `thermal_materials`" + (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
+    node.fail("no thermal material '" + name + "' in `thermal_materials`" +
+              (hint.empty() ? "" : "; did you mean '" + hint + "'?"));
 }
 
 struct Inputs {
@@ -61,13 +64,15 @@ Inputs inputs_of(const ConfigNode& root) {
     if (auto n = root.find("site")) site = thermal::parse_site(*n);
     in.weather = thermal::load_weather(root.at("weather"), site);
     try {
-        in.time_s = thermal::parse_time(root.get<std::string>("time"), in.weather->site().utc_offset_h, "time");
+        in.time_s = thermal::parse_time(root.get<std::string>("time"),
+                                        in.weather->site().utc_offset_h, "time");
     } catch (const Error& e) {
         root.at("time").fail(e.what());
     }
     if (auto n = root.find("thermal")) in.options = thermal::parse_thermal_options(*n);
     if (auto n = root.find("thermal_materials"))
-        for (const auto& m : n->elements()) in.materials.push_back(thermal::parse_thermal_material(m));
+        for (const auto& m : n->elements())
+            in.materials.push_back(thermal::parse_thermal_material(m));
     return in;
 }
 
@@ -83,7 +88,8 @@ Transform transform_of(const ConfigNode& object) {
     };
     if (auto n = node->find("translate")) t.translate = vec(*n);
     if (auto n = node->find("rotate_deg")) t.rotation = Transform::rotation_from_euler_deg(vec(*n));
-    if (auto n = node->find("scale")) t.scale = n->is_sequence() ? vec(*n) : Vec3::Constant(n->as<double>());
+    if (auto n = node->find("scale"))
+        t.scale = n->is_sequence() ? vec(*n) : Vec3::Constant(n->as<double>());
     return t;
 }
 
@@ -133,7 +139,8 @@ void apply_scene_thermal(const ConfigNode& root, Scene& scene) {
     }
 }
 
-std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& root, const Scene& scene) {
+std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& root,
+                                                              const Scene& scene) {
     const Inputs in = inputs_of(root);
     std::vector<PredictedTemperatures> out;
     const auto objects = root.at("objects").elements();
@@ -141,19 +148,23 @@ std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& 
         const ConfigNode node = objects[i].at("temperature");
         if (!is_predicted_temperature(node)) continue;
         const SceneObject& obj = scene.objects[i];
-        const ThermalMaterial& material = thermal_material_for(node, scene.materials[obj.material].name, in.materials);
+        const ThermalMaterial& material =
+            thermal_material_for(node, scene.materials[obj.material].name, in.materials);
         const TriangleMesh& mesh = scene.tracer->mesh(static_cast<std::uint32_t>(i));
         std::vector<FacetRequest> requests;
         PredictedTemperatures p;
         p.object = i;
         if (!mesh.positions.empty()) {
             for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-                requests.push_back({&material, facet_of(mesh.normals[v]), shadow_at(*scene.tracer, mesh.positions[v], mesh.normals[v])});
-            p.vertex_k = thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
+                requests.push_back({&material, facet_of(mesh.normals[v]),
+                                    shadow_at(*scene.tracer, mesh.positions[v], mesh.normals[v])});
+            p.vertex_k =
+                thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
             out.push_back(std::move(p));
             continue;
         }
-        // Analytic sphere: centre and radius as the scene loader placed it (translate, uniform scale).
+        // Analytic sphere: centre and radius as the scene loader placed it (translate, uniform
+        // scale).
         const ConfigNode o = objects[i];
         const Transform t = transform_of(o);
         const Vec3 centre = t.translate;
@@ -164,11 +175,14 @@ std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& 
             for (int col = 0; col < kSphereMapWidth; ++col) {
                 const double u = (col + 0.5) / kSphereMapWidth, v = (row + 0.5) / kSphereMapHeight;
                 const double phi = 2.0 * kPi * (u - 0.5), theta = kPi * v;
-                const Vec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-                requests.push_back({&material, facet_of(n), shadow_at(*scene.tracer, centre + radius * n, n)});
+                const Vec3 n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                             std::cos(theta));
+                requests.push_back(
+                    {&material, facet_of(n), shadow_at(*scene.tracer, centre + radius * n, n)});
             }
         }
-        const auto temps = thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
+        const auto temps =
+            thermal::predict_surface_temperatures(*in.weather, requests, in.time_s, in.options);
         p.map_k.assign(temps.begin(), temps.end());
         p.width = kSphereMapWidth;
         p.height = kSphereMapHeight;
@@ -177,7 +191,8 @@ std::vector<PredictedTemperatures> predict_scene_temperatures(const ConfigNode& 
     return out;
 }
 
-std::vector<std::filesystem::path> export_scene_temperatures(const ConfigNode& root, const Scene& scene,
+std::vector<std::filesystem::path> export_scene_temperatures(const ConfigNode& root,
+                                                             const Scene& scene,
                                                              const std::filesystem::path& dir) {
     std::vector<std::filesystem::path> written;
     const auto objects = root.at("objects").elements();
@@ -197,8 +212,10 @@ std::vector<std::filesystem::path> export_scene_temperatures(const ConfigNode& r
         const TriangleMesh& mesh = scene.tracer->mesh(static_cast<std::uint32_t>(p.object));
         std::string csv = "x,y,z,temperature_k\n";
         for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-            const Vec3 local = (t.rotation.transpose() * (mesh.positions[v] - t.translate)).cwiseQuotient(t.scale);
-            csv += fmt::format("{:.9g},{:.9g},{:.9g},{:.6f}\n", local.x(), local.y(), local.z(), p.vertex_k[v]);
+            const Vec3 local =
+                (t.rotation.transpose() * (mesh.positions[v] - t.translate)).cwiseQuotient(t.scale);
+            csv += fmt::format("{:.9g},{:.9g},{:.9g},{:.6f}\n", local.x(), local.y(), local.z(),
+                               p.vertex_k[v]);
         }
         const auto path = dir / (name + ".csv");
         write_file_atomic(path, csv);

@@ -27,15 +27,18 @@ Sky Sky::clear_sky(double air_temperature_k, double zenith_emissivity) {
     return s;
 }
 
-Sky Sky::table(std::vector<double> zenith_deg, std::vector<double> band_radiance, const Band& band) {
+Sky Sky::table(std::vector<double> zenith_deg, std::vector<double> band_radiance,
+               const Band& band) {
     if (zenith_deg.size() != band_radiance.size() || zenith_deg.empty())
         fail("sky table: need matching, non-empty zenith and radiance columns");
     Sky s;
     s.m_kind = Kind::Table;
     for (std::size_t i = 0; i < zenith_deg.size(); ++i) {
         if (i > 0 && !(zenith_deg[i] > zenith_deg[i - 1]))
-            fail("sky table: zenith_deg must increase strictly (row {}: {} after {})", i + 1, zenith_deg[i], zenith_deg[i - 1]);
-        if (!(band_radiance[i] > 0.0)) fail("sky table: radiance must be positive (row {}: {})", i + 1, band_radiance[i]);
+            fail("sky table: zenith_deg must increase strictly (row {}: {} after {})", i + 1,
+                 zenith_deg[i], zenith_deg[i - 1]);
+        if (!(band_radiance[i] > 0.0))
+            fail("sky table: radiance must be positive (row {}: {})", i + 1, band_radiance[i]);
         s.m_brightness_k.push_back(band.brightness_temperature(band_radiance[i]));
     }
     s.m_zenith_deg = std::move(zenith_deg);
@@ -47,8 +50,11 @@ Sky Sky::from_config(const ConfigNode& node, const Band& band) {
     if (type == "uniform") {
         node.check_keys({"type", "temperature", "radiance"});
         if (node.has("temperature") == node.has("radiance"))
-            node.fail("uniform sky: give exactly one of temperature (K or \"°C\") or radiance (band, W/(m²·sr))");
-        if (node.has("temperature")) return uniform(temperature_k_from_config(node.at("temperature")));
+            node.fail(
+                "uniform sky: give exactly one of temperature (K or \"°C\") or radiance (band, "
+                "W/(m²·sr))");
+        if (node.has("temperature"))
+            return uniform(temperature_k_from_config(node.at("temperature")));
         const double l = node.get_in_range("radiance", 1e-12, 1e9);
         return uniform(band.brightness_temperature(l));
     }
@@ -60,11 +66,13 @@ Sky Sky::from_config(const ConfigNode& node, const Band& band) {
     if (type == "table") {
         node.check_keys({"type", "file"});
         const auto path = node.resolve_path(node.get<std::string>("file"));
-        if (!std::filesystem::exists(path)) node.at("file").fail("sky table file not found: " + path.string());
+        if (!std::filesystem::exists(path))
+            node.at("file").fail("sky table file not found: " + path.string());
         auto cols = read_csv_columns(path, {"zenith_deg", "radiance_w_m2_sr"});
         return table(std::move(cols[0]), std::move(cols[1]), band);
     }
-    node.at("type").fail("unknown sky type \"" + type + "\" (expected uniform, clear_sky or table)");
+    node.at("type").fail("unknown sky type \"" + type +
+                         "\" (expected uniform, clear_sky or table)");
 }
 
 double Sky::emissivity(double cos_zenith) const {
@@ -102,28 +110,34 @@ double Sky::AtWavelength::spectral_radiance(const Vec3& direction) const {
 }
 
 Sun Sun::from_config(const ConfigNode& node, const Band& band) {
-    node.check_keys({"elevation_deg", "azimuth_deg", "direction", "temperature", "radiance", "solid_angle_sr",
-                     "transmittance"});
+    node.check_keys({"elevation_deg", "azimuth_deg", "direction", "temperature", "radiance",
+                     "solid_angle_sr", "transmittance"});
     Sun sun;
     if (node.has("direction") == node.has("elevation_deg"))
         node.fail("sun: give exactly one of direction [x, y, z] or elevation_deg + azimuth_deg");
     if (node.has("direction")) {
         const ConfigNode d = node.at("direction");
         const auto v = d.as<std::vector<double>>();
-        if (v.size() != 3 || Vec3(v[0], v[1], v[2]).norm() == 0.0) d.fail("expected a non-zero vector [x, y, z] toward the sun");
+        if (v.size() != 3 || Vec3(v[0], v[1], v[2]).norm() == 0.0)
+            d.fail("expected a non-zero vector [x, y, z] toward the sun");
         sun.direction = Vec3(v[0], v[1], v[2]).normalized();
     } else {
         const double el = deg_to_rad(node.get_in_range("elevation_deg", -90.0, 90.0));
         const double az = deg_to_rad(node.get_in_range("azimuth_deg", -360.0, 360.0));
-        sun.direction = Vec3(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
+        sun.direction =
+            Vec3(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
     }
-    sun.solid_angle_sr = node.has("solid_angle_sr") ? node.get_in_range("solid_angle_sr", 1e-9, 0.1) : sun.solid_angle_sr;
+    sun.solid_angle_sr = node.has("solid_angle_sr") ? node.get_in_range("solid_angle_sr", 1e-9, 0.1)
+                                                    : sun.solid_angle_sr;
     if (node.has("temperature") && node.has("radiance"))
         node.fail("sun: give temperature (+ transmittance) or a band radiance, not both");
-    if (node.has("temperature")) sun.temperature_k = temperature_k_from_config(node.at("temperature"));
-    sun.transmittance = node.has("transmittance") ? node.get_in_range("transmittance", 0.0, 1.0) : 1.0;
+    if (node.has("temperature"))
+        sun.temperature_k = temperature_k_from_config(node.at("temperature"));
+    sun.transmittance =
+        node.has("transmittance") ? node.get_in_range("transmittance", 0.0, 1.0) : 1.0;
     if (node.has("radiance")) {
-        if (node.has("transmittance")) node.at("transmittance").fail("transmittance only goes with temperature");
+        if (node.has("transmittance"))
+            node.at("transmittance").fail("transmittance only goes with temperature");
         sun.temperature_k = band.brightness_temperature(node.get_in_range("radiance", 1e-12, 1e12));
     }
     return sun;

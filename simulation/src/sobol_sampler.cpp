@@ -13,8 +13,9 @@ std::uint32_t reverse_bits(std::uint32_t x) {
 }
 
 /// Burley's Laine–Karras-style hash on a bit-reversed fraction: bit j of the result is bit j of x
-/// flipped by a function of the seed and bits below j (adding, and x ^= x·c with c even, never carry
-/// information downward). Bits below j of the reversed value are the digits above j's of the fraction.
+/// flipped by a function of the seed and bits below j (adding, and x ^= x·c with c even, never
+/// carry information downward). Bits below j of the reversed value are the digits above j's of the
+/// fraction.
 std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t seed) {
     x += seed;
     x ^= x * 0x6c50b47cu;
@@ -32,7 +33,8 @@ std::array<std::uint32_t, 2> sobol_02_point(std::uint32_t index) {
     // Second coordinate: generator matrix = upper-triangular Pascal matrix mod 2, whose columns are
     // 1/2, 3/4, 5/8, 15/16, 17/32, … (each is the previous XOR itself shifted right by one).
     std::uint32_t second = 0;
-    for (std::uint32_t rest = index, column = 0x80000000u; rest != 0; rest >>= 1, column ^= column >> 1)
+    for (std::uint32_t rest = index, column = 0x80000000u; rest != 0;
+         rest >>= 1, column ^= column >> 1)
         if ((rest & 1u) != 0) second ^= column;
     return {reverse_bits(index), second};
 }
@@ -43,7 +45,8 @@ std::uint32_t owen_scramble(std::uint32_t fraction, std::uint32_t seed) {
 
 std::uint32_t permutation_element(std::uint32_t index, std::uint32_t n, std::uint64_t key) {
     if (n <= 1) return 0;
-    std::uint32_t mask = n - 1;  // all ones up to n − 1's highest bit: the bijection works on [0, mask]
+    std::uint32_t mask =
+        n - 1;  // all ones up to n − 1's highest bit: the bijection works on [0, mask]
     mask |= mask >> 1;
     mask |= mask >> 2;
     mask |= mask >> 4;
@@ -52,9 +55,10 @@ std::uint32_t permutation_element(std::uint32_t index, std::uint32_t n, std::uin
     const int bits = 32 - __builtin_clz(mask);
     const int half = (bits + 1) / 2;
     const auto k0 = static_cast<std::uint32_t>(key), k1 = static_cast<std::uint32_t>(key >> 32);
-    // Each step is a bijection of [0, mask]: XOR or add a key, multiply by an odd constant (mod 2^bits),
-    // XOR with itself shifted right. Repeating it until the value falls in [0, n) (cycle walking) gives a
-    // bijection of [0, n); fewer than two rounds are needed on average since n > mask / 2.
+    // Each step is a bijection of [0, mask]: XOR or add a key, multiply by an odd constant (mod
+    // 2^bits), XOR with itself shifted right. Repeating it until the value falls in [0, n) (cycle
+    // walking) gives a bijection of [0, n); fewer than two rounds are needed on average since n >
+    // mask / 2.
     std::uint32_t i = index;
     do {
         i ^= k0 & mask;
@@ -71,27 +75,34 @@ std::uint32_t permutation_element(std::uint32_t index, std::uint32_t n, std::uin
     return i;
 }
 
-ReplicateSampler::ReplicateSampler(std::uint64_t seed, std::uint64_t pixel, std::uint32_t replicate, std::uint32_t points)
-    : m_key(mix64(mix64(mix64(seed ^ 0x5EEDC0DE50B01ULL) ^ pixel) ^ (replicate * 0x9FB21C651E98DF25ULL))),
+ReplicateSampler::ReplicateSampler(std::uint64_t seed, std::uint64_t pixel, std::uint32_t replicate,
+                                   std::uint32_t points)
+    : m_key(mix64(mix64(mix64(seed ^ 0x5EEDC0DE50B01ULL) ^ pixel) ^
+                  (replicate * 0x9FB21C651E98DF25ULL))),
       m_points(points) {}
 
-std::uint64_t ReplicateSampler::slot_key(std::uint32_t slot) const { return mix64(m_key ^ (slot * 0xD1B54A32D192ED03ULL)); }
+std::uint64_t ReplicateSampler::slot_key(std::uint32_t slot) const {
+    return mix64(m_key ^ (slot * 0xD1B54A32D192ED03ULL));
+}
 
 std::array<double, 2> ReplicateSampler::pair(std::uint32_t index, std::uint32_t slot) const {
     const std::uint64_t key = slot_key(slot);
     const std::uint64_t scramble = mix64(key);
     const std::uint32_t j = permutation_element(index, m_points, key);
-    // van der Corput's radical inverse is the bit reversal of j: scrambling it in the reversed domain
-    // needs no reversal of the input.
-    const std::uint32_t x = reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(scramble)));
-    const std::uint32_t y = owen_scramble(sobol_02_point(j)[1], static_cast<std::uint32_t>(scramble >> 32));
+    // van der Corput's radical inverse is the bit reversal of j: scrambling it in the reversed
+    // domain needs no reversal of the input.
+    const std::uint32_t x =
+        reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(scramble)));
+    const std::uint32_t y =
+        owen_scramble(sobol_02_point(j)[1], static_cast<std::uint32_t>(scramble >> 32));
     return {x * kTwoToMinus32, y * kTwoToMinus32};
 }
 
 double ReplicateSampler::single(std::uint32_t index, std::uint32_t slot) const {
     const std::uint64_t key = slot_key(slot);
     const std::uint32_t j = permutation_element(index, m_points, key);
-    return reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(mix64(key)))) * kTwoToMinus32;
+    return reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(mix64(key)))) *
+           kTwoToMinus32;
 }
 
 }  // namespace tirpol::simulation

@@ -1,6 +1,6 @@
 #pragma once
-// Orthonormal tangent basis around a normal (Duff et al., "Building an orthonormal basis, revisited",
-// JCGT 6(1), 2017): continuous except on one half-plane, no branches on a threshold.
+// Orthonormal tangent basis around a normal (Duff et al., "Building an orthonormal basis,
+// revisited", JCGT 6(1), 2017): continuous except on one half-plane, no branches on a threshold.
 
 #include <cmath>
 

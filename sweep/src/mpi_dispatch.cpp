@@ -14,7 +14,8 @@ namespace tirpol::sweep::detail {
 
 namespace {
 
-constexpr int kTagReport = 1;  // rank → 0: the record of the last point (empty at first), i.e. "next, please"
+constexpr int kTagReport =
+    1;  // rank → 0: the record of the last point (empty at first), i.e. "next, please"
 constexpr int kTagAssign = 2;  // 0 → rank: a point index, or −1 = no more points
 
 bool launched_by_mpi() {
@@ -66,9 +67,11 @@ int MpiSession::local_ranks() {
     return 1;
 }
 
-std::vector<PointRecord> dispatch_points(const MpiSession& mpi, const std::vector<std::size_t>& pending,
-                                         const std::vector<SweepPoint>& points, const SweepSpec& spec,
-                                         const PointJob& job, const std::function<void(const PointRecord&)>& on_done) {
+std::vector<PointRecord> dispatch_points(const MpiSession& mpi,
+                                         const std::vector<std::size_t>& pending,
+                                         const std::vector<SweepPoint>& points,
+                                         const SweepSpec& spec, const PointJob& job,
+                                         const std::function<void(const PointRecord&)>& on_done) {
     std::vector<PointRecord> records;
     if (!mpi.active() || mpi.size() == 1) {
         for (std::size_t index : pending) {
@@ -81,13 +84,19 @@ std::vector<PointRecord> dispatch_points(const MpiSession& mpi, const std::vecto
         std::string report;
         while (true) {
             const auto asked = std::chrono::steady_clock::now();
-            check(MPI_Send(report.data(), static_cast<int>(report.size()), MPI_CHAR, 0, kTagReport, MPI_COMM_WORLD),
+            check(MPI_Send(report.data(), static_cast<int>(report.size()), MPI_CHAR, 0, kTagReport,
+                           MPI_COMM_WORLD),
                   "MPI_Send");
             long long index = -1;
-            check(MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kTagAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+            check(MPI_Recv(&index, 1, MPI_LONG_LONG, 0, kTagAssign, MPI_COMM_WORLD,
+                           MPI_STATUS_IGNORE),
+                  "MPI_Recv");
             if (index < 0) return records;
-            const double wait = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
-            report = record_json(spec, worker_record(static_cast<std::size_t>(index), job, mpi.rank(), wait)).dump();
+            const double wait =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+            report = record_json(spec, worker_record(static_cast<std::size_t>(index), job,
+                                                     mpi.rank(), wait))
+                         .dump();
         }
     }
 
@@ -114,20 +123,21 @@ std::vector<PointRecord> dispatch_points(const MpiSession& mpi, const std::vecto
         MPI_Status status;
         check(MPI_Iprobe(MPI_ANY_SOURCE, kTagReport, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
         if (!flag) {
-            // Polling with a short sleep instead of a blocking receive: Open MPI's blocking calls spin
-            // and would take a core from rank 0's own rendering thread.
+            // Polling with a short sleep instead of a blocking receive: Open MPI's blocking calls
+            // spin and would take a core from rank 0's own rendering thread.
             std::this_thread::sleep_for(std::chrono::microseconds(200));
             continue;
         }
         int length = 0;
         MPI_Get_count(&status, MPI_CHAR, &length);
         buffer.resize(static_cast<std::size_t>(length));
-        check(
-            MPI_Recv(buffer.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagReport, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
-            "MPI_Recv");
+        check(MPI_Recv(buffer.data(), length, MPI_CHAR, status.MPI_SOURCE, kTagReport,
+                       MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv");
         if (!buffer.empty()) keep(record_from_json(nlohmann::json::parse(buffer), points));
         long long index = take();
-        check(MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, kTagAssign, MPI_COMM_WORLD), "MPI_Send");
+        check(MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, kTagAssign, MPI_COMM_WORLD),
+              "MPI_Send");
         if (index < 0) --active;
     }
     local.join();

@@ -35,11 +35,14 @@ private:
 /// Renders one point (index into the sweep's points) and returns its record.
 using PointJob = std::function<PointRecord(std::size_t index)>;
 
-/// Rank 0: hands out `pending` indices in order to whichever rank asks, renders points itself on a second
-/// thread, and returns every record it received or made (by index). Other ranks: ask, render, report,
-/// until told to stop; return nothing. Only the calling thread uses MPI (MPI_THREAD_FUNNELED).
-std::vector<PointRecord> dispatch_points(const MpiSession& mpi, const std::vector<std::size_t>& pending,
-                                         const std::vector<SweepPoint>& points, const SweepSpec& spec,
-                                         const PointJob& job, const std::function<void(const PointRecord&)>& on_done);
+/// Rank 0: hands out `pending` indices in order to whichever rank asks, renders points itself on a
+/// second thread, and returns every record it received or made (by index). Other ranks: ask,
+/// render, report, until told to stop; return nothing. Only the calling thread uses MPI
+/// (MPI_THREAD_FUNNELED).
+std::vector<PointRecord> dispatch_points(const MpiSession& mpi,
+                                         const std::vector<std::size_t>& pending,
+                                         const std::vector<SweepPoint>& points,
+                                         const SweepSpec& spec, const PointJob& job,
+                                         const std::function<void(const PointRecord&)>& on_done);
 
 }  // namespace tirpol::sweep::detail

@@ -21,8 +21,8 @@ std::filesystem::path point_dir(const std::filesystem::path& out_dir, const Swee
     return out_dir / "points" / point.id;
 }
 
-void write_point(const SweepSpec& spec, const SweepPoint& point, const std::filesystem::path& dir, int threads,
-                 PointRecord& record) {
+void write_point(const SweepSpec& spec, const SweepPoint& point, const std::filesystem::path& dir,
+                 int threads, PointRecord& record) {
     const PointConfig config = point_config(spec, point);
     simulation::Scene scene = simulation::load_scene(config.scene);
     scene.sampling.seed = point.seed;
@@ -48,8 +48,8 @@ void write_point(const SweepSpec& spec, const SweepPoint& point, const std::file
 
 }  // namespace
 
-PointRecord render_point(const SweepSpec& spec, const SweepPoint& point, const std::filesystem::path& out_dir,
-                         int threads) {
+PointRecord render_point(const SweepSpec& spec, const SweepPoint& point,
+                         const std::filesystem::path& out_dir, int threads) {
     PointRecord record;
     record.point = point;
     const auto start = std::chrono::steady_clock::now();
@@ -63,9 +63,11 @@ PointRecord render_point(const SweepSpec& spec, const SweepPoint& point, const s
         std::error_code ec;
         std::filesystem::rename(temp_dir, final_dir, ec);
         if (ec) {
-            // Another run finished the same point first (rename does not replace a non-empty folder).
+            // Another run finished the same point first (rename does not replace a non-empty
+            // folder).
             if (!std::filesystem::is_regular_file(final_dir / "statistics.json"))
-                fail("cannot move {} to {}: {}", temp_dir.string(), final_dir.string(), ec.message());
+                fail("cannot move {} to {}: {}", temp_dir.string(), final_dir.string(),
+                     ec.message());
             std::filesystem::remove_all(temp_dir, ignored);
         }
         record.status = "rendered";
@@ -75,16 +77,19 @@ PointRecord render_point(const SweepSpec& spec, const SweepPoint& point, const s
         record.statistics.reset();
         std::filesystem::remove_all(temp_dir, ignored);
     }
-    record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    record.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return record;
 }
 
-std::optional<PointStatistics> finished_point(const std::filesystem::path& out_dir, const SweepPoint& point) {
+std::optional<PointStatistics> finished_point(const std::filesystem::path& out_dir,
+                                              const SweepPoint& point) {
     const auto file = point_dir(out_dir, point) / "statistics.json";
     if (!std::filesystem::is_regular_file(file)) return std::nullopt;
     const std::string text = read_file(file);
     const auto j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded()) fail("{}: not valid JSON (delete the point's folder to render it again)", file.string());
+    if (j.is_discarded())
+        fail("{}: not valid JSON (delete the point's folder to render it again)", file.string());
     return statistics_from_json(j, file.string());
 }
 

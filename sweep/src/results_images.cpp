@@ -20,13 +20,15 @@ constexpr const char* kSheetChannels[] = {"S0", "S1"};
 
 std::string point_label(const SweepSpec& spec, const SweepPoint& p) {
     std::string label = p.id;
-    for (std::size_t a = 0; a < spec.axes.size(); ++a) label += " " + spec.axes[a].labels[p.value_index[a]];
+    for (std::size_t a = 0; a < spec.axes.size(); ++a)
+        label += " " + spec.axes[a].labels[p.value_index[a]];
     return label;
 }
 
 void write_png(const std::filesystem::path& path, const cv::Mat& image) {
     AtomicFile file(path);
-    if (!cv::imwrite(file.temp_path().string(), image)) fail("{}: writing PNG failed", path.string());
+    if (!cv::imwrite(file.temp_path().string(), image))
+        fail("{}: writing PNG failed", path.string());
     file.commit();
 }
 
@@ -39,13 +41,17 @@ cv::Mat padded(const cv::Mat& image, int rows, int cols) {
 }
 
 /// One quicklook per point and channel on a colour range common to all points (so that the sheet
-/// compares points), in tiles/<id>_<channel>.png; tiles[channel][point] (empty Mat for a failed point).
-std::vector<std::vector<cv::Mat>> write_tiles(const SweepSpec& spec, const std::filesystem::path& out_dir,
+/// compares points), in tiles/<id>_<channel>.png; tiles[channel][point] (empty Mat for a failed
+/// point).
+std::vector<std::vector<cv::Mat>> write_tiles(const SweepSpec& spec,
+                                              const std::filesystem::path& out_dir,
                                               const std::vector<PointRecord>& points,
                                               std::vector<std::filesystem::path>& written) {
-    const auto exr = [&](std::size_t i) { return out_dir / "points" / points[i].point.id / "stokes.exr"; };
-    // The common range from a sample of every point's pixels (at most kRangeSamples per point), so memory
-    // does not grow with the sweep; each image is read again for its tile.
+    const auto exr = [&](std::size_t i) {
+        return out_dir / "points" / points[i].point.id / "stokes.exr";
+    };
+    // The common range from a sample of every point's pixels (at most kRangeSamples per point), so
+    // memory does not grow with the sweep; each image is read again for its tile.
     constexpr std::size_t kRangeSamples = 20000;
     std::vector<std::vector<float>> samples(std::size(kSheetChannels));
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -68,9 +74,12 @@ std::vector<std::vector<cv::Mat>> write_tiles(const SweepSpec& spec, const std::
         if (!points[i].statistics) continue;
         const Image image = read_exr(exr(i));
         for (std::size_t c = 0; c < samples.size(); ++c) {
-            options[c].title = fmt::format("{} {}", kSheetChannels[c], point_label(spec, points[i].point));
-            const auto path = out_dir / "tiles" / fmt::format("{}_{}.png", points[i].point.id, kSheetChannels[c]);
-            write_quicklook(path, image.channel(kSheetChannels[c]), image.width(), image.height(), options[c]);
+            options[c].title =
+                fmt::format("{} {}", kSheetChannels[c], point_label(spec, points[i].point));
+            const auto path =
+                out_dir / "tiles" / fmt::format("{}_{}.png", points[i].point.id, kSheetChannels[c]);
+            write_quicklook(path, image.channel(kSheetChannels[c]), image.width(), image.height(),
+                            options[c]);
             written.push_back(path);
             tiles[c][i] = cv::imread(path.string(), cv::IMREAD_COLOR);
             if (tiles[c][i].empty()) fail("{}: could not read back the tile", path.string());
@@ -89,7 +98,8 @@ cv::Mat contact_sheet(const std::vector<cv::Mat>& tiles) {
     }
     const int per_row = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)))));
     const int sheet_rows = (n + per_row - 1) / per_row;
-    cv::Mat sheet(std::max(1, sheet_rows) * rows, per_row * cols, CV_8UC3, cv::Scalar(255, 255, 255));
+    cv::Mat sheet(std::max(1, sheet_rows) * rows, per_row * cols, CV_8UC3,
+                  cv::Scalar(255, 255, 255));
     int k = 0;
     for (const auto& t : tiles) {
         if (t.empty()) continue;
@@ -129,7 +139,8 @@ show(0);
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_image_summaries(const SweepSpec& spec, const std::filesystem::path& out_dir,
+std::vector<std::filesystem::path> write_image_summaries(const SweepSpec& spec,
+                                                         const std::filesystem::path& out_dir,
                                                          const std::vector<PointRecord>& points) {
     std::vector<std::filesystem::path> written;
     const auto tiles = write_tiles(spec, out_dir, points, written);
@@ -138,8 +149,8 @@ std::vector<std::filesystem::path> write_image_summaries(const SweepSpec& spec, 
         written.push_back(out_dir / fmt::format("contact_sheet_{}.png", kSheetChannels[c]));
         write_png(written.back(), contact_sheet(tiles[c]));
     }
-    const auto time_axis =
-        std::find_if(spec.axes.begin(), spec.axes.end(), [](const Axis& a) { return a.parameter == "time"; });
+    const auto time_axis = std::find_if(spec.axes.begin(), spec.axes.end(),
+                                        [](const Axis& a) { return a.parameter == "time"; });
     if (time_axis == spec.axes.end()) return written;
     const auto t = static_cast<std::size_t>(time_axis - spec.axes.begin());
     auto line = points_along(spec, points, t);
@@ -153,11 +164,13 @@ std::vector<std::filesystem::path> write_image_summaries(const SweepSpec& spec, 
         if (tiles[0][i].empty()) continue;
         const int rows = std::max(tiles[0][i].rows, tiles[1][i].rows);
         cv::Mat frame;
-        cv::hconcat(padded(tiles[0][i], rows, tiles[0][i].cols), padded(tiles[1][i], rows, tiles[1][i].cols), frame);
+        cv::hconcat(padded(tiles[0][i], rows, tiles[0][i].cols),
+                    padded(tiles[1][i], rows, tiles[1][i].cols), frame);
         const std::string name = fmt::format("frame_{:03}.png", frames.size());
         write_png(out_dir / "animation" / name, frame);
         written.push_back(out_dir / "animation" / name);
-        frames.push_back({{"src", name}, {"label", time_axis->labels[points[i].point.value_index[t]]}});
+        frames.push_back(
+            {{"src", name}, {"label", time_axis->labels[points[i].point.value_index[t]]}});
     }
     if (frames.empty()) return written;
     written.push_back(out_dir / "animation" / "index.html");

@@ -33,13 +33,15 @@ std::string file_name(const std::string& parameter) {
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_axis_plots(const SweepSpec& spec, const std::filesystem::path& out_dir,
+std::vector<std::filesystem::path> write_axis_plots(const SweepSpec& spec,
+                                                    const std::filesystem::path& out_dir,
                                                     const std::vector<PointRecord>& points) {
     std::vector<std::filesystem::path> written;
     for (std::size_t a = 0; a < spec.axes.size(); ++a) {
         const auto line = points_along(spec, points, a);
         if (spec.axes[a].values.size() < 2 || line.size() < 2) continue;
-        // Quantities with a Monte-Carlo error: temperature_k is plotted too, it drives the time-of-day trend.
+        // Quantities with a Monte-Carlo error: temperature_k is plotted too, it drives the
+        // time-of-day trend.
         for (std::size_t q = 0; q < std::size(kQuantityNames); ++q) {
             std::vector<PlotSeries> series;
             const auto add = [&](const std::string& name, bool dashed, const auto& values_of) {
@@ -55,19 +57,22 @@ std::vector<std::filesystem::path> write_axis_plots(const SweepSpec& spec, const
             };
             for (std::size_t r = 0; r < spec.regions.size(); ++r)
                 add(
-                    spec.regions[r].name,
-                    false, [r](const PointStatistics& s) -> const auto& { return s.regions[r].values; });
+                    spec.regions[r].name, false, [r](const PointStatistics& s) -> const auto& {
+                        return s.regions[r].values;
+                    });
             for (std::size_t c = 0; c < spec.contrasts.size(); ++c)
                 add(
-                    spec.contrasts[c].name,
-                    true, [c](const PointStatistics& s) -> const auto& { return s.contrasts[c].values; });
+                    spec.contrasts[c].name, true, [c](const PointStatistics& s) -> const auto& {
+                        return s.contrasts[c].values;
+                    });
             if (series.empty()) continue;
             LinePlotOptions options;
             options.title = fmt::format("{} vs {}", kQuantityNames[q], spec.axes[a].parameter);
             options.x_label = spec.axes[a].coordinate_label;
             options.y_label = std::string(kQuantityNames[q]) + (q < 3 ? " [W/(m2 sr)]" : "");
-            written.push_back(out_dir / "plots" /
-                              fmt::format("{}_{}.png", file_name(spec.axes[a].parameter), kQuantityNames[q]));
+            written.push_back(
+                out_dir / "plots" /
+                fmt::format("{}_{}.png", file_name(spec.axes[a].parameter), kQuantityNames[q]));
             std::filesystem::create_directories(written.back().parent_path());
             write_line_plot(written.back(), series, options);
         }

@@ -25,7 +25,9 @@ std::string csv_line(const std::vector<std::string>& fields) {
     return line + "\n";
 }
 
-std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); }
+std::string csv_number(double v) {
+    return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string();
+}
 
 void append_values(std::vector<std::string>& row, const QuantityEstimates* q) {
     for (std::size_t i = 0; i < std::size(kQuantityNames); ++i) {
@@ -36,7 +38,8 @@ void append_values(std::vector<std::string>& row, const QuantityEstimates* q) {
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_tables(const SweepSpec& spec, const std::filesystem::path& out_dir,
+std::vector<std::filesystem::path> write_tables(const SweepSpec& spec,
+                                                const std::filesystem::path& out_dir,
                                                 const std::vector<PointRecord>& points) {
     std::vector<std::string> header = {"index", "id", "status"};
     for (const auto& a : spec.axes) header.push_back(a.parameter);
@@ -53,20 +56,26 @@ std::vector<std::filesystem::path> write_tables(const SweepSpec& spec, const std
     nlohmann::json rows = nlohmann::json::array();
     for (const auto& p : points) {
         std::vector<std::string> row = {std::to_string(p.point.index), p.point.id, p.status};
-        for (std::size_t a = 0; a < spec.axes.size(); ++a) row.push_back(spec.axes[a].labels[p.point.value_index[a]]);
+        for (std::size_t a = 0; a < spec.axes.size(); ++a)
+            row.push_back(spec.axes[a].labels[p.point.value_index[a]]);
         row.push_back(std::to_string(p.point.seed));
         const PointStatistics* s = p.statistics ? &*p.statistics : nullptr;
-        for (std::size_t i = 0; i < spec.regions.size(); ++i) append_values(row, s ? &s->regions[i].values : nullptr);
+        for (std::size_t i = 0; i < spec.regions.size(); ++i)
+            append_values(row, s ? &s->regions[i].values : nullptr);
         for (std::size_t i = 0; i < spec.contrasts.size(); ++i)
             append_values(row, s ? &s->contrasts[i].values : nullptr);
         csv += csv_line(row);
         nlohmann::json j = record_json(spec, p);
-        for (const char* timing : {"seconds", "render_seconds", "wait_seconds", "rank"}) j.erase(timing);
+        for (const char* timing : {"seconds", "render_seconds", "wait_seconds", "rank"})
+            j.erase(timing);
         rows.push_back(std::move(j));
     }
-    const std::vector<std::filesystem::path> written = {out_dir / "results.csv", out_dir / "results.json"};
+    const std::vector<std::filesystem::path> written = {out_dir / "results.csv",
+                                                        out_dir / "results.json"};
     write_file_atomic(written[0], csv);
-    write_file_atomic(written[1], nlohmann::json({{"quantities", kQuantityNames}, {"points", rows}}).dump(2) + "\n");
+    write_file_atomic(
+        written[1],
+        nlohmann::json({{"quantities", kQuantityNames}, {"points", rows}}).dump(2) + "\n");
     return written;
 }
 

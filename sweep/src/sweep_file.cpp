@@ -25,7 +25,8 @@ std::string value_text(const ConfigNode& node) {
         for (const auto& e : node.elements()) out += (out.empty() ? "" : ", ") + value_text(e);
         return "[" + out + "]";
     }
-    for (const auto& key : node.keys()) out += (out.empty() ? "" : ", ") + key + ": " + value_text(node.at(key));
+    for (const auto& key : node.keys())
+        out += (out.empty() ? "" : ", ") + key + ": " + value_text(node.at(key));
     return "{" + out + "}";
 }
 
@@ -47,25 +48,28 @@ std::vector<std::string> object_names(const ConfigNode& scene) {
     return names;
 }
 
-/// A library material file ready to be written inline in a scene: its one relative file reference (the
-/// n, k table, docs/materials.md) made absolute, since inline it would resolve against the scene's folder.
+/// A library material file ready to be written inline in a scene: its one relative file reference
+/// (the n, k table, docs/materials.md) made absolute, since inline it would resolve against the
+/// scene's folder.
 ConfigNode inlinable_material(const std::filesystem::path& file) {
     const ConfigNode material = ConfigNode::load_file(file);
     const auto index = material.find("refractive_index");
     if (!index || !index->is_map() || !index->has("file")) return material;
-    std::string absolute = index->resolve_path(index->get<std::string>("file")).string(), quoted = "'";
+    std::string absolute = index->resolve_path(index->get<std::string>("file")).string(),
+                quoted = "'";
     for (char c : absolute) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-    return material.with_value("refractive_index.file", ConfigNode::parse(quoted + "'", file.string()));
+    return material.with_value("refractive_index.file",
+                               ConfigNode::parse(quoted + "'", file.string()));
 }
 
-/// `materials.<name>.<path>`: each object whose material is the library material <name> gets it inline
-/// with the override; an inline material of that name is overridden in place.
-ConfigNode with_material_value(const ConfigNode& scene, const std::string& name, const std::string& path,
-                               const ConfigNode& value) {
+/// `materials.<name>.<path>`: each object whose material is the library material <name> gets it
+/// inline with the override; an inline material of that name is overridden in place.
+ConfigNode with_material_value(const ConfigNode& scene, const std::string& name,
+                               const std::string& path, const ConfigNode& value) {
     // The scene loader's rule for the library folder (docs/scene-format.md, materials_dir).
     const auto dir_node = scene.find("materials_dir");
-    const std::filesystem::path dir =
-        dir_node ? dir_node->resolve_path(dir_node->as<std::string>()) : scene.resolve_path("../materials");
+    const std::filesystem::path dir = dir_node ? dir_node->resolve_path(dir_node->as<std::string>())
+                                               : scene.resolve_path("../materials");
     ConfigNode out = scene;
     std::vector<std::string> used;
     bool found = false;
@@ -78,7 +82,8 @@ ConfigNode with_material_value(const ConfigNode& scene, const std::string& name,
             if (used.back() != name) continue;
             const auto file = dir / (name + ".yaml");
             if (!std::filesystem::is_regular_file(file))
-                material.fail(fmt::format("materials.{}: material file not found: {}", name, file.string()));
+                material.fail(
+                    fmt::format("materials.{}: material file not found: {}", name, file.string()));
             out = out.with_value(object_path, inlinable_material(file).with_value(path, value));
             found = true;
         } else if (material.is_map() && material.has("name")) {
@@ -98,20 +103,22 @@ ConfigNode with_material_value(const ConfigNode& scene, const std::string& name,
 
 void apply(PointConfig& config, const std::string& parameter, const ConfigNode& value) {
     if (starts_with(parameter, "sensor.")) {
-        if (!config.sensor) fail("'{}' varies the sensor model, but the sweep names no `sensor:` file", parameter);
+        if (!config.sensor)
+            fail("'{}' varies the sensor model, but the sweep names no `sensor:` file", parameter);
         config.sensor = config.sensor->with_value(parameter.substr(7), value);
     } else if (starts_with(parameter, "materials.")) {
         const std::size_t dot = parameter.find('.', 10);
-        if (dot == std::string::npos) fail("'{}': expected materials.<name>.<field path>", parameter);
-        config.scene =
-            with_material_value(config.scene, parameter.substr(10, dot - 10), parameter.substr(dot + 1), value);
+        if (dot == std::string::npos)
+            fail("'{}': expected materials.<name>.<field path>", parameter);
+        config.scene = with_material_value(config.scene, parameter.substr(10, dot - 10),
+                                           parameter.substr(dot + 1), value);
     } else {
         config.scene = config.scene.with_value(parameter, value);
     }
 }
 
-/// Applies `value` to the base files once, so that an unknown parameter is reported at load time, at
-/// the sweep file's `where`.
+/// Applies `value` to the base files once, so that an unknown parameter is reported at load time,
+/// at the sweep file's `where`.
 void check_parameter(const SweepSpec& spec, const std::string& parameter, const ConfigNode& value,
                      const ConfigNode& where) {
     PointConfig config{spec.scene, spec.sensor};
@@ -131,25 +138,31 @@ std::vector<ConfigNode> range_values(const std::string& parameter, const ConfigN
     if (!(step > 0.0)) node.at(step_key).fail("expected a positive step");
     double from = 0.0, to = 0.0;
     if (is_time) {
-        from = thermal::parse_time(node.get<std::string>("from"), 0.0, node.at("from").location()) / 3600.0;
-        to = thermal::parse_time(node.get<std::string>("to"), 0.0, node.at("to").location()) / 3600.0;
+        from = thermal::parse_time(node.get<std::string>("from"), 0.0, node.at("from").location()) /
+               3600.0;
+        to = thermal::parse_time(node.get<std::string>("to"), 0.0, node.at("to").location()) /
+             3600.0;
     } else {
         from = node.get<double>("from");
         to = node.get<double>("to");
     }
     if (to < from) node.at("to").fail(fmt::format("expected `to` ≥ `from`"));
     const double count = std::floor((to - from) / step + 1e-9) + 1.0;
-    if (count > static_cast<double>(kMaxPoints)) node.fail(fmt::format("{} values: more than {}", count, kMaxPoints));
+    if (count > static_cast<double>(kMaxPoints))
+        node.fail(fmt::format("{} values: more than {}", count, kMaxPoints));
     std::vector<ConfigNode> values;
     for (int i = 0; i < static_cast<int>(count); ++i) {
         const double v = from + i * step;
         std::string text = fmt::format("{}", v);
         if (is_time) {
-            // Written without an offset, so the scene reads it in the site's standard time like its own `time`.
+            // Written without an offset, so the scene reads it in the site's standard time like its
+            // own `time`.
             const thermal::CivilTime c = thermal::to_civil(std::round(v * 3600.0), 0.0);
-            text = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}", c.year, c.month, c.day, c.hour, c.minute);
+            text = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}", c.year, c.month, c.day, c.hour,
+                               c.minute);
         }
-        values.push_back(ConfigNode::parse(text, fmt::format("{} (value {} of the range)", node.location(), i + 1)));
+        values.push_back(ConfigNode::parse(
+            text, fmt::format("{} (value {} of the range)", node.location(), i + 1)));
     }
     return values;
 }
@@ -172,8 +185,9 @@ Axis axis_of(const std::string& parameter, const ConfigNode& node) {
     for (std::size_t i = 0; i < axis.values.size(); ++i) {
         if (parameter == "time") {
             const double t0 = thermal::parse_time(axis.labels[0], 0.0, axis.values[0].location());
-            axis.coordinates.push_back((thermal::parse_time(axis.labels[i], 0.0, axis.values[i].location()) - t0) /
-                                       3600.0);
+            axis.coordinates.push_back(
+                (thermal::parse_time(axis.labels[i], 0.0, axis.values[i].location()) - t0) /
+                3600.0);
             axis.coordinate_label = "time [h after " + axis.labels[0] + "]";
         } else if (numeric) {
             axis.coordinates.push_back(*number_of(axis.values[i]));
@@ -192,17 +206,19 @@ std::pair<double, double> sector_of(const ConfigNode& node) {
     return {v[0], v[1]};
 }
 
-RegionSpec region_of(const std::string& name, const ConfigNode& node, const std::vector<std::string>& objects) {
+RegionSpec region_of(const std::string& name, const ConfigNode& node,
+                     const std::vector<std::string>& objects) {
     node.check_keys({"object", "sectors_deg", "polygon"});
     RegionSpec r{name, node.get_or<std::string>("object", ""), {}, std::nullopt, node.location()};
     if (!r.object.empty() && std::find(objects.begin(), objects.end(), r.object) == objects.end()) {
         const std::string hint = closest_match(r.object, objects);
-        node.at("object").fail(fmt::format("the base scene has no object '{}'{} (objects: {})", r.object,
-                                           hint.empty() ? "" : " — did you mean '" + hint + "'?",
-                                           fmt::join(objects, ", ")));
+        node.at("object").fail(fmt::format(
+            "the base scene has no object '{}'{} (objects: {})", r.object,
+            hint.empty() ? "" : " — did you mean '" + hint + "'?", fmt::join(objects, ", ")));
     }
     if (auto s = node.find("sectors_deg")) {
-        if (r.object.empty()) s->fail("sectors are taken around an object's centre: give `object` too");
+        if (r.object.empty())
+            s->fail("sectors are taken around an object's centre: give `object` too");
         for (const auto& e : s->elements()) r.sectors_deg.push_back(sector_of(e));
         if (r.sectors_deg.empty()) s->fail("expected at least one [from_deg, to_deg]");
     }
@@ -234,7 +250,8 @@ SweepSpec load_sweep(const std::filesystem::path& path) {
     root.check_keys({"scene", "sensor", "combine", "seed", "set", "axes", "regions", "contrasts"});
     const ConfigNode scene_node = root.at("scene");
     const auto scene_path = scene_node.resolve_path(scene_node.as<std::string>());
-    if (!std::filesystem::is_regular_file(scene_path)) scene_node.fail("scene file not found: " + scene_path.string());
+    if (!std::filesystem::is_regular_file(scene_path))
+        scene_node.fail("scene file not found: " + scene_path.string());
     SweepSpec spec{std::filesystem::absolute(path),
                    ConfigNode::load_file(scene_path),
                    std::nullopt,
@@ -246,17 +263,20 @@ SweepSpec load_sweep(const std::filesystem::path& path) {
                    {}};
     if (auto s = root.find("sensor")) {
         const auto sensor_path = s->resolve_path(s->as<std::string>());
-        if (!std::filesystem::is_regular_file(sensor_path)) s->fail("sensor file not found: " + sensor_path.string());
+        if (!std::filesystem::is_regular_file(sensor_path))
+            s->fail("sensor file not found: " + sensor_path.string());
         spec.sensor = ConfigNode::load_file(sensor_path);
     }
     if (auto c = root.find("combine")) {
         const std::string combine = c->as<std::string>();
-        if (combine != "grid" && combine != "list") c->fail("expected grid or list, got '" + combine + "'");
+        if (combine != "grid" && combine != "list")
+            c->fail("expected grid or list, got '" + combine + "'");
         spec.combine = combine == "grid" ? Combine::Grid : Combine::List;
     }
     if (auto s = root.find("seed")) {
         const double seed = s->as<double>();
-        if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15) s->fail("expected a non-negative whole number");
+        if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15)
+            s->fail("expected a non-negative whole number");
         spec.seed = static_cast<std::uint64_t>(seed);
     }
     if (auto set = root.find("set")) {
@@ -272,9 +292,11 @@ SweepSpec load_sweep(const std::filesystem::path& path) {
     for (const auto& name : axis_names) {
         Axis axis = axis_of(name, axes.at(name));
         check_parameter(spec, name, axis.values.front(), axes.at(name));
-        if (spec.combine == Combine::List && !spec.axes.empty() && axis.values.size() != spec.axes[0].values.size())
-            axes.at(name).fail(fmt::format("combine: list needs axes of equal length: {} values here, {} in '{}'",
-                                           axis.values.size(), spec.axes[0].values.size(), spec.axes[0].parameter));
+        if (spec.combine == Combine::List && !spec.axes.empty() &&
+            axis.values.size() != spec.axes[0].values.size())
+            axes.at(name).fail(fmt::format(
+                "combine: list needs axes of equal length: {} values here, {} in '{}'",
+                axis.values.size(), spec.axes[0].values.size(), spec.axes[0].parameter));
         points = spec.combine == Combine::List ? axis.values.size() : points * axis.values.size();
         if (points > kMaxPoints) axes.at(name).fail(fmt::format("more than {} points", kMaxPoints));
         spec.axes.push_back(std::move(axis));
@@ -282,9 +304,11 @@ SweepSpec load_sweep(const std::filesystem::path& path) {
 
     const auto objects = object_names(spec.scene);
     if (auto regions = root.find("regions")) {
-        for (const auto& name : regions->keys()) spec.regions.push_back(region_of(name, regions->at(name), objects));
+        for (const auto& name : regions->keys())
+            spec.regions.push_back(region_of(name, regions->at(name), objects));
     } else {
-        for (const auto& object : objects) spec.regions.push_back({object, object, {}, std::nullopt, root.location()});
+        for (const auto& object : objects)
+            spec.regions.push_back({object, object, {}, std::nullopt, root.location()});
     }
     if (auto contrasts = root.find("contrasts")) {
         std::vector<std::string> names;
@@ -297,9 +321,10 @@ SweepSpec load_sweep(const std::filesystem::path& path) {
                 const std::string region = c.get<std::string>(key);
                 if (std::find(names.begin(), names.end(), region) == names.end()) {
                     const std::string hint = closest_match(region, names);
-                    c.at(key).fail(fmt::format("no region '{}'{} (regions: {})", region,
-                                               hint.empty() ? "" : " — did you mean '" + hint + "'?",
-                                               fmt::join(names, ", ")));
+                    c.at(key).fail(
+                        fmt::format("no region '{}'{} (regions: {})", region,
+                                    hint.empty() ? "" : " — did you mean '" + hint + "'?",
+                                    fmt::join(names, ", ")));
                 }
             }
             spec.contrasts.push_back(contrast);

@@ -4,7 +4,8 @@
 
 namespace tirpol::sweep {
 
-std::vector<std::size_t> points_along(const SweepSpec& spec, const std::vector<PointRecord>& points, std::size_t axis) {
+std::vector<std::size_t> points_along(const SweepSpec& spec, const std::vector<PointRecord>& points,
+                                      std::size_t axis) {
     std::vector<std::size_t> line;
     for (std::size_t i = 0; i < points.size(); ++i) {
         bool on_line = true;
@@ -15,7 +16,8 @@ std::vector<std::size_t> points_along(const SweepSpec& spec, const std::vector<P
     return line;
 }
 
-std::vector<std::filesystem::path> write_results(const SweepSpec& spec, const std::filesystem::path& out_dir,
+std::vector<std::filesystem::path> write_results(const SweepSpec& spec,
+                                                 const std::filesystem::path& out_dir,
                                                  const std::vector<PointRecord>& points) {
     std::vector<std::filesystem::path> written = detail::write_tables(spec, out_dir, points);
     for (auto* part : {&detail::write_axis_plots, &detail::write_image_summaries}) {

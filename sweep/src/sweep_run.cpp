@@ -27,8 +27,8 @@ void count(SweepSummary& summary) {
     }
 }
 
-/// Point folders that killed runs left half written (render_point's ".<id>.partial-<pid>"): with the
-/// folder lock held, no other run is writing them.
+/// Point folders that killed runs left half written (render_point's ".<id>.partial-<pid>"): with
+/// the folder lock held, no other run is writing them.
 void remove_abandoned_partial_points(const std::filesystem::path& out_dir) {
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator(out_dir / "points", ec)) {
@@ -42,19 +42,23 @@ void remove_abandoned_partial_points(const std::filesystem::path& out_dir) {
 
 }  // namespace
 
-SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_dir, const RunOptions& options) {
+SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_dir,
+                       const RunOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const auto points = sweep_points(spec);
     const auto manifest = out_dir / "manifest.json";
     // Every rank checks the folder before any rank writes to it, so all agree (and fail alike).
     const bool exists = std::filesystem::exists(manifest);
     if (exists && !options.resume)
-        fail("{} holds a sweep already: pass --resume to continue it, or choose another output folder",
-             out_dir.string());
+        fail(
+            "{} holds a sweep already: pass --resume to continue it, or choose another output "
+            "folder",
+            out_dir.string());
     if (exists) detail::check_same_sweep(manifest, spec, points);
 
     detail::MpiSession mpi;
-    // One run per folder: rank 0 holds OUT/.lock until the sweep ends; every rank learns whether it got it.
+    // One run per folder: rank 0 holds OUT/.lock until the sweep ends; every rank learns whether it
+    // got it.
     std::optional<FolderLock> lock;
     std::string lock_error;
     if (mpi.rank() == 0) {
@@ -66,14 +70,16 @@ SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_d
         }
     }
     if (!mpi.broadcast_from_root(lock_error.empty()))
-        fail("{}", lock_error.empty() ? out_dir.string() + ": rank 0 could not lock the sweep folder" : lock_error);
+        fail("{}", lock_error.empty()
+                       ? out_dir.string() + ": rank 0 could not lock the sweep folder"
+                       : lock_error);
     SweepSummary summary;
     summary.is_root = mpi.rank() == 0;
     summary.ranks = mpi.size();
-    summary.threads =
-        options.threads > 0
-            ? options.threads
-            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / detail::MpiSession::local_ranks());
+    summary.threads = options.threads > 0
+                          ? options.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
+                                            detail::MpiSession::local_ranks());
     std::vector<std::size_t> pending;
     summary.points.resize(points.size());
     for (const auto& p : points) {
@@ -97,9 +103,9 @@ SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_d
     const auto on_done = [&](const PointRecord& r) {
         ++finished;
         if (options.progress || r.status == "failed")
-            std::fprintf(stderr, "[%zu/%zu] %s %s in %.2f s (rank %d)%s%s\n", finished, points.size(),
-                         r.point.id.c_str(), r.status.c_str(), r.seconds, r.rank, r.error.empty() ? "" : ": ",
-                         r.error.c_str());
+            std::fprintf(stderr, "[%zu/%zu] %s %s in %.2f s (rank %d)%s%s\n", finished,
+                         points.size(), r.point.id.c_str(), r.status.c_str(), r.seconds, r.rank,
+                         r.error.empty() ? "" : ": ", r.error.c_str());
     };
     const auto job = [&](std::size_t index) {
         return detail::render_point(spec, points[index], out_dir, summary.threads);
@@ -111,7 +117,8 @@ SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_d
         return summary;
     }
     count(summary);
-    summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     detail::write_manifest(manifest, spec, summary);
     summary.outputs.push_back(manifest);
     const auto results = write_results(spec, out_dir, summary.points);

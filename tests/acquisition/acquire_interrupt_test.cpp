@@ -27,12 +27,14 @@ using ::testing::HasSubstr;
 /// No run here may need longer than this; a hang fails the test instead of blocking CTest.
 constexpr auto kBound = 60s;
 
-std::unique_ptr<test::ChildProcess> start_stage_sim(const std::filesystem::path& dir, const char* deg_per_s) {
+std::unique_ptr<test::ChildProcess> start_stage_sim(const std::filesystem::path& dir,
+                                                    const char* deg_per_s) {
     auto sim = std::make_unique<test::ChildProcess>(
-        std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link", (dir / "stage").string(),
-                                 "--move-deg-per-s", deg_per_s},
+        std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link",
+                                 (dir / "stage").string(), "--move-deg-per-s", deg_per_s},
         dir / "stage-sim.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "stage"); ++i) std::this_thread::sleep_for(10ms);
+    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "stage"); ++i)
+        std::this_thread::sleep_for(10ms);
     return sim;
 }
 
@@ -78,7 +80,8 @@ std::pair<double, double> stage_angle_twice(const std::filesystem::path& dir) {
 
 TEST(AcquireInterrupt, CtrlCDuringAMoveStopsTheStageKeepsTheSessionAndResumes) {
     test::TempDir tmp;
-    test::write_text(tmp / "plan.yaml", "angles_deg: [0, 45, 90]\nframes_per_angle: 3\nsettle_s: 0.01\n");
+    test::write_text(tmp / "plan.yaml",
+                     "angles_deg: [0, 45, 90]\nframes_per_angle: 3\nsettle_s: 0.01\n");
     auto sim = start_stage_sim(tmp.path(), "10");
     {
         auto acquire = start_acquire(tmp.path(), "first.log");

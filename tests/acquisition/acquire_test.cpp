@@ -1,7 +1,7 @@
 // End to end: the real `tirpol acquire` executable with a sim:// camera and a `tirpol-stage-sim`
-// process speaking the APT protocol on a pseudo-terminal. A full run gives a valid complete session;
-// a run killed with SIGKILL mid-session and resumed gives a complete session with every step
-// exactly once and every record written before the kill unchanged.
+// process speaking the APT protocol on a pseudo-terminal. A full run gives a valid complete
+// session; a run killed with SIGKILL mid-session and resumed gives a complete session with every
+// step exactly once and every record written before the kill unchanged.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -26,25 +26,36 @@ using Child = test::ChildProcess;
 
 /// `tirpol-stage-sim --protocol apt` linked at DIR/stage, waiting until the link exists.
 std::unique_ptr<Child> start_stage_sim(const std::filesystem::path& dir, const char* speed) {
-    auto sim = std::make_unique<Child>(std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link",
-                                                                (dir / "stage").string(), "--move-deg-per-s", speed},
-                                       dir / "stage-sim.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "stage"); ++i) std::this_thread::sleep_for(10ms);
+    auto sim = std::make_unique<Child>(
+        std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link",
+                                 (dir / "stage").string(), "--move-deg-per-s", speed},
+        dir / "stage-sim.log");
+    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "stage"); ++i)
+        std::this_thread::sleep_for(10ms);
     return sim;
 }
 
-std::vector<std::string> acquire_args(const std::filesystem::path& dir, const std::filesystem::path& plan, bool resume) {
-    std::vector<std::string> args{TIRPOL_CLI_PATH, "acquire", plan.string(), "--camera",
-                                  "sim://uniform?width=32&height=24&counts=1200&noise=4&fps=100&fpa_k=305",
-                                  "--stage", "thorlabs-apt://" + (dir / "stage").string(), "-o", (dir / "session").string(),
-                                  "--non-interactive"};
+std::vector<std::string> acquire_args(const std::filesystem::path& dir,
+                                      const std::filesystem::path& plan, bool resume) {
+    std::vector<std::string> args{
+        TIRPOL_CLI_PATH,
+        "acquire",
+        plan.string(),
+        "--camera",
+        "sim://uniform?width=32&height=24&counts=1200&noise=4&fps=100&fpa_k=305",
+        "--stage",
+        "thorlabs-apt://" + (dir / "stage").string(),
+        "-o",
+        (dir / "session").string(),
+        "--non-interactive"};
     if (resume) args.push_back("--resume");
     return args;
 }
 
 TEST(Acquire, FullRunProducesAValidCompleteSession) {
     test::TempDir tmp;
-    test::write_text(tmp / "plan.yaml", "frames_per_angle: 6\nsettle_s: 0.01\nmetadata: {site: test bench}\n");
+    test::write_text(tmp / "plan.yaml",
+                     "frames_per_angle: 6\nsettle_s: 0.01\nmetadata: {site: test bench}\n");
     auto sim = start_stage_sim(tmp.path(), "2000");
     Child acquire(acquire_args(tmp.path(), tmp / "plan.yaml", false), tmp / "acquire.log");
     ASSERT_EQ(acquire.wait(), 0) << read_file(tmp / "acquire.log");
@@ -109,9 +120,12 @@ TEST(Acquire, KilledMidSessionAndResumedLosesAndDuplicatesNothing) {
         files.insert(after.records[i].file);
     }
     EXPECT_EQ(files.size(), 12u);  // no duplicates
-    for (std::size_t i = 0; i < before.records.size(); ++i) EXPECT_EQ(after.records[i], before.records[i]);
-    for (const auto& [file, bytes] : bytes_before) EXPECT_EQ(read_file(tmp / "session" / file), bytes) << file;
-    const auto on_disk = std::distance(std::filesystem::directory_iterator(tmp / "session" / "frames"), {});
+    for (std::size_t i = 0; i < before.records.size(); ++i)
+        EXPECT_EQ(after.records[i], before.records[i]);
+    for (const auto& [file, bytes] : bytes_before)
+        EXPECT_EQ(read_file(tmp / "session" / file), bytes) << file;
+    const auto on_disk =
+        std::distance(std::filesystem::directory_iterator(tmp / "session" / "frames"), {});
     EXPECT_EQ(on_disk, 12);  // no orphans or temporaries left
 }
 
@@ -120,7 +134,8 @@ TEST(Acquire, InterruptStopsCleanlyAndSaysHowToResume) {
     test::write_text(tmp / "plan.yaml", "frames_per_angle: 5\nsettle_s: 0.01\nrepeats: 3\n");
     auto sim = start_stage_sim(tmp.path(), "90");
     Child acquire(acquire_args(tmp.path(), tmp / "plan.yaml", false), tmp / "acquire.log");
-    for (int i = 0; i < 3000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i) std::this_thread::sleep_for(10ms);
+    for (int i = 0; i < 3000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i)
+        std::this_thread::sleep_for(10ms);
     std::this_thread::sleep_for(300ms);
     acquire.signal(SIGTERM);  // as Ctrl-C does with SIGINT
     EXPECT_EQ(acquire.wait(), 1);

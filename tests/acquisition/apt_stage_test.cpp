@@ -3,12 +3,13 @@
 // between, garbage before a header, MOVE_STOPPED. Plus the simulator engine's move timing on a
 // synthetic clock: a move of Δθ at speed v completes after Δθ/v (+ latency), not before.
 
+#include "tirpol/acquisition/internal/apt_stage.h"
+
 #include <gtest/gtest.h>
 
 #include <deque>
 
 #include "tirpol/acquisition/internal/apt_protocol.h"
-#include "tirpol/acquisition/internal/apt_stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
@@ -34,7 +35,8 @@ public:
         return ok_status();
     }
     Result<Bytes> read_some(std::chrono::milliseconds) override {
-        if (m_pending.empty()) return DeviceError{DeviceErrorCode::Timeout, "scripted: nothing to read"};
+        if (m_pending.empty())
+            return DeviceError{DeviceErrorCode::Timeout, "scripted: nothing to read"};
         Bytes b = m_pending.front();
         m_pending.pop_front();
         return b;
@@ -58,11 +60,13 @@ std::unique_ptr<Stage> open_scripted(ScriptedPort::Shared& s, std::uint32_t stat
     info.serial = 27000001;
     info.model = "K10CR1";
     const Bytes get_info = apt::hw_get_info(info);
-    s.replies.push_back({});                                             // NO_FLASH_PROGRAMMING: no reply
-    s.replies.push_back({Bytes(get_info.begin(), get_info.begin() + 10),  // GET_INFO split in two reads
-                         Bytes(get_info.begin() + 10, get_info.end())});
-    s.replies.push_back({});                                             // SET_CHANENABLESTATE: no reply
-    s.replies.push_back({apt::status_message(apt::kMotGetUStatusUpdate, {1, 0, 0, 0, status_bits_at_open})});
+    s.replies.push_back({});  // NO_FLASH_PROGRAMMING: no reply
+    s.replies.push_back(
+        {Bytes(get_info.begin(), get_info.begin() + 10),  // GET_INFO split in two reads
+         Bytes(get_info.begin() + 10, get_info.end())});
+    s.replies.push_back({});  // SET_CHANENABLESTATE: no reply
+    s.replies.push_back(
+        {apt::status_message(apt::kMotGetUStatusUpdate, {1, 0, 0, 0, status_bits_at_open})});
     return open_apt_stage(std::make_unique<ScriptedPort>(s), "scripted://k10cr1").value_or_throw();
 }
 
@@ -82,9 +86,10 @@ TEST(AptStage, MoveSkipsUnsolicitedMessagesAndGarbageUntilMoveCompleted) {
     ScriptedPort::Shared s;
     auto stage = open_scripted(s, apt::kHomed);
     const std::int32_t target = 6144000;  // 45° × 409600/3
-    s.replies.push_back({concat({apt::status_message(apt::kMotGetUStatusUpdate, {1, 100, 5, 0, apt::kMovingCw}),
-                                 Bytes{0xFF, 0x00}}),  // two bytes of line noise
-                         apt::status_message(apt::kMotMoveCompleted, {1, target, 0, 0, apt::kHomed})});
+    s.replies.push_back(
+        {concat({apt::status_message(apt::kMotGetUStatusUpdate, {1, 100, 5, 0, apt::kMovingCw}),
+                 Bytes{0xFF, 0x00}}),  // two bytes of line noise
+         apt::status_message(apt::kMotMoveCompleted, {1, target, 0, 0, apt::kHomed})});
     const auto moved = stage->move_absolute(45.0, 1s);
     ASSERT_TRUE(moved) << moved.error().message;
     EXPECT_EQ(s.written.back(), apt::mot_move_absolute(target));
@@ -98,7 +103,8 @@ TEST(AptStage, MoveStoppedAndMotionErrorAreDeviceFaults) {
     ASSERT_FALSE(moved);
     EXPECT_EQ(moved.error().code, DeviceErrorCode::DeviceFault);
     EXPECT_NE(moved.error().message.find("stopped at"), std::string::npos);
-    s.replies.push_back({apt::status_message(apt::kMotMoveCompleted, {1, 1000, 0, 0, apt::kHomed | apt::kMotionError})});
+    s.replies.push_back({apt::status_message(apt::kMotMoveCompleted,
+                                             {1, 1000, 0, 0, apt::kHomed | apt::kMotionError})});
     moved = stage->move_absolute(90.0, 1s);
     ASSERT_FALSE(moved);
     EXPECT_NE(moved.error().message.find("motion error"), std::string::npos);

@@ -1,9 +1,12 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// The aravis:// camera against Aravis's own fake GigE Vision camera (arv-fake-gv-camera-0.8, started
-// here on 127.0.0.1). Pixel values are checked against the fake's published test pattern, Aravis
-// 0.8.26 src/arvfakecamera.c arv_fake_camera_diagonal_ramp: Mono16 pixel (x, y) of frame id f is
-// (256 x + 256 f + 256 y) mod 65535, times 1 + gain + log10(exposure_us / 10000) (= 1 by default).
-// Frame ids start at 65401 and wrap 65535 → 1 (arv_fake_camera_init: "Trigger circular counter bugs sooner").
+// The aravis:// camera against Aravis's own fake GigE Vision camera (arv-fake-gv-camera-0.8,
+// started here on 127.0.0.1). Pixel values are checked against the fake's published test pattern,
+// Aravis 0.8.26 src/arvfakecamera.c arv_fake_camera_diagonal_ramp: Mono16 pixel (x, y) of frame id
+// f is (256 x + 256 f + 256 y) mod 65535, times 1 + gain + log10(exposure_us / 10000) (= 1 by
+// default). Frame ids start at 65401 and wrap 65535 → 1 (arv_fake_camera_init: "Trigger circular
+// counter bugs sooner").
+
+#include "tirpol/acquisition/internal/aravis_camera.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +17,6 @@
 
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/acquisition/internal/frame_averager.h"
 
 namespace tirpol::acquisition {
@@ -25,8 +27,9 @@ using namespace std::chrono_literals;
 std::uint64_t raw_gvsp_id(std::uint64_t unwrapped) { return (unwrapped - 1) % 65535 + 1; }
 
 float diagonal_ramp_mono16(int x, int y, std::uint64_t raw_id) {
-    return static_cast<float>((256 * static_cast<std::uint64_t>(x) + 256 * raw_id + 256 * static_cast<std::uint64_t>(y)) %
-                              65535);
+    return static_cast<float>(
+        (256 * static_cast<std::uint64_t>(x) + 256 * raw_id + 256 * static_cast<std::uint64_t>(y)) %
+        65535);
 }
 
 /// Every pixel of `frame` equals the fake camera's Mono16 test pattern for the frame's own id.
@@ -34,21 +37,28 @@ bool matches_diagonal_ramp(const Frame& frame) {
     const std::uint64_t raw = raw_gvsp_id(frame.frame_id);
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x)
-            if (frame.counts[static_cast<std::size_t>(y * frame.width + x)] != diagonal_ramp_mono16(x, y, raw))
+            if (frame.counts[static_cast<std::size_t>(y * frame.width + x)] !=
+                diagonal_ramp_mono16(x, y, raw))
                 return false;
     return true;
 }
 
-std::filesystem::path thermal_xml() { return test::source_dir() / "tests/data/genicam/thermal-fake-camera.xml"; }
+std::filesystem::path thermal_xml() {
+    return test::source_dir() / "tests/data/genicam/thermal-fake-camera.xml";
+}
 
 class AravisFakeCamera : public ::testing::Test {
 protected:
-    /// Starts the fake camera with `args`; fails the test when aravis-tools is not installed (never skips).
+    /// Starts the fake camera with `args`; fails the test when aravis-tools is not installed (never
+    /// skips).
     void start_fake(const std::vector<std::string>& args = {}) {
         const auto binary = test::find_fake_gv_camera_binary();
-        if (!binary) FAIL() << test::kFakeGvCameraBinary << " not found on PATH: install the Debian package aravis-tools (./run does)";
+        if (!binary)
+            FAIL() << test::kFakeGvCameraBinary
+                   << " not found on PATH: install the Debian package aravis-tools (./run does)";
         m_process = std::make_unique<test::FakeGvCameraProcess>(*binary, args);
-        ASSERT_TRUE(m_process->ready()) << "the fake GigE Vision camera did not answer on 127.0.0.1";
+        ASSERT_TRUE(m_process->ready())
+            << "the fake GigE Vision camera did not answer on 127.0.0.1";
     }
 
     std::unique_ptr<Camera> open(const AravisCameraOptions& options) {
@@ -74,8 +84,9 @@ TEST_F(AravisFakeCamera, DiscoveryFindsTheFakeCameraOnLoopback) {
     start_fake();
     if (HasFatalFailure() || IsSkipped()) return;
     const auto devices = discover_aravis_cameras();
-    const auto it = std::find_if(devices.begin(), devices.end(),
-                                 [](const AravisDeviceInfo& d) { return d.id == test::kFakeGvCameraId; });
+    const auto it = std::find_if(devices.begin(), devices.end(), [](const AravisDeviceInfo& d) {
+        return d.id == test::kFakeGvCameraId;
+    });
     ASSERT_NE(it, devices.end());
     EXPECT_EQ(it->vendor, "Aravis");
     EXPECT_EQ(it->model, "Fake");
@@ -119,8 +130,9 @@ TEST_F(AravisFakeCamera, ConfiguresAndDeliversTheTestPatternWithConsecutiveIds) 
     }
     const StreamStatistics stats = camera->statistics();
     EXPECT_EQ(stats.delivered, 20u);
-    // Accounting: every id between the first and last frame is delivered, damaged or lost (on an idle
-    // loopback all are delivered; damaged frames before the first good one only add to `incomplete`).
+    // Accounting: every id between the first and last frame is delivered, damaged or lost (on an
+    // idle loopback all are delivered; damaged frames before the first good one only add to
+    // `incomplete`).
     const std::uint64_t span = frames.back().frame_id - frames.front().frame_id + 1;
     EXPECT_LE(stats.delivered + stats.dropped, span);
     EXPECT_GE(stats.delivered + stats.incomplete + stats.dropped, span);
@@ -139,10 +151,13 @@ TEST_F(AravisFakeCamera, FrameIdWrapAt65535IsUnwrappedToMonotonicIds) {
         auto frame = camera->grab(2s);
         ASSERT_TRUE(frame.ok()) << frame.error().message;
         const Frame& f = frame.value();
-        if (i == 0) first = f.frame_id;
-        else ASSERT_GT(f.frame_id, previous);
+        if (i == 0)
+            first = f.frame_id;
+        else
+            ASSERT_GT(f.frame_id, previous);
         if (f.frame_id > 65535) crossed = true;
-        ASSERT_TRUE(matches_diagonal_ramp(f)) << "frame " << f.frame_id;  // the pattern uses the raw 16-bit id
+        ASSERT_TRUE(matches_diagonal_ramp(f))
+            << "frame " << f.frame_id;  // the pattern uses the raw 16-bit id
         previous = f.frame_id;
     }
     EXPECT_LT(first, 65535u);
@@ -200,13 +215,14 @@ TEST_F(AravisFakeCamera, PacketLossIsCountedAndAcquisitionStillCompletes) {
     ASSERT_TRUE(camera->stop().ok());
     const StreamStatistics stats = camera->statistics();
     EXPECT_EQ(stats.delivered, 60u);
-    // 64×48 Mono16 is a leader, 5 data packets and a trailer: P(frame intact) = 0.96^7 ≈ 0.75, so 60
-    // good frames without a single loss has probability ≈ 0.75^60 ≈ 3e-8.
+    // 64×48 Mono16 is a leader, 5 data packets and a trailer: P(frame intact) = 0.96^7 ≈ 0.75, so
+    // 60 good frames without a single loss has probability ≈ 0.75^60 ≈ 3e-8.
     EXPECT_GT(stats.incomplete + stats.dropped, 0u);
     // Damaged frames before the first good one are counted but lie outside [first, last].
     EXPECT_GE(stats.delivered + stats.incomplete + stats.dropped,
               frames.back().frame_id - frames.front().frame_id + 1);
-    EXPECT_LE(stats.delivered + stats.dropped, frames.back().frame_id - frames.front().frame_id + 1);
+    EXPECT_LE(stats.delivered + stats.dropped,
+              frames.back().frame_id - frames.front().frame_id + 1);
 }
 
 TEST_F(AravisFakeCamera, ThermalGenicamExposesMono14TemperatureAndPlanckConstants) {
@@ -240,7 +256,8 @@ TEST_F(AravisFakeCamera, ThermalGenicamExposesMono14TemperatureAndPlanckConstant
 }
 
 /// The thermal XML with its Float AcquisitionFrameRate replaced by `replacement`.
-std::filesystem::path xml_with_frame_rate_node(const test::TempDir& dir, const std::string& replacement) {
+std::filesystem::path xml_with_frame_rate_node(const test::TempDir& dir,
+                                               const std::string& replacement) {
     std::ifstream in(thermal_xml());
     std::stringstream text;
     text << in.rdbuf();
@@ -259,7 +276,8 @@ std::filesystem::path xml_with_frame_rate_node(const test::TempDir& dir, const s
 TEST_F(AravisFakeCamera, FrameRateFallsBackToAcquisitionFrameRateAbs) {
     test::TempDir dir;
     const auto xml = xml_with_frame_rate_node(
-        dir, R"(<Float Name="AcquisitionFrameRateAbs"><pValue>AcquisitionFrameRateConverter</pValue></Float>)");
+        dir,
+        R"(<Float Name="AcquisitionFrameRateAbs"><pValue>AcquisitionFrameRateConverter</pValue></Float>)");
     start_fake({"-g", xml.string()});
     if (HasFatalFailure() || IsSkipped()) return;
     auto camera = open({});
@@ -271,7 +289,8 @@ TEST_F(AravisFakeCamera, FrameRateFallsBackToAcquisitionFrameRateAbs) {
 
 TEST_F(AravisFakeCamera, FrameRateEnumerationOnlyPicksTheMatchingEntry) {
     test::TempDir dir;
-    // Like a thermal core with fixed rates: entries are frame periods in µs of the fake's period register.
+    // Like a thermal core with fixed rates: entries are frame periods in µs of the fake's period
+    // register.
     const auto xml = xml_with_frame_rate_node(dir, R"(<Enumeration Name="IRFrameRate">
 		<EnumEntry Name="Rate25Hz"><Value>40000</Value></EnumEntry>
 		<EnumEntry Name="Rate7_5Hz"><Value>133333</Value></EnumEntry>
@@ -289,7 +308,8 @@ TEST_F(AravisFakeCamera, FrameRateEnumerationOnlyPicksTheMatchingEntry) {
     const Status refused = camera->set_frame_rate(30.0);
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().code, DeviceErrorCode::InvalidArgument);
-    EXPECT_NE(refused.error().message.find("Rate25Hz"), std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("Rate25Hz"), std::string::npos)
+        << refused.error().message;
     // The camera streams at the rate chosen through the enumeration.
     ASSERT_TRUE(camera->start().ok());
     EXPECT_TRUE(camera->grab(2s).ok());
@@ -315,11 +335,13 @@ TEST_F(AravisFakeCamera, SoftwareTriggerDeliversAFrameTakenAfterTheTrigger) {
     ASSERT_TRUE(camera);
     ASSERT_TRUE(camera->start().ok());
     for (int i = 0; i < 3; ++i) {
-        // Free running, frames would queue up during this pause and the next grab would return an old one.
+        // Free running, frames would queue up during this pause and the next grab would return an
+        // old one.
         std::this_thread::sleep_for(100ms);
         timespec now{};
         clock_gettime(CLOCK_REALTIME, &now);
-        const std::int64_t before_ns = static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+        const std::int64_t before_ns =
+            static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
         auto frame = camera->grab(2s);
         ASSERT_TRUE(frame.ok()) << frame.error().message;
         // The fake stamps frames with g_get_real_time() (µs) when it fills them.
@@ -346,7 +368,8 @@ TEST(AravisCamera, OpeningAnAbsentDeviceIsADeviceErrorWithGErrorDomainAndCode) {
     auto camera = open_aravis_camera("No-Such-Camera-0000");
     ASSERT_FALSE(camera.ok());
     EXPECT_NE(camera.error().message.find("aravis://No-Such-Camera-0000"), std::string::npos);
-    EXPECT_NE(camera.error().message.find("GError domain"), std::string::npos) << camera.error().message;
+    EXPECT_NE(camera.error().message.find("GError domain"), std::string::npos)
+        << camera.error().message;
 }
 
 TEST(AravisCamera, FrameRateIsParsedFromEnumerationEntryNames) {

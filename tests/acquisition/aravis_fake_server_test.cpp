@@ -1,6 +1,7 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// FakeGigECameraServer: Aravis's GigE Vision fake camera served in-process with a C++ fill callback;
-// the aravis:// camera receives, over real GVCP/GVSP on loopback, exactly the counts the callback wrote.
+// FakeGigECameraServer: Aravis's GigE Vision fake camera served in-process with a C++ fill
+// callback; the aravis:// camera receives, over real GVCP/GVSP on loopback, exactly the counts the
+// callback wrote.
 
 #include <gtest/gtest.h>
 
@@ -34,9 +35,11 @@ TEST(FakeGigECameraServer, ServesTheCountsItsCallbackWritesInMono14) {
     std::atomic<bool> request_ok{true};
     server.set_fill([&](const FakeGigEFrameRequest& r, std::vector<float>& counts) {
         ++calls;
-        if (r.pixel_format != "Mono14" || r.bits_per_pixel != 14 || counts.size() != 64u * 48u) request_ok = false;
+        if (r.pixel_format != "Mono14" || r.bits_per_pixel != 14 || counts.size() != 64u * 48u)
+            request_ok = false;
         for (int y = 0; y < r.height; ++y)
-            for (int x = 0; x < r.width; ++x) counts[static_cast<std::size_t>(y * r.width + x)] = pattern(x, y, r.frame_id);
+            for (int x = 0; x < r.width; ++x)
+                counts[static_cast<std::size_t>(y * r.width + x)] = pattern(x, y, r.frame_id);
     });
     AravisCameraOptions options;
     options.pixel_format = "Mono14";
@@ -56,7 +59,8 @@ TEST(FakeGigECameraServer, ServesTheCountsItsCallbackWritesInMono14) {
         const std::uint64_t raw_id = (f.frame_id - 1) % 65535 + 1;
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x)
-                ASSERT_EQ(f.counts[static_cast<std::size_t>(y * 64 + x)], pattern(x, y, raw_id)) << x << "," << y;
+                ASSERT_EQ(f.counts[static_cast<std::size_t>(y * 64 + x)], pattern(x, y, raw_id))
+                    << x << "," << y;
     }
     ASSERT_TRUE(camera.stop().ok());
     EXPECT_GE(calls.load(), 5);
@@ -79,10 +83,12 @@ TEST(FakeGigECameraServer, ClipsToTheFormatRangeAndRestoresAravisPattern) {
     Camera& camera = *opened.value();
     ASSERT_TRUE(camera.start().ok());
     const Frame clipped = camera.grab(2s).value();
-    for (std::size_t i = 0; i < clipped.counts.size(); ++i) ASSERT_EQ(clipped.counts[i], i % 2 == 0 ? 255.0f : 0.0f);
+    for (std::size_t i = 0; i < clipped.counts.size(); ++i)
+        ASSERT_EQ(clipped.counts[i], i % 2 == 0 ? 255.0f : 0.0f);
     ASSERT_TRUE(camera.stop().ok());
 
-    // An empty fill restores arv_fake_camera_diagonal_ramp: Mono8 pixel (x, y) = (x + id + y) mod 255.
+    // An empty fill restores arv_fake_camera_diagonal_ramp: Mono8 pixel (x, y) = (x + id + y) mod
+    // 255.
     server.set_fill({});
     ASSERT_TRUE(camera.start().ok());
     const Frame ramp = camera.grab(2s).value();

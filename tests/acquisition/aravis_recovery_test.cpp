@@ -46,11 +46,12 @@ public:
     explicit FakeCamera(const std::filesystem::path& log) {
         const auto binary = test::find_fake_gv_camera_binary();
         if (!binary) {
-            ADD_FAILURE() << test::kFakeGvCameraBinary << " not found on PATH: install the Debian package aravis-tools";
+            ADD_FAILURE() << test::kFakeGvCameraBinary
+                          << " not found on PATH: install the Debian package aravis-tools";
             return;
         }
-        m_process =
-            std::make_unique<test::ChildProcess>(std::vector<std::string>{binary->string(), "-i", kAddress}, log);
+        m_process = std::make_unique<test::ChildProcess>(
+            std::vector<std::string>{binary->string(), "-i", kAddress}, log);
         const auto end = std::chrono::steady_clock::now() + 10s;
         while (std::chrono::steady_clock::now() < end && !m_ready) {
             m_ready = open_aravis_camera(kAddress).ok();  // closed again at once: control released
@@ -76,7 +77,8 @@ std::size_t records_in(const std::filesystem::path& session) {
     }
 }
 
-std::vector<std::string> acquire_args(const std::filesystem::path& dir, const char* plan = "plan.yaml",
+std::vector<std::string> acquire_args(const std::filesystem::path& dir,
+                                      const char* plan = "plan.yaml",
                                       const char* session = "session") {
     return {TIRPOL_CLI_PATH,
             "acquire",
@@ -103,17 +105,21 @@ TEST(AravisRecovery, OpensTheCameraRightAfterTheSessionHoldingItWasKilled) {
         std::filesystem::remove_all(tmp / "again");
         {
             test::ChildProcess holder(acquire_args(tmp.path()), tmp / "holder.log");
-            for (int i = 0; i < 2000 && !std::filesystem::exists(tmp / "session" / "session.json"); ++i)
+            for (int i = 0; i < 2000 && !std::filesystem::exists(tmp / "session" / "session.json");
+                 ++i)
                 std::this_thread::sleep_for(10ms);
-            ASSERT_TRUE(std::filesystem::exists(tmp / "session" / "session.json")) << read_file(tmp / "holder.log");
+            ASSERT_TRUE(std::filesystem::exists(tmp / "session" / "session.json"))
+                << read_file(tmp / "holder.log");
             std::this_thread::sleep_for(300ms);
             holder.signal(SIGKILL);  // no chance to release the camera's control channel
             ASSERT_EQ(holder.wait_for(10s), 128 + SIGKILL);
         }
         // As a user would: run again at once. The killed session left the camera acquiring towards
         // its dead port and (for up to the heartbeat timeout) holding control privilege.
-        test::ChildProcess again(acquire_args(tmp.path(), "quick.yaml", "again"), tmp / "again.log");
-        ASSERT_EQ(again.wait_for(kBound), 0) << "round " << round << ": " << read_file(tmp / "again.log");
+        test::ChildProcess again(acquire_args(tmp.path(), "quick.yaml", "again"),
+                                 tmp / "again.log");
+        ASSERT_EQ(again.wait_for(kBound), 0)
+            << "round " << round << ": " << read_file(tmp / "again.log");
         const SessionManifest m = read_session(tmp / "again");
         EXPECT_TRUE(m.complete);
         EXPECT_EQ(m.records.size(), 4u);
@@ -171,7 +177,8 @@ TEST(AravisRecovery, ACameraThatDisappearsMidStreamIsADisconnectionNotATimeout) 
     const auto start = std::chrono::steady_clock::now();
     Result<Frame> grabbed = camera.value()->grab(30s);
     while (grabbed.ok()) grabbed = camera.value()->grab(30s);  // frames already in the queue
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     RecordProperty("detection_s", std::to_string(seconds));
     EXPECT_EQ(grabbed.error().code, DeviceErrorCode::Disconnected) << grabbed.error().message;
     EXPECT_THAT(grabbed.error().message, HasSubstr("disconnected"));
@@ -183,9 +190,11 @@ TEST(AravisRecovery, AcquireReportsADisconnectionWithTheResumeHint) {
     FakeCamera fake(tmp / "fake.log");
     ASSERT_TRUE(fake.ready());
     // Four steps of 100 frames at 50 fps: the camera goes away during the second.
-    test::write_text(tmp / "plan.yaml", "frames_per_angle: 100\nsettle_s: 0\nframe_timeout_s: 30\n");
+    test::write_text(tmp / "plan.yaml",
+                     "frames_per_angle: 100\nsettle_s: 0\nframe_timeout_s: 30\n");
     test::ChildProcess acquire(acquire_args(tmp.path()), tmp / "acquire.log");
-    for (int i = 0; i < 3000 && records_in(tmp / "session") < 1; ++i) std::this_thread::sleep_for(10ms);
+    for (int i = 0; i < 3000 && records_in(tmp / "session") < 1; ++i)
+        std::this_thread::sleep_for(10ms);
     ASSERT_GE(records_in(tmp / "session"), 1u) << read_file(tmp / "acquire.log");
     fake.kill();
     const auto code = acquire.wait_for(kBound);

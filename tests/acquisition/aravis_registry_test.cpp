@@ -1,6 +1,7 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// list_cameras() finds Aravis's fake GigE Vision camera through discovery and open_camera opens it by
-// its aravis:// URI with the query's options applied (built only with Aravis, TIRPOL_WITH_ARAVIS).
+// list_cameras() finds Aravis's fake GigE Vision camera through discovery and open_camera opens it
+// by its aravis:// URI with the query's options applied (built only with Aravis,
+// TIRPOL_WITH_ARAVIS).
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,8 @@ using test::open_camera_error;
 
 TEST(CameraRegistry, MalformedAravisUrisThrowNamingTheKey) {
     EXPECT_NE(open_camera_error("aravis://X?exposure=10").find("exposure"), std::string::npos);
-    EXPECT_NE(open_camera_error("aravis://X?trigger=hardware").find("trigger=hardware"), std::string::npos);
+    EXPECT_NE(open_camera_error("aravis://X?trigger=hardware").find("trigger=hardware"),
+              std::string::npos);
 }
 
 TEST(CameraRegistry, ListsAndOpensTheFakeGigECameraByUri) {
@@ -33,8 +35,8 @@ TEST(CameraRegistry, ListsAndOpensTheFakeGigECameraByUri) {
     ASSERT_TRUE(fake.ready());
     const auto cameras = list_cameras();
     const std::string uri = std::string("aravis://") + test::kFakeGvCameraId;
-    const auto it =
-        std::find_if(cameras.begin(), cameras.end(), [&](const CameraDescriptor& c) { return c.uri == uri; });
+    const auto it = std::find_if(cameras.begin(), cameras.end(),
+                                 [&](const CameraDescriptor& c) { return c.uri == uri; });
     ASSERT_NE(it, cameras.end());
     EXPECT_NE(it->description.find("127.0.0.1"), std::string::npos) << it->description;
 

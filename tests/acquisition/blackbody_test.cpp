@@ -1,6 +1,8 @@
-// The blackbody controller path: the Fluke 4180 driver (real serial-port code) against the simulator
-// on a pseudo-terminal, the simulator's physics (first-order response, the STABLE LIMIT flag), the
-// wait for a set-point, faults as values, and the tirpol-blackbody-sim program.
+// The blackbody controller path: the Fluke 4180 driver (real serial-port code) against the
+// simulator on a pseudo-terminal, the simulator's physics (first-order response, the STABLE LIMIT
+// flag), the wait for a set-point, faults as values, and the tirpol-blackbody-sim program.
+
+#include "tirpol/acquisition/blackbody.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,7 +14,6 @@
 #include "child_process.h"
 #include "pty_device_thread.h"
 #include "test_support.h"
-#include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/acquisition/internal/blackbody_wait.h"
 #include "tirpol/core/atomic_file.h"
@@ -27,7 +28,8 @@ using Clock = PtyDevice::Clock;
 using SimThread = test::PtyDeviceThread<BlackbodySimulator>;
 
 std::string exchange(BlackbodySimulator& sim, const std::string& command, Clock::time_point now) {
-    const auto out = sim.receive({reinterpret_cast<const std::uint8_t*>(command.data()), command.size()}, now);
+    const auto out =
+        sim.receive({reinterpret_cast<const std::uint8_t*>(command.data()), command.size()}, now);
     return {out.begin(), out.end()};
 }
 
@@ -41,8 +43,10 @@ BlackbodySimulatorOptions fast_options() {
     return o;
 }
 
-/// The driver on the simulator's pty; the reply timeout is generous for a loaded machine unless given.
-std::unique_ptr<BlackbodyController> open_on(const SimThread& sim, const std::string& query = "?timeout_ms=5000") {
+/// The driver on the simulator's pty; the reply timeout is generous for a loaded machine unless
+/// given.
+std::unique_ptr<BlackbodyController> open_on(const SimThread& sim,
+                                             const std::string& query = "?timeout_ms=5000") {
     return open_blackbody("fluke-4180://" + sim.path() + query).value_or_throw();
 }
 
@@ -55,7 +59,8 @@ TEST(BlackbodySimulator, PlateFollowsAFirstOrderResponse) {
     EXPECT_EQ(exchange(sim, "SOUR:SPO 43.0\n", t0), "");
     const double step = 43.0 + 273.15 - o.ambient_k;
     EXPECT_NEAR(sim.plate_temperature_k(t0 + 60s) - o.ambient_k, step * (1 - std::exp(-1.0)), 1e-9);
-    EXPECT_NEAR(sim.plate_temperature_k(t0 + 180s) - o.ambient_k, step * (1 - std::exp(-3.0)), 1e-9);
+    EXPECT_NEAR(sim.plate_temperature_k(t0 + 180s) - o.ambient_k, step * (1 - std::exp(-3.0)),
+                1e-9);
     // A new set-point starts from where the plate is, not from the old target.
     const double at_30s = sim.plate_temperature_k(t0 + 30s);
     exchange(sim, "SOUR:SPO 23.0\n", t0 + 30s);
@@ -71,7 +76,8 @@ TEST(BlackbodySimulator, StabilityFlagNeedsAFullWindowWithinTheLimit) {
     o.stability_window_s = 5.0;
     const auto t0 = Clock::now();
     BlackbodySimulator sim(o, t0);
-    EXPECT_EQ(exchange(sim, "SOUR:STAB:TEST?\n", t0 + 1s), "0\r\n");  // less than a window of readings
+    EXPECT_EQ(exchange(sim, "SOUR:STAB:TEST?\n", t0 + 1s),
+              "0\r\n");  // less than a window of readings
     EXPECT_EQ(exchange(sim, "SOUR:STAB:TEST?\n", t0 + 6s), "1\r\n");  // at ambient, constant
     exchange(sim, "SOUR:SPO 33.0\n", t0 + 6s);
     // Over 5 s at t ≈ τ the plate moves ≈ 3 K: far outside ±0.05 K.
@@ -106,7 +112,8 @@ TEST(BlackbodyController, DriverSetsReadsAndReachesASetPoint) {
     EXPECT_NEAR(reached.last.temperature_k, 308.15, 0.02);
     EXPECT_NEAR(reached.last.set_point_k, 308.15, 1e-9);
     EXPECT_TRUE(reached.last.stable);
-    // The plate needs τ·ln(10 K / 0.02 K) ≈ 2.5 s to come within tolerance, then the flag and the hold.
+    // The plate needs τ·ln(10 K / 0.02 K) ≈ 2.5 s to come within tolerance, then the flag and the
+    // hold.
     EXPECT_GT(reached.wait_s, 0.4 * std::log(12.0 / 0.02));
     EXPECT_NEAR(sim.device().plate_temperature_k(Clock::now()), 308.15, 0.02);
 }
@@ -118,7 +125,8 @@ TEST(BlackbodyController, OutOfRangeSetPointIsRefusedBeforeSending) {
     ASSERT_FALSE(s);
     EXPECT_EQ(s.error().code, DeviceErrorCode::InvalidArgument);
     EXPECT_THAT(s.error().message, HasSubstr("outside the 4180 range 258.15–393.15 K"));
-    EXPECT_NEAR(bb->status().value_or_throw().set_point_k, fast_options().ambient_k, 1e-9);  // nothing was sent
+    EXPECT_NEAR(bb->status().value_or_throw().set_point_k, fast_options().ambient_k,
+                1e-9);  // nothing was sent
 }
 
 TEST(BlackbodyController, FaultsAreValues) {
@@ -169,13 +177,15 @@ TEST(BlackbodyController, ASetPointNeverStableTimesOutNamingTheSetPointAndLastRe
     const auto r = bring_blackbody_to(*bb, 318.15, {0.05, 0.2, 0.5, 0.05});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, DeviceErrorCode::Timeout);
-    EXPECT_THAT(r.error().message,
-                HasSubstr("set-point 318.15 K (45.00 °C) not stable within ±0.05 K for 0.2 s after 0.5 s"));
+    EXPECT_THAT(
+        r.error().message,
+        HasSubstr("set-point 318.15 K (45.00 °C) not stable within ±0.05 K for 0.2 s after 0.5 s"));
     EXPECT_THAT(r.error().message, HasSubstr("last reading 29"));  // ≈ 296.5 K: barely moved
 }
 
 TEST(BlackbodyController, SimUriServesTheSameProtocolInProcess) {
-    auto bb = open_blackbody("sim://?tau_s=0.2&window_s=0.2&limit_k=0.02&noise_k=0.001").value_or_throw();
+    auto bb =
+        open_blackbody("sim://?tau_s=0.2&window_s=0.2&limit_k=0.02&noise_k=0.001").value_or_throw();
     EXPECT_EQ(bb->info().model, "4180");
     const auto reached = bring_blackbody_to(*bb, 290.0, {0.02, 0.1, 20.0, 0.02}).value_or_throw();
     EXPECT_NEAR(reached.last.temperature_k, 290.0, 0.02);
@@ -203,12 +213,15 @@ TEST(BlackbodyController, ReadingLogSummarisesWithSampleStatistics) {
 TEST(BlackbodySimulatorProgram, ServesOnAPtyThatTheDriverOpens) {
     test::TempDir tmp;
     const auto link = tmp / "bb";
-    test::ChildProcess sim({TIRPOL_BLACKBODY_SIM_PATH, "--link", link.string(), "--tau-s", "0.3", "--window-s", "0.2"},
-                           tmp / "sim.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(link); ++i) std::this_thread::sleep_for(10ms);
+    test::ChildProcess sim(
+        {TIRPOL_BLACKBODY_SIM_PATH, "--link", link.string(), "--tau-s", "0.3", "--window-s", "0.2"},
+        tmp / "sim.log");
+    for (int i = 0; i < 500 && !std::filesystem::exists(link); ++i)
+        std::this_thread::sleep_for(10ms);
     ASSERT_TRUE(std::filesystem::exists(link)) << "tirpol-blackbody-sim did not create its link";
     {
-        auto bb = open_blackbody("fluke-4180://" + link.string() + "?timeout_ms=5000").value_or_throw();
+        auto bb =
+            open_blackbody("fluke-4180://" + link.string() + "?timeout_ms=5000").value_or_throw();
         EXPECT_EQ(bb->info().vendor, "FLUKE");
         ASSERT_TRUE(bb->set_temperature_k(300.0));
         EXPECT_NEAR(bb->status().value_or_throw().set_point_k, 300.0, 1e-9);
@@ -218,7 +231,8 @@ TEST(BlackbodySimulatorProgram, ServesOnAPtyThatTheDriverOpens) {
     EXPECT_FALSE(std::filesystem::exists(link));
 }
 
-/// `tirpol-blackbody-sim` linked at DIR/bb (τ = 0.3 s) with `extra` arguments, waiting for the link.
+/// `tirpol-blackbody-sim` linked at DIR/bb (τ = 0.3 s) with `extra` arguments, waiting for the
+/// link.
 std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::path& dir,
                                                         std::vector<std::string> extra = {}) {
     std::vector<std::string> args{TIRPOL_BLACKBODY_SIM_PATH,
@@ -236,16 +250,18 @@ std::unique_ptr<test::ChildProcess> start_blackbody_sim(const std::filesystem::p
                                   "0.002"};
     args.insert(args.end(), extra.begin(), extra.end());
     auto sim = std::make_unique<test::ChildProcess>(args, dir / "bb-sim.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "bb"); ++i) std::this_thread::sleep_for(10ms);
+    for (int i = 0; i < 500 && !std::filesystem::exists(dir / "bb"); ++i)
+        std::this_thread::sleep_for(10ms);
     return sim;
 }
 
 int run_acquire(const std::filesystem::path& dir, const char* log) {
-    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
-                                "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://",
-                                "--blackbody", "fluke-4180://" + (dir / "bb").string() + "?timeout_ms=5000", "-o",
-                                (dir / "session").string(), "--non-interactive"},
-                               dir / log);
+    test::ChildProcess acquire(
+        {TIRPOL_CLI_PATH, "acquire", (dir / "plan.yaml").string(), "--camera",
+         "sim://uniform?width=16&height=12&counts=1200&noise=2&fps=100", "--stage", "sim://",
+         "--blackbody", "fluke-4180://" + (dir / "bb").string() + "?timeout_ms=5000", "-o",
+         (dir / "session").string(), "--non-interactive"},
+        dir / log);
     return acquire.wait_for(120s).value_or(-1);
 }
 
@@ -268,7 +284,8 @@ TEST(AcquireWithBlackbody, RunsTheSetPointsUnattendedAndRecordsTheReadings) {
     const SessionManifest m = read_session(tmp / "session");
     ASSERT_EQ(m.records.size(), 5u);  // 2 set-points × 2 angles + 1 polarizer step
     ASSERT_TRUE(m.blackbody_controller);
-    EXPECT_EQ(m.blackbody_controller->uri, "fluke-4180://" + (tmp / "bb").string() + "?timeout_ms=5000");
+    EXPECT_EQ(m.blackbody_controller->uri,
+              "fluke-4180://" + (tmp / "bb").string() + "?timeout_ms=5000");
     const double set_points[] = {293.15, 293.15, 303.15, 303.15};
     for (std::size_t i = 0; i < 4; ++i) {
         const SessionRecord& r = m.records[i];
@@ -277,7 +294,8 @@ TEST(AcquireWithBlackbody, RunsTheSetPointsUnattendedAndRecordsTheReadings) {
         EXPECT_NEAR(*r.blackbody_temperature_k, set_points[i], 0.02);
         EXPECT_EQ(r.angle_deg_requested, i % 2 == 0 ? 0.0 : 90.0);
     }
-    EXPECT_EQ(m.records[1].blackbody_readings->wait_s, 0.0);  // same set-point, next angle: no new wait
+    EXPECT_EQ(m.records[1].blackbody_readings->wait_s,
+              0.0);  // same set-point, next angle: no new wait
     EXPECT_GT(m.records[2].blackbody_readings->wait_s, 0.2);
     EXPECT_EQ(m.records[3].file, "frames/s003_bb_303.15K_pol_090.000deg.exr");
 }
@@ -285,21 +303,24 @@ TEST(AcquireWithBlackbody, RunsTheSetPointsUnattendedAndRecordsTheReadings) {
 TEST(AcquireWithBlackbody, AControllerFaultStopsTheRunNamingTheStep) {
     test::TempDir tmp;
     test::write_text(tmp / "plan.yaml", kControlledPlan);
-    auto sim = start_blackbody_sim(tmp.path(), {"--fault", "over-temperature", "--fault-on-set", "2"});
+    auto sim =
+        start_blackbody_sim(tmp.path(), {"--fault", "over-temperature", "--fault-on-set", "2"});
     EXPECT_EQ(run_acquire(tmp.path(), "acquire.log"), 1);
     const std::string log = read_file(tmp / "acquire.log");
-    EXPECT_THAT(log, HasSubstr("step 3/5 (blackbody at 303.15 K, polarizer 0°): blackbody device fault"));
+    EXPECT_THAT(
+        log, HasSubstr("step 3/5 (blackbody at 303.15 K, polarizer 0°): blackbody device fault"));
     EXPECT_THAT(log, HasSubstr("over-temperature cutout has tripped"));
-    EXPECT_EQ(read_session(tmp / "session").records.size(), 2u);  // the first set-point's records are kept
+    EXPECT_EQ(read_session(tmp / "session").records.size(),
+              2u);  // the first set-point's records are kept
 }
 
 TEST(AcquireWithBlackbody, APlanWithSetPointsNeedsAController) {
     test::TempDir tmp;
     test::write_text(tmp / "plan.yaml", kControlledPlan);
-    test::ChildProcess acquire(
-        {TIRPOL_CLI_PATH, "acquire", (tmp / "plan.yaml").string(), "--camera", "sim://uniform?width=8&height=6",
-         "--stage", "sim://", "-o", (tmp / "session").string(), "--non-interactive"},
-        tmp / "acquire.log");
+    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (tmp / "plan.yaml").string(),
+                                "--camera", "sim://uniform?width=8&height=6", "--stage", "sim://",
+                                "-o", (tmp / "session").string(), "--non-interactive"},
+                               tmp / "acquire.log");
     EXPECT_EQ(acquire.wait_for(60s), 1);
     EXPECT_THAT(read_file(tmp / "acquire.log"),
                 HasSubstr("no blackbody controller was given (tirpol acquire --blackbody URI)"));

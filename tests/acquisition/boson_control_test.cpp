@@ -1,7 +1,8 @@
-// The Boson control-link driver against the simulated core on a pseudo-terminal: the real FSLP bytes
-// through the real serial-port code. Reference bytes: frames captured from a Boson on /dev/ttyACM0 and
-// published in github.com/thurberdog/ghostCommand (README.md): BOSON_GETCAMERASN with sequence 1 and its
-// reply (serial 0x00016D94), BOSON_LOOKUPFPATEMPDEGCX10's reply 0x017C (38.0 °C).
+// The Boson control-link driver against the simulated core on a pseudo-terminal: the real FSLP
+// bytes through the real serial-port code. Reference bytes: frames captured from a Boson on
+// /dev/ttyACM0 and published in github.com/thurberdog/ghostCommand (README.md): BOSON_GETCAMERASN
+// with sequence 1 and its reply (serial 0x00016D94), BOSON_LOOKUPFPATEMPDEGCX10's reply 0x017C
+// (38.0 °C).
 
 #include "tirpol/acquisition/internal/boson_control.h"
 
@@ -33,10 +34,12 @@ TEST(BosonControl, EncodesAndDecodesFramesCapturedFromARealBoson) {
     const std::vector<std::uint8_t> sent = {0x8E, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x05, 0x00,
                                             0x02, 0xFF, 0xFF, 0xFF, 0xFF, 0x01, 0x0B, 0xAE};
     EXPECT_EQ(encode_command({1, kBosonGetCameraSn, {}}), sent);
-    const std::vector<std::uint8_t> serial_reply = {0x8E, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x05, 0x00, 0x02, 0x00,
-                                                    0x00, 0x00, 0x00, 0x00, 0x01, 0x6D, 0x94, 0x30, 0x10, 0xAE};
-    const std::vector<std::uint8_t> fpa_reply = {0x8E, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x05, 0x00, 0x30,
-                                                 0x00, 0x00, 0x00, 0x00, 0x01, 0x7C, 0xBD, 0xCE, 0xAE};
+    const std::vector<std::uint8_t> serial_reply = {0x8E, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00,
+                                                    0x05, 0x00, 0x02, 0x00, 0x00, 0x00, 0x00,
+                                                    0x00, 0x01, 0x6D, 0x94, 0x30, 0x10, 0xAE};
+    const std::vector<std::uint8_t> fpa_reply = {0x8E, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00,
+                                                 0x05, 0x00, 0x30, 0x00, 0x00, 0x00, 0x00,
+                                                 0x01, 0x7C, 0xBD, 0xCE, 0xAE};
     FrameDecoder decoder;
     auto frames = decoder.feed(serial_reply);
     ASSERT_EQ(frames.size(), 1u);
@@ -77,10 +80,12 @@ TEST(BosonControl, SetsModesAndReportsTheCoresRefusalByName) {
     auto refused = boson->transact(kBosonSetFfcMode, seven, 0);
     ASSERT_FALSE(refused);
     EXPECT_EQ(refused.error().code, DeviceErrorCode::DeviceFault);
-    EXPECT_NE(refused.error().message.find("R_CAM_API_INVALID_INPUT"), std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("R_CAM_API_INVALID_INPUT"), std::string::npos)
+        << refused.error().message;
     auto unknown = boson->transact(0x00051234, {}, 0);
     ASSERT_FALSE(unknown);
-    EXPECT_NE(unknown.error().message.find("R_CAM_DSPCH_BAD_CMD_ID"), std::string::npos) << unknown.error().message;
+    EXPECT_NE(unknown.error().message.find("R_CAM_DSPCH_BAD_CMD_ID"), std::string::npos)
+        << unknown.error().message;
     // The link still works after refusals.
     EXPECT_EQ(boson->gain_mode().value(), GainMode::Low);
 }
@@ -104,7 +109,8 @@ TEST(BosonControl, ManualFfcClosesTheShutterForItsDurationAndMovesTheLastFfcFram
     const auto state = boson->ffc_state().value();
     EXPECT_EQ(state.status, FfcStatus::Complete);
     EXPECT_GT(state.last_ffc_frame_count, 0u);
-    EXPECT_GE(state.frame_count, state.last_ffc_frame_count + 25);  // ≥ 0.5 s at 60 Hz after the FFC began
+    EXPECT_GE(state.frame_count,
+              state.last_ffc_frame_count + 25);  // ≥ 0.5 s at 60 Hz after the FFC began
     ASSERT_TRUE(boson->run_ffc_and_wait());
     EXPECT_GT(boson->last_ffc_frame_count().value(), state.last_ffc_frame_count);
     EXPECT_EQ(sim.device().core()->ffcs_started(Clock::now()), 2);
@@ -121,7 +127,8 @@ TEST(BosonControl, AutoFfcRunsWhenTheFpaMovesByTheThresholdAndNotInManualMode) {
     std::this_thread::sleep_for(50ms);
     EXPECT_EQ(boson->last_ffc_frame_count().value(), 0u);
     EXPECT_FALSE(boson->ffc_in_progress().value());
-    ASSERT_TRUE(boson->set_ffc_mode(FfcMode::Auto));  // the FPA is now 0.6 K from the power-up reference
+    ASSERT_TRUE(
+        boson->set_ffc_mode(FfcMode::Auto));  // the FPA is now 0.6 K from the power-up reference
     std::this_thread::sleep_for(50ms);
     EXPECT_TRUE(boson->ffc_in_progress().value());
     EXPECT_EQ(core->auto_ffcs_started(Clock::now()), 1);
@@ -153,8 +160,10 @@ TEST_P(BosonControlFault, IsAClearErrorAndTheLinkRecoversUnlessSilent) {
     auto failed = boson->fpa_temperature_k();
     ASSERT_FALSE(failed);
     EXPECT_EQ(failed.error().code, GetParam().code) << failed.error().message;
-    EXPECT_NE(failed.error().message.find(GetParam().message_part), std::string::npos) << failed.error().message;
-    EXPECT_NE(failed.error().message.find("BOSON_LOOKUPFPATEMPDEGCX10"), std::string::npos) << failed.error().message;
+    EXPECT_NE(failed.error().message.find(GetParam().message_part), std::string::npos)
+        << failed.error().message;
+    EXPECT_NE(failed.error().message.find("BOSON_LOOKUPFPATEMPDEGCX10"), std::string::npos)
+        << failed.error().message;
     if (GetParam().code == DeviceErrorCode::Timeout) {
         EXPECT_GE(Clock::now() - t0, 190ms);
     }
@@ -169,15 +178,17 @@ TEST_P(BosonControlFault, IsAClearErrorAndTheLinkRecoversUnlessSilent) {
 
 INSTANTIATE_TEST_SUITE_P(
     Faults, BosonControlFault,
-    ::testing::Values(FaultCase{BosonSimFault::DropReply, DeviceErrorCode::Timeout, "stopped answering"},
-                      FaultCase{BosonSimFault::Silent, DeviceErrorCode::Timeout, "stopped answering"},
-                      FaultCase{BosonSimFault::CorruptCrc, DeviceErrorCode::BadReply, "bad CRC"},
-                      FaultCase{BosonSimFault::WrongSequence, DeviceErrorCode::BadReply, "carries sequence"}));
+    ::testing::Values(
+        FaultCase{BosonSimFault::DropReply, DeviceErrorCode::Timeout, "stopped answering"},
+        FaultCase{BosonSimFault::Silent, DeviceErrorCode::Timeout, "stopped answering"},
+        FaultCase{BosonSimFault::CorruptCrc, DeviceErrorCode::BadReply, "bad CRC"},
+        FaultCase{BosonSimFault::WrongSequence, DeviceErrorCode::BadReply, "carries sequence"}));
 
 TEST(BosonControl, AbsentPortIsAnErrorNamingIt) {
     auto r = open_boson_control("/dev/nonexistent-boson", "boson:///dev/nonexistent-boson");
     ASSERT_FALSE(r);
-    EXPECT_NE(r.error().message.find("/dev/nonexistent-boson"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("/dev/nonexistent-boson"), std::string::npos)
+        << r.error().message;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // open_camera(uri) dispatches on the scheme and turns the query into options. The aravis:// and
-// v4l2:// URIs are tested in aravis_registry_test.cpp and v4l2_camera_test.cpp, built with their back end.
+// v4l2:// URIs are tested in aravis_registry_test.cpp and v4l2_camera_test.cpp, built with their
+// back end.
 
 #include <gtest/gtest.h>
 
@@ -26,7 +27,8 @@ TEST(CameraRegistry, SimUriBuildsAUniformCamera) {
 }
 
 TEST(CameraRegistry, MalformedUrisThrowNamingTheProblem) {
-    EXPECT_NE(open_camera_error("gige://cam").find("unknown camera scheme 'gige'"), std::string::npos);
+    EXPECT_NE(open_camera_error("gige://cam").find("unknown camera scheme 'gige'"),
+              std::string::npos);
     EXPECT_NE(open_camera_error("camera0").find("<scheme>://"), std::string::npos);
     EXPECT_NE(open_camera_error("sim://uniform?exposure=10").find("exposure"), std::string::npos);
 }

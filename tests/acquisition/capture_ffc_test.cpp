@@ -1,11 +1,12 @@
 // Flat-field corrections and the polarizer cycle, on the simulated Boson core: its video through a
 // free-running simulated camera behind the simulated stage, its control link on a pseudo-terminal.
-// The scene is linearly polarized (Malus: an ideal polarizer at θ passes (S0 + S1 cos 2θ + S2 sin 2θ)/2,
-// paper eqs 14–16). An auto FFC is provoked inside the first cycle by a step of the FPA temperature
-// (the core's own threshold logic starts it), at the 45° step's third frame.
+// The scene is linearly polarized (Malus: an ideal polarizer at θ passes (S0 + S1 cos 2θ + S2 sin
+// 2θ)/2, paper eqs 14–16). An auto FFC is provoked inside the first cycle by a step of the FPA
+// temperature (the core's own threshold logic starts it), at the 45° step's third frame.
 // - Without FFC handling that cycle's records carry the shutter and the offset step: S1, S2 biased
 //   far beyond the noise.
-// - With detection only (no link) the step is found, the cycle taken again, the bias is below noise.
+// - With detection only (no link) the step is found, the cycle taken again, the bias is below
+// noise.
 // - With the link the core is in manual mode, the FPA step starts no FFC, FFCs run between cycles.
 
 #include <gtest/gtest.h>
@@ -84,13 +85,14 @@ CapturePlan plan(int repeats) {
     return p;
 }
 
-/// Steps the FPA by 0.6 K (over the core's 0.5 K auto threshold) at the 45° step's third frame of cycle 1.
+/// Steps the FPA by 0.6 K (over the core's 0.5 K auto threshold) at the 45° step's third frame of
+/// cycle 1.
 CaptureOptions provoking(BosonCoreModel& core, bool& done) {
     CaptureOptions o;
     o.progress_stream = nullptr;
     o.on_progress = [&core, &done](const CaptureProgress& p) {
-        if (!done && p.event == CaptureProgress::Event::Frame && p.step->repeat == 0 && p.step->angle_deg == 45.0 &&
-            p.frames_kept == 3) {
+        if (!done && p.event == CaptureProgress::Event::Frame && p.step->repeat == 0 &&
+            p.step->angle_deg == 45.0 && p.frames_kept == 3) {
             core.add_fpa_step_k(0.6);
             done = true;
         }
@@ -102,7 +104,8 @@ struct StokesBias {
     double s1 = 0.0, s2 = 0.0;
 };
 
-/// Pixel-mean S1 − kS1 and S2 − kS2 of one repeat, from the session's records (S1 = I0 − I90, S2 = I45 − I135).
+/// Pixel-mean S1 − kS1 and S2 − kS2 of one repeat, from the session's records (S1 = I0 − I90, S2 =
+/// I45 − I135).
 StokesBias bias(const std::filesystem::path& dir, int repeat) {
     const SessionManifest m = read_session(dir);
     std::map<int, double> mean;
@@ -112,7 +115,8 @@ StokesBias bias(const std::filesystem::path& dir, int repeat) {
         const auto& counts = image.channel("counts");
         double sum = 0.0;
         for (float c : counts) sum += c;
-        mean[static_cast<int>(std::lround(r.angle_deg_requested))] = sum / static_cast<double>(counts.size());
+        mean[static_cast<int>(std::lround(r.angle_deg_requested))] =
+            sum / static_cast<double>(counts.size());
     }
     EXPECT_EQ(mean.size(), 4u);
     return {mean[0] - mean[90] - kS1, mean[45] - mean[135] - kS2};
@@ -126,14 +130,14 @@ TEST(CaptureFfc, WithoutHandlingAnAutoFfcInsideACycleBiasesS1AndS2) {
     BosonRig rig;
     bool provoked = false;
     const auto options = provoking(*rig.core, provoked);
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
     run_capture(*rig.camera, *rig.stage, plan(1), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
     const StokesBias b = bias(tmp / "s", 0);
-    std::printf("no FFC handling: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n", b.s1, b.s2,
-                stokes_noise());
+    std::printf("no FFC handling: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n",
+                b.s1, b.s2, stokes_noise());
     EXPECT_GT(std::max(std::abs(b.s1), std::abs(b.s2)), 5.0 * stokes_noise());
     EXPECT_TRUE(read_session(tmp / "s").ffc_events.empty());
 }
@@ -145,8 +149,8 @@ TEST(CaptureFfc, WithoutALinkAnFfcInsideACycleIsDetectedAndTheCycleTakenAgain) {
     auto options = provoking(*rig.core, provoked);
     FfcOptions ffc;  // no control link: detection in the frames only
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
@@ -160,17 +164,20 @@ TEST(CaptureFfc, WithoutALinkAnFfcInsideACycleIsDetectedAndTheCycleTakenAgain) {
     EXPECT_NE(m.ffc_events[0].reason.find("45"), std::string::npos) << m.ffc_events[0].reason;
     for (int repeat : {0, 1}) {
         const StokesBias b = bias(tmp / "s", repeat);
-        std::printf("detection, cycle %d: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n", repeat + 1,
-                    b.s1, b.s2, stokes_noise());
+        std::printf(
+            "detection, cycle %d: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n",
+            repeat + 1, b.s1, b.s2, stokes_noise());
         EXPECT_LT(std::abs(b.s1), stokes_noise());
         EXPECT_LT(std::abs(b.s2), stokes_noise());
     }
 }
 
-TEST(CaptureFfc, WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoundFromThePreviousCycle) {
-    // A short FFC that starts after the last 45° frame of cycle 2: its shutter frames fall in the move and
-    // settle (never kept) and the offset steps between I45 and I90, which the closure I0 + I90 − I45 − I135
-    // cannot see (the step adds to I90 and I135 alike); the change from cycle 1, unequal across angles, can.
+TEST(CaptureFfc,
+     WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoundFromThePreviousCycle) {
+    // A short FFC that starts after the last 45° frame of cycle 2: its shutter frames fall in the
+    // move and settle (never kept) and the offset steps between I45 and I90, which the closure I0 +
+    // I90 − I45 − I135 cannot see (the step adds to I90 and I135 alike); the change from cycle 1,
+    // unequal across angles, can.
     test::TempDir tmp;
     BosonCoreConfig config = core_config();
     config.ffc_duration_s = 0.01;
@@ -179,16 +186,16 @@ TEST(CaptureFfc, WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoun
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.on_progress = [&](const CaptureProgress& p) {
-        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 1 && p.step->angle_deg == 45.0 &&
-            p.frames_kept == kFrames) {
+        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 1 &&
+            p.step->angle_deg == 45.0 && p.frames_kept == kFrames) {
             rig.core->add_fpa_step_k(0.6);
             provoked = true;
         }
     };
     FfcOptions ffc;
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 1);
@@ -196,7 +203,8 @@ TEST(CaptureFfc, WithoutALinkAnOffsetStepBetweenTheFortyFiveAndNinetyStepsIsFoun
     const SessionManifest m = read_session(tmp / "s");
     ASSERT_EQ(m.ffc_events.size(), 1u);
     EXPECT_EQ(m.ffc_events[0].repeat, 1);
-    EXPECT_NE(m.ffc_events[0].reason.find("changed unequally"), std::string::npos) << m.ffc_events[0].reason;
+    EXPECT_NE(m.ffc_events[0].reason.find("changed unequally"), std::string::npos)
+        << m.ffc_events[0].reason;
     const StokesBias b = bias(tmp / "s", 1);
     EXPECT_LT(std::abs(b.s1), stokes_noise());
     EXPECT_LT(std::abs(b.s2), stokes_noise());
@@ -213,12 +221,13 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
     ffc.control = link.get();
     ffc.schedule = FfcOptions::Schedule::EveryCycle;
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(3), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(rig.core->ffc_mode(), boson::FfcMode::Manual);
-    EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()), 0);  // the FPA step came with the core in manual mode
+    EXPECT_EQ(rig.core->auto_ffcs_started(Clock::now()),
+              0);  // the FPA step came with the core in manual mode
     EXPECT_EQ(rig.core->ffcs_started(Clock::now()), 3);
     EXPECT_EQ(summary.ffc_scheduled, 3);
     EXPECT_EQ(summary.ffc_detected, 0);
@@ -231,10 +240,11 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
         ASSERT_TRUE(e.device_frame_count);
         ASSERT_TRUE(e.fpa_temperature_k);
         // Each FFC ended before its cycle's first frame: the cycle's records start after it.
-        const auto first =
-            std::find_if(m.records.begin(), m.records.end(), [&](const SessionRecord& r) { return r.repeat == i; });
+        const auto first = std::find_if(m.records.begin(), m.records.end(),
+                                        [&](const SessionRecord& r) { return r.repeat == i; });
         ASSERT_NE(first, m.records.end());
-        EXPECT_GT(first->first_timestamp_ns, e.host_timestamp_ns + 450'000'000) << "cycle " << i + 1;
+        EXPECT_GT(first->first_timestamp_ns, e.host_timestamp_ns + 450'000'000)
+            << "cycle " << i + 1;
         if (i > 0) {
             const auto& previous_last = *(first - 1);
             EXPECT_LT(previous_last.last_timestamp_ns, e.host_timestamp_ns) << "cycle " << i + 1;
@@ -256,15 +266,16 @@ TEST(CaptureFfc, WithTheLinkFfcsRunBetweenCyclesAndTheCoreNeverCorrectsInside) {
         EXPECT_EQ(a.core_before->ffc_mode, "manual");
         EXPECT_EQ(a.core_before->gain_mode, "high");
         // At 60 Hz the core counts at least the kept frames during the step; no FFC within it.
-        EXPECT_GE(a.core_after->device_frame_count - a.core_before->device_frame_count, kFrames - 1);
+        EXPECT_GE(a.core_after->device_frame_count - a.core_before->device_frame_count,
+                  kFrames - 1);
         EXPECT_EQ(a.core_after->last_ffc_frame_count, a.core_before->last_ffc_frame_count);
         EXPECT_EQ(a.core_before->last_ffc_frame_count,
                   *m.ffc_events[static_cast<std::size_t>(r.repeat)].device_frame_count);
     }
     for (int repeat : {0, 1, 2}) {
         const StokesBias b = bias(tmp / "s", repeat);
-        std::printf("link, cycle %d: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n", repeat + 1, b.s1,
-                    b.s2, stokes_noise());
+        std::printf("link, cycle %d: S1 bias %+.2f, S2 bias %+.2f counts (per-pixel noise %.2f)\n",
+                    repeat + 1, b.s1, b.s2, stokes_noise());
         EXPECT_LT(std::abs(b.s1), stokes_noise());
         EXPECT_LT(std::abs(b.s2), stokes_noise());
     }
@@ -281,8 +292,8 @@ TEST(CaptureFfc, WithTheLinkAnFfcTheCoreRanInsideACycleIsSeenInItsFrameCountAndT
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.on_progress = [&](const CaptureProgress& p) {
-        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 0 && p.step->angle_deg == 45.0 &&
-            p.frames_kept == 3) {
+        if (!provoked && p.event == CaptureProgress::Event::Frame && p.step->repeat == 0 &&
+            p.step->angle_deg == 45.0 && p.frames_kept == 3) {
             rig.core->run_ffc(Clock::now());
             provoked = true;
         }
@@ -292,8 +303,8 @@ TEST(CaptureFfc, WithTheLinkAnFfcTheCoreRanInsideACycleIsSeenInItsFrameCountAndT
     ffc.schedule = FfcOptions::Schedule::EveryN;
     ffc.every_n_cycles = 10;  // only before the first cycle
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(2)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(2), session, options);
     ASSERT_TRUE(provoked);
     EXPECT_EQ(summary.ffc_detected, 1);
@@ -302,7 +313,8 @@ TEST(CaptureFfc, WithTheLinkAnFfcTheCoreRanInsideACycleIsSeenInItsFrameCountAndT
     ASSERT_EQ(m.ffc_events.size(), 3u);
     EXPECT_EQ(m.ffc_events[0].kind, FfcEvent::Kind::Scheduled);
     EXPECT_EQ(m.ffc_events[1].kind, FfcEvent::Kind::Detected);
-    EXPECT_NE(m.ffc_events[1].reason.find("last-FFC frame count moved"), std::string::npos) << m.ffc_events[1].reason;
+    EXPECT_NE(m.ffc_events[1].reason.find("last-FFC frame count moved"), std::string::npos)
+        << m.ffc_events[1].reason;
     EXPECT_EQ(m.ffc_events[2].kind, FfcEvent::Kind::Scheduled);
     EXPECT_EQ(m.ffc_events[2].repeat, 0);
     for (int repeat : {0, 1}) {
@@ -324,8 +336,8 @@ TEST(CaptureFfc, WithTheLinkTheFpaScheduleRunsAnFfcOnlyWhenTheFpaMoved) {
     ffc.schedule = FfcOptions::Schedule::FpaDelta;
     ffc.fpa_delta_k = 0.3;
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(3)));
     const auto summary = run_capture(*rig.camera, *rig.stage, plan(3), session, options);
     ASSERT_TRUE(provoked);
     // Cycle 1 (no reference yet) and cycle 2 (the FPA stepped 0.6 K during cycle 1); not cycle 3.
@@ -334,7 +346,8 @@ TEST(CaptureFfc, WithTheLinkTheFpaScheduleRunsAnFfcOnlyWhenTheFpaMoved) {
     ASSERT_EQ(m.ffc_events.size(), 2u);
     EXPECT_EQ(m.ffc_events[0].repeat, 0);
     EXPECT_EQ(m.ffc_events[1].repeat, 1);
-    EXPECT_NE(m.ffc_events[1].reason.find("FPA moved +0.6"), std::string::npos) << m.ffc_events[1].reason;
+    EXPECT_NE(m.ffc_events[1].reason.find("FPA moved +0.6"), std::string::npos)
+        << m.ffc_events[1].reason;
 }
 
 TEST(CaptureFfc, ACoreThatStopsAnsweringFailsTheStepByName) {
@@ -352,8 +365,8 @@ TEST(CaptureFfc, ACoreThatStopsAnsweringFailsTheStepByName) {
     FfcOptions ffc;
     ffc.control = link.get();
     options.ffc = &ffc;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), rig.stage->info(), plan(1)));
     try {
         run_capture(*rig.camera, *rig.stage, plan(1), session, options);
         FAIL() << "expected an error";

@@ -49,27 +49,34 @@ TEST(CapturePlanLimits, AnglesOutsideZeroTo360AreRefusedNotWrapped) {
                 HasSubstr("angle -45° is outside [0, 360) (the same position is 315°)"));
     EXPECT_THAT(error_of("angles_deg: [0, 360]"), HasSubstr("angles_deg"));
     EXPECT_THAT(error_of("angles_deg: [0, .nan]"), HasSubstr("angles_deg[1]"));
-    EXPECT_THAT(error_of("references: [{kind: shutter, angle_deg: 370}]"), HasSubstr("references[0].angle_deg"));
+    EXPECT_THAT(error_of("references: [{kind: shutter, angle_deg: 370}]"),
+                HasSubstr("references[0].angle_deg"));
     // The edges of the range are positions like any other.
-    const CapturePlan plan = CapturePlan::parse(ConfigNode::parse("angles_deg: [0, 359.999]", "plan.yaml"));
+    const CapturePlan plan =
+        CapturePlan::parse(ConfigNode::parse("angles_deg: [0, 359.999]", "plan.yaml"));
     EXPECT_EQ(plan.angles_deg, (std::vector<double>{0, 359.999}));
 }
 
 TEST(CapturePlanLimits, ValuesThatWouldRunForeverAreRefusedBeforeAnythingStarts) {
     // The two reports of issue #20: a settle time of 2^32 s and 2^31 − 1 frames per angle.
-    EXPECT_THAT(error_of("settle_s: 4294967296"), HasSubstr("settle_s: expected a duration in seconds ≥ 0 and ≤ 3600"));
-    EXPECT_THAT(error_of("frames_per_angle: 0x7fffffff"),
-                HasSubstr("frames_per_angle: expected an integer ≥ 1 and ≤ 100000, got 2147483647"));
-    EXPECT_THAT(error_of("repeats: 10001"), HasSubstr("repeats: expected an integer ≥ 1 and ≤ 10000"));
+    EXPECT_THAT(error_of("settle_s: 4294967296"),
+                HasSubstr("settle_s: expected a duration in seconds ≥ 0 and ≤ 3600"));
+    EXPECT_THAT(
+        error_of("frames_per_angle: 0x7fffffff"),
+        HasSubstr("frames_per_angle: expected an integer ≥ 1 and ≤ 100000, got 2147483647"));
+    EXPECT_THAT(error_of("repeats: 10001"),
+                HasSubstr("repeats: expected an integer ≥ 1 and ≤ 10000"));
     EXPECT_THAT(error_of("move_timeout_s: 3601"), HasSubstr("move_timeout_s"));
     EXPECT_THAT(error_of("home_timeout_s: 1e9"), HasSubstr("home_timeout_s"));
     EXPECT_THAT(error_of("frame_timeout_s: 601"), HasSubstr("frame_timeout_s"));
     EXPECT_THAT(error_of("frame_timeout_s: .inf"), HasSubstr("frame_timeout_s"));
-    EXPECT_THAT(error_of("references: [{kind: shutter, frames: 100001}]"), HasSubstr("references[0].frames"));
+    EXPECT_THAT(error_of("references: [{kind: shutter, frames: 100001}]"),
+                HasSubstr("references[0].frames"));
     // The limits themselves are accepted.
-    const CapturePlan plan = CapturePlan::parse(ConfigNode::parse(
-        "settle_s: 3600\nframes_per_angle: 100000\nrepeats: 10000\nmove_timeout_s: 3600\nframe_timeout_s: 600\n",
-        "plan.yaml"));
+    const CapturePlan plan =
+        CapturePlan::parse(ConfigNode::parse("settle_s: 3600\nframes_per_angle: 100000\nrepeats: "
+                                             "10000\nmove_timeout_s: 3600\nframe_timeout_s: 600\n",
+                                             "plan.yaml"));
     EXPECT_EQ(plan.settle_s, kMaxSettleSeconds);
     EXPECT_EQ(plan.frames_per_angle, kMaxFramesPerStep);
     EXPECT_EQ(plan.repeats, kMaxRepeats);
@@ -80,11 +87,14 @@ TEST(CapturePlanLimits, ErrorsNameTheFileAndLine) {
 }
 
 TEST(CapturePlanLimits, BadDriftReferencesAreReportedByField) {
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 2, height: 2}}"), HasSubstr("contact-sensor"));
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 0, height: 2}, temperature_k: 300}"),
-                HasSubstr("width"));
-    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1.5, y: 1, width: 2, height: 2}, temperature_k: 300}"),
-                HasSubstr("whole number"));
+    EXPECT_THAT(error_of("scene_reference: {roi: {x: 1, y: 1, width: 2, height: 2}}"),
+                HasSubstr("contact-sensor"));
+    EXPECT_THAT(
+        error_of("scene_reference: {roi: {x: 1, y: 1, width: 0, height: 2}, temperature_k: 300}"),
+        HasSubstr("width"));
+    EXPECT_THAT(
+        error_of("scene_reference: {roi: {x: 1.5, y: 1, width: 2, height: 2}, temperature_k: 300}"),
+        HasSubstr("whole number"));
     EXPECT_THAT(error_of("shutter_interleave: {every: 0}"), HasSubstr("every"));
     EXPECT_THAT(error_of("shutter_interleave: {every: 2, temperature_k: 295, temperature_c: 20}"),
                 HasSubstr("not both"));

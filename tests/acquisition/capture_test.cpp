@@ -7,11 +7,10 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <sys/resource.h>
 
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <numbers>
 #include <set>
 #include <utility>
@@ -36,12 +35,13 @@ double malus_counts(double theta_deg) {
     return kUnpolarized / 2.0 + kPolarized * std::cos(d) * std::cos(d);
 }
 
-/// A free-running simulated camera looking through the polarizer of a simulated stage: each frame shows
-/// the mount where it physically is when the frame is exposed, also mid-move.
+/// A free-running simulated camera looking through the polarizer of a simulated stage: each frame
+/// shows the mount where it physically is when the frame is exposed, also mid-move.
 struct Rig {
     std::unique_ptr<Stage> stage;
     std::unique_ptr<SimulatedCamera> camera;
-    explicit Rig(SimulatedStageOptions stage_options = {}, double noise = 0.0, double fps = 500.0, int buffers = 16) {
+    explicit Rig(SimulatedStageOptions stage_options = {}, double noise = 0.0, double fps = 500.0,
+                 int buffers = 16) {
         stage = make_simulated_stage("sim://", stage_options);
         SimulatedCameraConfig config;
         config.width = 6;
@@ -52,7 +52,10 @@ struct Rig {
         config.frame_rate_hz = fps;
         config.buffers = buffers;
         camera = std::make_unique<SimulatedCamera>(
-            config, [](double angle, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(malus_counts(angle))); },
+            config,
+            [](double angle, std::vector<float>& out) {
+                std::fill(out.begin(), out.end(), static_cast<float>(malus_counts(angle)));
+            },
             simulated_stage_angle_source(*stage));
     }
 };
@@ -69,12 +72,14 @@ references:
   - kind: shutter
     frames: 3
 metadata: {site: roof, targets: [panel A, panel B], air_temperature_c: 4.5}
-)", "plan.yaml"));
+)",
+                                                            "plan.yaml"));
     return plan;
 }
 
 SessionWriter new_session(const std::filesystem::path& dir, Rig& rig, const CapturePlan& plan) {
-    return SessionWriter::create(dir, new_session_manifest(rig.camera->info(), rig.stage->info(), plan));
+    return SessionWriter::create(dir,
+                                 new_session_manifest(rig.camera->info(), rig.stage->info(), plan));
 }
 
 TEST(CapturePlan, ExpandsReferencesThenRepeatsOfTheAngles) {
@@ -104,8 +109,10 @@ TEST(CapturePlan, BadPlansAreReportedByField) {
     EXPECT_THAT(error_of("frames_per_angel: 4"), HasSubstr("frames_per_angel"));
     EXPECT_THAT(error_of("frames_per_angle: 0"), HasSubstr("expected an integer ≥ 1"));
     EXPECT_THAT(error_of("angles_deg: [0, 45, 45.0]"), HasSubstr("listed twice"));
-    EXPECT_THAT(error_of("references: [{kind: blackbody, frames: 3}]"), HasSubstr("needs temperatures_k"));
-    EXPECT_THAT(error_of("references: [{kind: polarizer}]"), HasSubstr("expected blackbody or shutter"));
+    EXPECT_THAT(error_of("references: [{kind: blackbody, frames: 3}]"),
+                HasSubstr("needs temperatures_k"));
+    EXPECT_THAT(error_of("references: [{kind: polarizer}]"),
+                HasSubstr("expected blackbody or shutter"));
     EXPECT_THAT(error_of("settle_s: -1"), HasSubstr("settle_s"));
 }
 
@@ -149,21 +156,23 @@ TEST(Capture, RecordsEveryStepAndTheMeansGiveTheScenesStokesVector) {
     }
     for (int r = 0; r < 2; ++r) {
         // 8 frames × 24 pixels of σ = 5 noise: the mean is good to ~0.4 counts.
-        for (double a : {0.0, 45.0, 90.0, 135.0}) EXPECT_NEAR((mean[{a, r}]), malus_counts(a), 2.0) << a;
+        for (double a : {0.0, 45.0, 90.0, 135.0})
+            EXPECT_NEAR((mean[{a, r}]), malus_counts(a), 2.0) << a;
         const double s0 = mean[{0.0, r}] + mean[{90.0, r}];
         const double s1 = mean[{0.0, r}] - mean[{90.0, r}];
         const double s2 = mean[{45.0, r}] - mean[{135.0, r}];
         EXPECT_NEAR(s0, kUnpolarized + kPolarized, 4.0);
-        EXPECT_NEAR(std::hypot(s1, s2), kPolarized, 4.0);                                // DoLP × S0
+        EXPECT_NEAR(std::hypot(s1, s2), kPolarized, 4.0);  // DoLP × S0
         EXPECT_NEAR(0.5 * std::atan2(s2, s1) * 180.0 / std::numbers::pi, kPsiDeg, 0.3);  // AoP
     }
 }
 
 TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSettle) {
-    // The stage turns at 180°/s (45° in 0.25 s) while the camera free-runs at 200 Hz into a 64-frame
-    // queue, which therefore holds frames of the whole move when the step starts grabbing. Noise-free
-    // Malus counts: a single frame from the move (up to 45° off) would move an 8-frame mean by tens of
-    // counts; frames exposed after the settle give malus(θ) exactly (integers: within 0.5).
+    // The stage turns at 180°/s (45° in 0.25 s) while the camera free-runs at 200 Hz into a
+    // 64-frame queue, which therefore holds frames of the whole move when the step starts grabbing.
+    // Noise-free Malus counts: a single frame from the move (up to 45° off) would move an 8-frame
+    // mean by tens of counts; frames exposed after the settle give malus(θ) exactly (integers:
+    // within 0.5).
     test::TempDir tmp;
     SimulatedStageOptions slow;
     slow.deg_per_s = 180.0;
@@ -180,7 +189,8 @@ TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSett
     const SessionManifest m = read_session(tmp / "s");
     EXPECT_EQ(m.schema_version, kSessionSchemaVersion);
     ASSERT_EQ(m.records.size(), 4u);
-    // What the camera delivered, measured: at most its 200 Hz (less when the loaded machine slows it).
+    // What the camera delivered, measured: at most its 200 Hz (less when the loaded machine slows
+    // it).
     ASSERT_TRUE(m.camera.frame_rate_hz);
     EXPECT_GT(*m.camera.frame_rate_hz, 20.0);
     EXPECT_LT(*m.camera.frame_rate_hz, 210.0);
@@ -191,20 +201,24 @@ TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSett
         EXPECT_LE(previous_last, t.move_start_ns);
         EXPECT_LE(t.move_start_ns, t.move_end_ns);
         EXPECT_EQ(t.settle_end_ns, t.move_end_ns + 50'000'000);
-        EXPECT_GE(t.exposure_window_ns, 7'500'000);  // 1.5 periods at 200 Hz, more if the loaded machine slows the camera
+        EXPECT_GE(t.exposure_window_ns,
+                  7'500'000);  // 1.5 periods at 200 Hz, more if the loaded machine slows the camera
         EXPECT_GE(r.first_timestamp_ns - t.exposure_window_ns, t.settle_end_ns) << r.file;
         EXPECT_NEAR(t.angle_deg_before_frames, r.angle_deg_requested, 1e-5);
         EXPECT_NEAR(t.angle_deg_after_frames, r.angle_deg_requested, 1e-5);
         previous_last = r.last_timestamp_ns;
         const Image img = read_session_frame(tmp / "s", m, r);
-        for (float v : img.channel("counts")) ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
+        for (float v : img.channel("counts"))
+            ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
     }
-    // The 45° moves took 0.25 s at up to 200 Hz: the frames of each were queued and thrown away (≈ 50
-    // on an idle machine; a loaded one slows the simulated sensor).
-    for (std::size_t i = 1; i < 4; ++i) EXPECT_GE(m.records[i].timing->stale_frames_discarded, 10) << m.records[i].file;
+    // The 45° moves took 0.25 s at up to 200 Hz: the frames of each were queued and thrown away (≈
+    // 50 on an idle machine; a loaded one slows the simulated sensor).
+    for (std::size_t i = 1; i < 4; ++i)
+        EXPECT_GE(m.records[i].timing->stale_frames_discarded, 10) << m.records[i].file;
 }
 
-/// Test double: a stage that creeps 0.1° per read-back once it has arrived, as a mount losing its hold would.
+/// Test double: a stage that creeps 0.1° per read-back once it has arrived, as a mount losing its
+/// hold would.
 class CreepingStage final : public Stage {
 public:
     StageInfo info() const override { return {"creep://", "test", "creeping", "0", "0", 100.0}; }
@@ -221,20 +235,22 @@ private:
 };
 
 TEST(Capture, StageThatMovesDuringTheFramesFailsTheStepAndKeepsNothingOfIt) {
-    // Documented choice (docs/acquisition-stages.md): a read-back after the frames that differs from the
-    // one before by more than angle_tolerance_deg is an error, not a flagged record.
+    // Documented choice (docs/acquisition-stages.md): a read-back after the frames that differs
+    // from the one before by more than angle_tolerance_deg is an error, not a flagged record.
     test::TempDir tmp;
     Rig rig;
     CreepingStage stage;
     CapturePlan plan;
     plan.settle_s = 0;
     plan.frames_per_angle = 2;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), stage.info(), plan));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), stage.info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     EXPECT_THAT([&] { run_capture(*rig.camera, stage, plan, session, options); },
-                ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("step 1/4"), HasSubstr("after the frames"), HasSubstr("drifted"),
-                                                      HasSubstr("0 of 4 steps are recorded"), HasSubstr("--resume"))));
+                ::testing::ThrowsMessage<Error>(AllOf(
+                    HasSubstr("step 1/4"), HasSubstr("after the frames"), HasSubstr("drifted"),
+                    HasSubstr("0 of 4 steps are recorded"), HasSubstr("--resume"))));
     EXPECT_TRUE(read_session(tmp / "s").records.empty());
 }
 
@@ -242,10 +258,13 @@ TEST(Capture, TooLittleFreeSpaceIsRefusedSayingHowMuchIsNeeded) {
     test::TempDir tmp;
     const auto space = std::filesystem::space(tmp.path());
     // Enough 640×512 steps to exceed what this file system has free.
-    const std::uintmax_t per_step = session_bytes_needed(640, 512, 1) - session_bytes_needed(640, 512, 0);
+    const std::uintmax_t per_step =
+        session_bytes_needed(640, 512, 1) - session_bytes_needed(640, 512, 0);
     const std::size_t steps = static_cast<std::size_t>(space.available / per_step) + 10;
-    EXPECT_THAT([&] { check_free_space(tmp.path(), 640, 512, steps); },
-                ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("MB"), HasSubstr("free"), HasSubstr(std::to_string(steps) + " steps"))));
+    EXPECT_THAT(
+        [&] { check_free_space(tmp.path(), 640, 512, steps); },
+        ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("MB"), HasSubstr("free"),
+                                              HasSubstr(std::to_string(steps) + " steps"))));
     EXPECT_NO_THROW(check_free_space(tmp.path(), 640, 512, 1));
 }
 
@@ -262,8 +281,9 @@ TEST(Capture, DeviceFaultKeepsRecordsAndResumeCompletesWithoutDuplicates) {
         CaptureOptions options;
         options.progress_stream = nullptr;
         EXPECT_THAT([&] { run_capture(*rig.camera, *rig.stage, plan, session, options); },
-                    ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("step 6/11"), HasSubstr("stage device fault"),
-                                                          HasSubstr("5 of 11 steps are recorded"), HasSubstr("--resume"))));
+                    ::testing::ThrowsMessage<Error>(
+                        AllOf(HasSubstr("step 6/11"), HasSubstr("stage device fault"),
+                              HasSubstr("5 of 11 steps are recorded"), HasSubstr("--resume"))));
         first_record_json = read_file(dir / "session.json");
     }
     SessionManifest interrupted = read_session(dir);
@@ -284,11 +304,14 @@ TEST(Capture, DeviceFaultKeepsRecordsAndResumeCompletesWithoutDuplicates) {
     EXPECT_TRUE(m.complete);
     ASSERT_EQ(m.records.size(), 11u);
     const auto steps = plan_steps(plan);
-    for (std::size_t i = 0; i < steps.size(); ++i) EXPECT_EQ(m.records[i].file, steps[i].file);  // each once, in order
-    for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(m.records[i], interrupted.records[i]);         // nothing rewritten
+    for (std::size_t i = 0; i < steps.size(); ++i)
+        EXPECT_EQ(m.records[i].file, steps[i].file);  // each once, in order
+    for (std::size_t i = 0; i < 5; ++i)
+        EXPECT_EQ(m.records[i], interrupted.records[i]);  // nothing rewritten
     EXPECT_EQ(read_file(dir / m.records[0].file), first_frame_bytes);
     std::size_t files = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir / "frames")) files += e.path().extension() == ".exr";
+    for (const auto& e : std::filesystem::directory_iterator(dir / "frames"))
+        files += e.path().extension() == ".exr";
     EXPECT_EQ(files, 11u);
 
     // Running again on a complete session records nothing.
@@ -383,8 +406,9 @@ TEST(Capture, OperatorCanStopAtAReferencePrompt) {
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.prompt = [](const std::string&) { return false; };
-    EXPECT_THAT([&] { run_capture(*rig.camera, *rig.stage, plan, session, options); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("stopped by the operator before step 1/11")));
+    EXPECT_THAT(
+        [&] { run_capture(*rig.camera, *rig.stage, plan, session, options); },
+        ::testing::ThrowsMessage<Error>(HasSubstr("stopped by the operator before step 1/11")));
     EXPECT_TRUE(read_session(tmp / "s").records.empty());
 }
 
@@ -410,18 +434,21 @@ TEST(Capture, AngleReadBackOutsideToleranceStopsTheStep) {
     SlippingStage stage;
     CapturePlan plan;
     plan.settle_s = 0;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(rig.camera->info(), stage.info(), plan));
+    auto session = SessionWriter::create(
+        tmp / "s", new_session_manifest(rig.camera->info(), stage.info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     EXPECT_THAT([&] { run_capture(*rig.camera, stage, plan, session, options); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("reads 0.3000° after settling (moved to 0.0000°")));
+                ::testing::ThrowsMessage<Error>(
+                    HasSubstr("reads 0.3000° after settling (moved to 0.0000°")));
 }
 
 TEST(Capture, AFailedWriteNamesTheStepWhoseFileItWas) {
     // Records are written on a thread behind the capture, so a full disk surfaces one or two steps
-    // later; the message must still name the step whose file could not be written. A file-size limit
-    // makes write(2) fail as a full disk does (EFBIG; SIGXFSZ ignored): the 45° frame is random 16-bit
-    // texture (≥ 40 KB however compressed), the others are flat (a few hundred bytes).
+    // later; the message must still name the step whose file could not be written. A file-size
+    // limit makes write(2) fail as a full disk does (EFBIG; SIGXFSZ ignored): the 45° frame is
+    // random 16-bit texture (≥ 40 KB however compressed), the others are flat (a few hundred
+    // bytes).
     test::TempDir tmp;
     auto stage = make_simulated_stage("sim://", {});
     SimulatedCameraConfig config;
@@ -441,7 +468,8 @@ TEST(Capture, AFailedWriteNamesTheStepWhoseFileItWas) {
     CapturePlan plan;
     plan.settle_s = 0;
     plan.frames_per_angle = 2;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     rlimit old{};
@@ -458,7 +486,8 @@ TEST(Capture, AFailedWriteNamesTheStepWhoseFileItWas) {
     }
     ::setrlimit(RLIMIT_FSIZE, &old);
     std::signal(SIGXFSZ, old_handler);
-    EXPECT_THAT(error, AllOf(HasSubstr("step 2/4 (polarizer 45°"), HasSubstr("writing the session failed")));
+    EXPECT_THAT(error, AllOf(HasSubstr("step 2/4 (polarizer 45°"),
+                             HasSubstr("writing the session failed")));
     EXPECT_EQ(read_session(tmp / "s").records.size(), 1u);
 }
 

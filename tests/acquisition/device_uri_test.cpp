@@ -13,16 +13,19 @@ namespace {
 using testing::HasSubstr;
 
 TEST(DeviceUri, SplitsSchemeTargetAndQuery) {
-    const DeviceUri u = parse_device_uri("thorlabs-apt+usb://55000123?counts_per_degree=1000&channel=1");
+    const DeviceUri u =
+        parse_device_uri("thorlabs-apt+usb://55000123?counts_per_degree=1000&channel=1");
     EXPECT_EQ(u.scheme, "thorlabs-apt+usb");
     EXPECT_EQ(u.target, "55000123");
-    EXPECT_EQ(u.query, (std::map<std::string, std::string>{{"counts_per_degree", "1000"}, {"channel", "1"}}));
+    EXPECT_EQ(u.query, (std::map<std::string, std::string>{{"counts_per_degree", "1000"},
+                                                           {"channel", "1"}}));
     EXPECT_EQ(u.integer("channel", 0), 1);
     EXPECT_EQ(u.number("counts_per_degree", 0.0), 1000.0);
 }
 
 TEST(DeviceUri, ValueAndThrowingParsersReadTheSameFields) {
-    for (const std::string uri : {"sim://", "elliptec:///dev/ttyUSB0?address=0", "aravis://Fake?exposure_us=500&"}) {
+    for (const std::string uri :
+         {"sim://", "elliptec:///dev/ttyUSB0?address=0", "aravis://Fake?exposure_us=500&"}) {
         const DeviceUri camera = parse_device_uri(uri);
         const auto stage = split_device_uri(uri);
         ASSERT_TRUE(stage) << uri << ": " << stage.error().message;
@@ -39,11 +42,11 @@ TEST(DeviceUri, EmptyQueryItemsAreSkipped) {
 }
 
 TEST(DeviceUri, BadUriIsAValueForStagesAndAnErrorForCamerasWithOneMessage) {
-    for (const auto& [uri, expected] :
-         std::vector<std::pair<std::string, std::string>>{{"/dev/ttyUSB0", "expected <scheme>://<target>"},
-                                                          {"://x", "expected <scheme>://<target>"},
-                                                          {"sim://x?a=1&speed", "query item 'speed' is not key=value"},
-                                                          {"sim://x?=3", "query item '=3' is not key=value"}}) {
+    for (const auto& [uri, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"/dev/ttyUSB0", "expected <scheme>://<target>"},
+             {"://x", "expected <scheme>://<target>"},
+             {"sim://x?a=1&speed", "query item 'speed' is not key=value"},
+             {"sim://x?=3", "query item '=3' is not key=value"}}) {
         const auto stage = split_device_uri(uri);
         ASSERT_FALSE(stage) << uri;
         EXPECT_EQ(stage.error().code, DeviceErrorCode::InvalidArgument);

@@ -1,7 +1,7 @@
 // Capture plans with drift references (issue #15 item 2): an in-scene reference blackbody region
 // and shutter records interleaved with the scene records. The session's plan JSON carries them in
-// the form calibration's offset_drift.h reads; the capture loop asks to close and reopen the shutter.
-// (Bad drift references: capture_plan_limits_test.cpp.)
+// the form calibration's offset_drift.h reads; the capture loop asks to close and reopen the
+// shutter. (Bad drift references: capture_plan_limits_test.cpp.)
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -43,8 +43,8 @@ TEST(DriftReferencePlan, ShuttersAreInterleavedAtTheNeighbouringAngleAndTheRegio
         if (shutter) {
             EXPECT_DOUBLE_EQ(*steps[k].temperature_k, 295.0);
             EXPECT_EQ(steps[k].frames, 3);
-            EXPECT_DOUBLE_EQ(steps[k].angle_deg,
-                             k + 1 < steps.size() ? steps[k + 1].angle_deg : steps[k - 1].angle_deg);
+            EXPECT_DOUBLE_EQ(steps[k].angle_deg, k + 1 < steps.size() ? steps[k + 1].angle_deg
+                                                                      : steps[k - 1].angle_deg);
         }
     }
     EXPECT_EQ(files.size(), steps.size());
@@ -54,7 +54,8 @@ TEST(DriftReferencePlan, ShuttersAreInterleavedAtTheNeighbouringAngleAndTheRegio
     EXPECT_DOUBLE_EQ(json["scene_reference"]["temperature_sigma_k"].get<double>(), 0.02);
     EXPECT_EQ(json["shutter_interleave"]["every"], 4);
     // A plan without them keeps the JSON of earlier versions (what --resume compares).
-    const auto plain = CapturePlan::parse(ConfigNode::parse("frames_per_angle: 4\n", "plan.yaml")).to_json();
+    const auto plain =
+        CapturePlan::parse(ConfigNode::parse("frames_per_angle: 4\n", "plan.yaml")).to_json();
     EXPECT_FALSE(plain.contains("scene_reference"));
     EXPECT_FALSE(plain.contains("shutter_interleave"));
 }
@@ -70,7 +71,8 @@ TEST(DriftReferencePlan, TheCaptureLoopClosesAndReopensTheShutterAndRecordsItsTe
         config, [](double, std::vector<float>& out) { std::fill(out.begin(), out.end(), 1000.0f); },
         simulated_stage_angle_source(*stage));
     const CapturePlan plan = CapturePlan::parse(ConfigNode::parse(kPlan, "plan.yaml"));
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(camera.info(), stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     std::vector<std::string> prompts;  // the operator answers every prompt with "done"

@@ -51,7 +51,9 @@ TEST(ElliptecProtocol, InfoReplyFieldsAreReadNotAssumed) {
     EXPECT_NEAR(info->pulses_per_unit(), 398.2222, 1e-4);
     EXPECT_EQ(encode_info(*info), reply->data);
     // A module with another scaling (e.g. an ELL18 reporting 262144 pulses) is read as such.
-    const auto other = parse_info(*parse_reply("0IN1211800456202116010168" "00040000"));
+    const auto other =
+        parse_info(*parse_reply("0IN1211800456202116010168"
+                                "00040000"));
     ASSERT_TRUE(other);
     EXPECT_NEAR(other->pulses_per_unit(), 262144.0 / 360.0, 1e-9);
     EXPECT_FALSE(parse_info(*parse_reply("0IN0E11400123")));  // truncated

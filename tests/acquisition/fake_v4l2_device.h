@@ -1,18 +1,19 @@
 #pragma once
-// FakeV4l2Device: a V4l2Io that behaves like a UVC capture device (uvcvideo) as the kernel's V4L2 API
-// documentation specifies it, for testing the v4l2:// backend without a kernel device:
-// - VIDIOC_QUERYCAP, G/S_FMT (discrete formats; unsupported ones either adjusted like current drivers
+// FakeV4l2Device: a V4l2Io that behaves like a UVC capture device (uvcvideo) as the kernel's V4L2
+// API documentation specifies it, for testing the v4l2:// backend without a kernel device:
+// - VIDIOC_QUERYCAP, G/S_FMT (discrete formats; unsupported ones either adjusted like current
+// drivers
 //   or refused with EINVAL like older ones; EBUSY while buffers are allocated), G/S_PARM;
 // - VIDIOC_REQBUFS (MMAP only; the driver may grant fewer buffers; count 0 frees; EBUSY while
 //   streaming or while buffers are still mapped), VIDIOC_QUERYBUF, mmap/munmap by offset;
 // - VIDIOC_QBUF (EINVAL for a bad index or a buffer already queued), VIDIOC_DQBUF (EAGAIN on a
-//   non-blocking fd with nothing done, EINVAL when not streaming), STREAMON (EINVAL without buffers),
-//   STREAMOFF (returns every buffer to the application);
+//   non-blocking fd with nothing done, EINVAL when not streaming), STREAMON (EINVAL without
+//   buffers), STREAMOFF (returns every buffer to the application);
 // - poll(): POLLERR when not streaming (V4L2 "poll()" page), POLLIN when a buffer is done. Time is
 //   virtual: a poll that would wait lets the sensor produce one frame; with no buffer queued that
 //   frame is lost but still advances `sequence` (uvcvideo counts frames, not buffers).
-// Scripted faults: sequence gaps, corrupted (V4L2_BUF_FLAG_ERROR) or short frames, a spurious wake-up
-// (EAGAIN after POLLIN), a stalled sensor (poll times out), unplugging (ENODEV, POLLERR).
+// Scripted faults: sequence gaps, corrupted (V4L2_BUF_FLAG_ERROR) or short frames, a spurious
+// wake-up (EAGAIN after POLLIN), a stalled sensor (poll times out), unplugging (ENODEV, POLLERR).
 
 #include <fcntl.h>
 #include <linux/videodev2.h>
@@ -47,14 +48,15 @@ public:
     bool refuse_unsupported_with_einval = false;
     std::uint32_t max_buffers = 8;
     std::uint32_t next_sequence = 0;
-    long frames_left = -1;           ///< frames the sensor will still produce (−1: unlimited)
-    std::uint32_t skip_next = 0;     ///< frames the sensor loses before the next one (sequence gap)
-    bool corrupt_next = false;       ///< next frame carries V4L2_BUF_FLAG_ERROR
-    bool short_next = false;         ///< next frame has half its bytes
+    long frames_left = -1;        ///< frames the sensor will still produce (−1: unlimited)
+    std::uint32_t skip_next = 0;  ///< frames the sensor loses before the next one (sequence gap)
+    bool corrupt_next = false;    ///< next frame carries V4L2_BUF_FLAG_ERROR
+    bool short_next = false;      ///< next frame has half its bytes
     bool spurious_wakeup_next = false;
     bool unplugged = false;
-    /// Stamp buffers with CLOCK_MONOTONIC at the instant they are filled, as uvcvideo does (default:
-    /// a synthetic clock, sequence × period, that tests of ids and timestamps compare exactly).
+    /// Stamp buffers with CLOCK_MONOTONIC at the instant they are filled, as uvcvideo does
+    /// (default: a synthetic clock, sequence × period, that tests of ids and timestamps compare
+    /// exactly).
     bool stamp_with_monotonic_clock = false;
 
     /// The sensor delivers a frame now into the next queued buffer (or loses it if none is queued),
@@ -74,9 +76,12 @@ public:
     bool opened_nonblocking() const { return m_nonblocking; }
     std::uint32_t period_us() const { return 1000000u / m_rate_hz; }
 
-    /// The test pattern of frame `sequence` at (x, y): Y16 (x + 2y + 7 seq) mod 2^16, GREY (x + y + seq) mod 2^8.
-    static std::uint32_t pattern(std::uint32_t fourcc, std::uint32_t x, std::uint32_t y, std::uint32_t sequence) {
-        return fourcc == V4L2_PIX_FMT_Y16 ? (x + 2 * y + 7 * sequence) & 0xFFFFu : (x + y + sequence) & 0xFFu;
+    /// The test pattern of frame `sequence` at (x, y): Y16 (x + 2y + 7 seq) mod 2^16, GREY (x + y +
+    /// seq) mod 2^8.
+    static std::uint32_t pattern(std::uint32_t fourcc, std::uint32_t x, std::uint32_t y,
+                                 std::uint32_t sequence) {
+        return fourcc == V4L2_PIX_FMT_Y16 ? (x + 2 * y + 7 * sequence) & 0xFFFFu
+                                          : (x + y + sequence) & 0xFFu;
     }
 
     // --- V4l2Io ---
@@ -97,18 +102,30 @@ public:
         if (fd != kFd || !m_open) return fail(EBADF);
         if (unplugged) return fail(ENODEV);
         switch (request) {
-            case VIDIOC_QUERYCAP: return querycap(static_cast<v4l2_capability*>(arg));
-            case VIDIOC_G_FMT: return g_fmt(static_cast<v4l2_format*>(arg));
-            case VIDIOC_S_FMT: return s_fmt(static_cast<v4l2_format*>(arg));
-            case VIDIOC_G_PARM: return g_parm(static_cast<v4l2_streamparm*>(arg));
-            case VIDIOC_S_PARM: return s_parm(static_cast<v4l2_streamparm*>(arg));
-            case VIDIOC_REQBUFS: return reqbufs(static_cast<v4l2_requestbuffers*>(arg));
-            case VIDIOC_QUERYBUF: return querybuf(static_cast<v4l2_buffer*>(arg));
-            case VIDIOC_QBUF: return qbuf(static_cast<v4l2_buffer*>(arg));
-            case VIDIOC_DQBUF: return dqbuf(static_cast<v4l2_buffer*>(arg));
-            case VIDIOC_STREAMON: return streamon(static_cast<int*>(arg));
-            case VIDIOC_STREAMOFF: return streamoff(static_cast<int*>(arg));
-            default: return fail(ENOTTY);
+            case VIDIOC_QUERYCAP:
+                return querycap(static_cast<v4l2_capability*>(arg));
+            case VIDIOC_G_FMT:
+                return g_fmt(static_cast<v4l2_format*>(arg));
+            case VIDIOC_S_FMT:
+                return s_fmt(static_cast<v4l2_format*>(arg));
+            case VIDIOC_G_PARM:
+                return g_parm(static_cast<v4l2_streamparm*>(arg));
+            case VIDIOC_S_PARM:
+                return s_parm(static_cast<v4l2_streamparm*>(arg));
+            case VIDIOC_REQBUFS:
+                return reqbufs(static_cast<v4l2_requestbuffers*>(arg));
+            case VIDIOC_QUERYBUF:
+                return querybuf(static_cast<v4l2_buffer*>(arg));
+            case VIDIOC_QBUF:
+                return qbuf(static_cast<v4l2_buffer*>(arg));
+            case VIDIOC_DQBUF:
+                return dqbuf(static_cast<v4l2_buffer*>(arg));
+            case VIDIOC_STREAMON:
+                return streamon(static_cast<int*>(arg));
+            case VIDIOC_STREAMOFF:
+                return streamoff(static_cast<int*>(arg));
+            default:
+                return fail(ENOTTY);
         }
     }
     void* mmap(std::size_t length, int prot, int flags, int fd, off_t offset) override {
@@ -172,7 +189,8 @@ private:
         *cap = {};
         std::strncpy(reinterpret_cast<char*>(cap->driver), "uvcvideo", sizeof cap->driver - 1);
         std::strncpy(reinterpret_cast<char*>(cap->card), "Boson: FLIR Video", sizeof cap->card - 1);
-        std::strncpy(reinterpret_cast<char*>(cap->bus_info), "usb-0000:00:14.0-1", sizeof cap->bus_info - 1);
+        std::strncpy(reinterpret_cast<char*>(cap->bus_info), "usb-0000:00:14.0-1",
+                     sizeof cap->bus_info - 1);
         cap->device_caps = V4L2_CAP_VIDEO_CAPTURE | V4L2_CAP_STREAMING;
         cap->capabilities = cap->device_caps | V4L2_CAP_DEVICE_CAPS;
         return 0;
@@ -215,7 +233,8 @@ private:
         if (p->type != V4L2_BUF_TYPE_VIDEO_CAPTURE) return fail(EINVAL);
         if (m_streaming) return fail(EBUSY);
         const auto& t = p->parm.capture.timeperframe;
-        const double wanted = t.numerator == 0 ? 0.0 : static_cast<double>(t.denominator) / t.numerator;
+        const double wanted =
+            t.numerator == 0 ? 0.0 : static_cast<double>(t.denominator) / t.numerator;
         std::uint32_t best = frame_rates_hz.front();
         for (auto r : frame_rates_hz)
             if (std::abs(r - wanted) < std::abs(best - wanted)) best = r;
@@ -223,7 +242,8 @@ private:
         return g_parm(p);
     }
     int reqbufs(v4l2_requestbuffers* r) {
-        if (r->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || r->memory != V4L2_MEMORY_MMAP) return fail(EINVAL);
+        if (r->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || r->memory != V4L2_MEMORY_MMAP)
+            return fail(EINVAL);
         if (m_streaming) return fail(EBUSY);
         if (mapped_count() != 0) return fail(EBUSY);
         m_buffers.clear();
@@ -241,15 +261,18 @@ private:
         return 0;
     }
     int querybuf(v4l2_buffer* b) {
-        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->index >= m_buffers.size()) return fail(EINVAL);
+        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->index >= m_buffers.size())
+            return fail(EINVAL);
         const Buffer& buf = m_buffers[b->index];
         b->length = static_cast<std::uint32_t>(buf.data.size());
         b->m.offset = buf.offset;
-        b->flags = (buf.mapped ? V4L2_BUF_FLAG_MAPPED : 0u) | (buf.queued ? V4L2_BUF_FLAG_QUEUED : 0u);
+        b->flags =
+            (buf.mapped ? V4L2_BUF_FLAG_MAPPED : 0u) | (buf.queued ? V4L2_BUF_FLAG_QUEUED : 0u);
         return 0;
     }
     int qbuf(v4l2_buffer* b) {
-        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->memory != V4L2_MEMORY_MMAP || b->index >= m_buffers.size())
+        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->memory != V4L2_MEMORY_MMAP ||
+            b->index >= m_buffers.size())
             return fail(EINVAL);
         Buffer& buf = m_buffers[b->index];
         if (buf.queued) return fail(EINVAL);
@@ -258,7 +281,8 @@ private:
         return 0;
     }
     int dqbuf(v4l2_buffer* b) {
-        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->memory != V4L2_MEMORY_MMAP) return fail(EINVAL);
+        if (b->type != V4L2_BUF_TYPE_VIDEO_CAPTURE || b->memory != V4L2_MEMORY_MMAP)
+            return fail(EINVAL);
         if (!m_streaming) return fail(EINVAL);
         if (m_done.empty()) return fail(EAGAIN);  // the backend opens non-blocking
         const std::uint32_t index = m_done.front();
@@ -307,14 +331,16 @@ private:
         meta.index = index;
         meta.field = V4L2_FIELD_NONE;
         meta.sequence = sequence;
-        meta.bytesused = static_cast<std::uint32_t>(short_next ? buf.data.size() / 2 : buf.data.size());
+        meta.bytesused =
+            static_cast<std::uint32_t>(short_next ? buf.data.size() / 2 : buf.data.size());
         meta.flags = V4L2_BUF_FLAG_MAPPED | V4L2_BUF_FLAG_DONE | V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC |
                      (corrupt_next ? V4L2_BUF_FLAG_ERROR : 0u);
         std::uint64_t t_us = std::uint64_t{sequence} * period_us();
         if (stamp_with_monotonic_clock) {
             timespec now{};
             clock_gettime(CLOCK_MONOTONIC, &now);
-            t_us = static_cast<std::uint64_t>(now.tv_sec) * 1000000u + static_cast<std::uint64_t>(now.tv_nsec) / 1000u;
+            t_us = static_cast<std::uint64_t>(now.tv_sec) * 1000000u +
+                   static_cast<std::uint64_t>(now.tv_nsec) / 1000u;
         }
         meta.timestamp.tv_sec = static_cast<time_t>(t_us / 1000000u);
         meta.timestamp.tv_usec = static_cast<suseconds_t>(t_us % 1000000u);

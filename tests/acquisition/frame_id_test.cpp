@@ -1,11 +1,11 @@
-// The frame-id unwrapper on its own. Counter rules: GigE Vision 1.x GVSP block ids are 16-bit and 0 is
-// reserved, so the fake camera counts 65534, 65535, 1, 2 (Aravis 0.8.26 src/arvfakecamera.c,
-// arv_fake_camera_fill_buffer: "frame id is a 16 bit value, 0 is invalid"); V4L2 sequence numbers are
-// 32-bit and count through 0 (Linux media docs, struct v4l2_buffer "sequence").
-
-#include <gtest/gtest.h>
+// The frame-id unwrapper on its own. Counter rules: GigE Vision 1.x GVSP block ids are 16-bit and 0
+// is reserved, so the fake camera counts 65534, 65535, 1, 2 (Aravis 0.8.26 src/arvfakecamera.c,
+// arv_fake_camera_fill_buffer: "frame id is a 16 bit value, 0 is invalid"); V4L2 sequence numbers
+// are 32-bit and count through 0 (Linux media docs, struct v4l2_buffer "sequence").
 
 #include "tirpol/acquisition/internal/frame_id.h"
+
+#include <gtest/gtest.h>
 
 namespace tirpol::acquisition {
 namespace {
@@ -49,7 +49,8 @@ TEST(FrameIdUnwrapper, IdsStayMonotonicOverManyWraps) {
         }
         previous = s.id;
     }
-    // i = 0 is the first frame (no loss counted); each of the 299999 / 7 later multiples of 7 lost two.
+    // i = 0 is the first frame (no loss counted); each of the 299999 / 7 later multiples of 7 lost
+    // two.
     EXPECT_EQ(missed, 2u * (299999u / 7u));
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// The message of the tirpol::Error open_camera throws for a malformed URI ("" when it does not throw).
+// The message of the tirpol::Error open_camera throws for a malformed URI ("" when it does not
+// throw).
 
 #include <string>
 

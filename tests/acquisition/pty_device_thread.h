@@ -1,6 +1,6 @@
 #pragma once
-// A simulated serial device (a PtyDevice: the blackbody simulator, ...) served on a thread on a fresh
-// pseudo-terminal, which a driver opens through the real serial-port code.
+// A simulated serial device (a PtyDevice: the blackbody simulator, ...) served on a thread on a
+// fresh pseudo-terminal, which a driver opens through the real serial-port code.
 
 #include <atomic>
 #include <string>

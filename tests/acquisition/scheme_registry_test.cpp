@@ -1,6 +1,6 @@
 // register_camera_scheme / register_stage_scheme: a plug-in's scheme opens through the ordinary
-// open_camera / open_stage, a replaced factory is handed back so the plug-in can pass URIs on, and an
-// unknown scheme's error lists what is registered.
+// open_camera / open_stage, a replaced factory is handed back so the plug-in can pass URIs on, and
+// an unknown scheme's error lists what is registered.
 
 #include <gtest/gtest.h>
 
@@ -33,16 +33,19 @@ TEST(CameraSchemes, BuiltInSchemesAreRegistered) {
 
 TEST(CameraSchemes, PluggedInSchemeOpensThroughOpenCamera) {
     // A constant-counts camera as a plug-in would register it: its own scheme, its own query key.
-    const CameraFactory previous = register_camera_scheme("test-constant", [](const std::string& uri) {
-        const DeviceUri u = parse_device_uri(uri);
-        u.check_keys({"counts"});
-        SimulatedCameraConfig config;
-        config.width = 3;
-        config.height = 2;
-        const auto counts = static_cast<float>(u.number("counts", 0.0));
-        return Result<std::unique_ptr<Camera>>(std::make_unique<SimulatedCamera>(
-            config, [counts](double, std::vector<float>& out) { std::fill(out.begin(), out.end(), counts); }));
-    });
+    const CameraFactory previous =
+        register_camera_scheme("test-constant", [](const std::string& uri) {
+            const DeviceUri u = parse_device_uri(uri);
+            u.check_keys({"counts"});
+            SimulatedCameraConfig config;
+            config.width = 3;
+            config.height = 2;
+            const auto counts = static_cast<float>(u.number("counts", 0.0));
+            return Result<std::unique_ptr<Camera>>(std::make_unique<SimulatedCamera>(
+                config, [counts](double, std::vector<float>& out) {
+                    std::fill(out.begin(), out.end(), counts);
+                }));
+        });
     EXPECT_FALSE(previous);  // a new scheme replaces nothing
     EXPECT_TRUE(contains(camera_schemes(), "test-constant"));
 
@@ -52,7 +55,8 @@ TEST(CameraSchemes, PluggedInSchemeOpensThroughOpenCamera) {
     const Frame frame = camera.value()->grab(2s).value();
     ASSERT_EQ(frame.counts.size(), 6u);
     for (float v : frame.counts) EXPECT_EQ(v, 321.0f);
-    EXPECT_NE(open_camera_error("test-constant://x?gain=2").find("unknown query key 'gain'"), std::string::npos);
+    EXPECT_NE(open_camera_error("test-constant://x?gain=2").find("unknown query key 'gain'"),
+              std::string::npos);
 }
 
 TEST(CameraSchemes, ReplacingASchemeHandsBackThePreviousFactory) {
@@ -75,7 +79,8 @@ TEST(CameraSchemes, ReplacingASchemeHandsBackThePreviousFactory) {
 TEST(CameraSchemes, UnknownSchemeListsTheRegisteredOnes) {
     const std::string message = open_camera_error("gige://cam");
     EXPECT_NE(message.find("unknown camera scheme 'gige'"), std::string::npos) << message;
-    for (const std::string& scheme : camera_schemes()) EXPECT_NE(message.find(scheme), std::string::npos) << scheme;
+    for (const std::string& scheme : camera_schemes())
+        EXPECT_NE(message.find(scheme), std::string::npos) << scheme;
 }
 
 TEST(CameraSchemes, RejectsNamesThatAreNotSchemes) {
@@ -88,9 +93,10 @@ TEST(CameraSchemes, RejectsNamesThatAreNotSchemes) {
 }
 
 TEST(StageSchemes, PluggedInSchemeOpensThroughOpenStage) {
-    register_stage_scheme("test-stage", [](const std::string& uri) -> Result<std::unique_ptr<Stage>> {
-        return make_simulated_stage(uri, SimulatedStageOptions{});
-    });
+    register_stage_scheme("test-stage",
+                          [](const std::string& uri) -> Result<std::unique_ptr<Stage>> {
+                              return make_simulated_stage(uri, SimulatedStageOptions{});
+                          });
     auto stage = open_stage("test-stage://mount");
     ASSERT_TRUE(stage.ok()) << stage.error().message;
     ASSERT_TRUE(stage.value()->home(2s).ok());
@@ -111,8 +117,8 @@ TEST(StageSchemes, UnknownSchemeIsInvalidArgumentListingTheRegisteredOnes) {
 }
 
 // The build's back ends (cmake/TirpolBackends.cmake; acquisition/CMakeLists.txt passes them to this
-// file as 0/1) and the registries agree: a back end that is off registers no scheme, so its URIs fail
-// as an unknown scheme that lists what is there, and one that is on is registered.
+// file as 0/1) and the registries agree: a back end that is off registers no scheme, so its URIs
+// fail as an unknown scheme that lists what is there, and one that is on is registered.
 TEST(BackEndSchemes, RegisteredExactlyWhenTheBackEndIsBuilt) {
     EXPECT_EQ(contains(camera_schemes(), "aravis"), TIRPOL_TEST_HAVE_ARAVIS == 1);
     EXPECT_EQ(contains(camera_schemes(), "v4l2"), TIRPOL_TEST_HAVE_V4L2 == 1);

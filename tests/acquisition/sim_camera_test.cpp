@@ -27,8 +27,9 @@ double mean_of(const std::vector<float>& v) {
 }
 
 TEST(SimulatedCamera, GeneratorFollowsThePolarizerAngleMalusLaw) {
-    // An ideal linear polarizer in front of partially polarized light: I(θ) = (S0 + S1 cos 2θ + S2 sin 2θ) / 2
-    // (Malus's law in Stokes form, the paper's eqs 14–16 invert it). Recover S0, S1, S2 from 0/45/90/135°.
+    // An ideal linear polarizer in front of partially polarized light: I(θ) = (S0 + S1 cos 2θ + S2
+    // sin 2θ) / 2 (Malus's law in Stokes form, the paper's eqs 14–16 invert it). Recover S0, S1, S2
+    // from 0/45/90/135°.
     const double s0 = 10000.0, s1 = -600.0, s2 = 250.0;
     std::atomic<double> angle{0.0};
     SimulatedCameraConfig config;
@@ -39,7 +40,8 @@ TEST(SimulatedCamera, GeneratorFollowsThePolarizerAngleMalusLaw) {
         config,
         [&](double angle_deg, std::vector<float>& out) {
             const double t = 2.0 * angle_deg * std::numbers::pi / 180.0;
-            std::fill(out.begin(), out.end(), static_cast<float>(0.5 * (s0 + s1 * std::cos(t) + s2 * std::sin(t))));
+            std::fill(out.begin(), out.end(),
+                      static_cast<float>(0.5 * (s0 + s1 * std::cos(t) + s2 * std::sin(t))));
         },
         [&] { return angle.load(); });
     ASSERT_TRUE(camera.start().ok());
@@ -59,13 +61,14 @@ TEST(SimulatedCamera, GeneratorFollowsThePolarizerAngleMalusLaw) {
 }
 
 TEST(SimulatedCamera, TemporalNoiseHasTheConfiguredStandardDeviation) {
-    auto camera =
-        open_simulated_camera("sim://uniform?width=64&height=64&counts=5000&noise=20&seed=7&fps=500&buffers=64");
+    auto camera = open_simulated_camera(
+        "sim://uniform?width=64&height=64&counts=5000&noise=20&seed=7&fps=500&buffers=64");
     ASSERT_TRUE(camera->start().ok());
     FrameAverager averager;
     for (int i = 0; i < 50; ++i) averager.add(camera->grab(1s).value());
-    // Per-pixel std over 50 frames, averaged over 4096 pixels: σ² = 20² + 1/12 (rounding) → 20.002; the
-    // spread of the estimate is ≈ σ / sqrt(2 · 49 · 4096) ≈ 0.03 (plus the small-sample bias of s, ≈ 0.5 %).
+    // Per-pixel std over 50 frames, averaged over 4096 pixels: σ² = 20² + 1/12 (rounding) → 20.002;
+    // the spread of the estimate is ≈ σ / sqrt(2 · 49 · 4096) ≈ 0.03 (plus the small-sample bias of
+    // s, ≈ 0.5 %).
     EXPECT_NEAR(mean_of(averager.stddev()), 20.0, 0.3);
     // Mean of 50 × 4096 samples: within 5 standard errors of 5000.
     EXPECT_NEAR(mean_of(averager.mean()), 5000.0, 5.0 * 20.0 / std::sqrt(50.0 * 4096.0));
@@ -89,7 +92,8 @@ TEST(SimulatedCamera, CountsAreIntegersClippedToTheAdcRange) {
 
 TEST(SimulatedCamera, InjectedDropsAreIdGapsAndTimestampsFollowTheFrameRate) {
     // A queue of 4000 buffers: no frame is lost for want of a buffer, only the injected drops.
-    auto camera = open_simulated_camera("sim://uniform?width=4&height=4&fps=2000&drop=0.2&seed=3&buffers=4000");
+    auto camera = open_simulated_camera(
+        "sim://uniform?width=4&height=4&fps=2000&drop=0.2&seed=3&buffers=4000");
     ASSERT_TRUE(camera->start().ok());
     std::vector<Frame> frames;
     for (int i = 0; i < 2000; ++i) frames.push_back(camera->grab(1s).value());
@@ -100,22 +104,26 @@ TEST(SimulatedCamera, InjectedDropsAreIdGapsAndTimestampsFollowTheFrameRate) {
         gaps += frames[i].frame_id - frames[i - 1].frame_id - 1;
         EXPECT_GT(frames[i].device_timestamp_ns, frames[i - 1].device_timestamp_ns);
     }
-    // 2000 Hz on the device's own clock: never faster than 0.5 ms per id on average (slower when the
-    // loaded machine delays the camera's thread).
+    // 2000 Hz on the device's own clock: never faster than 0.5 ms per id on average (slower when
+    // the loaded machine delays the camera's thread).
     EXPECT_GE(frames.back().device_timestamp_ns - frames.front().device_timestamp_ns,
-              static_cast<std::int64_t>(frames.back().frame_id - frames.front().frame_id) * 500'000 * 95 / 100);
+              static_cast<std::int64_t>(frames.back().frame_id - frames.front().frame_id) *
+                  500'000 * 95 / 100);
     const StreamStatistics stats = camera->statistics();
     const double after_last_grab_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - last_grab).count();
     EXPECT_EQ(stats.delivered, 2000u);
-    // Every drop before the last frame grabbed is a gap in the ids. The camera keeps streaming until
-    // statistics() is read, so drops of later ids may be counted too: at most the frames its 2000 Hz
-    // clock exposes in that interval (+2 for the ones in flight).
+    // Every drop before the last frame grabbed is a gap in the ids. The camera keeps streaming
+    // until statistics() is read, so drops of later ids may be counted too: at most the frames its
+    // 2000 Hz clock exposes in that interval (+2 for the ones in flight).
     const std::uint64_t seen_as_gaps = gaps + (frames.front().frame_id - 1);
     EXPECT_GE(stats.dropped, seen_as_gaps);
-    EXPECT_LE(stats.dropped, seen_as_gaps + static_cast<std::uint64_t>(std::ceil(after_last_grab_s * 2000.0)) + 2);
-    // Lost fraction p = 0.2: dropped / (dropped + delivered) has standard error ≈ 0.008 over ~2500 ids.
-    const double fraction = static_cast<double>(stats.dropped) / static_cast<double>(stats.dropped + stats.delivered);
+    EXPECT_LE(stats.dropped,
+              seen_as_gaps + static_cast<std::uint64_t>(std::ceil(after_last_grab_s * 2000.0)) + 2);
+    // Lost fraction p = 0.2: dropped / (dropped + delivered) has standard error ≈ 0.008 over ~2500
+    // ids.
+    const double fraction =
+        static_cast<double>(stats.dropped) / static_cast<double>(stats.dropped + stats.delivered);
     EXPECT_NEAR(fraction, 0.2, 0.04);
 }
 
@@ -131,7 +139,8 @@ TEST(SimulatedCamera, FreeRunsOnItsOwnClockAndLosesFramesWhenItsQueueIsFull) {
     const std::int64_t grabbed_ns = host_realtime_ns();
     for (int i = 0; i < 4; ++i) {
         EXPECT_EQ(frames[i].frame_id, static_cast<std::uint64_t>(i + 1));
-        EXPECT_LT(frames[i].host_timestamp_ns, started_ns + 150'000'000);  // exposed long before the grab
+        EXPECT_LT(frames[i].host_timestamp_ns,
+                  started_ns + 150'000'000);  // exposed long before the grab
     }
     EXPECT_GT(frames[4].frame_id, 20u);  // the next one after the gap is a fresh frame
     EXPECT_GT(frames[4].host_timestamp_ns, grabbed_ns - 100'000'000);

@@ -1,8 +1,8 @@
 // couple_simulated_polarizer: a simulated camera opened by URI, then coupled to the stage opened by
 // URI, shows the scene through the polarizer where that stage has it — the in-process sim:// stage
-// (time-true, also mid-move) and a driver stage speaking the APT protocol to tirpol's stage simulator
-// on a pseudo-terminal (the angle its driver reached). Without the coupling every frame was exposed
-// at 0°, and a 0/45/90/135 set of an unpolarized-looking scene gave S1 = S2 = 0.
+// (time-true, also mid-move) and a driver stage speaking the APT protocol to tirpol's stage
+// simulator on a pseudo-terminal (the angle its driver reached). Without the coupling every frame
+// was exposed at 0°, and a 0/45/90/135 set of an unpolarized-looking scene gave S1 = S2 = 0.
 
 #include <gtest/gtest.h>
 
@@ -57,7 +57,8 @@ TEST(SimulatedPolarizer, CameraSeesTheAngleADriverStageReached) {
     options.deg_per_s = 360.0;
     test::StageSimulatorThread simulator(options);
     auto camera = angle_reporting_camera();
-    auto stage = couple_simulated_polarizer(*camera, open_stage("thorlabs-apt://" + simulator.path()).value_or_throw());
+    auto stage = couple_simulated_polarizer(
+        *camera, open_stage("thorlabs-apt://" + simulator.path()).value_or_throw());
     ASSERT_TRUE(camera->start().ok());
     ASSERT_TRUE(stage->home(10s).ok());
     EXPECT_NEAR(angle_seen_now(*camera), 0.0, 0.05);
@@ -83,8 +84,12 @@ TEST(SimulatedPolarizer, ACameraWithItsOwnAngleSourceIsLeftAlone) {
     SimulatedCameraConfig config;
     config.width = 2;
     config.height = 1;
-    SimulatedCamera camera(config, [](double a, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(a)); },
-                           [] { return 30.0; });
+    SimulatedCamera camera(
+        config,
+        [](double a, std::vector<float>& out) {
+            std::fill(out.begin(), out.end(), static_cast<float>(a));
+        },
+        [] { return 30.0; });
     Stage* raw = stage.get();
     auto same = couple_simulated_polarizer(camera, std::move(stage));
     EXPECT_EQ(same.get(), raw);

@@ -13,8 +13,8 @@
 #include "stage_simulator_thread.h"
 #include "tirpol/acquisition/internal/apt_protocol.h"
 #include "tirpol/acquisition/internal/elliptec_protocol.h"
-#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 
 namespace tirpol::acquisition {
@@ -32,14 +32,16 @@ std::string kind_name(const ::testing::TestParamInfo<Kind>& p) {
 struct SlowStage {
     SlowStage(Kind kind, double deg_per_s) {
         if (kind == Kind::Sim) {
-            stage = open_stage(fmt::format("sim://?deg_per_s={}&start_deg=37.5", deg_per_s)).value_or_throw();
+            stage = open_stage(fmt::format("sim://?deg_per_s={}&start_deg=37.5", deg_per_s))
+                        .value_or_throw();
             return;
         }
         StageSimulatorOptions o;
         o.protocol = kind == Kind::Apt ? SimProtocol::Apt : SimProtocol::Elliptec;
         o.deg_per_s = deg_per_s;
         sim = std::make_unique<test::StageSimulatorThread>(o);
-        stage = open_stage((kind == Kind::Apt ? "thorlabs-apt://" : "elliptec://") + sim->path()).value_or_throw();
+        stage = open_stage((kind == Kind::Apt ? "thorlabs-apt://" : "elliptec://") + sim->path())
+                    .value_or_throw();
     }
     std::unique_ptr<test::StageSimulatorThread> sim;
     std::unique_ptr<Stage> stage;
@@ -76,7 +78,8 @@ TEST_P(StageStop, StopsAMoveWhereItIsAndTheNextMoveWorks) {
     SlowStage s(GetParam(), 20.0);
     s.stage->stop();  // harmless when nothing moves, and does not stop the next move
     ASSERT_TRUE(s.stage->home(60s));
-    auto moving = std::async(std::launch::async, [&] { return s.stage->move_absolute(90.0, 60s); });  // 4.5 s
+    auto moving =
+        std::async(std::launch::async, [&] { return s.stage->move_absolute(90.0, 60s); });  // 4.5 s
     std::this_thread::sleep_for(500ms);
     ASSERT_TRUE(s.stage->stop());
     const Status result = moving.get();
@@ -97,7 +100,8 @@ TEST_P(StageStop, StopOnInterruptStopsTheStageWhenTheFlagIsSet) {
     std::atomic<bool> overdue{false};
     StopOnInterrupt watcher(interrupt, 60s, [&] { overdue = true; });
     watcher.watch(s.stage.get());
-    auto moving = std::async(std::launch::async, [&] { return s.stage->move_absolute(135.0, 60s); });  // 6.75 s
+    auto moving = std::async(std::launch::async,
+                             [&] { return s.stage->move_absolute(135.0, 60s); });  // 6.75 s
     std::this_thread::sleep_for(300ms);
     interrupt = true;  // what the SIGINT handler does
     const Status result = moving.get();
@@ -108,7 +112,8 @@ TEST_P(StageStop, StopOnInterruptStopsTheStageWhenTheFlagIsSet) {
     EXPECT_FALSE(overdue);
 }
 
-INSTANTIATE_TEST_SUITE_P(Stages, StageStop, ::testing::Values(Kind::Apt, Kind::Elliptec, Kind::Sim), kind_name);
+INSTANTIATE_TEST_SUITE_P(Stages, StageStop, ::testing::Values(Kind::Apt, Kind::Elliptec, Kind::Sim),
+                         kind_name);
 
 TEST(StopOnInterrupt, CallsOnOverdueWhenTheProgramDoesNotFinishInTime) {
     std::atomic<bool> interrupt{false};
@@ -160,7 +165,8 @@ TEST(AptSimulatorResync, AnswersTheFirstValidRequestAfterAnElliptecProbeOrGarbag
         const auto request = apt::hw_req_info();
         auto reply = sim.receive(request, t);
         out.insert(out.end(), reply.begin(), reply.end());
-        // A cut-short long header may swallow the request as its data; the next request is answered.
+        // A cut-short long header may swallow the request as its data; the next request is
+        // answered.
         if (decode_all(out).empty()) {
             reply = sim.receive(request, t);
             out.insert(out.end(), reply.begin(), reply.end());
@@ -179,11 +185,13 @@ TEST(AptSimulatorResync, AnswersTheFirstValidRequestAfterAnElliptecProbeOrGarbag
 TEST(AptSimulatorResync, DecodeHostRequestRefusesHeadersNotFromTheHostToTheDevice) {
     const auto good = apt::hw_req_info();
     EXPECT_EQ(apt::decode_host_request(good).status, apt::DecodeStatus::Complete);
-    const auto reply = apt::encode_short(apt::kHwReqInfo, 0, 0, apt::kHostAddress, apt::kUsbDeviceAddress);
+    const auto reply =
+        apt::encode_short(apt::kHwReqInfo, 0, 0, apt::kHostAddress, apt::kUsbDeviceAddress);
     const auto d = apt::decode_host_request(reply);
     EXPECT_EQ(d.status, apt::DecodeStatus::Invalid);
     EXPECT_EQ(d.consumed, 1u);
-    EXPECT_EQ(apt::decode_host_request(std::vector<std::uint8_t>{0x05, 0x00}).status, apt::DecodeStatus::NeedMore);
+    EXPECT_EQ(apt::decode_host_request(std::vector<std::uint8_t>{0x05, 0x00}).status,
+              apt::DecodeStatus::NeedMore);
 }
 
 TEST(AptSimulatorResync, AnElliptecProbeOnTheAptPortDoesNotWedgeTheSimulator) {

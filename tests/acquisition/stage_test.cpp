@@ -3,6 +3,8 @@
 // identification, homing before the first absolute move, the 0/45/90/135° plan, angle wrapping,
 // and each injected fault mapped to its DeviceError.
 
+#include "tirpol/acquisition/stage.h"
+
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -15,7 +17,6 @@
 
 #include "test_support.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
 
 namespace tirpol::acquisition {
@@ -26,7 +27,8 @@ using namespace std::chrono_literals;
 /// The simulator engine on a thread, serving a fresh pseudo-terminal.
 class SimulatorThread {
 public:
-    explicit SimulatorThread(StageSimulatorOptions options) : m_simulator(options), m_pty(PseudoTerminal::open().value_or_throw()) {
+    explicit SimulatorThread(StageSimulatorOptions options)
+        : m_simulator(options), m_pty(PseudoTerminal::open().value_or_throw()) {
         m_thread = std::thread([this] { serve_stage_simulator(m_simulator, m_pty, m_stop); });
     }
     ~SimulatorThread() {
@@ -52,7 +54,8 @@ StageSimulatorOptions sim_options(SimProtocol protocol, SimFault fault = SimFaul
 }
 
 std::string uri_for(SimProtocol protocol, const std::string& path) {
-    return (protocol == SimProtocol::Apt ? "thorlabs-apt://" : "elliptec://") + path + "?timeout_ms=500";
+    return (protocol == SimProtocol::Apt ? "thorlabs-apt://" : "elliptec://") + path +
+           "?timeout_ms=500";
 }
 
 class StageOverPty : public ::testing::TestWithParam<SimProtocol> {};
@@ -114,7 +117,8 @@ TEST_P(StageFault, GivesTheRightDeviceError) {
     const auto moved = stage->move_absolute(90.0, 600ms);
     ASSERT_FALSE(moved);
     EXPECT_EQ(moved.error().code, c.expected) << moved.error().message;
-    EXPECT_NE(moved.error().message.find(c.message_part), std::string::npos) << moved.error().message;
+    EXPECT_NE(moved.error().message.find(c.message_part), std::string::npos)
+        << moved.error().message;
 }
 
 std::string protocol_name(const ::testing::TestParamInfo<SimProtocol>& p) {
@@ -123,21 +127,28 @@ std::string protocol_name(const ::testing::TestParamInfo<SimProtocol>& p) {
 
 std::string fault_name(const ::testing::TestParamInfo<FaultCase>& p) {
     static const char* const kNames[] = {"None", "NoReply", "Busy", "Error", "Disconnect"};
-    return std::string(p.param.protocol == SimProtocol::Apt ? "Apt" : "Elliptec") + kNames[static_cast<int>(p.param.fault)];
+    return std::string(p.param.protocol == SimProtocol::Apt ? "Apt" : "Elliptec") +
+           kNames[static_cast<int>(p.param.fault)];
 }
 
-INSTANTIATE_TEST_SUITE_P(Protocols, StageOverPty, ::testing::Values(SimProtocol::Apt, SimProtocol::Elliptec), protocol_name);
+INSTANTIATE_TEST_SUITE_P(Protocols, StageOverPty,
+                         ::testing::Values(SimProtocol::Apt, SimProtocol::Elliptec), protocol_name);
 
 INSTANTIATE_TEST_SUITE_P(
     Faults, StageFault,
-    ::testing::Values(FaultCase{SimProtocol::Apt, SimFault::NoReply, DeviceErrorCode::Timeout, "does not answer"},
-                      FaultCase{SimProtocol::Apt, SimFault::Busy, DeviceErrorCode::Timeout, "still moving"},
-                      FaultCase{SimProtocol::Apt, SimFault::Error, DeviceErrorCode::DeviceFault, "position error limit"},
-                      FaultCase{SimProtocol::Apt, SimFault::DisconnectMidMove, DeviceErrorCode::Disconnected, "hung up"},
-                      FaultCase{SimProtocol::Elliptec, SimFault::NoReply, DeviceErrorCode::Timeout, "no reply"},
-                      FaultCase{SimProtocol::Elliptec, SimFault::Busy, DeviceErrorCode::Timeout, "Busy"},
-                      FaultCase{SimProtocol::Elliptec, SimFault::Error, DeviceErrorCode::DeviceFault, "Mechanical time out"},
-                      FaultCase{SimProtocol::Elliptec, SimFault::DisconnectMidMove, DeviceErrorCode::Disconnected, "hung up"}),
+    ::testing::Values(
+        FaultCase{SimProtocol::Apt, SimFault::NoReply, DeviceErrorCode::Timeout, "does not answer"},
+        FaultCase{SimProtocol::Apt, SimFault::Busy, DeviceErrorCode::Timeout, "still moving"},
+        FaultCase{SimProtocol::Apt, SimFault::Error, DeviceErrorCode::DeviceFault,
+                  "position error limit"},
+        FaultCase{SimProtocol::Apt, SimFault::DisconnectMidMove, DeviceErrorCode::Disconnected,
+                  "hung up"},
+        FaultCase{SimProtocol::Elliptec, SimFault::NoReply, DeviceErrorCode::Timeout, "no reply"},
+        FaultCase{SimProtocol::Elliptec, SimFault::Busy, DeviceErrorCode::Timeout, "Busy"},
+        FaultCase{SimProtocol::Elliptec, SimFault::Error, DeviceErrorCode::DeviceFault,
+                  "Mechanical time out"},
+        FaultCase{SimProtocol::Elliptec, SimFault::DisconnectMidMove, DeviceErrorCode::Disconnected,
+                  "hung up"}),
     fault_name);
 
 TEST(StageSimulatorProcess, ExecutableServesAStageOnItsLink) {
@@ -150,8 +161,8 @@ TEST(StageSimulatorProcess, ExecutableServesAStageOnItsLink) {
     if (pid == 0) {
         ::dup2(out[1], STDOUT_FILENO);
         ::close(out[0]);
-        ::execl(TIRPOL_STAGE_SIM_PATH, "tirpol-stage-sim", "--protocol", "elliptec", "--link", link.c_str(),
-                "--move-deg-per-s", "3600", static_cast<char*>(nullptr));
+        ::execl(TIRPOL_STAGE_SIM_PATH, "tirpol-stage-sim", "--protocol", "elliptec", "--link",
+                link.c_str(), "--move-deg-per-s", "3600", static_cast<char*>(nullptr));
         ::_exit(127);
     }
     ::close(out[1]);
@@ -170,7 +181,8 @@ TEST(StageSimulatorProcess, ExecutableServesAStageOnItsLink) {
     int status = 0;
     ::waitpid(pid, &status, 0);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link)));  // link removed on exit
+    EXPECT_FALSE(
+        std::filesystem::exists(std::filesystem::symlink_status(link)));  // link removed on exit
 }
 
 TEST(StageRegistry, RejectsUnknownSchemesAndOptionsByName) {

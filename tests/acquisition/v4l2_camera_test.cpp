@@ -1,7 +1,10 @@
 // Requires TIRPOL_WITH_V4L2 (built only with that back end: cmake/TirpolBackends.cmake).
-// The v4l2:// backend against FakeV4l2Device (tests/acquisition/fake_v4l2_device.h), a state machine
-// that follows the kernel's V4L2 API documentation for memory-mapped streaming: formats, REQBUFS/
-// QUERYBUF/mmap/QBUF/STREAMON/DQBUF rules, sequence numbers, EAGAIN and poll timeouts, ENODEV.
+// The v4l2:// backend against FakeV4l2Device (tests/acquisition/fake_v4l2_device.h), a state
+// machine that follows the kernel's V4L2 API documentation for memory-mapped streaming: formats,
+// REQBUFS/ QUERYBUF/mmap/QBUF/STREAMON/DQBUF rules, sequence numbers, EAGAIN and poll timeouts,
+// ENODEV.
+
+#include "tirpol/acquisition/internal/v4l2_camera.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +15,6 @@
 #include "test_support.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/v4l2_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
@@ -21,7 +23,8 @@ namespace {
 using namespace std::chrono_literals;
 using test::FakeV4l2Device;
 
-std::unique_ptr<Camera> open_fake(const std::shared_ptr<FakeV4l2Device>& device, V4l2CameraOptions options = {}) {
+std::unique_ptr<Camera> open_fake(const std::shared_ptr<FakeV4l2Device>& device,
+                                  V4l2CameraOptions options = {}) {
     auto camera = open_v4l2_camera("/dev/video0", options, device);
     EXPECT_TRUE(camera.ok()) << (camera.ok() ? "" : camera.error().message);
     return camera.ok() ? std::move(camera.value()) : nullptr;
@@ -32,7 +35,8 @@ bool matches_pattern(const Frame& frame, std::uint32_t fourcc, std::uint32_t seq
         for (int x = 0; x < frame.width; ++x)
             if (frame.counts[static_cast<std::size_t>(y * frame.width + x)] !=
                 static_cast<float>(FakeV4l2Device::pattern(fourcc, static_cast<std::uint32_t>(x),
-                                                           static_cast<std::uint32_t>(y), sequence)))
+                                                           static_cast<std::uint32_t>(y),
+                                                           sequence)))
                 return false;
     return true;
 }
@@ -94,7 +98,8 @@ TEST(V4l2Camera, StopUnmapsAndFreesBuffersSoStreamingCanRestart) {
         ASSERT_TRUE(camera->stop().ok());
         EXPECT_FALSE(device->streaming());
         EXPECT_EQ(device->mapped_count(), 0u);
-        EXPECT_EQ(device->allocated_count(), 0u);  // REQBUFS(0) after munmap, else the driver says EBUSY
+        EXPECT_EQ(device->allocated_count(),
+                  0u);  // REQBUFS(0) after munmap, else the driver says EBUSY
     }
     camera.reset();
     EXPECT_FALSE(device->is_open());
@@ -227,7 +232,8 @@ TEST(V4l2Camera, UnpluggedDeviceIsDisconnected) {
 }
 
 TEST(FakeV4l2Device, EnforcesTheBufferQueueRules) {
-    // The fake is only useful if it refuses what a driver refuses (kernel docs, VIDIOC_QBUF/DQBUF, REQBUFS).
+    // The fake is only useful if it refuses what a driver refuses (kernel docs, VIDIOC_QBUF/DQBUF,
+    // REQBUFS).
     FakeV4l2Device device;
     const int fd = device.open("/dev/video0", O_RDWR | O_NONBLOCK);
     ASSERT_GE(fd, 0);
@@ -249,7 +255,7 @@ TEST(FakeV4l2Device, EnforcesTheBufferQueueRules) {
     EXPECT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), -1);  // already queued
     EXPECT_EQ(errno, EINVAL);
     buf.index = 2;
-    EXPECT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), -1);  // no such buffer
+    EXPECT_EQ(device.ioctl(fd, VIDIOC_QBUF, &buf), -1);   // no such buffer
     EXPECT_EQ(device.ioctl(fd, VIDIOC_DQBUF, &buf), -1);  // not streaming
     ASSERT_EQ(device.ioctl(fd, VIDIOC_STREAMON, &type), 0);
     EXPECT_EQ(device.ioctl(fd, VIDIOC_DQBUF, &buf), -1);  // nothing done yet, non-blocking
@@ -264,8 +270,8 @@ TEST(FakeV4l2Device, EnforcesTheBufferQueueRules) {
     EXPECT_EQ(errno, ENOTTY);
 }
 
-/// Test double at the seam V4L2 cannot be real here: a stage whose move lasts 80 ms while the camera's
-/// sensor keeps filling the queued buffers (a Boson does not stop for the mount).
+/// Test double at the seam V4L2 cannot be real here: a stage whose move lasts 80 ms while the
+/// camera's sensor keeps filling the queued buffers (a Boson does not stop for the mount).
 class StageFillingTheQueue final : public Stage {
 public:
     explicit StageFillingTheQueue(FakeV4l2Device& device) : m_device(device) {}
@@ -291,8 +297,9 @@ private:
 
 TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     // Four mmap buffers fill during the move; DQBUF hands them out first. Their driver timestamps
-    // (CLOCK_MONOTONIC at fill, mapped to CLOCK_REALTIME) predate the settle end, so the capture loop
-    // discards them however late they are dequeued; the kept frames' pattern says which they were.
+    // (CLOCK_MONOTONIC at fill, mapped to CLOCK_REALTIME) predate the settle end, so the capture
+    // loop discards them however late they are dequeued; the kept frames' pattern says which they
+    // were.
     auto device = std::make_shared<FakeV4l2Device>();
     device->stamp_with_monotonic_clock = true;
     V4l2CameraOptions options;
@@ -306,7 +313,8 @@ TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     plan.frames_per_angle = 3;
     plan.settle_s = 0.02;
     test::TempDir tmp;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
     CaptureOptions capture_options;
     capture_options.progress_stream = nullptr;
     const auto summary = run_capture(*camera, stage, plan, session, capture_options);
@@ -321,12 +329,15 @@ TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     EXPECT_GE(r.first_timestamp_ns - r.timing->exposure_window_ns, r.timing->settle_end_ns);
     // Y16 pattern at pixel (0, 0) is 7 × sequence: the mean of the kept frames' sequences.
     const Image mean = read_session_frame(tmp / "s", m, r);
-    EXPECT_GT(mean.channel("counts")[0] / 7.0, static_cast<double>(stage.last_sequence_during_move));
+    EXPECT_GT(mean.channel("counts")[0] / 7.0,
+              static_cast<double>(stage.last_sequence_during_move));
 }
 
 TEST(CameraRegistry, V4l2UrisAreCheckedAndAnAbsentDeviceIsADeviceError) {
-    EXPECT_NE(test::open_camera_error("v4l2://video0").find("absolute device path"), std::string::npos);
-    EXPECT_NE(test::open_camera_error("v4l2:///dev/video0?buffers=1").find("buffers=1"), std::string::npos);
+    EXPECT_NE(test::open_camera_error("v4l2://video0").find("absolute device path"),
+              std::string::npos);
+    EXPECT_NE(test::open_camera_error("v4l2:///dev/video0?buffers=1").find("buffers=1"),
+              std::string::npos);
     const auto camera = open_camera("v4l2:///dev/tirpol-no-such-video");
     ASSERT_FALSE(camera.ok());
     EXPECT_EQ(camera.error().code, DeviceErrorCode::Disconnected);

@@ -7,8 +7,8 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <regex>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli_runner.h"
 #include "test_support.h"
@@ -19,7 +19,9 @@ namespace {
 using tirpol::test::CliRun;
 using tirpol::test::run_cli;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 TEST(CliRules, VersionPrintsTheProjectVersion) {
     const CliRun r = run_cli("--version");
@@ -55,8 +57,9 @@ TEST(CliRules, ListOptionsAcceptSpacesOrCommas) {
 }
 
 TEST(CliRules, EveryCommandThatWritesTakesDashOOutput) {
-    for (const char* sub : {"acquire", "calibrate radiometric", "calibrate polarimetric", "reduce", "render", "compare",
-                            "fit", "extract-emissivity", "noise", "temperature", "flir-temperature", "demo"}) {
+    for (const char* sub : {"acquire", "calibrate radiometric", "calibrate polarimetric", "reduce",
+                            "render", "compare", "fit", "extract-emissivity", "noise",
+                            "temperature", "flir-temperature", "demo"}) {
         const CliRun r = run_cli(std::string(sub) + " --help");
         EXPECT_EQ(r.exit_code, 0) << sub;
         EXPECT_TRUE(contains(r.out, "-o,--output")) << sub << ":\n" << r.out;
@@ -65,7 +68,8 @@ TEST(CliRules, EveryCommandThatWritesTakesDashOOutput) {
 }
 
 TEST(CliRules, RenderWithoutOutputIsAUsageError) {
-    const std::string scene = (tirpol::test::source_dir() / "config/scenes/panels_night.yaml").string();
+    const std::string scene =
+        (tirpol::test::source_dir() / "config/scenes/panels_night.yaml").string();
     const CliRun r = run_cli("render " + scene);
     EXPECT_EQ(r.exit_code, 2) << r.out;
     EXPECT_TRUE(contains(r.out, "--output")) << r.out;
@@ -74,7 +78,8 @@ TEST(CliRules, RenderWithoutOutputIsAUsageError) {
 }
 
 TEST(CliRules, LibraryMaterialNamesWorkWhereMaterialFilesDo) {
-    const std::string file = (tirpol::test::source_dir() / "config/materials/flat_black_paint.yaml").string();
+    const std::string file =
+        (tirpol::test::source_dir() / "config/materials/flat_black_paint.yaml").string();
     const std::string rest = " --wavelength-um 10 --angles-deg 0,60 --json";
     const CliRun by_file = run_cli("emissivity " + file + rest, false);
     const CliRun by_name = run_cli("emissivity flat_black_paint" + rest, false);
@@ -84,7 +89,8 @@ TEST(CliRules, LibraryMaterialNamesWorkWhereMaterialFilesDo) {
     jf.erase("material_file");
     jn.erase("material_file");
     EXPECT_EQ(jf["angles"], jn["angles"]);
-    const CliRun brdf = run_cli("brdf flat_black_paint --wavelength-um 10 --incident-deg 30,0 --exitant-deg 30,180");
+    const CliRun brdf = run_cli(
+        "brdf flat_black_paint --wavelength-um 10 --incident-deg 30,0 --exitant-deg 30,180");
     EXPECT_EQ(brdf.exit_code, 0) << brdf.out;
     const CliRun typo = run_cli("emissivity flat_blak_paint" + rest);
     EXPECT_EQ(typo.exit_code, 1);
@@ -92,32 +98,35 @@ TEST(CliRules, LibraryMaterialNamesWorkWhereMaterialFilesDo) {
 }
 
 TEST(CliRules, NoLibraryNoiseOnStderr) {
-    // A Ceres fit (glog underneath) and a render (OpenCV PNG quicklooks): stderr carries nothing but
-    // our own lines — no glog preamble, no OpenCV info, no spdlog timestamps.
+    // A Ceres fit (glog underneath) and a render (OpenCV PNG quicklooks): stderr carries nothing
+    // but our own lines — no glog preamble, no OpenCV info, no spdlog timestamps.
     tirpol::test::TempDir dir;
-    tirpol::test::write_text(dir / "eps.csv",
-                             "angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma\n"
-                             "0,0.962,0.003,0.000,0.002\n20,0.961,0.003,0.0012,0.002\n40,0.957,0.003,0.0060,0.002\n"
-                             "60,0.940,0.003,0.0190,0.002\n70,0.915,0.003,0.0330,0.002\n80,0.840,0.003,0.0560,0.002\n");
+    tirpol::test::write_text(
+        dir / "eps.csv",
+        "angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma\n"
+        "0,0.962,0.003,0.000,0.002\n20,0.961,0.003,0.0012,0.002\n40,0.957,0.003,0.0060,0.002\n"
+        "60,0.940,0.003,0.0190,0.002\n70,0.915,0.003,0.0330,0.002\n80,0.840,0.003,0.0560,0.002\n");
     const std::string cmd = std::string(TIRPOL_CLI_PATH) + " fit " + (dir / "eps.csv").string() +
-                            " --wavelength-um 10 --starts 2 -o " + (dir / "fit.yaml").string() + " >/dev/null 2>" +
-                            (dir / "stderr.txt").string();
+                            " --wavelength-um 10 --starts 2 -o " + (dir / "fit.yaml").string() +
+                            " >/dev/null 2>" + (dir / "stderr.txt").string();
     const int status = std::system(cmd.c_str());
     const std::string err = tirpol::read_file(dir / "stderr.txt");
     EXPECT_FALSE(contains(err, "InitGoogleLogging")) << err;
     EXPECT_FALSE(contains(err, "[info]")) << err;
-    for (const char* glog_prefix : {"\nI20", "\nW20", "\nE20"}) EXPECT_FALSE(contains("\n" + err, glog_prefix)) << err;
+    for (const char* glog_prefix : {"\nI20", "\nW20", "\nE20"})
+        EXPECT_FALSE(contains("\n" + err, glog_prefix)) << err;
     EXPECT_EQ(WEXITSTATUS(status), 0) << err;
 }
 
 TEST(CliRules, ReadingAPngWithChunksLibpngWarnsAboutPrintsNothingOnStderr) {
     // tests/core/raw_png_test.cpp checks that OpenCV's decoder makes libpng warn on this file.
     tirpol::test::TempDir dir;
-    const auto png =
-        tirpol::test::source_dir() / "tests/data/fuzz-regressions/raw_image/ancillary_chunk_warnings.png";
+    const auto png = tirpol::test::source_dir() /
+                     "tests/data/fuzz-regressions/raw_image/ancillary_chunk_warnings.png";
     const std::string cmd = std::string(TIRPOL_CLI_PATH) + " flir-temperature " + png.string() +
-                            " --planck 21106.77,0.012545258,1501,1,-7340 -o " + (dir / "t.exr").string() +
-                            " >/dev/null 2>" + (dir / "stderr.txt").string();
+                            " --planck 21106.77,0.012545258,1501,1,-7340 -o " +
+                            (dir / "t.exr").string() + " >/dev/null 2>" +
+                            (dir / "stderr.txt").string();
     const int status = std::system(cmd.c_str());
     const std::string err = tirpol::read_file(dir / "stderr.txt");
     EXPECT_EQ(WEXITSTATUS(status), 0) << err;

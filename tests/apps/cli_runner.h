@@ -1,6 +1,7 @@
 #pragma once
-// Runs the real `tirpol` executable (TIRPOL_CLI_PATH, set by apps/CMakeLists.txt) as a user would and
-// returns its exit code and output, for the CLI tests in this folder (and tests/sweep, under mpirun).
+// Runs the real `tirpol` executable (TIRPOL_CLI_PATH, set by apps/CMakeLists.txt) as a user would
+// and returns its exit code and output, for the CLI tests in this folder (and tests/sweep, under
+// mpirun).
 
 #include <sys/wait.h>
 
@@ -34,20 +35,23 @@ inline CliRun run_cli(const std::string& args, bool merge_stderr = true) {
     return run_command(std::string(TIRPOL_CLI_PATH) + " " + args, merge_stderr);
 }
 
-/// The names under "Subcommands:" in `tirpol [PATH] --help` (PATH "calibrate" lists its nested ones).
+/// The names under "Subcommands:" in `tirpol [PATH] --help` (PATH "calibrate" lists its nested
+/// ones).
 inline std::set<std::string> subcommands_in_help(const std::string& path) {
     const CliRun help = run_cli(path + " --help", false);
     std::set<std::string> names;
     std::istringstream lines(help.out);
     bool listing = false;
     for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("Subcommands:", 0) == 0) listing = true;
+        if (line.rfind("Subcommands:", 0) == 0)
+            listing = true;
         else if (listing && line.rfind("  ", 0) == 0) {
             std::istringstream words(line);
             std::string name;
             words >> name;
             names.insert(path.empty() ? name : path + " " + name);
-        } else if (listing && !line.empty()) listing = false;
+        } else if (listing && !line.empty())
+            listing = false;
     }
     return names;
 }

@@ -19,7 +19,8 @@ using tirpol::test::run_cli;
 TEST(Cli, HelpListsSubcommands) {
     const CliRun r = run_cli("--help");
     EXPECT_EQ(r.exit_code, 0);
-    for (const char* sub : {"info", "planck", "demo"}) EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
+    for (const char* sub : {"info", "planck", "demo"})
+        EXPECT_NE(r.out.find(sub), std::string::npos) << sub;
     EXPECT_EQ(run_cli("planck --help").exit_code, 0);
 }
 
@@ -39,15 +40,20 @@ TEST(Cli, PlanckJsonMatchesTheLibraryAndInverts) {
     const tirpol::Band band(8.0, 14.0);
     EXPECT_DOUBLE_EQ(j["radiance_w_m2_sr"].get<double>(), band.radiance(300.0));
     EXPECT_DOUBLE_EQ(j["radiance_dT_w_m2_sr_k"].get<double>(), band.radiance_dT(300.0));
-    const CliRun inv = run_cli("planck --radiance " + std::to_string(band.radiance(300.0)) + " --band-um 8 14 --json");
+    const CliRun inv = run_cli("planck --radiance " + std::to_string(band.radiance(300.0)) +
+                               " --band-um 8 14 --json");
     ASSERT_EQ(inv.exit_code, 0) << inv.out;
-    EXPECT_NEAR(nlohmann::json::parse(inv.out)["brightness_temperature_k"].get<double>(), 300.0, 1e-3);
+    EXPECT_NEAR(nlohmann::json::parse(inv.out)["brightness_temperature_k"].get<double>(), 300.0,
+                1e-3);
 }
 
 TEST(Cli, PlanckRejectsNonPhysicalInputAsAUsageError) {
     const CliRun r = run_cli("planck --temperature-k -3 --band-um 8 14");
     EXPECT_EQ(r.exit_code, 2);  // values outside an option's range are usage errors (docs/cli.md)
-    EXPECT_NE(r.out.find("--temperature-k: -3 is outside [1, 10000], a physical temperature in kelvin"), std::string::npos) << r.out;
+    EXPECT_NE(
+        r.out.find("--temperature-k: -3 is outside [1, 10000], a physical temperature in kelvin"),
+        std::string::npos)
+        << r.out;
     EXPECT_EQ(run_cli("planck --temperature-k 300 --band-um 14 8").exit_code, 2);
 }
 
@@ -72,28 +78,32 @@ TEST(Cli, InfoDescribesAnExrAndNamesAMissingFile) {
 
 }  // namespace
 
-// --max-bounces follows the scene file's rule for sampling.max_bounces (scene.h max_bounces_problem):
-// 0–100000, a safety cap; anything else is a clear error before rendering, exit code 1.
+// --max-bounces follows the scene file's rule for sampling.max_bounces (scene.h
+// max_bounces_problem): 0–100000, a safety cap; anything else is a clear error before rendering,
+// exit code 1.
 TEST(Cli, RenderMaxBouncesIsValidatedLikeTheSceneFile) {
     const tirpol::test::TempDir dir;
     const auto scene = tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml";
     for (const char* bad : {"-1", "100001"}) {
-        const CliRun r =
-            run_cli("render " + scene.string() + " -o " + (dir / "out").string() + " -q --max-bounces " + bad);
+        const CliRun r = run_cli("render " + scene.string() + " -o " + (dir / "out").string() +
+                                 " -q --max-bounces " + bad);
         EXPECT_EQ(r.exit_code, 2) << r.out;
         EXPECT_NE(r.out.find("--max-bounces: expected 0–100000"), std::string::npos) << r.out;
     }
 }
 
-// --estimator chooses the reflection estimator (scene file: sampling.estimator); the EXR header records
-// it; an unknown name is a usage error naming the option and the accepted values.
+// --estimator chooses the reflection estimator (scene file: sampling.estimator); the EXR header
+// records it; an unknown name is a usage error naming the option and the accepted values.
 TEST(Cli, RenderEstimatorIsValidatedAndRecorded) {
     const tirpol::test::TempDir dir;
     const auto scene = tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml";
-    const std::string render = "render " + scene.string() + " -o " + (dir / "out").string() + " -q ";
+    const std::string render =
+        "render " + scene.string() + " -o " + (dir / "out").string() + " -q ";
     const CliRun bad = run_cli(render + "--estimator mcmc");
     EXPECT_EQ(bad.exit_code, 2) << bad.out;
-    EXPECT_NE(bad.out.find("--estimator: expected plain or control-variate, got 'mcmc'"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.out.find("--estimator: expected plain or control-variate, got 'mcmc'"),
+              std::string::npos)
+        << bad.out;
     for (const char* estimator : {"plain", "control-variate"}) {
         const CliRun r = run_cli(render + "--width 8 --height 6 --spp 2 --estimator " + estimator);
         ASSERT_EQ(r.exit_code, 0) << r.out;

@@ -25,20 +25,23 @@ Image sony_frame(bool record_pattern) {
     for (int y = 0; y < 6; ++y)
         for (int x = 0; x < 8; ++x) {
             const double theta = angles[(y & 1) * 2 + (x & 1)] * std::numbers::pi / 180.0;
-            counts[im.index(x, y)] =
-                static_cast<float>(0.5 * (1000.0 - 200.0 * std::cos(2 * theta) + 300.0 * std::sin(2 * theta)));
+            counts[im.index(x, y)] = static_cast<float>(
+                0.5 * (1000.0 - 200.0 * std::cos(2 * theta) + 300.0 * std::sin(2 * theta)));
         }
-    if (record_pattern) im.attributes()["microgrid_pattern_deg"] = std::vector<double>{90.0, 45.0, 135.0, 0.0};
+    if (record_pattern)
+        im.attributes()["microgrid_pattern_deg"] = std::vector<double>{90.0, 45.0, 135.0, 0.0};
     return im;
 }
 
 TEST(DemosaicCli, WritesStokesWithTheRecordedPatternAndMethod) {
     test::TempDir dir;
     write_exr(dir / "frame.exr", sony_frame(true));
-    const auto run = run_cli(
-        fmt::format("demosaic {} --method newton -o {}", (dir / "frame.exr").string(), (dir / "stokes.exr").string()));
+    const auto run =
+        run_cli(fmt::format("demosaic {} --method newton -o {}", (dir / "frame.exr").string(),
+                            (dir / "stokes.exr").string()));
     ASSERT_EQ(run.exit_code, 0) << run.out;
-    EXPECT_NE(run.out.find("Stokes 8×6 (newton, pattern 90,45,135,0)"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("Stokes 8×6 (newton, pattern 90,45,135,0)"), std::string::npos)
+        << run.out;
     const Image stokes = read_exr(dir / "stokes.exr");
     EXPECT_NEAR(stokes.at("S0", 3, 2), 1000.0f, 1e-3);
     EXPECT_NEAR(stokes.at("S1", 3, 2), -200.0f, 1e-3);
@@ -50,8 +53,9 @@ TEST(DemosaicCli, WritesStokesWithTheRecordedPatternAndMethod) {
 TEST(DemosaicCli, SuperPixelHalvesTheSizeAndTheCommandLinePatternServesAFileWithoutOne) {
     test::TempDir dir;
     write_exr(dir / "frame.exr", sony_frame(false));
-    const auto run = run_cli(fmt::format("demosaic {} --pattern sony --method super-pixel -o {}",
-                                         (dir / "frame.exr").string(), (dir / "stokes.exr").string()));
+    const auto run =
+        run_cli(fmt::format("demosaic {} --pattern sony --method super-pixel -o {}",
+                            (dir / "frame.exr").string(), (dir / "stokes.exr").string()));
     ASSERT_EQ(run.exit_code, 0) << run.out;
     const Image stokes = read_exr(dir / "stokes.exr");
     EXPECT_EQ(stokes.width(), 4);

@@ -21,34 +21,45 @@ using tirpol::test::run_cli;
 using tirpol::test::subcommands_in_help;
 
 struct BadUsage {
-    std::string args;      ///< after `tirpol <subcommand>`
-    std::string message;   ///< part of what the user must be told
+    std::string args;     ///< after `tirpol <subcommand>`
+    std::string message;  ///< part of what the user must be told
 };
 
 TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
     const auto data = tirpol::test::source_dir() / "tests/data/fuzz-regressions";
     const std::string exr = (data / "exr/non_utf8_attribute.exr").string();
     const std::string png = (data / "raw_image/ancillary_chunk_warnings.png").string();
-    const std::string scene = (tirpol::test::source_dir() / "config/scenes/ball_on_snow_night.yaml").string();
-    const std::string thermal = (tirpol::test::source_dir() / "config/thermal/ball_on_snow_thermal.yaml").string();
+    const std::string scene =
+        (tirpol::test::source_dir() / "config/scenes/ball_on_snow_night.yaml").string();
+    const std::string thermal =
+        (tirpol::test::source_dir() / "config/thermal/ball_on_snow_thermal.yaml").string();
     tirpol::test::TempDir dir;
-    const std::string session = dir.path().string();  // an (empty) directory where a session is expected
+    const std::string session =
+        dir.path().string();  // an (empty) directory where a session is expected
     const std::map<std::string, BadUsage> rows = {
         {"acquire", {"--camera sim://", "required"}},
-        {"brdf", {"flat_black_paint --wavelength-um 10 --incident-deg 95 0 --exitant-deg 30 0", "--incident-deg"}},
+        {"brdf",
+         {"flat_black_paint --wavelength-um 10 --incident-deg 95 0 --exitant-deg 30 0",
+          "--incident-deg"}},
         {"calibrate", {"", "subcommand"}},
         {"calibrate radiometric", {session + " -o c.exr --no-such-option", "no-such-option"}},
-        {"calibrate polarimetric", {session + " --calibration " + exr + " -o p.yaml --axis-offset-deg 1", "--extinction-ratio"}},
+        {"calibrate polarimetric",
+         {session + " --calibration " + exr + " -o p.yaml --axis-offset-deg 1",
+          "--extinction-ratio"}},
         {"calibrate geometric", {png + " --target checkerboard:9x6 -o cam.yaml", "--target"}},
         {"calibrate pose", {"--camera " + exr, "required"}},
-        {"compare", {"--measured " + exr + " --simulated " + exr + " --registration sideways -o r", "--registration"}},
+        {"compare",
+         {"--measured " + exr + " --simulated " + exr + " --registration sideways -o r",
+          "--registration"}},
         {"demo", {"--no-such-option", "no-such-option"}},
         {"demosaic", {png + " --pattern sony --method cubic -o d.exr", "--method"}},
         {"devices", {"surplus-argument", "surplus-argument"}},
-        {"emissivity", {"flat_black_paint --wavelength-um 10 --angles-deg 0:100:10", "--angles-deg"}},
+        {"emissivity",
+         {"flat_black_paint --wavelength-um 10 --angles-deg 0:100:10", "--angles-deg"}},
         {"extract-emissivity", {session + " " + png + " -o e.csv", "--calibration"}},
         {"fit", {exr + " --wavelength-um 10 --model lambertian -o f.yaml", "--model"}},
-        {"fit-render", {scene + " --view " + exr + " --region ball --free glossy_black_paint.n=1.2", "--free"}},
+        {"fit-render",
+         {scene + " --view " + exr + " --region ball --free glossy_black_paint.n=1.2", "--free"}},
         {"flir-temperature", {png + " --planck 1,2,3 -o t.exr", "--planck"}},
         {"info", {"", "required"}},
         {"live", {"", "--camera"}},
@@ -64,16 +75,19 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
     std::set<std::string> listed = subcommands_in_help("");
     for (const auto& nested : subcommands_in_help("calibrate")) listed.insert(nested);
     ASSERT_GE(listed.size(), 20u) << "could not read the subcommands from tirpol --help";
-    for (const auto& name : listed) EXPECT_TRUE(rows.count(name)) << "no bad-usage row for '" << name << "'";
+    for (const auto& name : listed)
+        EXPECT_TRUE(rows.count(name)) << "no bad-usage row for '" << name << "'";
 
     for (const auto& [command, bad] : rows) {
         const CliRun r = run_cli(command + " " + bad.args);
         EXPECT_EQ(r.exit_code, 2) << "tirpol " << command << " " << bad.args << "\n" << r.out;
-        EXPECT_THAT(r.out, testing::HasSubstr(bad.message)) << "tirpol " << command << " " << bad.args;
+        EXPECT_THAT(r.out, testing::HasSubstr(bad.message))
+            << "tirpol " << command << " " << bad.args;
         EXPECT_THAT(r.out, testing::HasSubstr("--help")) << "tirpol " << command << " " << bad.args;
         // And an unknown option, the commonest slip, on every subcommand.
         const CliRun unknown = run_cli(command + " --definitely-not-an-option");
-        EXPECT_EQ(unknown.exit_code, 2) << "tirpol " << command << " --definitely-not-an-option\n" << unknown.out;
+        EXPECT_EQ(unknown.exit_code, 2) << "tirpol " << command << " --definitely-not-an-option\n"
+                                        << unknown.out;
     }
 }
 

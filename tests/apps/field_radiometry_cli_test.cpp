@@ -23,7 +23,8 @@ using tirpol::test::run_cli;
 constexpr int kW = 16, kH = 12;
 constexpr double kReferenceFpaK = 303.0;
 
-/// A camera whose response follows its FPA temperature: counts = 5000 + 60·ΔT + 100·(1 − 0.006·ΔT)·L.
+/// A camera whose response follows its FPA temperature: counts = 5000 + 60·ΔT + 100·(1 −
+/// 0.006·ΔT)·L.
 float drifting_counts(double radiance, double fpa_k) {
     const double dt = fpa_k - kReferenceFpaK;
     return static_cast<float>(5000.0 + 60.0 * dt + 100.0 * (1.0 - 0.006 * dt) * radiance);
@@ -58,7 +59,8 @@ void write_warm_up_session(const std::filesystem::path& dir, double fpa_k) {
     w.mark_complete();
 }
 
-TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAnotherCameraTemperature) {
+TEST(FieldRadiometryCli,
+     FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAnotherCameraTemperature) {
     test::TempDir dir;
     const Band band(8.0, 14.0);
     std::string sessions;
@@ -73,7 +75,8 @@ TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAn
     EXPECT_NE(r.out.find("residual per set-point"), std::string::npos) << r.out;
     EXPECT_TRUE(std::filesystem::is_regular_file(dir / "cal.summary" / "index.html"));
 
-    // A 300 K scene at FPA 308 K (between calibrated states), the FPA temperature in the EXR header.
+    // A 300 K scene at FPA 308 K (between calibrated states), the FPA temperature in the EXR
+    // header.
     Image scene = frame(band.radiance(300.0), 308.0);
     scene.attributes()["fpa_temperature_k"] = 308.0;
     write_exr(dir / "scene.exr", scene);
@@ -84,11 +87,12 @@ TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAn
     EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
 
     // The single-state calibration of the 303 K session reads that frame kelvins off.
-    ASSERT_EQ(
-        run_cli("calibrate radiometric " + (dir / "fpa303").string() + " -o " + (dir / "one.exr").string()).exit_code,
-        0);
-    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " + (dir / "one.exr").string() +
-                " -o " + (dir / "t1.exr").string());
+    ASSERT_EQ(run_cli("calibrate radiometric " + (dir / "fpa303").string() + " -o " +
+                      (dir / "one.exr").string())
+                  .exit_code,
+              0);
+    r = run_cli("temperature " + (dir / "scene.exr").string() + " --calibration " +
+                (dir / "one.exr").string() + " -o " + (dir / "t1.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     EXPECT_GT(std::abs(read_exr(dir / "t1.exr").at("temperature_k", 5, 5) - 300.0), 1.0);
 
@@ -97,7 +101,9 @@ TEST(FieldRadiometryCli, FpaCalibrationFromThreeSessionsReadsTrueTemperatureAtAn
     r = run_cli("temperature " + (dir / "cold.exr").string() + " --calibration " + cal +
                 " --fpa-temperature-k 303 -o " + (dir / "t2.exr").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
-    EXPECT_NE(r.out.find("outside the calibrated blackbody range 283.15–323.15 K"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("outside the calibrated blackbody range 283.15–323.15 K"),
+              std::string::npos)
+        << r.out;
 
     // Without an FPA temperature, the FPA-dependent calibration refuses (exit 1) and says why.
     write_exr(dir / "nofpa.exr", frame(band.radiance(300.0), 303.0));
@@ -119,14 +125,16 @@ TEST(FieldRadiometryCli, NoiseReadsARawFileWithItsShape) {
             bytes.push_back(static_cast<char>(v >> 8));
         }
     write_file_atomic(dir / "stack.raw", bytes);
-    const CliRun r = run_cli("noise " + (dir / "stack.raw").string() + fmt::format(" --raw-shape {} {}", kW, kH) +
-                             " -o " + (dir / "n.json").string());
+    const CliRun r =
+        run_cli("noise " + (dir / "stack.raw").string() +
+                fmt::format(" --raw-shape {} {}", kW, kH) + " -o " + (dir / "n.json").string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(read_file(dir / "n.json"));
     EXPECT_EQ(j["frames"].get<int>(), 4);
     EXPECT_EQ(j["convention"].get<std::string>(), "sample (N-1, as pyradi ry3dnoise)");
     std::filesystem::create_directories(dir / "empty");
-    const CliRun e = run_cli("noise " + (dir / "empty").string() + " -o " + (dir / "e.json").string());
+    const CliRun e =
+        run_cli("noise " + (dir / "empty").string() + " -o " + (dir / "e.json").string());
     EXPECT_EQ(e.exit_code, 1);
     EXPECT_NE(e.out.find("no frame files"), std::string::npos) << e.out;
 }

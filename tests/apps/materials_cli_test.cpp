@@ -1,5 +1,5 @@
-// `tirpol emissivity` and `tirpol brdf`: JSON output consistent with the library, CSV/plot files, and
-// exit codes (1 for bad input, 2 for bad usage).
+// `tirpol emissivity` and `tirpol brdf`: JSON output consistent with the library, CSV/plot files,
+// and exit codes (1 for bad input, 2 for bad usage).
 
 #include <gtest/gtest.h>
 
@@ -24,7 +24,9 @@ std::string material(const char* name) {
 // Water at 10 µm (Hale & Querry 1973: n = 1.218, k = 0.0508): normal emissivity 1 − R = 0.9898
 // (R = ((n−1)² + k²)/((n+1)² + k²)), and emission polarized in the plane of emission at 60°.
 TEST(MaterialsCli, EmissivityJsonForWater) {
-    const CliRun r = run_cli("emissivity " + material("water.yaml") + " --wavelength-um 10 --angles-deg 0,60 --json", false);
+    const CliRun r = run_cli(
+        "emissivity " + material("water.yaml") + " --wavelength-um 10 --angles-deg 0,60 --json",
+        false);
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["rows"].size(), 2u);
@@ -38,8 +40,9 @@ TEST(MaterialsCli, EmissivityJsonForWater) {
 TEST(MaterialsCli, EmissivityBandWritesCsvAndPlot) {
     tirpol::test::TempDir dir;
     const auto csv = dir / "e.csv", png = dir / "e.png";
-    const CliRun r = run_cli("emissivity " + material("flat_black_paint.yaml") + " --band-um 8 14 --angles-deg 0:80:20 --csv " +
-                             csv.string() + " --plot " + png.string());
+    const CliRun r = run_cli("emissivity " + material("flat_black_paint.yaml") +
+                             " --band-um 8 14 --angles-deg 0:80:20 --csv " + csv.string() +
+                             " --plot " + png.string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::ifstream in(csv);
     std::string header;
@@ -52,12 +55,14 @@ TEST(MaterialsCli, EmissivityBandWritesCsvAndPlot) {
 }
 
 TEST(MaterialsCli, BrdfJsonIsReciprocalMuellerMatrix) {
-    const std::string base = "brdf " + material("flat_black_paint.yaml") + " --wavelength-um 10 --json ";
+    const std::string base =
+        "brdf " + material("flat_black_paint.yaml") + " --wavelength-um 10 --json ";
     const CliRun a = run_cli(base + "--incident-deg 30 10 --exitant-deg 50 200", false);
     const CliRun b = run_cli(base + "--incident-deg 50 200 --exitant-deg 30 10", false);
     ASSERT_EQ(a.exit_code, 0) << a.out;
     ASSERT_EQ(b.exit_code, 0) << b.out;
-    const auto ma = nlohmann::json::parse(a.out)["mueller_brdf_per_sr"], mb = nlohmann::json::parse(b.out)["mueller_brdf_per_sr"];
+    const auto ma = nlohmann::json::parse(a.out)["mueller_brdf_per_sr"],
+               mb = nlohmann::json::parse(b.out)["mueller_brdf_per_sr"];
     // M(wo→wi) = Q M(wi→wo)ᵀ Q, Q = diag(1, 1, −1, 1) (pbrdf.h).
     const double q[4] = {1, 1, -1, 1};
     for (int r = 0; r < 4; ++r)
@@ -66,14 +71,18 @@ TEST(MaterialsCli, BrdfJsonIsReciprocalMuellerMatrix) {
 }
 
 TEST(MaterialsCli, BadInputsGiveClearErrors) {
-    CliRun r = run_cli("emissivity " + material("water.yaml") + " --wavelength-um 30 --angles-deg 0");
+    CliRun r =
+        run_cli("emissivity " + material("water.yaml") + " --wavelength-um 30 --angles-deg 0");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.out.find("outside"), std::string::npos) << r.out;
-    r = run_cli("emissivity " + material("water.yaml") + " --wavelength-um 10 --angles-deg 0:100:10");
+    r = run_cli("emissivity " + material("water.yaml") +
+                " --wavelength-um 10 --angles-deg 0:100:10");
     EXPECT_EQ(r.exit_code, 2);  // an option value outside its range: usage
     EXPECT_NE(r.out.find("outside [0, 90]"), std::string::npos) << r.out;
     EXPECT_EQ(run_cli("emissivity " + material("water.yaml") + " --angles-deg 0").exit_code, 2);
-    EXPECT_EQ(run_cli("brdf " + material("water.yaml") + " --wavelength-um 10 --incident-deg 30").exit_code, 2);
+    EXPECT_EQ(run_cli("brdf " + material("water.yaml") + " --wavelength-um 10 --incident-deg 30")
+                  .exit_code,
+              2);
 }
 
 }  // namespace

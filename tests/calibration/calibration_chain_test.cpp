@@ -1,8 +1,8 @@
 // The calibration chain (calibration_chain.h): one ordered list of steps that every front end runs.
 // On synthetic sessions with a planted truth (calibration/testing/synthetic_session.h) the chain's
-// products are bit-identical to the step functions called by hand in the same order, and the panel's
-// planted ε (0.93, −0.035, 0.01) comes back within 2σ; steps run in list order, only when due, and a
-// step that lacks its input names itself.
+// products are bit-identical to the step functions called by hand in the same order, and the
+// panel's planted ε (0.93, −0.035, 0.01) comes back within 2σ; steps run in list order, only when
+// due, and a step that lacks its input names itself.
 
 #include "tirpol/calibration/calibration_chain.h"
 
@@ -23,7 +23,8 @@ class CalibrationChain : public testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir("tirpol-calibration-chain");
-        write_synthetic_sessions(dir_->path(), SyntheticCamera{}, synthetic_panel_scene(64, 48, kBand), kBand);
+        write_synthetic_sessions(dir_->path(), SyntheticCamera{},
+                                 synthetic_panel_scene(64, 48, kBand), kBand);
     }
     static void TearDownTestSuite() { delete dir_; }
     static std::filesystem::path root() { return dir_->path(); }
@@ -60,7 +61,8 @@ std::vector<std::string> step_names() {
 TEST_F(CalibrationChain, StepsRunInTheOrderOfTheList) {
     EXPECT_THAT(step_names(), ElementsAre("radiometric", "polarimetric", "reduce", "emissivity"));
     std::vector<std::string> ran;
-    run_calibration_chain(all_inputs(), {}, [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
+    run_calibration_chain(all_inputs(), {},
+                          [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
     EXPECT_EQ(ran, step_names());
 }
 
@@ -78,9 +80,11 @@ TEST_F(CalibrationChain, ProductsAreThoseOfTheStepFunctionsCalledByHand) {
     EXPECT_FALSE(p.quality);  // only with assess_quality
     EXPECT_EQ(p.polarimetric->analyzer_method, polarimetric.analyzer_method);
     EXPECT_EQ(p.polarimetric->wire_grid.at(45.0).tau, polarimetric.wire_grid.at(45.0).tau);
-    EXPECT_EQ(p.polarimetric->wire_grid.at(45.0).background, polarimetric.wire_grid.at(45.0).background);
+    EXPECT_EQ(p.polarimetric->wire_grid.at(45.0).background,
+              polarimetric.wire_grid.at(45.0).background);
     ASSERT_EQ(p.stokes.size(), 1u);
-    for (const auto& c : stokes.channel_names()) EXPECT_EQ(p.stokes[0].channel(c), stokes.channel(c)) << c;
+    for (const auto& c : stokes.channel_names())
+        EXPECT_EQ(p.stokes[0].channel(c), stokes.channel(c)) << c;
     ASSERT_EQ(p.emissivity.size(), 1u);
     ASSERT_EQ(p.emissivity[0].size(), 1u);
     const EmissivityResult& e = p.emissivity[0][0];
@@ -95,15 +99,15 @@ TEST_F(CalibrationChain, ProductsAreThoseOfTheStepFunctionsCalledByHand) {
 
 TEST_F(CalibrationChain, GivenProductsSkipTheirStepsAndAbsentInputsSkipTheirs) {
     const ChainProducts first = run_calibration_chain(all_inputs());
-    // A calibration read from its file starts the chain at the reduction (`tirpol reduce`): the ideal
-    // analyzer without a polarimetric calibration, as reduce_session gives it.
+    // A calibration read from its file starts the chain at the reduction (`tirpol reduce`): the
+    // ideal analyzer without a polarimetric calibration, as reduce_session gives it.
     ChainInputs scene_only;
     scene_only.scene_sessions = {root() / "scene"};
     ChainProducts given;
     given.radiometric = first.radiometric;
     std::vector<std::string> ran;
-    const ChainProducts p =
-        run_calibration_chain(scene_only, given, [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
+    const ChainProducts p = run_calibration_chain(
+        scene_only, given, [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
     EXPECT_THAT(ran, ElementsAre("reduce"));
     EXPECT_FALSE(p.polarimetric);
     EXPECT_EQ(p.stokes.at(0).channel("S1"),
@@ -114,8 +118,8 @@ TEST_F(CalibrationChain, GivenProductsSkipTheirStepsAndAbsentInputsSkipTheirs) {
     ChainProducts stokes_given;
     stokes_given.stokes = first.stokes;
     ran.clear();
-    const ChainProducts q =
-        run_calibration_chain(regions_only, stokes_given, [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
+    const ChainProducts q = run_calibration_chain(
+        regions_only, stokes_given, [&](const CalibrationStep& s) { ran.emplace_back(s.name); });
     EXPECT_THAT(ran, ElementsAre("emissivity"));
     EXPECT_EQ(q.emissivity.at(0).at(0).eps_s1, first.emissivity.at(0).at(0).eps_s1);
 }
@@ -139,7 +143,8 @@ TEST_F(CalibrationChain, AStepThatLacksItsInputNamesItself) {
     two_sets.rois.push_back(panel_rois());
     ChainProducts one_image;
     one_image.stokes = {synthetic_panel_scene(64, 48, kBand)};
-    EXPECT_THAT(error_of(two_sets, one_image), HasSubstr("2 region sets for 1 Stokes images; expected 1 or 1"));
+    EXPECT_THAT(error_of(two_sets, one_image),
+                HasSubstr("2 region sets for 1 Stokes images; expected 1 or 1"));
 }
 
 }  // namespace

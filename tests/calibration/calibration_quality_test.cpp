@@ -41,7 +41,8 @@ std::vector<BlackbodyFrame> curved_camera_frames(double q, unsigned seed) {
         f.source = fmt::format("bb {:.2f} K", t);
         const double l = kBand.radiance(t);
         for (int i = 0; i < kW * kH; ++i) {
-            f.counts.push_back(static_cast<float>(5000.0 + gain[static_cast<std::size_t>(i)] * l + q * l * l +
+            f.counts.push_back(static_cast<float>(5000.0 + gain[static_cast<std::size_t>(i)] * l +
+                                                  q * l * l +
                                                   kNoise / std::sqrt(kFrames) * unit(rng)));
             f.counts_std.push_back(static_cast<float>(kNoise));
         }
@@ -51,8 +52,8 @@ std::vector<BlackbodyFrame> curved_camera_frames(double q, unsigned seed) {
 }
 
 TEST(CalibrationQuality, LinearFitOfACurvedResponseWarnsAndSuggestsQuadratic) {
-    // q = 0.03 counts/(W/(m²·sr))² over 37–77 W/(m²·sr) bends the response by q·ΔL²/8 ≈ 6 counts ≈ 70 mK
-    // at mid-range: the mildly non-linear camera of the issue.
+    // q = 0.03 counts/(W/(m²·sr))² over 37–77 W/(m²·sr) bends the response by q·ΔL²/8 ≈ 6 counts ≈
+    // 70 mK at mid-range: the mildly non-linear camera of the issue.
     const auto frames = curved_camera_frames(0.03, 1);
     const auto linear = fit_radiometric(frames, kW, kH, kBand);
     const auto q_linear = assess_calibration(linear, frames);
@@ -69,7 +70,8 @@ TEST(CalibrationQuality, LinearFitOfACurvedResponseWarnsAndSuggestsQuadratic) {
     const auto curved = fit_radiometric(frames, kW, kH, kBand, quadratic);
     const auto q_curved = assess_calibration(curved, frames);
     EXPECT_TRUE(q_curved.warnings.empty());
-    for (const auto& s : q_curved.set_points) EXPECT_LT(std::abs(s.mean_mk), 4.0 * s.standard_error_mk + 1.0);
+    for (const auto& s : q_curved.set_points)
+        EXPECT_LT(std::abs(s.mean_mk), 4.0 * s.standard_error_mk + 1.0);
 }
 
 TEST(CalibrationQuality, LinearCameraGivesNoWarningAndNoiseSizedResiduals) {
@@ -78,8 +80,10 @@ TEST(CalibrationQuality, LinearCameraGivesNoWarningAndNoiseSizedResiduals) {
     const auto q = assess_calibration(cal, frames);
     EXPECT_TRUE(q.warnings.empty());
     for (const auto& s : q.set_points) {
-        // Residual of a 2-parameter fit to 6 points: σ_mean·√((6−2)/6) on average over the set-points.
-        const double sigma_mean_mk = kNoise / std::sqrt(kFrames) / (100.0 * kBand.radiance_dT(s.temperature_k)) * 1e3;
+        // Residual of a 2-parameter fit to 6 points: σ_mean·√((6−2)/6) on average over the
+        // set-points.
+        const double sigma_mean_mk =
+            kNoise / std::sqrt(kFrames) / (100.0 * kBand.radiance_dT(s.temperature_k)) * 1e3;
         EXPECT_LT(s.rms_mk, 1.5 * sigma_mean_mk);
         EXPECT_GT(s.rms_mk, 0.3 * sigma_mean_mk);
     }
@@ -127,7 +131,8 @@ TEST(CalibrationQuality, ApplyingBeyondTheCalibratedRangeWarnsWithTheRange) {
                 static_cast<double>(good_cold) / static_cast<double>(good), 1e-12);
     const auto hot_camera = extrapolation_warning(cal, radiance_of(300.0, 315.0), 315.0);
     ASSERT_TRUE(hot_camera);
-    EXPECT_THAT(*hot_camera, testing::HasSubstr("FPA temperature 315.00 K is outside the calibrated FPA range"));
+    EXPECT_THAT(*hot_camera,
+                testing::HasSubstr("FPA temperature 315.00 K is outside the calibrated FPA range"));
 }
 
 TEST(CalibrationQuality, SummaryWritesPageAndMaps) {
@@ -151,7 +156,8 @@ TEST(CalibrationQuality, ReductionListsRecordsBeyondTheCalibratedRange) {
     // background) reads below the 283.15–328.15 K laboratory calibration: reduced, but listed.
     test::TempDir root;
     const SyntheticCamera cam;
-    write_synthetic_sessions(root.path(), cam, synthetic_panel_scene(cam.width, cam.height, kBand), kBand);
+    write_synthetic_sessions(root.path(), cam, synthetic_panel_scene(cam.width, cam.height, kBand),
+                             kBand);
     const auto cal = calibrate_radiometric_session(root / "lab", kBand);
     const Image s = reduce_session(root / "scene", cal, nullptr);
     ASSERT_TRUE(s.attributes().count("calibration_warnings"));
@@ -167,8 +173,10 @@ TEST(CalibrationQuality, ReductionListsRecordsBeyondTheCalibratedRange) {
     const auto attr = [&](const char* name) { return std::get<double>(u.attributes().at(name)); };
     EXPECT_NEAR(attr("offset_update_mean_counts"), cam.field_offset_drift, 0.5);
     EXPECT_NEAR(attr("offset_update_sigma_counts"), cam.noise_counts / std::sqrt(cam.frames), 1e-3);
-    EXPECT_NEAR(attr("offset_update_sigma_mk"), 1e3 * 1.5 / (cam.gain_mean * kBand.radiance_dT(293.15)), 1.5);
-    EXPECT_THAT(std::get<std::string>(u.attributes().at("offset_update_source")), testing::HasSubstr("shutter"));
+    EXPECT_NEAR(attr("offset_update_sigma_mk"),
+                1e3 * 1.5 / (cam.gain_mean * kBand.radiance_dT(293.15)), 1.5);
+    EXPECT_THAT(std::get<std::string>(u.attributes().at("offset_update_source")),
+                testing::HasSubstr("shutter"));
 }
 
 }  // namespace

@@ -21,22 +21,25 @@ class CameraIdentity : public testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir("tirpol-camera-identity");
-        write_synthetic_sessions(dir_->path(), SyntheticCamera{}, synthetic_panel_scene(64, 48, Band(8.0, 14.0)),
-                                 Band(8.0, 14.0));
+        write_synthetic_sessions(dir_->path(), SyntheticCamera{},
+                                 synthetic_panel_scene(64, 48, Band(8.0, 14.0)), Band(8.0, 14.0));
     }
     static void TearDownTestSuite() { delete dir_; }
     static std::filesystem::path root() { return dir_->path(); }
     /// A copy of the scene session whose manifest says another camera took it.
-    static std::filesystem::path other_camera_session(const test::TempDir& tmp, const std::string& field,
+    static std::filesystem::path other_camera_session(const test::TempDir& tmp,
+                                                      const std::string& field,
                                                       const nlohmann::json& value) {
-        std::filesystem::copy(root() / "scene", tmp / "scene", std::filesystem::copy_options::recursive);
+        std::filesystem::copy(root() / "scene", tmp / "scene",
+                              std::filesystem::copy_options::recursive);
         auto manifest = nlohmann::json::parse(read_file(tmp / "scene" / "session.json"));
         manifest["camera"][field] = value;
         write_file_atomic(tmp / "scene" / "session.json", manifest.dump());
-        // The frames' headers name the camera too (read_session_frame compares them): another camera's
-        // session says so in both places.
+        // The frames' headers name the camera too (read_session_frame compares them): another
+        // camera's session says so in both places.
         if (field == "serial")
-            for (const auto& entry : std::filesystem::directory_iterator(tmp / "scene" / "frames")) {
+            for (const auto& entry :
+                 std::filesystem::directory_iterator(tmp / "scene" / "frames")) {
                 Image frame = read_exr(entry.path());
                 frame.attributes()["camera_serial"] = value.get<std::string>();
                 write_exr(entry.path(), frame);
@@ -70,7 +73,8 @@ TEST_F(CameraIdentity, AnotherCameraOfTheSameSizeIsRefusedNamingBoth) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), testing::AllOf(testing::HasSubstr("another camera (serial differs)"),
                                              testing::HasSubstr("'" + cal.camera.serial + "'"),
-                                             testing::HasSubstr("'OTHER-9999'"), testing::HasSubstr("--other-camera")));
+                                             testing::HasSubstr("'OTHER-9999'"),
+                                             testing::HasSubstr("--other-camera")));
     }
     EXPECT_THROW(calibrate_polarimetric_session(session, cal), Error);
     SessionReductionOptions forced;
@@ -82,7 +86,9 @@ TEST_F(CameraIdentity, BitDepthAndPixelFormatCount) {
     const auto cal = calibrate_radiometric_session(root() / "lab", Band(8.0, 14.0));
     test::TempDir a, b;
     EXPECT_THROW(reduce_session(other_camera_session(a, "bits_per_pixel", 8), cal, nullptr), Error);
-    EXPECT_THROW(reduce_session(other_camera_session(b, "pixel_format", "Mono12Packed"), cal, nullptr), Error);
+    EXPECT_THROW(
+        reduce_session(other_camera_session(b, "pixel_format", "Mono12Packed"), cal, nullptr),
+        Error);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
-// Files that must agree, tampered one at a time from the synthetic sessions (write_synthetic_sessions):
-// each contradiction is an error naming the files and records, never an output. Before these checks a
-// 90° frame filed under 0° reduced with S1 negated, swapped blackbody temperatures made a calibration
-// with median gain −79 and 19,199 of 19,200 pixels "dead", and a 3–5 µm radiometric calibration with
-// an 8–14 µm polarimetric one gave S0 < 0 and DoLP NaN — all with exit 0.
+// Files that must agree, tampered one at a time from the synthetic sessions
+// (write_synthetic_sessions): each contradiction is an error naming the files and records, never an
+// output. Before these checks a 90° frame filed under 0° reduced with S1 negated, swapped blackbody
+// temperatures made a calibration with median gain −79 and 19,199 of 19,200 pixels "dead", and a
+// 3–5 µm radiometric calibration with an 8–14 µm polarimetric one gave S0 < 0 and DoLP NaN — all
+// with exit 0.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -29,7 +30,8 @@ class CrossFileConsistency : public testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir("tirpol-consistency");
-        write_synthetic_sessions(dir_->path(), SyntheticCamera{}, synthetic_panel_scene(64, 48, kBand), kBand);
+        write_synthetic_sessions(dir_->path(), SyntheticCamera{},
+                                 synthetic_panel_scene(64, 48, kBand), kBand);
     }
     static void TearDownTestSuite() { delete dir_; }
     static fs::path root() { return dir_->path(); }
@@ -56,7 +58,8 @@ TEST_F(CrossFileConsistency, AFrameFiledUnderAnotherAngleIsRefusedNamingFrameAnd
     test::TempDir tmp;
     const fs::path scene = copy_session(tmp, "scene");
     // The frames at 0° and 90° trade names: the manifest still files each under its old angle.
-    const fs::path p0 = scene / "frames" / "scene_0.0deg.exr", p90 = scene / "frames" / "scene_90.0deg.exr";
+    const fs::path p0 = scene / "frames" / "scene_0.0deg.exr",
+                   p90 = scene / "frames" / "scene_90.0deg.exr";
     ASSERT_TRUE(fs::exists(p0) && fs::exists(p90));
     fs::rename(p0, scene / "frames" / "swap.exr");
     fs::rename(p90, p0);
@@ -83,7 +86,8 @@ TEST_F(CrossFileConsistency, ABlackbodyTemperatureEditedInTheManifestDisagreesWi
     EXPECT_THAT(message, HasSubstr("blackbody_temperature_k = 328.15 K"));
 }
 
-TEST_F(CrossFileConsistency, SwappedBlackbodyTemperaturesGiveAnErrorNamingTheRecordsNotACalibration) {
+TEST_F(CrossFileConsistency,
+       SwappedBlackbodyTemperaturesGiveAnErrorNamingTheRecordsNotACalibration) {
     // The operator typed the two set-points the wrong way round: manifest and headers agree, the
     // counts do not. Counts must rise with the blackbody's temperature (gain > 0).
     test::TempDir tmp;
@@ -95,7 +99,8 @@ TEST_F(CrossFileConsistency, SwappedBlackbodyTemperaturesGiveAnErrorNamingTheRec
     for (int i : {0, 3}) {
         const fs::path frame = lab / records[i]["file"].get<std::string>();
         Image image = read_exr(frame);
-        image.attributes()["blackbody_temperature_k"] = records[i]["blackbody_temperature_k"].get<double>();
+        image.attributes()["blackbody_temperature_k"] =
+            records[i]["blackbody_temperature_k"].get<double>();
         write_exr(frame, image);
     }
     const std::string message = error_of([&] { calibrate_radiometric_session(lab, kBand); });
@@ -119,16 +124,20 @@ TEST_F(CrossFileConsistency, APolarimetricCalibrationOfAnotherBandIsRefusedNamin
     EXPECT_DOUBLE_EQ(pol_back.band_lo_um, 8.0);
     EXPECT_DOUBLE_EQ(pol_back.band_hi_um, 14.0);
     // Same band: accepted.
-    EXPECT_EQ(error_of([&] { read_calibration_products(tmp / "cal_8-14.exr", tmp / "pol_8-14.yaml"); }), "");
+    EXPECT_EQ(
+        error_of([&] { read_calibration_products(tmp / "cal_8-14.exr", tmp / "pol_8-14.yaml"); }),
+        "");
 
     const auto rad3 = calibrate_radiometric_session(root() / "lab", Band(3.0, 5.0));
     write_radiometric_calibration((tmp / "cal_3-5.exr").string(), rad3);
     const std::string message =
         error_of([&] { read_calibration_products(tmp / "cal_3-5.exr", tmp / "pol_8-14.yaml"); });
-    EXPECT_THAT(message, HasSubstr((tmp / "pol_8-14.yaml").string() + " is a polarimetric calibration for 8–14 µm"));
+    EXPECT_THAT(message, HasSubstr((tmp / "pol_8-14.yaml").string() +
+                                   " is a polarimetric calibration for 8–14 µm"));
     EXPECT_THAT(message, HasSubstr((tmp / "cal_3-5.exr").string() + " is for 3–5 µm"));
     // The library path too (Python, the twin): the reduction refuses the pair.
-    EXPECT_THAT(error_of([&] { reduce_session(root() / "scene", rad3, &pol_back); }), HasSubstr("8–14 µm"));
+    EXPECT_THAT(error_of([&] { reduce_session(root() / "scene", rad3, &pol_back); }),
+                HasSubstr("8–14 µm"));
 }
 
 }  // namespace

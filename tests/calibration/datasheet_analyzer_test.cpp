@@ -30,7 +30,8 @@ TEST(DatasheetAnalyzer, ExtinctionRatioAndOffsetsGiveTheDiattenuatorRows) {
     EXPECT_DOUBLE_EQ(m.positions[1].axis_angle_deg, 44.5);
     EXPECT_DOUBLE_EQ(m.positions[2].axis_angle_deg, 92.0);
     const auto one = datasheet_analyzer_model(kAngles, {150.0, {1.5}});
-    for (const auto& p : one.positions) EXPECT_DOUBLE_EQ(p.axis_angle_deg - p.nominal_angle_deg, 1.5);
+    for (const auto& p : one.positions)
+        EXPECT_DOUBLE_EQ(p.axis_angle_deg - p.nominal_angle_deg, 1.5);
     EXPECT_EQ(describe({150.0, {1.5}}), "datasheet (extinction ratio 150, axis offsets +1.50°)");
     EXPECT_THAT(
         [] {
@@ -48,7 +49,8 @@ TEST(DatasheetAnalyzer, SessionWithoutKnownSourceUsesTheDatasheetAndSaysSo) {
     test::TempDir root;
     const Band band(8.0, 14.0);
     const SyntheticCamera cam;
-    write_synthetic_sessions(root.path(), cam, synthetic_panel_scene(cam.width, cam.height, band), band);
+    write_synthetic_sessions(root.path(), cam, synthetic_panel_scene(cam.width, cam.height, band),
+                             band);
     // The same polarimetric session without its known-source description.
     auto json = nlohmann::json::parse(read_file(root / "polcal" / "session.json"));
     json["metadata"].erase("known_source");
@@ -59,9 +61,11 @@ TEST(DatasheetAnalyzer, SessionWithoutKnownSourceUsesTheDatasheetAndSaysSo) {
     EXPECT_EQ(ideal.analyzer_method, "ideal (no known-source records)");
     EXPECT_DOUBLE_EQ(ideal.analyzer.positions[1].diattenuation, 1.0);
 
-    const auto sheet = calibrate_polarimetric_session(root / "polcal", radiometric,
-                                                      DatasheetAnalyzer{cam.extinction_ratio, {cam.angle_offset_deg}});
-    EXPECT_EQ(sheet.analyzer_method, "datasheet (extinction ratio 100, axis offsets +1.50°) (no known-source records)");
+    const auto sheet = calibrate_polarimetric_session(
+        root / "polcal", radiometric,
+        DatasheetAnalyzer{cam.extinction_ratio, {cam.angle_offset_deg}});
+    EXPECT_EQ(sheet.analyzer_method,
+              "datasheet (extinction ratio 100, axis offsets +1.50°) (no known-source records)");
     for (const auto& p : sheet.analyzer.positions) {
         EXPECT_NEAR(p.extinction_ratio(), cam.extinction_ratio, 1e-9);
         EXPECT_DOUBLE_EQ(p.axis_angle_deg - p.nominal_angle_deg, cam.angle_offset_deg);

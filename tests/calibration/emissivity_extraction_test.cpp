@@ -1,6 +1,7 @@
 // Emissivity extraction (paper eq 17): a synthetic Stokes image built from known polarized
-// emissivities, downwelled radiance and target temperatures gives them back within twice the reported
-// standard uncertainty (1σ, `*_std`), whose size matches the scatter of the estimates over noise draws.
+// emissivities, downwelled radiance and target temperatures gives them back within twice the
+// reported standard uncertainty (1σ, `*_std`), whose size matches the scatter of the estimates over
+// noise draws.
 
 #include "tirpol/calibration/emissivity_extraction.h"
 
@@ -51,7 +52,8 @@ EmissivityRois rois() {
     EmissivityRois r;
     r.reflector.rect = {2, 2, 20, 36};
     EmissivityTarget contact{"panel_contact", {32, 5, 16, 30}, 40.0, 295.0, 0.1, std::nullopt};
-    EmissivityTarget bb{"panel_bb", {32, 5, 16, 30}, 40.0, std::nullopt, 0.5, PixelRect{62, 5, 16, 30}};
+    EmissivityTarget bb{"panel_bb", {32, 5, 16, 30},         40.0, std::nullopt,
+                        0.5,        PixelRect{62, 5, 16, 30}};
     r.targets = {contact, bb};
     return r;
 }
@@ -68,7 +70,8 @@ TEST(EmissivityExtraction, RecoversKnownPolarizedEmissivityWithinTwoSigma) {
         // σ is tight enough to matter: a few thousandths of emissivity here.
         EXPECT_LT(r.eps_s1_std, 0.005);
     }
-    EXPECT_NEAR(results[1].temperature_k, 295.0, 0.1);  // brightness temperature of the blackbody region
+    EXPECT_NEAR(results[1].temperature_k, 295.0,
+                0.1);  // brightness temperature of the blackbody region
     // Noiseless: exact.
     const auto exact = extract_emissivity(scene(band, 0.0, 1), rois(), band);
     EXPECT_NEAR(exact[0].eps_s0, 0.92, 1e-5);
@@ -86,10 +89,11 @@ TEST(EmissivityExtraction, RecoversKnownPolarizedEmissivityWithinTwoSigma) {
 }
 
 TEST(EmissivityExtraction, StdIsTheStandardDeviationOfTheEstimateOverNoiseDraws) {
-    // The in-scene blackbody target: every input is a noisy ROI mean (no contact-temperature σ, which
-    // this synthetic scene does not realise), so the pulls (ε − truth)/ε_std over independent noise
-    // draws have unit standard deviation when ε_std is 1σ (2σ would give 0.5). 300 draws: the sample
-    // standard deviation of the pulls has a relative σ of 1/√600 ≈ 4 %; ±15 % is ≈ 3.7 of those.
+    // The in-scene blackbody target: every input is a noisy ROI mean (no contact-temperature σ,
+    // which this synthetic scene does not realise), so the pulls (ε − truth)/ε_std over independent
+    // noise draws have unit standard deviation when ε_std is 1σ (2σ would give 0.5). 300 draws: the
+    // sample standard deviation of the pulls has a relative σ of 1/√600 ≈ 4 %; ±15 % is ≈ 3.7 of
+    // those.
     const Band band(8.0, 14.0);
     constexpr int kDraws = 300;
     double sum_sq[3] = {0.0, 0.0, 0.0};
@@ -99,19 +103,23 @@ TEST(EmissivityExtraction, StdIsTheStandardDeviationOfTheEstimateOverNoiseDraws)
         sum_sq[1] += std::pow((r.eps_s1 + 0.03) / r.eps_s1_std, 2);
         sum_sq[2] += std::pow((r.eps_s2 - 0.004) / r.eps_s2_std, 2);
     }
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(std::sqrt(sum_sq[k] / kDraws), 1.0, 0.15) << "eps_s" << k;
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(std::sqrt(sum_sq[k] / kDraws), 1.0, 0.15) << "eps_s" << k;
 }
 
 TEST(EmissivityExtraction, RoiFileIsValidatedWithClearErrors) {
     test::TempDir dir;
     const auto good = dir / "rois.yaml";
-    test::write_text(good, "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
-                           "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40, temperature_k: 295}\n");
+    test::write_text(
+        good,
+        "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
+        "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40, temperature_k: 295}\n");
     const auto r = EmissivityRois::load(good.string());
     EXPECT_EQ(r.targets.at(0).rect.width, 16);
     const auto both = dir / "both.yaml";
-    test::write_text(both, "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
-                           "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40}\n");
+    test::write_text(both,
+                     "reflector: {rect: [2, 2, 20, 36]}\ntargets:\n"
+                     "  - {name: p, rect: [32, 5, 16, 30], view_angle_deg: 40}\n");
     try {
         EmissivityRois::load(both.string());
         FAIL();

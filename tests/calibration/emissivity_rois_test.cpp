@@ -1,6 +1,7 @@
 // The emissivity ROI file is held to whole-pixel rectangles and non-negative uncertainties, and an
-// extracted ε_S0 outside [0, 1] beyond noise carries a warning (issue 20: non-integer rectangles were
-// truncated silently, temperature_std_k: -1 was accepted, ε_S0 = 1.48 was reported without a word).
+// extracted ε_S0 outside [0, 1] beyond noise carries a warning (issue 20: non-integer rectangles
+// were truncated silently, temperature_std_k: -1 was accepted, ε_S0 = 1.48 was reported without a
+// word).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -26,18 +27,23 @@ std::string error_of(const std::string& yaml) {
 const std::string kReflector = "reflector: {rect: [0, 0, 4, 4]}\n";
 
 TEST(EmissivityRois, FractionalRectanglesAreErrorsNotTruncated) {
-    EXPECT_THAT(error_of(kReflector + "targets:\n  - {name: p, rect: [10.5, 2, 4, 4], view_angle_deg: 30, "
-                                      "temperature_k: 300}\n"),
-                testing::AllOf(testing::HasSubstr("targets[0].rect"), testing::HasSubstr("whole pixels"),
-                               testing::HasSubstr("10.5")));
-    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 1e300, 4]}\ntargets: []\n"), testing::HasSubstr("whole pixels"));
-    EXPECT_THAT(error_of("reflector: {rect: [-1, 0, 4, 4]}\ntargets: []\n"), testing::HasSubstr("whole pixels"));
+    EXPECT_THAT(
+        error_of(kReflector + "targets:\n  - {name: p, rect: [10.5, 2, 4, 4], view_angle_deg: 30, "
+                              "temperature_k: 300}\n"),
+        testing::AllOf(testing::HasSubstr("targets[0].rect"), testing::HasSubstr("whole pixels"),
+                       testing::HasSubstr("10.5")));
+    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 1e300, 4]}\ntargets: []\n"),
+                testing::HasSubstr("whole pixels"));
+    EXPECT_THAT(error_of("reflector: {rect: [-1, 0, 4, 4]}\ntargets: []\n"),
+                testing::HasSubstr("whole pixels"));
 }
 
 TEST(EmissivityRois, NegativeTemperatureUncertaintyIsAnError) {
-    EXPECT_THAT(error_of(kReflector + "targets:\n  - {name: p, rect: [10, 2, 4, 4], view_angle_deg: 30, "
-                                      "temperature_k: 300, temperature_std_k: -1}\n"),
-                testing::AllOf(testing::HasSubstr("temperature_std_k"), testing::HasSubstr("out of range")));
+    EXPECT_THAT(
+        error_of(kReflector + "targets:\n  - {name: p, rect: [10, 2, 4, 4], view_angle_deg: 30, "
+                              "temperature_k: 300, temperature_std_k: -1}\n"),
+        testing::AllOf(testing::HasSubstr("temperature_std_k"),
+                       testing::HasSubstr("out of range")));
 }
 
 TEST(EmissivityRois, EmissivityAboveOneBeyondNoiseIsFlagged) {
@@ -58,8 +64,9 @@ TEST(EmissivityRois, EmissivityAboveOneBeyondNoiseIsFlagged) {
     ASSERT_EQ(results.size(), 1u);
     EXPECT_NEAR(results[0].eps_s0, 1.48, 1e-4);
     ASSERT_EQ(results[0].warnings.size(), 1u);
-    EXPECT_THAT(results[0].warnings[0], testing::AllOf(testing::HasSubstr("hot_panel"), testing::HasSubstr("1.480"),
-                                                       testing::HasSubstr("outside [0, 1]")));
+    EXPECT_THAT(results[0].warnings[0],
+                testing::AllOf(testing::HasSubstr("hot_panel"), testing::HasSubstr("1.480"),
+                               testing::HasSubstr("outside [0, 1]")));
     rois.targets[0].temperature_k = 290.0;
     const Image plausible = [&] {
         Image p = im;
@@ -77,7 +84,8 @@ TEST(EmissivityRois, ReflectorEmissionKeysAndErrors) {
         "targets:\n  - {name: p, rect: [10, 2, 4, 4], view_angle_deg: 30, temperature_k: 300}\n";
     test::TempDir dir;
     test::write_text(dir / "rois.yaml",
-                     "reflector: {rect: [0, 0, 4, 4], emissivity: 0.06, emissivity_std: 0.01, temperature_k: 281.5, "
+                     "reflector: {rect: [0, 0, 4, 4], emissivity: 0.06, emissivity_std: 0.01, "
+                     "temperature_k: 281.5, "
                      "temperature_std_k: 0.3}\n" +
                          targets);
     const EmissivityRois loaded = EmissivityRois::load((dir / "rois.yaml").string());
@@ -86,10 +94,13 @@ TEST(EmissivityRois, ReflectorEmissionKeysAndErrors) {
     EXPECT_DOUBLE_EQ(*loaded.reflector.temperature_k, 281.5);
     EXPECT_DOUBLE_EQ(loaded.reflector.temperature_std_k, 0.3);
 
-    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 0.06}\n" + targets),
-                testing::AllOf(testing::HasSubstr("reflector"), testing::HasSubstr("temperature_k")));
-    EXPECT_THAT(error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 1.0, temperature_k: 280}\n" + targets),
-                testing::AllOf(testing::HasSubstr("emissivity"), testing::HasSubstr("out of range")));
+    EXPECT_THAT(
+        error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 0.06}\n" + targets),
+        testing::AllOf(testing::HasSubstr("reflector"), testing::HasSubstr("temperature_k")));
+    EXPECT_THAT(
+        error_of("reflector: {rect: [0, 0, 4, 4], emissivity: 1.0, temperature_k: 280}\n" +
+                 targets),
+        testing::AllOf(testing::HasSubstr("emissivity"), testing::HasSubstr("out of range")));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // FPA-temperature-dependent radiometric calibration (Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304,
 // 2013): on a synthetic uncooled camera whose offset moves 60 counts/K and gain −0.6 %/K with its
-// own FPA temperature, the FPA model fitted from blackbody frames at three camera temperatures keeps
-// brightness temperatures within 50 mK over a 15 K FPA swing (the target of issue 15), while a
-// calibration at one camera state errs by more than 1 K at the ends of the swing.
+// own FPA temperature, the FPA model fitted from blackbody frames at three camera temperatures
+// keeps brightness temperatures within 50 mK over a 15 K FPA swing (the target of issue 15), while
+// a calibration at one camera state errs by more than 1 K at the ends of the swing.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -26,12 +26,14 @@ const std::vector<double> kCameraK{295.65, 303.15, 310.65};  // a 15 K swing
 
 /// Blackbody set-points at each camera temperature; the FPA drifts ±0.2 K within a run, as it does
 /// on a camera that is not thermally stabilised.
-std::vector<BlackbodyFrame> calibration_frames(const DriftingCameraTruth& truth, const std::vector<double>& cameras_k) {
+std::vector<BlackbodyFrame> calibration_frames(const DriftingCameraTruth& truth,
+                                               const std::vector<double>& cameras_k) {
     std::vector<BlackbodyFrame> frames;
     unsigned seed = 100;
     for (double fpa : cameras_k)
         for (std::size_t j = 0; j < kSetPointsK.size(); ++j)
-            frames.push_back(truth.frame(kBand, kSetPointsK[j], fpa + 0.2 * std::sin(static_cast<double>(j)), ++seed));
+            frames.push_back(truth.frame(kBand, kSetPointsK[j],
+                                         fpa + 0.2 * std::sin(static_cast<double>(j)), ++seed));
     return frames;
 }
 
@@ -39,11 +41,13 @@ struct ErrorStats {
     double rms_k = 0.0, mean_k = 0.0;
 };
 
-/// Brightness-temperature error over the good pixels of a uniform scene at `scene_k` seen at `fpa_k`.
-ErrorStats temperature_error(const RadiometricCalibration& cal, const DriftingCameraTruth& truth, double scene_k,
-                             double fpa_k, bool pass_fpa) {
+/// Brightness-temperature error over the good pixels of a uniform scene at `scene_k` seen at
+/// `fpa_k`.
+ErrorStats temperature_error(const RadiometricCalibration& cal, const DriftingCameraTruth& truth,
+                             double scene_k, double fpa_k, bool pass_fpa) {
     const BlackbodyFrame f = truth.frame(kBand, scene_k, fpa_k, 999);
-    const auto radiance = counts_to_radiance(cal, f.counts, pass_fpa ? std::optional<double>(fpa_k) : std::nullopt);
+    const auto radiance =
+        counts_to_radiance(cal, f.counts, pass_fpa ? std::optional<double>(fpa_k) : std::nullopt);
     const auto t = brightness_temperature(kBand, radiance);
     ErrorStats s;
     int n = 0;
@@ -74,17 +78,21 @@ TEST(FpaCalibration, KeepsBrightnessTemperatureWithin50mKOverA15KCameraSwing) {
     EXPECT_EQ(single.fpa_degree(), 0);
 
     double worst_fpa = 0.0, worst_single = 0.0;
-    for (double fpa = 295.65; fpa <= 310.66; fpa += 2.5)  // includes camera states between the calibrated ones
+    for (double fpa = 295.65; fpa <= 310.66;
+         fpa += 2.5)  // includes camera states between the calibrated ones
         for (double scene : {278.15, 298.15, 318.15}) {
             const ErrorStats e = temperature_error(cal, truth, scene, fpa, true);
             worst_fpa = std::max(worst_fpa, e.rms_k);
-            worst_single = std::max(worst_single, std::abs(temperature_error(single, truth, scene, fpa, false).mean_k));
+            worst_single = std::max(
+                worst_single, std::abs(temperature_error(single, truth, scene, fpa, false).mean_k));
         }
     // Per-pixel noise alone is σ/√16 = 1 count ≈ 13 mK at 75 counts/K; the model must add little.
     EXPECT_LE(worst_fpa, 0.050);
     EXPECT_GT(worst_single, 1.0);
-    RecordProperty("worst_rms_error_fpa_model_mK", static_cast<int>(std::lround(1000.0 * worst_fpa)));
-    RecordProperty("worst_mean_error_single_state_mK", static_cast<int>(std::lround(1000.0 * worst_single)));
+    RecordProperty("worst_rms_error_fpa_model_mK",
+                   static_cast<int>(std::lround(1000.0 * worst_fpa)));
+    RecordProperty("worst_mean_error_single_state_mK",
+                   static_cast<int>(std::lround(1000.0 * worst_single)));
 }
 
 TEST(FpaCalibration, RecoversTheDriftCoefficients) {
@@ -93,13 +101,16 @@ TEST(FpaCalibration, RecoversTheDriftCoefficients) {
     const DriftingCameraTruth truth(cam);
     RadiometricOptions options;
     options.fpa_degree = 1;
-    const auto cal = fit_radiometric(calibration_frames(truth, kCameraK), cam.width, cam.height, kBand, options);
-    // Noise-free and inside the model class: at any camera state the fitted model inverts the truth's
-    // counts back to the radiance that made them (float storage: ~1e-6 relative, i.e. 0.02 counts).
+    const auto cal =
+        fit_radiometric(calibration_frames(truth, kCameraK), cam.width, cam.height, kBand, options);
+    // Noise-free and inside the model class: at any camera state the fitted model inverts the
+    // truth's counts back to the radiance that made them (float storage: ~1e-6 relative, i.e. 0.02
+    // counts).
     const double radiance = kBand.radiance(300.0);
     for (double fpa : {297.0, 309.0}) {
         std::vector<float> counts(cal.gain.size());
-        for (std::size_t i = 0; i < counts.size(); ++i) counts[i] = static_cast<float>(truth.counts(i, radiance, fpa));
+        for (std::size_t i = 0; i < counts.size(); ++i)
+            counts[i] = static_cast<float>(truth.counts(i, radiance, fpa));
         const auto recovered = counts_to_radiance(cal, counts, fpa);
         for (std::size_t i = 0; i < recovered.size(); ++i)
             ASSERT_NEAR(recovered[i], radiance, 0.02 / cal.gain[i]) << i;
@@ -130,7 +141,8 @@ TEST(FpaCalibration, FileRoundTripAndFormatVersion1StillReads) {
     const DriftingCameraTruth truth(DriftingCamera{});
     RadiometricOptions options;
     options.fpa_degree = 2;
-    const auto cal = fit_radiometric(calibration_frames(truth, {294.0, 299.0, 304.0, 309.0}), 32, 24, kBand, options);
+    const auto cal = fit_radiometric(calibration_frames(truth, {294.0, 299.0, 304.0, 309.0}), 32,
+                                     24, kBand, options);
     test::TempDir dir;
     const std::string path = (dir / "cal.exr").string();
     write_radiometric_calibration(path, cal);
@@ -165,8 +177,16 @@ TEST(FpaCalibration, SessionsAtSeveralCameraTemperaturesCalibrateTogether) {
     test::TempDir root;
     SessionManifest base;
     base.created_utc = utc_now_iso8601();
-    base.camera = {
-        "sim://drifting", "tirpol", "drifting-uncooled", "0007", "Mono16", cam.width, cam.height, 16, 30.0, {}};
+    base.camera = {"sim://drifting",
+                   "tirpol",
+                   "drifting-uncooled",
+                   "0007",
+                   "Mono16",
+                   cam.width,
+                   cam.height,
+                   16,
+                   30.0,
+                   {}};
     base.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
     base.metadata = {{"polarizer_in_beam", false}};
     std::vector<std::filesystem::path> dirs;
@@ -204,8 +224,9 @@ TEST(FpaCalibration, SessionsAtSeveralCameraTemperaturesCalibrateTogether) {
         w.mark_complete();
     }
     dirs.push_back(other);
-    EXPECT_THAT([&] { calibrate_radiometric_sessions(dirs, kBand, options); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("one calibration is for one camera")));
+    EXPECT_THAT(
+        [&] { calibrate_radiometric_sessions(dirs, kBand, options); },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("one calibration is for one camera")));
 }
 
 }  // namespace

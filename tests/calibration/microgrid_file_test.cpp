@@ -1,5 +1,6 @@
 // A microgrid frame read from a 16-bit PNG or an EXR and reduced to Stokes: the counts reach the
-// reduction unscaled, the pattern comes from the caller or the EXR header, and conflicts are refused.
+// reduction unscaled, the pattern comes from the caller or the EXR header, and conflicts are
+// refused.
 
 #include "tirpol/calibration/microgrid_file.h"
 
@@ -31,7 +32,8 @@ TEST(MicrogridFile, Reduces16BitPngCountsWithTheGivenPattern) {
     cv::Mat png(h, w, CV_16UC1);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            png.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(mosaic[static_cast<std::size_t>(y * w + x)]);
+            png.at<std::uint16_t>(y, x) =
+                static_cast<std::uint16_t>(mosaic[static_cast<std::size_t>(y * w + x)]);
     const auto path = dir / "frame.png";
     ASSERT_TRUE(cv::imwrite(path.string(), png));
     MicrogridReductionOptions options;
@@ -49,7 +51,9 @@ TEST(MicrogridFile, Reduces16BitPngCountsWithTheGivenPattern) {
         reduce_microgrid_file(path, std::nullopt, options);
         FAIL() << "no pattern accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("frame.png: no microgrid pattern given"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("frame.png: no microgrid pattern given"),
+                  std::string::npos)
+            << e.what();
     }
 }
 

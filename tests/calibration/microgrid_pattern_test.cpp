@@ -48,7 +48,8 @@ TEST(MicrogridPattern, RefusesWhatCannotMeasureLinearStokes) {
     EXPECT_NE(message("0,45,90,180").find("[0°, 180°)"), std::string::npos);
     EXPECT_NE(message("0,45,x,135").find("--pattern"), std::string::npos);
     // Four distinct angles within 3° of each other: S1, S2 barely determined (cond(W) ≫ 10).
-    EXPECT_NE(message("0,1,2,3").find("do not determine S1 and S2"), std::string::npos) << message("0,1,2,3");
+    EXPECT_NE(message("0,1,2,3").find("do not determine S1 and S2"), std::string::npos)
+        << message("0,1,2,3");
     // Unequal but well spread angles are fine (cond(W) < 10).
     EXPECT_NO_THROW(MicrogridPattern::parse("0,60,120,30"));
 }

@@ -1,8 +1,8 @@
-// Per-pixel analyzer calibration of a microgrid camera (Powell & Gruev 2013): a simulated camera with
-// planted per-pixel axis, diattenuation, transmission and background spreads, calibrated from flat
-// fields through a reference polarizer, must recover the planted parameters and reduce a uniform
-// polarized field to within 0.2 % DoLP RMS (the figure of the issue), where ideal-analyzer reduction
-// shows the planted spread.
+// Per-pixel analyzer calibration of a microgrid camera (Powell & Gruev 2013): a simulated camera
+// with planted per-pixel axis, diattenuation, transmission and background spreads, calibrated from
+// flat fields through a reference polarizer, must recover the planted parameters and reduce a
+// uniform polarized field to within 0.2 % DoLP RMS (the figure of the issue), where ideal-analyzer
+// reduction shows the planted spread.
 
 #include "tirpol/calibration/microgrid_pixel_calibration.h"
 
@@ -38,23 +38,26 @@ struct PlantedCamera {
                 background.push_back(b(rng));
             }
     }
-    std::vector<float> image(const Eigen::Vector3d& s, double noise_sigma, std::mt19937& rng) const {
+    std::vector<float> image(const Eigen::Vector3d& s, double noise_sigma,
+                             std::mt19937& rng) const {
         std::normal_distribution<double> noise(0.0, noise_sigma);
         std::vector<float> frame(axis_deg.size());
         for (std::size_t i = 0; i < frame.size(); ++i) {
             const double two_theta = 2.0 * axis_deg[i] * kDegToRad;
-            frame[i] = static_cast<float>(
-                0.5 * transmission[i] *
-                    (s(0) + diattenuation[i] * (s(1) * std::cos(two_theta) + s(2) * std::sin(two_theta))) +
-                background[i] + (noise_sigma > 0.0 ? noise(rng) : 0.0));
+            frame[i] =
+                static_cast<float>(0.5 * transmission[i] *
+                                       (s(0) + diattenuation[i] * (s(1) * std::cos(two_theta) +
+                                                                   s(2) * std::sin(two_theta))) +
+                                   background[i] + (noise_sigma > 0.0 ? noise(rng) : 0.0));
         }
         return frame;
     }
 };
 
-/// A blackbody of radiance L seen through an ideal reference polarizer at φ: S = ½L(1, cos 2φ, sin 2φ);
-/// at 8 angles and two radiances (the second separates the background from the gain).
-std::vector<MicrogridFlatField> flat_fields(const PlantedCamera& camera, double noise_sigma, std::mt19937& rng) {
+/// A blackbody of radiance L seen through an ideal reference polarizer at φ: S = ½L(1, cos 2φ, sin
+/// 2φ); at 8 angles and two radiances (the second separates the background from the gain).
+std::vector<MicrogridFlatField> flat_fields(const PlantedCamera& camera, double noise_sigma,
+                                            std::mt19937& rng) {
     std::vector<MicrogridFlatField> fields;
     for (double radiance : {200.0, 100.0})
         for (int k = 0; k < 8; ++k) {
@@ -94,9 +97,10 @@ TEST(MicrogridPixelCalibration, RecoversPlantedAnalyzersExactlyWithoutNoise) {
     EXPECT_EQ(back.background, cal.background);
 }
 
-TEST(MicrogridPixelCalibration, PerPixelReductionMeetsTwoTenthsPercentDolpWhereIdealAnalyzersDoNot) {
-    // A uniform flat field of DoLP 0.3 at AoP 30°; calibration flat fields with noise σ = 0.05 counts
-    // (frame means) on ~100 counts per analyzer.
+TEST(MicrogridPixelCalibration,
+     PerPixelReductionMeetsTwoTenthsPercentDolpWhereIdealAnalyzersDoNot) {
+    // A uniform flat field of DoLP 0.3 at AoP 30°; calibration flat fields with noise σ = 0.05
+    // counts (frame means) on ~100 counts per analyzer.
     const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
     const PlantedCamera camera(sony, 11);
     std::mt19937 rng(2);
@@ -116,11 +120,14 @@ TEST(MicrogridPixelCalibration, PerPixelReductionMeetsTwoTenthsPercentDolpWhereI
     MicrogridReductionOptions ideal;
     ideal.method = DemosaicMethod::SuperPixel;
     ideal.reduction.project_to_realizable = false;
-    const double ideal_error = dolp_rms_error(reduce_microgrid(frame, camera.width, camera.height, sony, ideal), dolp);
+    const double ideal_error =
+        dolp_rms_error(reduce_microgrid(frame, camera.width, camera.height, sony, ideal), dolp);
     EXPECT_GT(ideal_error, 0.01);
     EXPECT_GT(ideal_error, 10.0 * per_pixel_error);
-    std::printf("DoLP RMS error on a uniform DoLP 0.3 field: ideal analyzers %.4f, per-pixel calibration %.5f\n",
-                ideal_error, per_pixel_error);
+    std::printf(
+        "DoLP RMS error on a uniform DoLP 0.3 field: ideal analyzers %.4f, per-pixel calibration "
+        "%.5f\n",
+        ideal_error, per_pixel_error);
 }
 
 TEST(MicrogridPixelCalibration, RefusesSourcesThatCannotSeparateTheModel) {
@@ -133,11 +140,13 @@ TEST(MicrogridPixelCalibration, RefusesSourcesThatCannotSeparateTheModel) {
         calibrate_microgrid_pixels(one_radiance, camera.width, camera.height);
         FAIL() << "a rank-deficient calibration was accepted";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("two source radiances"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("two source radiances"), std::string::npos)
+            << e.what();
     }
     EXPECT_NO_THROW(calibrate_microgrid_pixels(one_radiance, camera.width, camera.height, false));
     EXPECT_THROW(calibrate_microgrid_pixels(one_radiance, camera.width + 2, camera.height), Error);
-    const MicrogridPixelCalibration cal = calibrate_microgrid_pixels(one_radiance, camera.width, camera.height, false);
+    const MicrogridPixelCalibration cal =
+        calibrate_microgrid_pixels(one_radiance, camera.width, camera.height, false);
     EXPECT_THROW(reduce_microgrid_per_pixel(std::vector<float>(8, 1.0f), cal), Error);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Synthetic scenes with known full-resolution Stokes for the microgrid tests: a smooth polarized
 // field, an unpolarized step edge and a polarized edge, each pixel the mean over its footprint
-// (8×8 sub-samples), so an edge inside a pixel gives that pixel a partial value as a real detector does.
+// (8×8 sub-samples), so an edge inside a pixel gives that pixel a partial value as a real detector
+// does.
 
 #include <cmath>
 #include <functional>
@@ -21,7 +22,8 @@ struct StokesPoint {
 };
 
 /// Pixel (x, y) covers [x, x+1) × [y, y+1); `field` is evaluated at 8×8 points of it and averaged.
-inline StokesScene integrate_scene(int width, int height, const std::function<StokesPoint(double, double)>& field) {
+inline StokesScene integrate_scene(int width, int height,
+                                   const std::function<StokesPoint(double, double)>& field) {
     StokesScene scene{width, height, {}, {}, {}, {}};
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     scene.s0.resize(n);
@@ -38,8 +40,8 @@ inline StokesScene integrate_scene(int width, int height, const std::function<St
                     b += p.s1;
                     c += p.s2;
                 }
-            const std::size_t k =
-                static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+            const std::size_t k = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(x);
             scene.s0[k] = static_cast<float>(a / (kSub * kSub));
             scene.s1[k] = static_cast<float>(b / (kSub * kSub));
             scene.s2[k] = static_cast<float>(c / (kSub * kSub));
@@ -53,8 +55,8 @@ inline StokesPoint polarized(double s0, double dolp, double aop_deg) {
 }
 
 /// Smoothly varying S0 (±30 %, periods 37 and 53 px) and, unless `unpolarized`, DoLP (0.1–0.3,
-/// period 61 px along the diagonal) and AoP (−10°…70°, periods 71 px in x and 76 px in y): a texture
-/// of polarization as strong as the texture of intensity.
+/// period 61 px along the diagonal) and AoP (−10°…70°, periods 71 px in x and 76 px in y): a
+/// texture of polarization as strong as the texture of intensity.
 inline StokesScene smooth_scene(int width, int height, bool unpolarized = false) {
     const double tau = 2.0 * std::numbers::pi;
     return integrate_scene(width, height, [tau, unpolarized](double x, double y) {
@@ -85,7 +87,8 @@ inline StokesScene unpolarized_edge_scene(int width, int height, double x0, doub
 inline StokesScene polarized_edge_scene(int width, int height, double x0, double slope) {
     const double mid = height / 2.0;
     StokesScene scene = integrate_scene(width, height, [=](double x, double y) {
-        return x < x0 + slope * (y - mid) ? StokesPoint{80.0, 0.0, 0.0} : polarized(120.0, 0.3, 30.0);
+        return x < x0 + slope * (y - mid) ? StokesPoint{80.0, 0.0, 0.0}
+                                          : polarized(120.0, 0.3, 30.0);
     });
     scene.edge_mask.assign(scene.s0.size(), 0);
     for (int y = 0; y < height; ++y)

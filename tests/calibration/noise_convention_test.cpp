@@ -34,8 +34,8 @@ FrameStack cube(int nt, int nv, int nh, const std::function<double(int, int, int
 }
 
 TEST(NoiseConvention, HandComputedFrameFlickerAndRowNoise) {
-    // Two 2×2 frames at 1 and 3 counts: S = 2, N_t = (−1, +1), nothing else. Population σ_t = √(2/2)
-    // = 1; sample σ_t = √(2/1) = √2.
+    // Two 2×2 frames at 1 and 3 counts: S = 2, N_t = (−1, +1), nothing else. Population σ_t =
+    // √(2/2) = 1; sample σ_t = √(2/1) = √2.
     const auto flicker = cube(2, 2, 2, [](int t, int, int) { return t == 0 ? 1.0 : 3.0; });
     EXPECT_DOUBLE_EQ(three_d_noise(flicker, NoiseConvention::Population).sigma_t, 1.0);
     EXPECT_DOUBLE_EQ(three_d_noise(flicker, NoiseConvention::Sample).sigma_t, std::sqrt(2.0));
@@ -48,7 +48,8 @@ TEST(NoiseConvention, HandComputedFrameFlickerAndRowNoise) {
 }
 
 TEST(NoiseConvention, SampleIsPopulationTimesRootNOverNMinusOneForEachComponent) {
-    // The case: 20 frames of 100×100 — σ_t 2.5 % and σ_v, σ_h 0.5 % above the population values.
+    // The case: 20 frames of 100×100 — σ_t 2.5 % and σ_v, σ_h 0.5 % above the population
+    // values.
     std::mt19937 rng(3);
     std::normal_distribution<double> unit(0.0, 1.0);
     const auto s = cube(20, 100, 100, [&](int, int, int) { return 1000.0 + 5.0 * unit(rng); });
@@ -84,7 +85,8 @@ TEST(FrameStackIo, ReadsPngAndTiffFoldersAndRawFiles) {
     raw.close();
     for (const auto& stack :
          {load_frame_stack(dir / "png"), load_frame_stack(dir / "tif"),
-          load_frame_stack(dir / "stack.raw", RawFrameFormat{4, 3, RawFrameFormat::Type::UInt16, 4})}) {
+          load_frame_stack(dir / "stack.raw",
+                           RawFrameFormat{4, 3, RawFrameFormat::Type::UInt16, 4})}) {
         ASSERT_EQ(stack.frames.size(), 3u);
         EXPECT_EQ(stack.width, 4);
         EXPECT_EQ(stack.height, 3);
@@ -92,17 +94,21 @@ TEST(FrameStackIo, ReadsPngAndTiffFoldersAndRawFiles) {
     }
     EXPECT_THAT(
         [&] {
-            load_frame_stack(dir / "stack.raw", RawFrameFormat{5, 3, RawFrameFormat::Type::UInt16, 4});
+            load_frame_stack(dir / "stack.raw",
+                             RawFrameFormat{5, 3, RawFrameFormat::Type::UInt16, 4});
         },
-        testing::ThrowsMessage<Error>(testing::HasSubstr("not 4 header bytes + a whole number of 5×3 frames")));
+        testing::ThrowsMessage<Error>(
+            testing::HasSubstr("not 4 header bytes + a whole number of 5×3 frames")));
     std::filesystem::create_directories(dir / "empty");
     EXPECT_THAT([&] { load_frame_stack(dir / "empty"); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("no frame files (.exr, .png, .tif, .tiff)")));
+                testing::ThrowsMessage<Error>(
+                    testing::HasSubstr("no frame files (.exr, .png, .tif, .tiff)")));
 }
 
 TEST(FrameStackIo, NoiseInKelvinAfterCalibrationHasNoFixedPattern) {
-    // 150 counts of offset non-uniformity ≈ 2 K of fixed pattern in counts; after the calibration the
-    // spatial component is the calibration's own error (≈ σ/√16 per pixel over 6 set-points, ≈ 10 mK).
+    // 150 counts of offset non-uniformity ≈ 2 K of fixed pattern in counts; after the calibration
+    // the spatial component is the calibration's own error (≈ σ/√16 per pixel over 6 set-points, ≈
+    // 10 mK).
     DriftingCamera cam;
     const DriftingCameraTruth truth(cam);
     const Band band(8.0, 14.0);
@@ -114,7 +120,8 @@ TEST(FrameStackIo, NoiseInKelvinAfterCalibrationHasNoFixedPattern) {
     single.frames = 1;  // raw frames: σ = 4 counts each
     const DriftingCameraTruth raw(single);
     FrameStack stack{cam.width, cam.height, {}};
-    for (unsigned t = 0; t < 20; ++t) stack.frames.push_back(raw.frame(band, 300.0, 303.15, 500 + t).counts);
+    for (unsigned t = 0; t < 20; ++t)
+        stack.frames.push_back(raw.frame(band, 300.0, 303.15, 500 + t).counts);
     const auto counts = three_d_noise(stack, NoiseConvention::Sample);
     const auto kelvin = three_d_noise(temperature_stack(stack, cal), NoiseConvention::Sample);
     const double responsivity = cam.gain_mean * band.radiance_dT(300.0);  // counts/K
@@ -122,7 +129,8 @@ TEST(FrameStackIo, NoiseInKelvinAfterCalibrationHasNoFixedPattern) {
     EXPECT_LT(kelvin.sigma_vh, 0.025);
     EXPECT_NEAR(kelvin.mean, 300.0, 0.02);
     // Random noise: 4 counts ≈ 53 mK per frame.
-    EXPECT_NEAR(kelvin.sigma_tvh, cam.noise_counts / responsivity, 0.15 * cam.noise_counts / responsivity);
+    EXPECT_NEAR(kelvin.sigma_tvh, cam.noise_counts / responsivity,
+                0.15 * cam.noise_counts / responsivity);
 }
 
 }  // namespace

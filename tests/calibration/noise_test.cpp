@@ -1,12 +1,13 @@
 // Noise: the 3D noise decomposition (D'Agostino & Webb 1991) recovers planted components; NEDT
 // from temporal noise and responsivity; NEDT falls as 1/√n for white noise.
 
+#include "tirpol/calibration/noise.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "tirpol/calibration/noise.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -31,7 +32,8 @@ FrameStack synthetic_stack(int w, int h, int nt, const Planted& p, unsigned seed
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
                 f.push_back(static_cast<float>(8000.0 + flicker + row[static_cast<std::size_t>(y)] +
-                                               col[static_cast<std::size_t>(x)] + fpn[static_cast<std::size_t>(y * w + x)] +
+                                               col[static_cast<std::size_t>(x)] +
+                                               fpn[static_cast<std::size_t>(y * w + x)] +
                                                p.tvh * unit(rng)));
         s.frames.push_back(std::move(f));
     }
@@ -76,7 +78,8 @@ TEST(Noise, NedtIsTemporalNoiseOverResponsivityAndFallsAsInverseRootOfFramesAver
     const auto curve = nedt_vs_averaging(stack, responsivity);
     ASSERT_EQ(curve.size(), 5u);  // n = 1, 2, 4, 8, 16 (≥ 4 means each)
     EXPECT_EQ(curve.back().frames_averaged, 16);
-    for (const auto& pt : curve) EXPECT_NEAR(pt.median_nedt_k / pt.white_noise_k, 1.0, 0.2) << pt.frames_averaged;
+    for (const auto& pt : curve)
+        EXPECT_NEAR(pt.median_nedt_k / pt.white_noise_k, 1.0, 0.2) << pt.frames_averaged;
 }
 
 TEST(Noise, TooFewFramesOrBadFramesAreRejected) {

@@ -1,7 +1,8 @@
 // Offset drift during a session (offset_drift.h): a synthetic uncooled camera whose offset drifts
-// by 60 → 170 counts over the session (exponential warm-up), calibrated in the laboratory before the drift.
-// The reduced brightness temperatures of two unpolarized areas come back within 50 mK with the drift
-// correction (in-scene reference region, or interleaved shutter records) and err by > 1 K without.
+// by 60 → 170 counts over the session (exponential warm-up), calibrated in the laboratory before
+// the drift. The reduced brightness temperatures of two unpolarized areas come back within 50 mK
+// with the drift correction (in-scene reference region, or interleaved shutter records) and err by
+// > 1 K without.
 
 #include "tirpol/calibration/offset_drift.h"
 
@@ -41,7 +42,8 @@ struct Camera {
     }
     /// A record's mean counts for `radiance` (per pixel) with an offset drift of `drift`.
     Image frame(const std::vector<double>& radiance, double drift) {
-        std::normal_distribution<double> noise(0.0, kNoiseCounts / std::sqrt(static_cast<double>(kFrames)));
+        std::normal_distribution<double> noise(
+            0.0, kNoiseCounts / std::sqrt(static_cast<double>(kFrames)));
         Image f(kWidth, kHeight);
         auto& counts = f.add_channel("counts");
         f.add_channel("counts_std", static_cast<float>(kNoiseCounts));
@@ -54,7 +56,16 @@ struct Camera {
 SessionManifest manifest(nlohmann::json plan) {
     SessionManifest m;
     m.created_utc = "2026-11-23T23:00:00Z";
-    m.camera = {"sim://synthetic", "tirpol", "drifting-uncooled", "0001", "Mono16", kWidth, kHeight, 16, 30.0, {}};
+    m.camera = {"sim://synthetic",
+                "tirpol",
+                "drifting-uncooled",
+                "0001",
+                "Mono16",
+                kWidth,
+                kHeight,
+                16,
+                30.0,
+                {}};
     m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
     m.plan = std::move(plan);
     return m;
@@ -87,14 +98,17 @@ std::vector<double> scene_s0() {
     std::vector<double> s0(kWidth * kHeight);
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
-            s0[y * kWidth + x] = kBand.radiance(x < 2 + 6 && y < 2 + 6 ? kReferenceK : x < kWidth / 2 ? 290.0 : 312.0);
+            s0[y * kWidth + x] = kBand.radiance(x < 2 + 6 && y < 2 + 6 ? kReferenceK
+                                                : x < kWidth / 2       ? 290.0
+                                                                       : 312.0);
     return s0;
 }
 
 /// A scene session of 6 repeats × 4 angles; `shutter_every` > 0 puts a shutter record at 295 K
-/// before every that many scene records and one at the end. Returns the true drift per scene record.
-std::vector<double> write_scene(Camera& cam, const std::filesystem::path& dir, const nlohmann::json& plan,
-                                int shutter_every) {
+/// before every that many scene records and one at the end. Returns the true drift per scene
+/// record.
+std::vector<double> write_scene(Camera& cam, const std::filesystem::path& dir,
+                                const nlohmann::json& plan, int shutter_every) {
     auto w = SessionWriter::create(dir, manifest(plan));
     const std::vector<double> s0 = scene_s0();
     std::vector<double> half(s0.size());
@@ -105,7 +119,8 @@ std::vector<double> write_scene(Camera& cam, const std::filesystem::path& dir, c
     auto shutter = [&] {
         SessionRecord r = record(RecordKind::Shutter, fmt::format("shutter_{}", shutters++), t);
         r.blackbody_temperature_k = 295.0;
-        w.add_record(r, cam.frame(std::vector<double>(s0.size(), kBand.radiance(295.0)), drift_counts(t)));
+        w.add_record(
+            r, cam.frame(std::vector<double>(s0.size(), kBand.radiance(295.0)), drift_counts(t)));
         t += kRecordSpacingS;
     };
     std::vector<double> truth;
@@ -142,8 +157,10 @@ void expect_drift_removed(const std::filesystem::path& scene, const RadiometricC
         EXPECT_NEAR(area_temperature_k(corrected, x0, x1), t, 0.05) << "x " << x0 << "–" << x1;
         EXPECT_GT(std::abs(area_temperature_k(raw, x0, x1) - t), 1.0) << "x " << x0 << "–" << x1;
     }
-    const auto& shift = std::get<std::vector<double>>(corrected.attributes().at("drift_offset_counts"));
-    const auto& sigma = std::get<std::vector<double>>(corrected.attributes().at("drift_offset_sigma_counts"));
+    const auto& shift =
+        std::get<std::vector<double>>(corrected.attributes().at("drift_offset_counts"));
+    const auto& sigma =
+        std::get<std::vector<double>>(corrected.attributes().at("drift_offset_sigma_counts"));
     ASSERT_EQ(shift.size(), truth.size());
     for (std::size_t k = 0; k < truth.size(); ++k) {
         EXPECT_NEAR(shift[k], truth[k], shift_tolerance_counts) << "record " << k;
@@ -170,15 +187,18 @@ TEST(OffsetDrift, InSceneReferenceRegionRemovesTheDrift) {
                                    {"temperature_k", kReferenceK},
                                    {"temperature_sigma_k", 0.02}}}};
     const auto truth = write_scene(cam, tmp / "scene", plan, 0);
-    // Reference region: 36 pixels of 1.5 counts each, plus the calibration's offset error averaged over them.
+    // Reference region: 36 pixels of 1.5 counts each, plus the calibration's offset error averaged
+    // over them.
     expect_drift_removed(tmp / "scene", cal, truth, 2.0);
     const Image s = reduce_session(tmp / "scene", cal, nullptr, {.drift_correction = true});
     EXPECT_THAT(std::get<std::string>(s.attributes().at("drift_correction_source")),
                 testing::HasSubstr("scene_reference"));
-    // σ = the sensor's 20 mK through the polarizer (½·g·dL/dT·0.02 K) ⊕ the mean of 36 pixels of 1.5 counts.
-    const double expected = std::hypot(0.5 * 100.0 * kBand.radiance_dT(kReferenceK) * 0.02, 1.5 / 6.0);
-    EXPECT_NEAR(std::get<std::vector<double>>(s.attributes().at("drift_offset_sigma_counts"))[0], expected,
-                0.05 * expected);
+    // σ = the sensor's 20 mK through the polarizer (½·g·dL/dT·0.02 K) ⊕ the mean of 36 pixels
+    // of 1.5 counts.
+    const double expected =
+        std::hypot(0.5 * 100.0 * kBand.radiance_dT(kReferenceK) * 0.02, 1.5 / 6.0);
+    EXPECT_NEAR(std::get<std::vector<double>>(s.attributes().at("drift_offset_sigma_counts"))[0],
+                expected, 0.05 * expected);
 }
 
 TEST(OffsetDrift, InterleavedShutterRecordsRemoveTheDrift) {
@@ -186,7 +206,8 @@ TEST(OffsetDrift, InterleavedShutterRecordsRemoveTheDrift) {
     Camera cam;
     const auto cal = laboratory_calibration(cam, tmp / "lab");
     const auto truth = write_scene(cam, tmp / "scene", nlohmann::json::object(), 4);
-    // Linear interpolation of the √t warm-up between shutters 100 s apart: < 3 counts except at the start.
+    // Linear interpolation of the √t warm-up between shutters 100 s apart: < 3 counts except at the
+    // start.
     expect_drift_removed(tmp / "scene", cal, truth, 6.0);
 }
 
@@ -203,7 +224,8 @@ TEST(OffsetDrift, ASessionWithoutReferencesOrWithABadRoiIsRefused) {
     }
     write_scene(
         cam, tmp / "bad",
-        {{"scene_reference", {{"roi", {{"x", 30}, {"y", 2}, {"width", 6}, {"height", 6}}}, {"temperature_k", 300.0}}}},
+        {{"scene_reference",
+          {{"roi", {{"x", 30}, {"y", 2}, {"width", 6}, {"height", 6}}}, {"temperature_k", 300.0}}}},
         0);
     try {
         reduce_session(tmp / "bad", cal, nullptr, {.drift_correction = true});

@@ -34,11 +34,13 @@ TEST(Analyzer, IdealDrmIsPaperEquations14To16) {
 TEST(Analyzer, RowsAreTheTopRowOfCoreMuellerPolarizerForAnyAngleSet) {
     // The analyzer row must agree with core's Mueller matrices (same frame convention), and W⁺W = I
     // for N = 3, 5, 6 angles (Tyo et al. 2006).
-    for (const std::vector<double>& angles : {std::vector<double>{0, 60, 120}, std::vector<double>{0, 36, 72, 108, 144},
-                                              std::vector<double>{10, 40, 70, 100, 130, 160}}) {
+    for (const std::vector<double>& angles :
+         {std::vector<double>{0, 60, 120}, std::vector<double>{0, 36, 72, 108, 144},
+          std::vector<double>{10, 40, 70, 100, 130, 160}}) {
         const auto model = AnalyzerModel::non_ideal(angles, 400.0, 1.5, 0.8);
         for (const auto& p : model.positions) {
-            const MuellerMatrix m = polarizer_with_extinction(deg_to_rad(p.axis_angle_deg), 0.8, 400.0);
+            const MuellerMatrix m =
+                polarizer_with_extinction(deg_to_rad(p.axis_angle_deg), 0.8, 400.0);
             const Eigen::RowVector3d expected = m.row(0).head<3>() / p.relative_transmission;
             EXPECT_LT((p.row() - expected).cwiseAbs().maxCoeff(), 1e-12);
         }
@@ -57,20 +59,24 @@ TEST(Analyzer, TooFewOrDegenerateAnglesAreRejected) {
     }
 }
 
-// Measurements of a known source through a non-ideal analyzer, computed with core's Mueller calculus.
-std::vector<KnownSourceMeasurement> known_source_set(double extinction, double offset_deg, double t_max,
-                                                     double background, double noise, unsigned seed) {
+// Measurements of a known source through a non-ideal analyzer, computed with core's Mueller
+// calculus.
+std::vector<KnownSourceMeasurement> known_source_set(double extinction, double offset_deg,
+                                                     double t_max, double background, double noise,
+                                                     unsigned seed) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> unit(0.0, 1.0);
     std::vector<KnownSourceMeasurement> set;
-    // A blackbody behind a reference polarizer at 0/45/90/135° (fully polarized), at two temperatures.
+    // A blackbody behind a reference polarizer at 0/45/90/135° (fully polarized), at two
+    // temperatures.
     for (double l : {30.0, 45.0})
         for (double ref : kAngles) {
             KnownSourceMeasurement m;
             const StokesVector s = linear_polarizer(deg_to_rad(ref)) * unpolarized(l);
             m.source_stokes = s.head<3>();
             for (double a : kAngles) {
-                const MuellerMatrix an = polarizer_with_extinction(deg_to_rad(a + offset_deg), t_max, extinction);
+                const MuellerMatrix an =
+                    polarizer_with_extinction(deg_to_rad(a + offset_deg), t_max, extinction);
                 m.intensities.push_back((an * s)[0] + background + noise * unit(rng));
             }
             set.push_back(m);
@@ -88,8 +94,10 @@ TEST(Analyzer, LeastSquaresRecoversExtinctionRatioAngleOffsetAndTransmission) {
         EXPECT_NEAR(p.background, 3.0, 1e-9);
     }
     // With noise (σ = 0.02 on signals of ~10), the angle offset stays within 0.1°.
-    const AnalyzerModel noisy = estimate_analyzer(kAngles, known_source_set(50.0, 2.5, 0.8, 3.0, 0.02, 2));
-    for (const auto& p : noisy.positions) EXPECT_NEAR(p.axis_angle_deg - p.nominal_angle_deg, 2.5, 0.1);
+    const AnalyzerModel noisy =
+        estimate_analyzer(kAngles, known_source_set(50.0, 2.5, 0.8, 3.0, 0.02, 2));
+    for (const auto& p : noisy.positions)
+        EXPECT_NEAR(p.axis_angle_deg - p.nominal_angle_deg, 2.5, 0.1);
 }
 
 TEST(Analyzer, SourcesThatDoNotSpanTheModelAreRejected) {
@@ -110,7 +118,8 @@ TEST(StokesReduction, ImageConventionFollowsArchitecture) {
     struct Case {
         double pol_deg, s1_sign, s2_sign, aop;
     };
-    for (const Case c : {Case{0, 1, 0, 0}, Case{90, -1, 0, 90}, Case{45, 0, 1, 45}, Case{135, 0, -1, 135}}) {
+    for (const Case c :
+         {Case{0, 1, 0, 0}, Case{90, -1, 0, 90}, Case{45, 0, 1, 45}, Case{135, 0, -1, 135}}) {
         const StokesVector scene = linear_polarizer(deg_to_rad(c.pol_deg)) * unpolarized(10.0);
         std::vector<AnalyzerImage> images;
         for (double a : kAngles) {
@@ -165,11 +174,12 @@ TEST(StokesReduction, PropagatedUncertaintyMatchesMonteCarloSpreadAndOutputIsRea
 }
 
 TEST(StokesReduction, UncertaintyIncludesTheWireGridFitErrorWhichDoesNotAverageAway) {
-    // τ and B are fitted per pixel from blackbody frames that are themselves noisy; that error is the
-    // same in every frame of a session, so a scene averaged over many frames keeps it. 64×64 pixels,
-    // each an independent realisation: blackbody means at 278/308 K with σ_bb, scene means with σ_s.
-    // The spread of S − truth over pixels must match the reported S_std (σ of a σ-estimate from 4096
-    // samples ≈ 1.1 %, tolerance 5 %); with the grid's error left out it reads ≥ 10 % low here.
+    // τ and B are fitted per pixel from blackbody frames that are themselves noisy; that error is
+    // the same in every frame of a session, so a scene averaged over many frames keeps it. 64×64
+    // pixels, each an independent realisation: blackbody means at 278/308 K with σ_bb, scene means
+    // with σ_s. The spread of S − truth over pixels must match the reported S_std (σ of a
+    // σ-estimate from 4096 samples ≈ 1.1 %, tolerance 5 %); with the grid's error left out it reads
+    // ≥ 10 % low here.
     constexpr int kW = 64, kH = 64, kN = kW * kH;
     const Band band(8.0, 14.0);
     const auto model = AnalyzerModel::ideal(kAngles);
@@ -182,7 +192,8 @@ TEST(StokesReduction, UncertaintyIncludesTheWireGridFitErrorWhichDoesNotAverageA
         for (double t : {278.15, 308.15}) {
             PolarizedBlackbodyFrame f{a, t, {}, fmt::format("bb {:g} K at {:g}°", t, a), {}};
             for (int i = 0; i < kN; ++i) {
-                f.signal.push_back(static_cast<float>(tau * 0.5 * band.radiance(t) + background + sigma_bb * unit(rng)));
+                f.signal.push_back(static_cast<float>(tau * 0.5 * band.radiance(t) + background +
+                                                      sigma_bb * unit(rng)));
                 f.signal_std.push_back(static_cast<float>(sigma_bb));
             }
             frames.push_back(std::move(f));
@@ -234,8 +245,10 @@ TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) 
     EXPECT_GT(count, 50);
     int unrealizable_left = 0, unrealizable_before = 0;
     for (std::size_t i = 0; i < kN; ++i) {
-        const StokesVector p{projected.channel("S0")[i], projected.channel("S1")[i], projected.channel("S2")[i], 0.0};
-        const StokesVector m{as_measured.channel("S0")[i], as_measured.channel("S1")[i], as_measured.channel("S2")[i], 0.0};
+        const StokesVector p{projected.channel("S0")[i], projected.channel("S1")[i],
+                             projected.channel("S2")[i], 0.0};
+        const StokesVector m{as_measured.channel("S0")[i], as_measured.channel("S1")[i],
+                             as_measured.channel("S2")[i], 0.0};
         if (p[0] >= 0.0 && !is_realizable(p, 1e-6)) ++unrealizable_left;
         if (m[0] >= 0.0 && !is_realizable(m, 1e-6)) ++unrealizable_before;
         EXPECT_DOUBLE_EQ(p[0], m[0]);  // S0 is kept, (S1, S2) scaled
@@ -250,7 +263,8 @@ TEST(StokesReduction, ASetCancelFlagStopsTheReductionAndAnUnsetOneChangesNothing
     const auto model = AnalyzerModel::ideal(kAngles);
     std::vector<AnalyzerImage> images;
     for (const auto& p : model.positions)
-        images.push_back({p.nominal_angle_deg, std::vector<float>(kW * kH, 10.0f), {}, "synthetic"});
+        images.push_back(
+            {p.nominal_angle_deg, std::vector<float>(kW * kH, 10.0f), {}, "synthetic"});
     std::atomic<bool> cancel{false};
     ReductionOptions options;
     options.cancel = &cancel;
@@ -262,7 +276,9 @@ TEST(StokesReduction, ASetCancelFlagStopsTheReductionAndAnUnsetOneChangesNothing
 
 TEST(StokesReduction, BadInputsGiveClearErrorsAndNoOutput) {
     const auto model = AnalyzerModel::ideal(kAngles);
-    auto make = [](double a, std::size_t n) { return AnalyzerImage{a, std::vector<float>(n, 1.0f), {}, fmt::format("frame {:g}", a)}; };
+    auto make = [](double a, std::size_t n) {
+        return AnalyzerImage{a, std::vector<float>(n, 1.0f), {}, fmt::format("frame {:g}", a)};
+    };
     std::vector<AnalyzerImage> missing{make(0, 4), make(45, 4), make(90, 4)};
     try {
         reduce_stokes(missing, 2, 2, model);
@@ -284,8 +300,9 @@ TEST(StokesReduction, BadInputsGiveClearErrorsAndNoOutput) {
 
 TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmission) {
     // Truth: per-pixel transmission (vignetting), a structured ghost of the camera interior, the
-    // cold sky reflected by the tilted grid (different per angle: the grid reflects the polarization
-    // it does not pass), the grid's own emission, and a 50:1 grid with a 2° mount offset.
+    // cold sky reflected by the tilted grid (different per angle: the grid reflects the
+    // polarization it does not pass), the grid's own emission, and a 50:1 grid with a 2° mount
+    // offset.
     constexpr int kW = 40, kH = 30;
     const Band band(8.0, 14.0);
     const auto truth_model = AnalyzerModel::non_ideal(kAngles, 50.0, 2.0, 0.8);
@@ -294,8 +311,10 @@ TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmis
         return truth_model.positions[k].relative_transmission * (1.0 - 0.3 * r2);
     };
     auto background = [&](int x, int y, std::size_t k) {
-        const double ghost = 2.0 * std::exp(-(std::pow(x - 12.0, 2) + std::pow(y - 10.0, 2)) / 30.0);
-        const double sky = 0.15 * band.radiance(230.0) * (1.0 + 0.5 * std::cos(deg_to_rad(2.0 * kAngles[k])));
+        const double ghost =
+            2.0 * std::exp(-(std::pow(x - 12.0, 2) + std::pow(y - 10.0, 2)) / 30.0);
+        const double sky =
+            0.15 * band.radiance(230.0) * (1.0 + 0.5 * std::cos(deg_to_rad(2.0 * kAngles[k])));
         const double emission = 0.05 * band.radiance(285.0);
         return ghost + sky + emission;
     };
@@ -305,18 +324,23 @@ TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmis
     std::vector<PolarizedBlackbodyFrame> frames;
     for (std::size_t k = 0; k < kAngles.size(); ++k)
         for (double t : {278.15, 308.15}) {
-            PolarizedBlackbodyFrame f{kAngles[k], t, {}, fmt::format("bb {:g} K at {:g}°", t, kAngles[k])};
+            PolarizedBlackbodyFrame f{
+                kAngles[k], t, {}, fmt::format("bb {:g} K at {:g}°", t, kAngles[k])};
             for (int y = 0; y < kH; ++y)
-                for (int x = 0; x < kW; ++x) f.signal.push_back(static_cast<float>(observe(x, y, k, unpolarized(band.radiance(t)))));
+                for (int x = 0; x < kW; ++x)
+                    f.signal.push_back(
+                        static_cast<float>(observe(x, y, k, unpolarized(band.radiance(t)))));
             frames.push_back(f);
         }
     const WireGridCalibration grid = fit_wire_grid(frames, kW, kH, band);
     EXPECT_NEAR(grid.at(45.0).tau[static_cast<std::size_t>(3 * kW + 5)], tau(5, 3, 1), 1e-4);
-    EXPECT_NEAR(grid.at(90.0).background[static_cast<std::size_t>(10 * kW + 12)], background(12, 10, 2), 1e-3);
+    EXPECT_NEAR(grid.at(90.0).background[static_cast<std::size_t>(10 * kW + 12)],
+                background(12, 10, 2), 1e-3);
 
     // Analyzer model from the known source (taken through the same grid: fitted on L_SLAR, τ and B
     // removed, so only the analyzer's row shape is estimated).
-    const AnalyzerModel model = estimate_analyzer(kAngles, known_source_set(50.0, 2.0, 0.8, 0.0, 0.0, 5));
+    const AnalyzerModel model =
+        estimate_analyzer(kAngles, known_source_set(50.0, 2.0, 0.8, 0.0, 0.0, 5));
 
     // Scene: a panel with DoLP 4 % at AoP 90° (emission-dominated, vertical) at 290 K.
     const StokesVector scene = linearly_polarized(band.radiance(290.0), 0.04, deg_to_rad(90.0));
@@ -324,7 +348,8 @@ TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmis
     for (std::size_t k = 0; k < kAngles.size(); ++k) {
         AnalyzerImage im{kAngles[k], {}, {}, "scene"};
         for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x) im.signal.push_back(static_cast<float>(observe(x, y, k, scene)));
+            for (int x = 0; x < kW; ++x)
+                im.signal.push_back(static_cast<float>(observe(x, y, k, scene)));
         images.push_back(im);
     }
     const Image s = reduce_stokes(images, kW, kH, model, &grid);
@@ -348,7 +373,8 @@ TEST(WireGrid, BlackbodiesThroughThePolarizerRemoveGhostSkyReflectionAndGridEmis
 }
 
 TEST(WireGrid, OneTemperaturePerAngleIsRejected) {
-    std::vector<PolarizedBlackbodyFrame> frames{{0.0, 300.0, {1.0f}, "a"}, {0.0, 300.0, {1.0f}, "b"}};
+    std::vector<PolarizedBlackbodyFrame> frames{{0.0, 300.0, {1.0f}, "a"},
+                                                {0.0, 300.0, {1.0f}, "b"}};
     try {
         fit_wire_grid(frames, 1, 1, Band(8.0, 14.0));
         FAIL();
@@ -361,7 +387,8 @@ TEST(WireGrid, BackgroundFromSkyRadianceAndGridEmission) {
     const Band band(8.0, 14.0);
     // Isothermal check: a grid reflecting a sky at its own temperature with r + ε = 1 adds the
     // blackbody radiance of that temperature (Kirchhoff).
-    EXPECT_NEAR(wire_grid_background(0.3, band.radiance(280.0), 0.7, 280.0, band), band.radiance(280.0), 1e-9);
+    EXPECT_NEAR(wire_grid_background(0.3, band.radiance(280.0), 0.7, 280.0, band),
+                band.radiance(280.0), 1e-9);
     EXPECT_THROW(wire_grid_background(0.6, 10.0, 0.6, 280.0, band), Error);
 }
 

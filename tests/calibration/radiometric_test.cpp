@@ -1,6 +1,8 @@
 // Radiometric calibration: round trips on a synthetic camera with known gain/offset maps, planted
 // bad pixels and temporal noise; the fit must recover the truth within the stated tolerances.
 
+#include "tirpol/calibration/radiometric.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -8,7 +10,6 @@
 #include <random>
 
 #include "test_support.h"
-#include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -64,14 +65,15 @@ struct TruthCamera {
             }
             const double mean = sum / kFrames;
             f.counts.push_back(static_cast<float>(mean));
-            f.counts_std.push_back(static_cast<float>(std::sqrt(std::max(0.0, (sum2 - kFrames * mean * mean) / (kFrames - 1)))));
+            f.counts_std.push_back(static_cast<float>(
+                std::sqrt(std::max(0.0, (sum2 - kFrames * mean * mean) / (kFrames - 1)))));
         }
         return f;
     }
 };
 
-std::vector<BlackbodyFrame> blackbody_set(const TruthCamera& cam, const Band& band, std::vector<double> temps,
-                                          unsigned seed) {
+std::vector<BlackbodyFrame> blackbody_set(const TruthCamera& cam, const Band& band,
+                                          std::vector<double> temps, unsigned seed) {
     std::mt19937 rng(seed);
     std::vector<BlackbodyFrame> frames;
     for (double t : temps) frames.push_back(cam.frame(band, t, rng));
@@ -89,8 +91,10 @@ TEST(Radiometric, RecoversGainAndOffsetMapsAndFindsPlantedBadPixels) {
     double worst_gain = 0.0, worst_offset = 0.0;
     for (std::size_t i = 0; i < cam.gain.size(); ++i) {
         if (i == cam.dead || i == cam.hot || i == cam.noisy || i == cam.nonlinear) continue;
-        worst_gain = std::max(worst_gain, static_cast<double>(std::abs(cal.gain[i] - cam.gain[i]) / cam.gain[i]));
-        worst_offset = std::max(worst_offset, static_cast<double>(std::abs(cal.offset[i] - cam.offset[i])));
+        worst_gain = std::max(
+            worst_gain, static_cast<double>(std::abs(cal.gain[i] - cam.gain[i]) / cam.gain[i]));
+        worst_offset =
+            std::max(worst_offset, static_cast<double>(std::abs(cal.offset[i] - cam.offset[i])));
     }
     EXPECT_LT(worst_gain, 3e-3);
     EXPECT_LT(worst_offset, 15.0);
@@ -113,11 +117,13 @@ TEST(Radiometric, RecoversGainAndOffsetMapsAndFindsPlantedBadPixels) {
 TEST(Radiometric, SceneRadianceRoundTripGivesBrightnessTemperatureAndReplacesBadPixels) {
     const Band band(8.0, 14.0);
     const TruthCamera cam(3);
-    const auto cal = fit_radiometric(blackbody_set(cam, band, {283.15, 298.15, 313.15, 328.15}, 4), kW, kH, band);
+    const auto cal = fit_radiometric(blackbody_set(cam, band, {283.15, 298.15, 313.15, 328.15}, 4),
+                                     kW, kH, band);
     // A noiseless scene at 305 K seen through the true response.
     const double l = band.radiance(305.0);
     std::vector<float> counts;
-    for (std::size_t i = 0; i < cam.gain.size(); ++i) counts.push_back(static_cast<float>(cam.counts_of(i, l)));
+    for (std::size_t i = 0; i < cam.gain.size(); ++i)
+        counts.push_back(static_cast<float>(cam.counts_of(i, l)));
     const auto t = brightness_temperature(band, counts_to_radiance(cal, counts));
     // dL/dT ≈ 0.7 W/(m²·sr·K) in 8–14 µm at 300 K: a gain error of 3e-3 is ≈ 0.2 K.
     for (std::size_t i = 0; i < t.size(); ++i) ASSERT_NEAR(t[i], 305.0, 0.25) << "pixel " << i;
@@ -134,11 +140,12 @@ TEST(Radiometric, QuadraticModelRemovesACurvedResponseThatTheLinearModelCannot) 
     const auto quad_cal = fit_radiometric(frames, kW, kH, band, quad);
     const std::size_t good = TruthCamera::idx(40, 30);
     EXPECT_NEAR(quad_cal.quadratic[good], 0.5, 0.05);
-    EXPECT_LT(quad_cal.residual_rms[good], 3.0f);     // noise level (σ of mean = 1 count)
-    EXPECT_GT(lin_cal.residual_rms[good], 20.0f);     // curvature left in the residuals
+    EXPECT_LT(quad_cal.residual_rms[good], 3.0f);  // noise level (σ of mean = 1 count)
+    EXPECT_GT(lin_cal.residual_rms[good], 20.0f);  // curvature left in the residuals
     std::vector<float> counts;
     const double l = band.radiance(300.0);
-    for (std::size_t i = 0; i < cam.gain.size(); ++i) counts.push_back(static_cast<float>(cam.counts_of(i, l)));
+    for (std::size_t i = 0; i < cam.gain.size(); ++i)
+        counts.push_back(static_cast<float>(cam.counts_of(i, l)));
     EXPECT_NEAR(counts_to_radiance(quad_cal, counts)[good], l, 0.02 * band.radiance_dT(300.0));
 }
 
@@ -152,7 +159,8 @@ TEST(Radiometric, FieldOffsetUpdateRemovesDrift) {
     update_offset(cal, cam.frame(band, 293.15, rng));
     std::vector<float> counts;
     const double l = band.radiance(300.0);
-    for (std::size_t i = 0; i < cam.gain.size(); ++i) counts.push_back(static_cast<float>(cam.counts_of(i, l)));
+    for (std::size_t i = 0; i < cam.gain.size(); ++i)
+        counts.push_back(static_cast<float>(cam.counts_of(i, l)));
     const auto t = brightness_temperature(band, counts_to_radiance(cal, counts));
     const std::size_t good = TruthCamera::idx(40, 30);
     EXPECT_NEAR(t[good], 300.0, 0.1);  // without the update the 80-count drift is ≈ 1.1 K
@@ -161,7 +169,8 @@ TEST(Radiometric, FieldOffsetUpdateRemovesDrift) {
 TEST(Radiometric, CalibrationFileRoundTripsThroughExr) {
     const Band band(8.0, 14.0, SpectralResponse({7.5, 9.0, 13.0, 14.5}, {0.0, 1.0, 1.0, 0.0}));
     const TruthCamera cam(11);
-    auto cal = fit_radiometric(blackbody_set(cam, band, {283.15, 298.15, 313.15}, 12), kW, kH, band);
+    auto cal =
+        fit_radiometric(blackbody_set(cam, band, {283.15, 298.15, 313.15}, 12), kW, kH, band);
     cal.camera_id = "sim:test-camera";
     test::TempDir dir;
     write_radiometric_calibration((dir / "cal.exr").string(), cal);

@@ -26,9 +26,10 @@ Image scene(const Band& band) {
         for (int x = 0; x < kW; ++x) {
             const std::size_t i = im.index(x, y);
             const bool reflector = x < kW / 2;
-            s0[i] = static_cast<float>(reflector ? (1.0 - kReflectorEmissivity) * l_dw +
-                                                       kReflectorEmissivity * band.radiance(kReflectorK)
-                                                 : 0.08 * l_dw + 0.92 * l_bb);
+            s0[i] =
+                static_cast<float>(reflector ? (1.0 - kReflectorEmissivity) * l_dw +
+                                                   kReflectorEmissivity * band.radiance(kReflectorK)
+                                             : 0.08 * l_dw + 0.92 * l_bb);
             s1[i] = static_cast<float>(reflector ? 0.0 : -0.03 * (l_bb - l_dw));
             s2[i] = 0.0f;
         }
@@ -50,8 +51,8 @@ TEST(ReflectorEmission, IsRemovedFromTheDownwelling) {
     EXPECT_NEAR(corrected.eps_s0, 0.92, 1e-5);
     EXPECT_NEAR(corrected.eps_s1, -0.03, 1e-5);
 
-    // Taken as a perfect reflector (the paper's eq 17 as written), L_dw is 10 % of (L_BB(T_r) − L_dw)
-    // too high here and ε_S0 comes out 0.007 too low.
+    // Taken as a perfect reflector (the paper's eq 17 as written), L_dw is 10 % of (L_BB(T_r) −
+    // L_dw) too high here and ε_S0 comes out 0.007 too low.
     EmissivityRois perfect = rois();
     perfect.reflector.emissivity = 0.0;
     const auto naive = extract_emissivity(im, perfect, band).front();
@@ -65,7 +66,8 @@ TEST(ReflectorEmission, UncertaintiesPropagate) {
     EmissivityReflector r = rois().reflector;
     r.temperature_std_k = 1.0;
     const double e = kReflectorEmissivity;
-    EXPECT_NEAR(downwelled_radiance(im, r, band).standard_error, e * band.radiance_dT(kReflectorK) / (1.0 - e), 1e-6);
+    EXPECT_NEAR(downwelled_radiance(im, r, band).standard_error,
+                e * band.radiance_dT(kReflectorK) / (1.0 - e), 1e-6);
     r.temperature_std_k = 0.0;
     r.emissivity_std = 0.01;  // ∂L_dw/∂ε_r = (S0_r − L_BB(T_r))/(1 − ε_r)²
     const double s0 = (1.0 - e) * band.radiance(kSkyK) + e * band.radiance(kReflectorK);
@@ -77,8 +79,9 @@ TEST(ReflectorEmission, AnEmissivityWithoutATemperatureIsAnError) {
     const Band band(8.0, 14.0);
     EmissivityReflector bad = rois().reflector;
     bad.temperature_k.reset();
-    EXPECT_THAT([&] { downwelled_radiance(scene(band), bad, band); },
-                testing::ThrowsMessage<Error>(testing::HasSubstr("needs the reflector's temperature")));
+    EXPECT_THAT(
+        [&] { downwelled_radiance(scene(band), bad, band); },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("needs the reflector's temperature")));
 }
 
 }  // namespace

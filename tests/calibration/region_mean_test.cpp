@@ -1,5 +1,5 @@
-// The ROI statistic shared by emissivity extraction and the twin: the mean of the finite pixels of a
-// rectangle and its standard error s/√n (sample standard deviation s with n − 1, the textbook
+// The ROI statistic shared by emissivity extraction and the twin: the mean of the finite pixels of
+// a rectangle and its standard error s/√n (sample standard deviation s with n − 1, the textbook
 // standard error of the mean), checked on a hand-computed patch.
 
 #include "tirpol/calibration/region_mean.h"
@@ -59,8 +59,9 @@ TEST(RegionMean, OfAComputedValueSuchAsADifferenceOfImages) {
     Image b(5, 4);
     b.add_channel("S0", 1.0f);
     const auto &ca = a.channel("S0"), &cb = b.channel("S0");
-    const RegionMean r =
-        region_mean_of({1, 1, 3, 2}, "twin", "S0", [&](int x, int y) { return ca[a.index(x, y)] - cb[b.index(x, y)]; });
+    const RegionMean r = region_mean_of({1, 1, 3, 2}, "twin", "S0", [&](int x, int y) {
+        return ca[a.index(x, y)] - cb[b.index(x, y)];
+    });
     EXPECT_DOUBLE_EQ(r.mean, 2.5);
     EXPECT_NEAR(r.standard_error, std::sqrt(3.5 / 6.0), 1e-12);
 }
@@ -72,13 +73,15 @@ TEST(RegionMean, NamesTheRegionWhenNothingIsFiniteOrTheRectangleIsOutside) {
         region_mean(im, "S0", {1, 1, 3, 2}, "panel_a");
         FAIL() << "expected tirpol::Error";
     } catch (const Error& e) {
-        EXPECT_THAT(e.what(), testing::HasSubstr("panel_a: no finite S0 pixel in the rectangle [1, 1, 3, 2]"));
+        EXPECT_THAT(e.what(), testing::HasSubstr(
+                                  "panel_a: no finite S0 pixel in the rectangle [1, 1, 3, 2]"));
     }
     try {
         region_mean(patch_image(), "S0", {3, 2, 3, 3}, "reflector");
         FAIL() << "expected tirpol::Error";
     } catch (const Error& e) {
-        EXPECT_THAT(e.what(), testing::HasSubstr("reflector: rectangle [3, 2, 3, 3] is outside the 5×4 image"));
+        EXPECT_THAT(e.what(), testing::HasSubstr(
+                                  "reflector: rectangle [3, 2, 3, 3] is outside the 5×4 image"));
     }
 }
 

@@ -32,7 +32,8 @@ class RenderedCalibration : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         s_dir = new test::TempDir("tirpol-geocal");
-        s_frames = new test::RenderedFrames(test::render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 8));
+        s_frames = new test::RenderedFrames(
+            test::render_views(*s_dir, test::HeatedBoard{}, calibration_views(), 8));
     }
     static void TearDownTestSuite() {
         delete s_frames;
@@ -50,8 +51,8 @@ TEST_F(RenderedCalibration, RecoversTheTruthLensNoiseFree) {
     EXPECT_TRUE(r.frames_without_target.empty());
     test::expect_recovered(r, 15, 0.1);
     for (const auto& v : r.views) EXPECT_FALSE(v.outlier) << v.name << " " << v.rms_px;
-    std::printf("noise-free: fx %.3f fy %.3f cx %.3f cy %.3f k1 %.5f RMS %.4f px\n", r.model.fx, r.model.fy, r.model.cx,
-                r.model.cy, r.model.distortion[0], r.model.rms_px);
+    std::printf("noise-free: fx %.3f fy %.3f cx %.3f cy %.3f k1 %.5f RMS %.4f px\n", r.model.fx,
+                r.model.fy, r.model.cx, r.model.cy, r.model.distortion[0], r.model.rms_px);
 }
 
 TEST_F(RenderedCalibration, WithSensorNoiseTheRmsGrowsAndTheLensIsStillRecovered) {
@@ -73,14 +74,15 @@ TEST_F(RenderedCalibration, WithSensorNoiseTheRmsGrowsAndTheLensIsStillRecovered
     const auto r = calibration::calibrate_geometric_frames(noisy, target);
     EXPECT_GT(r.model.rms_px, clean.model.rms_px) << "noise must show in the reprojection error";
     test::expect_recovered(r, 15, 0.3);
-    std::printf("noisy: fx %.3f fy %.3f cx %.3f cy %.3f RMS %.4f px\n", r.model.fx, r.model.fy, r.model.cx, r.model.cy,
-                r.model.rms_px);
+    std::printf("noisy: fx %.3f fy %.3f cx %.3f cy %.3f RMS %.4f px\n", r.model.fx, r.model.fy,
+                r.model.cx, r.model.cy, r.model.rms_px);
 }
 
 TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
-    // A 7.2 m × 5.6 m board of 0.8 m squares (a painted wall) standing 10 m in front of a camera 2.5 m
-    // up; its inner corners serve as surveyed control points spread over 4.8 m × 3.2 m; the calibrated
-    // camera is the truth lens. 48 samples per pixel keep the Monte-Carlo edge noise below 0.03 px.
+    // A 7.2 m × 5.6 m board of 0.8 m squares (a painted wall) standing 10 m in front of a
+    // camera 2.5 m up; its inner corners serve as surveyed control points spread over 4.8 m × 3.2
+    // m; the calibrated camera is the truth lens. 48 samples per pixel keep the Monte-Carlo edge
+    // noise below 0.03 px.
     test::TempDir dir;
     test::HeatedBoard board;
     board.squares_x = 7;
@@ -91,11 +93,14 @@ TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
     board.standing = true;
     write_camera_model(dir / "truth_lens.yaml", test::truth_lens());
     const Vec3 position(0.1, 0.2, 2.5), look_at(0.4, 10.0, 2.3);
-    test::write_text(dir / "scene.yaml", test::board_scene(board.write(dir.path()), "truth_lens.yaml", position, look_at, world_up(), 48));
+    test::write_text(dir / "scene.yaml",
+                     test::board_scene(board.write(dir.path()), "truth_lens.yaml", position,
+                                       look_at, world_up(), 48));
     const simulation::Scene scene = simulation::load_scene(dir / "scene.yaml");
     const Image image = simulation::render(scene);
     const auto target = calibration::CalibrationTarget::parse(board.target());
-    const auto view = calibration::detect_target(image.channel("S0"), image.width(), image.height(), target, "pose view");
+    const auto view = calibration::detect_target(image.channel("S0"), image.width(), image.height(),
+                                                 target, "pose view");
     ASSERT_TRUE(view.has_value());
     // Match each detected corner to the board corner whose projection is nearest (the detector's
     // order may start at either end of the board).
@@ -103,7 +108,8 @@ TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
     for (int r = 0; r < board.squares_y - 1; ++r)
         for (int c = 0; c < board.squares_x - 1; ++c) {
             const Vec3 world = board.inner_corner(c, r);
-            const Vec2 predicted = *scene.camera.project(world) - Vec2(0.5, 0.5);  // → OpenCV convention
+            const Vec2 predicted =
+                *scene.camera.project(world) - Vec2(0.5, 0.5);  // → OpenCV convention
             Vec2 best = view->points_px.front();
             for (const Vec2& p : view->points_px)
                 if ((p - predicted).norm() < (best - predicted).norm()) best = p;
@@ -112,13 +118,15 @@ TEST(RenderedPose, BoardCornersAtTenMetresGiveThePose) {
         }
     const auto result = calibration::estimate_pose(test::truth_lens(), points);
     const CameraPose truth = scene.camera.pose();
-    const double angle_deg = rad_to_deg(Eigen::AngleAxisd(result.pose.camera_from_world * truth.camera_from_world.transpose()).angle());
+    const double angle_deg = rad_to_deg(
+        Eigen::AngleAxisd(result.pose.camera_from_world * truth.camera_from_world.transpose())
+            .angle());
     const double offset_m = (result.pose.position_m() - truth.position_m()).norm();
     EXPECT_LT(angle_deg, 0.1);
     EXPECT_LT(offset_m, 0.01);
-    std::printf("pose at 10 m: %.4f° %.4f m, RMS %.3f px, 1σ position (%.4f %.4f %.4f) m\n", angle_deg, offset_m,
-                result.pose.rms_px, result.pose.position_sigma_m.x(), result.pose.position_sigma_m.y(),
-                result.pose.position_sigma_m.z());
+    std::printf("pose at 10 m: %.4f° %.4f m, RMS %.3f px, 1σ position (%.4f %.4f %.4f) m\n",
+                angle_deg, offset_m, result.pose.rms_px, result.pose.position_sigma_m.x(),
+                result.pose.position_sigma_m.y(), result.pose.position_sigma_m.z());
 }
 
 }  // namespace

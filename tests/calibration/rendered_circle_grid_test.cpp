@@ -33,7 +33,8 @@ test::HeatedBoard circle_board(Pattern pattern) {
 /// views let through into cx by ~1.7 px (0.5 %); rolled views constrain the principal point ~2.5×
 /// better (docs/twin.md, "Known limits").
 std::vector<test::BoardView> calibration_views() {
-    return simulation::board_calibration_views(15, test::truth_lens().fx, test::truth_lens().width, 40.0, 180.0);
+    return simulation::board_calibration_views(15, test::truth_lens().fx, test::truth_lens().width,
+                                               40.0, 180.0);
 }
 
 /// Every detected centre lies on the projection of a disc centre (the detector's order may start at
@@ -43,13 +44,15 @@ double worst_centre_error_px(const calibration::TargetView& view, const test::He
     test::TempDir dir;
     write_camera_model(dir / "lens.yaml", test::truth_lens());
     test::write_text(dir / "scene.yaml",
-                     test::board_scene(board.write(dir.path()), "lens.yaml", pose.position, pose.look_at, pose.up, 1));
+                     test::board_scene(board.write(dir.path()), "lens.yaml", pose.position,
+                                       pose.look_at, pose.up, 1));
     const simulation::Scene scene = simulation::load_scene(dir / "scene.yaml");
     double worst = 0.0;
     for (const Vec2& found : view.points_px) {
         double nearest = 1e9;
         for (const Vec3& centre : board.features())
-            nearest = std::min(nearest, (found - (*scene.camera.project(centre) - Vec2(0.5, 0.5))).norm());
+            nearest = std::min(nearest,
+                               (found - (*scene.camera.project(centre) - Vec2(0.5, 0.5))).norm());
         worst = std::max(worst, nearest);
     }
     return worst;
@@ -64,7 +67,8 @@ TEST_P(RenderedCircleGrid, RecoversTheTruthLensInBothPolarities) {
     const test::RenderedFrames rendered = test::render_views(dir, board, views, 8);
     const auto target = calibration::CalibrationTarget::parse(board.target());
 
-    const auto view = calibration::detect_target(rendered.images[0].channel("S0"), 640, 512, target, "view 0");
+    const auto view =
+        calibration::detect_target(rendered.images[0].channel("S0"), 640, 512, target, "view 0");
     ASSERT_TRUE(view.has_value());
     EXPECT_EQ(view->points_px.size(), target.point_count());
     // Blob centroids of discs seen at 20–40° through a strong lens: within a few tenths of a pixel
@@ -89,16 +93,19 @@ TEST_P(RenderedCircleGrid, RecoversTheTruthLensInBothPolarities) {
     }
     const auto cold = calibration::calibrate_geometric_frames(inverted, target);
     test::expect_recovered(cold, 15, 0.15);
-    std::printf("%s: fx %.3f fy %.3f cx %.3f cy %.3f k1 %.5f RMS %.4f px; inverted fx %.3f cx %.3f RMS %.4f px\n",
-                target.to_string().c_str(), hot.model.fx, hot.model.fy, hot.model.cx, hot.model.cy,
-                hot.model.distortion[0], hot.model.rms_px, cold.model.fx, cold.model.cx, cold.model.rms_px);
+    std::printf(
+        "%s: fx %.3f fy %.3f cx %.3f cy %.3f k1 %.5f RMS %.4f px; inverted fx %.3f cx %.3f RMS "
+        "%.4f px\n",
+        target.to_string().c_str(), hot.model.fx, hot.model.fy, hot.model.cx, hot.model.cy,
+        hot.model.distortion[0], hot.model.rms_px, cold.model.fx, cold.model.cx, cold.model.rms_px);
 
     // A grid of another size is not found: the error says in which frames.
     calibration::CalibrationTarget wrong = target;
     wrong.columns += 1;
     try {
         calibration::calibrate_geometric_frames(rendered.frames, wrong);
-        ADD_FAILURE() << "a " << wrong.to_string() << " grid was found in frames of " << target.to_string();
+        ADD_FAILURE() << "a " << wrong.to_string() << " grid was found in frames of "
+                      << target.to_string();
     } catch (const Error& e) {
         const std::string message = e.what();
         EXPECT_NE(message.find("found in 0 of 15 frames"), std::string::npos) << message;
@@ -106,8 +113,11 @@ TEST_P(RenderedCircleGrid, RecoversTheTruthLensInBothPolarities) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Grids, RenderedCircleGrid, ::testing::Values(Pattern::Circles, Pattern::AsymmetricCircles),
-                         [](const auto& grid) { return grid.param == Pattern::Circles ? "Symmetric" : "Asymmetric"; });
+INSTANTIATE_TEST_SUITE_P(Grids, RenderedCircleGrid,
+                         ::testing::Values(Pattern::Circles, Pattern::AsymmetricCircles),
+                         [](const auto& grid) {
+                             return grid.param == Pattern::Circles ? "Symmetric" : "Asymmetric";
+                         });
 
 }  // namespace
 }  // namespace tirpol

@@ -2,19 +2,19 @@
 // calibration, field polarimetric calibration (wire-grid τ/B + analyzer from a known source),
 // reduction to Stokes and emissivity extraction recover the planted truth.
 
+#include "tirpol/calibration/session_calibration.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include <numbers>
 
 #include <atomic>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "test_support.h"
 #include "tirpol/calibration/emissivity_extraction.h"
-#include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/testing/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/cancelled.h"
@@ -27,8 +27,8 @@ class SessionCalibration : public testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir("tirpol-calib-session");
-        write_synthetic_sessions(dir_->path(), SyntheticCamera{}, synthetic_panel_scene(64, 48, Band(8.0, 14.0)),
-                                 Band(8.0, 14.0));
+        write_synthetic_sessions(dir_->path(), SyntheticCamera{},
+                                 synthetic_panel_scene(64, 48, Band(8.0, 14.0)), Band(8.0, 14.0));
     }
     static void TearDownTestSuite() { delete dir_; }
     static std::filesystem::path root() { return dir_->path(); }
@@ -39,7 +39,9 @@ test::TempDir* SessionCalibration::dir_ = nullptr;
 TEST_F(SessionCalibration, RadiometricFindsPlantedBadPixelsAndSaturationLevel) {
     const SyntheticCamera cam;
     const auto cal = calibrate_radiometric_session(root() / "lab", Band(8.0, 14.0));
-    auto bits = [&](int x, int y) { return static_cast<std::uint32_t>(cal.bad[static_cast<std::size_t>(y * cam.width + x)]); };
+    auto bits = [&](int x, int y) {
+        return static_cast<std::uint32_t>(cal.bad[static_cast<std::size_t>(y * cam.width + x)]);
+    };
     EXPECT_TRUE(bits(cam.dead_x, cam.dead_y) & kDead);
     EXPECT_TRUE(bits(cam.hot_x, cam.hot_y) & kHot);
     EXPECT_TRUE(bits(cam.noisy_x, cam.noisy_y) & kNoisy);
@@ -67,7 +69,8 @@ TEST_F(SessionCalibration, PolarimetricCalibrationAndReductionRecoverTheSceneSto
     write_polarimetric_calibration((out / "pol.yaml").string(), pol);
     const auto pol_back = read_polarimetric_calibration((out / "pol.yaml").string());
     EXPECT_EQ(pol_back.wire_grid.at(45.0).tau, pol.wire_grid.at(45.0).tau);
-    EXPECT_NEAR(pol_back.analyzer.positions[2].axis_angle_deg, pol.analyzer.positions[2].axis_angle_deg, 1e-6);
+    EXPECT_NEAR(pol_back.analyzer.positions[2].axis_angle_deg,
+                pol.analyzer.positions[2].axis_angle_deg, 1e-6);
 
     const Image truth = synthetic_panel_scene(cam.width, cam.height, band);
     const Image s = reduce_session(root() / "scene", cal, &pol_back);
@@ -79,7 +82,9 @@ TEST_F(SessionCalibration, PolarimetricCalibrationAndReductionRecoverTheSceneSto
     for (int y = 12; y < 36; ++y)
         for (int x = 26; x < 38; ++x) {
             const std::size_t i = s.index(x, y);
-            ASSERT_NEAR(s.channel("S1")[i], truth.channel("S1")[i], 5.0 * s.channel("S1_std")[i] + 1e-3) << x << "," << y;
+            ASSERT_NEAR(s.channel("S1")[i], truth.channel("S1")[i],
+                        5.0 * s.channel("S1_std")[i] + 1e-3)
+                << x << "," << y;
             mean_err += s.channel("S1")[i] - truth.channel("S1")[i];
             ++n;
         }
@@ -103,10 +108,14 @@ TEST_F(SessionCalibration, WithoutWireGridRemovalTheSkyReflectionBiasesS1) {
     opt.update_offset = true;
     const Image naive = reduce_session(root() / "scene", cal, nullptr, opt);
     const Image truth = synthetic_panel_scene(64, 48, Band(8.0, 14.0));
-    // The grid reflects a partly polarized sky (±30 % with angle): S1 is off by far more than noise.
-    EXPECT_GT(std::abs(naive.channel("S1")[naive.index(30, 20)] - truth.channel("S1")[naive.index(30, 20)]), 0.3);
+    // The grid reflects a partly polarized sky (±30 % with angle): S1 is off by far more than
+    // noise.
+    EXPECT_GT(std::abs(naive.channel("S1")[naive.index(30, 20)] -
+                       truth.channel("S1")[naive.index(30, 20)]),
+              0.3);
     const auto pol = calibrate_polarimetric_session(root() / "polcal", cal);
-    EXPECT_THROW(reduce_session(root() / "scene", cal, &pol, opt), Error);  // drift would be removed twice
+    EXPECT_THROW(reduce_session(root() / "scene", cal, &pol, opt),
+                 Error);  // drift would be removed twice
 }
 
 TEST_F(SessionCalibration, ASetCancelFlagStopsTheSessionReduction) {
@@ -125,13 +134,24 @@ TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
     auto write = [&](const std::filesystem::path& dir, int saturated) {
         SessionManifest m;
         m.created_utc = "2026-11-22T17:00:00Z";
-        m.camera = {"sim://synthetic", "tirpol", "synthetic-uncooled", "0001", "Mono14", cam.width, cam.height, 14, 30.0, {}};
+        m.camera = {"sim://synthetic",
+                    "tirpol",
+                    "synthetic-uncooled",
+                    "0001",
+                    "Mono14",
+                    cam.width,
+                    cam.height,
+                    14,
+                    30.0,
+                    {}};
         m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
         auto w = SessionWriter::create(dir, m);
         for (double a : cam.angles_deg) {
-            Image f = synthetic_record_frame(cam, scene, band, a, true, true, 50u + static_cast<unsigned>(a));
+            Image f = synthetic_record_frame(cam, scene, band, a, true, true,
+                                             50u + static_cast<unsigned>(a));
             if (a == 45.0)
-                for (int i = 0; i < saturated; ++i) f.channel("counts")[static_cast<std::size_t>(7 * i)] = 16383.0f;
+                for (int i = 0; i < saturated; ++i)
+                    f.channel("counts")[static_cast<std::size_t>(7 * i)] = 16383.0f;
             SessionRecord r;
             r.file = session_frame_file(fmt::format("p{:g}", a));
             r.angle_deg_requested = r.angle_deg_measured = a;
@@ -157,9 +177,10 @@ TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
 }
 
 TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheTolerance) {
-    // A mount that sits 2° past every requested angle (read back as such), an ideal analyzer, no grid
-    // effects: frames exposed at θ + 2°. Reduced at the measured angle (schema v2) the scene's S1/S2
-    // come back; at the requested one (how a v1 session is read) they come back rotated by 2 × 2°.
+    // A mount that sits 2° past every requested angle (read back as such), an ideal analyzer, no
+    // grid effects: frames exposed at θ + 2°. Reduced at the measured angle (schema v2) the scene's
+    // S1/S2 come back; at the requested one (how a v1 session is read) they come back rotated by 2
+    // × 2°.
     SyntheticCamera cam;
     cam.angle_offset_deg = 0.0;
     cam.extinction_ratio = 1e6;
@@ -171,7 +192,16 @@ TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheT
     auto write = [&](const std::filesystem::path& dir, double tolerance_deg) {
         SessionManifest m;
         m.created_utc = "2026-11-22T17:00:00Z";
-        m.camera = {"sim://synthetic", "tirpol", "synthetic-uncooled", "0001", "Mono14", cam.width, cam.height, 14, 30.0, {}};
+        m.camera = {"sim://synthetic",
+                    "tirpol",
+                    "synthetic-uncooled",
+                    "0001",
+                    "Mono14",
+                    cam.width,
+                    cam.height,
+                    14,
+                    30.0,
+                    {}};
         m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
         m.plan = {{"angle_tolerance_deg", tolerance_deg}};
         auto w = SessionWriter::create(dir, m);
@@ -181,7 +211,8 @@ TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheT
             r.angle_deg_requested = a;
             r.angle_deg_measured = a + 2.0;
             r.frames = 16;
-            w.add_record(r, synthetic_record_frame(cam, scene, band, a + 2.0, true, false, 70u + static_cast<unsigned>(a)));
+            w.add_record(r, synthetic_record_frame(cam, scene, band, a + 2.0, true, false,
+                                                   70u + static_cast<unsigned>(a)));
         }
     };
     test::TempDir tmp;
@@ -196,7 +227,8 @@ TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheT
                 t1 += scene.channel("S1")[s.index(x, y)];
                 t2 += scene.channel("S2")[s.index(x, y)];
             }
-        return std::abs(std::remainder(0.5 * (std::atan2(s2, s1) - std::atan2(t2, t1)) * 180.0 / std::numbers::pi, 180.0));
+        return std::abs(std::remainder(
+            0.5 * (std::atan2(s2, s1) - std::atan2(t2, t1)) * 180.0 / std::numbers::pi, 180.0));
     };
     const double measured_error = aop_error_deg(reduce_session(tmp / "v2", cal, nullptr));
     std::filesystem::copy(tmp / "v2", tmp / "v1", std::filesystem::copy_options::recursive);
@@ -223,13 +255,16 @@ TEST_F(SessionCalibration, CorruptManifestAndMissingAngleGiveClearErrors) {
     const auto cal = calibrate_radiometric_session(root() / "lab", Band(8.0, 14.0));
     const auto pol = calibrate_polarimetric_session(root() / "polcal", cal);
     test::TempDir tmp;
-    std::filesystem::copy(root() / "scene", tmp / "scene", std::filesystem::copy_options::recursive);
+    std::filesystem::copy(root() / "scene", tmp / "scene",
+                          std::filesystem::copy_options::recursive);
     // Drop the 135° record from the manifest: the analyzer model needs it.
     auto manifest = nlohmann::json::parse(read_file(tmp / "scene" / "session.json"));
     auto& records = manifest["records"];
-    records.erase(std::remove_if(records.begin(), records.end(),
-                                 [](const auto& r) { return r["angle_deg_requested"].template get<double>() == 135.0; }),
-                  records.end());
+    records.erase(
+        std::remove_if(
+            records.begin(), records.end(),
+            [](const auto& r) { return r["angle_deg_requested"].template get<double>() == 135.0; }),
+        records.end());
     write_file_atomic(tmp / "scene" / "session.json", manifest.dump());
     try {
         reduce_session(tmp / "scene", cal, &pol);

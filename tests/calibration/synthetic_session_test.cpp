@@ -26,7 +26,8 @@ TEST(SyntheticSession, GridTermsAreIntegratedOverTheCallersBand) {
     }
     // The two bands differ by far more than the tolerance: the check above tells them apart.
     EXPECT_GT(cam.gain_mean * cam.grid_reflectance *
-                  (Band(8.0, 14.0).radiance(cam.sky_temperature_k) - Band(3.0, 5.0).radiance(cam.sky_temperature_k)),
+                  (Band(8.0, 14.0).radiance(cam.sky_temperature_k) -
+                   Band(3.0, 5.0).radiance(cam.sky_temperature_k)),
               10.0);
 }
 

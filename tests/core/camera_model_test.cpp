@@ -56,7 +56,8 @@ TEST(CameraModelFile, RoundTripsAndOpenCvReadsIt) {
 TEST(CameraModelFile, PoseRoundTrips) {
     test::TempDir dir;
     CameraPose p;
-    p.camera_from_world = Eigen::AngleAxisd(0.3, Vec3(0.2, 0.9, -0.1).normalized()).toRotationMatrix();
+    p.camera_from_world =
+        Eigen::AngleAxisd(0.3, Vec3(0.2, 0.9, -0.1).normalized()).toRotationMatrix();
     p.translation_m = Vec3(0.5, -1.0, 9.8);
     p.points = 8;
     p.rms_px = 0.2;
@@ -66,9 +67,9 @@ TEST(CameraModelFile, PoseRoundTrips) {
     EXPECT_LT((back.position_m() - p.position_m()).norm(), 1e-12);
 }
 
-// Inputs the fuzzer found (a 48 GB allocation, cv::Exception, std::length_error, OpenCV's parser that
-// never returned on a '%' followed by '---' or by '--'): each is refused with a tirpol::Error naming
-// the file. The files are read by yaml-cpp now; no input reaches OpenCV's YAML parser.
+// Inputs the fuzzer found (a 48 GB allocation, cv::Exception, std::length_error, OpenCV's parser
+// that never returned on a '%' followed by '---' or by '--'): each is refused with a tirpol::Error
+// naming the file. The files are read by yaml-cpp now; no input reaches OpenCV's YAML parser.
 TEST(CameraModelFile, FuzzRegressionsAreRefusedWithAnError) {
     const auto dir = test::source_dir() / "tests/data/fuzz-regressions/camera_geometry";
     int files = 0;
@@ -78,7 +79,9 @@ TEST(CameraModelFile, FuzzRegressionsAreRefusedWithAnError) {
             read_camera_model(entry.path());
             ADD_FAILURE() << entry.path() << " was accepted";
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find(entry.path().filename().string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(entry.path().filename().string()),
+                      std::string::npos)
+                << e.what();
         }
     }
     EXPECT_GE(files, 5);
@@ -92,7 +95,8 @@ TEST(CameraModelFile, ReadsWhatOpenCvWrites) {
     {
         cv::FileStorage fs(path.string(), cv::FileStorage::WRITE);
         fs << "image_width" << 320 << "image_height" << 256;
-        fs << "camera_matrix" << (cv::Mat_<float>(3, 3) << 400.5f, 0.f, 159.5f, 0.f, 401.25f, 127.5f, 0.f, 0.f, 1.f);
+        fs << "camera_matrix"
+           << (cv::Mat_<float>(3, 3) << 400.5f, 0.f, 159.5f, 0.f, 401.25f, 127.5f, 0.f, 0.f, 1.f);
         fs << "distortion_coefficients"
            << (cv::Mat_<double>(1, 8) << -0.31, 0.12, 1.5e-3, -2.5e-4, -0.021, 0.0, 0.0, 1.0 / 3.0);
         fs << "target"
@@ -116,8 +120,10 @@ TEST(CameraModelFile, ReadsWhatOpenCvWrites) {
 TEST(CameraModelFile, PercentSignsAnywhereReturnWithAnError) {
     test::TempDir dir;
     const std::string body =
-        "image_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n";
-    for (const std::string tail : {"  -#%--\n", "  %---\n", "%\n---\n", "  - %--\n", "%TAG ! x\n--\n"}) {
+        "image_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: "
+        "3\n   dt: d\n";
+    for (const std::string tail :
+         {"  -#%--\n", "  %---\n", "%\n---\n", "  - %--\n", "%TAG ! x\n--\n"}) {
         test::write_text(dir / "pct.yaml", "%YAML:1.0\n---\n" + body + tail);
         try {
             (void)read_camera_model(dir / "pct.yaml");
@@ -143,13 +149,17 @@ TEST(CameraModelFile, BadFilesNameTheField) {
     expect_error("%YAML:1.0\n---\nimage_width: 640\n", "image_height");
     expect_error("%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\n", "camera_matrix");
     expect_error(
-        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
-        "  dt: d\n  data: [ 700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  "
+        "rows: 3\n  cols: 3\n"
+        "  dt: d\n  data: [ 700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: "
+        "!!opencv-matrix\n"
         "  rows: 1\n  cols: 4\n  dt: d\n  data: [ 0., 0., 0., 0. ]\n",
         "distortion_coefficients");
     expect_error(
-        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  rows: 3\n  cols: 3\n"
-        "  dt: d\n  data: [ -700., 0., 320., 0., 700., 256., 0., 0., 1. ]\ndistortion_coefficients: !!opencv-matrix\n"
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 512\ncamera_matrix: !!opencv-matrix\n  "
+        "rows: 3\n  cols: 3\n"
+        "  dt: d\n  data: [ -700., 0., 320., 0., 700., 256., 0., 0., 1. "
+        "]\ndistortion_coefficients: !!opencv-matrix\n"
         "  rows: 1\n  cols: 5\n  dt: d\n  data: [ 0., 0., 0., 0., 0. ]\n",
         "fx");
     expect_error("just: text\n", "bad.yaml");

@@ -21,13 +21,15 @@ std::string error_of(const std::string& yaml) {
 
 TEST(ConfigDuplicateKeys, TopLevelDuplicateNamesBothLines) {
     EXPECT_EQ(error_of("settle_s: 0.5\nframes_per_angle: 4\nsettle_s: 2\n"),
-              "plan.yaml:3:1: duplicate key 'settle_s' (first given at plan.yaml:1:1); each key may appear once in a "
+              "plan.yaml:3:1: duplicate key 'settle_s' (first given at plan.yaml:1:1); each key "
+              "may appear once in a "
               "mapping");
 }
 
 TEST(ConfigDuplicateKeys, NestedAndFlowMappingsAreChecked) {
-    EXPECT_THAT(error_of("objects:\n  - name: a\n    material: x\n    name: b\n"),
-                testing::HasSubstr("plan.yaml:4:5: duplicate key 'name' (first given at plan.yaml:2:5)"));
+    EXPECT_THAT(
+        error_of("objects:\n  - name: a\n    material: x\n    name: b\n"),
+        testing::HasSubstr("plan.yaml:4:5: duplicate key 'name' (first given at plan.yaml:2:5)"));
     EXPECT_THAT(error_of("site: {lat: 1, lat: 2}\n"), testing::HasSubstr("duplicate key 'lat'"));
 }
 

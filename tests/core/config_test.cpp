@@ -1,4 +1,5 @@
-// YAML configuration: typed access and errors that name the file, line, field, value and expectation.
+// YAML configuration: typed access and errors that name the file, line, field, value and
+// expectation.
 
 #include "tirpol/core/config.h"
 
@@ -32,7 +33,8 @@ objects:
 TEST(Config, TypedAccessors) {
     const auto root = ConfigNode::parse(kScene, "scene.yaml");
     EXPECT_DOUBLE_EQ(root.at("camera").get<double>("fov_deg"), 30.0);
-    EXPECT_EQ(root.at("camera").get<std::vector<double>>("resolution"), (std::vector<double>{640, 512}));
+    EXPECT_EQ(root.at("camera").get<std::vector<double>>("resolution"),
+              (std::vector<double>{640, 512}));
     EXPECT_EQ(root.at("sky").get<std::string>("type"), "clear");
     EXPECT_DOUBLE_EQ(root.at("objects").elements()[0].get<double>("temperature_k"), 290.5);
     EXPECT_EQ(root.at("sky").get_or<int>("samples", 8), 8);
@@ -55,27 +57,36 @@ TEST(Config, UnknownKeyIsReportedWithASuggestion) {
 
 TEST(Config, MissingFieldNamesTheParent) {
     const auto root = ConfigNode::parse(kScene, "scene.yaml");
-    const auto msg = error_of([&] { root.at("objects").elements()[0].get<std::string>("material"); });
-    EXPECT_NE(msg.find("scene.yaml:7:5: objects[0]: missing required field 'material'"), std::string::npos) << msg;
+    const auto msg =
+        error_of([&] { root.at("objects").elements()[0].get<std::string>("material"); });
+    EXPECT_NE(msg.find("scene.yaml:7:5: objects[0]: missing required field 'material'"),
+              std::string::npos)
+        << msg;
 }
 
 TEST(Config, MalformedYamlGivesTheLine) {
-    const auto msg = error_of([] { ConfigNode::parse("camera:\n  fov_deg: [30, 40\nsky: x\n", "bad.yaml"); });
+    const auto msg =
+        error_of([] { ConfigNode::parse("camera:\n  fov_deg: [30, 40\nsky: x\n", "bad.yaml"); });
     EXPECT_NE(msg.find("bad.yaml:"), std::string::npos) << msg;
     EXPECT_NE(msg.find("YAML syntax error"), std::string::npos) << msg;
 }
 
 TEST(Config, OutOfRangeAndNonFiniteValues) {
     const auto root = ConfigNode::parse("a: 1.5\nb: .nan\nc: 3\n", "x.yaml");
-    EXPECT_NE(error_of([&] { root.get_in_range("a", 0.0, 1.0); }).find("expected a number in [0, 1]"), std::string::npos);
+    EXPECT_NE(
+        error_of([&] { root.get_in_range("a", 0.0, 1.0); }).find("expected a number in [0, 1]"),
+        std::string::npos);
     EXPECT_NE(error_of([&] { root.get<double>("b"); }).find("finite"), std::string::npos);
-    EXPECT_NE(error_of([&] { root.get<bool>("c"); }).find("expected true or false, found '3'"), std::string::npos);
-    EXPECT_NE(error_of([&] { root.get<int>("a"); }).find("expected an integer, found '1.5'"), std::string::npos);
+    EXPECT_NE(error_of([&] { root.get<bool>("c"); }).find("expected true or false, found '3'"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] { root.get<int>("a"); }).find("expected an integer, found '1.5'"),
+              std::string::npos);
 }
 
 TEST(Config, MissingFileAndRelativePaths) {
     test::TempDir dir;
-    EXPECT_NE(error_of([&] { ConfigNode::load_file(dir / "none.yaml"); }).find("no such file"), std::string::npos);
+    EXPECT_NE(error_of([&] { ConfigNode::load_file(dir / "none.yaml"); }).find("no such file"),
+              std::string::npos);
     test::write_text(dir / "sub" / "s.yaml", "mesh: car.obj\n");
     const auto root = ConfigNode::load_file(dir / "sub" / "s.yaml");
     EXPECT_EQ(root.resolve_path(root.get<std::string>("mesh")), dir / "sub" / "car.obj");

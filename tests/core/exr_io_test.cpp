@@ -18,7 +18,8 @@ Image stokes_image() {
     Image img(7, 5);
     for (const char* c : {"S0", "S1", "S2", "S3", "DoLP", "AoP"}) {
         auto& p = img.add_channel(c);
-        for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<float>(i) * 0.5f + static_cast<float>(c[1]);
+        for (std::size_t i = 0; i < p.size(); ++i)
+            p[i] = static_cast<float>(i) * 0.5f + static_cast<float>(c[1]);
     }
     img.channel("S1")[3] = std::nanf("");
     img.attributes()["units"] = std::string("W/(m^2 sr)");
@@ -48,14 +49,17 @@ TEST(Exr, RoundTripKeepsChannelsValuesAndAttributes) {
         ASSERT_TRUE(back.has_channel(c)) << c;
         for (std::size_t i = 0; i < img.pixel_count(); ++i) {
             const float a = img.channel(c)[i], b = back.channel(c)[i];
-            if (std::isnan(a)) EXPECT_TRUE(std::isnan(b));
-            else EXPECT_EQ(a, b);
+            if (std::isnan(a))
+                EXPECT_TRUE(std::isnan(b));
+            else
+                EXPECT_EQ(a, b);
         }
     }
     EXPECT_EQ(std::get<std::string>(back.attributes().at("units")), "W/(m^2 sr)");
     EXPECT_EQ(std::get<double>(back.attributes().at("polarizer_angle_deg")), 45.0);
     EXPECT_EQ(std::get<int>(back.attributes().at("frames")), 16);
-    EXPECT_EQ(std::get<std::vector<double>>(back.attributes().at("band_um")), (std::vector<double>{8.0, 14.0}));
+    EXPECT_EQ(std::get<std::vector<double>>(back.attributes().at("band_um")),
+              (std::vector<double>{8.0, 14.0}));
 }
 
 TEST(Exr, WriteLeavesNoTemporaryFiles) {
@@ -75,7 +79,8 @@ TEST(Exr, MissingFileIsNamed) {
 
 TEST(Exr, CorruptFileIsRejectedWithItsName) {
     test::TempDir dir;
-    test::write_text(dir / "junk.exr", "this is not an image at all, just text pretending to be one");
+    test::write_text(dir / "junk.exr",
+                     "this is not an image at all, just text pretending to be one");
     const auto msg = error_of([&] { read_exr(dir / "junk.exr"); });
     EXPECT_NE(msg.find("junk.exr: not an OpenEXR file"), std::string::npos) << msg;
 }
@@ -92,12 +97,15 @@ TEST(Exr, TruncatedFileIsRejectedNotHalfRead) {
         test::write_text(dir / "cut.exr", bytes.substr(0, cut));
         const auto msg = error_of([&] { read_exr(dir / "cut.exr"); });
         EXPECT_NE(msg.find("cut.exr"), std::string::npos) << msg;
-        EXPECT_TRUE(msg.find("truncated") != std::string::npos || msg.find("corrupt") != std::string::npos) << msg;
+        EXPECT_TRUE(msg.find("truncated") != std::string::npos ||
+                    msg.find("corrupt") != std::string::npos)
+            << msg;
     }
 }
 
 TEST(Exr, UnwritableDestinationIsAClearError) {
-    const auto msg = error_of([&] { write_exr("/proc/tirpol-cannot-write/x.exr", stokes_image()); });
+    const auto msg =
+        error_of([&] { write_exr("/proc/tirpol-cannot-write/x.exr", stokes_image()); });
     EXPECT_NE(msg.find("x.exr"), std::string::npos) << msg;
 }
 

@@ -1,5 +1,7 @@
 // Line plots: a readable PNG of the requested size, 1-2-5 ticks, and clear errors.
 
+#include "tirpol/core/line_plot.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -7,12 +9,12 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/line_plot.h"
 
 namespace tirpol {
 namespace {
 
-// Width and height from the PNG IHDR chunk (PNG spec, ISO/IEC 15948 §11.2.2: big-endian at bytes 16–23).
+// Width and height from the PNG IHDR chunk (PNG spec, ISO/IEC 15948 §11.2.2: big-endian at bytes
+// 16–23).
 std::pair<int, int> png_size(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     unsigned char b[24] = {};
@@ -51,7 +53,8 @@ TEST(LinePlot, RejectsBadInput) {
 }
 
 TEST(LinePlot, NiceTicksAreOneTwoFiveMultiples) {
-    EXPECT_EQ(nice_ticks(0.0, 90.0, 9), (std::vector<double>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90}));
+    EXPECT_EQ(nice_ticks(0.0, 90.0, 9),
+              (std::vector<double>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90}));
     const auto t = nice_ticks(-0.13, 1.0, 6);
     ASSERT_GE(t.size(), 2u);
     EXPECT_NEAR(t[1] - t[0], 0.2, 1e-12);

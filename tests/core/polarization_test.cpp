@@ -1,9 +1,9 @@
-// Stokes vectors and Mueller matrices of standard elements (Collett 2005; Chipman, Lam & Young 2018).
+// Stokes vectors and Mueller matrices of standard elements (Collett 2005; Chipman, Lam & Young
+// 2018).
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <random>
 
@@ -35,7 +35,8 @@ TEST(Mueller, LinearPolarizerFollowsMalusLaw) {
     // Malus's law: I = I0·cos²(θ − φ) for fully polarized light at φ through a polarizer at θ.
     for (double phi : {0.0, 20.0, 45.0, 90.0, 133.0})
         for (double theta : {0.0, 45.0, 90.0, 135.0}) {
-            const StokesVector out = linear_polarizer(deg_to_rad(theta)) * linearly_polarized(1.0, 1.0, deg_to_rad(phi));
+            const StokesVector out =
+                linear_polarizer(deg_to_rad(theta)) * linearly_polarized(1.0, 1.0, deg_to_rad(phi));
             const double c = std::cos(deg_to_rad(theta - phi));
             EXPECT_NEAR(out[0], c * c, 1e-12) << theta << " " << phi;
             EXPECT_NEAR(dolp(out), out[0] > 1e-12 ? 1.0 : 0.0, 1e-9);
@@ -57,7 +58,8 @@ TEST(Mueller, PolarizersAtZeroNinetyAndPlusMinus45GiveExpectedStokes) {
 TEST(Mueller, NonIdealPolarizerLeaksOneOverExtinctionRatio) {
     // The paper's wire grid: extinction ratio > 400:1 (§3.1).
     const MuellerMatrix m = polarizer_with_extinction(0.0, 0.7, 400.0);
-    const double along = (m * linearly_polarized(1, 1, 0))[0], across = (m * linearly_polarized(1, 1, kPi / 2))[0];
+    const double along = (m * linearly_polarized(1, 1, 0))[0],
+                 across = (m * linearly_polarized(1, 1, kPi / 2))[0];
     EXPECT_NEAR(along, 0.7, 1e-12);
     EXPECT_NEAR(along / across, 400.0, 1e-9);
     EXPECT_THROW(polarizer_with_extinction(0.0, 0.7, 0.5), Error);
@@ -67,7 +69,8 @@ TEST(Mueller, QuarterWavePlateAt45TurnsHorizontalIntoRightCircular) {
     // Collett, Field Guide to Polarization (SPIE 2005), quarter-wave retarder at +45°: rows
     // (1,0,0,0), (0,0,0,−1), (0,0,1,0), (0,1,0,0), so horizontal light leaves with S3 = +1. In
     // tirpol's receiver-view convention that is right-circular: the field turns from the fast axis
-    // (+45°) toward the slow one (−45°), clockwise for an observer looking at the source (Hecht §8.2).
+    // (+45°) toward the slow one (−45°), clockwise for an observer looking at the source (Hecht
+    // §8.2).
     const StokesVector out = linear_retarder(kPi / 4, kPi / 2) * linearly_polarized(1, 1, 0);
     EXPECT_NEAR(out[3], 1.0, 1e-12);
     EXPECT_NEAR(out[1], 0.0, 1e-12);
@@ -76,9 +79,11 @@ TEST(Mueller, QuarterWavePlateAt45TurnsHorizontalIntoRightCircular) {
 
 TEST(Mueller, FrameRotationThereAndBackIsIdentity) {
     for (double a : {0.1, 0.7, 2.0, -1.3})
-        EXPECT_TRUE((frame_rotation(a) * frame_rotation(-a)).isApprox(MuellerMatrix::Identity(), 1e-14));
+        EXPECT_TRUE(
+            (frame_rotation(a) * frame_rotation(-a)).isApprox(MuellerMatrix::Identity(), 1e-14));
     // Eq 11: light polarized along the new reference axis has S1 = S0 in the rotated frame.
-    const StokesVector s = frame_rotation(deg_to_rad(30.0)) * linearly_polarized(1, 1, deg_to_rad(30.0));
+    const StokesVector s =
+        frame_rotation(deg_to_rad(30.0)) * linearly_polarized(1, 1, deg_to_rad(30.0));
     EXPECT_NEAR(s[1], 1.0, 1e-12);
     EXPECT_NEAR(s[2], 0.0, 1e-12);
 }
@@ -87,8 +92,8 @@ TEST(Mueller, JonesPolarizerMatchesMueller) {
     JonesMatrix j;
     j << 1, 0, 0, 0;
     EXPECT_TRUE(mueller_from_jones(j).isApprox(linear_polarizer(0.0), 1e-14));
-    // Quarter-wave plate, fast axis horizontal, Jones vectors in the exp(i(ωt − kz)) convention: the
-    // slow (y) field lags, diag(1, −i) up to a global phase.
+    // Quarter-wave plate, fast axis horizontal, Jones vectors in the exp(i(ωt − kz)) convention:
+    // the slow (y) field lags, diag(1, −i) up to a global phase.
     JonesMatrix qwp;
     qwp << 1, 0, 0, std::complex<double>(0, -1);
     EXPECT_TRUE(mueller_from_jones(qwp).isApprox(linear_retarder(0.0, kPi / 2), 1e-14));
@@ -99,7 +104,8 @@ TEST(Mueller, StandardElementsAreRealizableAndCloudeHasRankOneForPureElements) {
     std::uniform_real_distribution<double> angle(0.0, kPi), unit(0.0, 1.0);
     for (int i = 0; i < 50; ++i) {
         const MuellerMatrix elements[] = {
-            linear_polarizer(angle(rng)), linear_diattenuator(angle(rng), unit(rng), unit(rng) * 0.5),
+            linear_polarizer(angle(rng)),
+            linear_diattenuator(angle(rng), unit(rng), unit(rng) * 0.5),
             linear_retarder(angle(rng), 2 * angle(rng)), frame_rotation(angle(rng))};
         MuellerMatrix product = MuellerMatrix::Identity();
         for (const auto& m : elements) {

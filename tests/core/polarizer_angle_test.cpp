@@ -10,7 +10,8 @@ namespace {
 
 TEST(PolarizerAngle, SameAngleToTheHundredthOfADegree) {
     EXPECT_TRUE(same_polarizer_angle(45, 45.0));
-    EXPECT_TRUE(same_polarizer_angle(45.0, static_cast<float>(45.0 + 1e-5)));  // through a float in a file
+    EXPECT_TRUE(
+        same_polarizer_angle(45.0, static_cast<float>(45.0 + 1e-5)));  // through a float in a file
     EXPECT_TRUE(same_polarizer_angle(22.5, 22.504));
     EXPECT_FALSE(same_polarizer_angle(22.5, 22.51));
     EXPECT_FALSE(same_polarizer_angle(0.0, 180.0));  // different positions of the mount

@@ -43,7 +43,8 @@ double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 // The Gauss–Legendre remainder on [a, b] (Abramowitz & Stegun 25.4.30):
 //   ∫f − Σ w f(x) = (b − a)^(2n+1) (n!)⁴ / ((2n + 1) ((2n)!)³) · f^(2n)(ξ).
 double remainder_factor(int n, double width) {
-    return std::pow(width, 2 * n + 1) * std::pow(factorial(n), 4) / ((2 * n + 1) * std::pow(factorial(2 * n), 3));
+    return std::pow(width, 2 * n + 1) * std::pow(factorial(n), 4) /
+           ((2 * n + 1) * std::pow(factorial(2 * n), 3));
 }
 
 // An n-point rule integrates x^k exactly for k ≤ 2n − 1 (∫₀¹ x^k dx = 1/(k + 1)); for k = 2n the
@@ -53,7 +54,8 @@ TEST(Quadrature, GaussLegendreIsExactUpToDegreeTwoNMinusOne) {
         const QuadratureRule rule = gauss_legendre(n);
         for (int k = 0; k <= 2 * n; ++k) {
             double sum = 0.0;
-            for (std::size_t i = 0; i < rule.nodes.size(); ++i) sum += rule.weights[i] * std::pow(rule.nodes[i], k);
+            for (std::size_t i = 0; i < rule.nodes.size(); ++i)
+                sum += rule.weights[i] * std::pow(rule.nodes[i], k);
             if (k <= 2 * n - 1) {
                 EXPECT_NEAR(sum, 1.0 / (k + 1), 1e-14) << "n = " << n << ", k = " << k;
             } else if (n <= 6) {  // beyond, the remainder (< 1e-8) drowns in rounding of the powers
@@ -73,7 +75,8 @@ TEST(Quadrature, CompositeRulesIntegrateOverTheirPanels) {
     EXPECT_EQ(equal.nodes.size(), 24u);
     EXPECT_NEAR(integrate(equal, sine), 2.0, 1e-10);
     EXPECT_NEAR(std::accumulate(equal.weights.begin(), equal.weights.end(), 0.0), kPi, 1e-14);
-    const QuadratureRule uneven = composite_rule(unit, std::vector<double>{0.0, 0.1, 0.1, 1.0, 3.0, kPi});
+    const QuadratureRule uneven =
+        composite_rule(unit, std::vector<double>{0.0, 0.1, 0.1, 1.0, 3.0, kPi});
     EXPECT_EQ(uneven.nodes.size(), 16u);
     // |sin⁽⁸⁾| ≤ 1: the remainder is bounded by the sum of the panels' factors.
     double bound = 0.0;

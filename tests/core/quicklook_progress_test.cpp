@@ -35,7 +35,9 @@ TEST(Quicklook, WritesAPngWithColorbarAndGreyNaN) {
     ASSERT_GT(png.size(), 24u);
     EXPECT_EQ(png.substr(1, 3), "PNG");
     // IHDR width (big-endian at byte 16): the upscaled image plus the colorbar.
-    const auto byte = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(png[i])); };
+    const auto byte = [&](std::size_t i) {
+        return static_cast<unsigned>(static_cast<unsigned char>(png[i]));
+    };
     const unsigned width = (byte(16) << 24) | (byte(17) << 16) | (byte(18) << 8) | byte(19);
     EXPECT_GT(width, 40u * 8u);
     EXPECT_EQ(default_colormap("S1"), Colormap::Diverging);

@@ -33,10 +33,11 @@ TEST(Planck, StefanBoltzmannConstantFollowsFromTheExactConstants) {
 }
 
 TEST(Planck, TotalRadianceIsStefanBoltzmannOverPi) {
-    // ∫ L(λ,T) dλ = σT⁴/π for a Lambertian blackbody. The band 0.2–1000 µm (the longest wavelength a Band
-    // accepts) misses the tail beyond Λ = 1000 µm, about 6e-6 of the total, added analytically from the
-    // series of Planck's law in x = hc/(λkT) < 0.06 there: L = (2ckT/λ⁴)(1 − x/2 + x²/12 − …), so
-    // ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵) (next term below 1e-12 of the total).
+    // ∫ L(λ,T) dλ = σT⁴/π for a Lambertian blackbody. The band 0.2–1000 µm (the longest wavelength
+    // a Band accepts) misses the tail beyond Λ = 1000 µm, about 6e-6 of the total, added
+    // analytically from the series of Planck's law in x = hc/(λkT) < 0.06 there: L = (2ckT/λ⁴)(1 −
+    // x/2 + x²/12 − …), so ∫_Λ^∞ L dλ = 2ckT/(3Λ³) − hc²/(4Λ⁴) + h²c³/(30kTΛ⁵) (next term below
+    // 1e-12 of the total).
     const Band all(0.2, 1000.0, std::nullopt, 1.0);
     for (double t : {250.0, 300.0, 400.0}) {
         const double expected = kSigmaCodata2018 * std::pow(t, 4) / kPi;
@@ -56,7 +57,10 @@ TEST(Planck, PeakFollowsWiensDisplacementLaw) {
         const double g = (std::sqrt(5.0) - 1.0) / 2.0;
         for (int i = 0; i < 200; ++i) {
             const double c = b - g * (b - a), d = a + g * (b - a);
-            if (planck_radiance(c, t) > planck_radiance(d, t)) b = d; else a = c;
+            if (planck_radiance(c, t) > planck_radiance(d, t))
+                b = d;
+            else
+                a = c;
         }
         EXPECT_NEAR(0.5 * (a + b) * t, kWienB_um_K, 1e-3) << "T = " << t;
     }
@@ -98,7 +102,8 @@ TEST(Band, DerivativeMatchesFiniteDifference) {
 }
 
 TEST(Band, PiecewiseLinearResponseIsIntegratedExactly) {
-    // A triangle 8–10–12 µm with peak 1 has area ½·4·1 = 2 µm; quadrature panels break at the knots.
+    // A triangle 8–10–12 µm with peak 1 has area ½·4·1 = 2 µm; quadrature panels break at the
+    // knots.
     const SpectralResponse tri({8.0, 10.0, 12.0}, {0.0, 1.0, 0.0});
     const Band band(7.0, 13.0, tri);
     EXPECT_NEAR(band.effective_width_um(), 2.0, 1e-12);
@@ -121,7 +126,9 @@ TEST(Band, InvalidLimitsAreRejected) {
 
 TEST(SpectralResponse, LoadsCsvWithHeaderAndComments) {
     test::TempDir dir;
-    test::write_text(dir / "rsr.csv", "# FLIR Tau 2 (illustrative)\nresponse,wavelength_um\n0.0,7.5\n1.0,10\n0.0,13.5\n");
+    test::write_text(
+        dir / "rsr.csv",
+        "# FLIR Tau 2 (illustrative)\nresponse,wavelength_um\n0.0,7.5\n1.0,10\n0.0,13.5\n");
     const auto rsr = SpectralResponse::load_csv(dir / "rsr.csv");
     EXPECT_DOUBLE_EQ(rsr(10.0), 1.0);
     EXPECT_DOUBLE_EQ(rsr(8.75), 0.5);
@@ -140,12 +147,15 @@ void expect_error_containing(const std::function<void()>& f, const std::string& 
 TEST(SpectralResponse, BadFilesGiveClearErrors) {
     test::TempDir dir;
     test::write_text(dir / "nohdr.csv", "lambda,r\n8,1\n");
-    expect_error_containing([&] { SpectralResponse::load_csv(dir / "nohdr.csv"); }, "'wavelength_um' and 'response'");
+    expect_error_containing([&] { SpectralResponse::load_csv(dir / "nohdr.csv"); },
+                            "'wavelength_um' and 'response'");
     test::write_text(dir / "text.csv", "wavelength_um,response\n8,abc\n9,1\n");
-    expect_error_containing([&] { SpectralResponse::load_csv(dir / "text.csv"); }, "text.csv:2: column 'response'");
+    expect_error_containing([&] { SpectralResponse::load_csv(dir / "text.csv"); },
+                            "text.csv:2: column 'response'");
     test::write_text(dir / "order.csv", "wavelength_um,response\n9,1\n8,1\n");
     expect_error_containing([&] { SpectralResponse::load_csv(dir / "order.csv"); }, "increase");
-    expect_error_containing([&] { SpectralResponse::load_csv(dir / "missing.csv"); }, "cannot open");
+    expect_error_containing([&] { SpectralResponse::load_csv(dir / "missing.csv"); },
+                            "cannot open");
 }
 
 }  // namespace

@@ -1,4 +1,7 @@
-// read_raw_image: 16-bit PNG and TIFF keep their integer counts unscaled; EXR channels; clear errors.
+// read_raw_image: 16-bit PNG and TIFF keep their integer counts unscaled; EXR channels; clear
+// errors.
+
+#include "tirpol/core/raster_io.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +10,6 @@
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/raster_io.h"
 
 namespace tirpol {
 namespace {
@@ -16,7 +18,8 @@ TEST(RasterIo, SixteenBitPngAndTiffKeepRawCounts) {
     test::TempDir dir;
     cv::Mat m(3, 4, CV_16UC1);
     for (int y = 0; y < 3; ++y)
-        for (int x = 0; x < 4; ++x) m.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(18109 + 1000 * y + x);
+        for (int x = 0; x < 4; ++x)
+            m.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(18109 + 1000 * y + x);
     for (const char* name : {"raw.png", "raw.tiff"}) {
         ASSERT_TRUE(cv::imwrite((dir / name).string(), m));
         const Image im = read_raw_image(dir / name);

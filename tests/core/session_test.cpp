@@ -1,6 +1,6 @@
-// Session store (schema tirpol.session v3, v1 and v2 still read; docs/session-format.md): round trips,
-// atomic creation, crash recovery, no-overwrite guarantees and the reader's error messages for
-// damaged sessions.
+// Session store (schema tirpol.session v3, v1 and v2 still read; docs/session-format.md): round
+// trips, atomic creation, crash recovery, no-overwrite guarantees and the reader's error messages
+// for damaged sessions.
 
 #include "tirpol/core/session.h"
 
@@ -18,12 +18,21 @@
 namespace tirpol {
 namespace {
 
-using ::testing::HasSubstr;
 using nlohmann::json;
+using ::testing::HasSubstr;
 
 SessionManifest example_manifest() {
     SessionManifest m;
-    m.camera = {"sim://panel", "tirpol", "SimCam", "0001", "Mono16", 8, 4, 16, 30.0, {{"R", 16556.0}, {"B", 1428.0}}};
+    m.camera = {"sim://panel",
+                "tirpol",
+                "SimCam",
+                "0001",
+                "Mono16",
+                8,
+                4,
+                16,
+                30.0,
+                {{"R", 16556.0}, {"B", 1428.0}}};
     m.stage = {"sim://", "tirpol", "SimStage", "S1", "1.0", 409600.0 / 3.0};
     m.plan = json{{"angles_deg", {0, 45, 90, 135}}, {"frames_per_angle", 4}};
     m.metadata = json{{"site", "roof"}, {"operator", "test"}};
@@ -62,7 +71,8 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     const auto dir = tmp / "s";
     {
         auto writer = SessionWriter::create(dir, example_manifest());
-        for (double a : {0.0, 45.0, 90.0, 135.0}) writer.add_record(polarizer_record(a, 0), example_frame(static_cast<float>(a)));
+        for (double a : {0.0, 45.0, 90.0, 135.0})
+            writer.add_record(polarizer_record(a, 0), example_frame(static_cast<float>(a)));
         SessionRecord bb;
         bb.kind = RecordKind::Blackbody;
         bb.file = session_frame_file("bb_303.15K_r0");
@@ -86,7 +96,8 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     const Image frame = read_session_frame(dir, m, m.records[2]);
     EXPECT_EQ(frame.channel("counts"), example_frame(90.0f).channel("counts"));
     EXPECT_EQ(frame.channel("counts_std"), example_frame(90.0f).channel("counts_std"));
-    EXPECT_EQ(record_from_attributes(frame.attributes(), m.records[2].file, "header"), m.records[2]);
+    EXPECT_EQ(record_from_attributes(frame.attributes(), m.records[2].file, "header"),
+              m.records[2]);
     EXPECT_EQ(std::get<std::string>(frame.attributes().at("camera_uri")), "sim://panel");
 
     // The manifest is the documented schema, field for field.
@@ -136,7 +147,8 @@ TEST(Session, FirstFrameBeforeTheSettleEndIsRefused) {
     r.timing->settle_end_ns = r.first_timestamp_ns + 1;
     auto writer = SessionWriter::create(tmp / "s", example_manifest());
     EXPECT_THAT([&] { writer.add_record(r, example_frame(1.0f)); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("first_timestamp_ns: expected ≥ timing.settle_end_ns")));
+                ::testing::ThrowsMessage<Error>(
+                    HasSubstr("first_timestamp_ns: expected ≥ timing.settle_end_ns")));
 }
 
 TEST(Session, VersionOneSessionsStillReadAndUseTheRequestedAngle) {
@@ -155,7 +167,8 @@ TEST(Session, VersionOneSessionsStillReadAndUseTheRequestedAngle) {
     EXPECT_FALSE(m.records[0].timing);
     // A v1 read-back preceded frames that may have been exposed mid-move: the request is the angle.
     EXPECT_EQ(record_polarizer_angle_deg(m, m.records[0]), 90.0);
-    EXPECT_THAT([&] { SessionWriter::resume(dir); }, ::testing::ThrowsMessage<Error>(HasSubstr("schema v1 session")));
+    EXPECT_THAT([&] { SessionWriter::resume(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("schema v1 session")));
 }
 
 TEST(Session, BlackbodyReadingsRoundTripThroughTheManifestAndTheFrameHeader) {
@@ -166,9 +179,11 @@ TEST(Session, BlackbodyReadingsRoundTripThroughTheManifestAndTheFrameHeader) {
     r.file = session_frame_file("s000_bb_303.15K");
     r.blackbody_temperature_k = 303.1487;
     r.timing = example_timing();
-    r.blackbody_readings = BlackbodyReadings{303.15, 303.1487, 0.0042, 303.141, 303.157, 7, true, 41.25};
+    r.blackbody_readings =
+        BlackbodyReadings{303.15, 303.1487, 0.0042, 303.141, 303.157, 7, true, 41.25};
     SessionManifest manifest = example_manifest();
-    manifest.blackbody_controller = SessionBlackbodyController{"fluke-4180:///dev/ttyUSB1", "FLUKE", "4180", "B12345", "1.10"};
+    manifest.blackbody_controller =
+        SessionBlackbodyController{"fluke-4180:///dev/ttyUSB1", "FLUKE", "4180", "B12345", "1.10"};
     {
         auto writer = SessionWriter::create(tmp / "s", manifest);
         writer.add_record(r, example_frame(1.0f));
@@ -185,7 +200,8 @@ TEST(Session, BlackbodyReadingsRoundTripThroughTheManifestAndTheFrameHeader) {
     j["records"][0]["blackbody_readings"]["min_k"] = 304.0;
     write_file_atomic(tmp / "s" / "session.json", j.dump(2));
     EXPECT_THAT([&] { read_session(tmp / "s"); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("records[0].blackbody_readings.mean_k: expected min_k ≤ mean_k ≤ max_k")));
+                ::testing::ThrowsMessage<Error>(HasSubstr(
+                    "records[0].blackbody_readings.mean_k: expected min_k ≤ mean_k ≤ max_k")));
 }
 
 TEST(Session, VersionTwoSessionsReadAndResume) {
@@ -215,9 +231,11 @@ TEST(Session, FfcEventsRoundTripAndVersionThreeSessionsWithoutThemRead) {
     // v4 adds ffc_events: every flat-field correction, scheduled or detected, kept exactly.
     test::TempDir tmp;
     const auto dir = tmp / "ffc";
-    const FfcEvent scheduled{FfcEvent::Kind::Scheduled, 1795000000123456789, 0, 308.25, 1234, "every cycle"};
-    const FfcEvent detected{FfcEvent::Kind::Detected, 1795000001123456789, 1, std::nullopt, std::nullopt,
-                            "frame mean stepped by 23.4 counts"};
+    const FfcEvent scheduled{
+        FfcEvent::Kind::Scheduled, 1795000000123456789, 0, 308.25, 1234, "every cycle"};
+    const FfcEvent detected{
+        FfcEvent::Kind::Detected,           1795000001123456789, 1, std::nullopt, std::nullopt,
+        "frame mean stepped by 23.4 counts"};
     {
         auto writer = SessionWriter::create(dir, example_manifest());
         writer.add_ffc_event(scheduled);
@@ -231,7 +249,8 @@ TEST(Session, FfcEventsRoundTripAndVersionThreeSessionsWithoutThemRead) {
     j["ffc_events"][0]["kind"] = "maybe";
     write_file_atomic(dir / "session.json", j.dump(2));
     EXPECT_THAT([&] { read_session(dir); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("ffc_events[0].kind: expected \"scheduled\" or \"detected\"")));
+                ::testing::ThrowsMessage<Error>(
+                    HasSubstr("ffc_events[0].kind: expected \"scheduled\" or \"detected\"")));
     j["schema_version"] = 3;
     j.erase("ffc_events");
     write_file_atomic(dir / "session.json", j.dump(2));
@@ -264,11 +283,13 @@ TEST(Session, FrameAuditRoundTripsAndItsColumnsMustMatchTheFrames) {
     j["records"][0]["audit"]["frame_id"] = json::array({41});
     write_file_atomic(dir / "session.json", j.dump(2));
     EXPECT_THAT([&] { read_session(dir); },
-                ::testing::ThrowsMessage<Error>(HasSubstr("records[0].audit.frame_id: expected 2 entries (the record's frames), got 1")));
+                ::testing::ThrowsMessage<Error>(HasSubstr(
+                    "records[0].audit.frame_id: expected 2 entries (the record's frames), got 1")));
 }
 
 TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
-    // A file-size limit makes write(2) fail as a full disk does (EFBIG instead of ENOSPC; SIGXFSZ ignored).
+    // A file-size limit makes write(2) fail as a full disk does (EFBIG instead of ENOSPC; SIGXFSZ
+    // ignored).
     test::TempDir tmp;
     const auto dir = tmp / "s";
     rlimit old{};
@@ -288,7 +309,8 @@ TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
     EXPECT_THAT(error, HasSubstr("session.json"));
     // Nothing that a fresh start or --resume would trip over.
     EXPECT_FALSE(std::filesystem::exists(dir));
-    for (const auto& e : std::filesystem::directory_iterator(tmp.path())) ADD_FAILURE() << "left behind: " << e.path();
+    for (const auto& e : std::filesystem::directory_iterator(tmp.path()))
+        ADD_FAILURE() << "left behind: " << e.path();
     SessionWriter::create(dir, example_manifest());
     EXPECT_TRUE(read_session(dir).records.empty());
 }

@@ -29,7 +29,8 @@ TEST(StokesFrame, SPolarizedLightOnAnUntiltedFacetStaysS1PlusOne) {
     for (int i = 0; i < 100; ++i) {
         const Vec3 k = random_unit(rng);
         if (std::abs(k.z()) > 0.999) continue;
-        const StokesVector s = change_frame(StokesVector(1, 1, 0, 0), world_frame(k), surface_frame(k, Vec3::UnitZ()));
+        const StokesVector s =
+            change_frame(StokesVector(1, 1, 0, 0), world_frame(k), surface_frame(k, Vec3::UnitZ()));
         EXPECT_NEAR(s[1], 1.0, 1e-12);
         EXPECT_NEAR(s[2], 0.0, 1e-12);
     }
@@ -60,10 +61,12 @@ TEST(StokesFrame, AgreesWithThePapersEquations7To10) {
 
 TEST(StokesFrame, TiltedSurfaceRotatesByItsTiltAngle) {
     // The paper's example: a surface tilted 45° about an axis in the plane of the incident light
-    // (here: light travelling north, surface tilted about the north axis) sees vertical light at 45°.
+    // (here: light travelling north, surface tilted about the north axis) sees vertical light at
+    // 45°.
     const Vec3 k(0, 1, 0);
     const Vec3 n = Vec3(std::sin(kPi / 4), 0, std::cos(kPi / 4));
-    EXPECT_NEAR(std::abs(frame_rotation_angle(world_frame(k), surface_frame(k, n))), kPi / 4, 1e-12);
+    EXPECT_NEAR(std::abs(frame_rotation_angle(world_frame(k), surface_frame(k, n))), kPi / 4,
+                1e-12);
 }
 
 TEST(StokesFrame, DegenerateGeometryStaysFinite) {
@@ -79,8 +82,8 @@ TEST(StokesFrame, DegenerateGeometryStaysFinite) {
 }
 
 TEST(StokesFrame, RotatingTheSceneAboutTheVerticalLeavesCameraStokesUnchanged) {
-    // Light leaving a tilted facet towards the camera, expressed in the camera (world) frame, must not
-    // depend on the azimuth of the whole scene.
+    // Light leaving a tilted facet towards the camera, expressed in the camera (world) frame, must
+    // not depend on the azimuth of the whole scene.
     const Vec3 k0 = Vec3(0.3, -0.9, 0.2).normalized(), n0 = Vec3(0.2, -0.4, 0.9).normalized();
     const StokesVector in_surface(1.0, -0.2, 0.05, 0.0);
     const StokesVector ref = change_frame(in_surface, surface_frame(k0, n0), world_frame(k0));

@@ -1,6 +1,9 @@
-// The fixed-node (Jet-friendly) emissivity quadrature of tirpol::fitting against the materials module's
-// own integrator (materials/emissivity.h, sample-space Gauss–Legendre that follows the lobe), and against
-// closed forms: a Lambertian surface of albedo πρ_D has ε_S0 = 1 − πρ_D and ε_S1 = 0 at every angle.
+// The fixed-node (Jet-friendly) emissivity quadrature of tirpol::fitting against the materials
+// module's own integrator (materials/emissivity.h, sample-space Gauss–Legendre that follows the
+// lobe), and against closed forms: a Lambertian surface of albedo πρ_D has ε_S0 = 1 − πρ_D and ε_S1
+// = 0 at every angle.
+
+#include "tirpol/fitting/emissivity_quadrature.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +12,6 @@
 #include "synthetic_emissivity.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/fitting/emissivity_quadrature.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/microfacet.h"
 
@@ -24,7 +26,8 @@ materials::EmissivityOptions reference_options() {
     return o;
 }
 
-// Paint-like, rough and smoother-than-paint parameter sets (σ from 0.1 to 0.6, finite τ, Ω, volume term).
+// Paint-like, rough and smoother-than-paint parameter sets (σ from 0.1 to 0.6, finite τ, Ω, volume
+// term).
 struct Case {
     const char* what;
     materials::ShellTargetParameters<double> p;
@@ -52,8 +55,9 @@ TEST(EmissivityQuadrature, AgreesWithMaterialsIntegratorAtEveryAngle) {
 }
 
 TEST(EmissivityQuadrature, LambertianClosedForm) {
-    // bias = 0 leaves only ρ_D: ∫ ρ_D cosθi dωi = π ρ_D; no polarization. The integrand cosθ·sinθ is not a
-    // polynomial, so Gauss–Legendre is exact only to the rule's order: 3 nodes per panel give < 1e-5.
+    // bias = 0 leaves only ρ_D: ∫ ρ_D cosθi dωi = π ρ_D; no polarization. The integrand cosθ·sinθ
+    // is not a polynomial, so Gauss–Legendre is exact only to the rule's order: 3 nodes per panel
+    // give < 1e-5.
     const materials::ShellTargetParameters<double> p{1.5, 0.0, 0.3, 0.0, 1.0, 1.0, 0.05, 0.0};
     for (double angle_deg : {0.0, 45.0, 89.0}) {
         const auto [s0, s1] = EmissivityQuadrature(deg_to_rad(angle_deg), {3}).emissivity(p);

@@ -1,5 +1,6 @@
-// The fit's parameter order (MicrofacetParameter, τ and Ω in degrees) and the model's parameters (τ, Ω
-// in radians) convert in one place, both ways, without loss beyond the degree↔radian rounding.
+// The fit's parameter order (MicrofacetParameter, τ and Ω in degrees) and the model's parameters
+// (τ, Ω in radians) convert in one place, both ways, without loss beyond the degree↔radian
+// rounding.
 
 #include <gtest/gtest.h>
 
@@ -9,8 +10,8 @@ namespace tirpol::fitting {
 namespace {
 
 TEST(FitOrder, ModelParametersRoundTripThroughFitOrder) {
-    const materials::ShellTargetParameters<double> p{1.62,  0.07, 0.31, 0.9, deg_to_rad(20.0), deg_to_rad(55.0),
-                                                     0.012, 0.003};
+    const materials::ShellTargetParameters<double> p{
+        1.62, 0.07, 0.31, 0.9, deg_to_rad(20.0), deg_to_rad(55.0), 0.012, 0.003};
     const auto values = fit_order_values(p);
     using P = MicrofacetParameter;
     EXPECT_EQ(values[static_cast<std::size_t>(P::n)], 1.62);

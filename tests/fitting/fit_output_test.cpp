@@ -2,6 +2,8 @@
 // emissivity` and the renderer read) and reproduces the fitted curve; the JSON report carries the
 // documented keys; the plot is a PNG of the documented size.
 
+#include "tirpol/fitting/fit_output.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -11,7 +13,6 @@
 #include "synthetic_emissivity.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/material.h"
@@ -31,15 +32,16 @@ struct Fitted {
 // Fitted once for all tests of this file (the fit is deterministic).
 const Fitted& fit_two_bands() {
     static const Fitted fitted = [] {
-    const auto truth = test::paint_truth();
-    std::vector<EmissivityDataset> data = {
-        test::noisy(test::clean_dataset(truth, {0, 20, 40, 60, 75, 85}, 0.004, 0.002, 8.5), 3),
-        test::noisy(test::clean_dataset(truth, {0, 20, 40, 60, 75, 85}, 0.004, 0.002, 11.0), 4)};
-    MicrofacetFitOptions o;
-    o.starts = 2;
-    o.quadrature.order = 2;
-    MicrofacetFitResult r = MicrofacetFitProblem(data, o).solve();
-    return Fitted{data, r};
+        const auto truth = test::paint_truth();
+        std::vector<EmissivityDataset> data = {
+            test::noisy(test::clean_dataset(truth, {0, 20, 40, 60, 75, 85}, 0.004, 0.002, 8.5), 3),
+            test::noisy(test::clean_dataset(truth, {0, 20, 40, 60, 75, 85}, 0.004, 0.002, 11.0),
+                        4)};
+        MicrofacetFitOptions o;
+        o.starts = 2;
+        o.quadrature.order = 2;
+        MicrofacetFitResult r = MicrofacetFitProblem(data, o).solve();
+        return Fitted{data, r};
     }();
     return fitted;
 }
@@ -72,15 +74,16 @@ TEST(FitOutput, MaterialYamlLoadsWithTheMaterialsLoaderAndKeepsTheValues) {
 TEST(FitOutput, JsonReportHasTheDocumentedKeys) {
     const Fitted& f = fit_two_bands();
     const nlohmann::json j = fit_report_json(f.result, f.data, {{"a.csv"}, "date", "cmd"});
-    for (const char* key : {"model", "data_files", "date_utc", "termination", "usable", "chi2", "dof", "reduced_chi2",
-                            "parameters", "correlation", "samples", "starts", "warnings", "covariance_scaled"})
+    for (const char* key :
+         {"model", "data_files", "date_utc", "termination", "usable", "chi2", "dof", "reduced_chi2",
+          "parameters", "correlation", "samples", "starts", "warnings", "covariance_scaled"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["samples"].size(), 12u);
     EXPECT_EQ(j["starts"]["count"], 2);
     const auto& n = j["parameters"][0];
     EXPECT_EQ(n["name"], "n@8.5um");
-    EXPECT_NEAR(n["interval_2sigma"][1].get<double>() - n["value"].get<double>(), 2.0 * n["sigma"].get<double>(),
-                1e-12);
+    EXPECT_NEAR(n["interval_2sigma"][1].get<double>() - n["value"].get<double>(),
+                2.0 * n["sigma"].get<double>(), 1e-12);
     EXPECT_EQ(j["correlation"]["names"].size(), 6u);
     const std::string text = fit_report_text(f.result, f.data);
     EXPECT_THAT(text, HasSubstr("chi2/dof"));

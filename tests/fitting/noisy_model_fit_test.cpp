@@ -1,7 +1,7 @@
-// Least squares of a noisy model (fitting/noisy_model_fit.h): the covariance against the closed form
-// of weighted linear least squares, and the coverage of its σ when the model's own Monte Carlo noise
-// (common random numbers: one fixed offset per fit) enters the weights — Press et al., Numerical
-// Recipes 3rd ed., §15.4–15.5.
+// Least squares of a noisy model (fitting/noisy_model_fit.h): the covariance against the closed
+// form of weighted linear least squares, and the coverage of its σ when the model's own Monte Carlo
+// noise (common random numbers: one fixed offset per fit) enters the weights — Press et al.,
+// Numerical Recipes 3rd ed., §15.4–15.5.
 
 #include "tirpol/fitting/noisy_model_fit.h"
 
@@ -45,7 +45,8 @@ std::string error_of(const std::function<void()>& f) {
 
 // A straight line y = a + b·x with measurement σ_m and a model variance σ_s² at every point: the
 // fit's covariance must be the closed form (XᵀWX)⁻¹ with W = 1/(σ_m² + σ_s²), and its values the
-// weighted normal equations' solution to 1 % of σ (finite differences are exact for a linear model).
+// weighted normal equations' solution to 1 % of σ (finite differences are exact for a linear
+// model).
 TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
     const int m = 12;
     const double sigma_m = 0.1, sigma_s = 0.05;
@@ -55,7 +56,8 @@ TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
     for (int i = 0; i < m; ++i) x[i] = i, y[i] = 1.5 + 0.3 * i + noise(rng);
     const NoisyModel line = [&](const std::vector<double>& t) {
         NoisyPrediction p;
-        for (int i = 0; i < m; ++i) p.value.push_back(t[0] + t[1] * x[i]), p.variance.push_back(sigma_s * sigma_s);
+        for (int i = 0; i < m; ++i)
+            p.value.push_back(t[0] + t[1] * x[i]), p.variance.push_back(sigma_s * sigma_s);
         return p;
     };
     const NoisyModelFitResult r = fit_noisy_model(line, y, sy, two_parameter_options(0.0, 0.0));
@@ -69,10 +71,11 @@ TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
     const Eigen::Matrix2d expected = (w * X.transpose() * X).inverse();
     const Eigen::Vector2d solution = expected * (w * X.transpose() * Y);
     for (int i = 0; i < 2; ++i) {
-        // The solver stops at relative parameter changes of 1e-4 (noisy models: finer is noise), so the
-        // values agree to a small fraction of their σ, the covariance to rounding.
+        // The solver stops at relative parameter changes of 1e-4 (noisy models: finer is noise), so
+        // the values agree to a small fraction of their σ, the covariance to rounding.
         EXPECT_NEAR(r.values[i], solution(i), 0.01 * std::sqrt(expected(i, i)));
-        for (int j = 0; j < 2; ++j) EXPECT_NEAR(r.covariance(i, j), expected(i, j), 1e-6 * std::abs(expected(i, i)));
+        for (int j = 0; j < 2; ++j)
+            EXPECT_NEAR(r.covariance(i, j), expected(i, j), 1e-6 * std::abs(expected(i, i)));
     }
     EXPECT_EQ(r.dof, m - 2);
     EXPECT_NEAR(r.sigma[1], std::sqrt(expected(1, 1)), 1e-9);
@@ -131,20 +134,29 @@ TEST(NoisyModelFit, BadInputNamesTheParameterAndWhatWasExpected) {
     const std::vector<double> y{1.0, 1.0, 2.0}, sy{0.1, 0.1, 0.1};
     auto o = two_parameter_options(0.0, 0.0);
     o.initial[1] = 20.0;
-    EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, sy, o); }).find("b: initial value 20 outside its bounds"),
+    EXPECT_NE(error_of([&] {
+                  fit_noisy_model(flat, y, sy, o);
+              }).find("b: initial value 20 outside its bounds"),
               std::string::npos);
     o = two_parameter_options(0.0, 0.0);
     o.steps[0] = 0.0;
-    EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, sy, o); }).find("a: finite-difference step 0"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of([&] { fit_noisy_model(flat, y, sy, o); }).find("a: finite-difference step 0"),
+        std::string::npos);
     o = two_parameter_options(0.0, 0.0);
-    EXPECT_NE(error_of([&] { fit_noisy_model(flat, y, {0.1, 0.0, 0.1}, o); }).find("finite σ > 0"), std::string::npos);
+    EXPECT_NE(error_of([&] {
+                  fit_noisy_model(flat, y, {0.1, 0.0, 0.1}, o);
+              }).find("finite σ > 0"),
+              std::string::npos);
     EXPECT_NE(error_of([&] {
                   fit_noisy_model(flat, {1.0, 2.0}, {0.1, 0.1}, o);
               }).find("expected at least 3"),
               std::string::npos);
-    const NoisyModel short_model = [](const std::vector<double>&) { return NoisyPrediction{{1.0}, {0.0}}; };
-    EXPECT_NE(error_of([&] { fit_noisy_model(short_model, y, sy, o); }).find("expected 3"), std::string::npos);
+    const NoisyModel short_model = [](const std::vector<double>&) {
+        return NoisyPrediction{{1.0}, {0.0}};
+    };
+    EXPECT_NE(error_of([&] { fit_noisy_model(short_model, y, sy, o); }).find("expected 3"),
+              std::string::npos);
 }
 
 TEST(NoisyModelFit, AModelErrorOrACancelStopsTheFit) {
@@ -154,7 +166,9 @@ TEST(NoisyModelFit, AModelErrorOrACancelStopsTheFit) {
         if (++calls > 3) fail("render failed at a = {}", t[0]);
         return NoisyPrediction{{t[0], t[0], t[1]}, {0.0, 0.0, 0.0}};
     };
-    EXPECT_NE(error_of([&] { fit_noisy_model(failing, y, sy, two_parameter_options(0.0, 0.0)); }).find("render failed"),
+    EXPECT_NE(error_of([&] {
+                  fit_noisy_model(failing, y, sy, two_parameter_options(0.0, 0.0));
+              }).find("render failed"),
               std::string::npos);
     std::atomic<bool> cancel{true};
     auto o = two_parameter_options(0.0, 0.0);

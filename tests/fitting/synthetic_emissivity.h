@@ -1,7 +1,7 @@
 #pragma once
 // Simulated emissivity measurements for the fitting tests: the materials module's own integrator
-// (materials::directional_emissivity, independent of the fit's fixed-node quadrature) evaluated at the
-// true parameters, plus Gaussian noise of the stated uncertainty.
+// (materials::directional_emissivity, independent of the fit's fixed-node quadrature) evaluated at
+// the true parameters, plus Gaussian noise of the stated uncertainty.
 
 #include <cmath>
 #include <random>
@@ -14,7 +14,8 @@
 
 namespace tirpol::fitting::test {
 
-/// Flat black paint-like truth (n 1.55, k 0.12, σ 0.25, ρ_D 0.01; bias 1, no Beard–Maxwell shadowing).
+/// Flat black paint-like truth (n 1.55, k 0.12, σ 0.25, ρ_D 0.01; bias 1, no Beard–Maxwell
+/// shadowing).
 inline materials::ShellTargetParameters<double> paint_truth() {
     return {1.55, 0.12, 0.25, 1.0, deg_to_rad(90.0), deg_to_rad(1e6), 0.01, 0.0};
 }
@@ -33,12 +34,13 @@ inline materials::MicrofacetBrdf brdf_of(const materials::ShellTargetParameters<
 
 /// Noise-free samples at the given angles (uncertainties attached but not applied).
 inline EmissivityDataset clean_dataset(const materials::ShellTargetParameters<double>& truth,
-                                       const std::vector<double>& angles_deg, double sigma_s0, double sigma_s1,
-                                       double wavelength_um = 10.0) {
+                                       const std::vector<double>& angles_deg, double sigma_s0,
+                                       double sigma_s1, double wavelength_um = 10.0) {
     const materials::MicrofacetBrdf brdf = brdf_of(truth);
     EmissivityDataset d{"simulated", wavelength_um, {}};
     for (double a : angles_deg) {
-        const StokesVector e = materials::directional_emissivity(brdf, std::cos(deg_to_rad(a)), wavelength_um);
+        const StokesVector e =
+            materials::directional_emissivity(brdf, std::cos(deg_to_rad(a)), wavelength_um);
         d.samples.push_back({a, e(0), sigma_s0, e(1), sigma_s1, ""});
     }
     return d;

@@ -1,11 +1,12 @@
-// An unattended radiometric calibration end to end (issue 15 item 3): the Fluke 4180 driver talks to
-// the blackbody simulator on a pseudo-terminal (first-order plate, τ = 0.5 s so the test takes seconds
-// rather than the hours of a real 4180), a free-running simulated camera's counts follow the plate's
-// *actual*, lagging temperature, counts = offset + gain·L(T_plate) per pixel (L: 8–14 µm band radiance),
-// run_capture sets each set-point, waits for stability and records the controller's readings; the
-// calibration reads that session as `tirpol calibrate radiometric` does, and brightness temperatures
-// of a new set-point come back within 30 mK. A second test shows that frames taken right after the
-// set-point command, labelled with the set-point, bias the same calibration by kelvins.
+// An unattended radiometric calibration end to end (issue 15 item 3): the Fluke 4180 driver talks
+// to the blackbody simulator on a pseudo-terminal (first-order plate, τ = 0.5 s so the test takes
+// seconds rather than the hours of a real 4180), a free-running simulated camera's counts follow
+// the plate's *actual*, lagging temperature, counts = offset + gain·L(T_plate) per pixel (L: 8–14
+// µm band radiance), run_capture sets each set-point, waits for stability and records the
+// controller's readings; the calibration reads that session as `tirpol calibrate radiometric` does,
+// and brightness temperatures of a new set-point come back within 30 mK. A second test shows that
+// frames taken right after the set-point command, labelled with the set-point, bias the same
+// calibration by kelvins.
 
 #include <gtest/gtest.h>
 
@@ -15,9 +16,9 @@
 #include "../acquisition/pty_device_thread.h"
 #include "test_support.h"
 #include "tirpol/acquisition/blackbody.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/acquisition/internal/blackbody_wait.h"
-#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/internal/simulated_camera.h"
 #include "tirpol/calibration/session_calibration.h"
@@ -45,8 +46,9 @@ BlackbodySimulatorOptions plate() {
 }
 
 /// The rig: blackbody on a pty, a sim:// stage, a 60 Hz camera looking at the plate with per-pixel
-/// gain (≈ 400 counts per W/(m²·sr), ±10 %: the 8–14 µm radiance is 57.6 W/(m²·sr) at 303 K and 71.4
-/// at 318 K, so ≤ 34000 counts, well below the 16-bit ceiling) and offset (≈ 2000 counts, ±300).
+/// gain (≈ 400 counts per W/(m²·sr), ±10 %: the 8–14 µm radiance is 57.6 W/(m²·sr) at 303 K
+/// and 71.4 at 318 K, so ≤ 34000 counts, well below the 16-bit ceiling) and offset (≈ 2000 counts,
+/// ±300).
 struct Rig {
     test::PtyDeviceThread<BlackbodySimulator> sim{plate()};
     std::unique_ptr<BlackbodyController> blackbody =
@@ -69,11 +71,13 @@ struct Rig {
         config.noise_std_counts = kNoiseCounts;
         config.fpa_temperature_k = 305.0;
         config.seed = 11;
-        camera = std::make_unique<SimulatedCamera>(config, [this](double, std::vector<float>& counts) {
-            const double radiance = band.radiance(sim.device().plate_temperature_k(Clock::now()));
-            for (std::size_t i = 0; i < counts.size(); ++i)
-                counts[i] = static_cast<float>(offset[i] + gain[i] * radiance);
-        });
+        camera =
+            std::make_unique<SimulatedCamera>(config, [this](double, std::vector<float>& counts) {
+                const double radiance =
+                    band.radiance(sim.device().plate_temperature_k(Clock::now()));
+                for (std::size_t i = 0; i < counts.size(); ++i)
+                    counts[i] = static_cast<float>(offset[i] + gain[i] * radiance);
+            });
     }
 
     /// Mean of `n` frames from now on.
@@ -81,14 +85,16 @@ struct Rig {
         std::vector<float> sum(static_cast<std::size_t>(kWidth * kHeight), 0.0f);
         for (int k = 0; k < n; ++k) {
             const Frame f = camera->grab(std::chrono::seconds(5)).value_or_throw();
-            for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += f.counts[i] / static_cast<float>(n);
+            for (std::size_t i = 0; i < sum.size(); ++i)
+                sum[i] += f.counts[i] / static_cast<float>(n);
         }
         return sum;
     }
 
-    /// Brightness temperatures (K) of the plate held stable at kCheckK, through `cal`, and the plate's true
-    /// temperature.
-    std::pair<std::vector<float>, double> check_temperatures(const calibration::RadiometricCalibration& cal) {
+    /// Brightness temperatures (K) of the plate held stable at kCheckK, through `cal`, and the
+    /// plate's true temperature.
+    std::pair<std::vector<float>, double> check_temperatures(
+        const calibration::RadiometricCalibration& cal) {
         bring_blackbody_to(*blackbody, kCheckK, {0.01, 0.3, 30.0, 0.05}).value_or_throw();
         ensure_streaming();
         const double truth = sim.device().plate_temperature_k(Clock::now());
@@ -155,10 +161,12 @@ metadata: {polarizer_in_beam: false}
 
     const auto cal = calibration::calibrate_radiometric_session(tmp / "s", rig.band);
     const auto [temperatures, truth] = rig.check_temperatures(cal);
-    std::printf("brightness temperature error at %.2f K after the unattended session: max %.4f K over %d pixels\n",
-                kCheckK, max_abs_error(temperatures, truth), kWidth * kHeight);
-    // Budget: 3 counts of noise over 24 + 32 frames ≈ 0.6 + 0.5 counts, ≈ 3 mK at ≈ 350 counts/K, the
-    // controller's 1 mK sensor noise and the ±10 mK tolerance the plate held: 30 mK bounds it.
+    std::printf(
+        "brightness temperature error at %.2f K after the unattended session: max %.4f K over %d "
+        "pixels\n",
+        kCheckK, max_abs_error(temperatures, truth), kWidth * kHeight);
+    // Budget: 3 counts of noise over 24 + 32 frames ≈ 0.6 + 0.5 counts, ≈ 3 mK at ≈ 350 counts/K,
+    // the controller's 1 mK sensor noise and the ±10 mK tolerance the plate held: 30 mK bounds it.
     EXPECT_LT(max_abs_error(temperatures, truth), 0.03);
 }
 
@@ -190,8 +198,8 @@ TEST(BlackbodyCalibration, CapturingBeforeTheSetPointIsStableBiasesTheCalibratio
     const double hasty_error = max_abs_error(hasty_t, truth_hasty);
     const auto [patient_t, truth_patient] = rig.check_temperatures(patient);
     const double patient_error = max_abs_error(patient_t, truth_patient);
-    std::printf("brightness temperature error at %.2f K: without the wait %.3f K, with it %.4f K\n", kCheckK,
-                hasty_error, patient_error);
+    std::printf("brightness temperature error at %.2f K: without the wait %.3f K, with it %.4f K\n",
+                kCheckK, hasty_error, patient_error);
     EXPECT_GT(hasty_error, 1.0);
     EXPECT_LT(patient_error, 0.03);
 }

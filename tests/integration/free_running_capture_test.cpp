@@ -1,11 +1,11 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // The time-true rig (issue 12): a free-running GigE Vision camera (FakeGigECameraServer over real
 // GVCP/GVSP on loopback, no software trigger, its own 30 Hz clock, a lossy link) looks through a
-// polarizer on the APT stage simulator (real serial driver on a pseudo-terminal) turning at 15°/s, a
-// K10CR1's pace. Each frame is rendered as the polarizer image of a known Stokes scene,
-// I(α) = ½(S0 + S1 cos 2α + S2 sin 2α) (ideal polarizer, Malus's law in Stokes form; the paper's eqs
-// 14–16 invert it), averaged over the frame's exposure while the mount physically turns, plus noise.
-// The capture loop must keep only frames exposed after each move: checked from the pixels (the angle
+// polarizer on the APT stage simulator (real serial driver on a pseudo-terminal) turning at 15°/s,
+// a K10CR1's pace. Each frame is rendered as the polarizer image of a known Stokes scene, I(α) =
+// ½(S0 + S1 cos 2α + S2 sin 2α) (ideal polarizer, Malus's law in Stokes form; the paper's eqs 14–16
+// invert it), averaged over the frame's exposure while the mount physically turns, plus noise. The
+// capture loop must keep only frames exposed after each move: checked from the pixels (the angle
 // each record's pixels were exposed at) and by reducing the four records back to the scene's Stokes
 // image within noise.
 
@@ -24,8 +24,8 @@
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {
@@ -40,7 +40,8 @@ constexpr double kPolarizedCounts = 4000.0;
 constexpr double kDegPerS = 15.0;
 
 /// The scene in counts: S0 ramps across the image; the top-left quarter is polarized along 0°
-/// (S1 = P), the top-right along 45° (S2 = P), the bottom half along 60° (S1 = P cos 120°, S2 = P sin 120°).
+/// (S1 = P), the top-right along 45° (S2 = P), the bottom half along 60° (S1 = P cos 120°, S2 = P
+/// sin 120°).
 struct Stokes {
     double s0, s1, s2;
 };
@@ -53,14 +54,15 @@ Stokes truth(int x, int y) {
     return x < kWidth / 2 ? Stokes{s0, kPolarizedCounts, 0.0} : Stokes{s0, 0.0, kPolarizedCounts};
 }
 
-/// The angle the pixels of a mean image were exposed at (degrees, modulo 180), from the top half: each
-/// pixel gives cos 2α (top-left) or sin 2α (top-right) as (2I − S0)/P.
+/// The angle the pixels of a mean image were exposed at (degrees, modulo 180), from the top half:
+/// each pixel gives cos 2α (top-left) or sin 2α (top-right) as (2I − S0)/P.
 double angle_from_pixels_deg(const std::vector<float>& counts) {
     double c = 0.0, s = 0.0;
     for (int y = 0; y < kHeight / 2; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const double v =
-                (2.0 * counts[static_cast<std::size_t>(y * kWidth + x)] - truth(x, y).s0) / kPolarizedCounts;
+                (2.0 * counts[static_cast<std::size_t>(y * kWidth + x)] - truth(x, y).s0) /
+                kPolarizedCounts;
             (x < kWidth / 2 ? c : s) += v;
         }
     return 0.5 * std::atan2(s, c) * 180.0 / std::numbers::pi;
@@ -109,28 +111,31 @@ TEST(FreeRunningCapture, EveryRecordIsExposedAtItsAngleAndReducesToTheScenesStok
             }
     });
 
-    auto camera = open_camera(fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}&fps={}",
-                                          server.device_id(), kWidth, kHeight, kFps))
-                      .value_or_throw();
+    auto camera =
+        open_camera(fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}&fps={}",
+                                server.device_id(), kWidth, kHeight, kFps))
+            .value_or_throw();
     auto stage = open_stage("thorlabs-apt://" + pty.slave_path()).value_or_throw();
     CapturePlan plan;  // 0/45/90/135°
     plan.frames_per_angle = 6;
     plan.settle_s = 0.1;
     test::TempDir tmp;
-    auto session = SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage->info(), plan));
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     const CaptureSummary summary = run_capture(*camera, *stage, plan, session, options);
-    EXPECT_GT(summary.stale_discarded, 0u) << "the camera free-ran during the moves: their frames must have been seen";
+    EXPECT_GT(summary.stale_discarded, 0u)
+        << "the camera free-ran during the moves: their frames must have been seen";
 
     const SessionManifest m = read_session(tmp / "s");
     ASSERT_TRUE(m.complete);
     ASSERT_EQ(m.records.size(), 4u);
     ASSERT_TRUE(m.camera.frame_rate_hz);
-    // Measured, not requested: at most the 30 Hz asked for (the fake falls behind on a loaded machine,
-    // paces to period boundaries and loses a frame to a lost packet now and then).
-    std::printf("delivered frame rate: %.2f Hz (requested %.0f Hz), dropped %llu\n", *m.camera.frame_rate_hz, kFps,
-                static_cast<unsigned long long>(summary.dropped));
+    // Measured, not requested: at most the 30 Hz asked for (the fake falls behind on a loaded
+    // machine, paces to period boundaries and loses a frame to a lost packet now and then).
+    std::printf("delivered frame rate: %.2f Hz (requested %.0f Hz), dropped %llu\n",
+                *m.camera.frame_rate_hz, kFps, static_cast<unsigned long long>(summary.dropped));
     EXPECT_GT(*m.camera.frame_rate_hz, 5.0);
     EXPECT_LE(*m.camera.frame_rate_hz, 1.05 * kFps);
     std::vector<std::vector<float>> means;
@@ -138,14 +143,17 @@ TEST(FreeRunningCapture, EveryRecordIsExposedAtItsAngleAndReducesToTheScenesStok
         const SessionRecord& r = m.records[i];
         ASSERT_TRUE(r.timing);
         means.push_back(read_session_frame(tmp / "s", m, r).channel("counts"));
-        // σ of the pixel-derived angle over 768 pixels × 6 frames is ≈ 0.002°; a frame from the move
-        // (up to 45° off) would shift the mean by degrees.
-        const double off_deg = std::remainder(angle_from_pixels_deg(means.back()) - r.angle_deg_requested, 180.0);
+        // σ of the pixel-derived angle over 768 pixels × 6 frames is ≈ 0.002°; a frame from the
+        // move (up to 45° off) would shift the mean by degrees.
+        const double off_deg =
+            std::remainder(angle_from_pixels_deg(means.back()) - r.angle_deg_requested, 180.0);
         EXPECT_NEAR(off_deg, 0.0, 0.05) << r.file;
         EXPECT_NEAR(r.angle_deg_measured, r.angle_deg_requested, plan.angle_tolerance_deg);
         if (i == 0) continue;
-        // Last frame of a step → first frame of the next: at least the 45° move at 15°/s (3 s) plus the settle.
-        const double gap_s = static_cast<double>(r.first_timestamp_ns - m.records[i - 1].last_timestamp_ns) / 1e9;
+        // Last frame of a step → first frame of the next: at least the 45° move at 15°/s (3 s) plus
+        // the settle.
+        const double gap_s =
+            static_cast<double>(r.first_timestamp_ns - m.records[i - 1].last_timestamp_ns) / 1e9;
         std::printf("inter-step gap %s → %s: %.3f s (move %.3f s, %lld stale frames discarded)\n",
                     m.records[i - 1].file.c_str(), r.file.c_str(), gap_s,
                     static_cast<double>(r.timing->move_end_ns - r.timing->move_start_ns) / 1e9,
@@ -156,7 +164,8 @@ TEST(FreeRunningCapture, EveryRecordIsExposedAtItsAngleAndReducesToTheScenesStok
 
     // Reduce (eqs 14–16 with an ideal analyzer): S0 = I0 + I90, S1 = I0 − I90, S2 = I45 − I135.
     // Per pixel σ(S1) = √2 · σ/√6 ≈ 4.6 counts: within 5σ everywhere.
-    const double sigma = std::sqrt(2.0) * kNoiseCounts / std::sqrt(static_cast<double>(plan.frames_per_angle));
+    const double sigma =
+        std::sqrt(2.0) * kNoiseCounts / std::sqrt(static_cast<double>(plan.frames_per_angle));
     int outliers = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {

@@ -1,7 +1,8 @@
-// What the live view's API reads from a request (live/api_request.h), without a socket: each piece a
-// page or anyone on the network controls is accepted exactly in its documented form (docs/live.md)
-// and anything else is a tirpol::Error whose 400 body is valid JSON, even when it quotes bytes that
-// are not UTF-8 (nlohmann's own parse messages did, and dumping them threw type_error 316).
+// What the live view's API reads from a request (live/api_request.h), without a socket: each piece
+// a page or anyone on the network controls is accepted exactly in its documented form
+// (docs/live.md) and anything else is a tirpol::Error whose 400 body is valid JSON, even when it
+// quotes bytes that are not UTF-8 (nlohmann's own parse messages did, and dumping them threw
+// type_error 316).
 
 #include "tirpol/live/api_request.h"
 
@@ -23,12 +24,14 @@ TEST(ApiRequest, AfterIsADecimalSequenceNumberOrAbsent) {
     EXPECT_EQ(parse_after("18446744073709551615"), 18446744073709551615u);
     // std::stoull took "-1" as 2^64 − 1 (a frame that never comes) and " 7" or "7x" as 7.
     for (const char* bad : {"", "-1", " 7", "7x", "1e9", "18446744073709551616", "0x10"})
-        EXPECT_THAT([&] { (void)parse_after(std::string(bad)); }, ThrowsMessage<Error>(HasSubstr("after: expected")))
+        EXPECT_THAT([&] { (void)parse_after(std::string(bad)); },
+                    ThrowsMessage<Error>(HasSubstr("after: expected")))
             << "'" << bad << "'";
 }
 
 TEST(ApiRequest, CaptureStartTakesPlanOutputAndOptionalResume) {
-    const auto r = parse_capture_request(R"({"plan": "plans/p.yaml", "output": "s1", "resume": true})");
+    const auto r =
+        parse_capture_request(R"({"plan": "plans/p.yaml", "output": "s1", "resume": true})");
     EXPECT_EQ(r.plan, "plans/p.yaml");
     EXPECT_EQ(r.output, "s1");
     EXPECT_TRUE(r.resume);
@@ -43,7 +46,9 @@ TEST(ApiRequest, CaptureStartTakesPlanOutputAndOptionalResume) {
         {R"({"plan": "p", "output": "o", "frames": 3})", "unknown key 'frames'"},
     };
     for (const auto& [body, message] : bad)
-        EXPECT_THAT([&] { (void)parse_capture_request(body); }, ThrowsMessage<Error>(HasSubstr(message))) << body;
+        EXPECT_THAT([&] { (void)parse_capture_request(body); },
+                    ThrowsMessage<Error>(HasSubstr(message)))
+            << body;
 }
 
 TEST(ApiRequest, ErrorBodiesAreValidJsonWhateverBytesTheRequestCarried) {
@@ -61,9 +66,12 @@ TEST(ApiRequest, ErrorBodiesAreValidJsonWhateverBytesTheRequestCarried) {
 
 TEST(ApiRequest, ObservationsNeedAClientAndAJsonBody) {
     EXPECT_EQ(parse_observation("page-1", R"({"frames": 3})").at("frames"), 3);
-    EXPECT_THAT([] { (void)parse_observation(std::nullopt, "{}"); }, ThrowsMessage<Error>(HasSubstr("?client=ID")));
-    EXPECT_THAT([] { (void)parse_observation("", "{}"); }, ThrowsMessage<Error>(HasSubstr("?client=ID")));
-    EXPECT_THAT([] { (void)parse_observation("p", "{"); }, ThrowsMessage<Error>(HasSubstr("not JSON")));
+    EXPECT_THAT([] { (void)parse_observation(std::nullopt, "{}"); },
+                ThrowsMessage<Error>(HasSubstr("?client=ID")));
+    EXPECT_THAT([] { (void)parse_observation("", "{}"); },
+                ThrowsMessage<Error>(HasSubstr("?client=ID")));
+    EXPECT_THAT([] { (void)parse_observation("p", "{"); },
+                ThrowsMessage<Error>(HasSubstr("not JSON")));
 }
 
 TEST(ApiRequest, TokenComesFromTheQueryTheHeaderOrTheCookieOnlyWhenEqual) {
@@ -75,8 +83,8 @@ TEST(ApiRequest, TokenComesFromTheQueryTheHeaderOrTheCookieOnlyWhenEqual) {
     EXPECT_TRUE(request_authorised(token, "", token, "", "tirpol_token"));
     EXPECT_TRUE(request_authorised(token, "", "", "x=1; tirpol_token=" + token, "tirpol_token"));
     EXPECT_FALSE(request_authorised(token, "", "", "", "tirpol_token"));
-    EXPECT_FALSE(request_authorised(token, token.substr(1), token + "0", "tirpol_token=" + token.substr(0, 31),
-                                    "tirpol_token"));
+    EXPECT_FALSE(request_authorised(token, token.substr(1), token + "0",
+                                    "tirpol_token=" + token.substr(0, 31), "tirpol_token"));
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // A capture plan run from the live view writes the same session `tirpol acquire` writes (complete,
-// every step once), a stopped one keeps its steps and resumes to completion, and the polarizer cycle
-// is paused meanwhile and continues after.
+// every step once), a stopped one keeps its steps and resumes to completion, and the polarizer
+// cycle is paused meanwhile and continues after.
 
 #include "tirpol/live/capture_control.h"
 
@@ -20,14 +20,17 @@ namespace {
 using namespace std::chrono_literals;
 
 bool finished(const CaptureState& s) {
-    return s.phase == CapturePhase::Complete || s.phase == CapturePhase::Stopped || s.phase == CapturePhase::Failed;
+    return s.phase == CapturePhase::Complete || s.phase == CapturePhase::Stopped ||
+           s.phase == CapturePhase::Failed;
 }
 
-/// The cycling rig plus the capture control a page drives (2 frames per angle, no settle for the cycle).
+/// The cycling rig plus the capture control a page drives (2 frames per angle, no settle for the
+/// cycle).
 struct LiveRig : test::CyclingRig {
     CaptureControl capture;
     explicit LiveRig(double deg_per_s)
-        : CyclingRig(test::PolarizedSource{}, deg_per_s, 2, 0.0), capture(feed, *rig.stage, &cycle) {}
+        : CyclingRig(test::PolarizedSource{}, deg_per_s, 2, 0.0),
+          capture(feed, *rig.stage, &cycle) {}
 };
 
 TEST(CaptureControl, WritesACompleteSessionAndTheCycleResumesAfter) {
@@ -36,7 +39,8 @@ TEST(CaptureControl, WritesACompleteSessionAndTheCycleResumesAfter) {
     LiveRig live(360.0);
     ASSERT_TRUE(test::wait_until([&] { return live.cycle.status().cycles >= 1; }, 60s));
     live.capture.start({dir / "plan.yaml", dir / "session", false});
-    EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "other", false}), Error);  // one at a time
+    EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "other", false}),
+                 Error);  // one at a time
     ASSERT_TRUE(test::wait_until([&] { return finished(live.capture.state()); }, 120s));
     const CaptureState s = live.capture.state();
     ASSERT_EQ(s.phase, CapturePhase::Complete) << s.message;
@@ -69,7 +73,8 @@ TEST(CaptureControl, AStoppedCaptureKeepsItsStepsAndResumes) {
     ASSERT_GE(partial.records.size(), 1u);
     ASSERT_LT(partial.records.size(), 4u);
 
-    EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "session", false}), Error);  // not empty: resume it
+    EXPECT_THROW(live.capture.start({dir / "plan.yaml", dir / "session", false}),
+                 Error);  // not empty: resume it
     live.capture.start({dir / "plan.yaml", dir / "session", true});
     ASSERT_TRUE(test::wait_until([&] { return finished(live.capture.state()); }, 120s));
     ASSERT_EQ(live.capture.state().phase, CapturePhase::Complete) << live.capture.state().message;
@@ -78,7 +83,8 @@ TEST(CaptureControl, AStoppedCaptureKeepsItsStepsAndResumes) {
     std::set<std::string> files;
     for (const auto& r : m.records) EXPECT_TRUE(files.insert(r.file).second) << r.file << " twice";
     EXPECT_EQ(files.size(), 4u);
-    for (std::size_t i = 0; i < partial.records.size(); ++i) EXPECT_EQ(m.records[i], partial.records[i]);
+    for (std::size_t i = 0; i < partial.records.size(); ++i)
+        EXPECT_EQ(m.records[i], partial.records[i]);
 }
 
 }  // namespace

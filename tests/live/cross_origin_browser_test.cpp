@@ -1,10 +1,11 @@
-// A web page the operator's browser opens must not drive the live view. Headless Chromium opens a page
-// served by a second local HTTP server on another port (another origin) that tries what any site can:
-// fetch() POSTs to the live view's /api/capture/start — a CORS "simple request" (text/plain, no-cors,
-// which the browser sends without asking) and a JSON one (which needs a preflight) — and a simple POST
-// to /api/observations. No capture may start, no session be written, nothing be stored. A third
-// server (the witness) receives the same simple POST, proving the browser does send such requests
-// between loopback ports. A missing chromium fails the test: it never skips.
+// A web page the operator's browser opens must not drive the live view. Headless Chromium opens a
+// page served by a second local HTTP server on another port (another origin) that tries what any
+// site can: fetch() POSTs to the live view's /api/capture/start — a CORS "simple request"
+// (text/plain, no-cors, which the browser sends without asking) and a JSON one (which needs a
+// preflight) — and a simple POST to /api/observations. No capture may start, no session be written,
+// nothing be stored. A third server (the witness) receives the same simple POST, proving the
+// browser does send such requests between loopback ports. A missing chromium fails the test: it
+// never skips.
 
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -28,7 +29,8 @@ using namespace std::chrono_literals;
 std::optional<std::filesystem::path> find_on_path(const std::string& name) {
     std::stringstream dirs(std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin");
     for (std::string dir; std::getline(dirs, dir, ':');)
-        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0) return std::filesystem::path(dir) / name;
+        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0)
+            return std::filesystem::path(dir) / name;
     return std::nullopt;
 }
 
@@ -48,12 +50,16 @@ struct SideServer {
     }
 };
 
-std::string attacker_page(int live_port, int witness_port, const std::string& plan, const std::string& output) {
+std::string attacker_page(int live_port, int witness_port, const std::string& plan,
+                          const std::string& output) {
     const std::string body = nlohmann::json{{"plan", plan}, {"output", output}}.dump();
     return R"(<!doctype html><meta charset="utf-8"><title>another site</title><script>
-const live = 'http://127.0.0.1:)" + std::to_string(live_port) + R"(';
-const witness = 'http://127.0.0.1:)" + std::to_string(witness_port) + R"(';
-const body = )" + nlohmann::json(body).dump() + R"(;
+const live = 'http://127.0.0.1:)" +
+           std::to_string(live_port) + R"(';
+const witness = 'http://127.0.0.1:)" +
+           std::to_string(witness_port) + R"(';
+const body = )" +
+           nlohmann::json(body).dump() + R"(;
 const results = {};
 async function attempt(name, url, init) {
   try { const r = await fetch(url, init); results[name] = r.type === 'opaque' ? 'opaque' : 'status ' + r.status; }
@@ -75,7 +81,8 @@ async function attempt(name, url, init) {
 
 TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) {
     const auto chromium = find_on_path("chromium");
-    ASSERT_TRUE(chromium) << "chromium is not on PATH (Debian package chromium): the live-view tests need it";
+    ASSERT_TRUE(chromium)
+        << "chromium is not on PATH (Debian package chromium): the live-view tests need it";
     test::TempDir dir("tirpol-live-cross-origin");
     test::write_text(dir.path() / "plan.yaml", "frames_per_angle: 1\nsettle_s: 0.01\n");
     const auto session = dir.path() / "session";
@@ -93,8 +100,8 @@ TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) 
     std::mutex mutex;
     std::string done;
     SideServer attacker;
-    const std::string page =
-        attacker_page(live.server.port(), witness.port, (dir.path() / "plan.yaml").string(), session.string());
+    const std::string page = attacker_page(live.server.port(), witness.port,
+                                           (dir.path() / "plan.yaml").string(), session.string());
     attacker.server.Get("/evil.html", [&](const httplib::Request&, httplib::Response& res) {
         res.set_content(page, "text/html; charset=utf-8");
     });
@@ -106,10 +113,11 @@ TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) 
     attacker.start();
     ASSERT_NE(attacker.port, live.server.port());
 
-    test::ChildProcess browser({chromium->string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                                "--user-data-dir=" + (dir.path() / "chromium").string(),
-                                "http://127.0.0.1:" + std::to_string(attacker.port) + "/evil.html"},
-                               dir.path() / "chromium.log");
+    test::ChildProcess browser(
+        {chromium->string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--user-data-dir=" + (dir.path() / "chromium").string(),
+         "http://127.0.0.1:" + std::to_string(attacker.port) + "/evil.html"},
+        dir.path() / "chromium.log");
     bool finished = false;
     for (int i = 0; i < 600 && !finished; ++i) {  // at most 60 s
         {
@@ -124,9 +132,11 @@ TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) 
     EXPECT_EQ(witnessed.load(), 1) << results.dump();
     EXPECT_EQ(results["witness"], "opaque") << results.dump();
     // ... and the JSON one failed its preflight.
-    EXPECT_NE(results["json"].get<std::string>().find("blocked"), std::string::npos) << results.dump();
+    EXPECT_NE(results["json"].get<std::string>().find("blocked"), std::string::npos)
+        << results.dump();
 
-    std::this_thread::sleep_for(500ms);  // a capture, had one started, would have created the session by now
+    std::this_thread::sleep_for(
+        500ms);  // a capture, had one started, would have created the session by now
     EXPECT_FALSE(std::filesystem::exists(session)) << results.dump();
     httplib::Client client("127.0.0.1", live.server.port());
     const auto status = client.Get("/api/status");

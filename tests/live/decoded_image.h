@@ -1,6 +1,6 @@
 #pragma once
-// Decodes the live view's wire format (live/include/tirpol/live/display_frame.h) the way live.js does,
-// so tests can check what a page receives.
+// Decodes the live view's wire format (live/include/tirpol/live/display_frame.h) the way live.js
+// does, so tests can check what a page receives.
 
 #include <cstdint>
 #include <cstring>
@@ -33,9 +33,11 @@ inline DecodedImage decode_live_image(const std::string& bytes) {
     DecodedImage d;
     if (bytes.size() < 8 || bytes.compare(0, 4, "TPLV") != 0) return d;
     std::uint32_t n = 0;
-    for (int i = 0; i < 4; ++i) n |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[4 + i])) << (8 * i);
+    for (int i = 0; i < 4; ++i)
+        n |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[4 + i])) << (8 * i);
     d.header = nlohmann::json::parse(bytes.substr(8, n));
-    const std::size_t pixels = d.header["width"].get<std::size_t>() * d.header["height"].get<std::size_t>();
+    const std::size_t pixels =
+        d.header["width"].get<std::size_t>() * d.header["height"].get<std::size_t>();
     std::size_t at = 8 + n;
     for (std::size_t c = 0; c < d.header["channels"].size(); ++c) {
         std::vector<std::uint16_t> q(pixels);

@@ -32,13 +32,15 @@ TEST(DisplayFrame, CountsSurviveTheWireWithinOneStepAndFlagsKeepTheirCodes) {
     frame.width = w;
     frame.height = h;
     frame.frame_id = 65537;
-    for (int i = 0; i < w * h; ++i) frame.counts.push_back(1000.0f + 37.25f * static_cast<float>(i));
+    for (int i = 0; i < w * h; ++i)
+        frame.counts.push_back(1000.0f + 37.25f * static_cast<float>(i));
     frame.counts[3] = 16383.0f;  // full scale of a 14-bit ADC: saturated
     frame.counts[4] = 0.0f;      // a readout channel that gives nothing: dead
     const DisplayConverter converter(camera_info(w, h, 14), nullptr, DisplayUnit::Counts);
     ASSERT_EQ(converter.saturation_counts(), 16383.0);
 
-    const auto decoded = test::decode_live_image(encode_display_image(converter.frame_image(frame)));
+    const auto decoded =
+        test::decode_live_image(encode_display_image(converter.frame_image(frame)));
     ASSERT_EQ(decoded.codes.size(), 1u);
     EXPECT_EQ(decoded.header["frame_id"], 65537u);
     EXPECT_EQ(decoded.header["channels"][0]["units"], "counts");
@@ -46,11 +48,12 @@ TEST(DisplayFrame, CountsSurviveTheWireWithinOneStepAndFlagsKeepTheirCodes) {
     EXPECT_EQ(decoded.codes[0][4], 1);
     // The range covers the unflagged pixels only (a saturated pixel does not stretch it).
     EXPECT_DOUBLE_EQ(decoded.header["channels"][0]["min"].get<double>(), 1000.0);
-    EXPECT_DOUBLE_EQ(decoded.header["channels"][0]["max"].get<double>(), 1000.0 + 37.25 * (w * h - 1));
+    EXPECT_DOUBLE_EQ(decoded.header["channels"][0]["max"].get<double>(),
+                     1000.0 + 37.25 * (w * h - 1));
     for (int i = 0; i < w * h; ++i) {
         if (i == 3 || i == 4) continue;
-        EXPECT_NEAR(decoded.value(0, static_cast<std::size_t>(i)), frame.counts[static_cast<std::size_t>(i)],
-                    0.5 * decoded.step(0) + 1e-9)
+        EXPECT_NEAR(decoded.value(0, static_cast<std::size_t>(i)),
+                    frame.counts[static_cast<std::size_t>(i)], 0.5 * decoded.step(0) + 1e-9)
             << "pixel " << i;
     }
 }
@@ -104,8 +107,10 @@ TEST(DisplayFrame, TemperatureOfABlackbodysCountsIsItsTemperature) {
     acquisition::Frame frame;
     frame.width = w;
     frame.height = h;
-    // A blackbody at 300 K fills the view; the band radiance follows Planck's law (core radiometry).
-    frame.counts.assign(static_cast<std::size_t>(w * h), static_cast<float>(gain * band.radiance(300.0) + offset));
+    // A blackbody at 300 K fills the view; the band radiance follows Planck's law (core
+    // radiometry).
+    frame.counts.assign(static_cast<std::size_t>(w * h),
+                        static_cast<float>(gain * band.radiance(300.0) + offset));
     const DisplayConverter kelvin(camera_info(w, h, 16), &cal, DisplayUnit::Temperature);
     EXPECT_EQ(kelvin.units(), "K");
     const auto t = kelvin.convert(frame.counts, std::nullopt);
@@ -116,7 +121,8 @@ TEST(DisplayFrame, TemperatureOfABlackbodysCountsIsItsTemperature) {
     EXPECT_EQ(flags[0], kPixelOk);
 
     const DisplayConverter radiance(camera_info(w, h, 16), &cal, DisplayUnit::Radiance);
-    EXPECT_NEAR(radiance.convert(frame.counts, std::nullopt)[0], band.radiance(300.0), 1e-3 * band.radiance(300.0));
+    EXPECT_NEAR(radiance.convert(frame.counts, std::nullopt)[0], band.radiance(300.0),
+                1e-3 * band.radiance(300.0));
 }
 
 TEST(DisplayFrame, RadianceWithoutCalibrationOrOfAnotherSizeIsRefused) {

@@ -1,6 +1,6 @@
 // The grab thread drops display frames, never camera frames: a display that samples the latest
-// frame slowly sees few of them, while every tap (the polarizer cycle, a capture) receives each frame
-// the camera delivered, in order, and the camera itself drops none.
+// frame slowly sees few of them, while every tap (the polarizer cycle, a capture) receives each
+// frame the camera delivered, in order, and the camera itself drops none.
 
 #include "tirpol/live/frame_feed.h"
 
@@ -28,7 +28,8 @@ TEST(LatestSlot, ASlowReaderSeesIncreasingSequencesAndTheLastValue) {
     while (seen < 2000) {
         const auto s = slot.wait_newer(seen, 2s);
         ASSERT_GT(s.sequence, seen) << "no new value within 2 s";
-        EXPECT_EQ(*s.value, static_cast<int>(s.sequence));  // the value published with that sequence
+        EXPECT_EQ(*s.value,
+                  static_cast<int>(s.sequence));  // the value published with that sequence
         seen = s.sequence;
         ++reads;
     }
@@ -40,8 +41,8 @@ TEST(LatestSlot, ASlowReaderSeesIncreasingSequencesAndTheLastValue) {
 }
 
 TEST(FrameFeed, TapsGetEveryFrameInOrderWhileASlowDisplayDropsDisplayFramesOnly) {
-    auto camera =
-        acquisition::open_simulated_camera("sim://uniform?width=64&height=48&counts=900&noise=3&fps=100&buffers=64");
+    auto camera = acquisition::open_simulated_camera(
+        "sim://uniform?width=64&height=48&counts=900&noise=3&fps=100&buffers=64");
     FrameFeed feed(*camera);
     const auto tap = feed.open_tap();
     ASSERT_TRUE(feed.start().ok());
@@ -63,7 +64,8 @@ TEST(FrameFeed, TapsGetEveryFrameInOrderWhileASlowDisplayDropsDisplayFramesOnly)
     for (std::size_t i = 0; i < pending; ++i) {
         auto f = tap->next(1s);
         ASSERT_TRUE(f.ok());
-        if (previous != 0) EXPECT_EQ(f.value().frame_id, previous + 1) << "a frame went missing from the tap";
+        if (previous != 0)
+            EXPECT_EQ(f.value().frame_id, previous + 1) << "a frame went missing from the tap";
         previous = f.value().frame_id;
     }
     feed.stop();
@@ -76,7 +78,8 @@ TEST(FrameFeed, TapsGetEveryFrameInOrderWhileASlowDisplayDropsDisplayFramesOnly)
 }
 
 TEST(FrameFeed, RecordsTheCamerasFpaTemperature) {
-    auto camera = acquisition::open_simulated_camera("sim://uniform?width=8&height=8&fps=50&fpa_k=305.5");
+    auto camera =
+        acquisition::open_simulated_camera("sim://uniform?width=8&height=8&fps=50&fpa_k=305.5");
     FrameFeed feed(*camera);
     ASSERT_TRUE(feed.start().ok());
     for (int i = 0; i < 100 && feed.fpa_history().empty(); ++i) std::this_thread::sleep_for(20ms);
@@ -87,7 +90,8 @@ TEST(FrameFeed, RecordsTheCamerasFpaTemperature) {
 }
 
 TEST(TappedCamera, GrabsTheFeedsFramesFromStartAndRefusesAnotherFormat) {
-    auto camera = acquisition::open_simulated_camera("sim://uniform?width=8&height=8&fps=100&bits=14");
+    auto camera =
+        acquisition::open_simulated_camera("sim://uniform?width=8&height=8&fps=100&bits=14");
     FrameFeed feed(*camera);
     ASSERT_TRUE(feed.start().ok());
     TappedCamera tapped(feed);

@@ -1,11 +1,11 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// End to end, as an operator uses it: the real `tirpol live` executable with Aravis's fake GigE Vision
-// camera (arv-fake-gv-camera-0.8, 640×512 Mono16 at 30 fps) and the APT stage simulator on a
+// End to end, as an operator uses it: the real `tirpol live` executable with Aravis's fake GigE
+// Vision camera (arv-fake-gv-camera-0.8, 640×512 Mono16 at 30 fps) and the APT stage simulator on a
 // pseudo-terminal, and headless Chromium as the browser. The page runs in its test mode
-// (?observe=ID): it posts what it shows (frames drawn, last frame id, painted fraction of the S0 and
-// DoLP canvases, capture state) to /api/observations, which the test reads, and drives the capture
-// buttons from URL parameters. Screenshots go to build/test-artefacts/live/. A missing chromium or
-// aravis-tools fails these tests: they never skip.
+// (?observe=ID): it posts what it shows (frames drawn, last frame id, painted fraction of the S0
+// and DoLP canvases, capture state) to /api/observations, which the test reads, and drives the
+// capture buttons from URL parameters. Screenshots go to build/test-artefacts/live/. A missing
+// chromium or aravis-tools fails these tests: they never skip.
 
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -26,12 +26,14 @@ namespace {
 using namespace std::chrono_literals;
 using nlohmann::json;
 
-constexpr const char* kCameraUri = "aravis://127.0.0.1?pixel_format=Mono16&width=640&height=512&fps=30";
+constexpr const char* kCameraUri =
+    "aravis://127.0.0.1?pixel_format=Mono16&width=640&height=512&fps=30";
 
 std::optional<std::filesystem::path> find_on_path(const std::string& name) {
     std::stringstream dirs(std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin");
     for (std::string dir; std::getline(dirs, dir, ':');)
-        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0) return std::filesystem::path(dir) / name;
+        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0)
+            return std::filesystem::path(dir) / name;
     return std::nullopt;
 }
 
@@ -44,10 +46,12 @@ class LiveEndToEnd : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto chromium_path = find_on_path("chromium");
-        ASSERT_TRUE(chromium_path) << "chromium is not on PATH (Debian package chromium): the live-view tests need it";
+        ASSERT_TRUE(chromium_path)
+            << "chromium is not on PATH (Debian package chromium): the live-view tests need it";
         m_chromium = *chromium_path;
         const auto fake = test::find_fake_gv_camera_binary();
-        ASSERT_TRUE(fake) << test::kFakeGvCameraBinary << " is not on PATH (Debian package aravis-tools)";
+        ASSERT_TRUE(fake) << test::kFakeGvCameraBinary
+                          << " is not on PATH (Debian package aravis-tools)";
         m_lock = std::make_unique<test::LoopbackGigELock>();
         m_camera = std::make_unique<test::FakeGvCameraProcess>(*fake, std::vector<std::string>{});
         ASSERT_TRUE(m_camera->ready()) << "the fake GigE Vision camera did not start";
@@ -58,17 +62,19 @@ protected:
 
     void start_stage(const char* deg_per_s) {
         m_stage = std::make_unique<test::ChildProcess>(
-            std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link", (dir() / "stage").string(),
-                                     "--move-deg-per-s", deg_per_s},
+            std::vector<std::string>{TIRPOL_STAGE_SIM_PATH, "--protocol", "apt", "--link",
+                                     (dir() / "stage").string(), "--move-deg-per-s", deg_per_s},
             dir() / "stage-sim.log");
-        for (int i = 0; i < 500 && !std::filesystem::exists(dir() / "stage"); ++i) std::this_thread::sleep_for(10ms);
+        for (int i = 0; i < 500 && !std::filesystem::exists(dir() / "stage"); ++i)
+            std::this_thread::sleep_for(10ms);
         ASSERT_TRUE(std::filesystem::exists(dir() / "stage")) << read_text(dir() / "stage-sim.log");
     }
     std::string stage_uri() const { return "thorlabs-apt://" + (dir() / "stage").string(); }
 
     /// Starts `tirpol live` and reads the port (and token) it prints.
     void start_live(std::vector<std::string> extra) {
-        std::vector<std::string> args{TIRPOL_CLI_PATH, "live", "--camera", kCameraUri, "--port", "0"};
+        std::vector<std::string> args{TIRPOL_CLI_PATH, "live",   "--camera",
+                                      kCameraUri,      "--port", "0"};
         args.insert(args.end(), extra.begin(), extra.end());
         m_live = std::make_unique<test::ChildProcess>(args, dir() / "live.log");
         const std::regex printed(R"(open http://[^:]+:(\d+)/(\?token=([0-9a-f]+))?)");
@@ -96,9 +102,10 @@ protected:
     void open_browser(const std::string& name, const std::string& query) {
         const auto profile = dir() / ("chromium-" + name);
         m_browsers.push_back(std::make_unique<test::ChildProcess>(
-            std::vector<std::string>{m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu",
-                                     "--no-first-run", "--user-data-dir=" + profile.string(), "--window-size=1400,1300",
-                                     page_url(query)},
+            std::vector<std::string>{m_chromium.string(), "--headless", "--no-sandbox",
+                                     "--disable-gpu", "--no-first-run",
+                                     "--user-data-dir=" + profile.string(),
+                                     "--window-size=1400,1300", page_url(query)},
             dir() / ("chromium-" + name + ".log")));
     }
 
@@ -109,8 +116,9 @@ protected:
         std::filesystem::remove(out);
         test::ChildProcess shot(
             {m_chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-             "--user-data-dir=" + (dir() / "chromium-shot").string(), "--hide-scrollbars", "--window-size=1100,950",
-             "--virtual-time-budget=20000", "--screenshot=" + out.string(), page_url("still=1" + query)},
+             "--user-data-dir=" + (dir() / "chromium-shot").string(), "--hide-scrollbars",
+             "--window-size=1100,950", "--virtual-time-budget=20000",
+             "--screenshot=" + out.string(), page_url("still=1" + query)},
             dir() / "chromium-shot.log");
         ASSERT_TRUE(shot.wait_for(120s).has_value()) << "chromium --screenshot did not finish";
         ASSERT_TRUE(std::filesystem::exists(out)) << read_text(dir() / "chromium-shot.log");
@@ -126,8 +134,10 @@ protected:
         return json::parse(r->body);
     }
 
-    /// Waits until `ok(observations)` holds; the last observations otherwise (for the failure message).
-    bool wait_for_observations(const std::function<bool(const json&)>& ok, std::chrono::seconds timeout, json& last) {
+    /// Waits until `ok(observations)` holds; the last observations otherwise (for the failure
+    /// message).
+    bool wait_for_observations(const std::function<bool(const json&)>& ok,
+                               std::chrono::seconds timeout, json& last) {
         const auto deadline = std::chrono::steady_clock::now() + timeout;
         while (std::chrono::steady_clock::now() < deadline) {
             last = observations();
@@ -163,11 +173,12 @@ TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
     open_browser("a", "observe=a&mouse=1");
     open_browser("b", "observe=b");
     json obs;
-    ASSERT_TRUE(wait_for_observations([](const json& o) { return shows_frames(o, "a", 3) && shows_frames(o, "b", 3); },
-                                      90s, obs))
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) { return shows_frames(o, "a", 3) && shows_frames(o, "b", 3); }, 90s, obs))
         << obs.dump(1) << read_text(dir() / "live.log");
     const json first = obs;
-    // Both pages keep drawing newer frames (the fake camera's ids wrap 65535 → 1, hence "different").
+    // Both pages keep drawing newer frames (the fake camera's ids wrap 65535 → 1, hence
+    // "different").
     ASSERT_TRUE(wait_for_observations(
         [&](const json& o) {
             for (const char* c : {"a", "b"})
@@ -184,8 +195,10 @@ TEST_F(LiveEndToEnd, TwoBrowsersShowLiveS0AndTheFrameCounterAdvances) {
     const json& mouse = obs["a"]["mouse"];
     ASSERT_TRUE(mouse.is_object()) << obs["a"].dump(1);
     EXPECT_EQ(mouse["region"][0], "x 100–139, y 80–119 (1600 px)");
-    EXPECT_NE(mouse["region"][1].get<std::string>().find("live  S0    mean"), std::string::npos) << mouse.dump(1);
-    EXPECT_NE(mouse["region"][1].get<std::string>().find("(1600 px)"), std::string::npos) << mouse.dump(1);
+    EXPECT_NE(mouse["region"][1].get<std::string>().find("live  S0    mean"), std::string::npos)
+        << mouse.dump(1);
+    EXPECT_NE(mouse["region"][1].get<std::string>().find("(1600 px)"), std::string::npos)
+        << mouse.dump(1);
     EXPECT_EQ(mouse["cursor"][0], "x 139, y 119");
     EXPECT_DOUBLE_EQ(mouse["zoom"].get<double>(), 1.25);
     screenshot("live_s0.png", "");
@@ -197,13 +210,15 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0.1\n");
     start_live({"--stage", stage_uri(), "--frames-per-angle", "2", "--settle-s", "0.1"});
     const auto session = dir() / "session";
-    open_browser("s",
-                 "observe=s&capture_plan=" + (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
+    open_browser("s", "observe=s&capture_plan=" + (dir() / "plan.yaml").string() +
+                          "&capture_output=" + session.string());
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {
-            return o.contains("s") && o["s"]["capture"].is_object() && o["s"]["capture"]["phase"] == "complete" &&
-                   o["s"]["stokes_shown"].get<int>() >= 1 && o["s"]["dolp_painted"].get<double>() > 0.5;
+            return o.contains("s") && o["s"]["capture"].is_object() &&
+                   o["s"]["capture"]["phase"] == "complete" &&
+                   o["s"]["stokes_shown"].get<int>() >= 1 &&
+                   o["s"]["dolp_painted"].get<double>() > 0.5;
         },
         180s, obs))
         << obs.dump(1) << read_text(dir() / "live.log");
@@ -226,12 +241,13 @@ TEST_F(LiveEndToEnd, ACaptureStoppedFromThePageResumesWithTirpolAcquire) {
     test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0.1\n");
     start_live({"--stage", stage_uri()});
     const auto session = dir() / "session";
-    open_browser("r", "observe=r&capture_stop_after=1&capture_plan=" + (dir() / "plan.yaml").string() +
-                          "&capture_output=" + session.string());
+    open_browser("r", "observe=r&capture_stop_after=1&capture_plan=" +
+                          (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {
-            return o.contains("r") && o["r"]["capture"].is_object() && o["r"]["capture"]["phase"] == "stopped";
+            return o.contains("r") && o["r"]["capture"].is_object() &&
+                   o["r"]["capture"]["phase"] == "stopped";
         },
         180s, obs))
         << obs.dump(1) << read_text(dir() / "live.log");
@@ -243,16 +259,18 @@ TEST_F(LiveEndToEnd, ACaptureStoppedFromThePageResumesWithTirpolAcquire) {
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 
     // The same session, continued by `tirpol acquire --resume` on the same devices.
-    test::ChildProcess acquire({TIRPOL_CLI_PATH, "acquire", (dir() / "plan.yaml").string(), "--camera", kCameraUri,
-                                "--stage", stage_uri(), "-o", session.string(), "--resume", "--non-interactive"},
-                               dir() / "acquire.log");
+    test::ChildProcess acquire(
+        {TIRPOL_CLI_PATH, "acquire", (dir() / "plan.yaml").string(), "--camera", kCameraUri,
+         "--stage", stage_uri(), "-o", session.string(), "--resume", "--non-interactive"},
+        dir() / "acquire.log");
     const auto code = acquire.wait_for(180s);
     ASSERT_TRUE(code.has_value());
     ASSERT_EQ(*code, 0) << read_text(dir() / "acquire.log");
     const SessionManifest m = read_session(session);
     EXPECT_TRUE(m.complete);
     ASSERT_EQ(m.records.size(), 4u);
-    for (std::size_t i = 0; i < partial.records.size(); ++i) EXPECT_EQ(m.records[i], partial.records[i]);
+    for (std::size_t i = 0; i < partial.records.size(); ++i)
+        EXPECT_EQ(m.records[i], partial.records[i]);
 }
 
 TEST_F(LiveEndToEnd, BeyondLoopbackOnlyRequestsWithTheTokenAreServed) {
@@ -271,7 +289,9 @@ TEST_F(LiveEndToEnd, BeyondLoopbackOnlyRequestsWithTheTokenAreServed) {
                                  "http://127.0.0.1:" + std::to_string(m_port) + "/?observe=n"},
         dir() / "chromium-n.log"));
     json obs;
-    ASSERT_TRUE(wait_for_observations([](const json& o) { return shows_frames(o, "t", 3); }, 90s, obs)) << obs.dump(1);
+    ASSERT_TRUE(
+        wait_for_observations([](const json& o) { return shows_frames(o, "t", 3); }, 90s, obs))
+        << obs.dump(1);
     std::this_thread::sleep_for(2s);
     EXPECT_FALSE(observations().contains("n"));
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");

@@ -21,17 +21,20 @@ namespace tirpol::live {
 namespace {
 
 using namespace std::chrono_literals;
-using test::RawConnection;
 using test::raw_request;
+using test::RawConnection;
 using test::ServedLiveView;
 
 std::string post(const ServedLiveView& s, const std::string& path, const std::string& body,
-                 const std::string& extra_headers, const std::string& content_type = "application/json") {
+                 const std::string& extra_headers,
+                 const std::string& content_type = "application/json") {
     return "POST " + path + " HTTP/1.1\r\nHost: " + s.host() + "\r\nContent-Type: " + content_type +
-           "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n" + extra_headers + "\r\n" + body;
+           "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n" + extra_headers + "\r\n" +
+           body;
 }
 
-std::string get(const ServedLiveView& s, const std::string& path, const std::string& extra_headers = "") {
+std::string get(const ServedLiveView& s, const std::string& path,
+                const std::string& extra_headers = "") {
     return "GET " + path + " HTTP/1.1\r\nHost: " + s.host() + "\r\n" + extra_headers + "\r\n";
 }
 
@@ -40,16 +43,18 @@ TEST(LiveServerLimits, AHugeDeclaredBodyIsRefusedWith413BeforeItIsSent) {
     RawConnection c(s.server.port());
     ASSERT_TRUE(c.connected());
     // 2.5 GB declared; not one byte of it is sent. The answer comes from the headers alone.
-    ASSERT_TRUE(c.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() + "\r\nOrigin: " +
-                       s.origin() + "\r\nContent-Type: application/json\r\nContent-Length: 2500000000\r\n\r\n"));
+    ASSERT_TRUE(c.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() +
+                       "\r\nOrigin: " + s.origin() +
+                       "\r\nContent-Type: application/json\r\nContent-Length: 2500000000\r\n\r\n"));
     const std::string response = c.receive(3s);
     EXPECT_EQ(RawConnection::status_of(response), 413) << response;
     EXPECT_NE(response.find("2500000000"), std::string::npos) << response;
     // With "Expect: 100-continue" the client is told before it sends the body, too.
     RawConnection e(s.server.port());
-    ASSERT_TRUE(e.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() + "\r\nOrigin: " +
-                       s.origin() +
-                       "\r\nContent-Type: application/json\r\nExpect: 100-continue\r\nContent-Length: 2500000000\r\n\r\n"));
+    ASSERT_TRUE(e.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() +
+                       "\r\nOrigin: " + s.origin() +
+                       "\r\nContent-Type: application/json\r\nExpect: "
+                       "100-continue\r\nContent-Length: 2500000000\r\n\r\n"));
     const std::string expect = e.receive(3s);
     EXPECT_EQ(RawConnection::status_of(expect), 413) << expect;
     EXPECT_EQ(expect.find("100 Continue"), std::string::npos) << expect;
@@ -58,7 +63,8 @@ TEST(LiveServerLimits, AHugeDeclaredBodyIsRefusedWith413BeforeItIsSent) {
 TEST(LiveServerLimits, AChunkedBodyIsCutOffAtTheLimitWhileItStreams) {
     ServedLiveView s("127.0.0.1");
     RawConnection c(s.server.port());
-    ASSERT_TRUE(c.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() + "\r\nOrigin: " + s.origin() +
+    ASSERT_TRUE(c.send("POST /api/observations?client=a HTTP/1.1\r\nHost: " + s.host() +
+                       "\r\nOrigin: " + s.origin() +
                        "\r\nContent-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n"));
     // 16 KiB chunks: the server answers 413 once the body passes the limit and stops reading.
     const std::string chunk = "4000\r\n" + std::string(0x4000, 'x') + "\r\n";
@@ -68,13 +74,15 @@ TEST(LiveServerLimits, AChunkedBodyIsCutOffAtTheLimitWhileItStreams) {
     const std::string response = c.receive(3s);
     EXPECT_EQ(RawConnection::status_of(response), 413) << response;
     const std::string stored = raw_request(s.server.port(), get(s, "/api/observations"));
-    EXPECT_EQ(nlohmann::json::parse(RawConnection::body_of(stored)), nlohmann::json::object()) << stored;
+    EXPECT_EQ(nlohmann::json::parse(RawConnection::body_of(stored)), nlohmann::json::object())
+        << stored;
 }
 
 TEST(LiveServerLimits, ARequestHeadWithoutEndIsCutOffAtItsLimit) {
     ServedLiveView s("127.0.0.1");
     RawConnection c(s.server.port());
-    // One header line of 1 MiB without a newline: the server stops reading at the head limit and closes.
+    // One header line of 1 MiB without a newline: the server stops reading at the head limit and
+    // closes.
     c.send("GET /api/status HTTP/1.1\r\nHost: " + s.host() + "\r\nX-Long: ");
     const std::string filler(64 * 1024, 'a');
     int sent = 0;
@@ -90,8 +98,8 @@ TEST(LiveServerLimits, ARequestHeadWithoutEndIsCutOffAtItsLimit) {
 
 TEST(LiveServerLimits, HalfOpenConnectionsDoNotStallStatus) {
     ServedLiveView s("127.0.0.1");
-    // Twice the 24 worker threads the server used to have, each connected and silent (or sent half a
-    // request line), held open while /api/status is asked for.
+    // Twice the 24 worker threads the server used to have, each connected and silent (or sent half
+    // a request line), held open while /api/status is asked for.
     std::vector<std::unique_ptr<RawConnection>> idle;
     for (int i = 0; i < 48; ++i) {
         idle.push_back(std::make_unique<RawConnection>(s.server.port()));
@@ -107,7 +115,8 @@ TEST(LiveServerLimits, HalfOpenConnectionsDoNotStallStatus) {
     EXPECT_EQ(RawConnection::status_of(response), 200) << response;
     // Answered while the silent connections are still open: well inside their 5 s idle and head
     // timeouts, so not because the server gave up on them.
-    EXPECT_LT(waited, 2500ms) << std::chrono::duration_cast<std::chrono::milliseconds>(waited).count() << " ms";
+    EXPECT_LT(waited, 2500ms)
+        << std::chrono::duration_cast<std::chrono::milliseconds>(waited).count() << " ms";
     for (auto& connection : idle) EXPECT_FALSE(connection->closed_by_server());
 }
 
@@ -124,7 +133,8 @@ TEST(LiveServerLimits, SlowHeadsAreDroppedAtTheHeadTimeoutAndConnectionsAreCappe
         closed = !slow.send(head.substr(i, 1));
         const std::string got = slow.receive(100ms);
         closed = closed || slow.closed_by_server();
-        EXPECT_NE(RawConnection::status_of(got), 200) << "a head trickled over " << i * 100 << " ms was served";
+        EXPECT_NE(RawConnection::status_of(got), 200)
+            << "a head trickled over " << i * 100 << " ms was served";
     }
     EXPECT_TRUE(closed) << "the server kept a 6 s trickle of a request head";
     // Four connections held open: the fifth is answered 503 at once.
@@ -136,7 +146,8 @@ TEST(LiveServerLimits, SlowHeadsAreDroppedAtTheHeadTimeoutAndConnectionsAreCappe
     held.clear();
     bool served = false;
     for (int i = 0; i < 50 && !served; ++i) {
-        served = RawConnection::status_of(raw_request(s.server.port(), get(s, "/api/status"))) == 200;
+        served =
+            RawConnection::status_of(raw_request(s.server.port(), get(s, "/api/status"))) == 200;
         if (!served) std::this_thread::sleep_for(100ms);
     }
     EXPECT_TRUE(served) << "the server did not recover after the held connections closed";
@@ -147,8 +158,9 @@ TEST(LiveServerLimits, StoredObservationsAreBoundedInCountAndSize) {
     const std::size_t clients = RequestLimits{}.max_observation_clients;
     const std::string small = R"({"frames_shown": 1})";
     for (std::size_t i = 0; i < clients; ++i) {
-        const auto r = raw_request(s.server.port(), post(s, "/api/observations?client=c" + std::to_string(i), small,
-                                                         "Origin: " + s.origin() + "\r\n"));
+        const auto r =
+            raw_request(s.server.port(), post(s, "/api/observations?client=c" + std::to_string(i),
+                                              small, "Origin: " + s.origin() + "\r\n"));
         ASSERT_EQ(RawConnection::status_of(r), 200) << r;
     }
     const auto more = raw_request(s.server.port(), post(s, "/api/observations?client=extra", small,
@@ -156,11 +168,13 @@ TEST(LiveServerLimits, StoredObservationsAreBoundedInCountAndSize) {
     EXPECT_EQ(RawConnection::status_of(more), 429) << more;
     // A client already reporting may update its own.
     EXPECT_EQ(RawConnection::status_of(raw_request(
-                  s.server.port(), post(s, "/api/observations?client=c0", small, "Origin: " + s.origin() + "\r\n"))),
+                  s.server.port(),
+                  post(s, "/api/observations?client=c0", small, "Origin: " + s.origin() + "\r\n"))),
               200);
     const std::string big = "\"" + std::string(RequestLimits{}.max_body_bytes, 'x') + "\"";
     EXPECT_EQ(RawConnection::status_of(raw_request(
-                  s.server.port(), post(s, "/api/observations?client=c1", big, "Origin: " + s.origin() + "\r\n"))),
+                  s.server.port(),
+                  post(s, "/api/observations?client=c1", big, "Origin: " + s.origin() + "\r\n"))),
               413);
 }
 
@@ -178,21 +192,23 @@ TEST(LiveServerLimits, HostOriginAndContentTypeMatrix) {
              {self, "http://evil.example", "application/x-www-form-urlencoded", 415},
              {self, "http://evil.example", "application/json", 403},
              {self, "", "application/json", 403},
-             {evil, "http://" + evil, "application/json", 403},  // DNS rebinding: same origin, wrong host
+             {evil, "http://" + evil, "application/json",
+              403},  // DNS rebinding: same origin, wrong host
              {self, s.origin(), "text/plain", 415},
              {self, s.origin(), "application/json", 400},  // reaches the handler: no stage here
-             {"localhost:" + std::to_string(port), "http://localhost:" + std::to_string(port), "application/json",
-              400},
+             {"localhost:" + std::to_string(port), "http://localhost:" + std::to_string(port),
+              "application/json", 400},
          }) {
-        std::string request = "POST " + stop + " HTTP/1.1\r\nHost: " + c.host + "\r\nContent-Type: " + c.type +
-                              "\r\nContent-Length: 2\r\n";
+        std::string request = "POST " + stop + " HTTP/1.1\r\nHost: " + c.host +
+                              "\r\nContent-Type: " + c.type + "\r\nContent-Length: 2\r\n";
         if (!c.origin.empty()) request += "Origin: " + c.origin + "\r\n";
         const std::string response = raw_request(port, request + "\r\n{}");
         EXPECT_EQ(RawConnection::status_of(response), c.status)
             << c.host << " / " << c.origin << " / " << c.type << ": " << response;
     }
     // GET under a rebinding name, and the CORS preflight of a JSON POST from another site.
-    EXPECT_EQ(RawConnection::status_of(raw_request(port, "GET /api/status HTTP/1.1\r\nHost: " + evil + "\r\n\r\n")),
+    EXPECT_EQ(RawConnection::status_of(
+                  raw_request(port, "GET /api/status HTTP/1.1\r\nHost: " + evil + "\r\n\r\n")),
               403);
     const std::string preflight = raw_request(
         port, "OPTIONS /api/capture/start HTTP/1.1\r\nHost: " + self +
@@ -208,19 +224,24 @@ TEST(LiveServerLimits, BeyondLoopbackTheTokenIsRequiredAndAScriptMaySendItInstea
     const std::string token = s.server.token();
     ASSERT_EQ(token.size(), 32u);
     EXPECT_EQ(RawConnection::status_of(raw_request(port, get(s, "/api/status"))), 401);
-    EXPECT_EQ(RawConnection::status_of(raw_request(port, get(s, "/api/status", "X-Tirpol-Token: " + token + "\r\n"))),
+    EXPECT_EQ(RawConnection::status_of(
+                  raw_request(port, get(s, "/api/status", "X-Tirpol-Token: " + token + "\r\n"))),
               200);
     // A refused POST with a body: refused from the headers, before its (large) body is read.
-    EXPECT_EQ(RawConnection::status_of(raw_request(
-                  port, post(s, "/api/observations?client=x", std::string(60000, ' '), "Origin: " + s.origin() + "\r\n"))),
+    EXPECT_EQ(RawConnection::status_of(
+                  raw_request(port, post(s, "/api/observations?client=x", std::string(60000, ' '),
+                                         "Origin: " + s.origin() + "\r\n"))),
               401);
-    EXPECT_EQ(RawConnection::status_of(raw_request(
-                  port, post(s, "/api/observations?client=x", "{}", "X-Tirpol-Token: " + token + "\r\n"))),
-              200);
-    // The cookie alone (which a browser attaches to any request to this host) does not change state.
-    EXPECT_EQ(RawConnection::status_of(raw_request(
-                  port, post(s, "/api/observations?client=y", "{}", "Cookie: tirpol_token=" + token + "\r\n"))),
-              403);
+    EXPECT_EQ(
+        RawConnection::status_of(raw_request(port, post(s, "/api/observations?client=x", "{}",
+                                                        "X-Tirpol-Token: " + token + "\r\n"))),
+        200);
+    // The cookie alone (which a browser attaches to any request to this host) does not change
+    // state.
+    EXPECT_EQ(
+        RawConnection::status_of(raw_request(port, post(s, "/api/observations?client=y", "{}",
+                                                        "Cookie: tirpol_token=" + token + "\r\n"))),
+        403);
 }
 
 TEST(LiveServerLimits, CaptureRequestsFromAnotherSiteStartNothingAndErrorsQuoteNoFile) {
@@ -229,38 +250,48 @@ TEST(LiveServerLimits, CaptureRequestsFromAnotherSiteStartNothingAndErrorsQuoteN
     ServedLiveView s("127.0.0.1", test::live_test_options("sim://"));
     const int port = s.server.port();
     const auto session = dir.path() / "session";
-    const std::string request =
-        nlohmann::json{{"plan", (dir.path() / "plan.yaml").string()}, {"output", session.string()}}.dump();
+    const std::string request = nlohmann::json{
+        {"plan", (dir.path() / "plan.yaml").string()},
+        {"output",
+         session.string()}}.dump();
     // The request the issue reported: another site's simple POST (text/plain, its own Origin).
-    const std::string evil =
-        raw_request(port, post(s, "/api/capture/start", request, "Origin: http://evil.example\r\n", "text/plain"));
+    const std::string evil = raw_request(
+        port,
+        post(s, "/api/capture/start", request, "Origin: http://evil.example\r\n", "text/plain"));
     EXPECT_EQ(RawConnection::status_of(evil), 415) << evil;
     std::this_thread::sleep_for(300ms);
     EXPECT_FALSE(std::filesystem::exists(session));
-    const auto status = nlohmann::json::parse(RawConnection::body_of(raw_request(port, get(s, "/api/status"))));
+    const auto status =
+        nlohmann::json::parse(RawConnection::body_of(raw_request(port, get(s, "/api/status"))));
     EXPECT_EQ(status["capture"]["phase"], "idle") << status.dump();
 
     // A file that is not a plan is named, its contents never echoed.
     test::write_text(dir.path() / "secret.txt", "password=hunter2\n");
     for (const auto& file : {dir.path() / "secret.txt", std::filesystem::path("/etc/passwd")}) {
-        const std::string body = nlohmann::json{{"plan", file.string()}, {"output", (dir.path() / "o").string()}}.dump();
-        const std::string r = raw_request(port, post(s, "/api/capture/start", body, "Origin: " + s.origin() + "\r\n"));
+        const std::string body =
+            nlohmann::json{{"plan", file.string()}, {"output", (dir.path() / "o").string()}}.dump();
+        const std::string r = raw_request(
+            port, post(s, "/api/capture/start", body, "Origin: " + s.origin() + "\r\n"));
         EXPECT_EQ(RawConnection::status_of(r), 400) << r;
         EXPECT_NE(r.find(file.string()), std::string::npos) << r;
         EXPECT_EQ(r.find("hunter2"), std::string::npos) << r;
         EXPECT_EQ(r.find("root:"), std::string::npos) << r;
     }
-    // Invalid UTF-8 in the plan's metadata: a 400 naming the file, line and column, not a 500 with an
-    // exception's text (the reader checks the whole file is UTF-8 before parsing it).
-    test::write_text(dir.path() / "utf8.yaml", "frames_per_angle: 1\nmetadata:\n  site: \"\xff\xfe\"\n");
-    const std::string body =
-        nlohmann::json{{"plan", (dir.path() / "utf8.yaml").string()}, {"output", (dir.path() / "u").string()}}.dump();
-    const std::string r = raw_request(port, post(s, "/api/capture/start", body, "Origin: " + s.origin() + "\r\n"));
+    // Invalid UTF-8 in the plan's metadata: a 400 naming the file, line and column, not a 500 with
+    // an exception's text (the reader checks the whole file is UTF-8 before parsing it).
+    test::write_text(dir.path() / "utf8.yaml",
+                     "frames_per_angle: 1\nmetadata:\n  site: \"\xff\xfe\"\n");
+    const std::string body = nlohmann::json{{"plan", (dir.path() / "utf8.yaml").string()},
+                                            {"output", (dir.path() / "u").string()}}
+                                 .dump();
+    const std::string r =
+        raw_request(port, post(s, "/api/capture/start", body, "Origin: " + s.origin() + "\r\n"));
     EXPECT_EQ(RawConnection::status_of(r), 400) << r;
     EXPECT_NE(r.find("utf8.yaml:3:10: invalid UTF-8 (byte 0xFF)"), std::string::npos) << r;
     EXPECT_EQ(r.find("json.exception"), std::string::npos) << r;
     // The page's own request starts the plan.
-    const std::string ok = raw_request(port, post(s, "/api/capture/start", request, "Origin: " + s.origin() + "\r\n"));
+    const std::string ok =
+        raw_request(port, post(s, "/api/capture/start", request, "Origin: " + s.origin() + "\r\n"));
     EXPECT_EQ(RawConnection::status_of(ok), 200) << ok;
 }
 

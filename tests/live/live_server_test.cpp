@@ -55,10 +55,11 @@ TEST(LiveServer, ServesThePageAndNewerFramesOnLoopback) {
     const auto status = nlohmann::json::parse(client.Get("/api/status")->body);
     EXPECT_GE(status["camera"]["grabbed"].get<int>(), 2);
     EXPECT_FALSE(status.contains("stage"));
-    // No stage: Stokes never arrives (204 after the long poll) and capture is refused with a reason.
+    // No stage: Stokes never arrives (204 after the long poll) and capture is refused with a
+    // reason.
     EXPECT_EQ(client.Get("/api/stokes?after=0")->status, 204);
-    auto capture = client.Post("/api/capture/start", {{"Origin", s.origin()}}, R"({"plan":"p.yaml","output":"o"})",
-                               "application/json");
+    auto capture = client.Post("/api/capture/start", {{"Origin", s.origin()}},
+                               R"({"plan":"p.yaml","output":"o"})", "application/json");
     ASSERT_TRUE(capture);
     EXPECT_EQ(capture->status, 400);
     EXPECT_NE(capture->body.find("--stage"), std::string::npos) << capture->body;
@@ -72,7 +73,8 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
     // The URL to open names an address of this machine another one can reach, never the wildcard.
     EXPECT_EQ(s.server.url().find("0.0.0.0"), std::string::npos) << s.server.url();
     httplib::Client client("127.0.0.1", s.server.port());
-    for (const char* path : {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {
+    for (const char* path :
+         {"/", "/live.js", "/api/status", "/api/frame?after=0", "/api/observations"}) {
         auto r = client.Get(path);
         ASSERT_TRUE(r) << path;
         EXPECT_EQ(r->status, 401) << path;
@@ -83,13 +85,15 @@ TEST(LiveServer, BeyondLoopbackEveryRequestNeedsTheToken) {
               token.back() == '0' ? 200 : 401);
     EXPECT_EQ(client.Get(("/?token=" + token).c_str())->status, 200);
     EXPECT_EQ(client.Get("/api/status", {{"X-Tirpol-Token", token}})->status, 200);
-    // The page's script and style sheet are fetched without a query: the cookie set with the page covers them.
+    // The page's script and style sheet are fetched without a query: the cookie set with the page
+    // covers them.
     const auto page = client.Get(("/?token=" + token).c_str());
     const std::string cookie = page->get_header_value("Set-Cookie");
     EXPECT_NE(cookie.find("tirpol_token=" + token), std::string::npos) << cookie;
     EXPECT_NE(cookie.find("HttpOnly"), std::string::npos) << cookie;
     EXPECT_EQ(client.Get("/live.js", {{"Cookie", "other=1; tirpol_token=" + token}})->status, 200);
-    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "tirpol_token=" + std::string(32, '0')}})->status, 401);
+    EXPECT_EQ(client.Get("/live.js", {{"Cookie", "tirpol_token=" + std::string(32, '0')}})->status,
+              401);
 }
 
 TEST(Access, LoopbackAddressesAndTokens) {
@@ -138,7 +142,9 @@ TEST(LiveView, BadInputsAreErrorsNamingWhatIsWrong) {
 TEST(LiveServer, APortInUseIsAnErrorNamingIt) {
     Served first("127.0.0.1");
     LiveView view(test::live_test_options());
-    const std::string message = error_of([&] { LiveServer second(view, {"127.0.0.1", first.server.port()}); });
+    const std::string message = error_of([&] {
+        LiveServer second(view, {"127.0.0.1", first.server.port()});
+    });
     EXPECT_NE(message.find(std::to_string(first.server.port())), std::string::npos) << message;
 }
 

@@ -1,6 +1,6 @@
-// The request policy of the live view (request_policy.h, threat model in docs/live.md), rule by rule:
-// a request another web page can make, or one reaching the server under a rebinding DNS name, is
-// refused from its line and headers alone; the page's own requests pass.
+// The request policy of the live view (request_policy.h, threat model in docs/live.md), rule by
+// rule: a request another web page can make, or one reaching the server under a rebinding DNS name,
+// is refused from its line and headers alone; the page's own requests pass.
 
 #include "tirpol/live/request_policy.h"
 
@@ -35,9 +35,11 @@ int status_of(const RequestPolicy& policy, const RequestFacts& request) {
 
 TEST(RequestPolicy, LoopbackHostsAreTheLoopbackNamesWithThePort) {
     const RequestPolicy p = loopback_policy();
-    for (const char* host : {"127.0.0.1:41235", "localhost:41235", "LOCALHOST:41235", "[::1]:41235"})
+    for (const char* host :
+         {"127.0.0.1:41235", "localhost:41235", "LOCALHOST:41235", "[::1]:41235"})
         EXPECT_TRUE(p.host_allowed(host)) << host;
-    for (const char* host : {"evil.example:41235", "127.0.0.1", "127.0.0.1:41236", "localhost", "", "127.0.0.1:41235x"})
+    for (const char* host : {"evil.example:41235", "127.0.0.1", "127.0.0.1:41236", "localhost", "",
+                             "127.0.0.1:41235x"})
         EXPECT_FALSE(p.host_allowed(host)) << host;
     EXPECT_TRUE(p.origin_allowed("http://localhost:41235"));
     EXPECT_FALSE(p.origin_allowed("https://localhost:41235"));
@@ -64,20 +66,23 @@ TEST(RequestPolicy, StateChangesNeedJsonAndThisOrigin) {
     r.content_type = "application/json; charset=utf-8";
     EXPECT_EQ(status_of(p, r), 0);
     // Every content type a CORS simple request may carry is refused, whatever the origin.
-    for (const char* type : {"text/plain", "text/plain; charset=UTF-8", "application/x-www-form-urlencoded",
-                             "multipart/form-data; boundary=x", ""}) {
+    for (const char* type :
+         {"text/plain", "text/plain; charset=UTF-8", "application/x-www-form-urlencoded",
+          "multipart/form-data; boundary=x", ""}) {
         r = page_post();
         r.content_type = type;
         EXPECT_EQ(status_of(p, r), 415) << type;
         r.origin = "http://evil.example";
         EXPECT_EQ(status_of(p, r), 415) << type;
     }
-    for (const char* origin : {"http://evil.example", "http://127.0.0.1:41236", "https://127.0.0.1:41235", "null", ""}) {
+    for (const char* origin :
+         {"http://evil.example", "http://127.0.0.1:41236", "https://127.0.0.1:41235", "null", ""}) {
         r = page_post();
         r.origin = origin;
         EXPECT_EQ(status_of(p, r), 403) << origin;
     }
-    // A script on this machine may send the token instead of an Origin (with a token-protected bind).
+    // A script on this machine may send the token instead of an Origin (with a token-protected
+    // bind).
     const RequestPolicy with_token(allowed_hosts("127.0.0.1", kPort), "t0k3n");
     r = page_post();
     r.origin.clear();

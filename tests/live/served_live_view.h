@@ -1,6 +1,6 @@
 #pragma once
-// A LiveView and its LiveServer serving on their own thread for the duration of a test, and raw HTTP
-// over a loopback socket for the tests that must control every byte a client sends.
+// A LiveView and its LiveServer serving on their own thread for the duration of a test, and raw
+// HTTP over a loopback socket for the tests that must control every byte a client sends.
 
 #include <arpa/inet.h>
 #include <httplib.h>
@@ -17,7 +17,8 @@
 
 namespace tirpol::test {
 
-inline constexpr const char* kLiveTestCamera = "sim://uniform?width=32&height=24&counts=1500&noise=2&fps=50&fpa_k=300";
+inline constexpr const char* kLiveTestCamera =
+    "sim://uniform?width=32&height=24&counts=1500&noise=2&fps=50&fpa_k=300";
 
 inline live::LiveViewOptions live_test_options(const std::string& stage_uri = "") {
     live::LiveViewOptions o;
@@ -32,11 +33,13 @@ struct ServedLiveView {
     live::LiveView view;
     live::LiveServer server;
     std::thread thread;
-    explicit ServedLiveView(const std::string& bind, live::LiveViewOptions options = live_test_options(),
+    explicit ServedLiveView(const std::string& bind,
+                            live::LiveViewOptions options = live_test_options(),
                             live::RequestLimits limits = {})
         : view(options), server(view, {bind, 0, limits}) {
         thread = std::thread([this] { server.run(); });
-        for (int i = 0; i < 200; ++i) {  // listen_after_bind starts accepting at once; give it a moment
+        for (int i = 0; i < 200;
+             ++i) {  // listen_after_bind starts accepting at once; give it a moment
             httplib::Client probe("127.0.0.1", server.port());
             if (auto r = probe.Get("/live.css"); r && r->status != 503) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -78,14 +81,14 @@ public:
         }
         return true;
     }
-    /// What the server sends until it closes the connection, a complete response with a Content-Length
-    /// arrived, or `timeout` passed.
+    /// What the server sends until it closes the connection, a complete response with a
+    /// Content-Length arrived, or `timeout` passed.
     std::string receive(std::chrono::milliseconds timeout) {
         std::string out;
         const auto deadline = std::chrono::steady_clock::now() + timeout;
         while (true) {
-            const auto left =
-                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                deadline - std::chrono::steady_clock::now());
             if (left.count() <= 0) break;
             pollfd p{m_fd, POLLIN, 0};
             if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
@@ -121,7 +124,8 @@ private:
         for (const char* name : {"Content-Length: ", "content-length: "}) {
             const auto p = head.find(name);
             if (p != std::string::npos)
-                return text.size() - at - 4 >= std::stoull(head.substr(p + std::string(name).size()));
+                return text.size() - at - 4 >=
+                       std::stoull(head.substr(p + std::string(name).size()));
         }
         return false;
     }
@@ -131,8 +135,9 @@ private:
 };
 
 /// One request over a fresh connection: its response text.
-inline std::string raw_request(int port, const std::string& request,
-                               std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
+inline std::string raw_request(
+    int port, const std::string& request,
+    std::chrono::milliseconds timeout = std::chrono::milliseconds(5000)) {
     RawConnection c(port);
     if (!c.connected() || !c.send(request)) return "";
     return c.receive(timeout);

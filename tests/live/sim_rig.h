@@ -1,9 +1,9 @@
 #pragma once
 // An in-process rig for the live-view tests: a simulated stage that turns at a finite speed and a
 // free-running simulated camera looking, through the polarizer on that stage, at a source of known
-// linear Stokes vector. Counts follow Malus's law for an ideal analyzer at the stage's physical angle
-// at the end of each exposure: I(θ) = ½·(S0 + S1·cos 2θ + S2·sin 2θ) (Chipman, Lam & Young 2018, eq 6.35),
-// so frames exposed during a move carry the wrong angle's counts, as on a real rig.
+// linear Stokes vector. Counts follow Malus's law for an ideal analyzer at the stage's physical
+// angle at the end of each exposure: I(θ) = ½·(S0 + S1·cos 2θ + S2·sin 2θ) (Chipman, Lam & Young
+// 2018, eq 6.35), so frames exposed during a move carry the wrong angle's counts, as on a real rig.
 
 #include <chrono>
 #include <cmath>
@@ -44,21 +44,24 @@ struct SimRig {
             config,
             [source](double angle_deg, std::vector<float>& counts) {
                 const double t = 2.0 * angle_deg * std::numbers::pi / 180.0;
-                const double i = 0.5 * (source.s0 + source.s1() * std::cos(t) + source.s2() * std::sin(t));
+                const double i =
+                    0.5 * (source.s0 + source.s1() * std::cos(t) + source.s2() * std::sin(t));
                 std::fill(counts.begin(), counts.end(), static_cast<float>(i));
             },
             acquisition::simulated_stage_angle_source(*stage));
     }
 };
 
-/// The rig with the live view's grab thread and polarizer cycle running on it (counts, no calibration).
+/// The rig with the live view's grab thread and polarizer cycle running on it (counts, no
+/// calibration).
 struct CyclingRig {
     SimRig rig;
     live::FrameFeed feed;
     live::DisplayConverter converter;
     live::PolarizerCycle cycle;
 
-    CyclingRig(const PolarizedSource& source, double deg_per_s, int frames_per_angle, double settle_s)
+    CyclingRig(const PolarizedSource& source, double deg_per_s, int frames_per_angle,
+               double settle_s)
         : rig(source, deg_per_s),
           feed(*rig.camera),
           converter(rig.camera->info(), nullptr, live::DisplayUnit::Counts),

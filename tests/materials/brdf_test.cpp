@@ -43,10 +43,10 @@ std::vector<std::shared_ptr<PolarizedBrdf>> rough_models() {
     return out;
 }
 
-// Helmholtz reciprocity for polarized light (Sekera, JOSA 56, 1732 (1966); Mishchenko, Travis & Lacis,
-// "Multiple scattering of light by particles", 2006, eq 13.37): in tirpol's s/p frames (pbrdf.h)
-// M(wo→wi) = Q·M(wi→wo)ᵀ·Q with Q = diag(1, 1, −1, 1). Also checked: Q = diag(1,1,1,−1) does NOT hold
-// (the test would catch a transposed frame convention).
+// Helmholtz reciprocity for polarized light (Sekera, JOSA 56, 1732 (1966); Mishchenko, Travis &
+// Lacis, "Multiple scattering of light by particles", 2006, eq 13.37): in tirpol's s/p frames
+// (pbrdf.h) M(wo→wi) = Q·M(wi→wo)ᵀ·Q with Q = diag(1, 1, −1, 1). Also checked: Q = diag(1,1,1,−1)
+// does NOT hold (the test would catch a transposed frame convention).
 TEST(Brdf, MuellerReciprocity) {
     const MuellerMatrix q = Eigen::Vector4d(1, 1, -1, 1).asDiagonal();
     const MuellerMatrix wrong_q = Eigen::Vector4d(1, 1, 1, -1).asDiagonal();
@@ -61,8 +61,9 @@ TEST(Brdf, MuellerReciprocity) {
             const double scale = std::max(forward(0, 0), 1e-300);
             EXPECT_LT((q * forward.transpose() * q - backward).cwiseAbs().maxCoeff(), 1e-9 * scale)
                 << model->model() << " trial " << trial;
-            worst_violation = std::max(worst_violation,
-                                       (wrong_q * forward.transpose() * wrong_q - backward).cwiseAbs().maxCoeff() / scale);
+            worst_violation = std::max(
+                worst_violation,
+                (wrong_q * forward.transpose() * wrong_q - backward).cwiseAbs().maxCoeff() / scale);
         }
         if (model->model() == "microfacet") {
             EXPECT_GT(worst_violation, 1e-3);
@@ -77,28 +78,31 @@ TEST(Brdf, EveryMuellerBrdfIsPhysicallyRealizable) {
     std::uniform_real_distribution<double> theta(0.0, 89.9), phi(0.0, 360.0);
     for (const auto& model : rough_models())
         for (int trial = 0; trial < 500; ++trial) {
-            const MuellerMatrix m = model->eval(direction(theta(rng), phi(rng)), direction(theta(rng), phi(rng)), 10.0);
+            const MuellerMatrix m =
+                model->eval(direction(theta(rng), phi(rng)), direction(theta(rng), phi(rng)), 10.0);
             ASSERT_TRUE(is_physically_realizable(m, 1e-9)) << model->model() << "\n" << m;
         }
 }
 
 // Degenerate geometry must not produce NaN/Inf (ARCHITECTURE.md "no artifacts at grazing angles"):
-// normal incidence and view, collinear (backscatter) directions, mirror directions, exactly grazing.
+// normal incidence and view, collinear (backscatter) directions, mirror directions, exactly
+// grazing.
 TEST(Brdf, FiniteAtNormalCollinearAndGrazingGeometry) {
     const std::vector<std::pair<Vec3, Vec3>> cases = {
-        {Vec3::UnitZ(), Vec3::UnitZ()},                     // normal, collinear
-        {direction(40, 30), direction(40, 30)},             // backscatter
-        {direction(40, 30), direction(40, 210)},            // mirror
-        {direction(89.999999, 0), direction(89.999999, 180)},   // grazing mirror
-        {direction(89.999999, 0), direction(89.999999, 0)},     // grazing backscatter
-        {Vec3(1, 0, 1e-300).normalized(), direction(30, 90)},   // at the horizon
-        {Vec3(1, 0, 0), direction(30, 90)},                 // exactly in the plane
+        {Vec3::UnitZ(), Vec3::UnitZ()},                        // normal, collinear
+        {direction(40, 30), direction(40, 30)},                // backscatter
+        {direction(40, 30), direction(40, 210)},               // mirror
+        {direction(89.999999, 0), direction(89.999999, 180)},  // grazing mirror
+        {direction(89.999999, 0), direction(89.999999, 0)},    // grazing backscatter
+        {Vec3(1, 0, 1e-300).normalized(), direction(30, 90)},  // at the horizon
+        {Vec3(1, 0, 0), direction(30, 90)},                    // exactly in the plane
         {Vec3::UnitZ(), direction(89.9999, 45)},
     };
     for (const auto& model : rough_models())
         for (const auto& [wi, wo] : cases) {
             const MuellerMatrix m = model->eval(wi, wo, 10.0);
-            EXPECT_TRUE(m.allFinite()) << model->model() << " wi " << wi.transpose() << " wo " << wo.transpose();
+            EXPECT_TRUE(m.allFinite())
+                << model->model() << " wi " << wi.transpose() << " wo " << wo.transpose();
             EXPECT_GE(m(0, 0), 0.0);
             const double p = model->pdf(wi, wo, 10.0);
             EXPECT_TRUE(std::isfinite(p) && p >= 0.0);
@@ -108,8 +112,8 @@ TEST(Brdf, FiniteAtNormalCollinearAndGrazingGeometry) {
 }
 
 // Reflection is polarized perpendicular to the plane of incidence (s, S1 > 0) for a dielectric: for
-// unpolarized light the reflected Stokes vector is M·e0, whose S1 = m10 > 0 in the specular direction
-// (Fresnel: Rs ≥ Rp; Born & Wolf §1.5.3).
+// unpolarized light the reflected Stokes vector is M·e0, whose S1 = m10 > 0 in the specular
+// direction (Fresnel: Rs ≥ Rp; Born & Wolf §1.5.3).
 TEST(Brdf, SpecularReflectionIsSPolarized) {
     const auto models = rough_models();
     for (double theta : {20.0, 45.0, 60.0, 80.0}) {

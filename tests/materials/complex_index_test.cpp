@@ -1,11 +1,12 @@
 // Complex-index tables: the refractiveindex.info YAML layout, CSV, interpolation and clear errors.
 
+#include "tirpol/materials/complex_index.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/materials/complex_index.h"
 
 namespace tirpol::materials {
 namespace {
@@ -79,10 +80,11 @@ TEST(ComplexIndex, ConstantIsValidEverywhere) {
     EXPECT_THROW(RefractiveIndexTable::constant({-1.0, 0.0}), Error);
 }
 
-// The library's data files are refractiveindex.info excerpts: Hale & Querry (1973) water at 10 µm is
-// n = 1.218, k = 0.0508 (their Table 1).
+// The library's data files are refractiveindex.info excerpts: Hale & Querry (1973) water at 10 µm
+// is n = 1.218, k = 0.0508 (their Table 1).
 TEST(ComplexIndex, LibraryWaterMatchesHaleQuerry) {
-    const auto t = RefractiveIndexTable::load(test::source_dir() / "config/materials/data/water_hale_querry_1973.yml");
+    const auto t = RefractiveIndexTable::load(test::source_dir() /
+                                              "config/materials/data/water_hale_querry_1973.yml");
     EXPECT_NEAR(t.at(10.0).n, 1.218, 1e-12);
     EXPECT_NEAR(t.at(10.0).k, 0.0508, 1e-12);
 }

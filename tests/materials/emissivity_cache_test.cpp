@@ -1,5 +1,6 @@
 // The emissivity-table cache (emissivity_cache.h): a table read back from memory or disk equals the
-// one built from the model; a changed material, band grid or corrupt file never returns stale numbers.
+// one built from the model; a changed material, band grid or corrupt file never returns stale
+// numbers.
 
 #include "tirpol/materials/emissivity_cache.h"
 
@@ -30,7 +31,8 @@ const EmissivityOptions kQuick{4, 4, 4};
 void expect_same_values(const EmissivityTable& a, const EmissivityTable& b) {
     ASSERT_EQ(a.wavelengths_um(), b.wavelengths_um());
     ASSERT_EQ(a.values().size(), b.values().size());
-    for (std::size_t i = 0; i < a.values().size(); ++i) EXPECT_EQ(a.values()[i], b.values()[i]) << i;
+    for (std::size_t i = 0; i < a.values().size(); ++i)
+        EXPECT_EQ(a.values()[i], b.values()[i]) << i;
 }
 
 std::vector<std::filesystem::path> files_in(const std::filesystem::path& dir) {
@@ -85,7 +87,8 @@ TEST(EmissivityCache, ChangedMaterialOrGridInvalidatesTheEntry) {
     EXPECT_EQ(files_in(dir.path()).size(), 5u);
 }
 
-// A damaged file (truncated, a flipped byte) is detected by its checksum/size, rebuilt and replaced.
+// A damaged file (truncated, a flipped byte) is detected by its checksum/size, rebuilt and
+// replaced.
 TEST(EmissivityCache, CorruptFileIsRebuiltNeverTrusted) {
     TempDir dir;
     const MicrofacetBrdf brdf = rough(1.55, 0.2);
@@ -100,7 +103,8 @@ TEST(EmissivityCache, CorruptFileIsRebuiltNeverTrusted) {
         if (damage == 0) {
             std::filesystem::resize_file(file, size / 2);
         } else {
-            const auto at = static_cast<std::streamoff>(damage == 1 ? size - 100 : 20);  // a value, the key
+            const auto at =
+                static_cast<std::streamoff>(damage == 1 ? size - 100 : 20);  // a value, the key
             std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
             f.seekg(at);
             const char byte = static_cast<char>(f.get());
@@ -111,7 +115,8 @@ TEST(EmissivityCache, CorruptFileIsRebuiltNeverTrusted) {
         EXPECT_EQ(c.source, EmissivityCacheSource::rebuilt_corrupt) << damage;
         expect_same_values(*c.table, direct);
         clear_emissivity_memory_cache();
-        EXPECT_EQ(cached_emissivity_table(brdf, kGrid, dir.path(), kAngles, kQuick).source, EmissivityCacheSource::disk)
+        EXPECT_EQ(cached_emissivity_table(brdf, kGrid, dir.path(), kAngles, kQuick).source,
+                  EmissivityCacheSource::disk)
             << "the rebuilt file replaced the damaged one";
     }
 }
@@ -132,13 +137,15 @@ TEST(EmissivityCache, DefaultFolderFollowsTheEnvironment) {
     const char* saved_xdg = std::getenv("XDG_CACHE_HOME");
     const std::string keep_dir = saved_dir ? saved_dir : "", keep_xdg = saved_xdg ? saved_xdg : "";
     setenv("TIRPOL_CACHE_DIR", "/tmp/tirpol-cache-override", 1);
-    EXPECT_EQ(default_emissivity_cache_directory(), std::filesystem::path("/tmp/tirpol-cache-override"));
+    EXPECT_EQ(default_emissivity_cache_directory(),
+              std::filesystem::path("/tmp/tirpol-cache-override"));
     unsetenv("TIRPOL_CACHE_DIR");
     setenv("XDG_CACHE_HOME", "/tmp/xdg", 1);
     EXPECT_EQ(default_emissivity_cache_directory(), std::filesystem::path("/tmp/xdg/tirpol"));
     setenv("XDG_CACHE_HOME", "relative/ignored", 1);  // XDG: relative paths are invalid
     EXPECT_EQ(default_emissivity_cache_directory().filename(), "tirpol");
-    EXPECT_NE(default_emissivity_cache_directory(), std::filesystem::path("relative/ignored/tirpol"));
+    EXPECT_NE(default_emissivity_cache_directory(),
+              std::filesystem::path("relative/ignored/tirpol"));
     if (saved_dir) setenv("TIRPOL_CACHE_DIR", keep_dir.c_str(), 1);
     if (saved_xdg)
         setenv("XDG_CACHE_HOME", keep_xdg.c_str(), 1);

@@ -1,12 +1,13 @@
 // Emissivity curves as the CLI writes them: angle specifications, CSV columns, band averaging.
 
+#include "tirpol/materials/emissivity_curve.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "tirpol/core/error.h"
-#include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/materials/smooth_fresnel.h"
 
@@ -37,9 +38,9 @@ TEST(EmissivityCurve, CsvHasTheDocumentedColumns) {
     EXPECT_NEAR(rows[1].dolp, std::abs(rows[1].e(1)) / rows[1].e(0), 1e-12);
 }
 
-// For a material whose parameters do not depend on wavelength, the Planck-weighted band average equals
-// the single-wavelength emissivity (the weights sum to one); for a tabulated material it lies between
-// the extremes over the band.
+// For a material whose parameters do not depend on wavelength, the Planck-weighted band average
+// equals the single-wavelength emissivity (the weights sum to one); for a tabulated material it
+// lies between the extremes over the band.
 TEST(EmissivityCurve, BandAverageIsAWeightedMean) {
     MicrofacetParameters p;
     p.index = RefractiveIndexTable::constant({1.6, 0.1});
@@ -47,14 +48,18 @@ TEST(EmissivityCurve, BandAverageIsAWeightedMean) {
     const MicrofacetBrdf paint(p);
     const auto band = emissivity_curve(paint, {0.0, 70.0}, Band(8.0, 14.0), 300.0);
     const auto mono = emissivity_curve(paint, {0.0, 70.0}, 11.0);
-    for (std::size_t i = 0; i < 2; ++i) EXPECT_LT((band[i].e - mono[i].e).cwiseAbs().maxCoeff(), 2e-4);
+    for (std::size_t i = 0; i < 2; ++i)
+        EXPECT_LT((band[i].e - mono[i].e).cwiseAbs().maxCoeff(), 2e-4);
 
-    const SmoothFresnelBrdf water(RefractiveIndexTable({8.0, 12.0}, {1.29, 1.11}, {0.034, 0.199}, "test"));
+    const SmoothFresnelBrdf water(
+        RefractiveIndexTable({8.0, 12.0}, {1.29, 1.11}, {0.034, 0.199}, "test"));
     const double avg = emissivity_curve(water, {0.0}, Band(8.0, 12.0), 300.0)[0].e(0);
-    const double e8 = emissivity_curve(water, {0.0}, 8.0)[0].e(0), e12 = emissivity_curve(water, {0.0}, 12.0)[0].e(0);
+    const double e8 = emissivity_curve(water, {0.0}, 8.0)[0].e(0),
+                 e12 = emissivity_curve(water, {0.0}, 12.0)[0].e(0);
     EXPECT_GT(avg, std::min(e8, e12));
     EXPECT_LT(avg, std::max(e8, e12));
-    EXPECT_THROW(emissivity_curve(water, {0.0}, Band(8.0, 14.0), 300.0), Error);  // outside the data
+    EXPECT_THROW(emissivity_curve(water, {0.0}, Band(8.0, 14.0), 300.0),
+                 Error);  // outside the data
 }
 
 }  // namespace

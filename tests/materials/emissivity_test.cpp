@@ -1,6 +1,8 @@
 // Kirchhoff-consistent polarized emissivity (paper eq 5 as Stokes): exact cases, agreement with a
 // brute-force hemispherical integration, the σ → 0 limit, and the table.
 
+#include "tirpol/materials/emissivity.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <tuple>
 
 #include "tirpol/core/stokes.h"
-#include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/microfacet.h"
@@ -30,7 +31,8 @@ MicrofacetBrdf paint(double sigma) {
 
 // Brute force: ∫ M(wi→wo) e0 cosθi dωi on a fine product grid in (θi, φi), independent of the
 // models' sampling; midpoint rule, `n_theta` × `n_phi` cells.
-StokesVector brute_force_reflected(const PolarizedBrdf& brdf, double theta_o, int n_theta, int n_phi) {
+StokesVector brute_force_reflected(const PolarizedBrdf& brdf, double theta_o, int n_theta,
+                                   int n_phi) {
     const Vec3 wo(std::sin(theta_o), 0.0, std::cos(theta_o));
     StokesVector sum = StokesVector::Zero();
     const double dt = 0.5 * kPi / n_theta, dp = 2.0 * kPi / n_phi;
@@ -60,7 +62,8 @@ TEST(Emissivity, SmoothSurfaceIsOneMinusFresnel) {
     }
 }
 
-// A Lambertian surface of reflectance ρ has ε = 1 − ρ, unpolarized, at every angle (Kirchhoff's law).
+// A Lambertian surface of reflectance ρ has ε = 1 − ρ, unpolarized, at every angle (Kirchhoff's
+// law).
 TEST(Emissivity, LambertianIsOneMinusReflectance) {
     const LambertianBrdf lambert(SpectralValue(0.3));
     for (double deg : {0.0, 45.0, 89.9}) {
@@ -72,23 +75,27 @@ TEST(Emissivity, LambertianIsOneMinusReflectance) {
 
 // The sample-space quadrature agrees with a brute-force 2-D integration over the hemisphere
 // (500 × 1000 cells, itself accurate to ~1e-5 for these lobes), to the tolerances stated in
-// emissivity.h: 2e-4 for a rough paint (σ = 0.3) up to 89°, 1e-3 for a glossy one (σ = 0.05) up to 85°.
+// emissivity.h: 2e-4 for a rough paint (σ = 0.3) up to 89°, 1e-3 for a glossy one (σ = 0.05) up to
+// 85°.
 TEST(Emissivity, QuadratureMatchesBruteForceIntegration) {
-    for (const auto& [sigma, max_deg, tolerance] : {std::tuple{0.3, 89.0, 2e-4}, std::tuple{0.05, 85.0, 1e-3}}) {
+    for (const auto& [sigma, max_deg, tolerance] :
+         {std::tuple{0.3, 89.0, 2e-4}, std::tuple{0.05, 85.0, 1e-3}}) {
         const MicrofacetBrdf brdf = paint(sigma);
         for (double deg : {0.0, 40.0, 70.0, max_deg}) {
             const double t = deg_to_rad(deg);
             const StokesVector fast = hemispherical_reflected_stokes(brdf, std::cos(t), 10.0);
             const StokesVector slow = brute_force_reflected(brdf, t, 500, 1000);
-            EXPECT_LT((fast - slow).cwiseAbs().maxCoeff(), tolerance) << "sigma " << sigma << " at " << deg << "°\n"
-                                                                      << fast.transpose() << "\n" << slow.transpose();
+            EXPECT_LT((fast - slow).cwiseAbs().maxCoeff(), tolerance)
+                << "sigma " << sigma << " at " << deg << "°\n"
+                << fast.transpose() << "\n"
+                << slow.transpose();
         }
     }
 }
 
-// σ → 0: the micro-facet model tends to the smooth Fresnel surface (the Gaussian facet density tends
-// to a delta, Smith's G and Beard–Maxwell's SO tend to 1; Priest & Germer 2000). Reflected Stokes
-// vector and hence emissivity agree within 2e-3 for σ = 0.002 up to 85°.
+// σ → 0: the micro-facet model tends to the smooth Fresnel surface (the Gaussian facet density
+// tends to a delta, Smith's G and Beard–Maxwell's SO tend to 1; Priest & Germer 2000). Reflected
+// Stokes vector and hence emissivity agree within 2e-3 for σ = 0.002 up to 85°.
 TEST(Emissivity, VanishingRoughnessReproducesSmoothFresnel) {
     MicrofacetParameters p;
     p.index = RefractiveIndexTable::constant({1.6, 0.05});
@@ -99,13 +106,14 @@ TEST(Emissivity, VanishingRoughnessReproducesSmoothFresnel) {
         const double c = std::cos(deg_to_rad(deg));
         const StokesVector rough_e = directional_emissivity(nearly_smooth, c, 10.0);
         const StokesVector smooth_e = directional_emissivity(smooth, c, 10.0);
-        EXPECT_LT((rough_e - smooth_e).cwiseAbs().maxCoeff(), 2e-3) << deg << "°: " << rough_e.transpose() << " vs "
-                                                                    << smooth_e.transpose();
+        EXPECT_LT((rough_e - smooth_e).cwiseAbs().maxCoeff(), 2e-3)
+            << deg << "°: " << rough_e.transpose() << " vs " << smooth_e.transpose();
     }
 }
 
-// The table reproduces direct integration between its nodes (cubic interpolation on the graded grid)
-// within 2e-4, and the band average of a spectrally flat material equals its single-wavelength value.
+// The table reproduces direct integration between its nodes (cubic interpolation on the graded
+// grid) within 2e-4, and the band average of a spectrally flat material equals its
+// single-wavelength value.
 TEST(Emissivity, TableMatchesDirectIntegration) {
     const MicrofacetBrdf brdf = paint(0.2);
     const EmissivityTable table(brdf, {8.0, 10.0, 12.0});
@@ -113,16 +121,23 @@ TEST(Emissivity, TableMatchesDirectIntegration) {
         const double c = std::cos(deg_to_rad(deg));
         const StokesVector direct = directional_emissivity(brdf, c, 10.0);
         EXPECT_LT((table.at(c, 1) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
-        EXPECT_LT((table.band_average(c, Band(8.0, 14.0), 300.0) - direct).cwiseAbs().maxCoeff(), 2e-4) << deg;
+        EXPECT_LT((table.band_average(c, Band(8.0, 14.0), 300.0) - direct).cwiseAbs().maxCoeff(),
+                  2e-4)
+            << deg;
     }
     // Precomputed band weights give the same band average (the renderer's hot path).
     const Band band(8.0, 14.0);
     const std::vector<double> weights = table.band_weights(band, 300.0);
     for (double c : {1.0, 0.5, 0.05})
-        EXPECT_LT((table.at_weighted(c, weights) - table.band_average(c, band, 300.0)).cwiseAbs().maxCoeff(), 1e-14);
+        EXPECT_LT((table.at_weighted(c, weights) - table.band_average(c, band, 300.0))
+                      .cwiseAbs()
+                      .maxCoeff(),
+                  1e-14);
     // At a node the table holds exactly the integral.
     const double c_node = std::cos(table.angles_rad()[40]);
-    EXPECT_LT((table.at(c_node, 0) - directional_emissivity(brdf, c_node, 8.0)).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT(
+        (table.at(c_node, 0) - directional_emissivity(brdf, c_node, 8.0)).cwiseAbs().maxCoeff(),
+        1e-12);
 }
 
 // Emission is polarized in the plane of emission (S1 < 0 in the s/p frame), never more than fully:
@@ -148,15 +163,21 @@ class FullAzimuth final : public PolarizedBrdf {
 public:
     explicit FullAzimuth(const PolarizedBrdf& inner) : m_inner(inner) {}
     std::string model() const override { return m_inner.model(); }
-    MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double wl) const override { return m_inner.eval(wi, wo, wl); }
+    MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double wl) const override {
+        return m_inner.eval(wi, wo, wl);
+    }
     BrdfSample sample(const Vec3& wo, double wl, double u1, double u2) const override {
         return m_inner.sample(wo, wl, u1, u2);
     }
     BrdfSample quadrature_sample(const Vec3& wo, double wl, double u1, double u2) const override {
         return m_inner.quadrature_sample(wo, wl, u1, u2);
     }
-    double pdf(const Vec3& wi, const Vec3& wo, double wl) const override { return m_inner.pdf(wi, wo, wl); }
-    std::vector<BrdfParameter> parameters(double wl) const override { return m_inner.parameters(wl); }
+    double pdf(const Vec3& wi, const Vec3& wo, double wl) const override {
+        return m_inner.pdf(wi, wo, wl);
+    }
+    std::vector<BrdfParameter> parameters(double wl) const override {
+        return m_inner.parameters(wl);
+    }
     std::vector<double> sample_u1_breaks(const Vec3& wo, double wl) const override {
         return m_inner.sample_u1_breaks(wo, wl);
     }
@@ -170,7 +191,8 @@ TEST(Emissivity, MirrorSymmetryShortcutMatchesFullAzimuth) {
     const FullAzimuth full(brdf);
     for (double deg : {10.0, 50.0, 80.0, 89.0}) {
         const double c = std::cos(deg_to_rad(deg));
-        const StokesVector a = directional_emissivity(brdf, c, 10.0), b = directional_emissivity(full, c, 10.0);
+        const StokesVector a = directional_emissivity(brdf, c, 10.0),
+                           b = directional_emissivity(full, c, 10.0);
         EXPECT_NEAR(b(2), 0.0, 1e-12);
         EXPECT_NEAR(b(3), 0.0, 1e-12);
         EXPECT_LT((a - b).cwiseAbs().maxCoeff(), 1e-12) << deg;
@@ -180,10 +202,10 @@ TEST(Emissivity, MirrorSymmetryShortcutMatchesFullAzimuth) {
 // No grazing-angle artifacts (the paper's SUV-roof salt-and-pepper, §4): ε and DoLP from the table
 // vary smoothly up to 90°. Near 90° ε legitimately bends hard (for water ε'' ≈ 40 /rad², a second
 // difference of 1.3e-4 at 0.1° steps), so the test bounds the THIRD differences at 0.1° steps up to
-// 89.5°: below 1e-4 (the exact Fresnel curve has 2e-6; a spike of 1e-4 would give 3e-4). In the last
-// half degree a rough surface has a genuine cosθ·ln cosθ-type endpoint behaviour (volume term), so
-// there ε and DoLP must be monotone (no oscillation), and the table's value at 89.95° must match
-// direct integration. Models: a rough paint, a glossy paint and a smooth interface.
+// 89.5°: below 1e-4 (the exact Fresnel curve has 2e-6; a spike of 1e-4 would give 3e-4). In the
+// last half degree a rough surface has a genuine cosθ·ln cosθ-type endpoint behaviour (volume
+// term), so there ε and DoLP must be monotone (no oscillation), and the table's value at 89.95°
+// must match direct integration. Models: a rough paint, a glossy paint and a smooth interface.
 TEST(Emissivity, SmoothUpToGrazing) {
     MicrofacetParameters glossy;
     glossy.index = RefractiveIndexTable::constant({1.5, 0.02});
@@ -210,7 +232,8 @@ TEST(Emissivity, SmoothUpToGrazing) {
             EXPECT_GE(p[i], p[i - 1]) << model->model() << " at " << 0.1 * static_cast<double>(i);
         }
         const double c = std::cos(deg_to_rad(89.95));
-        EXPECT_LT((table.at(c, 0) - directional_emissivity(*model, c, 10.0)).cwiseAbs().maxCoeff(), 1e-4);
+        EXPECT_LT((table.at(c, 0) - directional_emissivity(*model, c, 10.0)).cwiseAbs().maxCoeff(),
+                  1e-4);
     }
 }
 

@@ -62,8 +62,8 @@ TEST(Fresnel, MetalReflectanceAtTenMicrometres) {
     EXPECT_LT(min_rp, 0.99);
 }
 
-// Absorbing media: the time convention exp(i(kr − ωt)) with k ≥ 0 makes q = √(ñ² − sin²θ) lie in the
-// first quadrant, and energy conservation gives R ≤ 1 for every k ≥ 0 and angle.
+// Absorbing media: the time convention exp(i(kr − ωt)) with k ≥ 0 makes q = √(ñ² − sin²θ) lie in
+// the first quadrant, and energy conservation gives R ≤ 1 for every k ≥ 0 and angle.
 TEST(Fresnel, ReflectanceNeverExceedsOne) {
     for (double n : {0.2, 1.0, 1.33, 1.6, 4.0, 30.0})
         for (double k : {0.0, 0.01, 0.5, 5.0, 90.0})
@@ -76,10 +76,11 @@ TEST(Fresnel, ReflectanceNeverExceedsOne) {
 }
 
 // Sense of rotation of the real field of a Jones vector given in the exp(i(k·r − ωt)) convention of
-// fresnel_amplitudes, in a right-handed frame (x, y, k): +1 if E(t) = Re(E·e^{−iωt}) turns clockwise
-// as seen by a receiver looking into the oncoming light (x to its right, y up), −1 if
-// counter-clockwise. Right-handed light is clockwise in the receiver's view (Born & Wolf, Principles
-// of Optics, 7th ed., §1.4.2). Computed in the time domain, independently of any Mueller algebra.
+// fresnel_amplitudes, in a right-handed frame (x, y, k): +1 if E(t) = Re(E·e^{−iωt}) turns
+// clockwise as seen by a receiver looking into the oncoming light (x to its right, y up), −1 if
+// counter-clockwise. Right-handed light is clockwise in the receiver's view (Born & Wolf,
+// Principles of Optics, 7th ed., §1.4.2). Computed in the time domain, independently of any Mueller
+// algebra.
 int receiver_view_rotation(std::complex<double> ex, std::complex<double> ey) {
     const double dt = 1e-3;  // ωt step
     auto field = [&](double wt) {
@@ -92,9 +93,11 @@ int receiver_view_rotation(std::complex<double> ex, std::complex<double> ey) {
 }
 
 // Jones→Mueller with the time convention converted (fresnel.h): the closed form equals core's
-// mueller_from_jones (Chipman et al. 2018 eq 6.99, exp(i(ωt − k·r))) of the conjugated Jones matrix.
+// mueller_from_jones (Chipman et al. 2018 eq 6.99, exp(i(ωt − k·r))) of the conjugated Jones
+// matrix.
 TEST(Fresnel, MuellerMatchesJonesConversionOfConjugatedAmplitudes) {
-    for (const ComplexIndex index : {ComplexIndex{1.5, 0.0}, ComplexIndex{1.6, 0.3}, ComplexIndex{12.1, 69.2}})
+    for (const ComplexIndex index :
+         {ComplexIndex{1.5, 0.0}, ComplexIndex{1.6, 0.3}, ComplexIndex{12.1, 69.2}})
         for (double deg : {0.0, 30.0, 56.0, 75.0, 89.0}) {
             const double c = std::cos(deg_to_rad(deg));
             const FresnelResult r = fresnel(index, c);
@@ -111,11 +114,13 @@ TEST(Fresnel, MuellerMatchesJonesConversionOfConjugatedAmplitudes) {
 
 // Fresnel rhomb (Hecht, Optics, 4th ed., §8.7; Born & Wolf, Principles of Optics, 7th ed., §1.5.4):
 // total internal reflection in glass of n = 1.51 at 54.6° retards p against s by 45° (B&W eq 60,
-// tan(δ/2) = cosθ·√(sin²θ − n²)/sin²θ with n = 1/1.51: δ = 45.0°), so two reflections turn +45° linear
-// light into circular light. Its handedness, from the time-domain field: p is advanced more than s
+// tan(δ/2) = cosθ·√(sin²θ − n²)/sin²θ with n = 1/1.51: δ = 45.0°), so two reflections turn +45°
+// linear light into circular light. Its handedness, from the time-domain field: p is advanced more
+// than s
 // (|arg r_p| > |arg r_s| with e^{−iωt}), the field goes x → −y, clockwise for the receiver:
-// right-circular, S3 = +1 in tirpol's (receiver-view) convention. The two faces' s/p frames differ by
-// a 180° rotation, which leaves Stokes vectors unchanged, so the Mueller matrices simply multiply.
+// right-circular, S3 = +1 in tirpol's (receiver-view) convention. The two faces' s/p frames differ
+// by a 180° rotation, which leaves Stokes vectors unchanged, so the Mueller matrices simply
+// multiply.
 TEST(Fresnel, RhombTurnsPlus45LinearIntoRightCircular) {
     const ComplexIndex inside{1.0 / 1.51, 0.0};
     const double c = std::cos(deg_to_rad(54.6));
@@ -125,8 +130,10 @@ TEST(Fresnel, RhombTurnsPlus45LinearIntoRightCircular) {
     const double retardance_deg = rad_to_deg(std::abs(std::arg(r.rp / r.rs)));
     EXPECT_NEAR(retardance_deg, 45.0, 0.05) << "Born & Wolf eq 60";
 
-    const std::complex<double> ex = r.rs * r.rs, ey = r.rp * r.rp;  // (1, 1)/√2 after two reflections
-    EXPECT_EQ(receiver_view_rotation(ex, ey), 1) << "the field turns clockwise for the receiver: right-circular";
+    const std::complex<double> ex = r.rs * r.rs,
+                               ey = r.rp * r.rp;  // (1, 1)/√2 after two reflections
+    EXPECT_EQ(receiver_view_rotation(ex, ey), 1)
+        << "the field turns clockwise for the receiver: right-circular";
 
     const MuellerMatrix m = fresnel_mueller(inside, c);
     const StokesVector out = m * m * linearly_polarized(1.0, 1.0, deg_to_rad(45.0));
@@ -134,20 +141,22 @@ TEST(Fresnel, RhombTurnsPlus45LinearIntoRightCircular) {
     EXPECT_NEAR(std::hypot(out[1], out[2]), 0.0, 3e-3);
 }
 
-// A metal is a retarder off normal incidence. Mitsuba 3's comparison case n = 2 + 3i: for +45° linear
-// input the sign of S3 from the Mueller matrix must match the rotation sense of the physical field at
-// every angle (the convention error that issue 13 found flipped every pixel's S3).
+// A metal is a retarder off normal incidence. Mitsuba 3's comparison case n = 2 + 3i: for +45°
+// linear input the sign of S3 from the Mueller matrix must match the rotation sense of the physical
+// field at every angle (the convention error that issue 13 found flipped every pixel's S3).
 TEST(Fresnel, MetalRetardanceGivesTheS3OfThePhysicalField) {
     for (const ComplexIndex metal : {ComplexIndex{2.0, 3.0}, ComplexIndex{12.1, 69.2}})
         for (double deg : {20.0, 45.0, 60.0, 75.0, 85.0}) {
             const double c = std::cos(deg_to_rad(deg));
             const FresnelResult r = fresnel(metal, c);
-            const StokesVector out = fresnel_mueller(metal, c) * linearly_polarized(1.0, 1.0, deg_to_rad(45.0));
+            const StokesVector out =
+                fresnel_mueller(metal, c) * linearly_polarized(1.0, 1.0, deg_to_rad(45.0));
             ASSERT_GT(std::abs(out[3]), 1e-4) << deg;
             EXPECT_EQ(out[3] > 0.0 ? 1 : -1, receiver_view_rotation(r.rs, r.rp))
                 << metal.n << "+" << metal.k << "i at " << deg;
-            // In this convention both phases fall with angle and p falls further: δ = arg(r_p/r_s) < 0
-            // between normal (±180°) and grazing (0), so +45° linear light comes back right-handed.
+            // In this convention both phases fall with angle and p falls further: δ = arg(r_p/r_s)
+            // < 0 between normal (±180°) and grazing (0), so +45° linear light comes back
+            // right-handed.
             EXPECT_GT(out[3], 0.0) << deg;
         }
 }

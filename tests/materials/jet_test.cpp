@@ -18,7 +18,8 @@ using Jet = ceres::Jet<double, 8>;
 ShellTargetParameters<double> base() { return {1.6, 0.1, 0.3, 0.9, 0.3, 0.9, 0.01, 0.02}; }
 
 double& field(ShellTargetParameters<double>& p, int i) {
-    double* fields[8] = {&p.n, &p.k, &p.sigma, &p.bias, &p.tau_rad, &p.omega_rad, &p.rho_d, &p.rho_v};
+    double* fields[8] = {&p.n,       &p.k,         &p.sigma, &p.bias,
+                         &p.tau_rad, &p.omega_rad, &p.rho_d, &p.rho_v};
     return *fields[i];
 }
 
@@ -39,11 +40,13 @@ TEST(JetDifferentiation, DerivativesMatchFiniteDifferences) {
             const double h = 1e-6 * std::max(1.0, std::abs(field(plus, i)));
             field(plus, i) += h;
             field(minus, i) -= h;
-            const Mueller4<double> mp = shell_target_mueller(plus, g), mm = shell_target_mueller(minus, g);
+            const Mueller4<double> mp = shell_target_mueller(plus, g),
+                                   mm = shell_target_mueller(minus, g);
             for (std::size_t r = 0; r < 4; ++r)
                 for (std::size_t c = 0; c < 4; ++c) {
                     const double fd = (mp[r][c] - mm[r][c]) / (2.0 * h);
-                    EXPECT_NEAR(m[r][c].v[i], fd, 1e-6 * std::max(1.0, std::abs(fd))) << "param " << i << " m" << r << c;
+                    EXPECT_NEAR(m[r][c].v[i], fd, 1e-6 * std::max(1.0, std::abs(fd)))
+                        << "param " << i << " m" << r << c;
                 }
         }
     }
@@ -51,7 +54,8 @@ TEST(JetDifferentiation, DerivativesMatchFiniteDifferences) {
 
 TEST(JetDifferentiation, FiniteAtNormalAndCollinearGeometry) {
     for (const auto& [wi, wo] : {std::pair<Vec3, Vec3>{Vec3::UnitZ(), Vec3::UnitZ()},
-                                 std::pair<Vec3, Vec3>{Vec3(0.5, 0.5, 0.7).normalized(), Vec3(0.5, 0.5, 0.7).normalized()}}) {
+                                 std::pair<Vec3, Vec3>{Vec3(0.5, 0.5, 0.7).normalized(),
+                                                       Vec3(0.5, 0.5, 0.7).normalized()}}) {
         const Mueller4<Jet> m = shell_target_mueller(to_jet(base()), microfacet_geometry(wi, wo));
         for (const auto& row : m)
             for (const Jet& x : row) {

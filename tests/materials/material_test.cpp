@@ -1,17 +1,18 @@
 // Material files: every file of the library loads and obeys the physical invariants; bad files give
 // errors naming file, line and field.
 
+#include "tirpol/materials/material.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "test_support.h"
+#include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/mueller.h"
 #include "tirpol/materials/emissivity.h"
-#include "tirpol/core/config.h"
-#include "tirpol/materials/material.h"
 
 namespace tirpol::materials {
 namespace {
@@ -20,7 +21,8 @@ using ::testing::HasSubstr;
 
 std::vector<std::string> library_files() {
     std::vector<std::string> out;
-    for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / "config/materials"))
+    for (const auto& e :
+         std::filesystem::directory_iterator(test::source_dir() / "config/materials"))
         if (e.path().extension() == ".yaml") out.push_back(e.path().filename().string());
     std::sort(out.begin(), out.end());
     return out;
@@ -43,7 +45,8 @@ TEST_P(LibraryMaterial, LoadsAndObeysInvariants) {
     coarse.azimuth_panels = 4;
     for (double wl : {wl_lo, 0.5 * (wl_lo + wl_hi), wl_hi})
         for (double deg : {0.0, 30.0, 60.0, 80.0, 89.9}) {
-            const StokesVector e = directional_emissivity(*m.brdf, std::cos(deg_to_rad(deg)), wl, coarse);
+            const StokesVector e =
+                directional_emissivity(*m.brdf, std::cos(deg_to_rad(deg)), wl, coarse);
             EXPECT_GE(e(0), -1e-9) << wl << " µm " << deg << "°";
             EXPECT_LE(e(0), 1.0 + 1e-9);
             EXPECT_LE(std::abs(e(1)), e(0) + 1e-9);
@@ -131,7 +134,8 @@ TEST(MaterialFile, InlineDefinitionWithSpectralParameter) {
 // thermal properties go instead of having them silently ignored.
 TEST(MaterialFile, ThermalMapIsRefusedWithWhereItBelongs) {
     const ConfigNode node = ConfigNode::parse(
-        "name: paint\nsource: test\nmodel: lambertian\nreflectance: 0.1\nthermal: {conductivity_w_m_k: 0.2}\n",
+        "name: paint\nsource: test\nmodel: lambertian\nreflectance: 0.1\nthermal: "
+        "{conductivity_w_m_k: 0.2}\n",
         "old_paint.yaml");
     try {
         material_from_config(node);

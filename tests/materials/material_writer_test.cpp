@@ -19,7 +19,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-MicrofacetMaterialRecord paint(std::vector<double> wavelengths_um, std::vector<double> n, std::vector<double> k) {
+MicrofacetMaterialRecord paint(std::vector<double> wavelengths_um, std::vector<double> n,
+                               std::vector<double> k) {
     MicrofacetMaterialRecord m;
     m.name = "fitted: \"paint\" #1";  // YAML syntax in the name must survive quoting
     m.source = "tirpol fit of a.csv, b.csv on 2026-11-24T01:00:00Z";
@@ -38,7 +39,9 @@ MicrofacetMaterialRecord paint(std::vector<double> wavelengths_um, std::vector<d
     return m;
 }
 
-Material parse(const std::string& text) { return material_from_config(ConfigNode::parse(text, "written.yaml")); }
+Material parse(const std::string& text) {
+    return material_from_config(ConfigNode::parse(text, "written.yaml"));
+}
 
 void expect_same(const MicrofacetMaterialRecord& written, const Material& read) {
     EXPECT_EQ(read.name, written.name);
@@ -68,7 +71,8 @@ TEST(MaterialWriter, ConstantIndexRoundTripsBitForBit) {
 }
 
 TEST(MaterialWriter, SpectralIndexTableRoundTrips) {
-    const MicrofacetMaterialRecord m = paint({8.5, 11.0}, {1.55, 1.0 / 3.0 + 1.0}, {0.07, 0.2 / 3.0});
+    const MicrofacetMaterialRecord m =
+        paint({8.5, 11.0}, {1.55, 1.0 / 3.0 + 1.0}, {0.07, 0.2 / 3.0});
     const std::string text = microfacet_material_yaml(m);
     EXPECT_THAT(text, HasSubstr("wavelength_um: [8.5, 11]"));
     expect_same(m, parse(text));
@@ -80,7 +84,8 @@ TEST(MaterialWriter, RefusesWhatTheLoaderWouldRefuse) {
     EXPECT_THAT([&] { microfacet_material_yaml(m); },
                 testing::ThrowsMessage<Error>(AllOf(HasSubstr("sigma"), HasSubstr("finite"))));
     m = paint({8.0, 12.0}, {1.5}, {0.1, 0.1});
-    EXPECT_THAT([&] { microfacet_material_yaml(m); }, testing::ThrowsMessage<Error>(HasSubstr("1 n")));
+    EXPECT_THAT([&] { microfacet_material_yaml(m); },
+                testing::ThrowsMessage<Error>(HasSubstr("1 n")));
     m = paint({10.0}, {1.5}, {0.1});
     m.name.clear();
     EXPECT_THROW(microfacet_material_yaml(m), Error);

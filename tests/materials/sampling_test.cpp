@@ -1,6 +1,6 @@
-// Importance sampling: sampled directions follow the pdf the model reports (χ² goodness of fit, as in
-// pbrt-v4's bsdfs_test.cpp), the pdf integrates to the probability of drawing a valid sample, and
-// sample weights equal eval·cosθi/pdf.
+// Importance sampling: sampled directions follow the pdf the model reports (χ² goodness of fit, as
+// in pbrt-v4's bsdfs_test.cpp), the pdf integrates to the probability of drawing a valid sample,
+// and sample weights equal eval·cosθi/pdf.
 
 #include <gtest/gtest.h>
 
@@ -29,14 +29,15 @@ std::vector<std::shared_ptr<PolarizedBrdf>> models() {
     glossy_paint.sigma = 0.05;
     glossy_paint.rho_d = 0.004;
     return {std::make_shared<MicrofacetBrdf>(rough), std::make_shared<MicrofacetBrdf>(glossy),
-            std::make_shared<MicrofacetBrdf>(glossy_paint), std::make_shared<LambertianBrdf>(SpectralValue(0.4))};
+            std::make_shared<MicrofacetBrdf>(glossy_paint),
+            std::make_shared<LambertianBrdf>(SpectralValue(0.4))};
 }
 
 constexpr int kThetaBins = 16, kPhiBins = 32;
 
 // ∫ pdf over the bin (cosθ ∈ [c0, c1], φ ∈ [p0, p1]) with a midpoint rule inside the bin: 12 × 12,
-// and 100 × 100 in the first and the last two rows of bins, where glossy lobes at normal and grazing
-// views (σ = 0.05 at 89°) peak within a fraction of a bin.
+// and 100 × 100 in the first and the last two rows of bins, where glossy lobes at normal and
+// grazing views (σ = 0.05 at 89°) peak within a fraction of a bin.
 double bin_probability(const PolarizedBrdf& brdf, const Vec3& wo, int ti, int pj) {
     const double c0 = 1.0 - static_cast<double>(ti) / kThetaBins, dc = 1.0 / kThetaBins;
     const double p0 = 2.0 * kPi * pj / kPhiBins, dp = 2.0 * kPi / kPhiBins;
@@ -70,10 +71,12 @@ TEST(Sampling, ChiSquareSampledDirectionsFollowPdf) {
             for (int s = 0; s < kSamples; ++s) {
                 const BrdfSample smp = model->sample(wo, 10.0, u(rng), u(rng));
                 if (!(smp.pdf > 0.0)) continue;
-                const int ti = std::min(kThetaBins - 1, static_cast<int>((1.0 - smp.wi.z()) * kThetaBins));
+                const int ti =
+                    std::min(kThetaBins - 1, static_cast<int>((1.0 - smp.wi.z()) * kThetaBins));
                 double phi = std::atan2(smp.wi.y(), smp.wi.x());
                 if (phi < 0) phi += 2.0 * kPi;
-                const int pj = std::min(kPhiBins - 1, static_cast<int>(phi / (2.0 * kPi) * kPhiBins));
+                const int pj =
+                    std::min(kPhiBins - 1, static_cast<int>(phi / (2.0 * kPi) * kPhiBins));
                 observed[ti * kPhiBins + pj] += 1.0;
             }
             // Pool bins with expected count < 5 (standard χ² practice), then test at p = 1e-4.
@@ -96,12 +99,14 @@ TEST(Sampling, ChiSquareSampledDirectionsFollowPdf) {
                 ++dof;
             }
             const double p = chi2_p_value(chi2, dof);
-            EXPECT_GT(p, 1e-4) << model->model() << " at " << theta_deg << "°: χ² = " << chi2 << ", dof " << dof;
+            EXPECT_GT(p, 1e-4) << model->model() << " at " << theta_deg << "°: χ² = " << chi2
+                               << ", dof " << dof;
         }
 }
 
-// ∫ pdf dω over the hemisphere equals the probability that `sample` returns a valid direction (1 for a
-// Lambertian; less for micro-facets at oblique view, whose reflections can fall below the horizon).
+// ∫ pdf dω over the hemisphere equals the probability that `sample` returns a valid direction (1
+// for a Lambertian; less for micro-facets at oblique view, whose reflections can fall below the
+// horizon).
 TEST(Sampling, PdfIntegratesToProbabilityOfValidSample) {
     std::mt19937_64 rng(99);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -111,10 +116,12 @@ TEST(Sampling, PdfIntegratesToProbabilityOfValidSample) {
             const Vec3 wo(std::sin(t), 0.0, std::cos(t));
             double integral = 0.0;
             for (int ti = 0; ti < kThetaBins; ++ti)
-                for (int pj = 0; pj < kPhiBins; ++pj) integral += bin_probability(*model, wo, ti, pj);
+                for (int pj = 0; pj < kPhiBins; ++pj)
+                    integral += bin_probability(*model, wo, ti, pj);
             int valid = 0;
             constexpr int kSamples = 100000;
-            for (int s = 0; s < kSamples; ++s) valid += model->sample(wo, 10.0, u(rng), u(rng)).pdf > 0.0 ? 1 : 0;
+            for (int s = 0; s < kSamples; ++s)
+                valid += model->sample(wo, 10.0, u(rng), u(rng)).pdf > 0.0 ? 1 : 0;
             const double fraction = static_cast<double>(valid) / kSamples;
             EXPECT_NEAR(integral, fraction, 5e-3) << model->model() << " at " << theta_deg;
             if (model->model() == "lambertian") {
@@ -134,13 +141,15 @@ TEST(Sampling, WeightEqualsEvalTimesCosineOverPdf) {
             if (!(smp.pdf > 0.0)) continue;
             EXPECT_NEAR(smp.pdf, model->pdf(smp.wi, wo, 10.0), 1e-9 * smp.pdf);
             const MuellerMatrix expected = model->eval(smp.wi, wo, 10.0) * smp.wi.z() / smp.pdf;
-            EXPECT_LT((smp.weight - expected).cwiseAbs().maxCoeff(), 1e-9 * std::max(1.0, expected(0, 0)));
+            EXPECT_LT((smp.weight - expected).cwiseAbs().maxCoeff(),
+                      1e-9 * std::max(1.0, expected(0, 0)));
         }
 }
 
 // Visible-normal sampling (Heitz & d'Eon, EGSR 2014) bounds the specular weight: with only the
-// specular lobe (p_spec = 1, bias 1, no Beard–Maxwell shadowing) the weight is F·G/G1(wo) ≤ 1 for every
-// sample, up to grazing views, where D·cosθh sampling gave weights of ~(h·wo)/(cosθo cosθh) ≫ 1.
+// specular lobe (p_spec = 1, bias 1, no Beard–Maxwell shadowing) the weight is F·G/G1(wo) ≤ 1 for
+// every sample, up to grazing views, where D·cosθh sampling gave weights of ~(h·wo)/(cosθo cosθh)
+// ≫ 1.
 TEST(Sampling, VisibleNormalWeightsAreBoundedUpToGrazing) {
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -165,7 +174,8 @@ TEST(Sampling, VisibleNormalWeightsAreBoundedUpToGrazing) {
 
 // The renderer's sampler (visible normals) and the emissivity quadrature's map (slope sampling,
 // quadrature_sample) estimate the same integral: the mean weight's first column over 10⁶ samples is
-// the directional-hemispherical reflectance e0 − ε of directional_emissivity within 5 standard errors
+// the directional-hemispherical reflectance e0 − ε of directional_emissivity within 5 standard
+// errors
 // (+ the quadrature's 2e-4), for rough paint-like and metal models from normal to grazing view.
 TEST(Sampling, VisibleNormalEstimatesMatchTheEmissivityQuadrature) {
     std::mt19937_64 rng(23);
@@ -184,8 +194,10 @@ TEST(Sampling, VisibleNormalEstimatesMatchTheEmissivityQuadrature) {
                 sum2 += w.cwiseAbs2();
             }
             const StokesVector mean = sum / kSamples;
-            const StokesVector error = ((sum2 / kSamples - mean.cwiseAbs2()).cwiseMax(0.0) / kSamples).cwiseSqrt();
-            const StokesVector reflected = unpolarized(1.0) - directional_emissivity(*model, std::cos(t), 10.0);
+            const StokesVector error =
+                ((sum2 / kSamples - mean.cwiseAbs2()).cwiseMax(0.0) / kSamples).cwiseSqrt();
+            const StokesVector reflected =
+                unpolarized(1.0) - directional_emissivity(*model, std::cos(t), 10.0);
             for (int c = 0; c < 2; ++c)
                 EXPECT_NEAR(mean(c), reflected(c), 5.0 * error(c) + 2e-4)
                     << model->model() << " S" << c << " at " << theta_deg << "°";

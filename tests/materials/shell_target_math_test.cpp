@@ -1,5 +1,7 @@
 // The micro-facet formulas of shell_target_math.h checked against independent constructions.
 
+#include "tirpol/materials/shell_target_math.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/fresnel.h"
-#include "tirpol/materials/shell_target_math.h"
 
 namespace tirpol::materials {
 namespace {
@@ -36,7 +37,8 @@ TEST(ShellTargetMath, SmithMaskingConservesProjectedArea) {
                 const double theta_h = std::atan(tan_h);
                 const double d = gaussian_facet_density(sigma, cos_h, tan_h * tan_h);
                 // dω = sinθ dθ dφ, dθ = cos²θ d(tanθ).
-                const double dw = std::sin(theta_h) * cos_h * cos_h * (t_max / n_r) * (2.0 * kPi / n_p);
+                const double dw =
+                    std::sin(theta_h) * cos_h * cos_h * (t_max / n_r) * (2.0 * kPi / n_p);
                 for (int j = 0; j < n_p; ++j) {
                     const Vec3 h = direction(theta_h, (j + 0.5) * 2.0 * kPi / n_p);
                     sum += d * std::max(0.0, h.dot(wo)) * dw;
@@ -52,19 +54,21 @@ TEST(ShellTargetMath, SmithMaskingConservesProjectedArea) {
 TEST(ShellTargetMath, FacetFrameRotationsMatchCoreChangeFrame) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> theta(0.01, 1.5), phi(0.0, 2.0 * kPi);
-    const ShellTargetParameters<double> p{1.6, 0.3, 0.3, 1.0, deg_to_rad(20.0), deg_to_rad(50.0), 0.0, 0.0};
+    const ShellTargetParameters<double> p{1.6, 0.3, 0.3, 1.0, deg_to_rad(20.0), deg_to_rad(50.0),
+                                          0.0, 0.0};
     for (int trial = 0; trial < 100; ++trial) {
         const Vec3 wi = direction(theta(rng), phi(rng)), wo = direction(theta(rng), phi(rng));
         const MicrofacetGeometry g = microfacet_geometry(wi, wo);
         const Mueller4<double> m = shell_target_mueller(p, g);
         const Vec3 h = (wi + wo).normalized(), n = Vec3::UnitZ();
-        MuellerMatrix expected = change_frame(fresnel_mueller({p.n, p.k}, h.dot(wi)), surface_frame(-wi, h),
-                                              surface_frame(-wi, n), surface_frame(wo, h), surface_frame(wo, n));
+        MuellerMatrix expected =
+            change_frame(fresnel_mueller({p.n, p.k}, h.dot(wi)), surface_frame(-wi, h),
+                         surface_frame(-wi, n), surface_frame(wo, h), surface_frame(wo, n));
         const double scale = m[0][0] / expected(0, 0);
         for (int r = 0; r < 4; ++r)
             for (int c = 0; c < 4; ++c)
-                EXPECT_NEAR(m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)], scale * expected(r, c),
-                            1e-12 * m[0][0]);
+                EXPECT_NEAR(m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)],
+                            scale * expected(r, c), 1e-12 * m[0][0]);
     }
 }
 

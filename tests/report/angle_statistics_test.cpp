@@ -1,12 +1,12 @@
 // AoP statistics as axial (mod 180°) quantities over significantly polarized pixels.
 
+#include "tirpol/report/angle_statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
-
-#include "tirpol/report/angle_statistics.h"
 
 using namespace tirpol::report;
 
@@ -23,12 +23,14 @@ void push(Planes& planes, double p, double aop_deg, float var) {
     planes.var.push_back(var);
 }
 AopStats stats(const Planes& m, const Planes& s) {
-    return aop_stats(m.s1, m.s2, s.s1, s.s2, m.var, m.var, s.var, s.var, std::vector<std::uint8_t>(m.s1.size(), 1));
+    return aop_stats(m.s1, m.s2, s.s1, s.s2, m.var, m.var, s.var, s.var,
+                     std::vector<std::uint8_t>(m.s1.size(), 1));
 }
 }  // namespace
 
 TEST(ReportAngleStatistics, MeansAcrossTheWrapAreNearTheWrapNotAt90Degrees) {
-    // Measured 179°, simulated 1°: the same axis 2° apart. A linear mean of 179 and 1 would say 90°.
+    // Measured 179°, simulated 1°: the same axis 2° apart. A linear mean of 179 and 1 would say
+    // 90°.
     Planes m, s;
     for (int i = 0; i < 100; ++i) {
         push(m, 1.0, 179.0, 1e-4f);

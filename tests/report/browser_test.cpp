@@ -1,7 +1,7 @@
-// The report in a real browser (Debian's chromium, headless): the page loads offline with no console
-// error, every <img> is an embedded data: URI, the expected sections are there, and a screenshot
-// shows the images (non-blank, with colour). Skipped only when /usr/bin/chromium is absent.
-// Set TIRPOL_REPORT_TEST_OUTPUT=DIR to keep the report and the screenshot for a look.
+// The report in a real browser (Debian's chromium, headless): the page loads offline with no
+// console error, every <img> is an embedded data: URI, the expected sections are there, and a
+// screenshot shows the images (non-blank, with colour). Skipped only when /usr/bin/chromium is
+// absent. Set TIRPOL_REPORT_TEST_OUTPUT=DIR to keep the report and the screenshot for a look.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,21 +24,26 @@ namespace {
 
 constexpr const char* kChromium = "/usr/bin/chromium";
 
-// Runs chromium headless on `url` with `extra` arguments, stdout/stderr to files, killed after 90 s.
-int run_chromium(const std::filesystem::path& profile, const std::string& extra, const std::string& url,
-                 const std::filesystem::path& out, const std::filesystem::path& err) {
-    const std::string command = std::string("timeout -k 5 90 ") + kChromium +
-                                " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                                " --disable-background-networking --disable-component-update --disable-sync"
-                                " --user-data-dir=" + profile.string() + " " + extra + " '" + url + "' > '" +
-                                out.string() + "' 2> '" + err.string() + "'";
+// Runs chromium headless on `url` with `extra` arguments, stdout/stderr to files, killed after 90
+// s.
+int run_chromium(const std::filesystem::path& profile, const std::string& extra,
+                 const std::string& url, const std::filesystem::path& out,
+                 const std::filesystem::path& err) {
+    const std::string command =
+        std::string("timeout -k 5 90 ") + kChromium +
+        " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+        " --disable-background-networking --disable-component-update --disable-sync"
+        " --user-data-dir=" +
+        profile.string() + " " + extra + " '" + url + "' > '" + out.string() + "' 2> '" +
+        err.string() + "'";
     return std::system(command.c_str());
 }
 
 }  // namespace
 
 TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages) {
-    if (!std::filesystem::exists(kChromium)) FAIL() << kChromium << " is absent: install the Debian package chromium (./run does)";
+    if (!std::filesystem::exists(kChromium))
+        FAIL() << kChromium << " is absent: install the Debian package chromium (./run does)";
     tirpol::test::TempDir temp("tirpol-report-browser");
     const char* keep = std::getenv("TIRPOL_REPORT_TEST_OUTPUT");
     const std::filesystem::path dir = keep ? std::filesystem::path(keep) : temp.path();
@@ -60,27 +65,34 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
     options.regions = load_regions(dir / "rois.yaml");
     // A name OpenCV's Hershey fonts cannot draw (issue 20): the overview names regions in SVG text.
     const std::string unicode_name = "Schnee ❄ Süd";
-    options.regions->regions.push_back({unicode_name, {{20, 20}, {60, 20}, {60, 50}, {20, 50}}, ""});
-    const auto result = write_comparison_report(pair.measured, pair.simulated, options, dir / "report");
+    options.regions->regions.push_back(
+        {unicode_name, {{20, 20}, {60, 20}, {60, 50}, {20, 50}}, ""});
+    const auto result =
+        write_comparison_report(pair.measured, pair.simulated, options, dir / "report");
     const std::string url = "file://" + std::filesystem::absolute(result.html).string();
 
     // One headless run: DOM to stdout, console log to stderr, screenshot to a file.
     const auto shot = dir / "screenshot.png";
-    ASSERT_EQ(run_chromium(temp / "profile", "--enable-logging=stderr --v=0 --hide-scrollbars --window-size=1280,2000 "
-                                             "--screenshot=" + shot.string() + " --dump-dom",
-                           url, dir / "dom.html", dir / "chromium.log"),
-              0)
+    ASSERT_EQ(
+        run_chromium(temp / "profile",
+                     "--enable-logging=stderr --v=0 --hide-scrollbars --window-size=1280,2000 "
+                     "--screenshot=" +
+                         shot.string() + " --dump-dom",
+                     url, dir / "dom.html", dir / "chromium.log"),
+        0)
         << tirpol::read_file(dir / "chromium.log");
 
     // DOM and console: every section rendered, every image embedded, no console error.
     const std::string dom = tirpol::read_file(dir / "dom.html");
     const std::string log = tirpol::read_file(dir / "chromium.log");
-    for (const char* heading : {"Measured vs simulated Stokes images", "Summary", "Registration", "Regions of interest",
-                                "Stokes images side by side", "Region statistics", "Do the differences exceed the noise?",
-                                "Scatter plots", "Histograms of the differences", "Provenance", "Angle of polarization"})
+    for (const char* heading :
+         {"Measured vs simulated Stokes images", "Summary", "Registration", "Regions of interest",
+          "Stokes images side by side", "Region statistics", "Do the differences exceed the noise?",
+          "Scatter plots", "Histograms of the differences", "Provenance", "Angle of polarization"})
         EXPECT_THAT(dom, HasSubstr(std::string(">") + heading + "<")) << heading;
     std::size_t images = 0;
-    for (std::size_t at = dom.find("<img "); at != std::string::npos; at = dom.find("<img ", at + 1)) {
+    for (std::size_t at = dom.find("<img "); at != std::string::npos;
+         at = dom.find("<img ", at + 1)) {
         ++images;
         const std::size_t src = dom.find("src=\"", at);
         ASSERT_NE(src, std::string::npos);
@@ -89,16 +101,20 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
     std::size_t figures = 0;  // the PNGs shown: all but the parts of the composed panels
     for (const auto& png : result.pngs) {
         const std::string name = png.filename().string();
-        if (name.rfind("measured_", 0) && name.rfind("simulated_", 0) && name.rfind("difference_", 0) && name.rfind("z_", 0))
+        if (name.rfind("measured_", 0) && name.rfind("simulated_", 0) &&
+            name.rfind("difference_", 0) && name.rfind("z_", 0))
             ++figures;
     }
     EXPECT_EQ(images, figures);
     EXPECT_GE(images, 6u);  // the five panels and the z panel
-    std::size_t svgs = 0;  // plots, inline
-    for (std::size_t at = dom.find("<svg "); at != std::string::npos; at = dom.find("<svg ", at + 1)) ++svgs;
+    std::size_t svgs = 0;   // plots, inline
+    for (std::size_t at = dom.find("<svg "); at != std::string::npos;
+         at = dom.find("<svg ", at + 1))
+        ++svgs;
     EXPECT_EQ(svgs, result.svgs.size());
     EXPECT_GE(svgs, 10u);  // the plots and the region overview
-    EXPECT_THAT(dom, HasSubstr(">" + unicode_name + "</text>")) << "the region name is not SVG text in the page";
+    EXPECT_THAT(dom, HasSubstr(">" + unicode_name + "</text>"))
+        << "the region name is not SVG text in the page";
     EXPECT_THAT(log, ::testing::Not(HasSubstr("Uncaught")));
     EXPECT_THAT(log, ::testing::Not(HasSubstr("ERROR:CONSOLE")));
     EXPECT_THAT(log, ::testing::Not(HasSubstr("Failed to load resource")));

@@ -1,7 +1,7 @@
 // Registration by camera model (issue 14): a simulation rendered through the measured camera's
-// calibrated model is compared on the measured pixel grid without a warp; the header check refuses a
-// simulation rendered through another lens, and the residual misalignment is still measured from the
-// images (phase correlation, Kuglin & Hines 1975), so a pose error shows up as a shift.
+// calibrated model is compared on the measured pixel grid without a warp; the header check refuses
+// a simulation rendered through another lens, and the residual misalignment is still measured from
+// the images (phase correlation, Kuglin & Hines 1975), so a pose error shows up as a shift.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -40,7 +40,8 @@ tirpol::CameraModel lens_of(const tirpol::Image& image) {
 /// The attributes the renderer writes for `m` (simulation/src/renderer.cpp).
 void stamp(tirpol::Image& simulated, const tirpol::CameraModel& m) {
     simulated.attributes()["camera_intrinsics_px"] = std::vector<double>{m.fx, m.fy, m.cx, m.cy};
-    simulated.attributes()["camera_distortion"] = std::vector<double>(m.distortion.begin(), m.distortion.begin() + 4);
+    simulated.attributes()["camera_distortion"] =
+        std::vector<double>(m.distortion.begin(), m.distortion.begin() + 4);
 }
 
 test::SyntheticPairOptions quiet(double dx) {
@@ -55,7 +56,8 @@ TEST(CameraModelRegistration, RenderedThroughTheModelIsComparedWithoutAWarp) {
     auto pair = test::make_synthetic_pair(quiet(0.0));
     const auto model = lens_of(pair.measured);
     stamp(pair.simulated, model);  // trailing k3 = 0 left out, as the renderer does
-    const Registration reg = register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml");
+    const Registration reg =
+        register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml");
     EXPECT_EQ(reg.method, RegistrationMethod::CameraModel);
     EXPECT_EQ(reg.model, "identity");
     EXPECT_EQ(reg.measured_to_simulated, (std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}));
@@ -80,7 +82,8 @@ TEST(CameraModelRegistration, APoseErrorShowsAsResidualMisalignment) {
     auto pair = test::make_synthetic_pair(quiet(1.5));
     const auto model = lens_of(pair.measured);
     stamp(pair.simulated, model);
-    const Registration reg = register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml");
+    const Registration reg =
+        register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml");
     EXPECT_EQ(reg.model, "identity");
     EXPECT_NEAR(std::abs(reg.residual_shift_px[0]), 1.5, 0.3);
     EXPECT_NEAR(reg.residual_shift_px[1], 0.0, 0.3);
@@ -92,27 +95,33 @@ TEST(CameraModelRegistration, AnotherLensOrAMissingHeaderOrSizeIsAnError) {
     auto other = model;
     other.fx *= 1.01;
     stamp(pair.simulated, other);
-    auto msg = error_of([&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
+    auto msg = error_of(
+        [&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
     EXPECT_THAT(msg, HasSubstr("cam.yaml"));
     EXPECT_THAT(msg, HasSubstr("intrinsics fx fy cx cy"));
 
     other = model;
     other.distortion[0] = -0.2;
     stamp(pair.simulated, other);
-    msg = error_of([&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
+    msg = error_of(
+        [&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
     EXPECT_THAT(msg, HasSubstr("distortion"));
 
     pair.simulated.attributes().erase("camera_intrinsics_px");
-    msg = error_of([&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
+    msg = error_of(
+        [&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
     EXPECT_THAT(msg, HasSubstr("no 'camera_intrinsics_px' header attribute"));
 
     auto small = model;
     small.width = 100;
-    msg = error_of([&] { register_by_camera_model(pair.measured, pair.simulated, small, "cam.yaml"); });
+    msg = error_of(
+        [&] { register_by_camera_model(pair.measured, pair.simulated, small, "cam.yaml"); });
     EXPECT_THAT(msg, HasSubstr("the model is 100×"));
 
     // Asking for the method without a model.
-    msg = error_of([&] { register_images(pair.measured, pair.simulated, RegistrationMethod::CameraModel, {}); });
+    msg = error_of([&] {
+        register_images(pair.measured, pair.simulated, RegistrationMethod::CameraModel, {});
+    });
     EXPECT_THAT(msg, HasSubstr("--camera"));
 }
 

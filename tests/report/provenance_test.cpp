@@ -1,19 +1,21 @@
 // Provenance: SHA-256 against the FIPS 180-2 appendix B examples, shell quoting that pastes back,
 // and input descriptions with the EXR header attributes.
 
+#include "tirpol/report/provenance.h"
+
 #include <gtest/gtest.h>
 
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/report/provenance.h"
 #include "tirpol/report/regions.h"
 
 using namespace tirpol::report;
 
 TEST(ReportProvenance, Sha256MatchesFips180Examples) {
     // FIPS 180-2, appendix B.1, B.2, B.3; and the empty message (NIST SHA examples).
-    EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    EXPECT_EQ(sha256_hex("abc"),
+              "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
     EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
               "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
     EXPECT_EQ(sha256_hex(std::string(1000000, 'a')),
@@ -24,8 +26,10 @@ TEST(ReportProvenance, Sha256MatchesFips180Examples) {
 }
 
 TEST(ReportProvenance, CommandLineIsQuotedOnlyWhereAShellNeedsIt) {
-    const char* argv[] = {"tirpol", "compare", "--measured", "a b.exr", "-o", "out/r", "--rois", "it's.yaml"};
-    EXPECT_EQ(quoted_command_line(8, argv), "tirpol compare --measured 'a b.exr' -o out/r --rois 'it'\\''s.yaml'");
+    const char* argv[] = {"tirpol", "compare", "--measured", "a b.exr",
+                          "-o",     "out/r",   "--rois",     "it's.yaml"};
+    EXPECT_EQ(quoted_command_line(8, argv),
+              "tirpol compare --measured 'a b.exr' -o out/r --rois 'it'\\''s.yaml'");
 }
 
 TEST(ReportProvenance, InputFileHasChecksumSizeAndHeaderAttributes) {

@@ -1,6 +1,8 @@
 // Registration: a known homography from control points, a known shift and scale by ECC (residual
 // < 0.5 px), identity when images match, and clear errors when registration is impossible.
 
+#include "tirpol/report/registration.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,7 +12,6 @@
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/report/registration.h"
 
 using namespace tirpol::report;
 using ::testing::HasSubstr;
@@ -32,9 +33,11 @@ PixelPoint apply(const std::array<double, 9>& h, PixelPoint p) {
 }
 
 // The simulated pixel a measured pixel should map to when measured(x) = scene(x − shift).
-void expect_maps_like_shift(const Registration& reg, double dx, double dy, int w, int h, double tol) {
-    for (const PixelPoint p : {PixelPoint{5, 5}, PixelPoint{w - 5.0, 5}, PixelPoint{w / 2.0, h / 2.0},
-                               PixelPoint{5, h - 5.0}, PixelPoint{w - 5.0, h - 5.0}}) {
+void expect_maps_like_shift(const Registration& reg, double dx, double dy, int w, int h,
+                            double tol) {
+    for (const PixelPoint p :
+         {PixelPoint{5, 5}, PixelPoint{w - 5.0, 5}, PixelPoint{w / 2.0, h / 2.0},
+          PixelPoint{5, h - 5.0}, PixelPoint{w - 5.0, h - 5.0}}) {
         const PixelPoint q = apply(reg.measured_to_simulated, p);
         EXPECT_NEAR(q.x, p.x - dx, tol) << "at (" << p.x << ", " << p.y << ")";
         EXPECT_NEAR(q.y, p.y - dy, tol) << "at (" << p.x << ", " << p.y << ")";
@@ -56,24 +59,30 @@ TEST(ReportRegistration, ControlPointsRecoverAKnownHomography) {
     // A mild perspective: simulated = H_true(measured).
     const std::array<double, 9> truth{1.02, 0.03, -4.0, -0.02, 0.98, 2.5, 1e-5, -2e-5, 1.0};
     std::vector<ControlPoint> cps;
-    for (const PixelPoint m : {PixelPoint{10, 12}, PixelPoint{150, 8}, PixelPoint{160, 120}, PixelPoint{14, 130},
-                               PixelPoint{80, 60}, PixelPoint{40, 100}})
+    for (const PixelPoint m : {PixelPoint{10, 12}, PixelPoint{150, 8}, PixelPoint{160, 120},
+                               PixelPoint{14, 130}, PixelPoint{80, 60}, PixelPoint{40, 100}})
         cps.push_back({m, apply(truth, m)});
     const auto pair = test::make_synthetic_pair(quiet(0, 0));
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::ControlPoints, cps);
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::ControlPoints, cps);
     EXPECT_EQ(reg.model, "homography");
     ASSERT_TRUE(reg.control_point_rms_px.has_value());
     EXPECT_LT(*reg.control_point_rms_px, 1e-4);  // exact data: only round-off remains
-    for (std::size_t i = 0; i < 9; ++i) EXPECT_NEAR(reg.measured_to_simulated[i], truth[i], 1e-5 * std::max(1.0, std::abs(truth[i]))) << "H[" << i << "]";
+    for (std::size_t i = 0; i < 9; ++i)
+        EXPECT_NEAR(reg.measured_to_simulated[i], truth[i],
+                    1e-5 * std::max(1.0, std::abs(truth[i])))
+            << "H[" << i << "]";
 }
 
 TEST(ReportRegistration, ControlPointsRecoverAShiftOfTheImagesAndReportResidual) {
     const double dx = 3.0, dy = -2.0;
     const auto pair = test::make_synthetic_pair(quiet(dx, dy));
     std::vector<ControlPoint> cps;
-    for (const PixelPoint s : {PixelPoint{20, 20}, PixelPoint{170, 20}, PixelPoint{170, 120}, PixelPoint{20, 120}})
+    for (const PixelPoint s :
+         {PixelPoint{20, 20}, PixelPoint{170, 20}, PixelPoint{170, 120}, PixelPoint{20, 120}})
         cps.push_back({{s.x + dx, s.y + dy}, s});
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::ControlPoints, cps);
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::ControlPoints, cps);
     expect_maps_like_shift(reg, dx, dy, 192, 144, 1e-6);
     EXPECT_LT(std::hypot(reg.residual_shift_px[0], reg.residual_shift_px[1]), 0.5);
 }
@@ -81,7 +90,8 @@ TEST(ReportRegistration, ControlPointsRecoverAShiftOfTheImagesAndReportResidual)
 TEST(ReportRegistration, EccRecoversASubpixelShift) {
     const double dx = 2.6, dy = -1.7;
     const auto pair = test::make_synthetic_pair(quiet(dx, dy));
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
     EXPECT_NE(reg.model, "identity");
     expect_maps_like_shift(reg, dx, dy, 192, 144, 0.5);
     EXPECT_LT(std::hypot(reg.residual_shift_px[0], reg.residual_shift_px[1]), 0.5);
@@ -109,7 +119,8 @@ TEST(ReportRegistration, EccRegistersASimulationRenderedAtTwiceTheResolution) {
 
 TEST(ReportRegistration, MatchingImagesGiveIdentity) {
     const auto pair = test::make_synthetic_pair(quiet(0, 0));
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
     EXPECT_EQ(reg.model, "identity");
     EXPECT_THAT(reg.note, HasSubstr("already"));
     EXPECT_LT(std::hypot(reg.residual_shift_px[0], reg.residual_shift_px[1]), 0.2);
@@ -119,35 +130,40 @@ TEST(ReportRegistration, MatchingImagesGiveIdentity) {
 }
 
 TEST(ReportRegistration, AutoNeverWarpsAnAlignedNoisyPair) {
-    // Aligned pairs with 5× the usual noise, several noise draws: ECC may settle a fraction of a pixel
-    // away, but a warp that does not match the edges better must not replace the identity (bilinear
-    // resampling would also smooth the simulation's noise and bias z).
+    // Aligned pairs with 5× the usual noise, several noise draws: ECC may settle a fraction of a
+    // pixel away, but a warp that does not match the edges better must not replace the identity
+    // (bilinear resampling would also smooth the simulation's noise and bias z).
     for (std::uint32_t seed : {1u, 2u, 3u}) {
         test::SyntheticPairOptions o;
         o.measured_sigma = 0.25;
         o.simulated_sigma = 0.15;
         o.seed = seed;
         const auto pair = test::make_synthetic_pair(o);
-        const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
+        const Registration reg =
+            register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
         EXPECT_EQ(reg.model, "identity") << "seed " << seed << ": " << reg.note;
         EXPECT_THAT(reg.note, HasSubstr("already")) << reg.note;
-        EXPECT_EQ(resample_to_measured(pair.simulated, reg, 192, 144).channel("S0"), pair.simulated.channel("S0"));
+        EXPECT_EQ(resample_to_measured(pair.simulated, reg, 192, 144).channel("S0"),
+                  pair.simulated.channel("S0"));
     }
 }
 
 TEST(ReportRegistration, AutoKeepsAWarpThatMatchesTheEdgesBetter) {
     // A real 0.8 px shift: the warp lowers the S0 edge mismatch well beyond the 10 % threshold.
     const auto pair = test::make_synthetic_pair(quiet(0.8, 0.0));
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::Auto, {});
     EXPECT_NE(reg.model, "identity") << reg.note;
     ASSERT_TRUE(reg.identity_edge_mismatch && reg.registered_edge_mismatch);
-    EXPECT_LT(*reg.registered_edge_mismatch, (1.0 - kRegistrationMinImprovement) * *reg.identity_edge_mismatch);
+    EXPECT_LT(*reg.registered_edge_mismatch,
+              (1.0 - kRegistrationMinImprovement) * *reg.identity_edge_mismatch);
     expect_maps_like_shift(reg, 0.8, 0.0, 192, 144, 0.2);
 }
 
 TEST(ReportRegistration, NoneReportsTheMisalignmentItLeaves) {
     const auto pair = test::make_synthetic_pair(quiet(2.0, 0.0));
-    const Registration reg = register_images(pair.measured, pair.simulated, RegistrationMethod::None, {});
+    const Registration reg =
+        register_images(pair.measured, pair.simulated, RegistrationMethod::None, {});
     EXPECT_EQ(reg.model, "identity");
     EXPECT_NEAR(std::abs(reg.residual_shift_px[0]), 2.0, 0.3);
     EXPECT_NEAR(reg.residual_shift_px[1], 0.0, 0.3);
@@ -201,15 +217,19 @@ TEST(ReportRegistration, ImpossibleRegistrationsFailClearly) {
     msg = error_of([&] { register_images(meas, sim, RegistrationMethod::None, {}); });
     EXPECT_THAT(msg, HasSubstr("control points"));
     msg = error_of([&] {
-        register_images(meas, sim, RegistrationMethod::ControlPoints, {{{0, 0}, {0, 0}}, {{1, 0}, {1, 0}}});
+        register_images(meas, sim, RegistrationMethod::ControlPoints,
+                        {{{0, 0}, {0, 0}}, {{1, 0}, {1, 0}}});
     });
     EXPECT_THAT(msg, HasSubstr("at least 4 pairs"));
-    EXPECT_THAT(error_of([] { parse_registration_method("ecc"); }), HasSubstr("none, auto, control-points"));
+    EXPECT_THAT(error_of([] { parse_registration_method("ecc"); }),
+                HasSubstr("none, auto, control-points"));
 }
 
 TEST(ReportRegistration, ControlPointFileErrorsNameTheLine) {
     tirpol::test::TempDir dir;
-    tirpol::test::write_text(dir / "cp.yaml", "- measured: [1, 2]\n  simulated: [3, 4]\n- measured: [1, 2]\n  simulted: [3, 4]\n");
+    tirpol::test::write_text(
+        dir / "cp.yaml",
+        "- measured: [1, 2]\n  simulated: [3, 4]\n- measured: [1, 2]\n  simulted: [3, 4]\n");
     const auto msg = error_of([&] { load_control_points(dir / "cp.yaml"); });
     EXPECT_THAT(msg, HasSubstr("cp.yaml:4"));
     EXPECT_THAT(msg, HasSubstr("simulted"));

@@ -39,13 +39,16 @@ const RegionResult& region(const CompareResult& r, const std::string& name) {
 }
 
 // Binomial standard deviation of a fraction p over n independent pixels.
-double binomial_sd(double p, std::size_t n) { return std::sqrt(p * (1.0 - p) / static_cast<double>(n)); }
+double binomial_sd(double p, std::size_t n) {
+    return std::sqrt(p * (1.0 - p) / static_cast<double>(n));
+}
 
 }  // namespace
 
 TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
     // Same scene, independent Gaussian noise of known σ in both images, variances given in the
-    // channels: z ~ N(0, 1), so P(|z| > 2) = 4.55 % and P(|z| > 3) = 0.27 % within binomial scatter.
+    // channels: z ~ N(0, 1), so P(|z| > 2) = 4.55 % and P(|z| > 3) = 0.27 % within binomial
+    // scatter.
     test::SyntheticPairOptions o;
     o.width = 256;
     o.height = 192;
@@ -53,13 +56,18 @@ TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     ASSERT_EQ(r.regions.size(), 1u);
     for (const auto& q : kZQuantities) {
         const ZStats& z = r.regions[0].z.at(q);
         ASSERT_EQ(z.pixel_count, 256u * 192u) << q;
-        EXPECT_NEAR(z.fraction_above_2, kNormalTailAbove2, 4.0 * binomial_sd(kNormalTailAbove2, z.pixel_count)) << q;
-        EXPECT_NEAR(z.fraction_above_3, kNormalTailAbove3, 4.0 * binomial_sd(kNormalTailAbove3, z.pixel_count)) << q;
+        EXPECT_NEAR(z.fraction_above_2, kNormalTailAbove2,
+                    4.0 * binomial_sd(kNormalTailAbove2, z.pixel_count))
+            << q;
+        EXPECT_NEAR(z.fraction_above_3, kNormalTailAbove3,
+                    4.0 * binomial_sd(kNormalTailAbove3, z.pixel_count))
+            << q;
         EXPECT_NEAR(z.rms, 1.0, 0.03) << q;
         EXPECT_TRUE(consistent_with_noise(z)) << q;
     }
@@ -81,18 +89,21 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
     // Bias of S1 in the centre panel by one combined σ: P(|z| > 2) = P(N(1,1) > 2) + P(N(1,1) < −2)
     // = 0.1587 + 0.0013 = 16 %, far above 4.55 %; other regions stay consistent.
     test::SyntheticPairOptions o;
-    const double sigma_total = std::sqrt(2.0 * o.measured_sigma * o.measured_sigma + o.simulated_sigma * o.simulated_sigma);
+    const double sigma_total = std::sqrt(2.0 * o.measured_sigma * o.measured_sigma +
+                                         o.simulated_sigma * o.simulated_sigma);
     o.s1_bias = sigma_total;
     const auto pair = test::make_synthetic_pair(o);
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     const auto& centre = region(r, "panel_5");
     EXPECT_FALSE(consistent_with_noise(centre.z.at("S1")));
     EXPECT_NEAR(centre.z.at("S1").fraction_above_2, 0.16, 0.05);
-    EXPECT_NEAR(centre.stats.at("S1").bias, o.s1_bias, 4.0 * sigma_total / std::sqrt(centre.stats.at("S1").pixel_count));
+    EXPECT_NEAR(centre.stats.at("S1").bias, o.s1_bias,
+                4.0 * sigma_total / std::sqrt(centre.stats.at("S1").pixel_count));
     EXPECT_TRUE(consistent_with_noise(region(r, "panel_1").z.at("S1")));
     EXPECT_TRUE(consistent_with_noise(centre.z.at("S0")));
     EXPECT_NEAR(region(r, "panel_1").stats.at("S1").bias, 0.0,
@@ -101,7 +112,8 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
     // region-mean test sees the 1σ-per-pixel bias at t ≈ √n; its σ_mean is √(σ_m² + σ_s²)/√n.
     const auto& s1 = centre.verdicts.at("S1").mean;
     EXPECT_EQ(s1.verdict, Agreement::ExceedsNoise);
-    EXPECT_NEAR(s1.combined.sigma, sigma_total / std::sqrt(static_cast<double>(s1.pixel_count)), 1e-3 * s1.combined.sigma);
+    EXPECT_NEAR(s1.combined.sigma, sigma_total / std::sqrt(static_cast<double>(s1.pixel_count)),
+                1e-3 * s1.combined.sigma);
     EXPECT_GT(s1.t, 5.0);
     EXPECT_EQ(centre.verdicts.at("S0").mean.verdict, Agreement::ConsistentWithNoise);
     EXPECT_EQ(centre.verdicts.at("S2").mean.verdict, Agreement::ConsistentWithNoise);
@@ -112,8 +124,8 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
 }
 
 TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
-    // The measurement states σ three times its real noise: z has RMS ≈ 1/3 … 0.5, almost never |z| > 2;
-    // the fraction test alone would call it consistent.
+    // The measurement states σ three times its real noise: z has RMS ≈ 1/3 … 0.5, almost never |z|
+    // > 2; the fraction test alone would call it consistent.
     test::SyntheticPairOptions o;
     o.measured_uncertainty = false;
     o.simulated_variance = false;
@@ -122,7 +134,8 @@ TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
     options.registration = RegistrationMethod::None;
     options.measured_frame_sigma = 3.0 * o.measured_sigma;
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     const auto& all = r.regions.at(0);
     EXPECT_TRUE(consistent_with_noise(all.z.at("S0")));
     // The σ diagnostic is separate from the agreement verdict: the means agree, the σ is too large.
@@ -138,8 +151,8 @@ TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
 }
 
 TEST(ReportComparison, S0BiasInKelvinFollowsThePlanckSlopeOfTheBand) {
-    // Measured S0 raised by dL/dT · 0.5 K at the simulated level: the bias in kelvin is 0.5 K within
-    // its standard error, and that error is the radiance one divided by dL/dT.
+    // Measured S0 raised by dL/dT · 0.5 K at the simulated level: the bias in kelvin is 0.5 K
+    // within its standard error, and that error is the radiance one divided by dL/dT.
     test::SyntheticPairOptions o;
     const auto pair0 = test::make_synthetic_pair(o);
     auto measured = pair0.measured;
@@ -159,11 +172,13 @@ TEST(ReportComparison, S0BiasInKelvinFollowsThePlanckSlopeOfTheBand) {
     EXPECT_NEAR(p1.s0_bias_k->radiance_dT, band.radiance_dT(t), 1e-12);
     const float offset = static_cast<float>(0.5 * band.radiance_dT(t));
     for (auto& v : measured.channel("S0")) v += offset;
-    const CompareResult shifted = write_comparison_report(measured, simulated, options, dir / "shifted");
+    const CompareResult shifted =
+        write_comparison_report(measured, simulated, options, dir / "shifted");
     const auto& k = *region(shifted, "panel_1").s0_bias_k;
     EXPECT_NEAR(k.bias_k - p1.s0_bias_k->bias_k, 0.5, 1e-3);
     EXPECT_NEAR(k.bias_k, 0.5, 4.0 * k.bias_sigma_k);
-    EXPECT_NEAR(k.bias_sigma_k, region(shifted, "panel_1").stats.at("S0").bias_sigma / k.radiance_dT, 1e-12);
+    EXPECT_NEAR(k.bias_sigma_k,
+                region(shifted, "panel_1").stats.at("S0").bias_sigma / k.radiance_dT, 1e-12);
     EXPECT_EQ(shifted.band_source, "band_um attribute of simulated");
     // Without a band the kelvin bias is absent and the report says why.
     simulated.attributes().erase("band_um");
@@ -181,7 +196,8 @@ TEST(ReportComparison, AopStatisticsUsePolarizedPixelsOnly) {
     options.registration = RegistrationMethod::None;
     options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     const auto& p9 = region(r, "panel_9").aop;
     EXPECT_GT(p9.pixel_count, p9.region_pixel_count * 9 / 10);
     EXPECT_NEAR(p9.measured_mean_deg, 90.0, 2.0);
@@ -200,9 +216,12 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     CompareOptions options;  // automatic registration
     options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
-    EXPECT_LT(std::hypot(r.registration.residual_shift_px[0], r.registration.residual_shift_px[1]), 0.5);
-    for (const auto& [name, contrast] : {std::pair{"panel_1", -0.15}, std::pair{"panel_5", -0.39}}) {
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    EXPECT_LT(std::hypot(r.registration.residual_shift_px[0], r.registration.residual_shift_px[1]),
+              0.5);
+    for (const auto& [name, contrast] :
+         {std::pair{"panel_1", -0.15}, std::pair{"panel_5", -0.39}}) {
         const auto& reg = region(r, name);
         ASSERT_TRUE(reg.s1_contrast_measured.has_value()) << name;
         EXPECT_NEAR(*reg.s1_contrast_measured, contrast, 0.01) << name;
@@ -214,19 +233,24 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     const auto json = nlohmann::json::parse(tirpol::read_file(dir / "report.json"));
     EXPECT_EQ(json["measured"]["width"], 192);
     EXPECT_EQ(json["registration"]["method"], "auto");
-    EXPECT_DOUBLE_EQ(json["regions"][1]["stats"]["S1"]["bias"].get<double>(), r.regions[1].stats.at("S1").bias);
-    EXPECT_DOUBLE_EQ(json["regions"][0]["s1_contrast"]["measured"].get<double>(), *r.regions[0].s1_contrast_measured);
+    EXPECT_DOUBLE_EQ(json["regions"][1]["stats"]["S1"]["bias"].get<double>(),
+                     r.regions[1].stats.at("S1").bias);
+    EXPECT_DOUBLE_EQ(json["regions"][0]["s1_contrast"]["measured"].get<double>(),
+                     *r.regions[0].s1_contrast_measured);
     EXPECT_DOUBLE_EQ(json["regions"][0]["z"]["all"]["fraction_above_2"].get<double>(),
                      r.regions[0].z.at("all").fraction_above_2);
     EXPECT_EQ(json["background"], "background");
-    for (const auto& png : json["files"]["pngs"]) EXPECT_TRUE(std::filesystem::exists(dir / png.get<std::string>())) << png;
+    for (const auto& png : json["files"]["pngs"])
+        EXPECT_TRUE(std::filesystem::exists(dir / png.get<std::string>())) << png;
     EXPECT_TRUE(std::filesystem::exists(dir / "comparison.exr"));
     const std::string html = tirpol::read_file(dir / "report.html");
     EXPECT_THAT(html, HasSubstr("<h2>Region statistics</h2>"));
     EXPECT_THAT(html, ::testing::Not(HasSubstr("<script")));
     EXPECT_THAT(html, ::testing::Not(HasSubstr("http")));
     std::size_t images = 0, embedded = 0;
-    for (std::size_t at = html.find("<img "); at != std::string::npos; at = html.find("<img ", at + 1)) ++images;
+    for (std::size_t at = html.find("<img "); at != std::string::npos;
+         at = html.find("<img ", at + 1))
+        ++images;
     for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
          at = html.find("src=\"data:image/png;base64,", at + 1))
         ++embedded;
@@ -234,13 +258,16 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     EXPECT_EQ(images, embedded);
     // Plots are inline SVG, one per file written.
     std::size_t svgs = 0;
-    for (std::size_t at = html.find("<svg "); at != std::string::npos; at = html.find("<svg ", at + 1)) ++svgs;
+    for (std::size_t at = html.find("<svg "); at != std::string::npos;
+         at = html.find("<svg ", at + 1))
+        ++svgs;
     EXPECT_EQ(svgs, r.svgs.size());
     EXPECT_EQ(svgs, 10u);  // region overview, z histogram, 4 scatter plots, 4 difference histograms
 }
 
 TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
-    // A region named in German with a snowflake: SVG text keeps it as written (Hershey fonts dropped it).
+    // A region named in German with a snowflake: SVG text keeps it as written (Hershey fonts
+    // dropped it).
     test::SyntheticPairOptions o;
     const auto pair = test::make_synthetic_pair(o);
     std::string yaml = pair.regions_yaml;
@@ -249,7 +276,8 @@ TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
     options.registration = RegistrationMethod::None;
     options.regions = parse_regions(tirpol::ConfigNode::parse(yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     const std::string svg = tirpol::read_file(dir / "scatter_S0.svg");
     EXPECT_THAT(svg, HasSubstr(">Schnee ❄ – Lack</text>"));
     EXPECT_THAT(tirpol::read_file(dir / "report.html"), HasSubstr(">Schnee ❄ – Lack</text>"));
@@ -257,7 +285,8 @@ TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
     // with no more digits than the step needs.
     std::vector<double> ticks;
     const std::string marker = "font-size=\"12\" text-anchor=\"middle\">";
-    for (std::size_t at = svg.find(marker); at != std::string::npos; at = svg.find(marker, at + 1)) {
+    for (std::size_t at = svg.find(marker); at != std::string::npos;
+         at = svg.find(marker, at + 1)) {
         std::string label = svg.substr(at + marker.size(), svg.find('<', at) - at - marker.size());
         if (label.rfind("−", 0) == 0) label = "-" + label.substr(std::string("−").size());
         ticks.push_back(std::stod(label));
@@ -266,10 +295,11 @@ TEST(ReportComparison, PlotsHaveNiceTicksAndKeepUnicodeNames) {
     ASSERT_GE(ticks.size(), 3u);
     const double step = ticks[1] - ticks[0];
     const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
-    EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 2.5) < 1e-9 ||
-                std::abs(mantissa - 5) < 1e-9)
+    EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 ||
+                std::abs(mantissa - 2.5) < 1e-9 || std::abs(mantissa - 5) < 1e-9)
         << step;
-    for (std::size_t i = 1; i < ticks.size(); ++i) EXPECT_NEAR(ticks[i] - ticks[i - 1], step, 1e-9 * step);
+    for (std::size_t i = 1; i < ticks.size(); ++i)
+        EXPECT_NEAR(ticks[i] - ticks[i - 1], step, 1e-9 * step);
     for (double t : ticks) EXPECT_NEAR(std::remainder(t, step), 0.0, 1e-9 * step) << t;
     // Ticks lie within the data range of S0 (about 24 … 34 W/(m²·sr) in this scene).
     EXPECT_GT(ticks.front(), 20.0);
@@ -286,7 +316,8 @@ TEST(ReportComparison, MeasuredNoiseFallsBackToUserSigmaFlatRegionOrImmerkaer) {
     options.measured_frame_sigma = o.measured_sigma;
     auto r = write_comparison_report(pair.measured, pair.simulated, options, dir / "user");
     EXPECT_THAT(r.noise.at("S1").measured, HasSubstr("--measured-sigma"));
-    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);  // eq 15
+    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+                1e-6);  // eq 15
     EXPECT_TRUE(consistent_with_noise(r.regions[0].z.at("all")));
 
     options.measured_frame_sigma.reset();
@@ -294,12 +325,14 @@ TEST(ReportComparison, MeasuredNoiseFallsBackToUserSigmaFlatRegionOrImmerkaer) {
     r = write_comparison_report(pair.measured, pair.simulated, options, dir / "flat");
     EXPECT_EQ(r.noise.at("S0").measured, "std of measured S0 in flat region 'background'");
     // The background has a gentle S0 gradient; S1 is flat there, so its std is the noise.
-    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 0.1 * o.measured_sigma);
+    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+                0.1 * o.measured_sigma);
 
     options.regions.reset();
     r = write_comparison_report(pair.measured, pair.simulated, options, dir / "immerkaer");
     EXPECT_THAT(r.noise.at("S2").measured, HasSubstr("Immerkær"));
-    EXPECT_NEAR(r.noise.at("S2").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 0.15 * o.measured_sigma);
+    EXPECT_NEAR(r.noise.at("S2").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+                0.15 * o.measured_sigma);
 }
 
 TEST(ReportComparison, MissingSimulationVarianceIsNotedNotFatal) {
@@ -320,14 +353,16 @@ TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
     // attribute variance_dof; docs/report.md); the z statistic then maps Student's t with the
     // Welch–Satterthwaite ν to the normal z of the same tail. The reader is told which ν were used:
     // the result, report.json and the noise table of report.html carry them, and they are the ones
-    // the z used (stating ν = 4 pulls the region's RMS z below that of the same pair taken as exact).
+    // the z used (stating ν = 4 pulls the region's RMS z below that of the same pair taken as
+    // exact).
     const auto exact = test::make_synthetic_pair({});
     auto estimated = exact;
     estimated.simulated.attributes()["variance_dof"] = 4;
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     tirpol::test::TempDir dir;
-    const CompareResult r = write_comparison_report(estimated.measured, estimated.simulated, options, dir.path());
+    const CompareResult r =
+        write_comparison_report(estimated.measured, estimated.simulated, options, dir.path());
     const CompareResult r_exact = compare(exact.measured, exact.simulated, options).result;
     for (const auto& q : kZQuantities) {
         EXPECT_EQ(r.noise.at(q).simulated_dof, 4.0) << q;
@@ -363,7 +398,8 @@ TEST(ReportComparison, BadInputsFailClearly) {
     tirpol::Image partial(pair.measured.width(), pair.measured.height());
     partial.set_channel("S0", pair.measured.channel("S0"));
     partial.set_channel("S1", pair.measured.channel("S1"));
-    auto msg = error_of([&] { write_comparison_report(partial, pair.simulated, options, dir.path()); });
+    auto msg =
+        error_of([&] { write_comparison_report(partial, pair.simulated, options, dir.path()); });
     EXPECT_THAT(msg, HasSubstr("M.exr"));
     EXPECT_THAT(msg, HasSubstr("lacks channel S2"));
     EXPECT_THAT(msg, HasSubstr("channels present: S0, S1"));
@@ -372,13 +408,17 @@ TEST(ReportComparison, BadInputsFailClearly) {
     other.width = 100;
     other.height = 100;
     const auto square = test::make_synthetic_pair(other);
-    msg = error_of([&] { write_comparison_report(pair.measured, square.simulated, options, dir.path()); });
+    msg = error_of(
+        [&] { write_comparison_report(pair.measured, square.simulated, options, dir.path()); });
     EXPECT_THAT(msg, HasSubstr("give control points"));
 
     options.regions = parse_regions(tirpol::ConfigNode::parse(
-        "regions:\n  - name: off_image\n    polygon: [[500, 10], [600, 10], [600, 50]]\n", "rois.yaml"));
-    msg = error_of([&] { write_comparison_report(pair.measured, pair.simulated, options, dir.path()); });
+        "regions:\n  - name: off_image\n    polygon: [[500, 10], [600, 10], [600, 50]]\n",
+        "rois.yaml"));
+    msg = error_of(
+        [&] { write_comparison_report(pair.measured, pair.simulated, options, dir.path()); });
     EXPECT_THAT(msg, HasSubstr("rois.yaml:2"));
     EXPECT_THAT(msg, HasSubstr("outside the 192×144 measured image"));
-    EXPECT_FALSE(std::filesystem::exists(dir / "report.html"));  // nothing written before inputs are checked
+    EXPECT_FALSE(
+        std::filesystem::exists(dir / "report.html"));  // nothing written before inputs are checked
 }

@@ -1,13 +1,13 @@
 // Region statistics and the z statistic against values computed by hand, and Immerkær's noise
 // estimator against noise of known σ.
 
+#include "tirpol/report/statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include "tirpol/report/statistics.h"
 
 using namespace tirpol::report;
 
@@ -17,8 +17,8 @@ TEST(ReportStatistics, QuantityStatsMatchHandComputedValues) {
     const std::vector<float> s{2, 2, 1, 0, 3, NAN};
     const std::vector<std::uint8_t> mask{1, 1, 1, 0, 1, 1};
     const QuantityStats st = quantity_stats(m, s, mask);
-    // m = {1,2,3,6}: mean 3, population var (4+1+0+9)/4 = 3.5.  s = {2,2,1,3}: mean 2, var (0+0+1+1)/4 = 0.5.
-    // d = m − s = {−1, 0, 2, 3}: bias 1, mean square (1+0+4+9)/4 = 3.5.
+    // m = {1,2,3,6}: mean 3, population var (4+1+0+9)/4 = 3.5.  s = {2,2,1,3}: mean 2, var
+    // (0+0+1+1)/4 = 0.5. d = m − s = {−1, 0, 2, 3}: bias 1, mean square (1+0+4+9)/4 = 3.5.
     EXPECT_EQ(st.pixel_count, 4u);
     EXPECT_DOUBLE_EQ(st.measured_mean, 3.0);
     EXPECT_NEAR(st.measured_std, std::sqrt(3.5), 1e-12);
@@ -36,9 +36,10 @@ TEST(ReportStatistics, EmptyRegionGivesZeroCount) {
 }
 
 TEST(ReportStatistics, ZScoresAndTheirSummaryMatchHandValues) {
-    // z = (m − s)/√(var_m + var_s): (5−1)/√(3+1) = 2, (0−3)/√(0.5+0.5) = −3, (1−1)/1 = 0, 1.5/√(2+0.25) = 1,
-    // zero total variance → NaN, NaN input → NaN.
-    const auto z = z_scores({5, 0, 1, 2.5f, 1, NAN}, {1, 3, 1, 1, 1, 0}, {3, 0.5f, 1, 2, 0, 1}, {1, 0.5f, 0, 0.25f, 0, 1});
+    // z = (m − s)/√(var_m + var_s): (5−1)/√(3+1) = 2, (0−3)/√(0.5+0.5) = −3, (1−1)/1 =
+    // 0, 1.5/√(2+0.25) = 1, zero total variance → NaN, NaN input → NaN.
+    const auto z = z_scores({5, 0, 1, 2.5f, 1, NAN}, {1, 3, 1, 1, 1, 0}, {3, 0.5f, 1, 2, 0, 1},
+                            {1, 0.5f, 0, 0.25f, 0, 1});
     ASSERT_EQ(z.size(), 6u);
     EXPECT_FLOAT_EQ(z[0], 2.0f);
     EXPECT_FLOAT_EQ(z[1], -3.0f);
@@ -61,14 +62,16 @@ TEST(ReportStatistics, StudentTMapsToTheNormalOfTheSameTailProbability) {
     EXPECT_NEAR(normal_equivalent_of_t(2.776, 4.0), 1.95996, 2e-4);
     EXPECT_NEAR(normal_equivalent_of_t(-3.169, 10.0), -2.57583, 2e-4);
     EXPECT_DOUBLE_EQ(normal_equivalent_of_t(1.7, std::numeric_limits<double>::infinity()), 1.7);
-    EXPECT_NEAR(normal_equivalent_of_t(1.7, 1e7), 1.7, 1e-5);  // t → normal for many degrees of freedom
+    EXPECT_NEAR(normal_equivalent_of_t(1.7, 1e7), 1.7,
+                1e-5);  // t → normal for many degrees of freedom
     EXPECT_EQ(normal_equivalent_of_t(0.0, 3.0), 0.0);
 }
 
 TEST(ReportStatistics, ZWithAFewSampleVarianceKeepsTheNormalTailFraction) {
     // A render's variance estimated from ν = 4 degrees of freedom (8 spp): the plain ratio has
     // P(|t₄| > 2) = 11.6 % of pixels beyond 2 under noise alone; the dof-aware z must give 4.55 %.
-    // Half of the variance is measured (known, ν = ∞), half simulated (ν = 4), as in the digital twin.
+    // Half of the variance is measured (known, ν = ∞), half simulated (ν = 4), as in the digital
+    // twin.
     std::mt19937 rng(3);
     std::normal_distribution<double> unit(0.0, 1.0);
     constexpr int kN = 200000, kDof = 4;
@@ -81,15 +84,17 @@ TEST(ReportStatistics, ZWithAFewSampleVarianceKeepsTheNormalTailFraction) {
     }
     const std::vector<std::uint8_t> all(kN, 1);
     const ZStats plain = z_stats(z_scores(m, s, vm, vs), all);
-    const ZStats aware = z_stats(z_scores(m, s, vm, vs, std::numeric_limits<double>::infinity(), kDof), all);
+    const ZStats aware =
+        z_stats(z_scores(m, s, vm, vs, std::numeric_limits<double>::infinity(), kDof), all);
     const double binomial_sd = std::sqrt(0.0455 * 0.9545 / kN);
     EXPECT_GT(plain.fraction_above_2, 0.0455 + 10 * binomial_sd);
     // Welch–Satterthwaite is an approximation: within 0.5 % of the nominal tail.
     EXPECT_NEAR(aware.fraction_above_2, 0.0455, 0.005);
-    EXPECT_TRUE(consistent_with_noise(z_stats(z_scores({m.begin(), m.begin() + 2000}, {s.begin(), s.begin() + 2000},
-                                                       {vm.begin(), vm.begin() + 2000}, {vs.begin(), vs.begin() + 2000},
-                                                       std::numeric_limits<double>::infinity(), kDof),
-                                              std::vector<std::uint8_t>(2000, 1))));
+    EXPECT_TRUE(consistent_with_noise(
+        z_stats(z_scores({m.begin(), m.begin() + 2000}, {s.begin(), s.begin() + 2000},
+                         {vm.begin(), vm.begin() + 2000}, {vs.begin(), vs.begin() + 2000},
+                         std::numeric_limits<double>::infinity(), kDof),
+                std::vector<std::uint8_t>(2000, 1))));
 }
 
 TEST(ReportStatistics, NormalTailConstantsMatchErfc) {
@@ -115,6 +120,8 @@ TEST(ReportStatistics, ImmerkaerEstimatesKnownNoiseOnASmoothImage) {
     std::normal_distribution<double> n(0.0, 0.2);
     std::vector<float> data(static_cast<std::size_t>(w * h));
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) data[static_cast<std::size_t>(y * w + x)] = static_cast<float>(20.0 + 0.05 * x - 0.03 * y + n(rng));
+        for (int x = 0; x < w; ++x)
+            data[static_cast<std::size_t>(y * w + x)] =
+                static_cast<float>(20.0 + 0.05 * x - 0.03 * y + n(rng));
     EXPECT_NEAR(immerkaer_noise_sigma(data, w, h), 0.2, 0.2 * 0.03);
 }

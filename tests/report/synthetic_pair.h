@@ -18,11 +18,11 @@ namespace tirpol::report::test {
 struct SyntheticPairOptions {
     int width = 192, height = 144;
     double shift_x_px = 0.0, shift_y_px = 0.0;  ///< measured(x, y) = scene(x − dx, y − dy)
-    double measured_sigma = 0.05;               ///< σ of measured S0 in W/(m²·sr); σ(S1) = σ(S2) = √2 σ
-    double simulated_sigma = 0.03;              ///< σ of the simulation's Monte-Carlo mean, all of S0..S2
-    double s1_bias = 0.0;                       ///< added to measured S1 inside panel 5 (the centre one)
-    bool measured_uncertainty = true;           ///< write S0_std/S1_std/S2_std into the measured image
-    bool simulated_variance = true;             ///< write S0_var/S1_var/S2_var into the simulated image
+    double measured_sigma = 0.05;   ///< σ of measured S0 in W/(m²·sr); σ(S1) = σ(S2) = √2 σ
+    double simulated_sigma = 0.03;  ///< σ of the simulation's Monte-Carlo mean, all of S0..S2
+    double s1_bias = 0.0;           ///< added to measured S1 inside panel 5 (the centre one)
+    bool measured_uncertainty = true;  ///< write S0_std/S1_std/S2_std into the measured image
+    bool simulated_variance = true;    ///< write S0_var/S1_var/S2_var into the simulated image
     std::uint32_t seed = 7;
 };
 
@@ -44,8 +44,8 @@ inline void synthetic_scene(double x, double y, int width, int height, double ou
     for (int k = 0; k < 9; ++k) {
         const PanelBox b = panel_box(k, width, height);
         const double inside = step(x - b.x0) * step(b.x1 - x) * step(y - b.y0) * step(b.y1 - y);
-        s0 += inside * (3.0 + 0.9 * k);                  // panels warmer than the background
-        s1 += inside * (-0.15 - 0.06 * k);               // emission-dominated: vertical, S1 < 0
+        s0 += inside * (3.0 + 0.9 * k);     // panels warmer than the background
+        s1 += inside * (-0.15 - 0.06 * k);  // emission-dominated: vertical, S1 < 0
         s2 += inside * 0.02 * (k % 3 - 1);
     }
     // A warm disc bottom-right: radial emission polarization (S1 ∝ cos 2φ, S2 ∝ sin 2φ).
@@ -65,7 +65,8 @@ inline void synthetic_scene(double x, double y, int width, int height, double ou
 
 struct SyntheticPair {
     Image measured, simulated;
-    std::string regions_yaml;  ///< panels 1, 5, 9, the disc and a background region, in measured pixels
+    std::string
+        regions_yaml;  ///< panels 1, 5, 9, the disc and a background region, in measured pixels
 };
 
 inline SyntheticPair make_synthetic_pair(const SyntheticPairOptions& o) {
@@ -73,14 +74,18 @@ inline SyntheticPair make_synthetic_pair(const SyntheticPairOptions& o) {
     std::normal_distribution<double> normal(0.0, 1.0);
     SyntheticPair pair{Image(o.width, o.height), Image(o.width, o.height), {}};
     const char* names[3] = {"S0", "S1", "S2"};
-    const double sigma_m[3] = {o.measured_sigma, std::sqrt(2.0) * o.measured_sigma, std::sqrt(2.0) * o.measured_sigma};
+    const double sigma_m[3] = {o.measured_sigma, std::sqrt(2.0) * o.measured_sigma,
+                               std::sqrt(2.0) * o.measured_sigma};
     const PanelBox centre = panel_box(4, o.width, o.height);
     for (int c = 0; c < 3; ++c) {
         pair.measured.add_channel(names[c]);
         pair.simulated.add_channel(names[c]);
-        if (o.measured_uncertainty) pair.measured.add_channel(std::string(names[c]) + "_std", static_cast<float>(sigma_m[c]));
+        if (o.measured_uncertainty)
+            pair.measured.add_channel(std::string(names[c]) + "_std",
+                                      static_cast<float>(sigma_m[c]));
         if (o.simulated_variance)
-            pair.simulated.add_channel(std::string(names[c]) + "_var", static_cast<float>(o.simulated_sigma * o.simulated_sigma));
+            pair.simulated.add_channel(std::string(names[c]) + "_var",
+                                       static_cast<float>(o.simulated_sigma * o.simulated_sigma));
     }
     for (int y = 0; y < o.height; ++y)
         for (int x = 0; x < o.width; ++x) {
@@ -94,7 +99,8 @@ inline SyntheticPair make_synthetic_pair(const SyntheticPairOptions& o) {
                 double m = truth_m[c] + sigma_m[c] * normal(rng);
                 if (c == 1 && in_centre) m += o.s1_bias;
                 pair.measured.channel(names[c])[i] = static_cast<float>(m);
-                pair.simulated.channel(names[c])[i] = static_cast<float>(truth_s[c] + o.simulated_sigma * normal(rng));
+                pair.simulated.channel(names[c])[i] =
+                    static_cast<float>(truth_s[c] + o.simulated_sigma * normal(rng));
             }
         }
     pair.measured.attributes()["units"] = std::string("W/(m²·sr)");
@@ -106,9 +112,10 @@ inline SyntheticPair make_synthetic_pair(const SyntheticPairOptions& o) {
         x1 += o.shift_x_px;
         y0 += o.shift_y_px;
         y1 += o.shift_y_px;
-        return "  - name: " + name + "\n    polygon: [[" + std::to_string(x0) + ", " + std::to_string(y0) + "], [" +
-               std::to_string(x1) + ", " + std::to_string(y0) + "], [" + std::to_string(x1) + ", " + std::to_string(y1) +
-               "], [" + std::to_string(x0) + ", " + std::to_string(y1) + "]]\n";
+        return "  - name: " + name + "\n    polygon: [[" + std::to_string(x0) + ", " +
+               std::to_string(y0) + "], [" + std::to_string(x1) + ", " + std::to_string(y0) +
+               "], [" + std::to_string(x1) + ", " + std::to_string(y1) + "], [" +
+               std::to_string(x0) + ", " + std::to_string(y1) + "]]\n";
     };
     std::string yaml = "background: background\nregions:\n";
     for (int k : {0, 4, 8}) {

@@ -1,11 +1,10 @@
-// The simulated camera lands on OpenCV's pixel grid: what cv::projectPoints says about a world point
-// is where the renderer's rays go and where the rendered image shows it (issue 14).
+// The simulated camera lands on OpenCV's pixel grid: what cv::projectPoints says about a world
+// point is where the renderer's rays go and where the rendered image shows it (issue 14).
 
 #include <gtest/gtest.h>
 
-#include <opencv2/calib3d.hpp>
-
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 
 #include "scene_fixtures.h"
 #include "tirpol/core/camera_model.h"
@@ -24,7 +23,8 @@ CameraPose some_pose() {
     return p;
 }
 
-std::vector<cv::Point2d> opencv_projection(const CameraModel& m, const CameraPose& pose, const std::vector<Vec3>& world) {
+std::vector<cv::Point2d> opencv_projection(const CameraModel& m, const CameraPose& pose,
+                                           const std::vector<Vec3>& world) {
     cv::Mat r(3, 3, CV_64F), rvec, tvec(3, 1, CV_64F);
     for (int i = 0; i < 3; ++i) {
         tvec.at<double>(i) = pose.translation_m[i];
@@ -43,24 +43,29 @@ TEST(CameraOpenCvGrid, RaysGoWhereProjectPointsSays) {
     const CameraModel model = tirpol::test::truth_lens();
     const CameraPose pose = some_pose();
     const Camera camera = Camera::from_model(model, pose);
-    // World points spread over the whole image, corners included (where the distortion is strongest).
+    // World points spread over the whole image, corners included (where the distortion is
+    // strongest).
     std::vector<Vec3> world;
     for (int i = -4; i <= 4; ++i)
-        for (int j = -3; j <= 3; ++j) world.push_back(Vec3(0.5 + 0.8 * i, 0.5 * (i + j), 0.8 + 0.55 * j));
+        for (int j = -3; j <= 3; ++j)
+            world.push_back(Vec3(0.5 + 0.8 * i, 0.5 * (i + j), 0.8 + 0.55 * j));
     const auto cv_px = opencv_projection(model, pose, world);
     int inside = 0;
     for (std::size_t i = 0; i < world.size(); ++i) {
         const auto ours = camera.project(world[i]);
         ASSERT_TRUE(ours.has_value());
-        // The renderer's pixel coordinates have the corner origin: OpenCV's (u, v) is (u + ½, v + ½) here.
+        // The renderer's pixel coordinates have the corner origin: OpenCV's (u, v) is (u + ½, v +
+        // ½) here.
         EXPECT_NEAR(ours->x(), cv_px[i].x + 0.5, 1e-9);
         EXPECT_NEAR(ours->y(), cv_px[i].y + 0.5, 1e-9);
-        if (cv_px[i].x < -0.5 || cv_px[i].y < -0.5 || cv_px[i].x > 639.5 || cv_px[i].y > 511.5) continue;
+        if (cv_px[i].x < -0.5 || cv_px[i].y < -0.5 || cv_px[i].x > 639.5 || cv_px[i].y > 511.5)
+            continue;
         ++inside;
         // The ray through that image point passes through the world point.
         const Vec3 d = camera.ray_direction(cv_px[i].x + 0.5, cv_px[i].y + 0.5);
         const Vec3 to_point = (world[i] - camera.position()).normalized();
-        EXPECT_LT(std::atan2(d.cross(to_point).norm(), d.dot(to_point)), 1e-10) << "point " << i << " at " << cv_px[i];
+        EXPECT_LT(std::atan2(d.cross(to_point).norm(), d.dot(to_point)), 1e-10)
+            << "point " << i << " at " << cv_px[i];
     }
     EXPECT_GT(inside, 40) << "the test points must cover the image";
 }
@@ -69,19 +74,20 @@ TEST(CameraOpenCvGrid, InverseIsExactAtTheCornersOfAStrongLens) {
     // k1 = −0.45: fixed-point iteration alone (cv::undistortPoints' default) leaves ~0.01 px here.
     CameraModel m = tirpol::test::truth_lens();
     m.distortion = {-0.45, 0.25, 0.001, 0.001, -0.08};
-    for (const Vec2& px : {Vec2(-0.5, -0.5), Vec2(639.5, 511.5), Vec2(0.0, 400.0), Vec2(320.0, 256.0)}) {
+    for (const Vec2& px :
+         {Vec2(-0.5, -0.5), Vec2(639.5, 511.5), Vec2(0.0, 400.0), Vec2(320.0, 256.0)}) {
         const Vec2 x = m.undistort(px);
         EXPECT_LT((m.project(Vec3(x.x(), x.y(), 1.0)) - px).norm(), 1e-9) << px.transpose();
     }
 }
 
 TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
-    // Small hot discs facing the camera in front of a cold wall; the intensity centroid of each disc in
-    // the render must sit where cv::projectPoints puts its centre (OpenCV convention: pixel x has its
-    // centre at x). Discs of ~3 px radius: their centroid is biased by the distortion by < 0.01 px.
-    // The centroids scatter by up to 0.035 px with the seed (seeds 3–5, 64 spp, 30 coordinates, with
-    // independent or stratified sub-pixel positions alike), so 0.05 px; a half-pixel convention slip
-    // would be 0.5 px.
+    // Small hot discs facing the camera in front of a cold wall; the intensity centroid of each
+    // disc in the render must sit where cv::projectPoints puts its centre (OpenCV convention: pixel
+    // x has its centre at x). Discs of ~3 px radius: their centroid is biased by the distortion by
+    // < 0.01 px. The centroids scatter by up to 0.035 px with the seed (seeds 3–5, 64 spp, 30
+    // coordinates, with independent or stratified sub-pixel positions alike), so 0.05 px; a
+    // half-pixel convention slip would be 0.5 px.
     tirpol::test::TempDir dir;
     CameraModel model = tirpol::test::truth_lens();
     model.width = 160;
@@ -91,16 +97,23 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
     model.cx = 83.3;
     model.cy = 61.8;
     write_camera_model(dir / "lens.yaml", model);
-    const std::vector<Vec3> centres = {Vec3(0, 0, 1), Vec3(-2.2, 0, 2.5), Vec3(2.4, 0, -0.4), Vec3(-2.6, 0, -0.6), Vec3(2.0, 0, 2.2)};
-    std::string objects = "  - {name: wall, geometry: {type: plane, size: [40, 40]}, transform: {rotate_deg: [90, 0, 0], translate: [0, 1, 0]}, material: " +
-                          std::string(simulation::test::kGreyDiffuse) + ", temperature: 250}\n";
+    const std::vector<Vec3> centres = {Vec3(0, 0, 1), Vec3(-2.2, 0, 2.5), Vec3(2.4, 0, -0.4),
+                                       Vec3(-2.6, 0, -0.6), Vec3(2.0, 0, 2.2)};
+    std::string objects =
+        "  - {name: wall, geometry: {type: plane, size: [40, 40]}, transform: {rotate_deg: [90, 0, "
+        "0], translate: [0, 1, 0]}, material: " +
+        std::string(simulation::test::kGreyDiffuse) + ", temperature: 250}\n";
     for (const Vec3& c : centres)
-        objects += fmt::format("  - {{name: spot, geometry: {{type: disk, radius: 0.12, segments: 64}}, transform: {{rotate_deg: [90, 0, 0], "
-                               "translate: [{}, {}, {}]}}, material: {}, temperature: 350}}\n",
-                               c.x(), c.y(), c.z(), simulation::test::kGreyDiffuse);
+        objects += fmt::format(
+            "  - {{name: spot, geometry: {{type: disk, radius: 0.12, segments: 64}}, transform: "
+            "{{rotate_deg: [90, 0, 0], "
+            "translate: [{}, {}, {}]}}, material: {}, temperature: 350}}\n",
+            c.x(), c.y(), c.z(), simulation::test::kGreyDiffuse);
     const std::string yaml = fmt::format(
-        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: 64, max_bounces: 0, seed: 3}}\nmaterials_dir: {}\n"
-        "camera: {{model: lens.yaml, position: [0.1, -8, 1.2], look_at: [0, 0, 1]}}\nsky: {{type: uniform, temperature: 200}}\n"
+        "band: {{lo_um: 8, hi_um: 14}}\nsampling: {{spp: 64, max_bounces: 0, seed: "
+        "3}}\nmaterials_dir: {}\n"
+        "camera: {{model: lens.yaml, position: [0.1, -8, 1.2], look_at: [0, 0, 1]}}\nsky: {{type: "
+        "uniform, temperature: 200}}\n"
         "objects:\n{}",
         (tirpol::test::source_dir() / "config" / "materials").string(), objects);
     const Scene scene = simulation::test::load_scene_text(dir, yaml);
@@ -111,11 +124,14 @@ TEST(CameraOpenCvGrid, RenderedHotSpotsLandOnProjectPointsPixels) {
     float background = s0[0];
     for (std::size_t i = 0; i < centres.size(); ++i) {
         double sum = 0, sx = 0, sy = 0;
-        const int x0 = static_cast<int>(std::lround(cv_px[i].x)), y0 = static_cast<int>(std::lround(cv_px[i].y));
+        const int x0 = static_cast<int>(std::lround(cv_px[i].x)),
+                  y0 = static_cast<int>(std::lround(cv_px[i].y));
         for (int y = y0 - 8; y <= y0 + 8; ++y)
             for (int x = x0 - 8; x <= x0 + 8; ++x) {
-                ASSERT_TRUE(x >= 0 && y >= 0 && x < 160 && y < 128) << "spot " << i << " too close to the border";
-                const double w = std::max(0.0, static_cast<double>(s0[image.index(x, y)] - background));
+                ASSERT_TRUE(x >= 0 && y >= 0 && x < 160 && y < 128)
+                    << "spot " << i << " too close to the border";
+                const double w =
+                    std::max(0.0, static_cast<double>(s0[image.index(x, y)] - background));
                 sum += w;
                 sx += w * x;  // pixel x's centre is at OpenCV coordinate x
                 sy += w * y;
@@ -130,19 +146,23 @@ TEST(CameraOpenCvGrid, SceneModelAndPoseFilesAreRead) {
     tirpol::test::TempDir dir;
     write_camera_model(dir / "lens.yaml", tirpol::test::truth_lens());
     write_camera_pose(dir / "pose.yaml", some_pose());
-    const Camera camera = Camera::from_config(ConfigNode::parse("{model: lens.yaml, pose: pose.yaml}", (dir / "scene.yaml").string()));
+    const Camera camera = Camera::from_config(
+        ConfigNode::parse("{model: lens.yaml, pose: pose.yaml}", (dir / "scene.yaml").string()));
     EXPECT_EQ(camera.width(), 640);
     EXPECT_NEAR((camera.position() - Vec3(0.3, -9.5, 1.6)).norm(), 0.0, 1e-12);
     EXPECT_NEAR(camera.lens_model().cx, 331.7, 1e-12);
     EXPECT_EQ(camera.lens_model().distortion.size(), 5u);
     try {
-        Camera::from_config(ConfigNode::parse("{model: lens.yaml, fov_deg: 30, pose: pose.yaml}", (dir / "scene.yaml").string()));
+        Camera::from_config(ConfigNode::parse("{model: lens.yaml, fov_deg: 30, pose: pose.yaml}",
+                                              (dir / "scene.yaml").string()));
         FAIL() << "model and fov_deg together must be refused";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("fov_deg"), std::string::npos) << e.what();
     }
     try {
-        Camera::from_config(ConfigNode::parse("{model: lens.yaml, resolution: [320, 256], pose: pose.yaml}", (dir / "scene.yaml").string()));
+        Camera::from_config(
+            ConfigNode::parse("{model: lens.yaml, resolution: [320, 256], pose: pose.yaml}",
+                              (dir / "scene.yaml").string()));
         FAIL() << "a resolution that contradicts the model must be refused";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("640x512"), std::string::npos) << e.what();

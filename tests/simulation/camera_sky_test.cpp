@@ -15,13 +15,15 @@ namespace tirpol::simulation {
 namespace {
 
 TEST(Camera, ImageFrameIsCameraRightAndUp) {
-    const Camera cam = Camera::from_config(
-        ConfigNode::parse("{resolution: [64, 48], fov_deg: 40, position: [0, -5, 1], look_at: [0, 0, 1]}"));
+    const Camera cam = Camera::from_config(ConfigNode::parse(
+        "{resolution: [64, 48], fov_deg: 40, position: [0, -5, 1], look_at: [0, 0, 1]}"));
     const Vec3 d = cam.ray_direction(32.0, 24.0);
     EXPECT_NEAR((d - Vec3(0, 1, 0)).norm(), 0.0, 1e-12) << "principal ray looks at the target";
     const StokesFrame f = cam.image_frame(d);
-    EXPECT_NEAR((f.reference - Vec3(1, 0, 0)).norm(), 0.0, 1e-12) << "0° along image +x (east here)";
-    EXPECT_NEAR((f.second_axis() - Vec3(0, 0, 1)).norm(), 0.0, 1e-12) << "90° toward the image top (up)";
+    EXPECT_NEAR((f.reference - Vec3(1, 0, 0)).norm(), 0.0, 1e-12)
+        << "0° along image +x (east here)";
+    EXPECT_NEAR((f.second_axis() - Vec3(0, 0, 1)).norm(), 0.0, 1e-12)
+        << "90° toward the image top (up)";
     // A pixel to the right of the centre looks to the right; a pixel above looks up.
     EXPECT_GT(cam.ray_direction(60.0, 24.0).x(), 0.0);
     EXPECT_GT(cam.ray_direction(32.0, 2.0).z(), 0.0);
@@ -29,27 +31,29 @@ TEST(Camera, ImageFrameIsCameraRightAndUp) {
     EXPECT_NEAR(rad_to_deg(std::acos(cam.ray_direction(64.0, 24.0).dot(d))), 20.0, 1e-9);
 }
 
-// Mitsuba 3's stokes integrator takes x = ray.d × camera-up per ray, tirpol camera-right projected onto
-// the wavefront. For a ray with direction cosines (a, b, c) on camera right, up and forward both axes lie
-// in the wavefront, x_t ∝ R − a·d and x_m ∝ c·R − a·F, so they make the angle φ with
-// cos φ = c / √((1 − a²)(1 − b²)): zero on the centre row and column, of opposite signs in neighbouring
-// quadrants, 5.17° at the corners of a 40° 4:3 view (docs/simulation.md). bench/simulation_bench.cpp
-// rotates Mitsuba's Stokes images by it pixel by pixel.
+// Mitsuba 3's stokes integrator takes x = ray.d × camera-up per ray, tirpol camera-right projected
+// onto the wavefront. For a ray with direction cosines (a, b, c) on camera right, up and forward
+// both axes lie in the wavefront, x_t ∝ R − a·d and x_m ∝ c·R − a·F, so they make the angle φ with
+// cos φ = c / √((1 − a²)(1 − b²)): zero on the centre row and column, of opposite signs in
+// neighbouring quadrants, 5.17° at the corners of a 40° 4:3 view (docs/simulation.md).
+// bench/simulation_bench.cpp rotates Mitsuba's Stokes images by it pixel by pixel.
 TEST(Camera, ImageFrameDiffersFromMitsubasOffAxisOnly) {
-    const Camera cam = Camera::from_config(
-        ConfigNode::parse("{resolution: [320, 240], fov_deg: 40, position: [0, -5, 1.5], look_at: [0, 0, 0.6]}"));
+    const Camera cam = Camera::from_config(ConfigNode::parse(
+        "{resolution: [320, 240], fov_deg: 40, position: [0, -5, 1.5], look_at: [0, 0, 0.6]}"));
     const Mat3& axes = cam.world_from_camera();  // columns: right, down, forward
     const Vec3 right = axes.col(0), up = -axes.col(1), forward = axes.col(2);
     const auto angle = [&](double u, double v) {
         const Vec3 d = cam.ray_direction(u, v);
         return frame_rotation_angle(StokesFrame{-d, d.cross(up).normalized()}, cam.image_frame(d));
     };
-    for (const auto& [u, v] : {std::pair{160.0, 120.0}, {160.0, 0.0}, {0.0, 120.0}, {0.0, 0.0}, {250.0, 30.0}}) {
+    for (const auto& [u, v] :
+         {std::pair{160.0, 120.0}, {160.0, 0.0}, {0.0, 120.0}, {0.0, 0.0}, {250.0, 30.0}}) {
         const Vec3 d = cam.ray_direction(u, v);
         const double a = d.dot(right), b = d.dot(up), c = d.dot(forward);
         const double expected = std::acos(std::min(1.0, c / std::sqrt((1 - a * a) * (1 - b * b))));
         EXPECT_NEAR(std::abs(angle(u, v)), expected, 1e-6) << u << ", " << v;
-        EXPECT_NEAR(angle(u, v), -angle(320.0 - u, v), 1e-9) << "mirror image across the centre column";
+        EXPECT_NEAR(angle(u, v), -angle(320.0 - u, v), 1e-9)
+            << "mirror image across the centre column";
     }
     EXPECT_NEAR(angle(160.0, 0.0), 0.0, 1e-6);
     EXPECT_NEAR(angle(0.0, 120.0), 0.0, 1e-6);
@@ -72,7 +76,9 @@ TEST(Camera, DistortionIsInvertedExactly) {
 
 TEST(Camera, ConfigErrorsNameTheField) {
     try {
-        Camera::from_config(ConfigNode::parse("{resolution: [64, 48], fov_deg: 40, position: [0, 0], look_at: [0, 1, 0]}", "cam.yaml"));
+        Camera::from_config(ConfigNode::parse(
+            "{resolution: [64, 48], fov_deg: 40, position: [0, 0], look_at: [0, 1, 0]}",
+            "cam.yaml"));
         FAIL();
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("position"), std::string::npos) << e.what();
@@ -80,12 +86,14 @@ TEST(Camera, ConfigErrorsNameTheField) {
 }
 
 TEST(Sky, ClearSkyFollowsBerdahlMartinAngularForm) {
-    // ε(θ) = 1 − (1 − ε_z)^(1/cos θ) (Berdahl & Martin 1984): ε(0) = ε_z, ε(60°) = 1 − (1 − ε_z)², ε → 1 at the horizon.
+    // ε(θ) = 1 − (1 − ε_z)^(1/cos θ) (Berdahl & Martin 1984): ε(0) = ε_z, ε(60°) = 1 − (1 − ε_z)²,
+    // ε → 1 at the horizon.
     const Sky sky = Sky::clear_sky(280.0, 0.7);
     EXPECT_NEAR(sky.emissivity(1.0), 0.7, 1e-12);
     EXPECT_NEAR(sky.emissivity(0.5), 1.0 - 0.09, 1e-12);
     EXPECT_NEAR(sky.emissivity(0.0), 1.0, 1e-12);
-    EXPECT_NEAR(sky.spectral_radiance(10.0, Vec3(0, 0, 1)), 0.7 * planck_radiance(10.0, 280.0), 1e-12);
+    EXPECT_NEAR(sky.spectral_radiance(10.0, Vec3(0, 0, 1)), 0.7 * planck_radiance(10.0, 280.0),
+                1e-12);
     double previous = 0.0;
     for (double c = 1.0; c >= 0.0; c -= 0.01) {
         EXPECT_GE(sky.emissivity(c), previous);
@@ -95,7 +103,9 @@ TEST(Sky, ClearSkyFollowsBerdahlMartinAngularForm) {
 
 TEST(Sky, TableReproducesItsBandRadiances) {
     const Band band(8.0, 14.0);
-    const Sky sky = Sky::table({0.0, 45.0, 90.0}, {band.radiance(230.0), band.radiance(250.0), band.radiance(280.0)}, band);
+    const Sky sky =
+        Sky::table({0.0, 45.0, 90.0},
+                   {band.radiance(230.0), band.radiance(250.0), band.radiance(280.0)}, band);
     EXPECT_NEAR(sky.temperature_k(1.0), 230.0, 1e-5);
     EXPECT_NEAR(sky.temperature_k(std::cos(deg_to_rad(22.5))), 240.0, 1e-5);
     EXPECT_NEAR(sky.temperature_k(-0.3), 280.0, 1e-5) << "below the horizon: horizon value";
@@ -104,7 +114,8 @@ TEST(Sky, TableReproducesItsBandRadiances) {
 
 TEST(Sky, SunFromElevationAndAzimuth) {
     const Band band(3.0, 5.0);
-    const Sun sun = Sun::from_config(ConfigNode::parse("{elevation_deg: 18, azimuth_deg: 90}"), band);
+    const Sun sun =
+        Sun::from_config(ConfigNode::parse("{elevation_deg: 18, azimuth_deg: 90}"), band);
     EXPECT_NEAR(sun.direction.x(), std::cos(deg_to_rad(18.0)), 1e-12) << "azimuth 90° is east (+x)";
     EXPECT_NEAR(sun.direction.z(), std::sin(deg_to_rad(18.0)), 1e-12);
 }

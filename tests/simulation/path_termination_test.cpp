@@ -16,7 +16,8 @@ namespace {
 using tirpol::test::TempDir;
 
 /// Camera inside a closed 3 × 3 × 2 m box of `material` at 300 K (the sky, never seen, is colder).
-std::string aluminium_box(int max_bounces, const std::string& material = "bare_aluminium", int spp = 64) {
+std::string aluminium_box(int max_bounces, const std::string& material = "bare_aluminium",
+                          int spp = 64) {
     return test::scene_header(12, 8, spp, max_bounces,
                               "fov_deg: 40, position: [0.3, -0.9, 0.2], look_at: [0.5, 1, -0.3]",
                               "{type: uniform, temperature: 220}") +
@@ -28,12 +29,17 @@ std::string aluminium_box(int max_bounces, const std::string& material = "bare_a
 /// Polished aluminium: exact Fresnel reflection with the library's Rakić (1995) index, so sample
 /// weights are the reflectance matrices (≤ 1) and only the path length is random.
 std::string polished_aluminium() {
-    return "{name: polished_aluminium, source: test, model: smooth_fresnel, refractive_index: {file: " +
-           (tirpol::test::source_dir() / "config" / "materials" / "data" / "aluminium_rakic_1995.yml").string() + "}}";
+    return "{name: polished_aluminium, source: test, model: smooth_fresnel, refractive_index: "
+           "{file: " +
+           (tirpol::test::source_dir() / "config" / "materials" / "data" /
+            "aluminium_rakic_1995.yml")
+               .string() +
+           "}}";
 }
 
 struct ImageMean {
-    double s0 = 0.0, sigma = 0.0;  ///< mean S0 over the image and its standard error (pooled variances)
+    double s0 = 0.0,
+           sigma = 0.0;  ///< mean S0 over the image and its standard error (pooled variances)
 };
 
 ImageMean mean_s0(const Image& img) {
@@ -51,7 +57,8 @@ ImageMean mean_s0(const Image& img) {
 
 TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     TempDir dir;
-    const Scene scene = test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, polished_aluminium(), 1536));
+    const Scene scene =
+        test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, polished_aluminium(), 1536));
     ASSERT_EQ(scene.sampling.max_bounces, kDefaultMaxBounces);
     const Image img = render(scene, test::without_control_variate());
     const double l_bb = scene.band.radiance(300.0);
@@ -62,9 +69,10 @@ TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     // Every pixel: S0 = L_bb and S1 = S2 = 0 within 5σ of its own reported error.
     std::size_t outside = 0;
     for (std::size_t i = 0; i < img.pixel_count(); ++i)
-        for (const auto& [channel, expected] : {std::pair{"S0", l_bb}, std::pair{"S1", 0.0}, std::pair{"S2", 0.0}}) {
-            const double z =
-                (img.channel(channel)[i] - expected) / std::sqrt(img.channel(std::string(channel) + "_var")[i]);
+        for (const auto& [channel, expected] :
+             {std::pair{"S0", l_bb}, std::pair{"S1", 0.0}, std::pair{"S2", 0.0}}) {
+            const double z = (img.channel(channel)[i] - expected) /
+                             std::sqrt(img.channel(std::string(channel) + "_var")[i]);
             if (std::abs(z) > 5.0 && ++outside <= 3)
                 ADD_FAILURE() << "pixel " << i << " " << channel << ": z = " << z << " value "
                               << img.channel(channel)[i] << " L_bb " << l_bb;
@@ -72,11 +80,12 @@ TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     EXPECT_EQ(outside, 0u);
 }
 
-// The library's bare_aluminium is rough (σ = 0.1 facets): its sample weights are heavy-tailed, so the
-// check is the image mean against its pooled error.
+// The library's bare_aluminium is rough (σ = 0.1 facets): its sample weights are heavy-tailed, so
+// the check is the image mean against its pooled error.
 TEST(PathTermination, ClosedRoughAluminiumBoxConvergesToTheBlackbody) {
     TempDir dir;
-    const Scene scene = test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, "bare_aluminium", 256));
+    const Scene scene =
+        test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, "bare_aluminium", 256));
     const double l_bb = scene.band.radiance(300.0);
     const ImageMean m = mean_s0(render(scene, test::without_control_variate()));
     EXPECT_LE(std::abs(m.s0 - l_bb), 5.0 * m.sigma + 2e-3 * l_bb)
@@ -84,8 +93,8 @@ TEST(PathTermination, ClosedRoughAluminiumBoxConvergesToTheBlackbody) {
     EXPECT_LT(m.sigma, 0.04 * l_bb) << "too noisy to tell";
 }
 
-// The same box with the bounce limit as the only termination (max_bounces: 4, the old default) loses
-// most of the cavity radiance: the cap is a bias, which is why it is only a safety cap now.
+// The same box with the bounce limit as the only termination (max_bounces: 4, the old default)
+// loses most of the cavity radiance: the cap is a bias, which is why it is only a safety cap now.
 TEST(PathTermination, ALowBounceCapTruncatesTheCavity) {
     TempDir dir;
     const Scene scene = test::load_scene_text(dir, aluminium_box(4));

@@ -18,8 +18,8 @@ using tirpol::test::TempDir;
 std::string ball_scene() {
     return test::scene_header(12, 10, 4, 4, "fov_deg: 30, position: [0, -5, 0], look_at: [0, 0, 0]",
                               "{type: uniform, temperature: 260}") +
-           "objects:\n  - {name: ball, geometry: {type: sphere, radius: 1}, material: " + test::kSmoothPaint +
-           ", temperature: 300}\n";
+           "objects:\n  - {name: ball, geometry: {type: sphere, radius: 1}, material: " +
+           test::kSmoothPaint + ", temperature: 300}\n";
 }
 
 TEST(RenderCancel, SetFlagStopsTheRenderWithCancelled) {
@@ -48,7 +48,8 @@ TEST(RenderCancel, ClearFlagRendersTheSameImageAsNoFlag) {
 TEST(SceneFromConfig, ParsedTextLoadsLikeTheFileAndResolvesPathsAgainstItsFolder) {
     TempDir dir;
     const Scene from_file = test::load_scene_text(dir, ball_scene());
-    const Scene from_node = load_scene(ConfigNode::parse(ball_scene(), (dir.path() / "in_memory.yaml").string()));
+    const Scene from_node =
+        load_scene(ConfigNode::parse(ball_scene(), (dir.path() / "in_memory.yaml").string()));
     EXPECT_EQ(from_node.file, dir.path() / "in_memory.yaml");
     EXPECT_EQ(from_node.camera.width(), from_file.camera.width());
     RenderOptions options;

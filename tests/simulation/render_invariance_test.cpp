@@ -17,24 +17,28 @@ namespace {
 
 using tirpol::test::TempDir;
 
-/// Ball on diffuse ground before a tilted smooth panel, rotated by `yaw_deg` about the world z axis.
+/// Ball on diffuse ground before a tilted smooth panel, rotated by `yaw_deg` about the world z
+/// axis.
 std::string rotated_scene(double yaw_deg) {
     const Mat3 r = Eigen::AngleAxisd(deg_to_rad(yaw_deg), Vec3::UnitZ()).toRotationMatrix();
     const auto p = [&](double x, double y, double z) {
         const Vec3 v = r * Vec3(x, y, z);
         return fmt::format("[{:.12g}, {:.12g}, {:.12g}]", v.x(), v.y(), v.z());
     };
-    return test::scene_header(24, 18, 6, 3,
-                              "fov_deg: 35, position: " + p(0.3, -4, 1.5) + ", look_at: " + p(0, 0, 0.5),
-                              "{type: clear_sky, air_temperature: 280, zenith_emissivity: 0.7}") +
+    return test::scene_header(
+               24, 18, 6, 3,
+               "fov_deg: 35, position: " + p(0.3, -4, 1.5) + ", look_at: " + p(0, 0, 0.5),
+               "{type: clear_sky, air_temperature: 280, zenith_emissivity: 0.7}") +
            "objects:\n"
-           "  - {name: ground, geometry: {type: disk, radius: 8, segments: 64}, transform: {rotate_deg: [0, 0, " +
-           fmt::format("{}", yaw_deg) + "]}, material: " + test::kGreyDiffuse + ", temperature: 285}\n" +
-           "  - {name: ball, geometry: {type: sphere, radius: 0.5}, transform: {translate: " + p(0, 0, 0.5) +
-           "}, material: " + test::kSmoothPaint + ", temperature: 300}\n" +
-           "  - {name: panel, geometry: {type: box, size: [3, 0.1, 2]}, transform: {translate: " + p(0, 1.5, 1) +
-           ", rotate_deg: [-15, 0, " + fmt::format("{}", yaw_deg) + "]}, material: " + test::kSmoothPaint +
-           ", temperature: 290}\n";
+           "  - {name: ground, geometry: {type: disk, radius: 8, segments: 64}, transform: "
+           "{rotate_deg: [0, 0, " +
+           fmt::format("{}", yaw_deg) + "]}, material: " + test::kGreyDiffuse +
+           ", temperature: 285}\n" +
+           "  - {name: ball, geometry: {type: sphere, radius: 0.5}, transform: {translate: " +
+           p(0, 0, 0.5) + "}, material: " + test::kSmoothPaint + ", temperature: 300}\n" +
+           "  - {name: panel, geometry: {type: box, size: [3, 0.1, 2]}, transform: {translate: " +
+           p(0, 1.5, 1) + ", rotate_deg: [-15, 0, " + fmt::format("{}", yaw_deg) +
+           "]}, material: " + test::kSmoothPaint + ", temperature: 290}\n";
 }
 
 TEST(RenderInvariance, SameImageForOneAndTwoThreadsAndAnyTiling) {
@@ -49,7 +53,8 @@ TEST(RenderInvariance, SameImageForOneAndTwoThreadsAndAnyTiling) {
         const auto& pa = a.channel(name);
         const auto& pb = b.channel(name);
         for (std::size_t i = 0; i < pa.size(); ++i)
-            ASSERT_TRUE(pa[i] == pb[i] || (std::isnan(pa[i]) && std::isnan(pb[i]))) << name << " pixel " << i;
+            ASSERT_TRUE(pa[i] == pb[i] || (std::isnan(pa[i]) && std::isnan(pb[i])))
+                << name << " pixel " << i;
     }
 }
 
@@ -59,7 +64,8 @@ TEST(RenderInvariance, MaskedPixelsAreTheFullRendersAndTheRestIsNaN) {
     TempDir dir;
     const Scene scene = test::load_scene_text(dir, rotated_scene(0.0));
     const Image full = render(scene);
-    std::vector<std::uint8_t> mask(static_cast<std::size_t>(full.width()) * static_cast<std::size_t>(full.height()), 0);
+    std::vector<std::uint8_t> mask(
+        static_cast<std::size_t>(full.width()) * static_cast<std::size_t>(full.height()), 0);
     for (std::size_t i = 0; i < mask.size(); i += 7) mask[i] = 1;
     RenderOptions masked;
     masked.pixel_mask = &mask;
@@ -70,7 +76,8 @@ TEST(RenderInvariance, MaskedPixelsAreTheFullRendersAndTheRestIsNaN) {
         const auto& pp = part.channel(name);
         for (std::size_t i = 0; i < pf.size(); ++i) {
             if (mask[i])
-                ASSERT_TRUE(pf[i] == pp[i] || (std::isnan(pf[i]) && std::isnan(pp[i]))) << name << " pixel " << i;
+                ASSERT_TRUE(pf[i] == pp[i] || (std::isnan(pf[i]) && std::isnan(pp[i])))
+                    << name << " pixel " << i;
             else
                 ASSERT_TRUE(std::isnan(pp[i])) << name << " pixel " << i << " outside the mask";
         }
@@ -104,7 +111,8 @@ TEST(RenderInvariance, RotatingSceneAndCameraAboutTheVerticalLeavesTheImageUncha
             sum_diff += pa[i] - pb[i];
             sum_var += va[i] + vb[i];
         }
-        EXPECT_LE(static_cast<double>(off), 0.01 * static_cast<double>(pa.size())) << ch << ": " << off << " pixels differ";
+        EXPECT_LE(static_cast<double>(off), 0.01 * static_cast<double>(pa.size()))
+            << ch << ": " << off << " pixels differ";
         EXPECT_LE(std::abs(sum_diff), 5.0 * std::sqrt(sum_var)) << ch << ": image means differ";
     }
     // Geometry channels are deterministic: the same up to float rounding.

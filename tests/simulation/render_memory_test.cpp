@@ -1,8 +1,9 @@
 // Render memory does not grow with the samples per pixel: every random number is computed from
-// (seed, pixel, replicate, sample, dimension) and pixels accumulate replicate means as they go, so a
-// 1-pixel render at 2^19 spp allocates what one at 16 spp does. (Per-pixel stratum tables of spp
+// (seed, pixel, replicate, sample, dimension) and pixels accumulate replicate means as they go, so
+// a 1-pixel render at 2^19 spp allocates what one at 16 spp does. (Per-pixel stratum tables of spp
 // integers per dimension once made a 4×4 render at 2e9 spp reach 10 GB.) The count is of every byte
-// requested from operator new during the render, freed or not, so a per-sample allocation fails too.
+// requested from operator new during the render, freed or not, so a per-sample allocation fails
+// too.
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,8 @@ std::atomic<std::size_t> g_bytes{0};
 }  // namespace
 
 void* operator new(std::size_t size) {
-    if (g_counting.load(std::memory_order_relaxed)) g_bytes.fetch_add(size, std::memory_order_relaxed);
+    if (g_counting.load(std::memory_order_relaxed))
+        g_bytes.fetch_add(size, std::memory_order_relaxed);
     if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
     throw std::bad_alloc();
 }
@@ -45,7 +47,8 @@ TEST(RenderMemory, AllocationsDoNotGrowWithSamplesPerPixel) {
         // One pixel looking at a uniform sky over a ground plane: one cheap ray per sample.
         return test::load_scene_text(
             dir,
-            test::scene_header(1, 1, spp, 4, "fov_deg: 10, position: [0, 0, 1], look_at: [0, 10, 3]",
+            test::scene_header(1, 1, spp, 4,
+                               "fov_deg: 10, position: [0, 0, 1], look_at: [0, 10, 3]",
                                "{type: uniform, temperature: 250}") +
                 "objects:\n  - {name: ground, geometry: {type: plane, size: [10, 10]}, material: " +
                 test::kGreyDiffuse + ", temperature: 280}\n");
@@ -53,7 +56,8 @@ TEST(RenderMemory, AllocationsDoNotGrowWithSamplesPerPixel) {
     (void)bytes_allocated_by_render(scene_with(16));  // fills the emissivity-table cache in memory
     const std::size_t small = bytes_allocated_by_render(scene_with(16));
     const std::size_t large = bytes_allocated_by_render(scene_with(1 << 19));
-    std::printf("bytes allocated by a 1-pixel render: %zu at 16 spp, %zu at 2^19 spp\n", small, large);
+    std::printf("bytes allocated by a 1-pixel render: %zu at 16 spp, %zu at 2^19 spp\n", small,
+                large);
     // 2^19 spp of one int per sample and dimension would be 2 MiB per dimension.
     EXPECT_LT(large, small + 64 * 1024);
 }

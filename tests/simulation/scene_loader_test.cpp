@@ -15,15 +15,21 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 using tirpol::test::TempDir;
 
-std::string good_scene(const std::string& object_extra = "", const std::string& geometry = "{type: sphere, radius: 1}",
+std::string good_scene(const std::string& object_extra = "",
+                       const std::string& geometry = "{type: sphere, radius: 1}",
                        const std::string& material = test::kSmoothPaint) {
     return test::scene_header(8, 6, 2, 2, "fov_deg: 30, position: [0, -5, 0], look_at: [0, 0, 0]",
                               "{type: uniform, temperature: 250}") +
            "objects:\n"
            "  - name: ball\n"
-           "    geometry: " + geometry + "\n"
-           "    material: " + material + "\n"
-           "    temperature: 300\n" + object_extra;
+           "    geometry: " +
+           geometry +
+           "\n"
+           "    material: " +
+           material +
+           "\n"
+           "    temperature: 300\n" +
+           object_extra;
 }
 
 std::string error_of(const TempDir& dir, const std::string& yaml) {
@@ -48,18 +54,21 @@ TEST(SceneLoader, UnknownKeyNamesFileLineAndSuggestion) {
     TempDir dir;
     std::string yaml = good_scene();
     yaml.replace(yaml.find("camera:"), 7, "camra:");
-    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:"), HasSubstr("camra"), HasSubstr("camera")));
+    EXPECT_THAT(error_of(dir, yaml),
+                AllOf(HasSubstr("scene.yaml:"), HasSubstr("camra"), HasSubstr("camera")));
 }
 
 TEST(SceneLoader, EstimatorIsReadAndAnUnknownOneIsNamed) {
     TempDir dir;
-    EXPECT_EQ(test::load_scene_text(dir, good_scene()).sampling.estimator, Estimator::control_variate);
+    EXPECT_EQ(test::load_scene_text(dir, good_scene()).sampling.estimator,
+              Estimator::control_variate);
     std::string yaml = good_scene();
     yaml.replace(yaml.find("seed: 7}"), 8, "seed: 7, estimator: plain}");
     EXPECT_EQ(test::load_scene_text(dir, yaml).sampling.estimator, Estimator::plain);
     yaml.replace(yaml.find("plain"), 5, "mcmc");
-    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.estimator"),
-                                           HasSubstr("expected plain or control-variate, got 'mcmc'")));
+    EXPECT_THAT(error_of(dir, yaml),
+                AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.estimator"),
+                      HasSubstr("expected plain or control-variate, got 'mcmc'")));
 }
 
 TEST(SceneLoader, ReplicatesAreReadAndOutOfRangeCountsAreNamed) {
@@ -69,21 +78,23 @@ TEST(SceneLoader, ReplicatesAreReadAndOutOfRangeCountsAreNamed) {
     yaml.replace(yaml.find("seed: 7}"), 8, "seed: 7, replicates: 1}");
     EXPECT_EQ(test::load_scene_text(dir, yaml).sampling.replicates, 1);
     yaml.replace(yaml.find("replicates: 1"), 13, "replicates: 0");
-    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.replicates"),
-                                           HasSubstr("expected 1–1024"), HasSubstr("got 0")));
+    EXPECT_THAT(error_of(dir, yaml),
+                AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.replicates"),
+                      HasSubstr("expected 1–1024"), HasSubstr("got 0")));
 }
 
 TEST(SceneLoader, MissingMeshIsAClearError) {
     TempDir dir;
     EXPECT_THAT(error_of(dir, good_scene("", "{type: mesh, file: no_such_car.obj}")),
-                AllOf(HasSubstr("scene.yaml:"), HasSubstr("objects[0].geometry.file"), HasSubstr("mesh file not found"),
-                      HasSubstr("no_such_car.obj")));
+                AllOf(HasSubstr("scene.yaml:"), HasSubstr("objects[0].geometry.file"),
+                      HasSubstr("mesh file not found"), HasSubstr("no_such_car.obj")));
 }
 
 TEST(SceneLoader, MissingMaterialIsAClearError) {
     TempDir dir;
     EXPECT_THAT(error_of(dir, good_scene("", "{type: sphere, radius: 1}", "unobtainium_paint")),
-                AllOf(HasSubstr("objects[0].material"), HasSubstr("unknown material \"unobtainium_paint\"")));
+                AllOf(HasSubstr("objects[0].material"),
+                      HasSubstr("unknown material \"unobtainium_paint\"")));
     EXPECT_THAT(error_of(dir, good_scene("", "{type: sphere, radius: 1}", "paints/missing.yaml")),
                 AllOf(HasSubstr("objects[0].material"), HasSubstr("material file not found")));
 }
@@ -92,19 +103,22 @@ TEST(SceneLoader, WrongTypeNamesTheField) {
     TempDir dir;
     std::string yaml = good_scene();
     yaml.replace(yaml.find("spp: 2"), 6, "spp: many");
-    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.spp"), HasSubstr("many")));
+    EXPECT_THAT(error_of(dir, yaml),
+                AllOf(HasSubstr("scene.yaml:2"), HasSubstr("sampling.spp"), HasSubstr("many")));
 }
 
 TEST(SceneLoader, PredictedTemperatureIsRejectedUntilTheThermalSolverExists) {
     TempDir dir;
     std::string yaml = good_scene();
     yaml.replace(yaml.find("temperature: 300"), 16, "temperature: predicted");
-    EXPECT_THAT(error_of(dir, yaml), AllOf(HasSubstr("objects[0].temperature"), HasSubstr("thermal solver")));
+    EXPECT_THAT(error_of(dir, yaml),
+                AllOf(HasSubstr("objects[0].temperature"), HasSubstr("thermal solver")));
 }
 
 TEST(SceneLoader, SphereNeedsUniformScale) {
     TempDir dir;
-    EXPECT_THAT(error_of(dir, good_scene("    transform: {scale: [1, 2, 1]}\n")), HasSubstr("uniform scale"));
+    EXPECT_THAT(error_of(dir, good_scene("    transform: {scale: [1, 2, 1]}\n")),
+                HasSubstr("uniform scale"));
 }
 
 TEST(SceneLoader, CelsiusOnlyWhereWrittenSo) {
@@ -122,36 +136,54 @@ TEST(SceneLoader, CelsiusOnlyWhereWrittenSo) {
 TEST(SceneLoader, MeshFilesPerVertexTemperaturesAndPrimitivesLoad) {
     TempDir dir;
     // A 2 m square as OBJ (4 vertices) with one temperature per vertex position.
-    tirpol::test::write_text(dir / "square.obj",
-                             "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1//1 3//1 4//1\n");
-    tirpol::test::write_text(dir / "square_t.csv", "# per-vertex temperatures, by position\nx,y,z,temperature_k\n-1,-1,0,280\n1,-1,0,300\n1,1,0,320\n-1,1,0,300\n");
+    tirpol::test::write_text(
+        dir / "square.obj",
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1//1 3//1 4//1\n");
+    tirpol::test::write_text(
+        dir / "square_t.csv",
+        "# per-vertex temperatures, by "
+        "position\nx,y,z,temperature_k\n-1,-1,0,280\n1,-1,0,300\n1,1,0,320\n-1,1,0,300\n");
     tirpol::test::write_text(dir / "tri.ply",
-                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty "
+                             "float y\nproperty float z\n"
+                             "element face 1\nproperty list uchar int "
+                             "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     const std::string yaml =
-        test::scene_header(9, 9, 1, 0, "fov_deg: 20, position: [0, 0, 10], look_at: [0, 0, 0], up: [0, 1, 0]",
+        test::scene_header(9, 9, 1, 0,
+                           "fov_deg: 20, position: [0, 0, 10], look_at: [0, 0, 0], up: [0, 1, 0]",
                            "{type: uniform, temperature: 250}") +
         "objects:\n"
-        "  - {name: square, geometry: {type: mesh, file: square.obj}, material: " + std::string(test::kGreyDiffuse) +
+        "  - {name: square, geometry: {type: mesh, file: square.obj}, material: " +
+        std::string(test::kGreyDiffuse) +
         ", temperature: {vertex_csv: square_t.csv}}\n"
-        "  - {name: tri, geometry: {type: mesh, file: tri.ply}, transform: {translate: [0, 0, -5]}, material: " +
-        test::kGreyDiffuse + ", temperature: \"20 °C\"}\n"
-        "  - {name: box, geometry: {type: box, size: [1, 1, 1]}, transform: {translate: [0, 0, -9]}, material: " +
-        test::kGreyDiffuse + ", temperature: 290}\n"
-        "  - {name: cyl, geometry: {type: cylinder, radius: 0.5, height: 1}, transform: {translate: [3, 0, -9], rotate_deg: [90, 0, 0]}, material: " +
-        test::kGreyDiffuse + ", temperature: 290}\n"
-        "  - {name: disk, geometry: {type: disk, radius: 0.5}, transform: {translate: [-3, 0, -9]}, material: " +
-        test::kGreyDiffuse + ", temperature: 290}\n"
-        "  - {name: plane, geometry: {type: plane, size: [1, 1]}, transform: {translate: [-3, 3, -9], scale: 2}, material: " +
+        "  - {name: tri, geometry: {type: mesh, file: tri.ply}, transform: {translate: [0, 0, "
+        "-5]}, material: " +
+        test::kGreyDiffuse +
+        ", temperature: \"20 °C\"}\n"
+        "  - {name: box, geometry: {type: box, size: [1, 1, 1]}, transform: {translate: [0, 0, "
+        "-9]}, material: " +
+        test::kGreyDiffuse +
+        ", temperature: 290}\n"
+        "  - {name: cyl, geometry: {type: cylinder, radius: 0.5, height: 1}, transform: "
+        "{translate: [3, 0, -9], rotate_deg: [90, 0, 0]}, material: " +
+        test::kGreyDiffuse +
+        ", temperature: 290}\n"
+        "  - {name: disk, geometry: {type: disk, radius: 0.5}, transform: {translate: [-3, 0, "
+        "-9]}, material: " +
+        test::kGreyDiffuse +
+        ", temperature: 290}\n"
+        "  - {name: plane, geometry: {type: plane, size: [1, 1]}, transform: {translate: [-3, 3, "
+        "-9], scale: 2}, material: " +
         test::kGreyDiffuse + ", temperature: 290}\n";
     const Scene scene = test::load_scene_text(dir, yaml);
     ASSERT_EQ(scene.objects.size(), 6u);
     EXPECT_EQ(scene.materials.size(), 6u) << "every inline material is its own entry";
     const Image img = render(scene);
-    // Centre pixel of a 9×9 image hits the square's centre: bilinear mean of the four corners (300 K).
+    // Centre pixel of a 9×9 image hits the square's centre: bilinear mean of the four corners (300
+    // K).
     EXPECT_NEAR(img.at("temperature_k", 4, 4), 300.0, 1e-3);
-    // Pixel (2, 6) looks at (−0.78, −0.78), on the diagonal from vertex 1 (280 K) to vertex 3 (320 K):
-    // linear interpolation gives 280 + 40·0.11 = 284.4 K.
+    // Pixel (2, 6) looks at (−0.78, −0.78), on the diagonal from vertex 1 (280 K) to vertex 3 (320
+    // K): linear interpolation gives 280 + 40·0.11 = 284.4 K.
     EXPECT_NEAR(img.at("temperature_k", 2, 6), 284.4, 0.3);
     EXPECT_EQ(img.at("object_id", 4, 4), 0.0f);
 }

@@ -2,13 +2,14 @@
 // the reduction of eqs 14–16 recovering the Stokes vector scaled by the analyzer's diattenuation,
 // the wire-grid background term, and counts whose temporal noise matches the NEDT.
 
+#include "tirpol/simulation/sensor_model.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/simulation/sensor_model.h"
 
 namespace tirpol::simulation {
 namespace {
@@ -29,7 +30,8 @@ TEST(SensorModel, NonIdealAnalyzerFollowsMalusAndEqs14To16) {
     ASSERT_EQ(frames.size(), 4u);
     const double i0 = frames[0].at("radiance", 3, 3), i45 = frames[1].at("radiance", 3, 3);
     const double i90 = frames[2].at("radiance", 3, 3), i135 = frames[3].at("radiance", 3, 3);
-    // Diattenuator: I(α) = ½[(τ + τ_min)S0 + (τ − τ_min)(S1 cos2α + S2 sin2α)] (Chipman et al. 2018 eq 6.35).
+    // Diattenuator: I(α) = ½[(τ + τ_min)S0 + (τ − τ_min)(S1 cos2α + S2 sin2α)] (Chipman et al. 2018
+    // eq 6.35).
     const double t = 0.7, tmin = 0.7 / 400.0;
     EXPECT_NEAR(i0, 0.5 * ((t + tmin) * s[0] + (t - tmin) * s[1]), 1e-5);
     EXPECT_NEAR(i45, 0.5 * ((t + tmin) * s[0] + (t - tmin) * s[2]), 1e-5);
@@ -45,18 +47,21 @@ TEST(SensorModel, AngleOffsetRotatesTheAnalyzer) {
     m.analyzer.transmission = 1.0;
     m.analyzer.angle_offset_deg = 45.0;
     // Light polarized at 45°: through "0°" (really 45°) it passes entirely.
-    const auto frames = polarizer_images(stokes_image(StokesVector(1, 0, 1, 0)), m, Band(8.0, 14.0));
+    const auto frames =
+        polarizer_images(stokes_image(StokesVector(1, 0, 1, 0)), m, Band(8.0, 14.0));
     EXPECT_NEAR(frames[0].at("radiance", 0, 0), 1.0, 1e-6);
     EXPECT_NEAR(frames[2].at("radiance", 0, 0), 0.0, 1e-6);
 }
 
 TEST(SensorModel, BackgroundAndCountsNoiseMatchTheNedt) {
     const Band band(8.0, 14.0);
-    const SensorModel m = SensorModel::from_config(ConfigNode::parse(
-        "analyzer: {transmission: 1.0, extinction_ratio: 1.0e9}\n"
-        "background: {reflectance: 0.1, reflected_radiance: 5.0, emissivity: 0.05, temperature: \"20 °C\"}\n"
-        "counts: {gain_counts_per_radiance: 200, offset_counts: 1000, nedt_k: 0.8, reference_temperature: 300}\n"
-        "seed: 3\n"));
+    const SensorModel m = SensorModel::from_config(
+        ConfigNode::parse("analyzer: {transmission: 1.0, extinction_ratio: 1.0e9}\n"
+                          "background: {reflectance: 0.1, reflected_radiance: 5.0, emissivity: "
+                          "0.05, temperature: \"20 °C\"}\n"
+                          "counts: {gain_counts_per_radiance: 200, offset_counts: 1000, nedt_k: "
+                          "0.8, reference_temperature: 300}\n"
+                          "seed: 3\n"));
     const StokesVector s(30.0, 0.0, 0.0, 0.0);
     const auto frames = polarizer_images(stokes_image(s, 128, 128), m, band);
     const double background = 0.1 * 5.0 + 0.05 * band.radiance(293.15);

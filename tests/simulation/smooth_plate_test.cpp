@@ -1,6 +1,6 @@
-// A flat smooth plate under a uniform sky (paper eq 17 without the polarizer, and Sandus, Appl. Opt.
-// 4, 1634, 1965): the camera sees S0 = ε(θ)·L_bb(T_plate) + (1 − ε(θ))·L_sky and
-// S1 = ε₁(θ)·(L_bb(T_plate) − L_sky), band-integrated, with ε from the materials module
+// A flat smooth plate under a uniform sky (paper eq 17 without the polarizer, and Sandus, Appl.
+// Opt. 4, 1634, 1965): the camera sees S0 = ε(θ)·L_bb(T_plate) + (1 − ε(θ))·L_sky and S1 =
+// ε₁(θ)·(L_bb(T_plate) − L_sky), band-integrated, with ε from the materials module
 // (directional_emissivity). Stokes sign (ARCHITECTURE.md): an emission-dominated plate is polarized
 // vertically in the image (S1 < 0), a reflection-dominated one horizontally (S1 > 0).
 
@@ -23,18 +23,24 @@ struct PlateCase {
 void check_plate(const PlateCase& c) {
     TempDir dir;
     const double th = deg_to_rad(c.view_zenith_deg), d = 5.0;
-    const std::string camera = fmt::format("fov_deg: 0.2, position: [0, {}, {}], look_at: [0, 0, 0]", -d * std::sin(th), d * std::cos(th));
+    const std::string camera =
+        fmt::format("fov_deg: 0.2, position: [0, {}, {}], look_at: [0, 0, 0]", -d * std::sin(th),
+                    d * std::cos(th));
     const Scene scene = test::load_scene_text(
-        dir, test::scene_header(5, 5, 256, 4, camera, fmt::format("{{type: uniform, temperature: {}}}", c.sky_k)) +
-                 "objects:\n  - {name: plate, geometry: {type: plane, size: [400, 400]}, material: " + test::kSmoothPaint +
-                 fmt::format(", temperature: {}}}\n", c.plate_k));
+        dir,
+        test::scene_header(5, 5, 256, 4, camera,
+                           fmt::format("{{type: uniform, temperature: {}}}", c.sky_k)) +
+            "objects:\n  - {name: plate, geometry: {type: plane, size: [400, 400]}, material: " +
+            test::kSmoothPaint + fmt::format(", temperature: {}}}\n", c.plate_k));
     const Image img = render(scene);
 
     const auto& brdf = *scene.materials[0].brdf;
     double s0 = 0.0, s1 = 0.0;
     for (const auto& node : scene.band.nodes()) {
-        const StokesVector eps = materials::directional_emissivity(brdf, std::cos(th), node.wavelength_um);
-        const double lp = planck_radiance(node.wavelength_um, c.plate_k), ls = planck_radiance(node.wavelength_um, c.sky_k);
+        const StokesVector eps =
+            materials::directional_emissivity(brdf, std::cos(th), node.wavelength_um);
+        const double lp = planck_radiance(node.wavelength_um, c.plate_k),
+                     ls = planck_radiance(node.wavelength_um, c.sky_k);
         s0 += node.weight_um * (eps[0] * lp + (1.0 - eps[0]) * ls);
         s1 += node.weight_um * eps[1] * (lp - ls);
     }
@@ -57,7 +63,9 @@ TEST(SmoothPlate, WarmPlateUnderColdSkyIsVerticallyPolarized) {
     check_plate({75.0, 300.0, 230.0});
 }
 
-TEST(SmoothPlate, ColdPlateUnderWarmSkyIsHorizontallyPolarized) { check_plate({70.0, 260.0, 300.0}); }
+TEST(SmoothPlate, ColdPlateUnderWarmSkyIsHorizontallyPolarized) {
+    check_plate({70.0, 260.0, 300.0});
+}
 
 }  // namespace
 }  // namespace tirpol::simulation

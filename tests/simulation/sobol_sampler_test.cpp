@@ -1,8 +1,11 @@
 // The renderer's sampler (sobol_sampler.h): padded Owen-scrambled (0,2)-sequences with independent
-// replicates. A (0,m,2)-net in base 2 (Niederreiter, "Random number generation and quasi-Monte Carlo
-// methods", SIAM 1992, def. 4.1) puts exactly one of its 2^m points in every elementary interval
-// [a/2^k, (a+1)/2^k) × [b/2^(m−k), (b+1)/2^(m−k)); the first 2^m points of the Sobol (0,2)-sequence
-// are one, and Owen scrambling keeps it one (Owen 1995). The padding permutation must not break it.
+// replicates. A (0,m,2)-net in base 2 (Niederreiter, "Random number generation and quasi-Monte
+// Carlo methods", SIAM 1992, def. 4.1) puts exactly one of its 2^m points in every elementary
+// interval [a/2^k, (a+1)/2^k) × [b/2^(m−k), (b+1)/2^(m−k)); the first 2^m points of the Sobol
+// (0,2)-sequence are one, and Owen scrambling keeps it one (Owen 1995). The padding permutation
+// must not break it.
+
+#include "tirpol/simulation/sobol_sampler.h"
 
 #include <gtest/gtest.h>
 
@@ -11,20 +14,21 @@
 #include <set>
 #include <vector>
 
-#include "tirpol/simulation/sobol_sampler.h"
-
 namespace tirpol::simulation {
 namespace {
 
-/// True if `points` (2^m of them) hold exactly one point in every elementary interval of volume 2^−m.
+/// True if `points` (2^m of them) hold exactly one point in every elementary interval of volume
+/// 2^−m.
 bool is_02_net(const std::vector<std::array<double, 2>>& points, int m) {
     const std::size_t n = std::size_t{1} << m;
     if (points.size() != n) return false;
     for (int k = 0; k <= m; ++k) {
         std::vector<int> count(n, 0);
         for (const auto& p : points) {
-            const auto a = static_cast<std::size_t>(p[0] * static_cast<double>(std::size_t{1} << k));
-            const auto b = static_cast<std::size_t>(p[1] * static_cast<double>(std::size_t{1} << (m - k)));
+            const auto a =
+                static_cast<std::size_t>(p[0] * static_cast<double>(std::size_t{1} << k));
+            const auto b =
+                static_cast<std::size_t>(p[1] * static_cast<double>(std::size_t{1} << (m - k)));
             ++count[(a << (m - k)) | b];
         }
         for (const int c : count)
@@ -54,8 +58,9 @@ TEST(SobolSampler, EveryReplicateSlotPairIsA02NetForPowersOfTwo) {
                     const ReplicateSampler sampler(3, pixel, replicate, n);
                     std::vector<std::array<double, 2>> points;
                     for (std::uint32_t i = 0; i < n; ++i) points.push_back(sampler.pair(i, slot));
-                    ASSERT_TRUE(is_02_net(points, m)) << "m " << m << " pixel " << pixel << " replicate " << replicate
-                                                      << " slot " << slot;
+                    ASSERT_TRUE(is_02_net(points, m))
+                        << "m " << m << " pixel " << pixel << " replicate " << replicate << " slot "
+                        << slot;
                 }
     }
 }
@@ -63,8 +68,8 @@ TEST(SobolSampler, EveryReplicateSlotPairIsA02NetForPowersOfTwo) {
 TEST(SobolSampler, OneDimensionalSlotsAreStratifiedAndValuesInUnitInterval) {
     for (std::uint32_t n : {1u, 2u, 7u, 16u, 100u, 256u}) {
         const ReplicateSampler sampler(11, 12345, 3, n);
-        // The first n points of the van der Corput sequence hold one or two points in each stratum of
-        // width 1/2^⌊log2 n⌋ (exactly one for n = 2^m), and Owen scrambling keeps it so.
+        // The first n points of the van der Corput sequence hold one or two points in each stratum
+        // of width 1/2^⌊log2 n⌋ (exactly one for n = 2^m), and Owen scrambling keeps it so.
         const std::uint32_t strata_count = 1u << (31 - __builtin_clz(n));
         for (std::uint32_t slot : {1u, 3u}) {
             std::vector<int> strata(strata_count, 0);
@@ -104,7 +109,8 @@ TEST(SobolSampler, PermutationIsABijectionForAnyLength) {
 /// Pearson correlation of x and y.
 double correlation(const std::vector<double>& x, const std::vector<double>& y) {
     const double n = static_cast<double>(x.size());
-    const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+    const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n,
+                 my = std::accumulate(y.begin(), y.end(), 0.0) / n;
     double sxy = 0.0, sxx = 0.0, syy = 0.0;
     for (std::size_t i = 0; i < x.size(); ++i) {
         sxy += (x[i] - mx) * (y[i] - my);
@@ -115,15 +121,16 @@ double correlation(const std::vector<double>& x, const std::vector<double>& y) {
 }
 
 // Independence is what makes the mean unbiased and the replicate variance exact: values of the same
-// sample index in different slots, replicates or pixels must be uncorrelated, and each value uniform.
-// Pooled over 2000 replicates of 16 points (32 000 pairs) an independent pair's correlation has a
-// standard deviation of 1/√32000 = 0.0056; 0.03 is 5.4 of them.
+// sample index in different slots, replicates or pixels must be uncorrelated, and each value
+// uniform. Pooled over 2000 replicates of 16 points (32 000 pairs) an independent pair's
+// correlation has a standard deviation of 1/√32000 = 0.0056; 0.03 is 5.4 of them.
 TEST(SobolSampler, SlotsReplicatesAndPixelsAreDecorrelated) {
     constexpr std::uint32_t kPoints = 16;
     std::vector<double> slot0, slot2, slot3, next_replicate, next_pixel;
     std::vector<int> histogram(16, 0);
     for (std::uint32_t r = 0; r < 2000; ++r) {
-        const ReplicateSampler a(1, 77, r, kPoints), b(1, 77, r + 5000, kPoints), c(1, 78, r, kPoints);
+        const ReplicateSampler a(1, 77, r, kPoints), b(1, 77, r + 5000, kPoints),
+            c(1, 78, r, kPoints);
         for (std::uint32_t i = 0; i < kPoints; ++i) {
             slot0.push_back(a.pair(i, 0)[0]);
             slot2.push_back(a.pair(i, 2)[1]);

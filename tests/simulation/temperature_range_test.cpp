@@ -13,7 +13,9 @@
 namespace tirpol::simulation {
 namespace {
 
-double parse(const std::string& yaml) { return temperature_k_from_config(ConfigNode::parse(yaml, "s.yaml").at("t")); }
+double parse(const std::string& yaml) {
+    return temperature_k_from_config(ConfigNode::parse(yaml, "s.yaml").at("t"));
+}
 
 TEST(TemperatureRange, CelsiusKelvinAndBareNumbersInRangeAreAccepted) {
     EXPECT_DOUBLE_EQ(parse("t: \"15 °C\""), 288.15);
@@ -26,16 +28,18 @@ TEST(TemperatureRange, OutOfRangeTemperaturesNameTheFieldAndTheRange) {
             parse(text);
             ADD_FAILURE() << text;
         } catch (const Error& e) {
-            EXPECT_THAT(e.what(), testing::AllOf(testing::HasSubstr("s.yaml:1:4: t:"),
-                                                 testing::HasSubstr("outside the physical range [1, 10000] K")))
+            EXPECT_THAT(
+                e.what(),
+                testing::AllOf(testing::HasSubstr("s.yaml:1:4: t:"),
+                               testing::HasSubstr("outside the physical range [1, 10000] K")))
                 << text;
         }
     }
 }
 
 TEST(TemperatureRange, SceneFileWithOneBillionCelsiusIsRefused) {
-    const auto path =
-        tirpol::test::source_dir() / "tests/data/fuzz-regressions/scene_yaml/temperature_1e9_celsius.yaml";
+    const auto path = tirpol::test::source_dir() /
+                      "tests/data/fuzz-regressions/scene_yaml/temperature_1e9_celsius.yaml";
     try {
         load_scene(path);
         FAIL();

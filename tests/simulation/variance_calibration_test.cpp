@@ -1,13 +1,15 @@
 // The variance channels are unbiased, not conservative: for two renders a, b with different seeds,
-// E(a − b)² = Var a + Var b, so r = Σ(a − b)²/Σ(var_a + var_b) over a material region must be 1. The
-// scene is config/scenes/vehicles_night.yaml at 160×128, which the sampler's development did not use.
+// E(a − b)² = Var a + Var b, so r = Σ(a − b)²/Σ(var_a + var_b) over a material region must be 1.
+// The scene is config/scenes/vehicles_night.yaml at 160×128, which the sampler's development did
+// not use.
 //
-// r is itself a random number: over N pixels its standard error is se = √Σ(dᵢ² − r·vᵢ)² / Σvᵢ (delta
-// method), ≈ √(2/N) for Gaussian pixel errors but larger where a few pixels carry most of Σd² (specular
-// paint, snow). So the test asks that r be consistent with 1 (|r − 1| < 4·se) in every region with
-// enough pixels to have power (se ≤ 0.06: the former pair-of-strata estimator, conservative by 2–5× in
-// variance, had r = 0.2–0.5 and fails by > 8 se), and that over all regions the standardised deviations
-// have mean square near 1 (a systematic bias of 10 % would add (0.1/se)² ≈ 4 to it).
+// r is itself a random number: over N pixels its standard error is se = √Σ(dᵢ² − r·vᵢ)² / Σvᵢ
+// (delta method), ≈ √(2/N) for Gaussian pixel errors but larger where a few pixels carry most of
+// Σd² (specular paint, snow). So the test asks that r be consistent with 1 (|r − 1| < 4·se) in
+// every region with enough pixels to have power (se ≤ 0.06: the former pair-of-strata estimator,
+// conservative by 2–5× in variance, had r = 0.2–0.5 and fails by > 8 se), and that over all regions
+// the standardised deviations have mean square near 1 (a systematic bias of 10 % would add
+// (0.1/se)² ≈ 4 to it).
 
 #include <gtest/gtest.h>
 
@@ -23,7 +25,8 @@ struct RegionRatio {
     double ratio = 0.0, standard_error = 0.0;
 };
 
-RegionRatio two_seed_ratio(const Image& a, const Image& b, const std::string& channel, float material_id) {
+RegionRatio two_seed_ratio(const Image& a, const Image& b, const std::string& channel,
+                           float material_id) {
     const auto& id = a.channel("material_id");
     const auto &va = a.channel(channel), &vb = b.channel(channel);
     const auto &var_a = a.channel(channel + "_var"), &var_b = b.channel(channel + "_var");
@@ -46,7 +49,8 @@ RegionRatio two_seed_ratio(const Image& a, const Image& b, const std::string& ch
 }
 
 TEST(VarianceCalibration, TwoSeedRatioIsOnePerMaterialRegionOnVehiclesNight) {
-    Scene scene = load_scene(tirpol::test::source_dir() / "config" / "scenes" / "vehicles_night.yaml");
+    Scene scene =
+        load_scene(tirpol::test::source_dir() / "config" / "scenes" / "vehicles_night.yaml");
     scene.camera = scene.camera.resized(160, 128);
     int regions_checked = 0;
     double sum_squared_deviation = 0.0;
@@ -59,17 +63,20 @@ TEST(VarianceCalibration, TwoSeedRatioIsOnePerMaterialRegionOnVehiclesNight) {
             const Image a = render(scene, options);
             scene.sampling.seed = 12;
             const Image b = render(scene, options);
-            EXPECT_EQ(std::get<int>(a.attributes().at("variance_dof")), std::min(spp, kDefaultReplicates) - 1);
+            EXPECT_EQ(std::get<int>(a.attributes().at("variance_dof")),
+                      std::min(spp, kDefaultReplicates) - 1);
             std::map<float, std::size_t> pixels;
             for (const float id : a.channel("material_id")) ++pixels[id];
             for (const auto& [id, count] : pixels) {
                 if (id < 0.0f || count < 1000) continue;
                 for (const char* c : {"S0", "S1", "S2"}) {
                     const RegionRatio r = two_seed_ratio(a, b, c, id);
-                    const std::string what = fmt::format("{} {} spp {} {} ({} px)", c, spp,
-                                                         control_variate ? "control-variate" : "plain",
-                                                         scene.materials[static_cast<std::size_t>(id)].name, count);
-                    std::printf("%s: two-seed ratio %.3f ± %.3f\n", what.c_str(), r.ratio, r.standard_error);
+                    const std::string what =
+                        fmt::format("{} {} spp {} {} ({} px)", c, spp,
+                                    control_variate ? "control-variate" : "plain",
+                                    scene.materials[static_cast<std::size_t>(id)].name, count);
+                    std::printf("%s: two-seed ratio %.3f ± %.3f\n", what.c_str(), r.ratio,
+                                r.standard_error);
                     if (r.standard_error > 0.06) continue;  // too few informative pixels to test
                     ++regions_checked;
                     EXPECT_LT(std::abs(r.ratio - 1.0), 4.0 * r.standard_error) << what;
@@ -82,11 +89,12 @@ TEST(VarianceCalibration, TwoSeedRatioIsOnePerMaterialRegionOnVehiclesNight) {
     EXPECT_LT(sum_squared_deviation / regions_checked, 2.0);
 }
 
-/// Fewer replicates keep more of the sequence's stratification: one net of 64 points beats 16 nets of 4
-/// (docs/simulation.md "Why R = 16": 1.5–3× lower noise on these scenes), at the price of error bars —
-/// one replicate has none (NaN variance, 0 degrees of freedom).
+/// Fewer replicates keep more of the sequence's stratification: one net of 64 points beats 16 nets
+/// of 4 (docs/simulation.md "Why R = 16": 1.5–3× lower noise on these scenes), at the price of
+/// error bars — one replicate has none (NaN variance, 0 degrees of freedom).
 TEST(VarianceCalibration, FewerReplicatesLowerTheNoiseAndOneHasNoVariance) {
-    Scene scene = load_scene(tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml");
+    Scene scene =
+        load_scene(tirpol::test::source_dir() / "config" / "scenes" / "panels_night.yaml");
     scene.camera = scene.camera.resized(96, 80);
     scene.sampling.samples_per_pixel = 64;
     const auto two_seed_rms = [&](int replicates) {
@@ -98,7 +106,8 @@ TEST(VarianceCalibration, FewerReplicatesLowerTheNoiseAndOneHasNoVariance) {
         EXPECT_EQ(std::get<int>(a.attributes().at("variance_dof")), replicates - 1);
         if (replicates == 1) EXPECT_TRUE(std::isnan(a.channel("S1_var")[a.index(48, 40)]));
         double sum = 0.0;
-        for (std::size_t i = 0; i < a.pixel_count(); ++i) sum += std::pow(a.channel("S1")[i] - b.channel("S1")[i], 2);
+        for (std::size_t i = 0; i < a.pixel_count(); ++i)
+            sum += std::pow(a.channel("S1")[i] - b.channel("S1")[i], 2);
         return std::sqrt(sum / static_cast<double>(a.pixel_count()));
     };
     const double one = two_seed_rms(1), sixteen = two_seed_rms(16);

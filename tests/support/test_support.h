@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by every test suite: where the source tree is, and scratch directories that clean up.
+// Helpers shared by every test suite: where the source tree is, and scratch directories that clean
+// up.
 
 #include <filesystem>
 #include <string>

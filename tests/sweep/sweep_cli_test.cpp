@@ -14,8 +14,10 @@ using tirpol::test::run_cli;
 
 TEST(SweepCli, FailingPointIsListedAndTheExitCodeIsOneAfterTheOthers) {
     tirpol::test::TempDir dir;
-    const auto sweep = test::write_small_sweep(dir, "axes:\n  band: [{lo_um: 8, hi_um: 14}, {lo_um: 14, hi_um: 8}]\n");
-    const auto r = run_cli(fmt::format("sweep {} -o {} -q", sweep.string(), (dir / "out").string()));
+    const auto sweep = test::write_small_sweep(
+        dir, "axes:\n  band: [{lo_um: 8, hi_um: 14}, {lo_um: 14, hi_um: 8}]\n");
+    const auto r =
+        run_cli(fmt::format("sweep {} -o {} -q", sweep.string(), (dir / "out").string()));
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_NE(r.out.find("1 rendered, 0 resumed, 1 failed"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("FAILED p0001: "), std::string::npos) << r.out;

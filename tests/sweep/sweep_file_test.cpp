@@ -16,7 +16,9 @@ namespace {
 
 using test::TempDir;
 
-std::string scene_path(const std::string& name) { return (test::source_dir() / "config" / "scenes" / name).string(); }
+std::string scene_path(const std::string& name) {
+    return (test::source_dir() / "config" / "scenes" / name).string();
+}
 
 std::filesystem::path write_sweep(const TempDir& dir, const std::string& body) {
     const auto path = dir / "sweep.yaml";
@@ -92,23 +94,28 @@ axes:
     EXPECT_NEAR(scene.band.lo_um(), 3.0, 1e-12);
     EXPECT_NEAR(scene.objects[1].temperature.min_k(), 293.15, 1e-9);
     // The library material became inline with the swept roughness; relative paths still resolve.
-    const ConfigNode ball_material = point_config(spec, last).scene.at("objects").elements()[1].at("material");
+    const ConfigNode ball_material =
+        point_config(spec, last).scene.at("objects").elements()[1].at("material");
     EXPECT_NEAR(ball_material.at("parameters").get<double>("sigma"), 0.3, 1e-12);
     EXPECT_EQ(ball_material.get<std::string>("model"), "microfacet");
-    EXPECT_EQ(spec.scene.at("objects").elements()[1].at("material").as<std::string>(), "glossy_black_paint")
+    EXPECT_EQ(spec.scene.at("objects").elements()[1].at("material").as<std::string>(),
+              "glossy_black_paint")
         << "the base scene is never modified";
 }
 
 TEST(SweepFile, InlinedLibraryMaterialKeepsItsRefractiveIndexTable) {
-    // snow.yaml reads its n, k from data/… next to it; inline in the scene the path must still find it.
+    // snow.yaml reads its n, k from data/… next to it; inline in the scene the path must still find
+    // it.
     TempDir dir;
     const auto path = write_sweep(dir, "axes:\n  materials.snow.parameters.sigma: [0.1, 0.4]\n");
     const SweepSpec spec = load_sweep(path);
     const auto points = sweep_points(spec);
     const simulation::Scene scene = simulation::load_scene(point_config(spec, points[1]).scene);
     EXPECT_EQ(scene.objects[0].name, "snow");
-    const ConfigNode snow = point_config(spec, points[1]).scene.at("objects").elements()[0].at("material");
-    EXPECT_TRUE(std::filesystem::path(snow.at("refractive_index").get<std::string>("file")).is_absolute());
+    const ConfigNode snow =
+        point_config(spec, points[1]).scene.at("objects").elements()[0].at("material");
+    EXPECT_TRUE(
+        std::filesystem::path(snow.at("refractive_index").get<std::string>("file")).is_absolute());
     EXPECT_NEAR(snow.at("parameters").get<double>("sigma"), 0.4, 1e-12);
 }
 
@@ -119,10 +126,11 @@ TEST(SweepFile, UnknownParameterIsNamedWithFileLineAndSuggestion) {
     EXPECT_NE(e.find("sweep.yaml:3:"), std::string::npos) << e;  // line 1 is `scene:`
     EXPECT_NE(e.find("unknown parameter 'camera.positon'"), std::string::npos) << e;
     EXPECT_NE(e.find("did you mean 'position'?"), std::string::npos) << e;
-    const std::string material =
-        load_error(write_sweep(dir, "axes:\n  materials.glosy_black_paint.parameters.sigma: [0.1]\n"));
+    const std::string material = load_error(
+        write_sweep(dir, "axes:\n  materials.glosy_black_paint.parameters.sigma: [0.1]\n"));
     EXPECT_NE(material.find("did you mean 'glossy_black_paint'?"), std::string::npos) << material;
-    const std::string sensor = load_error(write_sweep(dir, "axes:\n  sensor.counts.nedt_k: [0.1]\n"));
+    const std::string sensor =
+        load_error(write_sweep(dir, "axes:\n  sensor.counts.nedt_k: [0.1]\n"));
     EXPECT_NE(sensor.find("no `sensor:` file"), std::string::npos) << sensor;
 }
 
@@ -131,29 +139,36 @@ TEST(SweepFile, EmptyAxisAndBadStructureAreClearErrors) {
     const std::string empty = load_error(write_sweep(dir, "axes:\n  camera.fov_deg: []\n"));
     EXPECT_NE(empty.find("sweep.yaml:3:19"), std::string::npos) << empty;
     EXPECT_NE(empty.find("no values"), std::string::npos) << empty;
-    EXPECT_NE(load_error(write_sweep(dir, "axes: {}\n")).find("at least one axis"), std::string::npos);
-    EXPECT_NE(load_error(write_sweep(dir, "axis:\n  camera.fov_deg: [20]\n")).find("did you mean 'axes'?"),
+    EXPECT_NE(load_error(write_sweep(dir, "axes: {}\n")).find("at least one axis"),
               std::string::npos);
-    EXPECT_NE(load_error(write_sweep(dir, "axes:\n  time: {from: 2026-01-16T00:00, to: 2026-01-15T00:00, step_h: 1}\n"))
-                  .find("expected `to` ≥ `from`"),
+    EXPECT_NE(load_error(write_sweep(dir, "axis:\n  camera.fov_deg: [20]\n"))
+                  .find("did you mean 'axes'?"),
               std::string::npos);
-    const std::string region =
-        load_error(write_sweep(dir, "axes:\n  camera.fov_deg: [20]\nregions:\n  b: {object: bal}\n"));
+    EXPECT_NE(
+        load_error(
+            write_sweep(
+                dir, "axes:\n  time: {from: 2026-01-16T00:00, to: 2026-01-15T00:00, step_h: 1}\n"))
+            .find("expected `to` ≥ `from`"),
+        std::string::npos);
+    const std::string region = load_error(
+        write_sweep(dir, "axes:\n  camera.fov_deg: [20]\nregions:\n  b: {object: bal}\n"));
     EXPECT_NE(region.find("sweep.yaml:5:"), std::string::npos) << region;
     EXPECT_NE(region.find("did you mean 'ball'?"), std::string::npos) << region;
-    const std::string contrast =
-        load_error(write_sweep(dir, "axes:\n  camera.fov_deg: [20]\ncontrasts:\n  c: {a: ball, b: snoww}\n"));
+    const std::string contrast = load_error(
+        write_sweep(dir, "axes:\n  camera.fov_deg: [20]\ncontrasts:\n  c: {a: ball, b: snoww}\n"));
     EXPECT_NE(contrast.find("did you mean 'snow'?"), std::string::npos) << contrast;
 }
 
 TEST(SweepFile, TimeRangeGivesLocalTimesAndHourCoordinates) {
     TempDir dir;
-    test::write_text(dir / "sweep.yaml",
-                     "scene: " + (test::source_dir() / "config/thermal/ball_on_snow_day_predicted.yaml").string() +
-                         "\naxes:\n  time: {from: 2026-01-16T22:00, to: 2026-01-17T02:00, step_h: 2}\n");
+    test::write_text(
+        dir / "sweep.yaml",
+        "scene: " +
+            (test::source_dir() / "config/thermal/ball_on_snow_day_predicted.yaml").string() +
+            "\naxes:\n  time: {from: 2026-01-16T22:00, to: 2026-01-17T02:00, step_h: 2}\n");
     const SweepSpec spec = load_sweep(dir / "sweep.yaml");
-    EXPECT_EQ(spec.axes[0].labels,
-              (std::vector<std::string>{"2026-01-16T22:00", "2026-01-17T00:00", "2026-01-17T02:00"}));
+    EXPECT_EQ(spec.axes[0].labels, (std::vector<std::string>{"2026-01-16T22:00", "2026-01-17T00:00",
+                                                             "2026-01-17T02:00"}));
     EXPECT_EQ(spec.axes[0].coordinates, (std::vector<double>{0.0, 2.0, 4.0}));
 }
 

@@ -1,6 +1,6 @@
-// The same sweep under `mpirun -np 2` (Open MPI, loopback only) and in one process gives bitwise the same
-// images and statistics: seeds come from the point index, the renderer is thread-count independent.
-// mpirun missing is a failure, not a skip (openmpi-bin is in ./run's PACKAGES).
+// The same sweep under `mpirun -np 2` (Open MPI, loopback only) and in one process gives bitwise
+// the same images and statistics: seeds come from the point index, the renderer is thread-count
+// independent. mpirun missing is a failure, not a skip (openmpi-bin is in ./run's PACKAGES).
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -20,17 +20,20 @@ using tirpol::test::run_command;
 using tirpol::test::TempDir;
 
 std::string mpirun_command(int ranks) {
-    // As root Open MPI needs --allow-run-as-root; loopback only (containers without a network), vader
-    // shared memory without the kernel's single-copy mechanism (not permitted in containers).
+    // As root Open MPI needs --allow-run-as-root; loopback only (containers without a network),
+    // vader shared memory without the kernel's single-copy mechanism (not permitted in containers).
     return fmt::format(
-        "OMPI_MCA_btl_vader_single_copy_mechanism=none {} --allow-run-as-root --oversubscribe --mca btl self,vader "
+        "OMPI_MCA_btl_vader_single_copy_mechanism=none {} --allow-run-as-root --oversubscribe "
+        "--mca btl self,vader "
         "--mca oob_tcp_if_include lo -np {}",
         TIRPOL_MPIEXEC, ranks);
 }
 
 TEST(SweepMpi, TwoRanksGiveBitwiseTheSameResultsAsOneProcess) {
-    ASSERT_TRUE(std::filesystem::path(TIRPOL_MPIEXEC).is_absolute() && std::filesystem::exists(TIRPOL_MPIEXEC))
-        << "mpirun not found (CMake's MPIEXEC_EXECUTABLE = '" << TIRPOL_MPIEXEC << "'): install openmpi-bin";
+    ASSERT_TRUE(std::filesystem::path(TIRPOL_MPIEXEC).is_absolute() &&
+                std::filesystem::exists(TIRPOL_MPIEXEC))
+        << "mpirun not found (CMake's MPIEXEC_EXECUTABLE = '" << TIRPOL_MPIEXEC
+        << "'): install openmpi-bin";
     TempDir dir;
     // Uneven point costs (2 and 8 samples per pixel), so the dynamic distribution matters.
     const auto sweep = test::write_small_sweep(dir, R"(axes:
@@ -40,10 +43,12 @@ contrasts:
   ball_vs_snow: {a: ball, b: snow}
 )");
     const auto one = dir / "one", two = dir / "two";
-    const auto single = run_cli(fmt::format("sweep {} -o {} --threads 2 -q", sweep.string(), one.string()));
+    const auto single =
+        run_cli(fmt::format("sweep {} -o {} --threads 2 -q", sweep.string(), one.string()));
     ASSERT_EQ(single.exit_code, 0) << single.out;
-    const auto mpi = run_command(fmt::format("{} {} sweep {} -o {} --threads 1 -q", mpirun_command(2), TIRPOL_CLI_PATH,
-                                             sweep.string(), two.string()));
+    const auto mpi =
+        run_command(fmt::format("{} {} sweep {} -o {} --threads 1 -q", mpirun_command(2),
+                                TIRPOL_CLI_PATH, sweep.string(), two.string()));
     ASSERT_EQ(mpi.exit_code, 0) << mpi.out;
     EXPECT_NE(mpi.out.find("on 2 rank(s) × 1 thread(s)"), std::string::npos) << mpi.out;
 
@@ -59,7 +64,8 @@ contrasts:
         ranks_used.insert(m2["points"][i]["rank"].get<int>());
         EXPECT_EQ(m1["points"][i]["seed"], m2["points"][i]["seed"]);
         for (const char* file : {"stokes.exr", "statistics.json"})
-            EXPECT_TRUE(read_file(one / "points" / id / file) == read_file(two / "points" / id / file))
+            EXPECT_TRUE(read_file(one / "points" / id / file) ==
+                        read_file(two / "points" / id / file))
                 << id << "/" << file << " differs between 1 and 2 ranks";
     }
     EXPECT_EQ(ranks_used.size(), 2u) << "both ranks should have rendered points";

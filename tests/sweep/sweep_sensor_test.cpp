@@ -1,5 +1,6 @@
-// A sensor-NEDT axis: each point's polarizer images come from the sensor model with that NEDT, so their
-// temporal noise in counts, σ = gain·NEDT·dL/dT(T_ref) (sensor_model.h), scales with the NEDT.
+// A sensor-NEDT axis: each point's polarizer images come from the sensor model with that NEDT, so
+// their temporal noise in counts, σ = gain·NEDT·dL/dT(T_ref) (sensor_model.h), scales with the
+// NEDT.
 
 #include <gtest/gtest.h>
 
@@ -28,14 +29,16 @@ double counts_noise_std(const std::filesystem::path& pol_exr, double gain, doubl
 
 TEST(SweepSensor, PolarizerImageNoiseFollowsTheSweptNedt) {
     tirpol::test::TempDir dir;
-    tirpol::test::write_text(dir / "sensor.yaml",
-                             "counts: {gain_counts_per_radiance: 200, offset_counts: 1000, nedt_k: 0.5}\n");
-    const auto spec =
-        load_sweep(test::write_small_sweep(dir, "sensor: sensor.yaml\naxes:\n  sensor.counts.nedt_k: [0.5, 2.0]\n"));
+    tirpol::test::write_text(
+        dir / "sensor.yaml",
+        "counts: {gain_counts_per_radiance: 200, offset_counts: 1000, nedt_k: 0.5}\n");
+    const auto spec = load_sweep(test::write_small_sweep(
+        dir, "sensor: sensor.yaml\naxes:\n  sensor.counts.nedt_k: [0.5, 2.0]\n"));
     const auto summary = run_sweep(spec, dir / "out", {1, false, false});
     ASSERT_EQ(summary.rendered, 2u);
     for (const char* angle : {"000", "045", "090", "135"})
-        EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out/points/p0000" / (std::string("pol") + angle + ".exr")));
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out/points/p0000" /
+                                                     (std::string("pol") + angle + ".exr")));
     const double low = counts_noise_std(dir / "out/points/p0000/pol000.exr", 200, 1000);
     const double high = counts_noise_std(dir / "out/points/p0001/pol000.exr", 200, 1000);
     ASSERT_GT(low, 0.0);

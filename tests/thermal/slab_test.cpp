@@ -1,8 +1,11 @@
 // The slab solver against analytic solutions of the heat equation.
 // Sources: H. S. Carslaw & J. C. Jaeger, Conduction of Heat in Solids, 2nd ed. (1959) — §2.5 (step
-// in surface temperature, eq. 2.5(2)), §2.9 (constant surface flux, eq. 2.9(7)), §2.6 (periodic surface
-// temperature, eq. 2.6(8)); F. P. Incropera et al., Fundamentals of Heat and Mass Transfer, 6th ed.
-// (2007) — eqs. 5.57, 5.58 (same solutions), §3.1 (plane wall with convection, thermal resistances).
+// in surface temperature, eq. 2.5(2)), §2.9 (constant surface flux, eq. 2.9(7)), §2.6 (periodic
+// surface temperature, eq. 2.6(8)); F. P. Incropera et al., Fundamentals of Heat and Mass Transfer,
+// 6th ed. (2007) — eqs. 5.57, 5.58 (same solutions), §3.1 (plane wall with convection, thermal
+// resistances).
+
+#include "tirpol/thermal/slab.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +14,6 @@
 
 #include "tirpol/core/geometry.h"
 #include "tirpol/thermal/sky_longwave.h"
-#include "tirpol/thermal/slab.h"
 
 namespace tirpol::thermal {
 namespace {
@@ -27,7 +29,8 @@ SlabDefinition deep_slab(double thickness_m, int cells) {
 }
 
 TEST(ThermalSlab, StepInSurfaceTemperatureFollowsErfSolution) {
-    // Carslaw & Jaeger §2.5: T(x,t) = T_s + (T_i − T_s) erf(x / 2√(αt)). 1 m deep ≈ 7 diffusion lengths at 6 h.
+    // Carslaw & Jaeger §2.5: T(x,t) = T_s + (T_i − T_s) erf(x / 2√(αt)). 1 m deep ≈ 7 diffusion
+    // lengths at 6 h.
     SlabModel slab(deep_slab(1.0, 500));
     const double ti = 280.0, ts = 300.0;
     slab.set_uniform_temperature(ti);
@@ -57,7 +60,8 @@ TEST(ThermalSlab, ConstantSurfaceFluxFollowsCarslawJaeger) {
                q * x / kK * std::erfc(x / (2.0 * std::sqrt(at)));
     };
     EXPECT_NEAR(slab.surface_temperature_k(), exact(0.0), 0.02);
-    for (double x : {0.02, 0.05, 0.1}) EXPECT_NEAR(slab.temperature_at_depth_k(x), exact(x), 0.02) << x;
+    for (double x : {0.02, 0.05, 0.1})
+        EXPECT_NEAR(slab.temperature_at_depth_k(x), exact(x), 0.02) << x;
 }
 
 // Runs a periodic surface temperature T_m + A cos(ωt) for `periods` days and returns the amplitude
@@ -105,28 +109,36 @@ TEST(ThermalSlab, TimeSteppingConvergesWithExpectedOrder) {
     // spatial error is negligible.
     const double d = std::sqrt(2.0 * kAlpha / (2.0 * kPi / 86400.0));
     const double exact = std::exp(-0.1 / d);
-    auto err = [&](double dt, double theta) { return std::abs(periodic_response(0.1, dt, theta, 0.0025, 4).amplitude - exact); };
+    auto err = [&](double dt, double theta) {
+        return std::abs(periodic_response(0.1, dt, theta, 0.0025, 4).amplitude - exact);
+    };
     const double be_ratio = err(3600.0, 1.0) / err(1800.0, 1.0);
     const double cn_ratio = err(3600.0, 0.5) / err(1800.0, 0.5);
-    std::printf("time-step error ratios on halving dt: backward Euler %.3f, Crank-Nicolson %.3f\n", be_ratio, cn_ratio);
+    std::printf("time-step error ratios on halving dt: backward Euler %.3f, Crank-Nicolson %.3f\n",
+                be_ratio, cn_ratio);
     EXPECT_NEAR(be_ratio, 2.0, 0.25);
     EXPECT_NEAR(cn_ratio, 4.0, 0.6);
 }
 
 TEST(ThermalSlab, GridConvergesWithSecondOrder) {
-    // Cell-centred finite volumes with a surface node: second order in space (ratio ≈ 4 on halving).
+    // Cell-centred finite volumes with a surface node: second order in space (ratio ≈ 4 on
+    // halving).
     const double d = std::sqrt(2.0 * kAlpha / (2.0 * kPi / 86400.0));
     const double exact = std::exp(-0.1 / d);
-    auto err = [&](double cell) { return std::abs(periodic_response(0.1, 60.0, 0.5, cell, 4).amplitude - exact); };
+    auto err = [&](double cell) {
+        return std::abs(periodic_response(0.1, 60.0, 0.5, cell, 4).amplitude - exact);
+    };
     const double ratio = err(0.02) / err(0.01);
     std::printf("grid error ratio on halving the cell size: %.3f\n", ratio);
     EXPECT_NEAR(ratio, 4.0, 0.8);
 }
 
 TEST(ThermalSlab, SteadyMultiLayerWallWithSurfaceFilmMatchesResistanceNetwork) {
-    // Incropera §3.1: q = (T_a − T_b) / (1/h + Σ L_i/k_i); temperatures drop linearly within each layer.
+    // Incropera §3.1: q = (T_a − T_b) / (1/h + Σ L_i/k_i); temperatures drop linearly within each
+    // layer.
     SlabDefinition def;
-    def.layers = {{0.01, 0.16, 1000, 1500, 4}, {0.10, 0.04, 30, 1400, 10}, {0.15, 1.4, 2300, 880, 10}};
+    def.layers = {
+        {0.01, 0.16, 1000, 1500, 4}, {0.10, 0.04, 30, 1400, 10}, {0.15, 1.4, 2300, 880, 10}};
     def.back = {BackBoundary::Kind::FixedTemperature, 293.15, 1.0};
     SlabModel slab(def);
     slab.set_uniform_temperature(293.15);
@@ -137,8 +149,8 @@ TEST(ThermalSlab, SteadyMultiLayerWallWithSurfaceFilmMatchesResistanceNetwork) {
     const double r_total = 1.0 / 25.0 + 0.01 / 0.16 + 0.10 / 0.04 + 0.15 / 1.4;
     const double q = (293.15 - 263.15) / r_total;  // from the back towards the air
     EXPECT_NEAR(slab.surface_temperature_k(), 263.15 + q / 25.0, 1e-6);
-    // Every cell centre lies on the piecewise-linear exact profile (finite volumes with harmonic face
-    // conductances are exact for steady 1D conduction).
+    // Every cell centre lies on the piecewise-linear exact profile (finite volumes with harmonic
+    // face conductances are exact for steady 1D conduction).
     auto exact = [&](double z) {
         double t = 263.15 + q / 25.0, top = 0.0;
         for (const Layer& l : def.layers) {
@@ -150,7 +162,8 @@ TEST(ThermalSlab, SteadyMultiLayerWallWithSurfaceFilmMatchesResistanceNetwork) {
     };
     ASSERT_EQ(slab.cell_depths_m().size(), 24u);
     for (std::size_t j = 0; j < slab.cell_depths_m().size(); ++j)
-        EXPECT_NEAR(slab.cell_temperatures_k()[j], exact(slab.cell_depths_m()[j]), 1e-6) << "cell " << j;
+        EXPECT_NEAR(slab.cell_temperatures_k()[j], exact(slab.cell_depths_m()[j]), 1e-6)
+            << "cell " << j;
 }
 
 TEST(ThermalSlab, InsulatedPlateReachesRadiativeConvectiveBalance) {
@@ -177,7 +190,8 @@ TEST(ThermalSlab, InsulatedPlateReachesRadiativeConvectiveBalance) {
 }
 
 TEST(ThermalSlab, TimeSteppingConservesEnergy) {
-    // Change of stored energy = ∫(front flux − back flux) dt, to round-off, for both θ and any forcing.
+    // Change of stored energy = ∫(front flux − back flux) dt, to round-off, for both θ and any
+    // forcing.
     for (double theta : {1.0, 0.5}) {
         SlabDefinition def;
         def.layers = {{0.02, 0.5, 1200, 1500, 0}, {0.1, 1.4, 2300, 880, 0}};

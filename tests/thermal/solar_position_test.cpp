@@ -1,9 +1,11 @@
-// SPA against the worked example of Reda & Andreas, NREL/TP-560-34302 (2003, rev. 2008), Table A5.2:
-// 2003-10-17 12:30:30 local (UTC−7), 39.742476° N, 105.1786° W, 1830.14 m, 820 mbar, 11 °C, ΔT = 67 s,
-// ΔUT1 = 0. The report prints (and NREL's spa_tester.c reproduces): JD 2452930.312847,
+// SPA against the worked example of Reda & Andreas, NREL/TP-560-34302 (2003, rev. 2008), Table
+// A5.2: 2003-10-17 12:30:30 local (UTC−7), 39.742476° N, 105.1786° W, 1830.14 m, 820 mbar, 11 °C,
+// ΔT = 67 s, ΔUT1 = 0. The report prints (and NREL's spa_tester.c reproduces): JD 2452930.312847,
 // L 24.0182616917°, B −0.0001011219°, R 0.9965422974 AU, Δψ −0.00399840°, Δε 0.00166657°,
 // ε 23.440465°, H 11.105902°, zenith 50.11162°, azimuth 194.34024°, incidence 25.18700° (slope 30°,
 // azimuth rotation −10° from south).
+
+#include "tirpol/thermal/solar_position.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +13,6 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/civil_time.h"
-#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::thermal {
 namespace {
@@ -66,8 +67,9 @@ TEST(SolarPosition, IncidenceMatchesAngleBetweenSunAndNormalVectors) {
 }
 
 TEST(SolarPosition, SunIsLowestAtLocalMidnightAndDeclinationFollowsSeasons) {
-    // Equinox-to-solstice sanity (Meeus, Astronomical Algorithms ch. 25): |δ| ≤ 23.44°, δ ≈ +23.44° at
-    // the June solstice; at local solar noon on the equator at an equinox the sun is near the zenith.
+    // Equinox-to-solstice sanity (Meeus, Astronomical Algorithms ch. 25): |δ| ≤ 23.44°, δ ≈ +23.44°
+    // at the June solstice; at local solar noon on the equator at an equinox the sun is near the
+    // zenith.
     SpaInput in = report_example();
     in.unix_seconds = parse_time("2021-06-21T03:32:00Z", 0.0);
     const SolarPosition june = solar_position(in);
@@ -95,7 +97,8 @@ TEST(CivilTime, RoundTripsAndParsesOffsets) {
     EXPECT_EQ(format_time(t, -7.0), "2003-10-17T12:30:30-07:00");
     EXPECT_DOUBLE_EQ(to_unix_seconds({1970, 1, 1, 0, 0, 0.0, 0.0}), 0.0);
     EXPECT_DOUBLE_EQ(julian_day(0.0), 2440587.5);  // 1970-01-01T00:00 UT
-    EXPECT_DOUBLE_EQ(to_unix_seconds({2000, 2, 29, 24, 0, 0.0, 0.0}), to_unix_seconds({2000, 3, 1, 0, 0, 0.0, 0.0}));
+    EXPECT_DOUBLE_EQ(to_unix_seconds({2000, 2, 29, 24, 0, 0.0, 0.0}),
+                     to_unix_seconds({2000, 3, 1, 0, 0, 0.0, 0.0}));
     EXPECT_THROW(parse_time("2003-02-29T00:00", 0.0), Error);
     EXPECT_THROW(parse_time("yesterday", 0.0), Error);
     EXPECT_THROW(parse_time("2003-10-17T12:30:30+0", 0.0), Error);

@@ -1,6 +1,6 @@
 // The facet driver: solar geometry on facets, one sky for solver and renderer, spin-up, and the
-// phenomenology the paper relies on (Gartley et al. §2.2.2, Fig. 2: in sun a dark ball is warmer than
-// snow; under a clear night sky a horizontal surface cools below the air temperature).
+// phenomenology the paper relies on (Gartley et al. §2.2.2, Fig. 2: in sun a dark ball is warmer
+// than snow; under a clear night sky a horizontal surface cools below the air temperature).
 
 #include <gtest/gtest.h>
 
@@ -37,7 +37,8 @@ WeatherSeries clear_days(double ir_w_m2 = kMissing) {
         const double cz = std::cos(deg_to_rad(solar_position(in).zenith_deg));
         r.direct_normal_w_m2 = cz > 0.0 ? 900.0 * std::pow(cz, 0.3) : 0.0;
         r.diffuse_horizontal_w_m2 = cz > 0.0 ? 80.0 * cz : 0.0;
-        r.global_horizontal_w_m2 = r.diffuse_horizontal_w_m2 + r.direct_normal_w_m2 * std::max(cz, 0.0);
+        r.global_horizontal_w_m2 =
+            r.diffuse_horizontal_w_m2 + r.direct_normal_w_m2 * std::max(cz, 0.0);
         r.horizontal_ir_w_m2 = ir_w_m2;
         r.opaque_sky_cover_tenths = 0.0;
         records.push_back(r);
@@ -66,16 +67,20 @@ ThermalMaterial snow() {  // 30 cm of snow on ground (snow properties: Incropera
 
 TEST(ThermalSurface, HorizontalFacetReceivesGlobalIrradiance) {
     const WeatherSeries w = clear_days();
-    const WeatherRecord r = w.at(parse_time("2003-10-16T12:00", -7.0));  // a record instant: GHI closes exactly
+    const WeatherRecord r =
+        w.at(parse_time("2003-10-16T12:00", -7.0));  // a record instant: GHI closes exactly
     ThermalOptions o;
     o.delta_t_s = 67.0;
-    EXPECT_NEAR(facet_solar_irradiance_w_m2(r, w.site(), {0.0, 180.0}, o), r.global_horizontal_w_m2, 0.5);
+    EXPECT_NEAR(facet_solar_irradiance_w_m2(r, w.site(), {0.0, 180.0}, o), r.global_horizontal_w_m2,
+                0.5);
     // A north-facing wall at noon gets no direct sun, only diffuse + ground-reflected.
     const double north = facet_solar_irradiance_w_m2(r, w.site(), {90.0, 0.0}, o);
-    EXPECT_NEAR(north, 0.5 * r.diffuse_horizontal_w_m2 + 0.5 * 0.2 * r.global_horizontal_w_m2, 1e-9);
+    EXPECT_NEAR(north, 0.5 * r.diffuse_horizontal_w_m2 + 0.5 * 0.2 * r.global_horizontal_w_m2,
+                1e-9);
     // Full shadow removes exactly the direct beam.
     const double lit = facet_solar_irradiance_w_m2(r, w.site(), {0.0, 180.0}, o);
-    const double shaded = facet_solar_irradiance_w_m2(r, w.site(), {0.0, 180.0}, o, [](double, const Vec3&) { return 1.0; });
+    const double shaded = facet_solar_irradiance_w_m2(r, w.site(), {0.0, 180.0}, o,
+                                                      [](double, const Vec3&) { return 1.0; });
     EXPECT_NEAR(shaded, r.diffuse_horizontal_w_m2, 1e-9);
     EXPECT_GT(lit, 3.0 * shaded);
 }
@@ -92,7 +97,8 @@ TEST(ThermalSurface, OneWeatherRecordDrivesSolverAndRendererSky) {
     const SkyRadianceModel modelled = sky_from_weather(r, w.site(), model_only);
     EXPECT_NEAR(modelled.broadband_emissivity(),
                 sky_emissivity(ClearSkyModel::BerdahlMartin1984,
-                               {r.air_temperature_c, -2.0, 820.0, local_solar_hour(r.time_s, w.site().longitude_deg), 0.0}),
+                               {r.air_temperature_c, -2.0, 820.0,
+                                local_solar_hour(r.time_s, w.site().longitude_deg), 0.0}),
                 1e-12);
 }
 
@@ -127,12 +133,13 @@ TEST(ThermalSurface, SpinUpForgetsTheInitialState) {
 TEST(ThermalSurface, SimulatedHistoryIsSampledOnRequestedGrid) {
     const WeatherSeries w = clear_days();
     const double end = parse_time("2003-10-17T12:00", -7.0);
-    const auto s = simulate_facet(w, rubber(), {0.0, 180.0}, end - 48 * 3600.0, end, end - 24 * 3600.0, 3600.0,
-                                  ThermalOptions{});
+    const auto s = simulate_facet(w, rubber(), {0.0, 180.0}, end - 48 * 3600.0, end,
+                                  end - 24 * 3600.0, 3600.0, ThermalOptions{});
     ASSERT_EQ(s.size(), 25u);
     EXPECT_DOUBLE_EQ(s.front().time_s, end - 24 * 3600.0);
     EXPECT_DOUBLE_EQ(s.back().time_s, end);
-    // The surface balance closes within the conduction term: net flux stays bounded for a thin shell.
+    // The surface balance closes within the conduction term: net flux stays bounded for a thin
+    // shell.
     for (const auto& x : s) EXPECT_LT(std::abs(x.fluxes.net()), 60.0);
 }
 
@@ -141,12 +148,14 @@ TEST(ThermalSurface, BatchedFacetsMatchOneAtATime) {
     const double t = parse_time("2003-10-17T10:00", -7.0);
     const ThermalMaterial a = rubber(), b = snow();
     const ShadowFunction half = [](double, const Vec3&) { return 0.5; };
-    const std::vector<FacetRequest> requests = {{&a, {0.0, 180.0}, {}}, {&b, {60.0, 120.0}, half}, {&a, {90.0, 270.0}, {}}};
+    const std::vector<FacetRequest> requests = {
+        {&a, {0.0, 180.0}, {}}, {&b, {60.0, 120.0}, half}, {&a, {90.0, 270.0}, {}}};
     const auto batch = predict_surface_temperatures(w, requests, t, ThermalOptions{});
     ASSERT_EQ(batch.size(), 3u);
     for (std::size_t k = 0; k < requests.size(); ++k)
-        EXPECT_DOUBLE_EQ(batch[k], predict_surface_temperature(w, *requests[k].material, requests[k].facet, t,
-                                                               ThermalOptions{}, requests[k].shadow));
+        EXPECT_DOUBLE_EQ(batch[k],
+                         predict_surface_temperature(w, *requests[k].material, requests[k].facet, t,
+                                                     ThermalOptions{}, requests[k].shadow));
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
-// The twin's blackbody set-points bracket what its camera sees: the radiometric ones (polarizer out) the
-// detector radiance of the scene through the polarizer, ½(τ + τ_min)S0 ± ½(τ − τ_min)|S12| + B (the
-// sensor model's Malus law, Chipman, Lam & Young 2018 eq 6.35), the polarimetric ones the scene's S0;
-// beyond the laboratory's blackbodies they are clamped and the reason is given.
+// The twin's blackbody set-points bracket what its camera sees: the radiometric ones (polarizer
+// out) the detector radiance of the scene through the polarizer, ½(τ + τ_min)S0 ± ½(τ − τ_min)|S12|
+// + B (the sensor model's Malus law, Chipman, Lam & Young 2018 eq 6.35), the polarimetric ones the
+// scene's S0; beyond the laboratory's blackbodies they are clamped and the reason is given.
+
+#include "tirpol/twin/calibration_setpoints.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "tirpol/twin/calibration_setpoints.h"
 #include "tirpol/twin/instrument.h"
 
 namespace tirpol::twin {
@@ -44,16 +45,20 @@ TEST(TwinCalibrationSetpoints, BracketTheDetectorRadianceAndTheSceneS0) {
     EXPECT_NEAR(sp.polarimetric_k[1], 300.0 + kSetpointMarginK, 0.01);
     // Radiometric: every detector radiance the scene (at any polarizer angle) and the polarimetric
     // blackbody frames produce lies inside [L(T_lo), L(T_hi)].
-    const double tau = sensor.analyzer.transmission, tau_min = tau / sensor.analyzer.extinction_ratio;
+    const double tau = sensor.analyzer.transmission,
+                 tau_min = tau / sensor.analyzer.extinction_ratio;
     const double b = sensor.background.reflectance * sensor.background.reflected_radiance +
                      sensor.background.emissivity * band.radiance(sensor.background.temperature_k);
-    const double l_lo = band.radiance(sp.radiometric_k.front()), l_hi = band.radiance(sp.radiometric_k.back());
+    const double l_lo = band.radiance(sp.radiometric_k.front()),
+                 l_hi = band.radiance(sp.radiometric_k.back());
     for (std::size_t i = 0; i < scene.pixel_count(); ++i) {
-        const double s0 = scene.channel("S0")[i], s1 = scene.channel("S1")[i], s2 = scene.channel("S2")[i];
+        const double s0 = scene.channel("S0")[i], s1 = scene.channel("S1")[i],
+                     s2 = scene.channel("S2")[i];
         if (!std::isfinite(s0)) continue;
         for (double angle_deg : {0.0, 45.0, 90.0, 135.0, 22.5}) {
             const double th = angle_deg * M_PI / 90.0;  // 2θ
-            const double l = 0.5 * (tau + tau_min) * s0 + 0.5 * (tau - tau_min) * (s1 * std::cos(th) + s2 * std::sin(th)) + b;
+            const double l = 0.5 * (tau + tau_min) * s0 +
+                             0.5 * (tau - tau_min) * (s1 * std::cos(th) + s2 * std::sin(th)) + b;
             EXPECT_GT(l, l_lo);
             EXPECT_LT(l, l_hi);
         }
@@ -71,8 +76,8 @@ TEST(TwinCalibrationSetpoints, BeyondTheLaboratoryTheyAreClampedAndSaySo) {
     const Band band(8.0, 14.0);
     const simulation::SensorModel sensor = twin_sensor(band, 283.15);
     // A 120 K scene (far below any laboratory blackbody) and a 420 K one.
-    const BlackbodySetpoints sp =
-        blackbody_setpoints({stokes_image(band.radiance(120.0), band.radiance(420.0), 0.0)}, sensor, band);
+    const BlackbodySetpoints sp = blackbody_setpoints(
+        {stokes_image(band.radiance(120.0), band.radiance(420.0), 0.0)}, sensor, band);
     EXPECT_EQ(sp.radiometric_k.front(), kColdestBlackbodyK);
     EXPECT_EQ(sp.polarimetric_k.back(), kWarmestBlackbodyK);
     EXPECT_NE(sp.limitation.find("clamped"), std::string::npos) << sp.limitation;

@@ -1,8 +1,8 @@
 // One forward instrument model (core instrument_model.h): simulation's sensor model, calibration's
 // synthetic sessions and the twin's camera turn the same Stokes image into the same counts, bit for
-// bit, once the synthetic camera's extras (vignetting, ghost, polarized sky, pixel spread, noise) are
-// off — and those counts follow the diattenuator's Malus law, C = o + g·(½(τ + τ_min) S0 +
-// ½(τ − τ_min)(S1 cos 2θ + S2 sin 2θ) + B) (Chipman, Lam & Young 2018 eq 6.35).
+// bit, once the synthetic camera's extras (vignetting, ghost, polarized sky, pixel spread, noise)
+// are off — and those counts follow the diattenuator's Malus law, C = o + g·(½(τ + τ_min) S0 + ½(τ
+// − τ_min)(S1 cos 2θ + S2 sin 2θ) + B) (Chipman, Lam & Young 2018 eq 6.35).
 
 #include <gtest/gtest.h>
 
@@ -67,21 +67,27 @@ TEST(ForwardInstrumentModel, SensorModelSyntheticSessionAndTwinAgreeExactly) {
     for (double angle_deg : {0.0, 30.0, 45.0, 90.0, 135.0}) {
         SCOPED_TRACE(angle_deg);
         sensor.analyzer.angles_deg = {angle_deg};
-        const auto simulated = simulation::polarizer_images(scene, sensor, band).front().channel("counts");
+        const auto simulated =
+            simulation::polarizer_images(scene, sensor, band).front().channel("counts");
         const auto synthetic =
-            calibration::synthetic_record_frame(cam, scene, band, angle_deg, true, false, 7).channel("counts");
+            calibration::synthetic_record_frame(cam, scene, band, angle_deg, true, false, 7)
+                .channel("counts");
         const auto twin_counts = world.sensor_frame(scene, angle_deg, true, 1);
         const double theta = deg_to_rad(angle_deg + cam.angle_offset_deg);
         const double tau_min = cam.t_max / cam.extinction_ratio;
         const double background = cam.grid_reflectance * band.radiance(cam.sky_temperature_k) +
                                   cam.grid_emissivity * band.radiance(cam.grid_temperature_k);
-        for (std::size_t i = 3; i < simulated.size(); ++i) {  // pixels 0–2 hold the planted bad pixels
+        for (std::size_t i = 3; i < simulated.size();
+             ++i) {  // pixels 0–2 hold the planted bad pixels
             ASSERT_EQ(simulated[i], synthetic[i]) << "pixel " << i;
             ASSERT_EQ(simulated[i], twin_counts[i]) << "pixel " << i;
-            const double s0 = scene.channel("S0")[i], s1 = scene.channel("S1")[i], s2 = scene.channel("S2")[i];
-            const double malus = 0.5 * (cam.t_max + tau_min) * s0 +
-                                 0.5 * (cam.t_max - tau_min) * (s1 * std::cos(2 * theta) + s2 * std::sin(2 * theta));
-            EXPECT_NEAR(simulated[i], cam.offset_mean + cam.gain_mean * (malus + background), 1e-3 * simulated[i]);
+            const double s0 = scene.channel("S0")[i], s1 = scene.channel("S1")[i],
+                         s2 = scene.channel("S2")[i];
+            const double malus =
+                0.5 * (cam.t_max + tau_min) * s0 +
+                0.5 * (cam.t_max - tau_min) * (s1 * std::cos(2 * theta) + s2 * std::sin(2 * theta));
+            EXPECT_NEAR(simulated[i], cam.offset_mean + cam.gain_mean * (malus + background),
+                        1e-3 * simulated[i]);
         }
     }
 }

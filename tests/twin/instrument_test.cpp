@@ -1,8 +1,8 @@
 // The twin's instrument pieces: the camera renders the polarizer where the stage driver read it
 // back (not where it was asked to go), and the blackbody is in view exactly for the step the
 // operator placed it for. Counts checked against the sensor model's equations (sensor_model.h):
-// C = g·I + o with, for unpolarized light through a diattenuator, I = ½(τ + τ/ER)·S0 + ρ·L_r + ε·L_bb(T_grid)
-// (Chipman, Lam & Young 2018 eq 6.35 for the diattenuator).
+// C = g·I + o with, for unpolarized light through a diattenuator, I = ½(τ + τ/ER)·S0 + ρ·L_r +
+// ε·L_bb(T_grid) (Chipman, Lam & Young 2018 eq 6.35 for the diattenuator).
 
 #include "tirpol/twin/instrument.h"
 
@@ -74,8 +74,9 @@ TEST(TwinWorld, BlackbodyInViewForTheStepItWasPlacedFor) {
 }
 
 TEST(TwinInstrument, CaptureLoopRecordsBlackbodyThenSceneThroughThePtyStage) {
-    // The in-process camera (gige = false) with the real capture loop and the APT stage on a pty: the
-    // blackbody record holds g·L(T) + o, the scene records g·S0 + o (polarizer out of the beam).
+    // The in-process camera (gige = false) with the real capture loop and the APT stage on a pty:
+    // the blackbody record holds g·L(T) + o, the scene records g·S0 + o (polarizer out of the
+    // beam).
     test::TempDir dir;
     const Band band(8.0, 14.0);
     const auto sensor = noiseless_sensor();
@@ -96,7 +97,8 @@ TEST(TwinInstrument, CaptureLoopRecordsBlackbodyThenSceneThroughThePtyStage) {
     const double expected[] = {g * band.radiance(310.0) + o, g * 10.0 + o, g * 10.0 + o};
     for (std::size_t k = 0; k < 3; ++k) {
         const auto counts = read_session_frame(dir / "session", m, m.records[k]).channel("counts");
-        EXPECT_NEAR(counts[7], expected[k], 0.5) << m.records[k].file;  // the ADC rounds to whole counts
+        EXPECT_NEAR(counts[7], expected[k], 0.5)
+            << m.records[k].file;  // the ADC rounds to whole counts
     }
     EXPECT_NEAR(m.records[2].angle_deg_measured, 90.0, 0.05);
 }

@@ -48,9 +48,11 @@ double to_unix_seconds(const CivilTime& c) {
     if (c.month < 1 || c.month > 12) fail("invalid month {} (expected 1–12)", c.month);
     if (c.day < 1 || c.day > days_in_month(c.year, c.month))
         fail("invalid day {} for {:04d}-{:02d}", c.day, c.year, c.month);
-    if (c.hour < 0 || c.hour > 24 || c.minute < 0 || c.minute > 59 || !(c.second >= 0.0 && c.second < 61.0))
+    if (c.hour < 0 || c.hour > 24 || c.minute < 0 || c.minute > 59 ||
+        !(c.second >= 0.0 && c.second < 61.0))
         fail("invalid time of day {:02d}:{:02d}:{}", c.hour, c.minute, c.second);
-    const long long days = days_from_civil(c.year, static_cast<unsigned>(c.month), static_cast<unsigned>(c.day));
+    const long long days =
+        days_from_civil(c.year, static_cast<unsigned>(c.month), static_cast<unsigned>(c.day));
     return static_cast<double>(days) * 86400.0 + c.hour * 3600.0 + c.minute * 60.0 + c.second -
            c.utc_offset_h * 3600.0;
 }
@@ -74,8 +76,10 @@ double julian_day(double unix_seconds) { return unix_seconds / 86400.0 + 2440587
 double parse_time(std::string_view text, double default_utc_offset_h, std::string_view what) {
     const std::string s(text);
     auto bad = [&]() -> double {
-        fail("{}: '{}' is not a time; expected YYYY-MM-DDTHH:MM[:SS][Z|±HH:MM], e.g. 2003-10-17T12:30:30-07:00",
-             what, s);
+        fail(
+            "{}: '{}' is not a time; expected YYYY-MM-DDTHH:MM[:SS][Z|±HH:MM], e.g. "
+            "2003-10-17T12:30:30-07:00",
+            what, s);
     };
     std::size_t pos = 0;
     auto number = [&](std::size_t digits) -> int {
@@ -107,7 +111,9 @@ double parse_time(std::string_view text, double default_utc_offset_h, std::strin
     if (pos < s.size() && s[pos] == ':') {
         ++pos;
         const std::size_t start = pos;
-        while (pos < s.size() && (std::isdigit(static_cast<unsigned char>(s[pos])) || s[pos] == '.')) ++pos;
+        while (pos < s.size() &&
+               (std::isdigit(static_cast<unsigned char>(s[pos])) || s[pos] == '.'))
+            ++pos;
         if (pos == start) bad();
         c.second = std::strtod(s.substr(start, pos - start).c_str(), nullptr);
     }
@@ -145,8 +151,9 @@ std::string format_time(double unix_seconds, double utc_offset_h) {
     std::string sec = fmt::format("{:02d}", static_cast<int>(whole));
     const double frac = c.second - whole;
     if (frac > 5e-4) sec += fmt::format("{:.3f}", frac).substr(1);
-    return fmt::format("{:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{}{}{:02d}:{:02d}", c.year, c.month, c.day, c.hour,
-                       c.minute, sec, utc_offset_h < 0 ? '-' : '+', offset_min / 60, offset_min % 60);
+    return fmt::format("{:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{}{}{:02d}:{:02d}", c.year, c.month,
+                       c.day, c.hour, c.minute, sec, utc_offset_h < 0 ? '-' : '+', offset_min / 60,
+                       offset_min % 60);
 }
 
 }  // namespace tirpol::thermal

@@ -9,7 +9,8 @@
 namespace tirpol::thermal {
 
 namespace {
-// Incropera, DeWitt, Bergman & Lavine, Fundamentals of Heat and Mass Transfer, 6th ed., Table A.3 "Soil".
+// Incropera, DeWitt, Bergman & Lavine, Fundamentals of Heat and Mass Transfer, 6th ed., Table A.3
+// "Soil".
 constexpr Layer kSoil{1.0, 0.52, 2050.0, 1840.0, 0};
 constexpr int kMaxNewtonIterations = 50;
 constexpr double kNewtonToleranceK = 1e-10;
@@ -27,7 +28,8 @@ SurfaceFluxes surface_fluxes(const SurfaceForcing& f, double ts) {
 
 SlabModel::SlabModel(const SlabDefinition& def, const SlabGridOptions& grid) {
     if (def.layers.empty()) fail("thermal slab: no layers");
-    if (!(grid.max_cell_thickness_m > 0.0)) fail("thermal slab: max cell thickness must be positive");
+    if (!(grid.max_cell_thickness_m > 0.0))
+        fail("thermal slab: max cell thickness must be positive");
     std::vector<Layer> layers = def.layers;
     if (def.back.kind == BackBoundary::Kind::Ground) {
         Layer soil = kSoil;
@@ -37,12 +39,18 @@ SlabModel::SlabModel(const SlabDefinition& def, const SlabGridOptions& grid) {
     std::vector<double> dx, k;
     for (std::size_t i = 0; i < layers.size(); ++i) {
         const Layer& l = layers[i];
-        if (!(l.thickness_m > 0.0 && l.conductivity_w_m_k > 0.0 && l.density_kg_m3 > 0.0 && l.specific_heat_j_kg_k > 0.0))
-            fail("thermal slab: layer {} needs positive thickness, conductivity, density and specific heat "
-                 "(got {} m, {} W/m·K, {} kg/m³, {} J/kg·K)", i + 1, l.thickness_m, l.conductivity_w_m_k,
-                 l.density_kg_m3, l.specific_heat_j_kg_k);
-        const int n = l.cells > 0 ? l.cells
-                                  : std::max(2, static_cast<int>(std::ceil(l.thickness_m / grid.max_cell_thickness_m - 1e-9)));
+        if (!(l.thickness_m > 0.0 && l.conductivity_w_m_k > 0.0 && l.density_kg_m3 > 0.0 &&
+              l.specific_heat_j_kg_k > 0.0))
+            fail(
+                "thermal slab: layer {} needs positive thickness, conductivity, density and "
+                "specific heat "
+                "(got {} m, {} W/m·K, {} kg/m³, {} J/kg·K)",
+                i + 1, l.thickness_m, l.conductivity_w_m_k, l.density_kg_m3,
+                l.specific_heat_j_kg_k);
+        const int n = l.cells > 0
+                          ? l.cells
+                          : std::max(2, static_cast<int>(std::ceil(
+                                            l.thickness_m / grid.max_cell_thickness_m - 1e-9)));
         for (int c = 0; c < n; ++c) {
             dx.push_back(l.thickness_m / n);
             k.push_back(l.conductivity_w_m_k);
@@ -87,7 +95,8 @@ double SlabModel::stored_energy_j_m2() const {
 
 double SlabModel::temperature_at_depth_k(double z) const {
     if (z <= 0.0) return m_surface_k;
-    if (z <= m_depth.front()) return m_surface_k + (m_t.front() - m_surface_k) * z / m_depth.front();
+    if (z <= m_depth.front())
+        return m_surface_k + (m_t.front() - m_surface_k) * z / m_depth.front();
     const auto it = std::lower_bound(m_depth.begin(), m_depth.end(), z);
     if (it == m_depth.end()) return m_t.back();
     const auto j = static_cast<std::size_t>(it - m_depth.begin());
@@ -98,10 +107,12 @@ double SlabModel::temperature_at_depth_k(double z) const {
 StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double theta) {
     const std::size_t n = m_t.size();
     const double explicit_w = 1.0 - theta;
-    // Old-level conduction fluxes through each face (face j is in front of cell j; face n is the back).
+    // Old-level conduction fluxes through each face (face j is in front of cell j; face n is the
+    // back).
     auto face_flux = [&](std::size_t j, double ts, const std::vector<double>& t) {
         if (j == 0) return m_conductance[0] * (ts - t[0]);
-        if (j == n) return m_back_fixed ? m_back_conductance * (t[n - 1] - m_back_temperature_k) : 0.0;
+        if (j == n)
+            return m_back_fixed ? m_back_conductance * (t[n - 1] - m_back_temperature_k) : 0.0;
         return m_conductance[j] * (t[j - 1] - t[j]);
     };
     const double old_front = face_flux(0, m_surface_k, m_t);
@@ -115,7 +126,8 @@ StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double thet
         m_a[j + 1] = -theta * k_in;
         m_b[j + 1] = cap + theta * (k_in + k_out);
         m_c[j + 1] = j + 1 < n ? -theta * k_out : 0.0;
-        double rhs = cap * m_t[j] + explicit_w * (face_flux(j, m_surface_k, m_t) - face_flux(j + 1, m_surface_k, m_t));
+        double rhs = cap * m_t[j] + explicit_w * (face_flux(j, m_surface_k, m_t) -
+                                                  face_flux(j + 1, m_surface_k, m_t));
         if (j + 1 == n && m_back_fixed) rhs += theta * m_back_conductance * m_back_temperature_k;
         m_r[j + 1] = rhs;
     }
@@ -123,7 +135,8 @@ StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double thet
     StepReport report;
     double ts = m_surface_k;
     for (int it = 0; it < kMaxNewtonIterations; ++it) {
-        // Surface row: linearised balance q(T*) + q'(T*)(T_s − T*) = K0 (T_s − T_0) (or T_s prescribed).
+        // Surface row: linearised balance q(T*) + q'(T*)(T_s − T*) = K0 (T_s − T_0) (or T_s
+        // prescribed).
         m_a[0] = 0.0;
         if (forcing.prescribed_surface_temperature_k) {
             m_b[0] = 1.0;
@@ -131,7 +144,8 @@ StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double thet
             m_r[0] = *forcing.prescribed_surface_temperature_k;
         } else {
             const double q = surface_fluxes(forcing, ts).net();
-            const double dq = -4.0 * forcing.emissivity * kStefanBoltzmann * ts * ts * ts - forcing.convection_w_m2_k;
+            const double dq = -4.0 * forcing.emissivity * kStefanBoltzmann * ts * ts * ts -
+                              forcing.convection_w_m2_k;
             m_b[0] = m_conductance[0] - dq;
             m_c[0] = -m_conductance[0];
             m_r[0] = q - dq * ts;

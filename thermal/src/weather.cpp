@@ -10,9 +10,12 @@ namespace tirpol::thermal {
 
 WeatherSeries::WeatherSeries(Site site, std::vector<WeatherRecord> records, std::string source,
                              double radiation_lag_s)
-    : m_site(std::move(site)), m_records(std::move(records)), m_source(std::move(source)),
+    : m_site(std::move(site)),
+      m_records(std::move(records)),
+      m_source(std::move(source)),
       m_radiation_lag_s(radiation_lag_s) {
-    if (m_records.size() < 2) fail("{}: weather needs at least two records, found {}", m_source, m_records.size());
+    if (m_records.size() < 2)
+        fail("{}: weather needs at least two records, found {}", m_source, m_records.size());
     for (std::size_t i = 1; i < m_records.size(); ++i) {
         if (!(m_records[i].time_s > m_records[i - 1].time_s))
             fail("{}: record {} at {} is not after the previous one ({})", m_source, i + 1,
@@ -33,8 +36,9 @@ double lerp(double a, double b, double f) {
 std::pair<std::size_t, double> bracket(const std::vector<WeatherRecord>& r, double t) {
     if (t <= r.front().time_s) return {0, 0.0};
     if (t >= r.back().time_s) return {r.size() - 2, 1.0};
-    const auto it = std::upper_bound(r.begin(), r.end(), t,
-                                     [](double value, const WeatherRecord& rec) { return value < rec.time_s; });
+    const auto it =
+        std::upper_bound(r.begin(), r.end(), t,
+                         [](double value, const WeatherRecord& rec) { return value < rec.time_s; });
     const auto i = static_cast<std::size_t>(it - r.begin()) - 1;
     return {i, (t - r[i].time_s) / (r[i + 1].time_s - r[i].time_s)};
 }
@@ -43,8 +47,9 @@ std::pair<std::size_t, double> bracket(const std::vector<WeatherRecord>& r, doub
 
 WeatherRecord WeatherSeries::at(double t) const {
     if (t < start_s() - 1e-6 || t > end_s() + 1e-6)
-        fail("{}: no weather at {}; the file covers {} to {}", m_source, format_time(t, m_site.utc_offset_h),
-             format_time(start_s(), m_site.utc_offset_h), format_time(end_s(), m_site.utc_offset_h));
+        fail("{}: no weather at {}; the file covers {} to {}", m_source,
+             format_time(t, m_site.utc_offset_h), format_time(start_s(), m_site.utc_offset_h),
+             format_time(end_s(), m_site.utc_offset_h));
     const auto [i, f] = bracket(m_records, t);
     const WeatherRecord& a = m_records[i];
     const WeatherRecord& b = m_records[i + 1];
@@ -68,11 +73,15 @@ WeatherRecord WeatherSeries::at(double t) const {
     return out;
 }
 
-double standard_pressure_pa(double elevation_m) { return 101325.0 * std::pow(1.0 - 2.25577e-5 * elevation_m, 5.2559); }
+double standard_pressure_pa(double elevation_m) {
+    return 101325.0 * std::pow(1.0 - 2.25577e-5 * elevation_m, 5.2559);
+}
 
 double erbs_diffuse_fraction(double kt) {
     if (kt <= 0.22) return 1.0 - 0.09 * kt;
-    if (kt <= 0.80) return 0.9511 - 0.1604 * kt + 4.388 * kt * kt - 16.638 * kt * kt * kt + 12.336 * kt * kt * kt * kt;
+    if (kt <= 0.80)
+        return 0.9511 - 0.1604 * kt + 4.388 * kt * kt - 16.638 * kt * kt * kt +
+               12.336 * kt * kt * kt * kt;
     return 0.165;
 }
 

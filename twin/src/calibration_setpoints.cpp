@@ -24,14 +24,16 @@ Clamped clamp_to_laboratory(double k) {
 
 }  // namespace
 
-BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth, const simulation::SensorModel& sensor,
-                                       const Band& band) {
+BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth,
+                                       const simulation::SensorModel& sensor, const Band& band) {
     const double tau = sensor.analyzer.transmission;
     const double tau_min = tau / sensor.analyzer.extinction_ratio;
-    const double background = sensor.background.reflectance * sensor.background.reflected_radiance +
-                              sensor.background.emissivity * band.radiance(sensor.background.temperature_k);
+    const double background =
+        sensor.background.reflectance * sensor.background.reflected_radiance +
+        sensor.background.emissivity * band.radiance(sensor.background.temperature_k);
     BlackbodySetpoints out;
-    double s0_lo = std::numeric_limits<double>::infinity(), s0_hi = -s0_lo, det_lo = s0_lo, det_hi = -s0_lo;
+    double s0_lo = std::numeric_limits<double>::infinity(), s0_hi = -s0_lo, det_lo = s0_lo,
+           det_hi = -s0_lo;
     for (const Image& image : truth) {
         const auto &s0 = image.channel("S0"), &s1 = image.channel("S1"), &s2 = image.channel("S2");
         for (std::size_t i = 0; i < s0.size(); ++i) {
@@ -44,7 +46,8 @@ BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth, const si
             det_hi = std::max(det_hi, mean + polarized);
         }
     }
-    if (!std::isfinite(s0_lo)) fail("twin: the truth renders have no finite Stokes pixel to derive blackbody set-points");
+    if (!std::isfinite(s0_lo))
+        fail("twin: the truth renders have no finite Stokes pixel to derive blackbody set-points");
     out.scene_s0_min = s0_lo;
     out.scene_s0_max = s0_hi;
     std::vector<std::string> limits;
@@ -52,9 +55,10 @@ BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth, const si
         const double k = band.brightness_temperature(std::max(radiance, 1e-9)) + margin_k;
         const Clamped c = clamp_to_laboratory(k);
         if (c.clamped)
-            limits.push_back(fmt::format("the {} set-point would be {:.1f} K, beyond the laboratory's blackbodies "
-                                         "({:.2f}–{:.2f} K): clamped, so part of the range is extrapolated",
-                                         what, k, kColdestBlackbodyK, kWarmestBlackbodyK));
+            limits.push_back(fmt::format(
+                "the {} set-point would be {:.1f} K, beyond the laboratory's blackbodies "
+                "({:.2f}–{:.2f} K): clamped, so part of the range is extrapolated",
+                what, k, kColdestBlackbodyK, kWarmestBlackbodyK));
         return c.k;
     };
     // Through the polarizer the blackbody's own detector radiance is ½(τ + τ_min)L_bb + B: the

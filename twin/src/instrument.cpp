@@ -33,7 +33,8 @@ TwinWorld::TwinWorld(simulation::SensorModel sensor, Band band, int width, int h
 
 void TwinWorld::set_scene(Image stokes) {
     if (stokes.width() != m_width || stokes.height() != m_height)
-        fail("twin: scene image is {}×{}, the camera {}×{}", stokes.width(), stokes.height(), m_width, m_height);
+        fail("twin: scene image is {}×{}, the camera {}×{}", stokes.width(), stokes.height(),
+             m_width, m_height);
     std::lock_guard lock(m_mutex);
     m_scene = std::move(stokes);
 }
@@ -81,7 +82,8 @@ void TwinWorld::fill(double angle_deg, std::vector<float>& counts) {
     counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, ++m_frame_index);
 }
 
-std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg, bool polarizer_in_beam,
+std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg,
+                                           bool polarizer_in_beam,
                                            std::uint64_t frame_index) const {
     simulation::SensorModel model = m_sensor;
     model.analyzer.angles_deg = {angle_deg};
@@ -91,7 +93,9 @@ std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg
         model.analyzer.extinction_ratio = 1.0;
         model.background = {};
     }
-    return simulation::polarizer_images(stokes, model, m_band, frame_index).front().channel("counts");
+    return simulation::polarizer_images(stokes, model, m_band, frame_index)
+        .front()
+        .channel("counts");
 }
 
 simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) {
@@ -99,7 +103,8 @@ simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) 
     s.analyzer.transmission = 0.7;
     s.analyzer.extinction_ratio = 400.0;
     s.background.reflectance = 0.05;
-    s.background.reflected_radiance = band.radiance(240.0);  // clear night sky, brightness temperature ~240 K
+    s.background.reflected_radiance =
+        band.radiance(240.0);  // clear night sky, brightness temperature ~240 K
     s.background.emissivity = 0.03;
     s.background.temperature_k = air_temperature_k;
     s.counts = simulation::CountsModel{800.0, 3000.0, 0.05, 300.0};
@@ -155,7 +160,8 @@ namespace {
 StageSimulatorOptions simulator_options(StageProtocol protocol) {
     StageSimulatorOptions o;
     o.protocol = protocol == StageProtocol::Apt ? SimProtocol::Apt : SimProtocol::Elliptec;
-    // Faster than a K10CR1 (≈ 10°/s) so the demo does not wait on the mount; ELL14-like for Elliptec.
+    // Faster than a K10CR1 (≈ 10°/s) so the demo does not wait on the mount; ELL14-like for
+    // Elliptec.
     o.deg_per_s = 720.0;
     return o;
 }
@@ -163,10 +169,14 @@ StageSimulatorOptions simulator_options(StageProtocol protocol) {
 }  // namespace
 
 TwinInstrument::Devices::Devices(TwinWorld& w, StageProtocol p, bool gige)
-    : world(w), protocol(p), simulator(simulator_options(p)), pty(PseudoTerminal::open().value_or_throw()) {
+    : world(w),
+      protocol(p),
+      simulator(simulator_options(p)),
+      pty(PseudoTerminal::open().value_or_throw()) {
     stage_thread = std::thread([this] { serve_stage_simulator(simulator, pty, stop); });
-    open_stage_driver(protocol == StageProtocol::Apt ? "thorlabs-apt://" + pty.slave_path()
-                                                     : "elliptec://" + pty.slave_path() + "?address=0");
+    open_stage_driver(protocol == StageProtocol::Apt
+                          ? "thorlabs-apt://" + pty.slave_path()
+                          : "elliptec://" + pty.slave_path() + "?address=0");
     if (gige) {
         try {
             open_camera_over_gige();
@@ -243,7 +253,8 @@ bool TwinInstrument::served_over_gige() const { return m_devices->server != null
 
 std::string TwinInstrument::stage_description() const {
     const StageInfo i = m_devices->driver->info();
-    return fmt::format("{} {} (serial {}) over the {} protocol on {} ({})", i.vendor, i.model, i.serial,
+    return fmt::format("{} {} (serial {}) over the {} protocol on {} ({})", i.vendor, i.model,
+                       i.serial,
                        m_devices->protocol == StageProtocol::Apt ? "Thorlabs APT" : "Elliptec",
                        m_devices->pty.slave_path(), i.uri);
 }
@@ -256,11 +267,13 @@ void TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::pat
         if (s.kind == RecordKind::Blackbody) temperatures.push_back(*s.temperature_k);
     d.world.set_polarizer_in_beam(plan.metadata.value("polarizer_in_beam", false));
     std::filesystem::remove_all(dir);
-    SessionWriter session = SessionWriter::create(dir, new_session_manifest(d.camera->info(), d.stage->info(), plan));
+    SessionWriter session =
+        SessionWriter::create(dir, new_session_manifest(d.camera->info(), d.stage->info(), plan));
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.prompt = [&](const std::string& instruction) {
-        if (temperatures.empty()) fail("twin: the capture loop asked for an unplanned reference: {}", instruction);
+        if (temperatures.empty())
+            fail("twin: the capture loop asked for an unplanned reference: {}", instruction);
         d.world.place_blackbody(temperatures.front());
         temperatures.pop_front();
         return true;

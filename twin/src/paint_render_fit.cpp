@@ -21,7 +21,8 @@ Image measured_with_render_noise(const Image& measured, const Image& truth) {
         auto& sd = m.channel(std::string(s) + "_std");
         const auto& var = truth.channel(std::string(s) + "_var");
         for (std::size_t i = 0; i < sd.size(); ++i)
-            if (std::isfinite(var[i])) sd[i] = static_cast<float>(std::sqrt(double(sd[i]) * sd[i] + var[i]));
+            if (std::isfinite(var[i]))
+                sd[i] = static_cast<float>(std::sqrt(double(sd[i]) * sd[i] + var[i]));
     }
     return m;
 }
@@ -42,20 +43,25 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
         for (std::size_t o = 0; o < scene.objects.size(); ++o) {
             if (o != in.target_object && scene.objects[o].material != in.target_material) continue;
             auto region = fitting::object_region((*in.truth)[v], o, scene.objects[o].name);
-            if (region.pixels.size() >= kMinimumRegionPixels) view.regions.push_back(std::move(region));
+            if (region.pixels.size() >= kMinimumRegionPixels)
+                view.regions.push_back(std::move(region));
         }
         if (!view.regions.empty()) views.push_back(std::move(view));
     }
     fitting::RenderFitOptions o;
     constexpr double kNLower = 1.2, kNUpper = 2.5, kSigmaLower = 0.05, kSigmaUpper = 1.0;
-    o.parameters = {
-        {material, fitting::MicrofacetParameter::n, kNLower, kNUpper, std::clamp(in.initial_n, kNLower, kNUpper), {}},
-        {material,
-         fitting::MicrofacetParameter::sigma,
-         kSigmaLower,
-         kSigmaUpper,
-         std::clamp(in.initial_sigma, kSigmaLower, kSigmaUpper),
-         {}}};
+    o.parameters = {{material,
+                     fitting::MicrofacetParameter::n,
+                     kNLower,
+                     kNUpper,
+                     std::clamp(in.initial_n, kNLower, kNUpper),
+                     {}},
+                    {material,
+                     fitting::MicrofacetParameter::sigma,
+                     kSigmaLower,
+                     kSigmaUpper,
+                     std::clamp(in.initial_sigma, kSigmaLower, kSigmaUpper),
+                     {}}};
     o.seed = in.seed;
     o.threads = in.threads;
     o.samples_per_pixel = in.samples_per_pixel;
@@ -63,7 +69,8 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
     TwinRenderFit r;
     const double truth[] = {in.true_n, in.true_sigma};
     for (std::size_t i = 0; i < s.parameters.size(); ++i)
-        r.parameters.push_back({s.parameters[i].name, truth[i], s.parameters[i].value, s.parameters[i].sigma, false});
+        r.parameters.push_back(
+            {s.parameters[i].name, truth[i], s.parameters[i].value, s.parameters[i].sigma, false});
     r.reduced_chi2 = s.reduced_chi2;
     r.dof = s.dof;
     r.renders = s.renders;

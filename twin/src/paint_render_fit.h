@@ -12,10 +12,10 @@
 namespace tirpol::twin {
 
 struct PaintRenderFitInputs {
-    const simulation::Scene* scene = nullptr;      ///< the true scene (its sky, temperatures, geometry)
-    std::vector<simulation::Camera> cameras;       ///< the camera of each view, as the fit renders it
+    const simulation::Scene* scene = nullptr;  ///< the true scene (its sky, temperatures, geometry)
+    std::vector<simulation::Camera> cameras;   ///< the camera of each view, as the fit renders it
     const std::vector<Image>* measured = nullptr;  ///< reduced Stokes per view (S*, S*_std)
-    const std::vector<Image>* truth = nullptr;     ///< truth renders per view (regions, their S*_var)
+    const std::vector<Image>* truth = nullptr;  ///< truth renders per view (regions, their S*_var)
     std::size_t target_object = 0;
     std::uint32_t target_material = 0;
     double initial_n = 1.5, initial_sigma = 0.2;  ///< the eq-17 fit: the first guess

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "paint_render_fit.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/region_mean.h"
@@ -31,7 +32,6 @@
 #include "tirpol/twin/instrument.h"
 #include "tirpol/twin/regions.h"
 #include "tirpol/twin/twin.h"
-#include "paint_render_fit.h"
 
 namespace tirpol::twin {
 
@@ -39,19 +39,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Emissivity tables are evaluated at this wavelength for the fit: the paint's index is constant over
-/// the 8–14 µm band, so the band-integrated ε equals ε at any wavelength in it.
+/// Emissivity tables are evaluated at this wavelength for the fit: the paint's index is constant
+/// over the 8–14 µm band, so the band-integrated ε equals ε at any wavelength in it.
 constexpr double kFitWavelengthUm = 10.0;
 constexpr double kContactThermometerStdK = 0.2;  ///< contact thermometer
 
 /// Times one stage of the chain and names it for error messages.
 class StageTimer {
 public:
-    StageTimer(TwinResult& r, std::string name, std::string& current) : m_r(r), m_name(std::move(name)) {
+    StageTimer(TwinResult& r, std::string name, std::string& current)
+        : m_r(r), m_name(std::move(name)) {
         current = m_name;
     }
     ~StageTimer() {
-        m_r.seconds[m_name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+        m_r.seconds[m_name] =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     }
 
 private:
@@ -76,39 +78,45 @@ std::vector<TwinView> default_views(const simulation::Scene& scene) {
 }
 
 simulation::Camera view_camera(const simulation::Camera& base, const TwinView& v) {
-    const Vec3 pos(v.position[0], v.position[1], v.position[2]), at(v.look_at[0], v.look_at[1], v.look_at[2]);
+    const Vec3 pos(v.position[0], v.position[1], v.position[2]),
+        at(v.look_at[0], v.look_at[1], v.look_at[2]);
     return simulation::Camera(base.width(), base.height(), base.intrinsics(), pos,
                               simulation::Camera::look_at(pos, at, Vec3(0.0, 0.0, 1.0)));
 }
 
-std::string reference_yaml(const std::vector<double>& temperatures_k, double angle_deg, int frames) {
+std::string reference_yaml(const std::vector<double>& temperatures_k, double angle_deg,
+                           int frames) {
     std::string temps;
     for (double t : temperatures_k) temps += fmt::format("{}{:.2f}", temps.empty() ? "" : ", ", t);
-    return fmt::format("  - {{kind: blackbody, temperatures_k: [{}], frames: {}, angle_deg: {}}}\n", temps, frames,
-                       angle_deg);
+    return fmt::format("  - {{kind: blackbody, temperatures_k: [{}], frames: {}, angle_deg: {}}}\n",
+                       temps, frames, angle_deg);
 }
 
 /// Writes a capture plan as a person would for `tirpol acquire`, and loads it the same way.
-acquisition::CapturePlan write_plan(const fs::path& path, const std::string& references, bool polarizer_in_beam,
-                                    const std::string& site, int frames) {
+acquisition::CapturePlan write_plan(const fs::path& path, const std::string& references,
+                                    bool polarizer_in_beam, const std::string& site, int frames) {
     std::string yaml = fmt::format(
-        "# Capture plan of the digital twin (tirpol demo); run it with `tirpol acquire` on a real instrument.\n"
+        "# Capture plan of the digital twin (tirpol demo); run it with `tirpol acquire` on a real "
+        "instrument.\n"
         "angles_deg: [0, 45, 90, 135]\nframes_per_angle: {}\nsettle_s: 0.02\nframe_timeout_s: 5\n",
         frames);
     if (!references.empty()) yaml += "references:\n" + references;
-    yaml +=
-        fmt::format("metadata: {{site: \"{}\", polarizer_in_beam: {}}}\n", site, polarizer_in_beam ? "true" : "false");
+    yaml += fmt::format("metadata: {{site: \"{}\", polarizer_in_beam: {}}}\n", site,
+                        polarizer_in_beam ? "true" : "false");
     write_file_atomic(path, yaml);
     return acquisition::CapturePlan::load(path);
 }
 
-/// Standard error of the ROI mean from the per-pixel σ channel (pixels' noise independent): √(Σσ²)/n.
-double rect_standard_error(const Image& image, const std::string& sigma_channel, const calibration::PixelRect& rect) {
+/// Standard error of the ROI mean from the per-pixel σ channel (pixels' noise independent):
+/// √(Σσ²)/n.
+double rect_standard_error(const Image& image, const std::string& sigma_channel,
+                           const calibration::PixelRect& rect) {
     const auto& sigma = image.channel(sigma_channel);
-    const auto variance = calibration::region_mean_of(rect, "twin", sigma_channel, [&](int x, int y) {
-        const double v = sigma[image.index(x, y)];
-        return v * v;
-    });
+    const auto variance =
+        calibration::region_mean_of(rect, "twin", sigma_channel, [&](int x, int y) {
+            const double v = sigma[image.index(x, y)];
+            return v * v;
+        });
     return std::sqrt(variance.mean / static_cast<double>(variance.n));
 }
 
@@ -146,7 +154,8 @@ report::Region rect_region(const std::string& name, const calibration::PixelRect
 
 /// What the chain's stages hand on to each other, in the order they fill it.
 struct Chain {
-    Chain(const TwinOptions& options, TwinResult& r, std::string& current_stage, simulation::Scene s)
+    Chain(const TwinOptions& options, TwinResult& r, std::string& current_stage,
+          simulation::Scene s)
         : opt(options),
           result(r),
           stage(current_stage),
@@ -165,7 +174,7 @@ struct Chain {
     std::uint32_t target_material = 0;
     std::vector<simulation::Camera> cameras;  ///< the field camera in each view
     std::vector<Image> truth;                 ///< renders of the truth, per view
-    calibration::ChainProducts calibrated;    ///< the calibrations; reduced Stokes (.stokes) per view
+    calibration::ChainProducts calibrated;  ///< the calibrations; reduced Stokes (.stokes) per view
     fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
     Image simulated;  ///< the render with the fitted paint, view 0
 };
@@ -189,13 +198,15 @@ void render_truth(Chain& c) {
 void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
     StageTimer t(c.result, "acquire", c.stage);
     world.set_scene(c.truth.front());
-    // The set-points bracket what the camera will see (the truth renders through the instrument), as a
-    // user would choose them from the scene's expected radiances.
+    // The set-points bracket what the camera will see (the truth renders through the instrument),
+    // as a user would choose them from the scene's expected radiances.
     c.result.blackbody = blackbody_setpoints(c.truth, world.sensor(), c.scene.band);
-    // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric calibration).
-    const auto lab = write_plan(c.sessions / "lab_plan.yaml",
-                                reference_yaml(c.result.blackbody.radiometric_k, 0.0, 2 * c.opt.frames_per_angle),
-                                false, "digital twin: laboratory", c.opt.frames_per_angle);
+    // Laboratory: blackbody at three temperatures, polarizer out of the beam (radiometric
+    // calibration).
+    const auto lab = write_plan(
+        c.sessions / "lab_plan.yaml",
+        reference_yaml(c.result.blackbody.radiometric_k, 0.0, 2 * c.opt.frames_per_angle), false,
+        "digital twin: laboratory", c.opt.frames_per_angle);
     instrument.acquire(lab, c.sessions / "lab");
     c.result.sessions.push_back(c.sessions / "lab");
     for (std::size_t v = 0; v < c.views.size(); ++v) {
@@ -204,27 +215,30 @@ void acquire_sessions(Chain& c, TwinWorld& world, TwinInstrument& instrument) {
         std::string refs;
         if (v == 0)
             for (double a : {0.0, 45.0, 90.0, 135.0})
-                refs += reference_yaml(c.result.blackbody.polarimetric_k, a, 2 * c.opt.frames_per_angle);
+                refs += reference_yaml(c.result.blackbody.polarimetric_k, a,
+                                       2 * c.opt.frames_per_angle);
         const std::string name = fmt::format("view{}", v);
-        const auto plan = write_plan(c.sessions / (name + "_plan.yaml"), refs, true, "digital twin: field, " + name,
-                                     c.opt.frames_per_angle);
+        const auto plan = write_plan(c.sessions / (name + "_plan.yaml"), refs, true,
+                                     "digital twin: field, " + name, c.opt.frames_per_angle);
         world.set_scene(c.truth[v]);
         instrument.acquire(plan, c.sessions / name);
         c.result.sessions.push_back(c.sessions / name);
     }
 }
 
-/// The camera's geometry, recovered as in the field: lens from filmed checkerboard frames, pose from
-/// the surveyed panel corners.
+/// The camera's geometry, recovered as in the field: lens from filmed checkerboard frames, pose
+/// from the surveyed panel corners.
 void recover_geometry(Chain& c, TwinWorld& world) {
     StageTimer t(c.result, "camera geometry", c.stage);
     CameraGeometryOptions go;
     go.threads = c.opt.threads;
-    c.result.camera = recover_camera_geometry(c.scene, c.cameras.front(), view_camera(c.scene.camera, c.views.front()),
-                                              world, c.out / "camera", go);
+    c.result.camera = recover_camera_geometry(c.scene, c.cameras.front(),
+                                              view_camera(c.scene.camera, c.views.front()), world,
+                                              c.out / "camera", go);
 }
 
-/// 3. Calibration and reduction to measured Stokes (the calibration chain's steps up to the reduction).
+/// 3. Calibration and reduction to measured Stokes (the calibration chain's steps up to the
+/// reduction).
 void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
     StageTimer t(c.result, "calibrate and reduce", c.stage);
     calibration::ChainInputs in;
@@ -235,7 +249,8 @@ void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
     // enters the analyzer model (an ideal analyzer scales S1, S2 by (ER − 1)/(ER + 1), −0.5 % at
     // 400:1 — beyond the noise where the reflectors mirror a polarized sky).
     in.datasheet = calibration::DatasheetAnalyzer{world.sensor().analyzer.extinction_ratio, {}};
-    for (std::size_t v = 0; v < c.views.size(); ++v) in.scene_sessions.push_back(c.sessions / fmt::format("view{}", v));
+    for (std::size_t v = 0; v < c.views.size(); ++v)
+        in.scene_sessions.push_back(c.sessions / fmt::format("view{}", v));
     c.calibrated = calibration::run_calibration_chain(in);
     for (std::size_t v = 0; v < c.views.size(); ++v)
         write_exr(c.out / "measured" / fmt::format("view{}_stokes.exr", v), c.calibrated.stokes[v]);
@@ -244,7 +259,8 @@ void calibrate_and_reduce(Chain& c, const TwinWorld& world) {
 
 /// Target Stokes, measured vs truth (first view). The uncertainty of the ROI mean is the scatter
 /// of measured − truth over the ROI / √n: it holds the temporal noise (the *_std channels) and the
-/// per-pixel errors of the radiometric and polarimetric calibrations, which those channels leave out.
+/// per-pixel errors of the radiometric and polarimetric calibrations, which those channels leave
+/// out.
 void check_target_stokes(Chain& c) {
     const auto target_rect0 = object_rect(c.truth.front(), c.target);
     if (!target_rect0) fail("twin: the target '{}' is not visible in view 0", c.opt.target);
@@ -252,9 +268,10 @@ void check_target_stokes(Chain& c) {
         const std::string s = fmt::format("S{}", k);
         c.result.target_stokes.measured[k] =
             calibration::region_mean(c.calibrated.stokes.front(), s, *target_rect0, "twin").mean;
-        c.result.target_stokes.truth[k] = calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
-        c.result.target_stokes.sigma[k] =
-            rect_difference_standard_error(c.calibrated.stokes.front(), c.truth.front(), s, *target_rect0);
+        c.result.target_stokes.truth[k] =
+            calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
+        c.result.target_stokes.sigma[k] = rect_difference_standard_error(
+            c.calibrated.stokes.front(), c.truth.front(), s, *target_rect0);
         c.result.target_stokes.sigma_temporal[k] =
             rect_standard_error(c.calibrated.stokes.front(), s + "_std", *target_rect0);
     }
@@ -271,12 +288,13 @@ calibration::EmissivityRois emissivity_rois(const Chain& c, std::size_t v) {
         return calibration::region_mean(c.truth[v], channel, r, "twin").mean;
     };
     calibration::EmissivityRois rois;
-    const auto* reflector_brdf = c.scene.materials[c.scene.objects[c.reflector].material].brdf.get();
-    rois.reflector = {
-        *refl,
-        materials::directional_emissivity(*reflector_brdf, std::cos(deg_to_rad(mean_of("view_zenith_deg", *refl))),
-                                          kFitWavelengthUm)(0),
-        0.0, mean_of("temperature_k", *refl), kContactThermometerStdK};
+    const auto* reflector_brdf =
+        c.scene.materials[c.scene.objects[c.reflector].material].brdf.get();
+    rois.reflector = {*refl,
+                      materials::directional_emissivity(
+                          *reflector_brdf, std::cos(deg_to_rad(mean_of("view_zenith_deg", *refl))),
+                          kFitWavelengthUm)(0),
+                      0.0, mean_of("temperature_k", *refl), kContactThermometerStdK};
     calibration::EmissivityTarget et;
     et.name = fmt::format("{}_view{}", c.opt.target, v);
     et.rect = *rect;
@@ -287,7 +305,8 @@ calibration::EmissivityRois emissivity_rois(const Chain& c, std::size_t v) {
     return rois;
 }
 
-/// 4. Polarized emissivity of the target in each view (the chain's eq 17 step) in the plane-of-emission
+/// 4. Polarized emissivity of the target in each view (the chain's eq 17 step) in the
+/// plane-of-emission
 ///    frame, next to eq 17 on the truth render (a perfect instrument) and the paint's table.
 void extract_target_emissivity(Chain& c) {
     const auto* true_brdf = c.scene.materials[c.target_material].brdf.get();
@@ -303,9 +322,10 @@ void extract_target_emissivity(Chain& c) {
         // 0° axis along s (ψ − 90°) gives ε_S1 < 0 for p-polarized emission.
         const double psi = plane_of_emission_angle(c.truth[v], c.cameras[v], et.rect);
         const auto e = in_plane_of_emission(c.calibrated.emissivity[v].front(), psi);
-        // The same extraction on the truth render: what eq 17 itself gives with a perfect instrument.
-        const auto m =
-            in_plane_of_emission(calibration::extract_emissivity(c.truth[v], rois, c.scene.band).front(), psi);
+        // The same extraction on the truth render: what eq 17 itself gives with a perfect
+        // instrument.
+        const auto m = in_plane_of_emission(
+            calibration::extract_emissivity(c.truth[v], rois, c.scene.band).front(), psi);
         TwinEmissivity te;
         te.view_angle_deg = et.view_angle_deg;
         te.eps_s0 = e.eps_s0;
@@ -316,8 +336,8 @@ void extract_target_emissivity(Chain& c) {
         te.method_s0_sigma = m.eps_s0_sigma;
         te.method_s1 = m.eps_s1;
         te.method_s1_sigma = m.eps_s1_sigma;
-        const StokesVector truth_eps =
-            materials::directional_emissivity(*true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
+        const StokesVector truth_eps = materials::directional_emissivity(
+            *true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
         te.true_s0 = truth_eps(0);
         te.true_s1 = truth_eps(1);
         c.result.emissivity.push_back(te);
@@ -330,14 +350,16 @@ void extract_target_emissivity(Chain& c) {
 /// 5. Fit the paint: n and σ free; k and ρ_D held at the library's values (three view angles do
 ///    not separate a small k from n, docs/fitting.md) and the other parameters at their defaults.
 void fit_paint(Chain& c) {
-    const auto* micro = dynamic_cast<const materials::MicrofacetBrdf*>(c.scene.materials[c.target_material].brdf.get());
+    const auto* micro = dynamic_cast<const materials::MicrofacetBrdf*>(
+        c.scene.materials[c.target_material].brdf.get());
     if (!micro) fail("twin: the target material is not a micro-facet model");
     const materials::ShellTargetParameters<double> true_params = micro->at(kFitWavelengthUm);
     StageTimer t(c.result, "fit", c.stage);
     fitting::MicrofacetFitOptions fo;
     fo.starts = 8;
     using P = fitting::MicrofacetParameter;
-    for (const auto& [p, value] : {std::pair{P::k, true_params.k}, std::pair{P::rho_d, true_params.rho_d}}) {
+    for (const auto& [p, value] :
+         {std::pair{P::k, true_params.k}, std::pair{P::rho_d, true_params.rho_d}}) {
         auto& setting = fo.parameters[static_cast<std::size_t>(p)];
         setting.initial = value;
         setting.fixed = true;
@@ -345,8 +367,9 @@ void fit_paint(Chain& c) {
     const fitting::MicrofacetFitProblem problem({c.dataset}, fo);
     const fitting::MicrofacetFitResult fit = problem.solve();
     c.result.fitted_material = c.out / "fit" / "flat_black_paint_fitted.yaml";
-    const fitting::FitProvenance provenance{
-        {(c.out / "fit" / "emissivity.csv").string()}, utc_now_iso8601(), "tirpol demo (digital twin)"};
+    const fitting::FitProvenance provenance{{(c.out / "fit" / "emissivity.csv").string()},
+                                            utc_now_iso8601(),
+                                            "tirpol demo (digital twin)"};
     write_file_atomic(c.result.fitted_material,
                       fitting::fitted_material_yaml("flat_black_paint_fitted", fit, provenance));
     write_file_atomic(c.out / "fit" / "fit.json",
@@ -360,10 +383,11 @@ void fit_paint(Chain& c) {
     }
 }
 
-/// 5b. The same paint fitted through the renderer (no uniform-downwelling assumption), starting from
+/// 5b. The same paint fitted through the renderer (no uniform-downwelling assumption), starting
+/// from
 ///     eq 17's result; written beside it in fit/paint_fits.txt. The fit renders view 0 through the
-///     recovered camera and views 1 and 2 through their true cameras (the twin recovers the geometry
-///     of view 0 only).
+///     recovered camera and views 1 and 2 through their true cameras (the twin recovers the
+///     geometry of view 0 only).
 void fit_paint_by_rendering(Chain& c) {
     StageTimer t(c.result, "fit through the renderer", c.stage);
     PaintRenderFitInputs in;
@@ -417,7 +441,8 @@ void compare_and_report(Chain& c) {
     for (std::size_t i = 0; i < c.scene.objects.size(); ++i) {
         const std::string& name = c.scene.objects[i].name;
         if (name.rfind("panel_", 0) != 0) continue;
-        if (const auto r = object_rect(c.truth.front(), i)) regions.regions.push_back(rect_region(name.substr(6), *r));
+        if (const auto r = object_rect(c.truth.front(), i))
+            regions.regions.push_back(rect_region(name.substr(6), *r));
     }
     co.regions = regions;
     co.design = c.opt.report_design;
@@ -426,31 +451,39 @@ void compare_and_report(Chain& c) {
     write_file_atomic(c.result.report_regions, report::regions_yaml(regions));
     co.provenance.tool_version = c.opt.tool_version;
     co.provenance.command_line = fmt::format(
-        "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process by "
+        "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process "
+        "by "
         "`tirpol demo`)",
-        c.result.measured_exr.string(), c.result.simulated_exr.string(), c.result.report_regions.string(),
-        c.result.camera.lens_file.string(), (c.out / "report").string());
+        c.result.measured_exr.string(), c.result.simulated_exr.string(),
+        c.result.report_regions.string(), c.result.camera.lens_file.string(),
+        (c.out / "report").string());
     co.provenance.inputs.push_back(
         report::describe_input("measured", c.result.measured_exr, &c.calibrated.stokes.front()));
-    co.provenance.inputs.push_back(report::describe_input("simulated", c.result.simulated_exr, &c.simulated));
-    co.provenance.inputs.push_back(report::describe_input("regions", c.result.report_regions));
-    co.provenance.inputs.push_back(report::describe_input("camera model", c.result.camera.lens_file));
     co.provenance.inputs.push_back(
-        report::describe_input("paint fits: eq 17 and through the renderer", c.result.fit_comparison));
+        report::describe_input("simulated", c.result.simulated_exr, &c.simulated));
+    co.provenance.inputs.push_back(report::describe_input("regions", c.result.report_regions));
+    co.provenance.inputs.push_back(
+        report::describe_input("camera model", c.result.camera.lens_file));
+    co.provenance.inputs.push_back(report::describe_input(
+        "paint fits: eq 17 and through the renderer", c.result.fit_comparison));
     const report::CompareResult cr =
         write_comparison_report(c.calibrated.stokes.front(), c.simulated, co, c.out / "report");
     c.result.report_html = cr.html;
     c.result.registration = cr.registration;
     for (const auto& r : cr.regions)
-        c.result.regions.push_back(
-            {r.name, r.pixel_count, {r.verdicts.at("S0"), r.verdicts.at("S1"), r.verdicts.at("S2")}, r.verdict});
+        c.result.regions.push_back({r.name,
+                                    r.pixel_count,
+                                    {r.verdicts.at("S0"), r.verdicts.at("S1"), r.verdicts.at("S2")},
+                                    r.verdict});
     c.result.report_summary = report::summary_paragraph(cr);
-    if (cr.calibration_range) c.result.calibration_outside_fraction = cr.calibration_range->outside_fraction;
+    if (cr.calibration_range)
+        c.result.calibration_outside_fraction = cr.calibration_range->outside_fraction;
 }
 
 void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     Chain c(opt, result, stage,
-            simulation::load_scene(opt.scene_file.empty() ? find_config("scenes/panels_night.yaml") : opt.scene_file));
+            simulation::load_scene(opt.scene_file.empty() ? find_config("scenes/panels_night.yaml")
+                                                          : opt.scene_file));
     fs::create_directories(c.out);
     c.scene.camera = c.scene.camera.resized(opt.width, opt.height);
     c.scene.sampling.samples_per_pixel = opt.spp;

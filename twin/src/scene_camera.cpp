@@ -26,27 +26,33 @@ fs::path resolve_scene_path(const acquisition::DeviceUri& u) {
     const fs::path path(u.target);
     if (path.is_absolute() || fs::exists(path)) return path;
     const auto first = path.begin();
-    if (first != path.end() && *first == "config") return find_config(path.lexically_relative("config"));
-    fail("device URI '{}': scene file '{}' not found (relative to {})", u.text, u.target, fs::current_path().string());
+    if (first != path.end() && *first == "config")
+        return find_config(path.lexically_relative("config"));
+    fail("device URI '{}': scene file '{}' not found (relative to {})", u.text, u.target,
+         fs::current_path().string());
 }
 
 }  // namespace
 
 std::unique_ptr<acquisition::Camera> open_scene_camera(const std::string& uri) {
     const acquisition::DeviceUri u = acquisition::parse_device_uri(uri);
-    if (u.scheme != "sim" || !is_scene_file(u.target)) fail("device URI '{}': expected sim://<scene.yaml>", uri);
+    if (u.scheme != "sim" || !is_scene_file(u.target))
+        fail("device URI '{}': expected sim://<scene.yaml>", uri);
     u.check_keys({"width", "height", "spp", "fps", "buffers"});
     simulation::Scene scene = simulation::load_scene(resolve_scene_path(u));
-    const int width = u.integer("width", scene.camera.width()), height = u.integer("height", scene.camera.height());
+    const int width = u.integer("width", scene.camera.width()),
+              height = u.integer("height", scene.camera.height());
     if (width < 1 || height < 1 || width > 8192 || height > 8192)
-        fail("device URI '{}': width={} height={} (expected 1…8192 pixels each)", uri, width, height);
+        fail("device URI '{}': width={} height={} (expected 1…8192 pixels each)", uri, width,
+             height);
     scene.camera = scene.camera.resized(width, height);
     scene.sampling.samples_per_pixel = u.integer("spp", scene.sampling.samples_per_pixel);
     if (scene.sampling.samples_per_pixel < 1) fail("device URI '{}': spp must be ≥ 1", uri);
 
-    // The twin instrument's detector and grid, with the night air at the sky's clear-sky temperature.
-    auto world =
-        std::make_shared<TwinWorld>(twin_sensor(scene.band, scene.sky.temperature_k(1.0)), scene.band, width, height);
+    // The twin instrument's detector and grid, with the night air at the sky's clear-sky
+    // temperature.
+    auto world = std::make_shared<TwinWorld>(twin_sensor(scene.band, scene.sky.temperature_k(1.0)),
+                                             scene.band, width, height);
     world->set_scene(simulation::render(scene));
 
     acquisition::SimulatedCameraConfig config;
@@ -56,16 +62,20 @@ std::unique_ptr<acquisition::Camera> open_scene_camera(const std::string& uri) {
     config.frame_rate_hz = u.number("fps", config.frame_rate_hz);
     config.buffers = u.integer("buffers", config.buffers);
     return std::make_unique<acquisition::SimulatedCamera>(
-        config, [world](double angle_deg, std::vector<float>& counts) { world->fill(angle_deg, counts); });
+        config,
+        [world](double angle_deg, std::vector<float>& counts) { world->fill(angle_deg, counts); });
 }
 
 void register_twin_device_schemes() {
     static std::once_flag once;
     std::call_once(once, [] {
-        // sim:// keeps its built-in targets (sim://uniform): the scene camera takes only scene files.
+        // sim:// keeps its built-in targets (sim://uniform): the scene camera takes only scene
+        // files.
         auto built_in = std::make_shared<acquisition::CameraFactory>();
         *built_in = acquisition::register_camera_scheme(
-            "sim", [built_in](const std::string& uri) -> acquisition::Result<std::unique_ptr<acquisition::Camera>> {
+            "sim",
+            [built_in](const std::string& uri)
+                -> acquisition::Result<std::unique_ptr<acquisition::Camera>> {
                 if (is_scene_file(acquisition::parse_device_uri(uri).target))
                     return std::unique_ptr<acquisition::Camera>(open_scene_camera(uri));
                 return (*built_in)(uri);

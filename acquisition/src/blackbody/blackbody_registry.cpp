@@ -1,10 +1,9 @@
-#include "tirpol/acquisition/blackbody.h"
-
 #include <fmt/format.h>
 
 #include <thread>
 
 #include "device_uri_query.h"
+#include "tirpol/acquisition/blackbody.h"
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/acquisition/internal/fluke_blackbody.h"
 #include "tirpol/acquisition/internal/serial_port.h"
@@ -17,7 +16,8 @@ namespace {
 
 using detail::bad_uri;
 
-/// The simulator in-process behind a BytePort: the driver speaks the same bytes as on a serial line.
+/// The simulator in-process behind a BytePort: the driver speaks the same bytes as on a serial
+/// line.
 class SimulatorPort final : public BytePort {
 public:
     explicit SimulatorPort(BlackbodySimulatorOptions options) : m_simulator(std::move(options)) {}
@@ -28,7 +28,8 @@ public:
     }
     Result<std::vector<std::uint8_t>> read_some(std::chrono::milliseconds timeout) override {
         if (m_pending.empty()) {
-            std::this_thread::sleep_for(timeout);  // a silent device: the host waits out its timeout
+            std::this_thread::sleep_for(
+                timeout);  // a silent device: the host waits out its timeout
             return DeviceError{DeviceErrorCode::Timeout,
                                fmt::format("{}: no reply within {} ms", name(), timeout.count())};
         }
@@ -48,12 +49,15 @@ private:
 FlukeBlackbodyOptions model_range(const std::string& model) {
     FlukeBlackbodyOptions o;
     const bool is_4181 = model == "4181";
-    o.min_set_point_k = (is_4181 ? fluke_scpi::kModel4181MinC : fluke_scpi::kModel4180MinC) + kZeroCelsiusK;
-    o.max_set_point_k = (is_4181 ? fluke_scpi::kModel4181MaxC : fluke_scpi::kModel4180MaxC) + kZeroCelsiusK;
+    o.min_set_point_k =
+        (is_4181 ? fluke_scpi::kModel4181MinC : fluke_scpi::kModel4180MinC) + kZeroCelsiusK;
+    o.max_set_point_k =
+        (is_4181 ? fluke_scpi::kModel4181MaxC : fluke_scpi::kModel4180MaxC) + kZeroCelsiusK;
     return o;
 }
 
-Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri, const DeviceUri& u,
+Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string& uri,
+                                                               const DeviceUri& u,
                                                                const std::string& model) {
     if (auto s = detail::check_uri_keys(uri, u, {"baud", "timeout_ms"}); !s) return s.error();
     auto baud = detail::uri_integer(uri, u, "baud", fluke_scpi::kDefaultBaud);
@@ -61,7 +65,8 @@ Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string
     if (!baud) return baud.error();
     if (!timeout) return timeout.error();
     if (timeout.value() < 1) return bad_uri(uri, "timeout_ms must be ≥ 1");
-    if (u.target.empty()) return bad_uri(uri, "expected a serial device path, e.g. fluke-4180:///dev/ttyUSB0");
+    if (u.target.empty())
+        return bad_uri(uri, "expected a serial device path, e.g. fluke-4180:///dev/ttyUSB0");
     FlukeBlackbodyOptions options = model_range(model);
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     auto port = open_serial_port(u.target, SerialSettings{baud.value(), false});
@@ -70,8 +75,9 @@ Result<std::unique_ptr<BlackbodyController>> open_serial_fluke(const std::string
 }
 
 Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, const DeviceUri& u) {
-    if (auto s = detail::check_uri_keys(
-            uri, u, {"tau_s", "ambient_k", "noise_k", "limit_k", "window_s", "model", "fault", "fault_on_set", "seed"});
+    if (auto s = detail::check_uri_keys(uri, u,
+                                        {"tau_s", "ambient_k", "noise_k", "limit_k", "window_s",
+                                         "model", "fault", "fault_on_set", "seed"});
         !s)
         return s.error();
     BlackbodySimulatorOptions o;
@@ -97,8 +103,9 @@ Result<std::unique_ptr<BlackbodyController>> open_sim(const std::string& uri, co
     if (auto it = u.query.find("fault"); it != u.query.end()) {
         const auto f = parse_blackbody_fault(it->second);
         if (!f)
-            return bad_uri(uri,
-                           fmt::format("fault={}: expected none, over-temperature, no-reply or garbled", it->second));
+            return bad_uri(
+                uri, fmt::format("fault={}: expected none, over-temperature, no-reply or garbled",
+                                 it->second));
         o.fault = *f;
     }
     const std::string model = o.model;
@@ -123,7 +130,9 @@ Result<std::unique_ptr<BlackbodyController>> open_blackbody(const std::string& u
     if (u.scheme == "fluke-4181") return open_serial_fluke(uri, u, "4181");
     if (u.scheme == "sim") return open_sim(uri, u);
     return bad_uri(
-        uri, fmt::format("unknown blackbody controller type '{}' (expected fluke-4180, fluke-4181 or sim)", u.scheme));
+        uri, fmt::format(
+                 "unknown blackbody controller type '{}' (expected fluke-4180, fluke-4181 or sim)",
+                 u.scheme));
 }
 
 }  // namespace tirpol::acquisition

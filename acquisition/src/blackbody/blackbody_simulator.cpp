@@ -44,8 +44,10 @@ BlackbodySimulator::BlackbodySimulator(BlackbodySimulatorOptions options, Clock:
     }
     if (!(m_options.time_constant_s > 0.0) || !(m_options.stability_window_s > 0.0) ||
         !(m_options.sample_period_s > 0.0))
-        fail("blackbody simulator: time constant, stability window and sample period must be > 0 s (got {}, {}, {})",
-             m_options.time_constant_s, m_options.stability_window_s, m_options.sample_period_s);
+        fail(
+            "blackbody simulator: time constant, stability window and sample period must be > 0 s "
+            "(got {}, {}, {})",
+            m_options.time_constant_s, m_options.stability_window_s, m_options.sample_period_s);
     if (!(m_options.noise_k >= 0.0) || !(m_options.stability_limit_k > 0.0))
         fail("blackbody simulator: noise must be ≥ 0 K and the stability limit > 0 K");
 }
@@ -65,19 +67,24 @@ void BlackbodySimulator::set_target_k(double target_k, Clock::time_point now) {
 }
 
 void BlackbodySimulator::sample_until(Clock::time_point now) {
-    // Samples on the device's own clock, however often the host asks: the flag does not depend on polling.
+    // Samples on the device's own clock, however often the host asks: the flag does not depend on
+    // polling.
     std::normal_distribution<double> noise(0.0, m_options.noise_k);
-    const auto period = std::chrono::duration_cast<Clock::duration>(Seconds(m_options.sample_period_s));
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(Seconds(m_options.sample_period_s));
     for (; m_next_sample <= now; m_next_sample += period)
-        m_samples.push_back(
-            {m_next_sample, plate_temperature_k(m_next_sample) + (m_options.noise_k > 0 ? noise(m_rng) : 0.0)});
-    const auto window = std::chrono::duration_cast<Clock::duration>(Seconds(m_options.stability_window_s));
-    while (m_samples.size() > 1 && m_samples.front().at < now - window - period) m_samples.pop_front();
+        m_samples.push_back({m_next_sample, plate_temperature_k(m_next_sample) +
+                                                (m_options.noise_k > 0 ? noise(m_rng) : 0.0)});
+    const auto window =
+        std::chrono::duration_cast<Clock::duration>(Seconds(m_options.stability_window_s));
+    while (m_samples.size() > 1 && m_samples.front().at < now - window - period)
+        m_samples.pop_front();
 }
 
 bool BlackbodySimulator::stable() const {
     if (m_tripped || m_samples.empty()) return false;
-    const auto window = std::chrono::duration_cast<Clock::duration>(Seconds(m_options.stability_window_s));
+    const auto window =
+        std::chrono::duration_cast<Clock::duration>(Seconds(m_options.stability_window_s));
     const auto end = m_samples.back().at;
     if (m_samples.front().at > end - window) return false;  // not a full window of readings yet
     double sum = 0.0, lo = 1e300, hi = -1e300;
@@ -98,21 +105,26 @@ std::vector<std::uint8_t> BlackbodySimulator::poll(Clock::time_point now) {
     return {};
 }
 
-std::vector<std::uint8_t> BlackbodySimulator::receive(std::span<const std::uint8_t> bytes, Clock::time_point now) {
+std::vector<std::uint8_t> BlackbodySimulator::receive(std::span<const std::uint8_t> bytes,
+                                                      Clock::time_point now) {
     sample_until(now);
     m_rx.insert(m_rx.end(), bytes.begin(), bytes.end());
     std::string out;
     for (;;) {
-        const auto end = std::find_if(m_rx.begin(), m_rx.end(), [](std::uint8_t c) { return c == '\r' || c == '\n'; });
+        const auto end = std::find_if(m_rx.begin(), m_rx.end(),
+                                      [](std::uint8_t c) { return c == '\r' || c == '\n'; });
         if (end == m_rx.end()) break;
         const std::string line(m_rx.begin(), end);
         m_rx.erase(m_rx.begin(), end + 1);
-        if (line.find_first_not_of(" \t") == std::string::npos) continue;  // CR LF: the LF ends an empty command
+        if (line.find_first_not_of(" \t") == std::string::npos)
+            continue;  // CR LF: the LF ends an empty command
         std::string reply = execute(line, now);
         if (m_silent || reply.empty()) continue;
         if (m_garbled) {
-            // Line noise: bits flipped in every reply, as a failing cable or a wrong baud rate gives.
-            for (std::size_t i = 0; i < reply.size(); i += 2) reply[i] = static_cast<char>(reply[i] ^ 0x5A);
+            // Line noise: bits flipped in every reply, as a failing cable or a wrong baud rate
+            // gives.
+            for (std::size_t i = 0; i < reply.size(); i += 2)
+                reply[i] = static_cast<char>(reply[i] ^ 0x5A);
         }
         out += reply + "\r\n";
     }
@@ -128,9 +140,11 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
         return std::string();
     };
     auto number_argument = [&]() { return fs::parse_number(argument); };
-    const double reading_k = m_samples.empty() ? plate_temperature_k(now) : m_samples.back().reading_k;
+    const double reading_k =
+        m_samples.empty() ? plate_temperature_k(now) : m_samples.back().reading_k;
 
-    if (header == "*IDN?") return fmt::format("FLUKE,{},SIM{:05},1.00", m_options.model, m_options.seed % 100000);
+    if (header == "*IDN?")
+        return fmt::format("FLUKE,{},SIM{:05},1.00", m_options.model, m_options.seed % 100000);
     if (header == "*CLS") {
         m_errors.clear();
         return {};
@@ -143,7 +157,8 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
     }
     if (header == "UNIT:TEMP?") return "C";
     if (header == "UNIT:TEMP") {
-        if (argument != "C" && argument != "c") return error(-224, "Illegal parameter value");  // °F not simulated
+        if (argument != "C" && argument != "c")
+            return error(-224, "Illegal parameter value");  // °F not simulated
         return {};
     }
     if (header == "SOUR:SENS:DATA?") return fmt::format("{:.3f}", reading_k - kZeroCelsiusK);
@@ -179,7 +194,8 @@ std::string BlackbodySimulator::execute(const std::string& line, Clock::time_poi
                     break;
             }
         }
-        // A tripped cutout removes heater power: the plate drifts to ambient whatever the set-point.
+        // A tripped cutout removes heater power: the plate drifts to ambient whatever the
+        // set-point.
         set_target_k(m_tripped ? m_options.ambient_k : m_set_point_k, now);
         return {};
     }

@@ -13,7 +13,9 @@ namespace tirpol::acquisition {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 }  // namespace
 
 Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, double set_point_k,
@@ -22,16 +24,20 @@ Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, doub
     const auto start = Clock::now();
     if (auto s = controller.set_temperature_k(set_point_k); !s) return s.error();
     std::optional<Clock::time_point> good_since;
-    const auto poll = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(criterion.poll_s));
+    const auto poll = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(criterion.poll_s));
     for (auto next = start;; next += poll) {
         std::this_thread::sleep_until(next);
         if (should_stop && should_stop())
-            return DeviceError{DeviceErrorCode::Stopped,
-                               fmt::format("waiting for the blackbody to reach {:.2f} K was interrupted", set_point_k)};
+            return DeviceError{
+                DeviceErrorCode::Stopped,
+                fmt::format("waiting for the blackbody to reach {:.2f} K was interrupted",
+                            set_point_k)};
         auto status = controller.status();
         if (!status) return status.error();
         const BlackbodyStatus& s = status.value();
-        const bool good = s.stable && std::abs(s.temperature_k - set_point_k) <= criterion.tolerance_k;
+        const bool good =
+            s.stable && std::abs(s.temperature_k - set_point_k) <= criterion.tolerance_k;
         if (!good)
             good_since.reset();
         else if (!good_since)
@@ -41,11 +47,14 @@ Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, doub
         if (seconds_since(start) > criterion.timeout_s)
             return DeviceError{
                 DeviceErrorCode::Timeout,
-                fmt::format("{}: set-point {:.2f} K ({:.2f} °C) not stable within ±{:g} K for {:g} s after {:g} s; "
+                fmt::format("{}: set-point {:.2f} K ({:.2f} °C) not stable within ±{:g} K for {:g} "
+                            "s after {:g} s; "
                             "last reading {:.3f} K, stability flag {}",
-                            controller.info().uri, set_point_k, set_point_k - kZeroCelsiusK, criterion.tolerance_k,
-                            criterion.stable_for_s, criterion.timeout_s, s.temperature_k, s.stable ? 1 : 0)};
-        if (Clock::now() > next + poll) next = Clock::now() - poll;  // a slow reply: no burst of catch-up polls
+                            controller.info().uri, set_point_k, set_point_k - kZeroCelsiusK,
+                            criterion.tolerance_k, criterion.stable_for_s, criterion.timeout_s,
+                            s.temperature_k, s.stable ? 1 : 0)};
+        if (Clock::now() > next + poll)
+            next = Clock::now() - poll;  // a slow reply: no burst of catch-up polls
     }
 }
 

@@ -1,9 +1,10 @@
+#include "tirpol/acquisition/internal/fluke_blackbody.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "tirpol/acquisition/internal/fluke_blackbody.h"
 #include "tirpol/acquisition/internal/fluke_scpi.h"
 #include "tirpol/core/radiometry.h"
 
@@ -25,7 +26,8 @@ std::string printable(const std::string& text) {
 
 class FlukeBlackbody final : public BlackbodyController {
 public:
-    FlukeBlackbody(std::unique_ptr<BytePort> port, std::string uri, const FlukeBlackbodyOptions& options)
+    FlukeBlackbody(std::unique_ptr<BytePort> port, std::string uri,
+                   const FlukeBlackbodyOptions& options)
         : m_port(std::move(port)), m_options(options) {
         m_info.uri = std::move(uri);
         m_info.min_set_point_k = options.min_set_point_k;
@@ -51,19 +53,23 @@ public:
 
     Status set_temperature_k(double set_point_k) override {
         if (!(set_point_k >= m_info.min_set_point_k && set_point_k <= m_info.max_set_point_k))
-            return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: set-point {:.3f} K ({:.3f} °C) is outside the {} range {:.2f}–{:.2f} K",
-                                           m_info.uri, set_point_k, set_point_k - kZeroCelsiusK, m_info.model,
-                                           m_info.min_set_point_k, m_info.max_set_point_k)};
+            return DeviceError{
+                DeviceErrorCode::InvalidArgument,
+                fmt::format(
+                    "{}: set-point {:.3f} K ({:.3f} °C) is outside the {} range {:.2f}–{:.2f} K",
+                    m_info.uri, set_point_k, set_point_k - kZeroCelsiusK, m_info.model,
+                    m_info.min_set_point_k, m_info.max_set_point_k)};
         if (auto s = send(fs::set_point_command(set_point_k - kZeroCelsiusK)); !s) return s;
         if (auto s = check_error_queue("SOUR:SPO"); !s) return s;
         auto back = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!back) return back.error();
-        // The command carries millikelvin: a read-back further off means the device holds another set-point.
+        // The command carries millikelvin: a read-back further off means the device holds another
+        // set-point.
         if (std::abs(back.value() + kZeroCelsiusK - set_point_k) > 0.0015)
-            return DeviceError{DeviceErrorCode::DeviceFault,
-                               fmt::format("{}: set-point {:.3f} °C sent, the controller holds {:.3f} °C", m_info.uri,
-                                           set_point_k - kZeroCelsiusK, back.value())};
+            return DeviceError{
+                DeviceErrorCode::DeviceFault,
+                fmt::format("{}: set-point {:.3f} °C sent, the controller holds {:.3f} °C",
+                            m_info.uri, set_point_k - kZeroCelsiusK, back.value())};
         return ok_status();
     }
 
@@ -77,12 +83,11 @@ public:
         if (!t) return t.error();
         s.temperature_k = t.value() + kZeroCelsiusK;
         if (*trip)
-            return DeviceError{
-                DeviceErrorCode::DeviceFault,
-                fmt::format(
-                    "{}: the over-temperature cutout has tripped, the heater is off (plate at {:.2f} K); reset the "
-                    "cutout at the controller",
-                    m_info.uri, s.temperature_k)};
+            return DeviceError{DeviceErrorCode::DeviceFault,
+                               fmt::format("{}: the over-temperature cutout has tripped, the "
+                                           "heater is off (plate at {:.2f} K); reset the "
+                                           "cutout at the controller",
+                                           m_info.uri, s.temperature_k)};
         auto sp = number(fs::kReadSetPoint, "SOUR:SPO?");
         if (!sp) return sp.error();
         s.set_point_k = sp.value() + kZeroCelsiusK;
@@ -95,10 +100,13 @@ public:
     }
 
 private:
-    DeviceError bad_reply(const char* command, const std::string& reply, const char* expected) const {
-        return {DeviceErrorCode::BadReply,
-                fmt::format("{}: reply \"{}\" to {} is not {} (garbled line? check the baud rate and cable)",
-                            m_info.uri, printable(reply), command, expected)};
+    DeviceError bad_reply(const char* command, const std::string& reply,
+                          const char* expected) const {
+        return {
+            DeviceErrorCode::BadReply,
+            fmt::format(
+                "{}: reply \"{}\" to {} is not {} (garbled line? check the baud rate and cable)",
+                m_info.uri, printable(reply), command, expected)};
     }
 
     Status send(std::string_view command) {
@@ -118,15 +126,17 @@ private:
                 if (!line.empty() && line.back() == '\r') line.pop_back();
                 return line;
             }
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+            const auto left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
             auto bytes = m_port->read_some(std::max(left, std::chrono::milliseconds(0)));
             if (!bytes) {
                 if (bytes.error().code != DeviceErrorCode::Timeout) return bytes.error();
                 m_rx.clear();  // a late reply would answer the next query
-                return DeviceError{
-                    DeviceErrorCode::Timeout,
-                    fmt::format("{}: no reply to {} within {} ms (controller off, wrong port or baud rate?)",
-                                m_info.uri, command.substr(0, command.size() - 1), m_options.reply_timeout.count())};
+                return DeviceError{DeviceErrorCode::Timeout,
+                                   fmt::format("{}: no reply to {} within {} ms (controller off, "
+                                               "wrong port or baud rate?)",
+                                               m_info.uri, command.substr(0, command.size() - 1),
+                                               m_options.reply_timeout.count())};
             }
             m_rx.insert(m_rx.end(), bytes.value().begin(), bytes.value().end());
         }
@@ -147,8 +157,9 @@ private:
         const auto e = fs::parse_error(reply.value());
         if (!e) return bad_reply("SYST:ERR?", reply.value(), "<code>,\"<message>\"");
         if (e->code == 0) return ok_status();
-        return DeviceError{e->code == -222 ? DeviceErrorCode::InvalidArgument : DeviceErrorCode::DeviceFault,
-                           fmt::format("{}: {} refused: error {} \"{}\"", m_info.uri, after, e->code, e->message)};
+        return DeviceError{
+            e->code == -222 ? DeviceErrorCode::InvalidArgument : DeviceErrorCode::DeviceFault,
+            fmt::format("{}: {} refused: error {} \"{}\"", m_info.uri, after, e->code, e->message)};
     }
 
     std::unique_ptr<BytePort> m_port;
@@ -159,8 +170,8 @@ private:
 
 }  // namespace
 
-Result<std::unique_ptr<BlackbodyController>> open_fluke_blackbody(std::unique_ptr<BytePort> port, std::string uri,
-                                                                  const FlukeBlackbodyOptions& options) {
+Result<std::unique_ptr<BlackbodyController>> open_fluke_blackbody(
+    std::unique_ptr<BytePort> port, std::string uri, const FlukeBlackbodyOptions& options) {
     auto device = std::make_unique<FlukeBlackbody>(std::move(port), std::move(uri), options);
     if (auto s = device->initialise(); !s) return s.error();
     return std::unique_ptr<BlackbodyController>(std::move(device));

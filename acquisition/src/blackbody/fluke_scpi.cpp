@@ -28,16 +28,21 @@ std::string_view trim(std::string_view s) {
 struct Keyword {
     std::string_view long_form, short_form;
 };
-constexpr std::array kKeywords{Keyword{"SOURCE", "SOUR"},     Keyword{"SPOINT", "SPO"},      Keyword{"SENSE", "SENS"},
-                               Keyword{"DATA", "DATA"},       Keyword{"STABILITY", "STAB"},  Keyword{"TEST", "TEST"},
-                               Keyword{"LIMIT", "LIM"},       Keyword{"PROTECTION", "PROT"}, Keyword{"TRIPPED", "TRIP"},
-                               Keyword{"SYSTEM", "SYST"},     Keyword{"ERROR", "ERR"},       Keyword{"UNIT", "UNIT"},
-                               Keyword{"TEMPERATURE", "TEMP"}};
+constexpr std::array kKeywords{
+    Keyword{"SOURCE", "SOUR"},     Keyword{"SPOINT", "SPO"},      Keyword{"SENSE", "SENS"},
+    Keyword{"DATA", "DATA"},       Keyword{"STABILITY", "STAB"},  Keyword{"TEST", "TEST"},
+    Keyword{"LIMIT", "LIM"},       Keyword{"PROTECTION", "PROT"}, Keyword{"TRIPPED", "TRIP"},
+    Keyword{"SYSTEM", "SYST"},     Keyword{"ERROR", "ERR"},       Keyword{"UNIT", "UNIT"},
+    Keyword{"TEMPERATURE", "TEMP"}};
 
 }  // namespace
 
-std::string set_point_command(double set_point_c) { return fmt::format("SOUR:SPO {:.3f}\n", set_point_c); }
-std::string stability_limit_command(double limit_c) { return fmt::format("SOUR:STAB:LIM {:.3f}\n", limit_c); }
+std::string set_point_command(double set_point_c) {
+    return fmt::format("SOUR:SPO {:.3f}\n", set_point_c);
+}
+std::string stability_limit_command(double limit_c) {
+    return fmt::format("SOUR:STAB:LIM {:.3f}\n", limit_c);
+}
 
 std::string canonical_header(std::string_view header) {
     std::string text = upper(trim(header));
@@ -47,7 +52,8 @@ std::string canonical_header(std::string_view header) {
     std::size_t start = 0;
     while (start <= text.size()) {
         const auto colon = text.find(':', start);
-        const std::string word = text.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+        const std::string word =
+            text.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
         std::string canonical = word;
         for (const auto& k : kKeywords)
             if (word == k.long_form || word == k.short_form) canonical = k.short_form;
@@ -63,7 +69,8 @@ std::optional<double> parse_number(std::string_view reply) {
     if (!reply.empty() && reply.front() == '+') reply.remove_prefix(1);
     double v = 0.0;
     const auto r = std::from_chars(reply.data(), reply.data() + reply.size(), v);
-    if (reply.empty() || r.ec != std::errc() || r.ptr != reply.data() + reply.size() || !std::isfinite(v))
+    if (reply.empty() || r.ec != std::errc() || r.ptr != reply.data() + reply.size() ||
+        !std::isfinite(v))
         return std::nullopt;
     return v;
 }
@@ -83,13 +90,16 @@ std::optional<ErrorEntry> parse_error(std::string_view reply) {
     std::string_view message = trim(reply.substr(comma + 1));
     ErrorEntry e;
     const auto r = std::from_chars(code_text.data(), code_text.data() + code_text.size(), e.code);
-    if (code_text.empty() || r.ec != std::errc() || r.ptr != code_text.data() + code_text.size()) return std::nullopt;
+    if (code_text.empty() || r.ec != std::errc() || r.ptr != code_text.data() + code_text.size())
+        return std::nullopt;
     if (message.size() < 2 || message.front() != '"' || message.back() != '"') return std::nullopt;
     e.message = std::string(message.substr(1, message.size() - 2));
     return e;
 }
 
-std::string format_error(const ErrorEntry& entry) { return fmt::format("{},\"{}\"", entry.code, entry.message); }
+std::string format_error(const ErrorEntry& entry) {
+    return fmt::format("{},\"{}\"", entry.code, entry.message);
+}
 
 std::optional<Identity> parse_identity(std::string_view reply) {
     reply = trim(reply);
@@ -98,12 +108,13 @@ std::optional<Identity> parse_identity(std::string_view reply) {
     for (std::size_t i = 0; i < fields.size(); ++i) {
         const auto comma = reply.find(',', start);
         if ((comma == std::string_view::npos) != (i == fields.size() - 1)) return std::nullopt;
-        fields[i] = std::string(
-            trim(reply.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        fields[i] = std::string(trim(reply.substr(
+            start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
         if (fields[i].empty()) return std::nullopt;
         start = comma + 1;
     }
-    const bool printable = std::all_of(reply.begin(), reply.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+    const bool printable =
+        std::all_of(reply.begin(), reply.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
     if (!printable) return std::nullopt;
     return Identity{fields[0], fields[1], fields[2], fields[3]};
 }

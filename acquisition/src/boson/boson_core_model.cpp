@@ -9,7 +9,8 @@ namespace tirpol::acquisition {
 
 using namespace boson;
 
-BosonCoreModel::BosonCoreModel(BosonCoreConfig config) : m_config(std::move(config)), m_power_up(Clock::now()) {
+BosonCoreModel::BosonCoreModel(BosonCoreConfig config)
+    : m_config(std::move(config)), m_power_up(Clock::now()) {
     if (!(m_config.frame_rate_hz > 0.0))
         fail("Boson simulator: frame_rate_hz = {} (expected > 0)", m_config.frame_rate_hz);
     if (!(m_config.ffc_duration_s > 0.0))
@@ -17,8 +18,8 @@ BosonCoreModel::BosonCoreModel(BosonCoreConfig config) : m_config(std::move(conf
     if (!(m_config.ffc_threshold_k >= 0.0))
         fail("Boson simulator: ffc_threshold_k = {} (expected ≥ 0)", m_config.ffc_threshold_k);
     if (m_config.part_number.size() > 20)
-        fail("Boson simulator: part number '{}' has {} characters (at most 20)", m_config.part_number,
-             m_config.part_number.size());
+        fail("Boson simulator: part number '{}' has {} characters (at most 20)",
+             m_config.part_number, m_config.part_number.size());
     m_fpa_at_ffc_k = m_config.fpa_start_k;
 }
 
@@ -34,8 +35,8 @@ std::uint32_t BosonCoreModel::frames_at(Clock::time_point now) const {
 
 void BosonCoreModel::start_ffc(Clock::time_point now, bool automatic) {
     m_in_ffc = true;
-    m_ffc_end =
-        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_config.ffc_duration_s));
+    m_ffc_end = now + std::chrono::duration_cast<Clock::duration>(
+                          std::chrono::duration<double>(m_config.ffc_duration_s));
     m_last_ffc_frame = frames_at(now);
     // The FFC measures the shutter now: the drift reference is the FPA temperature at its start.
     m_fpa_at_ffc_k = fpa_k(now);
@@ -152,11 +153,13 @@ void BosonCoreModel::apply(std::vector<float>& counts, Clock::time_point now) {
         const double frame_step = m_config.ffc_step_std_counts > 0.0 ? step(rng) : 0.0;
         m_offsets.resize(counts.size());
         for (float& o : m_offsets)
-            o = static_cast<float>(frame_step + (m_config.ffc_pixel_std_counts > 0.0 ? pixel(rng) : 0.0));
+            o = static_cast<float>(frame_step +
+                                   (m_config.ffc_pixel_std_counts > 0.0 ? pixel(rng) : 0.0));
         m_offsets_generation = m_completed;
     }
     const double drift = m_config.offset_counts_per_k * (fpa_k(now) - m_fpa_at_ffc_k);
-    for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += m_offsets[i] + static_cast<float>(drift);
+    for (std::size_t i = 0; i < counts.size(); ++i)
+        counts[i] += m_offsets[i] + static_cast<float>(drift);
 }
 
 }  // namespace tirpol::acquisition

@@ -10,7 +10,9 @@ namespace {
 constexpr double kZeroCelsiusK = 273.15;
 
 Reply ok_reply(const Command& c) { return Reply{c.sequence, c.function, kSuccess, {}}; }
-Reply error_reply(const Command& c, std::uint32_t code) { return Reply{c.sequence, c.function, code, {}}; }
+Reply error_reply(const Command& c, std::uint32_t code) {
+    return Reply{c.sequence, c.function, code, {}};
+}
 Reply u32_reply(const Command& c, std::uint32_t value) {
     Reply r = ok_reply(c);
     append_u32(r.data, value);
@@ -72,7 +74,8 @@ Reply BosonSimulator::answer(const Command& c, Clock::time_point now) {
         case kRoicGetFrameCount:
             return u32_reply(c, core.frame_count(now));
         case kBosonGetFfcTempThreshold:
-            return u16_reply(c, static_cast<std::uint16_t>(std::lround(core.ffc_threshold_k() * 10.0)));
+            return u16_reply(
+                c, static_cast<std::uint16_t>(std::lround(core.ffc_threshold_k() * 10.0)));
         case kBosonSetFfcTempThreshold:
             if (c.data.size() < 2) return error_reply(c, kCamPackageInsufficientBytes);
             core.set_ffc_threshold_k(read_u16(c.data, 0) / 10.0);
@@ -82,18 +85,23 @@ Reply BosonSimulator::answer(const Command& c, Clock::time_point now) {
     }
 }
 
-std::vector<std::uint8_t> BosonSimulator::receive(std::span<const std::uint8_t> bytes, Clock::time_point now) {
+std::vector<std::uint8_t> BosonSimulator::receive(std::span<const std::uint8_t> bytes,
+                                                  Clock::time_point now) {
     for (const DecodedFrame& frame : m_decoder.feed(bytes)) {
-        // A damaged command is not answered (the host times out), as the core's frame layer drops it.
+        // A damaged command is not answered (the host times out), as the core's frame layer drops
+        // it.
         if (frame.status != FrameStatus::Ok || frame.channel != kCommandChannel) continue;
         const auto command = parse_command(frame.payload);
         if (!command) continue;
         ++m_commands;
-        const bool faulty = m_options.fault != BosonSimFault::None && m_commands == m_options.fault_on_command;
-        if (m_options.fault == BosonSimFault::Silent && m_commands >= m_options.fault_on_command) continue;
+        const bool faulty =
+            m_options.fault != BosonSimFault::None && m_commands == m_options.fault_on_command;
+        if (m_options.fault == BosonSimFault::Silent && m_commands >= m_options.fault_on_command)
+            continue;
         if (faulty && m_options.fault == BosonSimFault::DropReply) continue;
         Reply reply = answer(*command, now);
-        if (faulty && m_options.fault == BosonSimFault::WrongSequence) reply.sequence = next_sequence(reply.sequence);
+        if (faulty && m_options.fault == BosonSimFault::WrongSequence)
+            reply.sequence = next_sequence(reply.sequence);
         std::vector<std::uint8_t> out = encode_reply(reply);
         if (faulty && m_options.fault == BosonSimFault::CorruptCrc) {
             // Re-frame with the CRC's low byte flipped (escaping kept valid).
@@ -108,7 +116,9 @@ std::vector<std::uint8_t> BosonSimulator::receive(std::span<const std::uint8_t> 
             auto push = [&out](std::uint8_t b) {
                 if (b != kStartByte && b != kEndByte && b != kEscapeByte) return out.push_back(b);
                 out.push_back(kEscapeByte);
-                out.push_back(b == kStartByte ? kEscapedStart : b == kEndByte ? kEscapedEnd : kEscapedEscape);
+                out.push_back(b == kStartByte ? kEscapedStart
+                              : b == kEndByte ? kEscapedEnd
+                                              : kEscapedEscape);
             };
             out = {kStartByte};
             for (std::uint8_t b : channel_payload) push(b);

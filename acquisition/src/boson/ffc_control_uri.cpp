@@ -12,9 +12,11 @@ namespace tirpol::acquisition {
 Result<std::unique_ptr<FfcControl>> open_ffc_control(const std::string& uri) {
     const DeviceUri u = parse_device_uri(uri);
     if (u.scheme != "boson")
-        fail("camera control link '{}': unknown scheme '{}' (expected boson:///dev/ttyACM0)", uri, u.scheme);
+        fail("camera control link '{}': unknown scheme '{}' (expected boson:///dev/ttyACM0)", uri,
+             u.scheme);
     u.check_keys({"timeout_ms"});
-    if (u.target.empty()) fail("camera control link '{}': no serial port (expected boson:///dev/ttyACM0)", uri);
+    if (u.target.empty())
+        fail("camera control link '{}': no serial port (expected boson:///dev/ttyACM0)", uri);
     BosonControlOptions options;
     const int timeout_ms = u.integer("timeout_ms", 500);
     if (timeout_ms < 1 || timeout_ms > 60000)
@@ -28,8 +30,10 @@ Result<std::unique_ptr<FfcControl>> open_ffc_control(const std::string& uri) {
 FfcOptions parse_ffc_schedule(const std::string& text) {
     FfcOptions options;
     auto bad = [&](const char* why) -> FfcOptions {
-        fail("--ffc '{}': {} (expected detect, every-cycle, every:N with N ≥ 1, or fpa:K with K > 0 kelvin)", text,
-             why);
+        fail(
+            "--ffc '{}': {} (expected detect, every-cycle, every:N with N ≥ 1, or fpa:K with K > 0 "
+            "kelvin)",
+            text, why);
     };
     if (text == "detect" || text == "every-cycle") return options;
     const auto colon = text.find(':');
@@ -38,7 +42,8 @@ FfcOptions parse_ffc_schedule(const std::string& text) {
     if (kind == "every") {
         int n = 0;
         const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
-        if (ec != std::errc() || end != value.data() + value.size() || n < 1) return bad("N is not an integer ≥ 1");
+        if (ec != std::errc() || end != value.data() + value.size() || n < 1)
+            return bad("N is not an integer ≥ 1");
         options.schedule = FfcOptions::Schedule::EveryN;
         options.every_n_cycles = n;
         return options;

@@ -2,6 +2,7 @@
 
 #include "tirpol/acquisition/internal/aravis_camera.h"
 
+#include <arpa/inet.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -13,8 +14,6 @@
 #include <cmath>
 #include <ctime>
 #include <thread>
-
-#include <arpa/inet.h>
 
 #include "camera/aravis_support.h"
 #include "camera/gvcp_probe.h"
@@ -30,11 +29,11 @@ using aravis::to_device_error;
 
 namespace {
 
-constexpr std::array kTemperatureFeatures = {"DeviceTemperature", "SensorTemperature", "FPATemperature",
-                                              "FpaTemperature", "CoreTemperature"};
-/// FLIR-style radiometric (Planck) calibration constants: L = R / (exp(B / T) − F) + O, with R = R1 / R2
-/// on cameras that split it (FLIR's radiometric file metadata calls them PlanckR1, PlanckR2, PlanckB, PlanckF,
-/// PlanckO).
+constexpr std::array kTemperatureFeatures = {"DeviceTemperature", "SensorTemperature",
+                                             "FPATemperature", "FpaTemperature", "CoreTemperature"};
+/// FLIR-style radiometric (Planck) calibration constants: L = R / (exp(B / T) − F) + O, with R = R1
+/// / R2 on cameras that split it (FLIR's radiometric file metadata calls them PlanckR1, PlanckR2,
+/// PlanckB, PlanckF, PlanckO).
 constexpr std::array kPlanckFeatures = {"R", "R1", "R2", "B", "F", "O"};
 constexpr std::array kSupportedPixelFormats = {"Mono8", "Mono10", "Mono12", "Mono14", "Mono16"};
 
@@ -49,7 +48,9 @@ std::string safe(const char* s) { return s != nullptr ? std::string(s) : std::st
 class AravisCamera final : public Camera {
 public:
     AravisCamera(std::string device_id, GObjectPtr<ArvCamera> camera, AravisCameraOptions options)
-        : m_label("aravis://" + device_id), m_camera(std::move(camera)), m_options(std::move(options)) {
+        : m_label("aravis://" + device_id),
+          m_camera(std::move(camera)),
+          m_options(std::move(options)) {
         m_info.uri = m_label;
         ArvDevice* device = arv_camera_get_device(m_camera.get());
         m_genicam = arv_device_get_genicam(device);
@@ -79,10 +80,12 @@ public:
         ArvCamera* cam = m_camera.get();
         GErrorSlot e;
         if (arv_camera_is_gv_device(cam) && m_options.auto_packet_size) {
-            // Negotiates the largest GVSP packet the path carries (test packets of decreasing size);
-            // Aravis keeps the camera's current size when the device cannot fire test packets.
+            // Negotiates the largest GVSP packet the path carries (test packets of decreasing
+            // size); Aravis keeps the camera's current size when the device cannot fire test
+            // packets.
             arv_camera_gv_auto_packet_size(cam, e.out());
-            if (e) return to_device_error(e.get(), m_label, "negotiating the GigE Vision packet size");
+            if (e)
+                return to_device_error(e.get(), m_label, "negotiating the GigE Vision packet size");
         }
         if (m_options.pixel_format) {
             if (Status s = set_pixel_format(*m_options.pixel_format); !s) return s;
@@ -91,7 +94,8 @@ public:
             gint x = 0, y = 0, w = 0, h = 0;
             arv_camera_get_region(cam, &x, &y, &w, &h, e.out());
             if (e) return to_device_error(e.get(), m_label, "reading the region of interest");
-            arv_camera_set_region(cam, 0, 0, m_options.width.value_or(w), m_options.height.value_or(h), e.out());
+            arv_camera_set_region(cam, 0, 0, m_options.width.value_or(w),
+                                  m_options.height.value_or(h), e.out());
             if (e) return to_device_error(e.get(), m_label, "setting the region of interest");
         }
         if (m_options.frame_rate_hz) {
@@ -103,10 +107,13 @@ public:
                 if (e) return to_device_error(e.get(), m_label, "setting TriggerSource=Software");
             } else {
                 arv_camera_clear_triggers(cam, e.out());
-                if (e) return to_device_error(e.get(), m_label, "switching triggers off (free running)");
+                if (e)
+                    return to_device_error(e.get(), m_label,
+                                           "switching triggers off (free running)");
             }
         } else if (m_options.software_trigger) {
-            return DeviceError{DeviceErrorCode::NotSupported, m_label + ": no TriggerMode feature for a software trigger"};
+            return DeviceError{DeviceErrorCode::NotSupported,
+                               m_label + ": no TriggerMode feature for a software trigger"};
         }
         find_temperature_feature();
         return refresh_info();
@@ -118,14 +125,17 @@ public:
         if (m_streaming) return busy("set_pixel_format");
         if (std::find(kSupportedPixelFormats.begin(), kSupportedPixelFormats.end(), format) ==
             kSupportedPixelFormats.end())
-            return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: pixel format '{}' not handled; expected one of {}", m_label, format,
-                                           fmt::join(kSupportedPixelFormats, ", "))};
+            return DeviceError{
+                DeviceErrorCode::InvalidArgument,
+                fmt::format("{}: pixel format '{}' not handled; expected one of {}", m_label,
+                            format, fmt::join(kSupportedPixelFormats, ", "))};
         GErrorSlot e;
-        if (!arv_camera_is_enumeration_entry_available(m_camera.get(), "PixelFormat", format.c_str(), e.out())) {
-            return DeviceError{DeviceErrorCode::NotSupported,
-                               fmt::format("{}: the camera does not offer pixel format '{}' (available: {})", m_label,
-                                           format, available_entries("PixelFormat"))};
+        if (!arv_camera_is_enumeration_entry_available(m_camera.get(), "PixelFormat",
+                                                       format.c_str(), e.out())) {
+            return DeviceError{
+                DeviceErrorCode::NotSupported,
+                fmt::format("{}: the camera does not offer pixel format '{}' (available: {})",
+                            m_label, format, available_entries("PixelFormat"))};
         }
         arv_camera_set_pixel_format_from_string(m_camera.get(), format.c_str(), e.out());
         if (e) return to_device_error(e.get(), m_label, "setting PixelFormat=" + format);
@@ -134,7 +144,8 @@ public:
 
     Status set_frame_rate(double hz) override {
         if (!(hz > 0.0) || !std::isfinite(hz))
-            return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: frame rate {} Hz", m_label, hz)};
+            return DeviceError{DeviceErrorCode::InvalidArgument,
+                               fmt::format("{}: frame rate {} Hz", m_label, hz)};
         ArvCamera* cam = m_camera.get();
         GErrorSlot e;
         for (const char* name : {"AcquisitionFrameRate", "AcquisitionFrameRateAbs"}) {
@@ -142,15 +153,18 @@ public:
             if (node == nullptr || !ARV_IS_GC_FLOAT(node) || ARV_IS_GC_ENUMERATION(node)) continue;
             if (arv_camera_is_feature_available(cam, "AcquisitionFrameRateEnable", nullptr)) {
                 arv_camera_set_boolean(cam, "AcquisitionFrameRateEnable", TRUE, e.out());
-                if (e) return to_device_error(e.get(), m_label, "setting AcquisitionFrameRateEnable=true");
+                if (e)
+                    return to_device_error(e.get(), m_label,
+                                           "setting AcquisitionFrameRateEnable=true");
             }
             auto* feature = ARV_GC_FLOAT(node);
             const double lo = arv_gc_float_get_min(feature, nullptr);
             const double hi = arv_gc_float_get_max(feature, nullptr);
             if (hz < lo || hz > hi)
-                return DeviceError{DeviceErrorCode::InvalidArgument,
-                                   fmt::format("{}: frame rate {} Hz outside {}'s range [{}, {}] Hz", m_label, hz,
-                                               name, lo, hi)};
+                return DeviceError{
+                    DeviceErrorCode::InvalidArgument,
+                    fmt::format("{}: frame rate {} Hz outside {}'s range [{}, {}] Hz", m_label, hz,
+                                name, lo, hi)};
             arv_gc_float_set_value(feature, hz, e.out());
             if (e) return to_device_error(e.get(), m_label, fmt::format("setting {}={}", name, hz));
             m_frame_rate_feature = name;
@@ -161,9 +175,11 @@ public:
             if (node == nullptr || !ARV_IS_GC_ENUMERATION(node)) continue;
             return set_frame_rate_enum(name, hz);
         }
-        return DeviceError{DeviceErrorCode::NotSupported,
-                           m_label + ": no frame-rate feature (probed AcquisitionFrameRate, AcquisitionFrameRateAbs, "
-                                     "IRFrameRate, FrameRate)"};
+        return DeviceError{
+            DeviceErrorCode::NotSupported,
+            m_label +
+                ": no frame-rate feature (probed AcquisitionFrameRate, AcquisitionFrameRateAbs, "
+                "IRFrameRate, FrameRate)"};
     }
 
     Status start() override {
@@ -197,7 +213,9 @@ public:
         if (!m_streaming) return ok_status();
         m_streaming = false;
         GErrorSlot e;
-        if (m_gone) return ok_status();  // nothing to tell a camera that is gone; released by the destructor
+        if (m_gone)
+            return ok_status();  // nothing to tell a camera that is gone; released by the
+                                 // destructor
         arv_camera_stop_acquisition(m_camera.get(), e.out());
         m_stream.reset();  // stops the stream thread and frees its buffers
         if (e) return to_device_error(e.get(), m_label, "AcquisitionStop");
@@ -206,7 +224,8 @@ public:
 
     Result<Frame> grab(std::chrono::milliseconds timeout) override {
         if (!m_streaming)
-            return DeviceError{DeviceErrorCode::InvalidArgument, m_label + ": grab() before start()"};
+            return DeviceError{DeviceErrorCode::InvalidArgument,
+                               m_label + ": grab() before start()"};
         if (m_options.software_trigger) {
             GErrorSlot e;
             arv_camera_software_trigger(m_camera.get(), e.out());
@@ -216,7 +235,8 @@ public:
         const auto deadline = Clock::now() + timeout;
         auto last_sign_of_life = Clock::now();
         for (;;) {
-            if (m_control_lost) return disconnected("Aravis's heartbeat reports the control channel lost");
+            if (m_control_lost)
+                return disconnected("Aravis's heartbeat reports the control channel lost");
             const auto now = Clock::now();
             if (now - last_sign_of_life >= kProbeAfterSilence) {
                 if (auto lost = check_alive(); !lost.empty()) return disconnected(lost);
@@ -227,7 +247,8 @@ public:
             // Short waits: a camera that vanished is noticed by the probe within about a second,
             // not after the whole frame timeout.
             const auto wait = std::min<std::chrono::microseconds>(left, kProbeAfterSilence);
-            ArvBuffer* buffer = arv_stream_timeout_pop_buffer(m_stream.get(), static_cast<guint64>(wait.count()));
+            ArvBuffer* buffer =
+                arv_stream_timeout_pop_buffer(m_stream.get(), static_cast<guint64>(wait.count()));
             if (buffer == nullptr) continue;
             last_sign_of_life = Clock::now();
             Frame frame;
@@ -235,8 +256,9 @@ public:
             arv_stream_push_buffer(m_stream.get(), buffer);
             if (complete) return frame;
         }
-        return DeviceError{DeviceErrorCode::Timeout,
-                           fmt::format("{}: no complete frame within {} ms", m_label, timeout.count())};
+        return DeviceError{
+            DeviceErrorCode::Timeout,
+            fmt::format("{}: no complete frame within {} ms", m_label, timeout.count())};
     }
 
     StreamStatistics statistics() const override { return m_stats; }
@@ -256,7 +278,8 @@ private:
         if (!ARV_IS_GV_DEVICE(device)) return std::nullopt;
         GSocketAddress* address = arv_gv_device_get_device_address(ARV_GV_DEVICE(device));
         sockaddr_in native{};
-        if (address == nullptr || !g_socket_address_to_native(address, &native, sizeof native, nullptr))
+        if (address == nullptr ||
+            !g_socket_address_to_native(address, &native, sizeof native, nullptr))
             return std::nullopt;
         return native;
     }
@@ -264,14 +287,18 @@ private:
     /// Empty while the camera answers on its control channel, else what shows it is gone.
     std::string check_alive() const {
         if (!m_control_address) return {};
-        switch (gvcp::probe_register(*m_control_address, gvcp::kVersionRegister, kProbeTimeout, kProbeTries)) {
-            case gvcp::ProbeResult::Answered: return {};
+        switch (gvcp::probe_register(*m_control_address, gvcp::kVersionRegister, kProbeTimeout,
+                                     kProbeTries)) {
+            case gvcp::ProbeResult::Answered:
+                return {};
             case gvcp::ProbeResult::Refused:
-                return "its control port refuses a register read (ICMP port unreachable: the device or the program "
+                return "its control port refuses a register read (ICMP port unreachable: the "
+                       "device or the program "
                        "serving it is gone)";
             case gvcp::ProbeResult::Silent:
-                return fmt::format("it answers no register read on its control channel ({} tries of {} ms)",
-                                   kProbeTries, kProbeTimeout.count());
+                return fmt::format(
+                    "it answers no register read on its control channel ({} tries of {} ms)",
+                    kProbeTries, kProbeTimeout.count());
         }
         return {};
     }
@@ -279,12 +306,14 @@ private:
     DeviceError disconnected(const std::string& why) {
         m_gone = true;
         return {DeviceErrorCode::Disconnected,
-                fmt::format("{}: no frame for {} ms and {}; the camera is disconnected (cable, power or network?)",
+                fmt::format("{}: no frame for {} ms and {}; the camera is disconnected (cable, "
+                            "power or network?)",
                             m_label, kProbeAfterSilence.count(), why)};
     }
 
     DeviceError busy(const char* what) const {
-        return {DeviceErrorCode::InvalidArgument, fmt::format("{}: {} while streaming; stop() first", m_label, what)};
+        return {DeviceErrorCode::InvalidArgument,
+                fmt::format("{}: {} while streaming; stop() first", m_label, what)};
     }
 
     std::string available_entries(const char* feature) const {
@@ -300,7 +329,8 @@ private:
         guint n = 0;
         GErrorSlot e;
         std::unique_ptr<const char*, aravis::GFree> entries(
-            arv_camera_dup_available_enumerations_as_strings(m_camera.get(), feature.c_str(), &n, e.out()));
+            arv_camera_dup_available_enumerations_as_strings(m_camera.get(), feature.c_str(), &n,
+                                                             e.out()));
         if (e) return to_device_error(e.get(), m_label, "listing " + feature + " entries");
         std::string best;
         double best_error = 0.0;
@@ -313,14 +343,16 @@ private:
                 best_error = error;
             }
         }
-        // Thermal cores offer a few fixed rates: choose one only when it is the rate asked for (±1 %),
-        // never silently another.
+        // Thermal cores offer a few fixed rates: choose one only when it is the rate asked for (±1
+        // %), never silently another.
         if (best.empty() || best_error > 0.01)
-            return DeviceError{DeviceErrorCode::InvalidArgument,
-                               fmt::format("{}: {} Hz is not one of the rates of enumeration {} ({})", m_label, hz,
-                                           feature, available_entries(feature.c_str()))};
+            return DeviceError{
+                DeviceErrorCode::InvalidArgument,
+                fmt::format("{}: {} Hz is not one of the rates of enumeration {} ({})", m_label, hz,
+                            feature, available_entries(feature.c_str()))};
         arv_camera_set_string(m_camera.get(), feature.c_str(), best.c_str(), e.out());
-        if (e) return to_device_error(e.get(), m_label, fmt::format("setting {}={}", feature, best));
+        if (e)
+            return to_device_error(e.get(), m_label, fmt::format("setting {}={}", feature, best));
         m_frame_rate_feature = feature;
         return refresh_info();
     }
@@ -334,7 +366,8 @@ private:
             if (node == nullptr) continue;
             GErrorSlot e;
             if (ARV_IS_GC_ENUMERATION(node)) {
-                const char* entry = arv_gc_enumeration_get_string_value(ARV_GC_ENUMERATION(node), e.out());
+                const char* entry =
+                    arv_gc_enumeration_get_string_value(ARV_GC_ENUMERATION(node), e.out());
                 if (!e && entry != nullptr) return frame_rate_from_entry_name(entry);
             } else if (ARV_IS_GC_FLOAT(node)) {
                 const double v = arv_gc_float_get_value(ARV_GC_FLOAT(node), e.out());
@@ -348,7 +381,8 @@ private:
         for (const char* name : kTemperatureFeatures) {
             ArvGcNode* node = arv_gc_get_node(m_genicam, name);
             if (node == nullptr || !ARV_IS_GC_FLOAT(node)) continue;
-            // SFNC defines DeviceTemperature in degrees Celsius; a node declaring <Unit>K</Unit> is kelvin.
+            // SFNC defines DeviceTemperature in degrees Celsius; a node declaring <Unit>K</Unit> is
+            // kelvin.
             const std::string unit = safe(arv_gc_float_get_unit(ARV_GC_FLOAT(node)));
             m_temperature_in_kelvin = unit == "K" || unit == "Kelvin";
             m_temperature_feature = name;
@@ -368,11 +402,12 @@ private:
         const ArvPixelFormat format = arv_camera_get_pixel_format(cam, e.out());
         if (e) return to_device_error(e.get(), m_label, "reading PixelFormat");
         m_info.pixel_format = safe(arv_camera_get_pixel_format_as_string(cam, nullptr));
-        // PFNC: bits 16–23 of the pixel format code are the bits a pixel occupies; the significant bits
-        // are in the name (Mono14 → 14).
+        // PFNC: bits 16–23 of the pixel format code are the bits a pixel occupies; the significant
+        // bits are in the name (Mono14 → 14).
         m_info.bits_per_pixel = static_cast<int>(ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format));
         const std::string& name = m_info.pixel_format;
-        if (name.rfind("Mono", 0) == 0 && name.size() > 4 && std::isdigit(static_cast<unsigned char>(name[4])))
+        if (name.rfind("Mono", 0) == 0 && name.size() > 4 &&
+            std::isdigit(static_cast<unsigned char>(name[4])))
             m_info.bits_per_pixel = std::stoi(name.substr(4));
         m_info.frame_rate_hz = current_frame_rate();
         m_info.planck_constants.clear();
@@ -381,20 +416,24 @@ private:
             if (node == nullptr) continue;
             GErrorSlot read_error;
             double value = 0.0;
-            if (ARV_IS_GC_FLOAT(node)) value = arv_gc_float_get_value(ARV_GC_FLOAT(node), read_error.out());
+            if (ARV_IS_GC_FLOAT(node))
+                value = arv_gc_float_get_value(ARV_GC_FLOAT(node), read_error.out());
             else if (ARV_IS_GC_INTEGER(node))
-                value = static_cast<double>(arv_gc_integer_get_value(ARV_GC_INTEGER(node), read_error.out()));
-            else continue;
+                value = static_cast<double>(
+                    arv_gc_integer_get_value(ARV_GC_INTEGER(node), read_error.out()));
+            else
+                continue;
             if (!read_error) m_info.planck_constants[constant] = value;
         }
         return ok_status();
     }
 
     /// Fills `frame` from `buffer` when it holds a complete image; counts ids, losses and damage.
-    /// Only complete frames feed the id unwrapper: Aravis 0.8.26 sets a buffer's frame id from the GVSP
-    /// leader, so a frame whose leader was lost is popped as MISSING_PACKETS still carrying the id of the
-    /// buffer's previous use (or 0) — seen on the fake camera with -r. Damaged buffers are counted as
-    /// incomplete and absorbed by the next id gap; the rest of the gap was never received (dropped).
+    /// Only complete frames feed the id unwrapper: Aravis 0.8.26 sets a buffer's frame id from the
+    /// GVSP leader, so a frame whose leader was lost is popped as MISSING_PACKETS still carrying
+    /// the id of the buffer's previous use (or 0) — seen on the fake camera with -r. Damaged
+    /// buffers are counted as incomplete and absorbed by the next id gap; the rest of the gap was
+    /// never received (dropped).
     bool take(ArvBuffer* buffer, Frame& frame) {
         if (arv_buffer_get_status(buffer) != ARV_BUFFER_STATUS_SUCCESS ||
             arv_buffer_get_payload_type(buffer) != ARV_BUFFER_PAYLOAD_TYPE_IMAGE) {
@@ -414,9 +453,10 @@ private:
         arv_buffer_get_image_padding(buffer, &x_padding, &y_padding);
         const auto stride = static_cast<std::size_t>(frame.width * bytes_per_pixel + x_padding);
         size_t size = 0;
-        const auto* data = static_cast<const std::uint8_t*>(arv_buffer_get_image_data(buffer, &size));
-        const std::size_t needed =
-            stride * static_cast<std::size_t>(frame.height - 1) + static_cast<std::size_t>(frame.width * bytes_per_pixel);
+        const auto* data =
+            static_cast<const std::uint8_t*>(arv_buffer_get_image_data(buffer, &size));
+        const std::size_t needed = stride * static_cast<std::size_t>(frame.height - 1) +
+                                   static_cast<std::size_t>(frame.width * bytes_per_pixel);
         if (data == nullptr || frame.width <= 0 || frame.height <= 0 || size < needed) {
             damaged();
             return false;
@@ -482,8 +522,8 @@ private:
 }  // namespace
 
 const std::vector<std::string>& aravis_frame_rate_feature_names() {
-    static const std::vector<std::string> names = {"AcquisitionFrameRate", "AcquisitionFrameRateAbs", "IRFrameRate",
-                                                   "FrameRate"};
+    static const std::vector<std::string> names = {
+        "AcquisitionFrameRate", "AcquisitionFrameRateAbs", "IRFrameRate", "FrameRate"};
     return names;
 }
 
@@ -521,9 +561,9 @@ std::vector<AravisDeviceInfo> discover_aravis_cameras() {
     std::vector<AravisDeviceInfo> devices;
     const unsigned n = arv_get_n_devices();
     for (unsigned i = 0; i < n; ++i) {
-        devices.push_back({safe(arv_get_device_id(i)), safe(arv_get_device_vendor(i)), safe(arv_get_device_model(i)),
-                           safe(arv_get_device_serial_nbr(i)), safe(arv_get_device_address(i)),
-                           safe(arv_get_device_protocol(i))});
+        devices.push_back({safe(arv_get_device_id(i)), safe(arv_get_device_vendor(i)),
+                           safe(arv_get_device_model(i)), safe(arv_get_device_serial_nbr(i)),
+                           safe(arv_get_device_address(i)), safe(arv_get_device_protocol(i))});
     }
     return devices;
 }
@@ -543,16 +583,21 @@ OpenAttempt open_once(const std::string& device_id, const AravisCameraOptions& o
     const std::string label = "aravis://" + device_id;
     GErrorSlot e;
     GObjectPtr<ArvCamera> camera(arv_camera_new(device_id.c_str(), e.out()));
-    if (e || !camera) return {to_device_error(e.get(), label, "opening the camera"), false, std::nullopt};
+    if (e || !camera)
+        return {to_device_error(e.get(), label, "opening the camera"), false, std::nullopt};
     ArvDevice* device = arv_camera_get_device(camera.get());
     if (ARV_IS_GV_DEVICE(device) && !arv_gv_device_is_controller(ARV_GV_DEVICE(device))) {
         // Aravis opens the camera even when its request for control privilege goes unanswered;
         // every later write would then time out and the stream be refused.
         guint32 heartbeat_ms = 0;
-        const bool read = arv_device_read_register(device, kHeartbeatTimeoutRegister, &heartbeat_ms, nullptr);
-        return {DeviceError{DeviceErrorCode::DeviceFault,
-                            label + ": Controller privilege required: another control session holds the camera"},
-                true, read ? std::optional<guint32>(heartbeat_ms) : std::nullopt};
+        const bool read =
+            arv_device_read_register(device, kHeartbeatTimeoutRegister, &heartbeat_ms, nullptr);
+        return {
+            DeviceError{
+                DeviceErrorCode::DeviceFault,
+                label +
+                    ": Controller privilege required: another control session holds the camera"},
+            true, read ? std::optional<guint32>(heartbeat_ms) : std::nullopt};
     }
     auto result = std::make_unique<AravisCamera>(device_id, std::move(camera), options);
     if (Status s = result->configure(); !s)
@@ -563,13 +608,16 @@ OpenAttempt open_once(const std::string& device_id, const AravisCameraOptions& o
 
 }  // namespace
 
-Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id, const AravisCameraOptions& options) {
-    // Observed with Aravis 0.8.26 and the fake camera on 127.0.0.1: opening a GigE Vision camera by id
-    // when the id is not yet in Aravis's device list (no arv_update_device_list() in this process) gives
-    // a camera that opens but never streams; opened after a list update (or by IP address), it streams.
-    // So refresh the list first unless the id is an address or already listed.
+Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
+                                                   const AravisCameraOptions& options) {
+    // Observed with Aravis 0.8.26 and the fake camera on 127.0.0.1: opening a GigE Vision camera by
+    // id when the id is not yet in Aravis's device list (no arv_update_device_list() in this
+    // process) gives a camera that opens but never streams; opened after a list update (or by IP
+    // address), it streams. So refresh the list first unless the id is an address or already
+    // listed.
     in_addr address{};
-    if (inet_pton(AF_INET, device_id.c_str(), &address) != 1 && !listed(device_id)) arv_update_device_list();
+    if (inet_pton(AF_INET, device_id.c_str(), &address) != 1 && !listed(device_id))
+        arv_update_device_list();
     // A GigE Vision camera grants control to one host session at a time and frees it only when that
     // session's heartbeat times out: right after a session was killed (kill -9, a crash, a pulled
     // cable) the camera refuses a new one for up to its heartbeat timeout. Retry with a growing
@@ -581,7 +629,8 @@ Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
         OpenAttempt a = open_once(device_id, options);
         if (a.camera.ok() || !a.retry) {
             if (a.camera.ok() && attempt > 1)
-                spdlog::info("aravis://{}: control privilege obtained after {} attempts ({:.1f} s)", device_id, attempt,
+                spdlog::info("aravis://{}: control privilege obtained after {} attempts ({:.1f} s)",
+                             device_id, attempt,
                              std::chrono::duration<double>(Clock::now() - start).count());
             return std::move(a.camera);
         }
@@ -589,17 +638,21 @@ Result<std::unique_ptr<Camera>> open_aravis_camera(const std::string& device_id,
         if (elapsed + pause > options.control_wait) {
             DeviceError error = a.camera.error();
             error.message += fmt::format(
-                "; still refused after {:.1f} s and {} attempts: another program (arv-viewer, a second tirpol) "
+                "; still refused after {:.1f} s and {} attempts: another program (arv-viewer, a "
+                "second tirpol) "
                 "controls it",
                 std::chrono::duration<double>(elapsed).count(), attempt);
             return error;
         }
         if (attempt == 1)
             spdlog::warn(
-                "aravis://{}: the camera is still held by an earlier control session (a program that crashed or was "
+                "aravis://{}: the camera is still held by an earlier control session (a program "
+                "that crashed or was "
                 "killed keeps it until its heartbeat times out{}); retrying for up to {:.0f} s",
                 device_id,
-                a.heartbeat_timeout_ms ? fmt::format(", {} ms on this camera", *a.heartbeat_timeout_ms) : std::string(),
+                a.heartbeat_timeout_ms
+                    ? fmt::format(", {} ms on this camera", *a.heartbeat_timeout_ms)
+                    : std::string(),
                 std::chrono::duration<double>(options.control_wait).count());
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::milliseconds(2000));

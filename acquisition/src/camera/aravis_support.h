@@ -38,13 +38,15 @@ private:
     GError* m_error = nullptr;
 };
 
-/// A g_free'd array of strings as Aravis's dup_* functions return (the strings themselves are not owned).
+/// A g_free'd array of strings as Aravis's dup_* functions return (the strings themselves are not
+/// owned).
 struct GFree {
     void operator()(gpointer p) const { g_free(p); }
 };
 
 /// Maps a GError from Aravis (ArvDeviceError, ArvGcError, GIOError) to a DeviceError whose message
 /// names the device, the action, the GError message, its domain and its code.
-DeviceError to_device_error(const GError* error, const std::string& device, const std::string& action);
+DeviceError to_device_error(const GError* error, const std::string& device,
+                            const std::string& action);
 
 }  // namespace tirpol::acquisition::aravis

@@ -1,8 +1,7 @@
-#include "tirpol/acquisition/camera.h"
-
 #include <fmt/format.h>
 
 #include "scheme_registry.h"
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/device_uri.h"
 #ifdef TIRPOL_HAVE_ARAVIS
 #include "tirpol/acquisition/internal/aravis_camera.h"
@@ -29,7 +28,8 @@ namespace {
 
 #ifdef TIRPOL_HAVE_ARAVIS
 Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
-    u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size", "control_wait_s"});
+    u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size",
+                  "control_wait_s"});
     if (u.target.empty()) fail("device URI '{}': expected aravis://<device-id>", u.text);
     AravisCameraOptions options;
     if (u.query.count("pixel_format") != 0) options.pixel_format = u.query.at("pixel_format");
@@ -40,16 +40,19 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     if (const auto wait_s = optional_number(u, "control_wait_s")) {
         if (!(*wait_s >= 0.0 && *wait_s <= 600.0))
             fail("device URI '{}': control_wait_s={} (expected 0 to 600 seconds)", u.text, *wait_s);
-        options.control_wait = std::chrono::milliseconds(static_cast<std::int64_t>(*wait_s * 1000.0));
+        options.control_wait =
+            std::chrono::milliseconds(static_cast<std::int64_t>(*wait_s * 1000.0));
     }
     if (u.query.count("trigger") != 0) {
         const std::string& t = u.query.at("trigger");
-        if (t != "software" && t != "off") fail("device URI '{}': trigger={} (expected software or off)", u.text, t);
+        if (t != "software" && t != "off")
+            fail("device URI '{}': trigger={} (expected software or off)", u.text, t);
         options.software_trigger = t == "software";
     }
     if (u.query.count("packet_size") != 0) {
         const std::string& p = u.query.at("packet_size");
-        if (p != "auto" && p != "keep") fail("device URI '{}': packet_size={} (expected auto or keep)", u.text, p);
+        if (p != "auto" && p != "keep")
+            fail("device URI '{}': packet_size={} (expected auto or keep)", u.text, p);
         options.auto_packet_size = p == "auto";
     }
     return open_aravis_camera(u.target, options);
@@ -67,21 +70,25 @@ Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     options.height = optional_int(u, "height");
     options.frame_rate_hz = optional_number(u, "fps");
     const int buffers = u.integer("buffers", static_cast<int>(options.buffers));
-    if (buffers < 2 || buffers > 64) fail("device URI '{}': buffers={} (expected 2…64)", u.text, buffers);
+    if (buffers < 2 || buffers > 64)
+        fail("device URI '{}': buffers={} (expected 2…64)", u.text, buffers);
     options.buffers = static_cast<unsigned>(buffers);
     return open_v4l2_camera(u.target, options);
 }
 #endif
 
-/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+/// The built-in schemes register through the same call as a plug-in, the first time the table is
+/// used.
 detail::SchemeRegistry<CameraFactory>& registry() {
     static detail::SchemeRegistry<CameraFactory> table;
     [[maybe_unused]] static const bool built_in = [] {
 #ifdef TIRPOL_HAVE_ARAVIS
-        table.register_scheme("aravis", [](const std::string& uri) { return open_aravis(parse_device_uri(uri)); });
+        table.register_scheme(
+            "aravis", [](const std::string& uri) { return open_aravis(parse_device_uri(uri)); });
 #endif
 #ifdef TIRPOL_HAVE_V4L2
-        table.register_scheme("v4l2", [](const std::string& uri) { return open_v4l2(parse_device_uri(uri)); });
+        table.register_scheme(
+            "v4l2", [](const std::string& uri) { return open_v4l2(parse_device_uri(uri)); });
 #endif
         table.register_scheme("sim", [](const std::string& uri) -> Result<std::unique_ptr<Camera>> {
             return std::unique_ptr<Camera>(open_simulated_camera(uri));
@@ -110,13 +117,16 @@ std::vector<CameraDescriptor> list_cameras() {
     std::vector<CameraDescriptor> cameras;
 #ifdef TIRPOL_HAVE_ARAVIS
     for (const auto& d : discover_aravis_cameras()) {
-        const std::string where = d.address.empty() ? d.protocol : fmt::format("{} at {}", d.protocol, d.address);
-        cameras.push_back({"aravis://" + d.id, fmt::format("{} {} (serial {}), {}", d.vendor, d.model, d.serial, where)});
+        const std::string where =
+            d.address.empty() ? d.protocol : fmt::format("{} at {}", d.protocol, d.address);
+        cameras.push_back({"aravis://" + d.id, fmt::format("{} {} (serial {}), {}", d.vendor,
+                                                           d.model, d.serial, where)});
     }
 #endif
 #ifdef TIRPOL_HAVE_V4L2
     for (const auto& d : discover_v4l2_cameras())
-        cameras.push_back({"v4l2://" + d.path, fmt::format("{} ({}, {})", d.card, d.driver, d.bus_info)});
+        cameras.push_back(
+            {"v4l2://" + d.path, fmt::format("{} ({}, {})", d.card, d.driver, d.bus_info)});
 #endif
     return cameras;
 }

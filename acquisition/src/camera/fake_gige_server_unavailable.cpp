@@ -9,7 +9,8 @@ namespace tirpol::acquisition {
 struct FakeGigECameraServer::Impl {};
 
 FakeGigECameraServer::FakeGigECameraServer(FakeGigECameraOptions options) {
-    fail("fake GigE Vision camera on {}: tirpol was built without Aravis (TIRPOL_WITH_ARAVIS)", options.interface);
+    fail("fake GigE Vision camera on {}: tirpol was built without Aravis (TIRPOL_WITH_ARAVIS)",
+         options.interface);
 }
 
 FakeGigECameraServer::~FakeGigECameraServer() = default;

@@ -7,7 +7,8 @@
 namespace tirpol::acquisition {
 
 void FrameAverager::add(const Frame& frame) {
-    const std::size_t n = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
+    const std::size_t n =
+        static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(frame.height);
     if (m_count == 0) {
         m_width = frame.width;
         m_height = frame.height;
@@ -15,8 +16,8 @@ void FrameAverager::add(const Frame& frame) {
         m_m2.assign(n, 0.0);
     }
     if (frame.width != m_width || frame.height != m_height || frame.counts.size() != n)
-        fail("frame {} is {}×{} with {} values; the frames being averaged are {}×{}", frame.frame_id, frame.width,
-             frame.height, frame.counts.size(), m_width, m_height);
+        fail("frame {} is {}×{} with {} values; the frames being averaged are {}×{}",
+             frame.frame_id, frame.width, frame.height, frame.counts.size(), m_width, m_height);
     ++m_count;
     const double inv_n = 1.0 / static_cast<double>(m_count);
     for (std::size_t i = 0; i < n; ++i) {
@@ -37,7 +38,8 @@ std::vector<float> FrameAverager::stddev() const {
     std::vector<float> out(m_m2.size(), 0.0f);
     if (m_count < 2) return out;
     const double inv = 1.0 / static_cast<double>(m_count - 1);
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(std::sqrt(m_m2[i] * inv));
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = static_cast<float>(std::sqrt(m_m2[i] * inv));
     return out;
 }
 

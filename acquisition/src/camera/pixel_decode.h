@@ -1,7 +1,7 @@
 #pragma once
 // Converts raw monochrome pixel rows into float counts. Layouts: 8-bit in one byte; 10/12/14/16-bit
-// in a little-endian 16-bit container (GenICam PFNC Mono10/12/14/16 unpacked; V4L2 Y16, Y10, Y12 are
-// documented as little-endian 16-bit words in the kernel's pixel-format pages).
+// in a little-endian 16-bit container (GenICam PFNC Mono10/12/14/16 unpacked; V4L2 Y16, Y10, Y12
+// are documented as little-endian 16-bit words in the kernel's pixel-format pages).
 
 #include <cstddef>
 #include <cstdint>
@@ -9,8 +9,9 @@
 
 namespace tirpol::acquisition {
 
-/// Decodes `height` rows of `width` pixels of `bytes_per_pixel` (1 or 2) starting every `stride_bytes`.
-/// `out` is resized to width × height. The caller has checked that the data is large enough.
+/// Decodes `height` rows of `width` pixels of `bytes_per_pixel` (1 or 2) starting every
+/// `stride_bytes`. `out` is resized to width × height. The caller has checked that the data is
+/// large enough.
 inline void decode_mono(const std::uint8_t* data, int width, int height, int bytes_per_pixel,
                         std::size_t stride_bytes, std::vector<float>& out) {
     const auto w = static_cast<std::size_t>(width);

@@ -1,12 +1,11 @@
 #include "tirpol/acquisition/internal/simulated_camera.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-
-#include <spdlog/spdlog.h>
 
 #include "tirpol/acquisition/device_uri.h"
 #include "tirpol/core/error.h"
@@ -29,20 +28,29 @@ std::optional<int> mono_bits(const std::string& format) {
 }
 }  // namespace
 
-SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator generator, AngleSource angle)
-    : m_config(std::move(config)), m_generator(std::move(generator)), m_angle(std::move(angle)), m_rng(m_config.seed) {
+SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator generator,
+                                 AngleSource angle)
+    : m_config(std::move(config)),
+      m_generator(std::move(generator)),
+      m_angle(std::move(angle)),
+      m_rng(m_config.seed) {
     if (m_config.width <= 0 || m_config.height <= 0)
-        fail("simulated camera '{}': size {}×{} (expected positive)", m_config.name, m_config.width, m_config.height);
+        fail("simulated camera '{}': size {}×{} (expected positive)", m_config.name, m_config.width,
+             m_config.height);
     if (m_config.bits_per_pixel < 1 || m_config.bits_per_pixel > 16)
-        fail("simulated camera '{}': bits_per_pixel {} (expected 1…16)", m_config.name, m_config.bits_per_pixel);
+        fail("simulated camera '{}': bits_per_pixel {} (expected 1…16)", m_config.name,
+             m_config.bits_per_pixel);
     if (!(m_config.frame_rate_hz > 0.0))
-        fail("simulated camera '{}': frame rate {} Hz (expected > 0)", m_config.name, m_config.frame_rate_hz);
+        fail("simulated camera '{}': frame rate {} Hz (expected > 0)", m_config.name,
+             m_config.frame_rate_hz);
     if (!(m_config.noise_std_counts >= 0.0))
-        fail("simulated camera '{}': noise {} counts (expected ≥ 0)", m_config.name, m_config.noise_std_counts);
+        fail("simulated camera '{}': noise {} counts (expected ≥ 0)", m_config.name,
+             m_config.noise_std_counts);
     if (!(m_config.drop_probability >= 0.0 && m_config.drop_probability < 1.0))
         fail("simulated camera '{}': drop probability {} (expected in [0, 1))", m_config.name,
              m_config.drop_probability);
-    if (m_config.buffers < 1) fail("simulated camera '{}': {} buffers (expected ≥ 1)", m_config.name, m_config.buffers);
+    if (m_config.buffers < 1)
+        fail("simulated camera '{}': {} buffers (expected ≥ 1)", m_config.name, m_config.buffers);
     if (!m_generator) fail("simulated camera '{}': no frame generator", m_config.name);
 }
 
@@ -70,18 +78,23 @@ CameraInfo SimulatedCamera::info() const {
 Status SimulatedCamera::set_pixel_format(const std::string& format) {
     const auto bits = mono_bits(format);
     if (!bits)
-        return DeviceError{DeviceErrorCode::InvalidArgument,
-                           fmt::format("sim://{}: pixel format '{}' (expected Mono8, Mono10, Mono12, Mono14 or Mono16)",
-                                       m_config.name, format)};
+        return DeviceError{
+            DeviceErrorCode::InvalidArgument,
+            fmt::format(
+                "sim://{}: pixel format '{}' (expected Mono8, Mono10, Mono12, Mono14 or Mono16)",
+                m_config.name, format)};
     m_config.bits_per_pixel = *bits;
     return ok_status();
 }
 
 Status SimulatedCamera::set_frame_rate(double hz) {
     if (!(hz > 0.0) || !std::isfinite(hz))
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("sim://{}: frame rate {} Hz", m_config.name, hz)};
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           fmt::format("sim://{}: frame rate {} Hz", m_config.name, hz)};
     std::lock_guard lock(m_mutex);
-    if (m_streaming) return DeviceError{DeviceErrorCode::InvalidArgument, "sim://" + m_config.name + ": frame rate change while streaming"};
+    if (m_streaming)
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           "sim://" + m_config.name + ": frame rate change while streaming"};
     m_config.frame_rate_hz = hz;
     return ok_status();
 }
@@ -108,9 +121,13 @@ Status SimulatedCamera::stop() {
 
 Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds timeout) {
     std::unique_lock lock(m_mutex);
-    if (!m_streaming) return DeviceError{DeviceErrorCode::InvalidArgument, "sim://" + m_config.name + ": grab() before start()"};
-    if (!m_changed.wait_for(lock, timeout, [this] { return !m_queue.empty() || !m_streaming; }) || m_queue.empty())
-        return DeviceError{DeviceErrorCode::Timeout, fmt::format("sim://{}: no frame within {} ms", m_config.name, timeout.count())};
+    if (!m_streaming)
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           "sim://" + m_config.name + ": grab() before start()"};
+    if (!m_changed.wait_for(lock, timeout, [this] { return !m_queue.empty() || !m_streaming; }) ||
+        m_queue.empty())
+        return DeviceError{DeviceErrorCode::Timeout, fmt::format("sim://{}: no frame within {} ms",
+                                                                 m_config.name, timeout.count())};
     Frame frame = std::move(m_queue.front());
     m_queue.pop_front();
     ++m_stats.delivered;
@@ -119,7 +136,8 @@ Result<Frame> SimulatedCamera::grab(std::chrono::milliseconds timeout) {
 
 void SimulatedCamera::expose_frames() {
     using Clock = std::chrono::steady_clock;
-    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / m_config.frame_rate_hz));
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / m_config.frame_rate_hz));
     auto due = Clock::now() + period;
     std::unique_lock lock(m_mutex);
     while (m_streaming) {
@@ -158,7 +176,8 @@ bool SimulatedCamera::has_angle_source() const {
 }
 
 std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
-    const std::size_t n = static_cast<std::size_t>(m_config.width) * static_cast<std::size_t>(m_config.height);
+    const std::size_t n =
+        static_cast<std::size_t>(m_config.width) * static_cast<std::size_t>(m_config.height);
     m_expected.assign(n, 0.0f);
     FrameGenerator generator;
     AngleSource angle;
@@ -170,8 +189,8 @@ std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
     const double angle_deg = angle ? angle() : 0.0;
     generator(angle_deg, m_expected);
     if (m_expected.size() != n) {
-        spdlog::error("sim://{}: the frame generator returned {} values for {}×{} pixels", m_config.name, m_expected.size(),
-                      m_config.width, m_config.height);
+        spdlog::error("sim://{}: the frame generator returned {} values for {}×{} pixels",
+                      m_config.name, m_expected.size(), m_config.width, m_config.height);
         return std::nullopt;
     }
     Frame frame;
@@ -187,9 +206,12 @@ std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
         frame.counts[i] = static_cast<float>(std::clamp(std::nearbyint(v), 0.0, full_scale));
     }
     frame.frame_id = id;
-    // The device clock is an oscillator of the camera's own, started at power-up (1 s before start()).
+    // The device clock is an oscillator of the camera's own, started at power-up (1 s before
+    // start()).
     frame.device_timestamp_ns =
-        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - m_started).count();
+        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now() - m_started)
+                                 .count();
     frame.host_timestamp_ns = realtime_now_ns();
     frame.fpa_temperature_k = m_config.fpa_temperature_k;
     return frame;
@@ -199,9 +221,12 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     const DeviceUri u = parse_device_uri(uri);
     if (u.scheme != "sim") fail("device URI '{}': expected the sim:// scheme", uri);
     if (u.target != "uniform")
-        fail("device URI '{}': unknown simulated camera '{}' (built in: uniform; scene files "
-             "sim://<scene.yaml> once the digital twin registered its renderer-backed camera)", uri, u.target);
-    u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k", "buffers"});
+        fail(
+            "device URI '{}': unknown simulated camera '{}' (built in: uniform; scene files "
+            "sim://<scene.yaml> once the digital twin registered its renderer-backed camera)",
+            uri, u.target);
+    u.check_keys(
+        {"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k", "buffers"});
     SimulatedCameraConfig config;
     config.name = "uniform";
     config.width = u.integer("width", 640);
@@ -214,7 +239,9 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     config.buffers = u.integer("buffers", config.buffers);
     if (u.query.count("fpa_k") != 0) config.fpa_temperature_k = u.number("fpa_k", 0.0);
     const double counts = u.number("counts", 8000.0);
-    auto generator = [counts](double, std::vector<float>& out) { std::fill(out.begin(), out.end(), static_cast<float>(counts)); };
+    auto generator = [counts](double, std::vector<float>& out) {
+        std::fill(out.begin(), out.end(), static_cast<float>(counts));
+    };
     return std::make_unique<SimulatedCamera>(config, generator);
 }
 

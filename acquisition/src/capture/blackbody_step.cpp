@@ -15,7 +15,8 @@ BlackbodyStep::BlackbodyStep(BlackbodyController& controller, const CaptureStep&
       m_log(m_set_point_k, 0.0) {}
 
 Status BlackbodyStep::reach_set_point(const std::function<bool()>& should_stop) {
-    if (m_settled == m_set_point_k) return ok_status();  // the same set-point at the next polarizer angle
+    if (m_settled == m_set_point_k)
+        return ok_status();  // the same set-point at the next polarizer angle
     m_settled.reset();
     auto reached = bring_blackbody_to(m_controller, m_set_point_k, m_criterion, should_stop);
     if (!reached) return reached.error();
@@ -31,9 +32,11 @@ Status BlackbodyStep::poll() {
         return status.error();
     }
     m_log.add(status.value());
-    m_worst_deviation_k = std::max(m_worst_deviation_k, std::abs(status.value().temperature_k - m_set_point_k));
-    m_next_poll = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                         std::chrono::duration<double>(m_criterion.poll_s));
+    m_worst_deviation_k =
+        std::max(m_worst_deviation_k, std::abs(status.value().temperature_k - m_set_point_k));
+    m_next_poll = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(m_criterion.poll_s));
     return ok_status();
 }
 
@@ -47,12 +50,12 @@ Status BlackbodyStep::finish() {
     if (m_worst_deviation_k > m_criterion.tolerance_k) {
         m_settled.reset();  // wait again before the next step at this set-point
         const BlackbodyReadings r = m_log.summary();
-        return DeviceError{
-            DeviceErrorCode::DeviceFault,
-            fmt::format(
-                "{}: left ±{:g} K of the set-point {:.2f} K while the frames were taken (readings {:.3f}–{:.3f} K); "
-                "its frames are discarded",
-                m_controller.info().uri, m_criterion.tolerance_k, m_set_point_k, r.min_k, r.max_k)};
+        return DeviceError{DeviceErrorCode::DeviceFault,
+                           fmt::format("{}: left ±{:g} K of the set-point {:.2f} K while the "
+                                       "frames were taken (readings {:.3f}–{:.3f} K); "
+                                       "its frames are discarded",
+                                       m_controller.info().uri, m_criterion.tolerance_k,
+                                       m_set_point_k, r.min_k, r.max_k)};
     }
     return ok_status();
 }

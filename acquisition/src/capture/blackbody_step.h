@@ -14,13 +14,17 @@ namespace tirpol::acquisition::detail {
 
 class BlackbodyStep {
 public:
-    /// `settled_set_point_k` is the set-point this run last brought the controller to (shared by steps).
-    BlackbodyStep(BlackbodyController& controller, const CaptureStep& step, std::optional<double>& settled_set_point_k);
-    /// Sets and waits unless the previous controlled step of this run settled at the same set-point.
+    /// `settled_set_point_k` is the set-point this run last brought the controller to (shared by
+    /// steps).
+    BlackbodyStep(BlackbodyController& controller, const CaptureStep& step,
+                  std::optional<double>& settled_set_point_k);
+    /// Sets and waits unless the previous controlled step of this run settled at the same
+    /// set-point.
     Status reach_set_point(const std::function<bool()>& should_stop);
     /// Polls the controller when poll_s has passed since the last poll (call between frames).
     Status poll_if_due();
-    /// A last reading; DeviceFault if any reading left the tolerance (the frames are then discarded).
+    /// A last reading; DeviceFault if any reading left the tolerance (the frames are then
+    /// discarded).
     Status finish();
     BlackbodyReadings readings() const { return m_log.summary(); }
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <thread>
 
-#include "tirpol/acquisition/internal/angles.h"
 #include "capture/blackbody_step.h"
 #include "capture/ffc_guard.h"
 #include "capture/record_writer.h"
+#include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/acquisition/internal/frame_averager.h"
 #include "tirpol/acquisition/internal/frame_gate.h"
 #include "tirpol/core/error.h"
@@ -23,30 +23,40 @@ namespace {
 
 using namespace std::chrono;
 
-milliseconds to_ms(double seconds) { return milliseconds(static_cast<std::int64_t>(std::ceil(seconds * 1000.0))); }
+milliseconds to_ms(double seconds) {
+    return milliseconds(static_cast<std::int64_t>(std::ceil(seconds * 1000.0)));
+}
 
-bool interrupted(const CaptureOptions& options) { return options.interrupt && options.interrupt->load(); }
+bool interrupted(const CaptureOptions& options) {
+    return options.interrupt && options.interrupt->load();
+}
 
 /// Sleeps until the host clock reaches `until_ns`, returning early (false) on an interruption: a
 /// long settle_s must not hold Ctrl-C back.
 bool sleep_until_host_ns(std::int64_t until_ns, const CaptureOptions& options) {
     for (std::int64_t now = host_realtime_ns(); now < until_ns; now = host_realtime_ns()) {
         if (interrupted(options)) return false;
-        std::this_thread::sleep_for(std::min(nanoseconds(milliseconds(20)), nanoseconds(until_ns - now)));
+        std::this_thread::sleep_for(
+            std::min(nanoseconds(milliseconds(20)), nanoseconds(until_ns - now)));
     }
     return !interrupted(options);
 }
 
 }  // namespace
 
-SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage, const CapturePlan& plan,
-                                     const BlackbodyInfo* blackbody) {
+SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& stage,
+                                     const CapturePlan& plan, const BlackbodyInfo* blackbody) {
     SessionManifest m;
     // frame_rate_hz stays null until the capture loop has measured what the camera delivers.
-    m.camera = {camera.uri, camera.vendor, camera.model, camera.serial, camera.pixel_format, camera.width, camera.height,
-                camera.bits_per_pixel, std::nullopt, camera.planck_constants};
-    m.stage = {stage.uri, stage.vendor, stage.model, stage.serial, stage.firmware, stage.counts_per_degree};
-    if (blackbody) m.blackbody_controller = SessionBlackbodyController{blackbody->uri, blackbody->vendor, blackbody->model, blackbody->serial, blackbody->firmware};
+    m.camera = {camera.uri,          camera.vendor,          camera.model,  camera.serial,
+                camera.pixel_format, camera.width,           camera.height, camera.bits_per_pixel,
+                std::nullopt,        camera.planck_constants};
+    m.stage = {stage.uri,    stage.vendor,   stage.model,
+               stage.serial, stage.firmware, stage.counts_per_degree};
+    if (blackbody)
+        m.blackbody_controller =
+            SessionBlackbodyController{blackbody->uri, blackbody->vendor, blackbody->model,
+                                       blackbody->serial, blackbody->firmware};
     m.plan = plan.to_json();
     m.metadata = plan.metadata;
     return m;
@@ -54,35 +64,47 @@ SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& 
 
 void check_resumable(const SessionManifest& m, const CameraInfo& camera, const CapturePlan& plan) {
     if (m.plan != plan.to_json())
-        fail("the plan differs from the one this session was started with (session: {}; now: {}); resume with the same plan",
-             m.plan.dump(), plan.to_json().dump());
-    if (m.camera.width != camera.width || m.camera.height != camera.height || m.camera.pixel_format != camera.pixel_format)
-        fail("the camera delivers {}×{} {}, the session was started with {}×{} {}; resume with the same camera settings",
-             camera.width, camera.height, camera.pixel_format, m.camera.width, m.camera.height, m.camera.pixel_format);
+        fail(
+            "the plan differs from the one this session was started with (session: {}; now: {}); "
+            "resume with the same plan",
+            m.plan.dump(), plan.to_json().dump());
+    if (m.camera.width != camera.width || m.camera.height != camera.height ||
+        m.camera.pixel_format != camera.pixel_format)
+        fail(
+            "the camera delivers {}×{} {}, the session was started with {}×{} {}; resume with the "
+            "same camera settings",
+            camera.width, camera.height, camera.pixel_format, m.camera.width, m.camera.height,
+            m.camera.pixel_format);
 }
 
 std::uintmax_t session_bytes_needed(int width, int height, std::size_t steps) {
-    // Per step one EXR of two FLOAT planes (counts, counts_std): its uncompressed size bounds the ZIP
-    // output (noise compresses poorly); plus the header and a manifest rewrite. One extra frame covers
-    // the staged copy that exists while a record is placed.
-    const std::uintmax_t per_step = static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height) * 2u * 4u + 64u * 1024u;
+    // Per step one EXR of two FLOAT planes (counts, counts_std): its uncompressed size bounds the
+    // ZIP output (noise compresses poorly); plus the header and a manifest rewrite. One extra frame
+    // covers the staged copy that exists while a record is placed.
+    const std::uintmax_t per_step =
+        static_cast<std::uintmax_t>(width) * static_cast<std::uintmax_t>(height) * 2u * 4u +
+        64u * 1024u;
     return per_step * (steps + 1) + 1024u * 1024u;
 }
 
 void check_free_space(const std::filesystem::path& dir, int width, int height, std::size_t steps) {
     std::error_code ec;
     const auto space = std::filesystem::space(dir, ec);
-    if (ec) return;  // cannot tell (e.g. a file system without statvfs): the write errors will say it
+    if (ec)
+        return;  // cannot tell (e.g. a file system without statvfs): the write errors will say it
     const std::uintmax_t needed = session_bytes_needed(width, height, steps);
     if (space.available < needed)
-        fail("{}: {} steps of {}×{} frames need about {:.1f} MB, only {:.1f} MB are free on that file system; free "
-             "space (or choose another directory) and run again{}",
-             dir.string(), steps, width, height, static_cast<double>(needed) / 1e6, static_cast<double>(space.available) / 1e6,
-             std::filesystem::exists(dir / kSessionManifestName) ? " with --resume" : "");
+        fail(
+            "{}: {} steps of {}×{} frames need about {:.1f} MB, only {:.1f} MB are free on that "
+            "file system; free "
+            "space (or choose another directory) and run again{}",
+            dir.string(), steps, width, height, static_cast<double>(needed) / 1e6,
+            static_cast<double>(space.available) / 1e6,
+            std::filesystem::exists(dir / kSessionManifestName) ? " with --resume" : "");
 }
 
-CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan, SessionWriter& session,
-                           const CaptureOptions& options) {
+CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan,
+                           SessionWriter& session, const CaptureOptions& options) {
     const auto steps = plan_steps(plan);
     CaptureSummary summary;
     summary.steps_total = steps.size();
@@ -97,44 +119,60 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     const std::size_t total = steps.size();
     const CaptureStep& first = *todo.front();
     if (plan_uses_blackbody_controller(plan) && !options.blackbody)
-        fail("the plan sets blackbody temperatures (references[].controller) but no blackbody controller was given (tirpol acquire "
-             "--blackbody URI); nothing was recorded");
+        fail(
+            "the plan sets blackbody temperatures (references[].controller) but no blackbody "
+            "controller was given (tirpol acquire "
+            "--blackbody URI); nothing was recorded");
     std::optional<double> settled_set_point_k;  // the controller's set-point reached in this run
-    auto report = [&](CaptureProgress::Event event, const CaptureStep& step, int frames_kept, std::uint64_t frame_id) {
+    auto report = [&](CaptureProgress::Event event, const CaptureStep& step, int frames_kept,
+                      std::uint64_t frame_id) {
         if (options.on_progress)
-            options.on_progress(
-                {event, &step, total, summary.steps_already_recorded + summary.steps_recorded, frames_kept, frame_id});
+            options.on_progress({event, &step, total,
+                                 summary.steps_already_recorded + summary.steps_recorded,
+                                 frames_kept, frame_id});
     };
-    check_free_space(session.dir(), session.manifest().camera.width, session.manifest().camera.height, todo.size());
+    check_free_space(session.dir(), session.manifest().camera.width,
+                     session.manifest().camera.height, todo.size());
 
     detail::RecordWriter writer(session);
     auto recorded = [&] { return writer.records(); };
     auto step_failed = [&](const CaptureStep& step, const char* device, const DeviceError& e) {
-        fail("step {}/{} ({}): {} {}: {}. {} of {} steps are recorded in {}; fix the cause and run again with --resume",
-             step.index + 1, total, step.label, device, to_string(e.code), e.message, recorded(), total, session.dir().string());
+        fail(
+            "step {}/{} ({}): {} {}: {}. {} of {} steps are recorded in {}; fix the cause and run "
+            "again with --resume",
+            step.index + 1, total, step.label, device, to_string(e.code), e.message, recorded(),
+            total, session.dir().string());
     };
     auto check = [&]<typename T>(Result<T> r, const CaptureStep& step, const char* device) -> T {
         if (!r) step_failed(step, device, r.error());
         return std::move(r.value());
     };
     // A homing or move that returned: on an interruption (the stage was told to stop, or the signal
-    // came while it failed) the run ends as "interrupted", resumable; any other error fails the step.
+    // came while it failed) the run ends as "interrupted", resumable; any other error fails the
+    // step.
     auto check_motion = [&](Status status, const char* motion, const CaptureStep& step) {
         if (status) return;
         if (status.error().code == DeviceErrorCode::Stopped || interrupted(options))
-            fail("interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; run again with --resume",
-                 motion, step.index + 1, total, step.label, status.error().message, recorded(), total, session.dir().string());
+            fail(
+                "interrupted during {} (step {}/{}, {}): {}; {} of {} steps are recorded in {}; "
+                "run again with --resume",
+                motion, step.index + 1, total, step.label, status.error().message, recorded(),
+                total, session.dir().string());
         step_failed(step, "stage", status.error());
     };
     // Names the step whose record failed to write (the writer runs behind: the step being captured
     // when its error surfaces is usually a later one).
     auto write_failed = [&](const CaptureStep& current, const Error& e) {
         const std::string file = writer.failed_file();
-        const auto failed = std::find_if(todo.begin(), todo.end(), [&](const CaptureStep* s) { return s->file == file; });
+        const auto failed = std::find_if(todo.begin(), todo.end(),
+                                         [&](const CaptureStep* s) { return s->file == file; });
         const CaptureStep& step = failed != todo.end() ? **failed : current;
-        fail("step {}/{} ({}): writing the session failed: {}. {} of {} steps are recorded in {}; free disk space if it "
-             "is full and run again with --resume",
-             step.index + 1, total, step.label, e.what(), session.manifest().records.size(), total, session.dir().string());
+        fail(
+            "step {}/{} ({}): writing the session failed: {}. {} of {} steps are recorded in {}; "
+            "free disk space if it "
+            "is full and run again with --resume",
+            step.index + 1, total, step.label, e.what(), session.manifest().records.size(), total,
+            session.dir().string());
     };
 
     check(camera.start(), first, "camera");
@@ -143,13 +181,17 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         check_motion(stage.home(to_ms(plan.home_timeout_s)), "homing", first);
     }
     std::unique_ptr<ProgressReporter> progress;
-    if (options.progress_stream) progress = std::make_unique<ProgressReporter>("acquire", todo.size(), options.progress_stream);
+    if (options.progress_stream)
+        progress =
+            std::make_unique<ProgressReporter>("acquire", todo.size(), options.progress_stream);
 
     FrameGate gate(camera.info().frame_rate_hz);
     const auto settle_ns = static_cast<std::int64_t>(std::llround(plan.settle_s * 1e9));
-    const auto frame_timeout_ns = static_cast<std::int64_t>(std::llround(plan.frame_timeout_s * 1e9));
-    // Flat-field corrections: a cycle is the run of polarizer steps of one repeat; its records are held
-    // until the cycle proves free of FFCs, and it is taken again from its first step when it is not.
+    const auto frame_timeout_ns =
+        static_cast<std::int64_t>(std::llround(plan.frame_timeout_s * 1e9));
+    // Flat-field corrections: a cycle is the run of polarizer steps of one repeat; its records are
+    // held until the cycle proves free of FFCs, and it is taken again from its first step when it
+    // is not.
     std::optional<detail::FfcGuard> guard;
     if (options.ffc) guard.emplace(*options.ffc);
     auto in_cycle = [&](std::size_t i) { return guard && todo[i]->kind == RecordKind::Polarizer; };
@@ -165,7 +207,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     std::vector<HeldRecord> held;
     std::size_t cycle_start = 0;
     int cycles_started = 0, cycle_attempt = 0;
-    auto commit = [&](const CaptureStep& step, SessionRecord record, Image image, std::optional<double> rate_hz) {
+    auto commit = [&](const CaptureStep& step, SessionRecord record, Image image,
+                      std::optional<double> rate_hz) {
         try {
             writer.submit(record, std::move(image), rate_hz);
         } catch (const Error& e) {
@@ -174,7 +217,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         summary.steps_recorded++;
         summary.frames += static_cast<std::uint64_t>(step.frames);
         summary.dropped += static_cast<std::uint64_t>(record.dropped);
-        summary.stale_discarded += static_cast<std::uint64_t>(record.timing->stale_frames_discarded);
+        summary.stale_discarded +=
+            static_cast<std::uint64_t>(record.timing->stale_frames_discarded);
         if (progress) progress->advance();
         report(CaptureProgress::Event::StepRecorded, step, step.frames, 0);
     };
@@ -185,26 +229,32 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         } catch (const Error& e) {
             write_failed(step, e);
         }
-        spdlog::info("{} FFC (cycle {}): {}", to_string(event.kind), event.repeat + 1, event.reason);
+        spdlog::info("{} FFC (cycle {}): {}", to_string(event.kind), event.repeat + 1,
+                     event.reason);
     };
-    // An FFC inside the cycle: its held records are dropped and the cycle starts again; returns the index
-    // of the cycle's first step.
+    // An FFC inside the cycle: its held records are dropped and the cycle starts again; returns the
+    // index of the cycle's first step.
     auto retake_cycle = [&](const CaptureStep& step, const FfcEvent& event) {
         record_ffc(step, event);
         ++summary.ffc_detected;
         held.clear();
         guard->abandon_cycle();
         if (++cycle_attempt >= options.ffc->max_cycle_attempts)
-            fail("step {}/{} ({}): an FFC fell inside polarizer cycle {} in each of {} attempts (last: {}); {} of {} "
-                 "steps are recorded in {}; put the core in manual FFC (or give its control link) and run again "
-                 "with --resume",
-                 step.index + 1, total, step.label, step.repeat + 1, cycle_attempt, event.reason, recorded(), total,
-                 session.dir().string());
+            fail(
+                "step {}/{} ({}): an FFC fell inside polarizer cycle {} in each of {} attempts "
+                "(last: {}); {} of {} "
+                "steps are recorded in {}; put the core in manual FFC (or give its control link) "
+                "and run again "
+                "with --resume",
+                step.index + 1, total, step.label, step.repeat + 1, cycle_attempt, event.reason,
+                recorded(), total, session.dir().string());
         const auto pause_ns = static_cast<std::int64_t>(options.ffc->detection_pause_s * 1e9);
         if (!options.ffc->control && !sleep_until_host_ns(host_realtime_ns() + pause_ns, options))
-            fail("interrupted while waiting for an FFC to end (step {}/{}, {}); {} of {} steps are recorded in {}; run "
-                 "again with --resume",
-                 step.index + 1, total, step.label, recorded(), total, session.dir().string());
+            fail(
+                "interrupted while waiting for an FFC to end (step {}/{}, {}); {} of {} steps are "
+                "recorded in {}; run "
+                "again with --resume",
+                step.index + 1, total, step.label, recorded(), total, session.dir().string());
         return cycle_start;
     };
     for (std::size_t ti = 0; ti < todo.size(); ++ti) {
@@ -225,50 +275,71 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         }
         if (in_cycle(ti)) guard->begin_step();
         if (interrupted(options))
-            fail("interrupted before step {}/{} ({}); {} of {} steps are recorded in {}; run again with --resume", step->index + 1,
-                 total, step->label, recorded(), total, session.dir().string());
+            fail(
+                "interrupted before step {}/{} ({}); {} of {} steps are recorded in {}; run again "
+                "with --resume",
+                step->index + 1, total, step->label, recorded(), total, session.dir().string());
         std::optional<detail::BlackbodyStep> blackbody;
         if (step->blackbody_control) {
             blackbody.emplace(*options.blackbody, *step, settled_set_point_k);
-            if (auto reached = blackbody->reach_set_point([&] { return interrupted(options); }); !reached) {
+            if (auto reached = blackbody->reach_set_point([&] { return interrupted(options); });
+                !reached) {
                 if (reached.error().code == DeviceErrorCode::Stopped)
-                    fail("interrupted while the blackbody settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again with --resume",
-                         step->index + 1, total, step->label, recorded(), total, session.dir().string());
+                    fail(
+                        "interrupted while the blackbody settled (step {}/{}, {}); {} of {} steps "
+                        "are recorded in {}; run again with --resume",
+                        step->index + 1, total, step->label, recorded(), total,
+                        session.dir().string());
                 step_failed(*step, "blackbody", reached.error());
             }
         } else if ((step->kind != RecordKind::Polarizer || step->after_shutter) && options.prompt) {
             const std::string instruction =
-                step->kind == RecordKind::Polarizer ? std::string("Open the shutter (uncover the lens) for the scene")
+                step->kind == RecordKind::Polarizer
+                    ? std::string("Open the shutter (uncover the lens) for the scene")
                 : step->kind == RecordKind::Blackbody
-                    ? fmt::format("Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, filling the field of view", *step->temperature_k, *step->temperature_k - kZeroCelsiusK)
+                    ? fmt::format(
+                          "Place the blackbody at {:.2f} K ({:.2f} °C) in front of the camera, "
+                          "filling the field of view",
+                          *step->temperature_k, *step->temperature_k - kZeroCelsiusK)
                     : std::string("Close the shutter (or cover the lens with a uniform cover)");
             if (!options.prompt(instruction))
-                fail("stopped by the operator before step {}/{} ({}); run again with --resume to continue", step->index + 1, total, step->label);
+                fail(
+                    "stopped by the operator before step {}/{} ({}); run again with --resume to "
+                    "continue",
+                    step->index + 1, total, step->label);
         }
         StepTiming timing;
         timing.move_start_ns = host_realtime_ns();
-        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move", *step);
+        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move",
+                     *step);
         timing.move_end_ns = host_realtime_ns();
         timing.settle_end_ns = timing.move_end_ns + settle_ns;
         if (!sleep_until_host_ns(timing.settle_end_ns, options))
-            fail("interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded in {}; run again with "
-                 "--resume",
-                 step->index + 1, total, step->label, recorded(), total, session.dir().string());
+            fail(
+                "interrupted while the stage settled (step {}/{}, {}); {} of {} steps are recorded "
+                "in {}; run again with "
+                "--resume",
+                step->index + 1, total, step->label, recorded(), total, session.dir().string());
         auto read_angle = [&](const char* when) {
             const double a = check(stage.position_deg(), *step, "stage");
             if (std::abs(angle_difference_deg(a, step->angle_deg)) > plan.angle_tolerance_deg)
-                step_failed(*step, "stage",
-                            {DeviceErrorCode::DeviceFault, fmt::format("reads {:.4f}° {} (moved to {:.4f}°, tolerance {}°){}", a, when,
-                                                                       step->angle_deg, plan.angle_tolerance_deg,
-                                                                       std::string(when) == "after the frames" ? ": the stage drifted during the step, its frames are discarded" : "")});
+                step_failed(
+                    *step, "stage",
+                    {DeviceErrorCode::DeviceFault,
+                     fmt::format(
+                         "reads {:.4f}° {} (moved to {:.4f}°, tolerance {}°){}", a, when,
+                         step->angle_deg, plan.angle_tolerance_deg,
+                         std::string(when) == "after the frames"
+                             ? ": the stage drifted during the step, its frames are discarded"
+                             : "")});
             return a;
         };
         timing.angle_deg_before_frames = read_angle("after settling");
 
         // Frames queued since the move began (a free-running camera never stops) come first: drain
         // them, keeping only frames exposed after the settle end.
-        // Drops among the kept frames only: frames lost while nobody grabbed during the move (a full
-        // queue) are counted by the camera too, but they belong to no step.
+        // Drops among the kept frames only: frames lost while nobody grabbed during the move (a
+        // full queue) are counted by the camera too, but they belong to no step.
         std::uint64_t dropped_before = 0;
         FrameAverager averager;
         SessionRecord record;
@@ -281,25 +352,32 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         if (link) audit.core_before = check(link->core_state(), *step, "camera control link");
         while (averager.count() < static_cast<std::uint64_t>(step->frames)) {
             if (interrupted(options))
-                fail("interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps are recorded in {}; run again with --resume",
-                     step->index + 1, total, step->label, recorded(), total, session.dir().string());
+                fail(
+                    "interrupted during step {}/{} ({}); its frames are discarded, {} of {} steps "
+                    "are recorded in {}; run again with --resume",
+                    step->index + 1, total, step->label, recorded(), total, session.dir().string());
             if (blackbody) check(blackbody->poll_if_due(), *step, "blackbody");
             const Frame frame = check(camera.grab(to_ms(plan.frame_timeout_s)), *step, "camera");
             if (!gate.exposed_after(frame, timing.settle_end_ns)) {
                 ++timing.stale_frames_discarded;
-                if (host_realtime_ns() - timing.settle_end_ns > frame_timeout_ns + gate.exposure_window_ns())
+                if (host_realtime_ns() - timing.settle_end_ns >
+                    frame_timeout_ns + gate.exposure_window_ns())
                     step_failed(*step, "camera",
                                 {DeviceErrorCode::BadReply,
-                                 fmt::format("for {:g} s after the stage settled every frame was stamped before it (frame {} received {} ns "
-                                             "before the settle end, {} discarded): the camera's timestamps are not on the host clock",
-                                             plan.frame_timeout_s, frame.frame_id, timing.settle_end_ns - frame.host_timestamp_ns,
+                                 fmt::format("for {:g} s after the stage settled every frame was "
+                                             "stamped before it (frame {} received {} ns "
+                                             "before the settle end, {} discarded): the camera's "
+                                             "timestamps are not on the host clock",
+                                             plan.frame_timeout_s, frame.frame_id,
+                                             timing.settle_end_ns - frame.host_timestamp_ns,
                                              timing.stale_frames_discarded)});
                 continue;
             }
             if (in_cycle(ti)) {
                 if (auto why = guard->observe(frame)) {
-                    spoiled = guard->detected(step->repeat,
-                                              fmt::format("step {} ({}): {}", step->index + 1, step->label, *why));
+                    spoiled = guard->detected(
+                        step->repeat,
+                        fmt::format("step {} ({}): {}", step->index + 1, step->label, *why));
                     break;
                 }
             }
@@ -308,7 +386,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             audit.device_timestamp_ns.push_back(frame.device_timestamp_ns);
             audit.host_timestamp_ns.push_back(frame.host_timestamp_ns);
             audit.fpa_temperature_k.push_back(frame.fpa_temperature_k);
-            report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()), frame.frame_id);
+            report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()),
+                   frame.frame_id);
             if (averager.count() == 1) {
                 record.first_timestamp_ns = frame.host_timestamp_ns;
                 dropped_before = camera.statistics().dropped;
@@ -320,36 +399,47 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             }
         }
         if (spoiled) {
-            ti = retake_cycle(*step, *spoiled) - 1;  // the loop's ++ti brings it to the cycle's first step
+            ti = retake_cycle(*step, *spoiled) -
+                 1;  // the loop's ++ti brings it to the cycle's first step
             continue;
         }
         if (blackbody) check(blackbody->finish(), *step, "blackbody");
         timing.angle_deg_after_frames = read_angle("after the frames");
-        if (std::abs(angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames)) > plan.angle_tolerance_deg)
+        if (std::abs(angle_difference_deg(timing.angle_deg_after_frames,
+                                          timing.angle_deg_before_frames)) >
+            plan.angle_tolerance_deg)
             step_failed(*step, "stage",
                         {DeviceErrorCode::DeviceFault,
-                         fmt::format("moved from {:.4f}° to {:.4f}° while its frames were taken (tolerance {}°): the stage drifted "
+                         fmt::format("moved from {:.4f}° to {:.4f}° while its frames were taken "
+                                     "(tolerance {}°): the stage drifted "
                                      "during the step, its frames are discarded",
-                                     timing.angle_deg_before_frames, timing.angle_deg_after_frames, plan.angle_tolerance_deg)});
+                                     timing.angle_deg_before_frames, timing.angle_deg_after_frames,
+                                     plan.angle_tolerance_deg)});
         timing.exposure_window_ns = gate.exposure_window_ns();
-        if (fpa_count > 0) record.fpa_temperature_k = fpa_sum / fpa_count;
-        else record.fpa_temperature_k = camera.device_temperature_k();
+        if (fpa_count > 0)
+            record.fpa_temperature_k = fpa_sum / fpa_count;
+        else
+            record.fpa_temperature_k = camera.device_temperature_k();
         record.kind = step->kind;
         record.file = step->file;
         record.angle_deg_requested = step->angle_deg;
         record.angle_deg_measured =
-            wrap_degrees(timing.angle_deg_before_frames + 0.5 * angle_difference_deg(timing.angle_deg_after_frames, timing.angle_deg_before_frames));
+            wrap_degrees(timing.angle_deg_before_frames +
+                         0.5 * angle_difference_deg(timing.angle_deg_after_frames,
+                                                    timing.angle_deg_before_frames));
         record.repeat = step->repeat;
         record.blackbody_temperature_k = step->temperature_k;
         if (blackbody) {
-            // What the controller read during the frames, not the set-point: the calibration uses it.
+            // What the controller read during the frames, not the set-point: the calibration uses
+            // it.
             record.blackbody_readings = blackbody->readings();
             record.blackbody_temperature_k = record.blackbody_readings->mean_k;
         }
         record.frames = step->frames;
         record.dropped = static_cast<std::int64_t>(camera.statistics().dropped - dropped_before);
         record.timing = timing;
-        audit.incomplete = static_cast<std::int64_t>(camera.statistics().incomplete - incomplete_before);
+        audit.incomplete =
+            static_cast<std::int64_t>(camera.statistics().incomplete - incomplete_before);
         if (link) audit.core_after = check(link->core_state(), *step, "camera control link");
         record.audit = std::move(audit);
         if (!in_cycle(ti)) {
@@ -377,7 +467,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     if (progress) progress->finish();
     if (auto s = camera.stop(); !s) spdlog::warn("stopping the camera: {}", s.error().message);
     summary.delivered_frame_rate_hz = gate.delivered_rate_hz();
-    if (summary.delivered_frame_rate_hz) session.set_camera_frame_rate(*summary.delivered_frame_rate_hz);
+    if (summary.delivered_frame_rate_hz)
+        session.set_camera_frame_rate(*summary.delivered_frame_rate_hz);
     session.mark_complete();
     return summary;
 }

@@ -15,6 +15,7 @@ void parse_drift_references(const ConfigNode& root, CapturePlan& plan);
 void drift_references_json(const CapturePlan& plan, nlohmann::json& out);
 
 /// The `index`-th interleaved shutter step, at the polarizer angle of its neighbouring scene step.
-CaptureStep interleaved_shutter_step(const ShutterInterleaveSpec& spec, int index, double angle_deg);
+CaptureStep interleaved_shutter_step(const ShutterInterleaveSpec& spec, int index,
+                                     double angle_deg);
 
 }  // namespace tirpol::acquisition::detail

@@ -95,8 +95,10 @@ std::optional<std::string> FfcGuard::observe(const Frame& frame) {
     if (m_step_frames > 0) {
         const double step_mean = m_step_sum / m_step_frames;
         if (std::abs(mean - step_mean) > m_options.frame_step_counts)
-            return fmt::format("frame {} mean stepped by {:+.1f} counts from its step's first {} frames (threshold {})",
-                               frame.frame_id, mean - step_mean, m_step_frames, m_options.frame_step_counts);
+            return fmt::format(
+                "frame {} mean stepped by {:+.1f} counts from its step's first {} frames "
+                "(threshold {})",
+                frame.frame_id, mean - step_mean, m_step_frames, m_options.frame_step_counts);
     }
     m_step_sum += mean;
     ++m_step_frames;
@@ -114,9 +116,10 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
         auto marker = link->last_ffc_marker();
         if (!marker) return marker.error();
         if (m_marker_at_cycle_start && marker.value() != *m_marker_at_cycle_start) {
-            FfcEvent e =
-                detected(repeat, fmt::format("the core's last-FFC frame count moved from {} to {} during the cycle",
-                                             *m_marker_at_cycle_start, marker.value()));
+            FfcEvent e = detected(
+                repeat,
+                fmt::format("the core's last-FFC frame count moved from {} to {} during the cycle",
+                            *m_marker_at_cycle_start, marker.value()));
             e.device_frame_count = static_cast<std::int64_t>(marker.value());
             if (auto fpa = link->fpa_temperature_k()) e.fpa_temperature_k = fpa.value();
             return std::optional<FfcEvent>(std::move(e));
@@ -125,16 +128,19 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
     }
     // Any linear analyzer passes a + b cos 2θ + c sin 2θ: I0 + I90 = I45 + I135 = 2a.
     const long k0 = angle_key(0), k45 = angle_key(45), k90 = angle_key(90), k135 = angle_key(135);
-    if (m_cycle_means.size() == 4 && m_cycle_means.count(k0) && m_cycle_means.count(k45) && m_cycle_means.count(k90) &&
-        m_cycle_means.count(k135)) {
-        const double closure = m_cycle_means[k0] + m_cycle_means[k90] - m_cycle_means[k45] - m_cycle_means[k135];
+    if (m_cycle_means.size() == 4 && m_cycle_means.count(k0) && m_cycle_means.count(k45) &&
+        m_cycle_means.count(k90) && m_cycle_means.count(k135)) {
+        const double closure =
+            m_cycle_means[k0] + m_cycle_means[k90] - m_cycle_means[k45] - m_cycle_means[k135];
         if (std::abs(closure) > m_options.cycle_step_counts)
-            return std::optional<FfcEvent>(
-                detected(repeat, fmt::format("cycle closure I0 + I90 − I45 − I135 = {:+.1f} counts (threshold {})",
-                                             closure, m_options.cycle_step_counts)));
+            return std::optional<FfcEvent>(detected(
+                repeat,
+                fmt::format("cycle closure I0 + I90 − I45 − I135 = {:+.1f} counts (threshold {})",
+                            closure, m_options.cycle_step_counts)));
     }
-    // A still scene changes every angle's mean by the same amount from one cycle to the next (an FFC
-    // between cycles included); an offset step inside the cycle changes only the angles after it.
+    // A still scene changes every angle's mean by the same amount from one cycle to the next (an
+    // FFC between cycles included); an offset step inside the cycle changes only the angles after
+    // it.
     if (!m_reference_means.empty() && m_reference_means.size() == m_cycle_means.size()) {
         double lo = 0.0, hi = 0.0;
         bool first = true, same_angles = true;
@@ -150,10 +156,11 @@ Result<std::optional<FfcEvent>> FfcGuard::end_cycle(int repeat) {
             first = false;
         }
         if (same_angles && hi - lo > m_options.cycle_step_counts)
-            return std::optional<FfcEvent>(detected(
-                repeat, fmt::format("the angles' means changed unequally from the last accepted cycle (spread {:.1f} "
-                                    "counts, threshold {})",
-                                    hi - lo, m_options.cycle_step_counts)));
+            return std::optional<FfcEvent>(
+                detected(repeat, fmt::format("the angles' means changed unequally from the last "
+                                             "accepted cycle (spread {:.1f} "
+                                             "counts, threshold {})",
+                                             hi - lo, m_options.cycle_step_counts)));
     }
     m_reference_means = m_cycle_means;
     return std::optional<FfcEvent>{};

@@ -7,7 +7,8 @@
 namespace tirpol::acquisition {
 
 namespace {
-constexpr std::int64_t kUnknownPeriodNs = 200'000'000;  ///< before any interval is seen: ≤ 5 Hz assumed
+constexpr std::int64_t kUnknownPeriodNs =
+    200'000'000;  ///< before any interval is seen: ≤ 5 Hz assumed
 /// Intervals longer than this are pauses (the capture loop not grabbing, a software trigger waiting
 /// for a move), not the camera's rate.
 constexpr std::int64_t kPauseNs = 2'000'000'000;
@@ -22,13 +23,15 @@ std::int64_t host_realtime_ns() {
 }
 
 FrameGate::FrameGate(std::optional<double> nominal_frame_rate_hz) {
-    if (nominal_frame_rate_hz && *nominal_frame_rate_hz > 0.0 && std::isfinite(*nominal_frame_rate_hz))
+    if (nominal_frame_rate_hz && *nominal_frame_rate_hz > 0.0 &&
+        std::isfinite(*nominal_frame_rate_hz))
         m_nominal_period_ns = static_cast<std::int64_t>(std::llround(1e9 / *nominal_frame_rate_hz));
 }
 
 std::int64_t FrameGate::exposure_window_ns() const {
-    // A camera may not reach the rate it reports (a fake asked for 1000 Hz delivers 60): the shortest
-    // interval seen is a lower bound of the true period, so the longer of the two is the safe one.
+    // A camera may not reach the rate it reports (a fake asked for 1000 Hz delivers 60): the
+    // shortest interval seen is a lower bound of the true period, so the longer of the two is the
+    // safe one.
     std::int64_t period = kUnknownPeriodNs;
     if (m_nominal_period_ns && m_min_period_ns)
         period = std::max(*m_nominal_period_ns, *m_min_period_ns);
@@ -41,14 +44,15 @@ std::int64_t FrameGate::exposure_window_ns() const {
 
 std::int64_t FrameGate::reception_ns(const Frame& frame) {
     if (frame.device_timestamp_ns == 0) return frame.host_timestamp_ns;
-    // host − device = clock offset + this frame's latency. Its minimum over frames is the offset plus
-    // the shortest latency: device + that minimum is when the frame would have arrived with no host
-    // delay. The minimum may creep up by kDriftPerNs per ns of device time, so a device clock slower
-    // than the host's (crystals differ by tens of ppm) is followed; a faster one lowers the minimum.
+    // host − device = clock offset + this frame's latency. Its minimum over frames is the offset
+    // plus the shortest latency: device + that minimum is when the frame would have arrived with no
+    // host delay. The minimum may creep up by kDriftPerNs per ns of device time, so a device clock
+    // slower than the host's (crystals differ by tens of ppm) is followed; a faster one lowers the
+    // minimum.
     const std::int64_t offset = frame.host_timestamp_ns - frame.device_timestamp_ns;
     if (m_min_offset_ns && m_last_device_ns != 0 && frame.device_timestamp_ns > m_last_device_ns)
-        *m_min_offset_ns +=
-            static_cast<std::int64_t>(kDriftPerNs * static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
+        *m_min_offset_ns += static_cast<std::int64_t>(
+            kDriftPerNs * static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
     m_min_offset_ns = m_min_offset_ns ? std::min(*m_min_offset_ns, offset) : offset;
     m_last_device_ns = frame.device_timestamp_ns;
     return std::min(frame.host_timestamp_ns, frame.device_timestamp_ns + *m_min_offset_ns);

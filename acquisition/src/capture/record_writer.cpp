@@ -25,7 +25,8 @@ void RecordWriter::rethrow_locked(std::unique_lock<std::mutex>&) {
     if (m_error) std::rethrow_exception(std::exchange(m_error, nullptr));
 }
 
-void RecordWriter::submit(SessionRecord record, Image frame, std::optional<double> camera_frame_rate_hz) {
+void RecordWriter::submit(SessionRecord record, Image frame,
+                          std::optional<double> camera_frame_rate_hz) {
     std::unique_lock lock(m_mutex);
     m_changed.wait(lock, [this] { return m_queue.size() < m_max_pending || m_error; });
     rethrow_locked(lock);
@@ -50,14 +51,16 @@ std::size_t RecordWriter::records() const {
 }
 
 void RecordWriter::run() {
-    // Compressing an EXR may wait; grabbing may not: on a busy machine the scheduler should favour the
-    // grabbing thread (and a camera served in-process). Best effort: a refusal changes nothing else.
+    // Compressing an EXR may wait; grabbing may not: on a busy machine the scheduler should favour
+    // the grabbing thread (and a camera served in-process). Best effort: a refusal changes nothing
+    // else.
     (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
     std::unique_lock lock(m_mutex);
     for (;;) {
         m_changed.wait(lock, [this] { return !m_queue.empty() || m_stop; });
         if (m_queue.empty()) return;  // stopping, everything written
-        if (m_error) {                // a failed write (full disk) fails the rest too: drop them, the error says so
+        if (m_error) {  // a failed write (full disk) fails the rest too: drop them, the error says
+                        // so
             m_queue.clear();
             m_changed.notify_all();
             continue;
@@ -68,7 +71,8 @@ void RecordWriter::run() {
         lock.unlock();
         std::exception_ptr error;
         try {
-            if (item.camera_frame_rate_hz) m_session.set_camera_frame_rate(*item.camera_frame_rate_hz);
+            if (item.camera_frame_rate_hz)
+                m_session.set_camera_frame_rate(*item.camera_frame_rate_hz);
             m_session.add_record(item.record, item.frame);
         } catch (...) {
             error = std::current_exception();

@@ -25,7 +25,8 @@ public:
 
     /// Queues a record (and the camera's delivered frame rate so far, written with it); rethrows
     /// (once) an error of an earlier write.
-    void submit(SessionRecord record, Image frame, std::optional<double> camera_frame_rate_hz = std::nullopt);
+    void submit(SessionRecord record, Image frame,
+                std::optional<double> camera_frame_rate_hz = std::nullopt);
     /// Waits until every queued record is written; rethrows a write error.
     void flush();
     /// Records in the session, written or queued: for messages while writes are in flight.

@@ -1,5 +1,5 @@
-// couple_simulated_polarizer (capture.h): the angle a simulated camera's polarizer is at, taken from
-// the stage that turns it.
+// couple_simulated_polarizer (capture.h): the angle a simulated camera's polarizer is at, taken
+// from the stage that turns it.
 
 #include <atomic>
 #include <mutex>
@@ -13,8 +13,8 @@ namespace tirpol::acquisition {
 
 namespace {
 
-/// What the camera's thread reads: the stage's physical angle while the stage lives (sim://), else the
-/// last angle its driver reached. Shared, so the camera may outlive the stage.
+/// What the camera's thread reads: the stage's physical angle while the stage lives (sim://), else
+/// the last angle its driver reached. Shared, so the camera may outlive the stage.
 struct PolarizerAngle {
     std::mutex mutex;
     std::function<double()> physical;  ///< guarded by mutex; cleared when the stage goes

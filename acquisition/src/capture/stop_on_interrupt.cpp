@@ -4,9 +4,13 @@
 
 namespace tirpol::acquisition {
 
-StopOnInterrupt::StopOnInterrupt(const std::atomic<bool>& interrupt, std::chrono::milliseconds grace,
-                                 std::function<void()> on_overdue, std::chrono::milliseconds restop_period)
-    : m_interrupt(interrupt), m_grace(grace), m_restop_period(restop_period), m_on_overdue(std::move(on_overdue)) {
+StopOnInterrupt::StopOnInterrupt(const std::atomic<bool>& interrupt,
+                                 std::chrono::milliseconds grace, std::function<void()> on_overdue,
+                                 std::chrono::milliseconds restop_period)
+    : m_interrupt(interrupt),
+      m_grace(grace),
+      m_restop_period(restop_period),
+      m_on_overdue(std::move(on_overdue)) {
     m_thread = std::thread([this] { run(); });
 }
 
@@ -29,7 +33,8 @@ void StopOnInterrupt::run() {
             return;
         }
         if (Stage* stage = m_stage.load(); stage && now >= next_stop) {
-            if (auto s = stage->stop(); !s) spdlog::warn("stopping the stage: {}", s.error().message);
+            if (auto s = stage->stop(); !s)
+                spdlog::warn("stopping the stage: {}", s.error().message);
             ++m_stops_sent;
             next_stop = now + m_restop_period;
         }

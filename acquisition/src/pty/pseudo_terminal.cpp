@@ -42,19 +42,23 @@ void PseudoTerminal::hang_up() {
 Result<PseudoTerminal> PseudoTerminal::open() {
     const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (master < 0)
-        return DeviceError{DeviceErrorCode::IoError, fmt::format("posix_openpt failed: {}", std::strerror(errno))};
+        return DeviceError{DeviceErrorCode::IoError,
+                           fmt::format("posix_openpt failed: {}", std::strerror(errno))};
     char name[128];
-    if (::grantpt(master) != 0 || ::unlockpt(master) != 0 || ::ptsname_r(master, name, sizeof name) != 0) {
+    if (::grantpt(master) != 0 || ::unlockpt(master) != 0 ||
+        ::ptsname_r(master, name, sizeof name) != 0) {
         const int err = errno;
         ::close(master);
-        return DeviceError{DeviceErrorCode::IoError,
-                           fmt::format("setting up the pseudo-terminal failed: {}", std::strerror(err))};
+        return DeviceError{
+            DeviceErrorCode::IoError,
+            fmt::format("setting up the pseudo-terminal failed: {}", std::strerror(err))};
     }
     const int slave = ::open(name, O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (slave < 0) {
         const int err = errno;
         ::close(master);
-        return DeviceError{DeviceErrorCode::IoError, fmt::format("{}: cannot open: {}", name, std::strerror(err))};
+        return DeviceError{DeviceErrorCode::IoError,
+                           fmt::format("{}: cannot open: {}", name, std::strerror(err))};
     }
     // Raw from the start: no echo or line editing before the driver configures the port.
     termios tio{};
@@ -90,8 +94,9 @@ void serve_pty_device(PtyDevice& device, PseudoTerminal& pty, const std::atomic<
             std::uint8_t buf[256];
             const ssize_t n = ::read(pty.master_fd(), buf, sizeof buf);
             if (n > 0)
-                write_all(device.receive(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)),
-                                         PtyDevice::Clock::now()));
+                write_all(
+                    device.receive(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)),
+                                   PtyDevice::Clock::now()));
         }
     }
 }
@@ -112,7 +117,8 @@ int run_pty_simulator_program(PtyDevice& device, const std::string& link, const 
         std::filesystem::remove(link, ec);
         std::filesystem::create_symlink(pty.value().slave_path(), link, ec);
         if (ec) {
-            std::fprintf(stderr, "%s: cannot link %s: %s\n", program, link.c_str(), ec.message().c_str());
+            std::fprintf(stderr, "%s: cannot link %s: %s\n", program, link.c_str(),
+                         ec.message().c_str());
             return 1;
         }
     }

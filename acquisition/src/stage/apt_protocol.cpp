@@ -17,22 +17,25 @@ std::uint16_t get_u16(std::span<const std::uint8_t> b, std::size_t at) {
 }
 std::uint32_t get_u32(std::span<const std::uint8_t> b, std::size_t at) {
     return static_cast<std::uint32_t>(b[at]) | (static_cast<std::uint32_t>(b[at + 1]) << 8) |
-           (static_cast<std::uint32_t>(b[at + 2]) << 16) | (static_cast<std::uint32_t>(b[at + 3]) << 24);
+           (static_cast<std::uint32_t>(b[at + 2]) << 16) |
+           (static_cast<std::uint32_t>(b[at + 3]) << 24);
 }
 /// Fixed-width text field: up to the first NUL, trailing spaces removed.
 std::string get_text(std::span<const std::uint8_t> b, std::size_t at, std::size_t width) {
     std::string s;
-    for (std::size_t i = 0; i < width && b[at + i] != 0; ++i) s.push_back(static_cast<char>(b[at + i]));
+    for (std::size_t i = 0; i < width && b[at + i] != 0; ++i)
+        s.push_back(static_cast<char>(b[at + i]));
     while (!s.empty() && s.back() == ' ') s.pop_back();
     return s;
 }
 void put_text(std::vector<std::uint8_t>& out, const std::string& s, std::size_t width) {
-    for (std::size_t i = 0; i < width; ++i) out.push_back(i < s.size() ? static_cast<std::uint8_t>(s[i]) : 0);
+    for (std::size_t i = 0; i < width; ++i)
+        out.push_back(i < s.size() ? static_cast<std::uint8_t>(s[i]) : 0);
 }
 }  // namespace
 
-std::vector<std::uint8_t> encode_short(std::uint16_t id, std::uint8_t param1, std::uint8_t param2, std::uint8_t dest,
-                                       std::uint8_t source) {
+std::vector<std::uint8_t> encode_short(std::uint16_t id, std::uint8_t param1, std::uint8_t param2,
+                                       std::uint8_t dest, std::uint8_t source) {
     std::vector<std::uint8_t> out;
     put_u16(out, id);
     out.push_back(param1);
@@ -42,8 +45,8 @@ std::vector<std::uint8_t> encode_short(std::uint16_t id, std::uint8_t param1, st
     return out;
 }
 
-std::vector<std::uint8_t> encode_long(std::uint16_t id, std::span<const std::uint8_t> data, std::uint8_t dest,
-                                      std::uint8_t source) {
+std::vector<std::uint8_t> encode_long(std::uint16_t id, std::span<const std::uint8_t> data,
+                                      std::uint8_t dest, std::uint8_t source) {
     std::vector<std::uint8_t> out;
     put_u16(out, id);
     put_u16(out, static_cast<std::uint16_t>(data.size()));
@@ -54,13 +57,19 @@ std::vector<std::uint8_t> encode_long(std::uint16_t id, std::span<const std::uin
 }
 
 std::vector<std::uint8_t> hw_req_info() { return encode_short(kHwReqInfo, 0, 0); }
-std::vector<std::uint8_t> hw_no_flash_programming() { return encode_short(kHwNoFlashProgramming, 0, 0); }
-std::vector<std::uint8_t> mod_identify(std::uint8_t channel) { return encode_short(kModIdentify, channel, 0); }
+std::vector<std::uint8_t> hw_no_flash_programming() {
+    return encode_short(kHwNoFlashProgramming, 0, 0);
+}
+std::vector<std::uint8_t> mod_identify(std::uint8_t channel) {
+    return encode_short(kModIdentify, channel, 0);
+}
 std::vector<std::uint8_t> mod_set_chan_enable_state(std::uint8_t channel, bool enable) {
     // The document encodes enable as 0x01 and disable as 0x02.
     return encode_short(kModSetChanEnableState, channel, enable ? 0x01 : 0x02);
 }
-std::vector<std::uint8_t> mot_move_home(std::uint8_t channel) { return encode_short(kMotMoveHome, channel, 0); }
+std::vector<std::uint8_t> mot_move_home(std::uint8_t channel) {
+    return encode_short(kMotMoveHome, channel, 0);
+}
 std::vector<std::uint8_t> mot_req_ustatus_update(std::uint8_t channel) {
     return encode_short(kMotReqUStatusUpdate, channel, 0);
 }
@@ -77,12 +86,13 @@ std::vector<std::uint8_t> mot_move_stop(std::uint8_t channel, StopMode mode) {
 
 Decoded decode_host_request(std::span<const std::uint8_t> bytes, std::uint8_t device_address) {
     if (bytes.size() >= kHeaderSize &&
-        (bytes[5] != kHostAddress || static_cast<std::uint8_t>(bytes[4] & ~kDataPacketFlag) != device_address)) {
+        (bytes[5] != kHostAddress ||
+         static_cast<std::uint8_t>(bytes[4] & ~kDataPacketFlag) != device_address)) {
         Decoded d;
         d.status = DecodeStatus::Invalid;
         d.consumed = 1;
-        d.error = fmt::format("bytes {:02X} {:02X} … are not a header from the host to 0x{:02X}", bytes[0], bytes[1],
-                              device_address);
+        d.error = fmt::format("bytes {:02X} {:02X} … are not a header from the host to 0x{:02X}",
+                              bytes[0], bytes[1], device_address);
         return d;
     }
     return decode(bytes);
@@ -107,8 +117,9 @@ Decoded decode(std::span<const std::uint8_t> bytes) {
     if (length == 0 || length > kMaxDataLength) {
         d.status = DecodeStatus::Invalid;
         d.consumed = 1;
-        d.error = fmt::format("APT header for {} announces a data packet of {} bytes (expected 1..{})",
-                              message_name(m.id), length, kMaxDataLength);
+        d.error =
+            fmt::format("APT header for {} announces a data packet of {} bytes (expected 1..{})",
+                        message_name(m.id), length, kMaxDataLength);
         return d;
     }
     if (bytes.size() < kHeaderSize + length) return d;
@@ -154,7 +165,8 @@ std::vector<std::uint8_t> hw_get_info(const HardwareInfo& info, std::uint8_t sou
 }
 
 std::optional<StatusUpdate> parse_status_update(const Message& m) {
-    if ((m.id != kMotMoveCompleted && m.id != kMotMoveStopped && m.id != kMotGetUStatusUpdate) || m.data.size() != 14)
+    if ((m.id != kMotMoveCompleted && m.id != kMotMoveStopped && m.id != kMotGetUStatusUpdate) ||
+        m.data.size() != 14)
         return std::nullopt;
     const std::span<const std::uint8_t> b(m.data);
     StatusUpdate s;
@@ -166,7 +178,8 @@ std::optional<StatusUpdate> parse_status_update(const Message& m) {
     return s;
 }
 
-std::vector<std::uint8_t> status_message(std::uint16_t id, const StatusUpdate& s, std::uint8_t source) {
+std::vector<std::uint8_t> status_message(std::uint16_t id, const StatusUpdate& s,
+                                         std::uint8_t source) {
     std::vector<std::uint8_t> data;
     put_u16(data, s.channel);
     put_u32(data, static_cast<std::uint32_t>(s.position));
@@ -192,22 +205,38 @@ std::vector<std::uint8_t> hw_rich_response(const RichResponse& r, std::uint8_t s
 
 std::string message_name(std::uint16_t id) {
     switch (id) {
-        case kHwReqInfo: return "MGMSG_HW_REQ_INFO";
-        case kHwGetInfo: return "MGMSG_HW_GET_INFO";
-        case kHwNoFlashProgramming: return "MGMSG_HW_NO_FLASH_PROGRAMMING";
-        case kHwResponse: return "MGMSG_HW_RESPONSE";
-        case kHwRichResponse: return "MGMSG_HW_RICHRESPONSE";
-        case kModSetChanEnableState: return "MGMSG_MOD_SET_CHANENABLESTATE";
-        case kModIdentify: return "MGMSG_MOD_IDENTIFY";
-        case kMotMoveHome: return "MGMSG_MOT_MOVE_HOME";
-        case kMotMoveHomed: return "MGMSG_MOT_MOVE_HOMED";
-        case kMotMoveAbsolute: return "MGMSG_MOT_MOVE_ABSOLUTE";
-        case kMotMoveCompleted: return "MGMSG_MOT_MOVE_COMPLETED";
-        case kMotMoveStop: return "MGMSG_MOT_MOVE_STOP";
-        case kMotMoveStopped: return "MGMSG_MOT_MOVE_STOPPED";
-        case kMotReqUStatusUpdate: return "MGMSG_MOT_REQ_USTATUSUPDATE";
-        case kMotGetUStatusUpdate: return "MGMSG_MOT_GET_USTATUSUPDATE";
-        default: return fmt::format("0x{:04X}", id);
+        case kHwReqInfo:
+            return "MGMSG_HW_REQ_INFO";
+        case kHwGetInfo:
+            return "MGMSG_HW_GET_INFO";
+        case kHwNoFlashProgramming:
+            return "MGMSG_HW_NO_FLASH_PROGRAMMING";
+        case kHwResponse:
+            return "MGMSG_HW_RESPONSE";
+        case kHwRichResponse:
+            return "MGMSG_HW_RICHRESPONSE";
+        case kModSetChanEnableState:
+            return "MGMSG_MOD_SET_CHANENABLESTATE";
+        case kModIdentify:
+            return "MGMSG_MOD_IDENTIFY";
+        case kMotMoveHome:
+            return "MGMSG_MOT_MOVE_HOME";
+        case kMotMoveHomed:
+            return "MGMSG_MOT_MOVE_HOMED";
+        case kMotMoveAbsolute:
+            return "MGMSG_MOT_MOVE_ABSOLUTE";
+        case kMotMoveCompleted:
+            return "MGMSG_MOT_MOVE_COMPLETED";
+        case kMotMoveStop:
+            return "MGMSG_MOT_MOVE_STOP";
+        case kMotMoveStopped:
+            return "MGMSG_MOT_MOVE_STOPPED";
+        case kMotReqUStatusUpdate:
+            return "MGMSG_MOT_REQ_USTATUSUPDATE";
+        case kMotGetUStatusUpdate:
+            return "MGMSG_MOT_GET_USTATUSUPDATE";
+        default:
+            return fmt::format("0x{:04X}", id);
     }
 }
 

@@ -29,16 +29,22 @@ public:
 
     Status initialise() {
         if (auto s = m_port->discard_input(); !s) return s;
-        auto reply = transact(ell::info_request(m_options.address), Clock::now() + m_options.reply_timeout, "IN");
+        auto reply = transact(ell::info_request(m_options.address),
+                              Clock::now() + m_options.reply_timeout, "IN");
         if (!reply) return reply.error();
         const auto info = ell::parse_info(reply.value());
         if (!info)
-            return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed IN reply \"{}\" (expected 30 characters of fields after IN)",
-                                                                      m_info.uri, reply.value().data)};
+            return DeviceError{
+                DeviceErrorCode::BadReply,
+                fmt::format(
+                    "{}: malformed IN reply \"{}\" (expected 30 characters of fields after IN)",
+                    m_info.uri, reply.value().data)};
         if (info->travel != 360 || info->pulses == 0)
-            return DeviceError{DeviceErrorCode::NotSupported,
-                               fmt::format("{}: ELL{} reports a travel of {} units with {} pulses; only rotary mounts (travel 360°) drive a polarizer",
-                                           m_info.uri, info->motor_type, info->travel, info->pulses)};
+            return DeviceError{
+                DeviceErrorCode::NotSupported,
+                fmt::format("{}: ELL{} reports a travel of {} units with {} pulses; only rotary "
+                            "mounts (travel 360°) drive a polarizer",
+                            m_info.uri, info->motor_type, info->travel, info->pulses)};
         m_info.model = fmt::format("ELL{}", info->motor_type);
         m_info.serial = info->serial;
         m_info.firmware = std::to_string(info->firmware);
@@ -51,7 +57,8 @@ public:
 
     Status home(std::chrono::milliseconds timeout) override {
         const MotionScope motion(*this);
-        auto reply = transact(ell::home(m_options.address, true), Clock::now() + timeout, "PO", Motion::Stoppable);
+        auto reply = transact(ell::home(m_options.address, true), Clock::now() + timeout, "PO",
+                              Motion::Stoppable);
         if (!reply) return reply.error();
         m_homed = true;
         return ok_status();
@@ -59,20 +66,24 @@ public:
 
     Status move_absolute(double angle_deg, std::chrono::milliseconds timeout) override {
         if (auto s = detail::check_absolute_move(m_info.uri, m_homed, angle_deg); !s) return s;
-        const auto pulses = static_cast<std::int32_t>(std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
+        const auto pulses = static_cast<std::int32_t>(
+            std::llround(wrap_degrees(angle_deg) * m_info.counts_per_degree));
         const MotionScope motion(*this);
-        auto reply =
-            transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout, "PO", Motion::Stoppable);
+        auto reply = transact(ell::move_absolute(m_options.address, pulses), Clock::now() + timeout,
+                              "PO", Motion::Stoppable);
         if (!reply) return reply.error();
         return ok_status();
     }
 
     Result<double> position_deg() override {
-        auto reply = transact(ell::get_position(m_options.address), Clock::now() + m_options.reply_timeout, "PO");
+        auto reply = transact(ell::get_position(m_options.address),
+                              Clock::now() + m_options.reply_timeout, "PO");
         if (!reply) return reply.error();
         const auto pulses = ell::decode_position(reply.value().data);
         if (!pulses)
-            return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed PO reply \"{}\" (expected 8 hex digits)", m_info.uri, reply.value().data)};
+            return DeviceError{DeviceErrorCode::BadReply,
+                               fmt::format("{}: malformed PO reply \"{}\" (expected 8 hex digits)",
+                                           m_info.uri, reply.value().data)};
         return wrap_degrees(*pulses / m_info.counts_per_degree);
     }
 
@@ -122,9 +133,10 @@ private:
     }
 
     /// Sends `command` and waits for the reply `expected` from our address. A GS reply with a
-    /// non-zero status is a fault, except Busy, which is waited out (re-sending) until the deadline.
-    Result<ell::Reply> transact(const std::string& command, Clock::time_point deadline, const char* expected,
-                                Motion motion = Motion::Immediate) {
+    /// non-zero status is a fault, except Busy, which is waited out (re-sending) until the
+    /// deadline.
+    Result<ell::Reply> transact(const std::string& command, Clock::time_point deadline,
+                                const char* expected, Motion motion = Motion::Immediate) {
         bool busy_seen = false;
         const bool stoppable = motion == Motion::Stoppable;
         for (;;) {
@@ -135,7 +147,8 @@ private:
                 return reply.value().code == "GS" ? stop_error(command) : stopped(command);
             if (!reply) {
                 DeviceError e = reply.error();
-                if (busy_seen && e.code == DeviceErrorCode::Timeout) e.message += " (the module kept answering GS09 Busy)";
+                if (busy_seen && e.code == DeviceErrorCode::Timeout)
+                    e.message += " (the module kept answering GS09 Busy)";
                 return e;
             }
             const ell::Reply& r = reply.value();
@@ -143,25 +156,33 @@ private:
             if (r.code == "GS") {
                 const auto status = ell::parse_status(r);
                 if (!status)
-                    return DeviceError{DeviceErrorCode::BadReply, fmt::format("{}: malformed GS reply \"{}\"", m_info.uri, r.data)};
-                if (*status == ell::kOk) continue;  // acknowledged without the data reply: ask again
+                    return DeviceError{
+                        DeviceErrorCode::BadReply,
+                        fmt::format("{}: malformed GS reply \"{}\"", m_info.uri, r.data)};
+                if (*status == ell::kOk)
+                    continue;  // acknowledged without the data reply: ask again
                 if (*status == ell::kBusy) {
                     busy_seen = true;
                     if (Clock::now() + std::chrono::milliseconds(50) >= deadline)
-                        return DeviceError{DeviceErrorCode::Timeout,
-                                           fmt::format("{}: '{}': the module stayed Busy (GS09) until the timeout", m_info.uri, command)};
+                        return DeviceError{
+                            DeviceErrorCode::Timeout,
+                            fmt::format("{}: '{}': the module stayed Busy (GS09) until the timeout",
+                                        m_info.uri, command)};
                     std::this_thread::sleep_for(std::chrono::milliseconds(50));
                     continue;
                 }
-                return DeviceError{DeviceErrorCode::DeviceFault, fmt::format("{}: '{}' failed: status {:02X}: {}", m_info.uri, command,
-                                                                             *status, ell::status_meaning(*status))};
+                return DeviceError{DeviceErrorCode::DeviceFault,
+                                   fmt::format("{}: '{}' failed: status {:02X}: {}", m_info.uri,
+                                               command, *status, ell::status_meaning(*status))};
             }
             return DeviceError{DeviceErrorCode::BadReply,
-                               fmt::format("{}: '{}': expected a {} reply, got \"{}{}\"", m_info.uri, command, expected, r.code, r.data)};
+                               fmt::format("{}: '{}': expected a {} reply, got \"{}{}\"",
+                                           m_info.uri, command, expected, r.code, r.data)};
         }
     }
 
-    Result<ell::Reply> read_reply(Clock::time_point deadline, const std::string& command, bool stoppable) {
+    Result<ell::Reply> read_reply(Clock::time_point deadline, const std::string& command,
+                                  bool stoppable) {
         for (;;) {
             while (auto line = ell::take_line(m_rx)) {
                 const auto reply = ell::parse_reply(*line);
@@ -173,16 +194,22 @@ private:
                 return *reply;
             }
             if (stoppable && m_stop_requested) return stopped(command);
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+            const auto left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
             if (left.count() <= 0)
-                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply to '{}' in time", m_info.uri, command)};
+                return DeviceError{
+                    DeviceErrorCode::Timeout,
+                    fmt::format("{}: no reply to '{}' in time", m_info.uri, command)};
             // Short reads while a motion runs, so a stop() from another thread is noticed promptly.
-            auto bytes = m_port->read_some(stoppable ? std::min(left, std::chrono::milliseconds(50)) : left);
-            if (!bytes && bytes.error().code == DeviceErrorCode::Timeout && Clock::now() < deadline) continue;
+            auto bytes =
+                m_port->read_some(stoppable ? std::min(left, std::chrono::milliseconds(50)) : left);
+            if (!bytes && bytes.error().code == DeviceErrorCode::Timeout && Clock::now() < deadline)
+                continue;
             if (!bytes) {
                 DeviceError e = bytes.error();
-                e.message = e.code == DeviceErrorCode::Timeout ? fmt::format("{}: no reply to '{}' in time", m_info.uri, command)
-                                                               : fmt::format("{}: '{}': {}", m_info.uri, command, e.message);
+                e.message = e.code == DeviceErrorCode::Timeout
+                                ? fmt::format("{}: no reply to '{}' in time", m_info.uri, command)
+                                : fmt::format("{}: '{}': {}", m_info.uri, command, e.message);
                 return e;
             }
             m_rx.append(bytes.value().begin(), bytes.value().end());
@@ -201,9 +228,11 @@ private:
 
 }  // namespace
 
-Result<std::unique_ptr<Stage>> open_elliptec_stage(std::unique_ptr<BytePort> port, std::string uri, const ElliptecStageOptions& options) {
+Result<std::unique_ptr<Stage>> open_elliptec_stage(std::unique_ptr<BytePort> port, std::string uri,
+                                                   const ElliptecStageOptions& options) {
     if (!ell::valid_address(options.address))
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: address '{}' is not 0–9 or A–F", uri, options.address)};
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           fmt::format("{}: address '{}' is not 0–9 or A–F", uri, options.address)};
     auto stage = std::make_unique<ElliptecStage>(std::move(port), std::move(uri), options);
     if (auto s = stage->initialise(); !s) return s.error();
     return std::unique_ptr<Stage>(std::move(stage));

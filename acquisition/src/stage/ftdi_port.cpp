@@ -11,11 +11,14 @@ std::uint32_t ftdi_baud_divisor(int baud) {
     // ftdi_232bm_baud_base_to_divisor).
     static constexpr std::uint32_t kFractionCode[8] = {0, 3, 2, 4, 1, 5, 6, 7};
     constexpr std::uint32_t kBase = 3000000;
-    const std::uint32_t eighths = (kBase * 8u + static_cast<std::uint32_t>(baud) / 2u) / static_cast<std::uint32_t>(baud);
+    const std::uint32_t eighths =
+        (kBase * 8u + static_cast<std::uint32_t>(baud) / 2u) / static_cast<std::uint32_t>(baud);
     std::uint32_t divisor = (eighths >> 3) | (kFractionCode[eighths & 7] << 14);
     // Divisors 1 and 1.5 have special codes (3 MHz and 2 MHz).
-    if (divisor == 1) divisor = 0;
-    else if (divisor == 0x4001) divisor = 1;
+    if (divisor == 1)
+        divisor = 0;
+    else if (divisor == 0x4001)
+        divisor = 1;
     return divisor;
 }
 
@@ -24,7 +27,8 @@ std::vector<FtdiControlRequest> ftdi_setup_sequence(const SerialSettings& settin
     // Single-interface chips (FT232BM/R in the APT controllers) take interface index 0, as the
     // kernel driver sends.
     return {
-        {kFtdiBaudRate, static_cast<std::uint16_t>(divisor & 0xFFFF), static_cast<std::uint16_t>(divisor >> 16)},
+        {kFtdiBaudRate, static_cast<std::uint16_t>(divisor & 0xFFFF),
+         static_cast<std::uint16_t>(divisor >> 16)},
         {kFtdiLineSettings, 0x0008, 0},  // 8 data bits, no parity (0 << 8), 1 stop bit (0 << 11)
         {kFtdiReset, 1, 0},              // purge RX
         {kFtdiReset, 2, 0},              // purge TX
@@ -34,11 +38,13 @@ std::vector<FtdiControlRequest> ftdi_setup_sequence(const SerialSettings& settin
     };
 }
 
-void ftdi_strip_status(std::span<const std::uint8_t> transfer, std::size_t packet_size, std::vector<std::uint8_t>& out) {
+void ftdi_strip_status(std::span<const std::uint8_t> transfer, std::size_t packet_size,
+                       std::vector<std::uint8_t>& out) {
     for (std::size_t at = 0; at < transfer.size(); at += packet_size) {
         const std::size_t end = std::min(transfer.size(), at + packet_size);
-        if (end - at > 2) out.insert(out.end(), transfer.begin() + static_cast<std::ptrdiff_t>(at + 2),
-                                     transfer.begin() + static_cast<std::ptrdiff_t>(end));
+        if (end - at > 2)
+            out.insert(out.end(), transfer.begin() + static_cast<std::ptrdiff_t>(at + 2),
+                       transfer.begin() + static_cast<std::ptrdiff_t>(end));
     }
 }
 
@@ -57,9 +63,12 @@ public:
         // The chip answers every bulk-in with at least its 2 status bytes (after its latency
         // timer), so an answer with no payload is "nothing yet": keep asking until the deadline.
         for (;;) {
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                deadline - std::chrono::steady_clock::now());
             if (left.count() <= 0)
-                return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply within {} ms", m_io->name(), timeout.count())};
+                return DeviceError{
+                    DeviceErrorCode::Timeout,
+                    fmt::format("{}: no reply within {} ms", m_io->name(), timeout.count())};
             auto transfer = m_io->bulk_in(m_io->max_packet_size() * 8, left);
             if (!transfer) return transfer.error();
             std::vector<std::uint8_t> payload;
@@ -77,9 +86,11 @@ private:
 
 }  // namespace
 
-Result<std::unique_ptr<BytePort>> open_ftdi_port(std::unique_ptr<FtdiUsbIo> io, const SerialSettings& settings) {
+Result<std::unique_ptr<BytePort>> open_ftdi_port(std::unique_ptr<FtdiUsbIo> io,
+                                                 const SerialSettings& settings) {
     if (settings.baud <= 0 || settings.baud > 3000000)
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: unsupported baud rate {}", io->name(), settings.baud)};
+        return DeviceError{DeviceErrorCode::InvalidArgument,
+                           fmt::format("{}: unsupported baud rate {}", io->name(), settings.baud)};
     for (const auto& request : ftdi_setup_sequence(settings)) {
         // Thorlabs: "pre purge dwell 50 ms, purge the device, post purge dwell 50 ms".
         const bool purge = request.request == kFtdiReset && request.value != 0;

@@ -1,6 +1,7 @@
 #include "tirpol/acquisition/internal/serial_port.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
 #include <sys/ioctl.h>
 #include <termios.h>
@@ -9,28 +10,36 @@
 #include <cerrno>
 #include <cstring>
 
-#include <fmt/format.h>
-
 namespace tirpol::acquisition {
 
 namespace {
 
 speed_t speed_for(int baud) {
     switch (baud) {
-        case 9600: return B9600;
-        case 19200: return B19200;
-        case 38400: return B38400;
-        case 57600: return B57600;
-        case 115200: return B115200;
-        case 230400: return B230400;
-        case 460800: return B460800;
-        case 921600: return B921600;
-        default: return B0;
+        case 9600:
+            return B9600;
+        case 19200:
+            return B19200;
+        case 38400:
+            return B38400;
+        case 57600:
+            return B57600;
+        case 115200:
+            return B115200;
+        case 230400:
+            return B230400;
+        case 460800:
+            return B460800;
+        case 921600:
+            return B921600;
+        default:
+            return B0;
     }
 }
 
 int remaining_ms(std::chrono::steady_clock::time_point deadline) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
     return left.count() > 0 ? static_cast<int>(left.count()) : 0;
 }
 
@@ -54,7 +63,10 @@ public:
             if (n < 0 && errno != EAGAIN) return os_error("write");
             pollfd p{m_fd, POLLOUT, 0};
             const int rc = ::poll(&p, 1, remaining_ms(deadline));
-            if (rc == 0) return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: write blocked (flow control?) for {} ms", m_name, timeout.count())};
+            if (rc == 0)
+                return DeviceError{DeviceErrorCode::Timeout,
+                                   fmt::format("{}: write blocked (flow control?) for {} ms",
+                                               m_name, timeout.count())};
             if (rc < 0 && errno != EINTR) return os_error("poll");
             if (p.revents & (POLLHUP | POLLERR)) return hangup();
         }
@@ -73,11 +85,15 @@ public:
             if (errno == EIO) return hangup();
             if (errno != EAGAIN) return os_error("read");
             const int wait = remaining_ms(deadline);
-            if (wait == 0) return DeviceError{DeviceErrorCode::Timeout, fmt::format("{}: no reply within {} ms", m_name, timeout.count())};
+            if (wait == 0)
+                return DeviceError{
+                    DeviceErrorCode::Timeout,
+                    fmt::format("{}: no reply within {} ms", m_name, timeout.count())};
             pollfd p{m_fd, POLLIN, 0};
             const int rc = ::poll(&p, 1, wait);
             if (rc < 0 && errno != EINTR) return os_error("poll");
-            if (rc > 0 && (p.revents & (POLLHUP | POLLERR)) && !(p.revents & POLLIN)) return hangup();
+            if (rc > 0 && (p.revents & (POLLHUP | POLLERR)) && !(p.revents & POLLIN))
+                return hangup();
         }
     }
 
@@ -90,10 +106,12 @@ public:
 
 private:
     DeviceError os_error(const char* what) const {
-        return {DeviceErrorCode::IoError, fmt::format("{}: {} failed: {}", m_name, what, std::strerror(errno))};
+        return {DeviceErrorCode::IoError,
+                fmt::format("{}: {} failed: {}", m_name, what, std::strerror(errno))};
     }
     DeviceError hangup() const {
-        return {DeviceErrorCode::Disconnected, fmt::format("{}: the device hung up (cable pulled or power lost?)", m_name)};
+        return {DeviceErrorCode::Disconnected,
+                fmt::format("{}: the device hung up (cable pulled or power lost?)", m_name)};
     }
     int m_fd;
     std::string m_name;
@@ -101,20 +119,28 @@ private:
 
 }  // namespace
 
-Result<std::unique_ptr<BytePort>> open_serial_port(const std::filesystem::path& path, const SerialSettings& settings) {
+Result<std::unique_ptr<BytePort>> open_serial_port(const std::filesystem::path& path,
+                                                   const SerialSettings& settings) {
     const speed_t speed = speed_for(settings.baud);
     if (speed == B0)
-        return DeviceError{DeviceErrorCode::InvalidArgument, fmt::format("{}: unsupported baud rate {}", path.string(), settings.baud)};
+        return DeviceError{
+            DeviceErrorCode::InvalidArgument,
+            fmt::format("{}: unsupported baud rate {}", path.string(), settings.baud)};
     const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        const auto code = (errno == ENOENT || errno == ENXIO || errno == ENODEV) ? DeviceErrorCode::Disconnected : DeviceErrorCode::IoError;
-        return DeviceError{code, fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno))};
+        const auto code = (errno == ENOENT || errno == ENXIO || errno == ENODEV)
+                              ? DeviceErrorCode::Disconnected
+                              : DeviceErrorCode::IoError;
+        return DeviceError{code,
+                           fmt::format("{}: cannot open: {}", path.string(), std::strerror(errno))};
     }
     termios tio{};
     if (::tcgetattr(fd, &tio) != 0) {
         const int err = errno;
         ::close(fd);
-        return DeviceError{DeviceErrorCode::IoError, fmt::format("{}: not a serial port: {}", path.string(), std::strerror(err))};
+        return DeviceError{
+            DeviceErrorCode::IoError,
+            fmt::format("{}: not a serial port: {}", path.string(), std::strerror(err))};
     }
     ::cfmakeraw(&tio);
     tio.c_cflag &= ~static_cast<tcflag_t>(CSIZE | PARENB | CSTOPB | CRTSCTS);
@@ -129,7 +155,9 @@ Result<std::unique_ptr<BytePort>> open_serial_port(const std::filesystem::path& 
     if (::tcsetattr(fd, TCSANOW, &tio) != 0) {
         const int err = errno;
         ::close(fd);
-        return DeviceError{DeviceErrorCode::IoError, fmt::format("{}: cannot configure {} 8N1: {}", path.string(), settings.baud, std::strerror(err))};
+        return DeviceError{DeviceErrorCode::IoError,
+                           fmt::format("{}: cannot configure {} 8N1: {}", path.string(),
+                                       settings.baud, std::strerror(err))};
     }
     ::tcflush(fd, TCIOFLUSH);
     if (settings.rts_cts) {

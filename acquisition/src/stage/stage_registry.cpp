@@ -1,5 +1,3 @@
-#include "tirpol/acquisition/stage.h"
-
 #include <fmt/format.h>
 
 #include "device_uri_query.h"
@@ -10,6 +8,7 @@
 #include "tirpol/acquisition/internal/ftdi_port.h"
 #include "tirpol/acquisition/internal/serial_port.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
+#include "tirpol/acquisition/stage.h"
 
 namespace tirpol::acquisition {
 
@@ -18,20 +17,26 @@ namespace {
 using detail::check_uri_keys;
 using detail::uri_integer;
 using detail::uri_number;
-DeviceError bad(const std::string& uri, const std::string& what) { return detail::bad_uri(uri, what); }
+DeviceError bad(const std::string& uri, const std::string& what) {
+    return detail::bad_uri(uri, what);
+}
 
 Result<std::unique_ptr<Stage>> open_apt(const std::string& uri, const DeviceUri& u, bool usb) {
-    if (auto s = check_uri_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"}); !s) return s.error();
+    if (auto s = check_uri_keys(uri, u, {"counts_per_degree", "channel", "address", "timeout_ms"});
+        !s)
+        return s.error();
     AptStageOptions options;
     auto cpd = uri_number(uri, u, "counts_per_degree", options.counts_per_degree);
     auto channel = uri_integer(uri, u, "channel", options.channel);
     auto address = uri_integer(uri, u, "address", options.address);
-    auto timeout = uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    auto timeout =
+        uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
     if (!cpd) return cpd.error();
     if (!channel) return channel.error();
     if (!address) return address.error();
     if (!timeout) return timeout.error();
-    if (channel.value() < 1 || channel.value() > 255 || address.value() < 0 || address.value() > 0x7F)
+    if (channel.value() < 1 || channel.value() > 255 || address.value() < 0 ||
+        address.value() > 0x7F)
         return bad(uri, "channel must be 1–255 and address 0–0x7F");
     options.counts_per_degree = cpd.value();
     options.channel = static_cast<std::uint8_t>(channel.value());
@@ -53,10 +58,13 @@ Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const Devic
     ElliptecStageOptions options;
     auto it = u.query.find("address");
     if (it != u.query.end()) {
-        if (it->second.size() != 1) return bad(uri, fmt::format("address={}: expected one hex digit 0–F", it->second));
-        options.address = static_cast<char>(std::toupper(static_cast<unsigned char>(it->second[0])));
+        if (it->second.size() != 1)
+            return bad(uri, fmt::format("address={}: expected one hex digit 0–F", it->second));
+        options.address =
+            static_cast<char>(std::toupper(static_cast<unsigned char>(it->second[0])));
     }
-    auto timeout = uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
+    auto timeout =
+        uri_integer(uri, u, "timeout_ms", static_cast<int>(options.reply_timeout.count()));
     if (!timeout) return timeout.error();
     options.reply_timeout = std::chrono::milliseconds(timeout.value());
     auto port = open_serial_port(u.target, SerialSettings{9600, false});
@@ -65,7 +73,8 @@ Result<std::unique_ptr<Stage>> open_elliptec(const std::string& uri, const Devic
 }
 
 Result<std::unique_ptr<Stage>> open_sim(const std::string& uri, const DeviceUri& u) {
-    if (auto s = check_uri_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s) return s.error();
+    if (auto s = check_uri_keys(uri, u, {"deg_per_s", "start_deg", "fail_on_move"}); !s)
+        return s.error();
     SimulatedStageOptions options;
     auto speed = uri_number(uri, u, "deg_per_s", 0.0);
     auto start = uri_number(uri, u, "start_deg", 0.0);
@@ -90,15 +99,18 @@ StageFactory built_in(Open open) {
     };
 }
 
-/// The built-in schemes register through the same call as a plug-in, the first time the table is used.
+/// The built-in schemes register through the same call as a plug-in, the first time the table is
+/// used.
 detail::SchemeRegistry<StageFactory>& registry() {
     static detail::SchemeRegistry<StageFactory> table;
     [[maybe_unused]] static const bool built_in_registered = [] {
-        table.register_scheme("thorlabs-apt", built_in([](const std::string& uri, const DeviceUri& u) {
+        table.register_scheme("thorlabs-apt",
+                              built_in([](const std::string& uri, const DeviceUri& u) {
                                   return open_apt(uri, u, false);
                               }));
 #ifdef TIRPOL_HAVE_LIBUSB
-        table.register_scheme("thorlabs-apt+usb", built_in([](const std::string& uri, const DeviceUri& u) {
+        table.register_scheme("thorlabs-apt+usb",
+                              built_in([](const std::string& uri, const DeviceUri& u) {
                                   return open_apt(uri, u, true);
                               }));
 #endif

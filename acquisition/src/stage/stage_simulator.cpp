@@ -67,7 +67,9 @@ double StageSimulator::angle_deg(Clock::time_point now) const {
     return m_from_deg + (m_to_deg - m_from_deg) * std::clamp(f, 0.0, 1.0);
 }
 
-bool StageSimulator::hang_up(Clock::time_point now) const { return m_hang_up_at && now >= *m_hang_up_at; }
+bool StageSimulator::hang_up(Clock::time_point now) const {
+    return m_hang_up_at && now >= *m_hang_up_at;
+}
 
 bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_point now) {
     m_from_deg = angle_deg(now);
@@ -75,7 +77,9 @@ bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_poin
     m_homing = homing;
     const double seconds = std::abs(m_to_deg - m_from_deg) / m_options.deg_per_s;
     m_move_start = now;
-    m_move_end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)) + m_options.latency;
+    m_move_end =
+        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)) +
+        m_options.latency;
     publish_trajectory();
     if (homing) return false;
     ++m_moves;
@@ -89,7 +93,8 @@ void StageSimulator::stop_motion(Clock::time_point now) {
     m_pending.clear();  // only move completions wait there
 }
 
-std::vector<std::uint8_t> StageSimulator::receive(std::span<const std::uint8_t> bytes, Clock::time_point now) {
+std::vector<std::uint8_t> StageSimulator::receive(std::span<const std::uint8_t> bytes,
+                                                  Clock::time_point now) {
     m_rx.insert(m_rx.end(), bytes.begin(), bytes.end());
     if (m_silent) {
         m_rx.clear();
@@ -100,8 +105,10 @@ std::vector<std::uint8_t> StageSimulator::receive(std::span<const std::uint8_t> 
 
 std::vector<std::uint8_t> StageSimulator::poll(Clock::time_point now) {
     std::vector<std::uint8_t> out;
-    auto due = std::stable_partition(m_pending.begin(), m_pending.end(), [&](const Pending& p) { return p.due > now; });
-    for (auto it = due; it != m_pending.end(); ++it) out.insert(out.end(), it->bytes.begin(), it->bytes.end());
+    auto due = std::stable_partition(m_pending.begin(), m_pending.end(),
+                                     [&](const Pending& p) { return p.due > now; });
+    for (auto it = due; it != m_pending.end(); ++it)
+        out.insert(out.end(), it->bytes.begin(), it->bytes.end());
     m_pending.erase(due, m_pending.end());
     if (!moving(now) && m_homing) {
         m_homing = false;
@@ -113,12 +120,16 @@ std::vector<std::uint8_t> StageSimulator::poll(Clock::time_point now) {
 
 std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
     std::vector<std::uint8_t> out;
-    auto append = [&out](const std::vector<std::uint8_t>& b) { out.insert(out.end(), b.begin(), b.end()); };
+    auto append = [&out](const std::vector<std::uint8_t>& b) {
+        out.insert(out.end(), b.begin(), b.end());
+    };
     auto status_now = [&](std::uint16_t id, double angle) {
         apt::StatusUpdate s;
         s.position = static_cast<std::int32_t>(std::llround(angle * kAptCountsPerDegree));
         s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u);
-        if (moving(now)) s.status_bits |= m_homing ? apt::kHoming : (m_to_deg >= m_from_deg ? apt::kMovingCw : apt::kMovingCcw);
+        if (moving(now))
+            s.status_bits |= m_homing ? apt::kHoming
+                                      : (m_to_deg >= m_from_deg ? apt::kMovingCw : apt::kMovingCcw);
         return apt::status_message(id, s);
     };
     for (;;) {
@@ -143,44 +154,61 @@ std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
                 append(apt::hw_get_info(info));
                 break;
             }
-            case apt::kMotReqUStatusUpdate: append(status_now(apt::kMotGetUStatusUpdate, angle_deg(now))); break;
+            case apt::kMotReqUStatusUpdate:
+                append(status_now(apt::kMotGetUStatusUpdate, angle_deg(now)));
+                break;
             case apt::kMotMoveHome:
                 start_move(0.0, true, now);
-                m_pending.push_back({m_move_end, apt::encode_short(apt::kMotMoveHomed, 1, 0, apt::kHostAddress, apt::kUsbDeviceAddress)});
+                m_pending.push_back(
+                    {m_move_end, apt::encode_short(apt::kMotMoveHomed, 1, 0, apt::kHostAddress,
+                                                   apt::kUsbDeviceAddress)});
                 break;
             case apt::kMotMoveStop: {
                 stop_motion(now);
                 apt::StatusUpdate s;
-                s.position = static_cast<std::int32_t>(std::llround(angle_deg(now) * kAptCountsPerDegree));
+                s.position =
+                    static_cast<std::int32_t>(std::llround(angle_deg(now) * kAptCountsPerDegree));
                 s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u);
                 append(apt::status_message(apt::kMotMoveStopped, s));
                 break;
             }
             case apt::kMotMoveAbsolute: {
                 if (m.data.size() != 6) break;
-                const auto counts = static_cast<std::int32_t>(m.data[2] | (m.data[3] << 8) | (m.data[4] << 16) | (m.data[5] << 24));
+                const auto counts = static_cast<std::int32_t>(
+                    m.data[2] | (m.data[3] << 8) | (m.data[4] << 16) | (m.data[5] << 24));
                 const double target = counts / kAptCountsPerDegree;
                 if (!start_move(target, false, now)) {
                     apt::StatusUpdate s;
                     s.position = counts;
                     s.status_bits = apt::kChannelEnabled | apt::kHomed;
-                    m_pending.push_back({m_move_end, apt::status_message(apt::kMotMoveCompleted, s)});
+                    m_pending.push_back(
+                        {m_move_end, apt::status_message(apt::kMotMoveCompleted, s)});
                     break;
                 }
                 switch (m_options.fault) {
-                    case SimFault::NoReply: m_silent = true; break;
-                    case SimFault::Busy: m_stuck = true; break;
+                    case SimFault::NoReply:
+                        m_silent = true;
+                        break;
+                    case SimFault::Busy:
+                        m_stuck = true;
+                        break;
                     case SimFault::Error:
                         m_to_deg = m_from_deg;
                         m_move_end = now;
-                        append(apt::hw_rich_response({apt::kMotMoveAbsolute, 0x0010, "simulated motion error: position error limit exceeded"}));
+                        append(apt::hw_rich_response(
+                            {apt::kMotMoveAbsolute, 0x0010,
+                             "simulated motion error: position error limit exceeded"}));
                         break;
-                    case SimFault::DisconnectMidMove: m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2; break;
-                    case SimFault::None: break;
+                    case SimFault::DisconnectMidMove:
+                        m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2;
+                        break;
+                    case SimFault::None:
+                        break;
                 }
                 break;
             }
-            default: break;  // NO_FLASH_PROGRAMMING, SET_CHANENABLESTATE, IDENTIFY: no reply
+            default:
+                break;  // NO_FLASH_PROGRAMMING, SET_CHANENABLESTATE, IDENTIFY: no reply
         }
         if (m_silent) break;
     }
@@ -194,23 +222,31 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
         const std::string line = std::string(1, a) + code + data + "\r\n";
         return bytes_of(line);
     };
-    auto position = [&](double angle) { return elliptec::encode_position(static_cast<std::int32_t>(std::llround(angle * kEllPulsesPerDegree))); };
-    auto append = [&out](const std::vector<std::uint8_t>& b) { out.insert(out.end(), b.begin(), b.end()); };
+    auto position = [&](double angle) {
+        return elliptec::encode_position(
+            static_cast<std::int32_t>(std::llround(angle * kEllPulsesPerDegree)));
+    };
+    auto append = [&out](const std::vector<std::uint8_t>& b) {
+        out.insert(out.end(), b.begin(), b.end());
+    };
     for (;;) {
-        while (!m_rx.empty() && (m_rx.front() == '\r' || m_rx.front() == '\n')) m_rx.erase(m_rx.begin());
+        while (!m_rx.empty() && (m_rx.front() == '\r' || m_rx.front() == '\n'))
+            m_rx.erase(m_rx.begin());
         if (m_rx.size() < 3) break;
         const std::string head(m_rx.begin(), m_rx.begin() + 3);
         const std::string cmd = head.substr(1);
         // Not `<address><two lower-case letters>`: garbage or another protocol (APT bytes).
         // Drop one byte and look again, so the next valid command is understood.
-        if (!elliptec::valid_address(head[0]) || !std::islower(static_cast<unsigned char>(cmd[0])) ||
+        if (!elliptec::valid_address(head[0]) ||
+            !std::islower(static_cast<unsigned char>(cmd[0])) ||
             !std::islower(static_cast<unsigned char>(cmd[1]))) {
             m_rx.erase(m_rx.begin());
             continue;
         }
         const std::size_t data_len = cmd == "ma" ? 8 : cmd == "ho" ? 1 : 0;
         if (m_rx.size() < 3 + data_len) break;
-        const std::string data(m_rx.begin() + 3, m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
+        const std::string data(m_rx.begin() + 3,
+                               m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
         m_rx.erase(m_rx.begin(), m_rx.begin() + static_cast<std::ptrdiff_t>(3 + data_len));
         if (head[0] != a) continue;  // addressed to another module
         if (cmd == "in") {
@@ -253,7 +289,9 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
                 continue;
             }
             switch (m_options.fault) {
-                case SimFault::NoReply: m_silent = true; break;
+                case SimFault::NoReply:
+                    m_silent = true;
+                    break;
                 case SimFault::Busy:
                     m_move_end = now;
                     m_to_deg = m_from_deg;
@@ -263,10 +301,14 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
                 case SimFault::Error:
                     m_move_end = now;
                     m_to_deg = m_from_deg;
-                    append(reply("GS", fmt::format("{:02X}", static_cast<int>(elliptec::kMechanicalTimeout))));
+                    append(reply("GS", fmt::format("{:02X}", static_cast<int>(
+                                                                 elliptec::kMechanicalTimeout))));
                     break;
-                case SimFault::DisconnectMidMove: m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2; break;
-                case SimFault::None: break;
+                case SimFault::DisconnectMidMove:
+                    m_hang_up_at = m_move_start + (m_move_end - m_move_start) / 2;
+                    break;
+                case SimFault::None:
+                    break;
             }
         } else {
             append(reply("GS", "03"));  // command error or not supported
@@ -276,7 +318,8 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
     return out;
 }
 
-void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty, const std::atomic<bool>& stop) {
+void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty,
+                           const std::atomic<bool>& stop) {
     serve_pty_device(simulator, pty, stop);
 }
 

@@ -1,8 +1,8 @@
 #include "tirpol/calibration/testing/synthetic_session.h"
 
-#include <cmath>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <random>
 
 #include "tirpol/core/geometry.h"
@@ -21,9 +21,11 @@ std::vector<PixelTruth> pixel_truth(const SyntheticCamera& cam) {
     std::normal_distribution<double> unit(0.0, 1.0);
     std::vector<PixelTruth> px;
     for (int i = 0; i < cam.width * cam.height; ++i)
-        px.push_back({cam.gain_mean * (1.0 + cam.gain_rel_std * unit(rng)), cam.offset_mean + cam.offset_std * unit(rng),
-                      cam.noise_counts});
-    auto at = [&](int x, int y) -> PixelTruth& { return px[static_cast<std::size_t>(y * cam.width + x)]; };
+        px.push_back({cam.gain_mean * (1.0 + cam.gain_rel_std * unit(rng)),
+                      cam.offset_mean + cam.offset_std * unit(rng), cam.noise_counts});
+    auto at = [&](int x, int y) -> PixelTruth& {
+        return px[static_cast<std::size_t>(y * cam.width + x)];
+    };
     at(cam.dead_x, cam.dead_y).gain *= 0.02;
     at(cam.hot_x, cam.hot_y).offset += 3000.0;
     at(cam.noisy_x, cam.noisy_y).noise *= 12.0;
@@ -56,8 +58,8 @@ WireGridPolarizer synthetic_wire_grid(const SyntheticCamera& cam, const Band& ba
 
 }  // namespace
 
-Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, const Band& band, double angle_deg,
-                             bool through_polarizer, bool field, unsigned seed) {
+Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, const Band& band,
+                             double angle_deg, bool through_polarizer, bool field, unsigned seed) {
     const auto px = pixel_truth(cam);
     const AnalyzerAtAngle analyzer = analyzer_at(synthetic_wire_grid(cam, band), angle_deg);
     std::mt19937 rng(seed);
@@ -74,31 +76,37 @@ Image synthetic_record_frame(const SyntheticCamera& cam, const Image& scene, con
             const std::size_t i = static_cast<std::size_t>(y * cam.width + x);
             double l = s0[i];
             if (through_polarizer) {
-                const double r2 = std::pow((x - cam.width / 2.0) / cam.width, 2) + std::pow((y - cam.height / 2.0) / cam.height, 2);
-                const double ghost = cam.ghost_radiance *
-                                     std::exp(-(std::pow(x - 0.3 * cam.width, 2) + std::pow(y - 0.4 * cam.height, 2)) /
-                                              (0.02 * cam.width * cam.width));
-                l = analyzer.radiance(StokesVector(s0[i], s1[i], s2[i], 0.0), 1.0 - cam.vignetting * r2) + ghost;
+                const double r2 = std::pow((x - cam.width / 2.0) / cam.width, 2) +
+                                  std::pow((y - cam.height / 2.0) / cam.height, 2);
+                const double ghost =
+                    cam.ghost_radiance * std::exp(-(std::pow(x - 0.3 * cam.width, 2) +
+                                                    std::pow(y - 0.4 * cam.height, 2)) /
+                                                  (0.02 * cam.width * cam.width));
+                l = analyzer.radiance(StokesVector(s0[i], s1[i], s2[i], 0.0),
+                                      1.0 - cam.vignetting * r2) +
+                    ghost;
             }
             const auto& p = px[i];
             const double offset = p.offset + (field ? cam.field_offset_drift : 0.0);
-            const double mean = detector_counts(l, p.gain, offset, p.noise / std::sqrt(static_cast<double>(cam.frames)), unit(rng));
+            const double mean = detector_counts(
+                l, p.gain, offset, p.noise / std::sqrt(static_cast<double>(cam.frames)), unit(rng));
             counts[i] = static_cast<float>(std::min(mean, saturation));
             counts_std[i] = static_cast<float>(p.noise);
         }
     return out;
 }
 
-void write_synthetic_sessions(const std::filesystem::path& root, const SyntheticCamera& cam, const Image& scene,
-                              const Band& band) {
+void write_synthetic_sessions(const std::filesystem::path& root, const SyntheticCamera& cam,
+                              const Image& scene, const Band& band) {
     SessionManifest base;
     base.created_utc = utc_now_iso8601();
-    base.camera = {"sim://synthetic", "tirpol", "synthetic-uncooled", "0001", "Mono14", cam.width, cam.height,
-                   cam.bits_per_pixel, 30.0, {}};
+    base.camera = {"sim://synthetic", "tirpol",   "synthetic-uncooled", "0001", "Mono14",
+                   cam.width,         cam.height, cam.bits_per_pixel,   30.0,   {}};
     base.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
     unsigned seed = cam.seed * 1000u;
     std::int64_t t_ns = 1795359560000000000;
-    auto record = [&](RecordKind kind, const std::string& stem, double angle, int repeat, std::optional<double> t_k) {
+    auto record = [&](RecordKind kind, const std::string& stem, double angle, int repeat,
+                      std::optional<double> t_k) {
         SessionRecord r;
         r.kind = kind;
         r.file = session_frame_file(stem);
@@ -118,9 +126,10 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         m.metadata = {{"site", "laboratory"}, {"polarizer_in_beam", false}};
         auto w = SessionWriter::create(root / "lab", m);
         for (double t : {283.15, 298.15, 313.15, 328.15})
-            w.add_record(record(RecordKind::Blackbody, fmt::format("bb_{:.2f}K", t), 0.0, 0, t),
-                         synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), band, 0.0, false,
-                                                false, ++seed));
+            w.add_record(
+                record(RecordKind::Blackbody, fmt::format("bb_{:.2f}K", t), 0.0, 0, t),
+                synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)),
+                                       band, 0.0, false, false, ++seed));
         w.mark_complete();
     }
     {  // Field, same night: blackbody through the polarizer, and the known polarized source.
@@ -129,14 +138,18 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         int repeat = 1;
         for (double t : {288.15, 318.15})
             for (double ref : {0.0, 45.0, 90.0, 135.0})
-                known.push_back({{"repeat", repeat++}, {"blackbody_temperature_k", t}, {"reference_polarizer_deg", ref}});
+                known.push_back({{"repeat", repeat++},
+                                 {"blackbody_temperature_k", t},
+                                 {"reference_polarizer_deg", ref}});
         m.metadata = {{"site", "field"}, {"polarizer_in_beam", true}, {"known_source", known}};
         auto w = SessionWriter::create(root / "polcal", m);
         for (double a : cam.angles_deg)
             for (double t : {278.15, 308.15})
-                w.add_record(record(RecordKind::Blackbody, fmt::format("bb_{:.2f}K_{:.1f}deg", t, a), a, 0, t),
-                             synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(t)), band, a, true,
-                                                    true, ++seed));
+                w.add_record(record(RecordKind::Blackbody,
+                                    fmt::format("bb_{:.2f}K_{:.1f}deg", t, a), a, 0, t),
+                             synthetic_record_frame(
+                                 cam, uniform_scene(cam.width, cam.height, band.radiance(t)), band,
+                                 a, true, true, ++seed));
         for (const auto& k : known) {
             const double l = band.radiance(k["blackbody_temperature_k"].get<double>());
             const double two_theta = 2.0 * deg_to_rad(k["reference_polarizer_deg"].get<double>());
@@ -146,8 +159,10 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
             source.add_channel("S2", static_cast<float>(0.5 * l * std::sin(two_theta)));
             const int rep = k["repeat"].get<int>();
             for (double a : cam.angles_deg)
-                w.add_record(record(RecordKind::Polarizer, fmt::format("known_r{}_{:.1f}deg", rep, a), a, rep, std::nullopt),
-                             synthetic_record_frame(cam, source, band, a, true, true, ++seed));
+                w.add_record(
+                    record(RecordKind::Polarizer, fmt::format("known_r{}_{:.1f}deg", rep, a), a,
+                           rep, std::nullopt),
+                    synthetic_record_frame(cam, source, band, a, true, true, ++seed));
         }
         w.mark_complete();
     }
@@ -155,11 +170,13 @@ void write_synthetic_sessions(const std::filesystem::path& root, const Synthetic
         SessionManifest m = base;
         m.metadata = {{"site", "field"}, {"polarizer_in_beam", true}};
         auto w = SessionWriter::create(root / "scene", m);
-        w.add_record(record(RecordKind::Shutter, "shutter", 0.0, 0, 293.15),
-                     synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(293.15)), band, 0.0, false,
-                                            true, ++seed));
+        w.add_record(
+            record(RecordKind::Shutter, "shutter", 0.0, 0, 293.15),
+            synthetic_record_frame(cam, uniform_scene(cam.width, cam.height, band.radiance(293.15)),
+                                   band, 0.0, false, true, ++seed));
         for (double a : cam.angles_deg)
-            w.add_record(record(RecordKind::Polarizer, fmt::format("scene_{:.1f}deg", a), a, 0, std::nullopt),
+            w.add_record(record(RecordKind::Polarizer, fmt::format("scene_{:.1f}deg", a), a, 0,
+                                std::nullopt),
                          synthetic_record_frame(cam, scene, band, a, true, true, ++seed));
         w.mark_complete();
     }

@@ -13,11 +13,13 @@ MuellerMatrix LambertianBrdf::eval(const Vec3& wi, const Vec3& wo, double wavele
     return m;
 }
 
-BrdfSample LambertianBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample LambertianBrdf::sample(const Vec3& wo, double wavelength_um, double u1,
+                                  double u2) const {
     BrdfSample s;
     s.wi = detail::sample_cosine_hemisphere(u1, u2);
     s.pdf = detail::cosine_hemisphere_pdf(s.wi);
-    if (s.pdf > 0.0 && wo.z() > 0.0) s.weight(0, 0) = m_reflectance.at(wavelength_um);  // f·cos/pdf = ρ
+    if (s.pdf > 0.0 && wo.z() > 0.0)
+        s.weight(0, 0) = m_reflectance.at(wavelength_um);  // f·cos/pdf = ρ
     return s;
 }
 

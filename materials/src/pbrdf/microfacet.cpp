@@ -14,12 +14,14 @@ namespace {
 MuellerMatrix to_eigen(const Mueller4<double>& m) {
     MuellerMatrix out;
     for (std::size_t r = 0; r < 4; ++r)
-        for (std::size_t c = 0; c < 4; ++c) out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = m[r][c];
+        for (std::size_t c = 0; c < 4; ++c)
+            out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = m[r][c];
     return out;
 }
 }  // namespace
 
-MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters) : m_parameters(std::move(parameters)) {}
+MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters)
+    : m_parameters(std::move(parameters)) {}
 
 ShellTargetParameters<double> MicrofacetBrdf::at(double wavelength_um) const {
     const ComplexIndex index = m_parameters.index.at_clamped(wavelength_um);
@@ -46,31 +48,31 @@ double cotangent(double cos_theta) {
     return sin_theta * 1e8 <= cos_theta ? 1e8 : cos_theta / sin_theta;
 }
 
-/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv function",
-/// GPU Computing Gems 2011): a starting point for Newton steps.
+/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv
+/// function", GPU Computing Gems 2011): a starting point for Newton steps.
 double approximate_inverse_erf(double z) {
     double w = -std::log((1.0 - z) * (1.0 + z)), x;
     if (w < 5.0) {
         w -= 2.5;
         x = 2.81022636e-08;
-        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087, -0.00125372503, -0.00417768164,
-                         0.246640727, 1.50140941})
+        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087,
+                         -0.00125372503, -0.00417768164, 0.246640727, 1.50140941})
             x = c + x * w;
     } else {
         w = std::sqrt(w) - 3.0;
         x = -0.000200214257;
-        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773, -0.0076224613, 0.00943887047,
-                         1.00167406, 2.83297682})
+        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773,
+                         -0.0076224613, 0.00943887047, 1.00167406, 2.83297682})
             x = c + x * w;
     }
     return x * z;
 }
 
-/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation (relative error ~1e-7 where
-/// 1 − |z| > 1e-7, its single-precision range) refined by Halley steps on erf, or on erfc in the upper
-/// tail where erf(x) rounds to 1. With f'' = −2x·f' a step is x − f/(f' + x·f); convergence is cubic,
-/// so one step reaches double rounding inside that range, and the far tail (beyond it the approximation
-/// is off by up to 10 %) takes steps until they stop moving x.
+/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation (relative error ~1e-7
+/// where 1 − |z| > 1e-7, its single-precision range) refined by Halley steps on erf, or on erfc in
+/// the upper tail where erf(x) rounds to 1. With f'' = −2x·f' a step is x − f/(f' + x·f);
+/// convergence is cubic, so one step reaches double rounding inside that range, and the far tail
+/// (beyond it the approximation is off by up to 10 %) takes steps until they stop moving x.
 double inverse_erf(double z) {
     if (z < 0.0) return -inverse_erf(-z);
     z = std::min(z, 1.0 - 1e-16);
@@ -97,19 +99,20 @@ SmithTerms smith_terms(double sigma, double cot_theta) {
     return {(e / (a * std::sqrt(kPi)) - c) * 0.5, c, e};
 }
 
-/// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along +x):
-/// inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz &
-/// d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Halley
+/// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along
+/// +x): inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz
+/// & d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Halley
 /// steps (F'' is F' times a polynomial, so a step costs no more than Newton's) kept inside a
-/// bisection bracket, to |F − u| < 1e-13 (checked, or implied by a small last step), so that the map
-/// u → x̃ is smooth. `smith` holds erfc(cot θ)
-/// and e^(−cot²θ) (the normalisation); the lower end of the bracket is only searched for when a step
-/// leaves it.
+/// bisection bracket, to |F − u| < 1e-13 (checked, or implied by a small last step), so that the
+/// map u → x̃ is smooth. `smith` holds erfc(cot θ) and e^(−cot²θ) (the normalisation); the lower end
+/// of the bracket is only searched for when a step leaves it.
 double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
     const double tan_over_sqrt_pi = tan_theta * kInvSqrtPi;
-    const auto unnormalised = [&](double x) { return std::erfc(-x) + tan_over_sqrt_pi * std::exp(-x * x); };
+    const auto unnormalised = [&](double x) {
+        return std::erfc(-x) + tan_over_sqrt_pi * std::exp(-x * x);
+    };
     const double total = (2.0 - smith.erfc_a) + tan_over_sqrt_pi * smith.exp_minus_a2;
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
     double lo = -std::numeric_limits<double>::infinity(), hi = cot_theta;
@@ -119,10 +122,11 @@ double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
     };
     const double theta = std::acos(cos_theta), erf_cot = 1.0 - smith.erfc_a;
     const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
-    // (1 − u)^fit as exp(fit·log1p(−u)): the starting point only (the steps below converge to the same
-    // x̃), and cheaper than pow, which guards a double-precision result that is not needed here.
-    double x = approximate_inverse_erf(
-        std::clamp(erf_cot - (1.0 + erf_cot) * std::exp(fit * std::log1p(-u)), -1.0 + 1e-16, 1.0 - 1e-16));
+    // (1 − u)^fit as exp(fit·log1p(−u)): the starting point only (the steps below converge to the
+    // same x̃), and cheaper than pow, which guards a double-precision result that is not needed
+    // here.
+    double x = approximate_inverse_erf(std::clamp(
+        erf_cot - (1.0 + erf_cot) * std::exp(fit * std::log1p(-u)), -1.0 + 1e-16, 1.0 - 1e-16));
     if (!(x < hi)) {
         bracket_below();
         x = 0.5 * (lo + hi);
@@ -134,7 +138,8 @@ double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
         (f > 0.0 ? hi : lo) = x;
         // F' = 2/√π·e^(−x²)(1 − x·tanθ)/total, F'' = 2/√π·e^(−x²)(−2x(1 − x·tanθ) − tanθ)/total.
         const double d1 = 2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta) / total;
-        const double d2 = 2.0 * kInvSqrtPi * e * (-2.0 * x * (1.0 - x * tan_theta) - tan_theta) / total;
+        const double d2 =
+            2.0 * kInvSqrtPi * e * (-2.0 * x * (1.0 - x * tan_theta) - tan_theta) / total;
         double next = x - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
         if (!(next < hi) || !(next > lo)) {
             if (lo == -std::numeric_limits<double>::infinity()) bracket_below();
@@ -143,17 +148,18 @@ double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
         const double step = next - x;
         x = next;
         if (hi - lo < 1e-15 * (1.0 + std::abs(x))) break;
-        // Halley's error after a step is ~C·step³ with C of order x² + (F''/F')², so a step below 1e-5
-        // (away from x̃ → cot θ, where F' vanishes) leaves |F − u| far below 1e-13: stop without
-        // evaluating F again.
+        // Halley's error after a step is ~C·step³ with C of order x² + (F''/F')², so a step below
+        // 1e-5 (away from x̃ → cot θ, where F' vanishes) leaves |F − u| far below 1e-13: stop
+        // without evaluating F again.
         if (std::abs(step) < 1e-5 * (1.0 + std::abs(x)) && 1.0 - x * tan_theta > 0.05) break;
     }
     return x;
 }
 
-/// sample_visible_normal given Smith's terms at wo's (unstretched) cot θo (smith_terms): the stretched
-/// direction's cotangent is cot θo/α, which is the same a.
-Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2, const SmithTerms& smith) {
+/// sample_visible_normal given Smith's terms at wo's (unstretched) cot θo (smith_terms): the
+/// stretched direction's cotangent is cot θo/α, which is the same a.
+Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2,
+                           const SmithTerms& smith) {
     // Heitz & d'Eon, "Importance sampling microfacet-based BSDFs using the distribution of visible
     // normals", EGSR 2014, §4: the Gaussian slopes are Beckmann's with α = √2σ; stretch wo to unit
     // roughness, sample the visible slopes there, rotate to wo's azimuth, unstretch.
@@ -165,7 +171,8 @@ Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2, c
         x = r * std::cos(2.0 * kPi * u2);
         y = r * std::sin(2.0 * kPi * u2);
     } else {
-        const double slope_x = visible_slope_x(stretched.z(), u1, smith), slope_y = inverse_erf(2.0 * u2 - 1.0);
+        const double slope_x = visible_slope_x(stretched.z(), u1, smith),
+                     slope_y = inverse_erf(2.0 * u2 - 1.0);
         const double r = std::hypot(stretched.x(), stretched.y());
         const double c = stretched.x() / r, s = stretched.y() / r;
         x = c * slope_x - s * slope_y;
@@ -190,29 +197,33 @@ double specular_probability(const ShellTargetParameters<double>& p, double cos_o
     // (4π ρ_V (1 − ln 2)).
     const double diffuse = kPi * p.rho_d + 4.0 * kPi * (1.0 - std::log(2.0)) * p.rho_v;
     if (diffuse <= 0.0) return 1.0;
-    const FresnelReflectances<double> r =
-        fresnel_reflectances(TinyComplex<double>{p.n * p.n - p.k * p.k, 2.0 * p.n * p.k}, std::clamp(cos_o, 0.0, 1.0));
+    const FresnelReflectances<double> r = fresnel_reflectances(
+        TinyComplex<double>{p.n * p.n - p.k * p.k, 2.0 * p.n * p.k}, std::clamp(cos_o, 0.0, 1.0));
     const double specular = std::min(1.0, p.bias * 0.5 * (r.rs2 + r.rp2));
     if (specular <= 0.0) return 0.0;
-    // A defensive mixture (Hesterberg 1995): each lobe keeps at least a quarter of the samples, so its
-    // MIS weight is at most 4× and, with the sampler's strata of a quarter (4 points per replicate, or a
-    // multiple), every replicate draws each lobe a fixed number of times. A lobe drawn by ~1 sample in
-    // 11 (glossy paint at grazing views) made replicates that missed it alike, their spread blind to it.
+    // A defensive mixture (Hesterberg 1995): each lobe keeps at least a quarter of the samples, so
+    // its MIS weight is at most 4× and, with the sampler's strata of a quarter (4 points per
+    // replicate, or a multiple), every replicate draws each lobe a fixed number of times. A lobe
+    // drawn by ~1 sample in 11 (glossy paint at grazing views) made replicates that missed it
+    // alike, their spread blind to it.
     return std::clamp(specular / (specular + diffuse), 0.25, 0.75);
 }
 
 /// How the specular lobe draws its facet normal: from the normals visible from wo (the renderer's
-/// sampler) or from D(h)·cosθh (the smoother map in u that the emissivity quadrature integrates through).
+/// sampler) or from D(h)·cosθh (the smoother map in u that the emissivity quadrature integrates
+/// through).
 enum class FacetSampling { visible, slope };
 
 /// The mirror image of `w` in the tangent plane.
 Vec3 folded(const Vec3& w) { return Vec3(w.x(), w.y(), -w.z()); }
 
-/// Density of the visible-normal reflection wi = 2(h·wo)h − wo at a wi below the horizon (given as its
-/// folded image `wi_below`), which the sampler folds back up; `lambda_o` is Smith's Λ(wo).
-double masked_reflection_pdf(double sigma, const Vec3& wi_below, const Vec3& wo, double cos_o, double lambda_o) {
-    // The half vector's signs are those of the unnormalised sum: about half the samples (wi above wo's
-    // elevation) have no folded image, and are told so before the normalisation and D's exponential.
+/// Density of the visible-normal reflection wi = 2(h·wo)h − wo at a wi below the horizon (given as
+/// its folded image `wi_below`), which the sampler folds back up; `lambda_o` is Smith's Λ(wo).
+double masked_reflection_pdf(double sigma, const Vec3& wi_below, const Vec3& wo, double cos_o,
+                             double lambda_o) {
+    // The half vector's signs are those of the unnormalised sum: about half the samples (wi above
+    // wo's elevation) have no folded image, and are told so before the normalisation and D's
+    // exponential.
     const Vec3 sum = wi_below + wo;
     if (!(sum.z() > 0.0) || !(sum.dot(wo) > 0.0)) return 0.0;
     const Vec3 h = sum.normalized();
@@ -222,20 +233,21 @@ double masked_reflection_pdf(double sigma, const Vec3& wi_below, const Vec3& wo,
     return gaussian_facet_density(sigma, cos_h, tan2) / ((1.0 + lambda_o) * 4.0 * cos_o);
 }
 
-/// The mixture's pdf at the geometry `g` of (wi, wo), given the facet density `d` at g's half vector
-/// and Smith's Λ(wo), which the weight needs too (computed once per sample).
-double mixture_pdf(double sigma, double p_spec, const Vec3& wi, const Vec3& wo, const MicrofacetGeometry& g, double d,
-                   double lambda_o, FacetSampling facets) {
+/// The mixture's pdf at the geometry `g` of (wi, wo), given the facet density `d` at g's half
+/// vector and Smith's Λ(wo), which the weight needs too (computed once per sample).
+double mixture_pdf(double sigma, double p_spec, const Vec3& wi, const Vec3& wo,
+                   const MicrofacetGeometry& g, double d, double lambda_o, FacetSampling facets) {
     if (!g.valid) return 0.0;
     double pdf = 0.0;
     if (p_spec > 0.0) {
-        // The reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq 14).
-        // Visible normals have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the
-        // h·wo cancel; slope sampling has D·cosθh (Torrance & Sparrow 1967); h·wo = h·wi = cos β.
+        // The reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq
+        // 14). Visible normals have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so
+        // the h·wo cancel; slope sampling has D·cosθh (Torrance & Sparrow 1967); h·wo = h·wi = cos
+        // β.
         if (facets == FacetSampling::visible) {
             pdf += p_spec * d / ((1.0 + lambda_o) * 4.0 * g.cos_o);
-            // A visible normal whose reflection points below the horizon is folded up (sample_mixture),
-            // so wi is also drawn through its mirror image.
+            // A visible normal whose reflection points below the horizon is folded up
+            // (sample_mixture), so wi is also drawn through its mirror image.
             pdf += p_spec * masked_reflection_pdf(sigma, folded(wi), wo, g.cos_o, lambda_o);
         } else if (g.cos_beta > 0.0) {
             pdf += p_spec * d * g.cos_n / (4.0 * g.cos_beta);
@@ -245,19 +257,21 @@ double mixture_pdf(double sigma, double p_spec, const Vec3& wi, const Vec3& wo, 
     return pdf;
 }
 
-double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi, const Vec3& wo,
-                   FacetSampling facets) {
+double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi,
+                   const Vec3& wo, FacetSampling facets) {
     const MicrofacetGeometry g = microfacet_geometry(wi, wo);
     if (!g.valid) return 0.0;
-    return mixture_pdf(p.sigma, p_spec, wi, wo, g, gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n),
+    return mixture_pdf(p.sigma, p_spec, wi, wo, g,
+                       gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n),
                        smith_lambda(p.sigma, g.cot_o), facets);
 }
 
-BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo, double u1, double u2,
-                          FacetSampling facets) {
+BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo,
+                          double u1, double u2, FacetSampling facets) {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
-    // Λ(wo) enters the visible-normal sampler's normalisation, its pdf and the BRDF's G: computed once.
+    // Λ(wo) enters the visible-normal sampler's normalisation, its pdf and the BRDF's G: computed
+    // once.
     const SmithTerms smith = smith_terms(p.sigma, cotangent(wo.z()));
     if (u1 < p_spec) {
         const double u = u1 / p_spec;
@@ -273,10 +287,11 @@ BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec,
         const double ho = h.dot(wo);
         if (!(ho > 0.0)) return s;
         s.wi = (2.0 * ho * h - wo).normalized();
-        // A reflection below the horizon (masked: the model's G is 0 there) would be a wasted, zero-weight
-        // sample: at grazing views 3–7 % of visible normals give one, a rare event that a pixel's few
-        // samples can miss altogether, leaving its variance estimate blind to it. Folding it into the
-        // upper hemisphere keeps every sample and stays unbiased, as mixture_pdf counts both images.
+        // A reflection below the horizon (masked: the model's G is 0 there) would be a wasted,
+        // zero-weight sample: at grazing views 3–7 % of visible normals give one, a rare event that
+        // a pixel's few samples can miss altogether, leaving its variance estimate blind to it.
+        // Folding it into the upper hemisphere keeps every sample and stays unbiased, as
+        // mixture_pdf counts both images.
         if (facets == FacetSampling::visible && s.wi.z() < 0.0) s.wi = folded(s.wi);
         if (!(s.wi.z() > 0.0)) return s;
     } else {
@@ -301,12 +316,14 @@ double MicrofacetBrdf::specular_sampling_probability(const Vec3& wo, double wave
     return specular_probability(at(wavelength_um), wo.z());
 }
 
-BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample MicrofacetBrdf::sample(const Vec3& wo, double wavelength_um, double u1,
+                                  double u2) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
     return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::visible);
 }
 
-BrdfSample MicrofacetBrdf::quadrature_sample(const Vec3& wo, double wavelength_um, double u1, double u2) const {
+BrdfSample MicrofacetBrdf::quadrature_sample(const Vec3& wo, double wavelength_um, double u1,
+                                             double u2) const {
     const ShellTargetParameters<double> p = at(wavelength_um);
     return sample_mixture(p, specular_probability(p, wo.z()), wo, u1, u2, FacetSampling::slope);
 }
@@ -336,8 +353,9 @@ std::vector<BrdfParameter> MicrofacetBrdf::parameters(double wavelength_um) cons
 
 std::pair<double, double> MicrofacetBrdf::valid_wavelength_range_um() const {
     double lo = m_parameters.index.min_wavelength_um(), hi = m_parameters.index.max_wavelength_um();
-    for (const SpectralValue* v : {&m_parameters.sigma, &m_parameters.bias, &m_parameters.tau_deg,
-                                   &m_parameters.omega_deg, &m_parameters.rho_d, &m_parameters.rho_v}) {
+    for (const SpectralValue* v :
+         {&m_parameters.sigma, &m_parameters.bias, &m_parameters.tau_deg, &m_parameters.omega_deg,
+          &m_parameters.rho_d, &m_parameters.rho_v}) {
         lo = std::max(lo, v->min_wavelength_um());
         hi = std::min(hi, v->max_wavelength_um());
     }

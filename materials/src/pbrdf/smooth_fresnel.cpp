@@ -6,23 +6,28 @@ namespace tirpol::materials {
 
 SmoothFresnelBrdf::SmoothFresnelBrdf(RefractiveIndexTable index) : m_index(std::move(index)) {}
 
-MuellerMatrix SmoothFresnelBrdf::eval(const Vec3& /*wi*/, const Vec3& /*wo*/, double /*wavelength_um*/) const {
+MuellerMatrix SmoothFresnelBrdf::eval(const Vec3& /*wi*/, const Vec3& /*wo*/,
+                                      double /*wavelength_um*/) const {
     return MuellerMatrix::Zero();
 }
 
-BrdfSample SmoothFresnelBrdf::sample(const Vec3& wo, double wavelength_um, double /*u1*/, double /*u2*/) const {
+BrdfSample SmoothFresnelBrdf::sample(const Vec3& wo, double wavelength_um, double /*u1*/,
+                                     double /*u2*/) const {
     BrdfSample s;
     s.is_delta = true;
     if (!(wo.z() > 0.0)) return s;
     s.wi = Vec3(-wo.x(), -wo.y(), wo.z());
     s.pdf = 1.0;
-    // Mirror geometry: surface_frame(−wi, z) and surface_frame(wo, z) share the reference axis z × wo
-    // (also in the normal-incidence fallback), so the Fresnel matrix needs no frame rotation.
+    // Mirror geometry: surface_frame(−wi, z) and surface_frame(wo, z) share the reference axis z ×
+    // wo (also in the normal-incidence fallback), so the Fresnel matrix needs no frame rotation.
     s.weight = fresnel_mueller(m_index.at_clamped(wavelength_um), wo.z());
     return s;
 }
 
-double SmoothFresnelBrdf::pdf(const Vec3& /*wi*/, const Vec3& /*wo*/, double /*wavelength_um*/) const { return 0.0; }
+double SmoothFresnelBrdf::pdf(const Vec3& /*wi*/, const Vec3& /*wo*/,
+                              double /*wavelength_um*/) const {
+    return 0.0;
+}
 
 std::vector<BrdfParameter> SmoothFresnelBrdf::parameters(double wavelength_um) const {
     const ComplexIndex i = m_index.at_clamped(wavelength_um);

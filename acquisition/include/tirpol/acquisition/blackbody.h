@@ -4,8 +4,8 @@
 /// looks at). Back end: the Fluke 4180/4181 Precision Infrared Calibrator's SCPI serial protocol
 /// (fluke_scpi.h) over a serial port, and `sim://`, the same protocol served in-process by the
 /// simulator (docs/acquisition-blackbody.md). Opened by URI with open_blackbody:
-///   fluke-4180:///dev/ttyUSB0[?baud=9600&timeout_ms=1000]   Fluke 4180 (−15…120 °C) on a serial port, 8N1
-///   fluke-4181:///dev/ttyUSB0[?...]                          Fluke 4181 (35…500 °C)
+///   fluke-4180:///dev/ttyUSB0[?baud=9600&timeout_ms=1000]   Fluke 4180 (−15…120 °C) on a serial
+///   port, 8N1 fluke-4181:///dev/ttyUSB0[?...]                          Fluke 4181 (35…500 °C)
 ///   sim://[?tau_s=60&ambient_k=296.15&noise_k=0.005&limit_k=0.05&window_s=30&model=4180&fault=none&fault_on_set=1]
 ///                       the same protocol served in-process by BlackbodySimulator
 /// Unknown schemes or keys give InvalidArgument naming them.
@@ -43,7 +43,8 @@ public:
     virtual Result<BlackbodyStatus> status() = 0;
 };
 
-/// The controller a URI names (see the file comment); InvalidArgument naming an unknown scheme or key.
+/// The controller a URI names (see the file comment); InvalidArgument naming an unknown scheme or
+/// key.
 Result<std::unique_ptr<BlackbodyController>> open_blackbody(const std::string& uri);
 
 }  // namespace tirpol::acquisition

@@ -1,12 +1,13 @@
 #pragma once
 /// \file camera.h
 /// The camera interface. Back ends: Aravis (GenICam: GigE Vision / USB3 Vision), V4L2 (UVC thermal
-/// cores), simulated (frame generator). Opened by URI: `aravis://<device-id>`, `v4l2:///dev/videoN`,
-/// `sim://<name>`, or any scheme added with register_camera_scheme:
+/// cores), simulated (frame generator). Opened by URI: `aravis://<device-id>`,
+/// `v4l2:///dev/videoN`, `sim://<name>`, or any scheme added with register_camera_scheme:
 ///   aravis://<device-id>[?pixel_format=Mono14&width=W&height=H&fps=F&trigger=software&buffers=N&packet_size=auto|keep]
 ///   v4l2:///dev/videoN[?format=Y16|GREY&width=W&height=H&fps=F&buffers=N]
 ///   sim://uniform?width=W&height=H&counts=C&noise=N&fps=F[&bits=B&drop=P&seed=S&fpa_k=T]
-/// (the digital twin adds the renderer-backed sim://<scene.yaml>: tirpol::twin::register_twin_device_schemes).
+/// (the digital twin adds the renderer-backed sim://<scene.yaml>:
+/// tirpol::twin::register_twin_device_schemes).
 
 #include <chrono>
 #include <cstdint>
@@ -24,21 +25,23 @@ namespace tirpol::acquisition {
 /// One frame as delivered by a camera: raw counts converted to float (exact for ≤ 24-bit data).
 struct Frame {
     int width = 0, height = 0;
-    std::vector<float> counts;            ///< row-major, origin top-left
-    std::uint64_t frame_id = 0;           ///< the device's id, unwrapped to a monotonic 64-bit count
-    std::int64_t device_timestamp_ns = 0; ///< the device's timestamp (0 if none)
-    std::int64_t host_timestamp_ns = 0;   ///< host CLOCK_REALTIME at reception
-    std::optional<double> fpa_temperature_k; ///< sensor/device temperature when the camera exposes one
+    std::vector<float> counts;   ///< row-major, origin top-left
+    std::uint64_t frame_id = 0;  ///< the device's id, unwrapped to a monotonic 64-bit count
+    std::int64_t device_timestamp_ns = 0;  ///< the device's timestamp (0 if none)
+    std::int64_t host_timestamp_ns = 0;    ///< host CLOCK_REALTIME at reception
+    std::optional<double>
+        fpa_temperature_k;  ///< sensor/device temperature when the camera exposes one
 };
 
 struct CameraInfo {
-    std::string uri;           ///< how to open it again
+    std::string uri;  ///< how to open it again
     std::string vendor, model, serial;
     std::string pixel_format;  ///< "Mono16", "Mono14", "Y16", ...
     int width = 0, height = 0;
     int bits_per_pixel = 0;
     std::optional<double> frame_rate_hz;
-    std::map<std::string, double> planck_constants; ///< FLIR-style R, B, F, O (R1, R2, ...) when present
+    std::map<std::string, double>
+        planck_constants;  ///< FLIR-style R, B, F, O (R1, R2, ...) when present
 };
 
 struct StreamStatistics {
@@ -73,10 +76,10 @@ Result<std::unique_ptr<Camera>> open_camera(const std::string& uri);
 /// Makes the camera of a URI of its scheme (the whole URI is passed; parse it with device_uri.h).
 using CameraFactory = std::function<Result<std::unique_ptr<Camera>>(const std::string& uri)>;
 
-/// Adds the factory for `scheme` (the part before "://"), or replaces the one registered, and returns
-/// the replaced factory (empty if there was none) so that a plug-in can take part of a scheme and
-/// pass the other URIs on. The built-in schemes (aravis and v4l2 when built with them, sim) are
-/// registered this way on first use of the registry. Thread-safe.
+/// Adds the factory for `scheme` (the part before "://"), or replaces the one registered, and
+/// returns the replaced factory (empty if there was none) so that a plug-in can take part of a
+/// scheme and pass the other URIs on. The built-in schemes (aravis and v4l2 when built with them,
+/// sim) are registered this way on first use of the registry. Thread-safe.
 CameraFactory register_camera_scheme(const std::string& scheme, CameraFactory factory);
 
 /// The registered camera schemes, sorted.

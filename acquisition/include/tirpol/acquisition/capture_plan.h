@@ -16,20 +16,24 @@
 ///     frames: 32
 ///   - kind: shutter
 ///     frames: 16
-///   - kind: blackbody               # set by a blackbody controller (tirpol acquire --blackbody URI)
+///   - kind: blackbody               # set by a blackbody controller (tirpol acquire --blackbody
+///   URI)
 ///     temperatures_c: [10, 20, 30, 40]
 ///     frames: 32
 ///     angles_deg: [0, 45, 90, 135]  # optional: each set-point × these polarizer angles
 ///     controller: {tolerance_k: 0.05, stable_for_s: 30, timeout_s: 1800, poll_s: 1}
-/// scene_reference:               # optional: in-scene reference blackbody region (drift correction)
+/// scene_reference:               # optional: in-scene reference blackbody region (drift
+/// correction)
 ///   roi: {x: 2, y: 2, width: 6, height: 6}   # pixels
 ///   temperature_k: 303.15         # or temperature_c: its contact sensor
 ///   temperature_sigma_k: 0.02
-/// shutter_interleave:             # optional: a shutter record before every N scene records and at the end
+/// shutter_interleave:             # optional: a shutter record before every N scene records and at
+/// the end
 ///   every: 4
 ///   temperature_k: 295.0          # the shutter's sensor (needed for the drift correction)
 ///   frames: 16
-/// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5, air_temperature_c: 4.5}
+/// metadata: {site: roof, operator: ..., targets: [...], polarizer_tilt_deg: 5,
+/// air_temperature_c: 4.5}
 /// ```
 /// Unknown keys are errors naming the key (typos never pass silently); so are an empty plan file,
 /// angles outside [0, 360) and values beyond the limits below, all before any device moves.
@@ -55,26 +59,29 @@ inline constexpr double kMaxFrameTimeoutSeconds = 600.0;
 
 /// When a set-point counts as reached (capture plan `references[].controller`).
 struct BlackbodyStabilityCriterion {
-    double tolerance_k = 0.1;    ///< |reading − set-point| ≤ tolerance_k ...
-    double stable_for_s = 30.0;  ///< ... with the controller's stability flag set, without a break for this long
-    double timeout_s = 1800.0;   ///< then give up: Timeout naming the set-point and the last reading
-    double poll_s = 1.0;         ///< controller polling period (also while frames are taken)
+    double tolerance_k = 0.1;  ///< |reading − set-point| ≤ tolerance_k ...
+    double stable_for_s =
+        30.0;  ///< ... with the controller's stability flag set, without a break for this long
+    double timeout_s = 1800.0;  ///< then give up: Timeout naming the set-point and the last reading
+    double poll_s = 1.0;        ///< controller polling period (also while frames are taken)
 
     bool operator==(const BlackbodyStabilityCriterion&) const = default;
 };
 
 struct ReferenceSpec {
     RecordKind kind = RecordKind::Blackbody;  ///< Blackbody or Shutter
-    std::vector<double> temperatures_k;       ///< one step per temperature (blackbody: ≥ 1; shutter: optional)
+    std::vector<double>
+        temperatures_k;  ///< one step per temperature (blackbody: ≥ 1; shutter: optional)
     int frames = 16;
-    double angle_deg = 0.0;                   ///< where the polarizer sits for the reference frames
-    std::vector<double> angles_deg;           ///< instead of angle_deg: every temperature × these angles
+    double angle_deg = 0.0;          ///< where the polarizer sits for the reference frames
+    std::vector<double> angles_deg;  ///< instead of angle_deg: every temperature × these angles
     /// Set: a blackbody controller sets each temperature and the frames wait for `controller`'s
     /// criterion (blackbody only); unset: the operator places the blackbody.
     std::optional<BlackbodyStabilityCriterion> controller;
 };
 
-/// An in-scene reference blackbody seen in every scene record (docs/calibration.md, "Drift correction").
+/// An in-scene reference blackbody seen in every scene record (docs/calibration.md, "Drift
+/// correction").
 struct SceneReferenceSpec {
     int x = 0, y = 0, width = 0, height = 0;  ///< ROI, pixels
     double temperature_k = 0.0;               ///< contact-sensor value
@@ -116,11 +123,13 @@ struct CaptureStep {
     double angle_deg = 0.0;
     int repeat = 0;
     std::optional<double> temperature_k;
-    std::optional<BlackbodyStabilityCriterion> blackbody_control;  ///< the controller sets temperature_k
+    std::optional<BlackbodyStabilityCriterion>
+        blackbody_control;  ///< the controller sets temperature_k
     int frames = 0;
     std::string file;   ///< "frames/s003_pol_090.000deg_r0.exr"
     std::string label;  ///< "polarizer 90° (repeat 1/2)"
-    bool after_shutter = false;  ///< a scene step right after an interleaved shutter: reopen it first
+    bool after_shutter =
+        false;  ///< a scene step right after an interleaved shutter: reopen it first
 };
 
 /// Whether any step needs a blackbody controller.

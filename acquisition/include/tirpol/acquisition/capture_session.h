@@ -16,9 +16,10 @@ namespace tirpol::acquisition {
 
 /// `resume` false: SessionWriter::create (refuses a non-empty directory). `resume` true: the
 /// directory must hold a session (tirpol::Error "no session to resume here" otherwise), which is
-/// reopened with SessionWriter::resume and checked with check_resumable. `blackbody`: the controller
-/// of a plan with blackbody set-points (recorded in a new session's manifest).
-SessionWriter open_capture_session(const std::filesystem::path& dir, const CameraInfo& camera, const StageInfo& stage,
-                                   const CapturePlan& plan, bool resume, const BlackbodyInfo* blackbody = nullptr);
+/// reopened with SessionWriter::resume and checked with check_resumable. `blackbody`: the
+/// controller of a plan with blackbody set-points (recorded in a new session's manifest).
+SessionWriter open_capture_session(const std::filesystem::path& dir, const CameraInfo& camera,
+                                   const StageInfo& stage, const CapturePlan& plan, bool resume,
+                                   const BlackbodyInfo* blackbody = nullptr);
 
 }  // namespace tirpol::acquisition

@@ -1,7 +1,7 @@
 #pragma once
 /// \file device_uri.h
-/// Device URIs, `scheme://target?key=value&key=value`: the one parser the built-in camera, stage and
-/// blackbody factories use, public so that a factory added with register_camera_scheme or
+/// Device URIs, `scheme://target?key=value&key=value`: the one parser the built-in camera, stage
+/// and blackbody factories use, public so that a factory added with register_camera_scheme or
 /// register_stage_scheme reads its URI with the same rules and error messages.
 
 #include <initializer_list>
@@ -20,14 +20,15 @@ struct DeviceUri {
 
     /// Throws tirpol::Error naming the URI for a key not in `allowed`.
     void check_keys(std::initializer_list<const char*> allowed) const;
-    /// The query value parsed as a number; throws tirpol::Error naming the key if it does not parse.
+    /// The query value parsed as a number; throws tirpol::Error naming the key if it does not
+    /// parse.
     double number(const std::string& key, double fallback) const;
     int integer(const std::string& key, int fallback) const;
 };
 
-/// Splits a URI, the one parser of device URIs (cameras, stages, blackbodies): InvalidArgument naming
-/// the URI when there is no "://" or a query item is not key=value. Empty query items ("a=1&&b=2", a
-/// trailing '&') are skipped.
+/// Splits a URI, the one parser of device URIs (cameras, stages, blackbodies): InvalidArgument
+/// naming the URI when there is no "://" or a query item is not key=value. Empty query items
+/// ("a=1&&b=2", a trailing '&') are skipped.
 Result<DeviceUri> split_device_uri(const std::string& uri);
 
 /// split_device_uri() for camera factories, which throw: tirpol::Error with the same message.

@@ -1,7 +1,8 @@
 #pragma once
 /// \file result.h
-/// Device drivers report expected failures (timeouts, bad replies, faults) as values, not exceptions
-/// (STYLE.md "Errors"). The application layer turns them into tirpol::Error with `value_or_throw`.
+/// Device drivers report expected failures (timeouts, bad replies, faults) as values, not
+/// exceptions (STYLE.md "Errors"). The application layer turns them into tirpol::Error with
+/// `value_or_throw`.
 
 #include <string>
 #include <utility>
@@ -12,14 +13,14 @@
 namespace tirpol::acquisition {
 
 enum class DeviceErrorCode {
-    Timeout,        ///< the device did not answer in time
-    BadReply,       ///< a reply that does not parse or does not match the request
-    DeviceFault,    ///< the device answered with an error/fault status
-    Disconnected,   ///< the port or connection went away
-    NotSupported,   ///< the device lacks the feature
-    InvalidArgument,///< the request was invalid (out of range, unknown feature)
-    IoError,        ///< an operating-system I/O error
-    Stopped,        ///< a motion ended early because Stage::stop() was called (e.g. on Ctrl-C)
+    Timeout,          ///< the device did not answer in time
+    BadReply,         ///< a reply that does not parse or does not match the request
+    DeviceFault,      ///< the device answered with an error/fault status
+    Disconnected,     ///< the port or connection went away
+    NotSupported,     ///< the device lacks the feature
+    InvalidArgument,  ///< the request was invalid (out of range, unknown feature)
+    IoError,          ///< an operating-system I/O error
+    Stopped,          ///< a motion ended early because Stage::stop() was called (e.g. on Ctrl-C)
 };
 
 const char* to_string(DeviceErrorCode code);
@@ -33,8 +34,8 @@ struct DeviceError {
 template <typename T>
 class Result {
 public:
-    Result(T value) : m_v(std::move(value)) {}                 // NOLINT(google-explicit-constructor)
-    Result(DeviceError error) : m_v(std::move(error)) {}       // NOLINT(google-explicit-constructor)
+    Result(T value) : m_v(std::move(value)) {}            // NOLINT(google-explicit-constructor)
+    Result(DeviceError error) : m_v(std::move(error)) {}  // NOLINT(google-explicit-constructor)
     bool ok() const { return std::holds_alternative<T>(m_v); }
     explicit operator bool() const { return ok(); }
     const T& value() const { return std::get<T>(m_v); }

@@ -1,15 +1,15 @@
 #pragma once
 /// \file stage.h
 /// The rotation-stage interface (the mount that turns the wire-grid polarizer). Back ends: Thorlabs
-/// APT (K10CR1 and other APT/Kinesis mounts) over a serial port or libusb, Thorlabs Elliptec (ELL14),
-/// simulated. Opened by URI: `thorlabs-apt:///dev/ttyUSB0`, `thorlabs-apt+usb://<serial>`,
+/// APT (K10CR1 and other APT/Kinesis mounts) over a serial port or libusb, Thorlabs Elliptec
+/// (ELL14), simulated. Opened by URI: `thorlabs-apt:///dev/ttyUSB0`, `thorlabs-apt+usb://<serial>`,
 /// `elliptec:///dev/ttyUSB0?address=0`, `sim://`, or any scheme added with register_stage_scheme:
-///   thorlabs-apt:///dev/ttyUSB0[?counts_per_degree=N&channel=1&address=0x50]   (serial port, 115200 8N1 RTS/CTS)
-///   thorlabs-apt+usb://<USB serial>[?...same keys]                              (libusb straight to the FTDI chip)
-///   elliptec:///dev/ttyUSB0[?address=0]                                         (serial port, 9600 8N1)
-///   sim://[?deg_per_s=V&start_deg=A&fail_on_move=N]                             (in-process simulation)
-/// Common key: timeout_ms (reply timeout). Unknown schemes or keys give InvalidArgument naming them.
-/// Angles in degrees, wrapped to [0, 360).
+///   thorlabs-apt:///dev/ttyUSB0[?counts_per_degree=N&channel=1&address=0x50]   (serial port,
+///   115200 8N1 RTS/CTS) thorlabs-apt+usb://<USB serial>[?...same keys] (libusb straight to the
+///   FTDI chip) elliptec:///dev/ttyUSB0[?address=0]                                         (serial
+///   port, 9600 8N1) sim://[?deg_per_s=V&start_deg=A&fail_on_move=N] (in-process simulation)
+/// Common key: timeout_ms (reply timeout). Unknown schemes or keys give InvalidArgument naming
+/// them. Angles in degrees, wrapped to [0, 360).
 
 #include <chrono>
 #include <functional>
@@ -43,7 +43,8 @@ public:
     /// cut short). When nothing moves it sends nothing and returns ok. Stages that cannot stop
     /// return NotSupported.
     virtual Status stop() {
-        return DeviceError{DeviceErrorCode::NotSupported, info().uri + ": this stage has no stop command"};
+        return DeviceError{DeviceErrorCode::NotSupported,
+                           info().uri + ": this stage has no stop command"};
     }
 };
 
@@ -53,11 +54,13 @@ public:
 /// InvalidArgument listing the registered ones.
 Result<std::unique_ptr<Stage>> open_stage(const std::string& uri);
 
-/// Makes the stage of a URI of its scheme (the whole URI is passed; parse it with split_device_uri, device_uri.h).
+/// Makes the stage of a URI of its scheme (the whole URI is passed; parse it with split_device_uri,
+/// device_uri.h).
 using StageFactory = std::function<Result<std::unique_ptr<Stage>>(const std::string& uri)>;
 
 /// Adds the factory for `scheme`, or replaces the registered one and returns it (empty if none), as
-/// register_camera_scheme does for cameras. The built-in schemes above register this way. Thread-safe.
+/// register_camera_scheme does for cameras. The built-in schemes above register this way.
+/// Thread-safe.
 StageFactory register_stage_scheme(const std::string& scheme, StageFactory factory);
 
 /// The registered stage schemes, sorted.

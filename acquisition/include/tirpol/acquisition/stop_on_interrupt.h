@@ -2,10 +2,10 @@
 /// \file stop_on_interrupt.h
 /// What Ctrl-C (SIGINT/SIGTERM) does during `tirpol acquire`: a signal handler can only set a flag,
 /// and the capture loop may be blocked in a move, a homing or a device call. A watcher thread turns
-/// the flag into Stage::stop() (repeated every `restop_period`, so a move that starts just after the
-/// first stop is stopped too) and, if the program has still not finished `grace` after the signal,
-/// calls `on_overdue` (the CLI prints where the session is and exits: every session write is atomic,
-/// so nothing recorded is lost).
+/// the flag into Stage::stop() (repeated every `restop_period`, so a move that starts just after
+/// the first stop is stopped too) and, if the program has still not finished `grace` after the
+/// signal, calls `on_overdue` (the CLI prints where the session is and exits: every session write
+/// is atomic, so nothing recorded is lost).
 
 #include <atomic>
 #include <chrono>

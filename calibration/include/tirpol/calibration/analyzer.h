@@ -23,11 +23,11 @@ namespace tirpol::calibration {
 
 /// Model of one analyzer position.
 struct AnalyzerPosition {
-    double nominal_angle_deg = 0.0;   ///< the angle the stage was commanded to
-    double axis_angle_deg = 0.0;      ///< fitted transmission-axis angle θ_k
-    double diattenuation = 1.0;       ///< d_k in [0, 1]
+    double nominal_angle_deg = 0.0;      ///< the angle the stage was commanded to
+    double axis_angle_deg = 0.0;         ///< fitted transmission-axis angle θ_k
+    double diattenuation = 1.0;          ///< d_k in [0, 1]
     double relative_transmission = 1.0;  ///< t_k (t_max + t_min; 1 for an ideal polarizer)
-    double background = 0.0;          ///< b_k, in the units of the measurements
+    double background = 0.0;             ///< b_k, in the units of the measurements
 
     /// Extinction ratio t_max/t_min = (1 + d)/(1 − d) (infinite for d = 1).
     double extinction_ratio() const;

@@ -14,8 +14,8 @@ enum BadPixel : std::uint32_t {
     kDead = 1u << 0,       ///< responsivity (gain) below `dead_gain_fraction` × median gain
     kHot = 1u << 1,        ///< offset more than `hot_sigma` robust σ above the median offset
     kNoisy = 1u << 2,      ///< temporal noise above `noisy_factor` × median temporal noise
-    kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median and
-                           ///< not explained by the pixel's temporal noise (fit quality ≥ 3)
+    kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median
+                           ///< and not explained by the pixel's temporal noise (fit quality ≥ 3)
     kSaturated = 1u << 4,  ///< at or above the saturation level in a calibration frame
 };
 
@@ -37,6 +37,7 @@ RobustStats robust_stats(const std::vector<float>& values);
 /// Replaces the values of bad pixels (mask ≠ 0) in `plane` (width × height) by the mean of the
 /// good pixels in the 3×3 neighbourhood, widening to 5×5 and 7×7 when none is good; NaN if
 /// still none. Replacement reads only good pixels, so the result does not depend on scan order.
-void replace_bad_pixels(std::vector<float>& plane, const std::vector<float>& bad_mask, int width, int height);
+void replace_bad_pixels(std::vector<float>& plane, const std::vector<float>& bad_mask, int width,
+                        int height);
 
 }  // namespace tirpol::calibration

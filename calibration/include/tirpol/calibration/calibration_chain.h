@@ -25,8 +25,9 @@ namespace tirpol::calibration {
 struct ChainInputs {
     /// The band of the radiometric calibration and of eq 17 (L_BB of a contact temperature).
     Band band{8.0, 14.0};
-    /// Radiometric step: sessions of blackbody (or temperature-tagged shutter) records taken without
-    /// the polarizer, one camera (several camera temperatures for RadiometricOptions::fpa_degree ≥ 1).
+    /// Radiometric step: sessions of blackbody (or temperature-tagged shutter) records taken
+    /// without the polarizer, one camera (several camera temperatures for
+    /// RadiometricOptions::fpa_degree ≥ 1).
     std::vector<std::filesystem::path> blackbody_sessions;
     RadiometricOptions radiometric_options;
     /// Also residuals per set-point, NEDT and their warnings (assess_calibration).
@@ -49,17 +50,18 @@ struct ChainProducts {
     std::optional<RadiometricCalibration> radiometric;
     std::optional<CalibrationQuality> quality;  ///< with ChainInputs::assess_quality
     std::optional<PolarimetricCalibration> polarimetric;
-    std::vector<Image> stokes;                              ///< per scene session, in order
-    std::vector<std::vector<EmissivityResult>> emissivity;  ///< per Stokes image, one row per target
+    std::vector<Image> stokes;  ///< per scene session, in order
+    std::vector<std::vector<EmissivityResult>>
+        emissivity;  ///< per Stokes image, one row per target
 };
 
-/// The calibrations of earlier runs from their files (`calibrate radiometric -o CAL.exr`, `calibrate
-/// polarimetric -o POL.yaml`), as products to start the chain from; an empty path: none.
+/// The calibrations of earlier runs from their files (`calibrate radiometric -o CAL.exr`,
+/// `calibrate polarimetric -o POL.yaml`), as products to start the chain from; an empty path: none.
 ChainProducts read_calibration_products(const std::filesystem::path& radiometric_exr,
                                         const std::filesystem::path& polarimetric_yaml = {});
 
-/// One step of the chain: its name, what it needs and makes (in words, for errors and docs), when it
-/// is due (its inputs given, its product not yet made) and its function.
+/// One step of the chain: its name, what it needs and makes (in words, for errors and docs), when
+/// it is due (its inputs given, its product not yet made) and its function.
 struct CalibrationStep {
     std::string_view name;
     std::string_view needs;
@@ -76,8 +78,8 @@ using BeforeCalibrationStep = std::function<void(const CalibrationStep&)>;
 
 /// Runs every due step in order, starting from `given`. Throws tirpol::Error naming the step when a
 /// step lacks what it needs (a reduction without a radiometric calibration, regions without Stokes
-/// images, a number of region sets that is neither 1 nor the number of images) and the errors of the
-/// step's function.
+/// images, a number of region sets that is neither 1 nor the number of images) and the errors of
+/// the step's function.
 ChainProducts run_calibration_chain(const ChainInputs& inputs, ChainProducts given = {},
                                     const BeforeCalibrationStep& before_step = {});
 

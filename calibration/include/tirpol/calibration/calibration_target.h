@@ -15,9 +15,10 @@ namespace tirpol::calibration {
 struct CalibrationTarget {
     enum class Kind { Checkerboard, Circles, AsymmetricCircles };
     Kind kind = Kind::Checkerboard;
-    int columns = 0;         ///< inner corners (checkerboard) or circles along a row
-    int rows = 0;            ///< inner corners or circles down a column
-    double spacing_m = 0.0;  ///< square side; circle pitch; for the asymmetric grid half the pitch along a row
+    int columns = 0;  ///< inner corners (checkerboard) or circles along a row
+    int rows = 0;     ///< inner corners or circles down a column
+    double spacing_m =
+        0.0;  ///< square side; circle pitch; for the asymmetric grid half the pitch along a row
 
     /// Parses `checkerboard:COLSxROWS:SQUARE_M`, `circles:COLSxROWS:PITCH_M` or
     /// `acircles:COLSxROWS:HALF_PITCH_M` (OpenCV's asymmetric grid). COLSxROWS count inner corners
@@ -25,7 +26,9 @@ struct CalibrationTarget {
     static CalibrationTarget parse(const std::string& text);
     std::string to_string() const;
 
-    std::size_t point_count() const { return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows); }
+    std::size_t point_count() const {
+        return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+    }
     /// Feature positions in the target frame, metres, in detection order.
     std::vector<Vec3> object_points() const;
 };

@@ -3,14 +3,15 @@
 /// Polarized emissivity of targets from a reduced Stokes image (paper eq 17 with τ_p → 1):
 ///     L_SLAR = (1 − ε)·L_dw + ε·L_BB(T)   ⇒   ε_S0 = (S0 − L_dw)/(L_BB − L_dw),
 ///     ε_S1 = S1/(L_BB − L_dw),   ε_S2 = S2/(L_BB − L_dw),
-/// the downwelled radiance L_dw (taken as unpolarized and uniform) from an IR-reflector region, L_BB from a
-/// contact temperature or from an in-scene blackbody at the target's temperature. A real reflector also
-/// emits: given its emissivity ε_r and temperature T_r, L_dw = (S0_r − ε_r·L_BB(T_r))/(1 − ε_r).
-/// What eq 17 cannot remove is a downwelling that is not uniform: the target's polarized reflection
-/// weights the sky differently from the reflector's S0 (docs/calibration.md, "Emissivity extraction"). The paper writes
-/// eq 17 per analyzer angle for radiances normalised to unit response to unpolarized light; applied
-/// to the Stokes components (eqs 14–16 are linear) it gives the expressions above. ε_S1 and ε_S2
-/// are in the image Stokes frame (ARCHITECTURE.md): a sky-facing panel seen obliquely has ε_S1 < 0.
+/// the downwelled radiance L_dw (taken as unpolarized and uniform) from an IR-reflector region,
+/// L_BB from a contact temperature or from an in-scene blackbody at the target's temperature. A
+/// real reflector also emits: given its emissivity ε_r and temperature T_r, L_dw = (S0_r −
+/// ε_r·L_BB(T_r))/(1 − ε_r). What eq 17 cannot remove is a downwelling that is not uniform: the
+/// target's polarized reflection weights the sky differently from the reflector's S0
+/// (docs/calibration.md, "Emissivity extraction"). The paper writes eq 17 per analyzer angle for
+/// radiances normalised to unit response to unpolarized light; applied to the Stokes components
+/// (eqs 14–16 are linear) it gives the expressions above. ε_S1 and ε_S2 are in the image Stokes
+/// frame (ARCHITECTURE.md): a sky-facing panel seen obliquely has ε_S1 < 0.
 
 #include <array>
 #include <optional>
@@ -33,32 +34,33 @@ struct EmissivityTarget {
     std::optional<PixelRect> blackbody_rect;  ///< in-scene blackbody at the target temperature
 };
 
-/// The IR reflector that measures the downwelling. Its own emission is removed when `emissivity` > 0
-/// (then `temperature_k`, a contact reading, is required); 0 takes the reflector as a perfect mirror
-/// of its surroundings, as the paper does.
+/// The IR reflector that measures the downwelling. Its own emission is removed when `emissivity` >
+/// 0 (then `temperature_k`, a contact reading, is required); 0 takes the reflector as a perfect
+/// mirror of its surroundings, as the paper does.
 struct EmissivityReflector {
     PixelRect rect;
     double emissivity = 0.0;              ///< directional emissivity toward the camera, [0, 1)
     double emissivity_std = 0.0;          ///< its standard uncertainty (datasheet)
     std::optional<double> temperature_k;  ///< contact temperature
     double temperature_std_k = 0.5;       ///< its standard uncertainty
-    /// From the ROI file's `reflector` mapping: `rect` and the optional `emissivity`, `emissivity_std`,
-    /// `temperature_k`, `temperature_std_k`; errors name file, line and field.
+    /// From the ROI file's `reflector` mapping: `rect` and the optional `emissivity`,
+    /// `emissivity_std`, `temperature_k`, `temperature_std_k`; errors name file, line and field.
     static EmissivityReflector from_config(const ConfigNode& node);
 };
 
 struct EmissivityRois {
     EmissivityReflector reflector;
     std::vector<EmissivityTarget> targets;
-    /// Reads the ROI YAML (docs/calibration.md): keys `reflector: {rect, emissivity, emissivity_std,
-    /// temperature_k, temperature_std_k}` (all but rect optional), `targets: [{name, rect,
-    /// view_angle_deg, temperature_k | blackbody_rect, temperature_std_k}]`; errors name file, line, field.
+    /// Reads the ROI YAML (docs/calibration.md): keys `reflector: {rect, emissivity,
+    /// emissivity_std, temperature_k, temperature_std_k}` (all but rect optional), `targets:
+    /// [{name, rect, view_angle_deg, temperature_k | blackbody_rect, temperature_std_k}]`; errors
+    /// name file, line, field.
     static EmissivityRois load(const std::string& path);
 };
 
-/// One target's result. `*_std` are standard (1σ) uncertainties: the standard errors of the ROI means
-/// (spatial σ/√n) of the target, the reflector and the blackbody region, and the contact-temperature σ
-/// through dL/dT, propagated to first order.
+/// One target's result. `*_std` are standard (1σ) uncertainties: the standard errors of the ROI
+/// means (spatial σ/√n) of the target, the reflector and the blackbody region, and the
+/// contact-temperature σ through dL/dT, propagated to first order.
 struct EmissivityResult {
     std::string name;
     double view_angle_deg = 0.0, temperature_k = 0.0;
@@ -72,13 +74,16 @@ struct EmissivityResult {
     std::vector<std::string> warnings;
 };
 
-/// The downwelled radiance and its standard error from the reflector's ROI, its own emission removed.
-RegionMean downwelled_radiance(const Image& stokes, const EmissivityReflector& reflector, const Band& band);
+/// The downwelled radiance and its standard error from the reflector's ROI, its own emission
+/// removed.
+RegionMean downwelled_radiance(const Image& stokes, const EmissivityReflector& reflector,
+                               const Band& band);
 
 /// Extracts ε per target. Throws tirpol::Error naming the ROI for a rectangle outside the image or
-/// empty, a reflector emissivity outside [0, 1) or without a temperature, no finite pixel, L_BB ≤ L_dw (the target's
-/// emission must exceed the downwelling) or a non-finite result.
-std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois, const Band& band);
+/// empty, a reflector emissivity outside [0, 1) or without a temperature, no finite pixel, L_BB ≤
+/// L_dw (the target's emission must exceed the downwelling) or a non-finite result.
+std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const EmissivityRois& rois,
+                                                 const Band& band);
 
 /// The emissivity CSV (tirpol/core/emissivity_csv.h): frame `image`, the 1σ uncertainties above
 /// (`*_std` columns), wavelength_um empty.

@@ -9,7 +9,8 @@
 ///     raw = E·τ1·τw·τ2·raw(T_obj) + (1 − E)·τ1·τw·τ2·raw(T_refl) + (1 − τ1)·τw·τ2·raw(T_atm)
 ///         + (1 − τw)·τ2·raw(T_win) + (1 − τ2)·raw(T_atm),      τ1 = τ2 = τ(d/2).
 /// Atmospheric transmission (Minkina & Dudzik, "Infrared Thermography: Errors and Uncertainties",
-/// Wiley 2009, ch. 2; the constants FLIR cameras store as AtmosphericTrans{X,Alpha1,Alpha2,Beta1,Beta2}):
+/// Wiley 2009, ch. 2; the constants FLIR cameras store as
+/// AtmosphericTrans{X,Alpha1,Alpha2,Beta1,Beta2}):
 ///     H2O = (RH/100)·exp(1.5587 + 0.06939·t − 0.00027816·t² + 0.00000068455·t³)   (t in °C)
 ///     τ(d) = X·exp(−√d·(α1 + β1·√H2O)) + (1 − X)·exp(−√d·(α2 + β2·√H2O)).
 /// The same equations are used by ExifTool's FLIR documentation and G. Tattersall's Thermimage
@@ -44,11 +45,13 @@ struct FlirConditions {
 double flir_blackbody_raw(const FlirPlanck& p, double temperature_k);
 /// Inverse of flir_blackbody_raw; NaN when the logarithm's argument is not positive.
 double flir_blackbody_temperature(const FlirPlanck& p, double raw);
-/// Atmospheric transmission over `distance_m` at air temperature `air_k` and humidity `humidity_pct`.
+/// Atmospheric transmission over `distance_m` at air temperature `air_k` and humidity
+/// `humidity_pct`.
 double flir_atmospheric_transmission(double distance_m, double air_k, double humidity_pct,
                                      const FlirAtmosphereConstants& c = {});
 /// The raw signal the camera reads for an object at `object_k` under `conditions` (forward model).
-double flir_raw_from_temperature(const FlirPlanck& p, double object_k, const FlirConditions& conditions);
+double flir_raw_from_temperature(const FlirPlanck& p, double object_k,
+                                 const FlirConditions& conditions);
 /// Object temperature (K) from a raw signal (inverse model); NaN if no temperature explains it.
 double flir_temperature_from_raw(const FlirPlanck& p, double raw, const FlirConditions& conditions);
 /// Throws tirpol::Error naming the field if constants or conditions are out of range

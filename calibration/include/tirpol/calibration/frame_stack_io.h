@@ -25,12 +25,13 @@ struct RawFrameFormat {
 /// Parses "uint8" | "uint16" | "float32"; throws tirpol::Error naming the accepted values.
 RawFrameFormat::Type raw_type_from_string(const std::string& text);
 
-/// Loads a stack from: a directory of frames (.exr with channel `counts`, 8/16-bit .png, .tif/.tiff;
-/// sorted by name; all the same size), one EXR with channels frame_* (sorted by name), or, when
-/// `raw` is given, a raw file whose size must be header_bytes + N·width·height·bytes per value.
-/// Throws tirpol::Error naming the path for fewer than 2 frames, mixed sizes, a directory with no
-/// frame file (listing the extensions looked for) or a raw file of the wrong size.
-FrameStack load_frame_stack(const std::filesystem::path& path, const std::optional<RawFrameFormat>& raw = std::nullopt);
+/// Loads a stack from: a directory of frames (.exr with channel `counts`, 8/16-bit .png,
+/// .tif/.tiff; sorted by name; all the same size), one EXR with channels frame_* (sorted by name),
+/// or, when `raw` is given, a raw file whose size must be header_bytes + N·width·height·bytes per
+/// value. Throws tirpol::Error naming the path for fewer than 2 frames, mixed sizes, a directory
+/// with no frame file (listing the extensions looked for) or a raw file of the wrong size.
+FrameStack load_frame_stack(const std::filesystem::path& path,
+                            const std::optional<RawFrameFormat>& raw = std::nullopt);
 
 /// The stack in kelvin: each frame through counts_to_radiance (bad pixels replaced by their good
 /// neighbours, FPA-dependent calibrations at `fpa_temperature_k`), then to temperature to first

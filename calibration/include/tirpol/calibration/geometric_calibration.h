@@ -20,8 +20,8 @@ struct GeometricCalibrationOptions {
     bool fix_k3 = false;                        ///< keep k3 = 0 (few views, or a narrow lens)
     bool zero_tangential = false;               ///< keep p1 = p2 = 0
     int min_views = 5;                          ///< fewer usable views is an error
-    /// Views whose RMS exceeds max(outlier_factor × median view RMS, median + outlier_margin_px) are
-    /// flagged (and reported, not dropped: the user decides).
+    /// Views whose RMS exceeds max(outlier_factor × median view RMS, median + outlier_margin_px)
+    /// are flagged (and reported, not dropped: the user decides).
     double outlier_factor = 3.0;
     double outlier_margin_px = 0.25;
     /// All target planes within this angle of each other (rotations about the optical axis aside)
@@ -37,21 +37,24 @@ struct ViewReport {
 };
 
 struct GeometricCalibrationResult {
-    CameraModel model;               ///< with rms_px, views, std_dev and target filled in
-    std::vector<ViewReport> views;   ///< the views used, in input order
+    CameraModel model;                         ///< with rms_px, views, std_dev and target filled in
+    std::vector<ViewReport> views;             ///< the views used, in input order
     std::vector<std::string> parameter_names;  ///< fx fy cx cy k1 …, the order of model.std_dev
     std::vector<std::string> frames_without_target;
 };
 
 /// Calibrates from detected views of `target` in images of `width`×`height`. Throws tirpol::Error
-/// for too few views, views with the wrong point count, or degenerate geometry (all views parallel).
-GeometricCalibrationResult calibrate_geometric(const std::vector<TargetView>& views, const CalibrationTarget& target,
-                                               int width, int height, const GeometricCalibrationOptions& options = {});
+/// for too few views, views with the wrong point count, or degenerate geometry (all views
+/// parallel).
+GeometricCalibrationResult calibrate_geometric(const std::vector<TargetView>& views,
+                                               const CalibrationTarget& target, int width,
+                                               int height,
+                                               const GeometricCalibrationOptions& options = {});
 
 /// Reads each frame, detects the target and calibrates. Frames without the target are listed in the
 /// result; if fewer than options.min_views remain, the error names every frame without the target.
-GeometricCalibrationResult calibrate_geometric_frames(const std::vector<std::filesystem::path>& frames,
-                                                      const CalibrationTarget& target,
-                                                      const GeometricCalibrationOptions& options = {});
+GeometricCalibrationResult calibrate_geometric_frames(
+    const std::vector<std::filesystem::path>& frames, const CalibrationTarget& target,
+    const GeometricCalibrationOptions& options = {});
 
 }  // namespace tirpol::calibration

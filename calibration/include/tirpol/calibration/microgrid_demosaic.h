@@ -1,9 +1,10 @@
 #pragma once
 /// \file microgrid_demosaic.h
-/// Demosaicing of a microgrid (division-of-focal-plane) frame into one full plane per analyzer angle,
-/// float in and float out (no 8/16-bit round trip). Every pixel of a microgrid sees one analyzer
-/// angle; the other three are estimated from neighbours that look at a slightly different place, which
-/// is the instantaneous-field-of-view (IFOV) error: false polarization at edges and on gradients.
+/// Demosaicing of a microgrid (division-of-focal-plane) frame into one full plane per analyzer
+/// angle, float in and float out (no 8/16-bit round trip). Every pixel of a microgrid sees one
+/// analyzer angle; the other three are estimated from neighbours that look at a slightly different
+/// place, which is the instantaneous-field-of-view (IFOV) error: false polarization at edges and on
+/// gradients.
 
 #include <array>
 #include <span>
@@ -15,11 +16,13 @@
 namespace tirpol::calibration {
 
 enum class DemosaicMethod {
-    /// One Stokes sample per 2×2 cell (half resolution in x and y): no interpolation, the IFOV error
+    /// One Stokes sample per 2×2 cell (half resolution in x and y): no interpolation, the IFOV
+    /// error
     /// of the cell itself (its four pixels see four places).
     SuperPixel,
     /// Each missing angle is the mean of its nearest 2 (horizontal or vertical) or 4 (diagonal)
-    /// samples: B. M. Ratliff, C. F. LaCasse & J. S. Tyo, "Interpolation strategies for reducing IFOV
+    /// samples: B. M. Ratliff, C. F. LaCasse & J. S. Tyo, "Interpolation strategies for reducing
+    /// IFOV
     /// artifacts in microgrid polarimeter imagery", Opt. Express 17(11), 9112–9125 (2009).
     Bilinear,
     /// Edge-directed second-order Newton-polynomial interpolation in the polarization-difference

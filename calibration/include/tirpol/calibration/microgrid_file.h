@@ -15,9 +15,11 @@ namespace tirpol::calibration {
 /// records (`microgrid_pattern_deg`, MicrogridPattern::write_to); with neither, or when both are
 /// there and differ, throws tirpol::Error naming the file. The Stokes units are the EXR's `units`
 /// attribute when it has one, else "counts" (a PNG/TIFF holds raw counts). Adds the attributes
-/// `source_file` and, for PNG/TIFF, `source_depth_bits`. Throws tirpol::Error naming the file for an
-/// unreadable file or a frame demosaic_microgrid refuses.
-Image reduce_microgrid_file(const std::filesystem::path& input, const std::optional<MicrogridPattern>& pattern,
-                            MicrogridReductionOptions options, const std::string& exr_channel = "counts");
+/// `source_file` and, for PNG/TIFF, `source_depth_bits`. Throws tirpol::Error naming the file for
+/// an unreadable file or a frame demosaic_microgrid refuses.
+Image reduce_microgrid_file(const std::filesystem::path& input,
+                            const std::optional<MicrogridPattern>& pattern,
+                            MicrogridReductionOptions options,
+                            const std::string& exr_channel = "counts");
 
 }  // namespace tirpol::calibration

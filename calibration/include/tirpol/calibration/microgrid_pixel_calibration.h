@@ -4,12 +4,13 @@
 /// S. B. Powell & V. Gruev, "Calibration methods for division-of-focal-plane polarimeters",
 /// Opt. Express 21(18), 21039 (2013): the micro-polarizers' axis, diattenuation and transmission
 /// vary across the array (by up to 20 %), so every pixel gets its own analysis vector, fitted from
-/// frames of a uniform source of known Stokes (a blackbody seen through a reference polarizer at known
-/// angles, and at two radiances), and each 2×2 super-pixel is reduced by its own 3×4 data-reduction
-/// matrix.
+/// frames of a uniform source of known Stokes (a blackbody seen through a reference polarizer at
+/// known angles, and at two radiances), and each 2×2 super-pixel is reduced by its own 3×4
+/// data-reduction matrix.
 ///
-/// Pixel model (the row of analyzer.h, per pixel i): I_i = w_i·S + b_i with w_i = ½·t_i·(1, d_i cos 2θ_i,
-/// d_i sin 2θ_i), S = (S0, S1, S2) in the camera frame of ARCHITECTURE.md, b_i an additive background.
+/// Pixel model (the row of analyzer.h, per pixel i): I_i = w_i·S + b_i with w_i = ½·t_i·(1, d_i cos
+/// 2θ_i, d_i sin 2θ_i), S = (S0, S1, S2) in the camera frame of ARCHITECTURE.md, b_i an additive
+/// background.
 
 #include <Eigen/Core>
 #include <array>
@@ -21,8 +22,8 @@
 
 namespace tirpol::calibration {
 
-/// One calibration frame: a uniform source of known Stokes vector (S0, S1, S2) filling the view, and
-/// the (frame-averaged) microgrid frame, row-major.
+/// One calibration frame: a uniform source of known Stokes vector (S0, S1, S2) filling the view,
+/// and the (frame-averaged) microgrid frame, row-major.
 struct MicrogridFlatField {
     Eigen::Vector3d source_stokes;
     std::vector<float> frame;
@@ -34,7 +35,7 @@ struct MicrogridPixelCalibration {
     int height = 0;
     std::array<std::vector<float>, 3> analysis;  ///< w_i0, w_i1, w_i2
     std::vector<float> background;               ///< b_i (0 when not fitted)
-    double fit_rms = 0.0;                        ///< RMS residual of the per-pixel fits, signal units
+    double fit_rms = 0.0;  ///< RMS residual of the per-pixel fits, signal units
 
     /// t_i = 2·w_i0 (1 for an ideal polarizer).
     float transmission(std::size_t i) const { return 2.0f * analysis[0][i]; }
@@ -43,7 +44,8 @@ struct MicrogridPixelCalibration {
     /// θ_i = ½·atan2(w_i2, w_i1) in degrees, [0, 180).
     float axis_angle_deg(std::size_t i) const;
     /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`;
-    /// attribute `fit_rms`: the calibration as an EXR-ready image (the w planes are what reduction reads).
+    /// attribute `fit_rms`: the calibration as an EXR-ready image (the w planes are what reduction
+    /// reads).
     Image to_image() const;
     /// The inverse of to_image(); throws tirpol::Error naming a missing channel.
     static MicrogridPixelCalibration from_image(const Image& image);
@@ -54,15 +56,18 @@ struct MicrogridPixelCalibration {
 /// pseudo-inverse is computed once. Throws tirpol::Error for frames of the wrong size, non-finite
 /// values, or sources that do not determine the model: fewer than 4 (3 without background), or not
 /// spanning (S0, S1, S2[, 1]), e.g. a reference polarizer at one radiance only with a background.
-MicrogridPixelCalibration calibrate_microgrid_pixels(const std::vector<MicrogridFlatField>& flat_fields, int width,
-                                                     int height, bool fit_background = true);
+MicrogridPixelCalibration calibrate_microgrid_pixels(
+    const std::vector<MicrogridFlatField>& flat_fields, int width, int height,
+    bool fit_background = true);
 
 /// Reduces a microgrid frame with the per-pixel calibration, one Stokes vector per 2×2 super-pixel:
-/// S = (WᵀW)⁻¹Wᵀ(I − b) with W the 4×3 matrix of the cell's analysis vectors (the pattern is implicit
-/// in them). Output: half-size image with S0 S1 S2 DoLP AoP (deg, [0, 180)), attributes
-/// `demosaic_method` = "super-pixel", `analyzer_model` = "per-pixel". Throws tirpol::Error for a frame
-/// of another size than the calibration's or a non-finite value; a cell whose W is singular (a dead
-/// analyzer) gives NaN for that super-pixel and is counted in the attribute `singular_cells`.
-Image reduce_microgrid_per_pixel(std::span<const float> mosaic, const MicrogridPixelCalibration& calibration);
+/// S = (WᵀW)⁻¹Wᵀ(I − b) with W the 4×3 matrix of the cell's analysis vectors (the pattern is
+/// implicit in them). Output: half-size image with S0 S1 S2 DoLP AoP (deg, [0, 180)), attributes
+/// `demosaic_method` = "super-pixel", `analyzer_model` = "per-pixel". Throws tirpol::Error for a
+/// frame of another size than the calibration's or a non-finite value; a cell whose W is singular
+/// (a dead analyzer) gives NaN for that super-pixel and is counted in the attribute
+/// `singular_cells`.
+Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
+                                 const MicrogridPixelCalibration& calibration);
 
 }  // namespace tirpol::calibration

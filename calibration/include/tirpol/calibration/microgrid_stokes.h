@@ -18,8 +18,8 @@ namespace tirpol::calibration {
 
 /// What a microgrid camera with ideal analyzers (d = 1, t = 1, no background) records of a scene
 /// whose Stokes planes (camera frame, width × height, row-major) are given: pixel (x, y) holds
-/// ½·(S0 + S1 cos 2θ + S2 sin 2θ), θ = pattern.angle_at_pixel_deg(x, y) (the row a_k of analyzer.h).
-/// Throws tirpol::Error if a plane does not hold width × height values.
+/// ½·(S0 + S1 cos 2θ + S2 sin 2θ), θ = pattern.angle_at_pixel_deg(x, y) (the row a_k of
+/// analyzer.h). Throws tirpol::Error if a plane does not hold width × height values.
 std::vector<float> microgrid_from_stokes(std::span<const float> s0, std::span<const float> s1,
                                          std::span<const float> s2, int width, int height,
                                          const MicrogridPattern& pattern);
@@ -36,9 +36,10 @@ struct MicrogridReductionOptions {
 
 /// Demosaics `mosaic` and reduces it to channels S0 S1 S2 DoLP AoP (reduce_stokes), at the mosaic's
 /// size or, for super-pixel, half of it. Attributes: those of reduce_stokes, the pattern
-/// (MicrogridPattern::write_to), `demosaic_method` and `demosaic_reference`. Throws tirpol::Error for a
-/// bad frame (demosaic_microgrid) or an analyzer model whose angles are not the pattern's.
-Image reduce_microgrid(std::span<const float> mosaic, int width, int height, const MicrogridPattern& pattern,
+/// (MicrogridPattern::write_to), `demosaic_method` and `demosaic_reference`. Throws tirpol::Error
+/// for a bad frame (demosaic_microgrid) or an analyzer model whose angles are not the pattern's.
+Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
+                       const MicrogridPattern& pattern,
                        const MicrogridReductionOptions& options = {});
 
 }  // namespace tirpol::calibration

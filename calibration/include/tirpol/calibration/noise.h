@@ -46,14 +46,16 @@ const char* to_string(NoiseConvention convention);
 void validate_stack(const FrameStack& stack, const char* source);
 
 /// The 3D noise decomposition of the stack.
-ThreeDNoise three_d_noise(const FrameStack& stack, NoiseConvention convention = NoiseConvention::Population);
+ThreeDNoise three_d_noise(const FrameStack& stack,
+                          NoiseConvention convention = NoiseConvention::Population);
 
 /// Per-pixel temporal standard deviation (n − 1 normalisation).
 std::vector<float> temporal_noise(const FrameStack& stack);
 
 /// Per-pixel NEDT = temporal σ / responsivity, responsivity in stack units per kelvin (e.g.
 /// gain·dL/dT for counts); NaN where the responsivity is not positive.
-std::vector<float> nedt_map(const std::vector<float>& temporal_sigma, const std::vector<float>& responsivity_per_k);
+std::vector<float> nedt_map(const std::vector<float>& temporal_sigma,
+                            const std::vector<float>& responsivity_per_k);
 
 /// One point of NEDT against frames averaged.
 struct AveragingPoint {
@@ -63,7 +65,8 @@ struct AveragingPoint {
 };
 
 /// NEDT(n) for n = 1, 2, 4, … while at least 4 independent n-frame means remain.
-std::vector<AveragingPoint> nedt_vs_averaging(const FrameStack& stack, const std::vector<float>& responsivity_per_k);
+std::vector<AveragingPoint> nedt_vs_averaging(const FrameStack& stack,
+                                              const std::vector<float>& responsivity_per_k);
 
 /// Median of the finite values (NaN if none).
 double finite_median(std::vector<float> values);

@@ -44,15 +44,18 @@ struct OffsetDriftPoint {
 
 /// The shift at `time_s`, linear between the neighbouring points (sorted by time, ≥ 1), held
 /// constant outside them; σ combines the neighbours' σ with the interpolation weights.
-OffsetDriftPoint interpolate_offset_drift(const std::vector<OffsetDriftPoint>& points, double time_s);
+OffsetDriftPoint interpolate_offset_drift(const std::vector<OffsetDriftPoint>& points,
+                                          double time_s);
 
 /// Measures the shift from a record's `counts` / `counts_std` (frames averaged: `frames`) over
 /// `pixels` (indices; bad pixels of `cal` skipped), where the radiance seen is
 /// `expected_radiance` ± `radiance_sigma`. `cal` is at the record's FPA temperature.
-OffsetDriftPoint measure_offset_drift(const RadiometricCalibration& cal, const std::vector<float>& counts,
+OffsetDriftPoint measure_offset_drift(const RadiometricCalibration& cal,
+                                      const std::vector<float>& counts,
                                       const std::vector<float>& counts_std, std::int64_t frames,
-                                      const std::vector<std::size_t>& pixels, double expected_radiance,
-                                      double radiance_sigma, double time_s, const std::string& what);
+                                      const std::vector<std::size_t>& pixels,
+                                      double expected_radiance, double radiance_sigma,
+                                      double time_s, const std::string& what);
 
 /// The drift correction of each scene (polarizer) record of a session, in record order.
 struct SessionOffsetDrift {
@@ -63,7 +66,8 @@ struct SessionOffsetDrift {
 
 /// From the plan's scene_reference when present, else from the temperature-tagged shutter records.
 /// Throws tirpol::Error naming the manifest when the session has neither.
-SessionOffsetDrift session_offset_drift(const std::filesystem::path& dir, const SessionManifest& manifest,
+SessionOffsetDrift session_offset_drift(const std::filesystem::path& dir,
+                                        const SessionManifest& manifest,
                                         const RadiometricCalibration& cal);
 
 }  // namespace tirpol::calibration

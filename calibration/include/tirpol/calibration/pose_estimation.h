@@ -1,9 +1,9 @@
 #pragma once
 /// \file pose_estimation.h
 /// Camera pose from surveyed control points (world coordinates in the scene's frame and their pixel
-/// positions): cv::solvePnPRansac to reject mis-picked points, then Levenberg–Marquardt refinement on
-/// the inliers (cv::solvePnPRefineLM); the pose's 1σ from the reprojection Jacobian,
-/// cov = σ̂²(JᵀJ)⁻¹ with σ̂² = Σr² / (2N − 6).
+/// positions): cv::solvePnPRansac to reject mis-picked points, then Levenberg–Marquardt refinement
+/// on the inliers (cv::solvePnPRefineLM); the pose's 1σ from the reprojection Jacobian, cov =
+/// σ̂²(JᵀJ)⁻¹ with σ̂² = Σr² / (2N − 6).
 
 #include <filesystem>
 #include <string>
@@ -24,7 +24,8 @@ struct ControlPoint {
 std::vector<ControlPoint> read_control_points(const std::filesystem::path& path);
 
 struct PoseOptions {
-    double ransac_threshold_px = 3.0;  ///< a point further than this from its reprojection is an outlier
+    double ransac_threshold_px =
+        3.0;  ///< a point further than this from its reprojection is an outlier
 };
 
 struct PoseResult {
@@ -36,6 +37,7 @@ struct PoseResult {
 /// Estimates the pose of the camera `model` from ≥ 4 control points. Throws tirpol::Error for fewer
 /// than 4 points, pixels outside the image, collinear or coincident points, too few RANSAC inliers,
 /// or a solution with control points on or behind the camera (named).
-PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoint>& points, const PoseOptions& options = {});
+PoseResult estimate_pose(const CameraModel& model, const std::vector<ControlPoint>& points,
+                         const PoseOptions& options = {});
 
 }  // namespace tirpol::calibration

@@ -1,14 +1,15 @@
 #pragma once
 /// \file radiometric.h
-/// Per-pixel radiometric calibration from blackbody frames: counts = offset + gain·L (+ quadratic·L²),
-/// where L is the in-band radiance of the blackbody, ∫ R(λ) L_bb(λ, T) dλ in W/(m²·sr) (core's
-/// Band). Fitted by linear least squares with the same design matrix for every pixel, so the fit is
-/// one small matrix product per pixel.
+/// Per-pixel radiometric calibration from blackbody frames: counts = offset + gain·L (+
+/// quadratic·L²), where L is the in-band radiance of the blackbody, ∫ R(λ) L_bb(λ, T) dλ in
+/// W/(m²·sr) (core's Band). Fitted by linear least squares with the same design matrix for every
+/// pixel, so the fit is one small matrix product per pixel.
 ///
 /// For an uncooled camera whose response follows its own focal-plane-array (FPA) temperature, gain
-/// and offset can be polynomials in ΔT = T_fpa − T_ref (RadiometricOptions::fpa_degree ≥ 1; the form
-/// of Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304, 2013, docs/calibration.md), fitted from blackbody
-/// frames taken at several camera temperatures and applied frame by frame from each frame's T_fpa.
+/// and offset can be polynomials in ΔT = T_fpa − T_ref (RadiometricOptions::fpa_degree ≥ 1; the
+/// form of Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304, 2013, docs/calibration.md), fitted from
+/// blackbody frames taken at several camera temperatures and applied frame by frame from each
+/// frame's T_fpa.
 
 #include <optional>
 #include <string>
@@ -20,8 +21,9 @@
 
 namespace tirpol::calibration {
 
-/// One averaged blackbody frame: `counts` is the per-pixel mean over `frames` frames and `counts_std`
-/// the per-pixel temporal standard deviation (empty if unknown). `source` names it in messages.
+/// One averaged blackbody frame: `counts` is the per-pixel mean over `frames` frames and
+/// `counts_std` the per-pixel temporal standard deviation (empty if unknown). `source` names it in
+/// messages.
 struct BlackbodyFrame {
     double temperature_k = 0.0;
     std::vector<float> counts;
@@ -70,12 +72,13 @@ struct RadiometricCalibration {
     CalibrationCamera camera;  ///< unknown in files written before tirpol recorded it
     std::string created_utc;
     /// FPA dependence: at T_fpa the offset is offset + Σ_a offset_fpa[a−1]·ΔT^a and the gain
-    /// gain + Σ_a gain_fpa[a−1]·ΔT^a, ΔT = T_fpa − fpa_reference_k (counts/K^a, counts/(W/(m²·sr))/K^a).
-    /// Empty for a calibration at one camera state.
+    /// gain + Σ_a gain_fpa[a−1]·ΔT^a, ΔT = T_fpa − fpa_reference_k (counts/K^a,
+    /// counts/(W/(m²·sr))/K^a). Empty for a calibration at one camera state.
     std::vector<std::vector<float>> offset_fpa, gain_fpa;
-    double fpa_reference_k = 0.0;            ///< T_ref, K (mean FPA temperature of the frames)
+    double fpa_reference_k = 0.0;             ///< T_ref, K (mean FPA temperature of the frames)
     double fpa_min_k = 0.0, fpa_max_k = 0.0;  ///< FPA temperatures the calibration frames covered
-    std::vector<double> fpa_temperatures_k;  ///< per calibration frame (with temperatures_k); may be empty
+    std::vector<double>
+        fpa_temperatures_k;  ///< per calibration frame (with temperatures_k); may be empty
     /// What a user should know about the fit (model inadequate, drift not modelled, …); not stored.
     std::vector<std::string> warnings;
 
@@ -89,29 +92,33 @@ struct RadiometricCalibration {
 };
 
 /// Fits the per-pixel model to ≥ 2 blackbody frames at distinct temperatures (≥ 3 for the quadratic
-/// model). Throws tirpol::Error naming the frame for: fewer temperatures than needed, size mismatch,
-/// NaN/inf counts, too many saturated pixels, or a gain ≤ 0 or not finite for most pixels (the records'
-/// temperatures do not belong to their frames; the message names the records whose median counts fall
-/// as the temperature rises). Bad pixels are detected as documented in BadPixel.
-RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width, int height,
-                                       const Band& band, const RadiometricOptions& options = {});
+/// model). Throws tirpol::Error naming the frame for: fewer temperatures than needed, size
+/// mismatch, NaN/inf counts, too many saturated pixels, or a gain ≤ 0 or not finite for most pixels
+/// (the records' temperatures do not belong to their frames; the message names the records whose
+/// median counts fall as the temperature rises). Bad pixels are detected as documented in BadPixel.
+RadiometricCalibration fit_radiometric(const std::vector<BlackbodyFrame>& frames, int width,
+                                       int height, const Band& band,
+                                       const RadiometricOptions& options = {});
 
 /// Counts → apparent in-band radiance W/(m²·sr) (inverse of the fitted model, the root of the
 /// quadratic that continues the linear branch). Bad pixels are replaced (replace_bad_pixels).
 /// `fpa_temperature_k` is the frame's camera temperature, required by an FPA-dependent calibration
 /// (tirpol::Error without it) and ignored by a single-state one.
-std::vector<float> counts_to_radiance(const RadiometricCalibration& cal, const std::vector<float>& counts,
+std::vector<float> counts_to_radiance(const RadiometricCalibration& cal,
+                                      const std::vector<float>& counts,
                                       std::optional<double> fpa_temperature_k = std::nullopt);
 
-/// The single-state calibration (gain, offset planes) of an FPA-dependent one at `fpa_temperature_k`;
-/// a copy of `cal` when it has no FPA dependence. `what` names the frame in the error thrown when the
-/// calibration needs an FPA temperature and none is given.
-RadiometricCalibration at_fpa_temperature(const RadiometricCalibration& cal, std::optional<double> fpa_temperature_k,
+/// The single-state calibration (gain, offset planes) of an FPA-dependent one at
+/// `fpa_temperature_k`; a copy of `cal` when it has no FPA dependence. `what` names the frame in
+/// the error thrown when the calibration needs an FPA temperature and none is given.
+RadiometricCalibration at_fpa_temperature(const RadiometricCalibration& cal,
+                                          std::optional<double> fpa_temperature_k,
                                           const std::string& what);
 
 /// Field offset update (drift between calibration and collection): from one frame of a blackbody or
 /// shutter at `temperature_k`, offset := counts − gain·L(T) − q·L(T)²; gains are kept. With an FPA
-/// dependence the reference-state offset is updated so that the model matches the frame at its T_fpa.
+/// dependence the reference-state offset is updated so that the model matches the frame at its
+/// T_fpa.
 void update_offset(RadiometricCalibration& cal, const BlackbodyFrame& frame);
 
 /// Brightness temperature image (K) from a radiance image, NaN where radiance ≤ 0 or not finite.

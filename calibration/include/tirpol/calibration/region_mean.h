@@ -1,7 +1,8 @@
 #pragma once
 /// \file region_mean.h
-/// The mean of an image quantity over a pixel rectangle and the standard error of that mean: the one
-/// ROI statistic of emissivity extraction (the region means of paper eq 17) and of the digital twin.
+/// The mean of an image quantity over a pixel rectangle and the standard error of that mean: the
+/// one ROI statistic of emissivity extraction (the region means of paper eq 17) and of the digital
+/// twin.
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,8 @@ struct PixelRect {
 
 struct RegionMean {
     double mean = 0.0;
-    /// Of `mean`: sample standard deviation (n − 1) over √n, pixels treated as independent; 0 for n = 1.
+    /// Of `mean`: sample standard deviation (n − 1) over √n, pixels treated as independent; 0 for n
+    /// = 1.
     double standard_error = 0.0;
     std::size_t n = 0;  ///< finite pixels used
 };
@@ -29,7 +31,8 @@ struct RegionMean {
 /// skipped). `rect` must lie inside the image(s) `value` reads. Throws tirpol::Error naming `what`
 /// and `quantity` when no value is finite.
 template <class Value>
-RegionMean region_mean_of(const PixelRect& rect, const std::string& what, const std::string& quantity, Value&& value) {
+RegionMean region_mean_of(const PixelRect& rect, const std::string& what,
+                          const std::string& quantity, Value&& value) {
     double sum = 0.0, sum2 = 0.0;
     std::size_t n = 0;
     for (int y = rect.y; y < rect.y + rect.height; ++y)
@@ -41,16 +44,18 @@ RegionMean region_mean_of(const PixelRect& rect, const std::string& what, const 
             ++n;
         }
     if (n == 0)
-        fail("{}: no finite {} pixel in the rectangle [{}, {}, {}, {}]", what, quantity, rect.x, rect.y, rect.width,
-             rect.height);
+        fail("{}: no finite {} pixel in the rectangle [{}, {}, {}, {}]", what, quantity, rect.x,
+             rect.y, rect.width, rect.height);
     const double count = static_cast<double>(n);
     const double mean = sum / count;
-    const double variance = n > 1 ? std::max(0.0, (sum2 - count * mean * mean) / (count - 1.0)) : 0.0;
+    const double variance =
+        n > 1 ? std::max(0.0, (sum2 - count * mean * mean) / (count - 1.0)) : 0.0;
     return {mean, std::sqrt(variance / count), n};
 }
 
 /// region_mean_of() of channel `channel` of `image`; throws tirpol::Error naming `what` when `rect`
 /// is not inside the image.
-RegionMean region_mean(const Image& image, const std::string& channel, const PixelRect& rect, const std::string& what);
+RegionMean region_mean(const Image& image, const std::string& channel, const PixelRect& rect,
+                       const std::string& what);
 
 }  // namespace tirpol::calibration

@@ -5,9 +5,9 @@
 ///
 /// Conventions on top of session schema v1/v2 (docs/calibration.md, "Sessions"):
 /// - Angles: from schema v2 the polarizer angle of a record is its read-back `angle_deg_measured`
-///   (v1: `angle_deg_requested`); a v2 record whose read-backs are further from the request than the
-///   plan's `angle_tolerance_deg` is refused, naming the file. The ideal analyzer of reduce_session
-///   sits at the mean measured angle of each requested angle's repeats.
+///   (v1: `angle_deg_requested`); a v2 record whose read-backs are further from the request than
+///   the plan's `angle_tolerance_deg` is refused, naming the file. The ideal analyzer of
+///   reduce_session sits at the mean measured angle of each requested angle's repeats.
 /// - `metadata.polarizer_in_beam` (bool, default false) says whether the blackbody records were
 ///   taken through the polarizer. Radiometric calibration refuses a session where it is true;
 ///   polarimetric calibration refuses one where it is false or absent.
@@ -37,24 +37,25 @@ std::optional<double> session_saturation_counts(const SessionManifest& manifest)
 /// Radiometric calibration from the session's blackbody records (and shutter records with a
 /// temperature). Throws tirpol::Error for a corrupt manifest, missing frames or the errors of
 /// fit_radiometric; camera_id is "vendor model serial (uri)".
-RadiometricCalibration calibrate_radiometric_session(const std::filesystem::path& dir, const Band& band,
+RadiometricCalibration calibrate_radiometric_session(const std::filesystem::path& dir,
+                                                     const Band& band,
                                                      RadiometricOptions options = {});
 
 /// The same from several sessions of one camera (e.g. taken at several camera temperatures for an
 /// FPA-dependent model, options.fpa_degree ≥ 1; each record's fpa_temperature_k is used). Refuses
 /// sessions of different cameras. With `quality`, also residuals per set-point, NEDT and warnings
 /// (assess_calibration; its warnings are appended to the calibration's).
-RadiometricCalibration calibrate_radiometric_sessions(const std::vector<std::filesystem::path>& dirs, const Band& band,
-                                                      RadiometricOptions options = {},
-                                                      CalibrationQuality* quality = nullptr);
+RadiometricCalibration calibrate_radiometric_sessions(
+    const std::vector<std::filesystem::path>& dirs, const Band& band,
+    RadiometricOptions options = {}, CalibrationQuality* quality = nullptr);
 
-/// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance via
-/// `radiometric`), the analyzer by least squares from the known-source repeats; when there are none,
-/// from `datasheet` if given, else ideal — analyzer_method says which (and that datasheet values
-/// were not used when known-source records took precedence).
-PolarimetricCalibration calibrate_polarimetric_session(const std::filesystem::path& dir,
-                                                       const RadiometricCalibration& radiometric,
-                                                       const std::optional<DatasheetAnalyzer>& datasheet = std::nullopt);
+/// Polarimetric calibration: τ/B maps from the blackbody records through the polarizer (radiance
+/// via `radiometric`), the analyzer by least squares from the known-source repeats; when there are
+/// none, from `datasheet` if given, else ideal — analyzer_method says which (and that datasheet
+/// values were not used when known-source records took precedence).
+PolarimetricCalibration calibrate_polarimetric_session(
+    const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
+    const std::optional<DatasheetAnalyzer>& datasheet = std::nullopt);
 
 struct SessionReductionOptions {
     /// Update the offset from the session's shutter record with a temperature first (or, when the
@@ -87,12 +88,13 @@ void check_same_camera(const RadiometricCalibration& calibration, const SessionM
 /// temperature lie outside the calibrated range are listed (one line each, extrapolation_warning)
 /// in the attribute `calibration_warnings`. With options.update_offset, the correction and its
 /// uncertainty are attributes: offset_update_source, offset_update_mean_counts (mean change of the
-/// offset over good pixels), offset_update_sigma_counts and offset_update_sigma_mk (median per-pixel
-/// σ of the reference frame's mean, the uncertainty the update adds to every pixel). With
-/// options.drift_correction: drift_correction_source, and per scene record (in record order, files in
-/// drift_records, one per line) drift_offset_counts, drift_offset_sigma_counts and drift_time_s
+/// offset over good pixels), offset_update_sigma_counts and offset_update_sigma_mk (median
+/// per-pixel σ of the reference frame's mean, the uncertainty the update adds to every pixel). With
+/// options.drift_correction: drift_correction_source, and per scene record (in record order, files
+/// in drift_records, one per line) drift_offset_counts, drift_offset_sigma_counts and drift_time_s
 /// (seconds since the first scene record).
 Image reduce_session(const std::filesystem::path& dir, const RadiometricCalibration& radiometric,
-                     const PolarimetricCalibration* polarimetric, const SessionReductionOptions& options = {});
+                     const PolarimetricCalibration* polarimetric,
+                     const SessionReductionOptions& options = {});
 
 }  // namespace tirpol::calibration

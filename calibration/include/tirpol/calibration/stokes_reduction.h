@@ -54,10 +54,12 @@ struct ReductionOptions {
 /// output) for: an angle of the model with no image, sizes that differ, NaN/inf inputs.
 /// Attributes: units, units_DoLP, units_AoP, analyzer_angles_deg, drm (row-major 3×N),
 /// unrealizable_pixels.
-Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height, const AnalyzerModel& model,
-                    const WireGridCalibration* wire_grid = nullptr, const ReductionOptions& options = {});
+Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,
+                    const AnalyzerModel& model, const WireGridCalibration* wire_grid = nullptr,
+                    const ReductionOptions& options = {});
 /// The same on views; the planes must outlive the call.
-Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height, const AnalyzerModel& model,
-                    const WireGridCalibration* wire_grid = nullptr, const ReductionOptions& options = {});
+Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int height,
+                    const AnalyzerModel& model, const WireGridCalibration* wire_grid = nullptr,
+                    const ReductionOptions& options = {});
 
 }  // namespace tirpol::calibration

@@ -19,7 +19,7 @@ struct DriftingCamera {
     double offset_per_k = 60.0, offset_per_k_std = 6.0;           ///< o₁, counts/K
     double gain_rel_per_k = -0.006, gain_rel_per_k_std = 0.0005;  ///< γ, 1/K
     double noise_counts = 4.0;                                    ///< temporal σ of one frame
-    int frames = 16;                                              ///< frames averaged per BlackbodyFrame
+    int frames = 16;  ///< frames averaged per BlackbodyFrame
     unsigned seed = 7;
 };
 
@@ -27,7 +27,8 @@ struct DriftingCamera {
 class DriftingCameraTruth {
 public:
     explicit DriftingCameraTruth(const DriftingCamera& cam);
-    /// Noise-free counts of pixel i for in-band radiance `radiance` (W/(m²·sr)) at FPA temperature `fpa_k`.
+    /// Noise-free counts of pixel i for in-band radiance `radiance` (W/(m²·sr)) at FPA temperature
+    /// `fpa_k`.
     double counts(std::size_t i, double radiance, double fpa_k) const;
     /// The averaged frame of a uniform blackbody at `scene_k` seen at `fpa_k`, with temporal noise
     /// (mean of cam.frames frames; counts_std = the per-frame σ), tagged with both temperatures.

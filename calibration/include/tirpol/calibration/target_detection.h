@@ -27,15 +27,17 @@ struct TargetView {
 /// Detects `target` in a single-channel plane of `width`×`height` values (any units). Returns
 /// nullopt when the target is not found.
 std::optional<TargetView> detect_target(const std::vector<float>& plane, int width, int height,
-                                        const CalibrationTarget& target, const std::string& name = "");
+                                        const CalibrationTarget& target,
+                                        const std::string& name = "");
 
 /// detect_target() on every plane, the frames spread over the cores; element i is nullopt where
 /// the target was not found in plane i. `names` (optional) label the views.
-std::vector<std::optional<TargetView>> detect_target_views(const std::vector<std::vector<float>>& planes, int width,
-                                                           int height, const CalibrationTarget& target,
-                                                           const std::vector<std::string>& names = {});
+std::vector<std::optional<TargetView>> detect_target_views(
+    const std::vector<std::vector<float>>& planes, int width, int height,
+    const CalibrationTarget& target, const std::vector<std::string>& names = {});
 
-/// Reads a frame for detection: an EXR (channel `counts`, else `S0`) or a PNG/TIFF (8/16-bit, float).
+/// Reads a frame for detection: an EXR (channel `counts`, else `S0`) or a PNG/TIFF (8/16-bit,
+/// float).
 Image read_calibration_frame(const std::filesystem::path& path);
 
 }  // namespace tirpol::calibration

@@ -1,8 +1,8 @@
 #pragma once
 /// \file atomic_file.h
-/// Atomic writes: content goes to a temporary file in the destination directory, is flushed to disk,
-/// then renamed over the destination. A reader never sees a half-written file; a failure (full
-/// disk, permissions) leaves the old file untouched and throws tirpol::Error naming the path.
+/// Atomic writes: content goes to a temporary file in the destination directory, is flushed to
+/// disk, then renamed over the destination. A reader never sees a half-written file; a failure
+/// (full disk, permissions) leaves the old file untouched and throws tirpol::Error naming the path.
 
 #include <filesystem>
 #include <optional>
@@ -14,8 +14,8 @@ namespace tirpol {
 /// The first atomic write into a folder by a process also removes the temporary files that killed
 /// writes left there (remove_abandoned_temp_files).
 
-/// The process id in the name of one of these temporary files (".<name>.tmp-<pid>-<random><ext>"), or
-/// std::nullopt for any other name.
+/// The process id in the name of one of these temporary files (".<name>.tmp-<pid>-<random><ext>"),
+/// or std::nullopt for any other name.
 std::optional<long> temp_file_owner_pid(const std::string& file_name);
 
 /// Removes from `folder` the temporary files of atomic writes that can no longer finish: named as

@@ -1,7 +1,8 @@
 #pragma once
 /// \file cancelled.h
 /// The exception a long computation throws when its caller's cancellation flag stops it early (the
-/// Python module sets the flag on Ctrl-C): not bad input, so callers can tell it apart from an Error.
+/// Python module sets the flag on Ctrl-C): not bad input, so callers can tell it apart from an
+/// Error.
 
 #include <atomic>
 
@@ -16,7 +17,8 @@ public:
 
 /// Throws Cancelled("<what> cancelled") when the flag `cancel` points to is set; null: never.
 inline void throw_if_cancelled(const std::atomic<bool>* cancel, const char* what) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) throw Cancelled(std::string(what) + " cancelled");
+    if (cancel && cancel->load(std::memory_order_relaxed))
+        throw Cancelled(std::string(what) + " cancelled");
 }
 
 }  // namespace tirpol

@@ -10,7 +10,8 @@ namespace tirpol {
 /// `temperature_k` if it lies in [limits::kMinTemperatureK, limits::kMaxTemperatureK].
 double check_temperature_k(double temperature_k, std::string_view what);
 
-/// `value` if it is finite: a computed result that overflowed is an error, never printed as inf/nan.
+/// `value` if it is finite: a computed result that overflowed is an error, never printed as
+/// inf/nan.
 double check_finite(double value, std::string_view what);
 
 /// `value` if it is finite and ≥ 0 (an uncertainty, a noise level, a duration).

@@ -62,12 +62,13 @@ public:
     void check_keys(std::initializer_list<std::string_view> allowed) const;
     void check_keys(const std::vector<std::string>& allowed) const;
 
-    /// A deep copy of this node with the node at `path` replaced by a copy of `value` (a sweep point's
-    /// scene is its base scene with such overrides, read by the one scene loader). `path` is keys joined
-    /// by '.', a list element written `[index]` or `[name]` (the element whose `name` field is name),
-    /// e.g. "objects[ball].transform.translate". Every step must exist: an unknown key throws
-    /// tirpol::Error naming the step and the closest existing key ("did you mean"). Locations of the
-    /// copied value keep their own lines; the copy keeps this node's file (relative paths still resolve).
+    /// A deep copy of this node with the node at `path` replaced by a copy of `value` (a sweep
+    /// point's scene is its base scene with such overrides, read by the one scene loader). `path`
+    /// is keys joined by '.', a list element written `[index]` or `[name]` (the element whose
+    /// `name` field is name), e.g. "objects[ball].transform.translate". Every step must exist: an
+    /// unknown key throws tirpol::Error naming the step and the closest existing key ("did you
+    /// mean"). Locations of the copied value keep their own lines; the copy keeps this node's file
+    /// (relative paths still resolve).
     ConfigNode with_value(std::string_view path, const ConfigNode& value) const;
 
     /// "file.yaml:12:5" of this node.
@@ -89,7 +90,8 @@ public:
 
 private:
     struct Source;
-    ConfigNode(std::shared_ptr<const Source> source, std::unique_ptr<YAML::Node> node, std::string path);
+    ConfigNode(std::shared_ptr<const Source> source, std::unique_ptr<YAML::Node> node,
+               std::string path);
     std::string child_path(std::string_view key) const;
 
     std::shared_ptr<const Source> m_source;
@@ -97,7 +99,8 @@ private:
     std::string m_path;
 };
 
-/// Closest string in `candidates` to `word` by edit distance (for "did you mean" hints); empty if none is close.
+/// Closest string in `candidates` to `word` by edit distance (for "did you mean" hints); empty if
+/// none is close.
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 }  // namespace tirpol

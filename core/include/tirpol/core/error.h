@@ -1,8 +1,8 @@
 #pragma once
 /// \file error.h
 /// The one exception type of tirpol. Library code throws it for bad input (configs, files, device
-/// replies turned into errors at the application layer); the CLI catches it once, prints the message
-/// and exits non-zero. Messages name the file, the field and what was expected.
+/// replies turned into errors at the application layer); the CLI catches it once, prints the
+/// message and exits non-zero. Messages name the file, the field and what was expected.
 
 #include <fmt/format.h>
 

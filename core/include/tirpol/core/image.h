@@ -11,7 +11,8 @@
 
 namespace tirpol {
 
-/// A header attribute: integer, real, text or a list of reals (EXR int, double, string, floatvector).
+/// A header attribute: integer, real, text or a list of reals (EXR int, double, string,
+/// floatvector).
 using AttributeValue = std::variant<int, double, std::string, std::vector<double>>;
 using Attributes = std::map<std::string, AttributeValue>;
 
@@ -22,14 +23,17 @@ public:
 
     int width() const { return m_width; }
     int height() const { return m_height; }
-    std::size_t pixel_count() const { return static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height); }
+    std::size_t pixel_count() const {
+        return static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height);
+    }
 
     /// Adds a channel filled with `value`; throws tirpol::Error if it exists. Returns its plane.
     std::vector<float>& add_channel(const std::string& name, float value = 0.0f);
     /// Adds or replaces a channel with `data` (must hold pixel_count() values).
     void set_channel(const std::string& name, std::vector<float> data);
     bool has_channel(const std::string& name) const;
-    /// The plane of channel `name`; throws tirpol::Error naming the missing channel and those present.
+    /// The plane of channel `name`; throws tirpol::Error naming the missing channel and those
+    /// present.
     const std::vector<float>& channel(const std::string& name) const;
     std::vector<float>& channel(const std::string& name);
     /// Channel names in the order they were added.
@@ -37,7 +41,8 @@ public:
 
     float at(const std::string& name, int x, int y) const { return channel(name)[index(x, y)]; }
     std::size_t index(int x, int y) const {
-        return static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) + static_cast<std::size_t>(x);
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(m_width) +
+               static_cast<std::size_t>(x);
     }
 
     Attributes& attributes() { return m_attributes; }

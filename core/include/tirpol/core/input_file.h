@@ -16,7 +16,8 @@ namespace tirpol {
 /// Throws tirpol::Error unless `path` is a regular file (symbolic links followed) of at most
 /// `max_bytes`: a missing file, a directory, a FIFO, a device or a socket is named as such. For
 /// readers that hand the path to a library that opens it (OpenEXR, libpng, std::ifstream).
-void check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes = limits::kMaxTextFileBytes);
+void check_input_file(const std::filesystem::path& path,
+                      std::uintmax_t max_bytes = limits::kMaxTextFileBytes);
 
 /// Reads a whole regular file of at most `max_bytes`. It is opened without blocking (O_NONBLOCK, so
 /// a FIFO swapped in after the check cannot stall the open) and checked on the open descriptor;

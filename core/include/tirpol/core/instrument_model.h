@@ -2,7 +2,8 @@
 /// \file instrument_model.h
 /// The forward model of the field instrument — a camera behind a rotating, tilted wire-grid
 /// polarizer (paper §3.1) — shared by everything that predicts counts from radiance: simulation's
-/// sensor model, calibration's synthetic sessions and the digital twin (which uses the sensor model).
+/// sensor model, calibration's synthetic sessions and the digital twin (which uses the sensor
+/// model).
 ///
 /// Band radiance on the detector with the polarizer at angle α (W/(m²·sr)):
 ///   L(α) = v · [P(α + δ) · S]₀ + B(α),   B(α) = ρ · L_r · (1 + p · cos 2α) + ε · L_grid
@@ -28,7 +29,7 @@ struct WireGridPolarizer {
     double reflected_radiance = 0.0;       ///< L_r, band radiance the grid reflects in, W/(m²·sr)
     double reflection_polarization = 0.0;  ///< p in ρ·L_r·(1 + p·cos 2α)
     double emissivity = 0.0;               ///< ε
-    double emitted_radiance = 0.0;         ///< L_grid, blackbody band radiance at the grid temperature
+    double emitted_radiance = 0.0;  ///< L_grid, blackbody band radiance at the grid temperature
 };
 
 /// The polarizer evaluated at one angle: the top row of its Mueller matrix and the background B(α).
@@ -36,7 +37,8 @@ struct AnalyzerAtAngle {
     Eigen::RowVector4d row;
     double background = 0.0;  ///< B(α), W/(m²·sr)
 
-    /// L(α) = v · row · S + B(α) for a scene Stokes vector (camera frame) and transmission factor v.
+    /// L(α) = v · row · S + B(α) for a scene Stokes vector (camera frame) and transmission factor
+    /// v.
     double radiance(const StokesVector& scene, double transmission_factor = 1.0) const {
         return transmission_factor * row.dot(scene) + background;
     }
@@ -47,7 +49,8 @@ struct AnalyzerAtAngle {
 AnalyzerAtAngle analyzer_at(const WireGridPolarizer& grid, double angle_deg);
 
 /// C = o + g · L + σ · u (see the file comment).
-inline double detector_counts(double radiance, double gain, double offset, double noise_sigma, double unit_normal) {
+inline double detector_counts(double radiance, double gain, double offset, double noise_sigma,
+                              double unit_normal) {
     return offset + gain * radiance + noise_sigma * unit_normal;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file limits.h
 /// Resource limits and physical ranges that every reader, library function and command-line option
-/// checks before it allocates or accepts a value. One table, so that a limit is raised (or explained)
-/// once; docs/cli.md lists it for users.
+/// checks before it allocates or accepts a value. One table, so that a limit is raised (or
+/// explained) once; docs/cli.md lists it for users.
 
 #include <cstddef>
 #include <cstdint>
@@ -24,8 +24,8 @@ inline constexpr std::size_t kMaxCsvRows = 1'000'000;
 /// before it is read, and a read never goes further (a device that streams for ever).
 inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{256} << 20;
 
-/// Largest image file (EXR, PNG, TIFF) opened, bytes: a 16384² float image with four channels is 4 GiB
-/// uncompressed; the pixel-count limits above bound what is decoded.
+/// Largest image file (EXR, PNG, TIFF) opened, bytes: a 16384² float image with four channels is 4
+/// GiB uncompressed; the pixel-count limits above bound what is decoded.
 inline constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{4} << 30;
 
 /// Physical temperature range accepted for any temperature in a file or on the command line, K.
@@ -34,10 +34,10 @@ inline constexpr double kMaxTemperatureK = 10000.0;
 
 /// Measured emissivities may stray outside [0, 1] by noise; beyond this tolerance they are errors.
 inline constexpr double kEmissivityTolerance = 0.05;
-/// Smallest emissivity an emissivity correction divides by (FLIR's object-signal inversion): below it
-/// the reflected term dominates and 1/ε amplifies a count of noise into kelvins of error (ε = 0.01
-/// gives 100 counts per count); FLIR's cameras offer the same range (data sheets: "emissivity correction
-/// variable from 0.01 to 1.0").
+/// Smallest emissivity an emissivity correction divides by (FLIR's object-signal inversion): below
+/// it the reflected term dominates and 1/ε amplifies a count of noise into kelvins of error (ε =
+/// 0.01 gives 100 counts per count); FLIR's cameras offer the same range (data sheets: "emissivity
+/// correction variable from 0.01 to 1.0").
 inline constexpr double kMinCorrectionEmissivity = 0.01;
 
 /// Wavelength range of any band or wavelength, µm: 0.1 µm (far UV, below which no thermal source

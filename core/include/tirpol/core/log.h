@@ -8,7 +8,8 @@
 
 namespace tirpol {
 
-/// Sets the global log level from "trace|debug|info|warn|error|off"; throws tirpol::Error otherwise.
+/// Sets the global log level from "trace|debug|info|warn|error|off"; throws tirpol::Error
+/// otherwise.
 void set_log_level(const std::string& level);
 
 }  // namespace tirpol

@@ -1,18 +1,19 @@
 #pragma once
 /// \file output_guard.h
-/// A command's outputs checked against its inputs before any work starts (docs/cli.md, "Outputs never
-/// replace inputs"). Every writing subcommand of the CLI lists what it reads and what it will write,
-/// then calls check(): paths are resolved (symlinks followed, `..` removed) and files are also
-/// compared by device and inode, so a hard link or another spelling of an input is caught.
+/// A command's outputs checked against its inputs before any work starts (docs/cli.md, "Outputs
+/// never replace inputs"). Every writing subcommand of the CLI lists what it reads and what it will
+/// write, then calls check(): paths are resolved (symlinks followed, `..` removed) and files are
+/// also compared by device and inode, so a hard link or another spelling of an input is caught.
 ///
 /// Refused, whatever --force says: an output that is one of the inputs, an output inside an input
-/// folder (a session), an input inside a folder output under a name the command writes, two outputs on
-/// one path, an output whose path goes through an existing non-folder (`-o afile/x`), a folder output
-/// that exists as a file or a file output that exists as a folder. Refused unless `force`: an existing file at a file
-/// output; in a folder output, an existing entry the command would write (a name matching one of its patterns) that no
-/// tirpol command claimed there before. A folder output keeps every entry it does not claim; what a command claims in
-/// a folder is listed in the folder's `.tirpol-outputs` (one pattern a line), so a re-run into its own
-/// folder (render, sweep --resume, compare, demo) is not refused.
+/// folder (a session), an input inside a folder output under a name the command writes, two outputs
+/// on one path, an output whose path goes through an existing non-folder (`-o afile/x`), a folder
+/// output that exists as a file or a file output that exists as a folder. Refused unless `force`:
+/// an existing file at a file output; in a folder output, an existing entry the command would write
+/// (a name matching one of its patterns) that no tirpol command claimed there before. A folder
+/// output keeps every entry it does not claim; what a command claims in a folder is listed in the
+/// folder's `.tirpol-outputs` (one pattern a line), so a re-run into its own folder (render, sweep
+/// --resume, compare, demo) is not refused.
 
 #include <filesystem>
 #include <string>
@@ -25,7 +26,8 @@ namespace tirpol {
 /// An output that would replace or mix with an input or an existing file; the CLI exits 2 with it.
 class OutputConflict : public Error {
 public:
-    OutputConflict(std::string option, const std::string& message) : Error(message), m_option(std::move(option)) {}
+    OutputConflict(std::string option, const std::string& message)
+        : Error(message), m_option(std::move(option)) {}
     /// The command-line option of the output ("--output", "--csv", …).
     const std::string& option() const { return m_option; }
 
@@ -38,13 +40,13 @@ inline constexpr const char* kOutputLedgerName = ".tirpol-outputs";
 
 class OutputGuard {
 public:
-    /// A file or folder the command reads; `what` names it in messages ("SESSION", "--calibration").
-    /// An empty path is ignored (an option not given).
+    /// A file or folder the command reads; `what` names it in messages ("SESSION",
+    /// "--calibration"). An empty path is ignored (an option not given).
     OutputGuard& input(const std::filesystem::path& path, std::string what);
     /// A file the command writes (atomically, replacing any file there).
     OutputGuard& output_file(const std::filesystem::path& path, std::string option);
-    /// A folder the command writes into: `patterns` (fnmatch, top-level names: "report.html", "*_S0.png",
-    /// "points") are what it may create or replace there; other entries are kept.
+    /// A folder the command writes into: `patterns` (fnmatch, top-level names: "report.html",
+    /// "*_S0.png", "points") are what it may create or replace there; other entries are kept.
     OutputGuard& output_folder(const std::filesystem::path& path, std::string option,
                                std::vector<std::string> patterns);
     /// A folder whose own writer decides what may exist in it (a capture session: SessionWriter
@@ -53,8 +55,9 @@ public:
 
     /// Throws OutputConflict naming the output, its option and the input or existing file (both
     /// paths) for the first conflict found; see the file comment for what `force` allows. Writes
-    /// nothing: a folder output's patterns go into its ledger just before the first atomic write under
-    /// it (write_file_atomic, AtomicFile), so a command that stops on a bad input leaves no trace.
+    /// nothing: a folder output's patterns go into its ledger just before the first atomic write
+    /// under it (write_file_atomic, AtomicFile), so a command that stops on a bad input leaves no
+    /// trace.
     void check(bool force) const;
 
 private:
@@ -73,8 +76,8 @@ private:
     std::vector<Output> m_outputs;
 };
 
-/// `path` with symlinks resolved as far as it exists and the rest appended, made absolute and normal
-/// (std::filesystem::weakly_canonical of the absolute path).
+/// `path` with symlinks resolved as far as it exists and the rest appended, made absolute and
+/// normal (std::filesystem::weakly_canonical of the absolute path).
 std::filesystem::path resolved_path(const std::filesystem::path& path);
 
 }  // namespace tirpol

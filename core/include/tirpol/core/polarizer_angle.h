@@ -34,6 +34,8 @@ inline double wrap_degrees(double angle_deg) {
 }
 
 /// Signed smallest difference a − b in degrees, in [−180, 180) (how far a stage is from a request).
-inline double angle_difference_deg(double a_deg, double b_deg) { return wrap_degrees(a_deg - b_deg + 180.0) - 180.0; }
+inline double angle_difference_deg(double a_deg, double b_deg) {
+    return wrap_degrees(a_deg - b_deg + 180.0) - 180.0;
+}
 
 }  // namespace tirpol

@@ -14,7 +14,8 @@ namespace tirpol {
 class ProgressReporter {
 public:
     /// `stream` defaults to stderr; `interactive` defaults to isatty(stream).
-    ProgressReporter(std::string label, std::size_t total, std::FILE* stream = stderr, int interactive = -1);
+    ProgressReporter(std::string label, std::size_t total, std::FILE* stream = stderr,
+                     int interactive = -1);
     ~ProgressReporter();
 
     void advance(std::size_t n = 1);

@@ -12,9 +12,9 @@ struct QuadratureRule {
     std::vector<double> weights;  ///< sum to the length of the interval
 };
 
-/// n-point Gauss–Legendre rule on [0, 1], by Newton's method on the Legendre polynomial P_n from the
-/// Tricomi initial guesses (Press et al., Numerical Recipes 3rd ed., §4.6.1); exact for polynomials of
-/// degree ≤ 2n − 1. n ≥ 1.
+/// n-point Gauss–Legendre rule on [0, 1], by Newton's method on the Legendre polynomial P_n from
+/// the Tricomi initial guesses (Press et al., Numerical Recipes 3rd ed., §4.6.1); exact for
+/// polynomials of degree ≤ 2n − 1. n ≥ 1.
 QuadratureRule gauss_legendre(int n);
 
 /// `unit_rule` (a rule on [0, 1]) on each of `panels` equal panels of [a, b].

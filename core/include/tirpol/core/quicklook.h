@@ -17,21 +17,24 @@ enum class Colormap {
 
 struct QuicklookOptions {
     Colormap colormap = Colormap::Sequential;
-    std::optional<double> vmin, vmax;  ///< default: robust range (1st–99th percentile; symmetric for Diverging)
-    std::string title;                 ///< e.g. "S1"
-    std::string units;                 ///< e.g. "W/(m²·sr)"
-    int scale = 0;                     ///< integer upscaling of small images; 0 = automatic
+    std::optional<double> vmin,
+        vmax;           ///< default: robust range (1st–99th percentile; symmetric for Diverging)
+    std::string title;  ///< e.g. "S1"
+    std::string units;  ///< e.g. "W/(m²·sr)"
+    int scale = 0;      ///< integer upscaling of small images; 0 = automatic
 };
 
 /// Range that `write_quicklook` would use for `data` given `options`.
-std::pair<double, double> quicklook_range(const std::vector<float>& data, const QuicklookOptions& options);
+std::pair<double, double> quicklook_range(const std::vector<float>& data,
+                                          const QuicklookOptions& options);
 
 /// Writes a PNG of `data` (width × height, row-major) with a colorbar annotated with the range and
 /// units. NaN pixels are drawn grey. Atomic write.
-void write_quicklook(const std::filesystem::path& path, const std::vector<float>& data, int width, int height,
-                     const QuicklookOptions& options);
+void write_quicklook(const std::filesystem::path& path, const std::vector<float>& data, int width,
+                     int height, const QuicklookOptions& options);
 
-/// The default colour map for a channel name (S1/S2/S3/differences diverging, AoP cyclic, else sequential).
+/// The default colour map for a channel name (S1/S2/S3/differences diverging, AoP cyclic, else
+/// sequential).
 Colormap default_colormap(const std::string& channel_name);
 
 }  // namespace tirpol

@@ -14,7 +14,8 @@ inline constexpr double kPlanckH = 6.62607015e-34;    ///< J·s (exact)
 inline constexpr double kSpeedOfLight = 299792458.0;  ///< m/s (exact)
 inline constexpr double kBoltzmannK = 1.380649e-23;   ///< J/K (exact)
 /// First radiation constant for radiance, 2hc², in W·µm⁴/(m²·sr).
-inline constexpr double kC1L_W_um4_per_m2_sr = 2.0 * kPlanckH * kSpeedOfLight * kSpeedOfLight * 1e24;
+inline constexpr double kC1L_W_um4_per_m2_sr =
+    2.0 * kPlanckH * kSpeedOfLight * kSpeedOfLight * 1e24;
 /// Second radiation constant hc/k in µm·K.
 inline constexpr double kC2_um_K = kPlanckH * kSpeedOfLight / kBoltzmannK * 1e6;
 /// Stefan–Boltzmann constant 2π⁵k⁴/(15h³c²), W/(m²·K⁴) (CODATA 2018 value).

@@ -14,7 +14,8 @@ namespace tirpol {
 /// Reads `path` by extension: .exr (the channel `exr_channel` must exist), .png, .tif/.tiff (one
 /// channel, integer values kept as is, no scaling) into an Image whose single channel is named
 /// `channel_name`. Throws tirpol::Error naming the file for an unreadable file, a colour or 8-bit
-/// image, a declared size beyond limits.h (checked before decoding a PNG) or an unsupported extension.
+/// image, a declared size beyond limits.h (checked before decoding a PNG) or an unsupported
+/// extension.
 Image read_raw_image(const std::filesystem::path& path, const std::string& channel_name = "counts",
                      const std::string& exr_channel = "counts");
 

@@ -45,11 +45,12 @@ StokesVector change_frame(const StokesVector& s, const StokesFrame& from, const 
 
 /// Mueller matrix `m` that maps Stokes in `in_from` to Stokes in `out_from`, re-expressed to map
 /// `in_to` → `out_to` (paper eq 12: M_αe · M · M_αi).
-MuellerMatrix change_frame(const MuellerMatrix& m, const StokesFrame& in_from, const StokesFrame& in_to,
-                           const StokesFrame& out_from, const StokesFrame& out_to);
+MuellerMatrix change_frame(const MuellerMatrix& m, const StokesFrame& in_from,
+                           const StokesFrame& in_to, const StokesFrame& out_from,
+                           const StokesFrame& out_to);
 
-/// The paper's eqs 7–10 literally: rotation angle α from the global Stokes geometry (S axis = global
-/// up) to the surface-relative one (S axis = surface normal) for light travelling along `v`.
+/// The paper's eqs 7–10 literally: rotation angle α from the global Stokes geometry (S axis =
+/// global up) to the surface-relative one (S axis = surface normal) for light travelling along `v`.
 /// Equal to frame_rotation_angle(world_frame(v, up), surface_frame(v, normal)) modulo π; kept as an
 /// independent implementation for tests and readers of the paper.
 double paper_rotation_angle(const Vec3& v, const Vec3& normal, const Vec3& up = world_up());

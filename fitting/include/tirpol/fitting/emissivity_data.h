@@ -2,11 +2,12 @@
 /// \file emissivity_data.h
 /// Measured polarized directional emissivity ε_S0(θ), ε_S1(θ) with standard (1σ) uncertainties: the
 /// input of the fits (paper §3.2, Fig. 1), read from the emissivity CSV whose schema core owns
-/// (tirpol/core/emissivity_csv.h; `tirpol extract-emissivity` writes it). The fit uses view_angle_deg,
-/// eps_s0, eps_s0_std, eps_s1, eps_s1_std and, when present, name and wavelength_um.
-/// ε_S1 is in the s/p frame of the plane of emission (pbrdf.h): S1 < 0 means polarized in the plane of
-/// emission. Rows in the `image` frame are taken as that frame, which they equal when the plane of
-/// emission is vertical in the image (a horizontal panel viewed obliquely, docs/fitting.md).
+/// (tirpol/core/emissivity_csv.h; `tirpol extract-emissivity` writes it). The fit uses
+/// view_angle_deg, eps_s0, eps_s0_std, eps_s1, eps_s1_std and, when present, name and
+/// wavelength_um. ε_S1 is in the s/p frame of the plane of emission (pbrdf.h): S1 < 0 means
+/// polarized in the plane of emission. Rows in the `image` frame are taken as that frame, which
+/// they equal when the plane of emission is vertical in the image (a horizontal panel viewed
+/// obliquely, docs/fitting.md).
 
 #include <filesystem>
 #include <optional>
@@ -20,23 +21,25 @@ struct EmissivitySample {
     double angle_deg = 0.0;   ///< emission (view) angle from the surface normal, [0°, 90°]
     double e_s0 = 0.0;        ///< ε_S0 = 1 − DHR
     double e_s0_sigma = 0.0;  ///< standard (1σ) uncertainty of e_s0, > 0
-    double e_s1 = 0.0;        ///< ε_S1 (plane-of-emission frame, < 0 for emission polarized in that plane)
+    double e_s1 =
+        0.0;  ///< ε_S1 (plane-of-emission frame, < 0 for emission polarized in that plane)
     double e_s1_sigma = 0.0;  ///< standard (1σ) uncertainty of e_s1, > 0
     std::string name;         ///< target/ROI name from the CSV (may be empty)
 };
 
 /// Samples measured in one band (effective wavelength) from one source.
 struct EmissivityDataset {
-    std::string source;            ///< file (or description) the samples came from, for messages and provenance
-    double wavelength_um = 10.0;   ///< effective wavelength at which the model's n + ik is evaluated
+    std::string
+        source;  ///< file (or description) the samples came from, for messages and provenance
+    double wavelength_um = 10.0;  ///< effective wavelength at which the model's n + ik is evaluated
     std::vector<EmissivitySample> samples;
 };
 
-/// Reads an emissivity CSV (file comment). Rows with a `wavelength_um` column value go to one dataset
-/// per distinct wavelength; without that column every row goes to one dataset at
-/// `default_wavelength_um`. Lines starting with '#' and blank lines are skipped. Throws tirpol::Error
-/// naming file, line and column for a missing column, a non-number, and every check of
-/// `validate_dataset`.
+/// Reads an emissivity CSV (file comment). Rows with a `wavelength_um` column value go to one
+/// dataset per distinct wavelength; without that column every row goes to one dataset at
+/// `default_wavelength_um`. Lines starting with '#' and blank lines are skipped. Throws
+/// tirpol::Error naming file, line and column for a missing column, a non-number, and every check
+/// of `validate_dataset`.
 std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& path,
                                                    double default_wavelength_um = 10.0);
 
@@ -46,7 +49,8 @@ std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& 
 void validate_dataset(const EmissivityDataset& dataset);
 
 /// Writes samples as an emissivity CSV (core/emissivity_csv.h) in the plane-of-emission frame, with
-/// their wavelength_um and unknown columns empty, so that load_emissivity_csv reads them back exactly.
+/// their wavelength_um and unknown columns empty, so that load_emissivity_csv reads them back
+/// exactly.
 std::string emissivity_csv(const std::vector<EmissivityDataset>& datasets);
 
 }  // namespace tirpol::fitting

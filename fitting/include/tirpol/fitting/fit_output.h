@@ -21,18 +21,21 @@ struct FitProvenance {
 };
 
 /// Material YAML for the fitted micro-facet model: `refractive_index` {n, k} for one band, or
-/// {wavelength_um, n, k} lists for a multi-band fit; `parameters` σ, bias, τ°, Ω°, ρ_D, ρ_V; `source`
-/// naming data, date, χ²/dof and the termination; `notes` with every parameter ± 2σ, the fixed ones and
-/// the warnings; a comment block with the correlation matrix and per-angle residuals.
+/// {wavelength_um, n, k} lists for a multi-band fit; `parameters` σ, bias, τ°, Ω°, ρ_D, ρ_V;
+/// `source` naming data, date, χ²/dof and the termination; `notes` with every parameter ± 2σ, the
+/// fixed ones and the warnings; a comment block with the correlation matrix and per-angle
+/// residuals.
 std::string fitted_material_yaml(const std::string& name, const MicrofacetFitResult& result,
                                  const FitProvenance& provenance);
 
 /// Machine-readable report (keys in docs/fitting.md).
-nlohmann::json fit_report_json(const MicrofacetFitResult& result, const std::vector<EmissivityDataset>& datasets,
+nlohmann::json fit_report_json(const MicrofacetFitResult& result,
+                               const std::vector<EmissivityDataset>& datasets,
                                const FitProvenance& provenance);
 
 /// Human-readable summary: termination, χ²/dof, parameters ± 2σ, correlations, residuals per angle,
 /// warnings.
-std::string fit_report_text(const MicrofacetFitResult& result, const std::vector<EmissivityDataset>& datasets);
+std::string fit_report_text(const MicrofacetFitResult& result,
+                            const std::vector<EmissivityDataset>& datasets);
 
 }  // namespace tirpol::fitting

@@ -15,7 +15,8 @@
 namespace tirpol::fitting {
 
 /// Writes the PNG (atomically). The curves are the fit's own quadrature at 0.5° steps.
-void write_fit_plot(const std::filesystem::path& png, const std::vector<EmissivityDataset>& datasets,
+void write_fit_plot(const std::filesystem::path& png,
+                    const std::vector<EmissivityDataset>& datasets,
                     const MicrofacetFitResult& result, const std::string& title,
                     const QuadratureOptions& quadrature = {});
 

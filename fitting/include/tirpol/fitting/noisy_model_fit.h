@@ -41,22 +41,25 @@ enum class FiniteDifference {
 struct NoisyModelFitOptions {
     std::vector<std::string> names;  ///< one per parameter, for reports and errors
     std::vector<double> initial, lower, upper;
-    /// Finite-difference step per parameter (> 0), in the parameter's units; a step that would leave
-    /// the bounds turns the difference one-sided at that point.
+    /// Finite-difference step per parameter (> 0), in the parameter's units; a step that would
+    /// leave the bounds turns the difference one-sided at that point.
     std::vector<double> steps;
     FiniteDifference differences = FiniteDifference::central;
     int max_iterations = 30;  ///< per solve
-    bool reweight = true;     ///< re-evaluate the model variances at the first solution and solve again
+    bool reweight =
+        true;  ///< re-evaluate the model variances at the first solution and solve again
     /// Called after every model evaluation with the number made so far (progress bars).
     std::function<void(int evaluations)> on_evaluation;
-    /// Checked before every model evaluation; once set the fit throws tirpol::Cancelled. Null: never.
+    /// Checked before every model evaluation; once set the fit throws tirpol::Cancelled. Null:
+    /// never.
     const std::atomic<bool>* cancel = nullptr;
 };
 
 struct NoisyModelFitResult {
     std::vector<double> values;
-    std::vector<double> sigma;   ///< √diag(covariance); 0 when the covariance is unavailable
-    Eigen::MatrixXd covariance;  ///< (JᵀWJ)⁻¹ at the solution, W from measurement and model variance
+    std::vector<double> sigma;  ///< √diag(covariance); 0 when the covariance is unavailable
+    Eigen::MatrixXd
+        covariance;  ///< (JᵀWJ)⁻¹ at the solution, W from measurement and model variance
     Eigen::MatrixXd correlation;
     bool covariance_available = false;
     std::vector<double> model;                 ///< model values at the solution
@@ -68,15 +71,17 @@ struct NoisyModelFitResult {
     bool usable = false;      ///< ceres::Solver::Summary::IsSolutionUsable of the last solve
     std::string termination;  ///< its termination type and message
     std::string solver_report;
-    int iterations = 0;                 ///< over all solves
-    int evaluations = 0;                ///< model evaluations, the finite differences included
-    std::vector<std::string> warnings;  ///< parameters on a bound, rank-deficient Jacobian, χ²/dof > 3
+    int iterations = 0;   ///< over all solves
+    int evaluations = 0;  ///< model evaluations, the finite differences included
+    std::vector<std::string>
+        warnings;  ///< parameters on a bound, rank-deficient Jacobian, χ²/dof > 3
 };
 
 /// Fits `model` to `measured` (σ `measured_sigma`, > 0 each). Throws tirpol::Error on inconsistent
 /// sizes, a bound or step that is not finite or ordered, fewer residuals than parameters + 1, or a
 /// model evaluation of the wrong size or with a non-finite value.
 NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<double>& measured,
-                                    const std::vector<double>& measured_sigma, const NoisyModelFitOptions& options);
+                                    const std::vector<double>& measured_sigma,
+                                    const NoisyModelFitOptions& options);
 
 }  // namespace tirpol::fitting

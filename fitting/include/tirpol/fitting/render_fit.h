@@ -1,18 +1,19 @@
 #pragma once
 /// \file render_fit.h
 /// Fit of pBRDF parameters through the renderer (analysis by synthesis): the scene is rendered with
-/// candidate parameters of one or more micro-facet materials, from every measured view (its own camera
-/// model and pose), and the simulated Stokes are compared with the measured ones directly,
+/// candidate parameters of one or more micro-facet materials, from every measured view (its own
+/// camera model and pose), and the simulated Stokes are compared with the measured ones directly,
 ///   minimise Σ (S_meas − S_sim(θ))² / (σ_meas² + σ_sim²)
-/// over region means (or pixels) of S0, S1, S2, with Ceres (noisy_model_fit.h). Unlike the emissivity
-/// fit (paper eq 17 then microfacet_fit.h) it needs no uniform downwelling: whatever the scene holds —
-/// a sky that is colder at the zenith, a warm ground, a reflector at its own temperature — is rendered.
-/// It needs instead everything the render needs: geometry, temperatures, sky, camera model and pose.
+/// over region means (or pixels) of S0, S1, S2, with Ceres (noisy_model_fit.h). Unlike the
+/// emissivity fit (paper eq 17 then microfacet_fit.h) it needs no uniform downwelling: whatever the
+/// scene holds — a sky that is colder at the zenith, a warm ground, a reflector at its own
+/// temperature — is rendered. It needs instead everything the render needs: geometry, temperatures,
+/// sky, camera model and pose.
 ///
-/// Every evaluation renders with the same seed (common random numbers), so the objective is a smooth
-/// function of the parameters up to the sampler's branch decisions; finite differences step by much
-/// more than that jitter (render_fit.cpp). The render's own Monte Carlo variance enters the weights, so
-/// the covariance includes it. The renderer's S*_var channels give σ_sim.
+/// Every evaluation renders with the same seed (common random numbers), so the objective is a
+/// smooth function of the parameters up to the sampler's branch decisions; finite differences step
+/// by much more than that jitter (render_fit.cpp). The render's own Monte Carlo variance enters the
+/// weights, so the covariance includes it. The renderer's S*_var channels give σ_sim.
 
 #include <Eigen/Core>
 #include <atomic>
@@ -29,15 +30,15 @@
 
 namespace tirpol::fitting {
 
-/// A parameter of a scene material to fit. The material must be micro-facet (materials/microfacet.h);
-/// fitting n or k needs a constant (not tabulated) refractive index.
+/// A parameter of a scene material to fit. The material must be micro-facet
+/// (materials/microfacet.h); fitting n or k needs a constant (not tabulated) refractive index.
 struct RenderFitParameter {
     std::string material;  ///< name in Scene::materials
     MicrofacetParameter parameter = MicrofacetParameter::n;
     double lower = 0.0, upper = 0.0;
     std::optional<double> initial;  ///< unset: the scene material's own value
-    /// Finite-difference step in the parameter's units; unset: 2 % of the initial value's magnitude,
-    /// at least 1 % of the bounds' width (render_fit.cpp says why).
+    /// Finite-difference step in the parameter's units; unset: 2 % of the initial value's
+    /// magnitude, at least 1 % of the bounds' width (render_fit.cpp says why).
     std::optional<double> step;
 };
 
@@ -51,14 +52,16 @@ struct RenderFitRegion {
 struct RenderFitView {
     std::string name;
     simulation::Camera camera;  ///< the measuring camera's model and pose; its size is the image's
-    /// Measured Stokes in the camera frame of ARCHITECTURE.md, W/(m²·sr): channels S0 S1 S2 and their
-    /// per-pixel standard uncertainties S0_std S1_std S2_std (what calibration's reduction writes).
+    /// Measured Stokes in the camera frame of ARCHITECTURE.md, W/(m²·sr): channels S0 S1 S2 and
+    /// their per-pixel standard uncertainties S0_std S1_std S2_std (what calibration's reduction
+    /// writes).
     Image measured;
     std::vector<RenderFitRegion> regions;
 };
 
 enum class RenderFitResiduals {
-    region_means,  ///< one residual per view, region and Stokes component (region mean, σ of the mean)
+    region_means,  ///< one residual per view, region and Stokes component (region mean, σ of the
+                   ///< mean)
     pixels,        ///< one per pixel of every region and Stokes component
 };
 
@@ -70,12 +73,14 @@ struct RenderFitOptions {
     std::optional<std::uint64_t> seed;  ///< the one seed of every evaluation; unset: the scene's
     FiniteDifference differences = FiniteDifference::central;
     int max_iterations = 20;
-    bool reweight = true;                       ///< NoisyModelFitOptions::reweight
-    int threads = 0;                            ///< render threads (0: all cores)
-    bool show_progress = false;                 ///< a progress bar of the renders on stderr (core/progress.h)
-    const std::atomic<bool>* cancel = nullptr;  ///< checked before every render; then throws tirpol::Cancelled
-    /// Emissivity-table cache folder for the first render (simulation::RenderOptions); later renders
-    /// keep tables in memory only, so the candidate materials' tables do not fill the disk cache.
+    bool reweight = true;        ///< NoisyModelFitOptions::reweight
+    int threads = 0;             ///< render threads (0: all cores)
+    bool show_progress = false;  ///< a progress bar of the renders on stderr (core/progress.h)
+    const std::atomic<bool>* cancel =
+        nullptr;  ///< checked before every render; then throws tirpol::Cancelled
+    /// Emissivity-table cache folder for the first render (simulation::RenderOptions); later
+    /// renders keep tables in memory only, so the candidate materials' tables do not fill the disk
+    /// cache.
     std::optional<std::filesystem::path> emissivity_cache_dir;
 };
 
@@ -115,32 +120,38 @@ struct RenderFitSummary {
     std::string FullReport() const;
 };
 
-/// Fits `options.parameters` of `scene`'s materials to the measured `views`. Throws tirpol::Error on
-/// bad input (unknown material or a non-micro-facet one, a tabulated index for n or k, a view whose
-/// image and camera sizes differ, a missing channel, an empty region or a pixel outside the image,
-/// bounds that do not hold the initial value), tirpol::Cancelled when cancelled.
-RenderFitSummary fit_through_renderer(const simulation::Scene& scene, const std::vector<RenderFitView>& views,
+/// Fits `options.parameters` of `scene`'s materials to the measured `views`. Throws tirpol::Error
+/// on bad input (unknown material or a non-micro-facet one, a tabulated index for n or k, a view
+/// whose image and camera sizes differ, a missing channel, an empty region or a pixel outside the
+/// image, bounds that do not hold the initial value), tirpol::Cancelled when cancelled.
+RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
+                                      const std::vector<RenderFitView>& views,
                                       const RenderFitOptions& options);
 
-/// The interior of an object in a render (channel `object_id`): its pixels whose 8 neighbours show it
-/// too, so the region holds no pixel mixed with another surface. Empty if the object is not visible.
+/// The interior of an object in a render (channel `object_id`): its pixels whose 8 neighbours show
+/// it too, so the region holds no pixel mixed with another surface. Empty if the object is not
+/// visible.
 RenderFitRegion object_region(const Image& render, std::size_t object_index, std::string name);
 
 /// Regions of the named objects as `camera` sees them: a geometry render of the scene (1 sample per
 /// pixel; the object_id channel is the pixel-centre ray's), then object_region of each. Throws
 /// tirpol::Error naming an object that the scene lacks or that covers no interior pixel.
-std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene, const simulation::Camera& camera,
+std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene,
+                                            const simulation::Camera& camera,
                                             const std::vector<std::string>& objects);
 
 /// A measured view from files: the Stokes EXR (S0 S1 S2 S0_std S1_std S2_std, as `tirpol reduce`
-/// writes it) seen through the camera model and pose YAMLs (core/camera_model.h) or, when both paths
-/// are empty, through the scene's camera resized to the image; the regions of `objects`.
-RenderFitView load_render_fit_view(const simulation::Scene& scene, const std::filesystem::path& measured_exr,
-                                   const std::filesystem::path& camera_model, const std::filesystem::path& pose,
+/// writes it) seen through the camera model and pose YAMLs (core/camera_model.h) or, when both
+/// paths are empty, through the scene's camera resized to the image; the regions of `objects`.
+RenderFitView load_render_fit_view(const simulation::Scene& scene,
+                                   const std::filesystem::path& measured_exr,
+                                   const std::filesystem::path& camera_model,
+                                   const std::filesystem::path& pose,
                                    const std::vector<std::string>& objects);
 
-/// "MATERIAL.PARAMETER=LOWER:UPPER" or "MATERIAL.PARAMETER=LOWER:UPPER:INITIAL" (the CLI's --free), e.g.
-/// "flat_black_paint.sigma=0.05:1". Throws tirpol::Error quoting the text and what was expected.
+/// "MATERIAL.PARAMETER=LOWER:UPPER" or "MATERIAL.PARAMETER=LOWER:UPPER:INITIAL" (the CLI's --free),
+/// e.g. "flat_black_paint.sigma=0.05:1". Throws tirpol::Error quoting the text and what was
+/// expected.
 RenderFitParameter parse_render_fit_parameter(const std::string& text);
 
 /// The scene's material named `material` with the given micro-facet parameters replaced (the same

@@ -3,8 +3,8 @@
 /// Who may use the live view. On the loopback interface (the default) anyone on the laptop may, as
 /// with any local tool. Bound to another address the page can be reached from the network, so every
 /// request must carry a random token printed at start: `?token=…` in the URL (the page passes it on
-/// to each of its own requests; a request with it also sets an HttpOnly cookie that covers the page's
-/// script and style sheet), the header `X-Tirpol-Token`, or that cookie.
+/// to each of its own requests; a request with it also sets an HttpOnly cookie that covers the
+/// page's script and style sheet), the header `X-Tirpol-Token`, or that cookie.
 
 #include <string>
 #include <vector>

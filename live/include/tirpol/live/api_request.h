@@ -1,9 +1,10 @@
 #pragma once
 /// \file api_request.h
 /// What the live view's HTTP API reads from a request, apart from the HTTP library (live_server.cpp
-/// passes it the decoded query values, headers and body): the pieces a page or anyone on the network
-/// controls, checked here so that they can be tested and fuzzed without a socket (fuzz/targets/live_request.cpp).
-/// Every rejection is a tirpol::Error whose message the server returns as a 400 JSON body.
+/// passes it the decoded query values, headers and body): the pieces a page or anyone on the
+/// network controls, checked here so that they can be tested and fuzzed without a socket
+/// (fuzz/targets/live_request.cpp). Every rejection is a tirpol::Error whose message the server
+/// returns as a 400 JSON body.
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -15,8 +16,8 @@
 
 namespace tirpol::live {
 
-/// `?after=SEQ`: a decimal sequence number (digits only, fits 64 bits); absent = 0. Throws otherwise,
-/// since "-1" or "1e9" would silently mean "wait for a frame that never comes".
+/// `?after=SEQ`: a decimal sequence number (digits only, fits 64 bits); absent = 0. Throws
+/// otherwise, since "-1" or "1e9" would silently mean "wait for a frame that never comes".
 std::uint64_t parse_after(const std::optional<std::string>& value);
 
 /// The body of POST /api/capture/start: a JSON object {plan: string, output: string, resume: bool?}
@@ -32,8 +33,9 @@ std::string cookie_value(std::string_view header, std::string_view name);
 /// Whether a request may pass when `token` is required (access.h): the `?token=` query value, the
 /// X-Tirpol-Token header or the cookie `cookie_name` in the Cookie header must equal it. An empty
 /// `token` (loopback) lets every request pass.
-bool request_authorised(const std::string& token, const std::string& query_token, const std::string& header_token,
-                        const std::string& cookie_header, std::string_view cookie_name);
+bool request_authorised(const std::string& token, const std::string& query_token,
+                        const std::string& header_token, const std::string& cookie_header,
+                        std::string_view cookie_name);
 
 /// {"error": message} as JSON text, valid UTF-8 whatever bytes the message quotes from the request.
 std::string error_body(std::string_view message);

@@ -4,8 +4,8 @@
 /// SessionWriter, exactly as `tirpol acquire` does (same manifest, same files, resumable with
 /// `tirpol acquire --resume` or from the page), reading frames through a TappedCamera so the live
 /// view keeps streaming. The polarizer cycle is paused for the run. Stop works like Ctrl-C in
-/// `tirpol acquire` (acquisition::StopOnInterrupt): the stage is told to stop, the run ends after the
-/// current frame and every recorded step stays.
+/// `tirpol acquire` (acquisition::StopOnInterrupt): the stage is told to stop, the run ends after
+/// the current frame and every recorded step stays.
 
 #include <atomic>
 #include <filesystem>
@@ -20,8 +20,9 @@
 namespace tirpol::live {
 
 struct CaptureRequest {
-    std::filesystem::path plan;    ///< capture plan YAML
-    std::filesystem::path output;  ///< session directory (new, or an interrupted session with resume)
+    std::filesystem::path plan;  ///< capture plan YAML
+    std::filesystem::path
+        output;  ///< session directory (new, or an interrupted session with resume)
     bool resume = false;
 };
 
@@ -45,8 +46,8 @@ public:
     CaptureControl& operator=(const CaptureControl&) = delete;
 
     /// Loads the plan and opens the session (new or resumed) before returning, so a bad plan, a
-    /// non-empty directory or a session of another plan is a tirpol::Error here; then runs on a thread.
-    /// Also an error while a capture is running.
+    /// non-empty directory or a session of another plan is a tirpol::Error here; then runs on a
+    /// thread. Also an error while a capture is running.
     void start(const CaptureRequest& request);
     /// Asks a running capture to stop (returns at once; the state turns Stopped when it has).
     void stop();

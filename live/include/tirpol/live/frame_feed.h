@@ -2,8 +2,8 @@
 /// \file frame_feed.h
 /// The live view's grab thread: the only reader of the camera. Every frame goes (a) into a
 /// LatestSlot that displays sample at their own pace and (b) to every open FrameTap, unbounded, for
-/// consumers that need every frame in order (the polarizer cycle, a capture plan). Also measures the
-/// delivered frame rate and keeps the FPA temperature history.
+/// consumers that need every frame in order (the polarizer cycle, a capture plan). Also measures
+/// the delivered frame rate and keeps the FPA temperature history.
 
 #include <atomic>
 #include <chrono>
@@ -42,8 +42,8 @@ private:
 struct FeedStatistics {
     std::uint64_t delivered = 0, dropped = 0, incomplete = 0;  ///< the camera's own counts
     std::uint64_t grabbed = 0;                                 ///< frames this feed handed on
-    std::optional<double> frame_rate_hz;                       ///< frames received per second over the last ~2 s
-    std::string last_error;                                    ///< the last grab error other than a timeout, if any
+    std::optional<double> frame_rate_hz;  ///< frames received per second over the last ~2 s
+    std::string last_error;               ///< the last grab error other than a timeout, if any
 };
 
 struct FpaSample {
@@ -53,7 +53,8 @@ struct FpaSample {
 
 class FrameFeed {
 public:
-    /// `camera` must outlive the feed. Keeps at most `fpa_history_samples` FPA samples (one a second).
+    /// `camera` must outlive the feed. Keeps at most `fpa_history_samples` FPA samples (one a
+    /// second).
     explicit FrameFeed(acquisition::Camera& camera, std::size_t fpa_history_samples = 3600);
     ~FrameFeed();
     FrameFeed(const FrameFeed&) = delete;
@@ -68,8 +69,8 @@ public:
     const LatestSlot<acquisition::Frame>& latest() const { return m_latest; }
     /// A tap that receives every frame grabbed from now on.
     std::shared_ptr<FrameTap> open_tap();
-    /// The camera's counts as the grab thread read them after its last grab (the back ends' counters
-    /// are not safe to read from another thread while it grabs), with the feed's own.
+    /// The camera's counts as the grab thread read them after its last grab (the back ends'
+    /// counters are not safe to read from another thread while it grabs), with the feed's own.
     FeedStatistics statistics() const;
     acquisition::StreamStatistics camera_statistics() const;
     std::vector<FpaSample> fpa_history() const;

@@ -4,10 +4,10 @@
 /// API it polls (docs/live.md):
 ///   GET  /  /live.js  /live.css                      the page
 ///   GET  /api/describe                               camera, units, stage, capture defaults (JSON)
-///   GET  /api/status                                 rates, drops, FPA history, stage, capture (JSON)
-///   GET  /api/frame?after=SEQ                        the latest S0 newer than SEQ (display_frame.h
-///   GET  /api/stokes?after=SEQ                       format; X-Sequence header), else 204 after 1 s
-///   POST /api/capture/start  {plan, output, resume}  POST /api/capture/stop
+///   GET  /api/status                                 rates, drops, FPA history, stage, capture
+///   (JSON) GET  /api/frame?after=SEQ                        the latest S0 newer than SEQ
+///   (display_frame.h GET  /api/stokes?after=SEQ                       format; X-Sequence header),
+///   else 204 after 1 s POST /api/capture/start  {plan, output, resume}  POST /api/capture/stop
 ///   POST /api/observations?client=ID  GET /api/observations   what a page in test mode saw
 /// Each page asks for the next frame after drawing the last, so it gets frames at its own pace.
 
@@ -30,9 +30,9 @@ void validate(const ServerOptions& options);
 
 class LiveServer {
 public:
-    /// Validates the options and binds now (tirpol::Error naming the address and port when it cannot).
-    /// A token is made and required when `bind_address` is not loopback (access.h); every request
-    /// passes RequestPolicy (request_policy.h) before its body is read.
+    /// Validates the options and binds now (tirpol::Error naming the address and port when it
+    /// cannot). A token is made and required when `bind_address` is not loopback (access.h); every
+    /// request passes RequestPolicy (request_policy.h) before its body is read.
     LiveServer(LiveView& view, const ServerOptions& options);
     ~LiveServer();
     LiveServer(const LiveServer&) = delete;

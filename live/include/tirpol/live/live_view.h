@@ -29,8 +29,9 @@ struct LiveViewOptions {
     std::string default_plan, default_output;  ///< prefilled in the page's capture form
 };
 
-/// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value when a
-/// number is not finite or out of range: NaN would otherwise pass every comparison and mean "no wait".
+/// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value
+/// when a number is not finite or out of range: NaN would otherwise pass every comparison and mean
+/// "no wait".
 void validate(const LiveViewOptions& options);
 
 /// An encoded image and the LatestSlot sequence it came from.
@@ -41,21 +42,23 @@ struct EncodedImage {
 
 class LiveView {
 public:
-    /// Validates the options, opens the devices and the calibration and starts streaming (and cycling,
-    /// with a stage). Throws tirpol::Error naming the option, URI or file that failed.
+    /// Validates the options, opens the devices and the calibration and starts streaming (and
+    /// cycling, with a stage). Throws tirpol::Error naming the option, URI or file that failed.
     explicit LiveView(const LiveViewOptions& options);
     ~LiveView();
     LiveView(const LiveView&) = delete;
     LiveView& operator=(const LiveView&) = delete;
 
-    /// The latest S0 frame once newer than `after`, waiting at most `timeout`. Each frame is encoded
-    /// once however many pages ask for it.
+    /// The latest S0 frame once newer than `after`, waiting at most `timeout`. Each frame is
+    /// encoded once however many pages ask for it.
     EncodedImage frame_after(std::uint64_t after, std::chrono::milliseconds timeout);
     /// The latest cycle's S0 S1 S2 DoLP AoP the same way (never anything without a stage).
     EncodedImage stokes_after(std::uint64_t after, std::chrono::milliseconds timeout);
-    /// Camera, statistics, FPA history, stage and capture state as JSON (docs/live.md lists the fields).
+    /// Camera, statistics, FPA history, stage and capture state as JSON (docs/live.md lists the
+    /// fields).
     nlohmann::json status() const;
-    /// Static facts for the page: camera, units, whether a stage is present, the capture form defaults.
+    /// Static facts for the page: camera, units, whether a stage is present, the capture form
+    /// defaults.
     nlohmann::json describe() const;
 
     bool has_stage() const { return m_stage != nullptr; }

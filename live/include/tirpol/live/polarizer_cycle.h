@@ -1,10 +1,10 @@
 #pragma once
 /// \file polarizer_cycle.h
-/// With a stage: turns the polarizer through its angles (0/45/90/135° by default) again and again and
-/// publishes the Stokes image of each complete cycle. Frames are chosen as `tirpol acquire` chooses
-/// them — acquisition::FrameGate keeps only frames exposed after the stage settled — averaged with
-/// acquisition::FrameAverager, and reduced with calibration::reduce_stokes (ideal analyzer at the
-/// angles read back from the stage), the code `tirpol reduce` uses.
+/// With a stage: turns the polarizer through its angles (0/45/90/135° by default) again and again
+/// and publishes the Stokes image of each complete cycle. Frames are chosen as `tirpol acquire`
+/// chooses them — acquisition::FrameGate keeps only frames exposed after the stage settled —
+/// averaged with acquisition::FrameAverager, and reduced with calibration::reduce_stokes (ideal
+/// analyzer at the angles read back from the stage), the code `tirpol reduce` uses.
 
 #include <atomic>
 #include <condition_variable>
@@ -32,7 +32,8 @@ struct CycleOptions {
 };
 
 struct CycleStatus {
-    std::string state = "idle";       ///< "homing", "moving to 45°", "averaging 45° (2/4)", "paused", "failed"
+    std::string state =
+        "idle";  ///< "homing", "moving to 45°", "averaging 45° (2/4)", "paused", "failed"
     std::optional<double> angle_deg;  ///< the stage's last read-back angle
     std::uint64_t cycles = 0;         ///< complete cycles published
     std::string error;                ///< the last device error, if any
@@ -40,9 +41,10 @@ struct CycleStatus {
 
 class PolarizerCycle {
 public:
-    /// `feed`, `stage` and `converter` must outlive the cycle. Throws tirpol::Error for options that
-    /// cannot give a Stokes image (fewer than 3 angles, frames_per_angle < 1).
-    PolarizerCycle(FrameFeed& feed, acquisition::Stage& stage, const DisplayConverter& converter, CycleOptions options);
+    /// `feed`, `stage` and `converter` must outlive the cycle. Throws tirpol::Error for options
+    /// that cannot give a Stokes image (fewer than 3 angles, frames_per_angle < 1).
+    PolarizerCycle(FrameFeed& feed, acquisition::Stage& stage, const DisplayConverter& converter,
+                   CycleOptions options);
     ~PolarizerCycle();
     PolarizerCycle(const PolarizerCycle&) = delete;
     PolarizerCycle& operator=(const PolarizerCycle&) = delete;

@@ -1,8 +1,8 @@
 #pragma once
 /// \file request_policy.h
-/// Which HTTP requests the live view answers, decided from the request line and headers alone, before
-/// a byte of the body is read (threat model: docs/live.md). Apart from the HTTP library so that every
-/// rule is tested without a socket:
+/// Which HTTP requests the live view answers, decided from the request line and headers alone,
+/// before a byte of the body is read (threat model: docs/live.md). Apart from the HTTP library so
+/// that every rule is tested without a socket:
 ///  - Host must name this server (a loopback name, or for a wider bind an address or name of this
 ///    machine) with its port: a DNS-rebinding page reaches the server under the attacker's name.
 ///  - With a token (every non-loopback bind), no request without it.
@@ -23,12 +23,14 @@ namespace tirpol::live {
 
 /// Sizes and times that bound what one client can make the server hold.
 struct RequestLimits {
-    std::size_t max_body_bytes = 64 * 1024;    ///< a capture request or an observation is well below
-    std::size_t max_head_bytes = 16 * 1024;    ///< request line and headers together
-    std::size_t max_connections = 64;          ///< open at once; one page holds a few
-    std::size_t max_observation_clients = 16;  ///< pages reporting in test mode, each ≤ max_body_bytes
-    std::chrono::milliseconds idle_timeout{5000};      ///< a kept-alive connection with no request
-    std::chrono::milliseconds head_timeout{5000};      ///< from a request's first byte to its last header
+    std::size_t max_body_bytes = 64 * 1024;  ///< a capture request or an observation is well below
+    std::size_t max_head_bytes = 16 * 1024;  ///< request line and headers together
+    std::size_t max_connections = 64;        ///< open at once; one page holds a few
+    std::size_t max_observation_clients =
+        16;  ///< pages reporting in test mode, each ≤ max_body_bytes
+    std::chrono::milliseconds idle_timeout{5000};  ///< a kept-alive connection with no request
+    std::chrono::milliseconds head_timeout{
+        5000};  ///< from a request's first byte to its last header
     std::chrono::milliseconds request_timeout{30000};  ///< reading and answering one request
 };
 
@@ -54,7 +56,8 @@ std::vector<std::string> allowed_hosts(const std::string& bind_address, int port
 class RequestPolicy {
 public:
     /// `token` empty: none required (loopback bind).
-    RequestPolicy(std::vector<std::string> allowed_hosts, std::string token, RequestLimits limits = {});
+    RequestPolicy(std::vector<std::string> allowed_hosts, std::string token,
+                  RequestLimits limits = {});
 
     /// Refusal of a request, or nullopt when it may be served (its body, if any, then read with at
     /// most limits().max_body_bytes).

@@ -1,7 +1,7 @@
 #pragma once
 /// \file complex_index.h
-/// Complex index of refraction ñ = n + i·k of a material relative to the incidence medium (air, taken
-/// as 1), as a function of wavelength in micrometres.
+/// Complex index of refraction ñ = n + i·k of a material relative to the incidence medium (air,
+/// taken as 1), as a function of wavelength in micrometres.
 ///
 /// Convention (used by every Fresnel formula in tirpol): plane waves E ∝ exp(i(k·r − ωt)) and
 /// ñ = n + i·k with k ≥ 0 for an absorbing medium: the convention of refractiveindex.info, Palik's
@@ -25,15 +25,15 @@ public:
     /// A wavelength-independent index (valid at every wavelength).
     static RefractiveIndexTable constant(ComplexIndex index, std::string source = "constant");
 
-    /// Tabulated values; wavelengths strictly increasing, n > 0, k ≥ 0. `source` names where the data
-    /// came from (used in error messages).
-    RefractiveIndexTable(std::vector<double> wavelength_um, std::vector<double> n, std::vector<double> k,
-                         std::string source);
+    /// Tabulated values; wavelengths strictly increasing, n > 0, k ≥ 0. `source` names where the
+    /// data came from (used in error messages).
+    RefractiveIndexTable(std::vector<double> wavelength_um, std::vector<double> n,
+                         std::vector<double> k, std::string source);
 
     /// Loads a refractiveindex.info database file (YAML with `DATA: - type: tabulated nk` and a
     /// `data:` block of "λ_µm n k" rows; also `tabulated n` + `tabulated k` pairs), or a CSV with a
-    /// header naming wavelength_um, n, k ('#' comment lines allowed). Chosen by extension (.yml/.yaml
-    /// vs .csv). Errors name the file and line.
+    /// header naming wavelength_um, n, k ('#' comment lines allowed). Chosen by extension
+    /// (.yml/.yaml vs .csv). Errors name the file and line.
     static RefractiveIndexTable load(const std::filesystem::path& path);
 
     /// Index at `wavelength_um`; throws tirpol::Error naming the source and its range outside it.

@@ -4,14 +4,17 @@
 ///   ε(θo) = e0 − ∫_{2π} M(wi→wo)·e0 cosθi dωi,   e0 = (1, 0, 0, 0),
 /// i.e. the emitted Stokes vector is what an isothermal black enclosure (uniform unpolarized
 /// illumination) would not see reflected. Stokes in surface_frame(wo, z) (pbrdf.h): S1 < 0 is
-/// emission polarized in the plane of emission. For an isotropic surface S2 = S3 = 0 by mirror symmetry.
+/// emission polarized in the plane of emission. For an isotropic surface S2 = S3 = 0 by mirror
+/// symmetry.
 ///
-/// The integral is computed deterministically in the model's sample space: (u1, u2) ∈ [0,1)² mapped by
-/// PolarizedBrdf::sample, whose weight is M·cosθi/pdf, so ∫ M e0 cosθi dωi = ∫∫ weight·e0 du1 du2.
-/// Composite Gauss–Legendre rules in u1 (split at sample_u1_breaks, so every piece maps smoothly) and
-/// u2 follow the lobe however narrow it is, and delta lobes are exact (their weight is the reflectance
-/// matrix). Isotropic models (PolarizedBrdf::is_isotropic) are integrated over half the azimuths. Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a brute-force
-/// 2-D integration over the hemisphere for rough surfaces, and exact (1e-12) for smooth ones.
+/// The integral is computed deterministically in the model's sample space: (u1, u2) ∈ [0,1)² mapped
+/// by PolarizedBrdf::sample, whose weight is M·cosθi/pdf, so ∫ M e0 cosθi dωi = ∫∫ weight·e0 du1
+/// du2. Composite Gauss–Legendre rules in u1 (split at sample_u1_breaks, so every piece maps
+/// smoothly) and u2 follow the lobe however narrow it is, and delta lobes are exact (their weight
+/// is the reflectance matrix). Isotropic models (PolarizedBrdf::is_isotropic) are integrated over
+/// half the azimuths. Accuracy (tests/materials/emissivity_test.cpp): |Δε| < 2e-4 against a
+/// brute-force 2-D integration over the hemisphere for rough surfaces, and exact (1e-12) for smooth
+/// ones.
 
 #include <cstddef>
 #include <memory>
@@ -24,62 +27,68 @@
 namespace tirpol::materials {
 
 struct EmissivityOptions {
-    int radial_panels = 12;   ///< Gauss–Legendre panels along u1, per lobe piece
-    int azimuth_panels = 8;   ///< Gauss–Legendre panels along u2
-    int order = 6;            ///< Gauss–Legendre nodes per panel (1..10)
+    int radial_panels = 12;  ///< Gauss–Legendre panels along u1, per lobe piece
+    int azimuth_panels = 8;  ///< Gauss–Legendre panels along u2
+    int order = 6;           ///< Gauss–Legendre nodes per panel (1..10)
 };
 
-/// ∫ M(wi→wo)·e0 cosθi dωi for wo at polar angle acos(cos_theta) (φo = 0): the Stokes vector reflected
-/// towards wo under uniform unpolarized unit radiance. S0 is the DHR. cos_theta is clamped to
-/// [kMinCosine, 1] so that exactly grazing views get the grazing limit.
-StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+/// ∫ M(wi→wo)·e0 cosθi dωi for wo at polar angle acos(cos_theta) (φo = 0): the Stokes vector
+/// reflected towards wo under uniform unpolarized unit radiance. S0 is the DHR. cos_theta is
+/// clamped to [kMinCosine, 1] so that exactly grazing views get the grazing limit.
+StokesVector hemispherical_reflected_stokes(const PolarizedBrdf& brdf, double cos_theta,
+                                            double wavelength_um,
                                             const EmissivityOptions& options = {});
 
 /// Polarized directional emissivity ε = e0 − hemispherical_reflected_stokes (file comment).
-StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
-                                    const EmissivityOptions& options = {});
+StokesVector directional_emissivity(const PolarizedBrdf& brdf, double cos_theta,
+                                    double wavelength_um, const EmissivityOptions& options = {});
 
 /// Directional-hemispherical reflectance ρ_DHR(θ) (paper eq 2), = 1 − ε_S0.
-double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta, double wavelength_um,
+double directional_hemispherical_reflectance(const PolarizedBrdf& brdf, double cos_theta,
+                                             double wavelength_um,
                                              const EmissivityOptions& options = {});
 
 /// Emissivity tabulated over emission angle θ ∈ [0°, 90°] and a list of wavelengths, for per-hit
-/// lookups by the renderer. The θ nodes are θj = 90°·(1 − (1 − j/(N−1))²): twice as sparse as uniform
-/// at normal incidence and ever denser towards 90° (last step 90°/(N−1)²), where ε and DoLP change
-/// fastest. Lookups use cubic Lagrange interpolation on that grid (no allocation, no exceptions).
+/// lookups by the renderer. The θ nodes are θj = 90°·(1 − (1 − j/(N−1))²): twice as sparse as
+/// uniform at normal incidence and ever denser towards 90° (last step 90°/(N−1)²), where ε and DoLP
+/// change fastest. Lookups use cubic Lagrange interpolation on that grid (no allocation, no
+/// exceptions).
 class EmissivityTable {
 public:
     /// Builds the table. Throws tirpol::Error if a wavelength lies outside the model's
-    /// valid_wavelength_range_um, or if the list is empty / not increasing. Wavelengths at which the
-    /// model's parameters are identical to the previous wavelength's reuse that column. The integrals
-    /// run on up to std::thread::hardware_concurrency() threads.
-    EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um, int angle_nodes = 65,
-                    const EmissivityOptions& options = {});
+    /// valid_wavelength_range_um, or if the list is empty / not increasing. Wavelengths at which
+    /// the model's parameters are identical to the previous wavelength's reuse that column. The
+    /// integrals run on up to std::thread::hardware_concurrency() threads.
+    EmissivityTable(const PolarizedBrdf& brdf, std::vector<double> wavelengths_um,
+                    int angle_nodes = 65, const EmissivityOptions& options = {});
 
-    /// A table from stored node values (emissivity_cache.h), laid out as values()[wavelength][angle] on
-    /// the same angle grid as a built table with `angle_nodes` nodes. Throws tirpol::Error if the sizes
-    /// disagree, the wavelengths do not increase or a value is not finite.
+    /// A table from stored node values (emissivity_cache.h), laid out as
+    /// values()[wavelength][angle] on the same angle grid as a built table with `angle_nodes`
+    /// nodes. Throws tirpol::Error if the sizes disagree, the wavelengths do not increase or a
+    /// value is not finite.
     static EmissivityTable from_values(std::vector<double> wavelengths_um, int angle_nodes,
                                        std::vector<StokesVector> values);
 
     /// Emissivity Stokes vector at cos θ (clamped to [0, 1]) for the table's wavelength index.
     StokesVector at(double cos_theta, std::size_t wavelength_index) const;
 
-    /// Emissivity at an arbitrary wavelength: linear in wavelength between columns, clamped at the ends.
-    /// Between columns this is not Kirchhoff-consistent with a reflection evaluated at that wavelength;
-    /// a renderer that needs ε + ρ = 1 per path samples the table's own wavelengths and calls `at`.
+    /// Emissivity at an arbitrary wavelength: linear in wavelength between columns, clamped at the
+    /// ends. Between columns this is not Kirchhoff-consistent with a reflection evaluated at that
+    /// wavelength; a renderer that needs ε + ρ = 1 per path samples the table's own wavelengths and
+    /// calls `at`.
     StokesVector at_wavelength(double cos_theta, double wavelength_um) const;
 
     /// Planck×RSR-weighted band average ∫R L_bb(T) ε dλ / ∫R L_bb(T) dλ over the band's quadrature
-    /// nodes (radiometry.h), with ε interpolated in wavelength as in at_wavelength. No allocation; it
-    /// evaluates Planck at every band node, so hot loops with a fixed (band, T) should use
+    /// nodes (radiometry.h), with ε interpolated in wavelength as in at_wavelength. No allocation;
+    /// it evaluates Planck at every band node, so hot loops with a fixed (band, T) should use
     /// band_weights once and at_weighted per hit (same result).
     StokesVector band_average(double cos_theta, const Band& band, double temperature_k) const;
 
     /// Normalised per-column weights w_j with band_average(θ) = Σ_j w_j·at(θ, j).
     std::vector<double> band_weights(const Band& band, double temperature_k) const;
 
-    /// Σ_j weights[j]·at(cos θ, j) (weights from band_weights; one entry per wavelength). No allocation.
+    /// Σ_j weights[j]·at(cos θ, j) (weights from band_weights; one entry per wavelength). No
+    /// allocation.
     StokesVector at_weighted(double cos_theta, const std::vector<double>& weights) const;
 
     const std::vector<double>& wavelengths_um() const { return m_wavelengths_um; }

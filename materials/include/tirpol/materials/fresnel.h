@@ -8,15 +8,15 @@
 /// (Born & Wolf, Principles of Optics, 7th ed., §1.5.2 eq 21 and §14.2 for absorbing media).
 /// These are the Jones matrix J = diag(r_s, r_p) of reflection in tirpol's s/p frames (pbrdf.h):
 /// incident Stokes in surface_frame(−wi, n), reflected in surface_frame(wo, n), both with reference
-/// axis s = n × k. In these frames p-light at normal incidence comes back with r_p = −r_s (the frames'
-/// p axes point in opposite directions in space while the physical field flips with r_s).
+/// axis s = n × k. In these frames p-light at normal incidence comes back with r_p = −r_s (the
+/// frames' p axes point in opposite directions in space while the physical field flips with r_s).
 ///
 /// Time convention of the Jones→Mueller conversion: r_s, r_p above are amplitudes for waves
 /// ∝ exp(i(k·r − ωt)) (ñ = n + ik). core's mueller_from_jones and stokes.h use the opposite one,
 /// exp(i(ωt − k·r)), in which σ3 = [[0,−i],[i,0]] gives S3 > 0 for right-circular light as seen by
-/// the receiver (mueller.h). A Jones matrix changes convention by complex conjugation, so the Mueller
-/// matrix is mueller_from_jones(diag(r_s*, r_p*)) (Chipman et al. 2018 eq 6.99), with Rs = |r_s|²,
-/// Rp = |r_p|² and c = r_s*·r_p:
+/// the receiver (mueller.h). A Jones matrix changes convention by complex conjugation, so the
+/// Mueller matrix is mueller_from_jones(diag(r_s*, r_p*)) (Chipman et al. 2018 eq 6.99), with Rs =
+/// |r_s|², Rp = |r_p|² and c = r_s*·r_p:
 ///   [ (Rs+Rp)/2  (Rs−Rp)/2      0        0    ]
 ///   [ (Rs−Rp)/2  (Rs+Rp)/2      0        0    ]
 ///   [     0          0        Re c     Im c   ]
@@ -57,7 +57,8 @@ struct FresnelFractions {
 template <typename T, typename C>
 FresnelFractions<T> fresnel_fractions(const TinyComplex<T>& eps, const C& cos_i) {
     const TinyComplex<T> c{T(cos_i), T(0)};
-    const TinyComplex<T> q = csqrt(TinyComplex<T>{eps.re - T(1.0 - cos_i * cos_i), eps.im});  // ñ·cosθt
+    const TinyComplex<T> q =
+        csqrt(TinyComplex<T>{eps.re - T(1.0 - cos_i * cos_i), eps.im});  // ñ·cosθt
     const TinyComplex<T> eps_c = scale(eps, cos_i);
     return {c - q, c + q, eps_c - q, eps_c + q};
 }
@@ -65,12 +66,13 @@ FresnelFractions<T> fresnel_fractions(const TinyComplex<T>& eps, const C& cos_i)
 /// Amplitude reflection coefficients for index n + i·k at cosine of incidence `cos_i` ∈ [0, 1].
 template <typename T, typename C>
 FresnelAmplitudes<T> fresnel_amplitudes(const T& n, const T& k, const C& cos_i) {
-    const FresnelFractions<T> f = fresnel_fractions(TinyComplex<T>{n * n - k * k, T(2) * n * k}, cos_i);
+    const FresnelFractions<T> f =
+        fresnel_fractions(TinyComplex<T>{n * n - k * k, T(2) * n * k}, cos_i);
     return {f.rs_num / f.rs_den, f.rp_num / f.rp_den};
 }
 
-/// Reflectances Rs = |r_s|², Rp = |r_p|² for ñ² = `eps` (computed once per parameter set by a caller
-/// that loops over angles), as |num|²/|den|² without a complex division.
+/// Reflectances Rs = |r_s|², Rp = |r_p|² for ñ² = `eps` (computed once per parameter set by a
+/// caller that loops over angles), as |num|²/|den|² without a complex division.
 template <typename T>
 struct FresnelReflectances {
     T rs2, rp2;
@@ -87,11 +89,15 @@ template <typename T, typename C>
 Mueller4<T> fresnel_mueller_t(const T& n, const T& k, const C& cos_i) {
     const FresnelAmplitudes<T> r = fresnel_amplitudes(n, k, cos_i);
     const T rs2 = norm2(r.rs), rp2 = norm2(r.rp);
-    // exp(i(k·r − ωt)) amplitudes → the exp(i(ωt − k·r)) Mueller convention: conjugate (file comment).
+    // exp(i(k·r − ωt)) amplitudes → the exp(i(ωt − k·r)) Mueller convention: conjugate (file
+    // comment).
     const TinyComplex<T> cross = conj(r.rs) * r.rp;
     const T a = (rs2 + rp2) * T(0.5), b = (rs2 - rp2) * T(0.5);
     const T zero(0);
-    return {{{a, b, zero, zero}, {b, a, zero, zero}, {zero, zero, cross.re, cross.im}, {zero, zero, -cross.im, cross.re}}};
+    return {{{a, b, zero, zero},
+             {b, a, zero, zero},
+             {zero, zero, cross.re, cross.im},
+             {zero, zero, -cross.im, cross.re}}};
 }
 
 /// Double-precision results at one angle.

@@ -1,8 +1,8 @@
 #pragma once
 /// \file lambertian.h
-/// Lambertian (perfectly diffuse, unpolarized) reflector: M = (ρ/π)·diag(1, 0, 0, 0), where ρ is the
-/// directional-hemispherical reflectance (Lambert 1760; Nicodemus et al., NBS Monograph 160, 1977).
-/// Its emissivity is unpolarized and angle-independent: ε = 1 − ρ.
+/// Lambertian (perfectly diffuse, unpolarized) reflector: M = (ρ/π)·diag(1, 0, 0, 0), where ρ is
+/// the directional-hemispherical reflectance (Lambert 1760; Nicodemus et al., NBS Monograph 160,
+/// 1977). Its emissivity is unpolarized and angle-independent: ε = 1 − ρ.
 
 #include "tirpol/materials/pbrdf.h"
 #include "tirpol/materials/spectral_value.h"

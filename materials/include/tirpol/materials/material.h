@@ -28,15 +28,16 @@ namespace tirpol::materials {
 
 struct Material {
     std::string name;
-    std::string source;   ///< literature source(s) of the values, as written in the file
-    std::string notes;    ///< free text (ranges, caveats)
+    std::string source;  ///< literature source(s) of the values, as written in the file
+    std::string notes;   ///< free text (ranges, caveats)
     std::shared_ptr<const PolarizedBrdf> brdf;
     std::filesystem::path file;  ///< where it was loaded from (empty for inline definitions)
 };
 
 /// Builds a material from a parsed YAML mapping (a file's root or a scene's inline `material:`).
-/// Relative data paths resolve against the node's file. Unknown keys are errors (ConfigNode::check_keys);
-/// every error names file:line and the field. `fallback_name` is used when the node has no `name`.
+/// Relative data paths resolve against the node's file. Unknown keys are errors
+/// (ConfigNode::check_keys); every error names file:line and the field. `fallback_name` is used
+/// when the node has no `name`.
 Material material_from_config(const ConfigNode& node, const std::string& fallback_name = "");
 
 /// Loads one material file.
@@ -45,7 +46,8 @@ Material load_material(const std::filesystem::path& path);
 /// All materials of a directory (its *.yaml / *.yml files, not recursive), by name.
 class MaterialLibrary {
 public:
-    /// Loads every material file of `directory`; error if two share a name, or the directory is missing.
+    /// Loads every material file of `directory`; error if two share a name, or the directory is
+    /// missing.
     static MaterialLibrary load_directory(const std::filesystem::path& directory);
 
     /// Adds (or replaces) a material.

@@ -7,10 +7,10 @@
 
 namespace tirpol::materials {
 
-/// The file a material argument names: a YAML file (any path with a '/' or ending in .yaml/.yml, or an
-/// existing file), or else a library name resolved to config/materials/<name>.yaml (find_config).
-/// Throws tirpol::Error naming a missing file, or an unknown name with the closest library name and
-/// the list of names.
+/// The file a material argument names: a YAML file (any path with a '/' or ending in .yaml/.yml, or
+/// an existing file), or else a library name resolved to config/materials/<name>.yaml
+/// (find_config). Throws tirpol::Error naming a missing file, or an unknown name with the closest
+/// library name and the list of names.
 std::filesystem::path material_file(const std::string& name_or_path);
 
 }  // namespace tirpol::materials

@@ -1,37 +1,45 @@
 #pragma once
 /// \file shell_target_math.h
 /// The math of the micro-facet pBRDF of the paper's §2.3.1–2.3.2 ("Shell target" family, Shell 2005
-/// thesis as used in DIRSIG), written as templates on the parameter scalar T so that tirpol::fitting can
-/// evaluate it with ceres::Jet. Geometry (directions) is plain double: it is data, not fitted.
+/// thesis as used in DIRSIG), written as templates on the parameter scalar T so that
+/// tirpol::fitting can evaluate it with ceres::Jet. Geometry (directions) is plain double: it is
+/// data, not fitted.
 ///
 ///   f(wi→wo) = bias · D(θN) · G(wi, wo) · SO(θN, β) / (4 cosθi cosθo) · R(αo)·M_F(β)·R(αi)
 ///            + (ρ_D + 2ρ_V / (cosθi + cosθo)) · diag(1, 0, 0, 0)                       [1/sr]
 ///
-/// h = (wi + wo)/|wi + wo| is the facet normal that reflects wi into wo, θN its tilt from the surface
-/// normal, β the angle of incidence on the facet (cos β = h·wi).
+/// h = (wi + wo)/|wi + wo| is the facet normal that reflects wi into wo, θN its tilt from the
+/// surface normal, β the angle of incidence on the facet (cos β = h·wi).
 ///  * D: Gaussian distribution of facet slopes with standard deviation σ in each of x and y
-///    (Priest & Germer 2000, "Polarimetric BRDF in the microfacet model", Proc. MSS Passive Sensors;
-///    same density as SCATMECH's Gaussian slope distribution with s = √2·σ):
+///    (Priest & Germer 2000, "Polarimetric BRDF in the microfacet model", Proc. MSS Passive
+///    Sensors; same density as SCATMECH's Gaussian slope distribution with s = √2·σ):
 ///      D(θN) = exp(−tan²θN / (2σ²)) / (2π σ² cos⁴θN),  normalised so ∫ D cosθN dω = 1.
-///  * M_F(β): Fresnel Mueller matrix of the facet with index n + i·k (fresnel.h), in the facet's s/p
-///    frames; R(αi), R(αo) rotate from the macro-surface s/p frames (pbrdf.h) to the facet's and back
-///    (paper eq 11), which is how Priest & Germer carry polarization off the plane of incidence.
-///  * SO: Beard–Maxwell shadowing/obscuration (Maxwell, Beard, Weiner, Ladd & Ladd 1973, ERIM report
-///    AFAL-TR-73-303; as in the NEFDS Beard–Maxwell model and SCATMECH's Maxwell_Beard_Shadow_Function):
+///  * M_F(β): Fresnel Mueller matrix of the facet with index n + i·k (fresnel.h), in the facet's
+///  s/p
+///    frames; R(αi), R(αo) rotate from the macro-surface s/p frames (pbrdf.h) to the facet's and
+///    back (paper eq 11), which is how Priest & Germer carry polarization off the plane of
+///    incidence.
+///  * SO: Beard–Maxwell shadowing/obscuration (Maxwell, Beard, Weiner, Ladd & Ladd 1973, ERIM
+///  report
+///    AFAL-TR-73-303; as in the NEFDS Beard–Maxwell model and SCATMECH's
+///    Maxwell_Beard_Shadow_Function):
 ///      SO = (1 + (θN/Ω)·exp(−2β/τ)) / (1 + θN/Ω),  τ and Ω in radians.
 ///  * G: Smith's masking–shadowing for the same Gaussian surface, height-correlated form
 ///    (B. G. Smith, IEEE Trans. Antennas Propag. AP-15, 668 (1967); Heitz, JCGT 3(2), 2014, eq 99):
 ///      G = 1 / (1 + Λ(θi) + Λ(θo)),  Λ(θ) = ½·(exp(−a²)/(a√π) − erfc(a)),  a = cotθ / (√2 σ).
-///    CHOICE (not in Shell's published description, which uses Beard–Maxwell SO alone): without G the
-///    specular directional-hemispherical reflectance grows like 1/cosθo and exceeds 1 near grazing —
-///    the breakdown the paper blames for its SUV-roof artifacts (§4). Smith's G makes the specular DHR
-///    ≤ max Fresnel reflectance at every angle (energy conservation), and G → 1 as σ → 0.
-///  * bias: dimensionless scale factor on the specular lobe. CHOICE: DIRSIG's documentation of the Shell
-///    target's `bias` was not available to us; we treat it like Beard–Maxwell's specular scale B, with
-///    bias = 1 the physical Priest–Germer normalisation (bias ≤ 1 keeps energy conservation).
+///    CHOICE (not in Shell's published description, which uses Beard–Maxwell SO alone): without G
+///    the specular directional-hemispherical reflectance grows like 1/cosθo and exceeds 1 near
+///    grazing — the breakdown the paper blames for its SUV-roof artifacts (§4). Smith's G makes the
+///    specular DHR ≤ max Fresnel reflectance at every angle (energy conservation), and G → 1 as σ →
+///    0.
+///  * bias: dimensionless scale factor on the specular lobe. CHOICE: DIRSIG's documentation of the
+///  Shell
+///    target's `bias` was not available to us; we treat it like Beard–Maxwell's specular scale B,
+///    with bias = 1 the physical Priest–Germer normalisation (bias ≤ 1 keeps energy conservation).
 ///  * ρ_D: Lambertian diffuse term and ρ_V: Beard–Maxwell volume term 2ρ_V/(cosθi + cosθo), both in
-///    1/sr and unpolarized (paper §2.3.1: "this model treats the volume term as completely unpolarized";
-///    NEFDS Beard–Maxwell documentation, Westlund & Meyer, Graphics Interface 2002, eq 1).
+///    1/sr and unpolarized (paper §2.3.1: "this model treats the volume term as completely
+///    unpolarized"; NEFDS Beard–Maxwell documentation, Westlund & Meyer, Graphics Interface 2002,
+///    eq 1).
 /// Every term is reciprocal (symmetric in wi ↔ wo); Mueller reciprocity holds with pbrdf.h's Q.
 
 #include <cmath>
@@ -59,14 +67,14 @@ inline constexpr double kMinCosine = 1e-7;
 
 /// The parameter-independent part of one (wi, wo) evaluation, precomputed in double.
 struct MicrofacetGeometry {
-    bool valid = false;        ///< both directions above the surface
-    double cos_i = 0.0, cos_o = 0.0;          ///< clamped to ≥ kMinCosine
-    double cos_n = 1.0, tan2_n = 0.0;         ///< facet tilt θN
-    double theta_n = 0.0;                      ///< θN, radians
-    double cos_beta = 1.0, beta = 0.0;        ///< angle of incidence on the facet
-    double cot_i = 0.0, cot_o = 0.0;           ///< cotangents of θi, θo (for Smith's Λ)
-    double c2i = 1.0, s2i = 0.0;               ///< cos 2αi, sin 2αi: macro → facet frame of the incident beam
-    double c2o = 1.0, s2o = 0.0;               ///< cos 2αo, sin 2αo: facet → macro frame of the exitant beam
+    bool valid = false;                 ///< both directions above the surface
+    double cos_i = 0.0, cos_o = 0.0;    ///< clamped to ≥ kMinCosine
+    double cos_n = 1.0, tan2_n = 0.0;   ///< facet tilt θN
+    double theta_n = 0.0;               ///< θN, radians
+    double cos_beta = 1.0, beta = 0.0;  ///< angle of incidence on the facet
+    double cot_i = 0.0, cot_o = 0.0;    ///< cotangents of θi, θo (for Smith's Λ)
+    double c2i = 1.0, s2i = 0.0;  ///< cos 2αi, sin 2αi: macro → facet frame of the incident beam
+    double c2o = 1.0, s2o = 0.0;  ///< cos 2αo, sin 2αo: facet → macro frame of the exitant beam
 };
 
 /// Geometry of (wi, wo) in the surface-local frame (pbrdf.h), including the frame rotations.
@@ -99,7 +107,8 @@ T smith_lambda(const T& sigma, double cot_theta) {
 /// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment), given 1/τ and 1/Ω in 1/rad
 /// (loops over facets compute them once).
 template <typename T>
-T beard_maxwell_shadowing_reciprocal(const T& inv_tau_rad, const T& inv_omega_rad, double theta_n, double beta) {
+T beard_maxwell_shadowing_reciprocal(const T& inv_tau_rad, const T& inv_omega_rad, double theta_n,
+                                     double beta) {
     using std::exp;
     const T x = T(theta_n) * inv_omega_rad;
     return (T(1) + x * exp(T(-2.0 * beta) * inv_tau_rad)) / (T(1) + x);
@@ -111,12 +120,12 @@ T beard_maxwell_shadowing(const T& tau_rad, const T& omega_rad, double theta_n, 
     return beard_maxwell_shadowing_reciprocal(T(1) / tau_rad, T(1) / omega_rad, theta_n, beta);
 }
 
-/// The full Mueller BRDF (file comment) in 1/sr, given the two factors a sampler has already computed
-/// for its pdf: the facet density `d` = gaussian_facet_density(σ, g.cos_n, g.tan2_n) and Smith's
-/// `lambda_o` = smith_lambda(σ, g.cot_o). Zero matrix when the geometry is not valid.
+/// The full Mueller BRDF (file comment) in 1/sr, given the two factors a sampler has already
+/// computed for its pdf: the facet density `d` = gaussian_facet_density(σ, g.cos_n, g.tan2_n) and
+/// Smith's `lambda_o` = smith_lambda(σ, g.cot_o). Zero matrix when the geometry is not valid.
 template <typename T>
-Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g, const T& d,
-                                 const T& lambda_o) {
+Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g,
+                                 const T& d, const T& lambda_o) {
     Mueller4<T> m;
     for (auto& row : m) row.fill(T(0));
     if (!g.valid) return m;
@@ -147,7 +156,8 @@ Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const Microf
 template <typename T>
 Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g) {
     if (!g.valid) return shell_target_mueller(p, g, T(0), T(0));
-    return shell_target_mueller(p, g, gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n), smith_lambda(p.sigma, g.cot_o));
+    return shell_target_mueller(p, g, gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n),
+                                smith_lambda(p.sigma, g.cot_o));
 }
 
 }  // namespace tirpol::materials

@@ -1,9 +1,9 @@
 #pragma once
 /// \file smooth_fresnel.h
 /// Optically smooth interface: a Dirac specular lobe whose Mueller matrix is the Fresnel reflection
-/// matrix (fresnel.h) at θi = θo. Its emissivity is ε = e0 − M_F(θ)·e0 = (1 − R, −(Rs − Rp)/2, 0, 0):
-/// emission polarized in the plane of emission (S1 < 0), the classic result of Sandus, Appl. Opt. 4,
-/// 1634 (1965).
+/// matrix (fresnel.h) at θi = θo. Its emissivity is ε = e0 − M_F(θ)·e0 = (1 − R, −(Rs − Rp)/2, 0,
+/// 0): emission polarized in the plane of emission (S1 < 0), the classic result of Sandus, Appl.
+/// Opt. 4, 1634 (1965).
 
 #include "tirpol/materials/complex_index.h"
 #include "tirpol/materials/pbrdf.h"

@@ -1,7 +1,8 @@
 #pragma once
 /// \file spectral_value.h
-/// A model parameter that is either a constant or a table over wavelength (µm), linearly interpolated.
-/// Material files write either `sigma: 0.3` or `sigma: {wavelength_um: [8, 10, 12], value: [...]}`.
+/// A model parameter that is either a constant or a table over wavelength (µm), linearly
+/// interpolated. Material files write either `sigma: 0.3` or `sigma: {wavelength_um: [8, 10, 12],
+/// value: [...]}`.
 
 #include <string>
 #include <vector>
@@ -15,9 +16,11 @@ namespace tirpol::materials {
 class SpectralValue {
 public:
     /// A constant.
-    SpectralValue(double value = 0.0);  // NOLINT(google-explicit-constructor): a number is a constant spectrum
+    SpectralValue(double value =
+                      0.0);  // NOLINT(google-explicit-constructor): a number is a constant spectrum
     /// A table; wavelengths strictly increasing (error otherwise, naming `what`).
-    SpectralValue(std::vector<double> wavelength_um, std::vector<double> value, const std::string& what);
+    SpectralValue(std::vector<double> wavelength_um, std::vector<double> value,
+                  const std::string& what);
 
     /// Reads `node` (a number or a {wavelength_um, value} mapping); values must lie in [lo, hi].
     static SpectralValue from_config(const ConfigNode& node, double lo, double hi);

@@ -1,9 +1,9 @@
 #pragma once
 /// \file tiny_complex.h
-/// A minimal complex number templated on its scalar, so that Fresnel and micro-facet formulas can be
-/// evaluated with ceres::Jet (std::complex<Jet> is not supported by Ceres, DEPENDENCIES.md). Only the
-/// operations the materials formulas need. Functions call sqrt/abs unqualified so that argument-dependent
-/// lookup finds ceres::sqrt for Jets.
+/// A minimal complex number templated on its scalar, so that Fresnel and micro-facet formulas can
+/// be evaluated with ceres::Jet (std::complex<Jet> is not supported by Ceres, DEPENDENCIES.md).
+/// Only the operations the materials formulas need. Functions call sqrt/abs unqualified so that
+/// argument-dependent lookup finds ceres::sqrt for Jets.
 
 #include <cmath>
 
@@ -47,9 +47,9 @@ TinyComplex<T> operator/(const TinyComplex<T>& a, const TinyComplex<T>& b) {
     return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
 }
 
-/// Principal square root (Re ≥ 0; for a negative real argument the result is +i·√|a|). Written in the
-/// cancellation-free form: the larger of the two parts is computed from √((|a| ± re)/2), the other as
-/// im/(2·larger), so the derivative stays finite everywhere except at a = 0.
+/// Principal square root (Re ≥ 0; for a negative real argument the result is +i·√|a|). Written in
+/// the cancellation-free form: the larger of the two parts is computed from √((|a| ± re)/2), the
+/// other as im/(2·larger), so the derivative stays finite everywhere except at a = 0.
 template <typename T>
 TinyComplex<T> csqrt(const TinyComplex<T>& a) {
     using std::sqrt;

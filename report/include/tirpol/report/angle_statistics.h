@@ -25,12 +25,14 @@ struct AopStats {
 };
 
 /// AoP statistics over `mask` from the Stokes planes of both images and the variances of S1, S2
-/// (per pixel). A pixel counts when √(S1² + S2²) > kAopSignificanceSigma · √((var_S1 + var_S2)/2) in
-/// both the measured and the simulated image. All inputs have the same length.
+/// (per pixel). A pixel counts when √(S1² + S2²) > kAopSignificanceSigma · √((var_S1 + var_S2)/2)
+/// in both the measured and the simulated image. All inputs have the same length.
 AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<float>& measured_s2,
                    const std::vector<float>& simulated_s1, const std::vector<float>& simulated_s2,
-                   const std::vector<float>& measured_var_s1, const std::vector<float>& measured_var_s2,
-                   const std::vector<float>& simulated_var_s1, const std::vector<float>& simulated_var_s2,
+                   const std::vector<float>& measured_var_s1,
+                   const std::vector<float>& measured_var_s2,
+                   const std::vector<float>& simulated_var_s1,
+                   const std::vector<float>& simulated_var_s2,
                    const std::vector<std::uint8_t>& mask);
 
 }  // namespace tirpol::report

@@ -1,9 +1,9 @@
 #pragma once
 /// \file comparison_report.h
-/// The measured-vs-simulated comparison report: registration, side-by-side images with shared colour
-/// scales, difference and z maps, per-region statistics, scatter plots and histograms, written as a
-/// self-contained `report.html`, a `report.json` with every number (keys in docs/report.md) and the
-/// PNGs, all under one directory with atomic writes.
+/// The measured-vs-simulated comparison report: registration, side-by-side images with shared
+/// colour scales, difference and z maps, per-region statistics, scatter plots and histograms,
+/// written as a self-contained `report.html`, a `report.json` with every number (keys in
+/// docs/report.md) and the PNGs, all under one directory with atomic writes.
 
 #include <array>
 #include <atomic>
@@ -32,7 +32,8 @@ inline const std::vector<std::string> kZQuantities = {"S0", "S1", "S2"};
 struct CompareOptions {
     RegistrationMethod registration = RegistrationMethod::Auto;
     std::vector<ControlPoint> control_points;
-    /// The measured camera's calibrated model, for RegistrationMethod::CameraModel, and its name (file).
+    /// The measured camera's calibrated model, for RegistrationMethod::CameraModel, and its name
+    /// (file).
     std::optional<CameraModel> camera_model;
     std::string camera_model_name = "camera model";
     /// Regions of interest in measured pixels; none = one region covering the image.
@@ -41,9 +42,10 @@ struct CompareOptions {
     /// radiance noise σ_I of one polarizer frame (NEDT × dL/dT), W/(m²·sr). With the four-angle
     /// reduction of paper eqs 14–16, σ(S0) = σ_I and σ(S1) = σ(S2) = √2 σ_I.
     std::optional<double> measured_frame_sigma;
-    /// Measurement errors common to every pixel of a region (they do not average down over its pixels):
-    /// a relative gain uncertainty (e.g. 0.005 from the blackbody's temperature and emissivity), which
-    /// scales S0, S1 and S2, and an offset uncertainty of S0 in the units of S0 (it cancels in S1, S2).
+    /// Measurement errors common to every pixel of a region (they do not average down over its
+    /// pixels): a relative gain uncertainty (e.g. 0.005 from the blackbody's temperature and
+    /// emissivity), which scales S0, S1 and S2, and an offset uncertainty of S0 in the units of S0
+    /// (it cancels in S1, S2).
     double measured_gain_sigma_relative = 0.0;
     double measured_offset_sigma = 0.0;
     /// False-alarm rate per region and power of the region-mean test (verdict.h).
@@ -61,41 +63,45 @@ struct CompareOptions {
     const std::atomic<bool>* cancel = nullptr;
 };
 
-/// S0 bias as a brightness-temperature difference: bias / (dL/dT) at the brightness temperature of the
-/// simulated mean S0, with the standard error of the mean difference carried the same way.
+/// S0 bias as a brightness-temperature difference: bias / (dL/dT) at the brightness temperature of
+/// the simulated mean S0, with the standard error of the mean difference carried the same way.
 struct KelvinBias {
-    double temperature_k = 0.0;      ///< brightness temperature of the simulated mean S0
-    double radiance_dT = 0.0;        ///< dL/dT of the band at temperature_k, W/(m²·sr·K)
+    double temperature_k = 0.0;  ///< brightness temperature of the simulated mean S0
+    double radiance_dT = 0.0;    ///< dL/dT of the band at temperature_k, W/(m²·sr·K)
     double bias_k = 0.0;
     double bias_sigma_k = 0.0;
 };
 
 /// Where the measured σ of one quantity came from, and its typical value.
 struct NoiseSource {
-    std::string measured;   ///< "channel S1_std", "--measured-sigma", "flat region 'bg'", "Immerkaer estimate"
+    std::string measured;  ///< "channel S1_std", "--measured-sigma", "flat region 'bg'", "Immerkaer
+                           ///< estimate"
     std::string simulated;  ///< "channel S1_var" or "none (σ_s = 0)"
     double measured_sigma_median = 0.0;
     double simulated_sigma_median = 0.0;
-    /// Degrees of freedom of each variance, as the z statistic uses them: the image's `variance_dof`
-    /// attribute (a render: ⌈spp/2⌉); infinite where the image states none (a variance taken as exact).
+    /// Degrees of freedom of each variance, as the z statistic uses them: the image's
+    /// `variance_dof` attribute (a render: ⌈spp/2⌉); infinite where the image states none (a
+    /// variance taken as exact).
     double measured_dof = std::numeric_limits<double>::infinity();
     double simulated_dof = std::numeric_limits<double>::infinity();
-    /// The measured σ is one estimate for all pixels (a flat region's scatter), not a per-pixel one.
+    /// The measured σ is one estimate for all pixels (a flat region's scatter), not a per-pixel
+    /// one.
     bool measured_shared = false;
 };
 
 struct RegionResult {
     std::string name;
-    std::size_t pixel_count = 0;  ///< pixels inside the polygon
+    std::size_t pixel_count = 0;                 ///< pixels inside the polygon
     std::map<std::string, QuantityStats> stats;  ///< by quantity (kComparedQuantities)
     /// mean S1(region) − mean S1(background), W/(m²·sr); absent without a background region.
     std::optional<double> s1_contrast_measured, s1_contrast_simulated;
-    std::map<std::string, ZStats> z;  ///< by quantity (kZQuantities) and "all" (pooled, for reference only)
+    std::map<std::string, ZStats>
+        z;  ///< by quantity (kZQuantities) and "all" (pooled, for reference only)
     /// By quantity (kZQuantities): the region-mean agreement test and the per-pixel σ diagnostic.
     std::map<std::string, QuantityVerdict> verdicts;
     Agreement verdict = Agreement::NoData;  ///< ExceedsNoise when any quantity's mean test exceeds
-    AopStats aop;                              ///< AoP over significantly polarized pixels
-    std::optional<KelvinBias> s0_bias_k;       ///< absent without a band or a positive simulated S0
+    AopStats aop;                           ///< AoP over significantly polarized pixels
+    std::optional<KelvinBias> s0_bias_k;    ///< absent without a band or a positive simulated S0
 };
 
 /// The measured image's radiometric calibration range (attributes written by the calibration's
@@ -107,35 +113,39 @@ struct CalibrationRange {
 };
 
 struct CompareResult {
-    int width = 0, height = 0;             ///< measured (and comparison) grid
+    int width = 0, height = 0;  ///< measured (and comparison) grid
     int simulated_width = 0, simulated_height = 0;
-    std::string units;                     ///< of S0, S1, S2
+    std::string units;  ///< of S0, S1, S2
     Registration registration;
     std::map<std::string, NoiseSource> noise;  ///< by quantity (kZQuantities)
     std::vector<RegionResult> regions;
-    std::string background;                ///< background region name or empty
-    std::filesystem::path html, json;      ///< written files
+    std::string background;                   ///< background region name or empty
+    std::filesystem::path html, json;         ///< written files
     std::vector<std::filesystem::path> pngs;  ///< image figures
-    std::vector<std::filesystem::path> svgs;  ///< plots (scatter, histograms), also inlined in the page
-    std::vector<std::string> notes;        ///< warnings shown in the report (e.g. no simulation variance)
-    std::optional<CalibrationRange> calibration_range;  ///< absent when the measured image does not say
-    TestDesign design;                     ///< of the region-mean tests
+    std::vector<std::filesystem::path>
+        svgs;                        ///< plots (scatter, histograms), also inlined in the page
+    std::vector<std::string> notes;  ///< warnings shown in the report (e.g. no simulation variance)
+    std::optional<CalibrationRange>
+        calibration_range;  ///< absent when the measured image does not say
+    TestDesign design;      ///< of the region-mean tests
     /// What the σ of each side contains, in words (for the Summary and report.json).
     std::string measured_sigma_contains, simulated_sigma_contains;
     /// Colour-scale limits [min, max] of the figures: "S0" (shared by measured and simulated),
     /// "S0_difference", …, "z"; in the units of the quantity.
     std::map<std::string, std::array<double, 2>> colour_scales;
-    std::filesystem::path exr;             ///< comparison.exr: full-resolution planes behind the figures
+    std::filesystem::path exr;  ///< comparison.exr: full-resolution planes behind the figures
     std::optional<std::array<double, 2>> band_um;  ///< band used for the kelvin bias
-    std::string band_source;                       ///< "--band-um", "measured band_um attribute", …
+    std::string band_source;  ///< "--band-um", "measured band_um attribute", …
     Provenance provenance;
 };
 
 /// The planes behind the numbers and figures, on the measured grid.
 struct ComparisonPlanes {
-    Image measured, simulated;  ///< simulated registered; both with DoLP and AoP derived from S0..S2
-    std::map<std::string, std::vector<float>> difference;  ///< S0, S1, S2, DoLP, AoP (AoP wrapped to ±90°)
-    std::map<std::string, std::vector<float>> z;           ///< S0, S1, S2
+    Image measured,
+        simulated;  ///< simulated registered; both with DoLP and AoP derived from S0..S2
+    std::map<std::string, std::vector<float>>
+        difference;                               ///< S0, S1, S2, DoLP, AoP (AoP wrapped to ±90°)
+    std::map<std::string, std::vector<float>> z;  ///< S0, S1, S2
     std::map<std::string, std::vector<float>> total_variance;  ///< σ_m² + σ_s² of S0, S1, S2
     std::vector<Region> regions;
     std::vector<std::vector<std::uint8_t>> masks;  ///< one per region
@@ -155,14 +165,17 @@ void require_stokes_channels(const Image& image, const std::string& name, const 
 /// control points.
 Comparison compare(const Image& measured, const Image& simulated, const CompareOptions& options);
 
-/// Writes report.html, report.json, comparison.exr and the figures of `comparison` into `report_dir`
-/// (created if needed) and records their paths in comparison.result.
-void write_report(Comparison& comparison, const CompareOptions& options, const std::filesystem::path& report_dir);
+/// Writes report.html, report.json, comparison.exr and the figures of `comparison` into
+/// `report_dir` (created if needed) and records their paths in comparison.result.
+void write_report(Comparison& comparison, const CompareOptions& options,
+                  const std::filesystem::path& report_dir);
 
-/// compare() then write_report(): compares `measured` with `simulated` and writes report.html, report.json and the PNGs into
-/// `report_dir` (created if needed). Returns every number written. Throws tirpol::Error for missing
-/// channels, bad regions, or a registration that is impossible without control points.
-CompareResult write_comparison_report(const Image& measured, const Image& simulated, const CompareOptions& options,
+/// compare() then write_report(): compares `measured` with `simulated` and writes report.html,
+/// report.json and the PNGs into `report_dir` (created if needed). Returns every number written.
+/// Throws tirpol::Error for missing channels, bad regions, or a registration that is impossible
+/// without control points.
+CompareResult write_comparison_report(const Image& measured, const Image& simulated,
+                                      const CompareOptions& options,
                                       const std::filesystem::path& report_dir);
 
 /// report.json's content for `result` (pretty-printed), as written by write_comparison_report.

@@ -2,8 +2,8 @@
 /// \file provenance.h
 /// What a comparison was made from, so a reader can cite it and repeat it: the tool version and
 /// command line, and each input file with its SHA-256 (FIPS 180-4) and the header attributes it
-/// carries (band, spp, seed, capture time, calibration files, scene and material parameters — whatever
-/// the writer put there).
+/// carries (band, spp, seed, capture time, calibration files, scene and material parameters —
+/// whatever the writer put there).
 
 #include <cstdint>
 #include <filesystem>
@@ -19,7 +19,7 @@ namespace tirpol::report {
 struct InputFile {
     std::string role;  ///< "measured", "simulated", "regions", "control points"
     std::filesystem::path path;
-    std::string sha256;        ///< lower-case hex
+    std::string sha256;  ///< lower-case hex
     std::uintmax_t size_bytes = 0;
     /// Header attributes as (name, text) in name order; empty for non-EXR inputs.
     std::vector<std::pair<std::string, std::string>> attributes;
@@ -34,11 +34,13 @@ struct Provenance {
 /// SHA-256 of `bytes` as 64 lower-case hex digits (FIPS 180-4).
 std::string sha256_hex(std::string_view bytes);
 
-/// The input file `path` with its checksum and size; `header` (when not null) supplies the attributes.
-/// Throws tirpol::Error naming the file when it cannot be read.
-InputFile describe_input(const std::string& role, const std::filesystem::path& path, const Image* header = nullptr);
+/// The input file `path` with its checksum and size; `header` (when not null) supplies the
+/// attributes. Throws tirpol::Error naming the file when it cannot be read.
+InputFile describe_input(const std::string& role, const std::filesystem::path& path,
+                         const Image* header = nullptr);
 
-/// An attribute value as text: strings as they are, numbers with up to 10 significant digits, lists in [a, b].
+/// An attribute value as text: strings as they are, numbers with up to 10 significant digits, lists
+/// in [a, b].
 std::string attribute_text(const AttributeValue& value);
 
 /// argv joined by spaces, each argument single-quoted when it holds characters a POSIX shell would

@@ -1,8 +1,8 @@
 #pragma once
 /// \file regions.h
 /// Regions of interest for the measured-vs-simulated comparison: named polygons in measured-image
-/// pixel coordinates (x to the right, y down, origin top-left; a vertex (x, y) is the centre of pixel
-/// column x, row y, and pixels on a polygon's edge belong to it). One region may be named the
+/// pixel coordinates (x to the right, y down, origin top-left; a vertex (x, y) is the centre of
+/// pixel column x, row y, and pixels on a polygon's edge belong to it). One region may be named the
 /// background against which S1 contrast is computed, and one the flat region used to estimate the
 /// measured noise when the measured image carries no uncertainty channels.
 ///
@@ -41,8 +41,9 @@ struct Region {
 
 struct RegionSet {
     std::vector<Region> regions;
-    std::string background;    ///< name of the S1-contrast background region; empty = none
-    std::string noise_region;  ///< name of the flat region for the noise estimate; empty = background
+    std::string background;  ///< name of the S1-contrast background region; empty = none
+    std::string
+        noise_region;  ///< name of the flat region for the noise estimate; empty = background
 };
 
 /// Reads a regions YAML file (format above). Throws tirpol::Error naming file:line:field for a
@@ -52,8 +53,9 @@ RegionSet load_regions(const std::filesystem::path& path);
 /// Same from an already parsed YAML root.
 RegionSet parse_regions(const ConfigNode& root);
 
-/// `set` as a regions YAML that load_regions reads back to the same set (names quoted, vertices with
-/// 17 significant digits), so a report computed in memory can be repeated with `tirpol compare --rois`.
+/// `set` as a regions YAML that load_regions reads back to the same set (names quoted, vertices
+/// with 17 significant digits), so a report computed in memory can be repeated with `tirpol compare
+/// --rois`.
 std::string regions_yaml(const RegionSet& set);
 
 /// The region rasterized on a width × height grid: 1 inside (edges included), 0 outside.

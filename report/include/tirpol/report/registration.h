@@ -9,9 +9,10 @@
 /// of S0, which is insensitive to the gain/offset differences between a measurement and a render.
 ///
 /// A simulation rendered through the measured camera's calibrated model (intrinsics, distortion and
-/// pose from `tirpol calibrate geometric|pose`) already lies on the measured pixel grid: registration
-/// by camera model checks that it was (the renderer's header attributes against the model) and warps
-/// nothing — a homography cannot undo lens distortion or parallax, the camera model does.
+/// pose from `tirpol calibrate geometric|pose`) already lies on the measured pixel grid:
+/// registration by camera model checks that it was (the renderer's header attributes against the
+/// model) and warps nothing — a homography cannot undo lens distortion or parallax, the camera
+/// model does.
 ///
 /// The residual misalignment after registration is measured independently of the method by phase
 /// correlation (Kuglin & Hines 1975; cv::phaseCorrelate) between the measured and the registered
@@ -36,17 +37,20 @@
 namespace tirpol::report {
 
 enum class RegistrationMethod {
-    None,           ///< identity; images must have the same size
-    Auto,           ///< ECC on S0 gradient magnitude (homography, falling back to affine, translation)
+    None,  ///< identity; images must have the same size
+    Auto,  ///< ECC on S0 gradient magnitude (homography, falling back to affine, translation)
     ControlPoints,  ///< homography from control points
-    CameraModel,    ///< identity: the simulation was rendered through the measured camera's calibrated model
+    CameraModel,    ///< identity: the simulation was rendered through the measured camera's
+                    ///< calibrated model
 };
 
-/// "none" | "auto" | "control-points" | "camera-model"; throws tirpol::Error naming the accepted values otherwise.
+/// "none" | "auto" | "control-points" | "camera-model"; throws tirpol::Error naming the accepted
+/// values otherwise.
 RegistrationMethod parse_registration_method(std::string_view text);
 std::string to_string(RegistrationMethod method);
 
-/// One tie point: the same scene feature in the measured and the simulated image (pixel coordinates).
+/// One tie point: the same scene feature in the measured and the simulated image (pixel
+/// coordinates).
 struct ControlPoint {
     PixelPoint measured;
     PixelPoint simulated;
@@ -76,10 +80,11 @@ struct Registration {
     /// Rotation of the image axes implied by H at the image centre, degrees (counter-clockwise).
     double rotation_deg = 0.0;
     /// Automatic registration of equal-size images: mean squared difference of the S0 edge strength
-    /// (gradient magnitude at σ = 2 px) without and with the warp; the warp is kept only when it lowers
-    /// the mismatch by more than kRegistrationMinImprovement.
+    /// (gradient magnitude at σ = 2 px) without and with the warp; the warp is kept only when it
+    /// lowers the mismatch by more than kRegistrationMinImprovement.
     std::optional<double> identity_edge_mismatch, registered_edge_mismatch;
-    /// What happened, for the report ("images already match", "ECC homography did not converge; used affine").
+    /// What happened, for the report ("images already match", "ECC homography did not converge;
+    /// used affine").
     std::string note;
 };
 
@@ -88,24 +93,28 @@ struct Registration {
 /// kRegistrationMinImprovement (an aligned pair is never warped); images of different
 /// sizes are first resized when their aspect ratios agree within 1 %; otherwise, and for None with
 /// different sizes, throws tirpol::Error asking for control points. ControlPoints needs ≥ 4 pairs.
-/// `cancel` (null: never) is read before each ECC pyramid level; once set, tirpol::Cancelled is thrown.
-Registration register_images(const Image& measured, const Image& simulated, RegistrationMethod method,
+/// `cancel` (null: never) is read before each ECC pyramid level; once set, tirpol::Cancelled is
+/// thrown.
+Registration register_images(const Image& measured, const Image& simulated,
+                             RegistrationMethod method,
                              const std::vector<ControlPoint>& control_points,
                              const std::atomic<bool>* cancel = nullptr);
 
-/// Registration by camera model: checks that `simulated` was rendered through `camera` (same size as
-/// it and as `measured`; the renderer's `camera_intrinsics_px` = fx fy cx cy, OpenCV pixel convention,
-/// and `camera_distortion` header attributes equal the model's to float precision) and returns the
-/// identity with the residual misalignment measured by phase correlation. Throws tirpol::Error naming
-/// `camera_name` and the field that disagrees, or the missing attribute.
-Registration register_by_camera_model(const Image& measured, const Image& simulated, const CameraModel& camera,
-                                      const std::string& camera_name);
+/// Registration by camera model: checks that `simulated` was rendered through `camera` (same size
+/// as it and as `measured`; the renderer's `camera_intrinsics_px` = fx fy cx cy, OpenCV pixel
+/// convention, and `camera_distortion` header attributes equal the model's to float precision) and
+/// returns the identity with the residual misalignment measured by phase correlation. Throws
+/// tirpol::Error naming `camera_name` and the field that disagrees, or the missing attribute.
+Registration register_by_camera_model(const Image& measured, const Image& simulated,
+                                      const CameraModel& camera, const std::string& camera_name);
 
 /// Resamples every channel of `simulated` onto the measured grid (width × height) through the
 /// registration (bilinear; nearest for integer label channels object_id/material_id). Pixels that
 /// map outside the simulated image are NaN. Channels named *_var (*_std) are scaled by Σ w_k² (its
 /// square root), the variance of a bilinear interpolation of independent samples, so that they stay
-/// the variance of the resampled Monte-Carlo mean. Identity registration of an equal-size image copies it.
-Image resample_to_measured(const Image& simulated, const Registration& registration, int width, int height);
+/// the variance of the resampled Monte-Carlo mean. Identity registration of an equal-size image
+/// copies it.
+Image resample_to_measured(const Image& simulated, const Registration& registration, int width,
+                           int height);
 
 }  // namespace tirpol::report

@@ -7,8 +7,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace tirpol::report {
@@ -32,21 +32,24 @@ struct QuantityStats {
 
 /// `measured`, `simulated` and `mask` have the same length; a pixel counts when mask ≠ 0 and both
 /// values are finite.
-QuantityStats quantity_stats(const std::vector<float>& measured, const std::vector<float>& simulated,
+QuantityStats quantity_stats(const std::vector<float>& measured,
+                             const std::vector<float>& simulated,
                              const std::vector<std::uint8_t>& mask);
 
 /// Mean of the finite values of `data` under `mask`; nullopt when there is none.
-std::optional<double> masked_mean(const std::vector<float>& data, const std::vector<std::uint8_t>& mask);
+std::optional<double> masked_mean(const std::vector<float>& data,
+                                  const std::vector<std::uint8_t>& mask);
 
 /// Per-pixel z = (m − s)/√(var_m + var_s); NaN where an input is not finite or the total variance
 /// is not positive. A variance estimated from few samples (a Monte-Carlo render's per-pixel
-/// variance has ⌈spp/2⌉ degrees of freedom) makes that ratio Student-t distributed with heavier tails
-/// than a normal: with finite `measured_dof`/`simulated_dof` each z is mapped to the normal value
-/// of the same two-sided tail probability under t with the Welch–Satterthwaite degrees of freedom
-/// ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947, Biometrika 34, 28), so that |z| > 2 keeps
-/// meaning 4.55 % under noise alone. Infinite dof (the default): the plain ratio.
+/// variance has ⌈spp/2⌉ degrees of freedom) makes that ratio Student-t distributed with heavier
+/// tails than a normal: with finite `measured_dof`/`simulated_dof` each z is mapped to the normal
+/// value of the same two-sided tail probability under t with the Welch–Satterthwaite degrees of
+/// freedom ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947, Biometrika 34, 28), so that |z| >
+/// 2 keeps meaning 4.55 % under noise alone. Infinite dof (the default): the plain ratio.
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
-                            const std::vector<float>& measured_variance, const std::vector<float>& simulated_variance,
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance,
                             double measured_dof = std::numeric_limits<double>::infinity(),
                             double simulated_dof = std::numeric_limits<double>::infinity());
 
@@ -62,14 +65,16 @@ struct ZStats {
 };
 ZStats z_stats(const std::vector<float>& z, const std::vector<std::uint8_t>& mask);
 
-/// True when the fraction of |z| > 2 does not exceed the normal expectation 4.55 % by more than three
-/// binomial standard deviations √(p(1−p)/n): the differences are explained by the stated noise.
-/// (Pixels are treated as independent; spatially correlated noise makes the test stricter than it looks.)
+/// True when the fraction of |z| > 2 does not exceed the normal expectation 4.55 % by more than
+/// three binomial standard deviations √(p(1−p)/n): the differences are explained by the stated
+/// noise. (Pixels are treated as independent; spatially correlated noise makes the test stricter
+/// than it looks.)
 bool consistent_with_noise(const ZStats& z);
 
 /// Noise standard deviation of an image by Immerkær's method ("Fast noise variance estimation",
-/// Computer Vision and Image Understanding 64(2), 1996, eq. 2): σ = √(π/2)/(6(W−2)(H−2)) Σ|I ∗ N| with
-/// N the 3×3 difference of two Laplacians. Non-finite pixels and their neighbourhoods are skipped.
+/// Computer Vision and Image Understanding 64(2), 1996, eq. 2): σ = √(π/2)/(6(W−2)(H−2)) Σ|I ∗ N|
+/// with N the 3×3 difference of two Laplacians. Non-finite pixels and their neighbourhoods are
+/// skipped.
 double immerkaer_noise_sigma(const std::vector<float>& data, int width, int height);
 
 }  // namespace tirpol::report

@@ -6,8 +6,8 @@
 /// right, v down, so pixel centres are at +0.5 — the renderer samples pixel (x, y) over [x, x+1).
 /// OpenCV (and a calibrated camera model file, core/camera_model.h) puts the *centre* of the
 /// top-left pixel at (0, 0): from_model() adds the half pixel, so a world point that
-/// cv::projectPoints sends to (u, v) lands at the centre of pixel (round(u), round(v)) of the render.
-/// Camera axes follow OpenCV: x right, y down, z forward.
+/// cv::projectPoints sends to (u, v) lands at the centre of pixel (round(u), round(v)) of the
+/// render. Camera axes follow OpenCV: x right, y down, z forward.
 
 #include <optional>
 
@@ -19,7 +19,7 @@
 namespace tirpol::simulation {
 
 struct CameraIntrinsics {
-    double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;  ///< pixels
+    double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;            ///< pixels
     double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;  ///< OpenCV "standard" model
     double k4 = 0.0, k5 = 0.0, k6 = 0.0;                      ///< rational model denominators
     double s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0;            ///< thin prism
@@ -28,9 +28,11 @@ struct CameraIntrinsics {
 class Camera {
 public:
     /// `world_from_camera` has the camera's x (right), y (down), z (forward) axes as columns.
-    Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position, Mat3 world_from_camera);
+    Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position,
+           Mat3 world_from_camera);
 
-    /// From the `camera:` mapping of a scene file (docs/scene-format.md). Errors name file:line:field.
+    /// From the `camera:` mapping of a scene file (docs/scene-format.md). Errors name
+    /// file:line:field.
     static Camera from_config(const ConfigNode& node);
 
     /// The calibrated camera: a model file's intrinsics and distortion (OpenCV pixel convention,
@@ -64,8 +66,9 @@ public:
     /// The pose as a core CameraPose.
     CameraPose pose() const;
 
-    /// Stokes frame of light arriving at the camera along −`direction`: reference axis = the image's +x
-    /// (camera right) projected onto the wavefront, 90° toward the image top (ARCHITECTURE.md).
+    /// Stokes frame of light arriving at the camera along −`direction`: reference axis = the
+    /// image's +x (camera right) projected onto the wavefront, 90° toward the image top
+    /// (ARCHITECTURE.md).
     StokesFrame image_frame(const Vec3& direction) const;
 
 private:

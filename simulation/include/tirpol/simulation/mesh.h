@@ -25,7 +25,8 @@ struct Transform {
     Mat3 rotation = Mat3::Identity();
     Vec3 scale = Vec3::Ones();
 
-    /// Rotation from `rotate_deg: [rx, ry, rz]`: about x, then y, then z (fixed world axes), R = Rz·Ry·Rx.
+    /// Rotation from `rotate_deg: [rx, ry, rz]`: about x, then y, then z (fixed world axes), R =
+    /// Rz·Ry·Rx.
     static Mat3 rotation_from_euler_deg(const Vec3& angles_deg);
     Vec3 point(const Vec3& p) const { return rotation * scale.cwiseProduct(p) + translate; }
     /// Normals transform with the inverse transpose: R·diag(1/s).

@@ -14,10 +14,10 @@ namespace tirpol::simulation {
 
 /// A ray–surface intersection in world coordinates.
 struct SurfaceHit {
-    double distance = 0.0;        ///< along the (unit) ray direction, m
+    double distance = 0.0;  ///< along the (unit) ray direction, m
     Vec3 position;
-    Vec3 geometric_normal;        ///< unit, outward as built (not flipped toward the ray)
-    Vec3 shading_normal;          ///< unit, interpolated vertex normal (analytic for spheres), outward
+    Vec3 geometric_normal;  ///< unit, outward as built (not flipped toward the ray)
+    Vec3 shading_normal;    ///< unit, interpolated vertex normal (analytic for spheres), outward
     Eigen::Vector2d uv = Eigen::Vector2d::Zero();
     std::uint32_t object = 0;     ///< index of the object in the order it was added
     std::uint32_t primitive = 0;  ///< triangle index (0 for spheres)
@@ -39,11 +39,12 @@ public:
     void commit();
 
     /// Nearest hit along origin + t·direction for t in (t_min, t_max).
-    std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& direction, double t_min = 0.0,
-                                        double t_max = 1e30) const;
-    /// Distance to the nearest hit (+inf on a miss) from rtcIntersect1 alone, without the hit record
-    /// `intersect` builds: the reference cost of a ray for benchmarks.
-    double nearest_distance(const Vec3& origin, const Vec3& direction, double t_min = 0.0, double t_max = 1e30) const;
+    std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& direction,
+                                        double t_min = 0.0, double t_max = 1e30) const;
+    /// Distance to the nearest hit (+inf on a miss) from rtcIntersect1 alone, without the hit
+    /// record `intersect` builds: the reference cost of a ray for benchmarks.
+    double nearest_distance(const Vec3& origin, const Vec3& direction, double t_min = 0.0,
+                            double t_max = 1e30) const;
     /// True if anything lies along the segment (t_min, t_max).
     bool occluded(const Vec3& origin, const Vec3& direction, double t_min, double t_max) const;
 

@@ -13,7 +13,8 @@ namespace tirpol::simulation {
 
 /// Writes `<out_dir>/<stem>.exr` and `<out_dir>/<stem>_<channel>.png` for the quicklook channels;
 /// returns the paths written. Atomic writes; creates `out_dir`.
-std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::path& out_dir, const std::string& stem,
+std::vector<std::filesystem::path> write_render_outputs(const std::filesystem::path& out_dir,
+                                                        const std::string& stem,
                                                         const Image& image);
 
 }  // namespace tirpol::simulation

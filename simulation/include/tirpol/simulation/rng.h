@@ -1,9 +1,9 @@
 #pragma once
 /// \file rng.h
-/// Counter-based random numbers: every value is a pure function of (seed, pixel, sample, dimension),
-/// so an image does not depend on the number of threads or on the order tiles are rendered in
-/// (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC 2011 — the counter-based idea;
-/// the mixing function is SplitMix64, Steele, Lea & Flood, OOPSLA 2014).
+/// Counter-based random numbers: every value is a pure function of (seed, pixel, sample,
+/// dimension), so an image does not depend on the number of threads or on the order tiles are
+/// rendered in (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC 2011 — the
+/// counter-based idea; the mixing function is SplitMix64, Steele, Lea & Flood, OOPSLA 2014).
 
 #include <cstdint>
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file scene.h
 /// A scene ready to render: geometry in Embree, a material and a temperature field per object, the
-/// sky, the sun, the camera, the spectral band and the sampling settings. Loaded from the YAML scene
-/// format of docs/scene-format.md.
+/// sky, the sun, the camera, the spectral band and the sampling settings. Loaded from the YAML
+/// scene format of docs/scene-format.md.
 
 #include <cstdint>
 #include <filesystem>
@@ -43,26 +43,28 @@ std::optional<Estimator> estimator_from_name(std::string_view name);
 struct SamplingSettings {
     int samples_per_pixel = 16;
     /// Safety cap on the reflections followed after the camera's first hit. Paths end by Russian
-    /// roulette (unbiased, renderer.h) long before it; a low cap truncates paths, which darkens closed
-    /// reflective scenes (an all-aluminium box at 4 bounces: −87 % of L_bb).
+    /// roulette (unbiased, renderer.h) long before it; a low cap truncates paths, which darkens
+    /// closed reflective scenes (an all-aluminium box at 4 bounces: −87 % of L_bb).
     int max_bounces = kDefaultMaxBounces;
     std::uint64_t seed = 1;
-    Estimator estimator = Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
-    /// Independently scrambled replicates of each pixel's samples (1–kMaxReplicates; 1 keeps all of a
-    /// pixel's samples in one net, the lowest noise, and leaves the variance channels NaN); a render
-    /// uses replicate_count() of them.
+    Estimator estimator =
+        Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
+    /// Independently scrambled replicates of each pixel's samples (1–kMaxReplicates; 1 keeps all of
+    /// a pixel's samples in one net, the lowest noise, and leaves the variance channels NaN); a
+    /// render uses replicate_count() of them.
     int replicates = kDefaultReplicates;
 };
 
 /// Replicates a render draws: min(replicates, spp) (one replicate per sample at low spp).
 int replicate_count(const SamplingSettings& sampling);
-/// Samples per pixel a render draws: spp rounded up to a multiple of replicate_count(), so that every
-/// replicate has the same number of points (identically distributed replicate means: the variance
-/// estimate's degrees of freedom are exactly replicates − 1). The EXR's `spp` records this count.
+/// Samples per pixel a render draws: spp rounded up to a multiple of replicate_count(), so that
+/// every replicate has the same number of points (identically distributed replicate means: the
+/// variance estimate's degrees of freedom are exactly replicates − 1). The EXR's `spp` records this
+/// count.
 int rendered_samples_per_pixel(const SamplingSettings& sampling);
 
-/// Empty if `max_bounces` is acceptable (0–kMaxBouncesLimit), else what was expected; the one rule for
-/// the scene file's sampling.max_bounces and the CLI's --max-bounces.
+/// Empty if `max_bounces` is acceptable (0–kMaxBouncesLimit), else what was expected; the one rule
+/// for the scene file's sampling.max_bounces and the CLI's --max-bounces.
 std::string max_bounces_problem(int max_bounces);
 
 /// A material as used by the renderer: its pBRDF and where it came from.
@@ -93,8 +95,9 @@ struct Scene {
 /// Loads a scene file. Every error names the file, line and field (unknown keys, wrong types, a
 /// missing mesh or material file, an unknown material name).
 Scene load_scene(const std::filesystem::path& path);
-/// Same from an already parsed scene (a sweep point's overrides via ConfigNode::with_value, a Python
-/// dict): relative paths resolve against the directory of `root.file()`, which becomes Scene::file.
+/// Same from an already parsed scene (a sweep point's overrides via ConfigNode::with_value, a
+/// Python dict): relative paths resolve against the directory of `root.file()`, which becomes
+/// Scene::file.
 Scene load_scene(const ConfigNode& root);
 
 }  // namespace tirpol::simulation

@@ -2,16 +2,18 @@
 /// \file sensor_model.h
 /// A digital twin of the field camera behind a rotating wire-grid polarizer (paper §3.1): from a
 /// rendered Stokes image (camera frame), the images I(α) the camera would record through a
-/// non-ideal analyzer, optionally in counts through a gain/offset with temporal noise set by an NEDT.
+/// non-ideal analyzer, optionally in counts through a gain/offset with temporal noise set by an
+/// NEDT.
 ///
-/// The physics is core's forward instrument model (instrument_model.h), which calibration's synthetic
-/// sessions share: per polarizer angle α (band radiance, W/(m²·sr))
+/// The physics is core's forward instrument model (instrument_model.h), which calibration's
+/// synthetic sessions share: per polarizer angle α (band radiance, W/(m²·sr))
 ///   I(α) = [P(α + offset) · S]₀ + ρ_grid·L_reflected + ε_grid·L_bb(T_grid)
 /// where P is a linear diattenuator with major transmittance τ and extinction ratio τ/τ_min
 /// (core polarizer_with_extinction; Chipman, Lam & Young 2018 eq 6.35), and the last two terms are
-/// what the tilted grid adds (the paper's reflected cold-sky background and the grid's own emission).
-/// Counts: C = gain·I + offset + N(0, σ), σ = gain·NEDT·dL/dT(T_ref) — the noise of a camera whose
-/// noise-equivalent temperature difference at T_ref is NEDT. Deterministic given the seed.
+/// what the tilted grid adds (the paper's reflected cold-sky background and the grid's own
+/// emission). Counts: C = gain·I + offset + N(0, σ), σ = gain·NEDT·dL/dT(T_ref) — the noise of a
+/// camera whose noise-equivalent temperature difference at T_ref is NEDT. Deterministic given the
+/// seed.
 
 #include <cstdint>
 #include <optional>
@@ -32,17 +34,17 @@ struct AnalyzerModel {
 };
 
 struct WireGridBackground {
-    double reflectance = 0.0;               ///< ρ_grid seen by the camera
-    double reflected_radiance = 0.0;        ///< band radiance reflected into the camera, W/(m²·sr)
-    double emissivity = 0.0;                ///< ε_grid
-    double temperature_k = 293.15;          ///< grid temperature
+    double reflectance = 0.0;         ///< ρ_grid seen by the camera
+    double reflected_radiance = 0.0;  ///< band radiance reflected into the camera, W/(m²·sr)
+    double emissivity = 0.0;          ///< ε_grid
+    double temperature_k = 293.15;    ///< grid temperature
 };
 
 struct CountsModel {
     double gain_counts_per_radiance = 1000.0;  ///< counts per W/(m²·sr)
     double offset_counts = 0.0;
-    double nedt_k = 0.08;                      ///< temporal noise as a temperature difference (0: noiseless)
-    double reference_temperature_k = 300.0;    ///< where the NEDT is specified
+    double nedt_k = 0.08;  ///< temporal noise as a temperature difference (0: noiseless)
+    double reference_temperature_k = 300.0;  ///< where the NEDT is specified
 };
 
 struct SensorModel {
@@ -51,7 +53,8 @@ struct SensorModel {
     std::optional<CountsModel> counts;
     std::uint64_t seed = 1;
 
-    /// From a YAML mapping with optional `analyzer`, `background`, `counts`, `seed` (docs/simulation.md).
+    /// From a YAML mapping with optional `analyzer`, `background`, `counts`, `seed`
+    /// (docs/simulation.md).
     static SensorModel from_config(const ConfigNode& node);
     /// The analyzer and grid background as core's forward model (grid emission over `band`).
     WireGridPolarizer wire_grid(const Band& band) const;

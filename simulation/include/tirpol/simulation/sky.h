@@ -1,7 +1,8 @@
 #pragma once
 /// \file sky.h
 /// Downwelling sky radiance for rays that leave the scene, and the sun. The sky is unpolarized
-/// (a clear LWIR night sky is, to first order; the paper's MODTRAN-P polarized sky is not modelled).
+/// (a clear LWIR night sky is, to first order; the paper's MODTRAN-P polarized sky is not
+/// modelled).
 
 #include <optional>
 #include <vector>
@@ -12,9 +13,11 @@
 
 namespace tirpol::simulation {
 
-/// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. Three kinds (docs/scene-format.md):
+/// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. Three kinds
+/// (docs/scene-format.md):
 ///  - uniform: ε = 1 at one temperature (or the brightness temperature of a given band radiance);
-///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature, the
+///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature,
+///  the
 ///    plane-parallel absorbing-atmosphere law of Granqvist & Hjortsberg (J. Appl. Phys. 52 (1981)
 ///    4205), implemented once in thermal::directional_sky_emissivity_cos; ε_zenith comes from the
 ///    scene or from a clear-sky model of the thermal module (Berdahl & Martin 1984 and others);
@@ -25,16 +28,20 @@ class Sky {
 public:
     static Sky uniform(double temperature_k);
     static Sky clear_sky(double air_temperature_k, double zenith_emissivity);
-    static Sky table(std::vector<double> zenith_deg, std::vector<double> band_radiance, const Band& band);
+    static Sky table(std::vector<double> zenith_deg, std::vector<double> band_radiance,
+                     const Band& band);
 
-    /// From the `sky:` mapping of a scene file; `band` converts band radiances to brightness temperatures.
+    /// From the `sky:` mapping of a scene file; `band` converts band radiances to brightness
+    /// temperatures.
     static Sky from_config(const ConfigNode& node, const Band& band);
 
-    /// Spectral radiance, W/(m²·sr·µm), seen along the world direction `direction` (pointing to the sky).
+    /// Spectral radiance, W/(m²·sr·µm), seen along the world direction `direction` (pointing to the
+    /// sky).
     double spectral_radiance(double wavelength_um, const Vec3& direction) const;
 
-    /// The sky at one wavelength with Planck's law evaluated once where the temperature does not depend
-    /// on the direction (uniform and clear skies): what a renderer keeps per wavelength node.
+    /// The sky at one wavelength with Planck's law evaluated once where the temperature does not
+    /// depend on the direction (uniform and clear skies): what a renderer keeps per wavelength
+    /// node.
     class AtWavelength {
     public:
         /// Same value as Sky::spectral_radiance(wavelength_um, direction), W/(m²·sr·µm).
@@ -67,10 +74,11 @@ struct Sun {
     Vec3 direction = Vec3::UnitZ();  ///< unit world vector pointing to the sun
     double temperature_k = 5778.0;
     double solid_angle_sr = 6.8e-5;
-    double transmittance = 1.0;      ///< atmospheric path transmittance (grey)
+    double transmittance = 1.0;  ///< atmospheric path transmittance (grey)
 
     /// From the `sun:` mapping: `elevation_deg`/`azimuth_deg` (azimuth from north, clockwise toward
-    /// east) or `direction`, and `temperature_k` (+ `transmittance`) or a band `radiance` in W/(m²·sr).
+    /// east) or `direction`, and `temperature_k` (+ `transmittance`) or a band `radiance` in
+    /// W/(m²·sr).
     static Sun from_config(const ConfigNode& node, const Band& band);
 
     double spectral_radiance(double wavelength_um) const;

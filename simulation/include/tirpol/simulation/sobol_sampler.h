@@ -3,25 +3,27 @@
 /// The renderer's random numbers: a padded, Owen-scrambled (0,2)-sequence sampler with independent
 /// randomised replicates per pixel.
 ///
-/// Construction (Kollig & Keller, "Efficient multidimensional sampling", Eurographics 2002; the same
-/// as pbrt-v4's PaddedSobolSampler and Mitsuba 3's `ldsampler`): the path's random numbers are grouped
-/// into dimension slots (sub-pixel position, wavelength, and per bounce the BSDF pair and the Russian-
-/// roulette number). Each slot takes the first n points of the (0,2)-sequence formed by the first two
-/// Sobol dimensions (van der Corput and its companion, generator matrices I and the Pascal matrix
-/// mod 2), Owen-scrambled independently per coordinate, with the sample index randomly permuted per slot
+/// Construction (Kollig & Keller, "Efficient multidimensional sampling", Eurographics 2002; the
+/// same as pbrt-v4's PaddedSobolSampler and Mitsuba 3's `ldsampler`): the path's random numbers are
+/// grouped into dimension slots (sub-pixel position, wavelength, and per bounce the BSDF pair and
+/// the Russian- roulette number). Each slot takes the first n points of the (0,2)-sequence formed
+/// by the first two Sobol dimensions (van der Corput and its companion, generator matrices I and
+/// the Pascal matrix mod 2), Owen-scrambled independently per coordinate, with the sample index
+/// randomly permuted per slot
 /// ("padding": the pairing of one slot's points with another's is random, so every slot stays a net
 /// and slots are independent). Owen scrambling is hashed (Laine & Karras, "Stratified sampling for
-/// stochastic transparency", EGSR 2011; constants of Burley, "Practical hash-based Owen scrambling",
-/// JCGT 9(4), 2020); the index permutation is a keyed bijection of [0, 2^b) cycle-walked into [0, n)
-/// (after Kensler, "Correlated multi-jittered sampling", Pixar TM 13-01, 2013). No tables.
+/// stochastic transparency", EGSR 2011; constants of Burley, "Practical hash-based Owen
+/// scrambling", JCGT 9(4), 2020); the index permutation is a keyed bijection of [0, 2^b)
+/// cycle-walked into [0, n) (after Kensler, "Correlated multi-jittered sampling", Pixar TM 13-01,
+/// 2013). No tables.
 ///
 /// Replicates (L'Ecuyer & Lemieux, "Recent advances in randomized quasi-Monte Carlo methods", 2002;
-/// Owen, "Monte Carlo theory, methods and examples", ch. 17): a pixel's samples are R replicates of n
-/// points, each with its own scrambles and permutations, so the replicate means are i.i.d. and
+/// Owen, "Monte Carlo theory, methods and examples", ch. 17): a pixel's samples are R replicates of
+/// n points, each with its own scrambles and permutations, so the replicate means are i.i.d. and
 /// Σ_r (m_r − m̄)² / (R(R − 1)) is an exactly unbiased estimate of the variance of their average.
 ///
-/// Every value is a pure function of (seed, pixel, replicate, sample index, slot): images do not depend
-/// on threads or tiling, and nothing is stored per sample (memory does not grow with spp).
+/// Every value is a pure function of (seed, pixel, replicate, sample index, slot): images do not
+/// depend on threads or tiling, and nothing is stored per sample (memory does not grow with spp).
 
 #include <array>
 #include <cstdint>
@@ -30,31 +32,35 @@
 
 namespace tirpol::simulation {
 
-/// Bounces whose BSDF pair and roulette number come from the scrambled sequence; deeper bounces (rare:
-/// Russian roulette ends most paths by then) draw from the pixel sample's SampleStream instead.
+/// Bounces whose BSDF pair and roulette number come from the scrambled sequence; deeper bounces
+/// (rare: Russian roulette ends most paths by then) draw from the pixel sample's SampleStream
+/// instead.
 inline constexpr int kSobolBounces = 8;
 
 /// The first n points of the two-dimensional (0,2)-sequence, each coordinate as a 32-bit fraction:
 /// `index`'s van der Corput radical inverse and the second Sobol dimension. Unscrambled.
 std::array<std::uint32_t, 2> sobol_02_point(std::uint32_t index);
 
-/// Hashed nested uniform (Owen) scramble of a 32-bit fraction: each digit is flipped by a function of
-/// `seed` and the digits above it, so nets stay nets and every point becomes uniform in [0, 1).
+/// Hashed nested uniform (Owen) scramble of a 32-bit fraction: each digit is flipped by a function
+/// of `seed` and the digits above it, so nets stay nets and every point becomes uniform in [0, 1).
 std::uint32_t owen_scramble(std::uint32_t fraction, std::uint32_t seed);
 
 /// A pseudo-random permutation of [0, n) (n ≥ 1) keyed by `key`: element `index` of it.
 std::uint32_t permutation_element(std::uint32_t index, std::uint32_t n, std::uint64_t key);
 
-/// The numbers of one replicate of one pixel: `points` samples, each a padded scrambled (0,2)-sequence
-/// point per slot. Cheap to construct (no state beyond its key).
+/// The numbers of one replicate of one pixel: `points` samples, each a padded scrambled
+/// (0,2)-sequence point per slot. Cheap to construct (no state beyond its key).
 class ReplicateSampler {
 public:
-    /// `points` ≥ 1 samples in this replicate; (seed, pixel, replicate) pick its independent scrambles.
-    ReplicateSampler(std::uint64_t seed, std::uint64_t pixel, std::uint32_t replicate, std::uint32_t points);
+    /// `points` ≥ 1 samples in this replicate; (seed, pixel, replicate) pick its independent
+    /// scrambles.
+    ReplicateSampler(std::uint64_t seed, std::uint64_t pixel, std::uint32_t replicate,
+                     std::uint32_t points);
 
     /// Slot `slot`'s two numbers in [0, 1) for sample `index` (< points).
     std::array<double, 2> pair(std::uint32_t index, std::uint32_t slot) const;
-    /// Slot `slot`'s one number in [0, 1) for sample `index`: the scrambled van der Corput coordinate.
+    /// Slot `slot`'s one number in [0, 1) for sample `index`: the scrambled van der Corput
+    /// coordinate.
     double single(std::uint32_t index, std::uint32_t slot) const;
 
     std::uint32_t points() const { return m_points; }
@@ -86,7 +92,8 @@ public:
     /// The Russian-roulette number at `bounce`.
     double roulette(int bounce) {
         if (bounce >= kSobolBounces) return m_fallback.next();
-        return m_replicate.single(m_index, kFirstBounceSlot + 2 * static_cast<std::uint32_t>(bounce) + 1);
+        return m_replicate.single(m_index,
+                                  kFirstBounceSlot + 2 * static_cast<std::uint32_t>(bounce) + 1);
     }
 
 private:

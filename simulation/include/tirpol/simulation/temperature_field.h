@@ -16,15 +16,16 @@ public:
     static TemperatureField constant(double temperature_k);
     /// One temperature per mesh vertex, in the mesh's vertex order.
     static TemperatureField per_vertex(std::vector<double> temperatures_k);
-    /// A map (row-major, `width` × `height`, kelvin) looked up at texture coordinates (u, v): u across
-    /// the columns, v down the rows (v = 0 is the top row). Bilinear, clamped at the edges.
+    /// A map (row-major, `width` × `height`, kelvin) looked up at texture coordinates (u, v): u
+    /// across the columns, v down the rows (v = 0 is the top row). Bilinear, clamped at the edges.
     static TemperatureField texture(std::vector<float> map_k, int width, int height);
 
     /// Temperature at a hit on `mesh` (the hit's object). No exceptions (hot loop).
     double at(const SurfaceHit& hit, const TriangleMesh& mesh) const;
 
-    /// True for a field made by `constant` (then at() is min_k() everywhere): a renderer can evaluate
-    /// what depends only on the temperature, such as Planck's law per wavelength, once per object.
+    /// True for a field made by `constant` (then at() is min_k() everywhere): a renderer can
+    /// evaluate what depends only on the temperature, such as Planck's law per wavelength, once per
+    /// object.
     bool is_constant() const { return m_kind == Kind::Constant; }
 
     /// Range of the field, for validation and reports.

@@ -1,13 +1,14 @@
 #pragma once
 /// \file point_statistics.h
 /// Region statistics of one rendered sweep point: mean S0, S1, S2 (camera frame, band radiance
-/// W/(m²·sr)), mean per-pixel DoLP and mean temperature over each region, with the Monte-Carlo standard
-/// error of each mean, and contrasts mean(a) − mean(b) between regions.
+/// W/(m²·sr)), mean per-pixel DoLP and mean temperature over each region, with the Monte-Carlo
+/// standard error of each mean, and contrasts mean(a) − mean(b) between regions.
 ///
-/// Errors: the renderer's S*_var channels are the variance of each pixel's mean (renderer.h); pixels
-/// are independent samples, so the error of a region mean is √(Σ var_i)/n. A pixel's DoLP variance is
-/// propagated to first order from S0, S1, S2. The error of a contrast is √(σ_a² + σ_b²) (disjoint
-/// regions are independent). NaN errors with one sample per pixel; NaN means for an empty region.
+/// Errors: the renderer's S*_var channels are the variance of each pixel's mean (renderer.h);
+/// pixels are independent samples, so the error of a region mean is √(Σ var_i)/n. A pixel's DoLP
+/// variance is propagated to first order from S0, S1, S2. The error of a contrast is √(σ_a² + σ_b²)
+/// (disjoint regions are independent). NaN errors with one sample per pixel; NaN means for an empty
+/// region.
 
 #include <string>
 #include <vector>
@@ -46,8 +47,10 @@ struct PointStatistics {
 };
 
 /// Statistics of a rendered image (renderer.h channels) over the sweep's regions; `objects` are the
-/// scene's object names in object_id order. Throws tirpol::Error if a region's polygon leaves the image.
-PointStatistics point_statistics(const Image& image, const std::vector<std::string>& objects, const SweepSpec& spec);
+/// scene's object names in object_id order. Throws tirpol::Error if a region's polygon leaves the
+/// image.
+PointStatistics point_statistics(const Image& image, const std::vector<std::string>& objects,
+                                 const SweepSpec& spec);
 
 /// The pixels of a region: 1 inside, 0 outside (row-major, the image's size).
 std::vector<std::uint8_t> region_pixels(const Image& image, const std::vector<std::string>& objects,

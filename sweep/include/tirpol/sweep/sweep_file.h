@@ -1,15 +1,18 @@
 #pragma once
 /// \file sweep_file.h
-/// The sweep file (YAML, docs/sweep.md): a base scene, optional sensor model, overrides for every point,
-/// and axes of values to vary, combined as a grid (every combination) or a list (the i-th values
-/// together). Each point's scene is the base scene's YAML with the point's overrides
-/// (ConfigNode::with_value), read by the one scene loader. Errors name the sweep file, line and field.
+/// The sweep file (YAML, docs/sweep.md): a base scene, optional sensor model, overrides for every
+/// point, and axes of values to vary, combined as a grid (every combination) or a list (the i-th
+/// values together). Each point's scene is the base scene's YAML with the point's overrides
+/// (ConfigNode::with_value), read by the one scene loader. Errors name the sweep file, line and
+/// field.
 ///
 /// Parameter names:
-/// - a path in the scene file: `time`, `camera.position`, `band`, `objects[ball].transform.translate`,
+/// - a path in the scene file: `time`, `camera.position`, `band`,
+/// `objects[ball].transform.translate`,
 ///   `sampling.spp`, … (keys joined by '.', list elements by `[index]` or `[name]`);
 /// - `sensor.<path>` in the sensor-model file (`sensor.counts.nedt_k`);
-/// - `materials.<name>.<path>` in the library material `<name>` (`materials.snow.parameters.sigma`): every
+/// - `materials.<name>.<path>` in the library material `<name>`
+/// (`materials.snow.parameters.sigma`): every
 ///   object whose `material:` is that name gets the modified material inline.
 /// Every step of a path must exist in the base files (an unknown name gets a "did you mean").
 
@@ -30,20 +33,23 @@ namespace tirpol::sweep {
 struct Axis {
     std::string parameter;
     std::vector<ConfigNode> values;
-    std::vector<std::string> labels;  ///< each value as compact YAML-like text (manifest, tables, plots)
-    /// Each value as a number for plots: the value itself if numeric, hours since the first value for
-    /// `time`, else the value's position on the axis.
+    std::vector<std::string>
+        labels;  ///< each value as compact YAML-like text (manifest, tables, plots)
+    /// Each value as a number for plots: the value itself if numeric, hours since the first value
+    /// for `time`, else the value's position on the axis.
     std::vector<double> coordinates;
-    std::string coordinate_label;  ///< x-axis title for plots, e.g. "time [h since 2026-01-16T00:00]"
+    std::string
+        coordinate_label;  ///< x-axis title for plots, e.g. "time [h since 2026-01-16T00:00]"
 };
 
-/// A named group of pixels of a rendered point: an object's pixels (object_id), optionally only those
-/// within angular sectors around the object's pixel centroid (0° = image right, 90° = image top, as the
-/// Stokes reference), and/or a polygon in pixel coordinates.
+/// A named group of pixels of a rendered point: an object's pixels (object_id), optionally only
+/// those within angular sectors around the object's pixel centroid (0° = image right, 90° = image
+/// top, as the Stokes reference), and/or a polygon in pixel coordinates.
 struct RegionSpec {
     std::string name;
-    std::string object;                                  ///< empty: any pixel
-    std::vector<std::pair<double, double>> sectors_deg;  ///< [from, to] counter-clockwise; empty: all
+    std::string object;  ///< empty: any pixel
+    std::vector<std::pair<double, double>>
+        sectors_deg;  ///< [from, to] counter-clockwise; empty: all
     std::optional<report::Region> polygon;
     std::string location;
 };
@@ -57,9 +63,10 @@ enum class Combine { Grid, List };
 
 struct SweepSpec {
     std::filesystem::path file;
-    ConfigNode scene;                                       ///< the base scene
-    std::optional<ConfigNode> sensor;                       ///< the base sensor model (polarizer images per point)
-    std::vector<std::pair<std::string, ConfigNode>> fixed;  ///< `set:` overrides applied to every point
+    ConfigNode scene;                  ///< the base scene
+    std::optional<ConfigNode> sensor;  ///< the base sensor model (polarizer images per point)
+    std::vector<std::pair<std::string, ConfigNode>>
+        fixed;  ///< `set:` overrides applied to every point
     std::vector<Axis> axes;
     Combine combine = Combine::Grid;
     std::uint64_t seed = 1;
@@ -67,8 +74,9 @@ struct SweepSpec {
     std::vector<ContrastSpec> contrasts;
 };
 
-/// Reads and checks a sweep file: keys, every parameter against the base files, axes non-empty (and of
-/// equal length for `combine: list`), regions naming objects of the base scene, contrasts naming regions.
+/// Reads and checks a sweep file: keys, every parameter against the base files, axes non-empty (and
+/// of equal length for `combine: list`), regions naming objects of the base scene, contrasts naming
+/// regions.
 SweepSpec load_sweep(const std::filesystem::path& path);
 
 /// One point: which value of each axis, its seed and its folder name.

@@ -2,15 +2,17 @@
 /// \file sweep_run.h
 /// Running a sweep: every point rendered into OUT/points/<id>/ (stokes.exr with its PNG quicklooks,
 /// pol<angle>.exr with a sensor model, statistics.json), each folder written under a temporary name
-/// and renamed when complete, so a folder that exists is a finished point. OUT/manifest.json records
-/// each point's parameters, seed, status and error; a failing point is recorded and the sweep goes on.
+/// and renamed when complete, so a folder that exists is a finished point. OUT/manifest.json
+/// records each point's parameters, seed, status and error; a failing point is recorded and the
+/// sweep goes on.
 ///
-/// Without mpirun the points are rendered one after the other, each with the renderer's threads. Under
-/// `mpirun -np N` (Open MPI) rank 0 hands out point indices on request (dynamic: uneven point costs
-/// balance themselves) and renders points itself on a second thread; every rank writes its own points;
-/// rank 0 gathers the records, writes the manifest and the results. Images do not depend on the number
-/// of ranks or threads: each point's seed comes from its index (point_seed) and the renderer's output
-/// is thread-count independent (counter-based random numbers, renderer.h).
+/// Without mpirun the points are rendered one after the other, each with the renderer's threads.
+/// Under `mpirun -np N` (Open MPI) rank 0 hands out point indices on request (dynamic: uneven point
+/// costs balance themselves) and renders points itself on a second thread; every rank writes its
+/// own points; rank 0 gathers the records, writes the manifest and the results. Images do not
+/// depend on the number of ranks or threads: each point's seed comes from its index (point_seed)
+/// and the renderer's output is thread-count independent (counter-based random numbers,
+/// renderer.h).
 
 #include <filesystem>
 #include <optional>
@@ -31,12 +33,13 @@ struct RunOptions {
 /// What happened to one point.
 struct PointRecord {
     SweepPoint point;
-    std::string status = "pending";  ///< "rendered", "resumed" (finished by an earlier run), "failed", "pending"
-    std::string error;               ///< why it failed
-    int rank = 0;                    ///< MPI rank that rendered it
-    double seconds = 0.0;            ///< loading, thermal model, render and writing
-    double render_seconds = 0.0;     ///< of which the renderer (the part that uses the threads)
-    double wait_seconds = 0.0;       ///< time its rank waited for the assignment (scheduling overhead)
+    std::string status =
+        "pending";      ///< "rendered", "resumed" (finished by an earlier run), "failed", "pending"
+    std::string error;  ///< why it failed
+    int rank = 0;       ///< MPI rank that rendered it
+    double seconds = 0.0;         ///< loading, thermal model, render and writing
+    double render_seconds = 0.0;  ///< of which the renderer (the part that uses the threads)
+    double wait_seconds = 0.0;    ///< time its rank waited for the assignment (scheduling overhead)
     std::optional<PointStatistics> statistics;
 };
 
@@ -53,6 +56,7 @@ struct SweepSummary {
 /// Runs the sweep into `out_dir` (see above) and, on rank 0, writes the manifest and the results
 /// (sweep_results.h). Throws tirpol::Error if `out_dir` holds a sweep and `resume` is off, or if it
 /// holds a different sweep (other points or parameters) and `resume` is on.
-SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_dir, const RunOptions& options);
+SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_dir,
+                       const RunOptions& options);
 
 }  // namespace tirpol::sweep

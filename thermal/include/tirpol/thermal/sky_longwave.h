@@ -2,9 +2,9 @@
 /// \file sky_longwave.h
 /// Longwave (thermal) radiation of the sky from screen-level weather: clear-sky emissivity models,
 /// the cloud correction, the angular dependence of sky radiance and the 8–14 µm window. The sky is
-/// treated as a grey emitter at the screen-level air temperature T_a with an effective emissivity, so
-/// the downwelling irradiance on a horizontal surface is E = ε σ T_a⁴ and the radiance from zenith
-/// angle θ is L(θ) = ε(θ) σ T_a⁴ / π (broadband) or ε_w(θ) L_band(T_a) (window band).
+/// treated as a grey emitter at the screen-level air temperature T_a with an effective emissivity,
+/// so the downwelling irradiance on a horizontal surface is E = ε σ T_a⁴ and the radiance from
+/// zenith angle θ is L(θ) = ε(θ) σ T_a⁴ / π (broadband) or ε_w(θ) L_band(T_a) (window band).
 
 #include "tirpol/core/radiometry.h"
 
@@ -19,13 +19,15 @@ double dew_point_c(double temperature_c, double relative_humidity_pct);
 double relative_humidity_pct(double temperature_c, double dew_point_c);
 
 enum class ClearSkyModel {
-    BerdahlMartin1984,  ///< ε = 0.711 + 0.56 t + 0.73 t², t = T_dp/100 (°C), + 0.013 cos(2π h/24) + 0.00012 (P − 1000)
-    Brutsaert1975,      ///< ε = 1.24 (e/T_a)^(1/7), e in hPa, T_a in K
-    ClarkAllen1978,     ///< ε = 0.787 + 0.764 ln(T_dp/273), T_dp in K
-    Idso1981,           ///< ε = 0.70 + 5.95e-5 e exp(1500/T_a), e in hPa, T_a in K
+    BerdahlMartin1984,  ///< ε = 0.711 + 0.56 t + 0.73 t², t = T_dp/100 (°C), + 0.013 cos(2π h/24) +
+                        ///< 0.00012 (P − 1000)
+    Brutsaert1975,   ///< ε = 1.24 (e/T_a)^(1/7), e in hPa, T_a in K
+    ClarkAllen1978,  ///< ε = 0.787 + 0.764 ln(T_dp/273), T_dp in K
+    Idso1981,        ///< ε = 0.70 + 5.95e-5 e exp(1500/T_a), e in hPa, T_a in K
 };
 
-/// "berdahl-martin", "brutsaert", "clark-allen", "idso"; throws tirpol::Error naming the allowed names.
+/// "berdahl-martin", "brutsaert", "clark-allen", "idso"; throws tirpol::Error naming the allowed
+/// names.
 ClearSkyModel parse_clear_sky_model(const std::string& name);
 const char* to_string(ClearSkyModel model);
 
@@ -34,14 +36,14 @@ struct SkyConditions {
     double air_temperature_c = 15.0;
     double dew_point_c = 5.0;
     double pressure_hpa = 1013.25;
-    double local_solar_hour = 0.0;        ///< hours from local midnight (Berdahl–Martin diurnal term)
-    double opaque_sky_cover_tenths = 0.0; ///< 0 (clear) … 10 (overcast)
+    double local_solar_hour = 0.0;  ///< hours from local midnight (Berdahl–Martin diurnal term)
+    double opaque_sky_cover_tenths = 0.0;  ///< 0 (clear) … 10 (overcast)
 };
 
 /// Broadband hemispherical clear-sky emissivity of `model`.
-/// Sources: Berdahl & Martin, Solar Energy 32 (1984) 663–664; Brutsaert, Water Resour. Res. 11 (1975)
-/// 742–744; Clark & Allen, Proc. 2nd Nat. Passive Solar Conf. (1978) 675–678; Idso, Water Resour. Res.
-/// 17 (1981) 295–304.
+/// Sources: Berdahl & Martin, Solar Energy 32 (1984) 663–664; Brutsaert, Water Resour. Res. 11
+/// (1975) 742–744; Clark & Allen, Proc. 2nd Nat. Passive Solar Conf. (1978) 675–678; Idso, Water
+/// Resour. Res. 17 (1981) 295–304.
 double clear_sky_emissivity(ClearSkyModel model, const SkyConditions& c);
 
 /// Cloud multiplier of Clark & Allen (1978) as used by TARP/EnergyPlus (Walton 1983):
@@ -56,14 +58,15 @@ double sky_emissivity(ClearSkyModel model, const SkyConditions& c);
 /// ε = ε_clear + (1 − ε_clear) N/10.
 double window_sky_emissivity(const SkyConditions& c);
 
-/// Directional emissivity of a plane-parallel isothermal absorbing atmosphere, Granqvist & Hjortsberg
-/// (J. Appl. Phys. 52 (1981) 4205): ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ); 1 at and below the horizon
-/// (cos θ ≤ 1e-6: an optically thick path). The one implementation of the law, used by the renderer's sky.
+/// Directional emissivity of a plane-parallel isothermal absorbing atmosphere, Granqvist &
+/// Hjortsberg (J. Appl. Phys. 52 (1981) 4205): ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ); 1 at and below
+/// the horizon (cos θ ≤ 1e-6: an optically thick path). The one implementation of the law, used by
+/// the renderer's sky.
 double directional_sky_emissivity_cos(double zenith_emissivity, double cos_zenith);
 /// The same law with the zenith angle in degrees.
 double directional_sky_emissivity(double zenith_emissivity, double zenith_deg);
-/// Hemispherical (cosine-weighted) emissivity 2∫ε(θ) cosθ sinθ dθ of that law; equals 1 − 2E₃(τ) with
-/// τ = −ln(1 − ε_zenith).
+/// Hemispherical (cosine-weighted) emissivity 2∫ε(θ) cosθ sinθ dθ of that law; equals 1 − 2E₃(τ)
+/// with τ = −ln(1 − ε_zenith).
 double hemispherical_from_zenith_emissivity(double zenith_emissivity);
 /// Inverse of hemispherical_from_zenith_emissivity (bisection, to 1e-12).
 double zenith_from_hemispherical_emissivity(double hemispherical_emissivity);
@@ -91,9 +94,9 @@ public:
     /// Band radiance from zenith angle θ for a band in the 8–14 µm window, W/(m²·sr):
     /// ε_w(θ) L_band(T_a) — the renderer's sky.
     double band_radiance(const Band& band, double zenith_deg) const;
-    /// Longwave irradiance (W/m²) on a facet tilted `tilt_deg` from horizontal: the sky seen through
-    /// view factor F = (1 + cos tilt)/2 (isotropic approximation, i.e. the sky's hemispherical value)
-    /// plus ground at `ground_temperature_k` (black) through 1 − F.
+    /// Longwave irradiance (W/m²) on a facet tilted `tilt_deg` from horizontal: the sky seen
+    /// through view factor F = (1 + cos tilt)/2 (isotropic approximation, i.e. the sky's
+    /// hemispherical value) plus ground at `ground_temperature_k` (black) through 1 − F.
     double facet_irradiance_w_m2(double tilt_deg, double ground_temperature_k) const;
 
 private:

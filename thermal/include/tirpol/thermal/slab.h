@@ -1,11 +1,12 @@
 #pragma once
 /// \file slab.h
-/// One-dimensional multi-layer slab (the THERM model of DIRSIG, paper §2.2.2): heat conduction through
-/// layers of given thickness, conductivity, density and specific heat, discretised by cell-centred
-/// finite volumes (Patankar, Numerical Heat Transfer and Fluid Flow, 1980, ch. 4) and stepped in time
-/// with the θ-method (θ = 1 backward Euler, θ = ½ Crank–Nicolson). The exposed surface is a node
-/// without heat capacity whose energy balance — absorbed solar + absorbed longwave − εσT⁴ − convection
-/// = conduction into the slab — is solved by Newton's method at each step.
+/// One-dimensional multi-layer slab (the THERM model of DIRSIG, paper §2.2.2): heat conduction
+/// through layers of given thickness, conductivity, density and specific heat, discretised by
+/// cell-centred finite volumes (Patankar, Numerical Heat Transfer and Fluid Flow, 1980, ch. 4) and
+/// stepped in time with the θ-method (θ = 1 backward Euler, θ = ½ Crank–Nicolson). The exposed
+/// surface is a node without heat capacity whose energy balance — absorbed solar + absorbed
+/// longwave − εσT⁴ − convection = conduction into the slab — is solved by Newton's method at each
+/// step.
 
 #include <optional>
 #include <vector>
@@ -26,8 +27,8 @@ struct BackBoundary {
     enum class Kind {
         Adiabatic,         ///< no heat flow (an insulated back or a symmetry plane)
         FixedTemperature,  ///< back face held at `temperature_k`
-        Ground,            ///< a soil layer of `ground_depth_m` (Incropera Table A.3 "soil": k 0.52 W/m·K,
-                           ///< ρ 2050 kg/m³, c 1840 J/kg·K) whose bottom is held at `temperature_k`
+        Ground,  ///< a soil layer of `ground_depth_m` (Incropera Table A.3 "soil": k 0.52 W/m·K,
+                 ///< ρ 2050 kg/m³, c 1840 J/kg·K) whose bottom is held at `temperature_k`
     };
     Kind kind = Kind::Adiabatic;
     double temperature_k = 283.15;
@@ -40,17 +41,21 @@ struct SlabDefinition {
 };
 
 struct SlabGridOptions {
-    double max_cell_thickness_m = 0.005;  ///< automatic cell count: ceil(thickness / this), at least 2
+    double max_cell_thickness_m =
+        0.005;  ///< automatic cell count: ceil(thickness / this), at least 2
 };
 
 /// Boundary conditions on the exposed surface for one step (values at the end of the step).
 struct SurfaceForcing {
-    double absorbed_shortwave_w_m2 = 0.0;  ///< solar absorptivity × solar irradiance on the facet (after shadowing)
-    double incident_longwave_w_m2 = 0.0;   ///< longwave irradiance on the facet; absorbed fraction = emissivity
-    double emissivity = 0.0;               ///< thermal emissivity (also the longwave absorptance, Kirchhoff)
+    double absorbed_shortwave_w_m2 =
+        0.0;  ///< solar absorptivity × solar irradiance on the facet (after shadowing)
+    double incident_longwave_w_m2 =
+        0.0;                  ///< longwave irradiance on the facet; absorbed fraction = emissivity
+    double emissivity = 0.0;  ///< thermal emissivity (also the longwave absorptance, Kirchhoff)
     double air_temperature_k = 293.15;
     double convection_w_m2_k = 0.0;
-    std::optional<double> prescribed_surface_temperature_k;  ///< Dirichlet condition instead of the balance
+    std::optional<double>
+        prescribed_surface_temperature_k;  ///< Dirichlet condition instead of the balance
 };
 
 /// Surface terms of the balance at surface temperature `t_s` (W/m², positive into the surface).
@@ -59,15 +64,19 @@ struct SurfaceFluxes {
     double absorbed_longwave = 0.0;
     double emitted_longwave = 0.0;  ///< εσT_s⁴ (positive number, leaving)
     double convection = 0.0;        ///< h (T_a − T_s)
-    double net() const { return absorbed_shortwave + absorbed_longwave - emitted_longwave + convection; }
+    double net() const {
+        return absorbed_shortwave + absorbed_longwave - emitted_longwave + convection;
+    }
 };
 SurfaceFluxes surface_fluxes(const SurfaceForcing& forcing, double surface_temperature_k);
 
 /// What one step did.
 struct StepReport {
     int newton_iterations = 0;
-    double front_flux_w_m2 = 0.0;  ///< θ-weighted conduction into the slab at the surface over the step
-    double back_flux_w_m2 = 0.0;   ///< θ-weighted conduction out of the slab at the back over the step
+    double front_flux_w_m2 =
+        0.0;  ///< θ-weighted conduction into the slab at the surface over the step
+    double back_flux_w_m2 =
+        0.0;  ///< θ-weighted conduction out of the slab at the back over the step
 };
 
 class SlabModel {
@@ -85,14 +94,15 @@ public:
     const std::vector<double>& cell_depths_m() const { return m_depth; }
     /// Σ ρ c Δx T over the cells, J/m² (relative to 0 K).
     double stored_energy_j_m2() const;
-    /// Temperature at depth `z` by linear interpolation between the surface node and the cell centres.
+    /// Temperature at depth `z` by linear interpolation between the surface node and the cell
+    /// centres.
     double temperature_at_depth_k(double depth_m) const;
 
 private:
     std::vector<double> m_capacity;     // ρ c Δx per cell, J/(m²·K)
     std::vector<double> m_conductance;  // [0]: surface→cell 0 (2k/Δx); [i]: cell i−1→cell i
     std::vector<double> m_depth;
-    double m_back_conductance = 0.0;    // last cell → back face (2k/Δx), fixed/ground only
+    double m_back_conductance = 0.0;  // last cell → back face (2k/Δx), fixed/ground only
     double m_back_temperature_k = 0.0;
     bool m_back_fixed = false;
     std::vector<double> m_t;

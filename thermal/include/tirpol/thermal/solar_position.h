@@ -1,9 +1,9 @@
 #pragma once
 /// \file solar_position.h
-/// The NREL Solar Position Algorithm (SPA): I. Reda and A. Andreas, "Solar Position Algorithm for Solar
-/// Radiation Applications", NREL/TP-560-34302 (2003, rev. 2008); Solar Energy 76(5) 577–589 (2004).
-/// Topocentric zenith and azimuth, uncertainty ±0.0003° for years −2000…6000. Equation numbers below
-/// are the report's (section 3).
+/// The NREL Solar Position Algorithm (SPA): I. Reda and A. Andreas, "Solar Position Algorithm for
+/// Solar Radiation Applications", NREL/TP-560-34302 (2003, rev. 2008); Solar Energy 76(5) 577–589
+/// (2004). Topocentric zenith and azimuth, uncertainty ±0.0003° for years −2000…6000. Equation
+/// numbers below are the report's (section 3).
 
 #include "tirpol/core/geometry.h"
 
@@ -11,33 +11,35 @@ namespace tirpol::thermal {
 
 /// Where and when, and the atmosphere used for the refraction correction.
 struct SpaInput {
-    double unix_seconds = 0.0;        ///< the instant (UTC); see civil_time.h
-    double latitude_deg = 0.0;        ///< geodetic, north positive
-    double longitude_deg = 0.0;       ///< east positive (Golden, CO is −105.1786)
-    double elevation_m = 0.0;         ///< above mean sea level
-    double pressure_mbar = 1013.25;   ///< annual mean local pressure (refraction, eq. 42)
-    double temperature_c = 15.0;      ///< annual mean local temperature (refraction, eq. 42)
-    double delta_t_s = 69.0;          ///< ΔT = TT − UT, seconds (≈69 s around 2020; the report's example: 67)
-    double delta_ut1_s = 0.0;         ///< ΔUT1 = UT1 − UTC, seconds (|ΔUT1| < 0.9 s)
+    double unix_seconds = 0.0;       ///< the instant (UTC); see civil_time.h
+    double latitude_deg = 0.0;       ///< geodetic, north positive
+    double longitude_deg = 0.0;      ///< east positive (Golden, CO is −105.1786)
+    double elevation_m = 0.0;        ///< above mean sea level
+    double pressure_mbar = 1013.25;  ///< annual mean local pressure (refraction, eq. 42)
+    double temperature_c = 15.0;     ///< annual mean local temperature (refraction, eq. 42)
+    double delta_t_s =
+        69.0;  ///< ΔT = TT − UT, seconds (≈69 s around 2020; the report's example: 67)
+    double delta_ut1_s = 0.0;                    ///< ΔUT1 = UT1 − UTC, seconds (|ΔUT1| < 0.9 s)
     double atmospheric_refraction_deg = 0.5667;  ///< refraction at sunrise/sunset (eq. 42's gate)
 };
 
-/// Results; the intermediate values are those the report tabulates for its worked example (Table A5.2).
+/// Results; the intermediate values are those the report tabulates for its worked example (Table
+/// A5.2).
 struct SolarPosition {
-    double julian_day = 0.0;               ///< JD (eq. 4)
-    double heliocentric_longitude_deg = 0.0;  ///< L (eq. 9)
-    double heliocentric_latitude_deg = 0.0;   ///< B (eq. 11)
-    double earth_radius_au = 0.0;          ///< R (eq. 12)
-    double nutation_longitude_deg = 0.0;   ///< Δψ (eq. 22)
-    double nutation_obliquity_deg = 0.0;   ///< Δε (eq. 23)
-    double true_obliquity_deg = 0.0;       ///< ε (eq. 25)
-    double right_ascension_deg = 0.0;      ///< geocentric α (eq. 30)
-    double declination_deg = 0.0;          ///< geocentric δ (eq. 31)
-    double hour_angle_deg = 0.0;           ///< observer local hour angle H (eq. 32)
+    double julian_day = 0.0;                   ///< JD (eq. 4)
+    double heliocentric_longitude_deg = 0.0;   ///< L (eq. 9)
+    double heliocentric_latitude_deg = 0.0;    ///< B (eq. 11)
+    double earth_radius_au = 0.0;              ///< R (eq. 12)
+    double nutation_longitude_deg = 0.0;       ///< Δψ (eq. 22)
+    double nutation_obliquity_deg = 0.0;       ///< Δε (eq. 23)
+    double true_obliquity_deg = 0.0;           ///< ε (eq. 25)
+    double right_ascension_deg = 0.0;          ///< geocentric α (eq. 30)
+    double declination_deg = 0.0;              ///< geocentric δ (eq. 31)
+    double hour_angle_deg = 0.0;               ///< observer local hour angle H (eq. 32)
     double topocentric_declination_deg = 0.0;  ///< δ′ (eq. 39)
-    double elevation_deg = 0.0;            ///< topocentric elevation with refraction, e (eq. 43)
-    double zenith_deg = 0.0;               ///< topocentric zenith θ = 90° − e (eq. 44)
-    double azimuth_deg = 0.0;              ///< topocentric azimuth Φ, from north, eastward, 0–360° (eq. 46)
+    double elevation_deg = 0.0;  ///< topocentric elevation with refraction, e (eq. 43)
+    double zenith_deg = 0.0;     ///< topocentric zenith θ = 90° − e (eq. 44)
+    double azimuth_deg = 0.0;  ///< topocentric azimuth Φ, from north, eastward, 0–360° (eq. 46)
 };
 
 /// Runs the SPA. Throws tirpol::Error for a latitude outside ±90°, a longitude outside ±180°, or a

@@ -1,9 +1,10 @@
 #pragma once
 /// \file surface_temperature.h
-/// Surface temperature of a facet driven by weather: the slab solver (slab.h) with the surface energy
-/// balance built from one weather record — solar (SPA sun position, direct + isotropic diffuse +
-/// ground-reflected, shadow fraction), longwave (sky model or measured IR, sky view factor, ground) and
-/// wind convection — spun up from the air temperature N hours before the requested time.
+/// Surface temperature of a facet driven by weather: the slab solver (slab.h) with the surface
+/// energy balance built from one weather record — solar (SPA sun position, direct + isotropic
+/// diffuse + ground-reflected, shadow fraction), longwave (sky model or measured IR, sky view
+/// factor, ground) and wind convection — spun up from the air temperature N hours before the
+/// requested time.
 
 #include <functional>
 #include <string>
@@ -26,29 +27,32 @@ struct ThermalMaterial {
 
 /// Orientation of a surface element.
 struct Facet {
-    double tilt_deg = 0.0;     ///< 0 = facing up, 90 = vertical, 180 = facing down
+    double tilt_deg = 0.0;       ///< 0 = facing up, 90 = vertical, 180 = facing down
     double azimuth_deg = 180.0;  ///< direction the normal points to, from north eastward
-    /// Fraction of the hemisphere above the facet that is sky; NaN → (1 + cos tilt)/2 (unobstructed).
+    /// Fraction of the hemisphere above the facet that is sky; NaN → (1 + cos tilt)/2
+    /// (unobstructed).
     double sky_view_factor = kMissing;
 };
 
 /// Wind convection correlations.
 enum class ConvectionModel {
-    McAdams,  ///< h = 5.7 + 3.8 v (W/m²·K, v in m/s at the surface), McAdams, Heat Transmission, 3rd ed.
-              ///< (1954), as given by Duffie & Beckman, Solar Engineering of Thermal Processes §3.15
+    McAdams,  ///< h = 5.7 + 3.8 v (W/m²·K, v in m/s at the surface), McAdams, Heat Transmission,
+              ///< 3rd ed. (1954), as given by Duffie & Beckman, Solar Engineering of Thermal
+              ///< Processes §3.15
     Fixed,    ///< h = ThermalOptions::fixed_convection_w_m2_k
 };
 
 struct ThermalOptions {
-    double spin_up_hours = 24.0;  ///< start from the air temperature this long before the requested time
+    double spin_up_hours =
+        24.0;  ///< start from the air temperature this long before the requested time
     double time_step_s = 300.0;
-    double theta = 1.0;           ///< 1 backward Euler (robust), ½ Crank–Nicolson
+    double theta = 1.0;  ///< 1 backward Euler (robust), ½ Crank–Nicolson
     ClearSkyModel sky_model = ClearSkyModel::BerdahlMartin1984;
     bool use_measured_sky_ir = true;  ///< use the record's horizontal IR when present
     ConvectionModel convection = ConvectionModel::McAdams;
     double fixed_convection_w_m2_k = 10.0;
-    double ground_albedo = 0.2;   ///< when the record has none
-    double delta_t_s = 69.0;      ///< ΔT for the SPA
+    double ground_albedo = 0.2;  ///< when the record has none
+    double delta_t_s = 69.0;     ///< ΔT for the SPA
     SlabGridOptions grid;
 };
 
@@ -60,22 +64,29 @@ using ShadowFunction = std::function<double(double time_s, const Vec3& sun_direc
 double local_solar_hour(double time_s, double longitude_deg);
 
 /// Broadband hemispherical sky emissivity of a record: E_IR/(σT_a⁴) from the measured horizontal IR
-/// when present and `use_measured_sky_ir`, else `options.sky_model` with the Clark–Allen cloud factor.
-double broadband_sky_emissivity(const WeatherRecord& record, const Site& site, const ThermalOptions& options);
+/// when present and `use_measured_sky_ir`, else `options.sky_model` with the Clark–Allen cloud
+/// factor.
+double broadband_sky_emissivity(const WeatherRecord& record, const Site& site,
+                                const ThermalOptions& options);
 
 /// The sky of one weather record: the renderer's sky and the solver's sky load (same numbers).
 /// Broadband emissivity from the measured horizontal IR when present and `use_measured_sky_ir`,
-/// else from `options.sky_model` with the Clark–Allen cloud factor; window emissivity from Idso (1981).
-SkyRadianceModel sky_from_weather(const WeatherRecord& record, const Site& site, const ThermalOptions& options);
+/// else from `options.sky_model` with the Clark–Allen cloud factor; window emissivity from Idso
+/// (1981).
+SkyRadianceModel sky_from_weather(const WeatherRecord& record, const Site& site,
+                                  const ThermalOptions& options);
 
 /// Solar irradiance on a facet, W/m²: DNI cos(incidence) (1 − shadow) when the sun is above the
-/// horizon and in front of the facet, + DHI (1 + cos tilt)/2 (isotropic sky) + GHI ρ_g (1 − cos tilt)/2.
-double facet_solar_irradiance_w_m2(const WeatherRecord& record, const Site& site, const Facet& facet,
-                                   const ThermalOptions& options, const ShadowFunction& shadow = {});
+/// horizon and in front of the facet, + DHI (1 + cos tilt)/2 (isotropic sky) + GHI ρ_g (1 − cos
+/// tilt)/2.
+double facet_solar_irradiance_w_m2(const WeatherRecord& record, const Site& site,
+                                   const Facet& facet, const ThermalOptions& options,
+                                   const ShadowFunction& shadow = {});
 
 /// Surface forcing for the slab solver at one instant.
-SurfaceForcing facet_forcing(const WeatherRecord& record, const Site& site, const ThermalMaterial& material,
-                             const Facet& facet, const ThermalOptions& options, const ShadowFunction& shadow = {});
+SurfaceForcing facet_forcing(const WeatherRecord& record, const Site& site,
+                             const ThermalMaterial& material, const Facet& facet,
+                             const ThermalOptions& options, const ShadowFunction& shadow = {});
 
 /// One sample of a simulated history.
 struct TemperatureSample {
@@ -85,17 +96,19 @@ struct TemperatureSample {
     SurfaceFluxes fluxes;  ///< balance terms at the sample
 };
 
-/// Simulates the facet from `start_s` (uniform at the air temperature) to `end_s`, returning samples
-/// every `sample_every_s` (multiple of the time step) from `record_from_s` on. Throws tirpol::Error
-/// when the weather does not cover [start_s, end_s].
-std::vector<TemperatureSample> simulate_facet(const WeatherSeries& weather, const ThermalMaterial& material,
-                                              const Facet& facet, double start_s, double end_s,
-                                              double record_from_s, double sample_every_s,
-                                              const ThermalOptions& options, const ShadowFunction& shadow = {});
+/// Simulates the facet from `start_s` (uniform at the air temperature) to `end_s`, returning
+/// samples every `sample_every_s` (multiple of the time step) from `record_from_s` on. Throws
+/// tirpol::Error when the weather does not cover [start_s, end_s].
+std::vector<TemperatureSample> simulate_facet(const WeatherSeries& weather,
+                                              const ThermalMaterial& material, const Facet& facet,
+                                              double start_s, double end_s, double record_from_s,
+                                              double sample_every_s, const ThermalOptions& options,
+                                              const ShadowFunction& shadow = {});
 
 /// Surface temperature (K) of the facet at `time_s` after spin-up from `time_s − spin_up_hours`.
-double predict_surface_temperature(const WeatherSeries& weather, const ThermalMaterial& material, const Facet& facet,
-                                   double time_s, const ThermalOptions& options, const ShadowFunction& shadow = {});
+double predict_surface_temperature(const WeatherSeries& weather, const ThermalMaterial& material,
+                                   const Facet& facet, double time_s, const ThermalOptions& options,
+                                   const ShadowFunction& shadow = {});
 
 /// One facet of a batch: its material (not owned), orientation and optional shadow function.
 struct FacetRequest {
@@ -104,10 +117,11 @@ struct FacetRequest {
     ShadowFunction shadow;
 };
 
-/// Surface temperatures (K) of many facets at `time_s`, spun up together: the weather, the sun and the
-/// sky are evaluated once per step and shared by all facets (what a scene with many materials and
-/// orientations needs). Same result as predict_surface_temperature for each facet.
-std::vector<double> predict_surface_temperatures(const WeatherSeries& weather, const std::vector<FacetRequest>& facets,
+/// Surface temperatures (K) of many facets at `time_s`, spun up together: the weather, the sun and
+/// the sky are evaluated once per step and shared by all facets (what a scene with many materials
+/// and orientations needs). Same result as predict_surface_temperature for each facet.
+std::vector<double> predict_surface_temperatures(const WeatherSeries& weather,
+                                                 const std::vector<FacetRequest>& facets,
                                                  double time_s, const ThermalOptions& options);
 
 }  // namespace tirpol::thermal

@@ -1,8 +1,9 @@
 #pragma once
 /// \file thermal_config.h
 /// YAML for the thermal model (docs/thermal.md): `site`, `weather`, `thermal` options, thermal
-/// `materials` (layers, optics, back boundary) and `objects` (material + facet orientation). The same
-/// parsers read these entries inside a scene file and in a standalone thermal file for `tirpol therm`.
+/// `materials` (layers, optics, back boundary) and `objects` (material + facet orientation). The
+/// same parsers read these entries inside a scene file and in a standalone thermal file for `tirpol
+/// therm`.
 
 #include <filesystem>
 #include <memory>
@@ -18,12 +19,14 @@ namespace tirpol::thermal {
 /// `site: {name, latitude_deg, longitude_deg, utc_offset_h, elevation_m}`.
 Site parse_site(const ConfigNode& node);
 
-/// `weather: {file, year?}` (or just the file name): an .epw or a field-log .csv (which needs `site`).
-/// With an EPW and a `site`, the site given in YAML wins (a warning-free override for a nearby scene).
-std::shared_ptr<const WeatherSeries> load_weather(const ConfigNode& node, const std::optional<Site>& site);
+/// `weather: {file, year?}` (or just the file name): an .epw or a field-log .csv (which needs
+/// `site`). With an EPW and a `site`, the site given in YAML wins (a warning-free override for a
+/// nearby scene).
+std::shared_ptr<const WeatherSeries> load_weather(const ConfigNode& node,
+                                                  const std::optional<Site>& site);
 
-/// `thermal: {spin_up_hours, time_step_s, crank_nicolson, sky_model, use_measured_sky_ir, convection,
-/// convection_w_m2_k, ground_albedo, max_cell_thickness_m, delta_t_s}`, all optional.
+/// `thermal: {spin_up_hours, time_step_s, crank_nicolson, sky_model, use_measured_sky_ir,
+/// convection, convection_w_m2_k, ground_albedo, max_cell_thickness_m, delta_t_s}`, all optional.
 ThermalOptions parse_thermal_options(const ConfigNode& node);
 
 /// `{name, solar_absorptivity, thermal_emissivity, layers: [{thickness_m, conductivity_w_m_k,

@@ -3,10 +3,10 @@
 /// The twin's field instrument: what is in front of the camera (the rendered scene or the
 /// blackbody, the polarizer in or out of the beam), the renderer's sensor model as the camera's
 /// detector, a stage decorator that tells the world where the polarizer is, and the devices
-/// themselves — tirpol-stage-sim's engine on a pseudo-terminal opened through the real serial driver,
-/// and the camera served over GigE Vision on loopback (acquisition's fake GigE server) opened as
-/// aravis://. The simulators are acquisition internals: only twin/src sees them (TwinInstrument's
-/// pimpl), so this header needs nothing but acquisition's public API.
+/// themselves — tirpol-stage-sim's engine on a pseudo-terminal opened through the real serial
+/// driver, and the camera served over GigE Vision on loopback (acquisition's fake GigE server)
+/// opened as aravis://. The simulators are acquisition internals: only twin/src sees them
+/// (TwinInstrument's pimpl), so this header needs nothing but acquisition's public API.
 
 #include <cstdint>
 #include <filesystem>
@@ -47,13 +47,13 @@ public:
     void set_angle_deg(double angle_deg);
     double angle_deg() const;
 
-    /// Counts of one frame at polarizer angle `angle_deg`: the sensor model (gain, offset, NEDT noise,
-    /// the grid's reflected and emitted radiance) with a fresh noise realisation per call.
+    /// Counts of one frame at polarizer angle `angle_deg`: the sensor model (gain, offset, NEDT
+    /// noise, the grid's reflected and emitted radiance) with a fresh noise realisation per call.
     void fill(double angle_deg, std::vector<float>& counts);
 
-    /// Counts of one frame of `stokes` through the same sensor model, polarizer at `angle_deg` or out of
-    /// the beam, noise realisation `frame_index` (frames filmed outside the capture loop, e.g. of the
-    /// geometric calibration target).
+    /// Counts of one frame of `stokes` through the same sensor model, polarizer at `angle_deg` or
+    /// out of the beam, noise realisation `frame_index` (frames filmed outside the capture loop,
+    /// e.g. of the geometric calibration target).
     std::vector<float> sensor_frame(const Image& stokes, double angle_deg, bool polarizer_in_beam,
                                     std::uint64_t frame_index) const;
 
@@ -81,7 +81,8 @@ private:
 /// the camera renders the polarizer where the driver says it is (never where the plan wants it).
 class WorldReportingStage final : public acquisition::Stage {
 public:
-    WorldReportingStage(acquisition::Stage& inner, TwinWorld& world) : m_inner(inner), m_world(world) {}
+    WorldReportingStage(acquisition::Stage& inner, TwinWorld& world)
+        : m_inner(inner), m_world(world) {}
     acquisition::StageInfo info() const override { return m_inner.info(); }
     acquisition::Status home(std::chrono::milliseconds timeout) override;
     bool is_homed() const override { return m_inner.is_homed(); }
@@ -118,7 +119,8 @@ public:
     void acquire(const acquisition::CapturePlan& plan, const std::filesystem::path& dir);
 
 private:
-    struct Devices;  ///< the stage simulator on its pty, the drivers, the fake GigE server (twin/src)
+    struct Devices;  ///< the stage simulator on its pty, the drivers, the fake GigE server
+                     ///< (twin/src)
     std::unique_ptr<Devices> m_devices;
 };
 

@@ -5,8 +5,8 @@
 ///   sim://<scene.yaml>[?width=W&height=H&spp=N&fps=F&buffers=Q]
 /// The scene is rendered once when the camera opens (its own camera, resized to W×H; N samples per
 /// pixel); every frame is then the twin instrument's detector looking at that Stokes image through
-/// the wire grid at the polarizer angle (0° until acquisition::couple_simulated_polarizer puts it behind
-/// a stage, as `tirpol acquire` and `tirpol live` do): counts of twin_sensor(), with a fresh
+/// the wire grid at the polarizer angle (0° until acquisition::couple_simulated_polarizer puts it
+/// behind a stage, as `tirpol acquire` and `tirpol live` do): counts of twin_sensor(), with a fresh
 /// temporal-noise realisation per frame. A relative path is taken from the working directory and,
 /// when it starts with `config/` and is not there, from the source tree's config/ folder.
 /// Other `sim://` targets (sim://uniform) go to the factory registered before.
@@ -22,8 +22,8 @@ namespace tirpol::twin {
 /// Idempotent and thread-safe; the CLI calls it at start-up.
 void register_twin_device_schemes();
 
-/// Opens a `sim://<scene.yaml>` camera (what the registered factory calls). Throws tirpol::Error for
-/// a malformed URI or scene file, naming it.
+/// Opens a `sim://<scene.yaml>` camera (what the registered factory calls). Throws tirpol::Error
+/// for a malformed URI or scene file, naming it.
 std::unique_ptr<acquisition::Camera> open_scene_camera(const std::string& uri);
 
 }  // namespace tirpol::twin

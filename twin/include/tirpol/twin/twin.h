@@ -4,10 +4,10 @@
 /// plays the camera (served over GigE Vision on loopback) and tirpol-stage-sim's engine plays the
 /// polarizer mount (APT or Elliptec bytes on a pseudo-terminal, opened through the real serial
 /// driver); `run_capture` records the sessions, calibration reduces them to Stokes, the flat black
-/// paint's polarized emissivity is extracted over view angles and fitted, the scene is rendered again
-/// with the fitted paint and the comparison report is written. A module of its own (tirpol::twin)
-/// because it wires simulation to acquisition, which must not depend on each other; the CLI's demo
-/// step and the Python bindings only call run_twin() and print twin_summary().
+/// paint's polarized emissivity is extracted over view angles and fitted, the scene is rendered
+/// again with the fitted paint and the comparison report is written. A module of its own
+/// (tirpol::twin) because it wires simulation to acquisition, which must not depend on each other;
+/// the CLI's demo step and the Python bindings only call run_twin() and print twin_summary().
 
 #include <filesystem>
 #include <functional>
@@ -32,39 +32,45 @@ struct TwinView {
 
 struct TwinOptions {
     std::filesystem::path out_dir;
-    std::filesystem::path scene_file;  ///< empty: config/scenes/panels_night.yaml of the source tree
+    std::filesystem::path
+        scene_file;  ///< empty: config/scenes/panels_night.yaml of the source tree
     int width = 160, height = 120, spp = 8;
-    int frames_per_angle = 16;  ///< frames averaged per polarizer angle (blackbody steps: twice as many)
-    /// Camera positions; the first is the scene's (the report compares that view). Empty: the scene's
-    /// camera plus two higher ones, so the panel is seen at three view angles.
+    int frames_per_angle =
+        16;  ///< frames averaged per polarizer angle (blackbody steps: twice as many)
+    /// Camera positions; the first is the scene's (the report compares that view). Empty: the
+    /// scene's camera plus two higher ones, so the panel is seen at three view angles.
     std::vector<TwinView> views;
     StageProtocol stage_protocol = StageProtocol::Apt;
-    bool gige = true;  ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
-    int threads = 0;   ///< render threads (0: all cores)
+    bool gige =
+        true;         ///< serve the camera over GigE Vision (false: the in-process SimulatedCamera)
+    int threads = 0;  ///< render threads (0: all cores)
     std::string target = "panel_flat_black_paint";         ///< the panel whose paint is fitted
     std::string reflector = "panel_diffuse_ir_reflector";  ///< downwelling reference (paper eq 17)
-    std::string tool_version = "tirpol";                   ///< written into the report's provenance ("tirpol X.Y.Z")
-    /// Changes the truth only (e.g. a material's roughness), not the scene the fitted render uses: what a
-    /// real scene differs by from its model. The report should flag the regions it touches. Null: none.
+    std::string tool_version = "tirpol";  ///< written into the report's provenance ("tirpol X.Y.Z")
+    /// Changes the truth only (e.g. a material's roughness), not the scene the fitted render uses:
+    /// what a real scene differs by from its model. The report should flag the regions it touches.
+    /// Null: none.
     std::function<void(simulation::Scene&)> perturb_truth;
     /// Compare against a render with the fitted target paint (true, the chain's point). False: the
-    /// comparison render keeps every material of the scene file, so the only difference between model
-    /// and truth is `perturb_truth` — the report's false alarms and detections are then its own, free of
-    /// the fit's method bias (eq 17's, docs/twin.md).
+    /// comparison render keeps every material of the scene file, so the only difference between
+    /// model and truth is `perturb_truth` — the report's false alarms and detections are then its
+    /// own, free of the fit's method bias (eq 17's, docs/twin.md).
     bool render_fitted_target = true;
     /// False-alarm rate per region and power of the report's region-mean tests.
     report::TestDesign report_design;
 };
 
-/// Extracted polarized emissivity of the target in one view (plane-of-emission frame, σ = 1 standard
-/// uncertainty). Two references separate the instrument from the method: eq 17 applied to the truth
-/// render (`method_*`: a perfect instrument, so eps − method is the instrument chain's error) and the
-/// paint's own directional emissivity (`true_*`: method − true is eq 17's bias, from a downwelling
-/// that is not uniform — docs/twin.md).
+/// Extracted polarized emissivity of the target in one view (plane-of-emission frame, σ = 1
+/// standard uncertainty). Two references separate the instrument from the method: eq 17 applied to
+/// the truth render (`method_*`: a perfect instrument, so eps − method is the instrument chain's
+/// error) and the paint's own directional emissivity (`true_*`: method − true is eq 17's bias, from
+/// a downwelling that is not uniform — docs/twin.md).
 struct TwinEmissivity {
     double view_angle_deg = 0.0;
-    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;              ///< measured sessions
-    double method_s0 = 0.0, method_s0_sigma = 0.0, method_s1 = 0.0, method_s1_sigma = 0.0;  ///< truth render
+    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0,
+           eps_s1_sigma = 0.0;  ///< measured sessions
+    double method_s0 = 0.0, method_s0_sigma = 0.0, method_s1 = 0.0,
+           method_s1_sigma = 0.0;         ///< truth render
     double true_s0 = 0.0, true_s1 = 0.0;  ///< the true paint's directional emissivity at that angle
 };
 
@@ -74,10 +80,11 @@ struct TwinParameter {
     bool fixed = false;
 };
 
-/// The fit through the renderer (fitting/render_fit.h) of the same paint, beside eq 17's: the measured
-/// Stokes of the target in every view against renders of the scene with candidate n and σ.
+/// The fit through the renderer (fitting/render_fit.h) of the same paint, beside eq 17's: the
+/// measured Stokes of the target in every view against renders of the scene with candidate n and σ.
 struct TwinRenderFit {
-    std::vector<TwinParameter> parameters;  ///< n and σ (k, ρ_D and the rest as in the scene's paint)
+    std::vector<TwinParameter>
+        parameters;  ///< n and σ (k, ρ_D and the rest as in the scene's paint)
     double reduced_chi2 = 0.0;
     int dof = 0;
     int renders = 0;
@@ -89,36 +96,45 @@ struct TwinRenderFit {
 struct TwinRegionAgreement {
     std::string name;
     std::size_t pixels = 0;
-    report::QuantityVerdict quantities[3];                 ///< S0, S1, S2: region-mean test and σ diagnostic
-    report::Agreement verdict = report::Agreement::NoData;  ///< ExceedsNoise when any quantity exceeds
+    report::QuantityVerdict quantities[3];  ///< S0, S1, S2: region-mean test and σ diagnostic
+    report::Agreement verdict =
+        report::Agreement::NoData;  ///< ExceedsNoise when any quantity exceeds
 };
 
 /// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
 struct TwinStokesCheck {
     double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0};
-    double sigma[3] = {0, 0, 0};  ///< standard error of the mean difference (ROI scatter of measured − truth)
-    double sigma_temporal[3] = {0, 0, 0};  ///< of which temporal noise alone (the reduction's *_std channels)
+    double sigma[3] = {
+        0, 0, 0};  ///< standard error of the mean difference (ROI scatter of measured − truth)
+    double sigma_temporal[3] = {
+        0, 0, 0};  ///< of which temporal noise alone (the reduction's *_std channels)
 };
 
 struct TwinResult {
-    std::string camera_transport;  ///< "GigE Vision on 127.0.0.1 (aravis://…)" or the fallback's reason
+    std::string
+        camera_transport;  ///< "GigE Vision on 127.0.0.1 (aravis://…)" or the fallback's reason
     std::string stage_description;
     std::vector<std::filesystem::path> sessions;
     TwinStokesCheck target_stokes;  ///< first view
     std::vector<TwinEmissivity> emissivity;
     std::vector<TwinParameter> parameters;
     double reduced_chi2 = 0.0;
-    int dof = 0;                  ///< of the eq-17 fit
-    TwinRenderFit render_fit;     ///< the same paint fitted through the renderer
-    CameraGeometryRecovery camera;      ///< the field camera's lens and pose (view 0), true and recovered
-    report::Registration registration;  ///< of the comparison: by the recovered camera model, with the residual
+    int dof = 0;               ///< of the eq-17 fit
+    TwinRenderFit render_fit;  ///< the same paint fitted through the renderer
+    CameraGeometryRecovery
+        camera;  ///< the field camera's lens and pose (view 0), true and recovered
+    report::Registration
+        registration;  ///< of the comparison: by the recovered camera model, with the residual
     std::vector<TwinRegionAgreement> regions;
-    std::string report_summary;           ///< the report's Summary paragraph
-    BlackbodySetpoints blackbody;         ///< the calibration set-points, derived from the truth renders
-    double calibration_outside_fraction = 0.0;  ///< of view 0's reduced frames (the reduction's attribute)
+    std::string report_summary;    ///< the report's Summary paragraph
+    BlackbodySetpoints blackbody;  ///< the calibration set-points, derived from the truth renders
+    double calibration_outside_fraction =
+        0.0;  ///< of view 0's reduced frames (the reduction's attribute)
     std::filesystem::path report_html, fitted_material, measured_exr, simulated_exr;
-    std::filesystem::path report_regions;   ///< the report's regions as YAML (for `tirpol compare --rois`)
-    std::filesystem::path fit_comparison;   ///< fit/paint_fits.txt: eq 17 and the renderer fit side by side
+    std::filesystem::path
+        report_regions;  ///< the report's regions as YAML (for `tirpol compare --rois`)
+    std::filesystem::path
+        fit_comparison;  ///< fit/paint_fits.txt: eq 17 and the renderer fit side by side
     std::map<std::string, double> seconds;  ///< per stage
 };
 
@@ -126,10 +142,12 @@ struct TwinResult {
 TwinResult run_twin(const TwinOptions& options);
 
 /// The paint's parameters from eq 17's route and from the fit through the renderer, side by side
-/// (true value, each fit's value ± 1σ, χ²/dof): lines of the summary and the file fit/paint_fits.txt.
+/// (true value, each fit's value ± 1σ, χ²/dof): lines of the summary and the file
+/// fit/paint_fits.txt.
 std::string paint_fit_comparison(const TwinResult& r);
 
-/// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement, times.
+/// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement,
+/// times.
 std::string twin_summary(const TwinResult& r);
 
 }  // namespace tirpol::twin

@@ -1,7 +1,8 @@
 #pragma once
 /// \file aravis_camera.h
 /// GenICam cameras (GigE Vision, USB3 Vision) through Aravis 0.8: `aravis://<device-id>`.
-/// The device id is Aravis's ("<vendor>-<model>-<serial>", e.g. `Aravis-Fake-GV01`), or an IP address.
+/// The device id is Aravis's ("<vendor>-<model>-<serial>", e.g. `Aravis-Fake-GV01`), or an IP
+/// address.
 
 #include <chrono>
 #include <memory>
@@ -13,12 +14,13 @@
 
 namespace tirpol::acquisition {
 
-/// One device found by Aravis discovery (GigE Vision broadcast on every interface, USB3 Vision enumeration).
+/// One device found by Aravis discovery (GigE Vision broadcast on every interface, USB3 Vision
+/// enumeration).
 struct AravisDeviceInfo {
-    std::string id;          ///< pass to aravis://<id>
+    std::string id;  ///< pass to aravis://<id>
     std::string vendor, model, serial;
-    std::string address;     ///< IP address for GigE Vision, empty for USB3 Vision
-    std::string protocol;    ///< "GigEVision", "USB3Vision"
+    std::string address;   ///< IP address for GigE Vision, empty for USB3 Vision
+    std::string protocol;  ///< "GigEVision", "USB3Vision"
 };
 
 /// Runs Aravis discovery once (about 1 s for GigE Vision) and lists the devices found.
@@ -30,9 +32,10 @@ struct AravisCameraOptions {
     std::optional<std::string> pixel_format;  ///< Mono8, Mono10, Mono12, Mono14 or Mono16
     std::optional<int> width, height;         ///< region of interest, from the top-left corner
     std::optional<double> frame_rate_hz;
-    bool software_trigger = false;  ///< each grab() fires TriggerSoftware (TriggerMode=On, TriggerSource=Software)
-    int stream_buffers = 32;        ///< buffers queued on the stream; more absorb host hiccups
-    bool auto_packet_size = true;   ///< GigE Vision: negotiate the largest packet the path carries
+    bool software_trigger =
+        false;  ///< each grab() fires TriggerSoftware (TriggerMode=On, TriggerSource=Software)
+    int stream_buffers = 32;       ///< buffers queued on the stream; more absorb host hiccups
+    bool auto_packet_size = true;  ///< GigE Vision: negotiate the largest packet the path carries
     /// GigE Vision: how long to keep retrying (with a growing pause) while an earlier control
     /// session, e.g. of a program that was killed, still holds the camera until its heartbeat times
     /// out. A warning says so at the first refusal.

@@ -1,14 +1,15 @@
 #pragma once
 /// \file blackbody_simulator.h
 /// A Fluke 4180-style blackbody controller that speaks the real serial protocol (fluke_scpi.h) on a
-/// pseudo-terminal (`tirpol-blackbody-sim`, or a thread in tests) or in-process (`sim://`). Its plate
-/// follows a first-order thermal response, T(t) = T_set + (T_0 − T_set)·exp(−(t − t_0)/τ), from the
-/// temperature it had when the set-point changed; the control sensor reads it with Gaussian noise,
-/// sampled every sample_period_s on the device's own clock. The stability flag (SOUR:STAB:TEST?) is
-/// computed as the controller's STABLE LIMIT test: 1 when every control reading of the last
-/// stability_window_s lies within ± SOUR:STAB:LIM of their mean (a full window is needed). Faults on
-/// request from the N-th set-point on: the over-temperature cutout trips (heater off: the plate
-/// cools to ambient, SOUR:PROT:TRIP? answers 1), no reply at all, or garbled replies.
+/// pseudo-terminal (`tirpol-blackbody-sim`, or a thread in tests) or in-process (`sim://`). Its
+/// plate follows a first-order thermal response, T(t) = T_set + (T_0 − T_set)·exp(−(t − t_0)/τ),
+/// from the temperature it had when the set-point changed; the control sensor reads it with
+/// Gaussian noise, sampled every sample_period_s on the device's own clock. The stability flag
+/// (SOUR:STAB:TEST?) is computed as the controller's STABLE LIMIT test: 1 when every control
+/// reading of the last stability_window_s lies within ± SOUR:STAB:LIM of their mean (a full window
+/// is needed). Faults on request from the N-th set-point on: the over-temperature cutout trips
+/// (heater off: the plate cools to ambient, SOUR:PROT:TRIP? answers 1), no reply at all, or garbled
+/// replies.
 
 #include <chrono>
 #include <cstdint>
@@ -45,12 +46,15 @@ struct BlackbodySimulatorOptions {
 class BlackbodySimulator final : public PtyDevice {
 public:
     /// Throws tirpol::Error for a model other than 4180/4181 or a non-positive τ, window or period.
-    explicit BlackbodySimulator(BlackbodySimulatorOptions options, Clock::time_point start = Clock::now());
+    explicit BlackbodySimulator(BlackbodySimulatorOptions options,
+                                Clock::time_point start = Clock::now());
 
-    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now) override;
+    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes,
+                                      Clock::time_point now) override;
     std::vector<std::uint8_t> poll(Clock::time_point now) override;
 
-    /// The plate's true (noise-free) temperature at `now`, what a camera sees; safe from any thread.
+    /// The plate's true (noise-free) temperature at `now`, what a camera sees; safe from any
+    /// thread.
     double plate_temperature_k(Clock::time_point now) const;
 
 private:

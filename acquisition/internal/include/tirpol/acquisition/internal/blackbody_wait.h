@@ -2,9 +2,9 @@
 /// \file blackbody_wait.h
 /// Bringing a blackbody controller to a set-point before frames are taken, and summarising what it
 /// read while they were: the plate lags its set-point (a first-order response with a time constant
-/// of minutes), and frames taken before it settles carry the lag into the calibration. Internal: the
-/// capture loop calls it for a plan's controlled blackbody steps (BlackbodyStabilityCriterion is in
-/// capture_plan.h).
+/// of minutes), and frames taken before it settles carry the lag into the calibration. Internal:
+/// the capture loop calls it for a plan's controlled blackbody steps (BlackbodyStabilityCriterion
+/// is in capture_plan.h).
 
 #include <functional>
 #include <optional>
@@ -31,7 +31,8 @@ Result<SetPointReached> bring_blackbody_to(BlackbodyController& controller, doub
 /// Accumulates the controller's readings while a record's frames are taken.
 class BlackbodyReadingLog {
 public:
-    BlackbodyReadingLog(double set_point_k, double wait_s) : m_set_point_k(set_point_k), m_wait_s(wait_s) {}
+    BlackbodyReadingLog(double set_point_k, double wait_s)
+        : m_set_point_k(set_point_k), m_wait_s(wait_s) {}
     void add(const BlackbodyStatus& status);
     std::size_t count() const { return m_temperatures_k.size(); }
     /// The summary a session record keeps (count() ≥ 1).

@@ -1,15 +1,16 @@
 #pragma once
 /// \file boson_control.h
 /// The FLIR Boson's control link: FSLP commands (boson_fslp.h) over its USB CDC-ACM serial port
-/// (/dev/ttyACM0, 921600 8N1 as flirpy opens it; a pseudo-terminal for the simulator). One command at
-/// a time, each waited for: a reply is matched by its sequence number and function code. Every failure
-/// is a value naming the port, the function and what came back:
+/// (/dev/ttyACM0, 921600 8N1 as flirpy opens it; a pseudo-terminal for the simulator). One command
+/// at a time, each waited for: a reply is matched by its sequence number and function code. Every
+/// failure is a value naming the port, the function and what came back:
 /// - Timeout: no reply to the command within reply_timeout (the core stopped answering);
 /// - BadReply: a frame with a bad CRC or escape, a reply carrying another sequence number than the
 ///   command's (a late reply to an earlier command is skipped, anything else is an error), another
 ///   function code, or fewer data bytes than the function returns;
-/// - DeviceFault: the reply's FLR_RESULT status is not R_SUCCESS (named, e.g. R_CAM_API_INVALID_INPUT).
-/// Function codes and data layouts: boson_fslp.h, which cites the SDK headers and flirpy.
+/// - DeviceFault: the reply's FLR_RESULT status is not R_SUCCESS (named, e.g.
+/// R_CAM_API_INVALID_INPUT). Function codes and data layouts: boson_fslp.h, which cites the SDK
+/// headers and flirpy.
 
 #include <chrono>
 #include <cstdint>
@@ -24,8 +25,9 @@ namespace tirpol::acquisition {
 
 struct BosonControlOptions {
     std::chrono::milliseconds reply_timeout{500};  ///< per command; the core answers in a few ms
-    std::chrono::milliseconds ffc_timeout{5000};   ///< run_ffc_and_wait: the shutter FFC takes ~0.5 s
-    std::chrono::milliseconds ffc_poll{20};        ///< FFC status polling period while waiting
+    std::chrono::milliseconds ffc_timeout{
+        5000};                               ///< run_ffc_and_wait: the shutter FFC takes ~0.5 s
+    std::chrono::milliseconds ffc_poll{20};  ///< FFC status polling period while waiting
 };
 
 /// The FFC bookkeeping the core keeps, read in one go.
@@ -40,7 +42,8 @@ struct BosonFfcState {
 class BosonControl final : public FfcControl {
 public:
     /// Takes the port; `name` ("boson:///dev/ttyACM0") prefixes messages.
-    BosonControl(std::unique_ptr<BytePort> port, std::string name, BosonControlOptions options = {});
+    BosonControl(std::unique_ptr<BytePort> port, std::string name,
+                 BosonControlOptions options = {});
 
     const std::string& name() const { return m_name; }
     Result<std::uint32_t> camera_serial();
@@ -71,7 +74,8 @@ public:
     Result<FrameAudit::CoreState> core_state() override;
 
     /// Sends one command and returns its reply's data (at least `reply_bytes` long).
-    Result<std::vector<std::uint8_t>> transact(std::uint32_t function, std::vector<std::uint8_t> data,
+    Result<std::vector<std::uint8_t>> transact(std::uint32_t function,
+                                               std::vector<std::uint8_t> data,
                                                std::size_t reply_bytes);
 
 private:
@@ -89,7 +93,8 @@ private:
 
 /// Opens a Boson's control port (921600 8N1) and checks a Boson answers: reads its serial and part
 /// numbers. `uri` names it in messages.
-Result<std::unique_ptr<BosonControl>> open_boson_control(const std::string& port_path, const std::string& uri,
+Result<std::unique_ptr<BosonControl>> open_boson_control(const std::string& port_path,
+                                                         const std::string& uri,
                                                          BosonControlOptions options = {});
 
 }  // namespace tirpol::acquisition

@@ -1,17 +1,20 @@
 #pragma once
 /// \file boson_core_model.h
 /// The state of a simulated FLIR Boson core on its own clock, shared by its two links: the control
-/// link (BosonSimulator on a pseudo-terminal) and the video (a SimulatedCamera whose frame generator
-/// passes through apply()). Thread-safe: both links call it from their own threads.
+/// link (BosonSimulator on a pseudo-terminal) and the video (a SimulatedCamera whose frame
+/// generator passes through apply()). Thread-safe: both links call it from their own threads.
 ///
 /// Behaviour modelled on the device:
 /// - the FPA temperature follows start + drift × t, plus any step a test adds (set_fpa_step_k);
-/// - in auto FFC mode an FFC starts by itself when the FPA has moved by the threshold since the last
+/// - in auto FFC mode an FFC starts by itself when the FPA has moved by the threshold since the
+/// last
 ///   FFC (the SDK's BOSON_SETFFCTEMPTHRESHOLD); in manual mode only on BOSON_RUNFFC;
 /// - an FFC closes the shutter for ffc_duration_s (frames show the uniform shutter), then every
-///   pixel's offset changes: a frame-wide step (the shutter's temperature estimate) plus a per-pixel
-///   residual, both drawn anew per FFC; between FFCs the offset drifts with the FPA temperature;
-/// - the frame counter counts at frame_rate_hz from power-up; the last-FFC frame count is the counter
+///   pixel's offset changes: a frame-wide step (the shutter's temperature estimate) plus a
+///   per-pixel residual, both drawn anew per FFC; between FFCs the offset drifts with the FPA
+///   temperature;
+/// - the frame counter counts at frame_rate_hz from power-up; the last-FFC frame count is the
+/// counter
 ///   when that FFC started.
 
 #include <chrono>
@@ -26,7 +29,8 @@ namespace tirpol::acquisition {
 
 struct BosonCoreConfig {
     std::uint32_t serial = 93588;
-    std::string part_number = "20640A050-6IAAX";  ///< a 640×512 50° Boson part number, ≤ 20 characters
+    std::string part_number =
+        "20640A050-6IAAX";  ///< a 640×512 50° Boson part number, ≤ 20 characters
     double frame_rate_hz = 60.0;
     double fpa_start_k = 308.15;
     double fpa_drift_k_per_s = 0.0;
@@ -35,8 +39,9 @@ struct BosonCoreConfig {
     double ffc_duration_s = 0.5;
     double ffc_step_std_counts = 20.0;  ///< frame-wide offset change per FFC, standard deviation
     double ffc_pixel_std_counts = 2.0;  ///< per-pixel offset change per FFC, standard deviation
-    double offset_counts_per_k = 0.0;   ///< uncorrected offset drift per kelvin of FPA change since the FFC
-    double shutter_counts = 7000.0;     ///< what the sensor sees with the shutter closed
+    double offset_counts_per_k =
+        0.0;  ///< uncorrected offset drift per kelvin of FPA change since the FFC
+    double shutter_counts = 7000.0;  ///< what the sensor sees with the shutter closed
     boson::GainMode gain_mode = boson::GainMode::High;
     std::uint64_t seed = 7;
 };
@@ -66,8 +71,8 @@ public:
     /// FFCs started so far, by RUNFFC and by the core itself (observers, tests).
     int ffcs_started(Clock::time_point now);
     int auto_ffcs_started(Clock::time_point now);
-    /// Turns expected scene counts into what the core outputs at `now`: the shutter while an FFC runs,
-    /// else scene + the current offsets.
+    /// Turns expected scene counts into what the core outputs at `now`: the shutter while an FFC
+    /// runs, else scene + the current offsets.
     void apply(std::vector<float>& counts, Clock::time_point now);
 
 private:

@@ -33,7 +33,8 @@ struct BosonSimulatorOptions {
 class BosonSimulator final : public PtyDevice {
 public:
     BosonSimulator(std::shared_ptr<BosonCoreModel> core, BosonSimulatorOptions options = {});
-    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now) override;
+    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes,
+                                      Clock::time_point now) override;
     std::vector<std::uint8_t> poll(Clock::time_point now) override;
     const std::shared_ptr<BosonCoreModel>& core() const { return m_core; }
 

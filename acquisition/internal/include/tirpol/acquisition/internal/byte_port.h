@@ -17,7 +17,8 @@ class BytePort {
 public:
     virtual ~BytePort() = default;
     /// Writes all of `bytes` within `timeout`.
-    virtual Status write(std::span<const std::uint8_t> bytes, std::chrono::milliseconds timeout) = 0;
+    virtual Status write(std::span<const std::uint8_t> bytes,
+                         std::chrono::milliseconds timeout) = 0;
     /// Returns the bytes available now, waiting up to `timeout` for at least one.
     /// Timeout error if none arrive; Disconnected if the device went away.
     virtual Result<std::vector<std::uint8_t>> read_some(std::chrono::milliseconds timeout) = 0;

@@ -1,11 +1,12 @@
 #pragma once
 /// \file elliptec_protocol.h
 /// Thorlabs Elliptec (ELLx) ASCII protocol codec: pure functions over text, no I/O.
-/// Source: Thorlabs, "Elliptec™ ELLx modules protocol manual" (Issue 7 and later), §2 "Communication
-/// protocol" and the per-command pages: host → module `<addr><cmd>[data]` with a one-character hex
-/// address 0–F and a lower-case two-letter command; module → host `<addr><CMD>[data]\r\n` with an
-/// upper-case reply code. Positions are 32-bit two's complement as 8 upper-case hex digits.
-/// Serial settings: 9600 baud, 8 data bits, no parity, 1 stop bit, no flow control.
+/// Source: Thorlabs, "Elliptec™ ELLx modules protocol manual" (Issue 7 and later), §2
+/// "Communication protocol" and the per-command pages: host → module `<addr><cmd>[data]` with a
+/// one-character hex address 0–F and a lower-case two-letter command; module → host
+/// `<addr><CMD>[data]\r\n` with an upper-case reply code. Positions are 32-bit two's complement as
+/// 8 upper-case hex digits. Serial settings: 9600 baud, 8 data bits, no parity, 1 stop bit, no flow
+/// control.
 
 #include <cstdint>
 #include <optional>
@@ -16,7 +17,8 @@ namespace tirpol::acquisition::elliptec {
 
 /// `<a>in`: get information (reply `IN`).
 std::string info_request(char address);
-/// `<a>ho<dir>`: home; dir 0 = clockwise, 1 = counter-clockwise (rotary stages). Reply `PO` when done.
+/// `<a>ho<dir>`: home; dir 0 = clockwise, 1 = counter-clockwise (rotary stages). Reply `PO` when
+/// done.
 std::string home(char address, bool clockwise = true);
 /// `<a>ma<8 hex>`: move absolute to `pulses`. Reply `PO` when done, `GS` on error/busy.
 std::string move_absolute(char address, std::int32_t pulses);
@@ -52,8 +54,8 @@ struct DeviceInfo {
     int firmware = 0;
     bool imperial_thread = false;
     int hardware_release = 0;
-    std::uint32_t travel = 0;          ///< degrees for rotary mounts (360)
-    std::uint32_t pulses = 0;          ///< pulses over `travel`
+    std::uint32_t travel = 0;  ///< degrees for rotary mounts (360)
+    std::uint32_t pulses = 0;  ///< pulses over `travel`
     /// Pulses per degree (rotary) or per mm (linear): pulses / travel.
     double pulses_per_unit() const { return travel ? static_cast<double>(pulses) / travel : 0.0; }
 };
@@ -63,11 +65,23 @@ std::string encode_info(const DeviceInfo& info);
 
 /// Status codes of the `GS` reply (manual, "_gs_ get status" table).
 enum StatusCode : int {
-    kOk = 0, kCommunicationTimeout = 1, kMechanicalTimeout = 2, kCommandError = 3, kValueOutOfRange = 4,
-    kModuleIsolated = 5, kModuleOutOfIsolation = 6, kInitializingError = 7, kThermalError = 8, kBusy = 9,
-    kSensorError = 10, kMotorError = 11, kOutOfRange = 12, kOverCurrentError = 13,
+    kOk = 0,
+    kCommunicationTimeout = 1,
+    kMechanicalTimeout = 2,
+    kCommandError = 3,
+    kValueOutOfRange = 4,
+    kModuleIsolated = 5,
+    kModuleOutOfIsolation = 6,
+    kInitializingError = 7,
+    kThermalError = 8,
+    kBusy = 9,
+    kSensorError = 10,
+    kMotorError = 11,
+    kOutOfRange = 12,
+    kOverCurrentError = 13,
 };
-/// Meaning of a status code as the manual words it ("Busy", "Mechanical time out", ...; 14–255 reserved).
+/// Meaning of a status code as the manual words it ("Busy", "Mechanical time out", ...; 14–255
+/// reserved).
 std::string status_meaning(int code);
 /// The status code in a `GS` reply's data (2 hex digits), std::nullopt if malformed.
 std::optional<int> parse_status(const Reply& reply);

@@ -1,6 +1,7 @@
 #pragma once
 /// \file fluke_blackbody.h
-/// The Fluke 4180/4181 driver on an already open byte port (open_blackbody in blackbody.h opens it by URI).
+/// The Fluke 4180/4181 driver on an already open byte port (open_blackbody in blackbody.h opens it
+/// by URI).
 
 #include <chrono>
 #include <memory>
@@ -17,8 +18,9 @@ struct FlukeBlackbodyOptions {
 };
 
 /// The Fluke 4180/4181 driver on an open port: identifies the device (*IDN?), clears its error
-/// queue (*CLS) and selects °C (UNIT:TEMP C). Timeout/BadReply when it does not answer as a 4180 does.
-Result<std::unique_ptr<BlackbodyController>> open_fluke_blackbody(std::unique_ptr<BytePort> port, std::string uri,
-                                                                  const FlukeBlackbodyOptions& options);
+/// queue (*CLS) and selects °C (UNIT:TEMP C). Timeout/BadReply when it does not answer as a 4180
+/// does.
+Result<std::unique_ptr<BlackbodyController>> open_fluke_blackbody(
+    std::unique_ptr<BytePort> port, std::string uri, const FlukeBlackbodyOptions& options);
 
 }  // namespace tirpol::acquisition

@@ -2,11 +2,11 @@
 /// \file fluke_scpi.h
 /// Codec of the serial protocol of the Fluke Calibration 4180/4181 Precision Infrared Calibrators
 /// (Users/Operators Manual, chapter "Digital Communication Interface": "Serial Operation", "Command
-/// Syntax", "Serial Commands - Alphabetic Listing"). ASCII, SCPI-1994 style, 8 data bits, no parity,
-/// 1 stop bit; a command ends with CR or LF, mnemonics are case-insensitive and have a long and a
-/// short form, no compound commands; a query's reply is one line. Pure functions over text; the
-/// driver (fluke_blackbody.cpp) and the simulator (blackbody_simulator.cpp) share them.
-/// Which commands come from where: docs/acquisition-blackbody.md.
+/// Syntax", "Serial Commands - Alphabetic Listing"). ASCII, SCPI-1994 style, 8 data bits, no
+/// parity, 1 stop bit; a command ends with CR or LF, mnemonics are case-insensitive and have a long
+/// and a short form, no compound commands; a query's reply is one line. Pure functions over text;
+/// the driver (fluke_blackbody.cpp) and the simulator (blackbody_simulator.cpp) share them. Which
+/// commands come from where: docs/acquisition-blackbody.md.
 
 #include <optional>
 #include <string>

@@ -2,7 +2,8 @@
 /// \file frame_averager.h
 /// Per-pixel running mean and standard deviation of a frame stream (Welford's online algorithm,
 /// B. P. Welford, Technometrics 4(3):419–420, 1962), in double so that 10⁴ frames of 14-bit counts
-/// lose nothing. The result is the `counts` / `counts_std` pair of a raw-frame EXR (ARCHITECTURE.md).
+/// lose nothing. The result is the `counts` / `counts_std` pair of a raw-frame EXR
+/// (ARCHITECTURE.md).
 
 #include <cstdint>
 #include <vector>

@@ -4,18 +4,18 @@
 ///
 /// Every camera back end stamps a frame with its host reception time on CLOCK_REALTIME (Aravis: the
 /// stream thread's time at the GVSP leader packet; V4L2: the driver's buffer timestamp mapped to
-/// CLOCK_REALTIME; sim://: the instant the frame left the simulated sensor). A host stamp is late by
-/// however long the receiving thread waited for the CPU, so when the camera also gives a device
+/// CLOCK_REALTIME; sim://: the instant the frame left the simulated sensor). A host stamp is late
+/// by however long the receiving thread waited for the CPU, so when the camera also gives a device
 /// timestamp, the gate maps it to host time with the smallest host − device offset seen (the offset
-/// plus the shortest latency, allowed to creep by 200 ppm for clock drift) and uses the earlier of the
-/// two. Reception marks the *end* of exposure and readout, so a frame received just after the stage
-/// settled was mostly exposed before. The gate bounds the exposure start from below by
+/// plus the shortest latency, allowed to creep by 200 ppm for clock drift) and uses the earlier of
+/// the two. Reception marks the *end* of exposure and readout, so a frame received just after the
+/// stage settled was mostly exposed before. The gate bounds the exposure start from below by
 ///     reception − exposure_window,   exposure_window = 1.5 × frame period
-/// (one period of integration — a microbolometer integrates continuously over about one frame — plus
-/// half a period for readout and transfer latency), and keeps a frame only if that bound is at or
-/// after the step's settle end. The frame period is the longer of the camera's nominal one (when it
-/// reports a rate) and the shortest interval per frame id observed so far — a camera that cannot keep
-/// the rate it reports runs at the longer period; with neither yet, 0.2 s.
+/// (one period of integration — a microbolometer integrates continuously over about one frame —
+/// plus half a period for readout and transfer latency), and keeps a frame only if that bound is at
+/// or after the step's settle end. The frame period is the longer of the camera's nominal one (when
+/// it reports a rate) and the shortest interval per frame id observed so far — a camera that cannot
+/// keep the rate it reports runs at the longer period; with neither yet, 0.2 s.
 
 #include <cstdint>
 #include <optional>
@@ -47,7 +47,8 @@ private:
     std::int64_t reception_ns(const Frame& frame);
 
     std::optional<std::int64_t> m_nominal_period_ns;
-    std::optional<std::int64_t> m_min_offset_ns;  ///< smallest host − device timestamp, drift-corrected
+    std::optional<std::int64_t>
+        m_min_offset_ns;  ///< smallest host − device timestamp, drift-corrected
     std::int64_t m_last_device_ns = 0;
     std::optional<std::int64_t> m_min_period_ns;  ///< shortest interval per frame id seen
     bool m_have_last = false;

@@ -17,6 +17,7 @@ struct SerialSettings {
 };
 
 /// Opens and configures `path`. IoError/Disconnected/InvalidArgument (unsupported baud) on failure.
-Result<std::unique_ptr<BytePort>> open_serial_port(const std::filesystem::path& path, const SerialSettings& settings);
+Result<std::unique_ptr<BytePort>> open_serial_port(const std::filesystem::path& path,
+                                                   const SerialSettings& settings);
 
 }  // namespace tirpol::acquisition

@@ -34,9 +34,9 @@ std::optional<SimFault> parse_sim_fault(const std::string& text);
 struct StageSimulatorOptions {
     SimProtocol protocol = SimProtocol::Apt;
     SimFault fault = SimFault::None;
-    int fault_on_move = 1;        ///< the 1-based absolute move at which the fault starts
-    double deg_per_s = 10.0;      ///< K10CR1 top speed is about 10°/s; ELL14 several hundred °/s
-    double start_deg = 37.5;      ///< position at power-up (unknown to the host until homed)
+    int fault_on_move = 1;    ///< the 1-based absolute move at which the fault starts
+    double deg_per_s = 10.0;  ///< K10CR1 top speed is about 10°/s; ELL14 several hundred °/s
+    double start_deg = 37.5;  ///< position at power-up (unknown to the host until homed)
     char elliptec_address = '0';
     std::chrono::milliseconds latency{5};  ///< reply latency of immediate requests
 };
@@ -47,7 +47,8 @@ public:
     explicit StageSimulator(StageSimulatorOptions options);
 
     /// Consumes bytes from the host; returns bytes to send back now.
-    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes, Clock::time_point now) override;
+    std::vector<std::uint8_t> receive(std::span<const std::uint8_t> bytes,
+                                      Clock::time_point now) override;
     /// Bytes whose time has come (move completions).
     std::vector<std::uint8_t> poll(Clock::time_point now) override;
     /// Whether the device should hang up now (disconnect fault).
@@ -56,7 +57,8 @@ public:
     double angle_deg(Clock::time_point now) const;
     /// The mount's physical angle at `now` in degrees [0, 360), turning at deg_per_s during a move;
     /// safe to call from any thread while another serves the protocol (it reads a snapshot of the
-    /// trajectory, published at each move start and each poll). What a camera behind the polarizer sees.
+    /// trajectory, published at each move start and each poll). What a camera behind the polarizer
+    /// sees.
     double physical_angle_deg(Clock::time_point now) const;
 
 private:
@@ -94,6 +96,7 @@ private:
 };
 
 /// Serves `simulator` on `pty` until `stop` is set or the simulator hangs up (serve_pty_device).
-void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty, const std::atomic<bool>& stop);
+void serve_stage_simulator(StageSimulator& simulator, PseudoTerminal& pty,
+                           const std::atomic<bool>& stop);
 
 }  // namespace tirpol::acquisition

@@ -28,7 +28,8 @@ public:
     virtual int open(const char* path, int flags) = 0;
     virtual int close(int fd) = 0;
     virtual int ioctl(int fd, unsigned long request, void* arg) = 0;
-    virtual void* mmap(std::size_t length, int prot, int flags, int fd, off_t offset) = 0;  ///< MAP_FAILED on error
+    virtual void* mmap(std::size_t length, int prot, int flags, int fd,
+                       off_t offset) = 0;  ///< MAP_FAILED on error
     virtual int munmap(void* address, std::size_t length) = 0;
     virtual int poll(pollfd* fds, nfds_t count, int timeout_ms) = 0;
 };
@@ -39,21 +40,26 @@ std::shared_ptr<V4l2Io> system_v4l2_io();
 struct V4l2CameraOptions {
     std::optional<std::string> pixel_format;  ///< "Y16" (16-bit little-endian) or "GREY" (8-bit)
     std::optional<int> width, height;
-    std::optional<double> frame_rate_hz;      ///< via VIDIOC_S_PARM when the driver has V4L2_CAP_TIMEPERFRAME
-    unsigned buffers = 4;                     ///< requested; the driver may grant fewer (at least 2 are needed)
+    std::optional<double>
+        frame_rate_hz;     ///< via VIDIOC_S_PARM when the driver has V4L2_CAP_TIMEPERFRAME
+    unsigned buffers = 4;  ///< requested; the driver may grant fewer (at least 2 are needed)
 };
 
-/// A /dev/video* node that is a streaming video-capture device (UVC also creates metadata nodes: skipped).
+/// A /dev/video* node that is a streaming video-capture device (UVC also creates metadata nodes:
+/// skipped).
 struct V4l2DeviceInfo {
-    std::string path;            ///< e.g. /dev/video0
+    std::string path;  ///< e.g. /dev/video0
     std::string driver, card, bus_info;
 };
 
 /// Lists the capture devices among /dev/video* (VIDIOC_QUERYCAP on each).
-std::vector<V4l2DeviceInfo> discover_v4l2_cameras(const std::shared_ptr<V4l2Io>& io = system_v4l2_io());
+std::vector<V4l2DeviceInfo> discover_v4l2_cameras(
+    const std::shared_ptr<V4l2Io>& io = system_v4l2_io());
 
-/// Opens `device_path` (e.g. /dev/video0) non-blocking, checks it can capture and stream, applies `options`.
-Result<std::unique_ptr<Camera>> open_v4l2_camera(const std::string& device_path, const V4l2CameraOptions& options = {},
+/// Opens `device_path` (e.g. /dev/video0) non-blocking, checks it can capture and stream, applies
+/// `options`.
+Result<std::unique_ptr<Camera>> open_v4l2_camera(const std::string& device_path,
+                                                 const V4l2CameraOptions& options = {},
                                                  std::shared_ptr<V4l2Io> io = system_v4l2_io());
 
 }  // namespace tirpol::acquisition
