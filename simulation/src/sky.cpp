@@ -101,12 +101,22 @@ Sky::AtWavelength Sky::at_wavelength(double wavelength_um) const {
     sky.m_sky = this;
     sky.m_wavelength_um = wavelength_um;
     if (m_kind != Kind::Table) sky.m_blackbody = planck_radiance(wavelength_um, m_temperature_k);
+    sky.m_log_zenith_transmittance = std::log1p(-std::clamp(m_zenith_emissivity, 0.0, 1.0));
     return sky;
 }
 
 double Sky::AtWavelength::spectral_radiance(const Vec3& direction) const {
-    if (m_sky->m_kind == Kind::Table) return m_sky->spectral_radiance(m_wavelength_um, direction);
-    return m_sky->emissivity(direction.z()) * m_blackbody;
+    switch (m_sky->m_kind) {
+        case Kind::Table:
+            return m_sky->spectral_radiance(m_wavelength_um, direction);
+        case Kind::ClearSky:
+            // thermal::directional_sky_emissivity_cos, with the layer's optical depth hoisted.
+            if (direction.z() <= 1e-6) return m_blackbody;
+            return -std::expm1(m_log_zenith_transmittance / direction.z()) * m_blackbody;
+        case Kind::Uniform:
+            break;
+    }
+    return m_blackbody;
 }
 
 Sun Sun::from_config(const ConfigNode& node, const Band& band) {
