@@ -21,9 +21,19 @@ MuellerMatrix to_eigen(const Mueller4<double>& m) {
 }  // namespace
 
 MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters)
-    : m_parameters(std::move(parameters)) {}
+    : m_parameters(std::move(parameters)) {
+    const MicrofacetParameters& p = m_parameters;
+    if (p.index.is_constant() && p.sigma.is_constant() && p.bias.is_constant() &&
+        p.tau_deg.is_constant() && p.omega_deg.is_constant() && p.rho_d.is_constant() &&
+        p.rho_v.is_constant())
+        m_constant_parameters = interpolated_parameters(0.0);
+}
 
 ShellTargetParameters<double> MicrofacetBrdf::at(double wavelength_um) const {
+    return m_constant_parameters ? *m_constant_parameters : interpolated_parameters(wavelength_um);
+}
+
+ShellTargetParameters<double> MicrofacetBrdf::interpolated_parameters(double wavelength_um) const {
     const ComplexIndex index = m_parameters.index.at_clamped(wavelength_um);
     return {index.n,
             index.k,
