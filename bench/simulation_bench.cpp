@@ -14,6 +14,9 @@
 //    names its `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per
 //    object that both renderers' mean Stokes agree (else no ratio); the ratio against the best
 //    sampler is printed.
+//  - ShadingProfile: panels_night 80×64, 8 and 64 spp, one thread: the callgrind workload.
+//  - ThreadEfficiency: panels_night 320×256, 32 spp, at 1, 2, 4, … threads up to
+//    hardware_concurrency: wall time, speedup, efficiency and tracing CPU per million paths.
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 //  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
@@ -34,6 +37,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -144,6 +148,79 @@ void BM_ShadingOverhead(benchmark::State& state) {
         kRepetitions, median(overhead), *lo, *hi);
 }
 BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// The callgrind workload (docs/simulation.md "Where the time goes"): panels_night at 80×64, 8 spp
+/// (1 point in each of 8 replicates, as ShadingOverhead) and 64 spp (4 points in each of 16), one
+/// thread, the scene's emissivity tables already cached by a first 1-spp render. Small enough that
+/// `valgrind --tool=callgrind` finishes in a minute; its instruction counts do not depend on load.
+void BM_ShadingProfile(benchmark::State& state) {
+    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(80, 64);
+    scene.sampling.samples_per_pixel = 1;
+    RenderOptions one_thread;
+    one_thread.threads = 1;
+    RenderStatistics stats;
+    render(scene, one_thread, &stats);
+    scene.sampling.samples_per_pixel = static_cast<int>(state.range(0));
+    std::uint64_t checksum = 0xcbf29ce484222325ULL;  // FNV-1a over the Stokes channels' bits
+    for (auto _ : state) {
+        const Image image = render(scene, one_thread, &stats);
+        for (const char* c : {"S0", "S1", "S2", "S3", "S0_var", "S1_var", "S2_var", "S3_var"})
+            for (const float v : image.channel(c)) {
+                std::uint32_t bits = 0;
+                std::memcpy(&bits, &v, sizeof bits);
+                checksum = (checksum ^ bits) * 0x100000001b3ULL;
+            }
+        state.SetIterationTime(stats.trace_cpu_seconds);
+    }
+    // Equal checksums of two builds: bitwise-identical images.
+    std::printf("shading profile render, %d spp: %llu scene rays, Stokes checksum %016llx\n",
+                scene.sampling.samples_per_pixel, static_cast<unsigned long long>(stats.scene_rays),
+                static_cast<unsigned long long>(checksum));
+    state.counters["scene_rays"] = static_cast<double>(stats.scene_rays);
+}
+BENCHMARK(BM_ShadingProfile)
+    ->Arg(8)
+    ->Arg(64)
+    ->Iterations(1)
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond);
+
+/// Thread scaling on PanelsNightEqualNoise-like work (panels_night 320×256 at 32 spp): wall time
+/// with 1, 2, 4, … threads up to hardware_concurrency (and it), the speedup over one thread and the
+/// efficiency speedup/threads, with the tracing CPU per million paths (a rise with threads is time
+/// lost to sharing: cache lines, the allocator, memory bandwidth). Needs otherwise idle cores.
+void BM_ThreadEfficiency(benchmark::State& state) {
+    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+    scene.camera = scene.camera.resized(320, 256);
+    scene.sampling.samples_per_pixel = 32;
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<int> counts;
+    for (unsigned t = 1; t < hardware; t *= 2) counts.push_back(static_cast<int>(t));
+    counts.push_back(static_cast<int>(hardware));
+    render(scene);  // emissivity tables into the cache
+    const double paths = 320.0 * 256.0 * 32.0;
+    for (auto _ : state) {
+        double one_thread_s = 0.0;
+        for (const int threads : counts) {
+            RenderOptions options;
+            options.threads = threads;
+            RenderStatistics stats;
+            render(scene, options, &stats);
+            const double wall_s = stats.seconds - stats.setup_seconds;
+            if (threads == 1) one_thread_s = wall_s;
+            const double speedup = one_thread_s / wall_s;
+            std::printf(
+                "threads %2d: %.3f s, speedup %.2f, efficiency %.2f, tracing %.3f CPU s per "
+                "million paths\n",
+                threads, wall_s, speedup, speedup / threads,
+                stats.trace_cpu_seconds / (paths * 1e-6));
+            state.counters[fmt::format("efficiency_{}", threads)] = speedup / threads;
+        }
+        state.SetIterationTime(1.0);
+    }
+}
+BENCHMARK(BM_ThreadEfficiency)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// Mean of √S1_var over the pixels whose centre ray hits a surface.
 double mean_s1_standard_error(const Image& img) {

@@ -46,11 +46,19 @@ std::uint64_t thread_cpu_ns() {
 }
 
 /// m · R, where R = frame_rotation(frame_rotation_angle(from, to)) re-expresses Stokes given in
-/// `from` in `to` (both frames share their propagation). R only mixes S1 and S2, so only m's
-/// columns 1 and 2 change, and cos 2α, sin 2α come from the axes' dot products (no trig).
-MuellerMatrix times_rotation(const MuellerMatrix& m, const StokesFrame& from,
-                             const StokesFrame& to) {
-    const double c = to.reference.dot(from.reference), s = to.reference.dot(from.second_axis());
+/// `from` = surface_frame(k, n) in a frame `to` of the same propagation k given by its reference
+/// axis (any length, and any component along k, which drops out of the dot products with vectors
+/// across k). R only mixes S1 and S2, so only m's columns 1 and 2 change, and cos 2α, sin 2α come
+/// from dot products (no trig): surface_frame's reference is n × k normalised and its second axis
+/// k × reference, and the lengths cancel in (c² − s²)/(c² + s²) and 2cs/(c² + s²), so neither frame
+/// is normalised. Where n × k vanishes (a beam along the normal) surface_frame's fallback axis is
+/// used.
+MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& n,
+                             const Vec3& to_reference) {
+    Vec3 from_reference = n.cross(k);
+    if (!(from_reference.squaredNorm() > 1e-280)) from_reference = surface_frame(k, n).reference;
+    const double c = to_reference.dot(from_reference),
+                 s = to_reference.dot(k.cross(from_reference));
     const double norm = c * c + s * s;
     const double c2 = (c * c - s * s) / norm, s2 = 2.0 * c * s / norm;
     MuellerMatrix out = m;
@@ -105,6 +113,22 @@ public:
         }
         for (auto& c : m_cdf) c /= total;
         for (std::size_t k = 0; k < nodes.size(); ++k) m_node_scale_um.push_back(total / shape[k]);
+        // What depends only on the wavelength node (and an object's constant temperature) is
+        // evaluated here once instead of at every hit: Planck's law for the sky, the sun and each
+        // object.
+        const std::size_t node_count = m_wavelengths.size();
+        for (const double lambda : m_wavelengths) {
+            m_sky_at_node.push_back(scene.sky.at_wavelength(lambda));
+            m_sun_at_node.push_back(scene.sun ? scene.sun->spectral_radiance(lambda) : 0.0);
+        }
+        m_object_blackbody.assign(scene.objects.size() * node_count, kNaN);
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+            const TemperatureField& field = scene.objects[o].temperature;
+            if (!field.is_constant()) continue;
+            for (std::size_t k = 0; k < node_count; ++k)
+                m_object_blackbody[o * node_count + k] =
+                    planck_radiance(m_wavelengths[k], field.min_k());
+        }
         for (const auto& m : scene.materials) {
             const auto [lo, hi] = m.brdf->valid_wavelength_range_um();
             if (scene.band.lo_um() < lo || scene.band.hi_um() > hi)
@@ -134,25 +158,28 @@ public:
         }
     }
 
-    /// One sample of the band radiance arriving at the camera along `direction`, in `camera_frame`;
-    /// `sampler` gives the wavelength node's number and each bounce's (sobol_sampler.h).
-    StokesVector trace(Vec3 origin, Vec3 direction, const StokesFrame& camera_frame,
-                       PathSampler& sampler, std::uint64_t& scene_rays,
-                       std::uint64_t& shadow_rays) const {
+    /// One sample of the band radiance arriving at the camera along `direction`, in the camera's
+    /// Stokes frame of that ray (Camera::image_frame), given by `camera_right`, the camera's x
+    /// axis: image_frame's reference is that axis with its component along the ray removed and
+    /// normalised, and the frame rotations (times_rotation) need neither, as only its dot products
+    /// with vectors across the ray enter them; `sampler` gives the wavelength node's number and
+    /// each bounce's (sobol_sampler.h).
+    StokesVector trace(Vec3 origin, Vec3 direction, const Vec3& camera_right, PathSampler& sampler,
+                       std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
         const auto node = static_cast<std::size_t>(
             std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
         const std::size_t k = std::min(node, m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
-        const Sky& sky = m_scene.sky;
+        const Sky::AtWavelength& sky = m_sky_at_node[k];
         const Sun* sun = m_scene.sun ? &*m_scene.sun : nullptr;
-        const double sun_radiance = sun ? sun->spectral_radiance(lambda) : 0.0;
+        const double sun_radiance = m_sun_at_node[k];
 
         // Maps Stokes of light travelling along −direction, given in `frame`, to the camera frame.
         // The frame is the s/p frame of the last surface (first: the camera's), so each vertex
         // needs one rotation, from its own s/p frame of the same ray (paper eq 12's two rotations
         // through the world frame compose into this one).
         MuellerMatrix throughput = MuellerMatrix::Identity();
-        StokesFrame frame = camera_frame;
+        Vec3 frame_reference = camera_right;  // of the frame throughput takes its Stokes in
         StokesVector radiance = StokesVector::Zero();
         bool last_was_delta = true;  // the camera sees the sun's disk directly
         const int max_bounces = m_scene.sampling.max_bounces;
@@ -161,7 +188,7 @@ public:
             if (m_recorder) m_recorder->record(origin, direction, 1e30, false);
             const auto hit = m_scene.tracer->intersect(origin, direction);
             if (!hit) {
-                double l = sky.spectral_radiance(lambda, direction);
+                double l = sky.spectral_radiance(direction);
                 if (sun && last_was_delta &&
                     direction.dot(sun->direction) >= sun->cos_angular_radius())
                     l += sun_radiance;
@@ -180,15 +207,14 @@ public:
             const Vec3 wo_local = basis.to_local(wo);
             const SceneObject& object = m_scene.objects[hit->object];
             const materials::PolarizedBrdf& brdf = *m_scene.materials[object.material].brdf;
-            const double temperature =
-                object.temperature.at(*hit, m_scene.tracer->mesh(hit->object));
+            const double blackbody = object_blackbody(*hit, k);
 
             // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into
             // the ray's frame.
-            const MuellerMatrix leaving = times_rotation(throughput, surface_frame(wo, n), frame);
+            const MuellerMatrix leaving = times_rotation(throughput, wo, n, frame_reference);
             const StokesVector emissivity =
                 m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
-            radiance += leaving * emissivity * planck_radiance(lambda, temperature);  // eq 13
+            radiance += leaving * emissivity * blackbody;  // eq 13
             if (bounce >= max_bounces)
                 break;  // safety cap only: Russian roulette ends paths (below)
 
@@ -197,7 +223,7 @@ public:
             // (the same table as the emission), plus the sampled estimate of ∫M·(L_in −
             // L_ref)·cosθi dωi.
             const double l_ref =
-                m_control_variate ? reference_radiance(wo, n, lambda, temperature) : 0.0;
+                m_control_variate ? reference_radiance(wo, n, sky, blackbody) : 0.0;
             radiance += leaving * (StokesVector::UnitX() - emissivity) * l_ref;
 
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
@@ -229,7 +255,9 @@ public:
             // eq 12: incident light travels along −wi; the pBRDF takes its Stokes in
             // surface_frame(−wi, n).
             throughput = leaving * s.weight;
-            frame = surface_frame(-wi, n);
+            frame_reference = n.cross(-wi);
+            if (!(frame_reference.squaredNorm() > 1e-280))
+                frame_reference = surface_frame(-wi, n).reference;
             last_was_delta = s.is_delta;
 
             // Russian roulette after the third hit ends paths without bias: a path survives with
@@ -262,11 +290,19 @@ private:
     /// the sky along the mirror direction of wo, where most of a glossy lobe looks in an open
     /// scene, or the vertex's own blackbody radiance when that direction is below the horizon
     /// (ground, walls, closed scenes, where the surroundings are near the surface's temperature).
-    double reference_radiance(const Vec3& wo, const Vec3& n, double lambda,
-                              double temperature) const {
+    double reference_radiance(const Vec3& wo, const Vec3& n, const Sky::AtWavelength& sky,
+                              double blackbody) const {
         const Vec3 mirror = 2.0 * n.dot(wo) * n - wo;
-        return mirror.z() > 0.0 ? m_scene.sky.spectral_radiance(lambda, mirror)
-                                : planck_radiance(lambda, temperature);
+        return mirror.z() > 0.0 ? sky.spectral_radiance(mirror) : blackbody;
+    }
+
+    /// L_bb(λ_k, T) at a hit: from the table for objects of constant temperature, else evaluated.
+    double object_blackbody(const SurfaceHit& hit, std::size_t k) const {
+        const double tabulated = m_object_blackbody[hit.object * m_wavelengths.size() + k];
+        if (!std::isnan(tabulated)) return tabulated;
+        const double temperature =
+            m_scene.objects[hit.object].temperature.at(hit, m_scene.tracer->mesh(hit.object));
+        return planck_radiance(m_wavelengths[k], temperature);
     }
 
     const Scene& m_scene;
@@ -275,6 +311,10 @@ private:
     std::vector<double> m_cdf, m_wavelengths;
     std::vector<double>
         m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
+    std::vector<Sky::AtWavelength> m_sky_at_node;  // per wavelength node
+    std::vector<double> m_sun_at_node;  // sun's spectral radiance per node (0 without a sun)
+    std::vector<double>
+        m_object_blackbody;  // [object][node]: L_bb at a constant temperature, else NaN
     std::vector<std::shared_ptr<const materials::EmissivityTable>> m_emissivity;
 };
 
@@ -373,6 +413,8 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const double setup_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Camera& camera = scene.camera;
+    const Vec3 camera_right =
+        camera.world_from_camera().col(0);  // never along a ray: every ray looks forward
     const int w = camera.width(), h = camera.height();
     const int replicates = replicate_count(scene.sampling);
     const int spp = rendered_samples_per_pixel(scene.sampling);
@@ -421,8 +463,8 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                         PathSampler sampler(replicate, s, rng);
                         const auto [du, dv] = sampler.subpixel();
                         const Vec3 d = camera.ray_direction(x + du, y + dv);
-                        sum += tracer.trace(camera.position(), d, camera.image_frame(d), sampler,
-                                            rays, shadows);
+                        sum += tracer.trace(camera.position(), d, camera_right, sampler, rays,
+                                            shadows);
                     }
                     pixel.add(sum / points);
                 }

@@ -96,6 +96,29 @@ double Sky::spectral_radiance(double wavelength_um, const Vec3& direction) const
     return emissivity(c) * planck_radiance(wavelength_um, temperature_k(c));
 }
 
+Sky::AtWavelength Sky::at_wavelength(double wavelength_um) const {
+    AtWavelength sky;
+    sky.m_sky = this;
+    sky.m_wavelength_um = wavelength_um;
+    if (m_kind != Kind::Table) sky.m_blackbody = planck_radiance(wavelength_um, m_temperature_k);
+    sky.m_log_zenith_transmittance = std::log1p(-std::clamp(m_zenith_emissivity, 0.0, 1.0));
+    return sky;
+}
+
+double Sky::AtWavelength::spectral_radiance(const Vec3& direction) const {
+    switch (m_sky->m_kind) {
+        case Kind::Table:
+            return m_sky->spectral_radiance(m_wavelength_um, direction);
+        case Kind::ClearSky:
+            // thermal::directional_sky_emissivity_cos, with the layer's optical depth hoisted.
+            if (direction.z() <= 1e-6) return m_blackbody;
+            return -std::expm1(m_log_zenith_transmittance / direction.z()) * m_blackbody;
+        case Kind::Uniform:
+            break;
+    }
+    return m_blackbody;
+}
+
 Sun Sun::from_config(const ConfigNode& node, const Band& band) {
     node.check_keys({"elevation_deg", "azimuth_deg", "direction", "temperature", "radiance",
                      "solid_angle_sr", "transmittance"});

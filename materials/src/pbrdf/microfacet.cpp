@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "../sampling.h"
 #include "tirpol/core/error.h"
@@ -20,9 +21,19 @@ MuellerMatrix to_eigen(const Mueller4<double>& m) {
 }  // namespace
 
 MicrofacetBrdf::MicrofacetBrdf(MicrofacetParameters parameters)
-    : m_parameters(std::move(parameters)) {}
+    : m_parameters(std::move(parameters)) {
+    const MicrofacetParameters& p = m_parameters;
+    if (p.index.is_constant() && p.sigma.is_constant() && p.bias.is_constant() &&
+        p.tau_deg.is_constant() && p.omega_deg.is_constant() && p.rho_d.is_constant() &&
+        p.rho_v.is_constant())
+        m_constant_parameters = interpolated_parameters(0.0);
+}
 
 ShellTargetParameters<double> MicrofacetBrdf::at(double wavelength_um) const {
+    return m_constant_parameters ? *m_constant_parameters : interpolated_parameters(wavelength_um);
+}
+
+ShellTargetParameters<double> MicrofacetBrdf::interpolated_parameters(double wavelength_um) const {
     const ComplexIndex index = m_parameters.index.at_clamped(wavelength_um);
     return {index.n,
             index.k,
@@ -67,51 +78,98 @@ double approximate_inverse_erf(double z) {
     return x * z;
 }
 
-/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation refined by Newton steps
-/// on erf, or on erfc in the upper tail where erf(x) rounds to 1.
+/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation (relative error ~1e-7
+/// where 1 − |z| > 1e-7, its single-precision range) refined by Halley steps on erf, or on erfc in
+/// the upper tail where erf(x) rounds to 1. With f'' = −2x·f' a step is x − f/(f' + x·f);
+/// convergence is cubic, so one step reaches double rounding inside that range, and the far tail
+/// (beyond it the approximation is off by up to 10 %) takes steps until they stop moving x.
 double inverse_erf(double z) {
     if (z < 0.0) return -inverse_erf(-z);
     z = std::min(z, 1.0 - 1e-16);
     double x = approximate_inverse_erf(z);
-    for (int i = 0; i < 3; ++i)
-        x -= (z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z) /
-             (2.0 * kInvSqrtPi * std::exp(-x * x));
+    const int steps = 1.0 - z > 1e-7 ? 1 : 8;
+    for (int i = 0; i < steps; ++i) {
+        const double f = z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z;
+        const double step = f / (2.0 * kInvSqrtPi * std::exp(-x * x) + x * f);
+        x -= step;
+        if (std::abs(step) < 1e-15 * x) break;
+    }
     return x;
+}
+
+/// Smith's Λ of the unit-roughness surface at cot θ = a, with the erfc(a) and e^(−a²) it is made of
+/// (the visible-slope sampler's normalisation reuses them: 2·(1 + Λ) = erfc(−a) + e^(−a²)/(a√π)).
+struct SmithTerms {
+    double lambda, erfc_a, exp_minus_a2;
+};
+
+SmithTerms smith_terms(double sigma, double cot_theta) {
+    const double a = cot_theta / (std::sqrt(2.0) * sigma);
+    const double e = std::exp(-a * a), c = std::erfc(a);
+    return {(e / (a * std::sqrt(kPi)) - c) * 0.5, c, e};
 }
 
 /// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along
 /// +x): inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz
-/// & d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Newton
-/// steps kept inside a bisection bracket, to |F − u| < 1e-13, so that the map u → x̃ is smooth.
-double visible_slope_x(double cos_theta, double u) {
+/// & d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Halley
+/// steps (F'' is F' times a polynomial, so a step costs no more than Newton's) kept inside a
+/// bisection bracket, to |F − u| < 1e-13 (checked, or implied by a small last step), so that the
+/// map u → x̃ is smooth. `smith` holds erfc(cot θ) and e^(−cot²θ) (the normalisation); the lower end
+/// of the bracket is only searched for when a step leaves it.
+double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
+    const double tan_over_sqrt_pi = tan_theta * kInvSqrtPi;
     const auto unnormalised = [&](double x) {
-        return std::erfc(-x) + tan_theta * kInvSqrtPi * std::exp(-x * x);
+        return std::erfc(-x) + tan_over_sqrt_pi * std::exp(-x * x);
     };
-    const double total = unnormalised(cot_theta);
+    const double total = (2.0 - smith.erfc_a) + tan_over_sqrt_pi * smith.exp_minus_a2;
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
-    double lo = std::min(-1.0, cot_theta - 1.0), hi = cot_theta;
-    while (unnormalised(lo) / total > u) lo *= 2.0;
-    const double theta = std::acos(cos_theta), erf_cot = std::erf(cot_theta);
+    double lo = -std::numeric_limits<double>::infinity(), hi = cot_theta;
+    const auto bracket_below = [&] {
+        lo = std::min(-1.0, cot_theta - 1.0);
+        while (unnormalised(lo) / total > u) lo *= 2.0;
+    };
+    const double theta = std::acos(cos_theta), erf_cot = 1.0 - smith.erfc_a;
     const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
-    double x = approximate_inverse_erf(
-        std::clamp(erf_cot - (1.0 + erf_cot) * std::pow(1.0 - u, fit), -1.0 + 1e-16, 1.0 - 1e-16));
-    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    // (1 − u)^fit as exp(fit·log1p(−u)): the starting point only (the steps below converge to the
+    // same x̃), and cheaper than pow, which guards a double-precision result that is not needed
+    // here.
+    double x = approximate_inverse_erf(std::clamp(
+        erf_cot - (1.0 + erf_cot) * std::exp(fit * std::log1p(-u)), -1.0 + 1e-16, 1.0 - 1e-16));
+    if (!(x < hi)) {
+        bracket_below();
+        x = 0.5 * (lo + hi);
+    }
     for (int i = 0; i < 100; ++i) {
         const double e = std::exp(-x * x);
-        const double f = (std::erfc(-x) + tan_theta * kInvSqrtPi * e) / total - u;
+        const double f = (std::erfc(-x) + tan_over_sqrt_pi * e) / total - u;
         if (std::abs(f) < 1e-13) break;
         (f > 0.0 ? hi : lo) = x;
-        const double next = x - f * total / (2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta));
-        x = next > lo && next < hi ? next : 0.5 * (lo + hi);
+        // F' = 2/√π·e^(−x²)(1 − x·tanθ)/total, F'' = 2/√π·e^(−x²)(−2x(1 − x·tanθ) − tanθ)/total.
+        const double d1 = 2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta) / total;
+        const double d2 =
+            2.0 * kInvSqrtPi * e * (-2.0 * x * (1.0 - x * tan_theta) - tan_theta) / total;
+        double next = x - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
+        if (!(next < hi) || !(next > lo)) {
+            if (lo == -std::numeric_limits<double>::infinity()) bracket_below();
+            if (!(next < hi && next > lo)) next = 0.5 * (lo + hi);
+        }
+        const double step = next - x;
+        x = next;
         if (hi - lo < 1e-15 * (1.0 + std::abs(x))) break;
+        // Halley's error after a step is ~C·step³ with C of order x² + (F''/F')², so a step below
+        // 1e-5 (away from x̃ → cot θ, where F' vanishes) leaves |F − u| far below 1e-13: stop
+        // without evaluating F again.
+        if (std::abs(step) < 1e-5 * (1.0 + std::abs(x)) && 1.0 - x * tan_theta > 0.05) break;
     }
     return x;
 }
-}  // namespace
 
-Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
+/// sample_visible_normal given Smith's terms at wo's (unstretched) cot θo (smith_terms): the
+/// stretched direction's cotangent is cot θo/α, which is the same a.
+Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2,
+                           const SmithTerms& smith) {
     // Heitz & d'Eon, "Importance sampling microfacet-based BSDFs using the distribution of visible
     // normals", EGSR 2014, §4: the Gaussian slopes are Beckmann's with α = √2σ; stretch wo to unit
     // roughness, sample the visible slopes there, rotate to wo's azimuth, unstretch.
@@ -123,7 +181,7 @@ Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
         x = r * std::cos(2.0 * kPi * u2);
         y = r * std::sin(2.0 * kPi * u2);
     } else {
-        const double slope_x = visible_slope_x(stretched.z(), u1),
+        const double slope_x = visible_slope_x(stretched.z(), u1, smith),
                      slope_y = inverse_erf(2.0 * u2 - 1.0);
         const double r = std::hypot(stretched.x(), stretched.y());
         const double c = stretched.x() / r, s = stretched.y() / r;
@@ -131,6 +189,11 @@ Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
         y = s * slope_x + c * slope_y;
     }
     return Vec3(-alpha * x, -alpha * y, 1.0).normalized();
+}
+}  // namespace
+
+Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2) {
+    return sample_visible_normal(wo, sigma, u1, u2, smith_terms(sigma, cotangent(wo.z())));
 }
 
 namespace {
@@ -140,12 +203,13 @@ namespace {
 // specularly, and starving that lobe there made polarized sky reflections arrive as rare, heavy
 // samples (salt-and-pepper S1 on car roofs, the paper's §4.3 artifact).
 double specular_probability(const ShellTargetParameters<double>& p, double cos_o) {
-    const double specular =
-        std::min(1.0, p.bias * fresnel({p.n, p.k}, std::clamp(cos_o, 0.0, 1.0)).R());
     // Hemispherical albedo of the diffuse term (π ρ_D) and of the volume term at normal incidence
     // (4π ρ_V (1 − ln 2)).
     const double diffuse = kPi * p.rho_d + 4.0 * kPi * (1.0 - std::log(2.0)) * p.rho_v;
     if (diffuse <= 0.0) return 1.0;
+    const FresnelReflectances<double> r = fresnel_reflectances(
+        TinyComplex<double>{p.n * p.n - p.k * p.k, 2.0 * p.n * p.k}, std::clamp(cos_o, 0.0, 1.0));
+    const double specular = std::min(1.0, p.bias * 0.5 * (r.rs2 + r.rp2));
     if (specular <= 0.0) return 0.0;
     // A defensive mixture (Hesterberg 1995): each lobe keeps at least a quarter of the samples, so
     // its MIS weight is at most 4× and, with the sampler's strata of a quarter (4 points per
@@ -160,52 +224,70 @@ double specular_probability(const ShellTargetParameters<double>& p, double cos_o
 /// through).
 enum class FacetSampling { visible, slope };
 
-/// Density of the specular lobe's reflection wi = 2(h·wo)h − wo for wi anywhere on the sphere (the
-/// visible-normal branch also at wi below the horizon, which the sampler folds back up).
-double specular_reflection_pdf(const ShellTargetParameters<double>& p, const Vec3& wi,
-                               const Vec3& wo, FacetSampling facets) {
-    const Vec3 h = (wi + wo).normalized();
-    const double ho = h.dot(wo);
-    if (!(ho > 0.0) || !(h.z() > 0.0)) return 0.0;
-    const double cos_h = std::max(h.z(), kMinCosine);
-    const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
-    const double d = gaussian_facet_density(p.sigma, cos_h, tan2);
-    // The reflection has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq 14). Visible normals
-    // have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so the h·wo cancel; slope
-    // sampling has D·cosθh (Torrance & Sparrow 1967).
-    if (facets == FacetSampling::visible)
-        return d / ((1.0 + smith_lambda(p.sigma, cotangent(wo.z()))) * 4.0 *
-                    std::max(wo.z(), kMinCosine));
-    return d * cos_h / (4.0 * ho);
-}
-
 /// The mirror image of `w` in the tangent plane.
 Vec3 folded(const Vec3& w) { return Vec3(w.x(), w.y(), -w.z()); }
 
-double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi,
-                   const Vec3& wo, FacetSampling facets) {
-    if (!(wi.z() > 0.0) || !(wo.z() > 0.0)) return 0.0;
+/// Density of the visible-normal reflection wi = 2(h·wo)h − wo at a wi below the horizon (given as
+/// its folded image `wi_below`), which the sampler folds back up; `lambda_o` is Smith's Λ(wo).
+double masked_reflection_pdf(double sigma, const Vec3& wi_below, const Vec3& wo, double cos_o,
+                             double lambda_o) {
+    // The half vector's signs are those of the unnormalised sum: about half the samples (wi above
+    // wo's elevation) have no folded image, and are told so before the normalisation and D's
+    // exponential.
+    const Vec3 sum = wi_below + wo;
+    if (!(sum.z() > 0.0) || !(sum.dot(wo) > 0.0)) return 0.0;
+    const Vec3 h = sum.normalized();
+    if (!(h.dot(wo) > 0.0) || !(h.z() > 0.0)) return 0.0;
+    const double cos_h = std::max(h.z(), kMinCosine);
+    const double tan2 = (1.0 - cos_h * cos_h) / (cos_h * cos_h);
+    return gaussian_facet_density(sigma, cos_h, tan2) / ((1.0 + lambda_o) * 4.0 * cos_o);
+}
+
+/// The mixture's pdf at the geometry `g` of (wi, wo), given the facet density `d` at g's half
+/// vector and Smith's Λ(wo), which the weight needs too (computed once per sample).
+double mixture_pdf(double sigma, double p_spec, const Vec3& wi, const Vec3& wo,
+                   const MicrofacetGeometry& g, double d, double lambda_o, FacetSampling facets) {
+    if (!g.valid) return 0.0;
     double pdf = 0.0;
     if (p_spec > 0.0) {
-        pdf += p_spec * specular_reflection_pdf(p, wi, wo, facets);
-        // A visible normal whose reflection points below the horizon is folded up (sample_mixture),
-        // so wi is also drawn through its mirror image.
-        if (facets == FacetSampling::visible)
-            pdf += p_spec * specular_reflection_pdf(p, folded(wi), wo, facets);
+        // The reflection wi = 2(h·wo)h − wo has Jacobian 1/(4 h·wo) (Walter et al., EGSR 2007, eq
+        // 14). Visible normals have density G1(wo)·D(h)·(h·wo)/cosθo (Heitz & d'Eon 2014, eq 2), so
+        // the h·wo cancel; slope sampling has D·cosθh (Torrance & Sparrow 1967); h·wo = h·wi = cos
+        // β.
+        if (facets == FacetSampling::visible) {
+            pdf += p_spec * d / ((1.0 + lambda_o) * 4.0 * g.cos_o);
+            // A visible normal whose reflection points below the horizon is folded up
+            // (sample_mixture), so wi is also drawn through its mirror image.
+            pdf += p_spec * masked_reflection_pdf(sigma, folded(wi), wo, g.cos_o, lambda_o);
+        } else if (g.cos_beta > 0.0) {
+            pdf += p_spec * d * g.cos_n / (4.0 * g.cos_beta);
+        }
     }
-    if (p_spec < 1.0) pdf += (1.0 - p_spec) * detail::cosine_hemisphere_pdf(wi);
+    if (p_spec < 1.0) pdf += (1.0 - p_spec) * g.cos_i / kPi;
     return pdf;
+}
+
+double mixture_pdf(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wi,
+                   const Vec3& wo, FacetSampling facets) {
+    const MicrofacetGeometry g = microfacet_geometry(wi, wo);
+    if (!g.valid) return 0.0;
+    return mixture_pdf(p.sigma, p_spec, wi, wo, g,
+                       gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n),
+                       smith_lambda(p.sigma, g.cot_o), facets);
 }
 
 BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec, const Vec3& wo,
                           double u1, double u2, FacetSampling facets) {
     BrdfSample s;
     if (!(wo.z() > 0.0)) return s;
+    // Λ(wo) enters the visible-normal sampler's normalisation, its pdf and the BRDF's G: computed
+    // once.
+    const SmithTerms smith = smith_terms(p.sigma, cotangent(wo.z()));
     if (u1 < p_spec) {
         const double u = u1 / p_spec;
         Vec3 h;
         if (facets == FacetSampling::visible) {
-            h = sample_visible_normal(wo, p.sigma, u, u2);
+            h = sample_visible_normal(wo, p.sigma, u, u2, smith);
         } else {  // inverse CDF of the slope distribution: tan²θh = −2σ² ln(1 − u)
             const double tan2 = -2.0 * p.sigma * p.sigma * std::log1p(-std::min(u, 1.0 - 1e-16));
             const double cos_h = 1.0 / std::sqrt(1.0 + tan2);
@@ -226,13 +308,16 @@ BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec,
         const double u = (u1 - p_spec) / (1.0 - p_spec);
         s.wi = detail::sample_cosine_hemisphere(u, u2);
     }
-    s.pdf = mixture_pdf(p, p_spec, s.wi, wo, facets);
+    const MicrofacetGeometry g = microfacet_geometry(s.wi, wo);
+    if (!g.valid) return s;
+    // D(h) is in both the pdf and the BRDF: one exponential.
+    const double d = gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n);
+    s.pdf = mixture_pdf(p.sigma, p_spec, s.wi, wo, g, d, smith.lambda, facets);
     if (!(s.pdf > 0.0) || !std::isfinite(s.pdf)) {
         s.pdf = 0.0;
         return s;
     }
-    s.weight =
-        to_eigen(shell_target_mueller(p, microfacet_geometry(s.wi, wo))) * (s.wi.z() / s.pdf);
+    s.weight = to_eigen(shell_target_mueller(p, g, d, smith.lambda)) * (s.wi.z() / s.pdf);
     return s;
 }
 }  // namespace

@@ -5,6 +5,8 @@
 /// formulas and their sources are in shell_target_math.h; this class supplies spectral parameters,
 /// evaluation, and importance sampling.
 
+#include <optional>
+
 #include "tirpol/materials/complex_index.h"
 #include "tirpol/materials/pbrdf.h"
 #include "tirpol/materials/shell_target_math.h"
@@ -66,7 +68,12 @@ public:
     double specular_sampling_probability(const Vec3& wo, double wavelength_um) const;
 
 private:
+    /// The parameters at one wavelength, interpolated from the spectral tables.
+    ShellTargetParameters<double> interpolated_parameters(double wavelength_um) const;
+
     MicrofacetParameters m_parameters;
+    /// Set when no parameter depends on wavelength: `at` returns it without looking anything up.
+    std::optional<ShellTargetParameters<double>> m_constant_parameters;
 };
 
 }  // namespace tirpol::materials

@@ -120,16 +120,17 @@ T beard_maxwell_shadowing(const T& tau_rad, const T& omega_rad, double theta_n, 
     return beard_maxwell_shadowing_reciprocal(T(1) / tau_rad, T(1) / omega_rad, theta_n, beta);
 }
 
-/// The full Mueller BRDF (file comment) in 1/sr; zero matrix when the geometry is not valid.
+/// The full Mueller BRDF (file comment) in 1/sr, given the two factors a sampler has already
+/// computed for its pdf: the facet density `d` = gaussian_facet_density(σ, g.cos_n, g.tan2_n) and
+/// Smith's `lambda_o` = smith_lambda(σ, g.cot_o). Zero matrix when the geometry is not valid.
 template <typename T>
-Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g) {
+Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g,
+                                 const T& d, const T& lambda_o) {
     Mueller4<T> m;
     for (auto& row : m) row.fill(T(0));
     if (!g.valid) return m;
 
-    const T d = gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n);
-    const T shadow =
-        T(1) / (T(1) + smith_lambda(p.sigma, g.cot_i) + smith_lambda(p.sigma, g.cot_o));
+    const T shadow = T(1) / (T(1) + smith_lambda(p.sigma, g.cot_i) + lambda_o);
     const T so = beard_maxwell_shadowing(p.tau_rad, p.omega_rad, g.theta_n, g.beta);
     const T scale = p.bias * d * shadow * so / T(4.0 * g.cos_i * g.cos_o);
 
@@ -149,6 +150,14 @@ Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const Microf
     }
     m[0][0] += p.rho_d + T(2) * p.rho_v / T(g.cos_i + g.cos_o);
     return m;
+}
+
+/// The full Mueller BRDF (file comment) in 1/sr; zero matrix when the geometry is not valid.
+template <typename T>
+Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g) {
+    if (!g.valid) return shell_target_mueller(p, g, T(0), T(0));
+    return shell_target_mueller(p, g, gaussian_facet_density(p.sigma, g.cos_n, g.tan2_n),
+                                smith_lambda(p.sigma, g.cot_o));
 }
 
 }  // namespace tirpol::materials

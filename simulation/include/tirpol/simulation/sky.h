@@ -39,6 +39,26 @@ public:
     /// sky).
     double spectral_radiance(double wavelength_um, const Vec3& direction) const;
 
+    /// The sky at one wavelength with Planck's law evaluated once where the temperature does not
+    /// depend on the direction (uniform and clear skies): what a renderer keeps per wavelength
+    /// node.
+    class AtWavelength {
+    public:
+        /// Sky::spectral_radiance(wavelength_um, direction), W/(m²·sr·µm), to rounding: the clear
+        /// sky's emissivity 1 − (1 − ε_zenith)^(1/cos θ) is evaluated as −expm1(ln(1 −
+        /// ε_zenith)/cos θ) with the logarithm taken once (an exp instead of a pow per path end).
+        double spectral_radiance(const Vec3& direction) const;
+
+    private:
+        friend class Sky;
+        const Sky* m_sky = nullptr;
+        double m_wavelength_um = 0.0;
+        double m_blackbody = 0.0;                 ///< L_bb(λ, T) for the uniform and clear skies
+        double m_log_zenith_transmittance = 0.0;  ///< ln(1 − ε_zenith) for the clear sky
+    };
+    /// The sky at `wavelength_um`; refers to this Sky, which must outlive it.
+    AtWavelength at_wavelength(double wavelength_um) const;
+
     /// Effective emissivity and temperature at zenith angle θ given by cos θ.
     double emissivity(double cos_zenith) const;
     double temperature_k(double cos_zenith) const;

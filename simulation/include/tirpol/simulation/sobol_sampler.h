@@ -49,7 +49,9 @@ std::uint32_t owen_scramble(std::uint32_t fraction, std::uint32_t seed);
 std::uint32_t permutation_element(std::uint32_t index, std::uint32_t n, std::uint64_t key);
 
 /// The numbers of one replicate of one pixel: `points` samples, each a padded scrambled
-/// (0,2)-sequence point per slot. Cheap to construct (no state beyond its key).
+/// (0,2)-sequence point per slot. Cheap to construct (its key; each slot's permutation and scramble
+/// keys are hashed on the slot's first use and kept for the replicate's other samples). One object
+/// per thread: the kept keys are written by the const accessors.
 class ReplicateSampler {
 public:
     /// `points` ≥ 1 samples in this replicate; (seed, pixel, replicate) pick its independent
@@ -66,10 +68,22 @@ public:
     std::uint32_t points() const { return m_points; }
 
 private:
-    std::uint64_t slot_key(std::uint32_t slot) const;
+    /// A slot's keys: of its index permutation and of its Owen scrambles (two 32-bit halves).
+    struct SlotKeys {
+        std::uint64_t permutation, scramble;
+    };
+    /// Slots whose keys are kept: the sub-pixel, wavelength and scrambled bounces' slots.
+    static constexpr std::uint32_t kKeptSlots = 2 + 2 * kSobolBounces;
+
+    SlotKeys slot_keys(std::uint32_t slot) const;
+    std::uint32_t permuted(std::uint32_t index, std::uint64_t permutation_key) const;
 
     std::uint64_t m_key;
     std::uint32_t m_points;
+    std::uint32_t m_mask = 0;  ///< all ones up to points − 1's highest bit (permutation_element)
+    int m_half_bits = 0;
+    mutable std::uint32_t m_kept = 0;  ///< bit s: m_slot_keys[s] holds slot s's keys
+    mutable std::array<SlotKeys, kKeptSlots> m_slot_keys;
 };
 
 /// The random numbers of one path: the replicate's scrambled sequence for the slots it covers, the

@@ -23,6 +23,11 @@ public:
     /// Temperature at a hit on `mesh` (the hit's object). No exceptions (hot loop).
     double at(const SurfaceHit& hit, const TriangleMesh& mesh) const;
 
+    /// True for a field made by `constant` (then at() is min_k() everywhere): a renderer can
+    /// evaluate what depends only on the temperature, such as Planck's law per wavelength, once per
+    /// object.
+    bool is_constant() const { return m_kind == Kind::Constant; }
+
     /// Range of the field, for validation and reports.
     double min_k() const;
     double max_k() const;
