@@ -13,7 +13,7 @@
 #include "stage_simulator_thread.h"
 #include "tirpol/acquisition/internal/apt_protocol.h"
 #include "tirpol/acquisition/internal/elliptec_protocol.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 
