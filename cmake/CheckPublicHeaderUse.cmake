@@ -22,8 +22,7 @@ set(pending_moves
   simulation/include/tirpol/simulation/rng.h
   simulation/include/tirpol/simulation/sobol_sampler.h
   simulation/include/tirpol/simulation/temperature_value.h
-  sweep/include/tirpol/sweep/sweep_results.h
-  twin/include/tirpol/twin/regions.h)
+  sweep/include/tirpol/sweep/sweep_results.h)
 
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "CheckPublicHeaderUse.cmake: pass -DSOURCE_DIR=<source tree>")
