@@ -1,9 +1,9 @@
 # `cmake --install build [--prefix DIR]` (docs/install.md): the module libraries tirpol::<module> with
 # their public headers and an exported CMake package (find_package(tirpol CONFIG)), a pkg-config file,
 # the CLI and the device simulators, config/ (materials, scenes, thermal examples) where find_config
-# looks for it, and the Python package. Test fixtures (calibration_testing, acquisition's internal
-# headers, test support) are not installed: the executables and the Python extension that use them link
-# them statically.
+# looks for it, and the Python package. Test fixtures (acquisition's internal
+# headers, test support) are not installed, and no shipped target links them (ctest
+# architecture.no_test_fixture_in_production).
 
 include(CMakePackageConfigHelpers)
 

@@ -21,6 +21,7 @@ function(tirpol_add_module name)
   set_target_properties(tirpol_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON EXPORT_NAME ${name})
   set_property(GLOBAL APPEND PROPERTY TIRPOL_INSTALLED_MODULES ${name})
   tirpol_add_module_tests(${name} tirpol::${name} ${ARG_TEST_DEPS})
+  tirpol_white_box_tests(${name})
 endfunction()
 
 # Test executable for a module (also used by apps/ for CLI-level tests).
@@ -45,4 +46,29 @@ function(tirpol_add_module_tests name)
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
     PROPERTIES LABELS "${label}" TIMEOUT 600
     DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# A module's own tests may include its private headers (<module>/src/*.h, by file name): each test
+# file that does gets src/ on its include path, per file, so the other tests' flags (and their
+# compiler-cache hits) stay the same. Other modules and apps/ never see src/.
+function(tirpol_white_box_tests name)
+  if(NOT TARGET tirpol_${name}_tests)
+    return()
+  endif()
+  set(src ${PROJECT_SOURCE_DIR}/${name}/src)
+  file(GLOB_RECURSE private RELATIVE ${src} ${src}/*.h)
+  if(NOT private)
+    return()
+  endif()
+  get_target_property(test_sources tirpol_${name}_tests SOURCES)
+  foreach(test ${test_sources})
+    file(STRINGS ${test} includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"[^\"]+\"")
+    foreach(line ${includes})
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*$" "\\1" included "${line}")
+      if(included IN_LIST private)
+        set_property(SOURCE ${test} APPEND PROPERTY INCLUDE_DIRECTORIES ${src})
+        break()
+      endif()
+    endforeach()
+  endforeach()
 endfunction()

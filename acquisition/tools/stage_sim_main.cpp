@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace {
 

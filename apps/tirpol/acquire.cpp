@@ -6,9 +6,7 @@
 // fault, interruption — the message says how many steps are recorded; continue with --resume); 2
 // bad command-line usage.
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -25,23 +23,15 @@
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace tirpol::cli {
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};
 /// How long after Ctrl-C the program may take to leave through its clean path before it exits
 /// anyway.
 constexpr std::chrono::milliseconds kInterruptGrace{1000};
-/// First Ctrl-C: the stage is told to stop and the run ends after the current frame. A second one
-/// ends the process at once, which is safe too: every session write is atomic.
-extern "C" void on_interrupt(int sig) {
-    if (g_interrupted.exchange(true)) {
-        std::signal(sig, SIG_DFL);
-        std::raise(sig);
-    }
-}
 
 struct AcquireArgs {
     std::string plan, camera, stage, blackbody, output, camera_control, ffc;
@@ -67,22 +57,14 @@ void run_acquire(const AcquireArgs& a) {
              kSessionManifestName);
 
     // Handlers first, so an interruption at any point after this leaves through the same clean
-    // path.
-    g_interrupted = false;
-    auto previous_int = std::signal(SIGINT, on_interrupt);
-    auto previous_term = std::signal(SIGTERM, on_interrupt);
-    struct RestoreSignals {
-        decltype(previous_int) i, t;
-        ~RestoreSignals() {
-            std::signal(SIGINT, i);
-            std::signal(SIGTERM, t);
-        }
-    } restore{previous_int, previous_term};
+    // path. First Ctrl-C: the stage is told to stop and the run ends after the current frame. A
+    // second one ends the process at once, which is safe too: every session write is atomic.
+    const InterruptSignals interrupt;
 
     // Ctrl-C stops the stage at once (also mid-move or mid-homing) and never waits on a device for
     // more than kInterruptGrace. Declared after `stage` so it stops watching before the stage goes.
     std::unique_ptr<Stage> stage;
-    StopOnInterrupt stop_on_interrupt(g_interrupted, kInterruptGrace, [dir] {
+    StopOnInterrupt stop_on_interrupt(interrupt.flag(), kInterruptGrace, [dir] {
         std::fprintf(stderr,
                      "\ntirpol acquire: interrupted; a device did not return within %.1f s, "
                      "exiting now. Every step "
@@ -122,7 +104,7 @@ void run_acquire(const AcquireArgs& a) {
     CaptureOptions options;
     options.ffc = ffc ? &*ffc : nullptr;
     if (!a.non_interactive) options.prompt = ask_operator;
-    options.interrupt = &g_interrupted;
+    options.interrupt = &interrupt.flag();
     options.blackbody = blackbody.get();
 
     const CaptureSummary s = run_capture(*camera, *stage, plan, session, options);

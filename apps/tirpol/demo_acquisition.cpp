@@ -11,8 +11,8 @@
 
 #include "demo_steps.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 

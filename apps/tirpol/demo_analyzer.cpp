@@ -1,11 +1,15 @@
 // Demo step: a Stokes test pattern (AoP sweeping across, DoLP growing downwards) seen through the
-// paper's wire grid (extinction 400:1, §3.1) at 0/45/90/135°, reduced with the ideal eqs 14–16. The
-// reduction error left by the non-ideal analyzer is what calibration's analyzer model removes.
+// paper's wire grid (extinction 400:1, §3.1) at 0/45/90/135°, reduced with the ideal eqs 14–16
+// (calibration::reduce_stokes with an ideal analyzer model). The reduction error left by the
+// non-ideal analyzer is what calibration's analyzer model removes.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "demo_steps.h"
+#include "tirpol/calibration/analyzer.h"
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/mueller.h"
@@ -24,35 +28,39 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
     for (int a = 0; a < 4; ++a)
         analyzer[a] = polarizer_with_extinction(deg_to_rad(angles_deg[a]), 0.7, 400.0);
 
-    Image truth(kW, kH), measured(kW, kH);
-    for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
-        truth.add_channel(c);
-        measured.add_channel(c);
+    // Eqs 14–16 are W⁺ of an ideal polarizer (d = 1) at the four angles; the wire grid transmits
+    // 70 %, which the reduction divides out.
+    calibration::AnalyzerModel ideal = calibration::AnalyzerModel::ideal({0.0, 45.0, 90.0, 135.0});
+    for (auto& position : ideal.positions) position.relative_transmission = 0.7;
+    std::vector<calibration::AnalyzerImage> through_grid(4);
+    for (int a = 0; a < 4; ++a) {
+        through_grid[static_cast<std::size_t>(a)].angle_deg = angles_deg[a];
+        through_grid[static_cast<std::size_t>(a)].signal.resize(std::size_t{kW} * kH);
     }
-    double worst_dolp_error = 0.0;
+    Image truth(kW, kH);
+    for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) truth.add_channel(c);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
             const double aop = kPi * x / kW, degree = 0.3 * y / (kH - 1);
             const StokesVector s = linearly_polarized(s0, degree, aop);
-            double intensity[4];
-            for (int a = 0; a < 4; ++a) intensity[a] = (analyzer[a] * s)[0];
-            // Eqs 14–16 assume an ideal polarizer of unit transmission; the wire grid transmits 70
-            // %.
-            const double t = 0.7;
-            const StokesVector r{
-                0.5 * (intensity[0] + intensity[1] + intensity[2] + intensity[3]) / t,
-                (intensity[0] - intensity[2]) / t, (intensity[1] - intensity[3]) / t, 0.0};
             const std::size_t i = truth.index(x, y);
-            for (auto* pair : {&truth, &measured}) {
-                const StokesVector& v = pair == &truth ? s : r;
-                pair->channel("S0")[i] = static_cast<float>(v[0]);
-                pair->channel("S1")[i] = static_cast<float>(v[1]);
-                pair->channel("S2")[i] = static_cast<float>(v[2]);
-                pair->channel("DoLP")[i] = static_cast<float>(dolp(v));
-                pair->channel("AoP")[i] = static_cast<float>(aop_deg_0_180(v));
-            }
-            worst_dolp_error = std::max(worst_dolp_error, std::abs(dolp(r) - dolp(s)));
+            for (int a = 0; a < 4; ++a)
+                through_grid[static_cast<std::size_t>(a)].signal[i] =
+                    static_cast<float>((analyzer[a] * s)[0]);
+            truth.channel("S0")[i] = static_cast<float>(s[0]);
+            truth.channel("S1")[i] = static_cast<float>(s[1]);
+            truth.channel("S2")[i] = static_cast<float>(s[2]);
+            truth.channel("DoLP")[i] = static_cast<float>(dolp(s));
+            truth.channel("AoP")[i] = static_cast<float>(aop_deg_0_180(s));
         }
+    calibration::ReductionOptions as_measured;
+    as_measured.project_to_realizable = false;
+    Image measured = calibration::reduce_stokes(through_grid, kW, kH, ideal, nullptr, as_measured);
+    double worst_dolp_error = 0.0;
+    for (std::size_t i = 0; i < truth.channel("DoLP").size(); ++i)
+        worst_dolp_error = std::max(
+            worst_dolp_error,
+            static_cast<double>(std::abs(measured.channel("DoLP")[i] - truth.channel("DoLP")[i])));
     for (auto* img : {&truth, &measured}) {
         img->attributes()["units"] = std::string("W/(m^2 sr)");
         img->attributes()["band_um"] = std::vector<double>{8.0, 14.0};

@@ -10,7 +10,7 @@
 #include "demo_steps.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/noise.h"
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"

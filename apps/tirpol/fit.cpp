@@ -4,7 +4,6 @@
 #include <memory>
 
 #include "cli.h"
-#include "numeric_options.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utc_time.h"
@@ -12,6 +11,7 @@
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
+#include "tirpol/fitting/parameter_options.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/material_reference.h"
 #include "tirpol/materials/microfacet.h"
@@ -19,8 +19,6 @@
 namespace tirpol::cli {
 
 namespace {
-
-using fitting::MicrofacetParameter;
 
 struct FitArgs {
     std::vector<std::string> data;
@@ -55,11 +53,6 @@ std::string command_line(const FitArgs& a) {
     return out;
 }
 
-std::size_t parameter_index(const std::string& option, const std::string& name) {
-    return static_cast<std::size_t>(
-        parse_option_value(option, [&] { return fitting::parameter_from_name(name); }));
-}
-
 // Initial values from a material file (--init): the micro-facet parameters at the data's first
 // wavelength.
 void apply_init(const std::string& path, double wavelength_um,
@@ -76,23 +69,12 @@ void apply_init(const std::string& path, double wavelength_um,
 
 // --bound, --free and --fix: usage errors, so also parsed once before any data file is read.
 void apply_parameter_options(const FitArgs& a, fitting::MicrofacetFitOptions& o) {
-    for (const std::string& item : a.bounds) {
-        const auto eq = item.find('='), colon = item.find(':');
-        if (eq == std::string::npos || colon == std::string::npos || colon < eq)
-            usage_error("--bound", "{}: expected NAME=LOWER:UPPER, e.g. sigma=0.05:0.8", item);
-        auto& s = o.parameters[parameter_index("--bound", item.substr(0, eq))];
-        s.lower = parse_finite_number(item.substr(eq + 1, colon - eq - 1), "--bound " + item);
-        s.upper = parse_finite_number(item.substr(colon + 1), "--bound " + item);
-    }
+    for (const std::string& item : a.bounds)
+        parse_option_value("--bound", [&] { fitting::apply_parameter_bound(item, o.parameters); });
     for (const std::string& name : a.free)
-        o.parameters[parameter_index("--free", name)].fixed = false;
-    for (const std::string& item : a.fix) {
-        const auto eq = item.find('=');
-        auto& s = o.parameters[parameter_index("--fix", item.substr(0, eq))];
-        s.fixed = true;
-        if (eq != std::string::npos)
-            s.initial = parse_finite_number(item.substr(eq + 1), "--fix " + item);
-    }
+        parse_option_value("--free", [&] { fitting::apply_parameter_free(name, o.parameters); });
+    for (const std::string& item : a.fix)
+        parse_option_value("--fix", [&] { fitting::apply_parameter_fix(item, o.parameters); });
 }
 
 fitting::MicrofacetFitOptions options_from(const FitArgs& a, double first_wavelength_um) {

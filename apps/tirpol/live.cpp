@@ -4,21 +4,18 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <thread>
 #include <vector>
 
 #include "cli.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/live/live_server.h"
 
 namespace tirpol::cli {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-extern "C" void on_live_stop_signal(int) { g_stop = true; }
 
 struct LiveArgs {
     live::LiveViewOptions view;
@@ -45,15 +42,16 @@ void run_live(LiveArgs a) {
                     a.server.bind_address.c_str(), server.token().c_str());
     std::fflush(stdout);
 
-    g_stop = false;
-    std::signal(SIGINT, on_live_stop_signal);
-    std::signal(SIGTERM, on_live_stop_signal);
-    std::thread watcher([&server] {
-        while (!g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    // Ctrl-C stops the server; a second one ends the process at once.
+    const InterruptSignals interrupt;
+    std::atomic<bool> served{false};
+    std::thread watcher([&server, &interrupt, &served] {
+        while (!interrupt.interrupted() && !served)
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
         server.stop();
     });
     server.run();
-    g_stop = true;
+    served = true;
     watcher.join();
     std::printf("tirpol live: stopped\n");
 }

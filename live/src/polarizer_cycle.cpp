@@ -4,8 +4,8 @@
 
 #include <chrono>
 
-#include "tirpol/acquisition/internal/frame_averager.h"
-#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 

@@ -9,7 +9,7 @@
 #include "interruptible.h"
 #include "python_config.h"
 #include "tirpol/calibration/calibration_chain.h"
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
 
 namespace py = pybind11;
@@ -193,7 +193,7 @@ void bind_session(py::module_& m) {
         "and a known source) and scene/ (a 300 K panel with ε_S0 = 0.93, ε_S1 = −0.035 in front of "
         "a 280 K "
         "background, an IR reflector at the left) of a simulated uncooled camera "
-        "(calibration/testing/synthetic_session.h); "
+        "(calibration/synthetic_session.h); "
         "returns the true scene Stokes image S0 S1 S2.");
 }
 

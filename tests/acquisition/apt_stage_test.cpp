@@ -10,7 +10,7 @@
 #include <deque>
 
 #include "tirpol/acquisition/internal/apt_protocol.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::acquisition {
 namespace {

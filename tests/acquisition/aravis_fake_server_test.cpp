@@ -10,7 +10,7 @@
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/internal/aravis_camera.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -1,6 +1,6 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
 // Recovery with a real GigE Vision device: Aravis's own fake camera (`arv-fake-gv-camera-0.8 -i
-// 127.0.0.1`, package aravis-tools) as a separate process (issue #12 item 4).
+// 127.0.0.1`, package aravis-tools) as a separate process.
 // - A session killed with SIGKILL keeps the camera's control privilege until its heartbeat times
 //   out (GigE Vision bootstrap register 0x0938, 3000 ms on the fake camera): opening the camera
 //   right after used to fail about every second time; now it waits it out and streams.

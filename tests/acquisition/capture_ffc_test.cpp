@@ -19,7 +19,7 @@
 #include "tirpol/acquisition/internal/boson_control.h"
 #include "tirpol/acquisition/internal/boson_simulator.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 
 namespace tirpol::acquisition {
 namespace {

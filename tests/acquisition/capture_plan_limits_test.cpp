@@ -1,4 +1,4 @@
-// Capture-plan validation (issue #12 item 4, issue #20): a plan that would start a run that never
+// Capture-plan validation: a plan that would start a run that never
 // ends, or that does not say what the user meant, is refused before any device moves, with a
 // message naming the file, the field and the accepted range.
 
@@ -58,7 +58,7 @@ TEST(CapturePlanLimits, AnglesOutsideZeroTo360AreRefusedNotWrapped) {
 }
 
 TEST(CapturePlanLimits, ValuesThatWouldRunForeverAreRefusedBeforeAnythingStarts) {
-    // The two reports of issue #20: a settle time of 2^32 s and 2^31 − 1 frames per angle.
+    // The two reported cases: a settle time of 2^32 s and 2^31 − 1 frames per angle.
     EXPECT_THAT(error_of("settle_s: 4294967296"),
                 HasSubstr("settle_s: expected a duration in seconds ≥ 0 and ≤ 3600"));
     EXPECT_THAT(

@@ -17,7 +17,7 @@
 
 #include "test_support.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 

@@ -1,4 +1,4 @@
-// Capture plans with drift references (issue #15 item 2): an in-scene reference blackbody region
+// Capture plans with drift references: an in-scene reference blackbody region
 // and shutter records interleaved with the scene records. The session's plan JSON carries them in
 // the form calibration's offset_drift.h reads; the capture loop asks to close and reopen the
 // shutter. (Bad drift references: capture_plan_limits_test.cpp.)
@@ -11,7 +11,7 @@
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -2,7 +2,7 @@
 // lower bound of its exposure start, reception − 1.5 frame periods, is at or after the step's
 // settle end.
 
-#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/frame_gate.h"
 
 #include <gtest/gtest.h>
 

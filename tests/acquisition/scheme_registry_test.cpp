@@ -10,7 +10,7 @@
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/device_uri.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <thread>
 
-#include "tirpol/acquisition/internal/frame_averager.h"
-#include "tirpol/acquisition/internal/frame_gate.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/frame_gate.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

@@ -11,9 +11,9 @@
 
 #include "stage_simulator_thread.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/acquisition/stage.h"
 
 namespace tirpol::acquisition {

@@ -6,7 +6,7 @@
 #include <string>
 #include <thread>
 
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::test {
 

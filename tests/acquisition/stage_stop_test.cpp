@@ -2,7 +2,7 @@
 // pseudo-terminal (APT MGMSG_MOT_MOVE_STOP, Elliptec `st`) and the in-process sim:// stage: the
 // waiting call returns Stopped, the stage stays where it stopped (strictly between the start and
 // the target, and still there a while later). And the APT simulator resynchronises after bytes of
-// the wrong protocol or garbage, as a controller does (issue #12 item 4).
+// the wrong protocol or garbage, as a controller does.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include "stage_simulator_thread.h"
 #include "tirpol/acquisition/internal/apt_protocol.h"
 #include "tirpol/acquisition/internal/elliptec_protocol.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 

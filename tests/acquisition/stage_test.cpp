@@ -17,7 +17,7 @@
 
 #include "test_support.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::acquisition {
 namespace {

@@ -1,5 +1,5 @@
 // The calibration chain (calibration_chain.h): one ordered list of steps that every front end runs.
-// On synthetic sessions with a planted truth (calibration/testing/synthetic_session.h) the chain's
+// On synthetic sessions with a planted truth (calibration/synthetic_session.h) the chain's
 // products are bit-identical to the step functions called by hand in the same order, and the
 // panel's planted ε (0.93, −0.035, 0.01) comes back within 2σ; steps run in list order, only when
 // due, and a step that lacks its input names itself.
@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -9,7 +9,7 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"

@@ -15,7 +15,7 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/emissivity_extraction.h"
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"

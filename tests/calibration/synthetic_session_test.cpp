@@ -3,7 +3,7 @@
 // scene seen through the polarizer in the MWIR gives counts o + g·(ρ·L(T_sky) + ε·L(T_grid)) with L
 // Planck's law integrated over 3–5 µm.
 
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 
 #include <gtest/gtest.h>
 

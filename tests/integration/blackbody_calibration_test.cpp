@@ -20,7 +20,7 @@
 #include "tirpol/acquisition/internal/blackbody_simulator.h"
 #include "tirpol/acquisition/internal/blackbody_wait.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/radiometry.h"
 

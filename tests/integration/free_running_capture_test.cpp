@@ -23,8 +23,8 @@
 #include "test_support.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 

@@ -8,7 +8,7 @@
 
 #include <thread>
 
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/live/latest_slot.h"
 #include "tirpol/live/tapped_camera.h"
 

@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/live/polarizer_cycle.h"
 
 namespace tirpol::test {

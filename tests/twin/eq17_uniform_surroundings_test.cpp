@@ -12,13 +12,13 @@
 
 #include <cmath>
 
+#include "regions.h"
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/twin/regions.h"
 
 namespace tirpol::twin {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/simulation/sensor_model.h"
 #include "tirpol/twin/instrument.h"

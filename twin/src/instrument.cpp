@@ -14,9 +14,9 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "paint_render_fit.h"
+#include "regions.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/region_mean.h"
@@ -30,7 +31,6 @@
 #include "tirpol/twin/calibration_setpoints.h"
 #include "tirpol/twin/camera_geometry.h"
 #include "tirpol/twin/instrument.h"
-#include "tirpol/twin/regions.h"
 #include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {

@@ -1,6 +1,6 @@
 // Regions of the twin's images from the truth render's geometry channels.
 
-#include "tirpol/twin/regions.h"
+#include "regions.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/device_uri.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/renderer.h"

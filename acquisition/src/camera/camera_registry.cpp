@@ -6,7 +6,7 @@
 #ifdef TIRPOL_HAVE_ARAVIS
 #include "tirpol/acquisition/internal/aravis_camera.h"
 #endif
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #ifdef TIRPOL_HAVE_V4L2
 #include "tirpol/acquisition/internal/v4l2_camera.h"
 #endif

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
 
 #include <arv.h>
 

@@ -1,7 +1,7 @@
 // FakeGigECameraServer in a build without Aravis (TIRPOL_WITH_ARAVIS=OFF or not found): it cannot
 // serve, so its constructor says so; the digital twin then falls back to its in-process camera.
 
-#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

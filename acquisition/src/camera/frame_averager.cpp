@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/frame_averager.h"
+#include "tirpol/acquisition/frame_averager.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/frame_gate.h"
 
 namespace tirpol::acquisition::detail {
 

@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/frame_gate.h"
+#include "tirpol/acquisition/frame_gate.h"
 
 #include <algorithm>
 #include <cmath>

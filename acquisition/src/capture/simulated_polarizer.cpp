@@ -7,7 +7,7 @@
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 
 namespace tirpol::acquisition {
 

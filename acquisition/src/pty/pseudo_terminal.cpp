@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/pseudo_terminal.h"
+#include "tirpol/acquisition/sim/pseudo_terminal.h"
 
 #include <fcntl.h>
 #include <fmt/format.h>

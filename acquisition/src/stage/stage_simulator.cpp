@@ -1,4 +1,4 @@
-#include "tirpol/acquisition/internal/stage_simulator.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 #include <fmt/format.h>
 

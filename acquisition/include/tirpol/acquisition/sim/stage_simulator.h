@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/internal/pseudo_terminal.h"
 #include "tirpol/acquisition/result.h"
+#include "tirpol/acquisition/sim/pseudo_terminal.h"
 
 namespace tirpol::acquisition {
 

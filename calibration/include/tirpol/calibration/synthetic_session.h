@@ -6,8 +6,8 @@
 /// the grid's ghost of the camera interior, its reflection of the cold sky and its own emission.
 /// The polarizer, grid and detector are core's forward instrument model (instrument_model.h), the
 /// one simulation's sensor model and the digital twin use. Written with core's SessionWriter, so
-/// they are what `tirpol acquire` would write. Test fixture, not calibration API: target
-/// tirpol::calibration_testing (tests, the demo, the Python module's write_synthetic_sessions).
+/// they are what `tirpol acquire` would write. Used by the demo, the Python module's
+/// write_synthetic_sessions and the tests.
 
 #include <filesystem>
 #include <vector>

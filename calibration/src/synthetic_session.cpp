@@ -1,4 +1,4 @@
-#include "tirpol/calibration/testing/synthetic_session.h"
+#include "tirpol/calibration/synthetic_session.h"
 
 #include <fmt/format.h>
 

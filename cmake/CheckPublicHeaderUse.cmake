@@ -1,0 +1,138 @@
+# cmake -DSOURCE_DIR=<tree> -P CheckPublicHeaderUse.cmake
+#
+# Fails when a public header (<module>/include/**) is used only inside its own module: included by
+# no other module, no test of another module, and none of apps/, python/, examples/, bench/, fuzz/
+# (directly, or through another public header of its module that is used). Such a header belongs in
+# <module>/src/. Run by CTest (architecture.public_headers_used), so the public surface stays what
+# users call.
+
+cmake_minimum_required(VERSION 3.20)
+
+# Public headers known to be used only inside their module, still to move to src/ (each move renames
+# includes in the module and its tests, done one mechanical commit at a time). The list only
+# shrinks: a header listed here that is moved, or becomes used elsewhere, must leave it (the check
+# fails until it does), and any other unused public header fails at once.
+set(pending_moves
+  calibration/include/tirpol/calibration/microgrid_accuracy.h
+  calibration/include/tirpol/calibration/offset_drift.h
+  live/include/tirpol/live/access.h
+  live/include/tirpol/live/tapped_camera.h
+  simulation/include/tirpol/simulation/csv_columns.h
+  simulation/include/tirpol/simulation/render_memory.h
+  simulation/include/tirpol/simulation/rng.h
+  simulation/include/tirpol/simulation/sobol_sampler.h
+  simulation/include/tirpol/simulation/temperature_value.h
+  sweep/include/tirpol/sweep/sweep_results.h)
+
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "CheckPublicHeaderUse.cmake: pass -DSOURCE_DIR=<source tree>")
+endif()
+
+# Public headers, by the path a source includes them with, and the module that owns each.
+set(public)
+file(GLOB module_includes LIST_DIRECTORIES true ${SOURCE_DIR}/*/include)
+foreach(root ${module_includes})
+  get_filename_component(module_dir ${root} DIRECTORY)
+  get_filename_component(module ${module_dir} NAME)
+  file(GLOB_RECURSE headers RELATIVE ${root} ${root}/*.h)
+  foreach(header ${headers})
+    list(APPEND public ${header})
+    string(MAKE_C_IDENTIFIER "${header}" key)
+    set(owner_${key} ${module})
+    set(path_${key} ${root}/${header})
+  endforeach()
+endforeach()
+list(LENGTH public public_count)
+if(public_count EQUAL 0)
+  message(FATAL_ERROR "CheckPublicHeaderUse.cmake: no public header under ${SOURCE_DIR}/*/include")
+endif()
+
+# Every source and header of the tree (not build folders, which hold a CMakeCache.txt).
+set(sources)
+file(GLOB top_entries LIST_DIRECTORIES true ${SOURCE_DIR}/*)
+foreach(entry ${top_entries})
+  get_filename_component(name ${entry} NAME)
+  if(IS_DIRECTORY ${entry} AND NOT EXISTS ${entry}/CMakeCache.txt AND NOT name MATCHES "^\\.")
+    file(GLOB_RECURSE found ${entry}/*.h ${entry}/*.cpp ${entry}/*.hpp ${entry}/*.cc)
+    list(APPEND sources ${found})
+  endif()
+endforeach()
+
+# The module a file belongs to: its top folder, or <name> for tests/<name>/.
+function(owner_of file out)
+  file(RELATIVE_PATH relative ${SOURCE_DIR} ${file})
+  string(REPLACE "/" ";" parts "${relative}")
+  list(GET parts 0 top)
+  list(LENGTH parts depth)
+  if(top STREQUAL "tests" AND depth GREATER 2)
+    list(GET parts 1 top)
+  endif()
+  set(${out} ${top} PARENT_SCOPE)
+endfunction()
+
+function(included_headers file out)
+  file(STRINGS ${file} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]tirpol/")
+  set(result)
+  foreach(line ${lines})
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<]([^\">]+)[\">].*$" "\\1" included "${line}")
+    list(APPEND result ${included})
+  endforeach()
+  set(${out} ${result} PARENT_SCOPE)
+endfunction()
+
+set(used)
+foreach(file ${sources})
+  owner_of(${file} file_owner)
+  included_headers(${file} headers)
+  foreach(header ${headers})
+    string(MAKE_C_IDENTIFIER "${header}" key)
+    if(DEFINED owner_${key} AND NOT owner_${key} STREQUAL file_owner)
+      list(APPEND used ${header})
+    endif()
+  endforeach()
+endforeach()
+list(REMOVE_DUPLICATES used)
+
+# A used public header makes the public headers it includes used too.
+set(queue ${used})
+while(queue)
+  list(POP_FRONT queue header)
+  string(MAKE_C_IDENTIFIER "${header}" key)
+  included_headers(${path_${key}} headers)
+  foreach(included ${headers})
+    string(MAKE_C_IDENTIFIER "${included}" included_key)
+    if(DEFINED owner_${included_key} AND NOT included IN_LIST used)
+      list(APPEND used ${included})
+      list(APPEND queue ${included})
+    endif()
+  endforeach()
+endwhile()
+
+set(unused)
+set(stale)
+foreach(header ${public})
+  string(MAKE_C_IDENTIFIER "${header}" key)
+  set(shown "${owner_${key}}/include/${header}")
+  if(NOT header IN_LIST used AND NOT shown IN_LIST pending_moves)
+    list(APPEND unused "${shown}")
+  elseif(header IN_LIST used AND shown IN_LIST pending_moves)
+    list(APPEND stale "${shown} (now used outside its module)")
+  endif()
+endforeach()
+foreach(pending ${pending_moves})
+  if(NOT EXISTS ${SOURCE_DIR}/${pending})
+    list(APPEND stale "${pending} (no longer there)")
+  endif()
+endforeach()
+if(unused)
+  list(JOIN unused "\n  " text)
+  message(FATAL_ERROR "Public headers used only inside their own module (move them to the module's "
+                      "src/; its tests see src/ too):\n  ${text}")
+endif()
+if(stale)
+  list(JOIN stale "\n  " text)
+  message(FATAL_ERROR "Take these out of pending_moves in cmake/CheckPublicHeaderUse.cmake:\n  ${text}")
+endif()
+list(LENGTH pending_moves pending_count)
+message(STATUS "${public_count} public headers: each used outside its module, but for the "
+               "${pending_count} still to move to src/")
