@@ -406,6 +406,33 @@ FfcEvent ffc_event_from_json(const Fields& f) {
     e.reason = f.string("reason");
     return e;
 }
+
+/// v5's `camera.microgrid_pattern_deg`: absent (older sessions) or null for a plain camera, else
+/// four distinct angles in [0, 180). That they determine S1 and S2 is checked where they are used
+/// (calibration's MicrogridPattern).
+std::optional<std::array<double, 4>> microgrid_pattern_from_json(const Fields& camera) {
+    if (!camera.raw().contains("microgrid_pattern_deg")) return std::nullopt;
+    const json& v = camera.raw().at("microgrid_pattern_deg");
+    if (v.is_null()) return std::nullopt;
+    const std::string field = camera.field("microgrid_pattern_deg");
+    if (!v.is_array() || v.size() != 4)
+        camera.fail_here(
+            field, "expected null or an array of 4 angles in degrees, got " + Fields::describe(v));
+    std::array<double, 4> angles{};
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < 0.0 ||
+            v[i].get<double>() >= 180.0)
+            camera.fail_here(fmt::format("{}[{}]", field, i),
+                             "expected an angle in [0, 180) degrees, got " + v[i].dump());
+        angles[i] = v[i].get<double>();
+        for (std::size_t k = 0; k < i; ++k)
+            if (angles[k] == angles[i])
+                camera.fail_here(fmt::format("{}[{}]", field, i),
+                                 fmt::format("{} repeats entry {}: expected four distinct angles",
+                                             angles[i], k));
+    }
+    return angles;
+}
 }  // namespace
 
 json session_to_json(const SessionManifest& m) {
@@ -428,7 +455,10 @@ json session_to_json(const SessionManifest& m) {
                   {"height", m.camera.height},
                   {"bits_per_pixel", m.camera.bits_per_pixel},
                   {"frame_rate_hz", optional_number(m.camera.frame_rate_hz)},
-                  {"planck_constants", planck}}},
+                  {"planck_constants", planck},
+                  {"microgrid_pattern_deg", m.camera.microgrid_pattern_deg
+                                                ? json(*m.camera.microgrid_pattern_deg)
+                                                : json(nullptr)}}},
                 {"stage",
                  {{"uri", m.stage.uri},
                   {"vendor", m.stage.vendor},
@@ -478,6 +508,7 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
     m.camera.frame_rate_hz = cam.optional_number("frame_rate_hz");
     const Fields planck = cam.object("planck_constants");
     for (const auto& [k, v] : planck.raw().items()) m.camera.planck_constants[k] = planck.number(k);
+    m.camera.microgrid_pattern_deg = microgrid_pattern_from_json(cam);
 
     const Fields stage = top.object("stage");
     m.stage.uri = stage.string("uri");

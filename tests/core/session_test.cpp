@@ -103,7 +103,8 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     // The manifest is the documented schema, field for field.
     const json j = json::parse(read_file(dir / "session.json"));
     EXPECT_EQ(j.at("schema"), "tirpol.session");
-    EXPECT_EQ(j.at("schema_version"), 4);
+    EXPECT_EQ(j.at("schema_version"), 5);
+    EXPECT_TRUE(j.at("camera").at("microgrid_pattern_deg").is_null());
     EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
     EXPECT_TRUE(j.at("ffc_events").is_array());
     EXPECT_EQ(j.at("records")[0].at("file"), "frames/pol_000.0deg_r0.exr");
@@ -257,6 +258,41 @@ TEST(Session, FfcEventsRoundTripAndVersionThreeSessionsWithoutThemRead) {
     m = read_session(dir);
     EXPECT_EQ(m.schema_version, 3);
     EXPECT_TRUE(m.ffc_events.empty());
+}
+
+TEST(Session, MicrogridPatternRoundTripsIsCheckedAndVersionFourSessionsWithoutItRead) {
+    // v5 records a microgrid camera's 2×2 analyzer layout (here the Sony IMX250MZR one).
+    test::TempDir tmp;
+    const auto dir = tmp / "dofp";
+    SessionManifest manifest = example_manifest();
+    manifest.camera.microgrid_pattern_deg = std::array<double, 4>{90.0, 45.0, 135.0, 0.0};
+    { auto writer = SessionWriter::create(dir, manifest); }
+    SessionManifest m = read_session(dir);
+    ASSERT_TRUE(m.camera.microgrid_pattern_deg);
+    EXPECT_EQ(*m.camera.microgrid_pattern_deg, (std::array<double, 4>{90.0, 45.0, 135.0, 0.0}));
+
+    json j = json::parse(read_file(dir / "session.json"));
+    j["camera"]["microgrid_pattern_deg"][2] = 180.0;
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr(
+                    "camera.microgrid_pattern_deg[2]: expected an angle in [0, 180) degrees")));
+    j["camera"]["microgrid_pattern_deg"] = json::array({0.0, 45.0, 45.0, 135.0});
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(
+                    HasSubstr("camera.microgrid_pattern_deg[2]: 45 repeats entry 1")));
+    j["camera"]["microgrid_pattern_deg"] = json::array({0.0, 45.0, 90.0});
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(
+                    HasSubstr("camera.microgrid_pattern_deg: expected null or an array of 4")));
+    j["schema_version"] = 4;
+    j["camera"].erase("microgrid_pattern_deg");
+    write_file_atomic(dir / "session.json", j.dump(2));
+    m = read_session(dir);
+    EXPECT_EQ(m.schema_version, 4);
+    EXPECT_FALSE(m.camera.microgrid_pattern_deg);
 }
 
 TEST(Session, FrameAuditRoundTripsAndItsColumnsMustMatchTheFrames) {
@@ -422,9 +458,9 @@ TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
 
 TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
     json j = manifest();
-    j["schema_version"] = 5;
+    j["schema_version"] = 6;
     write(j);
-    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 4, got 5"));
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 5, got 6"));
     j["schema"] = "something.else";
     write(j);
     EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));

@@ -18,6 +18,7 @@
 #include "camera/aravis_support.h"
 #include "camera/gvcp_probe.h"
 #include "camera/pixel_decode.h"
+#include "camera/pixel_formats.h"
 #include "tirpol/acquisition/internal/frame_id.h"
 #include "tirpol/core/radiometry.h"
 
@@ -35,7 +36,13 @@ constexpr std::array kTemperatureFeatures = {"DeviceTemperature", "SensorTempera
 /// / R2 on cameras that split it (FLIR's radiometric file metadata calls them PlanckR1, PlanckR2,
 /// PlanckB, PlanckF, PlanckO).
 constexpr std::array kPlanckFeatures = {"R", "R1", "R2", "B", "F", "O"};
-constexpr std::array kSupportedPixelFormats = {"Mono8", "Mono10", "Mono12", "Mono14", "Mono16"};
+
+std::string supported_pixel_formats() {
+    std::string names;
+    for (const auto& f : kGenICamPixelFormats)
+        names += (names.empty() ? "" : ", ") + std::string(f.name);
+    return names;
+}
 
 std::int64_t realtime_now_ns() {
     timespec ts{};
@@ -123,12 +130,10 @@ public:
 
     Status set_pixel_format(const std::string& format) override {
         if (m_streaming) return busy("set_pixel_format");
-        if (std::find(kSupportedPixelFormats.begin(), kSupportedPixelFormats.end(), format) ==
-            kSupportedPixelFormats.end())
-            return DeviceError{
-                DeviceErrorCode::InvalidArgument,
-                fmt::format("{}: pixel format '{}' not handled; expected one of {}", m_label,
-                            format, fmt::join(kSupportedPixelFormats, ", "))};
+        if (find_pixel_format(format) == nullptr)
+            return DeviceError{DeviceErrorCode::InvalidArgument,
+                               fmt::format("{}: pixel format '{}' not handled; expected one of {}",
+                                           m_label, format, supported_pixel_formats())};
         GErrorSlot e;
         if (!arv_camera_is_enumeration_entry_available(m_camera.get(), "PixelFormat",
                                                        format.c_str(), e.out())) {
@@ -405,10 +410,11 @@ private:
         // PFNC: bits 16–23 of the pixel format code are the bits a pixel occupies; the significant
         // bits are in the name (Mono14 → 14).
         m_info.bits_per_pixel = static_cast<int>(ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format));
-        const std::string& name = m_info.pixel_format;
-        if (name.rfind("Mono", 0) == 0 && name.size() > 4 &&
-            std::isdigit(static_cast<unsigned char>(name[4])))
-            m_info.bits_per_pixel = std::stoi(name.substr(4));
+        const GenICamPixelFormat* known = find_pixel_format(static_cast<std::uint32_t>(format));
+        if (known != nullptr) m_info.bits_per_pixel = known->significant_bits;
+        m_info.microgrid_pattern_deg = m_options.microgrid_pattern_deg;
+        if (known != nullptr && known->polarized && !m_info.microgrid_pattern_deg)
+            m_info.microgrid_pattern_deg = kSonyPolarizedLayoutDeg;
         m_info.frame_rate_hz = current_frame_rate();
         m_info.planck_constants.clear();
         for (const char* constant : kPlanckFeatures) {
@@ -440,24 +446,30 @@ private:
             damaged();
             return false;
         }
-        const ArvPixelFormat format = arv_buffer_get_image_pixel_format(buffer);
-        const auto bits = ARV_PIXEL_FORMAT_BIT_PER_PIXEL(format);
-        if (bits != 8 && bits != 16) {
+        const ArvPixelFormat code = arv_buffer_get_image_pixel_format(buffer);
+        const auto bits = ARV_PIXEL_FORMAT_BIT_PER_PIXEL(code);
+        const GenICamPixelFormat* format = find_pixel_format(static_cast<std::uint32_t>(code));
+        const int stored_bits = format != nullptr ? format->stored_bits : static_cast<int>(bits);
+        if (stored_bits != 8 && stored_bits != 12 && stored_bits != 16) {
             damaged();
             return false;
         }
-        const int bytes_per_pixel = static_cast<int>(bits / 8);
         frame.width = arv_buffer_get_image_width(buffer);
         frame.height = arv_buffer_get_image_height(buffer);
+        if (frame.width <= 0 || frame.height <= 0) {
+            damaged();
+            return false;
+        }
         gint x_padding = 0, y_padding = 0;
         arv_buffer_get_image_padding(buffer, &x_padding, &y_padding);
-        const auto stride = static_cast<std::size_t>(frame.width * bytes_per_pixel + x_padding);
+        const std::size_t row =
+            (static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(stored_bits) + 7) / 8;
+        const auto stride = row + static_cast<std::size_t>(x_padding);
         size_t size = 0;
         const auto* data =
             static_cast<const std::uint8_t*>(arv_buffer_get_image_data(buffer, &size));
-        const std::size_t needed = stride * static_cast<std::size_t>(frame.height - 1) +
-                                   static_cast<std::size_t>(frame.width * bytes_per_pixel);
-        if (data == nullptr || frame.width <= 0 || frame.height <= 0 || size < needed) {
+        const std::size_t needed = stride * static_cast<std::size_t>(frame.height - 1) + row;
+        if (data == nullptr || size < needed) {
             damaged();
             return false;
         }
@@ -467,7 +479,10 @@ private:
         m_pending_incomplete -= absorbed;
         m_stats.dropped += step.missed - absorbed;
         frame.frame_id = step.id;
-        decode_mono(data, frame.width, frame.height, bytes_per_pixel, stride, frame.counts);
+        if (stored_bits == 12)
+            decode_mono12p(data, frame.width, frame.height, stride, frame.counts);
+        else
+            decode_mono(data, frame.width, frame.height, stored_bits / 8, stride, frame.counts);
         frame.device_timestamp_ns = static_cast<std::int64_t>(arv_buffer_get_timestamp(buffer));
         const auto system_ns = static_cast<std::int64_t>(arv_buffer_get_system_timestamp(buffer));
         frame.host_timestamp_ns = system_ns != 0 ? system_ns : realtime_now_ns();

@@ -29,10 +29,13 @@ namespace {
 #ifdef TIRPOL_HAVE_ARAVIS
 Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
     u.check_keys({"pixel_format", "width", "height", "fps", "trigger", "buffers", "packet_size",
-                  "control_wait_s"});
+                  "control_wait_s", "microgrid"});
     if (u.target.empty()) fail("device URI '{}': expected aravis://<device-id>", u.text);
     AravisCameraOptions options;
     if (u.query.count("pixel_format") != 0) options.pixel_format = u.query.at("pixel_format");
+    if (u.query.count("microgrid") != 0)
+        options.microgrid_pattern_deg = parse_microgrid_pattern_deg(
+            u.query.at("microgrid"), fmt::format("device URI '{}': microgrid", u.text));
     options.width = optional_int(u, "width");
     options.height = optional_int(u, "height");
     options.frame_rate_hz = optional_number(u, "fps");

@@ -7,22 +7,10 @@
 #include <mutex>
 
 #include "camera/aravis_support.h"
+#include "camera/pixel_formats.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
-
-namespace {
-struct MonoFormat {
-    ArvPixelFormat code;
-    const char* name;
-    int bits;
-};
-constexpr MonoFormat kMonoFormats[] = {{ARV_PIXEL_FORMAT_MONO_8, "Mono8", 8},
-                                       {ARV_PIXEL_FORMAT_MONO_10, "Mono10", 10},
-                                       {ARV_PIXEL_FORMAT_MONO_12, "Mono12", 12},
-                                       {ARV_PIXEL_FORMAT_MONO_14, "Mono14", 14},
-                                       {ARV_PIXEL_FORMAT_MONO_16, "Mono16", 16}};
-}  // namespace
 
 struct FakeGigECameraServer::Impl {
     FakeGigECameraOptions options;
@@ -37,15 +25,14 @@ struct FakeGigECameraServer::Impl {
                              ArvPixelFormat pixel_format) {
         auto* self = static_cast<Impl*>(data);
         std::lock_guard lock(self->mutex);
-        const MonoFormat* format = nullptr;
-        for (const auto& f : kMonoFormats)
-            if (f.code == pixel_format) format = &f;
+        const GenICamPixelFormat* format =
+            find_pixel_format(static_cast<std::uint32_t>(pixel_format));
         FakeGigEFrameRequest request;
         request.width = arv_buffer_get_image_width(buffer);
         request.height = arv_buffer_get_image_height(buffer);
         if (!self->fill || format == nullptr || request.width <= 0 || request.height <= 0) return;
         request.pixel_format = format->name;
-        request.bits_per_pixel = format->bits;
+        request.bits_per_pixel = format->significant_bits;
         request.frame_id = arv_buffer_get_frame_id(buffer);
         request.exposure_time_us = exposure_time_us;
         request.gain = gain;
@@ -60,15 +47,28 @@ struct FakeGigECameraServer::Impl {
         // through it.
         auto* out =
             static_cast<std::uint8_t*>(const_cast<void*>(arv_buffer_get_data(buffer, nullptr)));
-        const double full_scale = std::ldexp(1.0, format->bits) - 1.0;
+        const double full_scale = std::ldexp(1.0, format->significant_bits) - 1.0;
+        const auto width = static_cast<std::size_t>(request.width);
+        const std::size_t row = row_bytes(*format, request.width);
         for (std::size_t i = 0; i < n; ++i) {
             const double v = std::isfinite(self->counts[i])
                                  ? std::clamp(std::nearbyint(static_cast<double>(self->counts[i])),
                                               0.0, full_scale)
                                  : 0.0;
             const auto value = static_cast<std::uint16_t>(v);
-            if (format->bits == 8) {
+            if (format->stored_bits == 8) {
                 out[i] = static_cast<std::uint8_t>(value);
+            } else if (format->stored_bits == 12) {  // PFNC Mono12p: see pixel_decode.h
+                const std::size_t x = i % width;
+                std::uint8_t* pair = out + (i / width) * row + 3 * (x / 2);
+                if (x % 2 == 0) {
+                    pair[0] = static_cast<std::uint8_t>(value & 0xFFu);
+                    pair[1] = static_cast<std::uint8_t>((pair[1] & 0xF0u) | (value >> 8u));
+                } else {
+                    pair[1] =
+                        static_cast<std::uint8_t>((pair[1] & 0x0Fu) | ((value & 0x0Fu) << 4u));
+                    pair[2] = static_cast<std::uint8_t>(value >> 4u);
+                }
             } else {  // PFNC MonoN unpacked: little-endian 16-bit words
                 out[2 * i] = static_cast<std::uint8_t>(value & 0xFFu);
                 out[2 * i + 1] = static_cast<std::uint8_t>(value >> 8u);

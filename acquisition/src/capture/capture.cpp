@@ -1,6 +1,7 @@
 #include "tirpol/acquisition/capture.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -48,9 +49,17 @@ SessionManifest new_session_manifest(const CameraInfo& camera, const StageInfo& 
                                      const CapturePlan& plan, const BlackbodyInfo* blackbody) {
     SessionManifest m;
     // frame_rate_hz stays null until the capture loop has measured what the camera delivers.
-    m.camera = {camera.uri,          camera.vendor,          camera.model,  camera.serial,
-                camera.pixel_format, camera.width,           camera.height, camera.bits_per_pixel,
-                std::nullopt,        camera.planck_constants};
+    m.camera = {camera.uri,
+                camera.vendor,
+                camera.model,
+                camera.serial,
+                camera.pixel_format,
+                camera.width,
+                camera.height,
+                camera.bits_per_pixel,
+                std::nullopt,
+                camera.planck_constants,
+                camera.microgrid_pattern_deg};
     m.stage = {stage.uri,    stage.vendor,   stage.model,
                stage.serial, stage.firmware, stage.counts_per_degree};
     if (blackbody)
@@ -75,6 +84,16 @@ void check_resumable(const SessionManifest& m, const CameraInfo& camera, const C
             "same camera settings",
             camera.width, camera.height, camera.pixel_format, m.camera.width, m.camera.height,
             m.camera.pixel_format);
+    if (m.camera.microgrid_pattern_deg != camera.microgrid_pattern_deg)
+        fail(
+            "the camera's microgrid pattern ({}) differs from the session's ({}); resume with the "
+            "same camera settings",
+            camera.microgrid_pattern_deg
+                ? fmt::format("{}", fmt::join(*camera.microgrid_pattern_deg, ","))
+                : "none",
+            m.camera.microgrid_pattern_deg
+                ? fmt::format("{}", fmt::join(*m.camera.microgrid_pattern_deg, ","))
+                : "none");
 }
 
 std::uintmax_t session_bytes_needed(int width, int height, std::size_t steps) {

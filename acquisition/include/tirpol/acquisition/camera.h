@@ -3,12 +3,13 @@
 /// The camera interface. Back ends: Aravis (GenICam: GigE Vision / USB3 Vision), V4L2 (UVC thermal
 /// cores), simulated (frame generator). Opened by URI: `aravis://<device-id>`,
 /// `v4l2:///dev/videoN`, `sim://<name>`, or any scheme added with register_camera_scheme:
-///   aravis://<device-id>[?pixel_format=Mono14&width=W&height=H&fps=F&trigger=software&buffers=N&packet_size=auto|keep]
+///   aravis://<device-id>[?pixel_format=Mono14&width=W&height=H&fps=F&trigger=software&buffers=N&packet_size=auto|keep&microgrid=90,45,135,0]
 ///   v4l2:///dev/videoN[?format=Y16|GREY&width=W&height=H&fps=F&buffers=N]
 ///   sim://uniform?width=W&height=H&counts=C&noise=N&fps=F[&bits=B&drop=P&seed=S&fpa_k=T]
 /// (the digital twin adds the renderer-backed sim://<scene.yaml>:
 /// tirpol::twin::register_twin_device_schemes).
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -16,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/acquisition/result.h"
@@ -36,13 +38,24 @@ struct Frame {
 struct CameraInfo {
     std::string uri;  ///< how to open it again
     std::string vendor, model, serial;
-    std::string pixel_format;  ///< "Mono16", "Mono14", "Y16", ...
+    std::string pixel_format;  ///< "Mono16", "Mono14", "Y16", "PolarizeMono12", ...
     int width = 0, height = 0;
     int bits_per_pixel = 0;
     std::optional<double> frame_rate_hz;
     std::map<std::string, double>
         planck_constants;  ///< FLIR-style R, B, F, O (R1, R2, ...) when present
+    /// A microgrid (division-of-focal-plane) camera's analyzer angles, degrees, at cell positions
+    /// (0,0), (0,1), (1,0), (1,1) of (y mod 2, x mod 2): the sensor's layout for a polarized pixel
+    /// format, or the pattern declared in the URI (`microgrid=`) for a plain monochrome one; absent
+    /// for a camera without a microgrid.
+    std::optional<std::array<double, 4>> microgrid_pattern_deg;
 };
+
+/// Parses a declared microgrid pattern: "sony" (the Sony IMX250MZR layout 90,45,135,0) or four
+/// comma-separated angles in degrees, each finite, in [0, 180) and distinct. Throws tirpol::Error
+/// naming `context` and the text otherwise. (Whether the four determine S1 and S2 is checked where
+/// frames are reduced: calibration's MicrogridPattern.)
+std::array<double, 4> parse_microgrid_pattern_deg(std::string_view text, std::string_view context);
 
 struct StreamStatistics {
     std::uint64_t delivered = 0;   ///< complete frames handed out

@@ -8,8 +8,9 @@
 /// atomically, so after a crash (kill -9, power loss) the manifest lists only complete frames. A
 /// frame file that reached the disk but not the manifest is recovered on resume from its own
 /// header, which mirrors its record. An existing frame file is never overwritten. (Schema
-/// "tirpol.session" version 4; versions 1 to 3 still read.)
+/// "tirpol.session" version 5; versions 1 to 4 still read.)
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -31,7 +32,9 @@ inline constexpr const char* kSessionSchema = "tirpol.session";
 /// `blackbody_readings`; its `blackbody_temperature_k` is then the mean reading during the frames.
 /// v4 adds `ffc_events` (the camera core's flat-field corrections, scheduled or detected) and each
 /// record's `audit` (per-frame ids, device and host clocks, FPA; the core's state around the step).
-inline constexpr int kSessionSchemaVersion = 4;
+/// v5 adds `camera.microgrid_pattern_deg`: the analyzer angle at each position of a microgrid
+/// (division-of-focal-plane) camera's 2×2 cell, or null for a camera without one.
+inline constexpr int kSessionSchemaVersion = 5;
 /// The oldest version still read.
 inline constexpr int kSessionSchemaOldestReadable = 1;
 inline constexpr const char* kSessionManifestName = "session.json";
@@ -43,6 +46,9 @@ struct SessionCamera {
     std::optional<double> frame_rate_hz;
     std::map<std::string, double>
         planck_constants;  ///< FLIR-style R, B, F, O when the camera has them
+    /// v5: a microgrid camera's analyzer angles (degrees, [0, 180)) at cell positions (0,0),
+    /// (0,1), (1,0), (1,1) of (y mod 2, x mod 2); absent for a plain camera (and in v1–v4).
+    std::optional<std::array<double, 4>> microgrid_pattern_deg;
 };
 
 /// The rotation stage as recorded in the manifest (mirrors acquisition::StageInfo).
@@ -171,7 +177,7 @@ struct SessionRecord {
 /// The whole manifest.
 struct SessionManifest {
     int schema_version =
-        kSessionSchemaVersion;  ///< as read (1 to 4); always written as kSessionSchemaVersion
+        kSessionSchemaVersion;  ///< as read (1 to 5); always written as kSessionSchemaVersion
     std::string created_utc;    ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
     SessionCamera camera;
     SessionStage stage;
@@ -190,7 +196,7 @@ struct SessionManifest {
 /// preceded frames that may have been exposed during the move.
 double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record);
 
-/// Manifest ⇄ JSON (schema v4; v1 to v3 read). `from_json` validates everything and throws
+/// Manifest ⇄ JSON (schema v5; v1 to v4 read). `from_json` validates everything and throws
 /// tirpol::Error naming `source` (the file) and the field, e.g. "DIR/session.json:
 /// records[2].frames: expected an integer ≥ 1".
 nlohmann::json session_to_json(const SessionManifest& manifest);

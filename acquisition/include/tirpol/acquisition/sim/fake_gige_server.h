@@ -24,7 +24,9 @@ namespace tirpol::acquisition {
 /// What the camera is about to send.
 struct FakeGigEFrameRequest {
     int width = 0, height = 0;
-    std::string pixel_format;    ///< "Mono8", "Mono10", "Mono12", "Mono14" or "Mono16"
+    /// "Mono8" … "Mono16", or a microgrid mosaic: "PolarizeMono8", "PolarizeMono12",
+    /// "PolarizeMono12p", "PolarizeMono16" (the GenICam XML must offer it: the stock one does not)
+    std::string pixel_format;
     int bits_per_pixel = 0;      ///< significant bits: values are clipped to [0, 2^bits − 1]
     std::uint64_t frame_id = 0;  ///< the GVSP block id of this frame (16-bit, never 0)
     std::uint32_t exposure_time_us = 0;
@@ -58,7 +60,7 @@ public:
     FakeGigECameraServer& operator=(const FakeGigECameraServer&) = delete;
 
     /// Replaces the image source; an empty function restores Aravis's diagonal-ramp test pattern.
-    /// With a callback set, frames in pixel formats other than Mono8…Mono16 are sent unfilled.
+    /// With a callback set, frames in pixel formats other than those above are sent unfilled.
     void set_fill(FakeGigEFill fill);
     /// Aravis's device id of this camera ("Aravis-Fake-<serial>"), for aravis://.
     std::string device_id() const;

@@ -27,10 +27,16 @@ struct AravisDeviceInfo {
 std::vector<AravisDeviceInfo> discover_aravis_cameras();
 
 /// How to configure an Aravis camera when opening it (URI query: `aravis://ID?pixel_format=Mono14&
-/// width=640&height=512&fps=30&trigger=software&buffers=32&packet_size=auto`).
+/// width=640&height=512&fps=30&trigger=software&buffers=32&packet_size=auto&microgrid=sony`).
 struct AravisCameraOptions {
-    std::optional<std::string> pixel_format;  ///< Mono8, Mono10, Mono12, Mono14 or Mono16
-    std::optional<int> width, height;         ///< region of interest, from the top-left corner
+    /// Mono8, Mono10, Mono12, Mono14, Mono16, or a microgrid polarization sensor's raw mosaic:
+    /// PolarizeMono8, PolarizeMono12, PolarizeMono12p, PolarizeMono16 (LUCID's names).
+    std::optional<std::string> pixel_format;
+    /// The microgrid pattern (CameraInfo::microgrid_pattern_deg): declares one for a plain
+    /// monochrome format (a microgrid camera that streams Mono16), or replaces the sensor layout of
+    /// a polarized format (a sensor read out mirrored).
+    std::optional<std::array<double, 4>> microgrid_pattern_deg;
+    std::optional<int> width, height;  ///< region of interest, from the top-left corner
     std::optional<double> frame_rate_hz;
     bool software_trigger =
         false;  ///< each grab() fires TriggerSoftware (TriggerMode=On, TriggerSource=Software)
