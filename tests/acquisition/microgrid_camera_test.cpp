@@ -13,7 +13,7 @@
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/camera.h"
-#include "tirpol/acquisition/internal/fake_gige_server.h"
+#include "tirpol/acquisition/sim/fake_gige_server.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {
