@@ -162,8 +162,11 @@ int run(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ValidationError& e) {
         // CLI11's ExistingFile/ExistingDirectory/ExistingPath checks: the command line is right,
-        // the file it names is missing, an error in an input (exit 1), as `info` reports it.
-        if (!names_a_missing_path(e.what())) return usage_error(app, e);
+        // the file it names is missing, an error in an input (exit 1), as `info` reports it. CLI11
+        // checks files before it rejects unknown arguments: those (still in remaining()) make it
+        // a usage error first.
+        if (!names_a_missing_path(e.what()) || !app.remaining(true).empty())
+            return usage_error(app, e);
         std::fprintf(stderr, "tirpol: error: %s\n", e.what());
         return kExitError;
     } catch (const CLI::ParseError& e) {

@@ -58,7 +58,7 @@ def test_reduce_refuses_a_negative_sigma():
     images = {angle: np.ones((2, 2), np.float32) for angle in (0, 45, 90, 135)}
     stds = {angle: np.full((2, 2), 0.1, np.float32) for angle in images}
     stds[90] = np.array([[0.1, 0.1], [-0.2, 0.1]], np.float32)
-    with pytest.raises(tirpol.Error, match=r"stds\[90\].*1 pixel\(s\) are negative \(first at x=0, y=1"):
+    with pytest.raises(tirpol.Error, match=r"images\[90\] \(std\): 1 pixel\(s\) are negative \(first at x=0, y=1"):
         calibration.reduce(images, stds)
     stds[90] = np.abs(stds[90])
     assert calibration.reduce(images, stds)["S0_std"].shape == (2, 2)
