@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <fmt/format.h>
 #include <glog/logging.h>
 #include <spdlog/spdlog.h>
 
@@ -59,7 +60,13 @@ std::vector<std::string> subcommand_names(const CLI::App& app) {
 }
 
 // "did you mean" hints for the arguments CLI11 could not place: misspelt subcommands and options.
-void print_suggestions(CLI::App& app) {
+struct Suggestions {
+    std::vector<std::string> lines;
+    bool names_a_subcommand = false;  // a misspelt subcommand was recognised ("rendr")
+};
+
+Suggestions suggestions_for(CLI::App& app) {
+    Suggestions found;
     CLI::App* deepest = &app;
     while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
     for (const std::string& arg : app.remaining(true)) {
@@ -67,16 +74,38 @@ void print_suggestions(CLI::App& app) {
             const std::string name = arg.substr(0, arg.find('='));
             const std::string hint = closest_match(name, option_names(*deepest));
             if (!hint.empty())
-                std::fprintf(stderr, "tirpol: unknown option '%s' for '%s'; did you mean '%s'?\n",
-                             name.c_str(), deepest == &app ? "tirpol" : deepest->get_name().c_str(),
-                             hint.c_str());
+                found.lines.push_back(
+                    fmt::format("tirpol: unknown option '{}' for '{}'; did you mean '{}'?", name,
+                                deepest == &app ? "tirpol" : deepest->get_name(), hint));
         } else if (deepest->get_subcommands([](const CLI::App*) { return true; }).size() > 0) {
             const std::string hint = closest_match(arg, subcommand_names(*deepest));
-            if (!hint.empty())
-                std::fprintf(stderr, "tirpol: unknown subcommand '%s'; did you mean '%s'?\n",
-                             arg.c_str(), hint.c_str());
+            if (!hint.empty()) {
+                found.lines.push_back(
+                    fmt::format("tirpol: unknown subcommand '{}'; did you mean '{}'?", arg, hint));
+                found.names_a_subcommand = true;
+            }
         }
     }
+    return found;
+}
+
+// CLI11's messages for a path that is not there ("--measured: File does not exist: a.exr").
+bool names_a_missing_path(const std::string& message) {
+    return message.find("File does not exist") != std::string::npos ||
+           message.find("Directory does not exist") != std::string::npos ||
+           message.find("Path does not exist") != std::string::npos;
+}
+
+// A command line wrong in itself: CLI11's message (unless a misspelt subcommand explains it), the
+// did-you-mean hints, exit 2.
+int usage_error(CLI::App& app, const CLI::ParseError& e) {
+    const Suggestions hints = suggestions_for(app);
+    // A misspelt subcommand is the whole story: CLI11's "A subcommand is required" (the misspelling
+    // was not taken for one) would only mislead before the hint.
+    if (!hints.names_a_subcommand) app.exit(e);
+    for (const std::string& line : hints.lines) std::fprintf(stderr, "%s\n", line.c_str());
+    if (hints.names_a_subcommand) std::fprintf(stderr, "Run with --help for more information.\n");
+    return kExitUsage;
 }
 
 // List-valued options take "8 14" and "8,14" alike, everywhere.
@@ -131,10 +160,17 @@ int run(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
+    } catch (const CLI::ValidationError& e) {
+        // CLI11's ExistingFile/ExistingDirectory/ExistingPath checks: the command line is right,
+        // the file it names is missing, an error in an input (exit 1), as `info` reports it. CLI11
+        // checks files before it rejects unknown arguments: those (still in remaining()) make it
+        // a usage error first.
+        if (!names_a_missing_path(e.what()) || !app.remaining(true).empty())
+            return usage_error(app, e);
+        std::fprintf(stderr, "tirpol: error: %s\n", e.what());
+        return kExitError;
     } catch (const CLI::ParseError& e) {
-        app.exit(e);
-        print_suggestions(app);
-        return kExitUsage;
+        return usage_error(app, e);
     } catch (const OutputConflict& e) {
         // Found from the command line and the file system alone, before any work: a usage error.
         std::fprintf(stderr, "%s\nRun with --help for more information.\n", e.what());

@@ -82,11 +82,8 @@ void demo_calibration(const std::filesystem::path& out_dir) {
     const Image& stokes = products.stokes.front();
     write_exr(dir / "stokes.exr", stokes);
     for (const char* c : {"S0", "S1", "S2", "DoLP"}) {
-        QuicklookOptions q;
-        q.colormap = default_colormap(c);
-        q.title = c;
         write_quicklook(dir / (std::string(c) + ".png"), stokes.channel(c), stokes.width(),
-                        stokes.height(), q);
+                        stokes.height(), channel_quicklook_options(c));
     }
     // The same scene without the wire-grid calibration: the chain from the radiometric one, offset
     // updated.

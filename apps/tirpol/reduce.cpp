@@ -128,12 +128,9 @@ void run_reduce(const ReduceArgs& a) {
         std::printf("warning: %s\n", std::get<std::string>(it->second).c_str());
     if (!a.quicklooks.empty())
         for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
-            QuicklookOptions q;
-            q.colormap = default_colormap(c);
-            q.title = c;
-            q.units = std::string(c) == "AoP" ? "deg" : std::string(c) == "DoLP" ? "" : "W/(m²·sr)";
             write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"),
-                            stokes.channel(c), stokes.width(), stokes.height(), q);
+                            stokes.channel(c), stokes.width(), stokes.height(),
+                            channel_quicklook_options(c));
         }
     if (const auto it = stokes.attributes().find("drift_offset_counts");
         it != stokes.attributes().end()) {

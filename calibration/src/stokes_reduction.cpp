@@ -46,7 +46,7 @@ ValidatedInputs validate(const std::vector<AnalyzerPlanes>& images, int width, i
         if (im.signal_std.empty())
             v.have_std = false;
         else
-            detail::check_plane(im.signal_std, n, im.source + " (std)", width, height);
+            detail::check_std_plane(im.signal_std, n, im.source + " (std)", width, height);
         v.images.push_back(&im);
         if (wire_grid) {
             const WireGridPosition& g = wire_grid->at(pos.nominal_angle_deg);

@@ -25,4 +25,17 @@ inline void check_plane(std::span<const float> plane, std::size_t expected, cons
              first / static_cast<std::size_t>(width));
 }
 
+/// check_plane for a σ image, which must also hold no negative value (a standard deviation).
+inline void check_std_plane(std::span<const float> plane, std::size_t expected,
+                            const std::string& what, int width, int height) {
+    check_plane(plane, expected, what, width, height);
+    std::size_t bad = 0, first = 0;
+    for (std::size_t i = 0; i < plane.size(); ++i)
+        if (plane[i] < 0.0f && bad++ == 0) first = i;
+    if (bad > 0)
+        fail("{}: {} pixel(s) are negative (first at x={}, y={}: {}); a standard deviation is ≥ 0",
+             what, bad, first % static_cast<std::size_t>(width),
+             first / static_cast<std::size_t>(width), plane[first]);
+}
+
 }  // namespace tirpol::calibration::detail

@@ -31,7 +31,7 @@ WireGridCalibration fit_wire_grid(const std::vector<PolarizedBlackbodyFrame>& fr
         if (!(f.temperature_k > 0.0))
             fail("{}: blackbody temperature {} K; expected > 0 K", f.source, f.temperature_k);
         if (!f.signal_std.empty())
-            detail::check_plane(f.signal_std, n, f.source + " (std)", width, height);
+            detail::check_std_plane(f.signal_std, n, f.source + " (std)", width, height);
         by_angle[polarizer_angle_key(f.angle_deg)].push_back(&f);
     }
     const bool with_covariance = std::all_of(frames.begin(), frames.end(),

@@ -99,6 +99,26 @@ Colormap default_colormap(const std::string& name) {
     return Colormap::Sequential;
 }
 
+QuicklookOptions channel_quicklook_options(const std::string& channel_name,
+                                           const std::string& radiance_units) {
+    QuicklookOptions q;
+    q.colormap = default_colormap(channel_name);
+    q.title = channel_name;
+    if (channel_name.size() == 2 && channel_name[0] == 'S') {
+        q.units = radiance_units;
+    } else if (channel_name == "DoLP") {
+        q.units = "fraction";
+        q.vmin = 0.0;
+    } else if (channel_name == "AoP") {
+        q.units = "deg";
+        q.vmin = 0.0;
+        q.vmax = 180.0;
+    } else if (channel_name == "temperature_k") {
+        q.units = "K";
+    }
+    return q;
+}
+
 std::pair<double, double> quicklook_range(const std::vector<float>& data,
                                           const QuicklookOptions& options) {
     std::vector<float> finite;

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/parameter_interval.h"
 #include "tirpol/materials/material_writer.h"
 
 namespace tirpol::fitting {
@@ -109,7 +110,10 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
         nlohmann::json p{{"name", f.name},        {"value", f.value}, {"fixed", f.fixed},
                          {"sigma", f.sigma},      {"lower", f.lower}, {"upper", f.upper},
                          {"at_bound", f.at_bound}};
-        if (!f.fixed) p["interval_2sigma"] = {f.value - 2.0 * f.sigma, f.value + 2.0 * f.sigma};
+        if (!f.fixed) {
+            const ParameterInterval interval = interval_2sigma(f);
+            p["interval_2sigma"] = {interval.lower, interval.upper};
+        }
         if (f.wavelength_um) p["wavelength_um"] = *f.wavelength_um;
         params.push_back(p);
     }
@@ -169,9 +173,10 @@ std::string fit_report_text(const MicrofacetFitResult& r,
         if (f.fixed) {
             out << fmt::format("  {:<14} {:>12.6g}   (fixed)\n", f.name, f.value);
         } else {
-            out << fmt::format("  {:<14} {:>12.6g}   [{:.6g}, {:.6g}]{}\n", f.name, f.value,
-                               f.value - 2.0 * f.sigma, f.value + 2.0 * f.sigma,
-                               f.at_bound ? "  at bound" : "");
+            const ParameterInterval interval = interval_2sigma(f);
+            out << fmt::format("  {:<14} {:>12.6g}   [{:.6g}, {:.6g}]{}{}\n", f.name, f.value,
+                               interval.lower, interval.upper, f.at_bound ? "  at bound" : "",
+                               interval.clipped ? "  (cut at the bounds)" : "");
         }
     }
     if (r.covariance_available && r.free_indices.size() > 1) {

@@ -91,6 +91,13 @@ std::vector<calibration::AnalyzerPlanes> analyzer_planes(const py::dict& images,
     std::vector<calibration::AnalyzerPlanes> out;
     for (const auto& [key, value] : images) {
         calibration::AnalyzerPlanes a;
+        // Keys are angles as numbers ({0: I0, 45: I45, ...}); a string key is the usual slip.
+        if (!py::isinstance<py::int_>(key) && !py::isinstance<py::float_>(key))
+            fail(
+                "images: key {} is a {}; the keys are analyzer angles in degrees as numbers, e.g. "
+                "{{0: i0, 45: i45, 90: i90, 135: i135}}",
+                py::repr(key).cast<std::string>(),
+                py::type::of(key).attr("__name__").cast<std::string>());
         a.angle_deg = key.cast<double>();
         a.source = fmt::format("images[{}]", a.angle_deg);
         a.signal = view(value, a.source);

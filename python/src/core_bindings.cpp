@@ -46,10 +46,47 @@ py::array_t<T> map_stokes(const DoubleArray& s, const char* function, F&& f) {
     return out;
 }
 
+/// Stokes vectors from what a user passes: an array of shape (..., 4) or (..., 3), or a
+/// tirpol.Image (or dict) with channels S0, S1, S2 (and S3 if present), read as an (H, W, 4) array.
+/// Complex or non-numeric input is refused with a message naming `function`.
+DoubleArray stokes_argument(const py::object& value, const char* function) {
+    if (py::isinstance<py::dict>(value)) {
+        const py::dict channels = value.cast<py::dict>();
+        for (const char* c : {"S0", "S1", "S2"})
+            if (!channels.contains(c))
+                fail(
+                    "{}: the image has no channel {}; expected a tirpol.Image with S0, S1, S2 (a "
+                    "reduced or rendered image) or an array of Stokes vectors (..., 4)",
+                    function, c);
+        const py::module_ np = py::module_::import("numpy");
+        py::list planes;
+        for (const char* c : {"S0", "S1", "S2"}) planes.append(channels[c]);
+        planes.append(channels.contains("S3") ? channels["S3"]
+                                              : np.attr("zeros_like")(channels["S0"]));
+        return stokes_argument(np.attr("stack")(planes, py::arg("axis") = -1), function);
+    }
+    const py::module_ np = py::module_::import("numpy");
+    const py::object array = np.attr("asarray")(value);
+    const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
+    if (kind == "c")
+        fail(
+            "{}: got complex values; Stokes vectors are real (pass .real if the imaginary part is "
+            "zero)",
+            function);
+    if (kind != "f" && kind != "i" && kind != "u" && kind != "b")
+        fail(
+            "{}: expected an array of Stokes vectors (..., 4) or (..., 3) or a tirpol.Image with "
+            "S0, S1, S2; got {} of dtype {}",
+            function, py::type::of(value).attr("__name__").cast<std::string>(),
+            py::str(array.attr("dtype")).cast<std::string>());
+    return DoubleArray::ensure(array);
+}
+
 void bind_stokes(py::module_& m) {
     m.def(
         "dolp",
-        [](const DoubleArray& s) {
+        [](const py::object& stokes) {
+            const DoubleArray s = stokes_argument(stokes, "dolp");
             return map_stokes<double>(s, "dolp", [](const auto& v) { return dolp(v); });
         },
         py::arg("stokes"),
@@ -58,7 +95,8 @@ void bind_stokes(py::module_& m) {
         "NaN where a component is NaN (an unmeasured pixel is not an unpolarized one).");
     m.def(
         "dop",
-        [](const DoubleArray& s) {
+        [](const py::object& stokes) {
+            const DoubleArray s = stokes_argument(stokes, "dop");
             return map_stokes<double>(s, "dop", [](const auto& v) { return dop(v); });
         },
         py::arg("stokes"),
@@ -67,7 +105,8 @@ void bind_stokes(py::module_& m) {
         "component is NaN.");
     m.def(
         "aop_deg",
-        [](const DoubleArray& s) {
+        [](const py::object& stokes) {
+            const DoubleArray s = stokes_argument(stokes, "aop_deg");
             return map_stokes<double>(s, "aop_deg", [](const auto& v) { return aop_deg_0_180(v); });
         },
         py::arg("stokes"),
@@ -76,7 +115,8 @@ void bind_stokes(py::module_& m) {
         "counter-clockwise from the frame's reference axis looking into the beam.");
     m.def(
         "is_realizable",
-        [](const DoubleArray& s) {
+        [](const py::object& stokes) {
+            const DoubleArray s = stokes_argument(stokes, "is_realizable");
             return map_stokes<bool>(s, "is_realizable",
                                     [](const auto& v) { return is_realizable(v, 1e-9); });
         },
@@ -152,8 +192,13 @@ py::object vectorized(F&& f, const py::object& x) {
 }
 
 void bind_radiometry(py::module_& m) {
-    m.def("planck_radiance", py::vectorize(&planck_radiance), py::arg("wavelength_um"),
-          py::arg("temperature_k"),
+    m.def("planck_radiance", py::vectorize([](double wavelength_um, double temperature_k) {
+              // NaN passes through (NaN in, NaN out); a wavelength ≤ 0 is a mistake, not a zero.
+              if (wavelength_um <= 0.0)
+                  fail("planck_radiance: wavelength_um must be > 0 µm, got {}", wavelength_um);
+              return planck_radiance(wavelength_um, temperature_k);
+          }),
+          py::arg("wavelength_um"), py::arg("temperature_k"),
           "Planck spectral radiance W/(m²·sr·µm) of a blackbody (CODATA 2018 constants); arrays "
           "broadcast.");
     py::class_<Band>(

@@ -8,6 +8,7 @@
 #include "interruptible.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/microfacet_fit.h"
+#include "tirpol/fitting/parameter_interval.h"
 
 namespace py = pybind11;
 
@@ -62,13 +63,13 @@ struct FitResult {
         for (const auto& p : result.parameters) out[py::str(p.name)] = p.sigma;
         return out;
     }
-    /// value ± 2σ for the free parameters, clipped to their bounds.
+    /// value ± 2σ for the free parameters, clipped to their bounds (as the CLI prints them).
     py::dict intervals_2sigma() const {
         py::dict out;
         for (std::size_t i : result.free_indices) {
             const auto& p = result.parameters[i];
-            out[py::str(p.name)] = py::make_tuple(std::max(p.lower, p.value - 2.0 * p.sigma),
-                                                  std::min(p.upper, p.value + 2.0 * p.sigma));
+            const fitting::ParameterInterval interval = fitting::interval_2sigma(p);
+            out[py::str(p.name)] = py::make_tuple(interval.lower, interval.upper);
         }
         return out;
     }

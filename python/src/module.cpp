@@ -1,6 +1,7 @@
 // The extension module tirpol._tirpol: errors at its top level, one submodule per library. The
 // submodules are entered in sys.modules so that the pure-Python package can re-export them with
 // `from ._tirpol.core import *` (pybind11's def_submodule alone does not make them importable).
+#include <glog/logging.h>
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
@@ -34,6 +35,13 @@ constexpr Submodule kSubmodules[] = {
 PYBIND11_MODULE(_tirpol, m) {
     m.doc() =
         "tirpol's C++ library (pybind11). Use the package `tirpol`, which re-exports this module.";
+    // Ceres logs through glog, which, uninitialised, prefixes its first message with "WARNING:
+    // Logging before InitGoogleLogging()". Initialise it as the CLI does: to stderr, errors only.
+    if (!google::IsGoogleLoggingInitialized()) {
+        FLAGS_logtostderr = true;
+        FLAGS_minloglevel = google::GLOG_ERROR;
+        google::InitGoogleLogging("tirpol");
+    }
     tirpol::python::bind_errors(m);
     for (const Submodule& s : kSubmodules) {
         py::module_ sub = m.def_submodule(s.name, s.doc);

@@ -117,6 +117,9 @@ void bind_render(py::module_& m) {
         "render",
         [](const Scene& scene, int threads, int tile_size,
            std::optional<std::filesystem::path> emissivity_cache_dir) {
+            if (threads < 0)
+                fail("render: threads must be ≥ 0 (0 uses every core), got {}", threads);
+            if (tile_size < 1) fail("render: tile_size must be ≥ 1 pixel, got {}", tile_size);
             simulation::RenderOptions options;
             options.threads = threads;
             options.tile_size = tile_size;

@@ -33,6 +33,10 @@ TEST(CliRules, MisspeltSubcommandExitsTwoWithASuggestion) {
     const CliRun r = run_cli("rendr scene.yaml");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(contains(r.out, "did you mean 'render'?")) << r.out;
+    // The hint comes first and alone: not after CLI11's "A subcommand is required", which would be
+    // wrong (one was given, misspelt).
+    EXPECT_EQ(r.out.rfind("tirpol: unknown subcommand 'rendr'", 0), 0u) << r.out;
+    EXPECT_FALSE(contains(r.out, "A subcommand is required")) << r.out;
     const CliRun far = run_cli("xyzzy");
     EXPECT_EQ(far.exit_code, 2);
     EXPECT_FALSE(contains(far.out, "did you mean")) << far.out;  // nothing close: no guess

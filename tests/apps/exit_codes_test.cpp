@@ -95,6 +95,18 @@ TEST(ExitCodes, ErrorsInFilesExitOne) {
     // The command line is right; what it names is not: a missing file, a file of the wrong kind.
     const auto data = tirpol::test::source_dir() / "tests/data/fuzz-regressions";
     EXPECT_EQ(run_cli("info /nonexistent/file.exr").exit_code, 1);
+    // One rule for a missing input whichever subcommand names it (docs/cli.md: exit 1), whether the
+    // subcommand opens the file itself (info) or has its option checked while parsing (CLI11's
+    // ExistingFile): the message names the path.
+    for (const std::string& line :
+         {std::string("render /nonexistent/scene.yaml -o out"),
+          std::string("compare --measured /nonexistent/m.exr --simulated /nonexistent/s.exr -o r"),
+          std::string("fit /nonexistent/curve.csv")}) {
+        const CliRun r = run_cli(line);
+        EXPECT_EQ(r.exit_code, 1) << "tirpol " << line << "\n" << r.out;
+        EXPECT_THAT(r.out, testing::HasSubstr("/nonexistent/")) << r.out;
+        EXPECT_THAT(r.out, testing::Not(testing::HasSubstr("--help"))) << r.out;
+    }
     const CliRun huge = run_cli("info " + (data / "exr/attribute_declares_1_6_GB.exr").string());
     EXPECT_EQ(huge.exit_code, 1) << huge.out;
     EXPECT_THAT(huge.out, testing::HasSubstr("declares 1634231040 bytes"));

@@ -23,6 +23,24 @@ TEST(Quicklook, DivergingRangeIsSymmetricAboutZero) {
     EXPECT_GT(hi, 7.0);
 }
 
+// Every Stokes quicklook names its unit, and DoLP's scale starts at 0 (its definition's minimum),
+// not at the data's smallest value (a render's DoLP bottomed at 2.35e-06 before).
+TEST(Quicklook, ChannelOptionsCarryUnitsAndAZeroBasedDoLP) {
+    for (const char* channel : {"S0", "S1", "S2", "S3", "DoLP", "AoP", "temperature_k"})
+        EXPECT_FALSE(channel_quicklook_options(channel).units.empty()) << channel;
+    EXPECT_EQ(channel_quicklook_options("S0").units, "W/(m²·sr)");
+    EXPECT_EQ(channel_quicklook_options("S1", "counts").units, "counts");
+    std::vector<float> dolp(1000);
+    for (std::size_t i = 0; i < dolp.size(); ++i)
+        dolp[i] = 2.35e-6f + 1e-4f * static_cast<float>(i);
+    const auto [lo, hi] = quicklook_range(dolp, channel_quicklook_options("DoLP"));
+    EXPECT_EQ(lo, 0.0);
+    EXPECT_NEAR(hi, dolp[989], 1e-4);  // the robust top (99th percentile) stays
+    const auto [aop_lo, aop_hi] = quicklook_range(dolp, channel_quicklook_options("AoP"));
+    EXPECT_EQ(aop_lo, 0.0);
+    EXPECT_EQ(aop_hi, 180.0);
+}
+
 TEST(Quicklook, WritesAPngWithColorbarAndGreyNaN) {
     test::TempDir dir;
     std::vector<float> data(40 * 30, 1.0f);

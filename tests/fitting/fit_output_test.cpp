@@ -4,6 +4,7 @@
 
 #include "tirpol/fitting/fit_output.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
+#include "tirpol/fitting/parameter_interval.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
 
@@ -88,6 +90,35 @@ TEST(FitOutput, JsonReportHasTheDocumentedKeys) {
     const std::string text = fit_report_text(f.result, f.data);
     EXPECT_THAT(text, HasSubstr("chi2/dof"));
     EXPECT_THAT(text, HasSubstr("termination: CONVERGENCE"));
+}
+
+// A parameter near its bound (n = 0.30 ± 0.20 with n ∈ [0.14, 1.96]): value − 2σ = −0.10 is not a
+// possible result, so every output reports [0.14, 0.70], the same as Python's intervals_2sigma.
+TEST(FitOutput, IntervalsStopAtTheParameterBounds) {
+    FittedParameter n;
+    n.name = "n";
+    n.value = 0.30;
+    n.sigma = 0.20;
+    n.lower = 0.14;
+    n.upper = 1.96;
+    const ParameterInterval near_bound = interval_2sigma(n);
+    EXPECT_DOUBLE_EQ(near_bound.lower, 0.14);
+    EXPECT_DOUBLE_EQ(near_bound.upper, 0.70);
+    EXPECT_TRUE(near_bound.clipped);
+    n.value = 1.0;  // well inside: value ± 2σ unchanged
+    const ParameterInterval inside = interval_2sigma(n);
+    EXPECT_DOUBLE_EQ(inside.lower, 0.60);
+    EXPECT_DOUBLE_EQ(inside.upper, 1.40);
+    EXPECT_FALSE(inside.clipped);
+
+    Fitted f = fit_two_bands();
+    FittedParameter& first = f.result.parameters[0];
+    first.value = first.lower + 0.5 * first.sigma;  // within 2σ of the lower bound
+    const nlohmann::json j = fit_report_json(f.result, f.data, {{"a.csv"}, "date", "cmd"});
+    EXPECT_DOUBLE_EQ(j["parameters"][0]["interval_2sigma"][0].get<double>(), first.lower);
+    EXPECT_THAT(
+        fit_report_text(f.result, f.data),
+        HasSubstr(fmt::format("[{:.6g}, {:.6g}]", first.lower, first.value + 2 * first.sigma)));
 }
 
 TEST(FitOutput, PlotIsAPngOfTheDocumentedSize) {

@@ -5,6 +5,8 @@
 # installed Python package. Any missing tool or failed step fails the test with a message.
 #
 # check_install.sh BUILD_DIR SOURCE_DIR GENERATOR CXX_COMPILER CXX_LAUNCHER PYTHON PYTHON_SITE_RELATIVE VERSION LIBDIR DATADIR
+# With TIRPOL_CHECK_PREFIX set, the checks run against that already-populated prefix instead of a fresh
+# `cmake --install` (check_deb.sh: the Debian package extracted with dpkg-deb -x).
 set -euo pipefail
 build_dir=$1 source_dir=$2 generator=$3 cxx=$4 launcher=$5 python=$6 python_site=$7 version=$8 libdir=$9 datadir=${10}
 
@@ -14,10 +16,14 @@ for tool in cmake pkg-config "$cxx"; do command -v "$tool" >/dev/null || fail "'
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/tirpol-install-check.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-prefix=$work/prefix
-
-step "cmake --install $build_dir --prefix $prefix"
-cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
+if [[ -n ${TIRPOL_CHECK_PREFIX:-} ]]; then
+  prefix=$TIRPOL_CHECK_PREFIX
+  step "checking the populated prefix $prefix"
+else
+  prefix=$work/prefix
+  step "cmake --install $build_dir --prefix $prefix"
+  cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
+fi
 
 step "installed files: libraries, headers, package files, programs, data; no test fixtures"
 for f in $libdir/libtirpol_core.a $libdir/libtirpol_sweep.a include/tirpol/core/radiometry.h include/tirpol/twin \

@@ -37,4 +37,11 @@ void write_quicklook(const std::filesystem::path& path, const std::vector<float>
 /// sequential).
 Colormap default_colormap(const std::string& channel_name);
 
+/// The options every Stokes quicklook the project writes uses for a channel: its colour map and
+/// title, a unit on the colour bar (S0–S3 `radiance_units`, DoLP "fraction", AoP "deg",
+/// temperature_k "K") and fixed ends where the quantity has them: DoLP from 0 (its minimum by
+/// definition, so a colour means the same DoLP in every image; the top stays robust), AoP 0–180.
+QuicklookOptions channel_quicklook_options(const std::string& channel_name,
+                                           const std::string& radiance_units = "W/(m²·sr)");
+
 }  // namespace tirpol
