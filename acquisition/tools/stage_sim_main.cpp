@@ -4,6 +4,8 @@
 //   tirpol-stage-sim --protocol apt|elliptec [--link PATH] [--fault
 //   no-reply|busy|error|disconnect-mid-move]
 //                    [--fault-on-move N] [--move-deg-per-s V] [--address A]
+//                    [--backlash-deg B] [--lost-step-probability P --lost-step-deg L] [--seed S]
+//                    [--encoder-error-deg E]
 
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +21,9 @@ namespace {
         "tirpol-stage-sim: %s\n"
         "usage: tirpol-stage-sim --protocol apt|elliptec [--link PATH]\n"
         "       [--fault none|no-reply|busy|error|disconnect-mid-move] [--fault-on-move N]\n"
-        "       [--move-deg-per-s V] [--address 0-F]\n",
+        "       [--move-deg-per-s V] [--address 0-F] [--backlash-deg B]\n"
+        "       [--lost-step-probability P] [--lost-step-deg L] [--seed S]\n"
+        "       [--encoder-error-deg E]\n",
         message);
     std::exit(2);
 }
@@ -57,6 +61,19 @@ int main(int argc, char** argv) {
             const std::string a = value();
             if (a.size() != 1) usage("--address: expected one hex digit");
             options.elliptec_address = a[0];
+        } else if (arg == "--backlash-deg" || arg == "--lost-step-deg" ||
+                   arg == "--encoder-error-deg") {
+            const double v = std::atof(value().c_str());
+            if (!(v >= 0 && v < 90)) usage((arg + ": expected degrees in [0, 90)").c_str());
+            (arg == "--backlash-deg"    ? options.backlash_deg
+             : arg == "--lost-step-deg" ? options.lost_step_deg
+                                        : options.encoder_error_deg) = v;
+        } else if (arg == "--lost-step-probability") {
+            options.lost_step_probability = std::atof(value().c_str());
+            if (!(options.lost_step_probability >= 0 && options.lost_step_probability <= 1))
+                usage("--lost-step-probability: expected a probability in [0, 1]");
+        } else if (arg == "--seed") {
+            options.seed = static_cast<std::uint32_t>(std::strtoul(value().c_str(), nullptr, 10));
         } else if (arg == "--link") {
             link = value();
         } else if (arg == "-h" || arg == "--help") {

@@ -25,6 +25,9 @@ public:
     StageSimulatorThread(const StageSimulatorThread&) = delete;
     StageSimulatorThread& operator=(const StageSimulatorThread&) = delete;
     const std::string& path() const { return m_path; }
+    /// The engine, for what tests observe from outside the protocol (physical_angle_deg, which is
+    /// safe to call while the thread serves).
+    const acquisition::StageSimulator& simulator() const { return m_simulator; }
 
 private:
     acquisition::StageSimulator m_simulator;

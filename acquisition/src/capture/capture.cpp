@@ -194,6 +194,49 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             session.dir().string());
     };
 
+    // One-direction approach: the last leg of every move turns the same way (negative, as homing
+    // ends), so a mount with backlash sits at the same side of its play at every angle.
+    auto move_to = [&](double angle_deg, const CaptureStep& step) {
+        if (plan.approach_overshoot_deg > 0)
+            check_motion(stage.move_absolute(angle_deg + plan.approach_overshoot_deg,
+                                             to_ms(plan.move_timeout_s)),
+                         "the approach move", step);
+        check_motion(stage.move_absolute(angle_deg, to_ms(plan.move_timeout_s)), "the move", step);
+    };
+    // Lost-step check for stages whose read-back is their step counter: at counted zero the home
+    // sensor must be active. Steps recorded since the last passing check are named when it fails.
+    std::size_t verified_up_to = 0;  // steps (plan index) taken before the last passing check
+    bool home_sensor_readable = true;
+    auto home_check = [&](const CaptureStep& step, std::size_t next_index) {
+        if (plan.home_check_every <= 0 || !home_sensor_readable) return;
+        move_to(0.0, step);
+        auto active = stage.home_sensor_active();
+        if (!active && active.error().code == DeviceErrorCode::NotSupported) {
+            spdlog::info("{}; lost steps are caught by the angle read-back only",
+                         active.error().message);
+            home_sensor_readable = false;
+            return;
+        }
+        if (!check(std::move(active), step, "stage")) {
+            const Status rehomed = stage.home(to_ms(plan.home_timeout_s));
+            step_failed(
+                step, "stage",
+                {DeviceErrorCode::DeviceFault,
+                 fmt::format("lost steps: at counted 0° the home sensor is not active, so "
+                             "the mount is not where the step counter says; the steps "
+                             "from {} to {} were taken after the last passing check and "
+                             "their angles are uncertain (remove them from the session "
+                             "to take them again); the stage {}",
+                             verified_up_to + 1, next_index,
+                             rehomed ? std::string("was homed again")
+                                     : "could not be homed again: " + rehomed.error().message)});
+        }
+        ++summary.home_checks;
+        verified_up_to = next_index;
+        spdlog::info("home check before step {}: the home sensor is active at counted 0°",
+                     next_index + 1);
+    };
+
     check(camera.start(), first, "camera");
     if (!stage.is_homed()) {
         spdlog::info("homing the stage {}", stage.info().uri);
@@ -276,8 +319,17 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                 step.index + 1, total, step.label, recorded(), total, session.dir().string());
         return cycle_start;
     };
+    verified_up_to = first.index;
+    bool polarizer_steps_taken = false;
     for (std::size_t ti = 0; ti < todo.size(); ++ti) {
         const CaptureStep* step = todo[ti];
+        const bool cycle_begins = step->kind == RecordKind::Polarizer &&
+                                  (ti == 0 || todo[ti - 1]->kind != RecordKind::Polarizer ||
+                                   todo[ti - 1]->repeat != step->repeat);
+        if (cycle_begins && step->repeat > 0 && plan.home_check_every > 0 &&
+            step->repeat % plan.home_check_every == 0 && polarizer_steps_taken)
+            home_check(*step, step->index);
+        if (step->kind == RecordKind::Polarizer) polarizer_steps_taken = true;
         if (in_cycle(ti) && (ti == 0 || !same_cycle(ti - 1, ti))) {
             const bool retry = ti == cycle_start && cycle_attempt > 0;
             if (!retry) {
@@ -329,8 +381,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         }
         StepTiming timing;
         timing.move_start_ns = host_realtime_ns();
-        check_motion(stage.move_absolute(step->angle_deg, to_ms(plan.move_timeout_s)), "the move",
-                     *step);
+        move_to(step->angle_deg, *step);
         timing.move_end_ns = host_realtime_ns();
         timing.settle_end_ns = timing.move_end_ns + settle_ns;
         if (!sleep_until_host_ns(timing.settle_end_ns, options))
@@ -483,6 +534,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     } catch (const Error& e) {
         write_failed(*todo.back(), e);
     }
+    if (polarizer_steps_taken) home_check(*todo.back(), todo.back()->index + 1);
     if (progress) progress->finish();
     if (auto s = camera.stop(); !s) spdlog::warn("stopping the camera: {}", s.error().message);
     summary.delivered_frame_rate_hz = gate.delivered_rate_hz();

@@ -124,7 +124,8 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
             "defaults");
     root.check_keys({"angles_deg", "frames_per_angle", "settle_s", "repeats", "angle_tolerance_deg",
                      "move_timeout_s", "home_timeout_s", "frame_timeout_s", "references",
-                     "scene_reference", "shutter_interleave", "metadata"});
+                     "scene_reference", "shutter_interleave", "metadata", "approach_overshoot_deg",
+                     "home_check_every"});
     CapturePlan plan;
     if (root.has("angles_deg")) {
         plan.angles_deg = root.get<std::vector<double>>("angles_deg");
@@ -148,6 +149,10 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
                                             kMaxFrameTimeoutSeconds);
     if (root.has("angle_tolerance_deg"))
         plan.angle_tolerance_deg = root.get_in_range("angle_tolerance_deg", 1e-6, 10.0);
+    if (root.has("approach_overshoot_deg"))
+        plan.approach_overshoot_deg = root.get_in_range("approach_overshoot_deg", 0.0, 90.0);
+    if (root.has("home_check_every"))
+        plan.home_check_every = count_in_range(root, "home_check_every", 1, kMaxRepeats);
     if (auto refs = root.find("references")) {
         for (const auto& ref : refs->elements()) {
             ref.check_keys({"kind", "temperatures_k", "temperatures_c", "frames", "angle_deg",
@@ -181,6 +186,15 @@ CapturePlan CapturePlan::parse(const ConfigNode& root) {
         }
     }
     detail::parse_drift_references(root, plan);
+    if (plan.approach_overshoot_deg > 0)
+        for (const auto& step : plan_steps(plan))
+            if (step.angle_deg + plan.approach_overshoot_deg >= 360.0)
+                root.at("approach_overshoot_deg")
+                    .fail(fmt::format("{} ({}) approaches from {}°, past a full turn; the "
+                                      "one-direction approach needs every angle + overshoot "
+                                      "below 360°",
+                                      step.label, step.angle_deg,
+                                      step.angle_deg + plan.approach_overshoot_deg));
     if (auto meta = root.find("metadata")) {
         if (!meta->is_map()) meta->fail("expected a mapping of free-form fields");
         plan.metadata = yaml_to_json(*meta);
@@ -215,6 +229,9 @@ nlohmann::json CapturePlan::to_json() const {
                           {"frame_timeout_s", frame_timeout_s},
                           {"references", refs}};
     detail::drift_references_json(*this, out);
+    // Only when set, as above: earlier plans keep their JSON.
+    if (approach_overshoot_deg > 0) out["approach_overshoot_deg"] = approach_overshoot_deg;
+    if (home_check_every > 0) out["home_check_every"] = home_check_every;
     return out;
 }
 

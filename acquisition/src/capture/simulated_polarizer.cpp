@@ -56,6 +56,7 @@ public:
         return r;
     }
     Status stop() override { return m_stage->stop(); }
+    Result<bool> home_sensor_active() override { return m_stage->home_sensor_active(); }
 
 private:
     std::unique_ptr<Stage> m_stage;

@@ -100,6 +100,13 @@ public:
         return wrap_degrees(status.value().position / m_options.counts_per_degree);
     }
 
+    /// The K10CR1 reports its home sensor as the reverse hardware-limit bit of the status word.
+    Result<bool> home_sensor_active() override {
+        auto status = request_status(Clock::now() + m_options.reply_timeout);
+        if (!status) return status.error();
+        return (status.value().status_bits & apt::kCcwHardLimit) != 0;
+    }
+
     /// Profiled stop: a stepper stopped abruptly can lose steps, and the position must stay true.
     Status stop() override {
         // Idle: nothing to stop, and a MOVE_STOPPED reply would later be taken for the next move's

@@ -38,13 +38,36 @@ std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.
 }  // namespace
 
 StageSimulator::StageSimulator(StageSimulatorOptions options)
-    : m_options(options), m_from_deg(wrap_degrees(options.start_deg)), m_to_deg(m_from_deg) {
+    : m_options(options),
+      m_from_deg(wrap_degrees(options.start_deg)),
+      m_to_deg(m_from_deg),
+      m_mount_from_deg(m_from_deg),
+      m_mount_to_deg(m_from_deg),
+      m_random(options.seed) {
     publish_trajectory();
 }
 
 void StageSimulator::publish_trajectory() {
     std::lock_guard lock(m_trajectory_mutex);
-    m_trajectory = {m_from_deg, m_to_deg, m_move_start, m_move_end, m_stuck};
+    m_trajectory = {m_mount_from_deg, m_mount_to_deg, m_move_start, m_move_end, m_stuck};
+}
+
+double StageSimulator::mount_deg(Clock::time_point now) const {
+    if (!moving(now)) return m_mount_to_deg;
+    const double total = std::chrono::duration<double>(m_move_end - m_move_start).count();
+    double f = total > 0 ? std::chrono::duration<double>(now - m_move_start).count() / total : 1.0;
+    if (m_stuck) f = 0.5;
+    return m_mount_from_deg + (m_mount_to_deg - m_mount_from_deg) * std::clamp(f, 0.0, 1.0);
+}
+
+double StageSimulator::encoder_deg(double mount) const {
+    constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+    return mount + m_options.encoder_error_deg * std::sin(mount * kRadPerDeg);
+}
+
+bool StageSimulator::home_sensor_active(Clock::time_point now) const {
+    return std::abs(angle_difference_deg(wrap_degrees(mount_deg(now)), 0.0)) <=
+           m_options.home_sensor_half_width_deg;
 }
 
 double StageSimulator::physical_angle_deg(Clock::time_point now) const {
@@ -72,9 +95,29 @@ bool StageSimulator::hang_up(Clock::time_point now) const {
 }
 
 bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_point now) {
+    m_mount_from_deg = mount_deg(now);
     m_from_deg = angle_deg(now);
     m_to_deg = target_deg;
     m_homing = homing;
+    if (homing) {
+        // Homing ends at the home switch, arriving in the negative direction: the counter is
+        // zeroed there, the losses are gone and the play is taken up on the negative side.
+        m_slip_deg = 0.0;
+        m_mount_to_deg = 0.0;
+    } else {
+        const double delta = m_to_deg - m_from_deg;
+        if (m_options.lost_step_probability > 0 && delta != 0.0 &&
+            std::uniform_real_distribution<double>(0.0, 1.0)(m_random) <
+                m_options.lost_step_probability) {
+            m_slip_deg += std::copysign(std::min(m_options.lost_step_deg, std::abs(delta)), delta);
+            ++m_slipped_moves;
+        }
+        // The mount follows the shaft (counter − losses) only once the play is taken up.
+        const double shaft_to = m_to_deg - m_slip_deg;
+        m_mount_to_deg = delta > 0   ? std::max(m_mount_from_deg, shaft_to - m_options.backlash_deg)
+                         : delta < 0 ? std::min(m_mount_from_deg, shaft_to)
+                                     : m_mount_from_deg;
+    }
     const double seconds = std::abs(m_to_deg - m_from_deg) / m_options.deg_per_s;
     m_move_start = now;
     m_move_end =
@@ -87,6 +130,7 @@ bool StageSimulator::start_move(double target_deg, bool homing, Clock::time_poin
 }
 
 void StageSimulator::stop_motion(Clock::time_point now) {
+    m_mount_from_deg = m_mount_to_deg = mount_deg(now);
     m_from_deg = m_to_deg = angle_deg(now);
     m_move_end = now;
     m_homing = m_stuck = false;
@@ -126,7 +170,8 @@ std::vector<std::uint8_t> StageSimulator::receive_apt(Clock::time_point now) {
     auto status_now = [&](std::uint16_t id, double angle) {
         apt::StatusUpdate s;
         s.position = static_cast<std::int32_t>(std::llround(angle * kAptCountsPerDegree));
-        s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u);
+        s.status_bits = apt::kChannelEnabled | (m_homed ? apt::kHomed : 0u) |
+                        (home_sensor_active(now) ? apt::kCcwHardLimit : 0u);
         if (moving(now))
             s.status_bits |= m_homing ? apt::kHoming
                                       : (m_to_deg >= m_from_deg ? apt::kMovingCw : apt::kMovingCcw);
@@ -224,8 +269,10 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
     };
     auto position = [&](double angle) {
         return elliptec::encode_position(
-            static_cast<std::int32_t>(std::llround(angle * kEllPulsesPerDegree)));
+            static_cast<std::int32_t>(std::llround(wrap_degrees(angle) * kEllPulsesPerDegree)));
     };
+    // The ELL14 reports its encoder: where the mount is, with the encoder's own error.
+    auto encoder_at = [&](Clock::time_point t) { return encoder_deg(mount_deg(t)); };
     auto append = [&out](const std::vector<std::uint8_t>& b) {
         out.insert(out.end(), b.begin(), b.end());
     };
@@ -260,7 +307,7 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
             info.pulses = kEll14Pulses;
             append(reply("IN", elliptec::encode_info(info)));
         } else if (cmd == "gp") {
-            append(reply("PO", position(angle_deg(now))));
+            append(reply("PO", position(encoder_at(now))));
         } else if (cmd == "st") {
             stop_motion(now);
             append(reply("GS", "00"));
@@ -272,7 +319,7 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
                 continue;
             }
             start_move(0.0, true, now);
-            m_pending.push_back({m_move_end, reply("PO", position(0.0))});
+            m_pending.push_back({m_move_end, reply("PO", position(encoder_deg(0.0)))});
         } else if (cmd == "ma") {
             const auto pulses = elliptec::decode_position(data);
             if (!pulses) {
@@ -285,7 +332,7 @@ std::vector<std::uint8_t> StageSimulator::receive_elliptec(Clock::time_point now
             }
             const double target = *pulses / kEllPulsesPerDegree;
             if (!start_move(target, false, now)) {
-                m_pending.push_back({m_move_end, reply("PO", data)});
+                m_pending.push_back({m_move_end, reply("PO", position(encoder_at(m_move_end)))});
                 continue;
             }
             switch (m_options.fault) {

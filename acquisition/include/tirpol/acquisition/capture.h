@@ -75,6 +75,7 @@ struct CaptureSummary {
     std::optional<double> delivered_frame_rate_hz;  ///< measured from the frames' reception times
     int ffc_scheduled = 0;  ///< FFCs run between cycles by this run (CaptureOptions::ffc)
     int ffc_detected = 0;   ///< FFCs found inside a cycle, each followed by taking that cycle again
+    int home_checks = 0;    ///< passing lost-step checks at the home sensor (plan home_check_every)
 };
 
 /// Bytes a session of `steps` records of width × height frames may need (EXR upper bound).

@@ -10,6 +10,8 @@
 /// move_timeout_s: 60
 /// home_timeout_s: 120
 /// frame_timeout_s: 5
+/// approach_overshoot_deg: 2      # optional: every move arrives from above, via target + this
+/// home_check_every: 4            # optional: home-sensor check every N cycles and at the end
 /// references:                    # optional, taken before the polarizer steps
 ///   - kind: blackbody
 ///     temperatures_k: [293.15, 313.15]    # or temperatures_c
@@ -104,6 +106,15 @@ struct CapturePlan {
     double move_timeout_s = 60.0;
     double home_timeout_s = 120.0;
     double frame_timeout_s = 5.0;
+    /// > 0: one-direction approach. Each move first goes to target + overshoot, then down to the
+    /// target, so the mount always arrives turning the same way (negative, as homing ends) and the
+    /// backlash is taken up on the same side every time. 0: direct moves.
+    double approach_overshoot_deg = 0.0;
+    /// > 0: before every N-th polarizer cycle and after the last, the stage goes to counted zero
+    /// and its home sensor must be active there (Stage::home_sensor_active), else lost steps: the
+    /// stage is homed again and the capture fails naming the unverified steps. Encoder stages check
+    /// every move through the read-back instead. 0: no home checks.
+    int home_check_every = 0;
     std::vector<ReferenceSpec> references;
     std::optional<SceneReferenceSpec> scene_reference;
     std::optional<ShutterInterleaveSpec> shutter_interleave;

@@ -46,6 +46,14 @@ public:
         return DeviceError{DeviceErrorCode::NotSupported,
                            info().uri + ": this stage has no stop command"};
     }
+    /// Whether the home sensor is active now, read from the device. At counted zero it must be: a
+    /// stage whose read-back is its own step counter (K10CR1) cannot otherwise see lost steps
+    /// (docs/acquisition-stages.md, "Unkind stages"). Stages that do not report their home sensor
+    /// return NotSupported.
+    virtual Result<bool> home_sensor_active() {
+        return DeviceError{DeviceErrorCode::NotSupported,
+                           info().uri + ": this stage does not report its home sensor"};
+    }
 };
 
 // Opening stages by URI.

@@ -1,15 +1,17 @@
 #pragma once
 /// \file stage_simulator.h
 /// A rotation stage that speaks the real byte protocols (Thorlabs APT binary, Elliptec ASCII) on a
-/// pseudo-terminal, with move times from a set speed and injectable faults. It is the engine of
-/// `tirpol-stage-sim` and runs in-process on a thread in tests; either way the driver under test
-/// talks to it through the real serial-port code (termios on the pty's slave side).
+/// pseudo-terminal, with move times from a set speed, injectable faults and the mechanics of a real
+/// mount (backlash, lost steps, encoder error; docs/acquisition-stages.md, "Unkind stages"). It is
+/// the engine of `tirpol-stage-sim` and runs in-process on a thread in tests; either way the driver
+/// under test talks to it through the real serial-port code (termios on the pty's slave side).
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -39,6 +41,22 @@ struct StageSimulatorOptions {
     double start_deg = 37.5;  ///< position at power-up (unknown to the host until homed)
     char elliptec_address = '0';
     std::chrono::milliseconds latency{5};  ///< reply latency of immediate requests
+    /// Play between motor and mount: after a reversal the motor turns this far before the mount
+    /// follows. The mount sits at the motor's position when it last moved negative (the direction
+    /// homing ends in) and `backlash_deg` short of it when it last moved positive.
+    double backlash_deg = 0.0;
+    /// Chance per absolute move that the motor slips and the mount falls `lost_step_deg` short of
+    /// the target (in the direction of the move). The APT step counter still counts the commanded
+    /// steps (a K10CR1 has no encoder: the read-back cannot see the loss); the Elliptec reports its
+    /// encoder. Homing clears accumulated losses.
+    double lost_step_probability = 0.0;
+    double lost_step_deg = 0.0;
+    std::uint32_t seed = 1;  ///< of the lost-step draws (same seed, same moves: same losses)
+    /// Elliptec: amplitude of the encoder's once-per-turn error (read = mount + a·sin(mount)).
+    double encoder_error_deg = 0.0;
+    /// APT: the home sensor (reported in the status bits as the reverse hardware limit) is active
+    /// while the mount is within ± this of the home position.
+    double home_sensor_half_width_deg = 0.25;
 };
 
 /// The protocol state machine, independent of I/O: bytes in, bytes out, at given times.
@@ -60,6 +78,8 @@ public:
     /// trajectory, published at each move start and each poll). What a camera behind the polarizer
     /// sees.
     double physical_angle_deg(Clock::time_point now) const;
+    /// Absolute moves that lost steps so far.
+    int slipped_moves() const { return m_slipped_moves; }
 
 private:
     std::vector<std::uint8_t> receive_apt(Clock::time_point now);
@@ -70,10 +90,19 @@ private:
     /// completion message. A homing cut short leaves the stage not homed.
     void stop_motion(Clock::time_point now);
     bool moving(Clock::time_point now) const;
+    /// The mount (after backlash and lost steps) at `now`, unwrapped.
+    double mount_deg(Clock::time_point now) const;
+    /// What the Elliptec's encoder reads with the mount at `mount_deg`.
+    double encoder_deg(double mount_deg) const;
+    bool home_sensor_active(Clock::time_point now) const;
 
     StageSimulatorOptions m_options;
     std::vector<std::uint8_t> m_rx;
-    double m_from_deg, m_to_deg;
+    double m_from_deg, m_to_deg;  ///< the step counter's positions (what an APT reports)
+    double m_mount_from_deg, m_mount_to_deg;  ///< where the mount really is
+    double m_slip_deg = 0.0;                  ///< counter − motor shaft: steps lost since homing
+    int m_slipped_moves = 0;
+    std::mt19937 m_random;
     Clock::time_point m_move_start{}, m_move_end{};
     bool m_homing = false, m_homed = false, m_silent = false, m_stuck = false;
     std::optional<Clock::time_point> m_hang_up_at;
