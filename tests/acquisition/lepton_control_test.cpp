@@ -20,7 +20,7 @@
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {

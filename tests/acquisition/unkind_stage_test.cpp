@@ -14,7 +14,7 @@
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/angles.h"
-#include "tirpol/acquisition/internal/simulated_camera.h"
+#include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 
