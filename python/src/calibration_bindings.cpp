@@ -1,6 +1,7 @@
 // tirpol.calibration: the analyzer model and Stokes reduction from numpy arrays.
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
 #include <span>
@@ -9,6 +10,8 @@
 #include "image_conversion.h"
 #include "interruptible.h"
 #include "tirpol/calibration/analyzer.h"
+#include "tirpol/calibration/microgrid_session.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 
@@ -157,9 +160,81 @@ void bind_reduce(py::module_& m) {
         "(KeyboardInterrupt).");
 }
 
+/// A pattern given as "sony", "90,45,135,0" or four numbers.
+calibration::MicrogridPattern pattern_from_python(const py::object& pattern) {
+    if (py::isinstance<py::str>(pattern))
+        return calibration::MicrogridPattern::parse(pattern.cast<std::string>(), "pattern");
+    return calibration::MicrogridPattern(pattern.cast<std::array<double, 4>>(), "pattern");
+}
+
+void bind_microgrid(py::module_& m) {
+    m.def(
+        "demosaic",
+        [](const py::handle& mosaic, const py::object& pattern, const std::string& method) {
+            int width = 0, height = 0;
+            const py::array_t<float> frame = float_plane(mosaic, "mosaic", width, height);
+            const auto parsed_pattern = pattern_from_python(pattern);
+            const auto parsed_method = calibration::parse_demosaic_method(method, "method");
+            calibration::DemosaicedFrame planes;
+            {
+                py::gil_scoped_release release;
+                planes = calibration::demosaic_microgrid(
+                    std::span<const float>(frame.data(), static_cast<std::size_t>(frame.size())),
+                    width, height, parsed_pattern, parsed_method, "mosaic");
+            }
+            py::dict out;
+            for (std::size_t k = 0; k < 4; ++k)
+                out[py::float_(planes.angles_deg[k])] =
+                    array_from_plane(std::move(planes.planes[k]), planes.width, planes.height);
+            return out;
+        },
+        py::arg("mosaic"), py::arg("pattern") = "sony", py::arg("method") = "newton",
+        "Demosaics a microgrid (division-of-focal-plane) frame, a (H, W) array (float in, float "
+        "out: no 8/16-bit round trip), into {angle_deg: (H, W) array} for the pattern's four "
+        "analyzer angles (half size for method='super-pixel'). `pattern`: 'sony' (90,45,135,0), "
+        "'a,b,c,d' or four angles for cell positions (0,0),(0,1),(1,0),(1,1); `method`: "
+        "'super-pixel', 'bilinear' or 'newton' (docs/microgrid.md).");
+    m.def(
+        "reduce_microgrid",
+        [](const py::handle& mosaic, const py::object& pattern, const std::string& method,
+           const std::string& units) {
+            int width = 0, height = 0;
+            const py::array_t<float> frame = float_plane(mosaic, "mosaic", width, height);
+            const auto parsed_pattern = pattern_from_python(pattern);
+            calibration::MicrogridReductionOptions options;
+            options.method = calibration::parse_demosaic_method(method, "method");
+            options.reduction.units = units;
+            options.source = "mosaic";
+            Image stokes;
+            {
+                py::gil_scoped_release release;
+                stokes = calibration::reduce_microgrid(
+                    std::span<const float>(frame.data(), static_cast<std::size_t>(frame.size())),
+                    width, height, parsed_pattern, options);
+            }
+            return to_python(std::move(stokes));
+        },
+        py::arg("mosaic"), py::arg("pattern") = "sony", py::arg("method") = "newton",
+        py::arg("units") = "counts",
+        "Demosaics a microgrid frame and reduces it with ideal analyzers at the pattern's angles: "
+        "a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, S1 = I0 − I90, S2 = I45 − I135).");
+    m.def(
+        "reduce_microgrid_session",
+        [](const std::filesystem::path& session, const std::string& method) {
+            calibration::MicrogridSessionOptions options;
+            options.method = calibration::parse_demosaic_method(method, "method");
+            return to_python(calibration::reduce_microgrid_session(session, options));
+        },
+        py::arg("session"), py::arg("method") = "newton",
+        "A microgrid camera's capture session (its manifest records the pattern): the records' "
+        "mean mosaic demosaiced and reduced, as `tirpol reduce SESSION` does without "
+        "--pixel-calibration.");
+}
+
 }  // namespace
 
 void bind_calibration(py::module_& m) {
+    bind_microgrid(m);
     bind_analyzer(m);
     bind_wire_grid(m);
     bind_reduce(m);

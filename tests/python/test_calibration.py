@@ -75,3 +75,27 @@ def test_reduce_rejects_bad_input_with_clear_messages():
                            {0: np.ones((2, 2)), 45: np.ones((2, 2))})
     with pytest.raises(tirpol.Error):
         calibration.reduce({0: np.ones((2, 2)), 180: np.ones((2, 2)), 90: np.ones((2, 2))})  # rank-deficient W
+
+
+def test_demosaic_and_reduce_microgrid_recover_a_uniform_polarized_field_from_numpy():
+    # Sony IMX250MZR layout: (0,0)=90°, (0,1)=45°, (1,0)=135°, (1,1)=0°. A field polarized at 30°
+    # with S0 = 100, DoLP 0.4: each pixel holds ½(S0 + S1 cos 2θ + S2 sin 2θ) (float, no rounding).
+    s0, s1, s2 = 100.0, 40.0 * np.cos(np.radians(60)), 40.0 * np.sin(np.radians(60))
+    angles = np.array([[90.0, 45.0], [135.0, 0.0]])
+    theta = np.radians(np.tile(angles, (8, 10)))
+    mosaic = (0.5 * (s0 + s1 * np.cos(2 * theta) + s2 * np.sin(2 * theta))).astype(np.float32)
+    planes = calibration.demosaic(mosaic, pattern="sony", method="bilinear")
+    assert sorted(planes) == [0.0, 45.0, 90.0, 135.0]
+    for angle, plane in planes.items():
+        assert plane.shape == (16, 20)
+        want = 0.5 * (s0 + s1 * np.cos(np.radians(2 * angle)) + s2 * np.sin(np.radians(2 * angle)))
+        np.testing.assert_allclose(plane, want, rtol=1e-5)
+    assert calibration.demosaic(mosaic, method="super-pixel")[0.0].shape == (8, 10)
+    stokes = calibration.reduce_microgrid(mosaic, pattern=[90, 45, 135, 0], method="newton")
+    np.testing.assert_allclose(stokes["S1"], s1, atol=1e-3)
+    np.testing.assert_allclose(stokes["DoLP"], 0.4, atol=1e-5)
+    np.testing.assert_allclose(stokes["AoP"], 30.0, atol=1e-3)
+    with pytest.raises(tirpol.Error, match="pattern"):
+        calibration.demosaic(mosaic, pattern="0,1,2,3")
+    with pytest.raises(tirpol.Error, match="method"):
+        calibration.demosaic(mosaic, method="cubic")
