@@ -376,9 +376,13 @@ function colourShare(canvas, rgb) {
   for (let i = 0; i < d.length; i += 4) if (d[i] === rgb[0] && d[i + 1] === rgb[1] && d[i + 2] === rgb[2]) n++;
   return n / (d.length / 4);
 }
+// Saturated (green) and dead (blue) pixels keep their flag colours on every palette: not counted.
 function allGrey(canvas) {
   const d = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
-  for (let i = 0; i < d.length; i += 4) if (d[i] !== d[i + 1] || d[i + 1] !== d[i + 2]) return false;
+  for (let i = 0; i < d.length; i += 4) {
+    const flag = d[i] === 0 && ((d[i + 1] === 255 && d[i + 2] === 0) || (d[i + 1] === 128 && d[i + 2] === 255));
+    if (!flag && (d[i] !== d[i + 1] || d[i + 1] !== d[i + 2])) return false;
+  }
   return true;
 }
 function colourBars() {
