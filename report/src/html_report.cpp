@@ -14,29 +14,6 @@ namespace tirpol::report::detail {
 
 namespace {
 
-std::string escape(std::string_view text) {
-    std::string out;
-    for (char c : valid_utf8(text)) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
-
 std::string num(double v) {
     if (!std::isfinite(v)) return "–";
     return fmt::format("{:.4g}", v);
@@ -92,6 +69,29 @@ footer { margin-top: 36px; color: var(--muted); font-size: 13px; border-top: 1px
 
 }  // namespace
 
+std::string escape_markup(std::string_view text) {
+    std::string out;
+    for (char c : valid_utf8(text)) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
 std::string base64_encode(std::string_view bytes) {
     static constexpr char kAlphabet[] =
         "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -137,13 +137,13 @@ std::string figures_of(const Page& p, const std::string& section, bool grid) {
         if (f.section != section) continue;
         if (!f.svg.empty())
             h += fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", f.svg,
-                             escape(f.caption));
+                             escape_markup(f.caption));
         else
             h += fmt::format(
                 "<figure><img src=\"data:image/png;base64,{}\" "
                 "alt=\"{}\"><figcaption>{}</figcaption></figure>\n",
-                base64_encode(read_file(f.file)), escape(f.file.filename().string()),
-                escape(f.caption));
+                base64_encode(read_file(f.file)), escape_markup(f.file.filename().string()),
+                escape_markup(f.caption));
     }
     if (grid) h += "</div>\n";
     return h;
@@ -167,14 +167,15 @@ const char* verdict_class(Agreement v) {
 }
 
 std::string verdict_span(Agreement v) {
-    return fmt::format("<span class=\"{}\">{}</span>", verdict_class(v), escape(to_string(v)));
+    return fmt::format("<span class=\"{}\">{}</span>", verdict_class(v),
+                       escape_markup(to_string(v)));
 }
 
 std::string sigma_span(SigmaCheck c) {
     const char* css = c == SigmaCheck::Plausible ? "ok"
                       : c == SigmaCheck::NoData  ? "muted"
                                                  : "warn";
-    return fmt::format("<span class=\"{}\">{}</span>", css, escape(to_string(c)));
+    return fmt::format("<span class=\"{}\">{}</span>", css, escape_markup(to_string(c)));
 }
 
 std::string kelvin_text(const std::optional<KelvinBias>& k) {
@@ -190,18 +191,21 @@ std::string header_section(const Page& p) {
         "({}×{}) · simulated <code>{}</code> ({}×{}) · Stokes in {} · written by "
         "<code>{}</code></p>\n"
         "</header>\n",
-        escape(p.measured_name), r.width, r.height, escape(p.simulated_name), r.simulated_width,
-        r.simulated_height, p.units,
-        escape(r.provenance.tool_version.empty() ? "tirpol compare" : r.provenance.tool_version));
+        escape_markup(p.measured_name), r.width, r.height, escape_markup(p.simulated_name),
+        r.simulated_width, r.simulated_height, p.units,
+        escape_markup(r.provenance.tool_version.empty() ? "tirpol compare"
+                                                        : r.provenance.tool_version));
 }
 
 std::string summary_section(const Page& p) {
     const auto& r = p.r;
     const auto& g = r.registration;
     std::string h = "<section id=\"summary\">\n<h2>Summary</h2>\n<p class=\"answer\">" +
-                    escape(summary_paragraph(r)) + "</p>\n<table class=\"summary\">\n<tbody>\n";
+                    escape_markup(summary_paragraph(r)) +
+                    "</p>\n<table class=\"summary\">\n<tbody>\n";
     h += fmt::format("<tr><td>Registration</td><td class=\"text\">{} ({}): {}</td></tr>\n",
-                     escape(to_string(g.method)), escape(g.model), escape(g.note));
+                     escape_markup(to_string(g.method)), escape_markup(g.model),
+                     escape_markup(g.note));
     h += fmt::format(
         "<tr><td>Residual misalignment</td><td class=\"text\">{} px (dx = {}, dy = {} px; phase "
         "correlation of S0 gradients after registration)</td></tr>\n",
@@ -214,20 +218,20 @@ std::string summary_section(const Page& p) {
             const auto& v = region.verdicts.at(q);
             per_quantity +=
                 fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
-                            verdict_span(v.mean.verdict), escape(explain(v.mean)),
-                            sigma_span(v.sigma.verdict), escape(explain(v.sigma)));
+                            verdict_span(v.mean.verdict), escape_markup(explain(v.mean)),
+                            sigma_span(v.sigma.verdict), escape_markup(explain(v.sigma)));
         }
         h += fmt::format(
             "<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} "
             "{}{}</td></tr>\n",
-            swatch(i), escape(region.name), verdict_span(region.verdict), per_quantity,
+            swatch(i), escape_markup(region.name), verdict_span(region.verdict), per_quantity,
             num(region.stats.at("S0").bias), p.units,
             region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
     }
     h += "</tbody>\n</table>\n";
     if (!r.notes.empty()) {
         h += "<ul class=\"notes\">\n";
-        for (const auto& note : r.notes) h += "<li>" + escape(note) + "</li>\n";
+        for (const auto& note : r.notes) h += "<li>" + escape_markup(note) + "</li>\n";
         h += "</ul>\n";
     }
     return h + "</section>\n";
@@ -237,15 +241,16 @@ std::string provenance_section(const Page& p) {
     const auto& pv = p.r.provenance;
     std::string h =
         "<section id=\"provenance\">\n<h2>Provenance</h2>\n<table class=\"summary\">\n<tbody>\n";
-    h += fmt::format(
-        "<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
-        pv.tool_version.empty() ? "tirpol report library (no CLI)" : escape(pv.tool_version));
+    h += fmt::format("<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
+                     pv.tool_version.empty() ? "tirpol report library (no CLI)"
+                                             : escape_markup(pv.tool_version));
     if (!pv.command_line.empty())
         h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n",
-                         escape(pv.command_line));
+                         escape_markup(pv.command_line));
     if (p.r.band_um)
         h += fmt::format("<tr><td>Band</td><td class=\"text\">{}–{} µm (from {})</td></tr>\n",
-                         num((*p.r.band_um)[0]), num((*p.r.band_um)[1]), escape(p.r.band_source));
+                         num((*p.r.band_um)[0]), num((*p.r.band_um)[1]),
+                         escape_markup(p.r.band_source));
     h += "</tbody>\n</table>\n";
     if (pv.inputs.empty())
         return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
@@ -257,7 +262,7 @@ std::string provenance_section(const Page& p) {
             "<tr><td>{}</td><td class=\"text\"><code>{}</code></td><td>{}</td><td "
             "class=\"text\"><code>{}"
             "</code></td></tr>\n",
-            escape(f.role), escape(f.path.string()), f.size_bytes, f.sha256);
+            escape_markup(f.role), escape_markup(f.path.string()), f.size_bytes, f.sha256);
     h += "</tbody>\n</table>\n";
     for (const auto& f : pv.inputs) {
         if (f.attributes.empty()) continue;
@@ -265,10 +270,10 @@ std::string provenance_section(const Page& p) {
             "<table>\n<caption>Header of the {} file (scene, band, spp, seed, capture time, "
             "calibration "
             "files — as written by the tool that made it)</caption>\n<tbody>\n",
-            escape(f.role));
+            escape_markup(f.role));
         for (const auto& [name, value] : f.attributes)
             h += fmt::format("<tr><td>{}</td><td class=\"text\"><code>{}</code></td></tr>\n",
-                             escape(name), escape(value));
+                             escape_markup(name), escape_markup(value));
         h += "</tbody>\n</table>\n";
     }
     return h + "</section>\n";
@@ -281,7 +286,7 @@ std::string registration_section(const Page& p) {
         "id=\"registration\">\n<h2>Registration</h2>\n<table>\n<thead><tr><th>Quantity</th>"
         "<th>Value</th></tr></thead>\n<tbody>\n";
     h += fmt::format("<tr><td>Method / model</td><td>{} / {}</td></tr>\n",
-                     escape(to_string(g.method)), escape(g.model));
+                     escape_markup(to_string(g.method)), escape_markup(g.model));
     const auto& m = g.measured_to_simulated;
     h += fmt::format(
         "<tr><td>H (measured → simulated pixels)</td><td><code>[{} {} {}; {} {} {}; {} {} "
@@ -339,7 +344,7 @@ std::string statistics_section(const Page& p) {
                 "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ± "
                 "{}</td>"
                 "<td>{}</td></tr>\n",
-                swatch(i), escape(r.regions[i].name), s.pixel_count, num(s.measured_mean),
+                swatch(i), escape_markup(r.regions[i].name), s.pixel_count, num(s.measured_mean),
                 num(s.measured_std), num(s.simulated_mean), num(s.simulated_std), num(s.bias),
                 num(s.bias_sigma), num(s.rmse));
         }
@@ -355,7 +360,7 @@ std::string statistics_section(const Page& p) {
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& k = r.regions[i].s0_bias_k;
             h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i),
-                             escape(r.regions[i].name), k ? num(k->temperature_k) : "–",
+                             escape_markup(r.regions[i].name), k ? num(k->temperature_k) : "–",
                              k ? num(k->radiance_dT) : "–", kelvin_text(k));
         }
         h += "</tbody>\n</table>\n";
@@ -367,12 +372,12 @@ std::string statistics_section(const Page& p) {
             "<th>Region</th><th>Measured</th><th>Simulated</th><th>Measured − "
             "simulated</th></tr></thead>\n"
             "<tbody>\n",
-            escape(r.background), p.units);
+            escape_markup(r.background), p.units);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
             const auto& region = r.regions[i];
             if (region.name == r.background || !region.s1_contrast_measured) continue;
             h += fmt::format("<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", swatch(i),
-                             escape(region.name), num(*region.s1_contrast_measured),
+                             escape_markup(region.name), num(*region.s1_contrast_measured),
                              num(*region.s1_contrast_simulated),
                              num(*region.s1_contrast_measured - *region.s1_contrast_simulated));
         }
@@ -401,7 +406,7 @@ std::string aop_section(const Page& p) {
         const bool any = a.pixel_count > 0;
         h += fmt::format(
             "<tr><td>{}{}</td><td>{} of {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            swatch(i), escape(r.regions[i].name), a.pixel_count, a.region_pixel_count,
+            swatch(i), escape_markup(r.regions[i].name), a.pixel_count, a.region_pixel_count,
             any ? num(a.measured_mean_deg) : "–", any ? num(a.simulated_mean_deg) : "–",
             any ? num(a.difference_mean_deg) : "–", any ? num(a.difference_std_deg) : "–");
     }
@@ -457,7 +462,7 @@ std::string noise_section(const Page& p) {
                 "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td><td "
                 "class=\"text\">"
                 "{} (z variance {})</td></tr>\n",
-                swatch(i), escape(r.regions[i].name), q, t.pixel_count, num(t.difference),
+                swatch(i), escape_markup(r.regions[i].name), q, t.pixel_count, num(t.difference),
                 num(t.combined.sigma), num(t.measured_independent.sigma),
                 num(t.measured_common.sigma), num(t.simulated.sigma), num(t.registration.sigma),
                 degrees_of_freedom(t.combined.dof), num(t.t), num(t.p_value),
@@ -479,9 +484,9 @@ std::string noise_section(const Page& p) {
             "<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td>{}</td><td "
             "class=\"text\">{}</td>"
             "<td>{}</td><td>{}</td></tr>\n",
-            q, escape(s.measured), num(s.measured_sigma_median), degrees_of_freedom(s.measured_dof),
-            escape(s.simulated), num(s.simulated_sigma_median),
-            degrees_of_freedom(s.simulated_dof));
+            q, escape_markup(s.measured), num(s.measured_sigma_median),
+            degrees_of_freedom(s.measured_dof), escape_markup(s.simulated),
+            num(s.simulated_sigma_median), degrees_of_freedom(s.simulated_dof));
     h += "</tbody>\n</table>\n";
     h += "<table>\n<caption>Fraction of pixels beyond 2σ and "
          "3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
@@ -496,8 +501,9 @@ std::string noise_section(const Page& p) {
                 "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</"
                 "td>"
                 "<td class=\"text\">{}</td></tr>\n",
-                swatch(i), escape(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q, z.pixel_count,
-                percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
+                swatch(i), escape_markup(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q,
+                z.pixel_count, percent(z.fraction_above_2), percent(z.fraction_above_3),
+                num(z.mean), num(z.rms),
                 pooled ? "(reference only)"
                        : sigma_span(r.regions[i].verdicts.at(q).sigma.verdict));
         }
@@ -539,12 +545,12 @@ const std::vector<std::function<std::string(const Page&)>> kSections = {
 
 std::string render_html(const CompareResult& r, const std::string& measured_name,
                         const std::string& simulated_name, const std::vector<Figure>& figures) {
-    const Page page{r, measured_name, simulated_name, figures, escape(r.units)};
+    const Page page{r, measured_name, simulated_name, figures, escape_markup(r.units)};
     std::string h =
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape(measured_name),
-                     escape(simulated_name));
+    h += fmt::format("<title>tirpol comparison: {} vs {}</title>\n", escape_markup(measured_name),
+                     escape_markup(simulated_name));
     h += fmt::format("<style>{}</style>\n</head>\n<body>\n", kStyle);
     for (const auto& section : kSections) h += section(page);
     return h + "</body>\n</html>\n";

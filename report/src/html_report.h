@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/report/comparison_report.h"
@@ -16,6 +17,9 @@ struct Figure {
     std::string caption;         ///< HTML-escaped by the writer
     std::string svg;             ///< inline SVG plot; empty for a PNG figure
 };
+
+/// `text` made valid UTF-8 and escaped for HTML/SVG text and attribute values (& < > ").
+std::string escape_markup(std::string_view text);
 
 /// RFC 4648 base64 of `bytes` (standard alphabet, padded).
 std::string base64_encode(std::string_view bytes);

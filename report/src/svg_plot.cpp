@@ -8,7 +8,6 @@
 #include <numbers>
 
 #include "html_report.h"
-#include "tirpol/core/utf8.h"
 
 namespace tirpol::report::detail {
 
@@ -18,29 +17,6 @@ namespace {
 constexpr double kWidth = 520, kLeft = 78, kRight = 18, kTop = 36, kPlotHeight = 300, kBottom = 52;
 constexpr double kPlotWidth = kWidth - kLeft - kRight;
 constexpr const char* kFont = "font-family=\"system-ui, 'DejaVu Sans', sans-serif\"";
-
-std::string escape(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
 
 struct Frame {
     double x_lo, x_hi, y_lo, y_hi;
@@ -57,7 +33,7 @@ std::string axes(const Frame& f, const std::string& title, const std::string& x_
                  const std::string& y_label) {
     std::string s =
         fmt::format("<text x=\"{}\" y=\"22\" font-size=\"15\" font-weight=\"600\">{}</text>\n",
-                    kLeft, escape(title));
+                    kLeft, escape_markup(title));
     const auto xt = nice_ticks(f.x_lo, f.x_hi), yt = nice_ticks(f.y_lo, f.y_hi);
     const double xs = xt.size() > 1 ? xt[1] - xt[0] : f.x_hi - f.x_lo,
                  ys = yt.size() > 1 ? yt[1] - yt[0] : f.y_hi - f.y_lo;
@@ -76,11 +52,11 @@ std::string axes(const Frame& f, const std::string& title, const std::string& x_
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#5b6475\"/>\n",
         kLeft, kTop, kPlotWidth, kPlotHeight);
     s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"13\" text-anchor=\"middle\">{}</text>\n",
-                     kLeft + kPlotWidth / 2, kTop + kPlotHeight + 38, escape(x_label));
+                     kLeft + kPlotWidth / 2, kTop + kPlotHeight + 38, escape_markup(x_label));
     s += fmt::format(
         "<text transform=\"translate(16 {}) rotate(-90)\" font-size=\"13\" "
         "text-anchor=\"middle\">{}</text>\n",
-        kTop + kPlotHeight / 2, escape(y_label));
+        kTop + kPlotHeight / 2, escape_markup(y_label));
     return s;
 }
 
@@ -89,7 +65,7 @@ std::string open_svg(double height, const std::string& label) {
     return fmt::format(
         "<svg viewBox=\"0 0 {} {}\" role=\"img\" aria-label=\"{}\" "
         "{} fill=\"#1d2330\" style=\"width:100%;height:auto;max-width:{}px\">\n",
-        kWidth, height, escape(label), kFont, kWidth);
+        kWidth, height, escape_markup(label), kFont, kWidth);
 }
 
 std::pair<double, double> padded(double lo, double hi) {
@@ -178,7 +154,7 @@ std::string svg_scatter(const std::string& title, const std::string& units,
             "<rect x=\"{}\" y=\"{}\" width=\"11\" height=\"11\" rx=\"2\" fill=\"{}\"/><text "
             "x=\"{}\" y=\"{}\" "
             "font-size=\"13\">{}</text>\n",
-            kLeft, y, region_colour_css(r), kLeft + 17, y + 10, escape(series[r].name));
+            kLeft, y, region_colour_css(r), kLeft + 17, y + 10, escape_markup(series[r].name));
     }
     return s + "</svg>\n";
 }
@@ -244,7 +220,7 @@ std::string svg_region_overview(const RegionOverview& overview) {
             "<text x=\"{}\" y=\"{}\" {} font-size=\"15\" fill=\"{}\" stroke=\"white\" "
             "stroke-width=\"3.5\" "
             "paint-order=\"stroke\">{}</text>",
-            label.x, label.y, kFont, label.colour_css, escape(valid_utf8(label.name)));
+            label.x, label.y, kFont, label.colour_css, escape_markup(label.name));
     return svg + "</svg>";
 }
 
