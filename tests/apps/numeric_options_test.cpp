@@ -23,27 +23,8 @@ namespace {
 using tirpol::test::CliRun;
 using tirpol::test::run_cli;
 using tirpol::test::run_command;
+using tirpol::test::subcommands_in_help;
 namespace limits = tirpol::limits;
-
-/// The names under "Subcommands:" in `tirpol [PATH] --help`.
-std::vector<std::string> subcommands_in_help(const std::string& path) {
-    const CliRun help = run_cli(path + " --help", false);
-    std::vector<std::string> names;
-    std::istringstream lines(help.out);
-    bool listing = false;
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("Subcommands:", 0) == 0)
-            listing = true;
-        else if (listing && line.rfind("  ", 0) == 0) {
-            std::istringstream words(line);
-            std::string name;
-            words >> name;
-            names.push_back(path.empty() ? name : path + " " + name);
-        } else if (listing && !line.empty())
-            listing = false;
-    }
-    return names;
-}
 
 struct NumericOption {
     std::string name;  ///< --long-name
