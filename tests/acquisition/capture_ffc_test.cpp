@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "pty_device_thread.h"
+#include "session_angle_means.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/boson_control.h"
@@ -107,17 +108,7 @@ struct StokesBias {
 /// Pixel-mean S1 − kS1 and S2 − kS2 of one repeat, from the session's records (S1 = I0 − I90, S2 =
 /// I45 − I135).
 StokesBias bias(const std::filesystem::path& dir, int repeat) {
-    const SessionManifest m = read_session(dir);
-    std::map<int, double> mean;
-    for (const auto& r : m.records) {
-        if (r.kind != RecordKind::Polarizer || r.repeat != repeat) continue;
-        const Image image = read_session_frame(dir, m, r);
-        const auto& counts = image.channel("counts");
-        double sum = 0.0;
-        for (float c : counts) sum += c;
-        mean[static_cast<int>(std::lround(r.angle_deg_requested))] =
-            sum / static_cast<double>(counts.size());
-    }
+    auto mean = test::polarizer_means_by_angle(dir, repeat);
     EXPECT_EQ(mean.size(), 4u);
     return {mean[0] - mean[90] - kS1, mean[45] - mean[135] - kS2};
 }

@@ -17,6 +17,7 @@
 #include <numbers>
 #include <thread>
 
+#include "session_angle_means.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
@@ -317,16 +318,7 @@ struct LeptonRig {
 };
 
 double s1_bias(const std::filesystem::path& dir, int repeat) {
-    const SessionManifest m = read_session(dir);
-    std::map<int, double> mean;
-    for (const auto& r : m.records) {
-        if (r.kind != RecordKind::Polarizer || r.repeat != repeat) continue;
-        const Image image = read_session_frame(dir, m, r);
-        const auto& counts = image.channel("counts");
-        double sum = 0.0;
-        for (float c : counts) sum += c;
-        mean[static_cast<int>(std::lround(r.angle_deg_requested))] = sum / counts.size();
-    }
+    auto mean = test::polarizer_means_by_angle(dir, repeat);
     return mean[0] - mean[90] - kS1;
 }
 
