@@ -36,26 +36,25 @@ MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
     // Incident beam (travelling along −wi): macro s/p frame → facet s/p frame; exitant beam: back.
     // For one beam direction k, the s axes of the frames about normals a and b are a × k and b × k
     // (both ⟂ k), and the angle α from the first to the second (core frame_rotation_angle) has
-    // cos α ∝ (b × k)·(a × k) and sin α ∝ (b × k)·(k × (a × k)) with the same factor |a × k||b ×
-    // k|, so cos 2α = (c² − s²)/(c² + s²) and sin 2α = 2cs/(c² + s²) need neither normalisation nor
-    // trigonometry. Where a × k = 0 (a beam along the normal) the s axis is core's fallback
-    // convention (stokes_frame.h), so those rare exact cases take the frames themselves.
+    // cos α ∝ (b × k)·(a × k) and sin α ∝ (b × k)·(k × (a × k)) = (b × k)·a (k a unit vector: k ×
+    // (a × k) = a − (a·k)k) with the same factor |a × k||b × k|, so cos 2α = (c² − s²)/(c² + s²)
+    // and sin 2α = 2cs/(c² + s²) need neither normalisation nor trigonometry. Where a × k = 0 (a
+    // beam along the normal) the s axis is core's fallback convention (stokes_frame.h), so those
+    // rare exact cases take the frames themselves.
     const Vec3 n = Vec3::UnitZ();
-    const auto double_angle = [](const Vec3& beam, const Vec3& from_normal, const Vec3& to_normal,
+    const auto double_angle = [](const Vec3& k, const Vec3& from_normal, const Vec3& to_normal,
                                  double& c2, double& s2) {
-        const Vec3 k = beam.normalized();
         const Vec3 from_s = from_normal.cross(k), to_s = to_normal.cross(k);
-        double c = to_s.dot(from_s), s = to_s.dot(k.cross(from_s));
-        double norm2 = c * c + s * s;
+        double c = to_s.dot(from_s), s = to_s.dot(from_normal);
         if (from_s.squaredNorm() == 0.0 || to_s.squaredNorm() == 0.0) {
             const StokesFrame from = surface_frame(k, from_normal),
                               to = surface_frame(k, to_normal);
             c = to.reference.dot(from.reference);
             s = to.reference.dot(from.second_axis());
-            norm2 = c * c + s * s;
         }
-        c2 = (c * c - s * s) / norm2;
-        s2 = 2.0 * c * s / norm2;
+        const double inv_norm2 = 1.0 / (c * c + s * s);
+        c2 = (c * c - s * s) * inv_norm2;
+        s2 = 2.0 * c * s * inv_norm2;
     };
     double_angle(-wi, n, h, g.c2i, g.s2i);
     double_angle(wo, h, n, g.c2o, g.s2o);

@@ -146,6 +146,38 @@ TEST(Sampling, WeightEqualsEvalTimesCosineOverPdf) {
         }
 }
 
+// The visible-normal sampler inverts its CDFs exactly (to 1e-12 in u, so the sampled density is the
+// pdf up to rounding): wo along +x, the facet's unit-roughness slopes (x̃, ỹ) = −(h_x, h_y)/(α·h_z)
+// satisfy F(x̃) = u1 with F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)),
+// θ the angle of wo stretched by α = √2σ (Heitz & d'Eon 2014, appendix), and Φ(√2·ỹ) =
+// erfc(−ỹ)/2 = u2, from u near 0 to near 1 and from near-normal to grazing views (the CDFs here use
+// libm's erfc, not the sampler's own quantile function).
+TEST(Sampling, VisibleNormalSlopesInvertTheirCdfsExactly) {
+    const double inv_sqrt_pi = 1.0 / std::sqrt(kPi);
+    const std::vector<double> us = {1e-12, 1e-6, 1e-3, 0.01,  0.1,        0.25,       0.5,
+                                    0.75,  0.9,  0.99, 0.999, 1.0 - 1e-6, 1.0 - 1e-10};
+    for (double sigma : {0.02, 0.3, 1.0})
+        for (double theta_deg : {1.0, 30.0, 60.0, 80.0, 89.0, 89.9}) {
+            const double t = deg_to_rad(theta_deg), alpha = std::sqrt(2.0) * sigma;
+            const Vec3 wo(std::sin(t), 0.0, std::cos(t));
+            const double tan_s = alpha * std::tan(t), cot_s = 1.0 / tan_s;
+            const auto cdf_x = [&](double x) {
+                return (std::erfc(-x) + tan_s * inv_sqrt_pi * std::exp(-x * x)) /
+                       (std::erfc(-cot_s) + tan_s * inv_sqrt_pi * std::exp(-cot_s * cot_s));
+            };
+            for (double u1 : us)
+                for (double u2 : us) {
+                    const Vec3 h = sample_visible_normal(wo, sigma, u1, u2);
+                    const double x = -h.x() / (alpha * h.z()), y = -h.y() / (alpha * h.z());
+                    EXPECT_LE(x, cot_s * (1.0 + 1e-12));
+                    EXPECT_NEAR(cdf_x(x), u1, 1e-12)
+                        << "σ " << sigma << " at " << theta_deg << "°, u1 " << u1 << ", u2 " << u2;
+                    EXPECT_NEAR(0.5 * std::erfc(-y), u2, 1e-12)
+                        << "σ " << sigma << " at " << theta_deg << "°, u2 " << u2;
+                }
+        }
+}
+
 // Visible-normal sampling (Heitz & d'Eon, EGSR 2014) bounds the specular weight: with only the
 // specular lobe (p_spec = 1, bias 1, no Beard–Maxwell shadowing) the weight is F·G/G1(wo) ≤ 1 for
 // every sample, up to grazing views, where D·cosθh sampling gave weights of ~(h·wo)/(cosθo cosθh)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../normal_quantile.h"
 #include "../sampling.h"
 #include "tirpol/core/error.h"
 #include "tirpol/materials/fresnel.h"
@@ -58,45 +59,6 @@ double cotangent(double cos_theta) {
     return sin_theta * 1e8 <= cos_theta ? 1e8 : cos_theta / sin_theta;
 }
 
-/// Giles's single-precision approximation of erf⁻¹(z), |z| < 1 ("Approximating the erfinv
-/// function", GPU Computing Gems 2011): a starting point for Newton steps.
-double approximate_inverse_erf(double z) {
-    double w = -std::log((1.0 - z) * (1.0 + z)), x;
-    if (w < 5.0) {
-        w -= 2.5;
-        x = 2.81022636e-08;
-        for (double c : {3.43273939e-07, -3.5233877e-06, -4.39150654e-06, 0.00021858087,
-                         -0.00125372503, -0.00417768164, 0.246640727, 1.50140941})
-            x = c + x * w;
-    } else {
-        w = std::sqrt(w) - 3.0;
-        x = -0.000200214257;
-        for (double c : {0.000100950558, 0.00134934322, -0.00367342844, 0.00573950773,
-                         -0.0076224613, 0.00943887047, 1.00167406, 2.83297682})
-            x = c + x * w;
-    }
-    return x * z;
-}
-
-/// x with erf(x) = z, |z| < 1, to double precision: Giles's approximation (relative error ~1e-7
-/// where 1 − |z| > 1e-7, its single-precision range) refined by Halley steps on erf, or on erfc in
-/// the upper tail where erf(x) rounds to 1. With f'' = −2x·f' a step is x − f/(f' + x·f);
-/// convergence is cubic, so one step reaches double rounding inside that range, and the far tail
-/// (beyond it the approximation is off by up to 10 %) takes steps until they stop moving x.
-double inverse_erf(double z) {
-    if (z < 0.0) return -inverse_erf(-z);
-    z = std::min(z, 1.0 - 1e-16);
-    double x = approximate_inverse_erf(z);
-    const int steps = 1.0 - z > 1e-7 ? 1 : 8;
-    for (int i = 0; i < steps; ++i) {
-        const double f = z > 0.5 ? (1.0 - z) - std::erfc(x) : std::erf(x) - z;
-        const double step = f / (2.0 * kInvSqrtPi * std::exp(-x * x) + x * f);
-        x -= step;
-        if (std::abs(step) < 1e-15 * x) break;
-    }
-    return x;
-}
-
 /// Smith's Λ of the unit-roughness surface at cot θ = a, with the erfc(a) and e^(−a²) it is made of
 /// (the visible-slope sampler's normalisation reuses them: 2·(1 + Λ) = erfc(−a) + e^(−a²)/(a√π)).
 struct SmithTerms {
@@ -110,60 +72,61 @@ SmithTerms smith_terms(double sigma, double cot_theta) {
 }
 
 /// Slope x̃ ≤ cot θ of a visible facet of the unit-roughness Beckmann surface seen at θ (wo along
-/// +x): inverts F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) + tanθ/√π·e^(−cot²θ)) = u (Heitz
-/// & d'Eon 2014, appendix; pbrt-v3 BeckmannSample11, whose fitted starting point is used) by Halley
-/// steps (F'' is F' times a polynomial, so a step costs no more than Newton's) kept inside a
-/// bisection bracket, to |F − u| < 1e-13 (checked, or implied by a small last step), so that the
-/// map u → x̃ is smooth. `smith` holds erfc(cot θ) and e^(−cot²θ) (the normalisation); the lower end
-/// of the bracket is only searched for when a step leaves it.
+/// +x), the root of F(x̃) = u with F(x̃) = (erfc(−x̃) + tanθ/√π·e^(−x̃²)) / (erfc(−cotθ) +
+/// tanθ/√π·e^(−cot²θ)) (Heitz & d'Eon 2014, appendix). As in Jakob, "An Improved Visible Normal
+/// Sampling Routine for the Beckmann Distribution" (2014; Mitsuba's routine), F is inverted in the
+/// erf domain, here written with p = Φ(√2·x̃) = erfc(−x̃)/2: there F = (2p + tanθ/√π·e^(−x̃²))/total
+/// is smooth, increasing and concave from 0 to p_max = Φ(√2·cotθ), with dF/dp = 2(1 −
+/// x̃·tanθ)/total, and x̃ = Φ⁻¹(p)/√2 costs a rational function (normal_quantile) where erfc cost a
+/// rational function and two exponentials. Jakob's fitted guess, erf x̃₀ = erf cotθ − (1 + erf
+/// cotθ)(1 − u)^fit, is p₀ = p_max·(1 − (1 − u)^fit); from it Halley steps (the second and third
+/// derivatives are the first's factors times e^(x̃²), so a step costs no more than Newton's), kept
+/// inside a bisection bracket, reach |F − u| < 1e-13 — checked, or predicted from the step by
+/// Halley's error law e' ≈ (F₂²/(4F₁²) − F₃/(6F₁))·e³ (Fₖ the k-th derivative) with a margin of 10
+/// — so the map u → x̃ is exact to rounding and smooth. `smith` holds erfc(cot θ) and e^(−cot²θ).
 double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
+    constexpr double kSqrtPi = 1.77245385090551602730, kInvSqrt2 = 0.70710678118654752440;
+    constexpr double kTolerance = 1e-13;
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-    const double tan_theta = sin_theta / cos_theta, cot_theta = cos_theta / sin_theta;
+    const double tan_theta = sin_theta / cos_theta;
     const double tan_over_sqrt_pi = tan_theta * kInvSqrtPi;
-    const auto unnormalised = [&](double x) {
-        return std::erfc(-x) + tan_over_sqrt_pi * std::exp(-x * x);
-    };
     const double total = (2.0 - smith.erfc_a) + tan_over_sqrt_pi * smith.exp_minus_a2;
+    const double inv_total = 1.0 / total;
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
-    double lo = -std::numeric_limits<double>::infinity(), hi = cot_theta;
-    const auto bracket_below = [&] {
-        lo = std::min(-1.0, cot_theta - 1.0);
-        while (unnormalised(lo) / total > u) lo *= 2.0;
-    };
-    const double theta = std::acos(cos_theta), erf_cot = 1.0 - smith.erfc_a;
+    double lo = 0.0, hi = 1.0 - 0.5 * smith.erfc_a;
+    // The starting point only, so θ and (1 − u)^fit need not be exact: θ = acos(cos θ) from
+    // Abramowitz & Stegun 4.4.45 (|error| < 7e-5 rad), the power in single precision, or to first
+    // order in u where that would round to 1.
+    const double theta =
+        std::sqrt(1.0 - cos_theta) *
+        (1.5707288 + cos_theta * (-0.2121144 + cos_theta * (0.0742610 - 0.0187293 * cos_theta)));
     const double fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
-    // (1 − u)^fit as exp(fit·log1p(−u)): the starting point only (the steps below converge to the
-    // same x̃), and cheaper than pow, which guards a double-precision result that is not needed
-    // here.
-    double x = approximate_inverse_erf(std::clamp(
-        erf_cot - (1.0 + erf_cot) * std::exp(fit * std::log1p(-u)), -1.0 + 1e-16, 1.0 - 1e-16));
-    if (!(x < hi)) {
-        bracket_below();
-        x = 0.5 * (lo + hi);
-    }
+    double p = hi * (u < 1e-3 ? fit * u
+                              : 1.0 - std::exp2(static_cast<float>(fit) *
+                                                std::log2(static_cast<float>(1.0 - u))));
     for (int i = 0; i < 100; ++i) {
+        const double x = detail::normal_quantile(p) * kInvSqrt2;
         const double e = std::exp(-x * x);
-        const double f = (std::erfc(-x) + tan_over_sqrt_pi * e) / total - u;
-        if (std::abs(f) < 1e-13) break;
-        (f > 0.0 ? hi : lo) = x;
-        // F' = 2/√π·e^(−x²)(1 − x·tanθ)/total, F'' = 2/√π·e^(−x²)(−2x(1 − x·tanθ) − tanθ)/total.
-        const double d1 = 2.0 * kInvSqrtPi * e * (1.0 - x * tan_theta) / total;
-        const double d2 =
-            2.0 * kInvSqrtPi * e * (-2.0 * x * (1.0 - x * tan_theta) - tan_theta) / total;
-        double next = x - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
-        if (!(next < hi) || !(next > lo)) {
-            if (lo == -std::numeric_limits<double>::infinity()) bracket_below();
-            if (!(next < hi && next > lo)) next = 0.5 * (lo + hi);
+        const double f = (2.0 * p + tan_over_sqrt_pi * e) * inv_total - u;
+        if (std::abs(f) < kTolerance) return x;
+        (f > 0.0 ? hi : lo) = p;
+        const double dx_dp = kSqrtPi / e;  // 1/(√2·φ(√2·x̃)) = √π·e^(x̃²)
+        const double d1 = 2.0 * (1.0 - x * tan_theta) * inv_total;
+        const double d2 = -2.0 * tan_theta * dx_dp * inv_total;
+        const double d3 = d2 * 2.0 * x * dx_dp;
+        double next = p - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
+        if (!(next > lo && next < hi)) {
+            next = 0.5 * (lo + hi);
+        } else if (std::abs(f) < 1e-4) {
+            const double step = next - p;
+            const double error_law = d2 * d2 / (4.0 * d1 * d1) - d3 / (6.0 * d1);
+            if (std::abs(d1 * error_law * step * step * step) < 0.1 * kTolerance)
+                return detail::normal_quantile(next) * kInvSqrt2;
         }
-        const double step = next - x;
-        x = next;
-        if (hi - lo < 1e-15 * (1.0 + std::abs(x))) break;
-        // Halley's error after a step is ~C·step³ with C of order x² + (F''/F')², so a step below
-        // 1e-5 (away from x̃ → cot θ, where F' vanishes) leaves |F − u| far below 1e-13: stop
-        // without evaluating F again.
-        if (std::abs(step) < 1e-5 * (1.0 + std::abs(x)) && 1.0 - x * tan_theta > 0.05) break;
+        if (next == p) break;
+        p = next;
     }
-    return x;
+    return detail::normal_quantile(p) * kInvSqrt2;
 }
 
 /// sample_visible_normal given Smith's terms at wo's (unstretched) cot θo (smith_terms): the
@@ -181,9 +144,11 @@ Vec3 sample_visible_normal(const Vec3& wo, double sigma, double u1, double u2,
         x = r * std::cos(2.0 * kPi * u2);
         y = r * std::sin(2.0 * kPi * u2);
     } else {
+        // The slope across wo's azimuth is Gaussian: erf⁻¹(2u − 1) = Φ⁻¹(u)/√2.
         const double slope_x = visible_slope_x(stretched.z(), u1, smith),
-                     slope_y = inverse_erf(2.0 * u2 - 1.0);
-        const double r = std::hypot(stretched.x(), stretched.y());
+                     slope_y = detail::normal_quantile(std::clamp(u2, 1e-16, 1.0 - 1e-16)) *
+                               0.70710678118654752440;
+        const double r = std::sqrt(stretched.x() * stretched.x() + stretched.y() * stretched.y());
         const double c = stretched.x() / r, s = stretched.y() / r;
         x = c * slope_x - s * slope_y;
         y = s * slope_x + c * slope_y;
