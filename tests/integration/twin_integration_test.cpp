@@ -153,6 +153,7 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     co.camera_model = read_camera_model(r.camera.lens_file);
     co.camera_model_name = r.camera.lens_file.string();
     co.regions = report::load_regions(r.report_regions);
+    co.design = options.report_design;  // the twin's design, as its provenance command line says
     const report::Comparison again =
         report::compare(read_exr(r.measured_exr), read_exr(r.simulated_exr), co);
     ASSERT_EQ(again.result.regions.size(), json["regions"].size());

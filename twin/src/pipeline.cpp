@@ -451,12 +451,11 @@ void compare_and_report(Chain& c) {
     write_file_atomic(c.result.report_regions, report::regions_yaml(regions));
     co.provenance.tool_version = c.opt.tool_version;
     co.provenance.command_line = fmt::format(
-        "tirpol compare --measured {} --simulated {} --rois {} --camera {} -o {} (run in-process "
-        "by "
-        "`tirpol demo`)",
+        "tirpol compare --measured {} --simulated {} --rois {} --camera {} --false-alarm {} "
+        "--power {} -o {} (run in-process by `tirpol demo`)",
         c.result.measured_exr.string(), c.result.simulated_exr.string(),
         c.result.report_regions.string(), c.result.camera.lens_file.string(),
-        (c.out / "report").string());
+        co.design.false_alarm_per_region, co.design.power, (c.out / "report").string());
     co.provenance.inputs.push_back(
         report::describe_input("measured", c.result.measured_exr, &c.calibrated.stokes.front()));
     co.provenance.inputs.push_back(
