@@ -43,7 +43,9 @@ Image MicrogridPixelCalibration::to_image() const {
     image.set_channel("w0", analysis[0]);
     image.set_channel("w1", analysis[1]);
     image.set_channel("w2", analysis[2]);
+    if (!bad.empty()) image.set_channel("bad", bad);
     image.attributes()["fit_rms"] = fit_rms;
+    if (!stokes_units.empty()) image.attributes()["stokes_units"] = stokes_units;
     image.attributes()["analyzer_model"] = std::string("per-pixel");
     return image;
 }
@@ -54,6 +56,10 @@ MicrogridPixelCalibration MicrogridPixelCalibration::from_image(const Image& ima
     c.height = image.height();
     c.analysis = {image.channel("w0"), image.channel("w1"), image.channel("w2")};
     c.background = image.channel("background");
+    if (image.has_channel("bad")) c.bad = image.channel("bad");
+    if (const auto it = image.attributes().find("stokes_units");
+        it != image.attributes().end() && std::holds_alternative<std::string>(it->second))
+        c.stokes_units = std::get<std::string>(it->second);
     if (const auto it = image.attributes().find("fit_rms");
         it != image.attributes().end() && std::holds_alternative<double>(it->second))
         c.fit_rms = std::get<double>(it->second);
@@ -125,8 +131,11 @@ Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
     if (mosaic.size() != n)
         fail("microgrid frame has {} values; the per-pixel calibration is {}×{} ({} values)",
              mosaic.size(), width, height, n);
+    if (!calibration.bad.empty() && calibration.bad.size() != n)
+        fail("per-pixel calibration: its bad-pixel plane has {} values; expected {}×{} = {}",
+             calibration.bad.size(), width, height, n);
     for (std::size_t i = 0; i < n; ++i)
-        if (!std::isfinite(mosaic[i]))
+        if (!calibration.is_bad(i) && !std::isfinite(mosaic[i]))
             fail("microgrid frame: pixel (x={}, y={}) is not finite",
                  i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width));
     Image out(width / 2, height / 2);
@@ -135,19 +144,26 @@ Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
     auto& s2 = out.add_channel("S2");
     auto& dolp = out.add_channel("DoLP");
     auto& aop = out.add_channel("AoP");
-    int singular = 0;
+    int singular = 0, with_bad = 0;
     for (int cy = 0; cy < out.height(); ++cy)
         for (int cx = 0; cx < out.width(); ++cx) {
-            Eigen::Matrix<double, 4, 3> w;
-            Eigen::Vector4d signal;
+            // A bad pixel's row stays zero: it then adds nothing to the least squares.
+            Eigen::Matrix<double, 4, 3> w = Eigen::Matrix<double, 4, 3>::Zero();
+            Eigen::Vector4d signal = Eigen::Vector4d::Zero();
+            bool cell_has_bad = false;
             for (int k = 0; k < 4; ++k) {
                 const std::size_t i =
                     static_cast<std::size_t>(2 * cy + (k >> 1)) * static_cast<std::size_t>(width) +
                     static_cast<std::size_t>(2 * cx + (k & 1));
+                if (calibration.is_bad(i)) {
+                    cell_has_bad = true;
+                    continue;
+                }
                 for (int m = 0; m < 3; ++m)
                     w(k, m) = calibration.analysis[static_cast<std::size_t>(m)][i];
                 signal(k) = static_cast<double>(mosaic[i]) - calibration.background[i];
             }
+            if (cell_has_bad) ++with_bad;
             const std::size_t o = out.index(cx, cy);
             const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 4, 3>> qr(w);
             if (qr.rank() < 3) {
@@ -168,6 +184,8 @@ Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
     out.attributes()["demosaic_reference"] = std::string(
         "Powell & Gruev, Opt. Express 21(18), 21039 (2013): per-super-pixel calibration matrix");
     out.attributes()["singular_cells"] = singular;
+    out.attributes()["cells_with_bad_pixels"] = with_bad;
+    if (!calibration.stokes_units.empty()) out.attributes()["units"] = calibration.stokes_units;
     return out;
 }
 

@@ -48,6 +48,7 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
           "--extinction-ratio"}},
         {"calibrate geometric", {png + " --target checkerboard:9x6 -o cam.yaml", "--target"}},
         {"calibrate pose", {"--camera " + exr, "required"}},
+        {"calibrate microgrid", {session + " --band-um 14 8 -o m.exr", "--band-um"}},
         {"compare",
          {"--measured " + exr + " --simulated " + exr + " --registration sideways -o r",
           "--registration"}},

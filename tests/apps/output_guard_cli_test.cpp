@@ -67,6 +67,7 @@ TEST_F(OutputGuardCli, EveryWritingSubcommandRefusesToReplaceAnInputWithExitTwo)
          {p("plan.yaml") + " --camera sim:// --stage sim:// -o " + p("plan.yaml"), p("plan.yaml"),
           false}},
         {"calibrate radiometric", {session().string() + " -o " + manifest, manifest}},
+        {"calibrate microgrid", {session().string() + " -o " + manifest, manifest}},
         {"calibrate polarimetric",
          {session().string() + " --calibration " + p("cal.exr") + " -o " + p("cal.exr"),
           p("cal.exr")}},

@@ -17,6 +17,9 @@ enum BadPixel : std::uint32_t {
     kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median
                            ///< and not explained by the pixel's temporal noise (fit quality ≥ 3)
     kSaturated = 1u << 4,  ///< at or above the saturation level in a calibration frame
+    /// A microgrid pixel whose fitted analyzer is implausible: diattenuation or axis outside the
+    /// limits of MicrogridFlatFieldOptions (a missing or damaged micro-polarizer).
+    kBadAnalyzer = 1u << 5,
 };
 
 /// Thresholds of the detection (robust σ = 1.4826 × median absolute deviation).

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "tirpol/calibration/microgrid_pattern.h"
@@ -35,7 +36,14 @@ struct MicrogridPixelCalibration {
     int height = 0;
     std::array<std::vector<float>, 3> analysis;  ///< w_i0, w_i1, w_i2
     std::vector<float> background;               ///< b_i (0 when not fitted)
+    /// BadPixel bit mask (bad_pixels.h) as float, 0 = good; empty when no pixel was assessed.
+    /// Reduction leaves a bad pixel out of its super-pixel.
+    std::vector<float> bad;
     double fit_rms = 0.0;  ///< RMS residual of the per-pixel fits, signal units
+    /// Units of the Stokes vectors the analysis vectors map from (e.g. "W/(m^2 sr)" when the
+    /// sources were blackbody band radiances); empty when not known. Reduction writes it as
+    /// `units`.
+    std::string stokes_units;
 
     /// t_i = 2·w_i0 (1 for an ideal polarizer).
     float transmission(std::size_t i) const { return 2.0f * analysis[0][i]; }
@@ -43,11 +51,15 @@ struct MicrogridPixelCalibration {
     float diattenuation(std::size_t i) const;
     /// θ_i = ½·atan2(w_i2, w_i1) in degrees, [0, 180).
     float axis_angle_deg(std::size_t i) const;
-    /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`;
-    /// attribute `fit_rms`: the calibration as an EXR-ready image (the w planes are what reduction
+    /// Whether pixel i is marked bad.
+    bool is_bad(std::size_t i) const { return !bad.empty() && bad[i] != 0.0f; }
+    /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`
+    /// and, when assessed, `bad`; attributes `fit_rms` and, when known, `stokes_units`: the
+    /// calibration as an EXR-ready image (the w, background and bad planes are what reduction
     /// reads).
     Image to_image() const;
-    /// The inverse of to_image(); throws tirpol::Error naming a missing channel.
+    /// The inverse of to_image(); throws tirpol::Error naming a missing channel. A file without a
+    /// `bad` channel (written before bad pixels were assessed) reads with no pixel marked bad.
     static MicrogridPixelCalibration from_image(const Image& image);
 };
 
@@ -62,11 +74,13 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(
 
 /// Reduces a microgrid frame with the per-pixel calibration, one Stokes vector per 2×2 super-pixel:
 /// S = (WᵀW)⁻¹Wᵀ(I − b) with W the 4×3 matrix of the cell's analysis vectors (the pattern is
-/// implicit in them). Output: half-size image with S0 S1 S2 DoLP AoP (deg, [0, 180)), attributes
-/// `demosaic_method` = "super-pixel", `analyzer_model` = "per-pixel". Throws tirpol::Error for a
-/// frame of another size than the calibration's or a non-finite value; a cell whose W is singular
-/// (a dead analyzer) gives NaN for that super-pixel and is counted in the attribute
-/// `singular_cells`.
+/// implicit in them). A pixel marked bad is left out (its row dropped): three good analyzers at
+/// distinct angles still determine S; such cells are counted in `cells_with_bad_pixels`. Output:
+/// half-size image with S0 S1 S2 DoLP AoP (deg, [0, 180)), attributes `demosaic_method` =
+/// "super-pixel", `analyzer_model` = "per-pixel", `units` when the calibration knows them. Throws
+/// tirpol::Error for a frame of another size than the calibration's or a non-finite value at a good
+/// pixel; a cell whose good rows do not determine S (fewer than 3, or a dead analyzer) gives NaN
+/// for that super-pixel and is counted in the attribute `singular_cells`.
 Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
                                  const MicrogridPixelCalibration& calibration);
 
