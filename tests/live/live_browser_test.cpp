@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -233,8 +234,11 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     const auto session = dir() / "session";
     open_browser("s", "observe=s&mouse=1&dolp_min=0&capture_plan=" +
                           (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
-    // Page m masks AoP wherever DoLP < 1, i.e. (nearly) everywhere.
+    // Page m masks AoP wherever DoLP < 1, i.e. (nearly) everywhere; it keeps the default
+    // palettes. Page c picks the other S1/S2 and AoP palettes from its address (the page's
+    // selects).
     open_browser("m", "observe=m&dolp_min=1");
+    open_browser("c", "observe=c&palette_signed=coolwarm&palette_aop=twilight");
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {
@@ -279,6 +283,45 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     EXPECT_EQ(m.camera.pixel_format, "Mono16");
     for (const auto& r : m.records) EXPECT_EQ(r.frames, 4);
     screenshot("live_stokes.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// Palettes of the Stokes images chosen on the page, with the simulated camera (uniform,
+// unpolarized, with noise: S1 is noise about 0) behind the simulated stage. Page m keeps the
+// default palettes, page c picks the others from its address (the same selects an operator uses).
+TEST_F(LiveEndToEnd, S1ZeroIsThePalettesCentreColourInEachPaletteChosenOnThePage) {
+    start_live({"--stage", "sim://", "--frames-per-angle", "2", "--settle-s", "0"},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    open_browser("m", "observe=m");
+    open_browser("c", "observe=c&palette_signed=coolwarm&palette_aop=twilight");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("m") && o.contains("c") && o["m"]["palettes"].is_object() &&
+                   o["c"]["palettes"].is_object();
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    // S1's zero is painted in the diverging palette's centre colour: ColorBrewer RdBu's #f7f7f7
+    // (colorbrewer2.org, 5 classes) by default, Moreland's cool-warm (221, 221, 221)
+    // (SAND2009-0000) when chosen. The pixel nearest 0 must lie within half a palette step (1/512
+    // of the symmetric range) for its colour to be the centre's.
+    const std::map<std::string, json> centre{{"m", json::array({247, 247, 247})},
+                                             {"c", json::array({221, 221, 221})}};
+    for (const auto& [page, colour] : centre) {
+        const json& p = obs[page]["palettes"];
+        ASSERT_TRUE(p["s1_zero"].is_object()) << p.dump(1);
+        const double half_range = p["s1_range"][1].get<double>();
+        EXPECT_DOUBLE_EQ(p["s1_range"][0].get<double>(), -half_range);
+        EXPECT_LE(std::abs(p["s1_zero"]["value"].get<double>()), half_range / 512.0) << p.dump(1);
+        EXPECT_EQ(p["s1_zero"]["rgb"], colour) << page << ": " << p.dump(1);
+        // A cyclic AoP palette: 0° and 180° (the same axis) have one colour.
+        EXPECT_EQ(p["aop_bar_ends"][0], p["aop_bar_ends"][1]) << page << ": " << p.dump(1);
+    }
+    EXPECT_EQ(obs["c"]["palettes"]["s1_palette"], "coolwarm");
+    EXPECT_EQ(obs["c"]["palettes"]["aop_palette"], "twilight");
+    EXPECT_EQ(obs["m"]["palettes"]["s1_palette"], "rdbu");
+    EXPECT_NE(obs["c"]["palettes"]["aop_bar_ends"][0], obs["m"]["palettes"]["aop_bar_ends"][0]);
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 }
 
