@@ -2,10 +2,12 @@
 
 #include <cmath>
 
+#include "snapshot.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/utc_time.h"
 
 namespace tirpol::live {
 
@@ -127,6 +129,46 @@ nlohmann::json LiveView::region(const PixelRegion& region, double dolp_min) cons
     return region_readout(&live, cycle ? &*cycle : nullptr, region, dolp_min);
 }
 
+nlohmann::json LiveView::snapshot() {
+    if (m_options.snapshot_dir.empty())
+        fail("snapshot: tirpol live was started without --snapshot-dir FOLDER");
+    const auto frame = m_feed->latest().latest().value;
+    if (!frame) fail("snapshot: no frame from the camera yet");
+    const std::shared_ptr<const Image> cycle = m_cycle ? m_cycle->stokes().latest().value : nullptr;
+    const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
+    Image image = cycle ? *cycle : Image(frame->width, frame->height);
+    image.set_channel(cycle ? "live_S0" : "S0",
+                      m_converter->to_signal(frame->counts, frame->fpa_temperature_k));
+    auto& a = image.attributes();
+    const std::string time = utc_now_iso8601();
+    a["time_utc"] = time;
+    const CameraInfo& c = m_feed->camera_info();
+    a["camera_uri"] = c.uri;
+    a["camera_vendor"] = c.vendor;
+    a["camera_model"] = c.model;
+    a["camera_serial"] = c.serial;
+    a["pixel_format"] = c.pixel_format;
+    a["frame_id"] = std::to_string(frame->frame_id);  // 64 bits: an EXR int holds 32
+    if (frame->fpa_temperature_k) a["fpa_temperature_k"] = *frame->fpa_temperature_k;
+    a["units"] = units;
+    if (m_stage) a["stage_uri"] = m_stage->info().uri;
+
+    std::lock_guard lock(m_snapshot_mutex);
+    std::string stem = "snapshot-" + time + "-" + std::to_string(++m_snapshots);
+    for (char& ch : stem)
+        if (ch == ':') ch = '-';  // file names without ':' (Windows shares, URLs)
+    const SnapshotFiles files =
+        write_snapshot(m_options.snapshot_dir, stem, image, units, m_options.force_snapshots);
+    nlohmann::json j;
+    j["folder"] = m_options.snapshot_dir;
+    j["files"] = nlohmann::json::array({files.exr});
+    for (const auto& png : files.pngs) j["files"].push_back(png);
+    j["time_utc"] = time;
+    j["frame_id"] = frame->frame_id;
+    j["channels"] = image.channel_names();
+    return j;
+}
+
 nlohmann::json LiveView::describe() const {
     const CameraInfo& c = m_feed->camera_info();
     nlohmann::json j;
@@ -143,6 +185,7 @@ nlohmann::json LiveView::describe() const {
     j["angles_deg"] = m_options.cycle.angles_deg;
     j["default_plan"] = m_options.default_plan;
     j["default_output"] = m_options.default_output;
+    j["snapshot_dir"] = m_options.snapshot_dir;
     return j;
 }
 

@@ -379,6 +379,15 @@ async function post(path, body) {
   return j;
 }
 
+// Snapshot: the server writes the latest frame (and cycle) as EXR + PNG into --snapshot-dir.
+async function snapshot() {
+  const r = await fetch(api('/api/snapshot'), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: '{}' });
+  const j = await r.json();
+  state.snapshot = j;
+  $('snapshot-result').textContent = j.error ? j.error : `${j.files.length} files in ${j.folder}: ${j.files[0]}`;
+  return j;
+}
+
 // ---- test mode (?observe=ID): report what this page shows, drive the capture buttons --------
 function paintedFraction(canvas) {
   if (!canvas.width) return 0;
@@ -446,7 +455,7 @@ function exerciseMouse() {
 }
 
 async function observeLoop(client) {
-  let clickedStart = false, clickedStop = false, mouse = null;
+  let clickedStart = false, clickedStop = false, clickedSnapshot = false, mouse = null;
   const stopAfter = params.has('capture_stop_after') ? Number(params.get('capture_stop_after')) : null;
   for (;;) {
     await sleep(400);
@@ -463,6 +472,10 @@ async function observeLoop(client) {
       clickedStop = true;
     }
     if (!mouse && state.framesShown > 0 && params.has('mouse')) mouse = exerciseMouse();
+    if (params.has('snapshot') && !clickedSnapshot && state.framesShown > 0 && (!state.describe.stage || state.stokesShown > 0)) {
+      $('snapshot').click();
+      clickedSnapshot = true;
+    }
     if (mouse) mouse.region = $('region').textContent.split('\n');
     const cx = Math.floor($('s0').width / 2), cy = Math.floor($('s0').height / 2);
     const dolp = state.stokes && state.stokes.channels.find((c) => c.name === 'DoLP');
@@ -476,6 +489,7 @@ async function observeLoop(client) {
       focus: { n: state.focus.length, last: state.focus.length ? state.focus[state.focus.length - 1] : null },
       s0_grey: state.framesShown > 0 && allGrey($('s0')), colorbars: colourBars(), region_readout: state.regionReadout,
       aop_masked: state.stokes ? colourShare($('st-AoP'), MASKED) : null, palettes: paletteProbe(),
+      snapshot: state.snapshot || null,
     };
     try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
   }
@@ -502,6 +516,9 @@ async function main() {
   $('s0-units').textContent = `(${d.units})`;
   $('plan').value = d.default_plan; $('output').value = d.default_output;
   attachInteraction($('s0'));
+  $('snapshot').disabled = !d.snapshot_dir;
+  $('snapshot').title = d.snapshot_dir ? `writes EXR + PNG into ${d.snapshot_dir}` : 'start tirpol live with --snapshot-dir FOLDER';
+  $('snapshot').addEventListener('click', () => snapshot().catch((e) => { $('snapshot-result').textContent = String(e); }));
   if (d.stage) {
     $('stokes').hidden = false;
     $('stage-uri').textContent = d.stage;

@@ -7,6 +7,8 @@
 // capture buttons from URL parameters. Screenshots go to build/test-artefacts/live/. A missing
 // chromium or aravis-tools fails these tests: they never skip.
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <unistd.h>
@@ -20,7 +22,9 @@
 
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
+#include "png_text.h"
 #include "test_support.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
 #include "tirpol/live/access.h"
 
@@ -323,6 +327,92 @@ TEST_F(LiveEndToEnd, S1ZeroIsThePalettesCentreColourInEachPaletteChosenOnThePage
     EXPECT_EQ(obs["m"]["palettes"]["s1_palette"], "rdbu");
     EXPECT_NE(obs["c"]["palettes"]["aop_bar_ends"][0], obs["m"]["palettes"]["aop_bar_ends"][0]);
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// The page's Snapshot button with the simulated camera (uniform 1500 counts, noise 3) behind the
+// simulated stage: the EXR holds the cycle's float Stokes and the live frame, with the metadata;
+// each PNG quick look carries the same metadata in its text chunks.
+TEST_F(LiveEndToEnd, ASnapshotFromThePageWritesFloatStokesAndQuickLooksWithMetadata) {
+    const auto snaps = dir() / "snaps";
+    start_live({"--stage", "sim://", "--frames-per-angle", "2", "--settle-s", "0", "--snapshot-dir",
+                snaps.string()},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    open_browser("n", "observe=n&snapshot=1");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) { return o.contains("n") && o["n"]["snapshot"].is_object(); }, 120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    const json& answer = obs["n"]["snapshot"];
+    ASSERT_TRUE(answer.contains("files")) << answer.dump(1);
+    ASSERT_EQ(answer["files"].size(), 7u) << answer.dump(1);  // the EXR, PNGs of 5 + live_S0
+    const Image image = read_exr(snaps / answer["files"][0].get<std::string>());
+    ASSERT_EQ(image.width(), 64);
+    ASSERT_EQ(image.height(), 48);
+    for (const char* name : {"S0", "S1", "S2", "DoLP", "AoP", "live_S0"})
+        ASSERT_TRUE(image.has_channel(name)) << name;
+    // The values: a uniform unpolarized 1500 counts; floats, not the page's 16-bit display codes.
+    const auto mean = [&](const char* name) { return channel_stats(image.channel(name)).mean; };
+    // Each angle reads 1500 counts; an ideal analyzer passes I = (S0 + S1 cos 2θ + S2 sin 2θ)/2.
+    EXPECT_NEAR(mean("S0"), 3000.0, 1.0);
+    EXPECT_NEAR(mean("live_S0"), 1500.0, 1.0);
+    EXPECT_NEAR(mean("S1"), 0.0, 1.0);
+    EXPECT_NEAR(mean("S2"), 0.0, 1.0);
+    for (const float v : image.channel("live_S0")) EXPECT_EQ(v, std::round(v));  // raw counts
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const double s0 = image.channel("S0")[i], s1 = image.channel("S1")[i],
+                     s2 = image.channel("S2")[i];
+        const double dolp = std::hypot(s1, s2) / s0;
+        if (dolp < 1e-4) continue;
+        EXPECT_NEAR(image.channel("DoLP")[i], dolp, 1e-5) << i;
+        const double aop = std::fmod(std::atan2(s2, s1) * 90.0 / M_PI + 180.0, 180.0);
+        const double d = std::abs(image.channel("AoP")[i] - aop);
+        EXPECT_LT(std::min(d, 180.0 - d), 1e-2) << i;
+        ++checked;
+    }
+    EXPECT_GT(checked, image.pixel_count() / 2);
+    // The metadata: time, analyzer angles read back from the stage, camera, frame ids.
+    const auto& a = image.attributes();
+    const auto text = [&](const char* key) { return std::get<std::string>(a.at(key)); };
+    EXPECT_EQ(text("time_utc"), answer["time_utc"]);
+    EXPECT_EQ(text("camera_uri").rfind("sim://uniform", 0), 0u) << text("camera_uri");
+    EXPECT_EQ(text("frame_id"), std::to_string(answer["frame_id"].get<std::uint64_t>()));
+    EXPECT_EQ(text("units"), "counts");
+    const auto angles = std::get<std::vector<double>>(a.at("analyzer_angles_deg"));
+    ASSERT_EQ(angles.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(angles[k], 45.0 * k, 1.0);
+    const auto ids = std::get<std::vector<double>>(a.at("cycle_frame_ids"));
+    ASSERT_EQ(ids.size(), 8u);  // first and last frame averaged at each angle
+    EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+    EXPECT_LE(ids.back(), answer["frame_id"].get<double>());
+    for (std::size_t k = 1; k < answer["files"].size(); ++k) {
+        const auto png = snaps / answer["files"][k].get<std::string>();
+        const auto chunks = test::png_text_chunks(png);
+        EXPECT_EQ(chunks.at("tirpol.time_utc"), text("time_utc")) << png;
+        EXPECT_EQ(chunks.at("Creation Time"), text("time_utc")) << png;
+        EXPECT_EQ(chunks.at("tirpol.camera_uri"), text("camera_uri")) << png;
+        EXPECT_EQ(chunks.at("tirpol.frame_id"), text("frame_id")) << png;
+        EXPECT_EQ(chunks.at("tirpol.analyzer_angles_deg"),
+                  fmt::format("{}", fmt::join(angles, ",")))
+            << png;
+    }
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+
+    // The output guard at start: a file the snapshots would claim, which no tirpol command wrote
+    // there, is refused (exit 2, naming the option) unless --force.
+    const auto other = dir() / "other";
+    std::filesystem::create_directories(other);
+    test::write_text(other / "snapshot-mine.exr", "not ours");
+    test::ChildProcess refused(
+        {TIRPOL_CLI_PATH, "live", "--camera", "sim://uniform?width=8&height=8", "--port", "0",
+         "--snapshot-dir", other.string()},
+        dir() / "refused.log");
+    const auto code = refused.wait_for(30s);
+    ASSERT_TRUE(code.has_value());
+    EXPECT_EQ(*code, 2) << read_text(dir() / "refused.log");
+    EXPECT_NE(read_text(dir() / "refused.log").find("--snapshot-dir"), std::string::npos)
+        << read_text(dir() / "refused.log");
+    EXPECT_EQ(read_text(other / "snapshot-mine.exr"), "not ours");
 }
 
 TEST_F(LiveEndToEnd, ACaptureStoppedFromThePageResumesWithTirpolAcquire) {

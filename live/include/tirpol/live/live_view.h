@@ -28,6 +28,10 @@ struct LiveViewOptions {
     DisplayUnit unit = DisplayUnit::Counts;
     CycleOptions cycle;
     std::string default_plan, default_output;  ///< prefilled in the page's capture form
+    /// Where the page's Snapshot button writes (empty: no snapshots). The CLI checks it with
+    /// OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing file.
+    std::string snapshot_dir;
+    bool force_snapshots = false;
 };
 
 /// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value
@@ -66,6 +70,15 @@ public:
     /// defaults.
     nlohmann::json describe() const;
 
+    /// Writes the latest frame (and the latest cycle's Stokes, with a stage) into the snapshot
+    /// folder: `snapshot-TIME-N.exr` with the float channels (S0 S1 S2 DoLP AoP and their _std
+    /// from the cycle and the live frame's `live_S0`, or `S0` alone without a stage) and header
+    /// attributes time_utc, camera_*, frame_id, cycle_frame_ids, analyzer_angles_deg, units; and
+    /// a PNG quick look per channel with the same metadata. Returns {"files": [...], "folder"}.
+    /// Throws tirpol::Error without a snapshot folder, before the first frame, or when a file
+    /// exists (without force).
+    nlohmann::json snapshot();
+
     bool has_stage() const { return m_stage != nullptr; }
     /// The capture control; throws tirpol::Error without a stage.
     CaptureControl& capture();
@@ -88,6 +101,8 @@ private:
     std::unique_ptr<PolarizerCycle> m_cycle;
     std::unique_ptr<CaptureControl> m_capture;
     Cache m_frame_cache, m_stokes_cache;
+    std::mutex m_snapshot_mutex;  ///< one snapshot at a time (numbered in order)
+    int m_snapshots = 0;
 };
 
 }  // namespace tirpol::live
