@@ -96,6 +96,10 @@ void register_live(CLI::App& app) {
                     "Folder the page's Snapshot button writes into (EXR + PNG quick looks)");
     cmd->add_flag("--force", a->view.force_snapshots,
                   "Let a snapshot replace an existing file of the same name");
+    cmd->add_option("--demosaic", a->view.demosaic,
+                    "Microgrid camera without a stage: super-pixel, bilinear or newton (Stokes "
+                    "from each frame)")
+        ->capture_default_str();
     cmd->add_option("--port", a->server.port,
                     "TCP port 1-65535 (0: pick a free one; the address is printed)")
         ->capture_default_str();

@@ -1,11 +1,14 @@
 #include "tirpol/live/live_view.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "snapshot.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utc_time.h"
 
@@ -49,6 +52,7 @@ void validate(const LiveViewOptions& options) {
           std::pair{"frame timeout", c.frame_timeout_s}})
         if (!std::isfinite(seconds) || seconds <= 0.0)
             fail("live view: the {} must be a finite number of seconds > 0, got {}", name, seconds);
+    calibration::parse_demosaic_method(options.demosaic, "--demosaic");
     for (const double angle_deg : c.angles_deg)
         if (!std::isfinite(angle_deg))
             fail("live view: polarizer angle {} is not a finite number of degrees", angle_deg);
@@ -65,6 +69,10 @@ LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
     m_converter = std::make_unique<DisplayConverter>(
         m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
     m_feed = std::make_unique<FrameFeed>(*m_camera);
+    if (!m_stage && m_camera->info().microgrid_pattern_deg) {
+        m_microgrid.emplace(*m_camera->info().microgrid_pattern_deg, "the camera's microgrid");
+        m_demosaic = calibration::parse_demosaic_method(options.demosaic, "--demosaic");
+    }
     if (m_stage) {
         m_cycle = std::make_unique<PolarizerCycle>(*m_feed, *m_stage, *m_converter, options.cycle);
         m_capture = std::make_unique<CaptureControl>(*m_feed, *m_stage, m_cycle.get());
@@ -109,9 +117,40 @@ EncodedImage LiveView::frame_after(std::uint64_t after, std::chrono::millisecond
     });
 }
 
+Image LiveView::microgrid_stokes(const Frame& frame) const {
+    calibration::MicrogridReductionOptions options;
+    options.method = m_demosaic;
+    options.reduction.units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m^2 sr)";
+    options.source = fmt::format("frame {}", frame.frame_id);
+    Image stokes =
+        calibration::reduce_microgrid(m_converter->to_signal(frame.counts, frame.fpa_temperature_k),
+                                      frame.width, frame.height, *m_microgrid, options);
+    stokes.attributes()["microgrid_frame_id"] = std::to_string(frame.frame_id);
+    return stokes;
+}
+
+std::shared_ptr<const Image> LiveView::latest_stokes() const {
+    if (m_cycle) return m_cycle->stokes().latest().value;
+    if (m_microgrid)
+        if (const auto frame = m_feed->latest().latest().value)
+            return std::make_shared<const Image>(microgrid_stokes(*frame));
+    return nullptr;
+}
+
 EncodedImage LiveView::stokes_after(std::uint64_t after, std::chrono::milliseconds timeout) {
-    if (!m_cycle) return {};
     const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
+    if (m_microgrid)  // every frame the page asks for, demosaiced once however many pages ask
+        return encoded_after(
+            m_feed->latest(), m_stokes_cache, after, timeout, [&](const Frame& frame) {
+                try {
+                    return encode_display_image(stokes_image(microgrid_stokes(frame), units));
+                } catch (const Error& e) {
+                    DisplayImage image;
+                    image.info["error"] = e.what();
+                    return encode_display_image(image);
+                }
+            });
+    if (!m_cycle) return {};
     return encoded_after(
         m_cycle->stokes(), m_stokes_cache, after, timeout,
         [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
@@ -122,10 +161,10 @@ nlohmann::json LiveView::region(const PixelRegion& region, double dolp_min) cons
     if (!frame) fail("region: no frame from the camera yet");
     const DisplayImage live = m_converter->frame_image(*frame);
     std::optional<DisplayImage> cycle;
-    if (m_cycle)
-        if (const auto stokes = m_cycle->stokes().latest().value)
-            cycle = stokes_image(
-                *stokes, m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)");
+    if (const auto stokes = latest_stokes();
+        stokes && stokes->width() == live.width && stokes->height() == live.height)
+        cycle = stokes_image(*stokes,
+                             m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)");
     return region_readout(&live, cycle ? &*cycle : nullptr, region, dolp_min);
 }
 
@@ -134,7 +173,14 @@ nlohmann::json LiveView::snapshot() {
         fail("snapshot: tirpol live was started without --snapshot-dir FOLDER");
     const auto frame = m_feed->latest().latest().value;
     if (!frame) fail("snapshot: no frame from the camera yet");
-    const std::shared_ptr<const Image> cycle = m_cycle ? m_cycle->stokes().latest().value : nullptr;
+    // A microgrid snapshot reduces the very frame it stores as live_S0.
+    const std::shared_ptr<const Image> cycle =
+        m_microgrid ? std::make_shared<const Image>(microgrid_stokes(*frame)) : latest_stokes();
+    if (cycle && (cycle->width() != frame->width || cycle->height() != frame->height))
+        fail(
+            "snapshot: the Stokes images ({}×{}, super-pixel) and the frame ({}×{}) differ in "
+            "size; use --demosaic bilinear or newton for snapshots",
+            cycle->width(), cycle->height(), frame->width, frame->height);
     const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
     Image image = cycle ? *cycle : Image(frame->width, frame->height);
     image.set_channel(cycle ? "live_S0" : "S0",
@@ -186,6 +232,10 @@ nlohmann::json LiveView::describe() const {
     j["default_plan"] = m_options.default_plan;
     j["default_output"] = m_options.default_output;
     j["snapshot_dir"] = m_options.snapshot_dir;
+    j["microgrid"] =
+        m_microgrid ? nlohmann::json({{"pattern", m_microgrid->text()},
+                                      {"demosaic", calibration::demosaic_method_name(m_demosaic)}})
+                    : nlohmann::json();
     return j;
 }
 

@@ -17,7 +17,7 @@ function api(path) {
 // page (observe=ID, the tests' pages, or live=1); ?still=1 asks for it in any browser.
 const still = params.has('still') ||
   (/HeadlessChrome/.test(navigator.userAgent) && !params.has('observe') && !params.has('live'));
-const enough = () => state.framesShown >= 3 && state.status && (!state.describe.stage || state.stokesShown >= 1);
+const enough = () => state.framesShown >= 3 && state.status && (!(state.describe.stage || state.describe.microgrid) || state.stokesShown >= 1);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const nextPaint = () => new Promise((r) => requestAnimationFrame(r));
 
@@ -472,7 +472,7 @@ async function observeLoop(client) {
       clickedStop = true;
     }
     if (!mouse && state.framesShown > 0 && params.has('mouse')) mouse = exerciseMouse();
-    if (params.has('snapshot') && !clickedSnapshot && state.framesShown > 0 && (!state.describe.stage || state.stokesShown > 0)) {
+    if (params.has('snapshot') && !clickedSnapshot && state.framesShown > 0 && (!(state.describe.stage || state.describe.microgrid) || state.stokesShown > 0)) {
       $('snapshot').click();
       clickedSnapshot = true;
     }
@@ -519,6 +519,14 @@ async function main() {
   $('snapshot').disabled = !d.snapshot_dir;
   $('snapshot').title = d.snapshot_dir ? `writes EXR + PNG into ${d.snapshot_dir}` : 'start tirpol live with --snapshot-dir FOLDER';
   $('snapshot').addEventListener('click', () => snapshot().catch((e) => { $('snapshot-result').textContent = String(e); }));
+  if (d.microgrid) {  // a microgrid camera: Stokes of every frame, no stage, no capture plan
+    $('stokes').hidden = false;
+    $('stokes-title').textContent = `Stokes of the latest frame (microgrid ${d.microgrid.pattern}, ${d.microgrid.demosaic})`;
+    $('capture-section').hidden = true;
+    $('stage-line').hidden = true;
+    for (const n of ['S0', 'S1', 'S2', 'DoLP', 'AoP']) attachInteraction($('st-' + n));
+    imageLoop('/api/stokes', (img) => { state.stokes = img; state.stokesShown++; redraw(); });
+  }
   if (d.stage) {
     $('stokes').hidden = false;
     $('stage-uri').textContent = d.stage;

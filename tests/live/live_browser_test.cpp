@@ -415,6 +415,63 @@ TEST_F(LiveEndToEnd, ASnapshotFromThePageWritesFloatStokesAndQuickLooksWithMetad
     EXPECT_EQ(read_text(other / "snapshot-mine.exr"), "not ours");
 }
 
+// A microgrid (division-of-focal-plane) camera without a stage: Aravis's fake camera streaming
+// Mono16 declared as the Sony layout (microgrid=sony: (0,0) = 90°, (0,1) = 45°, (1,0) = 135°,
+// (1,1) = 0°). Every frame is demosaiced (bilinear) and reduced on its own; a snapshot stores the
+// frame (live_S0) beside its Stokes images, which the test recomputes from the raw pixels.
+TEST_F(LiveEndToEnd, AMicrogridCameraShowsStokesFromSingleFramesWithoutAStage) {
+    const auto snaps = dir() / "snaps";
+    start_live({"--snapshot-dir", snaps.string(), "--demosaic", "bilinear"},
+               std::string(kCameraUri) + "&microgrid=sony");
+    open_browser("d", "observe=d&dolp_min=0&snapshot=1");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("d") && o["d"]["stokes_shown"].get<int>() >= 5 &&
+                   o["d"]["dolp_painted"].get<double>() > 0.5 && o["d"]["snapshot"].is_object();
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    EXPECT_TRUE(obs["d"]["stage"].is_null()) << obs["d"].dump(1);
+    for (const char* name : {"cb-S0", "cb-S1", "cb-S2", "cb-DoLP", "cb-AoP"})
+        EXPECT_TRUE(obs["d"]["colorbars"].contains(name)) << name;
+    const json& answer = obs["d"]["snapshot"];
+    ASSERT_TRUE(answer.contains("files")) << answer.dump(1);
+    const Image image = read_exr(snaps / answer["files"][0].get<std::string>());
+    ASSERT_EQ(image.width(), 640);
+    ASSERT_EQ(image.height(), 512);
+    const auto& a = image.attributes();
+    EXPECT_EQ(std::get<std::string>(a.at("microgrid_frame_id")),
+              std::get<std::string>(a.at("frame_id")));  // the Stokes of the stored frame
+    EXPECT_EQ(std::get<std::string>(a.at("demosaic_method")), "bilinear");
+    EXPECT_EQ(std::get<std::string>(a.at("microgrid_pattern")), "90,45,135,0");
+    // At a 0° pixel (odd x, odd y) of the Sony layout, bilinear interpolation (Ratliff et al.
+    // 2009) takes 90° from the 4 diagonal neighbours, 45° from the 2 vertical and 135° from the 2
+    // horizontal ones; an ideal analyzer then gives S0 = (I0 + I45 + I90 + I135)/2,
+    // S1 = I0 − I90, S2 = I45 − I135 (docs/conventions.md).
+    const auto& raw = image.channel("live_S0");
+    const auto at = [&](int x, int y) { return static_cast<double>(raw[image.index(x, y)]); };
+    int checked = 0;
+    for (int y = 1; y + 1 < image.height(); y += 2)
+        for (int x = 1; x + 1 < image.width(); x += 2) {
+            const double i0 = at(x, y),
+                         i90 = (at(x - 1, y - 1) + at(x + 1, y - 1) + at(x - 1, y + 1) +
+                                at(x + 1, y + 1)) /
+                               4.0,
+                         i45 = (at(x, y - 1) + at(x, y + 1)) / 2.0,
+                         i135 = (at(x - 1, y) + at(x + 1, y)) / 2.0;
+            const std::size_t i = image.index(x, y);
+            ASSERT_NEAR(image.channel("S0")[i], (i0 + i45 + i90 + i135) / 2.0, 0.1)
+                << x << "," << y;
+            ASSERT_NEAR(image.channel("S1")[i], i0 - i90, 0.1) << x << "," << y;
+            ASSERT_NEAR(image.channel("S2")[i], i45 - i135, 0.1) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 319 * 255);
+    screenshot("live_microgrid.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
 TEST_F(LiveEndToEnd, ACaptureStoppedFromThePageResumesWithTirpolAcquire) {
     start_stage("30");  // 45° moves take 1.5 s: the page's Stop lands during the plan
     test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0.1\n");

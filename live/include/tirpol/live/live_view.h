@@ -12,6 +12,8 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/stage.h"
+#include "tirpol/calibration/microgrid_demosaic.h"
+#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/live/capture_control.h"
 #include "tirpol/live/display_frame.h"
@@ -31,6 +33,10 @@ struct LiveViewOptions {
     /// Where the page's Snapshot button writes (empty: no snapshots). The CLI checks it with
     /// OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing file.
     std::string snapshot_dir;
+    /// With a microgrid camera and no stage, the page's Stokes images come from each frame:
+    /// demosaiced by this method (calibration's parse_demosaic_method: super-pixel, bilinear,
+    /// newton) and reduced with ideal analyzers at the pattern's angles.
+    std::string demosaic = "bilinear";
     bool force_snapshots = false;
 };
 
@@ -80,6 +86,8 @@ public:
     nlohmann::json snapshot();
 
     bool has_stage() const { return m_stage != nullptr; }
+    /// Whether the Stokes images come from single microgrid frames (a microgrid camera, no stage).
+    bool has_microgrid() const { return m_microgrid.has_value(); }
     /// The capture control; throws tirpol::Error without a stage.
     CaptureControl& capture();
 
@@ -92,7 +100,14 @@ private:
     EncodedImage encoded_after(const LatestSlot<T>& slot, Cache& cache, std::uint64_t after,
                                std::chrono::milliseconds timeout, Encode encode);
 
+    /// S0 S1 S2 DoLP AoP of one microgrid frame (reduce_microgrid), with its frame id.
+    Image microgrid_stokes(const acquisition::Frame& frame) const;
+    /// The Stokes image the page shows now: the latest cycle, or the latest microgrid frame's.
+    std::shared_ptr<const Image> latest_stokes() const;
+
     LiveViewOptions m_options;
+    std::optional<calibration::MicrogridPattern> m_microgrid;
+    calibration::DemosaicMethod m_demosaic = calibration::DemosaicMethod::Bilinear;
     std::unique_ptr<acquisition::Camera> m_camera;
     std::unique_ptr<acquisition::Stage> m_stage;
     std::optional<calibration::RadiometricCalibration> m_calibration;
