@@ -24,6 +24,7 @@
 #include "fake_gv_camera_process.h"
 #include "png_text.h"
 #include "test_support.h"
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
 #include "tirpol/live/access.h"
@@ -469,6 +470,52 @@ TEST_F(LiveEndToEnd, AMicrogridCameraShowsStokesFromSingleFramesWithoutAStage) {
         }
     EXPECT_EQ(checked, 319 * 255);
     screenshot("live_microgrid.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// Recording from the page with the simulated camera (uniform 1500 counts, noise 3) and the
+// simulated stage: the plan drives the stage, the session is the one `tirpol acquire` writes
+// (core's reader checks every frame against the manifest), and its frames reduce (calibration's
+// reduce_stokes, ideal analyzer at the read-back angles, in counts) to the source: S0 = 3000 counts
+// (each angle reads S0/2), S1 = S2 = 0 within the noise.
+TEST_F(LiveEndToEnd, ARecordingFromThePageWithTheSimulatedRigIsASessionThatReduces) {
+    test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0\n");
+    start_live({"--stage", "sim://", "--frames-per-angle", "1", "--settle-s", "0"},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    const auto session = dir() / "session";
+    open_browser("r", "observe=r&capture_plan=" + (dir() / "plan.yaml").string() +
+                          "&capture_output=" + session.string());
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("r") && o["r"]["capture"].is_object() &&
+                   o["r"]["capture"]["phase"] == "complete";
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    EXPECT_TRUE(obs["r"]["clicked_start"].get<bool>());
+    const SessionManifest m = read_session(session);
+    EXPECT_TRUE(m.complete);
+    ASSERT_EQ(m.records.size(), 4u);
+    EXPECT_EQ(m.camera.width, 64);
+    std::vector<calibration::AnalyzerImage> images;
+    std::vector<double> angles;
+    for (std::size_t k = 0; k < m.records.size(); ++k) {
+        const SessionRecord& r = m.records[k];
+        EXPECT_EQ(r.frames, 4);
+        EXPECT_NEAR(r.angle_deg_measured, 45.0 * static_cast<double>(k), 0.5);
+        const Image frame = read_session_frame(session, m, r);
+        EXPECT_NEAR(channel_stats(frame.channel("counts")).mean, 1500.0, 1.0) << r.file;
+        images.push_back({r.angle_deg_measured, frame.channel("counts"), {}, r.file});
+        angles.push_back(r.angle_deg_measured);
+    }
+    calibration::ReductionOptions options;
+    options.units = "counts";
+    const Image stokes = calibration::reduce_stokes(
+        images, 64, 48, calibration::AnalyzerModel::ideal(angles), nullptr, options);
+    EXPECT_NEAR(channel_stats(stokes.channel("S0")).mean, 3000.0, 1.0);
+    EXPECT_NEAR(channel_stats(stokes.channel("S1")).mean, 0.0, 0.5);
+    EXPECT_NEAR(channel_stats(stokes.channel("S2")).mean, 0.0, 0.5);
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 }
 
