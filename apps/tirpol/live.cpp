@@ -5,12 +5,14 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <thread>
 #include <vector>
 
 #include "cli.h"
 #include "tirpol/core/interrupt_signals.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/live/live_server.h"
 
 namespace tirpol::cli {
@@ -31,6 +33,14 @@ void run_live(LiveArgs a) {
         throw CLI::ValidationError(e.what());
     }
     a.view.unit = live::parse_display_unit(a.show);
+    if (!a.view.snapshot_dir.empty()) {
+        OutputGuard()
+            .input(a.view.calibration_path, "--calibration")
+            .input(a.view.default_plan, "--plan")
+            .output_folder(a.view.snapshot_dir, "--snapshot-dir", {"snapshot-*"})
+            .check(a.view.force_snapshots);
+        std::filesystem::create_directories(a.view.snapshot_dir);
+    }
     live::LiveView view(a.view);
     live::LiveServer server(view, a.server);
     const std::vector<std::string> urls = server.urls();
@@ -82,6 +92,14 @@ void register_live(CLI::App& app) {
                     "Capture plan prefilled in the page's capture form");
     cmd->add_option("-o,--output", a->view.default_output,
                     "Session directory prefilled in the page's capture form");
+    cmd->add_option("--snapshot-dir", a->view.snapshot_dir,
+                    "Folder the page's Snapshot button writes into (EXR + PNG quick looks)");
+    cmd->add_flag("--force", a->view.force_snapshots,
+                  "Let a snapshot replace an existing file of the same name");
+    cmd->add_option("--demosaic", a->view.demosaic,
+                    "Microgrid camera without a stage: super-pixel, bilinear or newton (Stokes "
+                    "from each frame)")
+        ->capture_default_str();
     cmd->add_option("--port", a->server.port,
                     "TCP port 1-65535 (0: pick a free one; the address is printed)")
         ->capture_default_str();

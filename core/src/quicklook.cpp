@@ -1,12 +1,16 @@
 #include "tirpol/core/quicklook.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -14,6 +18,54 @@
 namespace tirpol {
 
 namespace {
+
+void check_png_keyword(const std::filesystem::path& path, const std::string& keyword) {
+    bool printable = !keyword.empty() && keyword.size() <= 79 && keyword.front() != ' ' &&
+                     keyword.back() != ' ' && keyword.find("  ") == std::string::npos;
+    for (const char c : keyword) printable = printable && c >= 0x20 && c <= 0x7e;
+    if (!printable)
+        fail(
+            "{}: PNG text keyword '{}': expected 1–79 printable ASCII characters without "
+            "leading, trailing or double spaces",
+            path.string(), keyword);
+}
+
+/// One PNG chunk: length, type, data, CRC-32 of type and data (PNG specification §5.3).
+std::string png_chunk(const char (&type)[5], const std::string& data) {
+    std::string chunk;
+    const auto put_u32 = [&chunk](std::uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8)
+            chunk.push_back(static_cast<char>((v >> shift) & 0xffu));
+    };
+    put_u32(static_cast<std::uint32_t>(data.size()));
+    const std::string body = std::string(type, 4) + data;
+    chunk += body;
+    put_u32(static_cast<std::uint32_t>(
+        crc32(0L, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size()))));
+    return chunk;
+}
+
+/// `png` with a text chunk per entry of `text` inserted after IHDR (the first chunk, 33 bytes in
+/// with the signature), where every reader looks for them.
+std::string with_text_chunks(const std::filesystem::path& path, const std::string& png,
+                             const std::vector<std::pair<std::string, std::string>>& text) {
+    constexpr std::size_t kAfterHeader = 8 + 4 + 4 + 13 + 4;
+    if (png.size() < kAfterHeader || png.compare(12, 4, "IHDR") != 0)
+        fail("{}: the encoded PNG does not start with its header chunk", path.string());
+    std::string chunks;
+    for (const auto& [keyword, value] : text) {
+        check_png_keyword(path, keyword);
+        const bool ascii =
+            std::all_of(value.begin(), value.end(), [](char c) { return c > 0 && c < 0x7f; });
+        if (ascii) {
+            chunks += png_chunk("tEXt", keyword + '\0' + value);
+        } else {
+            // keyword, NUL, uncompressed (0, 0), empty language tag and translation, UTF-8 text.
+            chunks += png_chunk("iTXt", keyword + std::string("\0\0\0\0\0", 5) + value);
+        }
+    }
+    return png.substr(0, kAfterHeader) + chunks + png.substr(kAfterHeader);
+}
 
 // Moreland's "cool to warm" diverging map (K. Moreland, "Diverging Color Maps for Scientific
 // Visualization", ISVC 2009), control points in sRGB.
@@ -206,16 +258,16 @@ void write_quicklook(const std::filesystem::path& path, const std::vector<float>
     if (!options.units.empty()) title += " [" + ascii(options.units) + "]";
     cv::putText(canvas, title, {pad, title_h - 6}, font, 0.55, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
 
-    AtomicFile file(path);
+    std::vector<uchar> encoded;
     bool ok = false;
     try {
-        ok = cv::imwrite(file.temp_path().string(), canvas);
+        ok = cv::imencode(".png", canvas, encoded);
     } catch (const cv::Exception& e) {
-        fail("{}: writing PNG failed: {}", path.string(), e.what());
+        fail("{}: encoding PNG failed: {}", path.string(), e.what());
     }
-    if (!ok)
-        fail("{}: writing PNG failed (OpenCV could not encode or write the file)", path.string());
-    file.commit();
+    if (!ok) fail("{}: encoding PNG failed (OpenCV could not encode the image)", path.string());
+    write_file_atomic(
+        path, with_text_chunks(path, std::string(encoded.begin(), encoded.end()), options.text));
 }
 
 }  // namespace tirpol

@@ -258,6 +258,15 @@ LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
                         send_error(res, e);
                     }
                 });
+    server.Post("/api/snapshot", [&view, max_body](const httplib::Request&, httplib::Response& res,
+                                                   const httplib::ContentReader& reader) {
+        if (!read_body(reader, res, max_body)) return;
+        try {
+            send_json(res, view.snapshot());
+        } catch (const Error& e) {
+            send_error(res, e);
+        }
+    });
     const std::size_t max_clients = options.limits.max_observation_clients;
     server.Post("/api/observations", [this, max_body, max_clients](
                                          const httplib::Request& req, httplib::Response& res,

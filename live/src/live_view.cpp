@@ -1,11 +1,16 @@
 #include "tirpol/live/live_view.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
+#include "snapshot.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/stage.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/utc_time.h"
 
 namespace tirpol::live {
 
@@ -47,6 +52,7 @@ void validate(const LiveViewOptions& options) {
           std::pair{"frame timeout", c.frame_timeout_s}})
         if (!std::isfinite(seconds) || seconds <= 0.0)
             fail("live view: the {} must be a finite number of seconds > 0, got {}", name, seconds);
+    calibration::parse_demosaic_method(options.demosaic, "--demosaic");
     for (const double angle_deg : c.angles_deg)
         if (!std::isfinite(angle_deg))
             fail("live view: polarizer angle {} is not a finite number of degrees", angle_deg);
@@ -63,6 +69,10 @@ LiveView::LiveView(const LiveViewOptions& options) : m_options(options) {
     m_converter = std::make_unique<DisplayConverter>(
         m_camera->info(), m_calibration ? &*m_calibration : nullptr, options.unit);
     m_feed = std::make_unique<FrameFeed>(*m_camera);
+    if (!m_stage && m_camera->info().microgrid_pattern_deg) {
+        m_microgrid.emplace(*m_camera->info().microgrid_pattern_deg, "the camera's microgrid");
+        m_demosaic = calibration::parse_demosaic_method(options.demosaic, "--demosaic");
+    }
     if (m_stage) {
         m_cycle = std::make_unique<PolarizerCycle>(*m_feed, *m_stage, *m_converter, options.cycle);
         m_capture = std::make_unique<CaptureControl>(*m_feed, *m_stage, m_cycle.get());
@@ -107,9 +117,40 @@ EncodedImage LiveView::frame_after(std::uint64_t after, std::chrono::millisecond
     });
 }
 
+Image LiveView::microgrid_stokes(const Frame& frame) const {
+    calibration::MicrogridReductionOptions options;
+    options.method = m_demosaic;
+    options.reduction.units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m^2 sr)";
+    options.source = fmt::format("frame {}", frame.frame_id);
+    Image stokes =
+        calibration::reduce_microgrid(m_converter->to_signal(frame.counts, frame.fpa_temperature_k),
+                                      frame.width, frame.height, *m_microgrid, options);
+    stokes.attributes()["microgrid_frame_id"] = std::to_string(frame.frame_id);
+    return stokes;
+}
+
+std::shared_ptr<const Image> LiveView::latest_stokes() const {
+    if (m_cycle) return m_cycle->stokes().latest().value;
+    if (m_microgrid)
+        if (const auto frame = m_feed->latest().latest().value)
+            return std::make_shared<const Image>(microgrid_stokes(*frame));
+    return nullptr;
+}
+
 EncodedImage LiveView::stokes_after(std::uint64_t after, std::chrono::milliseconds timeout) {
-    if (!m_cycle) return {};
     const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
+    if (m_microgrid)  // every frame the page asks for, demosaiced once however many pages ask
+        return encoded_after(
+            m_feed->latest(), m_stokes_cache, after, timeout, [&](const Frame& frame) {
+                try {
+                    return encode_display_image(stokes_image(microgrid_stokes(frame), units));
+                } catch (const Error& e) {
+                    DisplayImage image;
+                    image.info["error"] = e.what();
+                    return encode_display_image(image);
+                }
+            });
+    if (!m_cycle) return {};
     return encoded_after(
         m_cycle->stokes(), m_stokes_cache, after, timeout,
         [&](const Image& stokes) { return encode_display_image(stokes_image(stokes, units)); });
@@ -120,11 +161,58 @@ nlohmann::json LiveView::region(const PixelRegion& region, double dolp_min) cons
     if (!frame) fail("region: no frame from the camera yet");
     const DisplayImage live = m_converter->frame_image(*frame);
     std::optional<DisplayImage> cycle;
-    if (m_cycle)
-        if (const auto stokes = m_cycle->stokes().latest().value)
-            cycle = stokes_image(
-                *stokes, m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)");
+    if (const auto stokes = latest_stokes();
+        stokes && stokes->width() == live.width && stokes->height() == live.height)
+        cycle = stokes_image(*stokes,
+                             m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)");
     return region_readout(&live, cycle ? &*cycle : nullptr, region, dolp_min);
+}
+
+nlohmann::json LiveView::snapshot() {
+    if (m_options.snapshot_dir.empty())
+        fail("snapshot: tirpol live was started without --snapshot-dir FOLDER");
+    const auto frame = m_feed->latest().latest().value;
+    if (!frame) fail("snapshot: no frame from the camera yet");
+    // A microgrid snapshot reduces the very frame it stores as live_S0.
+    const std::shared_ptr<const Image> cycle =
+        m_microgrid ? std::make_shared<const Image>(microgrid_stokes(*frame)) : latest_stokes();
+    if (cycle && (cycle->width() != frame->width || cycle->height() != frame->height))
+        fail(
+            "snapshot: the Stokes images ({}×{}, super-pixel) and the frame ({}×{}) differ in "
+            "size; use --demosaic bilinear or newton for snapshots",
+            cycle->width(), cycle->height(), frame->width, frame->height);
+    const std::string units = m_converter->unit() == DisplayUnit::Counts ? "counts" : "W/(m²·sr)";
+    Image image = cycle ? *cycle : Image(frame->width, frame->height);
+    image.set_channel(cycle ? "live_S0" : "S0",
+                      m_converter->to_signal(frame->counts, frame->fpa_temperature_k));
+    auto& a = image.attributes();
+    const std::string time = utc_now_iso8601();
+    a["time_utc"] = time;
+    const CameraInfo& c = m_feed->camera_info();
+    a["camera_uri"] = c.uri;
+    a["camera_vendor"] = c.vendor;
+    a["camera_model"] = c.model;
+    a["camera_serial"] = c.serial;
+    a["pixel_format"] = c.pixel_format;
+    a["frame_id"] = std::to_string(frame->frame_id);  // 64 bits: an EXR int holds 32
+    if (frame->fpa_temperature_k) a["fpa_temperature_k"] = *frame->fpa_temperature_k;
+    a["units"] = units;
+    if (m_stage) a["stage_uri"] = m_stage->info().uri;
+
+    std::lock_guard lock(m_snapshot_mutex);
+    std::string stem = "snapshot-" + time + "-" + std::to_string(++m_snapshots);
+    for (char& ch : stem)
+        if (ch == ':') ch = '-';  // file names without ':' (Windows shares, URLs)
+    const SnapshotFiles files =
+        write_snapshot(m_options.snapshot_dir, stem, image, units, m_options.force_snapshots);
+    nlohmann::json j;
+    j["folder"] = m_options.snapshot_dir;
+    j["files"] = nlohmann::json::array({files.exr});
+    for (const auto& png : files.pngs) j["files"].push_back(png);
+    j["time_utc"] = time;
+    j["frame_id"] = frame->frame_id;
+    j["channels"] = image.channel_names();
+    return j;
 }
 
 nlohmann::json LiveView::describe() const {
@@ -143,6 +231,11 @@ nlohmann::json LiveView::describe() const {
     j["angles_deg"] = m_options.cycle.angles_deg;
     j["default_plan"] = m_options.default_plan;
     j["default_output"] = m_options.default_output;
+    j["snapshot_dir"] = m_options.snapshot_dir;
+    j["microgrid"] =
+        m_microgrid ? nlohmann::json({{"pattern", m_microgrid->text()},
+                                      {"demosaic", calibration::demosaic_method_name(m_demosaic)}})
+                    : nlohmann::json();
     return j;
 }
 

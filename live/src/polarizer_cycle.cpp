@@ -104,6 +104,7 @@ bool PolarizerCycle::run_cycle(FrameTap& tap) {
     FrameGate gate(m_feed.camera_info().frame_rate_hz);
     std::vector<calibration::AnalyzerImage> images;
     std::vector<double> measured_deg;
+    std::vector<double> frame_ids;  // first and last id averaged at each angle, in order
     for (const double angle : m_options.angles_deg) {
         if (!keep_going()) return false;
         set_state(fmt::format("moving to {:g}°", angle));
@@ -123,6 +124,9 @@ bool PolarizerCycle::run_cycle(FrameTap& tap) {
             if (!gate.exposed_after(frame.value(), settle_end_ns))
                 continue;  // exposed while the stage moved
             averager.add(frame.value());
+            const auto id = static_cast<double>(frame.value().frame_id);
+            if (averager.count() == 1) frame_ids.insert(frame_ids.end(), {id, id});
+            frame_ids.back() = id;
             fpa_k = frame.value().fpa_temperature_k;
         }
         calibration::AnalyzerImage image;
@@ -135,9 +139,11 @@ bool PolarizerCycle::run_cycle(FrameTap& tap) {
     calibration::ReductionOptions options;
     options.units = m_converter.unit() == DisplayUnit::Counts ? "counts" : "W/(m^2 sr)";
     try {
-        m_stokes.publish(std::make_shared<Image>(calibration::reduce_stokes(
+        auto stokes = std::make_shared<Image>(calibration::reduce_stokes(
             images, m_feed.camera_info().width, m_feed.camera_info().height,
-            calibration::AnalyzerModel::ideal(measured_deg), nullptr, options)));
+            calibration::AnalyzerModel::ideal(measured_deg), nullptr, options));
+        stokes->attributes()["cycle_frame_ids"] = frame_ids;
+        m_stokes.publish(std::move(stokes));
     } catch (const Error& e) {
         std::lock_guard lock(m_mutex);
         m_status.state = "failed";

@@ -17,7 +17,7 @@ function api(path) {
 // page (observe=ID, the tests' pages, or live=1); ?still=1 asks for it in any browser.
 const still = params.has('still') ||
   (/HeadlessChrome/.test(navigator.userAgent) && !params.has('observe') && !params.has('live'));
-const enough = () => state.framesShown >= 3 && state.status && (!state.describe.stage || state.stokesShown >= 1);
+const enough = () => state.framesShown >= 3 && state.status && (!(state.describe.stage || state.describe.microgrid) || state.stokesShown >= 1);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const nextPaint = () => new Promise((r) => requestAnimationFrame(r));
 
@@ -54,27 +54,45 @@ function fmt(v) {
 }
 
 // ---- colour maps ----------------------------------------------------------------------------
+// Each palette is a lookup table of LUT_STEPS + 1 = 257 colours (an odd count: a range symmetric
+// about 0 puts 0 exactly on the middle entry, the diverging palettes' centre colour).
+const LUT_STEPS = 256;
 function lerpStops(stops, t) {
   t = Math.min(1, Math.max(0, t));
   const x = t * (stops.length - 1), i = Math.min(stops.length - 2, Math.floor(x)), f = x - i;
   return [0, 1, 2].map((k) => Math.round(stops[i][k] + f * (stops[i + 1][k] - stops[i][k])));
 }
+function makeLut(stops) {
+  const lut = new Uint8Array((LUT_STEPS + 1) * 3);
+  for (let i = 0; i <= LUT_STEPS; i++) lut.set(lerpStops(stops, i / LUT_STEPS), 3 * i);
+  return lut;
+}
+// Sequential (S0, DoLP): inferno and viridis (matplotlib), grey.
 const INFERNO = [[0, 0, 4], [40, 11, 84], [101, 21, 110], [159, 42, 99], [212, 72, 66], [245, 125, 21],
   [250, 193, 39], [252, 255, 164]];
 const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
-const DIVERGING = [[33, 102, 172], [146, 197, 222], [247, 247, 247], [244, 165, 130], [178, 24, 43]];
 const GREY = [[0, 0, 0], [255, 255, 255]];
-const CYCLIC = [[230, 60, 60], [230, 200, 40], [60, 200, 90], [50, 120, 230], [200, 60, 200], [230, 60, 60]];
-function makeLut(stops) {
-  const lut = new Uint8Array(256 * 3);
-  for (let i = 0; i < 256; i++) lut.set(lerpStops(stops, i / 255), 3 * i);
-  return lut;
-}
+// Diverging (S1, S2; symmetric about 0): ColorBrewer RdBu (5 classes, reversed: negative blue),
+// centre #f7f7f7; Moreland's cool-warm (SAND2009-0000, 2009), centre (221, 221, 221).
+const RDBU = [[5, 113, 176], [146, 197, 222], [247, 247, 247], [244, 165, 130], [202, 0, 32]];
+const COOLWARM = [[59, 76, 192], [141, 176, 254], [221, 221, 221], [244, 154, 123], [180, 4, 38]];
+// Cyclic (AoP, 0° = 180°): a hue wheel and matplotlib's twilight; first stop = last stop.
+const HUE_WHEEL = [[230, 60, 60], [230, 200, 40], [60, 200, 90], [50, 120, 230], [200, 60, 200], [230, 60, 60]];
+const TWILIGHT = [[226, 217, 226], [155, 179, 196], [95, 119, 182], [94, 56, 144], [47, 20, 54],
+  [114, 41, 83], [171, 86, 77], [207, 158, 135], [226, 217, 226]];
 const PALETTES = { inferno: makeLut(INFERNO), grey: makeLut(GREY) };
+const SIGNED_PALETTES = { rdbu: makeLut(RDBU), coolwarm: makeLut(COOLWARM) };
+const CYCLIC_PALETTES = { 'hue-wheel': makeLut(HUE_WHEEL), twilight: makeLut(TWILIGHT) };
+const DOLP_LUT = makeLut(VIRIDIS);
 // AoP pixels whose DoLP is below the threshold: the angle of noise, drawn in this grey.
 const MASKED = [64, 64, 64];
-const LUTS = { S0: makeLut(INFERNO), S1: makeLut(DIVERGING), S2: makeLut(DIVERGING), DoLP: makeLut(VIRIDIS),
-  AoP: makeLut(CYCLIC) };
+// The palette chosen on the page for a channel of the Stokes cycle (S0 shares the live S0's).
+function lutFor(name) {
+  if (name === 'S1' || name === 'S2') return SIGNED_PALETTES[$('palette-signed').value];
+  if (name === 'AoP') return CYCLIC_PALETTES[$('palette-aop').value];
+  if (name === 'DoLP') return DOLP_LUT;
+  return PALETTES[$('palette').value];
+}
 
 // The display range of a channel: S0 stretched between the 0.5 % and 99.5 % points of its histogram
 // (a hot spot does not flatten the scene), S1/S2 symmetric about 0, DoLP from 0, AoP 0–180°.
@@ -108,7 +126,7 @@ function paint(canvas, header, channel, range, lut, masked) {
   off.width = w; off.height = h;
   const ctx = off.getContext('2d');
   const img = ctx.createImageData(w, h);
-  const [lo, hi] = range, k = hi > lo ? 255 / (hi - lo) : 0;
+  const [lo, hi] = range, k = hi > lo ? LUT_STEPS / (hi - lo) : 0;
   const codes = channel.codes, px = img.data;
   for (let i = 0; i < codes.length; i++) {
     const code = codes[i], o = 4 * i;
@@ -117,7 +135,7 @@ function paint(canvas, header, channel, range, lut, masked) {
     if (code === CODE_DEAD) { px[o + 1] = 128; px[o + 2] = 255; continue; }
     if (code === CODE_NONE) continue;
     if (masked && masked(i)) { px[o] = MASKED[0]; px[o + 1] = MASKED[1]; px[o + 2] = MASKED[2]; continue; }
-    const j = 3 * Math.min(255, Math.max(0, Math.round((codeValue(channel, code) - lo) * k)));
+    const j = 3 * Math.min(LUT_STEPS, Math.max(0, Math.round((codeValue(channel, code) - lo) * k)));
     px[o] = lut[j]; px[o + 1] = lut[j + 1]; px[o + 2] = lut[j + 2];
   }
   ctx.putImageData(img, 0, 0);
@@ -140,7 +158,7 @@ function drawColorbar(canvas, range, units, lut) {
   const ctx = canvas.getContext('2d');
   ctx.fillStyle = '#111'; ctx.fillRect(0, 0, canvas.width, canvas.height);
   for (let x = 0; x < canvas.width; x++) {
-    const j = 3 * Math.round(255 * x / (canvas.width - 1));
+    const j = 3 * Math.round(LUT_STEPS * x / (canvas.width - 1));
     ctx.fillStyle = `rgb(${lut[j]},${lut[j + 1]},${lut[j + 2]})`;
     ctx.fillRect(x, 0, 1, 20);
   }
@@ -208,7 +226,7 @@ function redraw() {
     const masked = (i) => !(codeValue(dolp, dolp.codes[i]) >= dolpMin);
     for (const c of state.stokes.channels) {
       const range = displayRange(c, c.name);
-      const lut = c.name === 'S0' ? PALETTES[$('palette').value] : LUTS[c.name];
+      const lut = lutFor(c.name);
       paint($('st-' + c.name), state.stokes, c, range, lut, c.name === 'AoP' && dolp ? masked : null);
       drawColorbar($('cb-' + c.name), range, c.name === 'DoLP' ? 'fraction' : c.units, lut);
       $('r-' + c.name).textContent = `${fmt(range[0])} … ${fmt(range[1])} ${c.units}`;
@@ -361,6 +379,15 @@ async function post(path, body) {
   return j;
 }
 
+// Snapshot: the server writes the latest frame (and cycle) as EXR + PNG into --snapshot-dir.
+async function snapshot() {
+  const r = await fetch(api('/api/snapshot'), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: '{}' });
+  const j = await r.json();
+  state.snapshot = j;
+  $('snapshot-result').textContent = j.error ? j.error : `${j.files.length} files in ${j.folder}: ${j.files[0]}`;
+  return j;
+}
+
 // ---- test mode (?observe=ID): report what this page shows, drive the capture buttons --------
 function paintedFraction(canvas) {
   if (!canvas.width) return 0;
@@ -392,6 +419,27 @@ function colourBars() {
   return out;
 }
 
+// The S1 pixel closest to 0 (within half a palette step of the symmetric range, or null), its
+// value and the colour the page painted there; and the colours at both ends of AoP's colour bar.
+function paletteProbe() {
+  if (!state.stokes || state.view.scale !== 1) return null;
+  const s1 = state.stokes.channels.find((c) => c.name === 'S1');
+  const range = JSON.parse($('cb-S1').dataset.range || 'null');
+  if (!s1 || !range) return null;
+  let best = -1, bestValue = Infinity;
+  s1.codes.forEach((code, i) => {
+    const v = codeValue(s1, code);
+    if (Math.abs(v) < Math.abs(bestValue)) { bestValue = v; best = i; }
+  });
+  const rgbAt = (canvas, x, y) => Array.from(canvas.getContext('2d').getImageData(x, y, 1, 1).data.slice(0, 3));
+  const w = state.stokes.width, bar = $('cb-AoP');
+  return {
+    s1_palette: $('palette-signed').value, aop_palette: $('palette-aop').value, s1_range: range,
+    s1_zero: best < 0 ? null : { value: bestValue, x: best % w, y: Math.floor(best / w), rgb: rgbAt($('st-S1'), best % w, Math.floor(best / w)) },
+    aop_bar_ends: [rgbAt(bar, 0, 5), rgbAt(bar, bar.width - 1, 5)],
+  };
+}
+
 // Drags a region over pixels (100, 80)–(139, 119) of the S0 image and zooms once at its centre with
 // synthetic mouse events, as an operator's mouse would.
 function exerciseMouse() {
@@ -407,7 +455,7 @@ function exerciseMouse() {
 }
 
 async function observeLoop(client) {
-  let clickedStart = false, clickedStop = false, mouse = null;
+  let clickedStart = false, clickedStop = false, clickedSnapshot = false, mouse = null;
   const stopAfter = params.has('capture_stop_after') ? Number(params.get('capture_stop_after')) : null;
   for (;;) {
     await sleep(400);
@@ -424,6 +472,10 @@ async function observeLoop(client) {
       clickedStop = true;
     }
     if (!mouse && state.framesShown > 0 && params.has('mouse')) mouse = exerciseMouse();
+    if (params.has('snapshot') && !clickedSnapshot && state.framesShown > 0 && (!(state.describe.stage || state.describe.microgrid) || state.stokesShown > 0)) {
+      $('snapshot').click();
+      clickedSnapshot = true;
+    }
     if (mouse) mouse.region = $('region').textContent.split('\n');
     const cx = Math.floor($('s0').width / 2), cy = Math.floor($('s0').height / 2);
     const dolp = state.stokes && state.stokes.channels.find((c) => c.name === 'DoLP');
@@ -436,7 +488,8 @@ async function observeLoop(client) {
       capture_message: $('capture-message').textContent, mouse,
       focus: { n: state.focus.length, last: state.focus.length ? state.focus[state.focus.length - 1] : null },
       s0_grey: state.framesShown > 0 && allGrey($('s0')), colorbars: colourBars(), region_readout: state.regionReadout,
-      aop_masked: state.stokes ? colourShare($('st-AoP'), MASKED) : null,
+      aop_masked: state.stokes ? colourShare($('st-AoP'), MASKED) : null, palettes: paletteProbe(),
+      snapshot: state.snapshot || null,
     };
     try { await fetch(api(`/api/observations?client=${encodeURIComponent(client)}`), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(obs) }); } catch (e) { /* next round */ }
   }
@@ -448,19 +501,32 @@ async function main() {
   if (params.has('palette')) $('palette').value = params.get('palette');
   if (params.has('span')) { const [lo, hi] = params.get('span').split(','); $('span-mode').value = 'lock'; $('span-lo').value = lo; $('span-hi').value = hi; }
   if (params.has('dolp_min')) $('dolp-min').value = params.get('dolp_min');
+  if (params.has('palette_signed')) $('palette-signed').value = params.get('palette_signed');
+  if (params.has('palette_aop')) $('palette-aop').value = params.get('palette_aop');
   // Lock keeps the span shown when it was chosen, ready to edit.
   $('span-mode').addEventListener('change', () => {
     const r = JSON.parse($('colorbar').dataset.range || 'null');
     if ($('span-mode').value === 'lock' && r && !$('span-lo').value) { $('span-lo').value = fmt(r[0]); $('span-hi').value = fmt(r[1]); }
     redraw();
   });
-  for (const id of ['palette', 'span-lo', 'span-hi', 'dolp-min']) $(id).addEventListener('change', () => { redraw(); fetchRegion(); });
+  for (const id of ['palette', 'palette-signed', 'palette-aop', 'span-lo', 'span-hi', 'dolp-min']) $(id).addEventListener('change', () => { redraw(); fetchRegion(); });
   const d = await (await fetch(api('/api/describe'))).json();
   state.describe = d;
   $('camera').textContent = `${d.camera.vendor} ${d.camera.model} ${d.camera.width}×${d.camera.height} ${d.camera.pixel_format}`;
   $('s0-units').textContent = `(${d.units})`;
   $('plan').value = d.default_plan; $('output').value = d.default_output;
   attachInteraction($('s0'));
+  $('snapshot').disabled = !d.snapshot_dir;
+  $('snapshot').title = d.snapshot_dir ? `writes EXR + PNG into ${d.snapshot_dir}` : 'start tirpol live with --snapshot-dir FOLDER';
+  $('snapshot').addEventListener('click', () => snapshot().catch((e) => { $('snapshot-result').textContent = String(e); }));
+  if (d.microgrid) {  // a microgrid camera: Stokes of every frame, no stage, no capture plan
+    $('stokes').hidden = false;
+    $('stokes-title').textContent = `Stokes of the latest frame (microgrid ${d.microgrid.pattern}, ${d.microgrid.demosaic})`;
+    $('capture-section').hidden = true;
+    $('stage-line').hidden = true;
+    for (const n of ['S0', 'S1', 'S2', 'DoLP', 'AoP']) attachInteraction($('st-' + n));
+    imageLoop('/api/stokes', (img) => { state.stokes = img; state.stokesShown++; redraw(); });
+  }
   if (d.stage) {
     $('stokes').hidden = false;
     $('stage-uri').textContent = d.stage;

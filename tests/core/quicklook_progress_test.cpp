@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "png_text.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/core/error.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/core/quicklook.h"
 
@@ -61,6 +63,28 @@ TEST(Quicklook, WritesAPngWithColorbarAndGreyNaN) {
     EXPECT_EQ(default_colormap("S1"), Colormap::Diverging);
     EXPECT_EQ(default_colormap("AoP"), Colormap::Cyclic);
     EXPECT_EQ(default_colormap("S0"), Colormap::Sequential);
+}
+
+TEST(Quicklook, CarriesItsTextChunksWithValidChecksums) {
+    test::TempDir dir;
+    const std::vector<float> data(8 * 6, 2.0f);
+    QuicklookOptions o;
+    o.title = "S1";
+    o.text = {{"Time", "2026-11-27T05:00:00.000Z"},
+              {"tirpol.camera", "sim://uniform?width=8"},
+              {"tirpol.units", "W/(m²·sr)"}};  // not ASCII: an iTXt chunk
+    write_quicklook(dir / "s1.png", data, 8, 6, o);
+    const auto text = test::png_text_chunks(dir / "s1.png");
+    EXPECT_EQ(text.size(), 3u);
+    EXPECT_EQ(text.at("Time"), "2026-11-27T05:00:00.000Z");
+    EXPECT_EQ(text.at("tirpol.camera"), "sim://uniform?width=8");
+    EXPECT_EQ(text.at("tirpol.units"), "W/(m²·sr)");
+    for (const std::string& bad :
+         std::vector<std::string>{"", " lead", "two  spaces", std::string(80, 'k'), "é"}) {
+        o.text = {{bad, "x"}};
+        EXPECT_THROW(write_quicklook(dir / "bad.png", data, 8, 6, o), Error) << bad;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
 }
 
 TEST(Progress, NonInteractiveOutputIsPlainLines) {

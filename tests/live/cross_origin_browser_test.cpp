@@ -74,6 +74,11 @@ async function attempt(name, url, init) {
   await attempt('json', live + '/api/capture/start',
                 { method: 'POST', mode: 'cors', headers: { 'Content-Type': 'application/json' }, body });
   await attempt('observe', live + '/api/observations?client=evil', { method: 'POST', mode: 'no-cors', body: '{}' });
+  await attempt('snapshot_simple', live + '/api/snapshot', { method: 'POST', mode: 'no-cors', headers: { 'Content-Type': 'text/plain' }, body: '{}' });
+  await attempt('snapshot_form', live + '/api/snapshot',
+                { method: 'POST', mode: 'no-cors', headers: { 'Content-Type': 'application/x-www-form-urlencoded' }, body: '{}' });
+  await attempt('snapshot_json', live + '/api/snapshot',
+                { method: 'POST', mode: 'cors', headers: { 'Content-Type': 'application/json' }, body: '{}' });
   await fetch('/done', { method: 'POST', body: JSON.stringify(results) });
 })();
 </script>)";
@@ -87,7 +92,10 @@ TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) 
     test::write_text(dir.path() / "plan.yaml", "frames_per_angle: 1\nsettle_s: 0.01\n");
     const auto session = dir.path() / "session";
 
-    test::ServedLiveView live("127.0.0.1", test::live_test_options("sim://"));
+    live::LiveViewOptions options = test::live_test_options("sim://");
+    options.snapshot_dir = (dir.path() / "snaps").string();
+    std::filesystem::create_directories(options.snapshot_dir);
+    test::ServedLiveView live("127.0.0.1", options);
 
     std::atomic<int> witnessed{0};
     SideServer witness;
@@ -132,6 +140,10 @@ TEST(LiveCrossOrigin, APageFromAnotherOriginCannotStartACaptureOrStoreAnything) 
     EXPECT_EQ(witnessed.load(), 1) << results.dump();
     EXPECT_EQ(results["witness"], "opaque") << results.dump();
     // ... and the JSON one failed its preflight.
+    EXPECT_NE(results["snapshot_json"].get<std::string>().find("blocked"), std::string::npos)
+        << results.dump();
+    // No snapshot was written by any of the three (simple, form, preflighted JSON).
+    EXPECT_TRUE(std::filesystem::is_empty(options.snapshot_dir)) << results.dump();
     EXPECT_NE(results["json"].get<std::string>().find("blocked"), std::string::npos)
         << results.dump();
 

@@ -7,6 +7,8 @@
 // capture buttons from URL parameters. Screenshots go to build/test-artefacts/live/. A missing
 // chromium or aravis-tools fails these tests: they never skip.
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <unistd.h>
@@ -14,12 +16,15 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
+#include "png_text.h"
 #include "test_support.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
 #include "tirpol/live/access.h"
 
@@ -233,8 +238,11 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     const auto session = dir() / "session";
     open_browser("s", "observe=s&mouse=1&dolp_min=0&capture_plan=" +
                           (dir() / "plan.yaml").string() + "&capture_output=" + session.string());
-    // Page m masks AoP wherever DoLP < 1, i.e. (nearly) everywhere.
+    // Page m masks AoP wherever DoLP < 1, i.e. (nearly) everywhere; it keeps the default
+    // palettes. Page c picks the other S1/S2 and AoP palettes from its address (the page's
+    // selects).
     open_browser("m", "observe=m&dolp_min=1");
+    open_browser("c", "observe=c&palette_signed=coolwarm&palette_aop=twilight");
     json obs;
     ASSERT_TRUE(wait_for_observations(
         [](const json& o) {
@@ -279,6 +287,229 @@ TEST_F(LiveEndToEnd, WithAStageDoLPAppearsAndACaptureFromThePageWritesACompleteS
     EXPECT_EQ(m.camera.pixel_format, "Mono16");
     for (const auto& r : m.records) EXPECT_EQ(r.frames, 4);
     screenshot("live_stokes.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// Palettes of the Stokes images chosen on the page, with the simulated camera (uniform,
+// unpolarized, with noise: S1 is noise about 0) behind the simulated stage. Page m keeps the
+// default palettes, page c picks the others from its address (the same selects an operator uses).
+TEST_F(LiveEndToEnd, S1ZeroIsThePalettesCentreColourInEachPaletteChosenOnThePage) {
+    start_live({"--stage", "sim://", "--frames-per-angle", "2", "--settle-s", "0"},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    open_browser("m", "observe=m");
+    open_browser("c", "observe=c&palette_signed=coolwarm&palette_aop=twilight");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("m") && o.contains("c") && o["m"]["palettes"].is_object() &&
+                   o["c"]["palettes"].is_object();
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    // S1's zero is painted in the diverging palette's centre colour: ColorBrewer RdBu's #f7f7f7
+    // (colorbrewer2.org, 5 classes) by default, Moreland's cool-warm (221, 221, 221)
+    // (SAND2009-0000) when chosen. The pixel nearest 0 must lie within half a palette step (1/512
+    // of the symmetric range) for its colour to be the centre's.
+    const std::map<std::string, json> centre{{"m", json::array({247, 247, 247})},
+                                             {"c", json::array({221, 221, 221})}};
+    for (const auto& [page, colour] : centre) {
+        const json& p = obs[page]["palettes"];
+        ASSERT_TRUE(p["s1_zero"].is_object()) << p.dump(1);
+        const double half_range = p["s1_range"][1].get<double>();
+        EXPECT_DOUBLE_EQ(p["s1_range"][0].get<double>(), -half_range);
+        EXPECT_LE(std::abs(p["s1_zero"]["value"].get<double>()), half_range / 512.0) << p.dump(1);
+        EXPECT_EQ(p["s1_zero"]["rgb"], colour) << page << ": " << p.dump(1);
+        // A cyclic AoP palette: 0° and 180° (the same axis) have one colour.
+        EXPECT_EQ(p["aop_bar_ends"][0], p["aop_bar_ends"][1]) << page << ": " << p.dump(1);
+    }
+    EXPECT_EQ(obs["c"]["palettes"]["s1_palette"], "coolwarm");
+    EXPECT_EQ(obs["c"]["palettes"]["aop_palette"], "twilight");
+    EXPECT_EQ(obs["m"]["palettes"]["s1_palette"], "rdbu");
+    EXPECT_NE(obs["c"]["palettes"]["aop_bar_ends"][0], obs["m"]["palettes"]["aop_bar_ends"][0]);
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// The page's Snapshot button with the simulated camera (uniform 1500 counts, noise 3) behind the
+// simulated stage: the EXR holds the cycle's float Stokes and the live frame, with the metadata;
+// each PNG quick look carries the same metadata in its text chunks.
+TEST_F(LiveEndToEnd, ASnapshotFromThePageWritesFloatStokesAndQuickLooksWithMetadata) {
+    const auto snaps = dir() / "snaps";
+    start_live({"--stage", "sim://", "--frames-per-angle", "2", "--settle-s", "0", "--snapshot-dir",
+                snaps.string()},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    open_browser("n", "observe=n&snapshot=1");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) { return o.contains("n") && o["n"]["snapshot"].is_object(); }, 120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    const json& answer = obs["n"]["snapshot"];
+    ASSERT_TRUE(answer.contains("files")) << answer.dump(1);
+    ASSERT_EQ(answer["files"].size(), 7u) << answer.dump(1);  // the EXR, PNGs of 5 + live_S0
+    const Image image = read_exr(snaps / answer["files"][0].get<std::string>());
+    ASSERT_EQ(image.width(), 64);
+    ASSERT_EQ(image.height(), 48);
+    for (const char* name : {"S0", "S1", "S2", "DoLP", "AoP", "live_S0"})
+        ASSERT_TRUE(image.has_channel(name)) << name;
+    // The values: a uniform unpolarized 1500 counts; floats, not the page's 16-bit display codes.
+    const auto mean = [&](const char* name) { return channel_stats(image.channel(name)).mean; };
+    // Each angle reads 1500 counts; an ideal analyzer passes I = (S0 + S1 cos 2θ + S2 sin 2θ)/2.
+    EXPECT_NEAR(mean("S0"), 3000.0, 1.0);
+    EXPECT_NEAR(mean("live_S0"), 1500.0, 1.0);
+    EXPECT_NEAR(mean("S1"), 0.0, 1.0);
+    EXPECT_NEAR(mean("S2"), 0.0, 1.0);
+    for (const float v : image.channel("live_S0")) EXPECT_EQ(v, std::round(v));  // raw counts
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const double s0 = image.channel("S0")[i], s1 = image.channel("S1")[i],
+                     s2 = image.channel("S2")[i];
+        const double dolp = std::hypot(s1, s2) / s0;
+        if (dolp < 1e-4) continue;
+        EXPECT_NEAR(image.channel("DoLP")[i], dolp, 1e-5) << i;
+        const double aop = std::fmod(std::atan2(s2, s1) * 90.0 / M_PI + 180.0, 180.0);
+        const double d = std::abs(image.channel("AoP")[i] - aop);
+        EXPECT_LT(std::min(d, 180.0 - d), 1e-2) << i;
+        ++checked;
+    }
+    EXPECT_GT(checked, image.pixel_count() / 2);
+    // The metadata: time, analyzer angles read back from the stage, camera, frame ids.
+    const auto& a = image.attributes();
+    const auto text = [&](const char* key) { return std::get<std::string>(a.at(key)); };
+    EXPECT_EQ(text("time_utc"), answer["time_utc"]);
+    EXPECT_EQ(text("camera_uri").rfind("sim://uniform", 0), 0u) << text("camera_uri");
+    EXPECT_EQ(text("frame_id"), std::to_string(answer["frame_id"].get<std::uint64_t>()));
+    EXPECT_EQ(text("units"), "counts");
+    const auto angles = std::get<std::vector<double>>(a.at("analyzer_angles_deg"));
+    ASSERT_EQ(angles.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(angles[k], 45.0 * k, 1.0);
+    const auto ids = std::get<std::vector<double>>(a.at("cycle_frame_ids"));
+    ASSERT_EQ(ids.size(), 8u);  // first and last frame averaged at each angle
+    EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+    EXPECT_LE(ids.back(), answer["frame_id"].get<double>());
+    for (std::size_t k = 1; k < answer["files"].size(); ++k) {
+        const auto png = snaps / answer["files"][k].get<std::string>();
+        const auto chunks = test::png_text_chunks(png);
+        EXPECT_EQ(chunks.at("tirpol.time_utc"), text("time_utc")) << png;
+        EXPECT_EQ(chunks.at("Creation Time"), text("time_utc")) << png;
+        EXPECT_EQ(chunks.at("tirpol.camera_uri"), text("camera_uri")) << png;
+        EXPECT_EQ(chunks.at("tirpol.frame_id"), text("frame_id")) << png;
+        EXPECT_EQ(chunks.at("tirpol.analyzer_angles_deg"),
+                  fmt::format("{}", fmt::join(angles, ",")))
+            << png;
+    }
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+
+    // The output guard at start: a file the snapshots would claim, which no tirpol command wrote
+    // there, is refused (exit 2, naming the option) unless --force.
+    const auto other = dir() / "other";
+    std::filesystem::create_directories(other);
+    test::write_text(other / "snapshot-mine.exr", "not ours");
+    test::ChildProcess refused(
+        {TIRPOL_CLI_PATH, "live", "--camera", "sim://uniform?width=8&height=8", "--port", "0",
+         "--snapshot-dir", other.string()},
+        dir() / "refused.log");
+    const auto code = refused.wait_for(30s);
+    ASSERT_TRUE(code.has_value());
+    EXPECT_EQ(*code, 2) << read_text(dir() / "refused.log");
+    EXPECT_NE(read_text(dir() / "refused.log").find("--snapshot-dir"), std::string::npos)
+        << read_text(dir() / "refused.log");
+    EXPECT_EQ(read_text(other / "snapshot-mine.exr"), "not ours");
+}
+
+// A microgrid (division-of-focal-plane) camera without a stage: Aravis's fake camera streaming
+// Mono16 declared as the Sony layout (microgrid=sony: (0,0) = 90°, (0,1) = 45°, (1,0) = 135°,
+// (1,1) = 0°). Every frame is demosaiced (bilinear) and reduced on its own; a snapshot stores the
+// frame (live_S0) beside its Stokes images, which the test recomputes from the raw pixels.
+TEST_F(LiveEndToEnd, AMicrogridCameraShowsStokesFromSingleFramesWithoutAStage) {
+    const auto snaps = dir() / "snaps";
+    start_live({"--snapshot-dir", snaps.string(), "--demosaic", "bilinear"},
+               std::string(kCameraUri) + "&microgrid=sony");
+    open_browser("d", "observe=d&dolp_min=0&snapshot=1");
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("d") && o["d"]["stokes_shown"].get<int>() >= 5 &&
+                   o["d"]["dolp_painted"].get<double>() > 0.5 && o["d"]["snapshot"].is_object();
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    EXPECT_TRUE(obs["d"]["stage"].is_null()) << obs["d"].dump(1);
+    for (const char* name : {"cb-S0", "cb-S1", "cb-S2", "cb-DoLP", "cb-AoP"})
+        EXPECT_TRUE(obs["d"]["colorbars"].contains(name)) << name;
+    const json& answer = obs["d"]["snapshot"];
+    ASSERT_TRUE(answer.contains("files")) << answer.dump(1);
+    const Image image = read_exr(snaps / answer["files"][0].get<std::string>());
+    ASSERT_EQ(image.width(), 640);
+    ASSERT_EQ(image.height(), 512);
+    const auto& a = image.attributes();
+    EXPECT_EQ(std::get<std::string>(a.at("microgrid_frame_id")),
+              std::get<std::string>(a.at("frame_id")));  // the Stokes of the stored frame
+    EXPECT_EQ(std::get<std::string>(a.at("demosaic_method")), "bilinear");
+    EXPECT_EQ(std::get<std::string>(a.at("microgrid_pattern")), "90,45,135,0");
+    // At a 0° pixel (odd x, odd y) of the Sony layout, bilinear interpolation (Ratliff et al.
+    // 2009) takes 90° from the 4 diagonal neighbours, 45° from the 2 vertical and 135° from the 2
+    // horizontal ones; an ideal analyzer then gives S0 = (I0 + I45 + I90 + I135)/2,
+    // S1 = I0 − I90, S2 = I45 − I135 (docs/conventions.md).
+    const auto& raw = image.channel("live_S0");
+    const auto at = [&](int x, int y) { return static_cast<double>(raw[image.index(x, y)]); };
+    int checked = 0;
+    for (int y = 1; y + 1 < image.height(); y += 2)
+        for (int x = 1; x + 1 < image.width(); x += 2) {
+            const double i0 = at(x, y),
+                         i90 = (at(x - 1, y - 1) + at(x + 1, y - 1) + at(x - 1, y + 1) +
+                                at(x + 1, y + 1)) /
+                               4.0,
+                         i45 = (at(x, y - 1) + at(x, y + 1)) / 2.0,
+                         i135 = (at(x - 1, y) + at(x + 1, y)) / 2.0;
+            const std::size_t i = image.index(x, y);
+            ASSERT_NEAR(image.channel("S0")[i], (i0 + i45 + i90 + i135) / 2.0, 0.1)
+                << x << "," << y;
+            ASSERT_NEAR(image.channel("S1")[i], i0 - i90, 0.1) << x << "," << y;
+            ASSERT_NEAR(image.channel("S2")[i], i45 - i135, 0.1) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 319 * 255);
+    screenshot("live_microgrid.png", "");
+    EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
+}
+
+// Recording from the page with the simulated camera (uniform 1500 counts, noise 3) and the
+// simulated stage: the plan drives the stage, the session is the one `tirpol acquire` writes
+// (core's reader checks every frame against the manifest), and its frames give the source's Stokes
+// through an ideal analyzer: S0 = 3000 counts (each angle reads S0/2), S1 = S2 = 0 within noise.
+TEST_F(LiveEndToEnd, ARecordingFromThePageWithTheSimulatedRigIsASessionThatReduces) {
+    test::write_text(dir() / "plan.yaml", "frames_per_angle: 4\nsettle_s: 0\n");
+    start_live({"--stage", "sim://", "--frames-per-angle", "1", "--settle-s", "0"},
+               "sim://uniform?width=64&height=48&counts=1500&noise=3&fps=30");
+    const auto session = dir() / "session";
+    open_browser("r", "observe=r&capture_plan=" + (dir() / "plan.yaml").string() +
+                          "&capture_output=" + session.string());
+    json obs;
+    ASSERT_TRUE(wait_for_observations(
+        [](const json& o) {
+            return o.contains("r") && o["r"]["capture"].is_object() &&
+                   o["r"]["capture"]["phase"] == "complete";
+        },
+        120s, obs))
+        << obs.dump(1) << read_text(dir() / "live.log");
+    EXPECT_TRUE(obs["r"]["clicked_start"].get<bool>());
+    const SessionManifest m = read_session(session);
+    EXPECT_TRUE(m.complete);
+    ASSERT_EQ(m.records.size(), 4u);
+    EXPECT_EQ(m.camera.width, 64);
+    std::vector<double> means;  // at 0, 45, 90, 135°
+    for (std::size_t k = 0; k < m.records.size(); ++k) {
+        const SessionRecord& r = m.records[k];
+        EXPECT_EQ(r.frames, 4);
+        EXPECT_NEAR(r.angle_deg_measured, 45.0 * static_cast<double>(k), 0.5);
+        const Image frame = read_session_frame(session, m, r);
+        means.push_back(channel_stats(frame.channel("counts")).mean);
+        EXPECT_NEAR(means.back(), 1500.0, 1.0) << r.file;
+    }
+    // Ideal analyzer at 0/45/90/135° (docs/conventions.md): S0 = ΣI/2, S1 = I0 − I90,
+    // S2 = I45 − I135.
+    EXPECT_NEAR((means[0] + means[1] + means[2] + means[3]) / 2.0, 3000.0, 1.0);
+    EXPECT_NEAR(means[0] - means[2], 0.0, 0.5);
+    EXPECT_NEAR(means[1] - means[3], 0.0, 0.5);
     EXPECT_EQ(stop_live(), 0) << read_text(dir() / "live.log");
 }
 

@@ -295,6 +295,56 @@ TEST(LiveServerLimits, CaptureRequestsFromAnotherSiteStartNothingAndErrorsQuoteN
     EXPECT_EQ(RawConnection::status_of(ok), 200) << ok;
 }
 
+TEST(LiveServerLimits, SnapshotRequestsFromAnotherSiteWriteNothing) {
+    test::TempDir dir("tirpol-live-snapshot");
+    LiveViewOptions options = test::live_test_options();
+    options.snapshot_dir = (dir.path() / "snaps").string();
+    std::filesystem::create_directories(options.snapshot_dir);
+    ServedLiveView s("127.0.0.1", options);
+    const int port = s.server.port();
+    const auto files = [&] {
+        return std::distance(std::filesystem::directory_iterator(options.snapshot_dir),
+                             std::filesystem::directory_iterator{});
+    };
+    struct Case {
+        std::string origin, type;
+        int status;
+    };
+    for (const Case& c : std::vector<Case>{{"http://evil.example", "text/plain", 415},
+                                           {"http://evil.example", "application/json", 403},
+                                           {"", "application/json", 403},
+                                           {"null", "application/json", 403}}) {
+        const std::string extra = c.origin.empty() ? "" : "Origin: " + c.origin + "\r\n";
+        const std::string r = raw_request(port, post(s, "/api/snapshot", "{}", extra, c.type));
+        EXPECT_EQ(RawConnection::status_of(r), c.status) << c.origin << " / " << c.type << r;
+    }
+    // A body over the limit is refused from its Content-Length.
+    const std::string huge =
+        raw_request(port, "POST /api/snapshot HTTP/1.1\r\nHost: " + s.host() +
+                              "\r\nContent-Type: application/json\r\nOrigin: " + s.origin() +
+                              "\r\nContent-Length: 2500000000\r\n\r\n");
+    EXPECT_EQ(RawConnection::status_of(huge), 413) << huge;
+    EXPECT_EQ(files(), 0);
+    // The page's own request writes a snapshot (an EXR and a PNG of S0: no stage here).
+    std::string ok;
+    for (int i = 0; i < 100 && RawConnection::status_of(ok) != 200; ++i) {
+        ok = raw_request(port, post(s, "/api/snapshot", "{}", "Origin: " + s.origin() + "\r\n"));
+        std::this_thread::sleep_for(20ms);  // until the first frame arrived
+    }
+    EXPECT_EQ(RawConnection::status_of(ok), 200) << ok;
+    const auto answer = nlohmann::json::parse(RawConnection::body_of(ok));
+    EXPECT_EQ(answer["channels"], nlohmann::json::array({"S0"}));
+    EXPECT_EQ(files(), 2) << answer.dump();
+}
+
+TEST(LiveServerLimits, ASnapshotWithoutASnapshotFolderIsA400NamingTheOption) {
+    ServedLiveView s("127.0.0.1");
+    const std::string r = raw_request(
+        s.server.port(), post(s, "/api/snapshot", "{}", "Origin: " + s.origin() + "\r\n"));
+    EXPECT_EQ(RawConnection::status_of(r), 400) << r;
+    EXPECT_NE(r.find("--snapshot-dir"), std::string::npos) << r;
+}
+
 TEST(LiveServerLimits, OptionsOutOfRangeAreErrorsNamingTheOption) {
     LiveViewOptions view = test::live_test_options();
     view.cycle.settle_s = std::numeric_limits<double>::quiet_NaN();

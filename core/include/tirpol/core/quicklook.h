@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tirpol {
@@ -22,6 +23,10 @@ struct QuicklookOptions {
     std::string title;  ///< e.g. "S1"
     std::string units;  ///< e.g. "W/(m²·sr)"
     int scale = 0;      ///< integer upscaling of small images; 0 = automatic
+    /// Text chunks written into the PNG (keyword, text), in order: a tEXt chunk when the text is
+    /// ASCII, else an iTXt chunk (UTF-8). Keywords: 1–79 printable ASCII characters, no leading,
+    /// trailing or double spaces (PNG specification §11.3.4.2).
+    std::vector<std::pair<std::string, std::string>> text;
 };
 
 /// Range that `write_quicklook` would use for `data` given `options`.

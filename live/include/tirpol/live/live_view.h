@@ -12,6 +12,8 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/stage.h"
+#include "tirpol/calibration/microgrid_demosaic.h"
+#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/live/capture_control.h"
 #include "tirpol/live/display_frame.h"
@@ -28,6 +30,14 @@ struct LiveViewOptions {
     DisplayUnit unit = DisplayUnit::Counts;
     CycleOptions cycle;
     std::string default_plan, default_output;  ///< prefilled in the page's capture form
+    /// Where the page's Snapshot button writes (empty: no snapshots). The CLI checks it with
+    /// OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing file.
+    std::string snapshot_dir;
+    /// With a microgrid camera and no stage, the page's Stokes images come from each frame:
+    /// demosaiced by this method (calibration's parse_demosaic_method: super-pixel, bilinear,
+    /// newton) and reduced with ideal analyzers at the pattern's angles.
+    std::string demosaic = "bilinear";
+    bool force_snapshots = false;
 };
 
 /// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value
@@ -66,7 +76,18 @@ public:
     /// defaults.
     nlohmann::json describe() const;
 
+    /// Writes the latest frame (and the latest cycle's Stokes, with a stage) into the snapshot
+    /// folder: `snapshot-TIME-N.exr` with the float channels (S0 S1 S2 DoLP AoP and their _std
+    /// from the cycle and the live frame's `live_S0`, or `S0` alone without a stage) and header
+    /// attributes time_utc, camera_*, frame_id, cycle_frame_ids, analyzer_angles_deg, units; and
+    /// a PNG quick look per channel with the same metadata. Returns {"files": [...], "folder"}.
+    /// Throws tirpol::Error without a snapshot folder, before the first frame, or when a file
+    /// exists (without force).
+    nlohmann::json snapshot();
+
     bool has_stage() const { return m_stage != nullptr; }
+    /// Whether the Stokes images come from single microgrid frames (a microgrid camera, no stage).
+    bool has_microgrid() const { return m_microgrid.has_value(); }
     /// The capture control; throws tirpol::Error without a stage.
     CaptureControl& capture();
 
@@ -79,7 +100,14 @@ private:
     EncodedImage encoded_after(const LatestSlot<T>& slot, Cache& cache, std::uint64_t after,
                                std::chrono::milliseconds timeout, Encode encode);
 
+    /// S0 S1 S2 DoLP AoP of one microgrid frame (reduce_microgrid), with its frame id.
+    Image microgrid_stokes(const acquisition::Frame& frame) const;
+    /// The Stokes image the page shows now: the latest cycle, or the latest microgrid frame's.
+    std::shared_ptr<const Image> latest_stokes() const;
+
     LiveViewOptions m_options;
+    std::optional<calibration::MicrogridPattern> m_microgrid;
+    calibration::DemosaicMethod m_demosaic = calibration::DemosaicMethod::Bilinear;
     std::unique_ptr<acquisition::Camera> m_camera;
     std::unique_ptr<acquisition::Stage> m_stage;
     std::optional<calibration::RadiometricCalibration> m_calibration;
@@ -88,6 +116,8 @@ private:
     std::unique_ptr<PolarizerCycle> m_cycle;
     std::unique_ptr<CaptureControl> m_capture;
     Cache m_frame_cache, m_stokes_cache;
+    std::mutex m_snapshot_mutex;  ///< one snapshot at a time (numbered in order)
+    int m_snapshots = 0;
 };
 
 }  // namespace tirpol::live
