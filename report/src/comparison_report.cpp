@@ -186,7 +186,6 @@ void describe_sigma_contents(CompareResult& result, const Image& measured, const
             result.units);
     else
         m += "; no calibration error common to a region was given (gain/offset σ 0)";
-    m += "; registration: the residual misalignment times each region's mean gradient";
     result.measured_sigma_contains = m;
     std::string s =
         "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "

@@ -216,10 +216,15 @@ std::string summary_section(const Page& p) {
         std::string per_quantity;
         for (const auto& q : kZQuantities) {
             const auto& v = region.verdicts.at(q);
-            per_quantity +=
-                fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
-                            verdict_span(v.mean.verdict), escape_markup(explain(v.mean)),
-                            sigma_span(v.sigma.verdict), escape_markup(explain(v.sigma)));
+            const bool powerless =
+                v.mean.verdict != Agreement::NoData && !verdict_has_power(region, q);
+            per_quantity += fmt::format(
+                "{}{}: {}{} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
+                verdict_span(v.mean.verdict),
+                powerless ? " <span class=\"warn\">(no power: detectable bias ≥ |simulated|)</span>"
+                          : "",
+                escape_markup(explain(v.mean)), sigma_span(v.sigma.verdict),
+                escape_markup(explain(v.sigma)));
         }
         h += fmt::format(
             "<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} "
