@@ -249,6 +249,8 @@ std::string provenance_section(const Page& p) {
     h += fmt::format("<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
                      pv.tool_version.empty() ? "tirpol report library (no CLI)"
                                              : escape_markup(pv.tool_version));
+    h += fmt::format("<tr><td>Build commit</td><td class=\"text\"><code>{}</code></td></tr>\n",
+                     escape_markup(pv.build_commit));
     if (!pv.command_line.empty())
         h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n",
                          escape_markup(pv.command_line));
@@ -259,7 +261,8 @@ std::string provenance_section(const Page& p) {
     h += "</tbody>\n</table>\n";
     if (pv.inputs.empty())
         return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
-    h += "<table>\n<caption>Input files</caption>\n<thead><tr><th class=\"text\">Role</th><th "
+    h += "<table>\n<caption>Input files (paths relative to this report's "
+         "folder)</caption>\n<thead><tr><th class=\"text\">Role</th><th "
          "class=\"text\">File</th>"
          "<th>Bytes</th><th class=\"text\">SHA-256</th></tr></thead>\n<tbody>\n";
     for (const auto& f : pv.inputs)

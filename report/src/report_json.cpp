@@ -91,7 +91,10 @@ nlohmann::json to_json(const Provenance& p) {
                           {"size_bytes", f.size_bytes},
                           {"attributes", attributes}});
     }
-    return {{"tool_version", p.tool_version}, {"command_line", p.command_line}, {"inputs", inputs}};
+    return {{"tool_version", p.tool_version},
+            {"build_commit", p.build_commit},
+            {"command_line", p.command_line},
+            {"inputs", inputs}};
 }
 
 }  // namespace

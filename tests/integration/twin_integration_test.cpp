@@ -172,11 +172,14 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
         }
         EXPECT_EQ(report::to_string(region.verdict), jr["verdict"]) << region.name;
     }
-    // The provenance names those files with their checksums.
+    // The provenance names those files, relative to the report's folder, with their checksums.
     const auto& inputs = json["provenance"]["inputs"];
     ASSERT_EQ(inputs.size(), 5u);
-    EXPECT_EQ(inputs[1]["path"], r.simulated_exr.string());
-    EXPECT_EQ(inputs[4]["path"], r.fit_comparison.string());
+    const auto report_dir = r.report_html.parent_path();
+    EXPECT_EQ(inputs[1]["path"], report::path_relative_to(r.simulated_exr, report_dir).string());
+    EXPECT_EQ(inputs[4]["path"], report::path_relative_to(r.fit_comparison, report_dir).string());
+    EXPECT_TRUE(
+        std::filesystem::is_regular_file(report_dir / inputs[1]["path"].get<std::string>()));
     EXPECT_EQ(inputs[1]["sha256"], report::sha256_hex(read_file(r.simulated_exr)));
 }
 
