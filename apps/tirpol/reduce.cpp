@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "reduce_counts.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
@@ -90,16 +91,25 @@ void run_reduce(const ReduceArgs& a) {
         microgrid = false;
     }
     if (microgrid) return run_reduce_microgrid(a);
-    if (a.calibration.empty())
-        usage_error("--calibration",
-                    "--calibration is required for a rotating-polarizer session ({} records no "
-                    "microgrid pattern)",
-                    a.session);
     if (!a.pixel_calibration.empty())
         usage_error("--pixel-calibration",
                     "{} is not a microgrid camera's session (its manifest records no microgrid "
                     "pattern): --pixel-calibration is for microgrid sessions",
                     a.session);
+    if (a.calibration.empty()) {
+        // No calibration yet: a quick look in counts, labelled so.
+        for (const auto& [given, name] :
+             {std::pair{!a.polarimetric.empty(), "--polarimetric"},
+              std::pair{a.update_offset, "--update-offset"},
+              std::pair{a.drift_correction, "--drift-correction"}, std::pair{a.slar, "--slar"},
+              std::pair{a.other_camera, "--other-camera"}})
+            if (given)
+                usage_error(name,
+                            "{} needs --calibration (without it reduce makes a counts quick look)",
+                            name);
+        return run_reduce_counts(
+            {a.session, a.output, a.quicklooks, a.max_saturated_fraction, a.force});
+    }
     OutputGuard()
         .input(a.session, "SESSION")
         .input(a.calibration, "--calibration")
@@ -162,7 +172,8 @@ void register_reduce(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_option("--calibration", a->calibration,
-                    "Radiometric calibration EXR (required for a rotating-polarizer session)")
+                    "Radiometric calibration EXR (rotating-polarizer session; without it, a "
+                    "Stokes quick look in counts, not radiance)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--pixel-calibration", a->pixel_calibration,
                     "Microgrid session: per-pixel analyzer calibration EXR (w0 w1 w2 background); "

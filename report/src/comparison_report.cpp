@@ -186,7 +186,6 @@ void describe_sigma_contents(CompareResult& result, const Image& measured, const
             result.units);
     else
         m += "; no calibration error common to a region was given (gain/offset σ 0)";
-    m += "; registration: the residual misalignment times each region's mean gradient";
     result.measured_sigma_contains = m;
     std::string s =
         "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "
@@ -676,11 +675,22 @@ void write_report(Comparison& comparison, const CompareOptions& options,
     ReportFiles files{comparison.result, comparison.planes, report_dir, {}};
     for (const Section section : kSections) section(files);
     CompareResult& result = comparison.result;
+    // Input files are named relative to the report's folder, so that the folder moves with its
+    // inputs (and no home directory is published).
+    for (auto& input : result.provenance.inputs)
+        input.path = path_relative_to(input.path, report_dir);
+    const auto shown_name = [&](const std::string& name) {
+        std::error_code error;
+        return std::filesystem::is_regular_file(name, error)
+                   ? path_relative_to(name, report_dir).string()
+                   : name;
+    };
     result.json = report_dir / "report.json";
     result.html = report_dir / "report.html";
     write_file_atomic(result.json, comparison_json(result));
-    write_file_atomic(result.html, detail::render_html(result, options.measured_name,
-                                                       options.simulated_name, files.figures));
+    write_file_atomic(result.html,
+                      detail::render_html(result, shown_name(options.measured_name),
+                                          shown_name(options.simulated_name), files.figures));
 }
 
 CompareResult write_comparison_report(const Image& measured, const Image& simulated,

@@ -127,6 +127,8 @@ RegionOverview region_overview(const std::vector<float>& s0, int width, int heig
     cv::Mat canvas(grey.rows + 2 * pad, grey.cols + 2 * pad, CV_8UC3, kWhite);
     grey.copyTo(canvas(cv::Rect(pad, pad, grey.cols, grey.rows)));
     RegionOverview overview;
+    std::vector<double> label_em;
+    std::vector<Box> targets;
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const auto c = region_colour(r);
         const cv::Scalar colour(c[0], c[1], c[2]);
@@ -136,9 +138,18 @@ RegionOverview region_overview(const std::vector<float>& s0, int width, int heig
                              pad + static_cast<int>(std::lround((p.y + 0.5) * f)));
         cv::polylines(canvas, std::vector<std::vector<cv::Point>>{pts}, true, colour, 2,
                       cv::LINE_AA);
-        const cv::Point label = pts.front() + cv::Point(4, 17);
-        overview.labels.push_back({regions[r].name, label.x, label.y, region_colour_css(r)});
+        const cv::Rect bounds = cv::boundingRect(pts);
+        targets.push_back({static_cast<double>(bounds.x), static_cast<double>(bounds.y),
+                           static_cast<double>(bounds.x + bounds.width),
+                           static_cast<double>(bounds.y + bounds.height)});
+        label_em.push_back(label_width_em(regions[r].name));
     }
+    constexpr double kLabelFontPx = 15.0, kLabelGapPx = 3.0;
+    const LabelLayout layout =
+        place_labels(label_em, targets, canvas.cols, canvas.rows, kLabelFontPx, kLabelGapPx);
+    overview.font_px = layout.font_px;
+    for (std::size_t r = 0; r < regions.size(); ++r)
+        overview.labels.push_back({regions[r].name, layout.labels[r], region_colour_css(r)});
     std::vector<uchar> bytes;
     if (!cv::imencode(".png", canvas, bytes))
         fail("region overview: OpenCV could not encode the PNG");

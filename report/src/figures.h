@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "label_layout.h"
 #include "tirpol/core/quicklook.h"
 #include "tirpol/report/regions.h"
 
@@ -37,13 +38,15 @@ void write_panel(const std::filesystem::path& panel,
                  const std::vector<QuicklookOptions>& options);
 
 /// Measured S0 in grey with the region polygons outlined, as PNG bytes; the names are not drawn
-/// (Hershey fonts are ASCII only) but returned with their anchors for the SVG overlay (svg_plot.h).
+/// (Hershey fonts are ASCII only) but returned with their boxes, placed so that none overlaps
+/// another or leaves the picture (label_layout.h), for the SVG overlay (svg_plot.h).
 struct RegionOverview {
     std::string png;            ///< encoded PNG
     int width = 0, height = 0;  ///< of the PNG, pixels
+    double font_px = 15.0;      ///< font size of every label
     struct Label {
         std::string name;
-        int x = 0, y = 0;        ///< baseline start, PNG pixels
+        PlacedLabel placed;      ///< text box (PNG pixels) and leader line, if any
         std::string colour_css;  ///< the region's outline colour
     };
     std::vector<Label> labels;

@@ -216,10 +216,15 @@ std::string summary_section(const Page& p) {
         std::string per_quantity;
         for (const auto& q : kZQuantities) {
             const auto& v = region.verdicts.at(q);
-            per_quantity +=
-                fmt::format("{}{}: {} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
-                            verdict_span(v.mean.verdict), escape_markup(explain(v.mean)),
-                            sigma_span(v.sigma.verdict), escape_markup(explain(v.sigma)));
+            const bool powerless =
+                v.mean.verdict != Agreement::NoData && !verdict_has_power(region, q);
+            per_quantity += fmt::format(
+                "{}{}: {}{} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
+                verdict_span(v.mean.verdict),
+                powerless ? " <span class=\"warn\">(no power: detectable bias ≥ |simulated|)</span>"
+                          : "",
+                escape_markup(explain(v.mean)), sigma_span(v.sigma.verdict),
+                escape_markup(explain(v.sigma)));
         }
         h += fmt::format(
             "<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} "
@@ -244,6 +249,8 @@ std::string provenance_section(const Page& p) {
     h += fmt::format("<tr><td>Tool</td><td class=\"text\">{}</td></tr>\n",
                      pv.tool_version.empty() ? "tirpol report library (no CLI)"
                                              : escape_markup(pv.tool_version));
+    h += fmt::format("<tr><td>Build commit</td><td class=\"text\"><code>{}</code></td></tr>\n",
+                     escape_markup(pv.build_commit));
     if (!pv.command_line.empty())
         h += fmt::format("<tr><td>Command</td><td class=\"text\"><code>{}</code></td></tr>\n",
                          escape_markup(pv.command_line));
@@ -254,7 +261,8 @@ std::string provenance_section(const Page& p) {
     h += "</tbody>\n</table>\n";
     if (pv.inputs.empty())
         return h + "<p>No input files recorded (images passed in memory).</p>\n</section>\n";
-    h += "<table>\n<caption>Input files</caption>\n<thead><tr><th class=\"text\">Role</th><th "
+    h += "<table>\n<caption>Input files (paths relative to this report's "
+         "folder)</caption>\n<thead><tr><th class=\"text\">Role</th><th "
          "class=\"text\">File</th>"
          "<th>Bytes</th><th class=\"text\">SHA-256</th></tr></thead>\n<tbody>\n";
     for (const auto& f : pv.inputs)

@@ -40,6 +40,19 @@ InputFile describe_input(const std::string& role, const std::filesystem::path& p
     return file;
 }
 
+std::filesystem::path path_relative_to(const std::filesystem::path& file,
+                                       const std::filesystem::path& dir) {
+    std::error_code error;
+    const auto absolute_file =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(file), error);
+    if (error) return file;
+    const auto absolute_dir =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(dir), error);
+    if (error) return absolute_file;
+    const auto relative = absolute_file.lexically_relative(absolute_dir);
+    return relative.empty() ? absolute_file : relative;
+}
+
 std::string quoted_command_line(int argc, const char* const* argv) {
     std::string line;
     for (int i = 0; i < argc; ++i) {

@@ -91,7 +91,10 @@ nlohmann::json to_json(const Provenance& p) {
                           {"size_bytes", f.size_bytes},
                           {"attributes", attributes}});
     }
-    return {{"tool_version", p.tool_version}, {"command_line", p.command_line}, {"inputs", inputs}};
+    return {{"tool_version", p.tool_version},
+            {"build_commit", p.build_commit},
+            {"command_line", p.command_line},
+            {"inputs", inputs}};
 }
 
 }  // namespace
@@ -130,8 +133,11 @@ std::string comparison_json(const CompareResult& r) {
     j["design"] = {{"false_alarm_per_region", r.design.false_alarm_per_region},
                    {"false_alarm_per_quantity", r.design.false_alarm_per_quantity()},
                    {"power", r.design.power}};
-    j["sigma_contains"] = {{"measured", r.measured_sigma_contains},
-                           {"simulated", r.simulated_sigma_contains}};
+    j["sigma_contains"] = {
+        {"measured", r.measured_sigma_contains},
+        {"simulated", r.simulated_sigma_contains},
+        {"registration",
+         "the residual misalignment times the region's mean gradient of the simulated quantity"}};
     if (const auto& c = r.calibration_range)
         j["calibration_range"] = {{"outside_fraction", c->outside_fraction},
                                   {"range_k", {c->lo_k, c->hi_k}}};

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tirpol::report {
 
@@ -31,42 +32,67 @@ std::string exceeding_quantities(const RegionResult& region, const std::string& 
 std::string calibration_sentence(const CompareResult& r) {
     if (!r.calibration_range)
         return "The measured image does not state its radiometric calibration range, so "
-               "extrapolation beyond the "
-               "blackbody set-points cannot be checked. ";
+               "extrapolation beyond the blackbody set-points cannot be checked. ";
     const auto& c = *r.calibration_range;
     if (c.outside_fraction <= 0.0)
         return fmt::format(
             "Every measured pixel lies inside the blackbody calibration range ({:.1f}–{:.1f} K). ",
             c.lo_k, c.hi_k);
+    const double pixels = static_cast<double>(r.width) * static_cast<double>(r.height);
     return fmt::format(
-        "{:.1f} % of the measured pixels lie outside the blackbody calibration range "
-        "({:.1f}–{:.1f} K): "
-        "their radiances are extrapolated from the calibration, an error no σ here contains. ",
-        100.0 * c.outside_fraction, c.lo_k, c.hi_k);
+        "{:.1f} % of the measured pixels (about {:.0f} of {:.0f}) lie outside the blackbody "
+        "calibration range ({:.1f}–{:.1f} K): their radiances are extrapolated from the "
+        "calibration, an error no σ here contains, so a difference there may be the "
+        "calibration's. ",
+        100.0 * c.outside_fraction, std::round(c.outside_fraction * pixels), pixels, c.lo_k,
+        c.hi_k);
+}
+
+// The three parts of each region mean's σ, in words.
+std::string sigma_parts_sentence(const CompareResult& r) {
+    const auto& shift = r.registration.residual_shift_px;
+    return fmt::format(
+        "Each region mean's σ has three parts: the measurement's ({}); the render's ({}); and the "
+        "registration's (the residual misalignment of {:.2g} px times the region's mean "
+        "gradient). ",
+        r.measured_sigma_contains, r.simulated_sigma_contains, std::hypot(shift[0], shift[1]));
 }
 
 std::string power_sentence(const CompareResult& r) {
     std::string ranges;
+    std::vector<std::string> powerless;
+    std::size_t tested = 0;
     for (const auto& q : kZQuantities) {
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
         for (const auto& region : r.regions) {
             const auto& t = region.verdicts.at(q).mean;
             if (t.verdict == Agreement::NoData) continue;
+            ++tested;
             lo = std::min(lo, t.detectable_bias);
             hi = std::max(hi, t.detectable_bias);
+            if (!verdict_has_power(region, q)) powerless.push_back(region.name + " " + q);
         }
-        if (hi > 0.0)
-            ranges += fmt::format("{}{} {:.2g}–{:.2g}", ranges.empty() ? "" : ", ", q, lo, hi);
+        if (hi <= 0.0) continue;
+        const std::string lo_text = fmt::format("{:.2g}", lo), hi_text = fmt::format("{:.2g}", hi);
+        ranges += fmt::format("{}{} {}", ranges.empty() ? "" : ", ", q,
+                              lo_text == hi_text ? lo_text : lo_text + "–" + hi_text);
     }
-    if (ranges.empty()) return "";
-    return fmt::format(
+    if (tested == 0) return "";
+    std::string out = fmt::format(
         "With {:.0f} % false alarms per region ({:.1f} % per quantity) and {:.0f} % power, the "
-        "smallest "
-        "region-mean bias the tests detect is {} {}; a smaller real difference would read "
-        "\"consistent "
-        "with noise\". ",
+        "smallest region-mean bias the tests detect is {} {}; a smaller real difference would "
+        "read \"consistent with noise\". ",
         100.0 * r.design.false_alarm_per_region, 100.0 * r.design.false_alarm_per_quantity(),
         100.0 * r.design.power, ranges, r.units);
+    if (powerless.empty())
+        return out +
+               "The verdicts have power: every detectable bias is smaller than the simulated "
+               "value it tests. ";
+    out += powerless.size() == tested ? "None of the verdicts has power: " : "No power in ";
+    out += join_names(powerless) +
+           ": there the detectable bias is at least the simulated value itself, so a simulation "
+           "of zero would read \"consistent with noise\" too, and that verdict says little. ";
+    return out;
 }
 
 std::string sigma_diagnostic_sentence(const CompareResult& r) {
@@ -91,6 +117,15 @@ std::string sigma_diagnostic_sentence(const CompareResult& r) {
 
 }  // namespace
 
+bool verdict_has_power(const RegionResult& region, const std::string& quantity) {
+    const auto verdict = region.verdicts.find(quantity);
+    const auto stats = region.stats.find(quantity);
+    if (verdict == region.verdicts.end() || stats == region.stats.end()) return false;
+    const auto& t = verdict->second.mean;
+    return t.verdict != Agreement::NoData && std::isfinite(t.detectable_bias) &&
+           t.detectable_bias < std::abs(stats->second.simulated_mean);
+}
+
 std::string summary_paragraph(const CompareResult& r) {
     std::vector<std::string> agree, no_data;
     std::vector<const RegionResult*> exceed;
@@ -110,15 +145,13 @@ std::string summary_paragraph(const CompareResult& r) {
             out += (i ? "; " : "") + exceed[i]->name + " in " +
                    exceeding_quantities(*exceed[i], r.units);
         out +=
-            ". The measurement or the model differs there (material, temperature, geometry or "
-            "calibration: the "
-            "σ do not contain these). ";
+            ". There the scene and its model differ (material, temperature, geometry) or the "
+            "measurement has an error its σ does not hold (calibration). ";
         if (!agree.empty()) out += "Within the noise: " + join_names(agree) + ". ";
     }
     if (!no_data.empty()) out += "No data in " + join_names(no_data) + ". ";
     out += calibration_sentence(r);
-    out += "Measured σ: " + r.measured_sigma_contains +
-           ". Simulated σ: " + r.simulated_sigma_contains + ". ";
+    out += sigma_parts_sentence(r);
     out += power_sentence(r);
     out += sigma_diagnostic_sentence(r);
     if (!out.empty() && out.back() == ' ') out.pop_back();

@@ -212,15 +212,29 @@ std::string svg_histogram(const std::string& title, const std::string& x_label,
 
 std::string svg_region_overview(const RegionOverview& overview) {
     std::string svg = fmt::format(
-        "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\">"
-        "<image width=\"{0}\" height=\"{1}\" href=\"data:image/png;base64,{2}\"/>",
+        "<svg class=\"region-overview\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" "
+        "role=\"img\"><image width=\"{0}\" height=\"{1}\" "
+        "href=\"data:image/png;base64,{2}\"/>",
         overview.width, overview.height, base64_encode(overview.png));
     for (const auto& label : overview.labels)
+        if (label.placed.leader)
+            svg += fmt::format(
+                "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" "
+                "stroke-width=\"1.5\"/>",
+                label.placed.leader_x0, label.placed.leader_y0, label.placed.leader_x1,
+                label.placed.leader_y1, label.colour_css);
+    // The text is drawn at exactly the box's width (textLength), centred on its middle line, so
+    // the box the layout kept free is the one the browser fills.
+    for (const auto& label : overview.labels) {
+        const Box& b = label.placed.box;
         svg += fmt::format(
-            "<text x=\"{}\" y=\"{}\" {} font-size=\"15\" fill=\"{}\" stroke=\"white\" "
-            "stroke-width=\"3.5\" "
+            "<text class=\"region-label\" x=\"{:.1f}\" y=\"{:.1f}\" textLength=\"{:.1f}\" "
+            "lengthAdjust=\"spacingAndGlyphs\" dominant-baseline=\"central\" {} "
+            "font-size=\"{:.1f}\" fill=\"{}\" stroke=\"white\" stroke-width=\"3.5\" "
             "paint-order=\"stroke\">{}</text>",
-            label.x, label.y, kFont, label.colour_css, escape_markup(label.name));
+            b.x0, 0.5 * (b.y0 + b.y1), b.width(), kFont, overview.font_px, label.colour_css,
+            escape_markup(label.name));
+    }
     return svg + "</svg>";
 }
 

@@ -66,7 +66,7 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
         {"live", {"", "--camera"}},
         {"noise", {"-o n.json", "required"}},
         {"planck", {"--temperature-k 300 --band-um 14 8", "--band-um"}},
-        {"reduce", {session + " -o s.exr", "--calibration"}},
+        {"reduce", {session + " -o s.exr --slar", "--slar"}},
         {"render", {scene + " -o out --spp 0", "--spp"}},
         {"sun", {"--lat 39 --lon -105 --time 2003-10-17T12:30", "has no UTC offset"}},
         {"sweep", {"-o out", "required"}},

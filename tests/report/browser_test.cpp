@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -132,4 +133,91 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
     cv::Mat saturated;
     cv::inRange(hsv, cv::Scalar(0, 80, 40), cv::Scalar(180, 255, 255), saturated);
     EXPECT_GT(cv::countNonZero(saturated), png.total() / 50) << "the colour figures do not show";
+}
+
+// Region names in the real page: the boxes the browser gives the overview's labels
+// (getBoundingClientRect, read by a script added to a copy of the page: the report itself has no
+// script) never intersect and never leave the picture, for nine crowded panels with long names and
+// one at the picture's right edge (where "flat_black_paint" used to be cut to "flat_black_pai").
+TEST(ReportBrowser, RegionLabelsNeitherOverlapNorLeaveThePicture) {
+    if (!std::filesystem::exists(kChromium))
+        FAIL() << kChromium << " is absent: install the Debian package chromium (./run does)";
+    tirpol::test::TempDir temp("tirpol-report-labels");
+    const char* keep = std::getenv("TIRPOL_REPORT_TEST_OUTPUT");
+    const std::filesystem::path dir = keep ? std::filesystem::path(keep) / "labels" : temp.path();
+    std::filesystem::create_directories(dir);
+
+    test::SyntheticPairOptions o;
+    o.width = 240;
+    o.height = 180;
+    const auto pair = test::make_synthetic_pair(o);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    RegionSet regions;
+    const std::vector<std::string> names = {
+        "glossy_black_paint",      "rough_aluminium",     "white_paint_panel",
+        "specular_gold_reflector", "oxidised_copper",     "painted_steel_blue",
+        "anodised_aluminium",      "rough_concrete_slab", "Schnee ❄ Süd"};
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const double x = 90.0 + 22.0 * static_cast<double>(i % 3);
+        const double y = 60.0 + 22.0 * static_cast<double>(i / 3);
+        regions.regions.push_back(
+            {names[i], {{x, y}, {x + 18, y}, {x + 18, y + 18}, {x, y + 18}}, ""});
+    }
+    regions.regions.push_back(
+        {"flat_black_paint", {{222, 10}, {238, 10}, {238, 30}, {222, 30}}, ""});
+    options.regions = regions;
+    const auto result =
+        write_comparison_report(pair.measured, pair.simulated, options, dir / "report");
+    std::string page = tirpol::read_file(result.html);
+    EXPECT_EQ(page.find("<script"), std::string::npos) << "the report page has no script";
+    const std::string probe = R"(<script>
+(function () {
+  const svg = document.querySelector('svg.region-overview');
+  const box = (e) => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
+  const out = {image: box(svg.querySelector('image')), labels: []};
+  for (const t of svg.querySelectorAll('text.region-label'))
+    out.labels.push({name: t.textContent, box: box(t)});
+  const pre = document.createElement('pre');
+  pre.id = 'label-boxes';
+  pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+})();
+</script>
+)";
+    const std::size_t body_end = page.rfind("</body>");
+    ASSERT_NE(body_end, std::string::npos);
+    page.insert(body_end, probe);
+    tirpol::write_file_atomic(dir / "probe.html", page);
+    ASSERT_EQ(run_chromium(temp / "profile", "--window-size=1280,2000 --dump-dom",
+                           "file://" + std::filesystem::absolute(dir / "probe.html").string(),
+                           dir / "dom.html", dir / "chromium.log"),
+              0)
+        << tirpol::read_file(dir / "chromium.log");
+    const std::string dom = tirpol::read_file(dir / "dom.html");
+    const std::size_t open = dom.find("<pre id=\"label-boxes\">");
+    ASSERT_NE(open, std::string::npos) << "the probe script did not run";
+    const std::size_t start = dom.find('>', open) + 1;
+    const auto boxes = nlohmann::json::parse(dom.substr(start, dom.find("</pre>", start) - start));
+
+    const auto image = boxes.at("image").get<std::array<double, 4>>();
+    const auto& labels = boxes.at("labels");
+    ASSERT_EQ(labels.size(), names.size() + 1);
+    std::vector<std::array<double, 4>> b;
+    for (const auto& label : labels) {
+        const auto r = label.at("box").get<std::array<double, 4>>();
+        const std::string name = label.at("name").get<std::string>();
+        EXPECT_GT(r[2] - r[0], 10.0) << name << ": no width";
+        EXPECT_GE(r[0], image[0]) << name << " leaves the picture on the left";
+        EXPECT_GE(r[1], image[1]) << name << " leaves the picture at the top";
+        EXPECT_LE(r[2], image[2]) << name << " leaves the picture on the right";
+        EXPECT_LE(r[3], image[3]) << name << " leaves the picture at the bottom";
+        b.push_back(r);
+    }
+    for (std::size_t i = 0; i < b.size(); ++i)
+        for (std::size_t j = i + 1; j < b.size(); ++j) {
+            const bool intersect =
+                b[i][0] < b[j][2] && b[j][0] < b[i][2] && b[i][1] < b[j][3] && b[j][1] < b[i][3];
+            EXPECT_FALSE(intersect) << labels[i].at("name") << " and " << labels[j].at("name");
+        }
 }

@@ -5,9 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/report/comparison_report.h"
 #include "tirpol/report/regions.h"
 
 using namespace tirpol::report;
@@ -64,4 +71,95 @@ TEST(ReportProvenance, RegionsYamlReadsBackToTheSameRegions) {
             EXPECT_EQ(back.regions[r].polygon[i].x, set.regions[r].polygon[i].x);
             EXPECT_EQ(back.regions[r].polygon[i].y, set.regions[r].polygon[i].y);
         }
+}
+
+namespace {
+
+// Output of `command` (stdout; stderr to stdout), trailing newline removed.
+std::string output_of(const std::string& command, const std::filesystem::path& scratch) {
+    const auto out = scratch / "out.txt";
+    EXPECT_EQ(std::system((command + " > '" + out.string() + "' 2>&1").c_str()), 0) << command;
+    std::string text = tirpol::read_file(out);
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    return text;
+}
+
+}  // namespace
+
+TEST(ReportProvenance, BuildCommitIsACommitOfThisCheckoutOrNotAGitBuild) {
+    const std::string commit = build_commit();
+    const auto source = tirpol::test::source_dir();
+    tirpol::test::TempDir scratch;
+    if (!std::filesystem::exists(source / ".git")) {
+        EXPECT_EQ(commit, "not a git build");
+        return;
+    }
+    ASSERT_TRUE(std::regex_match(commit, std::regex("[0-9a-f]{40}(-dirty)?"))) << commit;
+    // The configure-time commit exists in this repository.
+    EXPECT_EQ(output_of("git -C '" + source.string() + "' cat-file -t " + commit.substr(0, 40),
+                        scratch.path()),
+              "commit");
+}
+
+TEST(ReportProvenance, BuildCommitScriptSaysNotAGitBuildOutsideACheckout) {
+    // The same script the build runs (cmake/BuildCommit.cmake), on a copy of sources without git
+    // (a tarball): inside another repository as well as outside any.
+    tirpol::test::TempDir scratch;
+    const auto script = tirpol::test::source_dir() / "cmake" / "BuildCommit.cmake";
+    const auto tarball = scratch / "tirpol-0.1.0";
+    std::filesystem::create_directories(tarball);
+    EXPECT_EQ(
+        output_of("cmake -DSOURCE_DIR='" + tarball.string() + "' -P '" + script.string() + "'",
+                  scratch.path()),
+        "not a git build");
+    ASSERT_EQ(std::system(("git init -q '" + scratch.path().string() + "'").c_str()), 0);
+    EXPECT_EQ(
+        output_of("cmake -DSOURCE_DIR='" + tarball.string() + "' -P '" + script.string() + "'",
+                  scratch.path()),
+        "not a git build");
+    // Its own checkout gives the commit (with -dirty while files differ from it).
+    ASSERT_EQ(
+        std::system(("git -C '" + tarball.string() + "' init -q && git -C '" + tarball.string() +
+                     "' -c user.name=t -c user.email=t@t commit -q --allow-empty -m x")
+                        .c_str()),
+        0);
+    const std::string head =
+        output_of("git -C '" + tarball.string() + "' rev-parse HEAD", scratch.path());
+    EXPECT_EQ(
+        output_of("cmake -DSOURCE_DIR='" + tarball.string() + "' -P '" + script.string() + "'",
+                  scratch.path()),
+        head);
+}
+
+TEST(ReportProvenance, PathsAreMadeRelativeToTheReportFolder) {
+    tirpol::test::TempDir dir;
+    EXPECT_EQ(path_relative_to(dir / "in" / "m.exr", dir / "out" / "report"),
+              std::filesystem::path("../../in/m.exr"));
+    EXPECT_EQ(path_relative_to(dir / "report" / "m.exr", dir / "report"),
+              std::filesystem::path("m.exr"));
+}
+
+TEST(ReportProvenance, TheReportNamesItsInputsRelativeToItsFolderAndItsBuildCommit) {
+    tirpol::test::TempDir dir;
+    test::SyntheticPairOptions o;
+    o.width = 64;
+    o.height = 48;
+    const auto pair = test::make_synthetic_pair(o);
+    const auto measured = dir / "data" / "measured.exr";
+    std::filesystem::create_directories(measured.parent_path());
+    tirpol::write_exr(measured, pair.measured);
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.measured_name = measured.string();  // absolute, as a CLI user may type it
+    options.provenance.inputs.push_back(describe_input("measured", measured, &pair.measured));
+    const auto result =
+        write_comparison_report(pair.measured, pair.simulated, options, dir / "out" / "report");
+    const auto json = nlohmann::json::parse(tirpol::read_file(result.json));
+    EXPECT_EQ(json["provenance"]["inputs"][0]["path"], "../../data/measured.exr");
+    EXPECT_EQ(json["provenance"]["build_commit"], build_commit());
+    const std::string html = tirpol::read_file(result.html);
+    EXPECT_NE(html.find("<code>../../data/measured.exr</code>"), std::string::npos);
+    EXPECT_NE(html.find(build_commit()), std::string::npos);
+    EXPECT_EQ(html.find(dir.path().string()), std::string::npos)
+        << "an absolute path of the test folder is in the page";
 }

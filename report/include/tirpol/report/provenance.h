@@ -25,8 +25,14 @@ struct InputFile {
     std::vector<std::pair<std::string, std::string>> attributes;
 };
 
+/// The git commit this library was configured from ("<40 hex digits>", with "-dirty" when tracked
+/// files differed from it at configure time), or "not a git build" (built from a tarball or without
+/// git). Read at configure time (cmake/BuildCommit.cmake), without network.
+std::string build_commit();
+
 struct Provenance {
     std::string tool_version;  ///< e.g. "tirpol 0.1.0"; empty when the caller is not the CLI
+    std::string build_commit = report::build_commit();  ///< of the library that wrote the report
     std::string command_line;  ///< as typed, shell-quoted where needed; empty when not from the CLI
     std::vector<InputFile> inputs;
 };
@@ -38,6 +44,12 @@ std::string sha256_hex(std::string_view bytes);
 /// attributes. Throws tirpol::Error naming the file when it cannot be read.
 InputFile describe_input(const std::string& role, const std::filesystem::path& path,
                          const Image* header = nullptr);
+
+/// `file` relative to the directory `dir` (both made absolute against the current directory, with
+/// symbolic links of their existing parts resolved), e.g. "../measured/view0.exr" for a report
+/// directory beside "measured/"; the absolute path when no relative one exists (another root).
+std::filesystem::path path_relative_to(const std::filesystem::path& file,
+                                       const std::filesystem::path& dir);
 
 /// An attribute value as text: strings as they are, numbers with up to 10 significant digits, lists
 /// in [a, b].
