@@ -148,8 +148,9 @@ void register_acquire(CLI::App& app) {
         "Continue an interrupted session: skips recorded steps, keeps everything written");
     cmd->add_option(
         "--camera-control", args->camera_control,
-        "The camera core's control link (boson:///dev/ttyACM0): manual FFC, run between polarizer "
-        "cycles (docs/acquisition-cameras.md, FLIR Boson)");
+        "The camera core's control link (boson:///dev/ttyACM0, or lepton:///dev/video0 with the "
+        "camera's telemetry=footer): manual FFC, run between polarizer cycles "
+        "(docs/acquisition-cameras.md, FLIR Boson, FLIR Lepton)");
     cmd->add_option(
         "--ffc", args->ffc,
         "Flat-field corrections: detect (no link: find them in the frames, retake the cycle), "

@@ -218,6 +218,14 @@ json audit_to_json(const FrameAudit& a) {
            {"incomplete", a.incomplete},
            {"core_before", a.core_before ? core_state_to_json(*a.core_before) : json(nullptr)},
            {"core_after", a.core_after ? core_state_to_json(*a.core_after) : json(nullptr)}};
+    if (!a.device_frame_counter.empty() || !a.ffc_state.empty()) {
+        json counters = json::array(), states = json::array();
+        for (const auto& c : a.device_frame_counter)
+            counters.push_back(c ? json(*c) : json(nullptr));
+        for (const auto& st : a.ffc_state) states.push_back(st ? json(*st) : json(nullptr));
+        j["device_frame_counter"] = counters;
+        j["ffc_state"] = states;
+    }
     return j;
 }
 
@@ -264,6 +272,27 @@ FrameAudit audit_from_json(const Fields& f, std::int64_t frames) {
                         "expected a number or null, got " + Fields::describe(fpa[i]));
         }
     }
+    // v6: present only when the frames carried the core's telemetry.
+    auto optional_integers = [&](const char* key, std::int64_t lo, std::int64_t hi, auto& out) {
+        if (!f.raw().contains(key)) return;
+        const json& v = column(key);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (v[i].is_null()) {
+                out.emplace_back();
+            } else if (v[i].is_number_integer() && v[i].get<std::int64_t>() >= lo &&
+                       v[i].get<std::int64_t>() <= hi) {
+                out.emplace_back(
+                    static_cast<typename std::decay_t<decltype(out)>::value_type::value_type>(
+                        v[i].get<std::int64_t>()));
+            } else {
+                f.fail_here(fmt::format("{}[{}]", f.field(key), i),
+                            fmt::format("expected an integer in [{}, {}] or null, got {}", lo, hi,
+                                        Fields::describe(v[i])));
+            }
+        }
+    };
+    optional_integers("device_frame_counter", 0, 0xFFFFFFFFll, a.device_frame_counter);
+    optional_integers("ffc_state", 0, 3, a.ffc_state);
     a.incomplete = f.integer("incomplete", 0);
     a.core_before = core_state_from_json(f, "core_before");
     a.core_after = core_state_from_json(f, "core_after");
@@ -407,6 +436,22 @@ FfcEvent ffc_event_from_json(const Fields& f) {
     return e;
 }
 
+json home_check_to_json(const HomeCheck& c) {
+    return json{{"host_timestamp_ns", c.host_timestamp_ns},
+                {"passed", c.passed},
+                {"before_step", c.before_step},
+                {"steps_since_last_good", c.steps_since_last_good}};
+}
+
+HomeCheck home_check_from_json(const Fields& f) {
+    HomeCheck c;
+    c.host_timestamp_ns = f.integer("host_timestamp_ns", 0);
+    c.passed = f.boolean("passed");
+    c.before_step = static_cast<int>(f.integer("before_step", 0, std::numeric_limits<int>::max()));
+    c.steps_since_last_good = f.integer("steps_since_last_good", 0);
+    return c;
+}
+
 /// v5's `camera.microgrid_pattern_deg`: absent (older sessions) or null for a plain camera, else
 /// four distinct angles in [0, 180). That they determine S1 and S2 is checked where they are used
 /// (calibration's MicrogridPattern).
@@ -442,6 +487,8 @@ json session_to_json(const SessionManifest& m) {
     for (const auto& r : m.records) records.push_back(record_to_json(r));
     json ffc_events = json::array();
     for (const auto& e : m.ffc_events) ffc_events.push_back(ffc_event_to_json(e));
+    json home_checks = json::array();
+    for (const auto& c : m.home_checks) home_checks.push_back(home_check_to_json(c));
     return json{{"schema", kSessionSchema},
                 {"schema_version", kSessionSchemaVersion},
                 {"created_utc", m.created_utc},
@@ -477,6 +524,7 @@ json session_to_json(const SessionManifest& m) {
                 {"metadata", m.metadata},
                 {"records", records},
                 {"ffc_events", ffc_events},
+                {"home_checks", home_checks},
                 {"complete", m.complete}};
 }
 
@@ -542,6 +590,14 @@ SessionManifest session_from_json(const json& j, const std::string& source) {
         if (!files.insert(r.file).second)
             rf.fail_here(rf.field("file"), "\"" + r.file + "\" is listed twice");
         m.records.push_back(std::move(r));
+    }
+    if (top.raw().contains("home_checks")) {
+        const json& checks = top.at("home_checks");
+        if (!checks.is_array())
+            top.fail_here("home_checks", "expected an array, got " + Fields::describe(checks));
+        for (std::size_t i = 0; i < checks.size(); ++i)
+            m.home_checks.push_back(
+                home_check_from_json(Fields(checks[i], source, fmt::format("home_checks[{}]", i))));
     }
     if (top.raw().contains("ffc_events")) {
         const json& events = top.at("ffc_events");
@@ -974,6 +1030,11 @@ void SessionWriter::set_camera_frame_rate(double frame_rate_hz) {
 
 void SessionWriter::add_ffc_event(const FfcEvent& event) {
     m_manifest.ffc_events.push_back(event);
+    write_manifest();
+}
+
+void SessionWriter::add_home_check(const HomeCheck& check) {
+    m_manifest.home_checks.push_back(check);
     write_manifest();
 }
 

@@ -65,6 +65,20 @@ TEST(BosonAcquire, TheCliRunsAnFfcBeforeEachCycleAndRecordsIt) {
         << read_file(tmp / "acquire.log");
     sim->signal(SIGTERM);
     EXPECT_EQ(sim->wait_for(5s), 0);
+    // `tirpol info SESSION` summarises what a reviewer audits.
+    test::ChildProcess info({TIRPOL_CLI_PATH, "info", (tmp / "session").string()},
+                            tmp / "info.log");
+    ASSERT_EQ(info.wait_for(60s).value_or(-1), 0) << read_file(tmp / "info.log");
+    const std::string out = read_file(tmp / "info.log");
+    EXPECT_NE(out.find("records: 8 (8 polarizer, 0 reference), 24 frames averaged"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("audit: 8 of 8 records per frame; 24 frames with a device clock"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("flat-field corrections: 2 scheduled between cycles, 0 detected"),
+              std::string::npos)
+        << out;
 }
 
 TEST(BosonAcquire, ABadScheduleIsRefusedByName) {
@@ -84,7 +98,7 @@ TEST(BosonAcquire, ABadScheduleIsRefusedByName) {
     EXPECT_EQ(parse_ffc_schedule("every:3").every_n_cycles, 3);
     EXPECT_EQ(parse_ffc_schedule("fpa:0.25").fpa_delta_k, 0.25);
     EXPECT_EQ(parse_ffc_schedule("fpa:0.25").schedule, FfcOptions::Schedule::FpaDelta);
-    EXPECT_THROW((void)open_ffc_control("lepton:///dev/video0"), Error);
+    EXPECT_THROW((void)open_ffc_control("flir:///dev/video0"), Error);
     auto absent = open_ffc_control("boson:///dev/nonexistent-boson");
     ASSERT_FALSE(absent);
     EXPECT_NE(absent.error().message.find("/dev/nonexistent-boson"), std::string::npos)

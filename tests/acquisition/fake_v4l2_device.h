@@ -26,6 +26,7 @@
 #include <cstring>
 #include <ctime>
 #include <deque>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,10 @@ public:
     /// (default: a synthetic clock, sequence × period, that tests of ids and timestamps compare
     /// exactly).
     bool stamp_with_monotonic_clock = false;
+    /// When set, writes a Y16 frame's width × height words instead of the test pattern (called once
+    /// per frame the sensor delivers into a buffer, with its sequence number): a core whose frames
+    /// carry more than a ramp, e.g. a Lepton's telemetry rows.
+    std::function<void(std::uint32_t sequence, std::vector<std::uint16_t>& words)> fill_frame;
 
     /// The sensor delivers a frame now into the next queued buffer (or loses it if none is queued),
     /// whether or not anyone polls: a free-running camera during a stage move.
@@ -317,9 +322,15 @@ private:
         m_incoming.pop_front();
         Buffer& buf = m_buffers[index];
         const std::uint32_t bpp = bytes_per_pixel();
+        std::vector<std::uint16_t> words;
+        if (fill_frame && bpp == 2) {
+            words.assign(std::size_t{m_format.width} * m_format.height, 0);
+            fill_frame(sequence, words);
+        }
         for (std::uint32_t y = 0; y < m_format.height; ++y)
             for (std::uint32_t x = 0; x < m_format.width; ++x) {
-                const std::uint32_t v = pattern(m_format.fourcc, x, y, sequence);
+                const std::uint32_t v = words.empty() ? pattern(m_format.fourcc, x, y, sequence)
+                                                      : words[std::size_t{y} * m_format.width + x];
                 const std::size_t at = (std::size_t{y} * m_format.width + x) * bpp;
                 buf.data[at] = static_cast<std::uint8_t>(v & 0xFFu);
                 if (bpp == 2) buf.data[at + 1] = static_cast<std::uint8_t>(v >> 8);

@@ -10,11 +10,13 @@
 #include <chrono>
 #include <cmath>
 
+#include "child_process.h"
 #include "stage_simulator_thread.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
+#include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 
@@ -174,6 +176,19 @@ TEST(UnkindStageCapture, LostStepsInvisibleToTheStepCounterAreCaughtByTheHomeChe
         EXPECT_THAT(e.what(), HasSubstr("lost steps"));
         EXPECT_THAT(e.what(), HasSubstr("was homed again"));
     }
+    // The failed check is in the session (schema v6) with the steps it puts in doubt: those since
+    // the last passing check, all of them when none passed.
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_FALSE(m.home_checks.empty());
+    const HomeCheck& failed = m.home_checks.back();
+    EXPECT_FALSE(failed.passed);
+    int last_good_before = 0;
+    for (std::size_t i = 0; i + 1 < m.home_checks.size(); ++i) {
+        EXPECT_TRUE(m.home_checks[i].passed);  // the capture stops at the first failure
+        last_good_before = m.home_checks[i].before_step;
+    }
+    EXPECT_EQ(failed.steps_since_last_good, failed.before_step - last_good_before);
+    EXPECT_GT(failed.host_timestamp_ns, 0);
     // Homed again: the mount is back where the counter says.
     EXPECT_NEAR(sim.simulator().physical_angle_deg(Clock::now() + 10s), 0.0, 1e-9);
 }
@@ -187,6 +202,23 @@ TEST(UnkindStageCapture, WithoutLostStepsTheHomeChecksPass) {
         sim, std::string(kPlan) + "home_check_every: 1\napproach_overshoot_deg: 2\n", tmp / "s");
     EXPECT_EQ(run.summary.steps_recorded, 8u);
     EXPECT_EQ(run.summary.home_checks, 2);  // before cycle 2 and after the last
+    // Each check in the session: when, passed, the steps it vouches for.
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.home_checks.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_TRUE(m.home_checks[i].passed);
+        EXPECT_EQ(m.home_checks[i].before_step, 4 * static_cast<int>(i + 1));
+        EXPECT_EQ(m.home_checks[i].steps_since_last_good, 4);
+    }
+    EXPECT_LT(m.home_checks[0].host_timestamp_ns, m.home_checks[1].host_timestamp_ns);
+    // `tirpol info SESSION` shows them.
+    test::ChildProcess info({TIRPOL_CLI_PATH, "info", (tmp / "s").string()}, tmp / "info.log");
+    ASSERT_EQ(info.wait_for(60s).value_or(-1), 0) << read_file(tmp / "info.log");
+    const std::string out = read_file(tmp / "info.log");
+    EXPECT_THAT(out, HasSubstr("schema v6, complete"));
+    EXPECT_THAT(out, HasSubstr("lost-step checks at the home sensor: 2 passed, 0 failed"));
+    EXPECT_THAT(out, HasSubstr("before step 5: passed, 4 steps since the last good check"));
+    EXPECT_THAT(out, HasSubstr("before step 9: passed, 4 steps since the last good check"));
 }
 
 TEST(UnkindStageCapture, AnApproachPastAFullTurnIsRefusedByThePlan) {

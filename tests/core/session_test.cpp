@@ -103,7 +103,7 @@ TEST(Session, WriteThenReadRoundTripsManifestAndFrames) {
     // The manifest is the documented schema, field for field.
     const json j = json::parse(read_file(dir / "session.json"));
     EXPECT_EQ(j.at("schema"), "tirpol.session");
-    EXPECT_EQ(j.at("schema_version"), 5);
+    EXPECT_EQ(j.at("schema_version"), 6);
     EXPECT_TRUE(j.at("camera").at("microgrid_pattern_deg").is_null());
     EXPECT_TRUE(j.at("records")[0].at("blackbody_temperature_k").is_null());
     EXPECT_TRUE(j.at("ffc_events").is_array());
@@ -323,6 +323,62 @@ TEST(Session, FrameAuditRoundTripsAndItsColumnsMustMatchTheFrames) {
                     "records[0].audit.frame_id: expected 2 entries (the record's frames), got 1")));
 }
 
+TEST(Session, TelemetryAuditAndHomeChecksRoundTripAndVersionFiveSessionsWithoutThemRead) {
+    // v6: per-frame core telemetry in the audit (a Lepton's frame counter and FFC state) and the
+    // stage's lost-step checks.
+    test::TempDir tmp;
+    const auto dir = tmp / "v6";
+    SessionRecord r = polarizer_record(0.0, 0);
+    r.frames = 2;
+    FrameAudit a;
+    a.frame_id = {7, 8};
+    a.device_timestamp_ns = {0, 0};
+    a.host_timestamp_ns = {1795000000123456789, 1795000000140123456};
+    a.fpa_temperature_k = {305.42, 305.43};
+    a.device_frame_counter = {4294967295, std::nullopt};  // the core's 32-bit counter, whole
+    a.ffc_state = {3, std::nullopt};
+    r.audit = a;
+    const HomeCheck good{1795000000200000000, true, 4, 4};
+    const HomeCheck bad{1795000000300000000, false, 8, 4};
+    {
+        auto writer = SessionWriter::create(dir, example_manifest());
+        writer.add_record(r, example_frame(1.0f));
+        writer.add_home_check(good);
+        writer.add_home_check(bad);
+    }
+    SessionManifest m = read_session(dir);
+    ASSERT_EQ(m.records.size(), 1u);
+    EXPECT_EQ(m.records[0], r);
+    ASSERT_EQ(m.home_checks.size(), 2u);
+    EXPECT_EQ(m.home_checks[0], good);
+    EXPECT_EQ(m.home_checks[1], bad);
+
+    json j = json::parse(read_file(dir / "session.json"));
+    j["records"][0]["audit"]["ffc_state"][0] = 4;
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT(
+        [&] { read_session(dir); },
+        ::testing::ThrowsMessage<Error>(HasSubstr(
+            "records[0].audit.ffc_state[0]: expected an integer in [0, 3] or null, got number 4")));
+    j["records"][0]["audit"]["ffc_state"][0] = 3;
+    j["home_checks"][1]["passed"] = "no";
+    write_file_atomic(dir / "session.json", j.dump(2));
+    EXPECT_THAT([&] { read_session(dir); },
+                ::testing::ThrowsMessage<Error>(HasSubstr("home_checks[1].passed")));
+    // A v5 session has neither: it reads with both empty.
+    j["schema_version"] = 5;
+    j.erase("home_checks");
+    j["records"][0]["audit"].erase("device_frame_counter");
+    j["records"][0]["audit"].erase("ffc_state");
+    write_file_atomic(dir / "session.json", j.dump(2));
+    m = read_session(dir);
+    EXPECT_EQ(m.schema_version, 5);
+    EXPECT_TRUE(m.home_checks.empty());
+    ASSERT_TRUE(m.records[0].audit);
+    EXPECT_TRUE(m.records[0].audit->device_frame_counter.empty());
+    EXPECT_TRUE(m.records[0].audit->ffc_state.empty());
+}
+
 TEST(Session, CreationThatFailsOnAFullDiskLeavesNothingBehind) {
     // A file-size limit makes write(2) fail as a full disk does (EFBIG instead of ENOSPC; SIGXFSZ
     // ignored).
@@ -458,9 +514,9 @@ TEST_F(DamagedSession, TruncatedManifestNamesTheFile) {
 
 TEST_F(DamagedSession, WrongSchemaVersionIsRefused) {
     json j = manifest();
-    j["schema_version"] = 6;
+    j["schema_version"] = 7;
     write(j);
-    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 5, got 6"));
+    EXPECT_THAT(error_of_read(), HasSubstr("schema_version: expected 1 to 6, got 7"));
     j["schema"] = "something.else";
     write(j);
     EXPECT_THAT(error_of_read(), HasSubstr("schema: expected \"tirpol.session\""));

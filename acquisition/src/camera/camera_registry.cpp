@@ -8,6 +8,7 @@
 #endif
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #ifdef TIRPOL_HAVE_V4L2
+#include "tirpol/acquisition/internal/lepton_frame.h"
 #include "tirpol/acquisition/internal/v4l2_camera.h"
 #endif
 #include "tirpol/core/error.h"
@@ -64,7 +65,7 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
 
 #ifdef TIRPOL_HAVE_V4L2
 Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
-    u.check_keys({"format", "width", "height", "fps", "buffers"});
+    u.check_keys({"format", "width", "height", "fps", "buffers", "telemetry"});
     if (u.target.empty() || u.target.front() != '/')
         fail("device URI '{}': expected v4l2:///dev/videoN (an absolute device path)", u.text);
     V4l2CameraOptions options;
@@ -76,7 +77,20 @@ Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     if (buffers < 2 || buffers > 64)
         fail("device URI '{}': buffers={} (expected 2…64)", u.text, buffers);
     options.buffers = static_cast<unsigned>(buffers);
-    return open_v4l2_camera(u.target, options);
+    std::optional<LeptonTelemetryLocation> telemetry;
+    if (u.query.count("telemetry") != 0) {
+        const std::string& t = u.query.at("telemetry");
+        if (t != "footer" && t != "header")
+            fail(
+                "device URI '{}': telemetry={} (expected footer or header: where the Lepton puts "
+                "its telemetry rows)",
+                u.text, t);
+        telemetry =
+            t == "footer" ? LeptonTelemetryLocation::Footer : LeptonTelemetryLocation::Header;
+    }
+    auto camera = open_v4l2_camera(u.target, options);
+    if (!camera || !telemetry) return camera;
+    return wrap_lepton_telemetry_camera(std::move(camera.value()), *telemetry);
 }
 #endif
 

@@ -217,7 +217,18 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             home_sensor_readable = false;
             return;
         }
-        if (!check(std::move(active), step, "stage")) {
+        const bool passed = check(std::move(active), step, "stage");
+        // In the session before anything else can fail: a reviewer sees which steps a failed check
+        // puts in doubt, and when the passing ones were made.
+        try {
+            writer.flush();  // the session is written by one thread at a time
+            session.add_home_check(
+                HomeCheck{host_realtime_ns(), passed, static_cast<int>(next_index),
+                          static_cast<std::int64_t>(next_index - verified_up_to)});
+        } catch (const Error& e) {
+            write_failed(step, e);
+        }
+        if (!passed) {
             const Status rehomed = stage.home(to_ms(plan.home_timeout_s));
             step_failed(
                 step, "stage",
@@ -238,6 +249,20 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
     };
 
     check(camera.start(), first, "camera");
+    // A core that reports through its frames (a Lepton's telemetry) is heard only when frames are
+    // grabbed: while its link waits for an FFC, it pulls them through this thread.
+    FfcControl* const ffc_link = options.ffc ? options.ffc->control : nullptr;
+    struct FramePullLease {
+        FfcControl* link;
+        ~FramePullLease() {
+            if (link) link->set_frame_pull({});
+        }
+    } pull_lease{ffc_link};
+    if (ffc_link)
+        ffc_link->set_frame_pull([&camera, ffc_link] {
+            if (auto f = camera.grab(std::chrono::milliseconds(100)))
+                ffc_link->observe_frame(f.value());
+        });
     if (!stage.is_homed()) {
         spdlog::info("homing the stage {}", stage.info().uri);
         check_motion(stage.home(to_ms(plan.home_timeout_s)), "homing", first);
@@ -418,7 +443,8 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         std::optional<FfcEvent> spoiled;  // an FFC seen in this step's frames
         FrameAudit audit;
         const std::uint64_t incomplete_before = camera.statistics().incomplete;
-        FfcControl* link = options.ffc ? options.ffc->control : nullptr;
+        FfcControl* const link = ffc_link;
+        bool frames_carry_telemetry = false;
         if (link) audit.core_before = check(link->core_state(), *step, "camera control link");
         while (averager.count() < static_cast<std::uint64_t>(step->frames)) {
             if (interrupted(options))
@@ -428,6 +454,7 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
                     step->index + 1, total, step->label, recorded(), total, session.dir().string());
             if (blackbody) check(blackbody->poll_if_due(), *step, "blackbody");
             const Frame frame = check(camera.grab(to_ms(plan.frame_timeout_s)), *step, "camera");
+            if (link) link->observe_frame(frame);
             if (!gate.exposed_after(frame, timing.settle_end_ns)) {
                 ++timing.stale_frames_discarded;
                 if (host_realtime_ns() - timing.settle_end_ns >
@@ -456,6 +483,12 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
             audit.device_timestamp_ns.push_back(frame.device_timestamp_ns);
             audit.host_timestamp_ns.push_back(frame.host_timestamp_ns);
             audit.fpa_temperature_k.push_back(frame.fpa_temperature_k);
+            frames_carry_telemetry = frames_carry_telemetry || frame.telemetry.has_value();
+            audit.device_frame_counter.push_back(
+                frame.telemetry ? std::optional<std::int64_t>(frame.telemetry->device_frame_counter)
+                                : std::nullopt);
+            audit.ffc_state.push_back(
+                frame.telemetry ? std::optional<int>(frame.telemetry->ffc_state) : std::nullopt);
             report(CaptureProgress::Event::Frame, *step, static_cast<int>(averager.count()),
                    frame.frame_id);
             if (averager.count() == 1) {
@@ -511,6 +544,10 @@ CaptureSummary run_capture(Camera& camera, Stage& stage, const CapturePlan& plan
         audit.incomplete =
             static_cast<std::int64_t>(camera.statistics().incomplete - incomplete_before);
         if (link) audit.core_after = check(link->core_state(), *step, "camera control link");
+        if (!frames_carry_telemetry) {
+            audit.device_frame_counter.clear();
+            audit.ffc_state.clear();
+        }
         record.audit = std::move(audit);
         if (!in_cycle(ti)) {
             commit(*step, record, averager.to_image(), gate.delivered_rate_hz());

@@ -88,7 +88,15 @@ void FfcGuard::begin_step() {
 std::optional<std::string> FfcGuard::observe(const Frame& frame) {
     // With a link the core says when it corrected; frame statistics would only add false alarms (a
     // scene that changes).
-    if (m_options.control) return std::nullopt;
+    if (m_options.control) {
+        // A core that reports its FFC state in each frame (a Lepton's telemetry) says so directly.
+        if (frame.telemetry && frame.telemetry->ffc_state == 2)
+            return fmt::format(
+                "frame {}: the core's telemetry says an FFC is in progress (core "
+                "frame {})",
+                frame.frame_id, frame.telemetry->device_frame_counter);
+        return std::nullopt;
+    }
     double sum = 0.0;
     for (float c : frame.counts) sum += c;
     const double mean = frame.counts.empty() ? 0.0 : sum / static_cast<double>(frame.counts.size());

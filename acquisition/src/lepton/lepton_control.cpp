@@ -109,6 +109,30 @@ Status LeptonControl::set_telemetry(bool enabled) {
     return set(lepton::kSysTelemetryEnable, lepton::u32_words(enabled ? 1u : 0u));
 }
 
+Status LeptonControl::set_telemetry_location(LeptonTelemetryLocation location) {
+    return set(lepton::kSysTelemetryLocation,
+               lepton::u32_words(location == LeptonTelemetryLocation::Footer ? 1u : 0u));
+}
+
+Result<std::unique_ptr<LeptonControl>> open_lepton_control(std::unique_ptr<LeptonXu> xu,
+                                                           LeptonControlOptions options) {
+    const std::string name = xu->name();
+    auto control = std::make_unique<LeptonControl>(std::move(xu), options);
+    auto answer = [&](Status s, const char* what) -> Status {
+        if (s) return s;
+        return DeviceError{s.error().code, fmt::format("{}: no Lepton answered ({}): {}", name,
+                                                       what, s.error().message)};
+    };
+    if (auto mode = control->ffc_shutter_mode(); !mode)
+        return answer(mode.error(), "reading its FFC shutter mode").error();
+    if (auto s = answer(control->set_telemetry_location(LeptonTelemetryLocation::Footer),
+                        "setting the telemetry location");
+        !s)
+        return s.error();
+    if (auto s = answer(control->set_telemetry(true), "enabling telemetry"); !s) return s.error();
+    return control;
+}
+
 void LeptonControl::observe_telemetry(const lepton::Telemetry& t) {
     std::lock_guard lock(m_mutex);
     // A new time of the last FFC: the core ran one; its frame counter now is the FFC's frame.
@@ -125,7 +149,7 @@ Result<lepton::Telemetry> LeptonControl::latest_telemetry() {
             std::lock_guard lock(m_mutex);
             if (m_latest || Clock::now() >= deadline) break;
         }
-        std::this_thread::sleep_for(m_options.ffc_poll);
+        wait_a_little();
     }
     std::lock_guard lock(m_mutex);
     if (!m_latest)
@@ -166,7 +190,7 @@ Status LeptonControl::run_ffc_and_wait() {
             return DeviceError{DeviceErrorCode::Timeout,
                                fmt::format("{}: the Lepton's FFC still busy after {} ms",
                                            m_xu->name(), m_options.ffc_timeout.count())};
-        std::this_thread::sleep_for(m_options.ffc_poll);
+        wait_a_little();
     }
     // With telemetry flowing, wait for the frames to show the FFC too: the capture compares the
     // last-FFC marker before and after each cycle, and a marker that moved late would look like an
@@ -182,8 +206,30 @@ Status LeptonControl::run_ffc_and_wait() {
                                fmt::format("{}: the Lepton reported its FFC done, but the "
                                            "telemetry of the frames never showed it within {} ms",
                                            m_xu->name(), m_options.ffc_timeout.count())};
-        std::this_thread::sleep_for(m_options.ffc_poll);
+        wait_a_little();
     }
+}
+
+void LeptonControl::wait_a_little() {
+    // Frames reach the telemetry only when someone grabs them: during the capture that is this
+    // thread, so pull them here rather than sleep.
+    if (m_pull)
+        m_pull();
+    else
+        std::this_thread::sleep_for(m_options.ffc_poll);
+}
+
+void LeptonControl::set_frame_pull(std::function<void()> pull) { m_pull = std::move(pull); }
+
+void LeptonControl::observe_frame(const Frame& frame) {
+    if (!frame.telemetry) return;
+    lepton::Telemetry t;
+    t.uptime_ms = frame.telemetry->uptime_ms;
+    t.status_bits = static_cast<std::uint32_t>(frame.telemetry->ffc_state & 0x3) << 4;
+    t.frame_counter = frame.telemetry->device_frame_counter;
+    t.fpa_temperature_k = frame.fpa_temperature_k.value_or(0.0);
+    t.uptime_at_last_ffc_ms = frame.telemetry->uptime_at_last_ffc_ms;
+    observe_telemetry(t);
 }
 
 Result<double> LeptonControl::fpa_temperature_k() {

@@ -24,6 +24,16 @@
 
 namespace tirpol::acquisition {
 
+/// What a camera core wrote into the frame itself (a FLIR Lepton's telemetry rows, which the
+/// camera splits off the image): its own frame counter and flat-field-correction (FFC) state.
+struct FrameTelemetry {
+    std::uint32_t device_frame_counter = 0;  ///< the core's frame counter (not the host's id)
+    /// 0 never commanded, 1 imminent, 2 in progress (shutter closed), 3 complete.
+    int ffc_state = 0;
+    std::uint32_t uptime_ms = 0;              ///< the core's time since power-up
+    std::uint32_t uptime_at_last_ffc_ms = 0;  ///< changes whenever the core has run an FFC
+};
+
 /// One frame as delivered by a camera: raw counts converted to float (exact for ≤ 24-bit data).
 struct Frame {
     int width = 0, height = 0;
@@ -33,6 +43,7 @@ struct Frame {
     std::int64_t host_timestamp_ns = 0;    ///< host CLOCK_REALTIME at reception
     std::optional<double>
         fpa_temperature_k;  ///< sensor/device temperature when the camera exposes one
+    std::optional<FrameTelemetry> telemetry;  ///< when the frame carried the core's telemetry
 };
 
 struct CameraInfo {

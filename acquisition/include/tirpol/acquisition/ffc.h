@@ -14,15 +14,17 @@
 /// Every FFC commanded or detected goes into the session (SessionManifest::ffc_events).
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
+#include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/result.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition {
 
-/// A camera core whose FFC the capture can command (a FLIR Boson over its control link).
+/// A camera core whose FFC the capture can command (a FLIR Boson or Lepton over its control link).
 class FfcControl {
 public:
     virtual ~FfcControl() = default;
@@ -39,6 +41,14 @@ public:
     /// FFC and gain modes, FPA temperature, frame count and last-FFC frame count in one go: the
     /// capture records it before and after each step's frames (SessionRecord::audit).
     virtual Result<FrameAudit::CoreState> core_state() = 0;
+    /// Each frame the capture grabs, for a core that reports its state inside the frames (a
+    /// Lepton's telemetry rows: Frame::telemetry); the default ignores them.
+    virtual void observe_frame(const Frame& frame) { (void)frame; }
+    /// While it runs, the capture lends the link a way to grab the next frame (and pass it to
+    /// observe_frame): a link whose core reports only through the frames pulls them while it waits
+    /// for an FFC to show. Empty: no frames to pull (the link then waits on its own clock). The
+    /// default ignores it.
+    virtual void set_frame_pull(std::function<void()> pull) { (void)pull; }
 };
 
 struct FfcOptions {
@@ -67,10 +77,10 @@ struct FfcOptions {
     double detection_pause_s = 1.0;
 };
 
-/// Opens a core's control link by URI: `boson:///dev/ttyACM0[?timeout_ms=500]` (a FLIR Boson's USB
-/// CDC-ACM port; the simulator's pseudo-terminal works the same). A malformed URI or unknown scheme
-/// throws tirpol::Error naming it; a port that is absent or a core that does not answer is a
-/// DeviceError.
+/// Opens a core's control link by URI: `boson:///dev/ttyACM0[?timeout_ms=500]` (a Boson's CDC-ACM
+/// port, or the simulator's pty) or `lepton:///dev/video0[?ffc_timeout_ms=3000]` (a Lepton on a
+/// PureThermal board: its UVC extension units; telemetry switched on at the footer). Bad URI:
+/// tirpol::Error naming it; an absent device or a core that does not answer: a DeviceError.
 Result<std::unique_ptr<FfcControl>> open_ffc_control(const std::string& uri);
 
 /// Parses `tirpol acquire --ffc`: "detect" (no link: watch the frames only), "every-cycle",

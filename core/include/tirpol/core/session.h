@@ -8,7 +8,7 @@
 /// atomically, so after a crash (kill -9, power loss) the manifest lists only complete frames. A
 /// frame file that reached the disk but not the manifest is recovered on resume from its own
 /// header, which mirrors its record. An existing frame file is never overwritten. (Schema
-/// "tirpol.session" version 5; versions 1 to 4 still read.)
+/// "tirpol.session" version 6; versions 1 to 5 still read.)
 
 #include <array>
 #include <cstdint>
@@ -34,7 +34,10 @@ inline constexpr const char* kSessionSchema = "tirpol.session";
 /// record's `audit` (per-frame ids, device and host clocks, FPA; the core's state around the step).
 /// v5 adds `camera.microgrid_pattern_deg`: the analyzer angle at each position of a microgrid
 /// (division-of-focal-plane) camera's 2×2 cell, or null for a camera without one.
-inline constexpr int kSessionSchemaVersion = 5;
+/// v6 adds, per frame of a record's `audit`, the core's frame counter and FFC state when the frames
+/// carry the core's telemetry (`device_frame_counter`, `ffc_state`), and `home_checks`: each
+/// lost-step check of the stage at its home sensor (when, result, steps since the last good one).
+inline constexpr int kSessionSchemaVersion = 6;
 /// The oldest version still read.
 inline constexpr int kSessionSchemaOldestReadable = 1;
 inline constexpr const char* kSessionManifestName = "session.json";
@@ -107,6 +110,11 @@ struct FrameAudit {
     std::vector<std::int64_t> device_timestamp_ns;  ///< the device's clock (0 when it has none)
     std::vector<std::int64_t> host_timestamp_ns;    ///< host CLOCK_REALTIME at reception
     std::vector<std::optional<double>> fpa_temperature_k;  ///< per frame when the camera reports it
+    /// v6, per frame, from telemetry the core wrote into the frame (a Lepton's rows): the core's
+    /// own frame counter and its FFC state (0 never commanded, 1 imminent, 2 in progress, 3
+    /// complete). Both empty when no frame of the record carried telemetry.
+    std::vector<std::optional<std::int64_t>> device_frame_counter;
+    std::vector<std::optional<int>> ffc_state;
     std::int64_t incomplete = 0;  ///< frames the camera discarded as damaged during the step
     /// The core's state from its control link (absent without one), read before and after the
     /// frames.
@@ -151,6 +159,21 @@ struct FfcEvent {
 };
 const char* to_string(FfcEvent::Kind kind);  ///< "scheduled", "detected"
 
+/// A lost-step check of the rotation stage (schema v6): the capture turned to counted 0°, where the
+/// home sensor must be active; a stage whose read-back is its step counter cannot see lost steps
+/// otherwise (docs/acquisition-stages.md, "Unkind stages"). When it fails, the angles of the steps
+/// since the last passing check are uncertain.
+struct HomeCheck {
+    std::int64_t host_timestamp_ns = 0;  ///< host CLOCK_REALTIME when the sensor was read
+    bool passed = false;                 ///< the home sensor was active at counted 0°
+    int before_step = 0;  ///< plan index (0-based) of the step it preceded; the plan's step count
+                          ///< for the check after the last step
+    /// Steps taken since the last passing check of this run (or since its first step).
+    std::int64_t steps_since_last_good = 0;
+
+    bool operator==(const HomeCheck&) const = default;
+};
+
 /// One recorded step: N frames averaged into one EXR.
 struct SessionRecord {
     RecordKind kind = RecordKind::Polarizer;
@@ -177,7 +200,7 @@ struct SessionRecord {
 /// The whole manifest.
 struct SessionManifest {
     int schema_version =
-        kSessionSchemaVersion;  ///< as read (1 to 5); always written as kSessionSchemaVersion
+        kSessionSchemaVersion;  ///< as read (1 to 6); always written as kSessionSchemaVersion
     std::string created_utc;    ///< ISO 8601, e.g. "2026-11-22T16:19:20Z"
     SessionCamera camera;
     SessionStage stage;
@@ -187,7 +210,8 @@ struct SessionManifest {
     nlohmann::json metadata =
         nlohmann::json::object();  ///< free form (site, operator, targets, ...)
     std::vector<SessionRecord> records;
-    std::vector<FfcEvent> ffc_events;  ///< v4; empty when the camera core reports none
+    std::vector<FfcEvent> ffc_events;    ///< v4; empty when the camera core reports none
+    std::vector<HomeCheck> home_checks;  ///< v6; empty without plan home_check_every
     bool complete = false;
 };
 
@@ -196,7 +220,7 @@ struct SessionManifest {
 /// preceded frames that may have been exposed during the move.
 double record_polarizer_angle_deg(const SessionManifest& manifest, const SessionRecord& record);
 
-/// Manifest ⇄ JSON (schema v5; v1 to v4 read). `from_json` validates everything and throws
+/// Manifest ⇄ JSON (schema v6; v1 to v5 read). `from_json` validates everything and throws
 /// tirpol::Error naming `source` (the file) and the field, e.g. "DIR/session.json:
 /// records[2].frames: expected an integer ≥ 1".
 nlohmann::json session_to_json(const SessionManifest& manifest);
@@ -260,6 +284,8 @@ public:
     void set_camera_frame_rate(double frame_rate_hz);
     /// Appends a flat-field correction event and rewrites the manifest.
     void add_ffc_event(const FfcEvent& event);
+    /// Appends a lost-step check of the stage and rewrites the manifest.
+    void add_home_check(const HomeCheck& check);
     /// Replaces the free-form metadata and rewrites the manifest.
     void set_metadata(nlohmann::json metadata);
     /// Marks the session complete and rewrites the manifest.

@@ -22,6 +22,7 @@ namespace tirpol::acquisition::lepton {
 inline constexpr std::uint16_t kSysCamUptime = 0x020C;             ///< 2 words: ms since power-up
 inline constexpr std::uint16_t kSysFpaTemperatureKelvin = 0x0214;  ///< 1 word: K × 100
 inline constexpr std::uint16_t kSysTelemetryEnable = 0x0218;       ///< 2 words: enum
+inline constexpr std::uint16_t kSysTelemetryLocation = 0x021C;     ///< 2 words: 0 header, 1 footer
 inline constexpr std::uint16_t kSysFfcShutterMode = 0x023C;        ///< 16 words: the object below
 inline constexpr std::uint16_t kSysRunFfc = 0x0240;                ///< RUN
 inline constexpr std::uint16_t kSysFfcStatus = 0x0244;             ///< 2 words: enum, 0 = ready

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,6 +19,7 @@
 
 #include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/internal/lepton_cci.h"
+#include "tirpol/acquisition/internal/lepton_frame.h"
 
 namespace tirpol::acquisition {
 
@@ -63,6 +65,8 @@ public:
     Result<lepton::FfcShutterMode> ffc_shutter_mode();
     /// SYS telemetry enable (the board then appends the telemetry rows to each frame).
     Status set_telemetry(bool enabled);
+    /// SYS telemetry location: where in the frame the rows go (lepton_frame.h).
+    Status set_telemetry_location(LeptonTelemetryLocation location);
 
     /// Feeds the telemetry row of a frame as it arrives; thread-safe.
     void observe_telemetry(const lepton::Telemetry& telemetry);
@@ -78,15 +82,30 @@ public:
     Result<std::uint64_t> last_ffc_marker() override;
     Result<std::uint64_t> device_frame_count() override;
     Result<FrameAudit::CoreState> core_state() override;
+    /// A frame's telemetry (Frame::telemetry, split off by the Lepton camera) goes to
+    /// observe_telemetry; a frame without it is ignored.
+    void observe_frame(const Frame& frame) override;
+    void set_frame_pull(std::function<void()> pull) override;
 
 private:
     Result<lepton::Telemetry> latest_telemetry();
+    /// Waits one poll interval: pulls a frame when the capture lent a way to, else sleeps.
+    void wait_a_little();
 
     std::unique_ptr<LeptonXu> m_xu;
     LeptonControlOptions m_options;
     std::mutex m_mutex;  // the telemetry fields below
     std::optional<lepton::Telemetry> m_latest;
     std::optional<std::uint32_t> m_frame_at_last_ffc;
+    std::function<void()> m_pull;  // set and used on the capturing thread only
 };
+
+/// A LeptonControl over `xu` after checking that a Lepton answers (its FFC shutter mode object
+/// reads back) and switching its telemetry on at the footer, where the PureThermal firmware puts
+/// it: the capture's FFC marker and frame counter come from those rows
+/// (`v4l2:///dev/videoN?format=Y16&width=160&height=122&telemetry=footer` splits them off). A core
+/// that does not answer is a DeviceError naming the device.
+Result<std::unique_ptr<LeptonControl>> open_lepton_control(std::unique_ptr<LeptonXu> xu,
+                                                           LeptonControlOptions options = {});
 
 }  // namespace tirpol::acquisition
