@@ -3,7 +3,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 
 #include "tirpol/core/error.h"
@@ -145,6 +147,26 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
     }
     if (m.triangles.empty()) fail("mesh {} has no triangles", path.string());
     return m;
+}
+
+std::optional<UpAxis> up_axis_from_name(std::string_view name) {
+    if (name == "y") return UpAxis::y;
+    if (name == "z") return UpAxis::z;
+    return std::nullopt;
+}
+
+UpAxis default_up_axis(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".gltf" || ext == ".glb" ? UpAxis::y : UpAxis::z;
+}
+
+Mat3 z_up_rotation(UpAxis axis) {
+    if (axis == UpAxis::z) return Mat3::Identity();
+    Mat3 r;
+    r << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    return r;
 }
 
 }  // namespace tirpol::simulation

@@ -58,12 +58,29 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer,
         return true;
     }
     if (type == "mesh") {
-        g.check_keys({"type", "file"});
+        g.check_keys({"type", "file", "up_axis"});
         const ConfigNode file = g.at("file");
         const auto path = g.resolve_path(file.as<std::string>());
         if (!std::filesystem::is_regular_file(path))
             file.fail("mesh file not found: " + path.string());
+        UpAxis up = default_up_axis(path);
+        if (auto n = g.find("up_axis")) {
+            const auto name = n->as<std::string>();
+            const auto axis = up_axis_from_name(name);
+            if (!axis)
+                n->fail(fmt::format("expected y or z (the file's axis that points up), got \"{}\"",
+                                    name));
+            up = *axis;
+        }
         mesh = load_mesh_file(path);
+        object_positions = mesh.positions;
+        // The file's axes to the z-up world first; the object's transform then acts in the world.
+        Transform to_world;
+        to_world.rotation = z_up_rotation(up);
+        transform_mesh(mesh, to_world);
+        transform_mesh(mesh, t);
+        tracer.add_mesh(std::move(mesh));
+        return false;
     } else if (type == "box") {
         g.check_keys({"type", "size"});
         const Vec3 size = vec3_of(g.at("size"));

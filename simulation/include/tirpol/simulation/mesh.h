@@ -5,6 +5,9 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/core/geometry.h"
@@ -46,9 +49,24 @@ TriangleMesh make_disk(double radius, int segments);
 /// Cylinder along z from −height/2 to +height/2 with smooth sides and flat caps.
 TriangleMesh make_cylinder(double radius, double height, int segments, bool caps);
 
-/// Reads OBJ, PLY, glTF (anything assimp reads) into one mesh in file units, vertex order kept
-/// (so per-vertex data files line up). Throws tirpol::Error naming the file for a missing,
-/// unreadable or empty mesh.
+/// Reads OBJ, PLY, glTF (anything assimp reads) into one mesh in file units and the file's own
+/// axes, vertex order kept (so per-vertex data files line up). Throws tirpol::Error naming the
+/// file for a missing, unreadable or empty mesh.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
+
+/// The axis of a mesh file that points up; tirpol's world is z-up (east, north, up).
+enum class UpAxis { y, z };
+
+/// "y" or "z" (the scene file's `up_axis`); nullopt for anything else.
+std::optional<UpAxis> up_axis_from_name(std::string_view name);
+/// The up axis a file's format defines: y for glTF 2.0 (.gltf, .glb), whose specification (Khronos
+/// glTF 2.0.1, section 3.4 "Coordinate System and Units") makes +Y up, +Z forward (the front of an
+/// asset faces +Z) and −X right; z for the rest: OBJ and PLY define no axes, and their files are
+/// taken as written.
+UpAxis default_up_axis(const std::filesystem::path& path);
+/// Rotation from a file's axes to tirpol's z-up world: identity for z; for y, +90° about x,
+/// (x, y, z) ↦ (x, −z, y), which undoes Blender's z-up → glTF y-up export, so a glTF's up (+Y)
+/// becomes +z and its front (+Z) faces −y (south, toward a camera placed at negative y).
+Mat3 z_up_rotation(UpAxis axis);
 
 }  // namespace tirpol::simulation
