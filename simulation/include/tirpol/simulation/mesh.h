@@ -54,6 +54,23 @@ TriangleMesh make_cylinder(double radius, double height, int segments, bool caps
 /// file for a missing, unreadable or empty mesh.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
 
+/// Name assimp gives OBJ faces before any `usemtl`. A `usemtl` name keeps its name even when no
+/// .mtl file defines it; a glTF primitive without `material` gets an empty name.
+inline constexpr std::string_view kNoFileMaterial = "DefaultMaterial";
+
+/// A mesh file's triangles and the material each one uses, by the name the file gives it: OBJ
+/// `usemtl` names (defined in the .mtl files of its `mtllib`), glTF materials' `name`.
+struct MeshFile {
+    TriangleMesh mesh;
+    std::vector<std::string> material_names;       ///< distinct names, in order of first use
+    std::vector<std::uint32_t> triangle_material;  ///< per triangle: index into material_names
+};
+
+/// As load_mesh_file, with each triangle's material name: a glTF primitive's `material` index picks
+/// a material whose `name` is used; an unnamed one (or a primitive without `material`) gives an
+/// empty name (assimp renumbers glTF materials, so the index itself cannot name it).
+MeshFile read_mesh_file(const std::filesystem::path& path);
+
 /// The axis of a mesh file that points up; tirpol's world is z-up (east, north, up).
 enum class UpAxis { y, z };
 
