@@ -54,8 +54,9 @@ TriangleMesh make_cylinder(double radius, double height, int segments, bool caps
 /// file for a missing, unreadable or empty mesh.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
 
-/// Name assimp gives OBJ faces before any `usemtl`. A `usemtl` name keeps its name even when no
-/// .mtl file defines it; a glTF primitive without `material` gets an empty name.
+/// Name assimp gives OBJ faces before any `usemtl`. A `usemtl` name keeps its name
+/// even when no .mtl file defines it; a glTF primitive without `material` gets an
+/// empty name.
 inline constexpr std::string_view kNoFileMaterial = "DefaultMaterial";
 
 /// A mesh file's triangles and the material each one uses, by the name the file gives it: OBJ
