@@ -3,7 +3,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
 
 #include "tirpol/core/error.h"
@@ -113,7 +115,18 @@ TriangleMesh make_cylinder(double radius, double height, int segments, bool caps
     return m;
 }
 
-TriangleMesh load_mesh_file(const std::filesystem::path& path) {
+namespace {
+/// The name a file gives material `index`; empty if it has none.
+std::string material_name(const aiScene& scene, unsigned index) {
+    aiString name;
+    if (index < scene.mNumMaterials &&
+        scene.mMaterials[index]->Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS)
+        return name.C_Str();
+    return {};
+}
+}  // namespace
+
+MeshFile read_mesh_file(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path)) fail("mesh file not found: {}", path.string());
     Assimp::Importer importer;
     // No vertex joining or re-ordering: per-vertex data files refer to the file's vertex order.
@@ -121,10 +134,15 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
         path.string(), aiProcess_Triangulate | aiProcess_GenNormals |
                            aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (!scene) fail("cannot read mesh {}: {}", path.string(), importer.GetErrorString());
-    TriangleMesh m;
+    MeshFile out;
+    TriangleMesh& m = out.mesh;
     for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
         const aiMesh* mesh = scene->mMeshes[mi];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        const std::string name = material_name(*scene, mesh->mMaterialIndex);
+        auto it = std::find(out.material_names.begin(), out.material_names.end(), name);
+        if (it == out.material_names.end()) it = out.material_names.insert(it, name);
+        const auto material = static_cast<std::uint32_t>(it - out.material_names.begin());
         const auto base = static_cast<std::uint32_t>(m.positions.size());
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
@@ -141,10 +159,33 @@ TriangleMesh load_mesh_file(const std::filesystem::path& path) {
             if (face.mNumIndices != 3) continue;
             m.triangles.push_back(
                 {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+            out.triangle_material.push_back(material);
         }
     }
     if (m.triangles.empty()) fail("mesh {} has no triangles", path.string());
-    return m;
+    return out;
+}
+
+TriangleMesh load_mesh_file(const std::filesystem::path& path) { return read_mesh_file(path).mesh; }
+
+std::optional<UpAxis> up_axis_from_name(std::string_view name) {
+    if (name == "y") return UpAxis::y;
+    if (name == "z") return UpAxis::z;
+    return std::nullopt;
+}
+
+UpAxis default_up_axis(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".gltf" || ext == ".glb" ? UpAxis::y : UpAxis::z;
+}
+
+Mat3 z_up_rotation(UpAxis axis) {
+    if (axis == UpAxis::z) return Mat3::Identity();
+    Mat3 r;
+    r << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    return r;
 }
 
 }  // namespace tirpol::simulation

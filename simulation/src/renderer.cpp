@@ -206,14 +206,15 @@ public:
             const detail::SurfaceBasis basis(n);
             const Vec3 wo_local = basis.to_local(wo);
             const SceneObject& object = m_scene.objects[hit->object];
-            const materials::PolarizedBrdf& brdf = *m_scene.materials[object.material].brdf;
+            const std::uint32_t material = object.material_at(hit->primitive);
+            const materials::PolarizedBrdf& brdf = *m_scene.materials[material].brdf;
             const double blackbody = object_blackbody(*hit, k);
 
             // Surface-leaving Stokes is expressed in surface_frame(wo, n) (pbrdf.h); rotate into
             // the ray's frame.
             const MuellerMatrix leaving = times_rotation(throughput, wo, n, frame_reference);
             const StokesVector emissivity =
-                m_emissivity[object.material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
+                m_emissivity[material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
             radiance += leaving * emissivity * blackbody;  // eq 13
             if (bounce >= max_bounces)
                 break;  // safety cap only: Russian roulette ends paths (below)
@@ -498,7 +499,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                     ch.view_zenith[i] =
                         static_cast<float>(rad_to_deg(std::acos(std::clamp(-n.dot(d), -1.0, 1.0))));
                     ch.object_id[i] = static_cast<float>(hit->object);
-                    ch.material_id[i] = static_cast<float>(obj.material);
+                    ch.material_id[i] = static_cast<float>(obj.material_at(hit->primitive));
                     ch.temperature[i] = static_cast<float>(
                         obj.temperature.at(*hit, scene.tracer->mesh(hit->object)));
                 } else {

@@ -44,26 +44,57 @@ int segments_of(const ConfigNode& g) {
     return static_cast<int>(s);
 }
 
-/// Adds the object's geometry to the tracer; returns true if it is an analytic sphere. The vertex
-/// positions before the transform go to `object_positions` (per-vertex data files refer to them).
-bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer,
-                  std::vector<Vec3>& object_positions) {
+/// What add_geometry tells the rest of the loader about an object's geometry.
+struct AddedGeometry {
+    bool is_sphere = false;
+    /// Vertex positions in the file's or primitive's own frame, before any transform (per-vertex
+    /// data files refer to them).
+    std::vector<Vec3> object_positions;
+    std::filesystem::path mesh_file;               ///< empty for primitives
+    std::vector<std::string> material_names;       ///< a mesh file's, read_mesh_file()
+    std::vector<std::uint32_t> triangle_material;  ///< index into material_names
+};
+
+/// Adds the object's geometry to the tracer.
+AddedGeometry add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer) {
     const std::string type = g.get<std::string>("type");
+    AddedGeometry added;
     TriangleMesh mesh;
     if (type == "sphere") {
         g.check_keys({"type", "radius"});
         if (!t.uniform_scale())
             g.fail("a sphere needs a uniform scale (use a mesh for ellipsoids)");
         tracer.add_sphere(t.translate, g.get_in_range("radius", 1e-9, 1e9) * std::abs(t.scale.x()));
-        return true;
+        added.is_sphere = true;
+        return added;
     }
     if (type == "mesh") {
-        g.check_keys({"type", "file"});
+        g.check_keys({"type", "file", "up_axis"});
         const ConfigNode file = g.at("file");
         const auto path = g.resolve_path(file.as<std::string>());
         if (!std::filesystem::is_regular_file(path))
             file.fail("mesh file not found: " + path.string());
-        mesh = load_mesh_file(path);
+        UpAxis up = default_up_axis(path);
+        if (auto n = g.find("up_axis")) {
+            const auto name = n->as<std::string>();
+            const auto axis = up_axis_from_name(name);
+            if (!axis)
+                n->fail(fmt::format("expected y or z (the file's axis that points up), got \"{}\"",
+                                    name));
+            up = *axis;
+        }
+        MeshFile read = read_mesh_file(path);
+        added.mesh_file = path;
+        added.material_names = std::move(read.material_names);
+        added.triangle_material = std::move(read.triangle_material);
+        added.object_positions = read.mesh.positions;
+        // The file's axes to the z-up world first; the object's transform then acts in the world.
+        Transform to_world;
+        to_world.rotation = z_up_rotation(up);
+        transform_mesh(read.mesh, to_world);
+        transform_mesh(read.mesh, t);
+        tracer.add_mesh(std::move(read.mesh));
+        return added;
     } else if (type == "box") {
         g.check_keys({"type", "size"});
         const Vec3 size = vec3_of(g.at("size"));
@@ -87,10 +118,60 @@ bool add_geometry(const ConfigNode& g, const Transform& t, RayTracer& tracer,
         g.at("type").fail("unknown geometry type \"" + type +
                           "\" (expected mesh, sphere, box, plane, disk or cylinder)");
     }
-    object_positions = mesh.positions;
+    added.object_positions = mesh.positions;
     transform_mesh(mesh, t);
     tracer.add_mesh(std::move(mesh));
-    return false;
+    return added;
+}
+
+/// Per-face materials: each material name the mesh file uses, mapped by the object's `materials:`
+/// to a library name (or a material file, or an inline material). Every name the file uses must be
+/// mapped and every mapped name must be in the file; either miss is an error naming the material
+/// and the file.
+std::vector<std::uint32_t> triangle_materials_of(const ConfigNode& mapping,
+                                                 const AddedGeometry& geometry,
+                                                 detail::MaterialResolver& resolver,
+                                                 std::vector<SceneMaterial>& materials) {
+    if (geometry.mesh_file.empty())
+        mapping.fail(
+            "per-face materials need a mesh file (geometry type mesh); give `material` for a "
+            "primitive");
+    if (!mapping.is_map())
+        mapping.fail(
+            "expected a mapping from the mesh file's material names to material library names, "
+            "e.g. {Paint: glossy_black_paint, Glass: silica_glass}");
+    const std::string file = geometry.mesh_file.string();
+    const auto mapped = mapping.keys();
+    for (const auto& name : geometry.material_names) {
+        if (name.empty())
+            mapping.fail(fmt::format(
+                "mesh file {} has faces whose material has no name (a glTF material without "
+                "`name`, or a primitive without `material`): name it in the file to map it",
+                file));
+        if (std::find(mapped.begin(), mapped.end(), name) == mapped.end())
+            mapping.fail(fmt::format(
+                "mesh file {} uses material \"{}\"{}, which this mapping does not name (it names: "
+                "{})",
+                file, name,
+                name == kNoFileMaterial
+                    ? " (faces the file gives no material: an OBJ without usemtl before them, "
+                      "or a glTF primitive without material)"
+                    : "",
+                fmt::join(mapped, ", ")));
+    }
+    for (const auto& name : mapped)
+        if (std::find(geometry.material_names.begin(), geometry.material_names.end(), name) ==
+            geometry.material_names.end())
+            mapping.at(name).fail(
+                fmt::format("mesh file {} has no material \"{}\" (its materials: {})", file, name,
+                            fmt::join(geometry.material_names, ", ")));
+    std::vector<std::uint32_t> scene_index;
+    for (const auto& name : geometry.material_names)
+        scene_index.push_back(resolver.resolve(mapping.at(name), materials));
+    std::vector<std::uint32_t> out;
+    out.reserve(geometry.triangle_material.size());
+    for (const std::uint32_t m : geometry.triangle_material) out.push_back(scene_index[m]);
+    return out;
 }
 
 bool in_temperature_range(double t_k) {
@@ -294,15 +375,31 @@ Scene load_scene(const ConfigNode& root) {
     const auto elements = objects_node.elements();
     if (elements.empty()) objects_node.fail("a scene needs at least one object");
     for (const ConfigNode& o : elements) {
-        o.check_keys({"name", "geometry", "transform", "material", "temperature"});
+        o.check_keys({"name", "geometry", "transform", "material", "materials", "temperature"});
         SceneObject obj;
         obj.name = o.get_or<std::string>("name", fmt::format("object{}", objects.size()));
-        std::vector<Vec3> object_positions;
-        const bool is_sphere = add_geometry(o.at("geometry"), transform_of(o.find("transform")),
-                                            *tracer, object_positions);
-        obj.material = resolver.resolve(o.at("material"), materials);
-        obj.temperature =
-            temperature_of(o.at("temperature"), is_sphere, object_positions, has_weather);
+        const AddedGeometry geometry =
+            add_geometry(o.at("geometry"), transform_of(o.find("transform")), *tracer);
+        if (o.has("material") && o.has("materials"))
+            o.fail(
+                "give either `material` (one for the whole object) or `materials` (the mesh "
+                "file's material names mapped to library names), not both");
+        if (auto mapping = o.find("materials")) {
+            obj.triangle_materials = triangle_materials_of(*mapping, geometry, resolver, materials);
+            obj.material = obj.triangle_materials.front();
+            if (std::all_of(obj.triangle_materials.begin(), obj.triangle_materials.end(),
+                            [&](std::uint32_t m) { return m == obj.material; }))
+                obj.triangle_materials.clear();
+            const ConfigNode t = o.at("temperature");
+            if (!obj.triangle_materials.empty() && t.is_scalar() && is_predicted_temperature(t))
+                t.fail(
+                    "a mesh with several materials needs its thermal material named: "
+                    "{predicted: NAME}");
+        } else {
+            obj.material = resolver.resolve(o.at("material"), materials);
+        }
+        obj.temperature = temperature_of(o.at("temperature"), geometry.is_sphere,
+                                         geometry.object_positions, has_weather);
         objects.push_back(std::move(obj));
     }
     tracer->commit();

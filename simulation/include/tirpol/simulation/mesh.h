@@ -5,6 +5,9 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/core/geometry.h"
@@ -46,9 +49,42 @@ TriangleMesh make_disk(double radius, int segments);
 /// Cylinder along z from −height/2 to +height/2 with smooth sides and flat caps.
 TriangleMesh make_cylinder(double radius, double height, int segments, bool caps);
 
-/// Reads OBJ, PLY, glTF (anything assimp reads) into one mesh in file units, vertex order kept
-/// (so per-vertex data files line up). Throws tirpol::Error naming the file for a missing,
-/// unreadable or empty mesh.
+/// Reads OBJ, PLY, glTF (anything assimp reads) into one mesh in file units and the file's own
+/// axes, vertex order kept (so per-vertex data files line up). Throws tirpol::Error naming the
+/// file for a missing, unreadable or empty mesh.
 TriangleMesh load_mesh_file(const std::filesystem::path& path);
+
+/// Name assimp gives OBJ faces before any `usemtl`. A `usemtl` name keeps its name
+/// even when no .mtl file defines it; a glTF primitive without `material` gets an
+/// empty name.
+inline constexpr std::string_view kNoFileMaterial = "DefaultMaterial";
+
+/// A mesh file's triangles and the material each one uses, by the name the file gives it: OBJ
+/// `usemtl` names (defined in the .mtl files of its `mtllib`), glTF materials' `name`.
+struct MeshFile {
+    TriangleMesh mesh;
+    std::vector<std::string> material_names;       ///< distinct names, in order of first use
+    std::vector<std::uint32_t> triangle_material;  ///< per triangle: index into material_names
+};
+
+/// As load_mesh_file, with each triangle's material name: a glTF primitive's `material` index picks
+/// a material whose `name` is used; an unnamed one (or a primitive without `material`) gives an
+/// empty name (assimp renumbers glTF materials, so the index itself cannot name it).
+MeshFile read_mesh_file(const std::filesystem::path& path);
+
+/// The axis of a mesh file that points up; tirpol's world is z-up (east, north, up).
+enum class UpAxis { y, z };
+
+/// "y" or "z" (the scene file's `up_axis`); nullopt for anything else.
+std::optional<UpAxis> up_axis_from_name(std::string_view name);
+/// The up axis a file's format defines: y for glTF 2.0 (.gltf, .glb), whose specification (Khronos
+/// glTF 2.0.1, section 3.4 "Coordinate System and Units") makes +Y up, +Z forward (the front of an
+/// asset faces +Z) and −X right; z for the rest: OBJ and PLY define no axes, and their files are
+/// taken as written.
+UpAxis default_up_axis(const std::filesystem::path& path);
+/// Rotation from a file's axes to tirpol's z-up world: identity for z; for y, +90° about x,
+/// (x, y, z) ↦ (x, −z, y), which undoes Blender's z-up → glTF y-up export, so a glTF's up (+Y)
+/// becomes +z and its front (+Z) faces −y (south, toward a camera placed at negative y).
+Mat3 z_up_rotation(UpAxis axis);
 
 }  // namespace tirpol::simulation

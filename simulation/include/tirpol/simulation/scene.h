@@ -76,8 +76,18 @@ struct SceneMaterial {
 
 struct SceneObject {
     std::string name;
-    std::uint32_t material = 0;  ///< index into Scene::materials
+    /// Index into Scene::materials: the object's material, or with per-face materials that of its
+    /// first triangle.
+    std::uint32_t material = 0;
+    /// Per-face materials of a mesh file (the scene's `materials:` mapping): per triangle, an index
+    /// into Scene::materials. Empty when the whole object is `material`.
+    std::vector<std::uint32_t> triangle_materials;
     TemperatureField temperature;
+
+    /// Index into Scene::materials of the material at triangle `primitive` (SurfaceHit::primitive).
+    std::uint32_t material_at(std::uint32_t primitive) const {
+        return triangle_materials.empty() ? material : triangle_materials[primitive];
+    }
 };
 
 struct Scene {
