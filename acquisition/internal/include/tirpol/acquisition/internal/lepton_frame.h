@@ -42,9 +42,10 @@ std::optional<std::vector<std::uint16_t>> split_lepton_telemetry(Frame& frame,
 /// The frame's fields from telemetry row A: `fpa_temperature_k` and `telemetry`.
 void apply_lepton_telemetry(const lepton::Telemetry& telemetry, Frame& frame);
 
-/// A Lepton's camera (PureThermal's UVC video: `v4l2:///dev/videoN?format=Y16&telemetry=footer`)
-/// whose frames carry telemetry rows: each grabbed frame has them split off (so the image is 80×60
-/// or 160×120 and `info()` says so) and row A decoded into the frame (`Frame::telemetry`,
+/// A Lepton's camera (PureThermal's UVC video:
+/// `v4l2:///dev/videoN?format=Y16&width=160&height=122&telemetry=footer`) whose frames carry
+/// telemetry rows: each grabbed frame has them split off (so the image is 80×60 or 160×120 and
+/// `info()` says so) and row A decoded into the frame (`Frame::telemetry`,
 /// `Frame::fpa_temperature_k`). Opening fails with NotSupported when the inner camera's size has no
 /// telemetry layout (telemetry not enabled on the core, or not a Lepton); a frame whose row A does
 /// not parse (revision word 0: telemetry switched off mid-stream, or at the other end of the frame)
