@@ -17,11 +17,11 @@
 #include <regex>
 #include <sstream>
 
+#include "access.h"
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
 #include "tirpol/core/session.h"
-#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 namespace {
