@@ -60,7 +60,7 @@ function(tirpol_write_production_links file)
   foreach(module ${modules})
     list(APPEND shipped tirpol_${module})
   endforeach()
-  list(APPEND shipped tirpol_cli tirpol tirpol-stage-sim tirpol-boson-sim tirpol-blackbody-sim
+  list(APPEND shipped tirpol_cli tirpol tirpol_examples tirpol-stage-sim tirpol-boson-sim tirpol-blackbody-sim
        tirpol_python_extension)
   set(text "")
   foreach(target ${shipped})

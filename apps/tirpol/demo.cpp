@@ -1,13 +1,13 @@
-// `tirpol demo`: runs what exists of the pipeline end to end on built-in data and writes the
-// results under one output folder. Each module extends it (see docs/demo.md).
+// `tirpol demo`: runs the examples (examples/, each also its own program tirpol-example-<name>) in
+// pipeline order, all writing under one output folder (docs/demo.md).
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli.h"
-#include "demo_steps.h"
+#include "examples.h"
 
 namespace tirpol::cli {
 
@@ -19,17 +19,15 @@ void register_demo(CLI::App& app) {
     cmd->add_option("-o,--output", *out_dir, "Output folder")->capture_default_str();
     add_force_flag(cmd, *force);
     cmd->callback([out_dir, force] {
-        OutputGuard()
-            .output_folder(*out_dir, "--output",
-                           {"acquisition", "analyzer", "calibration", "fitting", "materials",
-                            "radiometry", "simulation", "thermal", "twin"})
-            .check(*force);
+        std::vector<std::string> step_folders;
+        for (const auto& example : examples::all_examples()) step_folders.push_back(example.name);
+        OutputGuard().output_folder(*out_dir, "--output", step_folders).check(*force);
         const std::filesystem::path dir = std::filesystem::absolute(*out_dir);
         std::filesystem::create_directories(dir);
         std::printf("tirpol demo → %s\n", dir.c_str());
-        for (const auto& step : demo_steps()) {
-            std::printf("\n== %s\n", step.title.c_str());
-            step.run(dir);
+        for (const auto& example : examples::all_examples()) {
+            std::printf("\n== %s\n", example.title.c_str());
+            example.run(dir);
         }
         std::printf("\nDemo finished. Results are in %s\n", dir.c_str());
     });

@@ -1,7 +1,6 @@
 // `tirpol sun`: solar zenith, azimuth and incidence on a tilted surface (NREL SPA).
 
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli.h"
@@ -49,19 +48,10 @@ void run_sun(const SunArgs& a) {
     const thermal::SolarPosition s = thermal::solar_position(in);
     const double incidence = thermal::incidence_angle_deg(s, a.tilt_deg, a.surface_azimuth_deg);
     if (a.json) {
-        nlohmann::json out;
-        out["time_utc"] = thermal::format_time(in.unix_seconds, 0.0);
-        out["julian_day"] = s.julian_day;
-        out["zenith_deg"] = s.zenith_deg;
-        out["elevation_deg"] = s.elevation_deg;
-        out["azimuth_deg"] = s.azimuth_deg;
-        out["declination_deg"] = s.declination_deg;
-        out["hour_angle_deg"] = s.hour_angle_deg;
-        out["earth_sun_distance_au"] = s.earth_radius_au;
-        out["surface"] = {{"tilt_deg", a.tilt_deg},
-                          {"azimuth_deg", a.surface_azimuth_deg},
-                          {"incidence_deg", incidence}};
-        std::printf("%s\n", json_text(out, 2).c_str());
+        std::printf(
+            "%s\n",
+            json_text(thermal::solar_position_json(in, s, a.tilt_deg, a.surface_azimuth_deg), 2)
+                .c_str());
         return;
     }
     std::printf("time (UTC)        %s   JD %.6f\n",

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/microgrid_accuracy.h"
+#include "microgrid_accuracy.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/offset_drift.h"
+#include "offset_drift.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <limits>
 #include <map>
 
-#include "tirpol/calibration/offset_drift.h"
+#include "offset_drift.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"

@@ -1,4 +1,4 @@
-#include "tirpol/live/access.h"
+#include "access.h"
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>

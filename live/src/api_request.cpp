@@ -2,9 +2,9 @@
 
 #include <charconv>
 
+#include "access.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 

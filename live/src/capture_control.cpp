@@ -5,12 +5,12 @@
 
 #include <filesystem>
 
+#include "tapped_camera.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/capture_session.h"
 #include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/tapped_camera.h"
 
 namespace tirpol::live {
 

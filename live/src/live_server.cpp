@@ -8,10 +8,10 @@
 #include <map>
 #include <optional>
 
+#include "access.h"
 #include "guarded_server.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/access.h"
 #include "tirpol/live/api_request.h"
 
 namespace tirpol::live {

@@ -6,8 +6,8 @@
 #include <cctype>
 #include <charconv>
 
+#include "access.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 

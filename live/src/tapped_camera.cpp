@@ -1,4 +1,4 @@
-#include "tirpol/live/tapped_camera.h"
+#include "tapped_camera.h"
 
 namespace tirpol::live {
 

@@ -1,4 +1,4 @@
-#include "tirpol/simulation/csv_columns.h"
+#include "csv_columns.h"
 
 #include <charconv>
 #include <sstream>

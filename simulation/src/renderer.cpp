@@ -14,6 +14,9 @@
 #include <limits>
 #include <memory>
 
+#include "render_memory.h"
+#include "rng.h"
+#include "sobol_sampler.h"
 #include "surface_basis.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
@@ -24,9 +27,6 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/emissivity_cache.h"
-#include "tirpol/simulation/render_memory.h"
-#include "tirpol/simulation/rng.h"
-#include "tirpol/simulation/sobol_sampler.h"
 
 namespace tirpol::simulation {
 

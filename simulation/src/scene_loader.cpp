@@ -4,14 +4,14 @@
 #include <optional>
 #include <tuple>
 
+#include "csv_columns.h"
 #include "material_resolution.h"
+#include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/limits.h"
-#include "tirpol/simulation/csv_columns.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/simulation/scene_thermal.h"
-#include "tirpol/simulation/temperature_value.h"
 
 namespace tirpol::simulation {
 

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
+#include "rng.h"
+#include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/simulation/rng.h"
-#include "tirpol/simulation/temperature_value.h"
 
 namespace tirpol::simulation {
 

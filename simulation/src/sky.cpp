@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "csv_columns.h"
+#include "temperature_value.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/csv_columns.h"
-#include "tirpol/simulation/temperature_value.h"
 #include "tirpol/thermal/sky_longwave.h"
 
 namespace tirpol::simulation {

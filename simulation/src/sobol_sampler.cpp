@@ -1,4 +1,4 @@
-#include "tirpol/simulation/sobol_sampler.h"
+#include "sobol_sampler.h"
 
 namespace tirpol::simulation {
 

@@ -1,4 +1,4 @@
-#include "tirpol/simulation/temperature_value.h"
+#include "temperature_value.h"
 
 #include <charconv>
 #include <string>

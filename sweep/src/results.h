@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "tirpol/sweep/sweep_results.h"
+#include "sweep_results.h"
 
 namespace tirpol::sweep::detail {
 

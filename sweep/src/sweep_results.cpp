@@ -1,4 +1,4 @@
-#include "tirpol/sweep/sweep_results.h"
+#include "sweep_results.h"
 
 #include "results.h"
 

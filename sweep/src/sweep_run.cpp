@@ -10,9 +10,9 @@
 #include "manifest.h"
 #include "mpi_dispatch.h"
 #include "point_render.h"
+#include "sweep_results.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/folder_lock.h"
-#include "tirpol/sweep/sweep_results.h"
 
 namespace tirpol::sweep {
 

@@ -13,8 +13,8 @@
 #include <limits>
 #include <random>
 
+#include "microgrid_accuracy.h"
 #include "microgrid_scenes.h"
-#include "tirpol/calibration/microgrid_accuracy.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 

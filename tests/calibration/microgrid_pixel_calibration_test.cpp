@@ -12,7 +12,7 @@
 #include <numbers>
 #include <random>
 
-#include "tirpol/calibration/microgrid_accuracy.h"
+#include "microgrid_accuracy.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 

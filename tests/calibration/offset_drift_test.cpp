@@ -4,7 +4,7 @@
 // with the drift correction (in-scene reference region, or interleaved shutter records) and err by
 // > 1 K without.
 
-#include "tirpol/calibration/offset_drift.h"
+#include "offset_drift.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -8,9 +8,9 @@
 
 #include <thread>
 
+#include "tapped_camera.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/live/latest_slot.h"
-#include "tirpol/live/tapped_camera.h"
 
 namespace tirpol::live {
 namespace {

@@ -20,13 +20,13 @@
 #include <regex>
 #include <sstream>
 
+#include "access.h"
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
 #include "png_text.h"
 #include "test_support.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
-#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 namespace {

@@ -12,10 +12,10 @@
 #include <functional>
 #include <thread>
 
+#include "access.h"
 #include "decoded_image.h"
 #include "served_live_view.h"
 #include "tirpol/core/error.h"
-#include "tirpol/live/access.h"
 
 namespace tirpol::live {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <algorithm>
 
-#include "tirpol/live/access.h"
+#include "access.h"
 
 namespace tirpol::live {
 namespace {

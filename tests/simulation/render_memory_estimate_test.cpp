@@ -5,10 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "render_memory.h"
 #include "scene_fixtures.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/limits.h"
-#include "tirpol/simulation/render_memory.h"
 
 namespace tirpol::simulation {
 namespace {

@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "scene_fixtures.h"
+#include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/simulation/temperature_value.h"
 
 namespace tirpol::simulation {
 namespace {

@@ -5,7 +5,7 @@
 // (0,2)-sequence are one, and Owen scrambling keeps it one (Owen 1995). The padding permutation
 // must not break it.
 
-#include "tirpol/simulation/sobol_sampler.h"
+#include "sobol_sampler.h"
 
 #include <gtest/gtest.h>
 

@@ -4,11 +4,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "temperature_value.h"
 #include "test_support.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/temperature_value.h"
 
 namespace tirpol::simulation {
 namespace {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/civil_time.h"
@@ -53,6 +54,24 @@ TEST(SolarPosition, ReproducesReportIncidenceOnTiltedSurface) {
     // Report: slope 30°, surface azimuth rotation −10° (east of south) → 170° from north.
     const SolarPosition s = solar_position(report_example());
     EXPECT_NEAR(incidence_angle_deg(s, 30.0, 170.0), 25.18700, 1e-5);
+}
+
+TEST(SolarPosition, JsonCarriesTheReportsWorkedExample) {
+    // The keys of `tirpol sun --json` (docs/thermal.md) with the report's values (Table A5.2) and
+    // its incidence on the 30° slope facing 170°.
+    const SpaInput in = report_example();
+    const nlohmann::json out = solar_position_json(in, solar_position(in), 30.0, 170.0);
+    EXPECT_EQ(out.at("time_utc").get<std::string>(), format_time(in.unix_seconds, 0.0));
+    EXPECT_EQ(out.at("time_utc").get<std::string>().substr(0, 19), "2003-10-17T19:30:30");
+    EXPECT_NEAR(out.at("julian_day").get<double>(), 2452930.312847, 1e-6);
+    EXPECT_NEAR(out.at("zenith_deg").get<double>(), 50.11162, 1e-5);
+    EXPECT_NEAR(out.at("elevation_deg").get<double>(), 90.0 - 50.11162, 1e-5);
+    EXPECT_NEAR(out.at("azimuth_deg").get<double>(), 194.34024, 1e-5);
+    EXPECT_NEAR(out.at("earth_sun_distance_au").get<double>(), 0.9965422974, 1e-10);
+    EXPECT_NEAR(out.at("hour_angle_deg").get<double>(), 11.105902, 1e-6);
+    EXPECT_DOUBLE_EQ(out.at("surface").at("tilt_deg").get<double>(), 30.0);
+    EXPECT_DOUBLE_EQ(out.at("surface").at("azimuth_deg").get<double>(), 170.0);
+    EXPECT_NEAR(out.at("surface").at("incidence_deg").get<double>(), 25.18700, 1e-5);
 }
 
 TEST(SolarPosition, IncidenceMatchesAngleBetweenSunAndNormalVectors) {

@@ -5,6 +5,8 @@
 /// (2004). Topocentric zenith and azimuth, uncertainty ±0.0003° for years −2000…6000. Equation
 /// numbers below are the report's (section 3).
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "tirpol/core/geometry.h"
 
 namespace tirpol::thermal {
@@ -50,6 +52,12 @@ SolarPosition solar_position(const SpaInput& input);
 /// points to azimuth `surface_azimuth_deg` (from north, eastward) — the report's eq. 47 with its γ
 /// measured from north rather than from south. >90° means the sun is behind the surface.
 double incidence_angle_deg(const SolarPosition& sun, double tilt_deg, double surface_azimuth_deg);
+
+/// `tirpol sun --json` (keys in docs/thermal.md): the instant in UTC, Julian day, zenith,
+/// elevation, azimuth, declination, hour angle, Earth–Sun distance, and the incidence on the
+/// surface tilted `tilt_deg` facing `surface_azimuth_deg`.
+nlohmann::json solar_position_json(const SpaInput& input, const SolarPosition& position,
+                                   double tilt_deg, double surface_azimuth_deg);
 
 /// Unit vector towards the sun in the world frame (x east, y north, z up).
 Vec3 sun_direction(const SolarPosition& sun);

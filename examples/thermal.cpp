@@ -1,9 +1,9 @@
-// Demo step: sun position check and a day of surface temperatures for the ball-on-snow example.
+// Example: sun position check and a day of surface temperatures for the ball-on-snow example.
 
 #include <cstdio>
 #include <sstream>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
@@ -13,7 +13,7 @@
 #include "tirpol/thermal/solar_position.h"
 #include "tirpol/thermal/thermal_config.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 
@@ -23,7 +23,9 @@ std::filesystem::path find_thermal_config() {
     return find_config("thermal/ball_on_snow_thermal.yaml");
 }
 
-void demo_thermal(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void thermal_example(const std::filesystem::path& out_dir) {
     // The SPA report's worked example (Reda & Andreas, NREL/TP-560-34302): zenith 50.11162°,
     // azimuth 194.34024°.
     thermal::SpaInput in;
@@ -81,10 +83,4 @@ void demo_thermal(const std::filesystem::path& out_dir) {
     std::printf("  table and plot: %s\n", (out_dir / "thermal").c_str());
 }
 
-}  // namespace
-
-TIRPOL_REGISTER_DEMO_STEP(
-    290, "Thermal: SPA check and a day of ball-on-snow surface temperatures (1D slab model)",
-    demo_thermal);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

@@ -1,4 +1,4 @@
-// Demo step: calibrate simulated sessions with known truth — laboratory blackbodies → per-pixel
+// Example: calibrate simulated sessions with known truth — laboratory blackbodies → per-pixel
 // radiometry and bad pixels; field blackbodies through the tilted wire grid and a known polarized
 // source → τ/B maps and analyzer model; a panel scene → Stokes images; eq 17 → emissivity CSV;
 // a blackbody frame stack → NEDT and 3D noise. Prints recovered against true values.
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/noise.h"
 #include "tirpol/calibration/synthetic_session.h"
@@ -15,7 +15,7 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 double panel_mean(const Image& im, const std::string& channel, int x0, int x1, int y0, int y1) {
@@ -29,7 +29,9 @@ double panel_mean(const Image& im, const std::string& channel, int x0, int x1, i
     return sum / n;
 }
 
-void demo_calibration(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void calibration_example(const std::filesystem::path& out_dir) {
     namespace cal = tirpol::calibration;
     const auto dir = out_dir / "calibration";
     std::filesystem::remove_all(dir / "sessions");  // sessions are never overwritten: start afresh
@@ -140,11 +142,5 @@ void demo_calibration(const std::filesystem::path& out_dir) {
         "S0..DoLP.png}\n",
         dir.c_str());
 }
-}  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(
-    500,
-    "Calibration: blackbody radiometry, wire-grid removal, Stokes reduction, emissivity (eq 17)",
-    demo_calibration);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

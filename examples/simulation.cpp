@@ -1,4 +1,4 @@
-// Demo step: render two of the paper's scenes (ball on snow at night, nine panels under a clear
+// Example: render two of the paper's scenes (ball on snow at night, nine panels under a clear
 // night sky) at small resolution, write their Stokes EXRs and quicklooks, and print the
 // phenomenology the paper reports (ball: S1 < 0 at 12 o'clock, > 0 at 3 o'clock; panels: S1 < 0,
 // emission-dominated).
@@ -6,14 +6,14 @@
 #include <cstdio>
 #include <vector>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 std::filesystem::path scene_path(const std::string& name) { return find_config("scenes/" + name); }
@@ -35,7 +35,9 @@ Image render_small(const std::string& name, int width, int height, int spp,
     return image;
 }
 
-void demo_simulation(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void simulation_example(const std::filesystem::path& out_dir) {
     const Image ball = render_small("ball_on_snow_night.yaml", 160, 128, 16, out_dir);
     // The ball (radius 0.15 m at 3.3 m, 22° field) is near the image centre; find its extent from
     // object ids.
@@ -64,10 +66,5 @@ void demo_simulation(const std::filesystem::path& out_dir) {
         "(emission-dominated: < 0)\n",
         panels.at("S1", 80, 64));
 }
-}  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(
-    300, "Simulation: polarized LWIR renders of the paper's ball-on-snow and panel scenes",
-    demo_simulation);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

@@ -1,4 +1,4 @@
-// Demo step: a full 0/45/90/135° capture session with the instrument simulated end to end — a
+// Example: a full 0/45/90/135° capture session with the instrument simulated end to end — a
 // Thorlabs K10CR1 spoken to in its APT byte protocol over a pseudo-terminal (tirpol-stage-sim's
 // engine), and a simulated camera looking through the polarizer at a panel whose emission is
 // vertically polarized (DoLP 0.2, AoP 90°) in front of an unpolarized background.
@@ -9,14 +9,14 @@
 #include <numbers>
 #include <thread>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/session.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 
@@ -34,7 +34,9 @@ void scene(double theta_deg, std::vector<float>& counts) {
                 in_panel(x, y) ? 0.5 * kPanel * (1.0 + kPanelDolp * c) : 0.5 * kBackground);
 }
 
-void demo_acquisition(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void acquisition_example(const std::filesystem::path& out_dir) {
     using namespace acquisition;
     StageSimulatorOptions sim_options;
     sim_options.protocol = SimProtocol::Apt;
@@ -108,11 +110,4 @@ void demo_acquisition(const std::filesystem::path& out_dir) {
     std::printf("  session: %s\n", dir.c_str());
 }
 
-}  // namespace
-
-TIRPOL_REGISTER_DEMO_STEP(
-    400,
-    "Acquisition: 0/45/90/135° session with a simulated K10CR1 (APT protocol on a pty) and camera",
-    demo_acquisition);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

@@ -1,4 +1,4 @@
-// Demo step: simulate a polarized-emissivity measurement of the flat black paint (the paper's Fig.
+// Example: simulate a polarized-emissivity measurement of the flat black paint (the paper's Fig.
 // 1 target), fit the micro-facet model back, write the fitted material, its report and a Fig.
 // 1-style plot, and re-evaluate the emissivity with the fitted material loaded as the renderer
 // loads it.
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <random>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
@@ -22,7 +22,7 @@
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 
@@ -38,7 +38,9 @@ std::filesystem::path materials_dir() {
     return find_config("materials");
 }
 
-void demo_fitting(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void fitting_example(const std::filesystem::path& out_dir) {
     const auto start_time = std::chrono::steady_clock::now();
     const auto dir = out_dir / "fitting";
     const materials::Material paint =
@@ -130,11 +132,4 @@ void demo_fitting(const std::filesystem::path& out_dir) {
     std::printf("  files: %s, %s, %s (%.1f s)\n", csv.c_str(), yaml.c_str(), png.c_str(), seconds);
 }
 
-}  // namespace
-
-TIRPOL_REGISTER_DEMO_STEP(
-    600,
-    "Fitting: micro-facet parameters of the flat black paint from simulated polarized emissivity",
-    demo_fitting);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

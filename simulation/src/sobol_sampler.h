@@ -28,7 +28,7 @@
 #include <array>
 #include <cstdint>
 
-#include "tirpol/simulation/rng.h"
+#include "rng.h"
 
 namespace tirpol::simulation {
 

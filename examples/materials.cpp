@@ -1,11 +1,11 @@
-// Demo step: polarized emissivity of the paper's flat black paint target (its Fig. 1) from the
+// Example: polarized emissivity of the paper's flat black paint target (its Fig. 1) from the
 // material library, in the 8–14 µm band, as CSV and plot; plus the library's 10 µm emissivities.
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
@@ -13,14 +13,16 @@
 #include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/material.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
 namespace {
 // config/materials of the source tree: searched upwards from the working directory and from the
 // executable's directory (the demo runs from a build tree inside the repository).
 std::filesystem::path find_material_library() { return find_config("materials"); }
 
-void demo_materials(const std::filesystem::path& out_dir) {
+}  // namespace
+
+void materials_example(const std::filesystem::path& out_dir) {
     const auto library_dir = find_material_library();
     const auto library = materials::MaterialLibrary::load_directory(library_dir);
     const materials::Material& paint = library.get("flat_black_paint");
@@ -52,11 +54,5 @@ void demo_materials(const std::filesystem::path& out_dir) {
     write_file_atomic(dir / "library_emissivity_10um.csv", summary);
     std::printf("  plot: %s\n", (dir / "flat_black_paint_emissivity_8_14um.png").c_str());
 }
-}  // namespace
 
-TIRPOL_REGISTER_DEMO_STEP(200,
-                          "Materials: polarized emissivity of the flat black paint (paper Fig. 1) "
-                          "and the material library",
-                          demo_materials);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

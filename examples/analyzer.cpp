@@ -1,14 +1,15 @@
-// Demo step: a Stokes test pattern (AoP sweeping across, DoLP growing downwards) seen through the
+// Example: a Stokes test pattern (AoP sweeping across, DoLP growing downwards) seen through the
 // paper's wire grid (extinction 400:1, §3.1) at 0/45/90/135°, reduced with the ideal eqs 14–16
 // (calibration::reduce_stokes with an ideal analyzer model). The reduction error left by the
 // non-ideal analyzer is what calibration's analyzer model removes.
+
+#include "tirpol/calibration/analyzer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "demo_steps.h"
-#include "tirpol/calibration/analyzer.h"
+#include "examples.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
@@ -16,10 +17,9 @@
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
-namespace {
-void demo_analyzer(const std::filesystem::path& out_dir) {
+void analyzer_example(const std::filesystem::path& out_dir) {
     constexpr int kW = 180, kH = 120;
     const Band band(8.0, 14.0);
     const double s0 = band.radiance(300.0);
@@ -86,10 +86,4 @@ void demo_analyzer(const std::filesystem::path& out_dir) {
                 dir.c_str());
 }
 
-}  // namespace
-
-TIRPOL_REGISTER_DEMO_STEP(
-    150, "Polarimetry: a wire-grid analyzer at 0/45/90/135° and Stokes reduction (eqs 14–16)",
-    demo_analyzer);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples

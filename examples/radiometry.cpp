@@ -1,17 +1,17 @@
-// Demo step: the LWIR band the field camera sees, as a table a person can open.
+// Example: the LWIR band the field camera sees, as a table a person can open.
+
+#include "tirpol/core/radiometry.h"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "demo_steps.h"
+#include "examples.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/radiometry.h"
 
-namespace tirpol::cli {
+namespace tirpol::examples {
 
-namespace {
-void demo_radiometry(const std::filesystem::path& out_dir) {
+void radiometry_example(const std::filesystem::path& out_dir) {
     const Band band(8.0, 14.0);
     std::ostringstream csv;
     csv << "temperature_k,radiance_w_m2_sr,radiance_dT_w_m2_sr_k,brightness_temperature_k,nedt_"
@@ -33,10 +33,4 @@ void demo_radiometry(const std::filesystem::path& out_dir) {
     std::printf("  table: %s\n", path.c_str());
 }
 
-}  // namespace
-
-TIRPOL_REGISTER_DEMO_STEP(
-    100, "Radiometry: 8–14 µm band radiance, dL/dT and brightness-temperature round trip",
-    demo_radiometry);
-
-}  // namespace tirpol::cli
+}  // namespace tirpol::examples
