@@ -10,8 +10,8 @@
 #include <cmath>
 #include <string>
 
+#include "microgrid_accuracy.h"
 #include "test_support.h"
-#include "tirpol/calibration/microgrid_accuracy.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
