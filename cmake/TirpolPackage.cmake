@@ -10,7 +10,7 @@
 
 set(TIRPOL_DEB_DEVELOPMENT_DEPENDS
     libeigen3-dev libfmt-dev libspdlog-dev nlohmann-json3-dev libopenexr-dev libopencv-dev
-    libyaml-cpp-dev libtiff-dev libpng-dev libembree-dev libtbb-dev libassimp-dev libceres-dev
+    libyaml-cpp-dev libtiff-dev libpng-dev zlib1g-dev libembree-dev libtbb-dev libassimp-dev libceres-dev
     libgoogle-glog-dev libopenmpi-dev libcpp-httplib-dev pkg-config)
 if(TIRPOL_HAVE_ARAVIS)
   list(APPEND TIRPOL_DEB_DEVELOPMENT_DEPENDS libaravis-dev)
