@@ -16,3 +16,12 @@ for prog in "${programs[@]}"; do
   "$prog" --benchmark_min_time=0.2 --benchmark_counters_tabular=true "$@" 2>/dev/null
   echo
 done
+# Python benchmarks (bench/*.py) run against the built module; each skips with a message where its
+# Python stack (e.g. cv2) is missing.
+if [[ -d "$build/python/tirpol" ]]; then
+  for script in "$(dirname "$0")"/*.py; do
+    echo "=== $(basename "$script" .py) ==="
+    PYTHONPATH="$build/python" /usr/bin/python3 "$script"
+    echo
+  done
+fi
