@@ -1,9 +1,9 @@
-// Checkerboard detection on 16 synthetic blurred, low-contrast LWIR views (blurred_boards.h):
-// tirpol's detect_target() against OpenCV's findChessboardCorners (classic, default flags, then
-// cornerSubPix) and findChessboardCornersSB, both on a percentile-stretched 8-bit copy. Each
-// benchmark runs the 16 views once and reports boards found, corner RMS against the true corners
-// and time per view. One iteration only: the classic OpenCV search takes seconds on a view it
-// fails.
+// Checkerboard detection on 16 synthetic blurred, low-contrast LWIR views
+// (tests/calibration/blurred_boards.h): tirpol's detect_target() against OpenCV's
+// findChessboardCorners (classic, default flags, then cornerSubPix) and findChessboardCornersSB,
+// both on a percentile-stretched 8-bit copy. Each benchmark runs the 16 views once and reports
+// boards found, corner RMS against the true corners and time per view. One iteration only: the
+// classic OpenCV search takes seconds on a view it fails.
 
 #include <benchmark/benchmark.h>
 
@@ -12,7 +12,7 @@
 #include <opencv2/calib3d.hpp>
 #include <optional>
 
-#include "blurred_boards.h"
+#include "../tests/calibration/blurred_boards.h"
 #include "tirpol/calibration/target_detection.h"
 
 namespace {
@@ -29,10 +29,10 @@ const CalibrationTarget& target() {
     return t;
 }
 
-const std::vector<bench::BlurredBoard>& views() {
-    static const std::vector<bench::BlurredBoard> instance = [] {
-        std::vector<bench::BlurredBoard> v;
-        for (int i = 0; i < kViews; ++i) v.push_back(bench::blurred_board_view(target(), i));
+const std::vector<test::BlurredBoard>& views() {
+    static const std::vector<test::BlurredBoard> instance = [] {
+        std::vector<test::BlurredBoard> v;
+        for (int i = 0; i < kViews; ++i) v.push_back(test::blurred_board_view(target(), i));
         return v;
     }();
     return instance;
@@ -46,7 +46,7 @@ cv::Mat as_8bit(const std::vector<float>& plane) {
     std::sort(sorted.begin(), sorted.end());
     const float lo = sorted[sorted.size() / 200];
     const float hi = sorted[sorted.size() - 1 - sorted.size() / 200];
-    cv::Mat out(bench::kBoardHeight, bench::kBoardWidth, CV_8U);
+    cv::Mat out(test::kBoardHeight, test::kBoardWidth, CV_8U);
     for (std::size_t i = 0; i < plane.size(); ++i)
         out.data[i] = cv::saturate_cast<uchar>(255.0f * (plane[i] - lo) / (hi - lo));
     return out;
@@ -58,16 +58,16 @@ std::vector<Vec2> to_vec2(const std::vector<cv::Point2f>& corners) {
     return pts;
 }
 
-using Detector = std::optional<std::vector<Vec2>> (*)(const bench::BlurredBoard&);
+using Detector = std::optional<std::vector<Vec2>> (*)(const test::BlurredBoard&);
 
-std::optional<std::vector<Vec2>> detect_tirpol(const bench::BlurredBoard& b) {
+std::optional<std::vector<Vec2>> detect_tirpol(const test::BlurredBoard& b) {
     const auto view =
-        detect_target(b.plane, bench::kBoardWidth, bench::kBoardHeight, target(), "view");
+        detect_target(b.plane, test::kBoardWidth, test::kBoardHeight, target(), "view");
     if (!view || view->points_px.size() != target().point_count()) return std::nullopt;
     return view->points_px;
 }
 
-std::optional<std::vector<Vec2>> detect_opencv_classic(const bench::BlurredBoard& b) {
+std::optional<std::vector<Vec2>> detect_opencv_classic(const test::BlurredBoard& b) {
     const cv::Mat gray = as_8bit(b.plane);
     std::vector<cv::Point2f> corners;
     if (!cv::findChessboardCorners(gray, cv::Size(target().columns, target().rows), corners,
@@ -78,7 +78,7 @@ std::optional<std::vector<Vec2>> detect_opencv_classic(const bench::BlurredBoard
     return to_vec2(corners);
 }
 
-std::optional<std::vector<Vec2>> detect_opencv_sb(const bench::BlurredBoard& b) {
+std::optional<std::vector<Vec2>> detect_opencv_sb(const test::BlurredBoard& b) {
     const cv::Mat gray = as_8bit(b.plane);
     std::vector<cv::Point2f> corners;
     if (!cv::findChessboardCornersSB(gray, cv::Size(target().columns, target().rows), corners,
@@ -95,10 +95,10 @@ void run_detector(benchmark::State& state, Detector detector) {
         found = 0;
         sum2 = 0.0;
         const auto start = std::chrono::steady_clock::now();
-        for (const bench::BlurredBoard& b : views()) {
+        for (const test::BlurredBoard& b : views()) {
             const auto corners = detector(b);
             if (!corners) continue;
-            const double rms = bench::corner_rms_px(b.corners_px, *corners);
+            const double rms = test::corner_rms_px(b.corners_px, *corners);
             if (rms < kFoundRmsPx) {
                 ++found;
                 sum2 += rms * rms;

@@ -11,7 +11,7 @@
 #include "tirpol/calibration/calibration_target.h"
 #include "tirpol/core/geometry.h"
 
-namespace tirpol::bench {
+namespace tirpol::test {
 
 struct BlurredBoard {
     std::vector<float> plane;      ///< counts, row-major
@@ -91,4 +91,4 @@ inline double corner_rms_px(const std::vector<Vec2>& truth, const std::vector<Ve
     return std::sqrt(sum2 / static_cast<double>(truth.size()));
 }
 
-}  // namespace tirpol::bench
+}  // namespace tirpol::test
