@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <opencv2/calib3d.hpp>
 #include <optional>
+#include <string>
 
 #include "../tests/calibration/blurred_boards.h"
 #include "tirpol/calibration/target_detection.h"
@@ -87,7 +89,7 @@ std::optional<std::vector<Vec2>> detect_opencv_sb(const test::BlurredBoard& b) {
     return to_vec2(corners);
 }
 
-void run_detector(benchmark::State& state, Detector detector) {
+void run_detector(benchmark::State& state, Detector detector, const char* label) {
     views();  // rendered once, outside the timing
     int found = 0;
     double sum2 = 0.0, seconds = 0.0;
@@ -95,10 +97,16 @@ void run_detector(benchmark::State& state, Detector detector) {
         found = 0;
         sum2 = 0.0;
         const auto start = std::chrono::steady_clock::now();
-        for (const test::BlurredBoard& b : views()) {
+        for (std::size_t i = 0; i < views().size(); ++i) {
+            const test::BlurredBoard& b = views()[i];
             const auto corners = detector(b);
+            const double rms = corners ? test::corner_rms_px(b.corners_px, *corners) : -1.0;
+            // Per view on stderr, so the table can say which views a detector misses.
+            std::fprintf(
+                stderr, "%s view %2zu blur %.1f px contrast %2.0f counts tilt %4.1f deg %s: %s\n",
+                label, i, b.blur_px, b.contrast_counts, b.tilt_deg, b.hot_squares ? "hot" : "cold",
+                rms < 0 ? "not found" : std::to_string(rms).c_str());
             if (!corners) continue;
-            const double rms = test::corner_rms_px(b.corners_px, *corners);
             if (rms < kFoundRmsPx) {
                 ++found;
                 sum2 += rms * rms;
@@ -111,13 +119,15 @@ void run_detector(benchmark::State& state, Detector detector) {
     state.counters["ms_per_view"] = 1000.0 * seconds / kViews;
 }
 
-BENCHMARK_CAPTURE(run_detector, tirpol_detect_target, &detect_tirpol)
+BENCHMARK_CAPTURE(run_detector, tirpol_detect_target, &detect_tirpol, "tirpol")
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(run_detector, opencv_findChessboardCorners, &detect_opencv_classic)
+BENCHMARK_CAPTURE(run_detector, opencv_findChessboardCorners, &detect_opencv_classic,
+                  "findChessboardCorners")
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(run_detector, opencv_findChessboardCornersSB, &detect_opencv_sb)
+BENCHMARK_CAPTURE(run_detector, opencv_findChessboardCornersSB, &detect_opencv_sb,
+                  "findChessboardCornersSB")
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
