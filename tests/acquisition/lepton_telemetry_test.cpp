@@ -1,3 +1,4 @@
+// Requires TIRPOL_WITH_V4L2 (built only with that back end: cmake/TirpolBackends.cmake).
 // A FLIR Lepton's telemetry rows in PureThermal Y16 frames (Lepton IDD 110-0144, "Telemetry";
 // PureThermal firmware: footer location; 80×63 for a Lepton 2.x, 160×122 for a Lepton 3.x): split
 // off the frame, decoded into Frame::telemetry and the per-frame audit, the image delivered at
