@@ -101,7 +101,7 @@ if [[ ! -s $tarball ]]; then
   rm -rf "$work/download"
 fi
 # The root lives on an ext4 image of its own, loop-mounted: creating and deleting its ~60 000 files on
-# the host's file system (mounted with online discard here) took 5 minutes of the check; unmounting and
+# the host's file system (mounted with online discard here) took 2.5 minutes of the check; unmounting and
 # deleting one image file takes seconds. Where no loop device can be had, a plain folder is used.
 mkdir -p "$root"
 truncate -s 12G "$work/root.ext4"
