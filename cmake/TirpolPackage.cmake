@@ -30,6 +30,13 @@ list(JOIN TIRPOL_DEB_PYTHON_DEPENDS ", " tirpol_deb_python)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${tirpol_deb_development}")
 if(tirpol_deb_python)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", ${tirpol_deb_python}")
+  # Maintainer scripts that byte-compile the Python package on install and remove the compiled files
+  # before removal, as dh_python3 does for Debian's Python packages: without them a Python run as root
+  # wrote __pycache__ into dist-packages and `apt remove tirpol` left that folder behind (seen on a clean
+  # Debian 12 root, tests/install/check_clean_debian.sh).
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_SOURCE_DIR}/cmake/package/postinst
+                                         ${PROJECT_SOURCE_DIR}/cmake/package/prerm)
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 endif()
 
 set(CPACK_GENERATOR DEB)

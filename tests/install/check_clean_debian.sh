@@ -11,7 +11,8 @@
 #      (clean_debian_live_check.py); then the host's headless Chromium loads the page (the root shares
 #      the network) and must draw S0 and DoLP, and a screenshot is kept;
 #   4. cmake, g++ and make installed as a developer would, then a downstream CMake project with
-#      find_package(tirpol CONFIG REQUIRED) and the same program through pkg-config, built and run.
+#      find_package(tirpol CONFIG REQUIRED) and the same program through pkg-config, built and run;
+#   5. `apt-get remove --purge tirpol` after root ran `import tirpol` leaves none of its files.
 # Everything is undone on exit (processes, mounts, the root). Any failed step fails with a message
 # naming it; a missing tool fails too (nothing is skipped).
 #
@@ -141,6 +142,10 @@ after=$(in_root dpkg-query -W -f='.\n' | wc -l)
 echo "installed tirpol $version and $((after - before - 1)) packages it depends on in $((SECONDS - step_s)) s"
 in_root dpkg-query -W -f='${Status}' tirpol | grep -q "install ok installed" || fail "dpkg does not list tirpol as installed"
 [[ $(in_root sh -c 'command -v tirpol') == /usr/bin/tirpol ]] || fail "tirpol is not /usr/bin/tirpol on the PATH"
+init=$(in_root dpkg -L tirpol | grep -m 1 '/dist-packages/tirpol/__init__.py$') || fail "the package has no Python package"
+site=$(dirname "$(dirname "$init")")
+compiled=$(find "$root$site/tirpol/__pycache__" -name '*.pyc' 2>/dev/null | wc -l)
+((compiled > 0)) || fail "the package's postinst did not byte-compile $site/tirpol (no __pycache__/*.pyc)"
 
 step "as user newcomer: the installed CLI"
 out=$(as_user tirpol --version 2>&1) || fail "tirpol --version: $out"
@@ -234,5 +239,13 @@ logged downstream-pkg-config as_user sh -c 'g++ -std=c++20 -O1 -o downstream_pc 
   -DTIRPOL_INSTALLED_CONFIG_DIR="\"$(pkg-config --variable=datadir tirpol)/config\"" \
   $(pkg-config --cflags tirpol) $(pkg-config --libs tirpol)'
 as_user ./downstream_pc >/dev/null || fail "the downstream program (pkg-config)"
+
+step "as root: python3 -c 'import tirpol', then apt-get remove --purge tirpol leaves none of its files"
+in_root python3 -c 'import tirpol' || fail "import tirpol as root"
+logged apt-remove in_root apt-get remove --purge -y tirpol
+! grep -q "not empty so not removed" "$artefacts/apt-remove.log" || { cat "$artefacts/apt-remove.log" >&2; fail "apt-get remove left files of tirpol behind"; }
+for left in /usr/bin/tirpol /usr/include/tirpol /usr/lib/cmake/tirpol /usr/lib/pkgconfig/tirpol.pc /usr/share/tirpol "$site/tirpol"; do
+  [[ ! -e $root$left ]] || fail "after apt-get remove --purge tirpol, $left is still there"
+done
 
 echo "check_clean_debian: all checks passed on a clean Debian 12 root ($(basename "$deb"), $((SECONDS - start_s)) s)"

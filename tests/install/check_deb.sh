@@ -49,6 +49,12 @@ for name in $(tr ',|' '\n\n' <<<"$depends" | sed 's/(.*//; s/[[:space:]]//g'); d
   fail "Depends names '$name', which is not in ./run's PACKAGES list"
 done
 
+if [[ $depends == *python3-numpy* ]]; then  # the Python package: byte-compiled on install, cleaned on removal
+  for script in postinst prerm; do
+    dpkg-deb -I "$deb" "$script" | grep -q "py3" || fail "the package's $script does not call py3compile/py3clean"
+  done
+fi
+
 step "apt resolves the dependencies (apt-get install --simulate ./$(basename "$deb"))"
 apt-get install --simulate --no-install-recommends "$deb" >"$work/apt.log" 2>&1 || { cat "$work/apt.log"; fail "apt cannot resolve the package's dependencies"; }
 grep -q "^Inst tirpol\|^Conf tirpol\|tirpol is already" "$work/apt.log" || { cat "$work/apt.log"; fail "apt's simulation does not install tirpol"; }
