@@ -16,8 +16,9 @@
 namespace tirpol::twin {
 namespace {
 
-TEST(DofpTwin, RecoversSceneStokesWithinNoiseAndThePlantedAnalyzers) {
-    test::TempDir dir;
+/// The test's camera: a 10 % array (Powell & Gruev: up to 20 %): axis σ 2°, d 0.92 ± 0.03, t and R
+/// ± 10 %.
+DofpTwinOptions test_options(const test::TempDir& dir) {
     DofpTwinOptions options;
     options.out_dir = dir.path() / "dofp";
     options.scene_file = test::source_dir() / "config/scenes/panels_night.yaml";
@@ -26,23 +27,18 @@ TEST(DofpTwin, RecoversSceneStokesWithinNoiseAndThePlantedAnalyzers) {
     options.height = 96;
     options.spp = 4;
     options.threads = 2;
-    // A 10 % array (Powell & Gruev: up to 20 %): axis σ 2°, d 0.92 ± 0.03, t and R ± 10 %.
     options.sensor.spread.axis_sigma_deg = 2.0;
     options.sensor.spread.diattenuation_mean = 0.92;
     options.sensor.spread.diattenuation_sigma = 0.03;
     options.sensor.spread.transmission_rel_sigma = 0.1;
     options.sensor.spread.responsivity_rel_sigma = 0.1;
     options.sensor.seed = 28;
-    const DofpTwinResult r = run_dofp_twin(options);
-    std::printf("%s", dofp_twin_summary(r).c_str());
+    return options;
+}
 
-    // The camera really was the free-running GigE Vision microgrid camera (no silent fallback).
-    EXPECT_EQ(r.camera_transport.rfind("GigE Vision", 0), 0u) << r.camera_transport;
-    EXPECT_EQ(r.pixel_format, "PolarizeMono16");
-    EXPECT_GT(r.frame_rate_hz, 20.0);
-
+void expect_recovered(const DofpTwinResult& r) {
     // Planted per-pixel parameters recovered far below their spread: temporal noise over 16
-    // frames per record leaves ~0.01–0.05° and ~1e-3 in d (docs/twin.md gives the run's figures).
+    // frames per record leaves ~0.005° and ~5e-4 in d (docs/twin.md gives the run's figures).
     const DofpParameterRecovery& p = r.parameters;
     EXPECT_EQ(r.bad_pixels, 0u) << "no bad pixel was planted";
     EXPECT_GT(p.planted_axis_spread_deg, 1.5);
@@ -50,15 +46,43 @@ TEST(DofpTwin, RecoversSceneStokesWithinNoiseAndThePlantedAnalyzers) {
     EXPECT_LT(p.diattenuation_rms, 0.1 * p.planted_diattenuation_spread);
     EXPECT_LT(p.gain_rel_rms, 0.1 * p.planted_gain_rel_spread);
 
-    // The scene's Stokes per region within noise: pulls (measured − truth)/σ ~ N(0, 1). Over ~20
-    // values the RMS of N(0, 1) pulls lies in [0.6, 1.4] with > 99 % probability; a bias of a few
-    // σ (a wrong pattern, sign or analyzer) gives pulls of tens.
+    // The scene's Stokes per region within noise: pulls (measured − truth)/σ ~ N(0, 1). Over 30
+    // values the RMS of N(0, 1) pulls lies in [0.6, 1.4] with > 99 % probability (the scatter σ of
+    // 16–27 cells adds Student-t tails); a bias of a few σ (a wrong pattern, sign or analyzer)
+    // gives pulls of tens.
     ASSERT_GE(r.regions.size(), 5u);
     EXPECT_LT(r.pull_rms, 1.6);
     EXPECT_GT(r.pull_rms, 0.4) << "σ too large to test anything";
     EXPECT_LT(r.pull_max_abs, 4.5);
     // Ideal analyzers at the nominal pattern (the NUC alone) leave biases the pulls see.
     EXPECT_GT(r.pull_rms_nuc_only, 2.0 * r.pull_rms);
+}
+
+TEST(DofpTwin, RecoversSceneStokesWithinNoiseAndThePlantedAnalyzers) {
+    test::TempDir dir;
+    const DofpTwinResult r = run_dofp_twin(test_options(dir));
+    std::printf("%s", dofp_twin_summary(r).c_str());
+
+    // The camera really was the free-running GigE Vision microgrid camera (no silent fallback).
+    EXPECT_EQ(r.camera_transport.rfind("GigE Vision", 0), 0u) << r.camera_transport;
+    EXPECT_EQ(r.pixel_format, "PolarizeMono16");
+    EXPECT_GT(r.frame_rate_hz, 20.0);
+
+    expect_recovered(r);
+}
+
+TEST(DofpTwin, InProcessMicrogridCameraGivesTheSameChain) {
+    // Without GigE Vision the twin serves the DoFP sensor through the in-process SimulatedCamera,
+    // now a microgrid camera itself (pattern in CameraInfo, PolarizeMono16), free-running at 60 Hz.
+    test::TempDir dir;
+    DofpTwinOptions options = test_options(dir);
+    options.gige = false;
+    const DofpTwinResult r = run_dofp_twin(options);
+    std::printf("%s", dofp_twin_summary(r).c_str());
+    EXPECT_EQ(r.camera_transport.rfind("in-process SimulatedCamera", 0), 0u) << r.camera_transport;
+    EXPECT_EQ(r.pixel_format, "PolarizeMono16");
+    EXPECT_GT(r.frame_rate_hz, 20.0);
+    expect_recovered(r);
 }
 
 }  // namespace
