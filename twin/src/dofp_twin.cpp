@@ -16,7 +16,6 @@
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/geometry.h"
 #include "tirpol/core/session.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/render_output.h"
@@ -111,23 +110,24 @@ SuperPixelStokes truth_cell(const Image& truth, int cx, int cy) {
     return t;
 }
 
-/// What a perfect microgrid camera of the same geometry measures in one super-pixel: each of the
-/// four pixels sees its own rendered Stokes through an ideal analyzer at the pattern's nominal
-/// angle, I_p = ½(1, cos 2θ_p, sin 2θ_p)·S_p, and the cell is reduced by W⁺ of those analyzers. It
-/// differs from truth_cell by the IFOV error alone (the four analyzers see four places).
-SuperPixelStokes ideal_dofp_cell(const Image& truth, const simulation::DofpSensor& sensor, int cx,
+/// What this microgrid camera measures in one super-pixel without noise and with its analyzers
+/// known exactly: each of the four pixels sees its own rendered Stokes through its planted analysis
+/// vector, I_p = w_p·S_p, and the cell is reduced by W⁺ of those four vectors. It differs from
+/// truth_cell by the IFOV error alone (the four analyzers see four places).
+SuperPixelStokes exact_dofp_cell(const Image& truth, const simulation::DofpSensor& sensor, int cx,
                                  int cy) {
     Eigen::Matrix<double, 4, 3> w;
     Eigen::Vector4d intensity;
     const char* names[3] = {"S0", "S1", "S2"};
     for (int p = 0; p < 4; ++p) {
         const int x = 2 * cx + p % 2, y = 2 * cy + p / 2;
-        const double two_theta = 2.0 * sensor.nominal_angle_deg(x, y) * kPi / 180.0;
-        w.row(p) << 0.5, 0.5 * std::cos(two_theta), 0.5 * std::sin(two_theta);
+        const std::size_t i = static_cast<std::size_t>(y * truth.width() + x);
+        const auto analysis = sensor.pixels().analysis(i);
         intensity[p] = 0.0;
-        for (int c = 0; c < 3; ++c)
-            intensity[p] +=
-                w(p, c) * truth.channel(names[c])[static_cast<std::size_t>(y * truth.width() + x)];
+        for (int c = 0; c < 3; ++c) {
+            w(p, c) = analysis[static_cast<std::size_t>(c)];
+            intensity[p] += w(p, c) * truth.channel(names[c])[i];
+        }
     }
     const Eigen::Vector3d s = (w.transpose() * w).ldlt().solve(w.transpose() * intensity);
     return {{s[0], s[1], s[2]}};
@@ -215,7 +215,7 @@ void compare_regions(DofpTwinResult& r, const simulation::Scene& scene, const Im
             for (int cx = cx0; cx < cx1; ++cx) {
                 const SuperPixelStokes m = measured_cell(per_pixel, cx, cy);
                 if (!std::isfinite(m.s[0])) continue;  // a cell without three good analyzers
-                const SuperPixelStokes t = ideal_dofp_cell(truth, sensor, cx, cy);
+                const SuperPixelStokes t = exact_dofp_cell(truth, sensor, cx, cy);
                 const SuperPixelStokes footprint = truth_cell(truth, cx, cy);
                 const SuperPixelStokes nuc = measured_cell(nuc_only, cx, cy);
                 diffs.push_back({m.s[0] - t.s[0], m.s[1] - t.s[1], m.s[2] - t.s[2]});
@@ -359,7 +359,7 @@ std::string dofp_twin_summary(const DofpTwinResult& r) {
         "DoLP RMS error over the regions: {:.5f} per-pixel calibration, {:.5f} NUC "
         "with ideal analyzers\n",
         r.dolp_rms_per_pixel, r.dolp_rms_nuc_only);
-    s += "regions, measured − truth (W/(m² sr)), its pull, and the IFOV error (ideal DoFP − "
+    s += "regions, measured − truth (W/(m² sr)), its pull, and the IFOV error (exact DoFP − "
          "footprint mean) in the same σ, per Stokes component:\n";
     for (const DofpRegionCheck& g : r.regions) {
         s += fmt::format("  {:<28} {:4d} cells", g.name, g.super_pixels);

@@ -44,13 +44,13 @@ struct DofpTwinOptions {
 };
 
 /// One region (an object's interior rectangle) of the scene, over its whole super-pixels,
-/// W/(m² sr). `truth` is what a perfect microgrid camera of the same geometry measures: each pixel
-/// sees its own rendered Stokes through an ideal analyzer at the nominal angle, each cell reduced
-/// by W⁺; `footprint_truth` is the mean of the cells' four rendered pixels. They differ by the IFOV
-/// error (the four analyzers of a cell see four places: a gradient biases S1 and S2). σ is the
-/// standard error of the mean of measured − truth (its scatter over the region: temporal noise,
-/// calibration residuals), so the pull tests the instrument chain, and (truth − footprint)/σ states
-/// the IFOV bias in the same units.
+/// W/(m² sr). `truth` is what this camera measures without noise and with its analyzers known
+/// exactly: each pixel sees its own rendered Stokes through its planted analysis vector, each cell
+/// reduced by W⁺ of its four; `footprint_truth` is the mean of the cells' four rendered pixels.
+/// They differ by the IFOV error (the four analyzers of a cell see four places: a gradient biases
+/// S1 and S2). σ is the standard error of the mean of measured − truth (its scatter over the
+/// region: temporal noise, calibration residuals), so the pull tests the instrument chain, and
+/// (truth − footprint)/σ states the IFOV bias in the same units.
 struct DofpRegionCheck {
     std::string name;
     int super_pixels = 0;
@@ -83,7 +83,7 @@ struct DofpTwinResult {
     double pull_rms_nuc_only = 0.0;  ///< the same with the NUC alone (ideal analyzers)
     DofpParameterRecovery parameters;
     std::size_t bad_pixels = 0;  ///< found by the calibration (none planted)
-    /// Over the regions' super-pixels: DoLP RMS error against the (ideal-DoFP) truth, with the
+    /// Over the regions' super-pixels: DoLP RMS error against the (exact-DoFP) truth, with the
     /// per-pixel calibration and with the NUC alone (ideal analyzers at the nominal pattern).
     double dolp_rms_per_pixel = 0.0, dolp_rms_nuc_only = 0.0;
     std::map<std::string, double> seconds;  ///< per stage
