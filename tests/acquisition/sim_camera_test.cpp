@@ -164,6 +164,30 @@ TEST(SimulatedCamera, GrabBeforeStartIsAnError) {
     EXPECT_EQ(camera->info().height, 512);
 }
 
+TEST(SimulatedCamera, MicrogridCameraReportsItsPatternAndStreamsPolarizedFormats) {
+    // A microgrid camera (sim://…&microgrid=) says so in CameraInfo, as an Aravis polarization
+    // camera does, and takes the polarized pixel formats; its ADC depth follows the format.
+    auto camera =
+        open_simulated_camera("sim://uniform?width=8&height=4&counts=8000&fps=200&microgrid=sony");
+    CameraInfo info = camera->info();
+    ASSERT_TRUE(info.microgrid_pattern_deg);
+    EXPECT_EQ(*info.microgrid_pattern_deg, (std::array<double, 4>{90.0, 45.0, 135.0, 0.0}));
+    EXPECT_EQ(info.pixel_format, "PolarizeMono16");
+    ASSERT_TRUE(camera->set_pixel_format("PolarizeMono12p").ok());
+    info = camera->info();
+    EXPECT_EQ(info.pixel_format, "PolarizeMono12p");
+    EXPECT_EQ(info.bits_per_pixel, 12);
+    ASSERT_TRUE(camera->start().ok());
+    const Frame frame = camera->grab(1s).value();
+    for (float c : frame.counts) EXPECT_EQ(c, 4095.0f) << "8000 counts clip at 12 bits";
+
+    auto plain = open_simulated_camera("sim://uniform?width=8&height=4");
+    EXPECT_FALSE(plain->info().microgrid_pattern_deg);
+    EXPECT_FALSE(plain->set_pixel_format("PolarizeMono12p").ok())
+        << "a camera without a microgrid has no polarized format";
+    EXPECT_THROW(open_simulated_camera("sim://uniform?microgrid=0,1,2"), Error);
+}
+
 TEST(SimulatedCamera, BadUrisNameTheOffendingPart) {
     try {
         open_simulated_camera("sim://uniform?widht=10");

@@ -19,6 +19,7 @@
 #include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/geometry.h"
 #include "tirpol/core/log.h"
 #include "tirpol/core/session.h"
 
@@ -29,6 +30,53 @@ using namespace acquisition;
 TwinWorld::TwinWorld(simulation::SensorModel sensor, Band band, int width, int height)
     : m_sensor(std::move(sensor)), m_band(std::move(band)), m_width(width), m_height(height) {
     if (!m_sensor.counts) fail("twin: the sensor model needs a counts model to play the camera");
+}
+
+TwinWorld::TwinWorld(simulation::DofpSensor dofp, ReferencePolarizer reference, Band band)
+    : m_dofp(std::move(dofp)),
+      m_reference(reference),
+      m_band(std::move(band)),
+      m_width(m_dofp->width()),
+      m_height(m_dofp->height()) {
+    if (!(m_reference.transmission > 0.0 && m_reference.transmission <= 1.0) ||
+        !(m_reference.extinction_ratio >= 1.0) || !(m_reference.emitted_radiance >= 0.0))
+        fail(
+            "twin: reference polarizer with transmission {}, extinction ratio {}, emission {} "
+            "(expected (0, 1], ≥ 1, ≥ 0)",
+            m_reference.transmission, m_reference.extinction_ratio, m_reference.emitted_radiance);
+}
+
+void TwinWorld::set_flat_field_backdrop(std::optional<double> temperature_k) {
+    std::lock_guard lock(m_mutex);
+    m_backdrop_k = temperature_k;
+}
+
+std::optional<std::array<double, 4>> TwinWorld::microgrid_pattern_deg() const {
+    if (!m_dofp) return std::nullopt;
+    return m_dofp->spec().pattern_deg;
+}
+
+std::vector<float> TwinWorld::dofp_frame(double angle_deg) {
+    const std::uint64_t frame_index = ++m_frame_index;
+    if (m_blackbody_k)
+        return m_dofp->frame(blackbody_image(*m_blackbody_k), frame_index).channel("counts");
+    if (!m_backdrop_k) {
+        if (m_scene.pixel_count() == 0) fail("twin: no scene set before the camera was read");
+        return m_dofp->frame(m_scene, frame_index).channel("counts");
+    }
+    // The blackbody behind the reference polarizer at the stage's angle φ: a diattenuator on
+    // unpolarized light gives ½L·(τ + τ_min, (τ − τ_min) cos 2φ, (τ − τ_min) sin 2φ) (Chipman, Lam
+    // & Young 2018 eq 6.35), plus the polarizer's own unpolarized emission.
+    const double l = m_band.radiance(*m_backdrop_k);
+    const double tau = m_reference.transmission, tau_min = tau / m_reference.extinction_ratio;
+    const double two_phi = 2.0 * angle_deg * kPi / 180.0;
+    Image source(m_width, m_height);
+    source.add_channel(
+        "S0", static_cast<float>(0.5 * l * (tau + tau_min) + m_reference.emitted_radiance));
+    source.add_channel("S1", static_cast<float>(0.5 * l * (tau - tau_min) * std::cos(two_phi)));
+    source.add_channel("S2", static_cast<float>(0.5 * l * (tau - tau_min) * std::sin(two_phi)));
+    source.add_channel("S3", 0.0f);
+    return m_dofp->frame(source, frame_index).channel("counts");
 }
 
 void TwinWorld::set_scene(Image stokes) {
@@ -77,6 +125,10 @@ const Image& TwinWorld::blackbody_image(double temperature_k) {
 
 void TwinWorld::fill(double angle_deg, std::vector<float>& counts) {
     std::lock_guard lock(m_mutex);
+    if (m_dofp) {
+        counts = dofp_frame(angle_deg);
+        return;
+    }
     const Image& source = m_blackbody_k ? blackbody_image(*m_blackbody_k) : m_scene;
     if (source.pixel_count() == 0) fail("twin: no scene set before the camera was read");
     counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, ++m_frame_index);
@@ -132,7 +184,7 @@ Result<double> WorldReportingStage::position_deg() {
 /// serial driver on the other end, the world-reporting stage, and the camera (over loopback GigE
 /// Vision, or in-process). Destroyed in reverse: the camera stops before the world it reads.
 struct TwinInstrument::Devices {
-    Devices(TwinWorld& world, StageProtocol protocol, bool gige);
+    Devices(TwinWorld& world, StageProtocol protocol, bool gige, std::filesystem::path xml);
     ~Devices();
     Devices(const Devices&) = delete;
     Devices& operator=(const Devices&) = delete;
@@ -143,6 +195,7 @@ struct TwinInstrument::Devices {
 
     TwinWorld& world;
     StageProtocol protocol;
+    std::filesystem::path genicam_xml;
     StageSimulator simulator;
     PseudoTerminal pty;
     std::atomic<bool> stop{false};
@@ -168,9 +221,11 @@ StageSimulatorOptions simulator_options(StageProtocol protocol) {
 
 }  // namespace
 
-TwinInstrument::Devices::Devices(TwinWorld& w, StageProtocol p, bool gige)
+TwinInstrument::Devices::Devices(TwinWorld& w, StageProtocol p, bool gige,
+                                 std::filesystem::path xml)
     : world(w),
       protocol(p),
+      genicam_xml(std::move(xml)),
       simulator(simulator_options(p)),
       pty(PseudoTerminal::open().value_or_throw()) {
     stage_thread = std::thread([this] { serve_stage_simulator(simulator, pty, stop); });
@@ -205,15 +260,26 @@ void TwinInstrument::Devices::open_camera_over_gige() {
     // One loopback GigE Vision camera at a time on this machine (tests use the same lock).
     gige_lock_fd = ::open("/tmp/tirpol-loopback-gige.lock", O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (gige_lock_fd >= 0) ::flock(gige_lock_fd, LOCK_EX);
-    server = std::make_unique<FakeGigECameraServer>();
+    // A microgrid camera streams its raw mosaic in a polarized format (LUCID's PolarizeMono16),
+    // which Aravis's built-in XML does not offer.
+    const auto pattern = world.microgrid_pattern_deg();
+    if (pattern && genicam_xml.empty())
+        fail("no GenICam XML offering PolarizeMono16 was given for the microgrid camera");
+    FakeGigECameraOptions server_options;
+    server_options.genicam_xml = genicam_xml;
+    server = std::make_unique<FakeGigECameraServer>(server_options);
     // Free-running, as a field camera: each frame shows the polarizer where the simulated mount
     // physically is when the frame is exposed, also mid-move; the capture loop's gate must
     // discard those (no software trigger needed).
     server->set_fill([this](const FakeGigEFrameRequest&, std::vector<float>& counts) {
         world.fill(simulator.physical_angle_deg(StageSimulator::Clock::now()), counts);
     });
-    const std::string camera_uri = fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}",
-                                               server->device_id(), world.width(), world.height());
+    // A microgrid bolometer free-runs at 60 Hz; the rotating-polarizer camera at Aravis's default.
+    const std::string camera_uri =
+        pattern ? fmt::format("aravis://{}?pixel_format=PolarizeMono16&width={}&height={}&fps=60",
+                              server->device_id(), world.width(), world.height())
+                : fmt::format("aravis://{}?pixel_format=Mono16&width={}&height={}",
+                              server->device_id(), world.width(), world.height());
     auto opened = open_camera(camera_uri);
     if (!opened.ok()) fail("{}", opened.error().message);
     camera = std::move(opened).value_or_throw();
@@ -226,6 +292,8 @@ void TwinInstrument::Devices::open_in_process_camera(const std::string& why_not)
     config.width = world.width();
     config.height = world.height();
     config.bits_per_pixel = 16;
+    config.microgrid_pattern_deg = world.microgrid_pattern_deg();
+    if (config.microgrid_pattern_deg) config.frame_rate_hz = 60.0;
     camera = std::make_unique<SimulatedCamera>(
         config, [this](double angle, std::vector<float>& counts) { world.fill(angle, counts); },
         [this] { return simulator.physical_angle_deg(StageSimulator::Clock::now()); });
@@ -242,8 +310,9 @@ TwinInstrument::Devices::~Devices() {
     if (stage_thread.joinable()) stage_thread.join();
 }
 
-TwinInstrument::TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige)
-    : m_devices(std::make_unique<Devices>(world, protocol, gige)) {}
+TwinInstrument::TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige,
+                               std::filesystem::path genicam_xml)
+    : m_devices(std::make_unique<Devices>(world, protocol, gige, std::move(genicam_xml))) {}
 
 TwinInstrument::~TwinInstrument() = default;
 
@@ -259,7 +328,7 @@ std::string TwinInstrument::stage_description() const {
                        m_devices->pty.slave_path(), i.uri);
 }
 
-void TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::path& dir) {
+CaptureSummary TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::path& dir) {
     Devices& d = *m_devices;
     // The simulated operator: the capture loop asks before each reference step, in plan order.
     std::deque<double> temperatures;
@@ -278,7 +347,7 @@ void TwinInstrument::acquire(const CapturePlan& plan, const std::filesystem::pat
         temperatures.pop_front();
         return true;
     };
-    run_capture(*d.camera, *d.stage, plan, session, options);
+    return run_capture(*d.camera, *d.stage, plan, session, options);
 }
 
 }  // namespace tirpol::twin

@@ -43,10 +43,14 @@ std::optional<calibration::PixelRect> object_rect(const Image& render, std::size
     // Shrink the box one pixel per side until it holds only the object; the panels are convex
     // quadrilaterals, so this converges on a rectangle well inside the silhouette.
     while (x1 - x0 > 2 && y1 - y0 > 2 && !all_object(render, object, x0, y0, x1, y1)) {
+        const int before = (x1 - x0) + (y1 - y0);
         if (!all_object(render, object, x0, y0, x0 + 1, y1)) ++x0;
         if (!all_object(render, object, x1 - 1, y0, x1, y1)) --x1;
         if (!all_object(render, object, x0, y0, x1, y0 + 1)) ++y0;
         if (!all_object(render, object, x0, y1 - 1, x1, y1)) --y1;
+        // A non-convex silhouette (the ground around the rack) can have all four sides inside the
+        // object and a hole within: shrink every side, or the loop would never end.
+        if ((x1 - x0) + (y1 - y0) == before) ++x0, --x1, ++y0, --y1;
     }
     // Margin: pixels next to the edge mix in the neighbour through the render's anti-aliasing.
     x0 += 1, y0 += 1, x1 -= 1, y1 -= 1;

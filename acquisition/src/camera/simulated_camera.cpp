@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 
+#include "pixel_formats.h"
 #include "tirpol/acquisition/device_uri.h"
 #include "tirpol/core/error.h"
 
@@ -26,6 +27,20 @@ std::optional<int> mono_bits(const std::string& format) {
         if (format == fmt::format("Mono{}", bits)) return bits;
     return std::nullopt;
 }
+
+/// The significant bits of a microgrid camera's polarized format (pixel_formats.h), if it is one.
+std::optional<int> polarized_bits(const std::string& format) {
+    const GenICamPixelFormat* f = find_pixel_format(format);
+    if (f == nullptr || !f->polarized) return std::nullopt;
+    return f->significant_bits;
+}
+
+/// The name a camera of this depth reports before any set_pixel_format.
+std::string default_pixel_format(const SimulatedCameraConfig& config) {
+    const std::string polarized = fmt::format("PolarizeMono{}", config.bits_per_pixel);
+    if (config.microgrid_pattern_deg && find_pixel_format(polarized) != nullptr) return polarized;
+    return fmt::format("Mono{}", config.bits_per_pixel);
+}
 }  // namespace
 
 SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator generator,
@@ -33,6 +48,7 @@ SimulatedCamera::SimulatedCamera(SimulatedCameraConfig config, FrameGenerator ge
     : m_config(std::move(config)),
       m_generator(std::move(generator)),
       m_angle(std::move(angle)),
+      m_pixel_format(default_pixel_format(m_config)),
       m_rng(m_config.seed) {
     if (m_config.width <= 0 || m_config.height <= 0)
         fail("simulated camera '{}': size {}×{} (expected positive)", m_config.name, m_config.width,
@@ -67,7 +83,8 @@ CameraInfo SimulatedCamera::info() const {
     info.vendor = "tirpol";
     info.model = "simulated (" + m_config.name + ")";
     info.serial = fmt::format("seed-{}", m_config.seed);
-    info.pixel_format = fmt::format("Mono{}", m_config.bits_per_pixel);
+    info.pixel_format = m_pixel_format;
+    info.microgrid_pattern_deg = m_config.microgrid_pattern_deg;
     info.width = m_config.width;
     info.height = m_config.height;
     info.bits_per_pixel = m_config.bits_per_pixel;
@@ -76,14 +93,19 @@ CameraInfo SimulatedCamera::info() const {
 }
 
 Status SimulatedCamera::set_pixel_format(const std::string& format) {
-    const auto bits = mono_bits(format);
+    auto bits = mono_bits(format);
+    if (!bits && m_config.microgrid_pattern_deg) bits = polarized_bits(format);
     if (!bits)
         return DeviceError{
             DeviceErrorCode::InvalidArgument,
-            fmt::format(
-                "sim://{}: pixel format '{}' (expected Mono8, Mono10, Mono12, Mono14 or Mono16)",
-                m_config.name, format)};
+            fmt::format("sim://{}: pixel format '{}' (expected Mono8, Mono10, Mono12, Mono14 or "
+                        "Mono16{})",
+                        m_config.name, format,
+                        m_config.microgrid_pattern_deg
+                            ? ", or PolarizeMono8, PolarizeMono12, PolarizeMono12p, PolarizeMono16"
+                            : "")};
     m_config.bits_per_pixel = *bits;
+    m_pixel_format = format;
     return ok_status();
 }
 
@@ -225,8 +247,8 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
             "device URI '{}': unknown simulated camera '{}' (built in: uniform; scene files "
             "sim://<scene.yaml> once the digital twin registered its renderer-backed camera)",
             uri, u.target);
-    u.check_keys(
-        {"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k", "buffers"});
+    u.check_keys({"width", "height", "counts", "noise", "fps", "bits", "drop", "seed", "fpa_k",
+                  "buffers", "microgrid"});
     SimulatedCameraConfig config;
     config.name = "uniform";
     config.width = u.integer("width", 640);
@@ -238,6 +260,9 @@ std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri) {
     config.seed = static_cast<std::uint64_t>(u.integer("seed", 1));
     config.buffers = u.integer("buffers", config.buffers);
     if (u.query.count("fpa_k") != 0) config.fpa_temperature_k = u.number("fpa_k", 0.0);
+    if (const auto it = u.query.find("microgrid"); it != u.query.end())
+        config.microgrid_pattern_deg =
+            parse_microgrid_pattern_deg(it->second, fmt::format("device URI '{}': microgrid", uri));
     const double counts = u.number("counts", 8000.0);
     auto generator = [counts](double, std::vector<float>& out) {
         std::fill(out.begin(), out.end(), static_cast<float>(counts));

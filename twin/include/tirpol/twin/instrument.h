@@ -8,6 +8,7 @@
 /// opened as aravis://. The simulators are acquisition internals: only twin/src sees them
 /// (TwinInstrument's pimpl), so this header needs nothing but acquisition's public API.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -17,10 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/capture_plan.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/simulation/dofp_sensor.h"
 #include "tirpol/simulation/sensor_model.h"
 
 namespace tirpol::twin {
@@ -30,10 +33,26 @@ namespace tirpol::twin {
 /// own emission at air temperature.
 simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k);
 
+/// The reference wire-grid polarizer of a microgrid camera's flat-field rig (in front of the
+/// blackbody, on the stage): a linear diattenuator of major transmittance `transmission` and
+/// extinction ratio `extinction_ratio`, which adds its own unpolarized emission and reflection of
+/// the room, `emitted_radiance` (W/(m²·sr)), whatever its angle.
+struct ReferencePolarizer {
+    double transmission = 0.85;
+    double extinction_ratio = 1000.0;
+    double emitted_radiance = 1.5;
+    /// Its diattenuation (τ − τ_min)/(τ + τ_min), what its datasheet gives the calibration.
+    double diattenuation() const { return (extinction_ratio - 1.0) / (extinction_ratio + 1.0); }
+};
+
 /// The world the camera looks at. Thread-safe: the camera's fill runs on the server's thread.
 class TwinWorld {
 public:
     TwinWorld(simulation::SensorModel sensor, Band band, int width, int height);
+    /// A microgrid (DoFP) camera's world: the detector is `dofp` (its size is the camera's), and
+    /// the polarizer on the stage is the flat-field rig's `reference`, seen only while a backdrop
+    /// blackbody is set (set_flat_field_backdrop); scenes are seen without it.
+    TwinWorld(simulation::DofpSensor dofp, ReferencePolarizer reference, Band band);
 
     /// The rendered Stokes image (S0 S1 S2 S3, camera frame) of the current view.
     void set_scene(Image stokes);
@@ -43,6 +62,16 @@ public:
     /// The stage starts a move: a blackbody placed for this step stays; otherwise the operator has
     /// taken it away and the camera sees the scene.
     void on_stage_move();
+    /// Microgrid world: the flat-field rig's blackbody at `temperature_k` fills the view behind
+    /// the reference polarizer (the polarizer records of a flat-field session); nullopt: the scene.
+    /// A blackbody placed by the operator (place_blackbody) is held in front of the lens and seen
+    /// open.
+    void set_flat_field_backdrop(std::optional<double> temperature_k);
+    /// The microgrid camera's analyzer pattern (degrees, cells (0,0) (0,1) (1,0) (1,1)); nullopt
+    /// for the rotating-polarizer instrument.
+    std::optional<std::array<double, 4>> microgrid_pattern_deg() const;
+    /// The DoFP detector, or nullptr for the rotating-polarizer instrument.
+    const simulation::DofpSensor* dofp() const { return m_dofp ? &*m_dofp : nullptr; }
     /// The polarizer angle the stage driver last read back.
     void set_angle_deg(double angle_deg);
     double angle_deg() const;
@@ -64,6 +93,11 @@ public:
 
 private:
     const Image& blackbody_image(double temperature_k);
+    std::vector<float> dofp_frame(double angle_deg);  ///< m_mutex held
+
+    std::optional<simulation::DofpSensor> m_dofp;
+    ReferencePolarizer m_reference;
+    std::optional<double> m_backdrop_k;
 
     mutable std::mutex m_mutex;
     simulation::SensorModel m_sensor;
@@ -104,7 +138,11 @@ enum class StageProtocol {
 /// failure falls back to the in-process SimulatedCamera and says why in `camera_transport()`.
 class TwinInstrument {
 public:
-    TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige);
+    /// `genicam_xml`: the fake GigE camera's GenICam XML, which must offer PolarizeMono16 for a
+    /// microgrid world (tests/data/genicam/polarized-fake-camera.xml); empty: Aravis's built-in
+    /// one, and a microgrid world falls back to the in-process camera.
+    TwinInstrument(TwinWorld& world, StageProtocol protocol, bool gige,
+                   std::filesystem::path genicam_xml = {});
     ~TwinInstrument();
     TwinInstrument(const TwinInstrument&) = delete;
     TwinInstrument& operator=(const TwinInstrument&) = delete;
@@ -115,8 +153,10 @@ public:
     bool served_over_gige() const;
 
     /// Runs `plan` (the library call behind `tirpol acquire`) into a new session at `dir`; the
-    /// simulated operator places the blackbody when the capture loop asks for it.
-    void acquire(const acquisition::CapturePlan& plan, const std::filesystem::path& dir);
+    /// simulated operator places the blackbody when the capture loop asks for it. Returns the
+    /// capture's summary (frames, drops, delivered frame rate).
+    acquisition::CaptureSummary acquire(const acquisition::CapturePlan& plan,
+                                        const std::filesystem::path& dir);
 
 private:
     struct Devices;  ///< the stage simulator on its pty, the drivers, the fake GigE server

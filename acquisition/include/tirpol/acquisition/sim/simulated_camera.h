@@ -13,6 +13,7 @@
 /// (CLOCK_REALTIME), the device timestamp the camera's own clock (steady, from 1 s at start()). A
 /// camera too slow for its rate (a heavy generator) runs slower instead of bursting.
 
+#include <array>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -39,6 +40,10 @@ struct SimulatedCameraConfig {
     double drop_probability = 0.0;  ///< chance that a frame is lost (its id is skipped)
     std::uint64_t seed = 1;         ///< noise and drops are reproducible for a given seed
     std::optional<double> fpa_temperature_k;
+    /// A microgrid (division-of-focal-plane) camera: its analyzer angles at cell positions (0,0),
+    /// (0,1), (1,0), (1,1) (camera.h), reported in CameraInfo; it streams its raw mosaic in
+    /// `PolarizeMono<bits>` (or `PolarizeMono12p`, set_pixel_format). Unset: a plain camera.
+    std::optional<std::array<double, 4>> microgrid_pattern_deg;
 };
 
 /// Writes the noise-free expected counts (width × height, row-major) for a polarizer at
@@ -59,7 +64,8 @@ public:
     SimulatedCamera& operator=(const SimulatedCamera&) = delete;
 
     CameraInfo info() const override;
-    /// Accepts Mono8 … Mono16 (sets the ADC depth).
+    /// Accepts Mono8 … Mono16 and, for a microgrid camera, the polarized formats PolarizeMono8,
+    /// PolarizeMono12, PolarizeMono12p and PolarizeMono16 (sets the ADC depth).
     Status set_pixel_format(const std::string& format) override;
     Status set_frame_rate(double hz) override;
     Status start() override;
@@ -77,6 +83,7 @@ private:
     std::optional<Frame> expose_one(std::uint64_t id);
 
     SimulatedCameraConfig m_config;
+    std::string m_pixel_format;  ///< what info() reports; set_pixel_format runs before start()
     FrameGenerator m_generator;  ///< guarded by m_mutex
     AngleSource m_angle;         ///< guarded by m_mutex
     mutable std::mutex m_mutex;
@@ -91,8 +98,9 @@ private:
     std::thread m_thread;
 };
 
-/// `sim://uniform?width=W&height=H&counts=C&noise=N&fps=F[&bits=B&drop=P&seed=S&fpa_k=T&buffers=Q]`:
-/// every pixel has expected value C (default 640×512, C = 8000, N = 0, F = 30, B = 16, Q = 16).
+/// `sim://uniform?width=W&height=H&counts=C&noise=N&fps=F[&bits=B&drop=P&seed=S&fpa_k=T&buffers=Q&microgrid=M]`:
+/// every pixel has expected value C (default 640×512, C = 8000, N = 0, F = 30, B = 16, Q = 16);
+/// `microgrid=sony` or four angles makes it a microgrid camera with that pattern.
 /// Throws tirpol::Error naming the query key for an unknown key or a bad value.
 std::unique_ptr<SimulatedCamera> open_simulated_camera(const std::string& uri);
 
