@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "stokes_attributes.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
@@ -211,8 +212,11 @@ bool propagate_pixel(PixelStokes& r, std::size_t i, bool project_to_realizable, 
     return unrealizable;
 }
 
-void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matrix3Xd& drm,
-                      const ReductionOptions& options, int unrealizable, bool wire_grid_corrected) {
+}  // namespace
+
+void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
+                                     const Eigen::Matrix3Xd& drm, const ReductionOptions& options,
+                                     int unrealizable, bool wire_grid_corrected) {
     auto& a = out.attributes();
     a["units"] = options.units;
     a["units_S0"] = options.units;
@@ -232,8 +236,6 @@ void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matri
     a["unrealizable_pixels"] = unrealizable;
     a["wire_grid_corrected"] = wire_grid_corrected ? 1 : 0;
 }
-
-}  // namespace
 
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,
                     const AnalyzerModel& model, const WireGridCalibration* wire_grid,
@@ -264,7 +266,7 @@ Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int he
             if (propagate_pixel(pixel, i, options.project_to_realizable, outputs)) ++unrealizable;
         }
     }
-    write_attributes(out, model, drm, options, unrealizable, wire_grid != nullptr);
+    detail::write_stokes_attributes(out, model, drm, options, unrealizable, wire_grid != nullptr);
     return out;
 }
 
