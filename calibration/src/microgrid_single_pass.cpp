@@ -45,6 +45,25 @@ int mirror_row(int y, int height) {
     return y;
 }
 
+/// One Stokes component of one row from three padded mosaic rows (up, current, down) and the
+/// per-x coefficients of the own, horizontal, vertical and diagonal analyzer. Also built for AVX2,
+/// picked at load time where the CPU has it (the same arithmetic, 8 lanes instead of 4).
+TIRPOL_MICROGRID_CLONES
+void bilinear_stokes_row(const float* __restrict u, const float* __restrict c,
+                         const float* __restrict d, const float* __restrict k_own,
+                         const float* __restrict k_h, const float* __restrict k_v,
+                         const float* __restrict k_d, float offset, float* __restrict out,
+                         std::size_t width) {
+    for (std::size_t x = 0; x < width; ++x) {
+        const float own = c[x + 1];
+        const float horizontal = 0.5f * (c[x] + c[x + 2]);
+        const float vertical = 0.5f * (u[x + 1] + d[x + 1]);
+        const float diagonal = 0.25f * (u[x] + u[x + 2] + d[x] + d[x + 2]);
+        out[x] =
+            k_own[x] * own + k_h[x] * horizontal + k_v[x] * vertical + k_d[x] * diagonal + offset;
+    }
+}
+
 /// Bilinear (Ratliff et al. 2009, as demosaic_microgrid): at pixel x of a row the own analyzer is
 /// the pixel, the horizontal neighbour's the mean of left and right, the vertical one's the mean of
 /// up and down, the diagonal one's the mean of the four corners; which cell each of them is depends
@@ -76,21 +95,9 @@ void bilinear(const T* mosaic, int width, int height, const CellStokesMatrix& cm
         const auto& k = coefficient[static_cast<std::size_t>(y & 1)];
         const std::size_t start = static_cast<std::size_t>(y) * w;
         float* s[3] = {out.s0 + start, out.s1 + start, out.s2 + start};
-        const float *u = up.data(), *c = cur.data(), *d = down.data();
-        for (std::size_t r = 0; r < 3; ++r) {
-            const float *k_own = k[r][0].data(), *k_h = k[r][1].data(), *k_v = k[r][2].data(),
-                        *k_d = k[r][3].data();
-            const float offset = cm.offset[r];
-            float* sr = s[r];
-            for (std::size_t x = 0; x < w; ++x) {
-                const float own = c[x + 1];
-                const float horizontal = 0.5f * (c[x] + c[x + 2]);
-                const float vertical = 0.5f * (u[x + 1] + d[x + 1]);
-                const float diagonal = 0.25f * (u[x] + u[x + 2] + d[x] + d[x + 2]);
-                sr[x] = k_own[x] * own + k_h[x] * horizontal + k_v[x] * vertical +
-                        k_d[x] * diagonal + offset;
-            }
-        }
+        for (std::size_t r = 0; r < 3; ++r)
+            bilinear_stokes_row(up.data(), cur.data(), down.data(), k[r][0].data(), k[r][1].data(),
+                                k[r][2].data(), k[r][3].data(), cm.offset[r], s[r], w);
         out.finish_row(start, w, options.project_to_realizable);
     }
 }

@@ -17,8 +17,9 @@ namespace {
 // run-time overlap checks than it emits. The counter is 32-bit like the float lanes (a 64-bit one
 // kept the loop scalar); a row is far shorter.
 template <bool kProject>
-std::uint32_t finish(const float* __restrict s0, float* __restrict s1, float* __restrict s2,
-                     float* __restrict dolp, float* __restrict aop, std::size_t count) {
+TIRPOL_MICROGRID_CLONES std::uint32_t finish(const float* __restrict s0, float* __restrict s1,
+                                             float* __restrict s2, float* __restrict dolp,
+                                             float* __restrict aop, std::size_t count) {
     std::uint32_t unrealizable = 0;
     for (std::size_t i = 0; i < count; ++i) {
         const float p0 = s0[i];

@@ -9,6 +9,14 @@
 #include <limits>
 #include <numbers>
 
+// The row loops are also compiled for AVX2 and chosen at load time (GCC function multi-versioning
+// through an ifunc): the build itself targets plain x86-64. Elsewhere, one version.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define TIRPOL_MICROGRID_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TIRPOL_MICROGRID_CLONES
+#endif
+
 namespace tirpol::calibration::detail {
 
 /// AoP = ½·atan2(s2, s1) in degrees, [0°, 180°), to float rounding (a polynomial atan after

@@ -84,4 +84,29 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(
 Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
                                  const MicrogridPixelCalibration& calibration);
 
+/// reduce_microgrid_per_pixel with its per-super-pixel work done once: each cell's 3×4 matrix
+/// M = (WᵀW)⁻¹Wᵀ (a bad pixel's column zero) and offset −M·b, so that reducing a frame is one
+/// matrix-vector product per cell (for a live view or many frames of one camera). Equal to
+/// reduce_microgrid_per_pixel to float rounding (it is what that function runs).
+class MicrogridPixelReducer {
+public:
+    /// Throws tirpol::Error for a calibration whose planes do not hold width × height values.
+    explicit MicrogridPixelReducer(const MicrogridPixelCalibration& calibration);
+    /// The output of reduce_microgrid_per_pixel for `mosaic` (same checks and attributes).
+    Image reduce(std::span<const float> mosaic) const;
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    int m_width = 0, m_height = 0;
+    /// Per cell, row-major over the half-size image: M's 12 entries (row r, pixel k at 4r + k,
+    /// k = 2·(y mod 2) + (x mod 2)) and the 3 offsets; NaN for a singular cell.
+    std::array<std::vector<float>, 12> m_matrix;
+    std::array<std::vector<float>, 3> m_offset;
+    std::vector<unsigned char> m_bad;  ///< per pixel; its value is never read
+    int m_singular_cells = 0, m_cells_with_bad_pixels = 0;
+    std::string m_units;
+};
+
 }  // namespace tirpol::calibration
