@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "stokes_row.h"
+#include "stokes_uncertainty.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -48,6 +49,19 @@ Image MicrogridPixelCalibration::to_image() const {
     image.set_channel("w1", analysis[1]);
     image.set_channel("w2", analysis[2]);
     if (!bad.empty()) image.set_channel("bad", bad);
+    if (has_uncertainties()) {
+        image.set_channel("residual_std", residual_std);
+        const auto p = static_cast<std::size_t>(
+            std::lround(std::sqrt(static_cast<double>(unit_parameter_covariance.size()))));
+        const char* names[] = {"w0_std", "w1_std", "w2_std", "background_std"};
+        for (std::size_t k = 0; k < p; ++k) {
+            auto& plane = image.add_channel(names[k]);
+            const double unit_std = std::sqrt(unit_parameter_covariance[k * p + k]);
+            for (std::size_t i = 0; i < n; ++i)
+                plane[i] = static_cast<float>(residual_std[i] * unit_std);
+        }
+        image.attributes()["unit_parameter_covariance"] = unit_parameter_covariance;
+    }
     image.attributes()["fit_rms"] = fit_rms;
     if (!stokes_units.empty()) image.attributes()["stokes_units"] = stokes_units;
     image.attributes()["analyzer_model"] = std::string("per-pixel");
@@ -61,6 +75,21 @@ MicrogridPixelCalibration MicrogridPixelCalibration::from_image(const Image& ima
     c.analysis = {image.channel("w0"), image.channel("w1"), image.channel("w2")};
     c.background = image.channel("background");
     if (image.has_channel("bad")) c.bad = image.channel("bad");
+    if (image.has_channel("residual_std")) {
+        const auto it = image.attributes().find("unit_parameter_covariance");
+        if (it == image.attributes().end() ||
+            !std::holds_alternative<std::vector<double>>(it->second))
+            fail(
+                "per-pixel calibration: channel 'residual_std' without the attribute "
+                "'unit_parameter_covariance' (a list of 9 or 16 reals)");
+        c.unit_parameter_covariance = std::get<std::vector<double>>(it->second);
+        if (c.unit_parameter_covariance.size() != 9 && c.unit_parameter_covariance.size() != 16)
+            fail(
+                "per-pixel calibration: attribute 'unit_parameter_covariance' has {} values; "
+                "expected 9 (3×3) or 16 (4×4)",
+                c.unit_parameter_covariance.size());
+        c.residual_std = image.channel("residual_std");
+    }
     if (const auto it = image.attributes().find("stokes_units");
         it != image.attributes().end() && std::holds_alternative<std::string>(it->second))
         c.stokes_units = std::get<std::string>(it->second);
@@ -110,6 +139,14 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(
     c.background.assign(n, 0.0f);
     Eigen::VectorXd values(sources);
     double sum_sq = 0.0;
+    // Least squares with independent errors of one variance per pixel: Cov(p_i) = s_i²·(AᵀA)⁻¹,
+    // s_i² = RSS_i/(J − p) (unknown without more sources than parameters).
+    const Eigen::Index dof = sources - unknowns;
+    if (dof > 0) {
+        c.residual_std.assign(n, 0.0f);
+        const Eigen::MatrixXd unit = (design.transpose() * design).inverse();
+        c.unit_parameter_covariance.assign(unit.data(), unit.data() + unit.size());
+    }
     for (std::size_t i = 0; i < n; ++i) {
         for (Eigen::Index j = 0; j < sources; ++j) {
             const float v = flat_fields[static_cast<std::size_t>(j)].frame[i];
@@ -122,7 +159,10 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(
         for (std::size_t k = 0; k < 3; ++k)
             c.analysis[k][i] = static_cast<float>(fit(static_cast<Eigen::Index>(k)));
         if (fit_background) c.background[i] = static_cast<float>(fit(3));
-        sum_sq += (design * fit - values).squaredNorm();
+        const double rss = (design * fit - values).squaredNorm();
+        sum_sq += rss;
+        if (dof > 0)
+            c.residual_std[i] = static_cast<float>(std::sqrt(rss / static_cast<double>(dof)));
     }
     c.fit_rms = std::sqrt(sum_sq / static_cast<double>(n * static_cast<std::size_t>(sources)));
     return c;
@@ -141,6 +181,20 @@ MicrogridPixelReducer::MicrogridPixelReducer(const MicrogridPixelCalibration& ca
     if (!calibration.bad.empty() && calibration.bad.size() != n)
         fail("per-pixel calibration: its bad-pixel plane has {} values; expected {}×{} = {}",
              calibration.bad.size(), m_width, m_height, n);
+    if (calibration.has_uncertainties()) {
+        if (calibration.residual_std.size() != n)
+            fail("per-pixel calibration: its residual_std plane has {} values; expected {}×{} = {}",
+                 calibration.residual_std.size(), m_width, m_height, n);
+        m_parameters = calibration.unit_parameter_covariance.size() == 16 ? 4 : 3;
+        if (calibration.unit_parameter_covariance.size() !=
+            static_cast<std::size_t>(m_parameters * m_parameters))
+            fail("per-pixel calibration: unit_parameter_covariance has {} values; expected 9 or 16",
+                 calibration.unit_parameter_covariance.size());
+        m_unit_covariance = calibration.unit_parameter_covariance;
+        m_residual_var.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            m_residual_var[i] = calibration.residual_std[i] * calibration.residual_std[i];
+    }
     const std::size_t cells = n / 4;
     for (auto& plane : m_matrix) plane.assign(cells, 0.0f);
     for (auto& plane : m_offset) plane.assign(cells, 0.0f);
@@ -193,7 +247,8 @@ MicrogridPixelReducer::MicrogridPixelReducer(const MicrogridPixelCalibration& ca
         }
 }
 
-Image MicrogridPixelReducer::reduce(std::span<const float> mosaic) const {
+Image MicrogridPixelReducer::reduce(std::span<const float> mosaic,
+                                    std::span<const float> mosaic_std) const {
     const std::size_t n = static_cast<std::size_t>(m_width) * static_cast<std::size_t>(m_height);
     if (mosaic.size() != n)
         fail("microgrid frame has {} values; the per-pixel calibration is {}×{} ({} values)",
@@ -202,6 +257,16 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic) const {
         if (!m_bad[i] && !std::isfinite(mosaic[i]))
             fail("microgrid frame: pixel (x={}, y={}) is not finite",
                  i % static_cast<std::size_t>(m_width), i / static_cast<std::size_t>(m_width));
+    if (!mosaic_std.empty()) {
+        if (mosaic_std.size() != n)
+            fail("microgrid frame σ has {} values; the per-pixel calibration is {}×{} ({} values)",
+                 mosaic_std.size(), m_width, m_height, n);
+        for (std::size_t i = 0; i < n; ++i)
+            if (!m_bad[i] && !(mosaic_std[i] >= 0.0f && std::isfinite(mosaic_std[i])))
+                fail("microgrid frame σ: pixel (x={}, y={}) is {}; expected a finite σ ≥ 0",
+                     i % static_cast<std::size_t>(m_width), i / static_cast<std::size_t>(m_width),
+                     mosaic_std[i]);
+    }
     Image out(m_width / 2, m_height / 2);
     float* s[3] = {out.add_channel("S0").data(), out.add_channel("S1").data(),
                    out.add_channel("S2").data()};
@@ -239,6 +304,7 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic) const {
         detail::finish_stokes_row(s[0] + start, s[1] + start, s[2] + start, dolp + start,
                                   aop + start, half_width, false);
     }
+    if (!mosaic_std.empty() || !m_residual_var.empty()) add_uncertainties(out, mosaic_std);
     out.attributes()["demosaic_method"] = std::string("super-pixel");
     out.attributes()["analyzer_model"] = std::string("per-pixel");
     out.attributes()["demosaic_reference"] = std::string(
@@ -247,6 +313,62 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic) const {
     out.attributes()["cells_with_bad_pixels"] = m_cells_with_bad_pixels;
     if (!m_units.empty()) out.attributes()["units"] = m_units;
     return out;
+}
+
+void MicrogridPixelReducer::add_uncertainties(Image& out, std::span<const float> mosaic_std) const {
+    const bool calibration_error = !m_residual_var.empty();
+    out.attributes()["std_includes"] =
+        std::string(!mosaic_std.empty() && calibration_error
+                        ? "the frame's σ and the per-pixel calibration's fit error"
+                    : calibration_error ? "the per-pixel calibration's fit error"
+                                        : "the frame's σ");
+    const std::vector<float>&s0 = out.channel("S0"), &s1 = out.channel("S1"),
+          &s2 = out.channel("S2");
+    std::vector<float>* sigma[5] = {&out.add_channel("S0_std"), &out.add_channel("S1_std"),
+                                    &out.add_channel("S2_std"), &out.add_channel("DoLP_std"),
+                                    &out.add_channel("AoP_std")};
+    const auto p = static_cast<std::size_t>(m_parameters);
+    const auto half_width = static_cast<std::size_t>(out.width());
+    for (std::size_t cell = 0; cell < out.pixel_count(); ++cell) {
+        const double s[3] = {s0[cell], s1[cell], s2[cell]};
+        if (!std::isfinite(s[0])) {  // singular cell
+            for (auto* plane : sigma) (*plane)[cell] = kNaN;
+            continue;
+        }
+        // g = (S, 1): the sensitivity of I_k − b_k − w_k·S to the pixel's parameters (w_k, b_k).
+        const double g[4] = {s[0], s[1], s[2], 1.0};
+        detail::StokesCovariance c;
+        const std::size_t cx = cell % half_width, cy = cell / half_width;
+        for (std::size_t k = 0; k < 4; ++k) {
+            const std::size_t i =
+                (2 * cy + (k >> 1)) * static_cast<std::size_t>(m_width) + 2 * cx + (k & 1);
+            if (m_bad[i]) continue;
+            double var = 0.0;
+            if (!mosaic_std.empty())
+                var += static_cast<double>(mosaic_std[i]) * static_cast<double>(mosaic_std[i]);
+            if (calibration_error) {
+                double quadratic = 0.0;
+                for (std::size_t a = 0; a < p; ++a)
+                    for (std::size_t b = 0; b < p; ++b)
+                        quadratic += g[a] * m_unit_covariance[a * p + b] * g[b];
+                var += m_residual_var[i] * quadratic;
+            }
+            const double m0 = m_matrix[k][cell], m1 = m_matrix[4 + k][cell],
+                         m2 = m_matrix[8 + k][cell];
+            c.c00 += m0 * m0 * var;
+            c.c11 += m1 * m1 * var;
+            c.c22 += m2 * m2 * var;
+            c.c01 += m0 * m1 * var;
+            c.c02 += m0 * m2 * var;
+            c.c12 += m1 * m2 * var;
+        }
+        const detail::StokesStd sd = detail::stokes_std(s, std::hypot(s[1], s[2]), c);
+        (*sigma[0])[cell] = sd.s0;
+        (*sigma[1])[cell] = sd.s1;
+        (*sigma[2])[cell] = sd.s2;
+        (*sigma[3])[cell] = sd.dolp;
+        (*sigma[4])[cell] = sd.aop_deg;
+    }
 }
 
 Image reduce_microgrid_per_pixel(std::span<const float> mosaic,

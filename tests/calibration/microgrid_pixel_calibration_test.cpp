@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -202,6 +203,109 @@ TEST(MicrogridPixelCalibration, PreparedReducerEqualsTheDirectPerCellLeastSquare
                 EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << name << " " << o;
             }
     }
+}
+
+struct PullStatistics {
+    double mean = 0.0, std = 0.0;
+    std::size_t count = 0;
+};
+
+PullStatistics statistics(const std::vector<double>& pulls) {
+    PullStatistics p;
+    p.count = pulls.size();
+    for (double v : pulls) p.mean += v;
+    p.mean /= static_cast<double>(p.count);
+    for (double v : pulls) p.std += (v - p.mean) * (v - p.mean);
+    p.std = std::sqrt(p.std / static_cast<double>(p.count - 1));
+    return p;
+}
+
+/// Over 60 seeds of the flat-field noise (a new calibration each) and of the scene frame's noise:
+/// (estimate − truth)/σ for S0, S1, S2 and DoLP of every super-pixel. The frame's σ is given to the
+/// reduction when it is not 0.
+std::array<PullStatistics, 4> pulls_over_seeds(double frame_noise, double flat_field_noise) {
+    const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
+    const PlantedCamera camera(sony, 31);
+    const Eigen::Vector3d truth(300.0, 60.0, -45.0);
+    const double truth_dolp = std::hypot(truth(1), truth(2)) / truth(0);
+    std::array<std::vector<double>, 4> pulls;
+    for (std::uint32_t seed = 0; seed < 60; ++seed) {
+        std::mt19937 rng(1000 + seed);
+        const MicrogridPixelCalibration cal = calibrate_microgrid_pixels(
+            flat_fields(camera, flat_field_noise, rng), camera.width, camera.height);
+        const std::vector<float> frame = camera.image(truth, frame_noise, rng);
+        const std::vector<float> frame_std(frame.size(), static_cast<float>(frame_noise));
+        const Image stokes = MicrogridPixelReducer(cal).reduce(
+            frame,
+            frame_noise > 0.0 ? std::span<const float>(frame_std) : std::span<const float>());
+        for (std::size_t o = 0; o < stokes.pixel_count(); ++o) {
+            for (std::size_t r = 0; r < 3; ++r) {
+                const std::string name = "S" + std::to_string(r);
+                pulls[r].push_back((stokes.channel(name)[o] - truth(static_cast<Eigen::Index>(r))) /
+                                   stokes.channel(name + "_std")[o]);
+            }
+            pulls[3].push_back((stokes.channel("DoLP")[o] - truth_dolp) /
+                               stokes.channel("DoLP_std")[o]);
+        }
+    }
+    return {statistics(pulls[0]), statistics(pulls[1]), statistics(pulls[2]), statistics(pulls[3])};
+}
+
+TEST(MicrogridPixelCalibration, PropagatedSigmaMatchesTheScatterOverSeeds) {
+    // The planted camera calibrated from noisy flat fields (σ = 0.5 counts, 16 sources, 12 degrees
+    // of freedom per pixel), then a uniform DoLP 0.25 scene: the σ predicted from the fit's
+    // residuals (and the frame's σ) must describe the actual error, pulls ~ N(0, 1). Three cases:
+    // the calibration's error alone (a noise-free frame), the frame's noise alone (noise-free flat
+    // fields), both.
+    struct Case {
+        const char* what;
+        double frame_noise;
+        double flat_field_noise;
+    };
+    for (const Case& c : {Case{"calibration only", 0.0, 0.5}, Case{"frame only", 0.8, 0.0},
+                          Case{"both", 0.8, 0.5}}) {
+        const auto p = pulls_over_seeds(c.frame_noise, c.flat_field_noise);
+        const char* names[] = {"S0", "S1", "S2", "DoLP"};
+        for (std::size_t k = 0; k < 4; ++k) {
+            std::printf("%s, %s: pull mean %+.3f, std %.3f over %zu\n", c.what, names[k], p[k].mean,
+                        p[k].std, p[k].count);
+            EXPECT_LT(std::abs(p[k].mean), 0.1) << c.what << " " << names[k];
+            EXPECT_GT(p[k].std, 0.9) << c.what << " " << names[k];
+            EXPECT_LT(p[k].std, 1.1) << c.what << " " << names[k];
+        }
+    }
+}
+
+TEST(MicrogridPixelCalibration, UncertaintiesRoundTripThroughTheImage) {
+    const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
+    const PlantedCamera camera(sony, 41);
+    std::mt19937 rng(42);
+    const MicrogridPixelCalibration cal =
+        calibrate_microgrid_pixels(flat_fields(camera, 0.5, rng), camera.width, camera.height);
+    ASSERT_TRUE(cal.has_uncertainties());
+    ASSERT_EQ(cal.unit_parameter_covariance.size(), 16u);
+    const Image image = cal.to_image();
+    // w0_std = residual σ · √((AᵀA)⁻¹)₀₀: the standard uncertainty of the fitted w0.
+    EXPECT_FLOAT_EQ(
+        image.channel("w0_std")[5],
+        cal.residual_std[5] * static_cast<float>(std::sqrt(cal.unit_parameter_covariance[0])));
+    const MicrogridPixelCalibration back = MicrogridPixelCalibration::from_image(image);
+    EXPECT_EQ(back.residual_std, cal.residual_std);
+    EXPECT_EQ(back.unit_parameter_covariance, cal.unit_parameter_covariance);
+    const std::vector<float> frame = camera.image({300.0, 60.0, -45.0}, 0.0, rng);
+    EXPECT_EQ(MicrogridPixelReducer(back).reduce(frame).channel("S1_std"),
+              MicrogridPixelReducer(cal).reduce(frame).channel("S1_std"));
+    // Without the covariance the σ channel cannot be used: refused, naming the attribute.
+    Image broken = image;
+    broken.attributes().erase("unit_parameter_covariance");
+    EXPECT_THROW(MicrogridPixelCalibration::from_image(broken), Error);
+    // Too few sources for a residual (4 sources, 4 parameters): no uncertainties, no σ channels.
+    std::vector<MicrogridFlatField> four(flat_fields(camera, 0.0, rng));
+    four = {four[0], four[1], four[2], four[9]};
+    const MicrogridPixelCalibration exact =
+        calibrate_microgrid_pixels(four, camera.width, camera.height);
+    EXPECT_FALSE(exact.has_uncertainties());
+    EXPECT_FALSE(MicrogridPixelReducer(exact).reduce(frame).has_channel("S0_std"));
 }
 
 TEST(MicrogridPixelCalibration, RefusesSourcesThatCannotSeparateTheModel) {
