@@ -1,11 +1,13 @@
 // Microgrid (division-of-focal-plane) frames of 640×512 (an LWIR microgrid bolometer's size):
-// demosaicing alone and demosaicing + Stokes reduction (S0 S1 S2 DoLP AoP) per method, and the
+// demosaicing alone and demosaicing + Stokes reduction (S0 S1 S2 DoLP AoP) per method (the single
+// pass from float and from 16-bit frames, and the two-step path it replaced), and the
 // per-super-pixel reduction with a per-pixel analyzer calibration, on one core. items_per_second =
 // frames/s.
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "tirpol/calibration/microgrid_demosaic.h"
@@ -58,8 +60,8 @@ void BM_DemosaicAndReduce(benchmark::State& state) {
     state.SetLabel(std::string(demosaic_method_name(options.method)));
 }
 
-void BM_PerPixelCalibratedReduce(benchmark::State& state) {
-    // An ideal-analyzer calibration of the same camera (the cost does not depend on the values).
+/// An ideal-analyzer per-pixel calibration of the camera (the cost does not depend on the values).
+MicrogridPixelCalibration ideal_pixel_calibration() {
     MicrogridPixelCalibration cal;
     cal.width = kW;
     cal.height = kH;
@@ -74,13 +76,53 @@ void BM_PerPixelCalibratedReduce(benchmark::State& state) {
             cal.analysis[1][i] = static_cast<float>(0.5 * std::cos(two_theta));
             cal.analysis[2][i] = static_cast<float>(0.5 * std::sin(two_theta));
         }
+    return cal;
+}
+
+/// One call per frame: the per-cell matrices are made again every time.
+void BM_PerPixelCalibratedReduce(benchmark::State& state) {
+    const MicrogridPixelCalibration cal = ideal_pixel_calibration();
     for (auto _ : state) benchmark::DoNotOptimize(reduce_microgrid_per_pixel(frame(), cal));
     state.SetItemsProcessed(state.iterations());
+}
+
+/// The matrices made once (MicrogridPixelReducer), then frame after frame: a live view's case.
+void BM_PerPixelPreparedReduce(benchmark::State& state) {
+    const MicrogridPixelReducer reducer(ideal_pixel_calibration());
+    for (auto _ : state) benchmark::DoNotOptimize(reducer.reduce(frame()));
+    state.SetItemsProcessed(state.iterations());
+}
+
+/// A camera's 16-bit frame as it arrives (no float copy), bilinear, the single pass.
+void BM_DemosaicAndReduce16Bit(benchmark::State& state) {
+    static const std::vector<std::uint16_t> counts(frame().begin(), frame().end());
+    MicrogridReductionOptions options;
+    options.method = static_cast<DemosaicMethod>(state.range(0));
+    const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            reduce_microgrid(std::span<const std::uint16_t>(counts), kW, kH, sony, options));
+    state.SetItemsProcessed(state.iterations());
+    state.SetLabel(std::string(demosaic_method_name(options.method)));
+}
+
+/// The two-step path (demosaic_microgrid, then the general reduce_stokes) for comparison.
+void BM_DemosaicThenReduceStokes(benchmark::State& state) {
+    MicrogridReductionOptions options;
+    options.method = static_cast<DemosaicMethod>(state.range(0));
+    options.single_pass = false;
+    const MicrogridPattern sony = MicrogridPattern::sony_imx250mzr();
+    for (auto _ : state) benchmark::DoNotOptimize(reduce_microgrid(frame(), kW, kH, sony, options));
+    state.SetItemsProcessed(state.iterations());
+    state.SetLabel(std::string(demosaic_method_name(options.method)));
 }
 
 }  // namespace
 
 BENCHMARK(BM_Demosaic)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DemosaicAndReduce)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DemosaicAndReduce16Bit)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DemosaicThenReduceStokes)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PerPixelCalibratedReduce)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PerPixelPreparedReduce)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

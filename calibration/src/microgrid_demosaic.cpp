@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "microgrid_frame_check.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -38,24 +39,6 @@ struct InteriorMosaic {
                     static_cast<std::size_t>(x)];
     }
 };
-
-void check_input(std::span<const float> mosaic, int width, int height, std::string_view source) {
-    if (width < 4 || height < 4 || width % 2 != 0 || height % 2 != 0)
-        fail(
-            "{}: {}×{} pixels; a microgrid frame must have an even width and height of at least 4 "
-            "(whole 2×2 "
-            "cells)",
-            source, width, height);
-    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    if (mosaic.size() != n)
-        fail("{}: {} values for a {}×{} frame; expected {}", source, mosaic.size(), width, height,
-             n);
-    for (std::size_t i = 0; i < n; ++i)
-        if (!std::isfinite(mosaic[i]))
-            fail("{}: pixel (x={}, y={}) is {}; expected finite values", source,
-                 i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width),
-                 mosaic[i]);
-}
 
 void super_pixel(const Mosaic& m, DemosaicedFrame& out) {
     for (int y = 0; y < out.height; ++y)
@@ -188,6 +171,28 @@ void newton(const Mosaic& m, DemosaicedFrame& out) {
 
 }  // namespace
 
+void detail::check_microgrid_size(std::size_t values, int width, int height,
+                                  std::string_view source) {
+    if (width < 4 || height < 4 || width % 2 != 0 || height % 2 != 0)
+        fail(
+            "{}: {}×{} pixels; a microgrid frame must have an even width and height of at least 4 "
+            "(whole 2×2 cells)",
+            source, width, height);
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    if (values != n)
+        fail("{}: {} values for a {}×{} frame; expected {}", source, values, width, height, n);
+}
+
+void detail::check_microgrid_frame(std::span<const float> mosaic, int width, int height,
+                                   std::string_view source) {
+    check_microgrid_size(mosaic.size(), width, height, source);
+    for (std::size_t i = 0; i < mosaic.size(); ++i)
+        if (!std::isfinite(mosaic[i]))
+            fail("{}: pixel (x={}, y={}) is {}; expected finite values", source,
+                 i % static_cast<std::size_t>(width), i / static_cast<std::size_t>(width),
+                 mosaic[i]);
+}
+
 std::string_view demosaic_method_name(DemosaicMethod method) {
     switch (method) {
         case DemosaicMethod::SuperPixel:
@@ -225,7 +230,7 @@ DemosaicMethod parse_demosaic_method(std::string_view text, std::string_view con
 DemosaicedFrame demosaic_microgrid(std::span<const float> mosaic, int width, int height,
                                    const MicrogridPattern& pattern, DemosaicMethod method,
                                    std::string_view source) {
-    check_input(mosaic, width, height, source);
+    detail::check_microgrid_frame(mosaic, width, height, source);
     DemosaicedFrame out;
     out.method = method;
     out.angles_deg = pattern.angles_deg();

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "microgrid_frame_check.h"
+#include "microgrid_single_pass.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/polarizer_angle.h"
 
@@ -34,17 +36,32 @@ std::vector<float> microgrid_from_stokes(std::span<const float> s0, std::span<co
     return mosaic;
 }
 
-Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
-                       const MicrogridPattern& pattern, const MicrogridReductionOptions& options) {
+namespace {
+
+/// The analyzer model of the options, or ideal analyzers at the pattern's angles; checked against
+/// the pattern.
+AnalyzerModel analyzer_model(const MicrogridPattern& pattern,
+                             const MicrogridReductionOptions& options) {
     AnalyzerModel model = options.analyzer;
-    if (model.positions.empty()) {
-        model = AnalyzerModel::ideal({pattern.angles_deg().begin(), pattern.angles_deg().end()});
-    } else {
-        if (model.positions.size() != 4)
-            fail("{}: the analyzer model has {} positions; a microgrid has 4 ({})", options.source,
-                 model.positions.size(), pattern.text());
-        for (const auto& position : model.positions) pattern.cell_of(position.nominal_angle_deg);
-    }
+    if (model.positions.empty())
+        return AnalyzerModel::ideal({pattern.angles_deg().begin(), pattern.angles_deg().end()});
+    if (model.positions.size() != 4)
+        fail("{}: the analyzer model has {} positions; a microgrid has 4 ({})", options.source,
+             model.positions.size(), pattern.text());
+    for (const auto& position : model.positions) pattern.cell_of(position.nominal_angle_deg);
+    return model;
+}
+
+void write_microgrid_attributes(Image& stokes, const MicrogridPattern& pattern,
+                                DemosaicMethod method) {
+    pattern.write_to(stokes.attributes());
+    stokes.attributes()["demosaic_method"] = std::string(demosaic_method_name(method));
+    stokes.attributes()["demosaic_reference"] = std::string(demosaic_method_reference(method));
+}
+
+Image reduce_in_two_steps(std::span<const float> mosaic, int width, int height,
+                          const MicrogridPattern& pattern, const AnalyzerModel& model,
+                          const MicrogridReductionOptions& options) {
     const DemosaicedFrame frame =
         demosaic_microgrid(mosaic, width, height, pattern, options.method, options.source);
     std::vector<AnalyzerPlanes> planes;
@@ -54,12 +71,43 @@ Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
              frame.planes[c],
              {},
              fmt::format("{} ({:g}° demosaiced)", options.source, frame.angles_deg[c])});
-    Image stokes =
-        reduce_stokes(planes, frame.width, frame.height, model, nullptr, options.reduction);
-    pattern.write_to(stokes.attributes());
-    stokes.attributes()["demosaic_method"] = std::string(demosaic_method_name(options.method));
-    stokes.attributes()["demosaic_reference"] =
-        std::string(demosaic_method_reference(options.method));
+    return reduce_stokes(planes, frame.width, frame.height, model, nullptr, options.reduction);
+}
+
+bool single_pass(const MicrogridReductionOptions& options) {
+    return options.single_pass && !options.reduction.include_slar;
+}
+
+}  // namespace
+
+Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
+                       const MicrogridPattern& pattern, const MicrogridReductionOptions& options) {
+    const AnalyzerModel model = analyzer_model(pattern, options);
+    Image stokes;
+    if (single_pass(options)) {
+        detail::check_microgrid_frame(mosaic, width, height, options.source);
+        stokes = detail::reduce_microgrid_single_pass(mosaic, width, height, pattern, model,
+                                                      options.method, options.reduction);
+    } else {
+        stokes = reduce_in_two_steps(mosaic, width, height, pattern, model, options);
+    }
+    write_microgrid_attributes(stokes, pattern, options.method);
+    return stokes;
+}
+
+Image reduce_microgrid(std::span<const std::uint16_t> mosaic, int width, int height,
+                       const MicrogridPattern& pattern, const MicrogridReductionOptions& options) {
+    const AnalyzerModel model = analyzer_model(pattern, options);
+    detail::check_microgrid_size(mosaic.size(), width, height, options.source);
+    Image stokes;
+    if (single_pass(options)) {
+        stokes = detail::reduce_microgrid_single_pass(mosaic, width, height, pattern, model,
+                                                      options.method, options.reduction);
+    } else {
+        const std::vector<float> as_float(mosaic.begin(), mosaic.end());
+        stokes = reduce_in_two_steps(as_float, width, height, pattern, model, options);
+    }
+    write_microgrid_attributes(stokes, pattern, options.method);
     return stokes;
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "stokes_attributes.h"
+#include "stokes_uncertainty.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
@@ -189,30 +191,45 @@ bool propagate_pixel(PixelStokes& r, std::size_t i, bool project_to_realizable, 
     if (psi < 0.0) psi += 180.0;
     o.aop[i] = static_cast<float>(psi);
     if (!o.s0_std) return unrealizable;
-    (*o.s0_std)[i] = static_cast<float>(std::sqrt(r.c00));
-    (*o.s1_std)[i] = static_cast<float>(std::sqrt(r.c11));
-    (*o.s2_std)[i] = static_cast<float>(std::sqrt(r.c22));
-    // First-order propagation to DoLP = |(S1,S2)|/S0 and AoP = ½·atan2(S2, S1): σ² = gᵀ·Cov·g.
-    if (s[0] > 0.0 && pl > 0.0) {
-        const double g0 = -pl / (s[0] * s[0]), g1 = s[1] / (s[0] * pl), g2 = s[2] / (s[0] * pl);
-        const double var_dolp = g0 * g0 * r.c00 + g1 * g1 * r.c11 + g2 * g2 * r.c22 +
-                                2.0 * (g0 * g1 * r.c01 + g0 * g2 * r.c02 + g1 * g2 * r.c12);
-        const double a1 = -0.5 * s[2] / (pl * pl), a2 = 0.5 * s[1] / (pl * pl);
-        const double var_aop = a1 * a1 * r.c11 + a2 * a2 * r.c22 + 2.0 * a1 * a2 * r.c12;
-        (*o.dolp_std)[i] = static_cast<float>(std::sqrt(std::max(0.0, var_dolp)));
-        // Where DoLP ≈ its noise the linearisation diverges; an AoP known to nothing is uniform on
-        // [0°, 180°), σ = 180°/√12, the cap.
-        (*o.aop_std)[i] = static_cast<float>(
-            std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(std::max(0.0, var_aop)))));
-    } else {
-        (*o.dolp_std)[i] = kNaN;
-        (*o.aop_std)[i] = static_cast<float>(kAopStdCapDeg);
-    }
+    const detail::StokesStd sigma =
+        detail::stokes_std(s, pl, {r.c00, r.c11, r.c22, r.c01, r.c02, r.c12});
+    (*o.s0_std)[i] = sigma.s0;
+    (*o.s1_std)[i] = sigma.s1;
+    (*o.s2_std)[i] = sigma.s2;
+    (*o.dolp_std)[i] = sigma.dolp;
+    (*o.aop_std)[i] = sigma.aop_deg;
     return unrealizable;
 }
 
-void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matrix3Xd& drm,
-                      const ReductionOptions& options, int unrealizable, bool wire_grid_corrected) {
+}  // namespace
+
+detail::StokesStd detail::stokes_std(const double s[3], double pl, const StokesCovariance& c) {
+    StokesStd out;
+    out.s0 = static_cast<float>(std::sqrt(c.c00));
+    out.s1 = static_cast<float>(std::sqrt(c.c11));
+    out.s2 = static_cast<float>(std::sqrt(c.c22));
+    // First-order propagation to DoLP = |(S1,S2)|/S0 and AoP = ½·atan2(S2, S1): σ² = gᵀ·Cov·g.
+    if (s[0] > 0.0 && pl > 0.0) {
+        const double g0 = -pl / (s[0] * s[0]), g1 = s[1] / (s[0] * pl), g2 = s[2] / (s[0] * pl);
+        const double var_dolp = g0 * g0 * c.c00 + g1 * g1 * c.c11 + g2 * g2 * c.c22 +
+                                2.0 * (g0 * g1 * c.c01 + g0 * g2 * c.c02 + g1 * g2 * c.c12);
+        const double a1 = -0.5 * s[2] / (pl * pl), a2 = 0.5 * s[1] / (pl * pl);
+        const double var_aop = a1 * a1 * c.c11 + a2 * a2 * c.c22 + 2.0 * a1 * a2 * c.c12;
+        out.dolp = static_cast<float>(std::sqrt(std::max(0.0, var_dolp)));
+        // Where DoLP ≈ its noise the linearisation diverges; an AoP known to nothing is uniform on
+        // [0°, 180°), σ = 180°/√12, the cap.
+        out.aop_deg = static_cast<float>(
+            std::min(kAopStdCapDeg, rad_to_deg(std::sqrt(std::max(0.0, var_aop)))));
+    } else {
+        out.dolp = kNaN;
+        out.aop_deg = static_cast<float>(kAopStdCapDeg);
+    }
+    return out;
+}
+
+void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
+                                     const Eigen::Matrix3Xd& drm, const ReductionOptions& options,
+                                     int unrealizable, bool wire_grid_corrected) {
     auto& a = out.attributes();
     a["units"] = options.units;
     a["units_S0"] = options.units;
@@ -232,8 +249,6 @@ void write_attributes(Image& out, const AnalyzerModel& model, const Eigen::Matri
     a["unrealizable_pixels"] = unrealizable;
     a["wire_grid_corrected"] = wire_grid_corrected ? 1 : 0;
 }
-
-}  // namespace
 
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,
                     const AnalyzerModel& model, const WireGridCalibration* wire_grid,
@@ -264,7 +279,7 @@ Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int he
             if (propagate_pixel(pixel, i, options.project_to_realizable, outputs)) ++unrealizable;
         }
     }
-    write_attributes(out, model, drm, options, unrealizable, wire_grid != nullptr);
+    detail::write_stokes_attributes(out, model, drm, options, unrealizable, wire_grid != nullptr);
     return out;
 }
 

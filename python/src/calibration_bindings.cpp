@@ -4,6 +4,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <span>
 
 #include "bindings.h"
@@ -198,15 +199,28 @@ void bind_microgrid(py::module_& m) {
         "reduce_microgrid",
         [](const py::handle& mosaic, const py::object& pattern, const std::string& method,
            const std::string& units) {
-            int width = 0, height = 0;
-            const py::array_t<float> frame = float_plane(mosaic, "mosaic", width, height);
             const auto parsed_pattern = pattern_from_python(pattern);
             calibration::MicrogridReductionOptions options;
             options.method = calibration::parse_demosaic_method(method, "method");
             options.reduction.units = units;
             options.source = "mosaic";
             Image stokes;
-            {
+            // A camera's uint16 frame is read where it lies (no float copy); anything else goes
+            // through float32.
+            using Counts = py::array_t<std::uint16_t, py::array::c_style>;
+            if (py::isinstance<Counts>(mosaic) &&
+                py::reinterpret_borrow<Counts>(mosaic).ndim() == 2) {
+                const auto frame = py::reinterpret_borrow<Counts>(mosaic);
+                const auto height = static_cast<int>(frame.shape(0));
+                const auto width = static_cast<int>(frame.shape(1));
+                py::gil_scoped_release release;
+                stokes = calibration::reduce_microgrid(
+                    std::span<const std::uint16_t>(frame.data(),
+                                                   static_cast<std::size_t>(frame.size())),
+                    width, height, parsed_pattern, options);
+            } else {
+                int width = 0, height = 0;
+                const py::array_t<float> frame = float_plane(mosaic, "mosaic", width, height);
                 py::gil_scoped_release release;
                 stokes = calibration::reduce_microgrid(
                     std::span<const float>(frame.data(), static_cast<std::size_t>(frame.size())),
@@ -216,8 +230,10 @@ void bind_microgrid(py::module_& m) {
         },
         py::arg("mosaic"), py::arg("pattern") = "sony", py::arg("method") = "newton",
         py::arg("units") = "counts",
-        "Demosaics a microgrid frame and reduces it with ideal analyzers at the pattern's angles: "
-        "a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, S1 = I0 − I90, S2 = I45 − I135).");
+        "Demosaics a microgrid frame and reduces it with ideal analyzers at the pattern's angles "
+        "in "
+        "one pass: a tirpol.Image with S0 S1 S2 DoLP AoP (camera frame, S1 = I0 − I90, "
+        "S2 = I45 − I135). A C-contiguous uint16 (H, W) array is read without a copy.");
     m.def(
         "reduce_microgrid_session",
         [](const std::filesystem::path& session, const std::string& method) {

@@ -333,6 +333,48 @@ TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
               static_cast<double>(stage.last_sequence_during_move));
 }
 
+TEST(V4l2Camera, DeclaredMicrogridPatternIsReportedAndRecordedInTheSession) {
+    // A microgrid camera on V4L2 streams plain Y16; its pattern (here the Sony layout mirrored in
+    // x, as a ReverseX readout gives) is declared and must reach the session manifest, where
+    // reduction reads it.
+    auto device = std::make_shared<FakeV4l2Device>();
+    device->stamp_with_monotonic_clock = true;  // driver timestamps on the host's clock
+    EXPECT_FALSE(open_fake(device)->info().microgrid_pattern_deg);  // not declared: none
+    V4l2CameraOptions options;
+    options.pixel_format = "Y16";
+    options.microgrid_pattern_deg = std::array<double, 4>{45.0, 90.0, 0.0, 135.0};
+    auto camera = open_fake(device, options);
+    ASSERT_TRUE(camera);
+    ASSERT_TRUE(camera->info().microgrid_pattern_deg);
+    EXPECT_EQ(*camera->info().microgrid_pattern_deg, *options.microgrid_pattern_deg);
+    StageFillingTheQueue stage(*device);
+    CapturePlan plan;
+    plan.angles_deg = {0.0};
+    plan.frames_per_angle = 2;
+    plan.settle_s = 0.02;
+    test::TempDir tmp;
+    auto session =
+        SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
+    CaptureOptions capture_options;
+    capture_options.progress_stream = nullptr;
+    run_capture(*camera, stage, plan, session, capture_options);
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.records.size(), 1u);
+    ASSERT_TRUE(m.camera.microgrid_pattern_deg);
+    EXPECT_EQ(*m.camera.microgrid_pattern_deg, *options.microgrid_pattern_deg);
+}
+
+TEST(CameraRegistry, V4l2MicrogridKeyIsParsedAndCheckedBeforeTheDeviceIsOpened) {
+    const std::string bad = test::open_camera_error("v4l2:///dev/video0?microgrid=0,45,90");
+    EXPECT_NE(bad.find("microgrid"), std::string::npos) << bad;
+    EXPECT_NE(test::open_camera_error("v4l2:///dev/video0?microgrid=0,45,90,200").find("200"),
+              std::string::npos);
+    // A valid pattern is accepted: what fails then is the absent device, as a device error.
+    const auto camera = open_camera("v4l2:///dev/tirpol-no-such-video?microgrid=sony");
+    ASSERT_FALSE(camera.ok());
+    EXPECT_EQ(camera.error().code, DeviceErrorCode::Disconnected);
+}
+
 TEST(CameraRegistry, V4l2UrisAreCheckedAndAnAbsentDeviceIsADeviceError) {
     EXPECT_NE(test::open_camera_error("v4l2://video0").find("absolute device path"),
               std::string::npos);

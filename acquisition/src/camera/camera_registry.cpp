@@ -65,7 +65,7 @@ Result<std::unique_ptr<Camera>> open_aravis(const DeviceUri& u) {
 
 #ifdef TIRPOL_HAVE_V4L2
 Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
-    u.check_keys({"format", "width", "height", "fps", "buffers", "telemetry"});
+    u.check_keys({"format", "width", "height", "fps", "buffers", "telemetry", "microgrid"});
     if (u.target.empty() || u.target.front() != '/')
         fail("device URI '{}': expected v4l2:///dev/videoN (an absolute device path)", u.text);
     V4l2CameraOptions options;
@@ -77,6 +77,9 @@ Result<std::unique_ptr<Camera>> open_v4l2(const DeviceUri& u) {
     if (buffers < 2 || buffers > 64)
         fail("device URI '{}': buffers={} (expected 2…64)", u.text, buffers);
     options.buffers = static_cast<unsigned>(buffers);
+    if (u.query.count("microgrid") != 0)
+        options.microgrid_pattern_deg = parse_microgrid_pattern_deg(
+            u.query.at("microgrid"), fmt::format("device URI '{}': microgrid", u.text));
     std::optional<LeptonTelemetryLocation> telemetry;
     if (u.query.count("telemetry") != 0) {
         const std::string& t = u.query.at("telemetry");

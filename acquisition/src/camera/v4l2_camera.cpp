@@ -117,6 +117,7 @@ public:
             return DeviceError{DeviceErrorCode::NotSupported,
                                m_label + ": no streaming I/O (V4L2_CAP_STREAMING)"};
         m_info.uri = m_label;
+        m_info.microgrid_pattern_deg = m_options.microgrid_pattern_deg;
         m_info.vendor = reinterpret_cast<const char*>(cap.driver);
         m_info.model = reinterpret_cast<const char*>(cap.card);
         m_info.serial = reinterpret_cast<const char*>(cap.bus_info);

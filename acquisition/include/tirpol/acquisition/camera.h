@@ -4,7 +4,7 @@
 /// cores), simulated (frame generator). Opened by URI: `aravis://<device-id>`,
 /// `v4l2:///dev/videoN`, `sim://<name>`, or any scheme added with register_camera_scheme:
 ///   aravis://<device-id>[?pixel_format=Mono14&width=W&height=H&fps=F&trigger=software&buffers=N&packet_size=auto|keep&microgrid=90,45,135,0]
-///   v4l2:///dev/videoN[?format=Y16|GREY&width=W&height=H&fps=F&buffers=N]
+///   v4l2:///dev/videoN[?format=Y16|GREY&width=W&height=H&fps=F&buffers=N&microgrid=90,45,135,0]
 ///   sim://uniform?width=W&height=H&counts=C&noise=N&fps=F[&bits=B&drop=P&seed=S&fpa_k=T]
 /// (the digital twin adds the renderer-backed sim://<scene.yaml>:
 /// tirpol::twin::register_twin_device_schemes).

@@ -40,6 +40,14 @@ struct MicrogridPixelCalibration {
     /// Reduction leaves a bad pixel out of its super-pixel.
     std::vector<float> bad;
     double fit_rms = 0.0;  ///< RMS residual of the per-pixel fits, signal units
+    /// Per pixel, the standard deviation of its fit's residuals, √(RSS_i/(J − p)) for J flat fields
+    /// and p = 4 parameters (3 without background); empty when not known (no more sources than
+    /// parameters, or a calibration made another way).
+    std::vector<float> residual_std;
+    /// (AᵀA)⁻¹ of the fits' design matrix A (rows (S_j, 1)), p×p row-major: pixel i's parameters
+    /// (w_i0, w_i1, w_i2[, b_i]) have the covariance residual_std[i]² · this (least squares with
+    /// independent errors of equal variance per pixel). Empty with residual_std.
+    std::vector<double> unit_parameter_covariance;
     /// Units of the Stokes vectors the analysis vectors map from (e.g. "W/(m^2 sr)" when the
     /// sources were blackbody band radiances); empty when not known. Reduction writes it as
     /// `units`.
@@ -53,10 +61,14 @@ struct MicrogridPixelCalibration {
     float axis_angle_deg(std::size_t i) const;
     /// Whether pixel i is marked bad.
     bool is_bad(std::size_t i) const { return !bad.empty() && bad[i] != 0.0f; }
+    /// Whether the fit's uncertainties are known (residual_std and unit_parameter_covariance).
+    bool has_uncertainties() const { return !residual_std.empty(); }
     /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`
-    /// and, when assessed, `bad`; attributes `fit_rms` and, when known, `stokes_units`: the
-    /// calibration as an EXR-ready image (the w, background and bad planes are what reduction
-    /// reads).
+    /// and, when assessed, `bad`; with uncertainties `residual_std` and the parameters' standard
+    /// uncertainties `w0_std`, `w1_std`, `w2_std` (and `background_std` when fitted), attribute
+    /// `unit_parameter_covariance`; attributes `fit_rms` and, when known, `stokes_units`: the
+    /// calibration as an EXR-ready image (the w, background, bad, residual_std planes and the
+    /// covariance are what reduction reads).
     Image to_image() const;
     /// The inverse of to_image(); throws tirpol::Error naming a missing channel. A file without a
     /// `bad` channel (written before bad pixels were assessed) reads with no pixel marked bad.
@@ -83,5 +95,42 @@ MicrogridPixelCalibration calibrate_microgrid_pixels(
 /// for that super-pixel and is counted in the attribute `singular_cells`.
 Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
                                  const MicrogridPixelCalibration& calibration);
+
+/// reduce_microgrid_per_pixel with its per-super-pixel work done once: each cell's 3×4 matrix
+/// M = (WᵀW)⁻¹Wᵀ (a bad pixel's column zero) and offset −M·b, so that reducing a frame is one
+/// matrix-vector product per cell (for a live view or many frames of one camera). Equal to
+/// reduce_microgrid_per_pixel to float rounding (it is what that function runs).
+class MicrogridPixelReducer {
+public:
+    /// Throws tirpol::Error for a calibration whose planes do not hold width × height values.
+    explicit MicrogridPixelReducer(const MicrogridPixelCalibration& calibration);
+    /// The output of reduce_microgrid_per_pixel for `mosaic` (same checks and attributes). When the
+    /// calibration has uncertainties or `mosaic_std` (each pixel's σ, e.g. of a frame mean) is
+    /// given, also S0_std S1_std S2_std DoLP_std AoP_std, to first order as reduce_stokes does: per
+    /// pixel k of a cell, var_k = σ_k² + (S, 1)ᵀ·Cov(w_k, b_k)·(S, 1) (the error of I_k − b_k −
+    /// w_k·S at the cell's S), Cov(S) = Σ_k var_k·m_k·m_kᵀ with m_k column k of M; attribute
+    /// `std_includes` says which. Throws tirpol::Error for a σ plane of the wrong size or holding a
+    /// negative or non-finite value at a good pixel.
+    Image reduce(std::span<const float> mosaic, std::span<const float> mosaic_std = {}) const;
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    /// The σ channels of `out` (S0 S1 S2 present) from the frame's σ and the calibration's.
+    void add_uncertainties(Image& out, std::span<const float> mosaic_std) const;
+
+    int m_width = 0, m_height = 0;
+    /// Per cell, row-major over the half-size image: M's 12 entries (row r, pixel k at 4r + k,
+    /// k = 2·(y mod 2) + (x mod 2)) and the 3 offsets; NaN for a singular cell.
+    std::array<std::vector<float>, 12> m_matrix;
+    std::array<std::vector<float>, 3> m_offset;
+    std::vector<unsigned char> m_bad;   ///< per pixel; its value is never read
+    std::vector<float> m_residual_var;  ///< per pixel, residual_std²; empty without uncertainties
+    std::vector<double> m_unit_covariance;  ///< p×p, see unit_parameter_covariance
+    int m_parameters = 0;                   ///< p: 4 with background, 3 without
+    int m_singular_cells = 0, m_cells_with_bad_pixels = 0;
+    std::string m_units;
+};
 
 }  // namespace tirpol::calibration

@@ -4,6 +4,7 @@
 /// reduction S = W⁺·I of stokes_reduction.h with the analyzer model of the pattern's four angles.
 /// Also the ideal forward model (scene Stokes → mosaic), its inverse for an ideal analyzer.
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ struct MicrogridReductionOptions {
     AnalyzerModel analyzer;
     ReductionOptions reduction;
     std::string source = "microgrid frame";  ///< named in errors
+    /// Demosaic and reduce in one pass over the rows with the model's fixed 3×4 matrix (no
+    /// four-plane intermediate image; equal to the two-step path to float rounding, AoP by a
+    /// polynomial atan). False, or `reduction.include_slar`: demosaic_microgrid, then the general
+    /// reduce_stokes (double precision per pixel).
+    bool single_pass = true;
 };
 
 /// Demosaics `mosaic` and reduces it to channels S0 S1 S2 DoLP AoP (reduce_stokes), at the mosaic's
@@ -39,6 +45,11 @@ struct MicrogridReductionOptions {
 /// (MicrogridPattern::write_to), `demosaic_method` and `demosaic_reference`. Throws tirpol::Error
 /// for a bad frame (demosaic_microgrid) or an analyzer model whose angles are not the pattern's.
 Image reduce_microgrid(std::span<const float> mosaic, int width, int height,
+                       const MicrogridPattern& pattern,
+                       const MicrogridReductionOptions& options = {});
+/// The same for a 16-bit frame (a camera's raw counts), read without a float copy of the frame on
+/// the single pass of super-pixel and bilinear.
+Image reduce_microgrid(std::span<const std::uint16_t> mosaic, int width, int height,
                        const MicrogridPattern& pattern,
                        const MicrogridReductionOptions& options = {});
 

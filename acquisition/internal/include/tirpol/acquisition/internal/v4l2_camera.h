@@ -10,6 +10,7 @@
 #include <poll.h>
 #include <sys/types.h>
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -43,6 +44,11 @@ struct V4l2CameraOptions {
     std::optional<double>
         frame_rate_hz;     ///< via VIDIOC_S_PARM when the driver has V4L2_CAP_TIMEPERFRAME
     unsigned buffers = 4;  ///< requested; the driver may grant fewer (at least 2 are needed)
+    /// A microgrid (division-of-focal-plane) sensor's analyzer angles at cell positions (0,0),
+    /// (0,1), (1,0), (1,1), degrees (URI key `microgrid=`, "sony" or four angles): V4L2 has no
+    /// polarized pixel format, so a microgrid camera streaming Y16/GREY declares its pattern, and
+    /// CameraInfo::microgrid_pattern_deg (and so the session) carries it. Absent: no microgrid.
+    std::optional<std::array<double, 4>> microgrid_pattern_deg;
 };
 
 /// A /dev/video* node that is a streaming video-capture device (UVC also creates metadata nodes:
