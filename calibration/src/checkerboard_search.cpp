@@ -10,11 +10,15 @@
 namespace tirpol::calibration::detail {
 
 namespace {
+/// Squares smaller than this (px, between neighbouring inner corners) are refined by cornerSubPix.
+constexpr double kSmallSquarePx = 16.0;
+}  // namespace
+
 /// Why no board of `size` was found, from the largest grid of at least 3×3 inner corners that the
 /// sector detector finds (CALIB_CB_LARGER): a smaller grid near the frame's edges is a board
 /// running off the frame; one elsewhere is a board partly occluded or too faint; a grid of another
 /// shape is a target of another size than the one named.
-std::string diagnose(const cv::Mat& image_8u, const cv::Size& size) {
+std::string why_no_checkerboard(const cv::Mat& image_8u, const cv::Size& size) {
     const cv::Size smallest(std::min(3, size.width), std::min(3, size.height));
     std::vector<cv::Point2f> corners;
     cv::Mat meta;
@@ -60,24 +64,35 @@ std::string diagnose(const cv::Mat& image_8u, const cv::Size& size) {
         "its {} edge{}; aim so that the whole board is in view",
         found_text, size.width, size.height, where, edges.size() > 1 ? "s" : "");
 }
-}  // namespace
 
 std::optional<std::vector<cv::Point2f>> find_checkerboard(const cv::Mat& image_8u,
-                                                          const cv::Size& size,
-                                                          std::string& failure) {
+                                                          const cv::Size& size, bool exhaustive) {
     // OpenCV's sector-based detector (Duda & Frese, "Accurate Detection and Localization of
     // Checkerboard Corners for Calibration", BMVC 2018) at full resolution: it responds to corners
     // of either polarity (a hot board on a cold border or the inverse), and CALIB_CB_ACCURACY
-    // refines them on the full-resolution image. The plain search first, the exhaustive one
-    // (slower, for steep or small boards) only when it fails. CALIB_CB_NORMALIZE_IMAGE (histogram
-    // equalisation) is not used: on the blurred low-contrast views of bench/board_detection_bench
-    // it lost 4 of 16 boards, the stretch has already spread the board over 0–255.
+    // refines them on the full-resolution image (measured better than cv::cornerSubPix after it,
+    // docs/camera-geometry.md). CALIB_CB_NORMALIZE_IMAGE (histogram equalisation) is not used: on
+    // the blurred low-contrast views of bench/board_detection_bench it lost 4 of 16 boards; the
+    // stretch has already spread the board over 0–255.
     std::vector<cv::Point2f> corners;
-    for (int flags :
-         {static_cast<int>(cv::CALIB_CB_ACCURACY), cv::CALIB_CB_ACCURACY | cv::CALIB_CB_EXHAUSTIVE})
-        if (cv::findChessboardCornersSB(image_8u, size, corners, flags)) return corners;
-    failure = diagnose(image_8u, size);
+    if (cv::findChessboardCornersSB(image_8u, size, corners, cv::CALIB_CB_ACCURACY)) return corners;
+    if (exhaustive && cv::findChessboardCornersSB(image_8u, size, corners,
+                                                  cv::CALIB_CB_ACCURACY | cv::CALIB_CB_EXHAUSTIVE))
+        return corners;
     return std::nullopt;
+}
+
+void refine_small_squares(const cv::Mat& image, const cv::Size& size,
+                          std::vector<cv::Point2f>& corners) {
+    double min_spacing_px = 1e9;
+    for (std::size_t i = 0; i + 1 < corners.size(); ++i)
+        if ((static_cast<int>(i) + 1) % size.width != 0)
+            min_spacing_px = std::min(min_spacing_px, cv::norm(corners[i + 1] - corners[i]));
+    if (min_spacing_px >= kSmallSquarePx) return;
+    // The window must not reach the next corner.
+    const int half = std::clamp(static_cast<int>(min_spacing_px * 0.4), 2, 10);
+    cv::cornerSubPix(image, corners, cv::Size(half, half), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4));
 }
 
 }  // namespace tirpol::calibration::detail

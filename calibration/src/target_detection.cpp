@@ -53,15 +53,6 @@ TargetSearch search_target(const std::vector<float>& plane, int width, int heigh
     TargetSearch search;
     cv::Mat image = detail::finite_image(plane, width, height, search.failure);
     if (image.empty()) return search;
-    const bool checkerboard = target.kind == CalibrationTarget::Kind::Checkerboard;
-    if (checkerboard) {
-        // Measured on bench/board_detection_bench's views: without these a board of 6–10 counts
-        // under a 100-count vignetting and gradient, with column noise and stuck pixels, was found
-        // in 0 of 16 views; with them in 16, and the easier views' corners unchanged.
-        detail::replace_stuck_pixels(image);
-        detail::remove_column_offsets(image);
-        detail::subtract_background(image);
-    }
     const cv::Mat image_8u = detail::stretch_to_8bit(image);
     if (image_8u.empty()) {
         search.failure = "the frame is flat (its 0.5th and 99.5th percentiles are equal)";
@@ -69,8 +60,24 @@ TargetSearch search_target(const std::vector<float>& plane, int width, int heigh
     }
     const cv::Size size(target.columns, target.rows);
     std::optional<std::vector<cv::Point2f>> found;
-    if (checkerboard) {
-        found = detail::find_checkerboard(image_8u, size, search.failure);
+    if (target.kind == CalibrationTarget::Kind::Checkerboard) {
+        found = detail::find_checkerboard(image_8u, size, false);
+        if (!found) {
+            // Only when the frame as it is fails, so that it cannot move the corners of a board
+            // found without it: without it a board of 6–10 counts under a 100-count vignetting and
+            // gradient, with column noise and stuck pixels, was found in 0 of
+            // bench/board_detection_bench's 16 views, with it in 16.
+            detail::replace_stuck_pixels(image);
+            detail::remove_column_offsets(image);
+            detail::subtract_background(image);
+            const cv::Mat conditioned_8u = detail::stretch_to_8bit(image);
+            if (!conditioned_8u.empty()) {
+                found = detail::find_checkerboard(conditioned_8u, size, true);
+                if (!found) search.failure = detail::why_no_checkerboard(conditioned_8u, size);
+            } else {
+                search.failure = detail::why_no_checkerboard(image_8u, size);
+            }
+        }
     } else {
         for (bool hot_discs : {true, false}) {
             found =
@@ -81,6 +88,8 @@ TargetSearch search_target(const std::vector<float>& plane, int width, int heigh
         if (!found) search.failure = "no circle grid found, hot or cold discs";
     }
     if (!found) return search;
+    if (target.kind == CalibrationTarget::Kind::Checkerboard)
+        detail::refine_small_squares(image, size, *found);
     search.view = TargetView{name, {}};
     search.view->points_px.reserve(found->size());
     for (const auto& p : *found) search.view->points_px.emplace_back(p.x, p.y);

@@ -69,7 +69,7 @@ void remove_column_offsets(cv::Mat& image) {
 
 void subtract_background(cv::Mat& image) {
     cv::Mat background;
-    const double sigma_px = std::max(image.cols, image.rows) / 20.0;
+    const double sigma_px = std::max(32.0, std::max(image.cols, image.rows) / 20.0);
     cv::GaussianBlur(image, background, cv::Size(0, 0), sigma_px, sigma_px, cv::BORDER_REFLECT);
     image -= background;
 }

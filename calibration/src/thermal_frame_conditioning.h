@@ -23,7 +23,8 @@ void replace_stuck_pixels(cv::Mat& image);
 /// alternate in sign down a column, so they do not bias the median.
 void remove_column_offsets(cv::Mat& image);
 
-/// Subtracts the large-scale background (a Gaussian of sigma = 1/20 of the frame's larger side):
+/// Subtracts the large-scale background (a Gaussian of sigma = 1/20 of the frame's larger side,
+/// at least 32 px):
 /// vignetting, narcissus and gradients across the frame, which can be ten times the target's
 /// contrast, so that the stretch to 8 bits spends its levels on the target.
 void subtract_background(cv::Mat& image);

@@ -2,10 +2,11 @@
 /// \file target_detection.h
 /// Finding a calibration target in a thermal frame: 14-bit counts, low contrast, blur, hot-on-cold
 /// or cold-on-hot. The frame is contrast-stretched robustly (0.5th–99.5th percentile → 0–255, NaN
-/// pixels filled with the frame's median) before OpenCV's detectors. Checkerboards: stuck pixels,
-/// column offsets and the large-scale background (vignetting, gradients) are removed first; then
-/// OpenCV's sector-based detector at full resolution with its own sub-pixel refinement
-/// (CALIB_CB_ACCURACY), either polarity, the exhaustive search only when the plain one fails.
+/// pixels filled with the frame's median) before OpenCV's detectors. Checkerboards: OpenCV's
+/// sector-based detector at full resolution with its own sub-pixel refinement (CALIB_CB_ACCURACY),
+/// either polarity; when that fails, again after removing stuck pixels, column offsets and the
+/// large-scale background (vignetting, gradients), then with the exhaustive search. Squares under
+/// 16 px (a 160×120 core's view) are refined further by cv::cornerSubPix.
 /// Circle grids: both polarities are tried; centres are cv::findCirclesGrid's blob centroids.
 /// docs/camera-geometry.md has the measurements behind each choice.
 
