@@ -37,8 +37,9 @@ void run_geometric(const GeometricArgs& a) {
     std::printf("geometric calibration: %zu of %zu frames show %s; %d×%d, %s distortion model\n",
                 r.views.size(), frames.size(), target.to_string().c_str(), m.width, m.height,
                 m.distortion_model().c_str());
-    for (const auto& f : r.frames_without_target)
-        std::printf("  target not found: %s\n", f.c_str());
+    for (std::size_t i = 0; i < r.frames_without_target.size(); ++i)
+        std::printf("  target not found: %s (%s)\n", r.frames_without_target[i].c_str(),
+                    r.why_target_not_found[i].c_str());
     std::printf("  %-40s %9s %8s\n", "view", "RMS px", "tilt °");
     for (const auto& v : r.views)
         std::printf("  %-40s %9.4f %8.1f%s\n", v.name.c_str(), v.rms_px, v.tilt_deg,

@@ -180,18 +180,21 @@ GeometricCalibrationResult calibrate_geometric_frames(
         names.push_back(path.string());
     }
     std::vector<TargetView> views;
-    std::vector<std::string> missing;
-    auto detected = detect_target_views(planes, width, height, target, names);
-    for (std::size_t i = 0; i < detected.size(); ++i) {
-        if (detected[i])
-            views.push_back(std::move(*detected[i]));
-        else
+    std::vector<std::string> missing, why_missing;
+    auto searches = search_target_views(planes, width, height, target, names);
+    for (std::size_t i = 0; i < searches.size(); ++i) {
+        if (searches[i].view) {
+            views.push_back(std::move(*searches[i].view));
+        } else {
             missing.push_back(names[i]);
+            why_missing.push_back(std::move(searches[i].failure));
+        }
     }
     const std::size_t min_views = static_cast<std::size_t>(std::max(options.min_views, 3));
     if (views.size() < min_views) {
         std::string list;
-        for (const auto& f : missing) list += "\n  " + f;
+        for (std::size_t i = 0; i < missing.size(); ++i)
+            list += fmt::format("\n  {}: {}", missing[i], why_missing[i]);
         fail(
             "geometric calibration: target {} found in {} of {} frames, need at least {}; not "
             "found in:{}",
@@ -199,6 +202,7 @@ GeometricCalibrationResult calibrate_geometric_frames(
     }
     GeometricCalibrationResult result = calibrate_geometric(views, target, width, height, options);
     result.frames_without_target = std::move(missing);
+    result.why_target_not_found = std::move(why_missing);
     return result;
 }
 

@@ -134,14 +134,17 @@ TEST(GeometricCalibration, TargetNotFoundNamesTheFrames) {
         calibrate_geometric_frames(frames, CalibrationTarget::parse("checkerboard:9x6:0.06"));
     });
     EXPECT_NE(e.find("found in 0 of 6 frames"), std::string::npos) << e;
-    EXPECT_NE(e.find("blank3.png"), std::string::npos) << e;
+    EXPECT_NE(e.find("blank3.png: no checkerboard found"), std::string::npos) << e;
 }
 
 TEST(TargetDetection, FindsALowContrastInvertedBlurredBoardToAFewHundredthsOfAPixel) {
     // A 14-bit frame: board contrast of 60 counts on an 8000-count pedestal, hot squares where a
     // visible-light board is white-on-black inverted, blurred by the optics (σ = 1.2 px), noise 1
-    // count (1.7 % of the contrast; 3 counts, 5 %, gives ~0.1 px RMS corner noise — measured while
-    // writing this).
+    // count (1.7 % of the contrast). Coverage is supersampled 16×16: with 4×4 every edge of this
+    // axis-aligned board lands at the same fraction of a pixel and the rendered corners sat
+    // 0.05 px off their nominal positions, more than the detector's error. Measured with seeds 1–3:
+    // the sector detector alone 0.033–0.034 px RMS, cv::cornerSubPix (10 px window) after it
+    // 0.054–0.057 px; with 3 counts of noise 0.053–0.059 px and 0.091–0.105 px.
     const auto target = CalibrationTarget::parse("checkerboard:9x6:0.06");
     const double px_per_m = 600.0, x0 = 103.3,
                  y0 = 91.7;  // image position of the first inner corner
@@ -150,10 +153,10 @@ TEST(TargetDetection, FindsALowContrastInvertedBlurredBoardToAFewHundredthsOfAPi
         for (int x = 0; x < board.cols; ++x) {
             // Supersampled coverage so the edges are exact to ~1/16 px.
             double hot = 0.0;
-            for (int sy = 0; sy < 4; ++sy)
-                for (int sx = 0; sx < 4; ++sx) {
-                    const double u = (x - 0.5 + (sx + 0.5) / 4 - x0) / (px_per_m * 0.06);
-                    const double v = (y - 0.5 + (sy + 0.5) / 4 - y0) / (px_per_m * 0.06);
+            for (int sy = 0; sy < 16; ++sy)
+                for (int sx = 0; sx < 16; ++sx) {
+                    const double u = (x - 0.5 + (sx + 0.5) / 16 - x0) / (px_per_m * 0.06);
+                    const double v = (y - 0.5 + (sy + 0.5) / 16 - y0) / (px_per_m * 0.06);
                     const bool in_board = u > -1 && v > -1 && u < 9 && v < 6;
                     hot += in_board && ((static_cast<int>(std::floor(u)) +
                                          static_cast<int>(std::floor(v))) %
@@ -162,7 +165,7 @@ TEST(TargetDetection, FindsALowContrastInvertedBlurredBoardToAFewHundredthsOfAPi
                                ? 1.0
                                : 0.0;
                 }
-            board.at<float>(y, x) = static_cast<float>(8000.0 + 60.0 * hot / 16.0);
+            board.at<float>(y, x) = static_cast<float>(8000.0 + 60.0 * hot / 256.0);
         }
     cv::GaussianBlur(board, board, cv::Size(0, 0), 1.2);
     cv::Mat noise(board.size(), CV_32F);
@@ -187,7 +190,7 @@ TEST(TargetDetection, FindsALowContrastInvertedBlurredBoardToAFewHundredthsOfAPi
             worst_found = nearest;
         }
     }
-    EXPECT_LT(std::sqrt(sum2 / 54.0), 0.07) << "RMS corner error";
+    EXPECT_LT(std::sqrt(sum2 / 54.0), 0.05) << "RMS corner error";
     EXPECT_LT(worst, 0.2) << "sub-pixel corner error: expected " << worst_expected.transpose()
                           << ", found " << worst_found.transpose();
 }

@@ -41,6 +41,8 @@ struct GeometricCalibrationResult {
     std::vector<ViewReport> views;             ///< the views used, in input order
     std::vector<std::string> parameter_names;  ///< fx fy cx cy k1 …, the order of model.std_dev
     std::vector<std::string> frames_without_target;
+    /// Why the target was not found, one per frames_without_target (TargetSearch::failure).
+    std::vector<std::string> why_target_not_found;
 };
 
 /// Calibrates from detected views of `target` in images of `width`×`height`. Throws tirpol::Error
