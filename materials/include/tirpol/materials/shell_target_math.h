@@ -43,6 +43,7 @@
 /// Every term is reciprocal (symmetric in wi ↔ wo); Mueller reciprocity holds with pbrdf.h's Q.
 
 #include <cmath>
+#include <type_traits>
 
 #include "tirpol/core/geometry.h"
 #include "tirpol/materials/fresnel.h"
@@ -104,6 +105,19 @@ T smith_lambda(const T& sigma, double cot_theta) {
     return (exp(-a * a) / (a * T(std::sqrt(kPi))) - erfc(a)) * T(0.5);
 }
 
+/// smith_lambda where it is only added to 1: in double precision 0 from a = cotθ/(√2σ) ≥ 6 on,
+/// where Λ < e^(−a²)/(a√π) ≤ 2.2e-17 is below half an ulp of 1 (2^−54 ≈ 5.6e-17), so 1 + Λ rounds
+/// to exactly 1 and erfc and exp (erfc's own exponentials included) need not be evaluated. Other
+/// scalar types (ceres::Jet: derivatives) always take smith_lambda.
+template <typename T>
+T smith_lambda_beside_one(const T& sigma, double cot_theta) {
+    if constexpr (std::is_same_v<T, double>) {
+        constexpr double kNegligibleA = 6.0;
+        if (cot_theta >= kNegligibleA * std::sqrt(2.0) * sigma) return 0.0;
+    }
+    return smith_lambda(sigma, cot_theta);
+}
+
 /// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment), given 1/τ and 1/Ω in 1/rad
 /// (loops over facets compute them once).
 template <typename T>
@@ -132,7 +146,7 @@ Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const Microf
         return m;
     }
 
-    const T shadow = T(1) / (T(1) + smith_lambda(p.sigma, g.cot_i) + lambda_o);
+    const T shadow = T(1) / (T(1) + smith_lambda_beside_one(p.sigma, g.cot_i) + lambda_o);
     const T so = beard_maxwell_shadowing(p.tau_rad, p.omega_rad, g.theta_n, g.beta);
     const T scale = p.bias * d * shadow * so / T(4.0 * g.cos_i * g.cos_o);
 
