@@ -126,8 +126,13 @@ private:
     static constexpr std::uint32_t kSubpixelSlot = 0, kWavelengthSlot = 1, kFirstBounceSlot = 2;
 
     SampleStream& fallback() {
-        if (!m_fallback) m_fallback.emplace(m_seed, m_pixel, m_stream_sample);
+        if (!m_fallback) key_fallback();
         return *m_fallback;
+    }
+    /// Out of line and cold: inlined, the compiler hoisted the key's pure arithmetic out of the
+    /// bounce loop and computed it for every path.
+    [[gnu::noinline, gnu::cold]] void key_fallback() {
+        m_fallback.emplace(m_seed, m_pixel, m_stream_sample);
     }
 
     const ReplicateSampler& m_replicate;
