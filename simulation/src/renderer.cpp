@@ -459,9 +459,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
                     const ReplicateSampler replicate(seed, i, r, points);
                     StokesVector sum = StokesVector::Zero();
                     for (std::uint32_t s = 0; s < points; ++s) {
-                        SampleStream rng(
-                            seed, i, std::uint64_t{r} * points + s);  // bounces past kSobolBounces
-                        PathSampler sampler(replicate, s, rng);
+                        PathSampler sampler(replicate, s, seed, i, std::uint64_t{r} * points + s);
                         const auto [du, dv] = sampler.subpixel();
                         const Vec3 d = camera.ray_direction(x + du, y + dv);
                         sum += tracer.trace(camera.position(), d, camera_right, sampler, rays,

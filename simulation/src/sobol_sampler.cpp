@@ -65,6 +65,17 @@ std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t seed) {
 
 constexpr double kTwoToMinus32 = 0x1.0p-32;
 
+/// The second coordinate of sobol_02_point, bit-reversed: the Owen scramble works on reversed
+/// fractions, and bit reversal is linear over XOR, so the reversed generator columns (1, 3, 5, 15,
+/// 17, …: each the previous XOR itself shifted left by one) give it without the two reversals that
+/// owen_scramble(sobol_02_point(index)[1], seed) spends.
+std::uint32_t sobol_second_reversed(std::uint32_t index) {
+    std::uint32_t second = 0;
+    for (std::uint32_t rest = index, column = 1u; rest != 0; rest >>= 1, column ^= column << 1)
+        if ((rest & 1u) != 0) second ^= column;
+    return second;
+}
+
 }  // namespace
 
 std::array<std::uint32_t, 2> sobol_02_point(std::uint32_t index) {
@@ -120,8 +131,8 @@ std::array<double, 2> ReplicateSampler::pair(std::uint32_t index, std::uint32_t 
     // domain needs no reversal of the input.
     const std::uint32_t x =
         reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(keys.scramble)));
-    const std::uint32_t y =
-        owen_scramble(sobol_02_point(j)[1], static_cast<std::uint32_t>(keys.scramble >> 32));
+    const std::uint32_t y = reverse_bits(laine_karras_permutation(
+        sobol_second_reversed(j), static_cast<std::uint32_t>(keys.scramble >> 32)));
     return {x * kTwoToMinus32, y * kTwoToMinus32};
 }
 

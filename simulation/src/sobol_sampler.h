@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "rng.h"
 
@@ -87,12 +88,19 @@ private:
 };
 
 /// The random numbers of one path: the replicate's scrambled sequence for the slots it covers, the
-/// sample's counter-based stream (rng.h) beyond kSobolBounces.
+/// sample's counter-based stream (rng.h) beyond kSobolBounces. The stream is keyed on its first use
+/// only: most paths end before kSobolBounces, and its key costs three hashes.
 class PathSampler {
 public:
-    /// Sample `index` of `replicate`; `fallback` is this sample's own SampleStream.
-    PathSampler(const ReplicateSampler& replicate, std::uint32_t index, SampleStream& fallback)
-        : m_replicate(replicate), m_index(index), m_fallback(fallback) {}
+    /// Sample `index` of `replicate`; the fallback stream is SampleStream(seed, pixel,
+    /// stream_sample), this sample's own.
+    PathSampler(const ReplicateSampler& replicate, std::uint32_t index, std::uint64_t seed,
+                std::uint64_t pixel, std::uint64_t stream_sample)
+        : m_replicate(replicate),
+          m_index(index),
+          m_seed(seed),
+          m_pixel(pixel),
+          m_stream_sample(stream_sample) {}
 
     /// Sub-pixel position, each in [0, 1).
     std::array<double, 2> subpixel() const { return m_replicate.pair(m_index, kSubpixelSlot); }
@@ -100,12 +108,16 @@ public:
     double wavelength() const { return m_replicate.single(m_index, kWavelengthSlot); }
     /// The BSDF's two numbers at `bounce` (0: the camera's first hit).
     std::array<double, 2> scatter(int bounce) {
-        if (bounce >= kSobolBounces) return {m_fallback.next(), m_fallback.next()};
+        if (bounce >= kSobolBounces) {
+            SampleStream& stream = fallback();
+            const double u1 = stream.next();
+            return {u1, stream.next()};
+        }
         return m_replicate.pair(m_index, kFirstBounceSlot + 2 * static_cast<std::uint32_t>(bounce));
     }
     /// The Russian-roulette number at `bounce`.
     double roulette(int bounce) {
-        if (bounce >= kSobolBounces) return m_fallback.next();
+        if (bounce >= kSobolBounces) return fallback().next();
         return m_replicate.single(m_index,
                                   kFirstBounceSlot + 2 * static_cast<std::uint32_t>(bounce) + 1);
     }
@@ -113,9 +125,20 @@ public:
 private:
     static constexpr std::uint32_t kSubpixelSlot = 0, kWavelengthSlot = 1, kFirstBounceSlot = 2;
 
+    SampleStream& fallback() {
+        if (!m_fallback) key_fallback();
+        return *m_fallback;
+    }
+    /// Out of line and cold: inlined, the compiler hoisted the key's pure arithmetic out of the
+    /// bounce loop and computed it for every path.
+    [[gnu::noinline, gnu::cold]] void key_fallback() {
+        m_fallback.emplace(m_seed, m_pixel, m_stream_sample);
+    }
+
     const ReplicateSampler& m_replicate;
     std::uint32_t m_index;
-    SampleStream& m_fallback;
+    std::uint64_t m_seed, m_pixel, m_stream_sample;
+    std::optional<SampleStream> m_fallback;
 };
 
 }  // namespace tirpol::simulation

@@ -153,8 +153,8 @@ TEST(SobolSampler, SlotsReplicatesAndPixelsAreDecorrelated) {
 
 TEST(SobolSampler, PathSamplerFallsBackToTheStreamPastTheScrambledBounces) {
     const ReplicateSampler replicate(1, 2, 3, 8);
-    SampleStream stream(1, 2, 3), reference(1, 2, 3);
-    PathSampler path(replicate, 5, stream);
+    SampleStream reference(1, 2, 3);
+    PathSampler path(replicate, 5, 1, 2, 3);  // its stream is SampleStream(1, 2, 3)
     EXPECT_EQ(path.scatter(0), replicate.pair(5, 2));
     EXPECT_EQ(path.roulette(kSobolBounces - 1), replicate.single(5, 2 + 2 * kSobolBounces - 1));
     const auto deep = path.scatter(kSobolBounces);

@@ -66,6 +66,11 @@ struct SmithTerms {
 };
 
 SmithTerms smith_terms(double sigma, double cot_theta) {
+    // From a = 6 on, e^(−a²)/(a√π) ≤ 2.2e-17 bounds Λ, erfc(a) and the visible-slope sampler's
+    // e^(−a²)·tanθ/√π alike: each only ever enters a sum with 1 or 2 (1 + Λ, 2 − erfc(a), 1 −
+    // erfc(a)/2), which it cannot change (half an ulp of 1 is 5.6e-17), so zeros give the same
+    // doubles without erfc and exp (smith_lambda_beside_one, shell_target_math.h).
+    if (cot_theta >= 6.0 * std::sqrt(2.0) * sigma) return {0.0, 0.0, 0.0};
     const double a = cot_theta / (std::sqrt(2.0) * sigma);
     const double e = std::exp(-a * a), c = std::erfc(a);
     return {(e / (a * std::sqrt(kPi)) - c) * 0.5, c, e};
@@ -282,7 +287,11 @@ BrdfSample sample_mixture(const ShellTargetParameters<double>& p, double p_spec,
         s.pdf = 0.0;
         return s;
     }
-    s.weight = to_eigen(shell_target_mueller(p, g, d, smith.lambda)) * (s.wi.z() / s.pdf);
+    const Mueller4<double> m = shell_target_mueller(p, g, d, smith.lambda);
+    const double factor = s.wi.z() / s.pdf;
+    for (std::size_t r = 0; r < 4; ++r)
+        for (std::size_t c = 0; c < 4; ++c)
+            s.weight(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = m[r][c] * factor;
     return s;
 }
 }  // namespace

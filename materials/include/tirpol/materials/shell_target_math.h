@@ -43,6 +43,7 @@
 /// Every term is reciprocal (symmetric in wi ↔ wo); Mueller reciprocity holds with pbrdf.h's Q.
 
 #include <cmath>
+#include <type_traits>
 
 #include "tirpol/core/geometry.h"
 #include "tirpol/materials/fresnel.h"
@@ -104,6 +105,19 @@ T smith_lambda(const T& sigma, double cot_theta) {
     return (exp(-a * a) / (a * T(std::sqrt(kPi))) - erfc(a)) * T(0.5);
 }
 
+/// smith_lambda where it is only added to 1: in double precision 0 from a = cotθ/(√2σ) ≥ 6 on,
+/// where Λ < e^(−a²)/(a√π) ≤ 2.2e-17 is below half an ulp of 1 (2^−54 ≈ 5.6e-17), so 1 + Λ rounds
+/// to exactly 1 and erfc and exp (erfc's own exponentials included) need not be evaluated. Other
+/// scalar types (ceres::Jet: derivatives) always take smith_lambda.
+template <typename T>
+T smith_lambda_beside_one(const T& sigma, double cot_theta) {
+    if constexpr (std::is_same_v<T, double>) {
+        constexpr double kNegligibleA = 6.0;
+        if (cot_theta >= kNegligibleA * std::sqrt(2.0) * sigma) return 0.0;
+    }
+    return smith_lambda(sigma, cot_theta);
+}
+
 /// Beard–Maxwell shadowing/obscuration SO(θN, β; τ, Ω) (file comment), given 1/τ and 1/Ω in 1/rad
 /// (loops over facets compute them once).
 template <typename T>
@@ -127,27 +141,32 @@ template <typename T>
 Mueller4<T> shell_target_mueller(const ShellTargetParameters<T>& p, const MicrofacetGeometry& g,
                                  const T& d, const T& lambda_o) {
     Mueller4<T> m;
-    for (auto& row : m) row.fill(T(0));
-    if (!g.valid) return m;
+    if (!g.valid) {
+        for (auto& row : m) row.fill(T(0));
+        return m;
+    }
 
-    const T shadow = T(1) / (T(1) + smith_lambda(p.sigma, g.cot_i) + lambda_o);
+    const T shadow = T(1) / (T(1) + smith_lambda_beside_one(p.sigma, g.cot_i) + lambda_o);
     const T so = beard_maxwell_shadowing(p.tau_rad, p.omega_rad, g.theta_n, g.beta);
     const T scale = p.bias * d * shadow * so / T(4.0 * g.cos_i * g.cos_o);
 
     const Mueller4<T> f = fresnel_mueller_t(p.n, p.k, g.cos_beta);
-    // R(α) = [[1,0,0,0],[0,c,s,0],[0,−s,c,0],[0,0,0,1]] (paper eq 11). X = M_F · R(αi).
-    Mueller4<T> x = f;
-    for (std::size_t r = 0; r < 4; ++r) {
-        x[r][1] = f[r][1] * g.c2i - f[r][2] * g.s2i;
-        x[r][2] = f[r][1] * g.s2i + f[r][2] * g.c2i;
-    }
-    // M = R(αo) · X.
-    for (std::size_t c = 0; c < 4; ++c) {
-        m[0][c] = x[0][c] * scale;
-        m[1][c] = (x[1][c] * g.c2o + x[2][c] * g.s2o) * scale;
-        m[2][c] = (x[2][c] * g.c2o - x[1][c] * g.s2o) * scale;
-        m[3][c] = x[3][c] * scale;
-    }
+    // M_F = [[a, b, 0, 0], [b, a, 0, 0], [0, 0, re, im], [0, 0, −im, re]] (fresnel.h) and R(α) =
+    // [[1,0,0,0],[0,c,s,0],[0,−s,c,0],[0,0,0,1]] (paper eq 11): X = M_F · R(αi) and M = R(αo) · X
+    // written out, so that M_F's zero blocks cost no products (the same roundings as the full
+    // products, whose terms with a zero factor add exactly 0).
+    const T &a = f[0][0], &b = f[0][1], &re = f[2][2], &im = f[2][3];
+    const T zero(0);
+    const Mueller4<T> x{{{a, b * g.c2i, b * g.s2i, zero},
+                         {b, a * g.c2i, a * g.s2i, zero},
+                         {zero, -(re * g.s2i), re * g.c2i, im},
+                         {zero, im * g.s2i, -(im * g.c2i), re}}};
+    m[0] = {a * scale, x[0][1] * scale, x[0][2] * scale, zero};
+    m[1] = {(b * g.c2o) * scale, (x[1][1] * g.c2o + x[2][1] * g.s2o) * scale,
+            (x[1][2] * g.c2o + x[2][2] * g.s2o) * scale, (im * g.s2o) * scale};
+    m[2] = {(-(b * g.s2o)) * scale, (x[2][1] * g.c2o - x[1][1] * g.s2o) * scale,
+            (x[2][2] * g.c2o - x[1][2] * g.s2o) * scale, (im * g.c2o) * scale};
+    m[3] = {zero, x[3][1] * scale, x[3][2] * scale, re * scale};
     m[0][0] += p.rho_d + T(2) * p.rho_v / T(g.cos_i + g.cos_o);
     return m;
 }
