@@ -761,6 +761,7 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     std::filesystem::create_directories(dir);
     double best_cpu_s = std::numeric_limits<double>::infinity();
     std::string best;
+    Agreement worst;  // over the samplers
     std::vector<std::string> samplers;
     try {
         samplers = mitsuba_samplers();
@@ -788,6 +789,13 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
                 if (runs.back().noise <= kTargetNoise) break;
             }
             const Agreement agreement = check_agreement(scene, tirpol, other);
+            worst.max_abs_z = std::max(worst.max_abs_z, agreement.max_abs_z);
+            worst.max_relative_ds0 = std::max(worst.max_relative_ds0, agreement.max_relative_ds0);
+            worst.max_ratio_difference =
+                std::max(worst.max_ratio_difference, agreement.max_ratio_difference);
+            state.counters["agree_max_abs_z"] = worst.max_abs_z;
+            state.counters["agree_max_rel_dS0"] = worst.max_relative_ds0;
+            state.counters["agree_max_d_ratio"] = worst.max_ratio_difference;
             if (agreement.max_relative_ds0 > kMaxRelativeS0Difference ||
                 agreement.max_ratio_difference > kMaxRatioDifference) {
                 state.SkipWithError(
