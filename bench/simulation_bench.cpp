@@ -10,10 +10,10 @@
 //    polarization noise of 1 %, measured from two renders with different seeds, each renderer run
 //    at doubling spp from 16 until its noise is ≤ 1 % and its time interpolated in log-log between
 //    the two runs that bracket 1 % (no 1/√N extrapolation); the same for Mitsuba 3 with each of its
-//    samplers (independent, stratified, multijitter, orthogonal, ldsampler) when TIRPOL_MITSUBA
-//    names its `mitsuba` executable (built scalar_mono_polarized), else skipped, after checking per
-//    object that both renderers' mean Stokes agree (else no ratio); the ratio against the best
-//    sampler is printed.
+//    samplers (independent, stratified, multijitter, orthogonal, ldsampler; TIRPOL_MITSUBA_SAMPLERS
+//    picks some) when TIRPOL_MITSUBA names its `mitsuba` executable (built scalar_mono_polarized),
+//    else skipped, after checking per object that both renderers' mean Stokes agree (else no
+//    ratio); the ratio against the best sampler is printed.
 //  - ShadingProfile: panels_night 80×64, 8 and 64 spp, one thread: the callgrind workload.
 //  - ThreadEfficiency: panels_night 320×256, 32 spp, at 1, 2, 4, … threads up to
 //    hardware_concurrency: wall time, speedup, efficiency and tracing CPU per million paths.
@@ -398,6 +398,7 @@ struct RenderPair {
         0.0;  ///< per render: the sample loop's wall time (scene loading, tables excluded)
     double cpu_seconds =
         0.0;  ///< per render, summed over threads (tirpol: pixel loop; Mitsuba: process)
+    int samples_per_pixel = 0;  ///< as rendered (Mitsuba's samplers round some counts up)
 };
 
 /// Relative linear-polarization noise of one render of `p` over the pixels `mask`:
@@ -593,6 +594,26 @@ double mitsuba_render_seconds(const std::filesystem::path& log_path) {
                 ": no \"Rendering finished. (took …)\" line with a time in ms, s, m or h");
 }
 
+/// The sample count Mitsuba rendered for `requested`: its samplers round counts they cannot take
+/// up (stratified: a square; multijitter: a near-square product; orthogonal: a prime squared;
+/// ldsampler: a power of four) and log it at warning level as "rounding to N" or "rounded up to N"
+/// (samplers/*.cpp, v3.8.0); without such a line the count is the one requested.
+int mitsuba_sample_count(const std::filesystem::path& log_path, int requested) {
+    std::ifstream log(log_path);
+    for (std::string line; std::getline(log, line);)
+        for (const std::string key : {"rounding to ", "rounded up to "}) {
+            const auto at = line.find(key);
+            if (at == std::string::npos) continue;
+            const int count = std::atoi(line.c_str() + at + key.size());
+            if (count < requested)
+                throw Error(log_path.string() + ": Mitsuba's sample count " +
+                            std::to_string(count) + " is below the " + std::to_string(requested) +
+                            " requested; expected it rounded up: \"" + line + "\"");
+            return count;
+        }
+    return requested;
+}
+
 /// Mitsuba's Stokes AOVs (stokes integrator, mono: S0.R = S0.G = S0.B), re-expressed per pixel from
 /// Mitsuba's frame (x = ray.d × camera-up) to tirpol's (camera-right projected onto the wavefront),
 /// both for the pixel's centre ray.
@@ -627,7 +648,8 @@ double children_cpu_seconds() {
 
 /// Two Mitsuba 3 renders of `xml` (seeds 1 and 2) with `threads` threads. seconds is Mitsuba's own
 /// render time (its log), without its start-up and scene loading, as tirpol's is without its own;
-/// cpu_seconds is the whole process's (start-up, ~0.05 s, included).
+/// cpu_seconds is the whole process's (start-up, ~0.05 s, included); samples_per_pixel is the count
+/// its sampler rendered.
 RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp,
                           int threads, const Camera& camera) {
     RenderPair pair;
@@ -643,6 +665,7 @@ RenderPair render_mitsuba(const std::string& executable, const std::filesystem::
             throw Error("Mitsuba 3 failed (log: " + log.string() + "): " + command);
         pair.cpu_seconds += 0.5 * (children_cpu_seconds() - cpu_before);
         pair.seconds += 0.5 * mitsuba_render_seconds(log);
+        pair.samples_per_pixel = mitsuba_sample_count(log, spp);
         (seed == 1 ? pair.a : pair.b) = in_tirpol_frame(read_exr(out), camera);
     }
     return pair;
@@ -650,6 +673,30 @@ RenderPair render_mitsuba(const std::string& executable, const std::filesystem::
 
 constexpr double kTargetNoise = 0.01;  // relative S1/S2 noise both renderers are run to
 constexpr int kMaxBracketSpp = 1 << 14;
+
+const std::vector<std::string> kMitsubaSamplers = {"independent", "stratified", "multijitter",
+                                                   "orthogonal", "ldsampler"};
+
+/// The Mitsuba samplers to compare: TIRPOL_MITSUBA_SAMPLERS, comma-separated names from
+/// kMitsubaSamplers (to spend a loaded machine's time on some of them), else all.
+std::vector<std::string> mitsuba_samplers() {
+    const char* list = std::getenv("TIRPOL_MITSUBA_SAMPLERS");
+    if (!list || !*list) return kMitsubaSamplers;
+    std::vector<std::string> chosen;
+    std::string rest = list;
+    while (!rest.empty()) {
+        const auto comma = rest.find(',');
+        const std::string name = rest.substr(0, comma);
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        if (std::find(kMitsubaSamplers.begin(), kMitsubaSamplers.end(), name) ==
+            kMitsubaSamplers.end())
+            throw Error("TIRPOL_MITSUBA_SAMPLERS: unknown sampler \"" + name +
+                        "\"; expected comma-separated names from independent, stratified, "
+                        "multijitter, orthogonal, ldsampler");
+        chosen.push_back(name);
+    }
+    return chosen;
+}
 
 // The two renderers' means may differ by their documented model differences (Mitsuba's uncorrelated
 // Smith G on the rough plane: −1 % in S0 at grazing rows, −0.4 % over the plane); a mistranslated
@@ -714,22 +761,41 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
     std::filesystem::create_directories(dir);
     double best_cpu_s = std::numeric_limits<double>::infinity();
     std::string best;
-    for (const std::string sampler :
-         {"independent", "stratified", "multijitter", "orthogonal", "ldsampler"}) {
+    Agreement worst;  // over the samplers
+    std::vector<std::string> samplers;
+    try {
+        samplers = mitsuba_samplers();
+    } catch (const Error& e) {
+        state.SkipWithError(e.what());
+        return;
+    }
+    for (const std::string& sampler : samplers) {
         std::vector<NoiseRun> runs;
         RenderPair other;
         try {
             const auto xml = write_mitsuba_scene(dir, scene, sampler);
-            for (int spp = 16; spp <= kMaxBracketSpp; spp *= 2) {
+            // Requests double, but past what the sampler rounded the last one up to, so that no
+            // count is rendered twice (ldsampler: 32 becomes 64, and 64 would repeat it).
+            for (int spp = 16; spp <= kMaxBracketSpp;
+                 spp = std::max(2 * spp, other.samples_per_pixel + 1)) {
                 other = render_mitsuba(mitsuba, xml, spp, threads, scene.camera);
-                runs.push_back(
-                    {spp, relative_linear_noise(other, mask), other.seconds, other.cpu_seconds});
+                runs.push_back({other.samples_per_pixel, relative_linear_noise(other, mask),
+                                other.seconds, other.cpu_seconds});
                 std::printf(
-                    "Mitsuba %-11s %5d spp: %.2f s per render (%.2f CPU s), relative noise %.4f\n",
-                    sampler.c_str(), spp, other.seconds, other.cpu_seconds, runs.back().noise);
+                    "Mitsuba %-11s %5d spp (%5d asked): %.2f s per render (%.2f CPU s), relative "
+                    "noise %.4f\n",
+                    sampler.c_str(), other.samples_per_pixel, spp, other.seconds, other.cpu_seconds,
+                    runs.back().noise);
                 if (runs.back().noise <= kTargetNoise) break;
             }
             const Agreement agreement = check_agreement(scene, tirpol, other);
+            worst.max_abs_z = std::max(worst.max_abs_z, agreement.max_abs_z);
+            worst.max_relative_ds0 = std::max(worst.max_relative_ds0, agreement.max_relative_ds0);
+            worst.max_ratio_difference =
+                std::max(worst.max_ratio_difference, agreement.max_ratio_difference);
+            state.counters["agree_max_abs_z"] = worst.max_abs_z;
+            state.counters["agree_max_rel_dS0"] = worst.max_relative_ds0;
+            state.counters["agree_max_d_ratio"] = worst.max_ratio_difference;
             if (agreement.max_relative_ds0 > kMaxRelativeS0Difference ||
                 agreement.max_ratio_difference > kMaxRatioDifference) {
                 state.SkipWithError(
@@ -739,10 +805,10 @@ void BM_ReflectionEqualNoise(benchmark::State& state) {
             }
             const auto [other_s, other_cpu_s] = bracketed_seconds(runs, kTargetNoise);
             std::printf(
-                "Mitsuba %-11s to 1 %%: %.2f s wall, %.2f CPU s; tirpol/Mitsuba %.2f (wall), %.2f "
-                "(CPU)\n",
-                sampler.c_str(), other_s, other_cpu_s, tirpol_s / other_s,
-                tirpol_cpu_s / other_cpu_s);
+                "Mitsuba %-11s to 1 %% (log-log between %d and %d spp): %.2f s wall, %.2f CPU s; "
+                "tirpol/Mitsuba %.2f (wall), %.2f (CPU)\n",
+                sampler.c_str(), runs[runs.size() - 2].spp, runs.back().spp, other_s, other_cpu_s,
+                tirpol_s / other_s, tirpol_cpu_s / other_cpu_s);
             state.counters["tirpol_over_" + sampler + "_cpu"] = tirpol_cpu_s / other_cpu_s;
             if (other_cpu_s < best_cpu_s) {
                 best_cpu_s = other_cpu_s;
