@@ -9,23 +9,17 @@
 #include <cmath>
 #include <random>
 
+#include "error_of.h"
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
+
+using tirpol::test::error_of;
 
 using namespace tirpol::report;
 using ::testing::HasSubstr;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 PixelPoint apply(const std::array<double, 9>& h, PixelPoint p) {
     const double w = h[6] * p.x + h[7] * p.y + h[8];

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "error_of.h"
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
@@ -18,19 +19,12 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/report/comparison_report.h"
 
+using tirpol::test::error_of;
+
 using namespace tirpol::report;
 using ::testing::HasSubstr;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 const RegionResult& region(const CompareResult& r, const std::string& name) {
     for (const auto& region : r.regions)
