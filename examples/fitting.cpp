@@ -96,7 +96,7 @@ void fitting_example(const std::filesystem::path& out_dir) {
         kSigmaS0, kSigmaS1, kWavelengthUm);
     std::printf(
         "  fit: %s; χ²/dof = %.2f (dof %d); %.0f%% of %zu starts reached the best minimum\n",
-        result.termination.substr(0, result.termination.find(':')).c_str(), result.reduced_chi2,
+        std::string(fitting::to_string(result.termination.type)).c_str(), result.reduced_chi2,
         result.dof, 100.0 * result.fraction_reaching_best, result.starts.size());
     std::printf("  %-10s %10s %12s %22s\n", "parameter", "true", "fitted", "2σ interval");
     const auto true_values = fitting::fit_order_values(truth);

@@ -72,7 +72,8 @@ std::string fitted_material_yaml(const std::string& name, const MicrofacetFitRes
                     r.usable ? "converged" : "NOT CONVERGED");
     std::vector<std::string> notes;
     for (const FittedParameter& f : r.parameters) notes.push_back(plus_minus(f));
-    m.notes = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
+    m.notes =
+        "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination.text() + ".";
     if (!r.warnings.empty()) m.notes += " Warnings: " + join(r.warnings, " | ");
     m.wavelengths_um = r.wavelengths_um;
     for (std::size_t band = 0; band < r.wavelengths_um.size(); ++band) {
@@ -96,7 +97,7 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
     j["data_files"] = provenance.data_files;
     j["date_utc"] = provenance.date_utc;
     j["command"] = provenance.command;
-    j["termination"] = r.termination;
+    j["termination"] = r.termination.text();
     j["usable"] = r.usable;
     j["solver_report"] = r.solver_report;
     j["chi2"] = r.chi2;
@@ -150,7 +151,7 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
                           {"usable", s.usable},
                           {"iterations", s.iterations},
                           {"reached_best", s.reached_best},
-                          {"termination", s.termination}});
+                          {"termination", s.termination.text()}});
     j["starts"] = {{"count", r.starts.size()},
                    {"fraction_reaching_best", r.fraction_reaching_best},
                    {"outcomes", starts}};

@@ -112,7 +112,7 @@ void bind_fit_result(py::module_& m) {
                                [](const FitResult& r) { return r.result.reduced_chi2; })
         .def_property_readonly("usable", [](const FitResult& r) { return r.result.usable; })
         .def_property_readonly("termination",
-                               [](const FitResult& r) { return r.result.termination; })
+                               [](const FitResult& r) { return r.result.termination.text(); })
         .def_property_readonly("warnings", [](const FitResult& r) { return r.result.warnings; })
         .def_property_readonly("model_e_s0",
                                [](const FitResult& r) {

@@ -87,7 +87,7 @@ py::dict summary_dict(const RenderFitSummary& s) {
                     py::arg("covariance_available") = s.covariance_available,
                     py::arg("chi2") = s.chi2, py::arg("dof") = s.dof,
                     py::arg("reduced_chi2") = s.reduced_chi2, py::arg("usable") = s.usable,
-                    py::arg("termination") = s.termination, py::arg("renders") = s.renders,
+                    py::arg("termination") = s.termination.text(), py::arg("renders") = s.renders,
                     py::arg("iterations") = s.iterations, py::arg("seconds") = s.seconds,
                     py::arg("warnings") = s.warnings, py::arg("report") = s.FullReport());
 }

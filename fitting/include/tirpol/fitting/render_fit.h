@@ -115,7 +115,8 @@ struct RenderFitSummary {
     double reduced_chi2 = 0.0;
     std::vector<RenderFitComparison> comparisons;
     bool usable = false;  ///< Ceres' IsSolutionUsable of the last solve
-    std::string termination, solver_report;
+    SolverTermination termination;
+    std::string solver_report;
     int iterations = 0;
     int renders = 0;  ///< scene renders (each evaluation renders every view)
     double seconds = 0.0;
