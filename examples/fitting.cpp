@@ -107,7 +107,8 @@ void fitting_example(const std::filesystem::path& out_dir) {
                         "(fixed)");
         } else {
             std::printf("  %-10s %10.4g %12.4g     [%8.4g, %8.4g]\n", f.name.c_str(),
-                        true_values[i], f.value, f.value - 2 * f.sigma, f.value + 2 * f.sigma);
+                        true_values[i], f.value, f.value - 2 * f.std_uncertainty,
+                        f.value + 2 * f.std_uncertainty);
         }
     }
     for (const std::string& w : result.warnings) std::printf("  warning: %s\n", w.c_str());

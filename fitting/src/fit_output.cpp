@@ -14,7 +14,7 @@ using P = MicrofacetParameter;
 
 std::string plus_minus(const FittedParameter& f) {
     if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);
-    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.sigma,
+    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.std_uncertainty,
                        f.at_bound ? " [at bound]" : "");
 }
 
@@ -108,8 +108,9 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
     j["wavelengths_um"] = r.wavelengths_um;
     nlohmann::json params = nlohmann::json::array();
     for (const FittedParameter& f : r.parameters) {
-        nlohmann::json p{{"name", f.name},        {"value", f.value}, {"fixed", f.fixed},
-                         {"sigma", f.sigma},      {"lower", f.lower}, {"upper", f.upper},
+        nlohmann::json p{{"name", f.name},        {"value", f.value},
+                         {"fixed", f.fixed},      {"sigma", f.std_uncertainty},
+                         {"lower", f.lower},      {"upper", f.upper},
                          {"at_bound", f.at_bound}};
         if (!f.fixed) {
             const ParameterInterval interval = interval_2sigma(f);

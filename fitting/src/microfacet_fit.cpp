@@ -488,7 +488,8 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         result.free_indices.push_back(free[i]);
         if (result.covariance_available) {
             const auto ii = static_cast<Eigen::Index>(i);
-            result.parameters[free[i]].sigma = std::sqrt(std::max(0.0, result.covariance(ii, ii)));
+            result.parameters[free[i]].std_uncertainty =
+                std::sqrt(std::max(0.0, result.covariance(ii, ii)));
         }
     }
 

@@ -60,7 +60,7 @@ struct FitResult {
     }
     py::dict sigmas() const {
         py::dict out;
-        for (const auto& p : result.parameters) out[py::str(p.name)] = p.sigma;
+        for (const auto& p : result.parameters) out[py::str(p.name)] = p.std_uncertainty;
         return out;
     }
     /// value ± 2σ for the free parameters, clipped to their bounds (as the CLI prints them).

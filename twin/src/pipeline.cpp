@@ -379,7 +379,7 @@ void fit_paint(Chain& c) {
     const auto truths = fitting::fit_order_values(true_params);
     for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
         const auto& p = fit.parameters[i];
-        c.result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
+        c.result.parameters.push_back({p.name, truths[i], p.value, p.std_uncertainty, p.fixed});
     }
 }
 

@@ -112,7 +112,7 @@ struct FittedParameter {
     std::optional<double> wavelength_um;  ///< band of a per-band n or k
     double value = 0.0;
     bool fixed = false;
-    double sigma = 0.0;  ///< standard uncertainty (0 when fixed or unavailable)
+    double std_uncertainty = 0.0;  ///< standard uncertainty (0 when fixed or unavailable)
     double lower = 0.0, upper = 0.0;
     bool at_bound = false;  ///< within 1e-6·(upper − lower) of a bound
 };
