@@ -329,20 +329,20 @@ void extract_target_emissivity(Chain& c) {
         TwinEmissivity te;
         te.view_angle_deg = et.view_angle_deg;
         te.eps_s0 = e.eps_s0;
-        te.eps_s0_sigma = e.eps_s0_sigma;
+        te.eps_s0_std = e.eps_s0_std;
         te.eps_s1 = e.eps_s1;
-        te.eps_s1_sigma = e.eps_s1_sigma;
+        te.eps_s1_std = e.eps_s1_std;
         te.method_s0 = m.eps_s0;
-        te.method_s0_sigma = m.eps_s0_sigma;
+        te.method_s0_std = m.eps_s0_std;
         te.method_s1 = m.eps_s1;
-        te.method_s1_sigma = m.eps_s1_sigma;
+        te.method_s1_std = m.eps_s1_std;
         const StokesVector truth_eps = materials::directional_emissivity(
             *true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
         te.true_s0 = truth_eps(0);
         te.true_s1 = truth_eps(1);
         c.result.emissivity.push_back(te);
         c.dataset.samples.push_back(
-            {te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
+            {te.view_angle_deg, te.eps_s0, te.eps_s0_std, te.eps_s1, te.eps_s1_std, et.name});
     }
     write_file_atomic(c.out / "fit" / "emissivity.csv", fitting::emissivity_csv({c.dataset}));
 }

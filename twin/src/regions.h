@@ -33,7 +33,7 @@ double plane_of_emission_angle(const Image& render, const simulation::Camera& ca
 /// into the plane of emission whose p direction lies at `psi` (radians) in the image: there ε_S1 <
 /// 0 is p-polarized emission, as fitting expects.
 struct PlaneOfEmissionEmissivity {
-    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;
+    double eps_s0 = 0.0, eps_s0_std = 0.0, eps_s1 = 0.0, eps_s1_std = 0.0;
 };
 PlaneOfEmissionEmissivity in_plane_of_emission(const calibration::EmissivityResult& e, double psi);
 
