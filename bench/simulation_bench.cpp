@@ -596,7 +596,7 @@ double mitsuba_render_seconds(const std::filesystem::path& log_path) {
 /// Mitsuba's Stokes AOVs (stokes integrator, mono: S0.R = S0.G = S0.B), re-expressed per pixel from
 /// Mitsuba's frame (x = ray.d × camera-up) to tirpol's (camera-right projected onto the wavefront),
 /// both for the pixel's centre ray.
-Image in_tirpol_frame(const Image& mitsuba, const Camera& camera) {
+Image in_tirpol_frame(const Image& mitsuba, const PinholeCamera& camera) {
     Image out(mitsuba.width(), mitsuba.height());
     for (const auto& c : kStokesChannels) out.set_channel(c, mitsuba.channel(c + ".R"));
     const Vec3 up = -camera.world_from_camera().col(1);  // camera axes: x right, y down, z forward
@@ -629,7 +629,7 @@ double children_cpu_seconds() {
 /// render time (its log), without its start-up and scene loading, as tirpol's is without its own;
 /// cpu_seconds is the whole process's (start-up, ~0.05 s, included).
 RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp,
-                          int threads, const Camera& camera) {
+                          int threads, const PinholeCamera& camera) {
     RenderPair pair;
     for (const int seed : {1, 2}) {
         const auto out = xml.parent_path() / ("out" + std::to_string(seed) + ".exr");

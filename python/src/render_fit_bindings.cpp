@@ -31,9 +31,9 @@ RenderFitView view_of(const simulation::Scene& scene, const py::dict& d, std::si
     if (!d.contains("measured"))
         fail("{}: no 'measured' image (S0 S1 S2 S0_std S1_std S2_std)", where);
     Image measured = image_from_python(d["measured"]);
-    const simulation::Camera camera =
+    const simulation::PinholeCamera camera =
         d.contains("camera")
-            ? simulation::Camera::from_config(config_from_python(
+            ? simulation::PinholeCamera::from_config(config_from_python(
                   d["camera"], std::filesystem::path(fmt::format("<{}.camera>", where))))
             : scene.camera.resized(measured.width(), measured.height());
     RenderFitView v{d.contains("name") ? d["name"].cast<std::string>() : where,

@@ -33,10 +33,11 @@ std::size_t object_named(const simulation::Scene& scene, const std::string& name
     return 0;
 }
 
-simulation::Camera camera_at(const simulation::Camera& base, const Vec3& position,
-                             const Vec3& look_at) {
-    return simulation::Camera(base.width(), base.height(), base.intrinsics(), position,
-                              simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
+simulation::PinholeCamera camera_at(const simulation::PinholeCamera& base, const Vec3& position,
+                                    const Vec3& look_at) {
+    return simulation::PinholeCamera(
+        base.width(), base.height(), base.intrinsics(), position,
+        simulation::PinholeCamera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
 }
 
 std::uint64_t knob(const char* name, std::uint64_t fallback);
@@ -45,7 +46,7 @@ std::uint64_t knob(const char* name, std::uint64_t fallback);
 /// render's own per-pixel standard deviation of the mean (with
 /// TIRPOL_RENDER_FIT_TEST_INDEPENDENT_STD = 1, an experiment: that of an independent render, so
 /// that the weights do not correlate with the measurement's noise).
-Image measured_render(simulation::Scene scene, const simulation::Camera& camera,
+Image measured_render(simulation::Scene scene, const simulation::PinholeCamera& camera,
                       std::uint64_t seed) {
     scene.camera = camera;
     scene.sampling.seed = seed;
@@ -132,9 +133,10 @@ TEST(RenderFit, RecoversThePaintInTheTwinsNonUniformSurroundings) {
     scene.camera = scene.camera.resized(160, 120);
     scene.sampling.samples_per_pixel = 8;
     const Vec3 at(0.0, 0.0, 1.1);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -6.0, 1.6}, at),
-                                                  camera_at(scene.camera, {0.0, -5.0, 3.4}, at),
-                                                  camera_at(scene.camera, {0.0, -3.8, 4.6}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -6.0, 1.6}, at),
+        camera_at(scene.camera, {0.0, -5.0, 3.4}, at),
+        camera_at(scene.camera, {0.0, -3.8, 4.6}, at)};
     const std::size_t panel = object_named(scene, "panel_flat_black_paint"),
                       rack = object_named(scene, "rack");
     std::vector<RenderFitView> views;
@@ -166,8 +168,9 @@ std::vector<RenderFitView> ball_on_snow_views(const simulation::Scene& truth, in
     scene.camera = scene.camera.resized(width, height);
     scene.sampling.samples_per_pixel = spp;
     const Vec3 at(0.0, 0.3, 0.3);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
-                                                  camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
+        camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
     std::vector<RenderFitView> views;
     for (std::size_t v = 0; v < cameras.size(); ++v) {
         Image measured = measured_render(scene, cameras[v], first_seed + v);

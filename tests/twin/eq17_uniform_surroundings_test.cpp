@@ -44,11 +44,11 @@ simulation::Scene uniform_surroundings() {
 
 ViewResult extract_in_view(const simulation::Scene& base, const Vec3& position) {
     simulation::Scene scene = base;
-    const simulation::Camera resized = base.camera.resized(160, 128);
+    const simulation::PinholeCamera resized = base.camera.resized(160, 128);
     const Vec3 look_at(0.0, -0.0208, 1.1017);  // the twin's views all look here
-    scene.camera =
-        simulation::Camera(resized.width(), resized.height(), resized.intrinsics(), position,
-                           simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
+    scene.camera = simulation::PinholeCamera(
+        resized.width(), resized.height(), resized.intrinsics(), position,
+        simulation::PinholeCamera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
     const Image render = simulation::render(scene, {});
     const std::size_t target = object_index(scene, "panel_flat_black_paint");
     const std::size_t reflector = object_index(scene, "panel_diffuse_ir_reflector");

@@ -27,10 +27,11 @@ std::size_t object_named(const simulation::Scene& scene, const std::string& name
         if (scene.objects[i].name == name) return i;
     return 0;
 }
-simulation::Camera camera_at(const simulation::Camera& base, const Vec3& position,
-                             const Vec3& look_at) {
-    return simulation::Camera(base.width(), base.height(), base.intrinsics(), position,
-                              simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
+simulation::PinholeCamera camera_at(const simulation::PinholeCamera& base, const Vec3& position,
+                                    const Vec3& look_at) {
+    return simulation::PinholeCamera(
+        base.width(), base.height(), base.intrinsics(), position,
+        simulation::PinholeCamera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
 }
 std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
     double cx = 0.0, cy = 0.0;
@@ -60,8 +61,9 @@ TEST(ZzExperiment, RegionMeanNoise) {
     scene.camera = scene.camera.resized(160, 128);
     scene.sampling.samples_per_pixel = env("EXP_SPP", 8);
     const Vec3 at(0.0, 0.3, 0.3);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
-                                                  camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
+        camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
     std::vector<std::vector<RenderFitRegion>> regions;
     std::vector<std::vector<std::uint8_t>> masks;
     for (const auto& c : cameras) {
