@@ -52,7 +52,7 @@ test::SyntheticPairOptions quiet(double dx, double dy) {
 TEST(ReportRegistration, ControlPointsRecoverAKnownHomography) {
     // A mild perspective: simulated = H_true(measured).
     const std::array<double, 9> truth{1.02, 0.03, -4.0, -0.02, 0.98, 2.5, 1e-5, -2e-5, 1.0};
-    std::vector<ControlPoint> cps;
+    std::vector<TiePoint> cps;
     for (const PixelPoint m : {PixelPoint{10, 12}, PixelPoint{150, 8}, PixelPoint{160, 120},
                                PixelPoint{14, 130}, PixelPoint{80, 60}, PixelPoint{40, 100}})
         cps.push_back({m, apply(truth, m)});
@@ -71,7 +71,7 @@ TEST(ReportRegistration, ControlPointsRecoverAKnownHomography) {
 TEST(ReportRegistration, ControlPointsRecoverAShiftOfTheImagesAndReportResidual) {
     const double dx = 3.0, dy = -2.0;
     const auto pair = test::make_synthetic_pair(quiet(dx, dy));
-    std::vector<ControlPoint> cps;
+    std::vector<TiePoint> cps;
     for (const PixelPoint s :
          {PixelPoint{20, 20}, PixelPoint{170, 20}, PixelPoint{170, 120}, PixelPoint{20, 120}})
         cps.push_back({{s.x + dx, s.y + dy}, s});
