@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "render_fit_views.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/materials/microfacet.h"
@@ -23,22 +24,9 @@
 
 using namespace tirpol;
 using namespace tirpol::fitting;
+using namespace tirpol::test;
 
 namespace {
-
-std::size_t object_named(const simulation::Scene& scene, const std::string& name) {
-    for (std::size_t i = 0; i < scene.objects.size(); ++i)
-        if (scene.objects[i].name == name) return i;
-    ADD_FAILURE() << "no object " << name;
-    return 0;
-}
-
-simulation::PinholeCamera camera_at(const simulation::PinholeCamera& base, const Vec3& position,
-                                    const Vec3& look_at) {
-    return simulation::PinholeCamera(
-        base.width(), base.height(), base.intrinsics(), position,
-        simulation::PinholeCamera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
-}
 
 std::uint64_t knob(const char* name, std::uint64_t fallback);
 
@@ -82,25 +70,6 @@ std::uint64_t knob(const char* name, std::uint64_t fallback) {
 /// Offset added to the measurements' seeds, from TIRPOL_RENDER_FIT_TEST_SEED_OFFSET (default 0):
 /// the same tests on other noise realisations, to see how the recovered values scatter.
 std::uint64_t measurement_seed_offset() { return knob("TIRPOL_RENDER_FIT_TEST_SEED_OFFSET", 0); }
-
-/// Splits a region into four quadrants about its centroid (different view angles on a sphere).
-std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
-    double cx = 0.0, cy = 0.0;
-    for (std::size_t i : r.pixels)
-        cx += static_cast<double>(i % width), cy += static_cast<double>(i / width);
-    cx /= static_cast<double>(r.pixels.size()), cy /= static_cast<double>(r.pixels.size());
-    std::vector<RenderFitRegion> out{{r.name + "_top", {}},
-                                     {r.name + "_right", {}},
-                                     {r.name + "_bottom", {}},
-                                     {r.name + "_left", {}}};
-    for (std::size_t i : r.pixels) {
-        const double dx = static_cast<double>(i % width) - cx,
-                     dy = static_cast<double>(i / width) - cy;
-        const int q = std::abs(dy) > std::abs(dx) ? (dy < 0 ? 0 : 2) : (dx > 0 ? 1 : 3);
-        out[static_cast<std::size_t>(q)].pixels.push_back(i);
-    }
-    return out;
-}
 
 void expect_recovered(const RenderFitSummary& s, const std::vector<double>& truth) {
     ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
