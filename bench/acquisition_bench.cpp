@@ -124,6 +124,17 @@ struct RateProbe {
     }
 };
 
+/// The next frame, seen by `probe`; nullopt after handing the grab's error to `state`.
+std::optional<Frame> next_frame(benchmark::State& state, Camera& camera, RateProbe& probe) {
+    auto frame = camera.grab(std::chrono::seconds(2));
+    if (!frame.ok()) {
+        state.SkipWithError(frame.error().message.c_str());
+        return std::nullopt;
+    }
+    probe.see(frame.value());
+    return std::move(frame.value());
+}
+
 void report(benchmark::State& state, Camera& camera, const RateProbe& probe) {
     state.counters["camera_fps"] = probe.fps();
     const StreamStatistics stats = camera.statistics();
@@ -139,13 +150,9 @@ void Grab(benchmark::State& state) {
     (void)camera->grab(std::chrono::seconds(2));  // the first frame includes stream start-up
     RateProbe probe;
     for (auto _ : state) {
-        auto frame = camera->grab(std::chrono::seconds(2));
-        if (!frame.ok()) {
-            state.SkipWithError(frame.error().message.c_str());
-            break;
-        }
-        benchmark::DoNotOptimize(frame.value().counts.data());
-        probe.see(frame.value());
+        const auto frame = next_frame(state, *camera, probe);
+        if (!frame) break;
+        benchmark::DoNotOptimize(frame->counts.data());
     }
     report(state, *camera, probe);
 }
@@ -160,13 +167,9 @@ void GrabAverageWriteExr(benchmark::State& state) {
     (void)camera->grab(std::chrono::seconds(2));
     RateProbe probe;
     for (auto _ : state) {
-        auto frame = camera->grab(std::chrono::seconds(2));
-        if (!frame.ok()) {
-            state.SkipWithError(frame.error().message.c_str());
-            break;
-        }
-        probe.see(frame.value());
-        averager.add(frame.value());
+        const auto frame = next_frame(state, *camera, probe);
+        if (!frame) break;
+        averager.add(*frame);
         if (averager.count() == kFramesPerExr) {
             write_exr(dir / ("angle_" + std::to_string(written++ % 4) + ".exr"),
                       averager.to_image());
@@ -201,26 +204,23 @@ void AverageWriteExrOnly(benchmark::State& state) {
     std::filesystem::remove_all(dir);
 }
 
+/// 30, 60, 120 and 1000 frames per second (the cameras' rates and a free-running simulator).
+void at_camera_frame_rates(benchmark::internal::Benchmark* b) {
+    b->Arg(30)
+        ->Arg(60)
+        ->Arg(120)
+        ->Arg(1000)
+        ->Iterations(kFramesPerRun)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+}
+
 BENCHMARK(AverageWriteExrOnly)
     ->Iterations(kFramesPerRun)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(Grab)
-    ->Arg(30)
-    ->Arg(60)
-    ->Arg(120)
-    ->Arg(1000)
-    ->Iterations(kFramesPerRun)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(GrabAverageWriteExr)
-    ->Arg(30)
-    ->Arg(60)
-    ->Arg(120)
-    ->Arg(1000)
-    ->Iterations(kFramesPerRun)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(Grab)->Apply(at_camera_frame_rates);
+BENCHMARK(GrabAverageWriteExr)->Apply(at_camera_frame_rates);
 
 // ---- Full 4-angle set: capture loop overhead
 // ------------------------------------------------------- FourAngleSet/<deg_per_s>/<fps>: one

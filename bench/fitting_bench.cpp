@@ -100,9 +100,9 @@ void BM_RenderFit_3Views_160x120_2Params(benchmark::State& state) {
     for (const Vec3& position :
          {Vec3(0.0, -6.0, 1.6), Vec3(0.0, -5.0, 3.4), Vec3(0.0, -3.8, 4.6)}) {
         simulation::Scene s = scene;
-        s.camera = simulation::Camera(
+        s.camera = simulation::PinholeCamera(
             scene.camera.width(), scene.camera.height(), scene.camera.intrinsics(), position,
-            simulation::Camera::look_at(position, at, Vec3(0.0, 0.0, 1.0)));
+            simulation::PinholeCamera::look_at(position, at, Vec3(0.0, 0.0, 1.0)));
         s.sampling.seed = 1000 + views.size();
         Image measured = simulation::render(s);
         for (const char* k : {"S0", "S1", "S2"}) {

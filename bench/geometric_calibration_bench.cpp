@@ -10,6 +10,7 @@
 #include <cstring>
 #include <random>
 
+#include "../tests/support/truth_lens.h"
 #include "tirpol/calibration/geometric_calibration.h"
 
 namespace {
@@ -19,17 +20,8 @@ using namespace tirpol::calibration;
 
 constexpr int kW = 640, kH = 512, kViews = 20, kSub = 4;
 
-CameraModel lens() {
-    CameraModel m;
-    m.width = kW;
-    m.height = kH;
-    m.fx = 762.0;
-    m.fy = 765.5;
-    m.cx = 331.7;
-    m.cy = 247.2;
-    m.distortion = {-0.32, 0.14, 0.0009, -0.0006, -0.035};
-    return m;
-}
+/// The lens of the geometric-calibration tests (tests/support/truth_lens.h).
+CameraModel lens() { return test::truth_lens(); }
 
 const CalibrationTarget& target() {
     static const CalibrationTarget t = CalibrationTarget::parse("checkerboard:9x6:0.06");

@@ -24,6 +24,7 @@
 
 #include "../tests/acquisition/child_process.h"
 #include "../tests/acquisition/fake_gv_camera_process.h"
+#include "live_view.h"
 #include "tirpol/live/live_server.h"
 
 namespace {

@@ -617,7 +617,7 @@ int mitsuba_sample_count(const std::filesystem::path& log_path, int requested) {
 /// Mitsuba's Stokes AOVs (stokes integrator, mono: S0.R = S0.G = S0.B), re-expressed per pixel from
 /// Mitsuba's frame (x = ray.d × camera-up) to tirpol's (camera-right projected onto the wavefront),
 /// both for the pixel's centre ray.
-Image in_tirpol_frame(const Image& mitsuba, const Camera& camera) {
+Image in_tirpol_frame(const Image& mitsuba, const PinholeCamera& camera) {
     Image out(mitsuba.width(), mitsuba.height());
     for (const auto& c : kStokesChannels) out.set_channel(c, mitsuba.channel(c + ".R"));
     const Vec3 up = -camera.world_from_camera().col(1);  // camera axes: x right, y down, z forward
@@ -651,7 +651,7 @@ double children_cpu_seconds() {
 /// cpu_seconds is the whole process's (start-up, ~0.05 s, included); samples_per_pixel is the count
 /// its sampler rendered.
 RenderPair render_mitsuba(const std::string& executable, const std::filesystem::path& xml, int spp,
-                          int threads, const Camera& camera) {
+                          int threads, const PinholeCamera& camera) {
     RenderPair pair;
     for (const int seed : {1, 2}) {
         const auto out = xml.parent_path() / ("out" + std::to_string(seed) + ".exr");

@@ -96,7 +96,7 @@ void fitting_example(const std::filesystem::path& out_dir) {
         kSigmaS0, kSigmaS1, kWavelengthUm);
     std::printf(
         "  fit: %s; χ²/dof = %.2f (dof %d); %.0f%% of %zu starts reached the best minimum\n",
-        result.termination.substr(0, result.termination.find(':')).c_str(), result.reduced_chi2,
+        std::string(fitting::to_string(result.termination.type)).c_str(), result.reduced_chi2,
         result.dof, 100.0 * result.fraction_reaching_best, result.starts.size());
     std::printf("  %-10s %10s %12s %22s\n", "parameter", "true", "fitted", "2σ interval");
     const auto true_values = fitting::fit_order_values(truth);
@@ -107,7 +107,8 @@ void fitting_example(const std::filesystem::path& out_dir) {
                         "(fixed)");
         } else {
             std::printf("  %-10s %10.4g %12.4g     [%8.4g, %8.4g]\n", f.name.c_str(),
-                        true_values[i], f.value, f.value - 2 * f.sigma, f.value + 2 * f.sigma);
+                        true_values[i], f.value, f.value - 2 * f.std_uncertainty,
+                        f.value + 2 * f.std_uncertainty);
         }
     }
     for (const std::string& w : result.warnings) std::printf("  warning: %s\n", w.c_str());

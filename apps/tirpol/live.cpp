@@ -41,8 +41,7 @@ void run_live(LiveArgs a) {
             .check(a.view.force_snapshots);
         std::filesystem::create_directories(a.view.snapshot_dir);
     }
-    live::LiveView view(a.view);
-    live::LiveServer server(view, a.server);
+    live::LiveServer server(a.view, a.server);
     const std::vector<std::string> urls = server.urls();
     std::printf("tirpol live: open %s\n", urls.front().c_str());
     for (std::size_t i = 1; i < urls.size(); ++i)

@@ -109,32 +109,32 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
         double sigma_lbb = 0.0;
         if (t.temperature_k) {
             r.temperature_k = *t.temperature_k;
-            r.l_bb = band.radiance(*t.temperature_k);
+            r.l_bb_w_m2_sr = band.radiance(*t.temperature_k);
             sigma_lbb = band.radiance_dT(*t.temperature_k) * t.temperature_std_k;
         } else {
             const RegionMean bb =
                 region_mean(stokes, "S0", *t.blackbody_rect, t.name + " blackbody_rect");
-            r.l_bb = bb.mean;
+            r.l_bb_w_m2_sr = bb.mean;
             sigma_lbb = bb.standard_error;
             r.temperature_k = band.brightness_temperature(bb.mean);
         }
-        r.l_dw = dw.mean;
-        const double d = r.l_bb - r.l_dw;
+        r.l_dw_w_m2_sr = dw.mean;
+        const double d = r.l_bb_w_m2_sr - r.l_dw_w_m2_sr;
         if (!(d > 0.0))
             fail(
                 "target '{}': L_BB = {:.4g} W/(m²·sr) does not exceed the downwelled L_dw = "
                 "{:.4g}; eq 17 needs the "
                 "target warmer (in band) than its reflected background",
-                t.name, r.l_bb, r.l_dw);
+                t.name, r.l_bb_w_m2_sr, r.l_dw_w_m2_sr);
         const RegionMean s0 = region_mean(stokes, "S0", t.rect, t.name);
         const RegionMean s1 = region_mean(stokes, "S1", t.rect, t.name);
         const RegionMean s2 = region_mean(stokes, "S2", t.rect, t.name);
         r.pixels = s0.n;
         const double sd = dw.standard_error;
-        r.eps_s0 = (s0.mean - r.l_dw) / d;
+        r.eps_s0 = (s0.mean - r.l_dw_w_m2_sr) / d;
         // First-order propagation: ∂ε0/∂S0 = 1/D, ∂ε0/∂L_dw = (S0 − L_BB)/D², ∂ε0/∂L_BB = −ε0/D.
         r.eps_s0_std = std::sqrt(std::pow(s0.standard_error / d, 2) +
-                                 std::pow((s0.mean - r.l_bb) / (d * d) * sd, 2) +
+                                 std::pow((s0.mean - r.l_bb_w_m2_sr) / (d * d) * sd, 2) +
                                  std::pow(r.eps_s0 / d * sigma_lbb, 2));
         auto polarized = [&](const RegionMean& s, double& eps, double& std) {
             eps = s.mean / d;
@@ -160,9 +160,9 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
 std::string emissivity_csv(const std::vector<EmissivityResult>& results) {
     std::vector<EmissivityCsvRow> rows;
     for (const auto& r : results)
-        rows.push_back({r.name, r.view_angle_deg, r.temperature_k, r.pixels, r.l_dw, r.l_bb,
-                        EmissivityFrame::Image, r.eps_s0, r.eps_s0_std, r.eps_s1, r.eps_s1_std,
-                        r.eps_s2, r.eps_s2_std, std::nullopt, 0});
+        rows.push_back({r.name, r.view_angle_deg, r.temperature_k, r.pixels, r.l_dw_w_m2_sr,
+                        r.l_bb_w_m2_sr, EmissivityFrame::Image, r.eps_s0, r.eps_s0_std, r.eps_s1,
+                        r.eps_s1_std, r.eps_s2, r.eps_s2_std, std::nullopt, 0});
     return emissivity_csv_text(rows);
 }
 

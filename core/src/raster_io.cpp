@@ -24,6 +24,17 @@ std::uint32_t big_endian_u32(const unsigned char* p) {
            p[3];
 }
 
+// A header's declared size against tirpol's limits, before anything is allocated for it.
+void check_declared_size(const std::filesystem::path& path, std::uint32_t width,
+                         std::uint32_t height) {
+    if (width == 0 || height == 0 || width > limits::kMaxImageSide ||
+        height > limits::kMaxImageSide || std::uint64_t{width} * height > limits::kMaxImagePixels)
+        fail(
+            "{}: declares {}×{} pixels, beyond tirpol's limits ({} pixels a side, {} pixels in "
+            "all)",
+            path.string(), width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
+}
+
 // Checks a PNG's IHDR (size, bit depth) before decoding, so that a declared 40000×40000 or an
 // 8-bit image is refused without allocating its pixels.
 void check_png_header(const std::filesystem::path& path) {
@@ -36,12 +47,7 @@ void check_png_header(const std::filesystem::path& path) {
         fail("{}: not a PNG file (bad signature or no IHDR chunk)", path.string());
     const std::uint32_t width = big_endian_u32(h + 16), height = big_endian_u32(h + 20);
     const int bit_depth = h[24];
-    if (width == 0 || height == 0 || width > limits::kMaxImageSide ||
-        height > limits::kMaxImageSide || std::uint64_t{width} * height > limits::kMaxImagePixels)
-        fail(
-            "{}: declares {}×{} pixels, beyond tirpol's limits ({} pixels a side, {} pixels in "
-            "all)",
-            path.string(), width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
+    check_declared_size(path, width, height);
     const double decoded_bytes = static_cast<double>(width) * height * std::max(bit_depth, 8) / 8.0;
     if (decoded_bytes >
         limits::kMaxCompressionRatio * static_cast<double>(std::filesystem::file_size(path)))
@@ -67,12 +73,7 @@ void check_tiff_header(const std::filesystem::path& path) {
         fail("{}: TIFF without ImageWidth/ImageLength tags", path.string());
     TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_BITSPERSAMPLE, &bits);
     TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_SAMPLESPERPIXEL, &samples);
-    if (width == 0 || height == 0 || width > limits::kMaxImageSide ||
-        height > limits::kMaxImageSide || std::uint64_t{width} * height > limits::kMaxImagePixels)
-        fail(
-            "{}: declares {}×{} pixels, beyond tirpol's limits ({} pixels a side, {} pixels in "
-            "all)",
-            path.string(), width, height, limits::kMaxImageSide, limits::kMaxImagePixels);
+    check_declared_size(path, width, height);
     const double decoded_bytes =
         static_cast<double>(width) * height * samples * std::max<int>(bits, 8) / 8.0;
     if (decoded_bytes >

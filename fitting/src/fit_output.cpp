@@ -14,7 +14,7 @@ using P = MicrofacetParameter;
 
 std::string plus_minus(const FittedParameter& f) {
     if (f.fixed) return fmt::format("{} = {:.6g} (fixed)", f.name, f.value);
-    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.sigma,
+    return fmt::format("{} = {:.6g} ± {:.2g} (2σ){}", f.name, f.value, 2.0 * f.std_uncertainty,
                        f.at_bound ? " [at bound]" : "");
 }
 
@@ -72,7 +72,8 @@ std::string fitted_material_yaml(const std::string& name, const MicrofacetFitRes
                     r.usable ? "converged" : "NOT CONVERGED");
     std::vector<std::string> notes;
     for (const FittedParameter& f : r.parameters) notes.push_back(plus_minus(f));
-    m.notes = "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination + ".";
+    m.notes =
+        "Fitted values: " + join(notes, "; ") + ". Termination: " + r.termination.text() + ".";
     if (!r.warnings.empty()) m.notes += " Warnings: " + join(r.warnings, " | ");
     m.wavelengths_um = r.wavelengths_um;
     for (std::size_t band = 0; band < r.wavelengths_um.size(); ++band) {
@@ -96,7 +97,7 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
     j["data_files"] = provenance.data_files;
     j["date_utc"] = provenance.date_utc;
     j["command"] = provenance.command;
-    j["termination"] = r.termination;
+    j["termination"] = r.termination.text();
     j["usable"] = r.usable;
     j["solver_report"] = r.solver_report;
     j["chi2"] = r.chi2;
@@ -107,8 +108,9 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
     j["wavelengths_um"] = r.wavelengths_um;
     nlohmann::json params = nlohmann::json::array();
     for (const FittedParameter& f : r.parameters) {
-        nlohmann::json p{{"name", f.name},        {"value", f.value}, {"fixed", f.fixed},
-                         {"sigma", f.sigma},      {"lower", f.lower}, {"upper", f.upper},
+        nlohmann::json p{{"name", f.name},        {"value", f.value},
+                         {"fixed", f.fixed},      {"sigma", f.std_uncertainty},
+                         {"lower", f.lower},      {"upper", f.upper},
                          {"at_bound", f.at_bound}};
         if (!f.fixed) {
             const ParameterInterval interval = interval_2sigma(f);
@@ -150,7 +152,7 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
                           {"usable", s.usable},
                           {"iterations", s.iterations},
                           {"reached_best", s.reached_best},
-                          {"termination", s.termination}});
+                          {"termination", s.termination.text()}});
     j["starts"] = {{"count", r.starts.size()},
                    {"fraction_reaching_best", r.fraction_reaching_best},
                    {"outcomes", starts}};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "ceres_termination.h"
 #include "emissivity_residual.h"
 #include "latin_hypercube.h"
 #include "tirpol/core/cancelled.h"
@@ -422,9 +423,7 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         outcome.initial = start;
         outcome.chi2 = 2.0 * summary.final_cost;
         outcome.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
-        outcome.termination =
-            std::string(ceres::TerminationTypeToString(summary.termination_type)) + ": " +
-            summary.message;
+        outcome.termination = termination_of(summary);
         outcome.iterations = static_cast<int>(summary.iterations.size());
         result.residual_evaluations += std::max(0, summary.num_residual_evaluations);
         result.jacobian_evaluations += std::max(0, summary.num_jacobian_evaluations);
@@ -448,7 +447,7 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
     result.fraction_reaching_best =
         static_cast<double>(reached) / static_cast<double>(result.starts.size());
     if (!best_usable)
-        result.warnings.push_back("no start gave a usable solution (" + result.termination +
+        result.warnings.push_back("no start gave a usable solution (" + result.termination.text() +
                                   "): the parameters below are not a fit");
 
     // Non-finite residuals make Ceres' covariance factorise a matrix of NaN (Eigen's JacobiSVD then
@@ -489,7 +488,8 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         result.free_indices.push_back(free[i]);
         if (result.covariance_available) {
             const auto ii = static_cast<Eigen::Index>(i);
-            result.parameters[free[i]].sigma = std::sqrt(std::max(0.0, result.covariance(ii, ii)));
+            result.parameters[free[i]].std_uncertainty =
+                std::sqrt(std::max(0.0, result.covariance(ii, ii)));
         }
     }
 

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 
+#include "ceres_termination.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 
@@ -309,8 +310,7 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
         ceres::Solve(so, problem.get(), &summary);
         if (error) std::rethrow_exception(error);
         result.usable = summary.IsSolutionUsable();
-        result.termination = fmt::format(
-            "{}: {}", ceres::TerminationTypeToString(summary.termination_type), summary.message);
+        result.termination = termination_of(summary);
         result.solver_report = summary.BriefReport();
         result.iterations += static_cast<int>(summary.iterations.size());
     }
@@ -384,7 +384,7 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
             result.reduced_chi2));
     if (!result.usable)
         result.warnings.push_back("the solver did not reach a usable solution: " +
-                                  result.termination);
+                                  result.termination.text());
     return result;
 }
 

@@ -228,7 +228,7 @@ RenderFitRegion object_region(const Image& render, std::size_t object_index, std
 }
 
 std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene,
-                                            const simulation::Camera& camera,
+                                            const simulation::PinholeCamera& camera,
                                             const std::vector<std::string>& objects) {
     simulation::Scene geometry = scene;
     geometry.camera = camera;
@@ -263,10 +263,10 @@ RenderFitView load_render_fit_view(const simulation::Scene& scene,
     if (camera_model.empty() != pose.empty())
         fail("fit through the renderer: view {}: give both a camera model and a pose, or neither",
              name);
-    const simulation::Camera camera =
+    const simulation::PinholeCamera camera =
         camera_model.empty() ? scene.camera.resized(measured.width(), measured.height())
-                             : simulation::Camera::from_model(read_camera_model(camera_model),
-                                                              read_camera_pose(pose));
+                             : simulation::PinholeCamera::from_model(
+                                   read_camera_model(camera_model), read_camera_pose(pose));
     RenderFitView view{name, camera, std::move(measured), {}};
     view.regions = object_regions(scene, view.camera, objects);
     return view;

@@ -5,9 +5,9 @@
 // out as valid JSON text.
 #include <string>
 
+#include "api_request.h"
 #include "fuzz_support.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/api_request.h"
 
 namespace live = tirpol::live;
 

@@ -1,4 +1,4 @@
-#include "tirpol/live/api_request.h"
+#include "api_request.h"
 
 #include <charconv>
 

@@ -1,4 +1,4 @@
-#include "tirpol/live/capture_control.h"
+#include "capture_control.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

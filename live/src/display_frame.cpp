@@ -1,4 +1,4 @@
-#include "tirpol/live/display_frame.h"
+#include "display_frame.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tirpol/live/frame_feed.h"
+#include "frame_feed.h"
 
 namespace tirpol::live {
 

@@ -16,7 +16,7 @@
 #include <condition_variable>
 #include <mutex>
 
-#include "tirpol/live/request_policy.h"
+#include "request_policy.h"
 
 namespace tirpol::live::detail {
 

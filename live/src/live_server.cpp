@@ -9,10 +9,11 @@
 #include <optional>
 
 #include "access.h"
+#include "api_request.h"
 #include "guarded_server.h"
+#include "live_view.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/live/api_request.h"
 
 namespace tirpol::live {
 
@@ -146,9 +147,19 @@ struct LiveServer::Impl {
     std::map<std::string, nlohmann::json> observations;
 };
 
-LiveServer::LiveServer(LiveView& view, const ServerOptions& options)
-    : m_bind_address(options.bind_address) {
+LiveServer::LiveServer(const LiveViewOptions& view_options, const ServerOptions& options)
+    : LiveServer((validate(options), std::make_unique<LiveView>(view_options)), options) {}
+
+LiveServer::LiveServer(std::unique_ptr<LiveView> owned_view, const ServerOptions& options)
+    : m_owned_view(std::move(owned_view)) {
+    serve(*m_owned_view, options);
+}
+
+LiveServer::LiveServer(LiveView& view, const ServerOptions& options) { serve(view, options); }
+
+void LiveServer::serve(LiveView& view, const ServerOptions& options) {
     validate(options);
+    m_bind_address = options.bind_address;
     m_impl = std::make_unique<Impl>(options.limits);
     if (!is_loopback_address(options.bind_address)) m_token = make_access_token();
     auto& server = m_impl->server;

@@ -1,4 +1,4 @@
-#include "tirpol/live/live_view.h"
+#include "live_view.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "tirpol/live/polarizer_cycle.h"
+#include "polarizer_cycle.h"
 
 #include <fmt/format.h>
 

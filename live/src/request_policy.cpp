@@ -1,4 +1,4 @@
-#include "tirpol/live/request_policy.h"
+#include "request_policy.h"
 
 #include <fmt/format.h>
 

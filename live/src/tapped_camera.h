@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "tirpol/live/frame_feed.h"
+#include "frame_feed.h"
 
 namespace tirpol::live {
 

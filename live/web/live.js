@@ -1,5 +1,5 @@
 // tirpol live view: polls the server for the latest S0 frame and Stokes cycle (binary, see
-// live/include/tirpol/live/display_frame.h), draws them with colour bars, histogram and FPA plot,
+// live/src/display_frame.h), draws them with colour bars, histogram and FPA plot,
 // reads pixels under the cursor, averages a dragged region, zooms, and drives capture plans.
 'use strict';
 

@@ -60,7 +60,7 @@ struct FitResult {
     }
     py::dict sigmas() const {
         py::dict out;
-        for (const auto& p : result.parameters) out[py::str(p.name)] = p.sigma;
+        for (const auto& p : result.parameters) out[py::str(p.name)] = p.std_uncertainty;
         return out;
     }
     /// value ± 2σ for the free parameters, clipped to their bounds (as the CLI prints them).
@@ -112,7 +112,7 @@ void bind_fit_result(py::module_& m) {
                                [](const FitResult& r) { return r.result.reduced_chi2; })
         .def_property_readonly("usable", [](const FitResult& r) { return r.result.usable; })
         .def_property_readonly("termination",
-                               [](const FitResult& r) { return r.result.termination; })
+                               [](const FitResult& r) { return r.result.termination.text(); })
         .def_property_readonly("warnings", [](const FitResult& r) { return r.result.warnings; })
         .def_property_readonly("model_e_s0",
                                [](const FitResult& r) {

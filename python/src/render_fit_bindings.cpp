@@ -31,9 +31,9 @@ RenderFitView view_of(const simulation::Scene& scene, const py::dict& d, std::si
     if (!d.contains("measured"))
         fail("{}: no 'measured' image (S0 S1 S2 S0_std S1_std S2_std)", where);
     Image measured = image_from_python(d["measured"]);
-    const simulation::Camera camera =
+    const simulation::PinholeCamera camera =
         d.contains("camera")
-            ? simulation::Camera::from_config(config_from_python(
+            ? simulation::PinholeCamera::from_config(config_from_python(
                   d["camera"], std::filesystem::path(fmt::format("<{}.camera>", where))))
             : scene.camera.resized(measured.width(), measured.height());
     RenderFitView v{d.contains("name") ? d["name"].cast<std::string>() : where,
@@ -87,7 +87,7 @@ py::dict summary_dict(const RenderFitSummary& s) {
                     py::arg("covariance_available") = s.covariance_available,
                     py::arg("chi2") = s.chi2, py::arg("dof") = s.dof,
                     py::arg("reduced_chi2") = s.reduced_chi2, py::arg("usable") = s.usable,
-                    py::arg("termination") = s.termination, py::arg("renders") = s.renders,
+                    py::arg("termination") = s.termination.text(), py::arg("renders") = s.renders,
                     py::arg("iterations") = s.iterations, py::arg("seconds") = s.seconds,
                     py::arg("warnings") = s.warnings, py::arg("report") = s.FullReport());
 }

@@ -141,12 +141,12 @@ report::RegionSet regions_from_python(const py::handle& regions,
 /// Control points: a YAML path (tirpol compare --control-points), an (n, 4) array of rows
 /// [measured x, measured y, simulated x, simulated y], or a pair (measured (n, 2), simulated (n,
 /// 2)).
-std::vector<report::ControlPoint> control_points_from_python(const py::handle& points) {
+std::vector<report::TiePoint> control_points_from_python(const py::handle& points) {
     if (is_path(points)) return report::load_control_points(points.cast<std::filesystem::path>());
     const std::string expected =
         "an (n, 4) array of [measured x, measured y, simulated x, simulated y], or a pair of "
         "(n, 2) arrays (measured, simulated), n ≥ 4";
-    std::vector<report::ControlPoint> out;
+    std::vector<report::TiePoint> out;
     if (py::isinstance<py::tuple>(points) && py::len(points) == 2) {
         const auto pair = points.cast<py::tuple>();
         const py::list measured = finite_rows(pair[0], 2, "control_points[0] (measured)", expected);

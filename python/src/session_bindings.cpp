@@ -210,8 +210,8 @@ py::dict result_dict(const EmissivityResult& r) {
     d["view_angle_deg"] = r.view_angle_deg;
     d["temperature_k"] = r.temperature_k;
     d["pixels"] = r.pixels;
-    d["l_dw_w_m2_sr"] = r.l_dw;
-    d["l_bb_w_m2_sr"] = r.l_bb;
+    d["l_dw_w_m2_sr"] = r.l_dw_w_m2_sr;
+    d["l_bb_w_m2_sr"] = r.l_bb_w_m2_sr;
     d["eps_s0"] = r.eps_s0;
     d["eps_s0_std"] = r.eps_s0_std;
     d["eps_s1"] = r.eps_s1;

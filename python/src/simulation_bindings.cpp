@@ -72,7 +72,7 @@ void bind_scene(py::module_& m) {
         .def(
             "set_camera",
             [](Scene& s, const py::dict& camera, const std::filesystem::path& base_dir) {
-                s.camera = simulation::Camera::from_config(
+                s.camera = simulation::PinholeCamera::from_config(
                     config_from_python(camera, dict_source(base_dir, "camera")));
             },
             py::arg("camera"), py::arg("base_dir") = std::filesystem::path("."),

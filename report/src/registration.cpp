@@ -254,11 +254,11 @@ std::string to_string(RegistrationMethod method) {
     return "?";
 }
 
-std::vector<ControlPoint> load_control_points(const std::filesystem::path& path) {
+std::vector<TiePoint> load_control_points(const std::filesystem::path& path) {
     const ConfigNode root = ConfigNode::load_file(path);
     if (!root.is_sequence())
         root.fail("expected a list of {measured: [x, y], simulated: [x, y]} pairs");
-    std::vector<ControlPoint> points;
+    std::vector<TiePoint> points;
     for (const auto& item : root.elements()) {
         if (!item.is_map()) item.fail("expected a mapping {measured: [x, y], simulated: [x, y]}");
         item.check_keys({"measured", "simulated"});
@@ -275,8 +275,7 @@ std::vector<ControlPoint> load_control_points(const std::filesystem::path& path)
 }
 
 Registration register_images(const Image& measured, const Image& simulated,
-                             RegistrationMethod method,
-                             const std::vector<ControlPoint>& control_points,
+                             RegistrationMethod method, const std::vector<TiePoint>& control_points,
                              const std::atomic<bool>* cancel) {
     const int w = measured.width(), h = measured.height();
     const bool same_size = w == simulated.width() && h == simulated.height();

@@ -107,17 +107,24 @@ RTCRay make_ray(const Vec3& o, const Vec3& d, double t_min, double t_max) {
     r.time = 0.0f;
     return r;
 }
-}  // namespace
 
-std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& direction,
-                                               double t_min, double t_max) const {
+/// Embree's closest hit along the ray (geomID RTC_INVALID_GEOMETRY_ID: none).
+RTCRayHit closest_hit(RTCScene scene, const Vec3& origin, const Vec3& direction, double t_min,
+                      double t_max) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
     rh.ray = make_ray(origin, direction, t_min, t_max);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_embree->scene, &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
+    return rh;
+}
+}  // namespace
+
+std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& direction,
+                                               double t_min, double t_max) const {
+    const RTCRayHit rh = closest_hit(m_embree->scene, origin, direction, t_min, t_max);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
     SurfaceHit hit;
@@ -154,13 +161,7 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
 
 double RayTracer::nearest_distance(const Vec3& origin, const Vec3& direction, double t_min,
                                    double t_max) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
-    rh.ray = make_ray(origin, direction, t_min, t_max);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_embree->scene, &context, &rh);
+    const RTCRayHit rh = closest_hit(m_embree->scene, origin, direction, t_min, t_max);
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<double>::infinity()
                                                     : rh.ray.tfar;
 }

@@ -159,8 +159,8 @@ public:
     }
 
     /// One sample of the band radiance arriving at the camera along `direction`, in the camera's
-    /// Stokes frame of that ray (Camera::image_frame), given by `camera_right`, the camera's x
-    /// axis: image_frame's reference is that axis with its component along the ray removed and
+    /// Stokes frame of that ray (PinholeCamera::image_frame), given by `camera_right`, the camera's
+    /// x axis: image_frame's reference is that axis with its component along the ray removed and
     /// normalised, and the frame rotations (times_rotation) need neither, as only its dot products
     /// with vectors across the ray enter them; `sampler` gives the wavelength node's number and
     /// each bounce's (sobol_sampler.h).
@@ -413,7 +413,7 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     const PathTracer& tracer = *tracer_ptr;
     const double setup_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const Camera& camera = scene.camera;
+    const PinholeCamera& camera = scene.camera;
     const Vec3 camera_right =
         camera.world_from_camera().col(0);  // never along a ray: every ray looks forward
     const int w = camera.width(), h = camera.height();

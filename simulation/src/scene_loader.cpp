@@ -353,7 +353,7 @@ Scene load_scene(const ConfigNode& root) {
     root.check_keys(keys);
     const bool has_weather = root.has("weather");
     Band band = band_of(root.at("band"));
-    Camera camera = Camera::from_config(root.at("camera"));
+    PinholeCamera camera = PinholeCamera::from_config(root.at("camera"));
     // With a `weather` entry and no `sky`, apply_scene_thermal sets the sky from the weather.
     Sky sky = has_weather && !root.has("sky") ? Sky::uniform(1.0)
                                               : Sky::from_config(root.at("sky"), band);

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "acquire_cli.h"
 #include "child_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/stage.h"
@@ -40,18 +41,11 @@ std::unique_ptr<test::ChildProcess> start_stage_sim(const std::filesystem::path&
 
 std::unique_ptr<test::ChildProcess> start_acquire(const std::filesystem::path& dir, const char* log,
                                                   bool resume = false) {
-    std::vector<std::string> args{TIRPOL_CLI_PATH,
-                                  "acquire",
-                                  (dir / "plan.yaml").string(),
-                                  "--camera",
-                                  "sim://uniform?width=16&height=12&counts=1000&noise=2&fps=100",
-                                  "--stage",
-                                  "thorlabs-apt://" + (dir / "stage").string(),
-                                  "-o",
-                                  (dir / "session").string(),
-                                  "--non-interactive"};
-    if (resume) args.push_back("--resume");
-    return std::make_unique<test::ChildProcess>(args, dir / log);
+    return std::make_unique<test::ChildProcess>(
+        test::acquire_cli_args(dir, dir / "plan.yaml",
+                               "sim://uniform?width=16&height=12&counts=1000&noise=2&fps=100",
+                               resume),
+        dir / log);
 }
 
 std::size_t records_in(const std::filesystem::path& session) {

@@ -10,6 +10,7 @@
 #include <set>
 #include <thread>
 
+#include "acquire_cli.h"
 #include "child_process.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture_plan.h"
@@ -37,19 +38,9 @@ std::unique_ptr<Child> start_stage_sim(const std::filesystem::path& dir, const c
 
 std::vector<std::string> acquire_args(const std::filesystem::path& dir,
                                       const std::filesystem::path& plan, bool resume) {
-    std::vector<std::string> args{
-        TIRPOL_CLI_PATH,
-        "acquire",
-        plan.string(),
-        "--camera",
-        "sim://uniform?width=32&height=24&counts=1200&noise=4&fps=100&fpa_k=305",
-        "--stage",
-        "thorlabs-apt://" + (dir / "stage").string(),
-        "-o",
-        (dir / "session").string(),
-        "--non-interactive"};
-    if (resume) args.push_back("--resume");
-    return args;
+    return test::acquire_cli_args(
+        dir, plan, "sim://uniform?width=32&height=24&counts=1200&noise=4&fps=100&fpa_k=305",
+        resume);
 }
 
 TEST(Acquire, FullRunProducesAValidCompleteSession) {

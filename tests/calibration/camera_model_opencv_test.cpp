@@ -5,21 +5,13 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "sample_camera_model.h"
 #include "tirpol/core/camera_model.h"
 
 namespace tirpol {
 namespace {
 
-CameraModel sample_model() {
-    CameraModel m;
-    m.width = 640;
-    m.height = 512;
-    m.fx = 760.25;
-    m.fy = 762.5;
-    m.cx = 330.125;
-    m.cy = 249.75;
-    return m;
-}
+CameraModel sample_model() { return test::sample_camera_model(); }
 
 TEST(CameraModelOpenCv, ProjectMatchesOpenCvForEveryModel) {
     // Reference: cv::projectPoints (OpenCV calib3d) with the same coefficients, 5, 8 and 12 of

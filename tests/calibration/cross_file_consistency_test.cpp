@@ -35,6 +35,15 @@ protected:
     }
     static void TearDownTestSuite() { delete dir_; }
     static fs::path root() { return dir_->path(); }
+    /// Swaps the blackbody temperatures of records 0 and 3 in `lab`'s manifest (the set-points
+    /// typed the wrong way round); returns the manifest as written.
+    static nlohmann::json swap_set_points(const fs::path& lab) {
+        auto manifest = nlohmann::json::parse(read_file(lab / "session.json"));
+        auto& records = manifest["records"];
+        std::swap(records[0]["blackbody_temperature_k"], records[3]["blackbody_temperature_k"]);
+        write_file_atomic(lab / "session.json", manifest.dump(2));
+        return manifest;
+    }
     static fs::path copy_session(const test::TempDir& tmp, const std::string& name) {
         fs::copy(root() / name, tmp / name, fs::copy_options::recursive);
         return tmp / name;
@@ -76,10 +85,8 @@ TEST_F(CrossFileConsistency, AFrameFiledUnderAnotherAngleIsRefusedNamingFrameAnd
 TEST_F(CrossFileConsistency, ABlackbodyTemperatureEditedInTheManifestDisagreesWithItsFrame) {
     test::TempDir tmp;
     const fs::path lab = copy_session(tmp, "lab");
-    auto manifest = nlohmann::json::parse(read_file(lab / "session.json"));
-    auto& records = manifest["records"];
-    std::swap(records[0]["blackbody_temperature_k"], records[3]["blackbody_temperature_k"]);
-    write_file_atomic(lab / "session.json", manifest.dump(2));
+    const nlohmann::json manifest = swap_set_points(lab);
+    const auto& records = manifest["records"];
     const std::string message = error_of([&] { calibrate_radiometric_session(lab, kBand); });
     EXPECT_THAT(message, HasSubstr("bb_283.15K.exr"));
     EXPECT_THAT(message, HasSubstr("blackbody_temperature_k = 283.15 K"));
@@ -92,10 +99,8 @@ TEST_F(CrossFileConsistency,
     // counts do not. Counts must rise with the blackbody's temperature (gain > 0).
     test::TempDir tmp;
     const fs::path lab = copy_session(tmp, "lab");
-    auto manifest = nlohmann::json::parse(read_file(lab / "session.json"));
-    auto& records = manifest["records"];
-    std::swap(records[0]["blackbody_temperature_k"], records[3]["blackbody_temperature_k"]);
-    write_file_atomic(lab / "session.json", manifest.dump(2));
+    const nlohmann::json manifest = swap_set_points(lab);
+    const auto& records = manifest["records"];
     for (int i : {0, 3}) {
         const fs::path frame = lab / records[i]["file"].get<std::string>();
         Image image = read_exr(frame);

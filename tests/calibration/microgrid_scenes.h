@@ -67,6 +67,17 @@ inline StokesScene smooth_scene(int width, int height, bool unpolarized = false)
     });
 }
 
+/// edge_mask: the pixels within 3 px (horizontally) of the line x = x0 + slope·(y − height/2).
+inline void mark_edge(StokesScene& scene, int width, int height, double x0, double slope) {
+    const double mid = height / 2.0;
+    scene.edge_mask.assign(scene.s0.size(), 0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            if (std::abs(x + 0.5 - (x0 + slope * (y + 0.5 - mid))) <= 3.0)
+                scene.edge_mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                static_cast<std::size_t>(x)] = 1;
+}
+
 /// A step of S0 from 50 to 150 along the line x = x0 + slope·(y − height/2), unpolarized on both
 /// sides; edge_mask marks the pixels within 3 px (horizontally) of the line.
 inline StokesScene unpolarized_edge_scene(int width, int height, double x0, double slope) {
@@ -74,12 +85,7 @@ inline StokesScene unpolarized_edge_scene(int width, int height, double x0, doub
     StokesScene scene = integrate_scene(width, height, [=](double x, double y) {
         return StokesPoint{x < x0 + slope * (y - mid) ? 50.0 : 150.0, 0.0, 0.0};
     });
-    scene.edge_mask.assign(scene.s0.size(), 0);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            if (std::abs(x + 0.5 - (x0 + slope * (y + 0.5 - mid))) <= 3.0)
-                scene.edge_mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                static_cast<std::size_t>(x)] = 1;
+    mark_edge(scene, width, height, x0, slope);
     return scene;
 }
 
@@ -90,12 +96,7 @@ inline StokesScene polarized_edge_scene(int width, int height, double x0, double
         return x < x0 + slope * (y - mid) ? StokesPoint{80.0, 0.0, 0.0}
                                           : polarized(120.0, 0.3, 30.0);
     });
-    scene.edge_mask.assign(scene.s0.size(), 0);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            if (std::abs(x + 0.5 - (x0 + slope * (y + 0.5 - mid))) <= 3.0)
-                scene.edge_mask[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                static_cast<std::size_t>(x)] = 1;
+    mark_edge(scene, width, height, x0, slope);
     return scene;
 }
 

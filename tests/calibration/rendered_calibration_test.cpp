@@ -15,7 +15,7 @@
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 

@@ -23,6 +23,24 @@
 namespace tirpol::calibration {
 namespace {
 
+/// The manifest of a session taken with the synthetic camera and stage.
+SessionManifest synthetic_manifest(const SyntheticCamera& cam) {
+    SessionManifest m;
+    m.created_utc = "2026-11-22T17:00:00Z";
+    m.camera = {"sim://synthetic",
+                "tirpol",
+                "synthetic-uncooled",
+                "0001",
+                "Mono14",
+                cam.width,
+                cam.height,
+                14,
+                30.0,
+                {}};
+    m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
+    return m;
+}
+
 class SessionCalibration : public testing::Test {
 protected:
     static void SetUpTestSuite() {
@@ -132,19 +150,7 @@ TEST_F(SessionCalibration, SaturatedScenePixelsAreNaNAndTooManyAreAnError) {
     const auto cal = calibrate_radiometric_session(root() / "lab", band);
     const Image scene = synthetic_panel_scene(cam.width, cam.height, band);
     auto write = [&](const std::filesystem::path& dir, int saturated) {
-        SessionManifest m;
-        m.created_utc = "2026-11-22T17:00:00Z";
-        m.camera = {"sim://synthetic",
-                    "tirpol",
-                    "synthetic-uncooled",
-                    "0001",
-                    "Mono14",
-                    cam.width,
-                    cam.height,
-                    14,
-                    30.0,
-                    {}};
-        m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
+        SessionManifest m = synthetic_manifest(cam);
         auto w = SessionWriter::create(dir, m);
         for (double a : cam.angles_deg) {
             Image f = synthetic_record_frame(cam, scene, band, a, true, true,
@@ -190,19 +196,7 @@ TEST_F(SessionCalibration, ReductionUsesTheMeasuredAngleAndRefusesOneOutsideTheT
     const auto cal = calibrate_radiometric_session(root() / "lab", band);
     const Image scene = synthetic_panel_scene(cam.width, cam.height, band);
     auto write = [&](const std::filesystem::path& dir, double tolerance_deg) {
-        SessionManifest m;
-        m.created_utc = "2026-11-22T17:00:00Z";
-        m.camera = {"sim://synthetic",
-                    "tirpol",
-                    "synthetic-uncooled",
-                    "0001",
-                    "Mono14",
-                    cam.width,
-                    cam.height,
-                    14,
-                    30.0,
-                    {}};
-        m.stage = {"sim://stage", "tirpol", "synthetic-stage", "0001", "1.0", 1000.0};
+        SessionManifest m = synthetic_manifest(cam);
         m.plan = {{"angle_tolerance_deg", tolerance_deg}};
         auto w = SessionWriter::create(dir, m);
         for (double a : cam.angles_deg) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
+#include "sample_camera_model.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
@@ -16,13 +17,7 @@ namespace tirpol {
 namespace {
 
 CameraModel sample_model() {
-    CameraModel m;
-    m.width = 640;
-    m.height = 512;
-    m.fx = 760.25;
-    m.fy = 762.5;
-    m.cx = 330.125;
-    m.cy = 249.75;
+    CameraModel m = test::sample_camera_model();
     m.distortion = {-0.31, 0.12, 0.0008, -0.0004, -0.02};
     m.rms_px = 0.07;
     m.views = 15;

@@ -5,20 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
 
+using tirpol::test::error_of;
+
 namespace tirpol {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 constexpr const char* kScene = R"(camera:
   fov_deg: 30

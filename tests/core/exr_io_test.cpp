@@ -7,9 +7,12 @@
 #include <cmath>
 #include <fstream>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+
+using tirpol::test::error_of;
 
 namespace tirpol {
 namespace {
@@ -27,15 +30,6 @@ Image stokes_image() {
     img.attributes()["frames"] = 16;
     img.attributes()["band_um"] = std::vector<double>{8.0, 14.0};
     return img;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 TEST(Exr, RoundTripKeepsChannelsValuesAndAttributes) {

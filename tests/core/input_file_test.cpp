@@ -16,6 +16,7 @@
 #include <future>
 #include <numbers>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
@@ -23,17 +24,10 @@
 #include "tirpol/core/memory_budget.h"
 #include "tirpol/core/radiometry.h"
 
+using tirpol::test::error_of;
+
 namespace tirpol {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 TEST(InputFile, DevicesDirectoriesAndMissingFilesAreNamedAsSuch) {
     EXPECT_THAT(error_of([] { (void)read_file("/dev/zero"); }),

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/checks.h"
@@ -16,20 +17,13 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/raster_io.h"
 
+using tirpol::test::error_of;
+
 namespace tirpol {
 namespace {
 
 std::filesystem::path regression(const std::string& target, const std::string& name) {
     return test::source_dir() / "tests/data/fuzz-regressions" / target / name;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
 }
 
 TEST(InputLimits, ExrDeclaringHugeSizeIsRefusedBeforeAllocating) {

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/microfacet_fit.h"
@@ -23,12 +24,7 @@ const char* kCalibrationHeader =
     "eps_s2,eps_s2_2sigma\n";
 
 std::string error_of(const std::filesystem::path& path) {
-    try {
-        load_emissivity_csv(path);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
+    return tirpol::test::error_of([&] { load_emissivity_csv(path); });
 }
 
 TEST(EmissivityData, ReadsCalibrationCsvAndHalvesTwoSigmaColumns) {

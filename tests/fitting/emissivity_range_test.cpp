@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/emissivity_data.h"
@@ -17,12 +18,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 std::string error_of(const std::filesystem::path& path) {
-    try {
-        load_emissivity_csv(path);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
+    return tirpol::test::error_of([&] { load_emissivity_csv(path); });
 }
 
 std::filesystem::path regression(const std::string& name) {

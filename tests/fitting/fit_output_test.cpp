@@ -98,7 +98,7 @@ TEST(FitOutput, IntervalsStopAtTheParameterBounds) {
     FittedParameter n;
     n.name = "n";
     n.value = 0.30;
-    n.sigma = 0.20;
+    n.std_uncertainty = 0.20;
     n.lower = 0.14;
     n.upper = 1.96;
     const ParameterInterval near_bound = interval_2sigma(n);
@@ -113,12 +113,12 @@ TEST(FitOutput, IntervalsStopAtTheParameterBounds) {
 
     Fitted f = fit_two_bands();
     FittedParameter& first = f.result.parameters[0];
-    first.value = first.lower + 0.5 * first.sigma;  // within 2σ of the lower bound
+    first.value = first.lower + 0.5 * first.std_uncertainty;  // within 2σ of the lower bound
     const nlohmann::json j = fit_report_json(f.result, f.data, {{"a.csv"}, "date", "cmd"});
     EXPECT_DOUBLE_EQ(j["parameters"][0]["interval_2sigma"][0].get<double>(), first.lower);
-    EXPECT_THAT(
-        fit_report_text(f.result, f.data),
-        HasSubstr(fmt::format("[{:.6g}, {:.6g}]", first.lower, first.value + 2 * first.sigma)));
+    EXPECT_THAT(fit_report_text(f.result, f.data),
+                HasSubstr(fmt::format("[{:.6g}, {:.6g}]", first.lower,
+                                      first.value + 2 * first.std_uncertainty)));
 }
 
 TEST(FitOutput, PlotIsAPngOfTheDocumentedSize) {

@@ -117,7 +117,7 @@ TEST(MicrofacetFit, TwoSigmaIntervalsCoverTheTruthAtTheExpectedRate) {
         for (int i = 0; i < 3; ++i) {
             const FittedParameter& f = r.get(kinds[i]);
             ++trials;
-            if (std::abs(f.value - true_values[i]) > 2.0 * f.sigma) {
+            if (std::abs(f.value - true_values[i]) > 2.0 * f.std_uncertainty) {
                 ++misses;
                 ++misses_of[i];
             }
@@ -261,9 +261,9 @@ TEST(MicrofacetFit, ScalingByReducedChiSquareInflatesTheCovariance) {
     const MicrofacetFitResult scaled = MicrofacetFitProblem({noisy}, o).solve();
     EXPECT_GT(plain.reduced_chi2, 4.0);
     EXPECT_TRUE(scaled.covariance_scaled);
-    EXPECT_NEAR(scaled.get(P::sigma).sigma,
-                plain.get(P::sigma).sigma * std::sqrt(plain.reduced_chi2),
-                1e-6 * plain.get(P::sigma).sigma);
+    EXPECT_NEAR(scaled.get(P::sigma).std_uncertainty,
+                plain.get(P::sigma).std_uncertainty * std::sqrt(plain.reduced_chi2),
+                1e-6 * plain.get(P::sigma).std_uncertainty);
     bool warned = false;
     for (const auto& w : plain.warnings) warned |= w.find("chi2/dof") != std::string::npos;
     EXPECT_TRUE(warned);

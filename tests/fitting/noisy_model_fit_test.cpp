@@ -14,8 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "error_of.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+
+using tirpol::test::error_of;
 
 using namespace tirpol;
 using namespace tirpol::fitting;
@@ -30,15 +33,6 @@ NoisyModelFitOptions two_parameter_options(double a0, double b0) {
     o.upper = {10.0, 10.0};
     o.steps = {1e-3, 1e-3};
     return o;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 }  // namespace

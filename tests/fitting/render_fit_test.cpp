@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "render_fit_views.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/materials/microfacet.h"
@@ -23,21 +24,9 @@
 
 using namespace tirpol;
 using namespace tirpol::fitting;
+using namespace tirpol::test;
 
 namespace {
-
-std::size_t object_named(const simulation::Scene& scene, const std::string& name) {
-    for (std::size_t i = 0; i < scene.objects.size(); ++i)
-        if (scene.objects[i].name == name) return i;
-    ADD_FAILURE() << "no object " << name;
-    return 0;
-}
-
-simulation::Camera camera_at(const simulation::Camera& base, const Vec3& position,
-                             const Vec3& look_at) {
-    return simulation::Camera(base.width(), base.height(), base.intrinsics(), position,
-                              simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
-}
 
 std::uint64_t knob(const char* name, std::uint64_t fallback);
 
@@ -45,7 +34,7 @@ std::uint64_t knob(const char* name, std::uint64_t fallback);
 /// render's own per-pixel standard deviation of the mean (with
 /// TIRPOL_RENDER_FIT_TEST_INDEPENDENT_STD = 1, an experiment: that of an independent render, so
 /// that the weights do not correlate with the measurement's noise).
-Image measured_render(simulation::Scene scene, const simulation::Camera& camera,
+Image measured_render(simulation::Scene scene, const simulation::PinholeCamera& camera,
                       std::uint64_t seed) {
     scene.camera = camera;
     scene.sampling.seed = seed;
@@ -82,25 +71,6 @@ std::uint64_t knob(const char* name, std::uint64_t fallback) {
 /// the same tests on other noise realisations, to see how the recovered values scatter.
 std::uint64_t measurement_seed_offset() { return knob("TIRPOL_RENDER_FIT_TEST_SEED_OFFSET", 0); }
 
-/// Splits a region into four quadrants about its centroid (different view angles on a sphere).
-std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
-    double cx = 0.0, cy = 0.0;
-    for (std::size_t i : r.pixels)
-        cx += static_cast<double>(i % width), cy += static_cast<double>(i / width);
-    cx /= static_cast<double>(r.pixels.size()), cy /= static_cast<double>(r.pixels.size());
-    std::vector<RenderFitRegion> out{{r.name + "_top", {}},
-                                     {r.name + "_right", {}},
-                                     {r.name + "_bottom", {}},
-                                     {r.name + "_left", {}}};
-    for (std::size_t i : r.pixels) {
-        const double dx = static_cast<double>(i % width) - cx,
-                     dy = static_cast<double>(i / width) - cy;
-        const int q = std::abs(dy) > std::abs(dx) ? (dy < 0 ? 0 : 2) : (dx > 0 ? 1 : 3);
-        out[static_cast<std::size_t>(q)].pixels.push_back(i);
-    }
-    return out;
-}
-
 void expect_recovered(const RenderFitSummary& s, const std::vector<double>& truth) {
     ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
     ASSERT_TRUE(s.covariance_available) << s.FullReport();
@@ -132,9 +102,10 @@ TEST(RenderFit, RecoversThePaintInTheTwinsNonUniformSurroundings) {
     scene.camera = scene.camera.resized(160, 120);
     scene.sampling.samples_per_pixel = 8;
     const Vec3 at(0.0, 0.0, 1.1);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -6.0, 1.6}, at),
-                                                  camera_at(scene.camera, {0.0, -5.0, 3.4}, at),
-                                                  camera_at(scene.camera, {0.0, -3.8, 4.6}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -6.0, 1.6}, at),
+        camera_at(scene.camera, {0.0, -5.0, 3.4}, at),
+        camera_at(scene.camera, {0.0, -3.8, 4.6}, at)};
     const std::size_t panel = object_named(scene, "panel_flat_black_paint"),
                       rack = object_named(scene, "rack");
     std::vector<RenderFitView> views;
@@ -166,8 +137,9 @@ std::vector<RenderFitView> ball_on_snow_views(const simulation::Scene& truth, in
     scene.camera = scene.camera.resized(width, height);
     scene.sampling.samples_per_pixel = spp;
     const Vec3 at(0.0, 0.3, 0.3);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
-                                                  camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
+        camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
     std::vector<RenderFitView> views;
     for (std::size_t v = 0; v < cameras.size(); ++v) {
         Image measured = measured_render(scene, cameras[v], first_seed + v);

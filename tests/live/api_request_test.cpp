@@ -4,7 +4,7 @@
 // quotes bytes that are not UTF-8 (nlohmann's own parse messages did, and dumping them threw
 // type_error 316).
 
-#include "tirpol/live/api_request.h"
+#include "api_request.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

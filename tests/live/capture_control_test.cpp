@@ -2,7 +2,7 @@
 // every step once), a stopped one keeps its steps and resumes to completion, and the polarizer
 // cycle is paused meanwhile and continues after.
 
-#include "tirpol/live/capture_control.h"
+#include "capture_control.h"
 
 #include <gtest/gtest.h>
 

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "child_process.h"
+#include "find_on_path.h"
 #include "served_live_view.h"
 #include "test_support.h"
 
@@ -26,13 +27,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-std::optional<std::filesystem::path> find_on_path(const std::string& name) {
-    std::stringstream dirs(std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin");
-    for (std::string dir; std::getline(dirs, dir, ':');)
-        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0)
-            return std::filesystem::path(dir) / name;
-    return std::nullopt;
-}
+using test::find_on_path;
 
 /// An httplib server on a free loopback port, serving on its own thread until destroyed.
 struct SideServer {

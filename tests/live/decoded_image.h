@@ -1,5 +1,5 @@
 #pragma once
-// Decodes the live view's wire format (live/include/tirpol/live/display_frame.h) the way live.js
+// Decodes the live view's wire format (live/src/display_frame.h) the way live.js
 // does, so tests can check what a page receives.
 
 #include <cstdint>

@@ -3,7 +3,7 @@
 // display temperature of a blackbody's counts is the blackbody's temperature (Planck round trip
 // through calibration's counts_to_radiance and brightness_temperature).
 
-#include "tirpol/live/display_frame.h"
+#include "display_frame.h"
 
 #include <gtest/gtest.h>
 

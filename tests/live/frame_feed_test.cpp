@@ -2,15 +2,15 @@
 // frame slowly sees few of them, while every tap (the polarizer cycle, a capture) receives each
 // frame the camera delivered, in order, and the camera itself drops none.
 
-#include "tirpol/live/frame_feed.h"
+#include "frame_feed.h"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
+#include "latest_slot.h"
 #include "tapped_camera.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
-#include "tirpol/live/latest_slot.h"
 
 namespace tirpol::live {
 namespace {

@@ -23,6 +23,7 @@
 #include "access.h"
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
+#include "find_on_path.h"
 #include "png_text.h"
 #include "test_support.h"
 #include "tirpol/core/exr_io.h"
@@ -37,13 +38,7 @@ using nlohmann::json;
 constexpr const char* kCameraUri =
     "aravis://127.0.0.1?pixel_format=Mono16&width=640&height=512&fps=30";
 
-std::optional<std::filesystem::path> find_on_path(const std::string& name) {
-    std::stringstream dirs(std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin");
-    for (std::string dir; std::getline(dirs, dir, ':');)
-        if (::access((std::filesystem::path(dir) / name).c_str(), X_OK) == 0)
-            return std::filesystem::path(dir) / name;
-    return std::nullopt;
-}
+using test::find_on_path;
 
 std::string read_text(const std::filesystem::path& path) {
     std::ifstream in(path);

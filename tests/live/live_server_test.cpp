@@ -14,8 +14,11 @@
 
 #include "access.h"
 #include "decoded_image.h"
+#include "error_of.h"
 #include "served_live_view.h"
 #include "tirpol/core/error.h"
+
+using tirpol::test::error_of;
 
 namespace tirpol::live {
 namespace {
@@ -155,15 +158,6 @@ TEST(Access, LoopbackAddressesAndTokens) {
 
 namespace tirpol::live {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 TEST(LiveView, BadInputsAreErrorsNamingWhatIsWrong) {
     LiveViewOptions o;

@@ -2,7 +2,7 @@
 // free-running camera: DoLP and AoP come out as the source's (the cycle's frame gating keeps the
 // frames exposed during moves out; they would bias both), and pausing hands the stage over.
 
-#include "tirpol/live/polarizer_cycle.h"
+#include "polarizer_cycle.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tirpol/live/region_statistics.h"
+#include "region_statistics.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // rule: a request another web page can make, or one reaching the server under a rebinding DNS name,
 // is refused from its line and headers alone; the page's own requests pass.
 
-#include "tirpol/live/request_policy.h"
+#include "request_policy.h"
 
 #include <gtest/gtest.h>
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "live_view.h"
 #include "tirpol/live/live_server.h"
 
 namespace tirpol::test {

@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "polarizer_cycle.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
-#include "tirpol/live/polarizer_cycle.h"
 
 namespace tirpol::test {
 

@@ -8,25 +8,19 @@
 
 #include <cmath>
 
+#include "error_of.h"
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/report/comparison_report.h"
 #include "tirpol/report/registration.h"
 
+using tirpol::test::error_of;
+
 using namespace tirpol::report;
 using ::testing::HasSubstr;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 tirpol::CameraModel lens_of(const tirpol::Image& image) {
     tirpol::CameraModel m;

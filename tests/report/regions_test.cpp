@@ -7,22 +7,14 @@
 
 #include <algorithm>
 
+#include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
 
+using tirpol::test::error_of;
+
 using namespace tirpol::report;
 using ::testing::HasSubstr;
-
-namespace {
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
-}  // namespace
 
 TEST(ReportRegions, ParsesNamedPolygonsAndBackground) {
     tirpol::test::TempDir dir;

@@ -9,23 +9,17 @@
 #include <cmath>
 #include <random>
 
+#include "error_of.h"
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
+
+using tirpol::test::error_of;
 
 using namespace tirpol::report;
 using ::testing::HasSubstr;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 PixelPoint apply(const std::array<double, 9>& h, PixelPoint p) {
     const double w = h[6] * p.x + h[7] * p.y + h[8];
@@ -58,7 +52,7 @@ test::SyntheticPairOptions quiet(double dx, double dy) {
 TEST(ReportRegistration, ControlPointsRecoverAKnownHomography) {
     // A mild perspective: simulated = H_true(measured).
     const std::array<double, 9> truth{1.02, 0.03, -4.0, -0.02, 0.98, 2.5, 1e-5, -2e-5, 1.0};
-    std::vector<ControlPoint> cps;
+    std::vector<TiePoint> cps;
     for (const PixelPoint m : {PixelPoint{10, 12}, PixelPoint{150, 8}, PixelPoint{160, 120},
                                PixelPoint{14, 130}, PixelPoint{80, 60}, PixelPoint{40, 100}})
         cps.push_back({m, apply(truth, m)});
@@ -77,7 +71,7 @@ TEST(ReportRegistration, ControlPointsRecoverAKnownHomography) {
 TEST(ReportRegistration, ControlPointsRecoverAShiftOfTheImagesAndReportResidual) {
     const double dx = 3.0, dy = -2.0;
     const auto pair = test::make_synthetic_pair(quiet(dx, dy));
-    std::vector<ControlPoint> cps;
+    std::vector<TiePoint> cps;
     for (const PixelPoint s :
          {PixelPoint{20, 20}, PixelPoint{170, 20}, PixelPoint{170, 120}, PixelPoint{20, 120}})
         cps.push_back({{s.x + dx, s.y + dy}, s});

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "error_of.h"
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
@@ -18,18 +19,20 @@
 #include "tirpol/core/radiometry.h"
 #include "tirpol/report/comparison_report.h"
 
+using tirpol::test::error_of;
+
 using namespace tirpol::report;
 using ::testing::HasSubstr;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const tirpol::Error& e) {
-        return e.what();
-    }
-    return "no error";
+/// The report of a synthetic pair with its regions and no registration, written into `dir`.
+CompareResult compare_unregistered(const test::SyntheticPair& pair,
+                                   const tirpol::test::TempDir& dir) {
+    CompareOptions options;
+    options.registration = RegistrationMethod::None;
+    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
+    return write_comparison_report(pair.measured, pair.simulated, options, dir.path());
 }
 
 const RegionResult& region(const CompareResult& r, const std::string& name) {
@@ -93,12 +96,8 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
                                          o.simulated_sigma * o.simulated_sigma);
     o.s1_bias = sigma_total;
     const auto pair = test::make_synthetic_pair(o);
-    CompareOptions options;
-    options.registration = RegistrationMethod::None;
-    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r =
-        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r = compare_unregistered(pair, dir);
     const auto& centre = region(r, "panel_5");
     EXPECT_FALSE(consistent_with_noise(centre.z.at("S1")));
     EXPECT_NEAR(centre.z.at("S1").fraction_above_2, 0.16, 0.05);
@@ -192,12 +191,8 @@ TEST(ReportComparison, AopStatisticsUsePolarizedPixelsOnly) {
     // the panels count, the background is mostly left out.
     test::SyntheticPairOptions o;
     const auto pair = test::make_synthetic_pair(o);
-    CompareOptions options;
-    options.registration = RegistrationMethod::None;
-    options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     tirpol::test::TempDir dir;
-    const CompareResult r =
-        write_comparison_report(pair.measured, pair.simulated, options, dir.path());
+    const CompareResult r = compare_unregistered(pair, dir);
     const auto& p9 = region(r, "panel_9").aop;
     EXPECT_GT(p9.pixel_count, p9.region_pixel_count * 9 / 10);
     EXPECT_NEAR(p9.measured_mean_deg, 90.0, 2.0);

@@ -9,7 +9,7 @@
 #include "scene_fixtures.h"
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "truth_lens.h"
 
 namespace tirpol::simulation {
@@ -17,7 +17,7 @@ namespace {
 
 CameraPose some_pose() {
     CameraPose p;
-    const Mat3 w = Camera::look_at(Vec3(0.3, -9.5, 1.6), Vec3(0.5, 0.0, 0.8), world_up());
+    const Mat3 w = PinholeCamera::look_at(Vec3(0.3, -9.5, 1.6), Vec3(0.5, 0.0, 0.8), world_up());
     p.camera_from_world = w.transpose();
     p.translation_m = -p.camera_from_world * Vec3(0.3, -9.5, 1.6);
     return p;
@@ -42,7 +42,7 @@ std::vector<cv::Point2d> opencv_projection(const CameraModel& m, const CameraPos
 TEST(CameraOpenCvGrid, RaysGoWhereProjectPointsSays) {
     const CameraModel model = tirpol::test::truth_lens();
     const CameraPose pose = some_pose();
-    const Camera camera = Camera::from_model(model, pose);
+    const PinholeCamera camera = PinholeCamera::from_model(model, pose);
     // World points spread over the whole image, corners included (where the distortion is
     // strongest).
     std::vector<Vec3> world;
@@ -146,21 +146,21 @@ TEST(CameraOpenCvGrid, SceneModelAndPoseFilesAreRead) {
     tirpol::test::TempDir dir;
     write_camera_model(dir / "lens.yaml", tirpol::test::truth_lens());
     write_camera_pose(dir / "pose.yaml", some_pose());
-    const Camera camera = Camera::from_config(
+    const PinholeCamera camera = PinholeCamera::from_config(
         ConfigNode::parse("{model: lens.yaml, pose: pose.yaml}", (dir / "scene.yaml").string()));
     EXPECT_EQ(camera.width(), 640);
     EXPECT_NEAR((camera.position() - Vec3(0.3, -9.5, 1.6)).norm(), 0.0, 1e-12);
     EXPECT_NEAR(camera.lens_model().cx, 331.7, 1e-12);
     EXPECT_EQ(camera.lens_model().distortion.size(), 5u);
     try {
-        Camera::from_config(ConfigNode::parse("{model: lens.yaml, fov_deg: 30, pose: pose.yaml}",
-                                              (dir / "scene.yaml").string()));
+        PinholeCamera::from_config(ConfigNode::parse(
+            "{model: lens.yaml, fov_deg: 30, pose: pose.yaml}", (dir / "scene.yaml").string()));
         FAIL() << "model and fov_deg together must be refused";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("fov_deg"), std::string::npos) << e.what();
     }
     try {
-        Camera::from_config(
+        PinholeCamera::from_config(
             ConfigNode::parse("{model: lens.yaml, resolution: [320, 256], pose: pose.yaml}",
                               (dir / "scene.yaml").string()));
         FAIL() << "a resolution that contradicts the model must be refused";

@@ -8,14 +8,14 @@
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/sky.h"
 
 namespace tirpol::simulation {
 namespace {
 
-TEST(Camera, ImageFrameIsCameraRightAndUp) {
-    const Camera cam = Camera::from_config(ConfigNode::parse(
+TEST(PinholeCamera, ImageFrameIsCameraRightAndUp) {
+    const PinholeCamera cam = PinholeCamera::from_config(ConfigNode::parse(
         "{resolution: [64, 48], fov_deg: 40, position: [0, -5, 1], look_at: [0, 0, 1]}"));
     const Vec3 d = cam.ray_direction(32.0, 24.0);
     EXPECT_NEAR((d - Vec3(0, 1, 0)).norm(), 0.0, 1e-12) << "principal ray looks at the target";
@@ -37,8 +37,8 @@ TEST(Camera, ImageFrameIsCameraRightAndUp) {
 // cos φ = c / √((1 − a²)(1 − b²)): zero on the centre row and column, of opposite signs in
 // neighbouring quadrants, 5.17° at the corners of a 40° 4:3 view (docs/simulation.md).
 // bench/simulation_bench.cpp rotates Mitsuba's Stokes images by it pixel by pixel.
-TEST(Camera, ImageFrameDiffersFromMitsubasOffAxisOnly) {
-    const Camera cam = Camera::from_config(ConfigNode::parse(
+TEST(PinholeCamera, ImageFrameDiffersFromMitsubasOffAxisOnly) {
+    const PinholeCamera cam = PinholeCamera::from_config(ConfigNode::parse(
         "{resolution: [320, 240], fov_deg: 40, position: [0, -5, 1.5], look_at: [0, 0, 0.6]}"));
     const Mat3& axes = cam.world_from_camera();  // columns: right, down, forward
     const Vec3 right = axes.col(0), up = -axes.col(1), forward = axes.col(2);
@@ -60,10 +60,10 @@ TEST(Camera, ImageFrameDiffersFromMitsubasOffAxisOnly) {
     EXPECT_NEAR(rad_to_deg(std::abs(angle(0.0, 0.0))), 5.17, 0.005);
 }
 
-TEST(Camera, DistortionIsInvertedExactly) {
+TEST(PinholeCamera, DistortionIsInvertedExactly) {
     // Forward Brown–Conrady model as in OpenCV's projectPoints; ray_direction must invert it.
     const CameraIntrinsics k{500.0, 505.0, 320.0, 256.0, -0.25, 0.08, 0.001, -0.0015, -0.01};
-    const Camera cam(640, 512, k, Vec3::Zero(), Mat3::Identity());
+    const PinholeCamera cam(640, 512, k, Vec3::Zero(), Mat3::Identity());
     for (const auto& [x, y] : {std::pair{0.3, -0.2}, std::pair{-0.5, 0.4}, std::pair{0.05, 0.02}}) {
         const double r2 = x * x + y * y, radial = 1 + r2 * (k.k1 + r2 * (k.k2 + r2 * k.k3));
         const double xd = x * radial + 2 * k.p1 * x * y + k.p2 * (r2 + 2 * x * x);
@@ -74,9 +74,9 @@ TEST(Camera, DistortionIsInvertedExactly) {
     }
 }
 
-TEST(Camera, ConfigErrorsNameTheField) {
+TEST(PinholeCamera, ConfigErrorsNameTheField) {
     try {
-        Camera::from_config(ConfigNode::parse(
+        PinholeCamera::from_config(ConfigNode::parse(
             "{resolution: [64, 48], fov_deg: 40, position: [0, 0], look_at: [0, 1, 0]}",
             "cam.yaml"));
         FAIL();

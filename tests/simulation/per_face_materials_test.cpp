@@ -11,6 +11,7 @@
 #include <fstream>
 #include <vector>
 
+#include "error_of.h"
 #include "scene_fixtures.h"
 #include "tirpol/core/error.h"
 
@@ -43,12 +44,7 @@ std::string scene_with(const std::string& object_fields) {
 }
 
 std::string error_of(const TempDir& dir, const std::string& yaml) {
-    try {
-        test::load_scene_text(dir, yaml);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
+    return tirpol::test::error_of([&] { test::load_scene_text(dir, yaml); });
 }
 
 /// |a − b| at a pixel in units of its Monte-Carlo standard error.

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "scene_fixtures.h"
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
@@ -33,12 +34,7 @@ std::string good_scene(const std::string& object_extra = "",
 }
 
 std::string error_of(const TempDir& dir, const std::string& yaml) {
-    try {
-        test::load_scene_text(dir, yaml);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
+    return tirpol::test::error_of([&] { test::load_scene_text(dir, yaml); });
 }
 
 TEST(SceneLoader, LoadsAValidScene) {

@@ -22,8 +22,9 @@ TEST(TwinCameraGeometry, TheFieldProcedureRecoversTheLensAndThePose) {
     test::TempDir dir;
     simulation::Scene field =
         simulation::load_scene(test::source_dir() / "config/scenes/panels_night.yaml");
-    const simulation::Camera nominal = field.camera.resized(160, 120);  // the demo's resolution
-    const simulation::Camera truth = with_pose_error(with_realistic_lens(nominal));
+    const simulation::PinholeCamera nominal =
+        field.camera.resized(160, 120);  // the demo's resolution
+    const simulation::PinholeCamera truth = with_pose_error(with_realistic_lens(nominal));
     const TwinWorld world(twin_sensor(field.band, 279.15), field.band, 160, 120);
     CameraGeometryOptions options;
     options.threads = 2;

@@ -44,11 +44,11 @@ simulation::Scene uniform_surroundings() {
 
 ViewResult extract_in_view(const simulation::Scene& base, const Vec3& position) {
     simulation::Scene scene = base;
-    const simulation::Camera resized = base.camera.resized(160, 128);
+    const simulation::PinholeCamera resized = base.camera.resized(160, 128);
     const Vec3 look_at(0.0, -0.0208, 1.1017);  // the twin's views all look here
-    scene.camera =
-        simulation::Camera(resized.width(), resized.height(), resized.intrinsics(), position,
-                           simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
+    scene.camera = simulation::PinholeCamera(
+        resized.width(), resized.height(), resized.intrinsics(), position,
+        simulation::PinholeCamera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
     const Image render = simulation::render(scene, {});
     const std::size_t target = object_index(scene, "panel_flat_black_paint");
     const std::size_t reflector = object_index(scene, "panel_diffuse_ir_reflector");
@@ -99,14 +99,14 @@ TEST(Eq17UniformSurroundings, ExtractionReturnsThePaintsEmissivityInEveryView) {
         const ViewResult r = extract_in_view(scene, position);
         SCOPED_TRACE(::testing::Message() << "view angle " << r.view_angle_deg << "°");
         const auto& e = r.corrected;
-        EXPECT_LT(std::abs(e.eps_s0 - r.true_s0), 4.0 * e.eps_s0_sigma + 1e-4)
+        EXPECT_LT(std::abs(e.eps_s0 - r.true_s0), 4.0 * e.eps_s0_std + 1e-4)
             << e.eps_s0 << " vs " << r.true_s0;
-        EXPECT_LT(std::abs(e.eps_s1 - r.true_s1), 4.0 * e.eps_s1_sigma + 1e-4)
+        EXPECT_LT(std::abs(e.eps_s1 - r.true_s1), 4.0 * e.eps_s1_std + 1e-4)
             << e.eps_s1 << " vs " << r.true_s1;
         EXPECT_LT(std::abs(e.eps_s1 - r.true_s1), 0.05 * std::abs(r.true_s1));  // 5 % of ε_S1
         EXPECT_LT(r.true_s1, 0.0);  // p-polarized emission
         // Without removing the warm reflector's emission L_dw is too high and ε_S0 far too low.
-        EXPECT_LT(r.uncorrected.eps_s0, r.true_s0 - 8.0 * e.eps_s0_sigma);
+        EXPECT_LT(r.uncorrected.eps_s0, r.true_s0 - 8.0 * e.eps_s0_std);
     }
 }
 

@@ -104,9 +104,9 @@ double SlabModel::temperature_at_depth_k(double z) const {
     return m_t[j - 1] + f * (m_t[j] - m_t[j - 1]);
 }
 
-StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double theta) {
+StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double implicit_weight) {
     const std::size_t n = m_t.size();
-    const double explicit_w = 1.0 - theta;
+    const double explicit_w = 1.0 - implicit_weight;
     // Old-level conduction fluxes through each face (face j is in front of cell j; face n is the
     // back).
     auto face_flux = [&](std::size_t j, double ts, const std::vector<double>& t) {
@@ -123,12 +123,13 @@ StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double thet
         const double k_in = m_conductance[j];
         const double k_out = j + 1 < n ? m_conductance[j + 1] : m_back_conductance;
         const double cap = m_capacity[j] / dt;
-        m_a[j + 1] = -theta * k_in;
-        m_b[j + 1] = cap + theta * (k_in + k_out);
-        m_c[j + 1] = j + 1 < n ? -theta * k_out : 0.0;
+        m_a[j + 1] = -implicit_weight * k_in;
+        m_b[j + 1] = cap + implicit_weight * (k_in + k_out);
+        m_c[j + 1] = j + 1 < n ? -implicit_weight * k_out : 0.0;
         double rhs = cap * m_t[j] + explicit_w * (face_flux(j, m_surface_k, m_t) -
                                                   face_flux(j + 1, m_surface_k, m_t));
-        if (j + 1 == n && m_back_fixed) rhs += theta * m_back_conductance * m_back_temperature_k;
+        if (j + 1 == n && m_back_fixed)
+            rhs += implicit_weight * m_back_conductance * m_back_temperature_k;
         m_r[j + 1] = rhs;
     }
 
@@ -167,8 +168,10 @@ StepReport SlabModel::step(double dt, const SurfaceForcing& forcing, double thet
     }
     m_surface_k = ts;
     for (std::size_t j = 0; j < n; ++j) m_t[j] = m_x[j + 1];
-    report.front_flux_w_m2 = theta * face_flux(0, m_surface_k, m_t) + explicit_w * old_front;
-    report.back_flux_w_m2 = theta * face_flux(n, m_surface_k, m_t) + explicit_w * old_back;
+    report.front_flux_w_m2 =
+        implicit_weight * face_flux(0, m_surface_k, m_t) + explicit_w * old_front;
+    report.back_flux_w_m2 =
+        implicit_weight * face_flux(n, m_surface_k, m_t) + explicit_w * old_back;
     return report;
 }
 

@@ -176,7 +176,7 @@ std::vector<TemperatureSample> simulate_facet(const WeatherSeries& weather,
         const double t = start_s + static_cast<double>(i) * grid.dt;
         const SurfaceForcing f =
             facet_forcing(weather.at(t), weather.site(), material, facet, options, shadow);
-        slab.step(grid.dt, f, options.theta);
+        slab.step(grid.dt, f, options.implicit_weight);
         const bool sample_due = (grid.steps - i) % every == 0;
         if (t >= record_from_s - 1e-6 && sample_due) record(t, f);
     }
@@ -209,7 +209,7 @@ std::vector<double> predict_surface_temperatures(const WeatherSeries& weather,
             slabs[k].step(
                 grid.dt,
                 forcing_from(env, *facets[k].material, facets[k].facet, options, facets[k].shadow),
-                options.theta);
+                options.implicit_weight);
     }
     std::vector<double> out;
     out.reserve(slabs.size());

@@ -59,7 +59,7 @@ ThermalOptions parse_thermal_options(const ConfigNode& node) {
     if (node.has("spin_up_hours"))
         o.spin_up_hours = node.get_in_range("spin_up_hours", 0.0, 24.0 * 60);
     if (node.has("time_step_s")) o.time_step_s = node.get_in_range("time_step_s", 1.0, 3600.0);
-    if (node.get_or<bool>("crank_nicolson", false)) o.theta = 0.5;
+    if (node.get_or<bool>("crank_nicolson", false)) o.implicit_weight = 0.5;
     if (node.has("sky_model")) {
         try {
             o.sky_model = parse_clear_sky_model(node.get<std::string>("sky_model"));

@@ -21,22 +21,22 @@ namespace tirpol::twin {
 
 namespace fs = std::filesystem;
 
-simulation::Camera with_realistic_lens(const simulation::Camera& nominal) {
+simulation::PinholeCamera with_realistic_lens(const simulation::PinholeCamera& nominal) {
     simulation::CameraIntrinsics k = nominal.intrinsics();
     k.fy = 1.004 * k.fx;
     k.cx += 0.031 * nominal.width();
     k.cy -= 0.024 * nominal.height();
     k.k1 = -0.30, k.k2 = 0.12, k.p1 = 0.0008, k.p2 = -0.0005, k.k3 = 0.0;
-    return simulation::Camera(nominal.width(), nominal.height(), k, nominal.position(),
-                              nominal.world_from_camera());
+    return simulation::PinholeCamera(nominal.width(), nominal.height(), k, nominal.position(),
+                                     nominal.world_from_camera());
 }
 
-simulation::Camera with_pose_error(const simulation::Camera& camera) {
+simulation::PinholeCamera with_pose_error(const simulation::PinholeCamera& camera) {
     const Mat3 rotation =
         Eigen::AngleAxisd(deg_to_rad(0.8), Vec3(0.4, 1.0, 0.3).normalized()).toRotationMatrix();
-    return simulation::Camera(camera.width(), camera.height(), camera.intrinsics(),
-                              camera.position() + Vec3(0.04, -0.06, 0.03),
-                              rotation * camera.world_from_camera());
+    return simulation::PinholeCamera(camera.width(), camera.height(), camera.intrinsics(),
+                                     camera.position() + Vec3(0.04, -0.06, 0.03),
+                                     rotation * camera.world_from_camera());
 }
 
 namespace {
@@ -48,7 +48,7 @@ double rotation_between_deg(const CameraPose& a, const CameraPose& b) {
 
 /// Frames of the heated checkerboard through the truth lens, as the camera's detector delivers them
 /// (counts EXRs, polarizer out of the beam), one per board_calibration_views() view.
-std::vector<fs::path> film_board(const simulation::Camera& truth, const TwinWorld& world,
+std::vector<fs::path> film_board(const simulation::PinholeCamera& truth, const TwinWorld& world,
                                  const fs::path& dir, const CameraGeometryOptions& options,
                                  std::string& target) {
     fs::create_directories(dir);
@@ -79,8 +79,8 @@ std::vector<fs::path> film_board(const simulation::Camera& truth, const TwinWorl
 
 /// The corners of every `panel_*` object (surveyed world coordinates) and where `truth` sees them,
 /// with `sigma_px` of pick noise, as the control-point CSV `tirpol calibrate pose` reads.
-std::string control_points_csv(const simulation::Scene& field, const simulation::Camera& truth,
-                               double sigma_px) {
+std::string control_points_csv(const simulation::Scene& field,
+                               const simulation::PinholeCamera& truth, double sigma_px) {
     std::mt19937_64 rng(14);
     std::normal_distribution<double> pick(0.0, sigma_px);
     std::string csv =
@@ -107,8 +107,8 @@ std::string control_points_csv(const simulation::Scene& field, const simulation:
 }  // namespace
 
 CameraGeometryRecovery recover_camera_geometry(const simulation::Scene& field,
-                                               const simulation::Camera& truth,
-                                               const simulation::Camera& nominal,
+                                               const simulation::PinholeCamera& truth,
+                                               const simulation::PinholeCamera& nominal,
                                                const TwinWorld& world, const fs::path& dir,
                                                const CameraGeometryOptions& options) {
     CameraGeometryRecovery r;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "tirpol/core/image.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/twin/twin.h"
 
@@ -13,7 +13,8 @@ namespace tirpol::twin {
 
 struct PaintRenderFitInputs {
     const simulation::Scene* scene = nullptr;  ///< the true scene (its sky, temperatures, geometry)
-    std::vector<simulation::Camera> cameras;   ///< the camera of each view, as the fit renders it
+    std::vector<simulation::PinholeCamera>
+        cameras;  ///< the camera of each view, as the fit renders it
     const std::vector<Image>* measured = nullptr;  ///< reduced Stokes per view (S*, S*_std)
     const std::vector<Image>* truth = nullptr;  ///< truth renders per view (regions, their S*_var)
     std::size_t target_object = 0;

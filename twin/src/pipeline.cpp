@@ -77,11 +77,12 @@ std::vector<TwinView> default_views(const simulation::Scene& scene) {
     return {first, mid, high};
 }
 
-simulation::Camera view_camera(const simulation::Camera& base, const TwinView& v) {
+simulation::PinholeCamera view_camera(const simulation::PinholeCamera& base, const TwinView& v) {
     const Vec3 pos(v.position[0], v.position[1], v.position[2]),
         at(v.look_at[0], v.look_at[1], v.look_at[2]);
-    return simulation::Camera(base.width(), base.height(), base.intrinsics(), pos,
-                              simulation::Camera::look_at(pos, at, Vec3(0.0, 0.0, 1.0)));
+    return simulation::PinholeCamera(
+        base.width(), base.height(), base.intrinsics(), pos,
+        simulation::PinholeCamera::look_at(pos, at, Vec3(0.0, 0.0, 1.0)));
 }
 
 std::string reference_yaml(const std::vector<double>& temperatures_k, double angle_deg,
@@ -172,8 +173,8 @@ struct Chain {
     simulation::RenderOptions render_options;
     std::size_t target = 0, reflector = 0;
     std::uint32_t target_material = 0;
-    std::vector<simulation::Camera> cameras;  ///< the field camera in each view
-    std::vector<Image> truth;                 ///< renders of the truth, per view
+    std::vector<simulation::PinholeCamera> cameras;  ///< the field camera in each view
+    std::vector<Image> truth;                        ///< renders of the truth, per view
     calibration::ChainProducts calibrated;  ///< the calibrations; reduced Stokes (.stokes) per view
     fitting::EmissivityDataset dataset{"twin", kFitWavelengthUm, {}};
     Image simulated;  ///< the render with the fitted paint, view 0
@@ -182,7 +183,7 @@ struct Chain {
 /// 1. The truth: the paper's nine panels under a clear night sky, from every view, through the
 ///    field camera as it is — a realistic lens, and not quite where the user set it up.
 void render_truth(Chain& c) {
-    const simulation::Camera field_lens = with_realistic_lens(c.scene.camera);
+    const simulation::PinholeCamera field_lens = with_realistic_lens(c.scene.camera);
     StageTimer t(c.result, "render truth", c.stage);
     for (std::size_t v = 0; v < c.views.size(); ++v) {
         c.cameras.push_back(with_pose_error(view_camera(field_lens, c.views[v])));
@@ -329,20 +330,20 @@ void extract_target_emissivity(Chain& c) {
         TwinEmissivity te;
         te.view_angle_deg = et.view_angle_deg;
         te.eps_s0 = e.eps_s0;
-        te.eps_s0_sigma = e.eps_s0_sigma;
+        te.eps_s0_std = e.eps_s0_std;
         te.eps_s1 = e.eps_s1;
-        te.eps_s1_sigma = e.eps_s1_sigma;
+        te.eps_s1_std = e.eps_s1_std;
         te.method_s0 = m.eps_s0;
-        te.method_s0_sigma = m.eps_s0_sigma;
+        te.method_s0_std = m.eps_s0_std;
         te.method_s1 = m.eps_s1;
-        te.method_s1_sigma = m.eps_s1_sigma;
+        te.method_s1_std = m.eps_s1_std;
         const StokesVector truth_eps = materials::directional_emissivity(
             *true_brdf, std::cos(deg_to_rad(te.view_angle_deg)), kFitWavelengthUm);
         te.true_s0 = truth_eps(0);
         te.true_s1 = truth_eps(1);
         c.result.emissivity.push_back(te);
         c.dataset.samples.push_back(
-            {te.view_angle_deg, te.eps_s0, te.eps_s0_sigma, te.eps_s1, te.eps_s1_sigma, et.name});
+            {te.view_angle_deg, te.eps_s0, te.eps_s0_std, te.eps_s1, te.eps_s1_std, et.name});
     }
     write_file_atomic(c.out / "fit" / "emissivity.csv", fitting::emissivity_csv({c.dataset}));
 }
@@ -379,7 +380,7 @@ void fit_paint(Chain& c) {
     const auto truths = fitting::fit_order_values(true_params);
     for (std::size_t i = 0; i < fit.parameters.size(); ++i) {
         const auto& p = fit.parameters[i];
-        c.result.parameters.push_back({p.name, truths[i], p.value, p.sigma, p.fixed});
+        c.result.parameters.push_back({p.name, truths[i], p.value, p.std_uncertainty, p.fixed});
     }
 }
 

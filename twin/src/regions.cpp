@@ -59,7 +59,7 @@ std::optional<calibration::PixelRect> object_rect(const Image& render, std::size
     return calibration::PixelRect{x0, y0, x1 - x0, y1 - y0};
 }
 
-double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
+double plane_of_emission_angle(const Image& render, const simulation::PinholeCamera& camera,
                                const calibration::PixelRect& rect) {
     const auto mean = [&](const char* channel) {
         return calibration::region_mean(render, channel, rect, "twin").mean;

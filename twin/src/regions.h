@@ -10,7 +10,7 @@
 
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/image.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/scene.h"
 
 namespace tirpol::twin {
@@ -26,14 +26,14 @@ std::optional<calibration::PixelRect> object_rect(const Image& render, std::size
 /// Angle (radians) of the p direction of emission — the mean surface normal's component across the
 /// ray through the rectangle's centre — in that ray's image Stokes frame (0° camera right, 90°
 /// image top).
-double plane_of_emission_angle(const Image& render, const simulation::Camera& camera,
+double plane_of_emission_angle(const Image& render, const simulation::PinholeCamera& camera,
                                const calibration::PixelRect& rect);
 
 /// ε_S0 and ε_S1 of an extraction (σ = 1 standard uncertainty), ε_S1 rotated from the image frame
 /// into the plane of emission whose p direction lies at `psi` (radians) in the image: there ε_S1 <
 /// 0 is p-polarized emission, as fitting expects.
 struct PlaneOfEmissionEmissivity {
-    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0, eps_s1_sigma = 0.0;
+    double eps_s0 = 0.0, eps_s0_std = 0.0, eps_s1 = 0.0, eps_s1_std = 0.0;
 };
 PlaneOfEmissionEmissivity in_plane_of_emission(const calibration::EmissivityResult& e, double psi);
 

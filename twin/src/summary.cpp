@@ -87,8 +87,8 @@ std::string twin_summary(const TwinResult& r) {
     for (const auto& e : r.emissivity)
         out += fmt::sprintf(
             "    θ %5.1f°: ε_S0 %.4f ± %.4f | %.4f | %.4f   ε_S1 %+.4f ± %.4f | %+.4f | %+.4f\n",
-            e.view_angle_deg, e.eps_s0, e.eps_s0_sigma, e.method_s0, e.true_s0, e.eps_s1,
-            e.eps_s1_sigma, e.method_s1, e.true_s1);
+            e.view_angle_deg, e.eps_s0, e.eps_s0_std, e.method_s0, e.true_s0, e.eps_s1,
+            e.eps_s1_std, e.method_s1, e.true_s1);
     out += fmt::sprintf("  fit (χ²/dof %.2f):\n", r.reduced_chi2);
     for (const auto& p : r.parameters) {
         if (p.fixed) continue;

@@ -14,41 +14,16 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "../render_fit_views.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/fitting/render_fit.h"
 #include "tirpol/simulation/renderer.h"
 
 using namespace tirpol;
 using namespace tirpol::fitting;
+using namespace tirpol::test;
 
 namespace {
-std::size_t object_named(const simulation::Scene& scene, const std::string& name) {
-    for (std::size_t i = 0; i < scene.objects.size(); ++i)
-        if (scene.objects[i].name == name) return i;
-    return 0;
-}
-simulation::Camera camera_at(const simulation::Camera& base, const Vec3& position,
-                             const Vec3& look_at) {
-    return simulation::Camera(base.width(), base.height(), base.intrinsics(), position,
-                              simulation::Camera::look_at(position, look_at, Vec3(0.0, 0.0, 1.0)));
-}
-std::vector<RenderFitRegion> quadrants(const RenderFitRegion& r, int width) {
-    double cx = 0.0, cy = 0.0;
-    for (std::size_t i : r.pixels)
-        cx += static_cast<double>(i % width), cy += static_cast<double>(i / width);
-    cx /= static_cast<double>(r.pixels.size()), cy /= static_cast<double>(r.pixels.size());
-    std::vector<RenderFitRegion> out{{r.name + "_top", {}},
-                                     {r.name + "_right", {}},
-                                     {r.name + "_bottom", {}},
-                                     {r.name + "_left", {}}};
-    for (std::size_t i : r.pixels) {
-        const double dx = static_cast<double>(i % width) - cx,
-                     dy = static_cast<double>(i / width) - cy;
-        const int q = std::abs(dy) > std::abs(dx) ? (dy < 0 ? 0 : 2) : (dx > 0 ? 1 : 3);
-        out[static_cast<std::size_t>(q)].pixels.push_back(i);
-    }
-    return out;
-}
 int env(const char* n, int f) {
     const char* t = std::getenv(n);
     return t ? std::atoi(t) : f;
@@ -60,8 +35,9 @@ TEST(ZzExperiment, RegionMeanNoise) {
     scene.camera = scene.camera.resized(160, 128);
     scene.sampling.samples_per_pixel = env("EXP_SPP", 8);
     const Vec3 at(0.0, 0.3, 0.3);
-    const std::vector<simulation::Camera> cameras{camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
-                                                  camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
+    const std::vector<simulation::PinholeCamera> cameras{
+        camera_at(scene.camera, {0.0, -3.2, 1.1}, at),
+        camera_at(scene.camera, {0.0, -2.4, 2.4}, at)};
     std::vector<std::vector<RenderFitRegion>> regions;
     std::vector<std::vector<std::uint8_t>> masks;
     for (const auto& c : cameras) {

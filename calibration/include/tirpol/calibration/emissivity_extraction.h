@@ -65,7 +65,8 @@ struct EmissivityResult {
     std::string name;
     double view_angle_deg = 0.0, temperature_k = 0.0;
     std::size_t pixels = 0;
-    double l_dw = 0.0, l_bb = 0.0;
+    double l_dw_w_m2_sr = 0.0;  ///< downwelling radiance the reflector shows (band, W/(m²·sr))
+    double l_bb_w_m2_sr = 0.0;  ///< the target's blackbody radiance at its temperature (band)
     double eps_s0 = 0.0, eps_s0_std = 0.0;
     double eps_s1 = 0.0, eps_s1_std = 0.0;
     double eps_s2 = 0.0, eps_s2_std = 0.0;

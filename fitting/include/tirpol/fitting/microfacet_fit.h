@@ -30,6 +30,7 @@
 #include "tirpol/core/geometry.h"
 #include "tirpol/fitting/emissivity_data.h"
 #include "tirpol/fitting/emissivity_quadrature.h"
+#include "tirpol/fitting/solver_termination.h"
 #include "tirpol/materials/shell_target_math.h"
 
 namespace tirpol::fitting {
@@ -111,7 +112,7 @@ struct FittedParameter {
     std::optional<double> wavelength_um;  ///< band of a per-band n or k
     double value = 0.0;
     bool fixed = false;
-    double sigma = 0.0;  ///< standard uncertainty (0 when fixed or unavailable)
+    double std_uncertainty = 0.0;  ///< standard uncertainty (0 when fixed or unavailable)
     double lower = 0.0, upper = 0.0;
     bool at_bound = false;  ///< within 1e-6·(upper − lower) of a bound
 };
@@ -129,7 +130,7 @@ struct StartOutcome {
     std::vector<double> initial;  ///< all parameter values at the start (parameter_names order)
     double chi2 = 0.0;            ///< final χ² = 2 × Ceres cost
     bool usable = false;          ///< ceres::Solver::Summary::IsSolutionUsable
-    std::string termination;      ///< CONVERGENCE / NO_CONVERGENCE / FAILURE … and Ceres' message
+    SolverTermination termination;
     int iterations = 0;
     bool reached_best = false;  ///< χ² within 1e-6 (relative) + 1e-9 of the best start's
 };
@@ -146,7 +147,7 @@ struct MicrofacetFitResult {
     int dof = 0;  ///< residuals − free parameters
     double reduced_chi2 = 0.0;
     std::vector<SampleFit> samples;
-    std::string termination;  ///< the best start's termination type and message
+    SolverTermination termination;  ///< the best start's
     bool usable = false;
     std::string solver_report;  ///< ceres::Solver::Summary::BriefReport of the best start
     std::vector<StartOutcome> starts;

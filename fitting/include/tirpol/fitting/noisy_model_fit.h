@@ -31,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "tirpol/fitting/solver_termination.h"
+
 namespace tirpol::fitting {
 
 /// One evaluation of a noisy model: its values and the variance of each (same length).
@@ -81,8 +83,8 @@ struct NoisyModelFitResult {
     double chi2 = 0.0;
     int dof = 0;  ///< residuals − parameters
     double reduced_chi2 = 0.0;
-    bool usable = false;      ///< ceres::Solver::Summary::IsSolutionUsable of the last solve
-    std::string termination;  ///< its termination type and message
+    bool usable = false;            ///< ceres::Solver::Summary::IsSolutionUsable of the last solve
+    SolverTermination termination;  ///< of the last solve
     std::string solver_report;
     int iterations = 0;   ///< over all solves
     int evaluations = 0;  ///< model evaluations, the finite differences included

@@ -20,7 +20,7 @@ struct ParameterInterval {
 /// value ± 2σ of `p` clipped to [p.lower, p.upper]; for a fixed parameter, [value, value].
 inline ParameterInterval interval_2sigma(const FittedParameter& p) {
     if (p.fixed) return {p.value, p.value, false};
-    const double lo = p.value - 2.0 * p.sigma, hi = p.value + 2.0 * p.sigma;
+    const double lo = p.value - 2.0 * p.std_uncertainty, hi = p.value + 2.0 * p.std_uncertainty;
     return {std::max(p.lower, lo), std::min(p.upper, hi), lo < p.lower || hi > p.upper};
 }
 

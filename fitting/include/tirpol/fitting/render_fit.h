@@ -25,7 +25,7 @@
 #include "tirpol/core/image.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/fitting/noisy_model_fit.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/scene.h"
 
 namespace tirpol::fitting {
@@ -51,7 +51,8 @@ struct RenderFitRegion {
 /// One measured view.
 struct RenderFitView {
     std::string name;
-    simulation::Camera camera;  ///< the measuring camera's model and pose; its size is the image's
+    simulation::PinholeCamera
+        camera;  ///< the measuring camera's model and pose; its size is the image's
     /// Measured Stokes in the camera frame of ARCHITECTURE.md, W/(m²·sr): channels S0 S1 S2 and
     /// their per-pixel standard uncertainties S0_std S1_std S2_std (what calibration's reduction
     /// writes).
@@ -115,7 +116,8 @@ struct RenderFitSummary {
     double reduced_chi2 = 0.0;
     std::vector<RenderFitComparison> comparisons;
     bool usable = false;  ///< Ceres' IsSolutionUsable of the last solve
-    std::string termination, solver_report;
+    SolverTermination termination;
+    std::string solver_report;
     int iterations = 0;
     int renders = 0;  ///< scene renders (each evaluation renders every view)
     double seconds = 0.0;
@@ -143,7 +145,7 @@ RenderFitRegion object_region(const Image& render, std::size_t object_index, std
 /// pixel; the object_id channel is the pixel-centre ray's), then object_region of each. Throws
 /// tirpol::Error naming an object that the scene lacks or that covers no interior pixel.
 std::vector<RenderFitRegion> object_regions(const simulation::Scene& scene,
-                                            const simulation::Camera& camera,
+                                            const simulation::PinholeCamera& camera,
                                             const std::vector<std::string>& objects);
 
 /// A measured view from files: the Stokes EXR (S0 S1 S2 S0_std S1_std S2_std, as `tirpol reduce`

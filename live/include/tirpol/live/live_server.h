@@ -1,39 +1,31 @@
 #pragma once
 /// \file live_server.h
-/// The HTTP side of `tirpol live` (cpp-httplib): serves the page compiled into the binary and the
-/// API it polls (docs/live.md):
-///   GET  /  /live.js  /live.css                      the page
-///   GET  /api/describe                               camera, units, stage, capture defaults (JSON)
-///   GET  /api/status                                 rates, drops, FPA history, stage, capture
-///   (JSON) GET  /api/frame?after=SEQ                        the latest S0 newer than SEQ
-///   (display_frame.h GET  /api/stokes?after=SEQ                       format; X-Sequence header),
-///   else 204 after 1 s POST /api/capture/start  {plan, output, resume}  POST /api/capture/stop
-///   POST /api/observations?client=ID  GET /api/observations   what a page in test mode saw
-/// Each page asks for the next frame after drawing the last, so it gets frames at its own pace.
+/// `tirpol live`: opens the camera (and stage) named in LiveViewOptions, streams, and serves over
+/// HTTP (cpp-httplib) the page compiled into the binary and the API it polls: the page, describe,
+/// status, the latest S0 and Stokes images after a sequence number (long poll, 204 after 1 s),
+/// region statistics, snapshots, capture start/stop and test-mode observations. docs/live.md
+/// lists the routes and their JSON. Each page asks for the next frame after drawing the last, so
+/// it gets frames at its own pace.
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "tirpol/live/live_view.h"
-#include "tirpol/live/request_policy.h"
+#include "tirpol/live/live_options.h"
 
 namespace tirpol::live {
 
-struct ServerOptions {
-    std::string bind_address = "127.0.0.1";
-    int port = 0;  ///< 1–65535, or 0: the system picks a free port
-    RequestLimits limits;
-};
-
-/// Throws tirpol::Error naming the option (`--port`, `--bind`) when a value is out of range.
-void validate(const ServerOptions& options);
+class LiveView;
 
 class LiveServer {
 public:
-    /// Validates the options and binds now (tirpol::Error naming the address and port when it
-    /// cannot). A token is made and required when `bind_address` is not loopback (access.h); every
-    /// request passes RequestPolicy (request_policy.h) before its body is read.
+    /// Validates both sets of options, opens the devices and starts streaming (tirpol::Error
+    /// naming the option, URI or file that failed), and binds now (tirpol::Error naming the
+    /// address and port when it cannot). A token is made and required when `bind_address` is not
+    /// loopback; every request passes the request policy (docs/live.md) before its body is read.
+    LiveServer(const LiveViewOptions& view_options, const ServerOptions& options);
+    /// Serves a view that the caller keeps alive longer than the server (the module's tests,
+    /// which read the view directly; live/src/live_view.h).
     LiveServer(LiveView& view, const ServerOptions& options);
     ~LiveServer();
     LiveServer(const LiveServer&) = delete;
@@ -56,7 +48,11 @@ public:
     std::size_t open_connections() const;
 
 private:
+    LiveServer(std::unique_ptr<LiveView> owned_view, const ServerOptions& options);
+    void serve(LiveView& view, const ServerOptions& options);
+
     struct Impl;
+    std::unique_ptr<LiveView> m_owned_view;  ///< destroyed after m_impl: the server stops first
     std::unique_ptr<Impl> m_impl;
     std::string m_bind_address, m_token;
     int m_port = 0;

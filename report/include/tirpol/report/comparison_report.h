@@ -31,7 +31,7 @@ inline const std::vector<std::string> kZQuantities = {"S0", "S1", "S2"};
 
 struct CompareOptions {
     RegistrationMethod registration = RegistrationMethod::Auto;
-    std::vector<ControlPoint> control_points;
+    std::vector<TiePoint> control_points;
     /// The measured camera's calibrated model, for RegistrationMethod::CameraModel, and its name
     /// (file).
     std::optional<CameraModel> camera_model;

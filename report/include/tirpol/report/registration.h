@@ -51,14 +51,14 @@ std::string to_string(RegistrationMethod method);
 
 /// One tie point: the same scene feature in the measured and the simulated image (pixel
 /// coordinates).
-struct ControlPoint {
+struct TiePoint {
     PixelPoint measured;
     PixelPoint simulated;
 };
 
 /// Reads control points from YAML: a list of `{measured: [x, y], simulated: [x, y]}` mappings.
 /// Throws tirpol::Error naming file:line:field for a malformed entry or an unknown key.
-std::vector<ControlPoint> load_control_points(const std::filesystem::path& path);
+std::vector<TiePoint> load_control_points(const std::filesystem::path& path);
 
 /// Relative reduction of the S0 edge mismatch an automatic warp must bring to replace the identity.
 inline constexpr double kRegistrationMinImprovement = 0.10;
@@ -96,8 +96,7 @@ struct Registration {
 /// `cancel` (null: never) is read before each ECC pyramid level; once set, tirpol::Cancelled is
 /// thrown.
 Registration register_images(const Image& measured, const Image& simulated,
-                             RegistrationMethod method,
-                             const std::vector<ControlPoint>& control_points,
+                             RegistrationMethod method, const std::vector<TiePoint>& control_points,
                              const std::atomic<bool>* cancel = nullptr);
 
 /// Registration by camera model: checks that `simulated` was rendered through `camera` (same size

@@ -15,7 +15,7 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/materials/pbrdf.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/ray_tracer.h"
 #include "tirpol/simulation/sky.h"
 #include "tirpol/simulation/temperature_field.h"
@@ -92,7 +92,7 @@ struct SceneObject {
 
 struct Scene {
     std::filesystem::path file;
-    Camera camera;
+    PinholeCamera camera;
     Band band;
     Sky sky;
     std::optional<Sun> sun;

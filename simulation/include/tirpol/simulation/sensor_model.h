@@ -26,7 +26,7 @@
 
 namespace tirpol::simulation {
 
-struct AnalyzerModel {
+struct SimulatedAnalyzer {
     std::vector<double> angles_deg{0.0, 45.0, 90.0, 135.0};
     double transmission = 0.7;        ///< major-axis intensity transmittance τ
     double extinction_ratio = 400.0;  ///< τ/τ_min (the paper's wire grid, §3.1)
@@ -48,7 +48,7 @@ struct CountsModel {
 };
 
 struct SensorModel {
-    AnalyzerModel analyzer;
+    SimulatedAnalyzer analyzer;
     WireGridBackground background;
     std::optional<CountsModel> counts;
     std::uint64_t seed = 1;

@@ -85,8 +85,9 @@ public:
     explicit SlabModel(const SlabDefinition& definition, const SlabGridOptions& grid = {});
 
     void set_uniform_temperature(double temperature_k);
-    /// Advances by `dt_s` with θ-method weight `theta` ∈ [½, 1].
-    StepReport step(double dt_s, const SurfaceForcing& forcing, double theta = 1.0);
+    /// Advances by `dt_s` with the θ-method: `implicit_weight` ∈ [½, 1] of the new time level (1
+    /// backward Euler, ½ Crank–Nicolson), the rest on the old.
+    StepReport step(double dt_s, const SurfaceForcing& forcing, double implicit_weight = 1.0);
 
     double surface_temperature_k() const { return m_surface_k; }
     const std::vector<double>& cell_temperatures_k() const { return m_t; }

@@ -46,7 +46,9 @@ struct ThermalOptions {
     double spin_up_hours =
         24.0;  ///< start from the air temperature this long before the requested time
     double time_step_s = 300.0;
-    double theta = 1.0;  ///< 1 backward Euler (robust), ½ Crank–Nicolson
+    /// Weight of the new time level in the θ-method step (slab.h): 1 backward Euler (robust), ½
+    /// Crank–Nicolson.
+    double implicit_weight = 1.0;
     ClearSkyModel sky_model = ClearSkyModel::BerdahlMartin1984;
     bool use_measured_sky_ir = true;  ///< use the record's horizontal IR when present
     ConvectionModel convection = ConvectionModel::McAdams;

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "tirpol/core/camera_model.h"
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/twin/instrument.h"
 
@@ -19,11 +19,11 @@ namespace tirpol::twin {
 /// The nominal camera's intrinsics with the twin's realistic lens (an uncooled LWIR core behind a
 /// small germanium lens): k1 −0.30, k2 0.12, p1 0.0008, p2 −0.0005, k3 0, fy = 1.004 fx, the
 /// principal point 3.1 % of the width right and 2.4 % of the height up of the nominal one.
-simulation::Camera with_realistic_lens(const simulation::Camera& nominal);
+simulation::PinholeCamera with_realistic_lens(const simulation::PinholeCamera& nominal);
 
 /// The camera moved by the twin's pose error: 0.8° about the world axis (0.4, 1, 0.3), and
 /// (+4, −6, +3) cm — a tripod set up by a tape measure and a compass.
-simulation::Camera with_pose_error(const simulation::Camera& camera);
+simulation::PinholeCamera with_pose_error(const simulation::PinholeCamera& camera);
 
 struct CameraGeometryOptions {
     int board_views = 25;  ///< frames of the heated checkerboard filmed for the lens
@@ -56,7 +56,9 @@ struct CameraGeometryRecovery {
     std::filesystem::path lens_file, pose_file, control_points_file;
 
     /// The recovered camera, for rendering the simulation onto the measured pixel grid.
-    simulation::Camera camera() const { return simulation::Camera::from_model(lens, pose); }
+    simulation::PinholeCamera camera() const {
+        return simulation::PinholeCamera::from_model(lens, pose);
+    }
 };
 
 /// Films `HeatedBoard` views through `truth`'s lens (rendered, then the sensor model of `world`
@@ -65,8 +67,8 @@ struct CameraGeometryRecovery {
 /// options.pick_sigma_px noise) and estimates the pose with the recovered lens. Writes the frames,
 /// the camera model, the control points CSV and the pose under `dir`.
 CameraGeometryRecovery recover_camera_geometry(const simulation::Scene& field,
-                                               const simulation::Camera& truth,
-                                               const simulation::Camera& nominal,
+                                               const simulation::PinholeCamera& truth,
+                                               const simulation::PinholeCamera& nominal,
                                                const TwinWorld& world,
                                                const std::filesystem::path& dir,
                                                const CameraGeometryOptions& options = {});

@@ -67,10 +67,10 @@ struct TwinOptions {
 /// a downwelling that is not uniform — docs/twin.md).
 struct TwinEmissivity {
     double view_angle_deg = 0.0;
-    double eps_s0 = 0.0, eps_s0_sigma = 0.0, eps_s1 = 0.0,
-           eps_s1_sigma = 0.0;  ///< measured sessions
-    double method_s0 = 0.0, method_s0_sigma = 0.0, method_s1 = 0.0,
-           method_s1_sigma = 0.0;         ///< truth render
+    double eps_s0 = 0.0, eps_s0_std = 0.0, eps_s1 = 0.0,
+           eps_s1_std = 0.0;  ///< measured sessions
+    double method_s0 = 0.0, method_s0_std = 0.0, method_s1 = 0.0,
+           method_s1_std = 0.0;           ///< truth render
     double true_s0 = 0.0, true_s1 = 0.0;  ///< the true paint's directional emissivity at that angle
 };
 

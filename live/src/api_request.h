@@ -12,8 +12,8 @@
 #include <string>
 #include <string_view>
 
-#include "tirpol/live/capture_control.h"
-#include "tirpol/live/region_statistics.h"
+#include "capture_control.h"
+#include "region_statistics.h"
 
 namespace tirpol::live {
 

@@ -15,21 +15,13 @@
 #include <thread>
 #include <vector>
 
+#include "display_frame.h"
+#include "frame_feed.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/image.h"
-#include "tirpol/live/display_frame.h"
-#include "tirpol/live/frame_feed.h"
+#include "tirpol/live/live_options.h"
 
 namespace tirpol::live {
-
-struct CycleOptions {
-    std::vector<double> angles_deg{0.0, 45.0, 90.0, 135.0};
-    int frames_per_angle = 4;
-    double settle_s = 0.2;
-    double move_timeout_s = 60.0;
-    double home_timeout_s = 120.0;
-    double frame_timeout_s = 5.0;
-};
 
 struct CycleStatus {
     std::string state =

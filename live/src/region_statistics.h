@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "tirpol/live/display_frame.h"
+#include "display_frame.h"
 
 namespace tirpol::live {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <thread>
 
+#include "frame_feed.h"
+#include "polarizer_cycle.h"
 #include "tirpol/acquisition/stage.h"
-#include "tirpol/live/frame_feed.h"
-#include "tirpol/live/polarizer_cycle.h"
 
 namespace tirpol::live {
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file camera.h
+/// \file pinhole_camera.h
 /// A pinhole camera with OpenCV's intrinsics and distortion (Brown–Conrady k1 k2 p1 p2 k3, rational
 /// k4 k5 k6, thin prism s1..s4, as in OpenCV's calib3d "Camera Calibration and 3D Reconstruction").
 /// In this class pixel (u, v) has its origin at the top-left corner of the top-left pixel, u to the
@@ -25,19 +25,19 @@ struct CameraIntrinsics {
     double s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0;            ///< thin prism
 };
 
-class Camera {
+class PinholeCamera {
 public:
     /// `world_from_camera` has the camera's x (right), y (down), z (forward) axes as columns.
-    Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position,
-           Mat3 world_from_camera);
+    PinholeCamera(int width, int height, CameraIntrinsics intrinsics, Vec3 position,
+                  Mat3 world_from_camera);
 
     /// From the `camera:` mapping of a scene file (docs/scene-format.md). Errors name
     /// file:line:field.
-    static Camera from_config(const ConfigNode& node);
+    static PinholeCamera from_config(const ConfigNode& node);
 
     /// The calibrated camera: a model file's intrinsics and distortion (OpenCV pixel convention,
     /// converted here) at `pose` (x_camera = R·x_world + t).
-    static Camera from_model(const CameraModel& model, const CameraPose& pose);
+    static PinholeCamera from_model(const CameraModel& model, const CameraPose& pose);
 
     /// Camera at `position` looking at `target`, with `up` defining the image's upward direction.
     static Mat3 look_at(const Vec3& position, const Vec3& target, const Vec3& up);
@@ -49,9 +49,9 @@ public:
     const Mat3& world_from_camera() const { return m_world_from_camera; }
 
     /// A copy at another resolution: intrinsics scale with the image so the field of view is kept.
-    Camera resized(int width, int height) const;
+    PinholeCamera resized(int width, int height) const;
     /// A copy moved rigidly by `rotation` (world) about the world origin.
-    Camera rotated(const Mat3& rotation) const;
+    PinholeCamera rotated(const Mat3& rotation) const;
 
     /// Unit world direction of the ray through image point (u, v) in pixels, distortion removed
     /// exactly (the inverse of project(), to ~1e-12 px).

@@ -10,40 +10,19 @@
 #include <optional>
 #include <string>
 
+#include "capture_control.h"
+#include "display_frame.h"
+#include "frame_feed.h"
+#include "polarizer_cycle.h"
+#include "region_statistics.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/calibration/microgrid_demosaic.h"
 #include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/radiometric.h"
-#include "tirpol/live/capture_control.h"
-#include "tirpol/live/display_frame.h"
-#include "tirpol/live/frame_feed.h"
-#include "tirpol/live/polarizer_cycle.h"
-#include "tirpol/live/region_statistics.h"
+#include "tirpol/live/live_options.h"
 
 namespace tirpol::live {
-
-struct LiveViewOptions {
-    std::string camera_uri;        ///< acquisition::open_camera
-    std::string stage_uri;         ///< acquisition::open_stage; empty = no stage (S0 only)
-    std::string calibration_path;  ///< radiometric calibration EXR; empty = counts only
-    DisplayUnit unit = DisplayUnit::Counts;
-    CycleOptions cycle;
-    std::string default_plan, default_output;  ///< prefilled in the page's capture form
-    /// Where the page's Snapshot button writes (empty: no snapshots). The CLI checks it with
-    /// OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing file.
-    std::string snapshot_dir;
-    /// With a microgrid camera and no stage, the page's Stokes images come from each frame:
-    /// demosaiced by this method (calibration's parse_demosaic_method: super-pixel, bilinear,
-    /// newton) and reduced with ideal analyzers at the pattern's angles.
-    std::string demosaic = "bilinear";
-    bool force_snapshots = false;
-};
-
-/// Throws tirpol::Error naming the option (`--settle-s`, `--frames-per-angle`, …) and the value
-/// when a number is not finite or out of range: NaN would otherwise pass every comparison and mean
-/// "no wait".
-void validate(const LiveViewOptions& options);
 
 /// An encoded image and the LatestSlot sequence it came from.
 struct EncodedImage {

@@ -1,4 +1,4 @@
-#include "tirpol/simulation/camera.h"
+#include "tirpol/simulation/pinhole_camera.h"
 
 #include <cmath>
 #include <filesystem>
@@ -16,8 +16,8 @@ Vec3 vec3_field(const ConfigNode& node, std::string_view key) {
 }
 }  // namespace
 
-Camera::Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position,
-               Mat3 world_from_camera)
+PinholeCamera::PinholeCamera(int width, int height, CameraIntrinsics intrinsics, Vec3 position,
+                             Mat3 world_from_camera)
     : m_width(width),
       m_height(height),
       m_intrinsics(intrinsics),
@@ -42,7 +42,7 @@ Camera::Camera(int width, int height, CameraIntrinsics intrinsics, Vec3 position
         m_lens.distortion.resize(5);
 }
 
-Camera Camera::from_model(const CameraModel& model, const CameraPose& pose) {
+PinholeCamera PinholeCamera::from_model(const CameraModel& model, const CameraPose& pose) {
     validate_camera_model(model, "camera model");
     CameraIntrinsics k;
     k.fx = model.fx;
@@ -53,24 +53,24 @@ Camera Camera::from_model(const CameraModel& model, const CameraPose& pose) {
                               &k.k5, &k.k6, &k.s1, &k.s2, &k.s3, &k.s4};
     for (std::size_t i = 0; i < model.distortion.size(); ++i)
         *coefficients[i] = model.distortion[i];
-    return Camera(model.width, model.height, k, pose.position_m(),
-                  pose.camera_from_world.transpose());
+    return PinholeCamera(model.width, model.height, k, pose.position_m(),
+                         pose.camera_from_world.transpose());
 }
 
-CameraPose Camera::pose() const {
+CameraPose PinholeCamera::pose() const {
     CameraPose p;
     p.camera_from_world = m_world_from_camera.transpose();
     p.translation_m = -p.camera_from_world * m_position;
     return p;
 }
 
-std::optional<Eigen::Vector2d> Camera::project(const Vec3& world_point) const {
+std::optional<Eigen::Vector2d> PinholeCamera::project(const Vec3& world_point) const {
     const Vec3 c = m_world_from_camera.transpose() * (world_point - m_position);
     if (!(c.z() > 0.0)) return std::nullopt;
     return m_lens.project(c) + Eigen::Vector2d(0.5, 0.5);
 }
 
-Mat3 Camera::look_at(const Vec3& position, const Vec3& target, const Vec3& up) {
+Mat3 PinholeCamera::look_at(const Vec3& position, const Vec3& target, const Vec3& up) {
     const Vec3 forward = (target - position).normalized();
     Vec3 right = forward.cross(up);
     if (right.norm() < 1e-9)
@@ -168,7 +168,7 @@ CameraPose pose_of(const ConfigNode& node) {
         const Vec3 target = vec3_field(node, "look_at");
         if ((target - position).norm() < 1e-12)
             node.at("look_at").fail("look_at equals the camera position");
-        world_from_camera = Camera::look_at(position, target, up);
+        world_from_camera = PinholeCamera::look_at(position, target, up);
     } else {
         if (node.has("up")) node.at("up").fail("'up' only goes with look_at");
         const ConfigNode r_node = node.at("rotation");
@@ -188,7 +188,7 @@ CameraPose pose_of(const ConfigNode& node) {
 }
 }  // namespace
 
-Camera Camera::from_config(const ConfigNode& node) {
+PinholeCamera PinholeCamera::from_config(const ConfigNode& node) {
     node.check_keys({"resolution", "fov_deg", "intrinsics", "distortion", "model", "position",
                      "look_at", "up", "rotation", "pose"});
     const CameraPose pose = pose_of(node);
@@ -200,11 +200,11 @@ Camera Camera::from_config(const ConfigNode& node) {
         res[1] != std::floor(res[1]))
         res_node.fail("expected [width, height] in pixels (positive integers)");
     const int w = static_cast<int>(res[0]), h = static_cast<int>(res[1]);
-    return Camera(w, h, hand_written_intrinsics(node, w, h), pose.position_m(),
-                  pose.camera_from_world.transpose());
+    return PinholeCamera(w, h, hand_written_intrinsics(node, w, h), pose.position_m(),
+                         pose.camera_from_world.transpose());
 }
 
-Camera Camera::resized(int width, int height) const {
+PinholeCamera PinholeCamera::resized(int width, int height) const {
     CameraIntrinsics k = m_intrinsics;
     const double sx = static_cast<double>(width) / m_width,
                  sy = static_cast<double>(height) / m_height;
@@ -212,20 +212,20 @@ Camera Camera::resized(int width, int height) const {
     k.cx *= sx;
     k.fy *= sy;
     k.cy *= sy;
-    return Camera(width, height, k, m_position, m_world_from_camera);
+    return PinholeCamera(width, height, k, m_position, m_world_from_camera);
 }
 
-Camera Camera::rotated(const Mat3& rotation) const {
-    return Camera(m_width, m_height, m_intrinsics, rotation * m_position,
-                  rotation * m_world_from_camera);
+PinholeCamera PinholeCamera::rotated(const Mat3& rotation) const {
+    return PinholeCamera(m_width, m_height, m_intrinsics, rotation * m_position,
+                         rotation * m_world_from_camera);
 }
 
-Vec3 Camera::ray_direction(double u, double v) const {
+Vec3 PinholeCamera::ray_direction(double u, double v) const {
     const Eigen::Vector2d p = m_lens.undistort(Eigen::Vector2d(u - 0.5, v - 0.5));
     return (m_world_from_camera * Vec3(p.x(), p.y(), 1.0)).normalized();
 }
 
-StokesFrame Camera::image_frame(const Vec3& direction) const {
+StokesFrame PinholeCamera::image_frame(const Vec3& direction) const {
     return frame_from_reference(-direction, m_world_from_camera.col(0));
 }
 

@@ -21,10 +21,9 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/calibration/radiometric.h"
+#include "tirpol/live/live_options.h"
 
 namespace tirpol::live {
-
-enum class DisplayUnit { Counts, Radiance, Temperature };
 
 /// Per-pixel flags.
 enum PixelFlag : std::uint8_t { kPixelOk = 0, kPixelSaturated = 1, kPixelDead = 2 };
@@ -77,9 +76,6 @@ private:
     int m_width, m_height;
     std::optional<double> m_saturation_counts;
 };
-
-/// Parses "counts", "radiance", "temperature"; tirpol::Error naming the value otherwise.
-DisplayUnit parse_display_unit(const std::string& text);
 
 /// The wire format above. Channel value ranges are the finite min/max of the unflagged pixels.
 std::string encode_display_image(const DisplayImage& image);

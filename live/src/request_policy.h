@@ -19,20 +19,9 @@
 #include <string>
 #include <vector>
 
-namespace tirpol::live {
+#include "tirpol/live/live_options.h"
 
-/// Sizes and times that bound what one client can make the server hold.
-struct RequestLimits {
-    std::size_t max_body_bytes = 64 * 1024;  ///< a capture request or an observation is well below
-    std::size_t max_head_bytes = 16 * 1024;  ///< request line and headers together
-    std::size_t max_connections = 64;        ///< open at once; one page holds a few
-    std::size_t max_observation_clients =
-        16;  ///< pages reporting in test mode, each ≤ max_body_bytes
-    std::chrono::milliseconds idle_timeout{5000};  ///< a kept-alive connection with no request
-    std::chrono::milliseconds head_timeout{
-        5000};  ///< from a request's first byte to its last header
-    std::chrono::milliseconds request_timeout{30000};  ///< reading and answering one request
-};
+namespace tirpol::live {
 
 /// What the policy reads from a request (header values verbatim; absent headers empty).
 struct RequestFacts {

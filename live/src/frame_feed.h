@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
+#include "latest_slot.h"
 #include "tirpol/acquisition/camera.h"
-#include "tirpol/live/latest_slot.h"
 
 namespace tirpol::live {
 

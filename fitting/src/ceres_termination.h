@@ -1,0 +1,13 @@
+#pragma once
+// Ceres' solver summary as the public SolverTermination.
+
+#include <ceres/solver.h>
+
+#include "tirpol/fitting/solver_termination.h"
+
+namespace tirpol::fitting {
+
+/// The summary's termination type (FAILURE for any Ceres adds later) and message.
+SolverTermination termination_of(const ceres::Solver::Summary& summary);
+
+}  // namespace tirpol::fitting
