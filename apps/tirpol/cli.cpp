@@ -13,6 +13,7 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/log.h"
+#include "tirpol/core/option_value_error.h"
 #include "tirpol/report/provenance.h"
 #include "tirpol/twin/scene_camera.h"
 
@@ -171,6 +172,11 @@ int run(int argc, char** argv) {
         return kExitError;
     } catch (const CLI::ParseError& e) {
         return usage_error(app, e);
+    } catch (const OptionValueError& e) {
+        const std::string message = e.what();
+        return usage_error(app, message.rfind(e.option(), 0) == 0
+                                    ? CLI::ValidationError(message)
+                                    : CLI::ValidationError(e.option(), message));
     } catch (const OutputConflict& e) {
         // Found from the command line and the file system alone, before any work: a usage error.
         std::fprintf(stderr, "%s\nRun with --help for more information.\n", e.what());

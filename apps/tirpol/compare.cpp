@@ -97,41 +97,7 @@ void run_compare(const CompareArgs& a) {
     if (!a.camera.empty())
         options.provenance.inputs.push_back(describe_input("camera model", a.camera));
     const CompareResult r = write_comparison_report(measured, simulated, options, a.output);
-    if (a.json) {
-        std::printf("%s", comparison_json(r).c_str());
-        return;
-    }
-    const auto& g = r.registration;
-    std::printf("registration: %s (%s), residual misalignment %.3f px\n",
-                to_string(g.method).c_str(), g.model.c_str(),
-                std::hypot(g.residual_shift_px[0], g.residual_shift_px[1]));
-    if (!g.note.empty()) std::printf("  %s\n", g.note.c_str());
-    std::printf("%s\n", summary_paragraph(r).c_str());
-    // fmt pads by displayed width (σ and ± are one column, two bytes); the name column fits the
-    // longest name.
-    std::size_t name_width = 16;
-    for (const auto& region : r.regions) name_width = std::max(name_width, region.name.size());
-    fmt::print("{:<{}} {:>7} {:>14} {:<26} {:<26} {:<26} {}\n", "region", name_width, "pixels",
-               "S0 bias [K]", "S0 diff/σ_mean (detect)", "S1 diff/σ_mean (detect)",
-               "S2 diff/σ_mean (detect)", "verdict");
-    for (const auto& region : r.regions) {
-        const auto& k = region.s0_bias_k;
-        const std::string kelvin =
-            k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
-        fmt::print("{:<{}} {:>7} {:>14}", region.name, name_width, region.pixel_count, kelvin);
-        for (const auto& q : kZQuantities) {
-            const auto& v = region.verdicts.at(q);
-            fmt::print(" {:<26}",
-                       fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
-                                   v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",
-                                   v.sigma.verdict == SigmaCheck::Overestimated    ? " σ-high"
-                                   : v.sigma.verdict == SigmaCheck::Underestimated ? " σ-low"
-                                                                                   : ""));
-        }
-        fmt::print(" {}\n", to_string(region.verdict));
-    }
-    for (const auto& note : r.notes) std::printf("note: %s\n", note.c_str());
-    std::printf("report: %s\n", r.html.string().c_str());
+    std::printf("%s", (a.json ? comparison_json(r) : comparison_text(r)).c_str());
 }
 
 void register_compare(CLI::App& app) {

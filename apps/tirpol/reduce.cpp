@@ -1,13 +1,13 @@
 // `tirpol reduce`: a session of raw counts → calibrated Stokes EXR (S0 S1 S2 DoLP AoP + *_std).
 
-#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include "cli.h"
-#include "reduce_counts.h"
-#include "tirpol/calibration/calibration_chain.h"
+#include "common_options.h"
 #include "tirpol/calibration/microgrid_session.h"
+#include "tirpol/calibration/polarimetric_file.h"
+#include "tirpol/calibration/session_to_stokes.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"
@@ -96,72 +96,32 @@ void run_reduce(const ReduceArgs& a) {
                     "{} is not a microgrid camera's session (its manifest records no microgrid "
                     "pattern): --pixel-calibration is for microgrid sessions",
                     a.session);
-    if (a.calibration.empty()) {
-        // No calibration yet: a quick look in counts, labelled so.
+    const calibration::SessionToStokesOptions o{
+        a.session,      a.calibration,           a.polarimetric,     a.output,
+        a.quicklooks,   a.update_offset,         a.drift_correction, a.slar,
+        a.other_camera, a.max_saturated_fraction};
+    if (o.calibration.empty())  // no calibration yet: a quick look in counts, labelled so
         for (const auto& [given, name] :
-             {std::pair{!a.polarimetric.empty(), "--polarimetric"},
-              std::pair{a.update_offset, "--update-offset"},
-              std::pair{a.drift_correction, "--drift-correction"}, std::pair{a.slar, "--slar"},
-              std::pair{a.other_camera, "--other-camera"}})
+             {std::pair{!o.polarimetric.empty(), "--polarimetric"},
+              std::pair{o.update_offset, "--update-offset"},
+              std::pair{o.drift_correction, "--drift-correction"}, std::pair{o.slar, "--slar"},
+              std::pair{o.other_camera, "--other-camera"}})
             if (given)
                 usage_error(name,
                             "{} needs --calibration (without it reduce makes a counts quick look)",
                             name);
-        return run_reduce_counts(
-            {a.session, a.output, a.quicklooks, a.max_saturated_fraction, a.force});
-    }
     OutputGuard()
-        .input(a.session, "SESSION")
-        .input(a.calibration, "--calibration")
-        .input(a.polarimetric, "--polarimetric")
-        .input(a.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(a.polarimetric),
+        .input(o.session, "SESSION")
+        .input(o.calibration, "--calibration")
+        .input(o.polarimetric, "--polarimetric")
+        .input(o.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(o.polarimetric),
                "--polarimetric maps")
-        .output_file(a.output, "--output")
-        .output_folder(a.quicklooks, "--quicklooks",
-                       {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
+        .output_file(o.output, "--output")
+        .output_folder(o.quicklooks, "--quicklooks",
+                       {std::begin(calibration::kStokesQuicklookFiles),
+                        std::end(calibration::kStokesQuicklookFiles)})
         .check(a.force);
-    calibration::ChainInputs chain;
-    chain.scene_sessions = {a.session};
-    chain.reduction.update_offset = a.update_offset;
-    chain.reduction.drift_correction = a.drift_correction;
-    chain.reduction.max_saturated_fraction = a.max_saturated_fraction;
-    chain.reduction.include_slar = a.slar;
-    chain.reduction.force_other_camera = a.other_camera;
-    Image stokes = calibration::run_calibration_chain(
-                       chain, calibration::read_calibration_products(a.calibration, a.polarimetric))
-                       .stokes.front();
-    stokes.attributes()["radiometric_calibration"] = a.calibration;
-    stokes.attributes()["polarimetric_calibration"] = a.polarimetric;
-    write_exr(a.output, stokes);
-    if (const auto it = stokes.attributes().find("calibration_warnings");
-        it != stokes.attributes().end())
-        std::printf("warning: %s\n", std::get<std::string>(it->second).c_str());
-    if (!a.quicklooks.empty())
-        for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
-            write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"),
-                            stokes.channel(c), stokes.width(), stokes.height(),
-                            channel_quicklook_options(c));
-        }
-    if (const auto it = stokes.attributes().find("drift_offset_counts");
-        it != stokes.attributes().end()) {
-        const auto& shift = std::get<std::vector<double>>(it->second);
-        const auto& sigma =
-            std::get<std::vector<double>>(stokes.attributes().at("drift_offset_sigma_counts"));
-        const auto [lo, hi] = std::minmax_element(shift.begin(), shift.end());
-        std::printf(
-            "drift correction (%s): offset shift %.2f … %.2f counts over %zu records, σ ≤ %.3f "
-            "counts\n",
-            std::get<std::string>(stokes.attributes().at("drift_correction_source")).c_str(), *lo,
-            *hi, shift.size(), *std::max_element(sigma.begin(), sigma.end()));
-    }
-    const auto s0 = channel_stats(stokes.channel("S0"));
-    const auto dolp = channel_stats(stokes.channel("DoLP"));
-    std::printf(
-        "Stokes %d×%d: S0 mean %.4g W/(m²·sr), DoLP mean %.4f; %d unrealizable pixel(s) projected, "
-        "%d saturated → %s\n",
-        stokes.width(), stokes.height(), s0.mean, dolp.mean,
-        std::get<int>(stokes.attributes().at("unrealizable_pixels")),
-        std::get<int>(stokes.attributes().at("saturated_pixels")), a.output.c_str());
+    print_text(calibration::session_to_stokes_text(calibration::session_to_stokes(o)));
 }
 
 void register_reduce(CLI::App& app) {

@@ -1,6 +1,9 @@
 #include "tirpol/core/session_summary.h"
 
+#include <fmt/printf.h>
+
 #include <algorithm>
+#include <ctime>
 
 namespace tirpol {
 
@@ -67,6 +70,48 @@ nlohmann::json session_summary_to_json(const SessionSummary& s) {
                 {"home_checks_passed", s.home_checks_passed},
                 {"home_checks_failed", s.home_checks_failed},
                 {"home_checks", checks}};
+}
+
+namespace {
+std::string utc_text(std::int64_t host_ns) {
+    const std::time_t seconds = static_cast<std::time_t>(host_ns / 1'000'000'000);
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return text;
+}
+}  // namespace
+
+std::string session_summary_text(const SessionSummary& s, const std::string& dir) {
+    std::string text =
+        fmt::sprintf("%s: capture session, schema v%d, %s, created %s\n", dir, s.schema_version,
+                     s.complete ? "complete" : "incomplete", s.created_utc);
+    text += fmt::sprintf("  camera %s, stage %s\n", s.camera_uri, s.stage_uri);
+    text += fmt::sprintf("  records: %zu (%zu polarizer, %zu reference), %lld frames averaged\n",
+                         s.records, s.polarizer_records, s.reference_records,
+                         static_cast<long long>(s.frames));
+    text += fmt::sprintf("  camera losses: %lld dropped, %lld incomplete\n",
+                         static_cast<long long>(s.dropped), static_cast<long long>(s.incomplete));
+    text += fmt::sprintf(
+        "  audit: %zu of %zu records per frame; %lld frames with a device clock, %lld with the "
+        "core's telemetry, %lld kept during an FFC\n",
+        s.audited_records, s.records, static_cast<long long>(s.frames_with_device_clock),
+        static_cast<long long>(s.frames_with_core_telemetry),
+        static_cast<long long>(s.frames_during_ffc));
+    if (s.fpa_min_k)
+        text += fmt::sprintf("  FPA temperature: %.2f to %.2f K\n", *s.fpa_min_k, *s.fpa_max_k);
+    text += fmt::sprintf(
+        "  flat-field corrections: %d scheduled between cycles, %d detected inside a cycle\n",
+        s.ffc_scheduled, s.ffc_detected);
+    text += fmt::sprintf("  lost-step checks at the home sensor: %d passed, %d failed\n",
+                         s.home_checks_passed, s.home_checks_failed);
+    for (const auto& c : s.home_checks)
+        text += fmt::sprintf(
+            "    before step %d: %s, %lld steps since the last good check, at %s\n",
+            c.before_step + 1, c.passed ? "passed" : "FAILED (lost steps)",
+            static_cast<long long>(c.steps_since_last_good), utc_text(c.host_timestamp_ns));
+    return text;
 }
 
 }  // namespace tirpol

@@ -11,7 +11,9 @@
 #include <numbers>
 
 #include "test_support.h"
+#include "tirpol/calibration/session_to_stokes.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
 
 using namespace tirpol;
@@ -142,4 +144,26 @@ TEST(CountsQuicklook, TooFewAnglesOrSaturationAreErrorsNamingTheFile) {
         EXPECT_THAT(e.what(), HasSubstr("p90"));
         EXPECT_THAT(e.what(), HasSubstr("saturated"));
     }
+}
+
+// reduce_session without a calibration: the counts quick look written as EXR and labelled PNGs,
+// summarised in counts with its label first.
+TEST(CountsQuicklook, ReduceSessionWithoutCalibrationWritesAndLabelsTheQuickLook) {
+    test::TempDir dir;
+    write_scene(dir / "scene", 0.0);
+    calibration::SessionToStokesOptions o;
+    o.session = (dir / "scene").string();
+    o.output = (dir / "stokes.exr").string();
+    o.quicklooks = (dir / "looks").string();
+    const calibration::SessionToStokes r = calibration::session_to_stokes(o);
+    EXPECT_TRUE(r.counts_quicklook);
+    EXPECT_NEAR(r.s0.mean, 2.0 * kOffset + kGain * kS0, 1e-2);
+    EXPECT_EQ(r.saturated_pixels, 0);
+    EXPECT_EQ(read_exr(o.output).width(), kW);
+    for (const char* png : calibration::kStokesQuicklookFiles)
+        EXPECT_TRUE(std::filesystem::exists(dir / "looks" / png)) << png;
+    const std::string text = calibration::session_to_stokes_text(r);
+    EXPECT_EQ(text.rfind(std::string(calibration::kCountsQuicklookLabel) + "\n", 0), 0u) << text;
+    EXPECT_THAT(text, HasSubstr("Stokes 8×6 in counts: S0 mean 12000 counts"));
+    EXPECT_THAT(text, HasSubstr("0 saturated → " + o.output + "\n"));
 }

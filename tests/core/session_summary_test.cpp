@@ -3,6 +3,7 @@
 
 #include "tirpol/core/session_summary.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 namespace tirpol {
@@ -61,6 +62,25 @@ TEST(SessionSummary, CountsRecordsAuditTelemetryFfcsAndHomeChecks) {
     EXPECT_EQ(j.at("home_checks")[1].at("passed"), false);
     EXPECT_EQ(j.at("home_checks")[1].at("steps_since_last_good"), 4);
     EXPECT_TRUE(summarize_session(SessionManifest{}).fpa_min_k == std::nullopt);
+}
+
+// The text `tirpol info SESSION` prints: every count in its sentence, each home check with its
+// 1-based step and UTC time (1 700 000 000 s = 2023-11-14T22:13:20Z).
+TEST(SessionSummary, TextStatesCountsAndEachHomeCheckInUtc) {
+    SessionManifest m;
+    m.schema_version = 6;
+    m.complete = false;
+    m.records.push_back(record(RecordKind::Polarizer, 4, 2));
+    m.home_checks = {HomeCheck{1'700'000'000'000'000'000, false, 3, 12}};
+    const std::string text = session_summary_text(summarize_session(m), "run1");
+    using ::testing::HasSubstr;
+    EXPECT_THAT(text, HasSubstr("run1: capture session, schema v6, incomplete, created \n"));
+    EXPECT_THAT(text, HasSubstr("  records: 1 (1 polarizer, 0 reference), 4 frames averaged\n"));
+    EXPECT_THAT(text, HasSubstr("  camera losses: 2 dropped, 0 incomplete\n"));
+    EXPECT_THAT(text, HasSubstr("0 passed, 1 failed\n"));
+    EXPECT_THAT(text, HasSubstr("    before step 4: FAILED (lost steps), 12 steps since the last "
+                                "good check, at 2023-11-14T22:13:20Z\n"));
+    EXPECT_THAT(text, ::testing::Not(HasSubstr("FPA temperature")));
 }
 
 }  // namespace

@@ -135,3 +135,28 @@ TEST(ReportSummaryText, SaysWhatEachPartOfSigmaContains) {
                                 "only); and the registration's (the residual misalignment of "
                                 "0.05 px"));
 }
+
+// What `tirpol compare` prints: the registration with its residual (0.03, 0.04 px → 0.050), the
+// paragraph, a row per region whose columns line up by displayed width (σ is two bytes), the flag
+// of a region that exceeds the noise, and the report path last.
+TEST(ReportSummaryText, ComparisonTextTabulatesRegionsAndEndsWithTheReport) {
+    CompareResult r = result_of(
+        {region("panel_a", {0.1, 0.001, -0.001}, 0.05, {30.0, -0.5, 0.2}),
+         region("flat_black_paint_long_name", {0.02, 0.5, 0.0}, 0.05, {29.0, -0.6, 0.3})});
+    r.html = "out/report.html";
+    r.notes = {"something to know"};
+    const std::string text = comparison_text(r);
+    EXPECT_THAT(text, HasSubstr("residual misalignment 0.050 px\n"));
+    EXPECT_THAT(text, HasSubstr(summary_paragraph(r) + "\n"));
+    const auto row_of = [&](const std::string& name) {
+        const auto at = text.find("\n" + name + " ");
+        return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+    };
+    EXPECT_THAT(row_of("flat_black_paint_long_name"), HasSubstr("+10.0 (0.16) EXCEEDS"));
+    EXPECT_THAT(row_of("panel_a"), HasSubstr("+2.0 (0.16) ok"));
+    // The name column is as wide as the longest name: both rows put "100" at the same column.
+    EXPECT_EQ(row_of("panel_a").find(" 100 "), row_of("flat_black_paint_long_name").find(" 100 "));
+    EXPECT_THAT(text, HasSubstr("note: something to know\n"));
+    EXPECT_EQ(text.substr(text.size() - std::string("report: out/report.html\n").size()),
+              "report: out/report.html\n");
+}

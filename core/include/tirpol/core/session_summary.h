@@ -39,4 +39,8 @@ SessionSummary summarize_session(const SessionManifest& manifest);
 /// The summary as JSON (`tirpol info SESSION --json`): the fields above under their names.
 nlohmann::json session_summary_to_json(const SessionSummary& summary);
 
+/// The summary as text (`tirpol info SESSION`), headed by the session directory `dir`: records,
+/// losses, audit, FPA range, flat-field corrections and every lost-step check with its UTC time.
+std::string session_summary_text(const SessionSummary& summary, const std::string& dir);
+
 }  // namespace tirpol

@@ -21,4 +21,9 @@ bool verdict_has_power(const RegionResult& region, const std::string& quantity);
 /// Plain UTF-8 text (no markup), one paragraph of a few sentences; read from `result` only.
 std::string summary_paragraph(const CompareResult& result);
 
+/// What `tirpol compare` prints: the registration and its residual, the summary paragraph, one
+/// table row per region (pixels, S0 bias in kelvin, each quantity's t of the means with its
+/// detectable bias and verdict; columns padded by displayed width), the notes and the report path.
+std::string comparison_text(const CompareResult& result);
+
 }  // namespace tirpol::report

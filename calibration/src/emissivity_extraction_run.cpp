@@ -1,0 +1,81 @@
+#include "tirpol/calibration/emissivity_extraction_run.h"
+
+#include <fmt/printf.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "tirpol/calibration/calibration_chain.h"
+#include "tirpol/core/atomic_file.h"
+#include "tirpol/core/exr_io.h"
+#include "tirpol/core/option_value_error.h"
+
+namespace tirpol::calibration {
+
+namespace {
+bool same_band(double lo_um, double hi_um, const Band& band) {
+    return std::abs(lo_um - band.lo_um()) <= 1e-6 && std::abs(hi_um - band.hi_um()) <= 1e-6;
+}
+
+// The band_um attribute of a Stokes EXR, when it holds two numbers.
+std::optional<std::pair<double, double>> band_attribute(const Attributes& attributes) {
+    const auto it = attributes.find("band_um");
+    if (it == attributes.end()) return std::nullopt;
+    const auto* b = std::get_if<std::vector<double>>(&it->second);
+    if (!b || b->size() != 2) return std::nullopt;
+    return std::pair{(*b)[0], (*b)[1]};
+}
+}  // namespace
+
+std::vector<EmissivityResult> extract_emissivity(const EmissivityExtractionOptions& o) {
+    ChainInputs chain;
+    ChainProducts given;
+    if (std::filesystem::is_directory(o.input)) {
+        if (o.calibration.empty())
+            throw OptionValueError(
+                "--calibration",
+                fmt::format("{} is a session: CAL.exr is needed to reduce it", o.input));
+        given = read_calibration_products(o.calibration, o.polarimetric);
+        chain.band = given.radiometric->band();
+        if (o.band_um && !same_band(o.band_um->first, o.band_um->second, chain.band))
+            fail(
+                "--band-um {:g} {:g} differs from the band of the radiometric calibration {} "
+                "({:g}–{:g} µm) that "
+                "reduces the session; leave --band-um out, or calibrate in that band",
+                o.band_um->first, o.band_um->second, o.calibration, chain.band.lo_um(),
+                chain.band.hi_um());
+        chain.scene_sessions = {o.input};
+    } else {
+        given.stokes = {read_exr(o.input)};
+        const auto own = band_attribute(given.stokes.front().attributes());
+        if (o.band_um) {
+            chain.band = Band(o.band_um->first, o.band_um->second);
+            if (own && !same_band(own->first, own->second, chain.band))
+                fail(
+                    "{}: its band_um ({:g}–{:g} µm) differs from --band-um {:g} {:g}; the Stokes "
+                    "image's radiances "
+                    "are in its own band: leave --band-um out",
+                    o.input, own->first, own->second, o.band_um->first, o.band_um->second);
+        } else if (own) {
+            chain.band = Band(own->first, own->second);
+        } else {
+            fail("{}: no band_um attribute; give --band-um LO HI", o.input);
+        }
+    }
+    chain.rois = {EmissivityRois::load(o.rois)};
+    auto results = run_calibration_chain(chain, std::move(given)).emissivity.front();
+    write_file_atomic(o.output, emissivity_csv(results));
+    return results;
+}
+
+std::string emissivity_results_text(const std::vector<EmissivityResult>& results) {
+    std::string text;
+    for (const auto& r : results)
+        text += fmt::sprintf(
+            "  %-16s θ=%5.1f°  ε_S0 = %.4f ± %.4f  ε_S1 = %+.4f ± %.4f  ε_S2 = %+.4f ± %.4f (2σ)\n",
+            r.name, r.view_angle_deg, r.eps_s0, 2.0 * r.eps_s0_std, r.eps_s1, 2.0 * r.eps_s1_std,
+            r.eps_s2, 2.0 * r.eps_s2_std);
+    return text;
+}
+
+}  // namespace tirpol::calibration

@@ -1,0 +1,59 @@
+#pragma once
+/// \file fit_run.h
+/// `tirpol fit` from files to files: the micro-facet model fitted to emissivity CSVs, written as a
+/// material YAML (and a plot), and the report as JSON or text.
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tirpol/fitting/emissivity_data.h"
+#include "tirpol/fitting/fit_output.h"
+#include "tirpol/fitting/microfacet_fit.h"
+#include "tirpol/fitting/parameter_options.h"
+
+namespace tirpol::fitting {
+
+/// The data, the parameter settings as the command line writes them, the solver settings and the
+/// files to write.
+struct FitRunOptions {
+    std::vector<std::string> data;    ///< emissivity CSVs
+    std::vector<std::string> fix;     ///< NAME[=VALUE] (apply_parameter_fix)
+    std::vector<std::string> free;    ///< NAME (apply_parameter_free)
+    std::vector<std::string> bounds;  ///< NAME=LOWER:UPPER (apply_parameter_bound)
+    std::string init;  ///< material whose micro-facet parameters are the first start, or ""
+    int starts = 16;
+    std::uint64_t seed = 1;
+    int quadrature_order = 4;
+    double wavelength_um = 10.0;  ///< of data without a wavelength_um column
+    bool scale_covariance = false;
+    std::string output;  ///< material YAML
+    std::string plot;    ///< PNG, or ""
+    std::string name;    ///< material name; "" = the output file's stem
+};
+
+/// What run_fit fitted and wrote.
+struct FitRun {
+    MicrofacetFitResult result;
+    std::vector<EmissivityDataset> datasets;  ///< as fitted
+    FitProvenance provenance;
+    std::string output, plot;
+};
+
+/// Applies --bound, --free and --fix to `settings`; throws OptionValueError naming the option of
+/// the first item that does not parse or names no parameter.
+void apply_parameter_options(const FitRunOptions& options, ParameterSettings& settings);
+
+/// Loads the data, fits, writes the material YAML (with provenance) and the plot. Throws
+/// OptionValueError for a bad parameter option, tirpol::Error for data or an --init material that
+/// does not read (or is not micro-facet). A fit that ends unusable is returned, not thrown.
+FitRun run_fit(const FitRunOptions& options);
+
+/// fit_report_json with material_file and plot_file.
+nlohmann::json fit_run_json(const FitRun& run);
+
+/// fit_report_text and the files written.
+std::string fit_run_text(const FitRun& run);
+
+}  // namespace tirpol::fitting
