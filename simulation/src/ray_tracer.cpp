@@ -60,7 +60,15 @@ std::uint32_t RayTracer::add_mesh(TriangleMesh mesh) {
     rtcReleaseGeometry(geom);
     m_embree->buffer_bytes +=
         mesh.positions.size() * 3 * sizeof(float) + mesh.triangles.size() * 3 * sizeof(unsigned);
-    m_objects.push_back(Object{std::move(mesh), false, Vec3::Zero(), 0.0});
+    // The same arithmetic as a per-hit evaluation would use, so hits are unchanged to the bit.
+    std::vector<Vec3> face_normals;
+    face_normals.reserve(mesh.triangles.size());
+    for (const auto& tri : mesh.triangles) {
+        const Vec3& p0 = mesh.positions[tri[0]];
+        face_normals.push_back(
+            (mesh.positions[tri[1]] - p0).cross(mesh.positions[tri[2]] - p0).normalized());
+    }
+    m_objects.push_back(Object{std::move(mesh), std::move(face_normals), false, Vec3::Zero(), 0.0});
     return id;
 }
 
@@ -79,7 +87,7 @@ std::uint32_t RayTracer::add_sphere(const Vec3& center, double radius) {
     rtcAttachGeometryByID(m_embree->scene, geom, id);
     rtcReleaseGeometry(geom);
     m_embree->buffer_bytes += 4 * sizeof(float);
-    m_objects.push_back(Object{TriangleMesh{}, true, center, radius});
+    m_objects.push_back(Object{TriangleMesh{}, {}, true, center, radius});
     return id;
 }
 
@@ -131,11 +139,10 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
     hit.object = rh.hit.geomID;
     hit.primitive = rh.hit.primID;
     hit.distance = rh.ray.tfar;
-    hit.position = origin + hit.distance * direction;
     const Object& obj = m_objects[hit.object];
     if (obj.is_sphere) {
         // Analytic normal and position refined onto the sphere: smooth up to the limb.
-        const Vec3 n = (hit.position - obj.center).normalized();
+        const Vec3 n = (origin + hit.distance * direction - obj.center).normalized();
         hit.position = obj.center + obj.radius * n;
         hit.geometric_normal = hit.shading_normal = n;
         hit.uv = Eigen::Vector2d(0.5 + std::atan2(n.y(), n.x()) / (2.0 * kPi),
@@ -149,7 +156,7 @@ std::optional<SurfaceHit> RayTracer::intersect(const Vec3& origin, const Vec3& d
     const Vec3& p0 = obj.mesh.positions[tri[0]];
     const Vec3& p1 = obj.mesh.positions[tri[1]];
     const Vec3& p2 = obj.mesh.positions[tri[2]];
-    hit.geometric_normal = (p1 - p0).cross(p2 - p0).normalized();
+    hit.geometric_normal = obj.face_normals[hit.primitive];
     hit.position = b0 * p0 + hit.b1 * p1 + hit.b2 * p2;
     Vec3 ns = b0 * obj.mesh.normals[tri[0]] + hit.b1 * obj.mesh.normals[tri[1]] +
               hit.b2 * obj.mesh.normals[tri[2]];
@@ -179,7 +186,7 @@ std::size_t RayTracer::memory_bytes() const {
     std::size_t bytes = m_embree->buffer_bytes;
     for (const auto& o : m_objects)
         bytes += o.mesh.positions.size() * (2 * sizeof(Vec3) + sizeof(Eigen::Vector2d)) +
-                 o.mesh.triangles.size() * sizeof(o.mesh.triangles[0]);
+                 o.mesh.triangles.size() * (sizeof(o.mesh.triangles[0]) + sizeof(Vec3));
     return bytes;
 }
 

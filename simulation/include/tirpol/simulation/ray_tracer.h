@@ -57,6 +57,8 @@ public:
 private:
     struct Object {
         TriangleMesh mesh;
+        /// Unit geometric normal of each triangle, computed once instead of at every hit.
+        std::vector<Vec3> face_normals;
         bool is_sphere = false;
         Vec3 center = Vec3::Zero();
         double radius = 0.0;
