@@ -91,12 +91,14 @@ SmithTerms smith_terms(double sigma, double cot_theta) {
 /// — so the map u → x̃ is exact to rounding and smooth. `smith` holds erfc(cot θ) and e^(−cot²θ).
 double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
     constexpr double kSqrtPi = 1.77245385090551602730, kInvSqrt2 = 0.70710678118654752440;
+    constexpr double kFourThirdsSqrtPi = 4.0 / 3.0 * kSqrtPi;
     constexpr double kTolerance = 1e-13;
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double tan_theta = sin_theta / cos_theta;
     const double tan_over_sqrt_pi = tan_theta * kInvSqrtPi;
     const double total = (2.0 - smith.erfc_a) + tan_over_sqrt_pi * smith.exp_minus_a2;
     const double inv_total = 1.0 / total;
+    const double k = 2.0 * tan_theta * kSqrtPi * inv_total;
     u = std::clamp(u, 1e-16, 1.0 - 1e-16);
     double lo = 0.0, hi = 1.0 - 0.5 * smith.erfc_a;
     // The starting point only, so θ and (1 − u)^fit need not be exact: θ = acos(cos θ) from
@@ -115,17 +117,18 @@ double visible_slope_x(double cos_theta, double u, const SmithTerms& smith) {
         const double f = (2.0 * p + tan_over_sqrt_pi * e) * inv_total - u;
         if (std::abs(f) < kTolerance) return x;
         (f > 0.0 ? hi : lo) = p;
-        const double dx_dp = kSqrtPi / e;  // 1/(√2·φ(√2·x̃)) = √π·e^(x̃²)
+        // F₁ = d1, F₂ = −k/e and F₃ = −2√π·x·k/e², with k = 2·tanθ·√π/total (the derivatives of x̃
+        // bring √π·e^(x̃²) = √π/e each); the step and the error law below are multiplied through by
+        // powers of e so that neither divides by e: one division per step.
         const double d1 = 2.0 * (1.0 - x * tan_theta) * inv_total;
-        const double d2 = -2.0 * tan_theta * dx_dp * inv_total;
-        const double d3 = d2 * 2.0 * x * dx_dp;
-        double next = p - 2.0 * f * d1 / (2.0 * d1 * d1 - f * d2);
+        double next = p - 2.0 * f * d1 * e / (2.0 * d1 * d1 * e + f * k);
         if (!(next > lo && next < hi)) {
             next = 0.5 * (lo + hi);
         } else if (std::abs(f) < 1e-4) {
-            const double step = next - p;
-            const double error_law = d2 * d2 / (4.0 * d1 * d1) - d3 / (6.0 * d1);
-            if (std::abs(d1 * error_law * step * step * step) < 0.1 * kTolerance)
+            // |F₁·(F₂²/(4F₁²) − F₃/(6F₁))·step³| < tol/10, times 4·|F₁|·e²: no division.
+            const double step = std::abs(next - p);
+            if (k * std::abs(k + kFourThirdsSqrtPi * x * d1) * (step * step * step) <
+                0.4 * kTolerance * std::abs(d1) * (e * e))
                 return detail::normal_quantile(next) * kInvSqrt2;
         }
         if (next == p) break;
