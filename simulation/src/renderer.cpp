@@ -112,6 +112,13 @@ public:
             m_cdf.push_back(total);
         }
         for (auto& c : m_cdf) c /= total;
+        // Guide table (Chen & Asau 1974): m_node_guide[j] is the node std::lower_bound gives for
+        // j/G, so a draw u in [j/G, (j + 1)/G] lies between two entries and the search in trace()
+        // looks at a node or two instead of bisecting all of them.
+        const std::size_t guide_steps = 4 * m_cdf.size();
+        for (std::size_t j = 0; j <= guide_steps; ++j)
+            m_node_guide.push_back(node_at_or_above(
+                0, m_cdf.size(), static_cast<double>(j) / static_cast<double>(guide_steps)));
         for (std::size_t k = 0; k < nodes.size(); ++k) m_node_scale_um.push_back(total / shape[k]);
         // What depends only on the wavelength node (and an object's constant temperature) is
         // evaluated here once instead of at every hit: Planck's law for the sky, the sun and each
@@ -166,9 +173,7 @@ public:
     /// each bounce's (sobol_sampler.h).
     StokesVector trace(Vec3 origin, Vec3 direction, const Vec3& camera_right, PathSampler& sampler,
                        std::uint64_t& scene_rays, std::uint64_t& shadow_rays) const {
-        const auto node = static_cast<std::size_t>(
-            std::lower_bound(m_cdf.begin(), m_cdf.end(), sampler.wavelength()) - m_cdf.begin());
-        const std::size_t k = std::min(node, m_cdf.size() - 1);
+        const std::size_t k = std::min(wavelength_node(sampler.wavelength()), m_cdf.size() - 1);
         const double lambda = m_wavelengths[k];
         const Sky::AtWavelength& sky = m_sky_at_node[k];
         const Sun* sun = m_scene.sun ? &*m_scene.sun : nullptr;
@@ -286,6 +291,26 @@ public:
     }
 
 private:
+    /// The first node in [first, last) whose CDF value is ≥ u (last if none).
+    std::size_t node_at_or_above(std::size_t first, std::size_t last, double u) const {
+        const auto begin = m_cdf.begin();
+        return static_cast<std::size_t>(std::lower_bound(begin + static_cast<std::ptrdiff_t>(first),
+                                                         begin + static_cast<std::ptrdiff_t>(last),
+                                                         u) -
+                                        begin);
+    }
+
+    /// The wavelength node that the draw u selects: the first whose CDF value is ≥ u, the same
+    /// node as a search of all nodes. The guide entries one step either side of u's bracket bound
+    /// it whatever the rounding of u·G.
+    std::size_t wavelength_node(double u) const {
+        const std::size_t steps = m_node_guide.size() - 1;
+        const auto j = static_cast<std::size_t>(
+            std::clamp(u * static_cast<double>(steps), 0.0, static_cast<double>(steps - 1)));
+        return node_at_or_above(m_node_guide[j > 0 ? j - 1 : 0],
+                                m_node_guide[std::min(j + 2, steps)], u);
+    }
+
     /// L_ref of the control variate at a vertex (any value that does not depend on the sampled wi
     /// keeps the estimate unbiased; the closer to the incident radiance, the lower the variance):
     /// the sky along the mirror direction of wo, where most of a glossy lobe looks in an open
@@ -310,6 +335,7 @@ private:
     RayRecorder* m_recorder;
     bool m_control_variate;
     std::vector<double> m_cdf, m_wavelengths;
+    std::vector<std::size_t> m_node_guide;  ///< wavelength_node's guide table (constructor)
     std::vector<double>
         m_node_scale_um;  ///< Σ_j w_j·L_bb(λ_j)/L_bb(λ_k): the estimate's factor at node k
     std::vector<Sky::AtWavelength> m_sky_at_node;  // per wavelength node
