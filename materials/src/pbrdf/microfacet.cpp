@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../gaussian_erfc.h"
 #include "../normal_quantile.h"
 #include "../sampling.h"
 #include "tirpol/core/error.h"
@@ -61,6 +62,7 @@ double cotangent(double cos_theta) {
 
 /// Smith's Λ of the unit-roughness surface at cot θ = a, with the erfc(a) and e^(−a²) it is made of
 /// (the visible-slope sampler's normalisation reuses them: 2·(1 + Λ) = erfc(−a) + e^(−a²)/(a√π)).
+/// erfc from the e^(−a²) already at hand (erfc_given_gaussian) saves glibc's two exponentials.
 struct SmithTerms {
     double lambda, erfc_a, exp_minus_a2;
 };
@@ -72,7 +74,7 @@ SmithTerms smith_terms(double sigma, double cot_theta) {
     // doubles without erfc and exp (smith_lambda_beside_one, shell_target_math.h).
     if (cot_theta >= 6.0 * std::sqrt(2.0) * sigma) return {0.0, 0.0, 0.0};
     const double a = cot_theta / (std::sqrt(2.0) * sigma);
-    const double e = std::exp(-a * a), c = std::erfc(a);
+    const double e = std::exp(-a * a), c = detail::erfc_given_gaussian(a, e);
     return {(e / (a * std::sqrt(kPi)) - c) * 0.5, c, e};
 }
 
