@@ -41,12 +41,13 @@ MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
     // and sin 2α = 2cs/(c² + s²) need neither normalisation nor trigonometry. Where a × k = 0 (a
     // beam along the normal) the s axis is core's fallback convention (stokes_frame.h), so those
     // rare exact cases take the frames themselves.
-    const Vec3 n = Vec3::UnitZ();
-    const auto double_angle = [](const Vec3& k, const Vec3& from_normal, const Vec3& to_normal,
-                                 double& c2, double& s2) {
-        const Vec3 from_s = from_normal.cross(k), to_s = to_normal.cross(k);
-        double c = to_s.dot(from_s), s = to_s.dot(from_normal);
-        if (from_s.squaredNorm() == 0.0 || to_s.squaredNorm() == 0.0) {
+    // The macro-surface normal is z, so its s axis n × k = (−k.y, k.x, 0) and (b × k)·n = (b × k).z
+    // are written out: GCC keeps the general forms' products by 0 (they could be NaN), and the
+    // dropped terms only ever added a zero, so the results are the same doubles.
+    const auto double_angle = [](double c, double s, bool degenerate, const Vec3& k,
+                                 const Vec3& from_normal, const Vec3& to_normal, double& c2,
+                                 double& s2) {
+        if (degenerate) {
             const StokesFrame from = surface_frame(k, from_normal),
                               to = surface_frame(k, to_normal);
             c = to.reference.dot(from.reference);
@@ -56,8 +57,25 @@ MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
         c2 = (c * c - s * s) * inv_norm2;
         s2 = 2.0 * c * s * inv_norm2;
     };
-    double_angle(-wi, n, h, g.c2i, g.s2i);
-    double_angle(wo, h, n, g.c2o, g.s2o);
+    const Vec3 n = Vec3::UnitZ();
+    {  // incident: k = −wi, from the macro frame (n × k = (wi.y, −wi.x, 0)) to the facet's
+        const Vec3 k = -wi;
+        const double macro_x = wi.y(), macro_y = -wi.x();
+        const Vec3 facet_s = h.cross(k);
+        const double c = facet_s.x() * macro_x + facet_s.y() * macro_y, s = facet_s.z();
+        const bool degenerate =
+            macro_x * macro_x + macro_y * macro_y == 0.0 || facet_s.squaredNorm() == 0.0;
+        double_angle(c, s, degenerate, k, n, h, g.c2i, g.s2i);
+    }
+    {  // exitant: k = wo, from the facet's frame to the macro frame (n × k = (−wo.y, wo.x, 0))
+        const Vec3 facet_s = h.cross(wo);
+        const double macro_x = -wo.y(), macro_y = wo.x();
+        const double c = macro_x * facet_s.x() + macro_y * facet_s.y(),
+                     s = macro_x * h.x() + macro_y * h.y();
+        const bool degenerate =
+            facet_s.squaredNorm() == 0.0 || macro_x * macro_x + macro_y * macro_y == 0.0;
+        double_angle(c, s, degenerate, wo, h, n, g.c2o, g.s2o);
+    }
     return g;
 }
 
