@@ -67,6 +67,16 @@ MuellerMatrix times_rotation(const MuellerMatrix& m, const Vec3& k, const Vec3& 
     return out;
 }
 
+/// leaving · v, where `rotation_only` says that `leaving` is a rotation of S1 and S2 alone (at a
+/// path's first vertex, as the throughput before it is the identity): then only v's S1 and S2 mix,
+/// the same doubles as the full product, whose other terms add zeros.
+StokesVector leaving_times(const MuellerMatrix& leaving, const StokesVector& v,
+                           bool rotation_only) {
+    if (!rotation_only) return leaving * v;
+    return {v(0), leaving(1, 1) * v(1) + leaving(1, 2) * v(2),
+            leaving(2, 1) * v(1) + leaving(2, 2) * v(2), v(3)};
+}
+
 /// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects'
 /// ranges (290 K without objects).
 double reference_temperature_k(const Scene& scene) {
@@ -220,7 +230,7 @@ public:
             const MuellerMatrix leaving = times_rotation(throughput, wo, n, frame_reference);
             const StokesVector emissivity =
                 m_emissivity[material]->at(std::clamp(wo_local.z(), 0.0, 1.0), k);
-            radiance += leaving * emissivity * blackbody;  // eq 13
+            radiance += leaving_times(leaving, emissivity, bounce == 0) * blackbody;  // eq 13
             if (bounce >= max_bounces)
                 break;  // safety cap only: Russian roulette ends paths (below)
 
@@ -230,7 +240,8 @@ public:
             // L_ref)·cosθi dωi.
             const double l_ref =
                 m_control_variate ? reference_radiance(wo, n, sky, blackbody) : 0.0;
-            radiance += leaving * (StokesVector::UnitX() - emissivity) * l_ref;
+            radiance +=
+                leaving_times(leaving, StokesVector::UnitX() - emissivity, bounce == 0) * l_ref;
 
             const Vec3 p = hit->position + ray_epsilon(hit->position) * ng;
             if (sun && sun->direction.dot(n) > 0.0 && sun->direction.dot(ng) > 0.0) {
@@ -260,7 +271,18 @@ public:
             }
             // eq 12: incident light travels along −wi; the pBRDF takes its Stokes in
             // surface_frame(−wi, n).
-            throughput = leaving * s.weight;
+            if (bounce == 0) {
+                // The throughput before the first vertex is the identity, so `leaving` is the
+                // rotation alone and its product with the weight only mixes the weight's rows 1
+                // and 2: the same doubles as the full product, whose other terms add zeros.
+                throughput = s.weight;
+                throughput.row(1) =
+                    leaving(1, 1) * s.weight.row(1) + leaving(1, 2) * s.weight.row(2);
+                throughput.row(2) =
+                    leaving(2, 1) * s.weight.row(1) + leaving(2, 2) * s.weight.row(2);
+            } else {
+                throughput = leaving * s.weight;
+            }
             frame_reference = n.cross(-wi);
             if (!(frame_reference.squaredNorm() > 1e-280))
                 frame_reference = surface_frame(-wi, n).reference;
