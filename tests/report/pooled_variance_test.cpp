@@ -97,7 +97,8 @@ TEST(PooledVariance, TheReportPoolsARendersFewDofVarianceForItsZMaps) {
     const CompareResult r = compare(pair.measured, pair.simulated, options).result;
     for (const auto& q : kZQuantities) {
         EXPECT_EQ(r.noise.at(q).simulated_dof, 1.0) << q;
-        EXPECT_NE(r.noise.at(q).simulated.find("5×5 neighbourhood on the same surface"), std::string::npos)
+        EXPECT_NE(r.noise.at(q).simulated.find("5×5 neighbourhood on the same surface"),
+                  std::string::npos)
             << r.noise.at(q).simulated;
     }
     for (const auto& region : r.regions)
