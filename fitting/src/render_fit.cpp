@@ -88,12 +88,19 @@ double current_value(const materials::MicrofacetBrdf& brdf, const std::string& m
     fail("fit through the renderer: unknown parameter");
 }
 
+/// How append_values takes a per-pixel variance in RenderFitResiduals::pixels.
+enum class PixelVariance {
+    own,     ///< each pixel's own (a measurement's σ, known per pixel)
+    pooled,  ///< the region's mean (a render's: its few degrees of freedom per pixel)
+};
+
 /// Region means (or pixels) of the chosen Stokes components, and their variances from `variance`
 /// (a per-pixel variance of the value; null → 0), in the fixed order view, region, component,
 /// pixel.
 void append_values(const Image& image, const RenderFitView& view, const RenderFitOptions& options,
                    const std::string& variance_suffix, bool variance_is_std,
-                   std::vector<double>& values, std::vector<double>& variances) {
+                   PixelVariance pixel_variance, std::vector<double>& values,
+                   std::vector<double>& variances) {
     for (const RenderFitRegion& region : view.regions)
         for (int k : options.stokes) {
             const auto& s = image.channel(kStokes[k]);
@@ -102,14 +109,20 @@ void append_values(const Image& image, const RenderFitView& view, const RenderFi
                 const double x = v[i];
                 return variance_is_std ? x * x : x;
             };
-            if (options.residuals == RenderFitResiduals::pixels) {
-                for (std::size_t i : region.pixels)
-                    values.push_back(s[i]), variances.push_back(var(i));
-                continue;
-            }
             double sum = 0.0, sum_var = 0.0;
             for (std::size_t i : region.pixels) sum += s[i], sum_var += var(i);
             const auto n = static_cast<double>(region.pixels.size());
+            if (options.residuals == RenderFitResiduals::pixels) {
+                // A render's per-pixel variance has replicates − 1 degrees of freedom (one at the
+                // default two): weighting a pixel by the inverse of its own estimate would favour
+                // the pixels whose spread came out small (E[1/χ²₁] is infinite). The region's mean
+                // variance, with n·(replicates − 1) degrees of freedom, weights them alike.
+                for (std::size_t i : region.pixels)
+                    values.push_back(s[i]),
+                        variances.push_back(pixel_variance == PixelVariance::pooled ? sum_var / n
+                                                                                    : var(i));
+                continue;
+            }
             // Pixels are independent (their own random numbers, their own temporal noise): the
             // variance of the mean is Σ var/n².
             values.push_back(sum / n);
@@ -348,7 +361,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
 
     std::vector<double> measured, measured_variance;
     for (const RenderFitView& v : views)
-        append_values(v.measured, v, options, "_std", true, measured, measured_variance);
+        append_values(v.measured, v, options, "_std", true, PixelVariance::own, measured,
+                      measured_variance);
     std::vector<double> measured_sigma(measured_variance.size());
     std::transform(measured_variance.begin(), measured_variance.end(), measured_sigma.begin(),
                    [](double v) { return std::sqrt(v); });
@@ -407,8 +421,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
             const Image rendered = simulation::render(candidate, ro);
             ++renders;
             if (bar) bar->advance();
-            append_values(rendered, views[v], options, "_var", false, prediction.value,
-                          prediction.variance);
+            append_values(rendered, views[v], options, "_var", false, PixelVariance::pooled,
+                          prediction.value, prediction.variance);
         }
         return prediction;
     };

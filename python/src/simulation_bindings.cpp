@@ -58,6 +58,18 @@ void bind_scene(py::module_& m) {
             },
             "Samples per pixel.")
         .def_property(
+            "replicates", [](const Scene& s) { return s.sampling.replicates; },
+            [](Scene& s, int replicates) {
+                if (replicates < 1 || replicates > simulation::kMaxReplicates)
+                    fail(
+                        "scene: replicates: expected 1–{} independent replicates per pixel, got {}",
+                        simulation::kMaxReplicates, replicates);
+                s.sampling.replicates = replicates;
+            },
+            "Independent replicates per pixel, whose spread is S*_var (replicates − 1 degrees of "
+            "freedom per pixel; the default 2 is meant to be pooled over regions, 16 gives "
+            "standalone per-pixel error bars; 1: no variance).")
+        .def_property(
             "seed", [](const Scene& s) { return s.sampling.seed; },
             [](Scene& s, std::uint64_t seed) { s.sampling.seed = seed; },
             "Random seed (renders are reproducible).")

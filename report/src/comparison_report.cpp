@@ -7,6 +7,7 @@
 
 #include "figures.h"
 #include "html_report.h"
+#include "pooled_variance.h"
 #include "svg_plot.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/cancelled.h"
@@ -313,16 +314,39 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
                 options.simulated_name, q, q));
         }
         source.measured_sigma_median = median_sqrt(*var_m);
-        source.simulated_sigma_median = median_sqrt(*var_s);
         source.simulated_dof = variance_dof(simulated_in);
-        result.noise[q] = source;
         // Per pixel, a shared measured σ counts as exact: its estimation error is common to the
         // pixels.
-        planes.z[q] = z_scores(planes.measured.channel(q), planes.simulated.channel(q), *var_m,
-                               *var_s, source.measured_shared ? kInfiniteDof : source.measured_dof,
-                               source.simulated_dof);
+        const double measured_pixel_dof =
+            source.measured_shared ? kInfiniteDof : source.measured_dof;
+        // What a per-pixel value (z, the σ medians, the σ scale of the figures) uses: each pixel's
+        // own simulated variance, or below kPerPixelVarianceDof its mean over the pixel's
+        // neighbourhood on the same surface (pooled_variance.h; one pixel's estimate alone is
+        // too noisy to divide by, and the median of χ²₁ is 0.45 of its mean). The region tests
+        // keep the per-pixel channel: their sum over a region is already the pooled estimate.
+        std::optional<PooledVariance> pooled;
+        if (source.simulated_dof < kPerPixelVarianceDof) {
+            std::vector<const std::vector<float>*> labels;
+            for (const char* label : {"object_id", "material_id"})
+                if (planes.simulated.has_channel(label))
+                    labels.push_back(&planes.simulated.channel(label));
+            pooled =
+                pool_variance(*var_s, labels, planes.simulated.width(), planes.simulated.height(),
+                              kVariancePoolRadiusPx, source.simulated_dof);
+            source.simulated += fmt::format(
+                " ({:g} dof per pixel: per-pixel values use its mean over each pixel's {}×{} "
+                "neighbourhood on the same surface)",
+                source.simulated_dof, 2 * kVariancePoolRadiusPx + 1, 2 * kVariancePoolRadiusPx + 1);
+        }
+        const std::vector<float>& shown_var_s = pooled ? pooled->variance : *var_s;
+        source.simulated_sigma_median = median_sqrt(shown_var_s);
+        planes.z[q] = pooled ? z_scores(planes.measured.channel(q), planes.simulated.channel(q),
+                                        *var_m, pooled->variance, measured_pixel_dof, pooled->dof)
+                             : z_scores(planes.measured.channel(q), planes.simulated.channel(q),
+                                        *var_m, *var_s, measured_pixel_dof, source.simulated_dof);
+        result.noise[q] = source;
         std::vector<float> total(n);
-        for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + (*var_s)[i];
+        for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + shown_var_s[i];
         planes.total_variance[q] = std::move(total);
         var_measured[q] = std::move(*var_m);
         var_simulated[q] = std::move(*var_s);

@@ -65,24 +65,44 @@ double normal_equivalent_of_t(double t, double dof) {
     return std::copysign(-Eigen::numext::ndtri(0.5 * tail), t);
 }
 
+namespace {
+
+/// One pixel's normal-equivalent z; NaN where an input is not finite or the variance not positive.
+float z_score(float measured, float simulated, double vm, double vs, double measured_dof,
+              double simulated_dof) {
+    const double var = vm + vs;
+    if (!std::isfinite(measured) || !std::isfinite(simulated) || !std::isfinite(var) ||
+        !(var > 0.0))
+        return std::numeric_limits<float>::quiet_NaN();
+    const double ratio =
+        (static_cast<double>(measured) - static_cast<double>(simulated)) / std::sqrt(var);
+    const double inverse_dof =
+        vm * vm / measured_dof + vs * vs / simulated_dof;  // 0 for infinite dof
+    return static_cast<float>(
+        inverse_dof > 0.0 ? normal_equivalent_of_t(ratio, var * var / inverse_dof) : ratio);
+}
+
+}  // namespace
+
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
                             const std::vector<float>& measured_variance,
                             const std::vector<float>& simulated_variance, double measured_dof,
                             double simulated_dof) {
-    std::vector<float> z(measured.size(), std::numeric_limits<float>::quiet_NaN());
-    for (std::size_t i = 0; i < measured.size(); ++i) {
-        const double vm = measured_variance[i], vs = simulated_variance[i];
-        const double var = vm + vs;
-        if (!std::isfinite(measured[i]) || !std::isfinite(simulated[i]) || !std::isfinite(var) ||
-            !(var > 0.0))
-            continue;
-        const double ratio =
-            (static_cast<double>(measured[i]) - static_cast<double>(simulated[i])) / std::sqrt(var);
-        const double inverse_dof =
-            vm * vm / measured_dof + vs * vs / simulated_dof;  // 0 for infinite dof
-        z[i] = static_cast<float>(
-            inverse_dof > 0.0 ? normal_equivalent_of_t(ratio, var * var / inverse_dof) : ratio);
-    }
+    std::vector<float> z(measured.size());
+    for (std::size_t i = 0; i < measured.size(); ++i)
+        z[i] = z_score(measured[i], simulated[i], measured_variance[i], simulated_variance[i],
+                       measured_dof, simulated_dof);
+    return z;
+}
+
+std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance, double measured_dof,
+                            const std::vector<float>& simulated_dof) {
+    std::vector<float> z(measured.size());
+    for (std::size_t i = 0; i < measured.size(); ++i)
+        z[i] = z_score(measured[i], simulated[i], measured_variance[i], simulated_variance[i],
+                       measured_dof, simulated_dof[i]);
     return z;
 }
 

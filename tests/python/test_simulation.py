@@ -40,6 +40,16 @@ def small(scene, width, height, spp):
     return scene
 
 
+def test_replicates_set_the_variance_dof_and_are_checked(ball_on_snow, scenes_dir, shared_cache):
+    scene = small(simulation.scene_from_dict(ball_on_snow, base_dir=scenes_dir), 16, 12, 8)
+    assert scene.replicates == 2
+    scene.replicates = 4
+    image = simulation.render(scene, emissivity_cache_dir=shared_cache)
+    assert image.attributes["variance_dof"] == 3
+    with pytest.raises(Exception, match="replicates"):
+        scene.replicates = 0
+
+
 def test_dict_scene_renders_like_the_yaml_file(ball_on_snow, scenes_dir, shared_cache):
     from_dict = small(simulation.scene_from_dict(ball_on_snow, base_dir=scenes_dir), 40, 32, 2)
     from_file = small(simulation.load_scene(scenes_dir / "ball_on_snow_night.yaml"), 40, 32, 2)
@@ -66,6 +76,9 @@ def test_isothermal_ball_on_snow_renders_the_blackbody(ball_on_snow, scenes_dir,
     for o in d["objects"]:
         o["temperature"] = 270
     scene = small(simulation.scene_from_dict(d, base_dir=scenes_dir), 48, 40, 24)
+    # Per-pixel 5σ tails need per-pixel error bars: 16 replicates (ν = 15), not the default 2
+    # (one dof per pixel, meant to be pooled: |t₁| > 5 in 12.6 % of pixels).
+    scene.replicates = 16
     image = simulation.render(scene, emissivity_cache_dir=shared_cache)
     l_bb = core.Band(*scene.band_um).radiance(270.0)
     deviation = np.stack([image["S0"] - l_bb, image["S1"], image["S2"]])

@@ -344,15 +344,16 @@ TEST(ReportComparison, MissingSimulationVarianceIsNotedNotFatal) {
 }
 
 TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
-    // A render's variance is estimated from its own samples with ⌈spp/2⌉ degrees of freedom (EXR
+    // A render's variance is estimated from its own replicates with R − 1 degrees of freedom (EXR
     // attribute variance_dof; docs/report.md); the z statistic then maps Student's t with the
     // Welch–Satterthwaite ν to the normal z of the same tail. The reader is told which ν were used:
     // the result, report.json and the noise table of report.html carry them, and they are the ones
-    // the z used (stating ν = 4 pulls the region's RMS z below that of the same pair taken as
-    // exact).
+    // the z used (stating ν = 12 pulls the region's RMS z below that of the same pair taken as
+    // exact). ν = 12 is above kPerPixelVarianceDof, so the z use each pixel's own variance
+    // (PooledVariance.* tests the pooling below it).
     const auto exact = test::make_synthetic_pair({});
     auto estimated = exact;
-    estimated.simulated.attributes()["variance_dof"] = 4;
+    estimated.simulated.attributes()["variance_dof"] = 12;
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     tirpol::test::TempDir dir;
@@ -360,13 +361,13 @@ TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
         write_comparison_report(estimated.measured, estimated.simulated, options, dir.path());
     const CompareResult r_exact = compare(exact.measured, exact.simulated, options).result;
     for (const auto& q : kZQuantities) {
-        EXPECT_EQ(r.noise.at(q).simulated_dof, 4.0) << q;
+        EXPECT_EQ(r.noise.at(q).simulated_dof, 12.0) << q;
         EXPECT_TRUE(std::isinf(r.noise.at(q).measured_dof)) << q;
         EXPECT_TRUE(std::isinf(r_exact.noise.at(q).simulated_dof)) << q;
         EXPECT_LT(r.regions[0].z.at(q).rms, r_exact.regions[0].z.at(q).rms) << q;
     }
     const auto json = nlohmann::json::parse(tirpol::read_file(dir / "report.json"));
-    EXPECT_EQ(json["noise"]["S1"]["simulated_dof"].get<double>(), 4.0);
+    EXPECT_EQ(json["noise"]["S1"]["simulated_dof"].get<double>(), 12.0);
     EXPECT_TRUE(json["noise"]["S1"]["measured_dof"].is_null());
     const std::string html = tirpol::read_file(dir / "report.html");
     const std::size_t table = html.find("<caption>Noise used");
@@ -379,7 +380,7 @@ TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
         ASSERT_NE(row, std::string::npos) << q;
         const std::string cells = noise_table.substr(row, noise_table.find("</tr>", row) - row);
         EXPECT_THAT(cells, HasSubstr("<td>∞</td>")) << q;  // the measured σ channel: taken as exact
-        EXPECT_THAT(cells, HasSubstr("<td>4</td>")) << q;  // the render's estimated variance
+        EXPECT_THAT(cells, HasSubstr("<td>12</td>")) << q;  // the render's estimated variance
     }
 }
 

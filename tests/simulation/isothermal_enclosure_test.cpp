@@ -86,7 +86,8 @@ TEST(IsothermalEnclosure, InlineModelsRenderTheBlackbody) {
           "{name: rough, source: test, model: microfacet, refractive_index: {n: 1.6, k: 0.1}, "
           "parameters: {sigma: 0.2, bias: 0.1, tau_deg: 20, omega_deg: 60, rho_d: 0.05, rho_v: "
           "0.02}}"}) {
-        const Scene scene = test::load_scene_text(dir, enclosure_scene(material));
+        const Scene scene =
+            test::with_per_pixel_error_bars(test::load_scene_text(dir, enclosure_scene(material)));
         expect_blackbody(render(scene, test::without_control_variate()), scene.band.radiance(290.0),
                          material);
     }
@@ -127,7 +128,7 @@ void expect_library_blackbody(const std::vector<std::filesystem::path>& files, d
             "material: {}, temperature: 290}}\n",
             i, -3.0 + 1.2 * static_cast<double>(i % 6), 0.7 + 1.2 * static_cast<double>(i / 6),
             files[i].string());
-    const Scene scene = test::load_scene_text(dir, yaml);
+    const Scene scene = test::with_per_pixel_error_bars(test::load_scene_text(dir, yaml));
     RenderOptions options = test::without_control_variate();  // the sampling is under test
     options.emissivity_cache_dir =
         std::filesystem::path{};  // memory only: the test builds its tables

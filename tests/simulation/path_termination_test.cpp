@@ -57,8 +57,8 @@ ImageMean mean_s0(const Image& img) {
 
 TEST(PathTermination, ClosedPolishedAluminiumBoxIsABlackbodyInEveryPixel) {
     TempDir dir;
-    const Scene scene =
-        test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, polished_aluminium(), 1536));
+    const Scene scene = test::with_per_pixel_error_bars(
+        test::load_scene_text(dir, aluminium_box(kDefaultMaxBounces, polished_aluminium(), 1536)));
     ASSERT_EQ(scene.sampling.max_bounces, kDefaultMaxBounces);
     const Image img = render(scene, test::without_control_variate());
     const double l_bb = scene.band.radiance(300.0);

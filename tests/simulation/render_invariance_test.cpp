@@ -93,8 +93,11 @@ TEST(RenderInvariance, MaskedPixelsAreTheFullRendersAndTheRestIsNaN) {
 
 TEST(RenderInvariance, RotatingSceneAndCameraAboutTheVerticalLeavesTheImageUnchanged) {
     TempDir dir;
-    const Image a = render(test::load_scene_text(dir, rotated_scene(0.0), "a.yaml"));
-    const Image b = render(test::load_scene_text(dir, rotated_scene(37.0), "b.yaml"));
+    // Per-pixel 5σ comparisons: per-pixel error bars (test::with_per_pixel_error_bars).
+    const Image a = render(
+        test::with_per_pixel_error_bars(test::load_scene_text(dir, rotated_scene(0.0), "a.yaml")));
+    const Image b = render(
+        test::with_per_pixel_error_bars(test::load_scene_text(dir, rotated_scene(37.0), "b.yaml")));
     // The tangent frames in which the pBRDFs are sampled do not rotate with the scene, so the two
     // renders are independent Monte-Carlo estimates of the same image: compare them per pixel with
     // their reported errors (|a − b| ≤ 5·√(σa² + σb²)), allowing 1 % outliers for silhouette pixels

@@ -28,6 +28,14 @@ inline RenderOptions without_control_variate() {
     return options;
 }
 
+/// `scene` with kPerPixelReplicates (16) replicates: for tests that compare each pixel with its own
+/// error bar (|S − exact| ≤ 5σ per pixel), whose Student-t tails need ν = 15; the default two
+/// replicates give one dof per pixel, meant to be pooled over regions (docs/simulation.md).
+inline Scene with_per_pixel_error_bars(Scene scene) {
+    scene.sampling.replicates = kPerPixelReplicates;
+    return scene;
+}
+
 /// Writes `yaml` to `<dir>/<name>` and loads it.
 inline Scene load_scene_text(const tirpol::test::TempDir& dir, const std::string& yaml,
                              const std::string& name = "scene.yaml") {

@@ -80,8 +80,9 @@ struct NoiseSource {
     double measured_sigma_median = 0.0;
     double simulated_sigma_median = 0.0;
     /// Degrees of freedom of each variance, as the z statistic uses them: the image's
-    /// `variance_dof` attribute (a render: ⌈spp/2⌉); infinite where the image states none (a
-    /// variance taken as exact).
+    /// `variance_dof` attribute (a render: replicates − 1); infinite where the image states none
+    /// (a variance taken as exact). Below 9 the z maps pool the simulated variance over each
+    /// pixel's neighbourhood (`simulated` says so).
     double measured_dof = std::numeric_limits<double>::infinity();
     double simulated_dof = std::numeric_limits<double>::infinity();
     /// The measured σ is one estimate for all pixels (a flat region's scatter), not a per-pixel

@@ -42,16 +42,24 @@ std::optional<double> masked_mean(const std::vector<float>& data,
 
 /// Per-pixel z = (m − s)/√(var_m + var_s); NaN where an input is not finite or the total variance
 /// is not positive. A variance estimated from few samples (a Monte-Carlo render's per-pixel
-/// variance has ⌈spp/2⌉ degrees of freedom) makes that ratio Student-t distributed with heavier
-/// tails than a normal: with finite `measured_dof`/`simulated_dof` each z is mapped to the normal
-/// value of the same two-sided tail probability under t with the Welch–Satterthwaite degrees of
-/// freedom ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947, Biometrika 34, 28), so that |z| >
-/// 2 keeps meaning 4.55 % under noise alone. Infinite dof (the default): the plain ratio.
+/// variance has replicates − 1 degrees of freedom, its `variance_dof`) makes that ratio Student-t
+/// distributed with heavier tails than a normal: with finite `measured_dof`/`simulated_dof` each z
+/// is mapped to the normal value of the same two-sided tail probability under t with the
+/// Welch–Satterthwaite degrees of freedom ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947,
+/// Biometrika 34, 28), so that |z| > 2 keeps meaning 4.55 % under noise alone. Infinite dof (the
+/// default): the plain ratio.
 std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
                             const std::vector<float>& measured_variance,
                             const std::vector<float>& simulated_variance,
                             double measured_dof = std::numeric_limits<double>::infinity(),
                             double simulated_dof = std::numeric_limits<double>::infinity());
+
+/// z_scores with a per-pixel `simulated_dof` (a variance pooled over each pixel's neighbourhood,
+/// whose dof depends on the pixels pooled).
+std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance, double measured_dof,
+                            const std::vector<float>& simulated_dof);
 
 /// The standard normal deviate with the same two-sided tail probability as `t` under Student's t
 /// with `dof` degrees of freedom (sign kept); `t` itself for infinite dof.

@@ -26,8 +26,13 @@ namespace tirpol::simulation {
 inline constexpr int kDefaultMaxBounces = 1000;
 inline constexpr int kMaxBouncesLimit = 100000;
 /// Default `sampling.replicates`: independent randomised replicates per pixel, whose spread is the
-/// variance channels' estimate (renderer.h; docs/simulation.md says why 16).
-inline constexpr int kDefaultReplicates = 16;
+/// variance channels' estimate (renderer.h). Two ("dual buffer"): every consumer of the variance
+/// pools it over a region or a neighbourhood, whose degrees of freedom are then many times R − 1,
+/// and each replicate keeps spp/2 points of one net (docs/simulation.md, "Why R = 2").
+inline constexpr int kDefaultReplicates = 2;
+/// Replicates for error bars that stand alone per pixel (Student's t with R − 1 = 15 dof: |z| > 5
+/// in 0.016 % of pixels): `sampling.replicates: 16`.
+inline constexpr int kPerPixelReplicates = 16;
 inline constexpr int kMaxReplicates = 1024;
 
 /// How the renderer estimates each vertex's reflected radiance (renderer.h): the plain path-traced
@@ -50,8 +55,9 @@ struct SamplingSettings {
     Estimator estimator =
         Estimator::control_variate;  ///< RenderOptions::control_variate overrides it
     /// Independently scrambled replicates of each pixel's samples (1–kMaxReplicates; 1 keeps all of
-    /// a pixel's samples in one net, the lowest noise, and leaves the variance channels NaN); a
-    /// render uses replicate_count() of them.
+    /// a pixel's samples in one net, the lowest noise, and leaves the variance channels NaN; more
+    /// give the per-pixel variance more degrees of freedom at the price of noise); a render uses
+    /// replicate_count() of them.
     int replicates = kDefaultReplicates;
 };
 
