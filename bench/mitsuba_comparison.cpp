@@ -634,18 +634,15 @@ void BM_EmissionEqualNoise(benchmark::State& state) {
 }
 BENCHMARK(BM_EmissionEqualNoise)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Region sums of S0 and of the linear polarization of one render.
-struct RegionSums {
-    double s0 = 0.0;
-    double linear_dot = 0.0;  ///< Σ (S1·S1ᵣ + S2·S2ᵣ) against a reference render r
-};
-
-/// How emission_compare's radiance arrives, per object: the share of S0 that is the surface's own
-/// emission (reflections capped at 0), that arrives after one reflection of another surface's
-/// emission (cap 1, less cap 0), and after more; and the share of the linear polarization (S1,
-/// S2) that one reflection carries, as Σ(S·S_full)/Σ(S_full·S_full′) with S_full, S_full′ two
-/// full renders of other seeds (unbiased by their noise). Plain estimator (the control variate
-/// adds a term per hit that a cap would cut through). Figures, not speed.
+/// How emission_compare's radiance arrives, per object and over the whole image: the share of S0
+/// that is the surface's own emission (reflections capped at 0), that arrives after one reflection
+/// of another surface's emission (cap 1, less cap 0), and after more; and the share of the linear
+/// polarization (S1, S2) that one reflection carries, as Σ(S·S_full)/Σ(S_full·S_full′) with
+/// S_full, S_full′ two full renders of other seeds (unbiased by their noise), printed where the
+/// polarization is more than rounding (rms of S1, S2 > 1e-4 S0; Lambertian walls have none). An
+/// object's pixels are those whose centre ray and its 8 neighbours' hit it, so that no pixel mixes
+/// in the wall behind a sphere's rim. Plain estimator (the control variate adds a term per hit that
+/// a cap would cut through). Figures, not speed.
 void BM_EmissionPaths(benchmark::State& state) {
     Scene scene = load_scene(find_config("scenes/emission_compare.yaml"));
     scene.sampling.samples_per_pixel = 256;
@@ -660,29 +657,45 @@ void BM_EmissionPaths(benchmark::State& state) {
         const Image own = render_with(0, 3), one = render_with(1, 4),
                     full = render_with(kDefaultMaxBounces, 1),
                     full2 = render_with(kDefaultMaxBounces, 2);
+        const auto& ids = full.channel("object_id");
+        const auto interior_of = [&](int x, int y) {
+            const float id = ids[full.index(x, y)];
+            if (x == 0 || y == 0 || x + 1 == full.width() || y + 1 == full.height()) return -1.0f;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if (ids[full.index(x + dx, y + dy)] != id) return -1.0f;
+            return id;
+        };
         std::printf(
-            "emission_compare %dx%d, %d spp, plain estimator: share of each object's S0 and of its "
-            "linear polarization by path\n",
+            "emission_compare %dx%d, %d spp, plain estimator: share of S0 and of the linear "
+            "polarization by path\n",
             full.width(), full.height(), scene.sampling.samples_per_pixel);
-        for (std::size_t object = 0; object < scene.objects.size(); ++object) {
+        // Rows: each object's interior pixels, then every pixel of the image (object −1 here).
+        for (int object = 0; object <= static_cast<int>(scene.objects.size()); ++object) {
+            const bool whole_image = object == static_cast<int>(scene.objects.size());
             double s0_own = 0.0, s0_one = 0.0, s0_full = 0.0, lin_one = 0.0, lin_full = 0.0;
             std::size_t pixels = 0;
-            for (std::size_t i = 0; i < full.pixel_count(); ++i) {
-                if (full.channel("object_id")[i] != static_cast<float>(object)) continue;
-                ++pixels;
-                s0_own += own.channel("S0")[i];
-                s0_one += one.channel("S0")[i];
-                s0_full += 0.5 * (full.channel("S0")[i] + full2.channel("S0")[i]);
-                for (const char* c : {"S1", "S2"}) {
-                    lin_one += one.channel(c)[i] * full.channel(c)[i];
-                    lin_full += full2.channel(c)[i] * full.channel(c)[i];
+            for (int y = 0; y < full.height(); ++y)
+                for (int x = 0; x < full.width(); ++x) {
+                    if (!whole_image && interior_of(x, y) != static_cast<float>(object)) continue;
+                    const std::size_t i = full.index(x, y);
+                    ++pixels;
+                    s0_own += own.channel("S0")[i];
+                    s0_one += one.channel("S0")[i];
+                    s0_full += 0.5 * (full.channel("S0")[i] + full2.channel("S0")[i]);
+                    for (const char* c : {"S1", "S2"}) {
+                        lin_one += one.channel(c)[i] * full.channel(c)[i];
+                        lin_full += full2.channel(c)[i] * full.channel(c)[i];
+                    }
                 }
-            }
             if (pixels == 0) continue;
             std::printf("  %-8s %6zu px  S0: own emission %.3f, one reflection %.3f, more %.3f",
-                        scene.objects[object].name.c_str(), pixels, s0_own / s0_full,
-                        (s0_one - s0_own) / s0_full, (s0_full - s0_one) / s0_full);
-            if (lin_full > 0.0)
+                        whole_image ? "image"
+                                    : scene.objects[static_cast<std::size_t>(object)].name.c_str(),
+                        pixels, s0_own / s0_full, (s0_one - s0_own) / s0_full,
+                        (s0_full - s0_one) / s0_full);
+            const auto n = static_cast<double>(pixels);
+            if (lin_full > 0.0 && std::sqrt(lin_full / n) > 1e-4 * s0_full / n)
                 std::printf("  S1/S2: one reflection %.3f, more %.3f", lin_one / lin_full,
                             1.0 - lin_one / lin_full);
             std::printf("\n");
