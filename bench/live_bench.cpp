@@ -12,7 +12,8 @@
 // (frames the page drew per second), and the server process's CPU use (user + system time of every
 // thread of this process — Aravis's stream thread, the grab thread, the HTTP threads — over wall
 // time, in % of one core) with and without the page. Chromium's own CPU is not counted: it is the
-// browser's, as on the operator's laptop.
+// browser's, as on the operator's laptop. LiveViewDofpFramePath (below) measures a microgrid
+// camera's per-frame Stokes path instead.
 
 #include <benchmark/benchmark.h>
 #include <httplib.h>
@@ -153,6 +154,54 @@ void LiveViewPageOpen(benchmark::State& state) {
     std::filesystem::remove_all(profile_root);
 }
 BENCHMARK(LiveViewPageOpen)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+/// The DoFP frame path of the live view: a microgrid camera (the in-process simulated one, 640×512
+/// 16-bit Sony-layout mosaics at 60 frames/s, so neither Aravis nor a browser takes the CPU) and
+/// one client asking for every new Stokes image (LiveView::stokes_after: demosaic + reduce +
+/// S0/DoLP/AoP encoded for the page, once per frame) for kWindow. Counters: cam_fps (frames the
+/// grab thread received per second), stokes_fps (Stokes images delivered per second), ratio =
+/// stokes_fps / cam_fps (1: every frame shown), cpu_ms_per_image (this process's CPU time, all
+/// threads, per Stokes image: the camera's simulation included). Arg: 0 super-pixel, 1 bilinear,
+/// 2 newton.
+void LiveViewDofpFramePath(benchmark::State& state) {
+    const char* methods[] = {"super-pixel", "bilinear", "newton"};
+    const char* method = methods[state.range(0)];
+    live::LiveViewOptions options;
+    options.camera_uri =
+        "sim://uniform?width=640&height=512&counts=20000&noise=30&fps=60&bits=16&microgrid=sony";
+    options.demosaic = method;
+    live::LiveView view(options);
+    std::uint64_t sequence = view.stokes_after(0, 5s).sequence;  // the first frame is there
+    for (auto _ : state) {
+        const auto grabbed0 = view.status()["camera"]["grabbed"].get<std::uint64_t>();
+        const double cpu0 = cpu_seconds();
+        const auto t0 = std::chrono::steady_clock::now();
+        std::uint64_t images = 0;
+        while (std::chrono::steady_clock::now() - t0 < kWindow) {
+            const live::EncodedImage image = view.stokes_after(sequence, 1s);
+            if (!image.bytes) continue;
+            sequence = image.sequence;
+            ++images;
+        }
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double cpu = cpu_seconds() - cpu0;
+        const auto grabbed = view.status()["camera"]["grabbed"].get<std::uint64_t>() - grabbed0;
+        state.counters["cam_fps"] = static_cast<double>(grabbed) / wall;
+        state.counters["stokes_fps"] = static_cast<double>(images) / wall;
+        state.counters["ratio"] =
+            grabbed ? static_cast<double>(images) / static_cast<double>(grabbed) : 0.0;
+        state.counters["cpu_ms_per_image"] = images ? 1e3 * cpu / static_cast<double>(images) : 0.0;
+    }
+    state.SetLabel(method);
+}
+BENCHMARK(LiveViewDofpFramePath)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 }  // namespace
 

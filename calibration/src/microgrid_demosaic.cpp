@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include "microgrid_frame_check.h"
+#include "microgrid_newton_row.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {
@@ -26,17 +29,6 @@ struct Mosaic {
     float at(int x, int y) const {
         return data[static_cast<std::size_t>(mirror(y, height)) * static_cast<std::size_t>(width) +
                     static_cast<std::size_t>(mirror(x, width))];
-    }
-};
-
-/// The same frame read without mirroring, for pixels at least 3 from every border (the stencils
-/// reach ±3): most of the frame, so the hot loop skips the border tests.
-struct InteriorMosaic {
-    const float* data;
-    int width;
-    float at(int x, int y) const {
-        return data[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                    static_cast<std::size_t>(x)];
     }
 };
 
@@ -69,9 +61,10 @@ void bilinear(const Mosaic& m, DemosaicedFrame& out) {
         }
 }
 
-/// Estimates of another analyzer's value at p = (x, y) from the directions s in which it sits at
-/// the neighbour q = p + s, in the polarization-difference domain: the difference (other − own) is
-/// taken at q and carried to p.
+/// Newton-polynomial interpolation of polarization differences (microgrid_newton_row.h), after Li,
+/// Zhao, Pan & Kong 2019. Estimates of another analyzer's value at p = (x, y) come from the
+/// directions s in which it sits at the neighbour q = p + s; the difference (other − own) is taken
+/// at q and carried to p.
 ///
 /// Smooth region: own(q) is the quadratic (second-order Newton) polynomial through own(p − 2s),
 /// own(p), own(p + 2s), and the two opposite directions are averaged, which gives
@@ -83,90 +76,30 @@ void bilinear(const Mosaic& m, DemosaicedFrame& out) {
 /// Edge: the symmetric stencil mixes both sides of an edge into a false polarization difference.
 /// There each direction's one-sided estimate other(q) + ½(own(p) − own(p+2s)) (own(q) linear
 /// between p and p + 2s, so it never reaches across p) is weighted by 1/(ε + g_s)², g_s = |own(p) −
-/// own(p+2s)|
-/// + |other(q) − other(q+2s)| the variation along s, and the side that does not cross the edge
-/// dominates: an unpolarized edge stays unpolarized.
+/// own(p+2s)| + |other(q) − other(q+2s)| the variation along s, and the side that does not cross
+/// the edge dominates: an unpolarized edge stays unpolarized.
 ///
 /// Which region a pixel is in is decided, like Li et al.'s edge classifier, by how much the largest
 /// and smallest directional variations differ: ratio (g_max + ε)/(g_min + ε) ≤ 3 is smooth, ≥ 8 an
 /// edge, and the two estimates are blended linearly in between so the output has no seams.
-template <std::size_t N>
-struct DirectionalEstimate {
-    std::array<double, N> other{};
-    std::array<double, N> own_difference{};  ///< own(p) − own(p + 2s)
-    std::array<double, N> gradient{};
-    std::size_t count = 0;
-    template <typename Frame>
-    void add(const Frame& m, int x, int y, int dx, int dy, float own) {
-        const double near = m.at(x + dx, y + dy);
-        const double own_far = m.at(x + 2 * dx, y + 2 * dy);
-        const double other_far = m.at(x + 3 * dx, y + 3 * dy);
-        other[count] = near;
-        own_difference[count] = static_cast<double>(own) - own_far;
-        gradient[count] = std::abs(own_difference[count]) + std::abs(near - other_far);
-        ++count;
+void newton(std::span<const float> mosaic, int width, int height, DemosaicedFrame& out) {
+    const detail::PaddedMosaic padded(mosaic.data(), width, height);
+    const float epsilon = detail::newton_epsilon(mosaic.data(), mosaic.size());
+    const auto w = static_cast<std::size_t>(width);
+    std::vector<float> estimate[3];
+    for (auto& row : estimate) row.resize(w);
+    for (int y = 0; y < height; ++y) {
+        detail::newton_row(padded, y, w, epsilon, estimate[0].data(), estimate[1].data(),
+                           estimate[2].data());
+        const float* own = padded.row(y, 0);
+        const std::size_t start = static_cast<std::size_t>(y) * w;
+        for (std::size_t x = 0; x < w; ++x) {
+            const std::size_t own_cell = static_cast<std::size_t>(y & 1) * 2 + (x & 1);
+            out.planes[own_cell][start + x] = own[x];
+            for (std::size_t role = 1; role < 4; ++role)
+                out.planes[own_cell ^ role][start + x] = estimate[role - 1][x];
+        }
     }
-    float value(double epsilon) const {
-        double g_min = gradient[0], g_max = gradient[0];
-        for (double g : gradient) {
-            g_min = std::min(g_min, g);
-            g_max = std::max(g_max, g);
-        }
-        const double ratio = (g_max + epsilon) / (g_min + epsilon);
-        const double edge =
-            std::clamp((ratio - kSmoothRatio) / (kEdgeRatio - kSmoothRatio), 0.0, 1.0);
-        double smooth = 0.0, weighted = 0.0, weight_sum = 0.0;
-        for (std::size_t i = 0; i < N; ++i) {
-            smooth += other[i] + 0.375 * own_difference[i];
-            const double w = 1.0 / ((epsilon + gradient[i]) * (epsilon + gradient[i]));
-            weighted += w * (other[i] + 0.5 * own_difference[i]);
-            weight_sum += w;
-        }
-        smooth /= static_cast<double>(N);
-        return static_cast<float>((1.0 - edge) * smooth + edge * weighted / weight_sum);
-    }
-    static constexpr double kSmoothRatio = 3.0;
-    static constexpr double kEdgeRatio = 8.0;
-};
-
-template <typename Frame>
-void newton_pixel(const Frame& m, int x, int y, std::size_t o, double epsilon,
-                  DemosaicedFrame& out) {
-    const int own_cell = (y & 1) * 2 + (x & 1);
-    const float own = m.at(x, y);
-    out.planes[static_cast<std::size_t>(own_cell)][o] = own;
-    DirectionalEstimate<2> horizontal, vertical;
-    DirectionalEstimate<4> diagonal;
-    horizontal.add(m, x, y, -1, 0, own);
-    horizontal.add(m, x, y, 1, 0, own);
-    vertical.add(m, x, y, 0, -1, own);
-    vertical.add(m, x, y, 0, 1, own);
-    diagonal.add(m, x, y, -1, -1, own);
-    diagonal.add(m, x, y, 1, -1, own);
-    diagonal.add(m, x, y, -1, 1, own);
-    diagonal.add(m, x, y, 1, 1, own);
-    out.planes[static_cast<std::size_t>(own_cell ^ 1)][o] = horizontal.value(epsilon);
-    out.planes[static_cast<std::size_t>(own_cell ^ 2)][o] = vertical.value(epsilon);
-    out.planes[static_cast<std::size_t>(own_cell ^ 3)][o] = diagonal.value(epsilon);
-}
-
-void newton(const Mosaic& m, DemosaicedFrame& out) {
-    // ε (1 % of the mean signal) keeps flat, noise-free regions (g ≈ 0 on all sides) in the
-    // symmetric branch and sets the scale below which a variation is not an edge.
-    double mean_abs = 0.0;
-    const std::size_t n = static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height);
-    for (std::size_t i = 0; i < n; ++i) mean_abs += std::abs(static_cast<double>(m.data[i]));
-    const double epsilon = 1e-2 * (mean_abs / static_cast<double>(n)) + 1e-30;
-    const InteriorMosaic interior{m.data, m.width};
-    for (int y = 0; y < m.height; ++y)
-        for (int x = 0; x < m.width; ++x) {
-            const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(m.width) +
-                                  static_cast<std::size_t>(x);
-            if (x >= 3 && y >= 3 && x < m.width - 3 && y < m.height - 3)
-                newton_pixel(interior, x, y, o, epsilon, out);
-            else
-                newton_pixel(m, x, y, o, epsilon, out);
-        }
 }
 
 }  // namespace
@@ -186,6 +119,16 @@ void detail::check_microgrid_size(std::size_t values, int width, int height,
 void detail::check_microgrid_frame(std::span<const float> mosaic, int width, int height,
                                    std::string_view source) {
     check_microgrid_size(mosaic.size(), width, height, source);
+    // Whether any value is Inf or NaN (exponent bits all set), by integer operations that the
+    // compiler vectorises (a loop that stops at the first bad value does not); the slow loop below
+    // only runs to name the pixel.
+    std::uint32_t any_not_finite = 0;
+    for (const float v : mosaic) {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &v, sizeof bits);
+        any_not_finite |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+    }
+    if (any_not_finite == 0) return;
     for (std::size_t i = 0; i < mosaic.size(); ++i)
         if (!std::isfinite(mosaic[i]))
             fail("{}: pixel (x={}, y={}) is {}; expected finite values", source,
@@ -249,7 +192,7 @@ DemosaicedFrame demosaic_microgrid(std::span<const float> mosaic, int width, int
             bilinear(m, out);
             break;
         case DemosaicMethod::Newton:
-            newton(m, out);
+            newton(mosaic, width, height, out);
             break;
     }
     return out;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -148,6 +149,44 @@ double wrap_pm90(double angle_deg) {
     return a - 90.0;
 }
 
+/// Σ_j σ_ij²·p_j·p_jᵀ over `records` (σ_ij² = counts_std²/frames, the variance of the record's
+/// mean frame at pixel i), p_j column j of `pinv`.
+template <int P>
+Eigen::Matrix<double, P, P> fit_covariance(const Eigen::MatrixXd& pinv,
+                                           const std::vector<FlatRecord>& records, std::size_t i) {
+    Eigen::Matrix<double, P, P> covariance = Eigen::Matrix<double, P, P>::Zero();
+    for (std::size_t j = 0; j < records.size(); ++j) {
+        const double sigma = records[j].counts_std[i];
+        const Eigen::Matrix<double, P, 1> column = pinv.col(static_cast<Eigen::Index>(j));
+        covariance +=
+            (sigma * sigma / static_cast<double>(records[j].frames)) * column * column.transpose();
+    }
+    return covariance;
+}
+
+/// Pixel i's covariance of (w0, w1, w2, b) = (g, g·m1/a, g·m2/a, b) to first order, from the
+/// NUC fit's (g, b) and the analyzer fit's (a, m1, m2, b'), independent (disjoint records).
+void store_parameter_covariance(MicrogridPixelCalibration& cal, std::size_t i,
+                                const Eigen::MatrixXd& nuc_pinv,
+                                const std::vector<FlatRecord>& open,
+                                const Eigen::MatrixXd& analyzer_pinv,
+                                const std::vector<FlatRecord>& polarized, double g, double m1,
+                                double m2, double a) {
+    Eigen::Matrix<double, 4, 2> nuc_jacobian;
+    nuc_jacobian << 1.0, 0.0, m1 / a, 0.0, m2 / a, 0.0, 0.0, 1.0;
+    Eigen::Matrix4d analyzer_jacobian = Eigen::Matrix4d::Zero();
+    analyzer_jacobian.row(1) << -g * m1 / (a * a), g / a, 0.0, 0.0;
+    analyzer_jacobian.row(2) << -g * m2 / (a * a), 0.0, g / a, 0.0;
+    const Eigen::Matrix4d covariance =
+        nuc_jacobian * fit_covariance<2>(nuc_pinv, open, i) * nuc_jacobian.transpose() +
+        analyzer_jacobian * fit_covariance<4>(analyzer_pinv, polarized, i) *
+            analyzer_jacobian.transpose();
+    std::size_t e = 0;
+    for (Eigen::Index r = 0; r < 4; ++r)
+        for (Eigen::Index c = r; c < 4; ++c)
+            cal.parameter_covariance[e++][i] = static_cast<float>(covariance(r, c));
+}
+
 }  // namespace
 
 std::size_t MicrogridFlatFieldCalibration::bad_count(std::uint32_t bits) const {
@@ -222,6 +261,26 @@ MicrogridFlatFieldCalibration calibrate_microgrid_sessions(
              r.counts});
     const MicrogridPixelCalibration analyzer = calibrate_microgrid_pixels(fields, width, height);
 
+    // Each record's mean frame has the temporal σ counts_std/√frames; both fits are linear least
+    // squares with one design for every pixel, so a pixel's parameters have the covariance
+    // Σ_j σ_ij²·p_j·p_jᵀ (p_j column j of the design's pseudo-inverse). Needs every record's σ.
+    const auto has_std = [](const FlatRecord& r) { return r.frames > 1; };
+    const bool temporal_noise_known = std::all_of(open.begin(), open.end(), has_std) &&
+                                      std::all_of(polarized.begin(), polarized.end(), has_std);
+    Eigen::MatrixXd nuc_pinv, analyzer_pinv;
+    if (temporal_noise_known) {
+        Eigen::MatrixXd nuc_design(static_cast<Eigen::Index>(open.size()), 2);
+        for (std::size_t j = 0; j < open.size(); ++j)
+            nuc_design.row(static_cast<Eigen::Index>(j)) << open[j].radiance, 1.0;
+        nuc_pinv = nuc_design.completeOrthogonalDecomposition().pseudoInverse();
+        Eigen::MatrixXd analyzer_design(static_cast<Eigen::Index>(fields.size()), 4);
+        for (std::size_t j = 0; j < fields.size(); ++j)
+            analyzer_design.row(static_cast<Eigen::Index>(j))
+                << fields[j].source_stokes.transpose(),
+                1.0;
+        analyzer_pinv = analyzer_design.completeOrthogonalDecomposition().pseudoInverse();
+    }
+
     // Two-point NUC (least squares over ≥ 2 temperatures): counts = g·L + b.
     double mean_l = 0.0;
     for (double l : open_radiance) mean_l += l;
@@ -239,6 +298,8 @@ MicrogridFlatFieldCalibration calibrate_microgrid_sessions(
     cal.fit_rms = analyzer.fit_rms;
     for (auto& plane : cal.analysis) plane.assign(n, 0.0f);
     cal.background.assign(n, 0.0f);
+    if (temporal_noise_known)
+        for (auto& plane : cal.parameter_covariance) plane.assign(n, 0.0f);
     std::vector<std::uint32_t> bad(n, kGood);
     std::vector<float> gain(n), offset(n), residual(n), noise(n), noise_of_mean(n);
     double nuc_sum_sq = 0.0;
@@ -285,6 +346,9 @@ MicrogridFlatFieldCalibration calibrate_microgrid_sessions(
         cal.analysis[1][i] = static_cast<float>(g * analyzer.analysis[1][i] / a);
         cal.analysis[2][i] = static_cast<float>(g * analyzer.analysis[2][i] / a);
         cal.background[i] = static_cast<float>(b);
+        if (temporal_noise_known)
+            store_parameter_covariance(cal, i, nuc_pinv, open, analyzer_pinv, polarized, g,
+                                       analyzer.analysis[1][i], analyzer.analysis[2][i], a);
     }
     out.nuc_fit_rms_counts = std::sqrt(nuc_sum_sq / static_cast<double>(n * open.size()));
 
@@ -335,6 +399,7 @@ MicrogridFlatFieldCalibration calibrate_microgrid_sessions(
     out.axis_error_rms_deg = std::sqrt(axis_sq / static_cast<double>(good_gain.size()));
 
     out.nuc_only = cal;
+    for (auto& plane : out.nuc_only.parameter_covariance) plane.clear();  // a comparison only
     for (std::size_t i = 0; i < n; ++i) {
         const double two_theta =
             2.0 * kDegToRad *

@@ -17,6 +17,14 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 /// gives round-off (~10⁻¹⁶), the worst valid pattern ~10⁻⁶.
 constexpr double kSingularDeterminant = 1e-10;
 
+/// Channel names of MicrogridPixelCalibration::parameter_covariance, in its order.
+constexpr const char* kCovarianceChannels[10] = {"cov_w0_w0", "cov_w0_w1", "cov_w0_w2", "cov_w0_b",
+                                                 "cov_w1_w1", "cov_w1_w2", "cov_w1_b",  "cov_w2_w2",
+                                                 "cov_w2_b",  "cov_b_b"};
+/// Index into parameter_covariance of entry (a, b) of the 4×4 symmetric matrix.
+constexpr std::size_t kCovarianceIndex[4][4] = {
+    {0, 1, 2, 3}, {1, 4, 5, 6}, {2, 5, 7, 8}, {3, 6, 8, 9}};
+
 double wrap_0_180(double angle_deg) {
     double a = std::fmod(angle_deg, 180.0);
     return a < 0.0 ? a + 180.0 : a;
@@ -49,7 +57,16 @@ Image MicrogridPixelCalibration::to_image() const {
     image.set_channel("w1", analysis[1]);
     image.set_channel("w2", analysis[2]);
     if (!bad.empty()) image.set_channel("bad", bad);
-    if (has_uncertainties()) {
+    if (has_pixel_covariance()) {
+        const char* names[] = {"w0_std", "w1_std", "w2_std", "background_std"};
+        for (std::size_t k = 0; k < 4; ++k) {
+            auto& plane = image.add_channel(names[k]);
+            const std::vector<float>& variance = parameter_covariance[kCovarianceIndex[k][k]];
+            for (std::size_t i = 0; i < n; ++i) plane[i] = std::sqrt(variance[i]);
+        }
+        for (std::size_t e = 0; e < 10; ++e)
+            image.set_channel(kCovarianceChannels[e], parameter_covariance[e]);
+    } else if (has_uncertainties()) {
         image.set_channel("residual_std", residual_std);
         const auto p = static_cast<std::size_t>(
             std::lround(std::sqrt(static_cast<double>(unit_parameter_covariance.size()))));
@@ -90,6 +107,15 @@ MicrogridPixelCalibration MicrogridPixelCalibration::from_image(const Image& ima
                 c.unit_parameter_covariance.size());
         c.residual_std = image.channel("residual_std");
     }
+    if (image.has_channel(kCovarianceChannels[0]))
+        for (std::size_t e = 0; e < 10; ++e) {
+            if (!image.has_channel(kCovarianceChannels[e]))
+                fail(
+                    "per-pixel calibration: channel '{}' without '{}' (the per-pixel parameter "
+                    "covariance needs all 10 channels cov_w0_w0 … cov_b_b)",
+                    kCovarianceChannels[0], kCovarianceChannels[e]);
+            c.parameter_covariance[e] = image.channel(kCovarianceChannels[e]);
+        }
     if (const auto it = image.attributes().find("stokes_units");
         it != image.attributes().end() && std::holds_alternative<std::string>(it->second))
         c.stokes_units = std::get<std::string>(it->second);
@@ -181,7 +207,17 @@ MicrogridPixelReducer::MicrogridPixelReducer(const MicrogridPixelCalibration& ca
     if (!calibration.bad.empty() && calibration.bad.size() != n)
         fail("per-pixel calibration: its bad-pixel plane has {} values; expected {}×{} = {}",
              calibration.bad.size(), m_width, m_height, n);
-    if (calibration.has_uncertainties()) {
+    if (calibration.has_pixel_covariance()) {
+        for (std::size_t e = 0; e < 10; ++e)
+            if (calibration.parameter_covariance[e].size() != n)
+                fail(
+                    "per-pixel calibration: its parameter covariance plane {} has {} values; "
+                    "expected {}×{} = {}",
+                    kCovarianceChannels[e], calibration.parameter_covariance[e].size(), m_width,
+                    m_height, n);
+        m_pixel_covariance = calibration.parameter_covariance;
+        m_parameters = 4;
+    } else if (calibration.has_uncertainties()) {
         if (calibration.residual_std.size() != n)
             fail("per-pixel calibration: its residual_std plane has {} values; expected {}×{} = {}",
                  calibration.residual_std.size(), m_width, m_height, n);
@@ -304,7 +340,8 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic,
         detail::finish_stokes_row(s[0] + start, s[1] + start, s[2] + start, dolp + start,
                                   aop + start, half_width, false);
     }
-    if (!mosaic_std.empty() || !m_residual_var.empty()) add_uncertainties(out, mosaic_std);
+    if (!mosaic_std.empty() || !m_residual_var.empty() || !m_pixel_covariance[0].empty())
+        add_uncertainties(out, mosaic_std);
     out.attributes()["demosaic_method"] = std::string("super-pixel");
     out.attributes()["analyzer_model"] = std::string("per-pixel");
     out.attributes()["demosaic_reference"] = std::string(
@@ -316,7 +353,8 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic,
 }
 
 void MicrogridPixelReducer::add_uncertainties(Image& out, std::span<const float> mosaic_std) const {
-    const bool calibration_error = !m_residual_var.empty();
+    const bool pixel_covariance = !m_pixel_covariance[0].empty();
+    const bool calibration_error = !m_residual_var.empty() || pixel_covariance;
     out.attributes()["std_includes"] =
         std::string(!mosaic_std.empty() && calibration_error
                         ? "the frame's σ and the per-pixel calibration's fit error"
@@ -346,7 +384,13 @@ void MicrogridPixelReducer::add_uncertainties(Image& out, std::span<const float>
             double var = 0.0;
             if (!mosaic_std.empty())
                 var += static_cast<double>(mosaic_std[i]) * static_cast<double>(mosaic_std[i]);
-            if (calibration_error) {
+            if (pixel_covariance) {
+                for (std::size_t a = 0; a < 4; ++a)
+                    for (std::size_t b = 0; b < 4; ++b)
+                        var += g[a] *
+                               static_cast<double>(m_pixel_covariance[kCovarianceIndex[a][b]][i]) *
+                               g[b];
+            } else if (calibration_error) {
                 double quadratic = 0.0;
                 for (std::size_t a = 0; a < p; ++a)
                     for (std::size_t b = 0; b < p; ++b)

@@ -1,5 +1,7 @@
 #include "tirpol/calibration/microgrid_session.h"
 
+#include <cmath>
+
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
 
@@ -25,13 +27,23 @@ Image reduce_microgrid_session(const std::filesystem::path& dir,
     // mean of its frames, and a microgrid frame needs no polarizer angle.
     std::vector<double> sum(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
                             0.0);
+    // Its variance from the records' temporal σ: a record's mean of n_r frames of σ_r weighs
+    // n_r/N, so Var = Σ_r n_r·σ_r²/N². Known only when every record averaged ≥ 2 frames.
+    std::vector<double> variance_sum(sum.size(), 0.0);
+    bool temporal_noise_known = true;
     std::int64_t frames = 0, records = 0;
     for (const SessionRecord& record : manifest.records) {
         if (record.kind != RecordKind::Polarizer) continue;
         const Image frame = read_session_frame(dir, manifest, record);
         const std::vector<float>& counts = frame.channel("counts");
-        for (std::size_t i = 0; i < sum.size(); ++i)
-            sum[i] += static_cast<double>(counts[i]) * static_cast<double>(record.frames);
+        const std::vector<float>& counts_std = frame.channel("counts_std");
+        const auto n_frames = static_cast<double>(record.frames);
+        for (std::size_t i = 0; i < sum.size(); ++i) {
+            sum[i] += static_cast<double>(counts[i]) * n_frames;
+            variance_sum[i] +=
+                n_frames * static_cast<double>(counts_std[i]) * static_cast<double>(counts_std[i]);
+        }
+        temporal_noise_known = temporal_noise_known && record.frames > 1;
         frames += record.frames;
         ++records;
     }
@@ -50,7 +62,14 @@ Image reduce_microgrid_session(const std::filesystem::path& dir,
                 "per-pixel calibration is {}×{}, the session's camera {}×{} ({}); expected a "
                 "calibration of this camera",
                 c.width, c.height, width, height, manifest_path);
-        stokes = reduce_microgrid_per_pixel(mean, c);
+        std::vector<float> mean_std;
+        if (temporal_noise_known) {
+            mean_std.resize(sum.size());
+            const double n_squared = static_cast<double>(frames) * static_cast<double>(frames);
+            for (std::size_t i = 0; i < sum.size(); ++i)
+                mean_std[i] = static_cast<float>(std::sqrt(variance_sum[i] / n_squared));
+        }
+        stokes = MicrogridPixelReducer(c).reduce(mean, mean_std);
         pattern.write_to(stokes.attributes());
     } else {
         MicrogridReductionOptions reduction;

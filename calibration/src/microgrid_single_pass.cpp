@@ -1,8 +1,8 @@
 #include "microgrid_single_pass.h"
 
-#include <type_traits>
 #include <vector>
 
+#include "microgrid_newton_row.h"
 #include "stokes_attributes.h"
 #include "stokes_row.h"
 #include "tirpol/core/cancelled.h"
@@ -64,6 +64,37 @@ void bilinear_stokes_row(const float* __restrict u, const float* __restrict c,
     }
 }
 
+/// One Stokes component of one row from the four analyzers' values at each x (own, horizontal,
+/// vertical and diagonal neighbour's) and their per-x coefficients. AVX2 clone as above.
+TIRPOL_MICROGRID_CLONES
+void role_stokes_row(const float* __restrict own, const float* __restrict horizontal,
+                     const float* __restrict vertical, const float* __restrict diagonal,
+                     const float* __restrict k_own, const float* __restrict k_h,
+                     const float* __restrict k_v, const float* __restrict k_d, float offset,
+                     float* __restrict out, std::size_t width) {
+    for (std::size_t x = 0; x < width; ++x)
+        out[x] = k_own[x] * own[x] + k_h[x] * horizontal[x] + k_v[x] * vertical[x] +
+                 k_d[x] * diagonal[x] + offset;
+}
+
+/// coefficient[parity_y][r][role][x]: the matrix entry of row r for the analyzer in `role` (0 own,
+/// 1 horizontal, 2 vertical, 3 diagonal neighbour) at column x of a row of that parity; which cell
+/// each role is depends on the parities of x and y only.
+using RoleCoefficients = std::array<std::array<std::array<std::vector<float>, 4>, 3>, 2>;
+
+RoleCoefficients role_coefficients(const CellStokesMatrix& cm, std::size_t width) {
+    RoleCoefficients coefficient;
+    for (std::size_t py = 0; py < 2; ++py)
+        for (std::size_t r = 0; r < 3; ++r)
+            for (std::size_t role = 0; role < 4; ++role) {
+                auto& k = coefficient[py][r][role];
+                k.resize(width);
+                for (std::size_t x = 0; x < width; ++x)
+                    k[x] = cm.matrix[r][(py * 2 + (x & 1)) ^ role];
+            }
+    return coefficient;
+}
+
 /// Bilinear (Ratliff et al. 2009, as demosaic_microgrid): at pixel x of a row the own analyzer is
 /// the pixel, the horizontal neighbour's the mean of left and right, the vertical one's the mean of
 /// up and down, the diagonal one's the mean of the four corners; which cell each of them is depends
@@ -73,18 +104,7 @@ template <typename T>
 void bilinear(const T* mosaic, int width, int height, const CellStokesMatrix& cm,
               const ReductionOptions& options, StokesOutput& out) {
     const auto w = static_cast<std::size_t>(width);
-    // coefficient[parity_y][r][role][x], role 0 own, 1 horizontal, 2 vertical, 3 diagonal
-    std::array<std::array<std::array<std::vector<float>, 4>, 3>, 2> coefficient;
-    for (int py = 0; py < 2; ++py)
-        for (std::size_t r = 0; r < 3; ++r)
-            for (std::size_t role = 0; role < 4; ++role) {
-                auto& k = coefficient[static_cast<std::size_t>(py)][r][role];
-                k.resize(w);
-                for (std::size_t x = 0; x < w; ++x) {
-                    const std::size_t own = static_cast<std::size_t>(py) * 2 + (x & 1);
-                    k[x] = cm.matrix[r][own ^ role];
-                }
-            }
+    const RoleCoefficients coefficient = role_coefficients(cm, w);
     std::vector<float> up(w + 2), cur(w + 2), down(w + 2);
     for (int y = 0; y < height; ++y) {
         throw_if_cancelled(options.cancel, "microgrid reduction");
@@ -130,23 +150,26 @@ void super_pixel(const T* mosaic, int width, int height, const CellStokesMatrix&
     }
 }
 
-/// Any full-resolution demosaicing (newton): its four planes, then the matrix, row by row.
-void from_planes(const DemosaicedFrame& frame, const CellStokesMatrix& cm,
-                 const ReductionOptions& options, StokesOutput& out) {
-    const auto w = static_cast<std::size_t>(frame.width);
-    for (int y = 0; y < frame.height; ++y) {
+/// Newton (microgrid_newton_row.h, as demosaic_microgrid): per row the three neighbours'
+/// estimates, then the matrix by role as for bilinear; no four-plane image.
+template <typename T>
+void newton(const T* mosaic, int width, int height, const CellStokesMatrix& cm,
+            const ReductionOptions& options, StokesOutput& out) {
+    const auto w = static_cast<std::size_t>(width);
+    const RoleCoefficients coefficient = role_coefficients(cm, w);
+    const PaddedMosaic padded(mosaic, width, height);
+    const float epsilon = newton_epsilon(mosaic, w * static_cast<std::size_t>(height));
+    std::vector<float> horizontal(w), vertical(w), diagonal(w);
+    for (int y = 0; y < height; ++y) {
         throw_if_cancelled(options.cancel, "microgrid reduction");
+        newton_row(padded, y, w, epsilon, horizontal.data(), vertical.data(), diagonal.data());
+        const auto& k = coefficient[static_cast<std::size_t>(y & 1)];
         const std::size_t start = static_cast<std::size_t>(y) * w;
-        const float* p[4] = {frame.planes[0].data() + start, frame.planes[1].data() + start,
-                             frame.planes[2].data() + start, frame.planes[3].data() + start};
         float* s[3] = {out.s0 + start, out.s1 + start, out.s2 + start};
-        for (std::size_t r = 0; r < 3; ++r) {
-            const float m0 = cm.matrix[r][0], m1 = cm.matrix[r][1], m2 = cm.matrix[r][2],
-                        m3 = cm.matrix[r][3], offset = cm.offset[r];
-            float* sr = s[r];
-            for (std::size_t x = 0; x < w; ++x)
-                sr[x] = m0 * p[0][x] + m1 * p[1][x] + m2 * p[2][x] + m3 * p[3][x] + offset;
-        }
+        for (std::size_t r = 0; r < 3; ++r)
+            role_stokes_row(padded.row(y, 0), horizontal.data(), vertical.data(), diagonal.data(),
+                            k[r][0].data(), k[r][1].data(), k[r][2].data(), k[r][3].data(),
+                            cm.offset[r], s[r], w);
         out.finish_row(start, w, options.project_to_realizable);
     }
 }
@@ -164,17 +187,9 @@ Image reduce(std::span<const T> mosaic, int width, int height, const MicrogridPa
         case DemosaicMethod::Bilinear:
             bilinear(mosaic.data(), width, height, cm, options, out);
             break;
-        case DemosaicMethod::Newton: {
-            if constexpr (std::is_same_v<T, float>) {
-                from_planes(demosaic_microgrid(mosaic, width, height, pattern, method), cm, options,
-                            out);
-            } else {
-                const std::vector<float> as_float(mosaic.begin(), mosaic.end());
-                from_planes(demosaic_microgrid(as_float, width, height, pattern, method), cm,
-                            options, out);
-            }
+        case DemosaicMethod::Newton:
+            newton(mosaic.data(), width, height, cm, options, out);
             break;
-        }
     }
     write_stokes_attributes(out.image, model, model.data_reduction_matrix(), options,
                             static_cast<int>(out.unrealizable), false);

@@ -105,6 +105,7 @@ Image synthetic_microgrid_frame(const SyntheticMicrogridCamera& camera,
     auto& counts_std = frame.add_channel("counts_std");
     const double saturation = std::ldexp(1.0, camera.bits_per_pixel) - 1.0;
     const double frames = static_cast<double>(camera.frames);
+    std::chi_squared_distribution<double> sample_variance(std::max(frames - 1.0, 1.0));
     for (std::size_t i = 0; i < counts.size(); ++i) {
         const double two_theta = 2.0 * kDegToRad * truth.axis_deg[i];
         const double signal = truth.responsivity[i] * 0.5 * truth.transmission[i] *
@@ -114,9 +115,12 @@ Image synthetic_microgrid_frame(const SyntheticMicrogridCamera& camera,
         const double sigma = truth.noise_counts[i];
         counts[i] = static_cast<float>(
             std::min(saturation, signal + sigma / std::sqrt(frames) * unit(rng)));
-        // The sample σ of `frames` frames scatters by ≈ σ/√(2(N−1)).
+        // The sample σ of N normal frames: s² = σ²·χ²(N−1)/(N−1), so E[s²] = σ² exactly (what
+        // a test of stated against observed variance needs); 0 for one frame, as a session says.
         counts_std[i] =
-            static_cast<float>(sigma * (1.0 + unit(rng) / std::sqrt(2.0 * (frames - 1.0))));
+            camera.frames > 1
+                ? static_cast<float>(sigma * std::sqrt(sample_variance(rng) / (frames - 1.0)))
+                : 0.0f;
     }
     return frame;
 }
@@ -145,7 +149,7 @@ void write_synthetic_microgrid_flat_field(const std::filesystem::path& dir,
                     {"polarizer_repeats", repeats}}}};
     auto writer = SessionWriter::create(dir, m);
     RecordClock clock;
-    unsigned seed = camera.seed * 1000u;
+    unsigned seed = camera.seed * 1000u + camera.capture_seed * 104729u;
     for (double t_k : camera.open_blackbody_k)
         writer.add_record(
             clock.next(RecordKind::Blackbody, fmt::format("bb_{:.2f}K", t_k), 0.0, 0, t_k,
@@ -180,7 +184,8 @@ void write_synthetic_microgrid_scene(const std::filesystem::path& dir,
     RecordClock clock;
     writer.add_record(
         clock.next(RecordKind::Polarizer, "scene_r0", 0.0, 0, std::nullopt, camera.frames),
-        synthetic_microgrid_frame(camera, truth, scene, camera.seed * 7919u + 1u));
+        synthetic_microgrid_frame(camera, truth, scene,
+                                  camera.seed * 7919u + 1u + camera.capture_seed * 15485863u));
     writer.mark_complete();
 }
 

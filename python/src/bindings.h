@@ -14,8 +14,10 @@ void bind_simulation(pybind11::module_& m);
 void bind_sensor_model(pybind11::module_& m);  ///< I(α) images; called by bind_simulation
 void bind_calibration(pybind11::module_& m);
 void bind_calibration_sessions(
-    pybind11::module_& m);                  ///< sessions and counts; called by bind_calibration
-void bind_noise(pybind11::module_& m);      ///< 3D noise, NEDT; called by bind_calibration
+    pybind11::module_& m);  ///< sessions and counts; called by bind_calibration
+void bind_microgrid_calibration(
+    pybind11::module_& m);              ///< per-pixel DoFP calibration; called by bind_calibration
+void bind_noise(pybind11::module_& m);  ///< 3D noise, NEDT; called by bind_calibration
 void bind_wire_grid(pybind11::module_& m);  ///< τ/B from arrays; called by bind_calibration
 void bind_fitting(pybind11::module_& m);
 void bind_render_fit(pybind11::module_& m);  ///< fit through the renderer; called by bind_fitting

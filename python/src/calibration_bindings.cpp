@@ -11,6 +11,7 @@
 #include "image_conversion.h"
 #include "interruptible.h"
 #include "tirpol/calibration/analyzer.h"
+#include "tirpol/calibration/microgrid_pixel_calibration.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/stokes_reduction.h"
@@ -236,21 +237,25 @@ void bind_microgrid(py::module_& m) {
         "S2 = I45 − I135). A C-contiguous uint16 (H, W) array is read without a copy.");
     m.def(
         "reduce_microgrid_session",
-        [](const std::filesystem::path& session, const std::string& method) {
+        [](const std::filesystem::path& session, const std::string& method,
+           const std::optional<calibration::MicrogridPixelCalibration>& pixel_calibration) {
             calibration::MicrogridSessionOptions options;
             options.method = calibration::parse_demosaic_method(method, "method");
+            options.pixel_calibration = pixel_calibration;
             return to_python(calibration::reduce_microgrid_session(session, options));
         },
-        py::arg("session"), py::arg("method") = "newton",
+        py::arg("session"), py::arg("method") = "newton", py::arg("pixel_calibration") = py::none(),
         "A microgrid camera's capture session (its manifest records the pattern): the records' "
-        "mean mosaic demosaiced and reduced, as `tirpol reduce SESSION` does without "
-        "--pixel-calibration.");
+        "mean mosaic demosaiced and reduced, as `tirpol reduce SESSION` does; with a "
+        "MicrogridPixelCalibration, per super-pixel with S0_std … AoP_std from the records' "
+        "temporal σ and the calibration's uncertainties (--pixel-calibration).");
 }
 
 }  // namespace
 
 void bind_calibration(py::module_& m) {
     bind_microgrid(m);
+    bind_microgrid_calibration(m);
     bind_analyzer(m);
     bind_wire_grid(m);
     bind_reduce(m);

@@ -48,6 +48,12 @@ struct MicrogridPixelCalibration {
     /// (w_i0, w_i1, w_i2[, b_i]) have the covariance residual_std[i]² · this (least squares with
     /// independent errors of equal variance per pixel). Empty with residual_std.
     std::vector<double> unit_parameter_covariance;
+    /// Per pixel, the covariance of its parameters (w_i0, w_i1, w_i2, b_i) where it differs from
+    /// pixel to pixel in more than a scale (a calibration from flat-field sessions, propagated
+    /// from the records' temporal noise): the upper triangle's 10 entries in the order 00 01 02
+    /// 03 11 12 13 22 23 33, each a plane (signal units², the w in signal per Stokes unit); empty
+    /// when not known. Reduction uses it in place of residual_std and unit_parameter_covariance.
+    std::array<std::vector<float>, 10> parameter_covariance;
     /// Units of the Stokes vectors the analysis vectors map from (e.g. "W/(m^2 sr)" when the
     /// sources were blackbody band radiances); empty when not known. Reduction writes it as
     /// `units`.
@@ -61,14 +67,18 @@ struct MicrogridPixelCalibration {
     float axis_angle_deg(std::size_t i) const;
     /// Whether pixel i is marked bad.
     bool is_bad(std::size_t i) const { return !bad.empty() && bad[i] != 0.0f; }
-    /// Whether the fit's uncertainties are known (residual_std and unit_parameter_covariance).
-    bool has_uncertainties() const { return !residual_std.empty(); }
+    /// Whether the fit's uncertainties are known (residual_std and unit_parameter_covariance, or
+    /// parameter_covariance).
+    bool has_uncertainties() const { return !residual_std.empty() || has_pixel_covariance(); }
+    /// Whether each pixel's parameter covariance is given (parameter_covariance).
+    bool has_pixel_covariance() const { return !parameter_covariance[0].empty(); }
     /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`
-    /// and, when assessed, `bad`; with uncertainties `residual_std` and the parameters' standard
-    /// uncertainties `w0_std`, `w1_std`, `w2_std` (and `background_std` when fitted), attribute
-    /// `unit_parameter_covariance`; attributes `fit_rms` and, when known, `stokes_units`: the
-    /// calibration as an EXR-ready image (the w, background, bad, residual_std planes and the
-    /// covariance are what reduction reads).
+    /// and, when assessed, `bad`; with uncertainties the parameters' standard uncertainties
+    /// `w0_std`, `w1_std`, `w2_std` (and `background_std` when fitted) and either `residual_std`
+    /// with the attribute `unit_parameter_covariance`, or the per-pixel covariance as channels
+    /// `cov_w0_w0`, `cov_w0_w1`, … `cov_b_b` (parameter_covariance's order); attributes `fit_rms`
+    /// and, when known, `stokes_units`: the calibration as an EXR-ready image (the w, background,
+    /// bad, residual_std planes and the covariance are what reduction reads).
     Image to_image() const;
     /// The inverse of to_image(); throws tirpol::Error naming a missing channel. A file without a
     /// `bad` channel (written before bad pixels were assessed) reads with no pixel marked bad.
@@ -127,8 +137,9 @@ private:
     std::array<std::vector<float>, 3> m_offset;
     std::vector<unsigned char> m_bad;   ///< per pixel; its value is never read
     std::vector<float> m_residual_var;  ///< per pixel, residual_std²; empty without uncertainties
-    std::vector<double> m_unit_covariance;  ///< p×p, see unit_parameter_covariance
-    int m_parameters = 0;                   ///< p: 4 with background, 3 without
+    std::vector<double> m_unit_covariance;                  ///< p×p, see unit_parameter_covariance
+    std::array<std::vector<float>, 10> m_pixel_covariance;  ///< see parameter_covariance
+    int m_parameters = 0;                                   ///< p: 4 with background, 3 without
     int m_singular_cells = 0, m_cells_with_bad_pixels = 0;
     std::string m_units;
 };

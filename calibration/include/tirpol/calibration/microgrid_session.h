@@ -27,7 +27,9 @@ struct MicrogridSessionOptions {
 /// pattern). Throws tirpol::Error as read_session does for a damaged session.
 bool is_microgrid_session(const std::filesystem::path& dir);
 
-/// Reduces the session at `dir`. Output channels S0 S1 S2 DoLP AoP in counts, attributes those of
+/// Reduces the session at `dir`. Output channels S0 S1 S2 DoLP AoP in counts (with a per-pixel
+/// calibration: in its Stokes units, and S0_std … AoP_std from the records' temporal σ and the
+/// calibration's parameter uncertainties, MicrogridPixelReducer::reduce), attributes those of
 /// the reduction plus `session` (the directory), `records_averaged`, `frames_averaged` and the
 /// pattern. Throws tirpol::Error naming the session when it records no microgrid pattern (a
 /// rotating-polarizer session), has no polarizer record, or its pattern does not determine S1 and

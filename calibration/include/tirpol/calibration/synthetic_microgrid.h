@@ -37,6 +37,9 @@ struct SyntheticMicrogridCamera {
     /// (8 × the temporal noise).
     int dead_x = 5, dead_y = 5, hot_x = 9, hot_y = 30, noisy_x = 40, noisy_y = 12;
     unsigned seed = 1;
+    /// Draws the temporal noise of the sessions written (not the pixels): another capture_seed is
+    /// a repeated capture with the same camera.
+    unsigned capture_seed = 0;
     /// The flat-field rig: the open blackbody at these temperatures (the two-point NUC) and the
     /// reference polarizer (transmission, its own unpolarized emission and reflection in W/(m² sr),
     /// axis offset of the stage's zero) at these angles in front of the blackbody at these.
