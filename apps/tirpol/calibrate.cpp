@@ -19,14 +19,8 @@ struct RadiometricArgs {
 void run_radiometric(RadiometricArgs& a) {
     auto& o = a.options;
     if (o.summary.empty()) o.summary = calibration::default_summary_dir(o.output);
-    OutputGuard guard;
-    for (const std::string& session : o.sessions) guard.input(session, "SESSION");
-    guard.input(o.rsr, "--rsr")
-        .output_file(o.output, "--output")
-        .output_folder(o.summary, "--summary",
-                       {"index.html", "maps.exr", "nedt.png", "bad_pixels.png", "residuals.png"})
-        .check(a.force);
     o.band_um = {a.band_um[0], a.band_um[1]};
+    calibration::check_radiometric_run(o, a.force);
     print_text(calibration::radiometric_run_text(calibration::run_radiometric_calibration(o)));
 }
 
@@ -36,17 +30,9 @@ struct PolarimetricArgs {
 };
 
 void run_polarimetric(const PolarimetricArgs& a) {
-    const auto& o = a.options;
-    OutputGuard()
-        .input(o.session, "SESSION")
-        .input(o.calibration, "--calibration")
-        .output_file(o.output, "--output")
-        .output_file(calibration::polarimetric_maps_path(o.output), "--output (maps)")
-        .check(a.force);
-    if (!o.extinction_ratio && !o.axis_offsets_deg.empty())
-        usage_error("--axis-offset-deg", "needs --extinction-ratio (the datasheet's t_max/t_min)");
+    calibration::check_polarimetric_run(a.options, a.force);
     print_text(calibration::polarimetric_calibration_text(
-        calibration::run_polarimetric_calibration(o), o));
+        calibration::run_polarimetric_calibration(a.options), a.options));
 }
 
 void register_calibrate(CLI::App& app) {

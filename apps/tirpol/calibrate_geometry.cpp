@@ -6,60 +6,24 @@
 #include "cli.h"
 #include "common_options.h"
 #include "tirpol/calibration/geometry_report.h"
-#include "tirpol/core/camera_model.h"
 
 namespace tirpol::cli {
 
 namespace {
-struct GeometricArgs {
-    std::vector<std::string> frames;
-    std::string target, output, distortion_model = "standard";
-    bool fix_k3 = false, zero_tangential = false, force = false;
-    int min_views = 5;
-};
-
-void run_geometric(const GeometricArgs& a) {
-    OutputGuard guard;
-    for (const std::string& frame : a.frames) guard.input(frame, "FRAMES");
-    guard.output_file(a.output, "--output").check(a.force);
-    calibration::GeometricCalibrationOptions options;
-    options.distortion_model = a.distortion_model;
-    options.fix_k3 = a.fix_k3;
-    options.zero_tangential = a.zero_tangential;
-    options.min_views = a.min_views;
-    const auto target = parse_option_value(
-        "--target", [&] { return calibration::CalibrationTarget::parse(a.target); });
-    const std::vector<std::filesystem::path> frames(a.frames.begin(), a.frames.end());
-    const auto r = calibration::calibrate_geometric_frames(frames, target, options);
-    write_camera_model(a.output, r.model);
-    print_text(calibration::geometric_calibration_text(r, target, frames.size(), a.output));
+void run_geometric(const calibration::GeometricRunOptions& o) {
+    const calibration::GeometricRun r = calibration::run_geometric_calibration(o);
+    print_text(calibration::geometric_calibration_text(r.result, r.target, r.frames, r.output));
 }
 
-struct PoseArgs {
-    std::string camera, points, output;
-    double ransac_threshold_px = 3.0;
-    bool force = false;
-};
-
-void run_pose(const PoseArgs& a) {
-    OutputGuard()
-        .input(a.camera, "--camera")
-        .input(a.points, "--points")
-        .output_file(a.output, "--output")
-        .check(a.force);
-    const CameraModel model = read_camera_model(a.camera);
-    const auto points = calibration::read_control_points(a.points);
-    calibration::PoseOptions options;
-    options.ransac_threshold_px = a.ransac_threshold_px;
-    const auto r = calibration::estimate_pose(model, points, options);
-    write_camera_pose(a.output, r.pose);
-    print_text(calibration::pose_estimation_text(r, points, a.output));
+void run_pose(const calibration::PoseRunOptions& o) {
+    const calibration::PoseRun r = calibration::run_pose_estimation(o);
+    print_text(calibration::pose_estimation_text(r.result, r.points, r.output));
 }
 
 void register_calibrate_geometry(CLI::App& app) {
     auto* cmd = app.get_subcommand("calibrate");  // added by calibrate.cpp (order 50)
 
-    auto g = std::make_shared<GeometricArgs>();
+    auto g = std::make_shared<calibration::GeometricRunOptions>();
     auto* geo = cmd->add_subcommand(
         "geometric", "Lens intrinsics and distortion from views of a checkerboard or circle grid");
     geo->add_option("FRAMES", g->frames, "Frames showing the target (EXR counts/S0, PNG, TIFF)")
@@ -70,18 +34,19 @@ void register_calibrate_geometry(CLI::App& app) {
                     "acircles:COLSxROWS:HALF_PITCH_M")
         ->required();
     add_output_option(geo, g->output, "Camera model YAML to write (OpenCV FileStorage)");
-    geo->add_option("--distortion-model", g->distortion_model,
+    geo->add_option("--distortion-model", g->calibration.distortion_model,
                     "standard (k1 k2 p1 p2 k3) | rational | thin_prism")
         ->check(CLI::IsMember({"standard", "rational", "thin_prism"}))
         ->capture_default_str();
-    geo->add_flag("--fix-k3", g->fix_k3, "Keep k3 = 0 (few views or a narrow lens)");
-    geo->add_flag("--zero-tangential", g->zero_tangential, "Keep p1 = p2 = 0");
-    geo->add_option("--min-views", g->min_views, "Fewer frames with the target is an error")
+    geo->add_flag("--fix-k3", g->calibration.fix_k3, "Keep k3 = 0 (few views or a narrow lens)");
+    geo->add_flag("--zero-tangential", g->calibration.zero_tangential, "Keep p1 = p2 = 0");
+    geo->add_option("--min-views", g->calibration.min_views,
+                    "Fewer frames with the target is an error")
         ->capture_default_str();
     add_force_flag(geo, g->force);
     geo->callback([g] { run_geometric(*g); });
 
-    auto p = std::make_shared<PoseArgs>();
+    auto p = std::make_shared<calibration::PoseRunOptions>();
     auto* pose = cmd->add_subcommand(
         "pose", "Camera pose in the scene's world frame from ≥ 4 surveyed control points");
     pose->add_option("--camera", p->camera, "Camera model YAML (from `calibrate geometric`)")
@@ -92,7 +57,7 @@ void register_calibrate_geometry(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingFile);
     add_output_option(pose, p->output, "Camera pose YAML to write");
-    pose->add_option("--ransac-threshold-px", p->ransac_threshold_px, "Outlier threshold")
+    pose->add_option("--ransac-threshold-px", p->pose.ransac_threshold_px, "Outlier threshold")
         ->capture_default_str();
     add_force_flag(pose, p->force);
     pose->callback([p] { run_pose(*p); });

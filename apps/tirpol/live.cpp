@@ -1,17 +1,12 @@
-// `tirpol live --camera URI [--stage URI] [--calibration CAL --show radiance|temperature] [--port
-// N]
-// [--bind ADDR]`: serves the live view (docs/live.md) until Ctrl-C. Prints the address to open.
+// `tirpol live --camera URI [--stage URI] [--calibration CAL --show radiance|temperature]
+// [--port N] [--bind ADDR]`: serves the live view (docs/live.md) until Ctrl-C. Prints the address
+// to open.
 
-#include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <thread>
-#include <vector>
 
 #include "cli.h"
-#include "tirpol/core/interrupt_signals.h"
+#include "common_options.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/live/live_server.h"
 
@@ -42,27 +37,10 @@ void run_live(LiveArgs a) {
         std::filesystem::create_directories(a.view.snapshot_dir);
     }
     live::LiveServer server(a.view, a.server);
-    const std::vector<std::string> urls = server.urls();
-    std::printf("tirpol live: open %s\n", urls.front().c_str());
-    for (std::size_t i = 1; i < urls.size(); ++i)
-        std::printf("tirpol live: or, from another network of this machine, %s\n", urls[i].c_str());
-    if (!server.token().empty())
-        std::printf("tirpol live: bound to %s: every request needs the access token %s\n",
-                    a.server.bind_address.c_str(), server.token().c_str());
+    print_text(server.listening_text());
     std::fflush(stdout);
-
-    // Ctrl-C stops the server; a second one ends the process at once.
-    const InterruptSignals interrupt;
-    std::atomic<bool> served{false};
-    std::thread watcher([&server, &interrupt, &served] {
-        while (!interrupt.interrupted() && !served)
-            std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        server.stop();
-    });
-    server.run();
-    served = true;
-    watcher.join();
-    std::printf("tirpol live: stopped\n");
+    server.run_until_interrupted();
+    print_text("tirpol live: stopped\n");
 }
 
 void register_live(CLI::App& app) {

@@ -6,7 +6,6 @@
 #include "cli.h"
 #include "common_options.h"
 #include "tirpol/calibration/microgrid_session.h"
-#include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/session_to_stokes.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
@@ -100,27 +99,7 @@ void run_reduce(const ReduceArgs& a) {
         a.session,      a.calibration,           a.polarimetric,     a.output,
         a.quicklooks,   a.update_offset,         a.drift_correction, a.slar,
         a.other_camera, a.max_saturated_fraction};
-    if (o.calibration.empty())  // no calibration yet: a quick look in counts, labelled so
-        for (const auto& [given, name] :
-             {std::pair{!o.polarimetric.empty(), "--polarimetric"},
-              std::pair{o.update_offset, "--update-offset"},
-              std::pair{o.drift_correction, "--drift-correction"}, std::pair{o.slar, "--slar"},
-              std::pair{o.other_camera, "--other-camera"}})
-            if (given)
-                usage_error(name,
-                            "{} needs --calibration (without it reduce makes a counts quick look)",
-                            name);
-    OutputGuard()
-        .input(o.session, "SESSION")
-        .input(o.calibration, "--calibration")
-        .input(o.polarimetric, "--polarimetric")
-        .input(o.polarimetric.empty() ? "" : calibration::polarimetric_maps_path(o.polarimetric),
-               "--polarimetric maps")
-        .output_file(o.output, "--output")
-        .output_folder(o.quicklooks, "--quicklooks",
-                       {std::begin(calibration::kStokesQuicklookFiles),
-                        std::end(calibration::kStokesQuicklookFiles)})
-        .check(a.force);
+    calibration::check_session_to_stokes(o, a.force);
     print_text(calibration::session_to_stokes_text(calibration::session_to_stokes(o)));
 }
 

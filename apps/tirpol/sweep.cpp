@@ -3,9 +3,8 @@
 // a time-of-day sweep, an animation (docs/sweep.md). Under `mpirun -np N` the points are spread
 // over the ranks.
 
-#include <cstdio>
-
 #include "cli.h"
+#include "common_options.h"
 #include "tirpol/core/error.h"
 #include "tirpol/sweep/sweep_run.h"
 
@@ -25,26 +24,15 @@ void run_sweep_command(const SweepArgs& a) {
     const sweep::SweepSpec spec = sweep::load_sweep(a.sweep_file);
     OutputGuard()
         .input(a.sweep_file, "SWEEP")
-        .output_folder(a.out_dir, "--output",
-                       {"manifest.json", "results.csv", "results.json", "contact_sheet_*.png",
-                        "points", "plots", "tiles", "animation"})
+        .output_folder(a.out_dir, "--output", sweep::sweep_output_patterns())
         .check(a.force);
     const sweep::SweepSummary summary =
         sweep::run_sweep(spec, a.out_dir, {a.threads, a.resume, !a.quiet});
     if (!summary.is_root) return;
-    std::printf(
-        "sweep %s: %zu points on %d rank(s) × %d thread(s) in %.1f s: %zu rendered, %zu resumed, "
-        "%zu failed\n",
-        a.sweep_file.c_str(), summary.points.size(), summary.ranks, summary.threads,
-        summary.wall_seconds, summary.rendered, summary.resumed, summary.failed);
-    for (const auto& p : summary.outputs)
-        if (p.parent_path() == std::filesystem::path(a.out_dir)) std::printf("  %s\n", p.c_str());
-    if (summary.failed == 0) return;
-    for (const auto& r : summary.points)
-        if (r.status == "failed")
-            std::printf("  FAILED %s: %s\n", r.point.id.c_str(), r.error.c_str());
-    fail("{} of {} points failed (listed above and in {}/manifest.json)", summary.failed,
-         summary.points.size(), a.out_dir);
+    print_text(sweep::sweep_summary_text(summary, a.sweep_file, a.out_dir));
+    if (summary.failed > 0)
+        fail("{} of {} points failed (listed above and in {}/manifest.json)", summary.failed,
+             summary.points.size(), a.out_dir);
 }
 
 void register_sweep(CLI::App& app) {

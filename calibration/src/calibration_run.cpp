@@ -6,6 +6,8 @@
 
 #include "tirpol/calibration/bad_pixels.h"
 #include "tirpol/calibration/calibration_chain.h"
+#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {
 
@@ -87,6 +89,28 @@ std::string polarimetric_calibration_text(const PolarimetricCalibration& pol,
     text += fmt::sprintf("  condition number of W: %.4f\n", pol.analyzer.condition_number());
     return text +
            fmt::sprintf("  written: %s and %s\n", o.output, polarimetric_maps_path(o.output));
+}
+
+void check_radiometric_run(const RadiometricRunOptions& o, bool force) {
+    OutputGuard guard;
+    for (const std::string& session : o.sessions) guard.input(session, "SESSION");
+    guard.input(o.rsr, "--rsr")
+        .output_file(o.output, "--output")
+        .output_folder(o.summary, "--summary",
+                       {"index.html", "maps.exr", "nedt.png", "bad_pixels.png", "residuals.png"})
+        .check(force);
+}
+
+void check_polarimetric_run(const PolarimetricRunOptions& o, bool force) {
+    OutputGuard()
+        .input(o.session, "SESSION")
+        .input(o.calibration, "--calibration")
+        .output_file(o.output, "--output")
+        .output_file(polarimetric_maps_path(o.output), "--output (maps)")
+        .check(force);
+    if (!o.extinction_ratio && !o.axis_offsets_deg.empty())
+        throw OptionValueError("--axis-offset-deg",
+                               "needs --extinction-ratio (the datasheet's t_max/t_min)");
 }
 
 }  // namespace tirpol::calibration

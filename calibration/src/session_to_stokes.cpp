@@ -1,5 +1,6 @@
 #include "tirpol/calibration/session_to_stokes.h"
 
+#include <fmt/format.h>
 #include <fmt/printf.h>
 
 #include <algorithm>
@@ -7,7 +8,10 @@
 
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/counts_quicklook.h"
+#include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/quicklook.h"
 
 namespace tirpol::calibration {
@@ -95,6 +99,30 @@ std::string session_to_stokes_text(const SessionToStokes& r) {
                       "pixel(s) projected, %d saturated → %s\n",
                       r.width, r.height, r.s0.mean, r.dolp.mean, r.unrealizable_pixels,
                       r.saturated_pixels, r.output);
+}
+
+void check_session_to_stokes(const SessionToStokesOptions& o, bool force) {
+    if (o.calibration.empty())  // no calibration: a quick look in counts, labelled so
+        for (const auto& [given, name] :
+             {std::pair{!o.polarimetric.empty(), "--polarimetric"},
+              std::pair{o.update_offset, "--update-offset"},
+              std::pair{o.drift_correction, "--drift-correction"}, std::pair{o.slar, "--slar"},
+              std::pair{o.other_camera, "--other-camera"}})
+            if (given)
+                throw OptionValueError(
+                    name, fmt::format("{} needs --calibration (without it reduce makes a counts "
+                                      "quick look)",
+                                      name));
+    OutputGuard()
+        .input(o.session, "SESSION")
+        .input(o.calibration, "--calibration")
+        .input(o.polarimetric, "--polarimetric")
+        .input(o.polarimetric.empty() ? "" : polarimetric_maps_path(o.polarimetric),
+               "--polarimetric maps")
+        .output_file(o.output, "--output")
+        .output_folder(o.quicklooks, "--quicklooks",
+                       {std::begin(kStokesQuicklookFiles), std::end(kStokesQuicklookFiles)})
+        .check(force);
 }
 
 }  // namespace tirpol::calibration

@@ -1,24 +1,21 @@
 #include "tirpol/fitting/parameter_options.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/option_value_error.h"
 
 namespace tirpol::fitting {
 
 namespace {
-// All of `text` as one finite number (strtod's syntax, as the CLI's numeric options accept).
+// All of `text` as one finite number (the CLI's numeric options' parser).
 double finite_number(std::string_view text, std::string_view item) {
-    const std::string s(text);
-    char* end = nullptr;
-    errno = 0;
-    const double value = s.empty() ? 0.0 : std::strtod(s.c_str(), &end);
-    if (s.empty() || end != s.c_str() + s.size()) fail("{}: \"{}\" is not a number", item, s);
-    if (!std::isfinite(value)) fail("{}: expected a finite number, got '{}'", item, s);
-    return value;
+    const std::optional<double> value = parse_number(text);
+    if (!value) fail("{}: \"{}\" is not a number", item, text);
+    if (!std::isfinite(*value)) fail("{}: expected a finite number, got '{}'", item, text);
+    return *value;
 }
 
 ParameterSetting& setting_of(std::string_view name, ParameterSettings& settings) {

@@ -9,10 +9,12 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/option_value_error.h"
 #include "tirpol/core/progress.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/simulation/renderer.h"
@@ -305,16 +307,9 @@ RenderFitParameter parse_render_fit_parameter(const std::string& text) {
         const auto colon = text.find(':', from);
         const std::string part =
             text.substr(from, colon == std::string::npos ? std::string::npos : colon - from);
-        std::size_t used = 0;
-        double v = 0.0;
-        try {
-            v = std::stod(part, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (part.empty() || used != part.size() || !std::isfinite(v))
-            bad(fmt::format("'{}' is not a number", part));
-        numbers.push_back(v);
+        const std::optional<double> v = parse_number(part);
+        if (!v || !std::isfinite(*v)) bad(fmt::format("'{}' is not a number", part));
+        numbers.push_back(*v);
         if (colon == std::string::npos) break;
         from = colon + 1;
     }

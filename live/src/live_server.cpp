@@ -13,6 +13,7 @@
 #include "guarded_server.h"
 #include "live_view.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/utf8.h"
 
 namespace tirpol::live {
@@ -336,6 +337,29 @@ std::vector<std::string> LiveServer::urls() const {
 void LiveServer::run() { m_impl->server.listen_after_bind(); }
 
 void LiveServer::stop() { m_impl->server.stop(); }
+
+void LiveServer::run_until_interrupted() {
+    const InterruptSignals interrupt;
+    const InterruptWatcher watcher(interrupt.flag(),
+                                   [this] {
+                                       stop();
+                                       return true;
+                                   },
+                                   {});
+    run();
+}
+
+std::string LiveServer::listening_text() const {
+    const std::vector<std::string> addresses = urls();
+    std::string text = fmt::format("tirpol live: open {}\n", addresses.front());
+    for (std::size_t i = 1; i < addresses.size(); ++i)
+        text += fmt::format("tirpol live: or, from another network of this machine, {}\n",
+                            addresses[i]);
+    if (!m_token.empty())
+        text += fmt::format("tirpol live: bound to {}: every request needs the access token {}\n",
+                            m_bind_address, m_token);
+    return text;
+}
 
 std::size_t LiveServer::open_connections() const { return m_impl->server.open_connections(); }
 

@@ -8,18 +8,14 @@
 #include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
+#include "tirpol/core/option_value_error.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::materials {
 
 namespace {
-double parse_number(const std::string& text, const std::string& spec) {
-    try {
-        std::size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == text.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
+double angle_number(const std::string& text, const std::string& spec) {
+    if (const auto v = tirpol::parse_number(text); v && std::isfinite(*v)) return *v;
     fail("angle specification \"{}\": \"{}\" is not a number (expected e.g. 0,45,60 or 0:85:5)",
          spec, text);
 }
@@ -37,8 +33,8 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
         std::string p;
         while (std::getline(ss, p, ':')) parts.push_back(p);
         if (parts.size() != 3) fail("angle specification \"{}\": expected START:STOP:STEP", spec);
-        const double start = parse_number(parts[0], spec), stop = parse_number(parts[1], spec),
-                     step = parse_number(parts[2], spec);
+        const double start = angle_number(parts[0], spec), stop = angle_number(parts[1], spec),
+                     step = angle_number(parts[2], spec);
         if (!(step > 0.0) || !(stop >= start) || !std::isfinite(start) || !std::isfinite(stop))
             fail("angle specification \"{}\": expected finite START ≤ STOP and STEP > 0", spec);
         constexpr double kMaxAngles = 100000;
@@ -50,7 +46,7 @@ std::vector<double> parse_angles_deg(const std::string& spec) {
     } else {
         std::stringstream ss(spec);
         std::string p;
-        while (std::getline(ss, p, ',')) angles.push_back(parse_number(p, spec));
+        while (std::getline(ss, p, ',')) angles.push_back(angle_number(p, spec));
     }
     if (angles.empty()) fail("angle specification \"{}\": no angles", spec);
     for (double a : angles)

@@ -1,4 +1,5 @@
-// The one numeric-option parser (apps/tirpol/numeric_options.cpp), checked over every option of
+// The one numeric-option parser (core/src/option_values.cpp, applied by
+// apps/tirpol/numeric_options.cpp), checked over every option of
 // every subcommand as `tirpol ... --help` lists them: an option shown as FLOAT, INT or UINT refuses
 // nan and inf with exit 2 and a message naming it, and an option of the limits table refuses a
 // value beyond its limit. Options are read from the help, so an option added later is covered by

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
+#include <thread>
 
 #include "tirpol/core/error.h"
 
@@ -54,6 +56,70 @@ TEST(InterruptSignalsDeathTest, SecondSignalEndsTheProcessWithIt) {
             std::exit(0);
         },
         testing::KilledBySignal(SIGINT), "");
+}
+
+using namespace std::chrono_literals;
+
+// Polls `done` for up to 5 s (the watcher polls every 10 ms; a loaded machine may be slow).
+template <typename Done>
+bool eventually(Done done) {
+    for (int i = 0; i < 500 && !done(); ++i) std::this_thread::sleep_for(10ms);
+    return done();
+}
+
+TEST(InterruptWatcher, ActsOnceWhenTheFlagRisesAndNeverBefore) {
+    std::atomic<bool> interrupt{false};
+    std::atomic<int> calls{0};
+    InterruptWatcher watcher(interrupt, [&] { return ++calls, true; }, {});
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(calls, 0) << "acted without an interruption";
+    interrupt = true;  // what the SIGINT handler does
+    ASSERT_TRUE(eventually([&] { return calls > 0; }));
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(calls, 1) << "a zero repeat period acts once";
+}
+
+TEST(InterruptWatcher, AsksAgainUntilItActsThenRepeatsAfterThePeriod) {
+    std::atomic<bool> interrupt{true};
+    std::atomic<bool> ready{false};
+    std::atomic<int> asked{0}, acted{0};
+    {
+        InterruptWatcher watcher(interrupt,
+                                 [&] {
+                                     ++asked;
+                                     if (!ready) return false;  // e.g. the stage is not open yet
+                                     ++acted;
+                                     return true;
+                                 },
+                                 {50ms});
+        ASSERT_TRUE(eventually([&] { return asked >= 3; }));
+        EXPECT_EQ(acted, 0);
+        ready = true;
+        ASSERT_TRUE(eventually([&] { return acted >= 3; })) << "not repeated every 50 ms";
+    }
+    const int after = acted;
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(acted, after) << "acted after it was destroyed";
+}
+
+TEST(InterruptWatcher, CallsOnOverdueOnceWhenTheProgramOutlivesTheGrace) {
+    std::atomic<bool> interrupt{false};
+    std::atomic<int> overdue{0};
+    {
+        InterruptWatcher watcher(interrupt, [] { return true; }, {0ms, 100ms, [&] { ++overdue; }});
+        std::this_thread::sleep_for(200ms);
+        EXPECT_EQ(overdue, 0) << "called without an interruption";
+        interrupt = true;
+        ASSERT_TRUE(eventually([&] { return overdue > 0; }));
+        std::this_thread::sleep_for(50ms);
+    }
+    EXPECT_EQ(overdue, 1);
+    // A program that finishes (the watcher is destroyed) within the grace period is left alone.
+    overdue = 0;
+    {
+        InterruptWatcher watcher(interrupt, [] { return true; }, {0ms, 60s, [&] { ++overdue; }});
+    }
+    EXPECT_EQ(overdue, 0);
 }
 
 }  // namespace

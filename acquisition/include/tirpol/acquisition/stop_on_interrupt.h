@@ -10,9 +10,9 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
-#include <thread>
 
 #include "tirpol/acquisition/stage.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace tirpol::acquisition {
 
@@ -32,15 +32,11 @@ public:
     int stops_sent() const { return m_stops_sent; }
 
 private:
-    void run();
+    bool stop_stage();
 
-    const std::atomic<bool>& m_interrupt;
-    std::chrono::milliseconds m_grace, m_restop_period;
-    std::function<void()> m_on_overdue;
     std::atomic<Stage*> m_stage{nullptr};
-    std::atomic<bool> m_done{false};
     std::atomic<int> m_stops_sent{0};
-    std::thread m_thread;
+    InterruptWatcher m_watcher;  // last: it stops watching before the members above go
 };
 
 }  // namespace tirpol::acquisition

@@ -38,6 +38,10 @@ struct RadiometricRun {
 /// Throws tirpol::Error for sessions, an RSR or a band that do not read or fit.
 RadiometricRun run_radiometric_calibration(const RadiometricRunOptions& options);
 
+/// What `tirpol calibrate radiometric` checks before any work: no output (the EXR, the summary
+/// folder) may replace an input or, unless `force`, an existing file (OutputGuard).
+void check_radiometric_run(const RadiometricRunOptions& options, bool force);
+
 /// The camera, model, median gain and residual, FPA model, residual per set-point, NEDT,
 /// warnings, bad-pixel counts and the files written.
 std::string radiometric_run_text(const RadiometricRun& run);
@@ -55,6 +59,11 @@ struct PolarimetricRunOptions {
 /// Calibrates the analyzer and writes the YAML and its maps. Throws tirpol::Error for a session or
 /// calibration that does not read or fit.
 PolarimetricCalibration run_polarimetric_calibration(const PolarimetricRunOptions& options);
+
+/// What `tirpol calibrate polarimetric` checks before any work: axis offsets need the extinction
+/// ratio (tirpol::OptionValueError naming --axis-offset-deg), and no output (the YAML, its maps)
+/// may replace an input or, unless `force`, an existing file (OutputGuard).
+void check_polarimetric_run(const PolarimetricRunOptions& options, bool force);
 
 /// The method, each analyzer position, the condition number of W and the files written.
 std::string polarimetric_calibration_text(const PolarimetricCalibration& calibration,

@@ -1,7 +1,8 @@
 #pragma once
 /// \file geometry_report.h
 /// The text `tirpol calibrate geometric` and `tirpol calibrate pose` print: what was calibrated or
-/// estimated, per view or control point, and the file written.
+/// estimated, per view or control point, and the file written; and each of the two as one call
+/// from files to files.
 
 #include <cstddef>
 #include <string>
@@ -23,5 +24,43 @@ std::string geometric_calibration_text(const GeometricCalibrationResult& result,
 /// `output`.
 std::string pose_estimation_text(const PoseResult& result, const std::vector<ControlPoint>& points,
                                  const std::string& output);
+
+/// `tirpol calibrate geometric`: frames showing the target, the target as text
+/// (CalibrationTarget::parse), the options and the camera model YAML to write.
+struct GeometricRunOptions {
+    std::vector<std::string> frames;
+    std::string target, output;
+    GeometricCalibrationOptions calibration;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
+};
+
+/// What run_geometric_calibration calibrated and wrote.
+struct GeometricRun {
+    GeometricCalibrationResult result;
+    CalibrationTarget target;
+    std::size_t frames = 0;
+    std::string output;
+};
+
+/// Checks the output (OutputGuard) and the target text (tirpol::OptionValueError naming --target),
+/// calibrates and writes the camera model.
+GeometricRun run_geometric_calibration(const GeometricRunOptions& options);
+
+/// `tirpol calibrate pose`: the camera model, the control points CSV and the pose YAML to write.
+struct PoseRunOptions {
+    std::string camera, points, output;
+    PoseOptions pose;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
+};
+
+/// What run_pose_estimation estimated and wrote.
+struct PoseRun {
+    PoseResult result;
+    std::vector<ControlPoint> points;
+    std::string output;
+};
+
+/// Checks the output (OutputGuard), estimates the pose and writes it.
+PoseRun run_pose_estimation(const PoseRunOptions& options);
 
 }  // namespace tirpol::calibration

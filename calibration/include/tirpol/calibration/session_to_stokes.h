@@ -56,6 +56,12 @@ inline constexpr const char* kStokesQuicklookFiles[] = {"S0.png", "S1.png", "S2.
 /// tirpol::Error naming the session or calibration for what does not read or fit.
 SessionToStokes session_to_stokes(const SessionToStokesOptions& options);
 
+/// What `tirpol reduce` checks before any work: without a calibration the calibrated-reduction
+/// switches (polarimetric, update_offset, drift_correction, slar, other_camera) must stay off
+/// (tirpol::OptionValueError naming the first one given), and no output may replace an input or,
+/// unless `force`, an existing file (OutputGuard).
+void check_session_to_stokes(const SessionToStokesOptions& options, bool force);
+
 /// The summary: for a counts quick look its label and a line in counts; else the calibration
 /// warnings, the drift correction and a line in radiance.
 std::string session_to_stokes_text(const SessionToStokes& reduction);

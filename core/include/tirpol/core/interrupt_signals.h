@@ -6,6 +6,9 @@
 /// The previous handlers come back when it is destroyed.
 
 #include <atomic>
+#include <chrono>
+#include <functional>
+#include <thread>
 
 namespace tirpol {
 
@@ -26,6 +29,41 @@ public:
 private:
     using Handler = void (*)(int);
     Handler m_previous_int, m_previous_term;
+};
+
+/// What a program does when its interrupt flag rises while it may be blocked (in a device move, a
+/// server loop): a signal handler can only set the flag, so a watcher thread polls it and, once it
+/// is set, calls `on_interrupt`. Used by `tirpol acquire` (stop the stage) and `tirpol live` (stop
+/// the server), so both leave through the same clean path.
+class InterruptWatcher {
+public:
+    struct Options {
+        /// After `on_interrupt` acted (returned true) it is called again after this period (a move
+        /// that starts just after the first stop is stopped too); zero: once.
+        std::chrono::milliseconds repeat_period{0};
+        /// If the watcher still lives this long after the flag rose, `on_overdue` is called once
+        /// and the watching ends (the program prints where it is and exits).
+        std::chrono::milliseconds grace = std::chrono::milliseconds::max();
+        std::function<void()> on_overdue;
+    };
+
+    /// `on_interrupt` returns whether it acted; while it returns false it is asked again at every
+    /// poll (10 ms), e.g. until the device it stops exists.
+    InterruptWatcher(const std::atomic<bool>& interrupt, std::function<bool()> on_interrupt,
+                     Options options);
+    /// Stops watching (joins the thread). Destroy it before what `on_interrupt` touches.
+    ~InterruptWatcher();
+    InterruptWatcher(const InterruptWatcher&) = delete;
+    InterruptWatcher& operator=(const InterruptWatcher&) = delete;
+
+private:
+    void run();
+
+    const std::atomic<bool>& m_interrupt;
+    std::function<bool()> m_on_interrupt;
+    Options m_options;
+    std::atomic<bool> m_done{false};
+    std::thread m_thread;
 };
 
 }  // namespace tirpol

@@ -162,6 +162,19 @@ RenderFitView load_render_fit_view(const simulation::Scene& scene,
 /// expected.
 RenderFitParameter parse_render_fit_parameter(const std::string& text);
 
+/// `tirpol fit-render` as text: the scene file, each measured view as "MEASURED.exr" (the scene's
+/// camera) or "MEASURED.exr,CAMERA.yaml,POSE.yaml", the objects whose regions are compared, and the
+/// free parameters as parse_render_fit_parameter reads them (filling `fit.parameters`).
+struct RenderFitRunOptions {
+    std::filesystem::path scene;
+    std::vector<std::string> views, objects, free;
+    RenderFitOptions fit;
+};
+
+/// Reads every text and file of `options` (tirpol::OptionValueError naming --free or --view for
+/// text of the wrong form, checked before any file is read) and runs fit_through_renderer.
+RenderFitSummary run_render_fit(const RenderFitRunOptions& options);
+
 /// The scene's material named `material` with the given micro-facet parameters replaced (the same
 /// spectral values elsewhere). Throws as fit_through_renderer does for bad materials or parameters.
 std::shared_ptr<const materials::PolarizedBrdf> microfacet_with(

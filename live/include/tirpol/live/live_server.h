@@ -44,6 +44,11 @@ public:
     /// Serves until stop() (from another thread or a signal-watching thread).
     void run();
     void stop();
+    /// Serves until Ctrl-C (SIGINT/SIGTERM; a second one ends the process at once) or stop().
+    void run_until_interrupted();
+    /// What `tirpol live` prints once listening: the addresses to open (urls()) and, for a
+    /// non-loopback bind, the access token every request needs.
+    std::string listening_text() const;
     /// Connections being served now (for tests of the connection limit).
     std::size_t open_connections() const;
 

@@ -182,4 +182,26 @@ CompareResult write_comparison_report(const Image& measured, const Image& simula
 /// report.json's content for `result` (pretty-printed), as written by write_comparison_report.
 std::string comparison_json(const CompareResult& result);
 
+/// `tirpol compare`: files by path and the values of its options.
+struct ComparisonRunOptions {
+    std::string measured, simulated;  ///< Stokes EXRs
+    /// Regions YAML, control points YAML, camera model YAML; empty: none.
+    std::string regions, control_points, camera_model;
+    /// none | auto | control-points | camera-model; empty: camera-model with a camera model, else
+    /// control-points with control points, else auto.
+    std::string registration;
+    std::optional<double> measured_frame_sigma;  ///< CompareOptions::measured_frame_sigma
+    double gain_sigma_relative = 0.0, offset_sigma = 0.0;
+    double false_alarm = 0.05, power = 0.80;  ///< TestDesign
+    std::vector<double> band_um;              ///< empty or LO HI, µm
+    std::string output;                       ///< report directory
+    bool force = false;  ///< existing report files may be replaced (OutputGuard)
+    std::string tool_version, command_line;  ///< for the provenance
+};
+
+/// Checks the option values (tirpol::OptionValueError naming the option) and the outputs
+/// (OutputGuard), reads the files, records them in the provenance and writes the report
+/// (write_comparison_report).
+CompareResult run_comparison(const ComparisonRunOptions& options);
+
 }  // namespace tirpol::report

@@ -59,4 +59,14 @@ struct SweepSummary {
 SweepSummary run_sweep(const SweepSpec& spec, const std::filesystem::path& out_dir,
                        const RunOptions& options);
 
+/// The outputs `run_sweep` claims in its folder (OutputGuard patterns): the manifest, the results,
+/// the contact sheets and the points', plots', tiles' and animation folders.
+const std::vector<std::string>& sweep_output_patterns();
+
+/// What `tirpol sweep` prints on rank 0: points, ranks, threads, time, how many were rendered,
+/// resumed and failed, the files written directly in `out_dir`, and each failed point with its
+/// error. `sweep_name` names the sweep file.
+std::string sweep_summary_text(const SweepSummary& summary, const std::string& sweep_name,
+                               const std::filesystem::path& out_dir);
+
 }  // namespace tirpol::sweep
