@@ -1,9 +1,9 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// The digital twin end to end at a tiny resolution (issue 9): the measured Stokes of the flat black
+// The digital twin end to end at a tiny resolution: the measured Stokes of the flat black
 // paint panel must agree with the truth render within the propagated uncertainties, the extracted
 // polarized emissivity with the paint's model (materials::directional_emissivity) within the
 // extraction's uncertainties, and the fitted n and σ with the paint's values within their fitted σ.
-// The camera's lens and pose are recovered (issue 14) and the simulation, rendered through them,
+// The camera's lens and pose are recovered and the simulation, rendered through them,
 // lands on the measured pixel grid without a warp.
 
 #include <gtest/gtest.h>
