@@ -2,16 +2,9 @@
 # "#31"): a reader of the code cannot follow it; say what the code or test guards instead. Run by
 # CTest (style.no_tracker_numbers); an upstream project's issue is cited by its URL, and a manual's
 # "Issue 7" (its revision, capitalised) is not a tracker number.
-set(sources)
-foreach(dir core calibration acquisition materials thermal simulation fitting report sweep live twin apps tests bench
-            fuzz python examples)
-  file(GLOB_RECURSE found "${SOURCE_DIR}/${dir}/*.cpp" "${SOURCE_DIR}/${dir}/*.h")
-  list(APPEND sources ${found})
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/TirpolCxxSources.cmake)
+tirpol_cxx_sources(sources "${SOURCE_DIR}")
 list(LENGTH sources count)
-if(count LESS 100)
-  message(FATAL_ERROR "only ${count} C++ files found under ${SOURCE_DIR}: wrong SOURCE_DIR?")
-endif()
 set(hits)
 foreach(file ${sources})
   file(STRINGS "${file}" lines REGEX "(^|[^A-Za-z])issue [0-9]+|#[0-9][0-9]+([^0-9A-Za-z_]|$)")
