@@ -162,14 +162,15 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
         const auto& region = again.result.regions[i];
         const auto& jr = json["regions"][i];
         EXPECT_EQ(region.name, jr["name"]);
-        for (const char* q : {"S0", "S1", "S2"}) {
+        for (const report::Quantity quantity : report::kZQuantities) {
+            const std::string& q = report::quantity_name(quantity);
             // report.json prints doubles round-trip exactly; EXR planes are float, as in memory.
-            EXPECT_DOUBLE_EQ(region.z.at(q).fraction_above_2,
+            EXPECT_DOUBLE_EQ(region.z[quantity].fraction_above_2,
                              jr["z"][q]["fraction_above_2"].get<double>())
                 << region.name << " " << q;
-            EXPECT_DOUBLE_EQ(region.z.at(q).rms, jr["z"][q]["rms"].get<double>())
+            EXPECT_DOUBLE_EQ(region.z[quantity].rms, jr["z"][q]["rms"].get<double>())
                 << region.name << " " << q;
-            EXPECT_DOUBLE_EQ(region.stats.at(q).bias, jr["stats"][q]["bias"].get<double>())
+            EXPECT_DOUBLE_EQ(region.stats[quantity].bias, jr["stats"][q]["bias"].get<double>())
                 << region.name << " " << q;
         }
         EXPECT_EQ(report::to_string(region.verdict), jr["verdict"]) << region.name;
