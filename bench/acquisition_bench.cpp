@@ -304,7 +304,7 @@ BENCHMARK(FourAngleSet)
 //   2. run_capture of 0/45/90/135° × 2 repeats × 64 frames, settle 0, EXR + manifest written by the
 //      capture loop's writer thread; capture_fps = delivered frames per second of reception time
 //      within the steps (CaptureSummary::delivered_frame_rate_hz).
-// ratio = capture_fps / camera_fps (issue 12 asks ≥ 0.95); dropped = frames the stream lost during
+// ratio = capture_fps / camera_fps (the target is ≥ 0.95); dropped = frames the stream lost during
 // the capture (EXR writing stalling the grab shows up here). Each frame carries, noise-free in its
 // first row, 100 × the stage's physical angle when it was exposed: a record with any frame from
 // another angle has counts_std ≠ 0 there or a mean ≠ 100 × its angle. foreign_records counts them

@@ -120,7 +120,7 @@ void BM_CountsToRadiance(benchmark::State& state) {
                             static_cast<std::int64_t>(kN));
 }
 
-// FPA-temperature-dependent calibration (issue 15): blackbody at 8 set-points × 3 camera
+// FPA-temperature-dependent calibration: blackbody at 8 set-points × 3 camera
 // temperatures on a 640×512 camera, the frames held in memory as `calibrate radiometric` holds
 // them.
 struct FpaCalibrationInputs {

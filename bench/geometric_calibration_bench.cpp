@@ -1,4 +1,4 @@
-// Detection + calibration of 20 views of a 640×512 checkerboard (issue 14: ≤ 2 s on 2 cores),
+// Detection + calibration of 20 views of a 640×512 checkerboard (target: ≤ 2 s on 2 cores),
 // against a copy of the same 20 frames measured in the same run (the cost of touching the input).
 // Frames are rasterised through a distorted LWIR lens (core CameraModel) with 4×4 supersampled
 // edges, optical blur ignored; a 14-bit pedestal, 60 counts of contrast and inverted polarity as in

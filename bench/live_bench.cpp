@@ -5,7 +5,7 @@
 //   reference  no page open            frames the grab thread received per second
 //   page       headless Chromium(s) showing the page (S0 drawn at the browser's pace)
 //   reference  no page again           (the two references are averaged: drift cancels)
-// Counters: ref_fps, page_fps, ratio = page_fps / ref_fps (issue 17 asks ≥ 0.98), dropped (frames
+// Counters: ref_fps, page_fps, ratio = page_fps / ref_fps (the target is ≥ 0.98), dropped (frames
 // the stream lost in the page window), cam_ref_fps / cam_page_fps (the rate the fake camera itself
 // produced, from frame ids over device time: the fake is a process on the same 2 cores and slows
 // down, without skipping ids, when Chromium takes its CPU — a real camera does not), shown_fps

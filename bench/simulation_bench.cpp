@@ -232,7 +232,7 @@ double mean_s1_standard_error(const Image& img) {
 }
 
 void BM_PanelsNightEqualNoise(benchmark::State& state) {
-    constexpr double kTargetW = 0.042;  // W/(m²·sr): ≈ 50 mK NEDT in 8–14 µm near 280 K (issue 13)
+    constexpr double kTargetW = 0.042;  // W/(m²·sr): ≈ 50 mK NEDT in 8–14 µm near 280 K
     // 16, not 8: the mean of √var over pixels is biased low by few-dof variance estimates (c4 ≈
     // 0.94 at 4 dof), so an 8-spp pilot predicted too few samples (63 spp → 0.0455 instead of
     // 0.042).
@@ -325,7 +325,7 @@ ZTails z_tails(const Image& img, const Image* truth, double l_bb) {
 }
 
 /// A metal mirror (n = 12 + 60i) tilted 95° reflects the camera's horizontal view onto a ground of
-/// `material` seen 75–85° off its normal (issue 13's "mirrors viewing glossy paint"), 48×36 pixels.
+/// `material` seen 75–85° off its normal ("mirrors viewing glossy paint"), 48×36 pixels.
 Scene mirror_over_ground(const std::filesystem::path& dir, const std::string& material,
                          const std::string& sky, double ground_k, int spp, std::uint64_t seed) {
     const std::string yaml = fmt::format(

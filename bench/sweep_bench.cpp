@@ -1,4 +1,4 @@
-// Sweep benchmarks (issue 19), through the real `tirpol sweep` command as a user runs it, on a
+// Sweep benchmarks, through the real `tirpol sweep` command as a user runs it, on a
 // 16-point sweep of the night ball-on-snow scene (128×96 px; uneven: half the points at 16 spp,
 // half at 48 spp).
 //

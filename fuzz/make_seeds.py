@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the small generated seeds of fuzz/corpus/<target>/ and the hand-made regression inputs of
-tests/data/fuzz-regressions/<target>/ (the inputs issue 20 reported). Standard library only, so
+tests/data/fuzz-regressions/<target>/ (the inputs that once crashed or misled tirpol). Standard library only, so
 binary formats (EXR, PNG, TIFF, APT) are written field by field; run from anywhere:
     python3 fuzz/make_seeds.py
 """
@@ -167,7 +167,7 @@ def main():
         "time,air_temperature_c,relative_humidity_pct,wind_speed_m_s,global_horizontal_w_m2\n"
         "2026-01-16T00:00,-5,80,2,0\n2026-01-16T01:00-07:00,-6,82,1.5,0\n2026-01-16T09:00Z,-7,85,1,0\n")
 
-    # --- regressions: the inputs of issue 20, each must give a clean tirpol::Error ---
+    # --- regressions: inputs that once crashed or misled tirpol, each must give a clean tirpol::Error ---
     put(REGRESSIONS, "exr", "declares_40000x40000.exr", exr(4, 3, declared=(40000, 40000)))
     put(REGRESSIONS, "exr", "declares_4000x4000_in_tiny_file.exr", exr_header_only(4000, 4000))
     put(REGRESSIONS, "exr", "non_utf8_attribute.exr", exr(2, 2, attributes=[("note", "string", b"caf\xe9 \xff\xfe")]))

@@ -9,6 +9,7 @@
 #include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/counts_quicklook.h"
 #include "tirpol/calibration/polarimetric_file.h"
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/core/output_guard.h"
@@ -72,7 +73,7 @@ SessionToStokes session_to_stokes(const SessionToStokesOptions& o) {
     r.dolp = channel_stats(stokes.channel("DoLP"));
     r.saturated_pixels = std::get<int>(at.at("saturated_pixels"));
     if (r.counts_quicklook) return r;
-    r.unrealizable_pixels = std::get<int>(at.at("unrealizable_pixels"));
+    r.unrealizable_pixels = stokes_reduction_record(stokes).unrealizable_pixels;
     if (const auto it = at.find("calibration_warnings"); it != at.end())
         r.calibration_warnings = std::get<std::string>(it->second);
     r.drift = drift_of(at);

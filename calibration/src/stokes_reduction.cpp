@@ -246,8 +246,20 @@ void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
         for (Eigen::Index c = 0; c < drm.cols(); ++c) drm_values.push_back(drm(r, c));
     a["analyzer_angles_deg"] = angles;
     a["drm"] = drm_values;
-    a["unrealizable_pixels"] = unrealizable;
-    a["wire_grid_corrected"] = wire_grid_corrected ? 1 : 0;
+    a[kUnrealizablePixelsAttribute] = unrealizable;
+    a[kWireGridCorrectedAttribute] = wire_grid_corrected ? 1 : 0;
+}
+
+StokesReductionRecord stokes_reduction_record(const Image& stokes) {
+    const auto integer = [&](const char* name) {
+        const auto it = stokes.attributes().find(name);
+        if (it == stokes.attributes().end())
+            fail("Stokes image: no attribute '{}' (not written by a Stokes reduction?)", name);
+        if (!std::holds_alternative<int>(it->second))
+            fail("Stokes image: attribute '{}' is not an integer", name);
+        return std::get<int>(it->second);
+    };
+    return {integer(kUnrealizablePixelsAttribute), integer(kWireGridCorrectedAttribute) != 0};
 }
 
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,

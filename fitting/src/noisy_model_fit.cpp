@@ -95,70 +95,89 @@ private:
     int m_evaluations = 0;
 };
 
-/// Whitened residuals (measured − model)/σ with fixed σ, derivatives by finite differences. An
-/// exception from the model is kept and the evaluation reported as failed; the callback then stops
-/// the solver and the fit rethrows it.
-class FiniteDifferenceCost final : public ceres::CostFunction {
+/// A cost over the model, with fixed σ, that keeps an exception from the model instead of letting
+/// it cross Ceres: the evaluation is reported as failed, the callback then stops the solver and the
+/// fit rethrows it.
+class ModelCost : public ceres::CostFunction {
 public:
-    FiniteDifferenceCost(ModelEvaluator& evaluate, const std::vector<double>& measured,
-                         const std::vector<double>& sigma, const NoisyModelFitOptions& options,
-                         std::exception_ptr& error)
-        : m_evaluate(evaluate),
-          m_measured(measured),
-          m_sigma(sigma),
-          m_options(options),
-          m_error(error) {
-        set_num_residuals(static_cast<int>(measured.size()));
+    ModelCost(ModelEvaluator& evaluate, const std::vector<double>& sigma,
+              const NoisyModelFitOptions& options, std::exception_ptr& error, int residual_count)
+        : m_evaluate(evaluate), m_sigma(sigma), m_options(options), m_error(error) {
+        set_num_residuals(residual_count);
         mutable_parameter_block_sizes()->push_back(static_cast<int>(options.initial.size()));
     }
 
     bool Evaluate(double const* const* parameters, double* residuals,
-                  double** jacobians) const override {
+                  double** jacobians) const final {
         if (m_error) return false;
         try {
-            const std::size_t p = m_options.initial.size(), m = m_measured.size();
-            const std::vector<double> theta(parameters[0], parameters[0] + p);
-            const NoisyPrediction& at = m_evaluate(theta);
-            for (std::size_t j = 0; j < m; ++j)
-                residuals[j] = (m_measured[j] - at.value[j]) / m_sigma[j];
-            if (!jacobians || !jacobians[0]) return true;
-            const std::vector<double> center =
-                at.value;  // the cache may drop `at` while differencing
-            for (std::size_t i = 0; i < p; ++i) {
-                const double h = m_options.steps[i];
-                const bool up_ok = theta[i] + h <= m_options.upper[i],
-                           down_ok = theta[i] - h >= m_options.lower[i];
-                std::vector<double> plus = theta, minus = theta;
-                plus[i] += h;
-                minus[i] -= h;
-                std::vector<double> d(m);
-                if (m_options.differences == FiniteDifference::central && up_ok && down_ok) {
-                    const std::vector<double> fp = m_evaluate(plus).value;
-                    const std::vector<double>& fm = m_evaluate(minus).value;
-                    for (std::size_t j = 0; j < m; ++j) d[j] = (fp[j] - fm[j]) / (2.0 * h);
-                } else if (up_ok) {
-                    const std::vector<double>& fp = m_evaluate(plus).value;
-                    for (std::size_t j = 0; j < m; ++j) d[j] = (fp[j] - center[j]) / h;
-                } else {
-                    const std::vector<double>& fm = m_evaluate(minus).value;
-                    for (std::size_t j = 0; j < m; ++j) d[j] = (center[j] - fm[j]) / h;
-                }
-                // Row-major m × p; residual = (measured − model)/σ, so ∂r/∂θ = −∂model/∂θ / σ.
-                for (std::size_t j = 0; j < m; ++j) jacobians[0][j * p + i] = -d[j] / m_sigma[j];
-            }
-            return true;
+            const std::vector<double> theta(parameters[0],
+                                            parameters[0] + m_options.initial.size());
+            return evaluate_at(theta, residuals, jacobians);
         } catch (...) {
             m_error = std::current_exception();
             return false;
         }
     }
 
-private:
+protected:
+    /// The residuals at `theta` and, when `jacobians` asks for them, their derivatives (row-major);
+    /// false rejects the step.
+    virtual bool evaluate_at(const std::vector<double>& theta, double* residuals,
+                             double** jacobians) const = 0;
+
     ModelEvaluator& m_evaluate;
-    const std::vector<double>& m_measured;
     const std::vector<double>& m_sigma;
     const NoisyModelFitOptions& m_options;
+
+private:
     std::exception_ptr& m_error;
+};
+
+/// Whitened residuals (measured − model)/σ with fixed σ, derivatives by finite differences.
+class FiniteDifferenceCost final : public ModelCost {
+public:
+    FiniteDifferenceCost(ModelEvaluator& evaluate, const std::vector<double>& measured,
+                         const std::vector<double>& sigma, const NoisyModelFitOptions& options,
+                         std::exception_ptr& error)
+        : ModelCost(evaluate, sigma, options, error, static_cast<int>(measured.size())),
+          m_measured(measured) {}
+
+private:
+    bool evaluate_at(const std::vector<double>& theta, double* residuals,
+                     double** jacobians) const override {
+        const std::size_t p = m_options.initial.size(), m = m_measured.size();
+        const NoisyPrediction& at = m_evaluate(theta);
+        for (std::size_t j = 0; j < m; ++j)
+            residuals[j] = (m_measured[j] - at.value[j]) / m_sigma[j];
+        if (!jacobians || !jacobians[0]) return true;
+        const std::vector<double> center = at.value;  // the cache may drop `at` while differencing
+        for (std::size_t i = 0; i < p; ++i) {
+            const double h = m_options.steps[i];
+            const bool up_ok = theta[i] + h <= m_options.upper[i],
+                       down_ok = theta[i] - h >= m_options.lower[i];
+            std::vector<double> plus = theta, minus = theta;
+            plus[i] += h;
+            minus[i] -= h;
+            std::vector<double> d(m);
+            if (m_options.differences == FiniteDifference::central && up_ok && down_ok) {
+                const std::vector<double> fp = m_evaluate(plus).value;
+                const std::vector<double>& fm = m_evaluate(minus).value;
+                for (std::size_t j = 0; j < m; ++j) d[j] = (fp[j] - fm[j]) / (2.0 * h);
+            } else if (up_ok) {
+                const std::vector<double>& fp = m_evaluate(plus).value;
+                for (std::size_t j = 0; j < m; ++j) d[j] = (fp[j] - center[j]) / h;
+            } else {
+                const std::vector<double>& fm = m_evaluate(minus).value;
+                for (std::size_t j = 0; j < m; ++j) d[j] = (center[j] - fm[j]) / h;
+            }
+            // Row-major m × p; residual = (measured − model)/σ, so ∂r/∂θ = −∂model/∂θ / σ.
+            for (std::size_t j = 0; j < m; ++j) jacobians[0][j * p + i] = -d[j] / m_sigma[j];
+        }
+        return true;
+    }
+
+    const std::vector<double>& m_measured;
 };
 
 /// Σ_j w_j var_j(θ) of a model evaluation.
@@ -196,48 +215,29 @@ std::vector<double> weighted_variance_gradient(ModelEvaluator& evaluate,
 
 /// The objective's variance term as one residual, r² = C − Σ_j w_j var_j(θ) (noisy_model_fit.h):
 /// a constant C > Σ w var keeps it real; Ceres then minimises the data's squares minus Σ w var.
-class ModelVarianceCost final : public ceres::CostFunction {
+class ModelVarianceCost final : public ModelCost {
 public:
     ModelVarianceCost(ModelEvaluator& evaluate, const std::vector<double>& sigma, double constant,
                       const NoisyModelFitOptions& options, std::exception_ptr& error)
-        : m_evaluate(evaluate),
-          m_sigma(sigma),
-          m_constant(constant),
-          m_options(options),
-          m_error(error) {
-        set_num_residuals(1);
-        mutable_parameter_block_sizes()->push_back(static_cast<int>(options.initial.size()));
-    }
-
-    bool Evaluate(double const* const* parameters, double* residuals,
-                  double** jacobians) const override {
-        if (m_error) return false;
-        try {
-            const std::size_t p = m_options.initial.size();
-            const std::vector<double> theta(parameters[0], parameters[0] + p);
-            const double squared = m_constant - weighted_variance(m_evaluate(theta), m_sigma);
-            // Σ w var beyond C (a far step to a much noisier point): the cost is then not this
-            // objective, and Ceres rejects the step.
-            if (!(squared > 0.0)) return false;
-            residuals[0] = std::sqrt(squared);
-            if (!jacobians || !jacobians[0]) return true;
-            const std::vector<double> gradient =
-                weighted_variance_gradient(m_evaluate, theta, m_sigma, m_options);
-            for (std::size_t i = 0; i < p; ++i)
-                jacobians[0][i] = -gradient[i] / (2.0 * residuals[0]);
-            return true;
-        } catch (...) {
-            m_error = std::current_exception();
-            return false;
-        }
-    }
+        : ModelCost(evaluate, sigma, options, error, 1), m_constant(constant) {}
 
 private:
-    ModelEvaluator& m_evaluate;
-    const std::vector<double>& m_sigma;
+    bool evaluate_at(const std::vector<double>& theta, double* residuals,
+                     double** jacobians) const override {
+        const std::size_t p = m_options.initial.size();
+        const double squared = m_constant - weighted_variance(m_evaluate(theta), m_sigma);
+        // Σ w var beyond C (a far step to a much noisier point): the cost is then not this
+        // objective, and Ceres rejects the step.
+        if (!(squared > 0.0)) return false;
+        residuals[0] = std::sqrt(squared);
+        if (!jacobians || !jacobians[0]) return true;
+        const std::vector<double> gradient =
+            weighted_variance_gradient(m_evaluate, theta, m_sigma, m_options);
+        for (std::size_t i = 0; i < p; ++i) jacobians[0][i] = -gradient[i] / (2.0 * residuals[0]);
+        return true;
+    }
+
     double m_constant;
-    const NoisyModelFitOptions& m_options;
-    std::exception_ptr& m_error;
 };
 
 class StopOnError final : public ceres::IterationCallback {

@@ -28,12 +28,8 @@ double axial_mean_deg(std::complex<double> sum, double lo) {
 
 }  // namespace
 
-AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<float>& measured_s2,
-                   const std::vector<float>& simulated_s1, const std::vector<float>& simulated_s2,
-                   const std::vector<float>& measured_var_s1,
-                   const std::vector<float>& measured_var_s2,
-                   const std::vector<float>& simulated_var_s1,
-                   const std::vector<float>& simulated_var_s2,
+AopStats aop_stats(const LinearPolarizationPlanes& measured,
+                   const LinearPolarizationPlanes& simulated,
                    const std::vector<std::uint8_t>& mask) {
     AopStats st;
     // The phasor of the doubled AoP is (S1, S2)/|P|, so the angle itself is never formed and the
@@ -41,13 +37,13 @@ AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<floa
     std::complex<double> sum_m, sum_s, sum_d;
     for (std::size_t i = 0; i < mask.size(); ++i) {
         if (!mask[i]) continue;
-        const float m1 = measured_s1[i], m2 = measured_s2[i], s1 = simulated_s1[i],
-                    s2 = simulated_s2[i];
+        const float m1 = measured.s1[i], m2 = measured.s2[i], s1 = simulated.s1[i],
+                    s2 = simulated.s2[i];
         if (!std::isfinite(m1) || !std::isfinite(m2) || !std::isfinite(s1) || !std::isfinite(s2))
             continue;
         ++st.region_pixel_count;
-        if (!significant(m1, m2, measured_var_s1[i], measured_var_s2[i]) ||
-            !significant(s1, s2, simulated_var_s1[i], simulated_var_s2[i]))
+        if (!significant(m1, m2, measured.var_s1[i], measured.var_s2[i]) ||
+            !significant(s1, s2, simulated.var_s1[i], simulated.var_s2[i]))
             continue;
         const std::complex<double> pm(m1, m2), ps(s1, s2);
         const std::complex<double> um = pm / std::abs(pm), us = ps / std::abs(ps);

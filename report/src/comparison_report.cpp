@@ -17,6 +17,11 @@
 
 namespace tirpol::report {
 
+const std::string& quantity_name(Quantity quantity) {
+    static const std::array<std::string, 4> names = {"S0", "S1", "S2", "DoLP"};
+    return names.at(static_cast<std::size_t>(quantity));
+}
+
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -256,9 +261,10 @@ void register_planes(Comparison& comparison, const Image& measured, const Image&
 // Measured variance of quantity `q` when the image has no σ channel: the per-frame σ option, else
 // the scatter in the flat noise region, else Immerkær's estimate.
 std::vector<float> measured_variance_without_channel(const Comparison& comparison,
-                                                     const std::string& q,
+                                                     Quantity quantity,
                                                      const CompareOptions& options,
                                                      NoiseSource& noise) {
+    const std::string& q = quantity_name(quantity);
     std::string& source = noise.measured;
     const Image& measured = comparison.planes.measured;
     const std::string noise_region_name =
@@ -267,7 +273,7 @@ std::vector<float> measured_variance_without_channel(const Comparison& compariso
                         : std::string();
     double sigma = 0.0;
     if (options.measured_frame_sigma) {
-        sigma = *options.measured_frame_sigma * (q == "S0" ? 1.0 : std::sqrt(2.0));
+        sigma = *options.measured_frame_sigma * (quantity == Quantity::S0 ? 1.0 : std::sqrt(2.0));
         source = fmt::format("--measured-sigma {:.4g} per frame (paper eqs 14–16)",
                              *options.measured_frame_sigma);
     } else if (!noise_region_name.empty()) {
@@ -287,7 +293,7 @@ std::vector<float> measured_variance_without_channel(const Comparison& compariso
     return std::vector<float>(measured.pixel_count(), static_cast<float>(sigma * sigma));
 }
 
-using VarianceByQuantity = std::map<std::string, std::vector<float>>;
+using VarianceByQuantity = StokesValues<std::vector<float>>;
 
 // Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2, with where each σ came from.
 void differences_and_z(Comparison& comparison, const Image& measured_in, const Image& simulated_in,
@@ -299,12 +305,14 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"})
         planes.difference[q] =
             difference(planes.measured.channel(q), planes.simulated.channel(q), q == "AoP");
-    for (const auto& q : kZQuantities) {
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
         throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
         source.measured_dof = variance_dof(measured_in);
         auto var_m = variance_channel(planes.measured, q, source.measured);
-        if (!var_m) var_m = measured_variance_without_channel(comparison, q, options, source);
+        if (!var_m)
+            var_m = measured_variance_without_channel(comparison, quantity, options, source);
         auto var_s = variance_channel(planes.simulated, q, source.simulated);
         if (!var_s) {
             source.simulated = "none (σ_s = 0)";
@@ -344,12 +352,12 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
                                         *var_m, pooled->variance, measured_pixel_dof, pooled->dof)
                              : z_scores(planes.measured.channel(q), planes.simulated.channel(q),
                                         *var_m, *var_s, measured_pixel_dof, source.simulated_dof);
-        result.noise[q] = source;
+        result.noise[quantity] = source;
         std::vector<float> total(n);
         for (std::size_t i = 0; i < n; ++i) total[i] = (*var_m)[i] + shown_var_s[i];
         planes.total_variance[q] = std::move(total);
-        var_measured[q] = std::move(*var_m);
-        var_simulated[q] = std::move(*var_s);
+        var_measured[quantity] = std::move(*var_m);
+        var_simulated[quantity] = std::move(*var_s);
     }
 }
 
@@ -387,23 +395,24 @@ std::array<double, 2> mean_gradient(const std::vector<float>& plane, int width, 
 // I45 − I135) and the residual misalignment, which moves the region over the simulation's mean
 // gradient.
 QuantityVerdict quantity_verdict(const ComparisonPlanes& planes, const CompareResult& result,
-                                 const CompareOptions& options, std::size_t r, const std::string& q,
+                                 const CompareOptions& options, std::size_t r, Quantity quantity,
                                  const VarianceByQuantity& var_measured,
                                  const VarianceByQuantity& var_simulated,
                                  const QuantityStats& stats) {
+    const std::string& q = quantity_name(quantity);
     const Mask& mask = planes.masks[r];
-    const NoiseSource& noise = result.noise.at(q);
+    const NoiseSource& noise = result.noise[quantity];
     MeanDifferenceInputs in;
     in.measured = &planes.measured.channel(q);
     in.simulated = &planes.simulated.channel(q);
-    in.measured_variance = &var_measured.at(q);
-    in.simulated_variance = &var_simulated.at(q);
+    in.measured_variance = &var_measured[quantity];
+    in.simulated_variance = &var_simulated[quantity];
     in.mask = &mask;
     in.measured_dof = noise.measured_dof;
     in.simulated_dof = noise.simulated_dof;
     in.measured_variance_shared = noise.measured_shared;
     const double gain = options.measured_gain_sigma_relative * std::abs(stats.measured_mean);
-    const double offset = q == "S0" ? options.measured_offset_sigma : 0.0;
+    const double offset = quantity == Quantity::S0 ? options.measured_offset_sigma : 0.0;
     in.measured_common.sigma = std::hypot(gain, offset);
     const auto g = mean_gradient(*in.simulated, result.width, result.height, mask);
     in.registration.sigma = std::abs(result.registration.residual_shift_px[0] * g[0] +
@@ -424,23 +433,25 @@ RegionResult region_result(const ComparisonPlanes& planes, const CompareResult& 
     RegionResult rr;
     rr.name = planes.regions[r].name;
     rr.pixel_count = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), 1));
-    for (const auto& q : kComparedQuantities)
-        rr.stats[q] = quantity_stats(measured.channel(q), simulated.channel(q), mask);
+    for (const Quantity q : kComparedQuantities)
+        rr.stats[q] = quantity_stats(measured.channel(quantity_name(q)),
+                                     simulated.channel(quantity_name(q)), mask);
     Mask pooled_mask;
-    for (const auto& q : kZQuantities) {
-        rr.z[q] = z_stats(planes.z.at(q), mask);
+    for (const Quantity q : kZQuantities) {
+        rr.z[q] = z_stats(planes.z.at(quantity_name(q)), mask);
         pooled_mask.insert(pooled_mask.end(), mask.begin(), mask.end());
     }
-    rr.z["all"] = z_stats(z_pooled, pooled_mask);
-    for (const auto& q : kZQuantities) {
+    rr.z_pooled = z_stats(z_pooled, pooled_mask);
+    for (const Quantity q : kZQuantities) {
         rr.verdicts[q] = quantity_verdict(planes, result, options, r, q, var_measured,
-                                          var_simulated, rr.stats.at(q));
+                                          var_simulated, rr.stats[q]);
         rr.verdict = worse(rr.verdict, rr.verdicts[q].mean.verdict);
     }
-    rr.aop = aop_stats(measured.channel("S1"), measured.channel("S2"), simulated.channel("S1"),
-                       simulated.channel("S2"), var_measured.at("S1"), var_measured.at("S2"),
-                       var_simulated.at("S1"), var_simulated.at("S2"), mask);
-    if (band) rr.s0_bias_k = kelvin_bias(rr.stats.at("S0"), *band);
+    rr.aop = aop_stats(
+        {measured.channel("S1"), measured.channel("S2"), var_measured.s1, var_measured.s2},
+        {simulated.channel("S1"), simulated.channel("S2"), var_simulated.s1, var_simulated.s2},
+        mask);
+    if (band) rr.s0_bias_k = kelvin_bias(rr.stats.s0, *band);
     return rr;
 }
 
@@ -449,9 +460,9 @@ void background_contrast(CompareResult& result, const std::vector<Region>& regio
     const std::size_t bg =
         result.background.empty() ? regions.size() : region_index(regions, result.background);
     if (bg >= regions.size()) return;
-    const auto& b = result.regions[bg].stats.at("S1");
+    const auto& b = result.regions[bg].stats.s1;
     for (auto& rr : result.regions) {
-        const auto& s = rr.stats.at("S1");
+        const auto& s = rr.stats.s1;
         if (s.pixel_count == 0 || b.pixel_count == 0) continue;
         rr.s1_contrast_measured = s.measured_mean - b.measured_mean;
         rr.s1_contrast_simulated = s.simulated_mean - b.simulated_mean;
@@ -461,8 +472,10 @@ void background_contrast(CompareResult& result, const std::vector<Region>& regio
 // z of S0, S1 and S2 end to end (the pooled sample of the histogram and the "all" statistic).
 std::vector<float> pooled_z(const ComparisonPlanes& planes) {
     std::vector<float> z_pooled;
-    for (const auto& q : kZQuantities)
-        z_pooled.insert(z_pooled.end(), planes.z.at(q).begin(), planes.z.at(q).end());
+    for (const Quantity q : kZQuantities) {
+        const auto& z = planes.z.at(quantity_name(q));
+        z_pooled.insert(z_pooled.end(), z.begin(), z.end());
+    }
     return z_pooled;
 }
 
@@ -550,7 +563,8 @@ void z_figures(ReportFiles& f) {
     std::vector<detail::Plane> z_planes;
     std::vector<std::filesystem::path> parts;
     std::vector<QuicklookOptions> opts;
-    for (const auto& q : kZQuantities) {
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
         z_planes.push_back(
             detail::display_plane(f.planes.z.at(q), f.result.width, f.result.height));
         parts.push_back(f.png("z_" + q + ".png"));
@@ -574,7 +588,8 @@ void z_figures(ReportFiles& f) {
 void scatter_figures(ReportFiles& f) {
     const auto& regions = f.planes.regions;
     const auto& masks = f.planes.masks;
-    for (const auto& q : kComparedQuantities) {
+    for (const Quantity quantity : kComparedQuantities) {
+        const std::string& q = quantity_name(quantity);
         std::vector<detail::ScatterSeries> series;
         const auto& mq = f.planes.measured.channel(q);
         const auto& sq = f.planes.simulated.channel(q);
@@ -631,7 +646,7 @@ void difference_histogram(ReportFiles& f, const std::string& q) {
 }
 
 void difference_histograms(ReportFiles& f) {
-    for (const auto& q : kComparedQuantities) difference_histogram(f, q);
+    for (const Quantity q : kComparedQuantities) difference_histogram(f, quantity_name(q));
 }
 
 // Full-resolution planes behind the figures.
@@ -643,7 +658,10 @@ void planes_exr(ReportFiles& f) {
         exr_planes.set_channel("simulated." + q, f.planes.simulated.channel(q));
         exr_planes.set_channel("difference." + q, f.planes.difference.at(q));
     }
-    for (const auto& q : kZQuantities) exr_planes.set_channel("z." + q, f.planes.z.at(q));
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
+        exr_planes.set_channel("z." + q, f.planes.z.at(q));
+    }
     f.result.exr = f.dir / "comparison.exr";
     write_exr(f.result.exr, exr_planes);
 }

@@ -27,8 +27,8 @@ std::string comparison_text(const CompareResult& r) {
             k ? fmt::format("{:.3f}±{:.3f}", k->bias_k, k->bias_sigma_k) : "–";
         text +=
             fmt::format("{:<{}} {:>7} {:>14}", region.name, name_width, region.pixel_count, kelvin);
-        for (const auto& q : kZQuantities) {
-            const auto& v = region.verdicts.at(q);
+        for (const Quantity q : kZQuantities) {
+            const auto& v = region.verdicts[q];
             text += fmt::format(
                 " {:<26}", fmt::format("{:+.1f} ({:.2g}) {}{}", v.mean.t, v.mean.detectable_bias,
                                        v.mean.verdict == Agreement::ExceedsNoise ? "EXCEEDS" : "ok",

@@ -214,12 +214,12 @@ std::string summary_section(const Page& p) {
     for (std::size_t i = 0; i < r.regions.size(); ++i) {
         const auto& region = r.regions[i];
         std::string per_quantity;
-        for (const auto& q : kZQuantities) {
-            const auto& v = region.verdicts.at(q);
+        for (const Quantity q : kZQuantities) {
+            const auto& v = region.verdicts[q];
             const bool powerless =
                 v.mean.verdict != Agreement::NoData && !verdict_has_power(region, q);
             per_quantity += fmt::format(
-                "{}{}: {}{} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", q,
+                "{}{}: {}{} — {}; {} ({})", per_quantity.empty() ? "" : "<br>", quantity_name(q),
                 verdict_span(v.mean.verdict),
                 powerless ? " <span class=\"warn\">(no power: detectable bias ≥ |simulated|)</span>"
                           : "",
@@ -230,7 +230,7 @@ std::string summary_section(const Page& p) {
             "<tr><td>{}{}</td><td class=\"text\"><strong>{}</strong><br>{}<br>S0 bias {} "
             "{}{}</td></tr>\n",
             swatch(i), escape_markup(region.name), verdict_span(region.verdict), per_quantity,
-            num(region.stats.at("S0").bias), p.units,
+            num(region.stats.s0.bias), p.units,
             region.s0_bias_k ? " = " + kelvin_text(region.s0_bias_k) : std::string());
     }
     h += "</tbody>\n</table>\n";
@@ -338,16 +338,16 @@ std::string statistics_section(const Page& p) {
         "pixels of each region where both images have data; bias = mean(m − s) ± its standard "
         "error "
         "(pixels treated as independent), RMSE = √mean((m − s)²).</p>\n";
-    for (const auto& q : kComparedQuantities) {
-        const std::string qu = q == "DoLP" ? "dimensionless" : p.units;
+    for (const Quantity q : kComparedQuantities) {
+        const std::string qu = q == Quantity::DoLP ? "dimensionless" : p.units;
         h += fmt::format(
             "<table>\n<caption>{} [{}]</caption>\n<thead><tr><th>Region</th><th>Pixels</th>"
             "<th>Measured mean</th><th>Measured std</th><th>Simulated mean</th><th>Simulated "
             "std</th>"
             "<th>Bias</th><th>RMSE</th></tr></thead>\n<tbody>\n",
-            q, qu);
+            quantity_name(q), qu);
         for (std::size_t i = 0; i < r.regions.size(); ++i) {
-            const auto& s = r.regions[i].stats.at(q);
+            const auto& s = r.regions[i].stats[q];
             h += fmt::format(
                 "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ± "
                 "{}</td>"
@@ -461,8 +461,8 @@ std::string noise_section(const Page& p) {
         "Verdict</th><th class=\"text\">σ diagnostic</th></tr></thead>\n<tbody>\n",
         p.units);
     for (std::size_t i = 0; i < r.regions.size(); ++i)
-        for (const auto& q : kZQuantities) {
-            const auto& v = r.regions[i].verdicts.at(q);
+        for (const Quantity q : kZQuantities) {
+            const auto& v = r.regions[i].verdicts[q];
             const auto& t = v.mean;
             h += fmt::format(
                 "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} / {} / {} / "
@@ -470,8 +470,8 @@ std::string noise_section(const Page& p) {
                 "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td><td "
                 "class=\"text\">"
                 "{} (z variance {})</td></tr>\n",
-                swatch(i), escape_markup(r.regions[i].name), q, t.pixel_count, num(t.difference),
-                num(t.combined.sigma), num(t.measured_independent.sigma),
+                swatch(i), escape_markup(r.regions[i].name), quantity_name(q), t.pixel_count,
+                num(t.difference), num(t.combined.sigma), num(t.measured_independent.sigma),
                 num(t.measured_common.sigma), num(t.simulated.sigma), num(t.registration.sigma),
                 degrees_of_freedom(t.combined.dof), num(t.t), num(t.p_value),
                 num(t.detectable_bias), verdict_span(t.verdict), sigma_span(v.sigma.verdict),
@@ -487,14 +487,16 @@ std::string noise_section(const Page& p) {
         "σ_s</th><th>ν_s</th></tr></thead>\n"
         "<tbody>\n",
         p.units);
-    for (const auto& [q, s] : r.noise)
+    for (const Quantity q : kZQuantities) {
+        const NoiseSource& s = r.noise[q];
         h += fmt::format(
             "<tr><td>{}</td><td class=\"text\">{}</td><td>{}</td><td>{}</td><td "
             "class=\"text\">{}</td>"
             "<td>{}</td><td>{}</td></tr>\n",
-            q, escape_markup(s.measured), num(s.measured_sigma_median),
+            quantity_name(q), escape_markup(s.measured), num(s.measured_sigma_median),
             degrees_of_freedom(s.measured_dof), escape_markup(s.simulated),
             num(s.simulated_sigma_median), degrees_of_freedom(s.simulated_dof));
+    }
     h += "</tbody>\n</table>\n";
     h += "<table>\n<caption>Fraction of pixels beyond 2σ and "
          "3σ</caption>\n<thead><tr><th>Region</th><th>Quantity</th>"
@@ -502,18 +504,18 @@ std::string noise_section(const Page& p) {
          "class=\"text\">σ diagnostic</th>"
          "</tr></thead>\n<tbody>\n";
     for (std::size_t i = 0; i < r.regions.size(); ++i)
-        for (const auto& q : {"S0", "S1", "S2", "all"}) {
-            const auto& z = r.regions[i].z.at(q);
-            const bool pooled = std::string(q) == "all";
+        for (std::size_t k = 0; k <= kZQuantities.size(); ++k) {
+            const bool pooled = k == kZQuantities.size();  // the last row: S0, S1, S2 pooled
+            const auto& z = pooled ? r.regions[i].z_pooled : r.regions[i].z[kZQuantities[k]];
             h += fmt::format(
                 "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</"
                 "td>"
                 "<td class=\"text\">{}</td></tr>\n",
-                swatch(i), escape_markup(r.regions[i].name), pooled ? "S0+S1+S2 pooled" : q,
-                z.pixel_count, percent(z.fraction_above_2), percent(z.fraction_above_3),
-                num(z.mean), num(z.rms),
+                swatch(i), escape_markup(r.regions[i].name),
+                pooled ? "S0+S1+S2 pooled" : quantity_name(kZQuantities[k]), z.pixel_count,
+                percent(z.fraction_above_2), percent(z.fraction_above_3), num(z.mean), num(z.rms),
                 pooled ? "(reference only)"
-                       : sigma_span(r.regions[i].verdicts.at(q).sigma.verdict));
+                       : sigma_span(r.regions[i].verdicts[kZQuantities[k]].sigma.verdict));
         }
     h += fmt::format(
         "<tr><td>expected (noise "

@@ -121,14 +121,16 @@ std::string comparison_json(const CompareResult& r) {
                          {"identity_edge_mismatch", optional_number(g.identity_edge_mismatch)},
                          {"registered_edge_mismatch", optional_number(g.registered_edge_mismatch)},
                          {"note", g.note}};
-    for (const auto& [q, s] : r.noise)
-        j["noise"][q] = {{"measured_source", s.measured},
-                         {"simulated_source", s.simulated},
-                         {"measured_sigma_median", s.measured_sigma_median},
-                         {"simulated_sigma_median", s.simulated_sigma_median},
-                         {"measured_dof", degrees_of_freedom(s.measured_dof)},
-                         {"simulated_dof", degrees_of_freedom(s.simulated_dof)},
-                         {"measured_shared", s.measured_shared}};
+    for (const Quantity q : kZQuantities) {
+        const NoiseSource& s = r.noise[q];
+        j["noise"][quantity_name(q)] = {{"measured_source", s.measured},
+                                        {"simulated_source", s.simulated},
+                                        {"measured_sigma_median", s.measured_sigma_median},
+                                        {"simulated_sigma_median", s.simulated_sigma_median},
+                                        {"measured_dof", degrees_of_freedom(s.measured_dof)},
+                                        {"simulated_dof", degrees_of_freedom(s.simulated_dof)},
+                                        {"measured_shared", s.measured_shared}};
+    }
     j["summary"] = summary_paragraph(r);
     j["design"] = {{"false_alarm_per_region", r.design.false_alarm_per_region},
                    {"false_alarm_per_quantity", r.design.false_alarm_per_quantity()},
@@ -149,7 +151,8 @@ std::string comparison_json(const CompareResult& r) {
     j["regions"] = nlohmann::json::array();
     for (const auto& region : r.regions) {
         nlohmann::json jr{{"name", region.name}, {"pixel_count", region.pixel_count}};
-        for (const auto& [q, s] : region.stats) jr["stats"][q] = to_json(s);
+        for (const Quantity q : kComparedQuantities)
+            jr["stats"][quantity_name(q)] = to_json(region.stats[q]);
         if (region.s1_contrast_measured && region.s1_contrast_simulated)
             jr["s1_contrast"] = {
                 {"measured", *region.s1_contrast_measured},
@@ -157,8 +160,11 @@ std::string comparison_json(const CompareResult& r) {
                 {"difference", *region.s1_contrast_measured - *region.s1_contrast_simulated}};
         else
             jr["s1_contrast"] = nullptr;
-        for (const auto& [q, z] : region.z) jr["z"][q] = to_json(z);
-        for (const auto& [q, v] : region.verdicts) jr["verdicts"][q] = to_json(v);
+        for (const Quantity q : kZQuantities) {
+            jr["z"][quantity_name(q)] = to_json(region.z[q]);
+            jr["verdicts"][quantity_name(q)] = to_json(region.verdicts[q]);
+        }
+        jr["z"]["all"] = to_json(region.z_pooled);
         jr["verdict"] = to_string(region.verdict);
         jr["aop"] = to_json(region.aop);
         if (const auto& k = region.s0_bias_k)

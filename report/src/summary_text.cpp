@@ -20,11 +20,11 @@ std::string join_names(const std::vector<std::string>& names) {
 // "S1 by −0.12 (4.1 σ; detectable 0.09)" for each quantity of `region` that exceeds the noise.
 std::string exceeding_quantities(const RegionResult& region, const std::string& units) {
     std::vector<std::string> parts;
-    for (const auto& q : kZQuantities) {
-        const auto& t = region.verdicts.at(q).mean;
+    for (const Quantity q : kZQuantities) {
+        const auto& t = region.verdicts[q].mean;
         if (t.verdict != Agreement::ExceedsNoise) continue;
-        parts.push_back(fmt::format("{} by {:+.3g} {} ({:.1f} σ of the region mean)", q,
-                                    t.difference, units, t.t));
+        parts.push_back(fmt::format("{} by {:+.3g} {} ({:.1f} σ of the region mean)",
+                                    quantity_name(q), t.difference, units, t.t));
     }
     return join_names(parts);
 }
@@ -62,15 +62,16 @@ std::string power_sentence(const CompareResult& r) {
     std::string ranges;
     std::vector<std::string> powerless;
     std::size_t tested = 0;
-    for (const auto& q : kZQuantities) {
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
         double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
         for (const auto& region : r.regions) {
-            const auto& t = region.verdicts.at(q).mean;
+            const auto& t = region.verdicts[quantity].mean;
             if (t.verdict == Agreement::NoData) continue;
             ++tested;
             lo = std::min(lo, t.detectable_bias);
             hi = std::max(hi, t.detectable_bias);
-            if (!verdict_has_power(region, q)) powerless.push_back(region.name + " " + q);
+            if (!verdict_has_power(region, quantity)) powerless.push_back(region.name + " " + q);
         }
         if (hi <= 0.0) continue;
         const std::string lo_text = fmt::format("{:.2g}", lo), hi_text = fmt::format("{:.2g}", hi);
@@ -98,8 +99,9 @@ std::string power_sentence(const CompareResult& r) {
 std::string sigma_diagnostic_sentence(const CompareResult& r) {
     std::vector<std::string> over, under;
     for (const auto& region : r.regions)
-        for (const auto& q : kZQuantities) {
-            const auto check = region.verdicts.at(q).sigma.verdict;
+        for (const Quantity quantity : kZQuantities) {
+            const std::string& q = quantity_name(quantity);
+            const auto check = region.verdicts[quantity].sigma.verdict;
             if (check == SigmaCheck::Overestimated) over.push_back(region.name + " " + q);
             if (check == SigmaCheck::Underestimated) under.push_back(region.name + " " + q);
         }
@@ -117,13 +119,11 @@ std::string sigma_diagnostic_sentence(const CompareResult& r) {
 
 }  // namespace
 
-bool verdict_has_power(const RegionResult& region, const std::string& quantity) {
-    const auto verdict = region.verdicts.find(quantity);
-    const auto stats = region.stats.find(quantity);
-    if (verdict == region.verdicts.end() || stats == region.stats.end()) return false;
-    const auto& t = verdict->second.mean;
+bool verdict_has_power(const RegionResult& region, Quantity quantity) {
+    if (quantity == Quantity::DoLP) return false;
+    const auto& t = region.verdicts[quantity].mean;
     return t.verdict != Agreement::NoData && std::isfinite(t.detectable_bias) &&
-           t.detectable_bias < std::abs(stats->second.simulated_mean);
+           t.detectable_bias < std::abs(region.stats[quantity].simulated_mean);
 }
 
 std::string summary_paragraph(const CompareResult& r) {

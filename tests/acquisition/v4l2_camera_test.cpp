@@ -295,6 +295,20 @@ private:
     double m_angle = 0;
 };
 
+// `frames` frames at one angle, 0°, after a 20 ms settle, recorded as a session in `dir`.
+CaptureSummary capture_one_angle(Camera& camera, StageFillingTheQueue& stage, int frames,
+                                 const std::filesystem::path& dir) {
+    CapturePlan plan;
+    plan.angles_deg = {0.0};
+    plan.frames_per_angle = frames;
+    plan.settle_s = 0.02;
+    auto session =
+        SessionWriter::create(dir, new_session_manifest(camera.info(), stage.info(), plan));
+    CaptureOptions capture_options;
+    capture_options.progress_stream = nullptr;
+    return run_capture(camera, stage, plan, session, capture_options);
+}
+
 TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     // Four mmap buffers fill during the move; DQBUF hands them out first. Their driver timestamps
     // (CLOCK_MONOTONIC at fill, mapped to CLOCK_REALTIME) predate the settle end, so the capture
@@ -308,16 +322,8 @@ TEST(V4l2Camera, CaptureDiscardsBuffersFilledDuringTheMove) {
     auto camera = open_fake(device, options);
     ASSERT_TRUE(camera);
     StageFillingTheQueue stage(*device);
-    CapturePlan plan;
-    plan.angles_deg = {0.0};
-    plan.frames_per_angle = 3;
-    plan.settle_s = 0.02;
     test::TempDir tmp;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
-    CaptureOptions capture_options;
-    capture_options.progress_stream = nullptr;
-    const auto summary = run_capture(*camera, stage, plan, session, capture_options);
+    const auto summary = capture_one_angle(*camera, stage, 3, tmp / "s");
     EXPECT_GE(summary.stale_discarded, 4u);  // the four buffers filled during the move, at least
 
     const SessionManifest m = read_session(tmp / "s");
@@ -348,16 +354,8 @@ TEST(V4l2Camera, DeclaredMicrogridPatternIsReportedAndRecordedInTheSession) {
     ASSERT_TRUE(camera->info().microgrid_pattern_deg);
     EXPECT_EQ(*camera->info().microgrid_pattern_deg, *options.microgrid_pattern_deg);
     StageFillingTheQueue stage(*device);
-    CapturePlan plan;
-    plan.angles_deg = {0.0};
-    plan.frames_per_angle = 2;
-    plan.settle_s = 0.02;
     test::TempDir tmp;
-    auto session =
-        SessionWriter::create(tmp / "s", new_session_manifest(camera->info(), stage.info(), plan));
-    CaptureOptions capture_options;
-    capture_options.progress_stream = nullptr;
-    run_capture(*camera, stage, plan, session, capture_options);
+    capture_one_angle(*camera, stage, 2, tmp / "s");
     const SessionManifest m = read_session(tmp / "s");
     ASSERT_EQ(m.records.size(), 1u);
     ASSERT_TRUE(m.camera.microgrid_pattern_deg);

@@ -1,4 +1,4 @@
-// `tirpol compare --camera CAM.yaml` through the real executable (issue 14): a simulation rendered
+// `tirpol compare --camera CAM.yaml` through the real executable: a simulation rendered
 // through the measured camera's calibrated model (distortion, principal point off centre) is
 // compared on the measured pixel grid without a warp, the report states the method and the residual
 // misalignment measured from the images; a simulation rendered through another lens is refused.

@@ -1,4 +1,4 @@
-// Field radiometry through the real executable (issue 15): an FPA-dependent calibration from
+// Field radiometry through the real executable: an FPA-dependent calibration from
 // sessions at three camera temperatures, applied at another camera temperature by `temperature`,
 // the extrapolation warning, the calibration summary, and `noise` on a raw file.
 

@@ -1,4 +1,4 @@
-// The CLI never prints inf/nan with exit 0 and always writes valid UTF-8 JSON (issue 20: `planck
+// The CLI never prints inf/nan with exit 0 and always writes valid UTF-8 JSON (before: `planck
 // --temperature-k 1e308` printed inf and -nan; a non-UTF-8 EXR attribute made `info --json` fail
 // with json type_error 316). Exit code 1 is tirpol::Error (bad input), as in docs/cli.md.
 

@@ -1,4 +1,4 @@
-// Calibration quality (issue 15 item 4): residuals per set-point, the structured-residual warning
+// Calibration quality: residuals per set-point, the structured-residual warning
 // of a linear fit to a curved response, NEDT against its hand-computed value, warnings when a
 // calibration is applied beyond its blackbody or FPA range, and the one-page summary files.
 

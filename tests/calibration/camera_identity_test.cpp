@@ -1,5 +1,5 @@
 // A radiometric calibration records the camera it was made with, and applying it to a session from
-// another camera is refused unless forced (issue 20: another camera's calibration of the same size
+// another camera is refused unless forced (once another camera's calibration of the same size
 // gave S0 = 203 W/(m²·sr) with exit 0). Per-pixel gains and offsets belong to one detector.
 
 #include <gmock/gmock.h>

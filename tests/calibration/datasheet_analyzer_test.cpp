@@ -1,4 +1,4 @@
-// Polarimetric calibration without known-source records (issue 15 item 6): the analyzer from the
+// Polarimetric calibration without known-source records: the analyzer from the
 // polarizer's datasheet extinction ratio and the mount's axis offsets, and a method string that
 // says which model was used.
 

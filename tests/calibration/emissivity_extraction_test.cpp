@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 
+#include "stokes_image.h"
 #include "test_support.h"
 #include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"
@@ -26,26 +27,17 @@ Image scene(const Band& band, double noise, unsigned seed) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> n(0.0, noise);
     const double l_dw = band.radiance(240.0), l_bb = band.radiance(295.0);
-    Image im(kW, kH);
-    auto& s0 = im.add_channel("S0");
-    auto& s1 = im.add_channel("S1");
-    auto& s2 = im.add_channel("S2");
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const std::size_t i = im.index(x, y);
-            double a = l_dw, b = 0.0, c = 0.0;
-            if (x >= 30 && x < 50) {
-                a = 0.08 * l_dw + 0.92 * l_bb;
-                b = -0.03 * (l_bb - l_dw);
-                c = 0.004 * (l_bb - l_dw);
-            } else if (x >= 60) {
-                a = l_bb;
-            }
-            s0[i] = static_cast<float>(a + n(rng));
-            s1[i] = static_cast<float>(b + n(rng));
-            s2[i] = static_cast<float>(c + n(rng));
+    return test::stokes_image(kW, kH, [&](int x, int) -> std::array<double, 3> {
+        double a = l_dw, b = 0.0, c = 0.0;
+        if (x >= 30 && x < 50) {
+            a = 0.08 * l_dw + 0.92 * l_bb;
+            b = -0.03 * (l_bb - l_dw);
+            c = 0.004 * (l_bb - l_dw);
+        } else if (x >= 60) {
+            a = l_bb;
         }
-    return im;
+        return {a + n(rng), b + n(rng), c + n(rng)};  // drawn in this order, left to right
+    });
 }
 
 EmissivityRois rois() {

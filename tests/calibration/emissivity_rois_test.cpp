@@ -1,5 +1,5 @@
 // The emissivity ROI file is held to whole-pixel rectangles and non-negative uncertainties, and an
-// extracted ε_S0 outside [0, 1] beyond noise carries a warning (issue 20: non-integer rectangles
+// extracted ε_S0 outside [0, 1] beyond noise carries a warning (before: non-integer rectangles
 // were truncated silently, temperature_std_k: -1 was accepted, ε_S0 = 1.48 was reported without a
 // word).
 

@@ -1,8 +1,8 @@
 // FPA-temperature-dependent radiometric calibration (Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304,
 // 2013): on a synthetic uncooled camera whose offset moves 60 counts/K and gain −0.6 %/K with its
 // own FPA temperature, the FPA model fitted from blackbody frames at three camera temperatures
-// keeps brightness temperatures within 50 mK over a 15 K FPA swing (the target of issue 15), while
-// a calibration at one camera state errs by more than 1 K at the ends of the swing.
+// keeps brightness temperatures within 50 mK over a 15 K FPA swing (the field-radiometry target),
+// while a calibration at one camera state errs by more than 1 K at the ends of the swing.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

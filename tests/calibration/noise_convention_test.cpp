@@ -1,4 +1,4 @@
-// `tirpol noise` as others compute it (issue 15 item 5): 3D-noise components with the sample
+// `tirpol noise` as others compute it: 3D-noise components with the sample
 // (N − 1) normalisation of pyradi's ry3dnoise (NelisW/pyradi, pyradi/ry3dnoise.py: every component
 // is np.std(..., ddof=1)) against hand-computed cubes; stacks from PNG/TIFF folders and raw files;
 // noise in kelvin after the calibration, where the fixed pattern the calibration removes is gone.

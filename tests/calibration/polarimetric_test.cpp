@@ -241,7 +241,7 @@ TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) 
     raw.project_to_realizable = false;
     const Image as_measured = reduce_stokes(images, kN, 1, model, nullptr, raw);
     const Image projected = reduce_stokes(images, kN, 1, model);
-    const int count = std::get<int>(projected.attributes().at("unrealizable_pixels"));
+    const int count = stokes_reduction_record(projected).unrealizable_pixels;
     EXPECT_GT(count, 50);
     int unrealizable_left = 0, unrealizable_before = 0;
     for (std::size_t i = 0; i < kN; ++i) {
@@ -255,6 +255,21 @@ TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) 
     }
     EXPECT_EQ(unrealizable_left, 0);
     EXPECT_EQ(unrealizable_before, count);
+}
+
+TEST(StokesReduction, TheRecordOfAnImageNotMadeByAReductionIsAnErrorNamingTheAttribute) {
+    const auto model = AnalyzerModel::ideal(kAngles);
+    std::vector<AnalyzerImage> images;
+    for (double a : kAngles) images.push_back({a, {1.0f, 2.0f}, {}, "flat"});
+    Image stokes = reduce_stokes(images, 2, 1, model);
+    EXPECT_EQ(stokes_reduction_record(stokes).unrealizable_pixels, 0);
+    EXPECT_FALSE(stokes_reduction_record(stokes).wire_grid_corrected);
+    stokes.attributes()[kWireGridCorrectedAttribute] = std::string("yes");
+    EXPECT_THAT([&] { stokes_reduction_record(stokes); },
+                testing::ThrowsMessage<Error>(testing::HasSubstr("'wire_grid_corrected' is not")));
+    stokes.attributes().erase(kUnrealizablePixelsAttribute);
+    EXPECT_THAT([&] { stokes_reduction_record(stokes); },
+                testing::ThrowsMessage<Error>(testing::HasSubstr("no attribute 'unrealizable")));
 }
 
 TEST(StokesReduction, ASetCancelFlagStopsTheReductionAndAnUnsetOneChangesNothing) {

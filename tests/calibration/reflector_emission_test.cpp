@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "stokes_image.h"
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/error.h"
 
@@ -18,22 +19,12 @@ constexpr double kReflectorEmissivity = 0.1, kReflectorK = 285.0, kSkyK = 240.0,
 /// Left half: the reflector; right half: a panel with ε_S0 = 0.92, ε_S1 = −0.03. No noise.
 Image scene(const Band& band) {
     const double l_dw = band.radiance(kSkyK), l_bb = band.radiance(kPanelK);
-    Image im(kW, kH);
-    auto& s0 = im.add_channel("S0");
-    auto& s1 = im.add_channel("S1");
-    auto& s2 = im.add_channel("S2");
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const std::size_t i = im.index(x, y);
-            const bool reflector = x < kW / 2;
-            s0[i] =
-                static_cast<float>(reflector ? (1.0 - kReflectorEmissivity) * l_dw +
-                                                   kReflectorEmissivity * band.radiance(kReflectorK)
-                                             : 0.08 * l_dw + 0.92 * l_bb);
-            s1[i] = static_cast<float>(reflector ? 0.0 : -0.03 * (l_bb - l_dw));
-            s2[i] = 0.0f;
-        }
-    return im;
+    const double l_reflector =
+        (1.0 - kReflectorEmissivity) * l_dw + kReflectorEmissivity * band.radiance(kReflectorK);
+    return test::stokes_image(kW, kH, [&](int x, int) -> std::array<double, 3> {
+        if (x < kW / 2) return {l_reflector, 0.0, 0.0};
+        return {0.08 * l_dw + 0.92 * l_bb, -0.03 * (l_bb - l_dw), 0.0};
+    });
 }
 
 EmissivityRois rois() {

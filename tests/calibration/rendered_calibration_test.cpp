@@ -1,4 +1,4 @@
-// Geometric calibration end to end with the renderer as the source of truth (issue 14): a heated
+// Geometric calibration end to end with the renderer as the source of truth: a heated
 // checkerboard rendered through a known lens at 15 poses is detected in the EXR frames and
 // calibrated; fx fy cx cy come back within 0.5 %, the distortion within its reported 2σ, the RMS
 // reprojection error is < 0.1 px without noise and grows as it should with sensor noise. A board at

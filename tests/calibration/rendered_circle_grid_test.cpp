@@ -1,4 +1,4 @@
-// Circle grids through the same calibration path as the checkerboard (issue 14): a heated plate
+// Circle grids through the same calibration path as the checkerboard: a heated plate
 // behind a cold mask with round holes — OpenCV's symmetric and asymmetric grids — rendered through
 // the truth lens at 15 poses. Detection (the blob detector set
 // for thermal frames) and calibration recover fx fy cx cy within the issue's 0.5 % and the

@@ -1,6 +1,7 @@
 #pragma once
 // Frames of a heated target rendered through a known lens, and the check that a calibration
-// recovered that lens (issue 14's tolerances): shared by the checkerboard and circle-grid tests.
+// recovered that lens (the twin's tolerances, docs/camera-geometry.md): shared by the checkerboard
+// and circle-grid tests.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -22,6 +22,19 @@ using ::testing::HasSubstr;
 constexpr int kW = 4, kH = 2;
 constexpr double kGain = 100.0, kOffset = 1000.0;  // counts per W/(m²·sr), counts
 
+// A noiseless linear camera (kGain, kOffset) fitted from blackbodies at 290 K and 320 K.
+void write_two_blackbody_calibration(const std::filesystem::path& path, const Band& band) {
+    std::vector<BlackbodyFrame> frames;
+    for (double t : {290.0, 320.0}) {
+        BlackbodyFrame f;
+        f.temperature_k = t;
+        f.counts.assign(kW * kH, static_cast<float>(kOffset + kGain * band.radiance(t)));
+        f.source = "blackbody";
+        frames.push_back(f);
+    }
+    write_radiometric_calibration(path.string(), fit_radiometric(frames, kW, kH, band));
+}
+
 void write_counts(const std::filesystem::path& path, double counts) {
     Image image(kW, kH);
     image.add_channel("counts", static_cast<float>(counts));
@@ -32,16 +45,7 @@ void write_counts(const std::filesystem::path& path, double counts) {
 TEST(TemperatureImage, LinearCameraReadsTheSceneTemperature) {
     const test::TempDir dir("temperature_image");
     const Band band(8.0, 14.0);
-    std::vector<BlackbodyFrame> frames;
-    for (double t : {290.0, 320.0}) {
-        BlackbodyFrame f;
-        f.temperature_k = t;
-        f.counts.assign(kW * kH, static_cast<float>(kOffset + kGain * band.radiance(t)));
-        f.source = "blackbody";
-        frames.push_back(f);
-    }
-    write_radiometric_calibration((dir / "cal.exr").string(),
-                                  fit_radiometric(frames, kW, kH, band));
+    write_two_blackbody_calibration(dir / "cal.exr", band);
     write_counts(dir / "scene.exr", kOffset + kGain * band.radiance(305.0));
     TemperatureImageOptions o;
     o.image = (dir / "scene.exr").string();
@@ -69,15 +73,7 @@ TEST(TemperatureImage, LinearCameraReadsTheSceneTemperature) {
 TEST(TemperatureImage, ImageOfAnotherSizeIsAnErrorNamingBoth) {
     const test::TempDir dir("temperature_image_size");
     const Band band(8.0, 14.0);
-    std::vector<BlackbodyFrame> frames;
-    for (double t : {290.0, 320.0}) {
-        BlackbodyFrame f;
-        f.temperature_k = t;
-        f.counts.assign(kW * kH, static_cast<float>(kOffset + kGain * band.radiance(t)));
-        frames.push_back(f);
-    }
-    write_radiometric_calibration((dir / "cal.exr").string(),
-                                  fit_radiometric(frames, kW, kH, band));
+    write_two_blackbody_calibration(dir / "cal.exr", band);
     Image small(2, 2);
     small.add_channel("counts", 2000.0f);
     write_exr(dir / "small.exr", small);

@@ -1,4 +1,4 @@
-// A key given twice in one YAML mapping is an error naming both places (issue 20: yaml-cpp kept the
+// A key given twice in one YAML mapping is an error naming both places (before: yaml-cpp kept the
 // first silently, against the documented strictness of tirpol's configs).
 
 #include <gmock/gmock.h>

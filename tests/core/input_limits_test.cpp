@@ -1,4 +1,4 @@
-// Declared sizes are checked before allocating and bit depths before interpreting pixels (issue 20:
+// Declared sizes are checked before allocating and bit depths before interpreting pixels (before:
 // a 480 KB EXR declaring 40000×40000 made `info` use 4.5 GB; an 8-bit PNG gave all-NaN
 // temperatures). The inputs are the regression files kept in tests/data/fuzz-regressions/,
 // written by fuzz/make_seeds.py.

@@ -1,6 +1,6 @@
 // 16-bit raw PNGs are decoded with libpng directly (core/src/png_read.cpp): chunks that cannot
 // change a count (a text chunk with a wrong CRC, a colour profile that is not zlib data) must
-// neither reach stderr — OpenCV's decoder let libpng print "libpng warning: ..." (issue 20) — nor
+// neither reach stderr — OpenCV's decoder let libpng print "libpng warning: ..." — nor
 // alter the counts. The file is fuzz/make_seeds.py's regression input
 // raw_image/ancillary_chunk_warnings.png: counts 18000 + x + 100·y, 4×3.
 

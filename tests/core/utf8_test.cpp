@@ -1,4 +1,4 @@
-// Text written as JSON or HTML is valid UTF-8 whatever bytes came in (issue 20: a non-UTF-8 EXR
+// Text written as JSON or HTML is valid UTF-8 whatever bytes came in (before: a non-UTF-8 EXR
 // attribute made `info --json` fail with json type_error 316). Cases from RFC 3629 §3–4 and the
 // Unicode Standard's "best practice" for U+FFFD substitution (one per invalid byte here).
 

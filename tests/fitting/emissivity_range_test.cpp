@@ -1,4 +1,4 @@
-// Measured emissivities are held to their physical range before any fit (issue 20: one value of
+// Measured emissivities are held to their physical range before any fit (before: one value of
 // 1e308 made `fit` crash in Eigen's JacobiSVD through Ceres' covariance; 5 and 1e9 were fitted with
 // only a χ² warning). ε_S0 = 1 − DHR lies in [0, 1] and |ε_S1| ≤ 1; measured values may stray by
 // the noise tolerance limits::kEmissivityTolerance (0.05), not further.

@@ -1,4 +1,4 @@
-// An unattended radiometric calibration end to end (issue 15 item 3): the Fluke 4180 driver talks
+// An unattended radiometric calibration end to end: the Fluke 4180 driver talks
 // to the blackbody simulator on a pseudo-terminal (first-order plate, τ = 0.5 s so the test takes
 // seconds rather than the hours of a real 4180), a free-running simulated camera's counts follow
 // the plate's *actual*, lagging temperature, counts = offset + gain·L(T_plate) per pixel (L: 8–14

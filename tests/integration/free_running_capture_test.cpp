@@ -1,5 +1,5 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// The time-true rig (issue 12): a free-running GigE Vision camera (FakeGigECameraServer over real
+// The time-true rig: a free-running GigE Vision camera (FakeGigECameraServer over real
 // GVCP/GVSP on loopback, no software trigger, its own 30 Hz clock, a lossy link) looks through a
 // polarizer on the APT stage simulator (real serial driver on a pseudo-terminal) turning at 15°/s,
 // a K10CR1's pace. Each frame is rendered as the polarizer image of a known Stokes scene, I(α) =

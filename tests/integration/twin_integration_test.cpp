@@ -1,9 +1,9 @@
 // Requires TIRPOL_WITH_ARAVIS (built only with that back end: cmake/TirpolBackends.cmake).
-// The digital twin end to end at a tiny resolution (issue 9): the measured Stokes of the flat black
+// The digital twin end to end at a tiny resolution: the measured Stokes of the flat black
 // paint panel must agree with the truth render within the propagated uncertainties, the extracted
 // polarized emissivity with the paint's model (materials::directional_emissivity) within the
 // extraction's uncertainties, and the fitted n and σ with the paint's values within their fitted σ.
-// The camera's lens and pose are recovered (issue 14) and the simulation, rendered through them,
+// The camera's lens and pose are recovered and the simulation, rendered through them,
 // lands on the measured pixel grid without a warp.
 
 #include <gtest/gtest.h>
@@ -162,14 +162,15 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
         const auto& region = again.result.regions[i];
         const auto& jr = json["regions"][i];
         EXPECT_EQ(region.name, jr["name"]);
-        for (const char* q : {"S0", "S1", "S2"}) {
+        for (const report::Quantity quantity : report::kZQuantities) {
+            const std::string& q = report::quantity_name(quantity);
             // report.json prints doubles round-trip exactly; EXR planes are float, as in memory.
-            EXPECT_DOUBLE_EQ(region.z.at(q).fraction_above_2,
+            EXPECT_DOUBLE_EQ(region.z[quantity].fraction_above_2,
                              jr["z"][q]["fraction_above_2"].get<double>())
                 << region.name << " " << q;
-            EXPECT_DOUBLE_EQ(region.z.at(q).rms, jr["z"][q]["rms"].get<double>())
+            EXPECT_DOUBLE_EQ(region.z[quantity].rms, jr["z"][q]["rms"].get<double>())
                 << region.name << " " << q;
-            EXPECT_DOUBLE_EQ(region.stats.at(q).bias, jr["stats"][q]["bias"].get<double>())
+            EXPECT_DOUBLE_EQ(region.stats[quantity].bias, jr["stats"][q]["bias"].get<double>())
                 << region.name << " " << q;
         }
         EXPECT_EQ(report::to_string(region.verdict), jr["verdict"]) << region.name;

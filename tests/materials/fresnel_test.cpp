@@ -143,7 +143,7 @@ TEST(Fresnel, RhombTurnsPlus45LinearIntoRightCircular) {
 
 // A metal is a retarder off normal incidence. Mitsuba 3's comparison case n = 2 + 3i: for +45°
 // linear input the sign of S3 from the Mueller matrix must match the rotation sense of the physical
-// field at every angle (the convention error that issue 13 found flipped every pixel's S3).
+// field at every angle (a convention error once flipped every pixel's S3).
 TEST(Fresnel, MetalRetardanceGivesTheS3OfThePhysicalField) {
     for (const ComplexIndex metal : {ComplexIndex{2.0, 3.0}, ComplexIndex{12.1, 69.2}})
         for (double deg : {20.0, 45.0, 60.0, 75.0, 85.0}) {

@@ -23,7 +23,7 @@ void push(Planes& planes, double p, double aop_deg, float var) {
     planes.var.push_back(var);
 }
 AopStats stats(const Planes& m, const Planes& s) {
-    return aop_stats(m.s1, m.s2, s.s1, s.s2, m.var, m.var, s.var, s.var,
+    return aop_stats({m.s1, m.s2, m.var, m.var}, {s.s1, s.s2, s.var, s.var},
                      std::vector<std::uint8_t>(m.s1.size(), 1));
 }
 }  // namespace

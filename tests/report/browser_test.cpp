@@ -64,7 +64,7 @@ TEST(ReportBrowser, HeadlessChromiumLoadsTheReportWithoutErrorsAndShowsTheImages
     options.measured_name = "measured.exr";
     options.simulated_name = "simulated.exr";
     options.regions = load_regions(dir / "rois.yaml");
-    // A name OpenCV's Hershey fonts cannot draw (issue 20): the overview names regions in SVG text.
+    // A name OpenCV's Hershey fonts cannot draw: the overview names regions in SVG text.
     const std::string unicode_name = "Schnee ❄ Süd";
     options.regions->regions.push_back(
         {unicode_name, {{20, 20}, {60, 20}, {60, 50}, {20, 50}}, ""});

@@ -1,4 +1,4 @@
-// Registration by camera model (issue 14): a simulation rendered through the measured camera's
+// Registration by camera model: a simulation rendered through the measured camera's
 // calibrated model is compared on the measured pixel grid without a warp; the header check refuses
 // a simulation rendered through another lens, and the residual misalignment is still measured from
 // the images (phase correlation, Kuglin & Hines 1975), so a pose error shows up as a shift.

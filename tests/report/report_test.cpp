@@ -62,8 +62,9 @@ TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
     const CompareResult r =
         write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     ASSERT_EQ(r.regions.size(), 1u);
-    for (const auto& q : kZQuantities) {
-        const ZStats& z = r.regions[0].z.at(q);
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
+        const ZStats& z = r.regions[0].z[quantity];
         ASSERT_EQ(z.pixel_count, 256u * 192u) << q;
         EXPECT_NEAR(z.fraction_above_2, kNormalTailAbove2,
                     4.0 * binomial_sd(kNormalTailAbove2, z.pixel_count))
@@ -74,10 +75,10 @@ TEST(ReportComparison, ZFollowsTheNormalLawWhenOnlyNoiseDiffers) {
         EXPECT_NEAR(z.rms, 1.0, 0.03) << q;
         EXPECT_TRUE(consistent_with_noise(z)) << q;
     }
-    EXPECT_EQ(r.noise.at("S1").measured, "channel S1_std");
-    EXPECT_EQ(r.noise.at("S1").simulated, "channel S1_var");
-    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);
-    EXPECT_NEAR(r.noise.at("S0").simulated_sigma_median, o.simulated_sigma, 1e-6);
+    EXPECT_EQ(r.noise.s1.measured, "channel S1_std");
+    EXPECT_EQ(r.noise.s1.simulated, "channel S1_var");
+    EXPECT_NEAR(r.noise.s1.measured_sigma_median, std::sqrt(2.0) * o.measured_sigma, 1e-6);
+    EXPECT_NEAR(r.noise.s0.simulated_sigma_median, o.simulated_sigma, 1e-6);
 }
 
 TEST(ReportComparison, ASetCancelFlagStopsTheComparisonBeforeItsRegistration) {
@@ -99,27 +100,27 @@ TEST(ReportComparison, ARealBiasIsDetectedAndMeasured) {
     tirpol::test::TempDir dir;
     const CompareResult r = compare_unregistered(pair, dir);
     const auto& centre = region(r, "panel_5");
-    EXPECT_FALSE(consistent_with_noise(centre.z.at("S1")));
-    EXPECT_NEAR(centre.z.at("S1").fraction_above_2, 0.16, 0.05);
-    EXPECT_NEAR(centre.stats.at("S1").bias, o.s1_bias,
-                4.0 * sigma_total / std::sqrt(centre.stats.at("S1").pixel_count));
-    EXPECT_TRUE(consistent_with_noise(region(r, "panel_1").z.at("S1")));
-    EXPECT_TRUE(consistent_with_noise(centre.z.at("S0")));
-    EXPECT_NEAR(region(r, "panel_1").stats.at("S1").bias, 0.0,
-                4.0 * sigma_total / std::sqrt(region(r, "panel_1").stats.at("S1").pixel_count));
+    EXPECT_FALSE(consistent_with_noise(centre.z.s1));
+    EXPECT_NEAR(centre.z.s1.fraction_above_2, 0.16, 0.05);
+    EXPECT_NEAR(centre.stats.s1.bias, o.s1_bias,
+                4.0 * sigma_total / std::sqrt(centre.stats.s1.pixel_count));
+    EXPECT_TRUE(consistent_with_noise(region(r, "panel_1").z.s1));
+    EXPECT_TRUE(consistent_with_noise(centre.z.s0));
+    EXPECT_NEAR(region(r, "panel_1").stats.s1.bias, 0.0,
+                4.0 * sigma_total / std::sqrt(region(r, "panel_1").stats.s1.pixel_count));
     // Verdicts per quantity: only S1 of the centre panel exceeds, and that decides the region. The
     // region-mean test sees the 1σ-per-pixel bias at t ≈ √n; its σ_mean is √(σ_m² + σ_s²)/√n.
-    const auto& s1 = centre.verdicts.at("S1").mean;
+    const auto& s1 = centre.verdicts.s1.mean;
     EXPECT_EQ(s1.verdict, Agreement::ExceedsNoise);
     EXPECT_NEAR(s1.combined.sigma, sigma_total / std::sqrt(static_cast<double>(s1.pixel_count)),
                 1e-3 * s1.combined.sigma);
     EXPECT_GT(s1.t, 5.0);
-    EXPECT_EQ(centre.verdicts.at("S0").mean.verdict, Agreement::ConsistentWithNoise);
-    EXPECT_EQ(centre.verdicts.at("S2").mean.verdict, Agreement::ConsistentWithNoise);
+    EXPECT_EQ(centre.verdicts.s0.mean.verdict, Agreement::ConsistentWithNoise);
+    EXPECT_EQ(centre.verdicts.s2.mean.verdict, Agreement::ConsistentWithNoise);
     EXPECT_EQ(centre.verdict, Agreement::ExceedsNoise);
     EXPECT_EQ(region(r, "panel_1").verdict, Agreement::ConsistentWithNoise);
     // A bias that distorts nothing within the region leaves the per-pixel σ plausible.
-    EXPECT_EQ(centre.verdicts.at("S1").sigma.verdict, SigmaCheck::Plausible);
+    EXPECT_EQ(centre.verdicts.s1.sigma.verdict, SigmaCheck::Plausible);
 }
 
 TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
@@ -136,9 +137,9 @@ TEST(ReportComparison, OverstatedMeasuredSigmaIsFlagged) {
     const CompareResult r =
         write_comparison_report(pair.measured, pair.simulated, options, dir.path());
     const auto& all = r.regions.at(0);
-    EXPECT_TRUE(consistent_with_noise(all.z.at("S0")));
+    EXPECT_TRUE(consistent_with_noise(all.z.s0));
     // The σ diagnostic is separate from the agreement verdict: the means agree, the σ is too large.
-    const auto& s0 = all.verdicts.at("S0");
+    const auto& s0 = all.verdicts.s0;
     EXPECT_EQ(s0.sigma.verdict, SigmaCheck::Overestimated);
     EXPECT_LT(s0.sigma.sigma_factor, 0.5);
     EXPECT_EQ(s0.mean.verdict, Agreement::ConsistentWithNoise);
@@ -166,7 +167,7 @@ TEST(ReportComparison, S0BiasInKelvinFollowsThePlanckSlopeOfTheBand) {
     const CompareResult base = write_comparison_report(measured, simulated, options, dir / "base");
     const auto& p1 = region(base, "panel_1");
     ASSERT_TRUE(p1.s0_bias_k.has_value());
-    const double t = band.brightness_temperature(p1.stats.at("S0").simulated_mean);
+    const double t = band.brightness_temperature(p1.stats.s0.simulated_mean);
     EXPECT_NEAR(p1.s0_bias_k->temperature_k, t, 1e-9);
     EXPECT_NEAR(p1.s0_bias_k->radiance_dT, band.radiance_dT(t), 1e-12);
     const float offset = static_cast<float>(0.5 * band.radiance_dT(t));
@@ -176,8 +177,8 @@ TEST(ReportComparison, S0BiasInKelvinFollowsThePlanckSlopeOfTheBand) {
     const auto& k = *region(shifted, "panel_1").s0_bias_k;
     EXPECT_NEAR(k.bias_k - p1.s0_bias_k->bias_k, 0.5, 1e-3);
     EXPECT_NEAR(k.bias_k, 0.5, 4.0 * k.bias_sigma_k);
-    EXPECT_NEAR(k.bias_sigma_k,
-                region(shifted, "panel_1").stats.at("S0").bias_sigma / k.radiance_dT, 1e-12);
+    EXPECT_NEAR(k.bias_sigma_k, region(shifted, "panel_1").stats.s0.bias_sigma / k.radiance_dT,
+                1e-12);
     EXPECT_EQ(shifted.band_source, "band_um attribute of simulated");
     // Without a band the kelvin bias is absent and the report says why.
     simulated.attributes().erase("band_um");
@@ -229,11 +230,11 @@ TEST(ReportComparison, S1ContrastAgainstTheBackgroundMatchesTheScene) {
     EXPECT_EQ(json["measured"]["width"], 192);
     EXPECT_EQ(json["registration"]["method"], "auto");
     EXPECT_DOUBLE_EQ(json["regions"][1]["stats"]["S1"]["bias"].get<double>(),
-                     r.regions[1].stats.at("S1").bias);
+                     r.regions[1].stats.s1.bias);
     EXPECT_DOUBLE_EQ(json["regions"][0]["s1_contrast"]["measured"].get<double>(),
                      *r.regions[0].s1_contrast_measured);
     EXPECT_DOUBLE_EQ(json["regions"][0]["z"]["all"]["fraction_above_2"].get<double>(),
-                     r.regions[0].z.at("all").fraction_above_2);
+                     r.regions[0].z_pooled.fraction_above_2);
     EXPECT_EQ(json["background"], "background");
     for (const auto& png : json["files"]["pngs"])
         EXPECT_TRUE(std::filesystem::exists(dir / png.get<std::string>())) << png;
@@ -310,23 +311,23 @@ TEST(ReportComparison, MeasuredNoiseFallsBackToUserSigmaFlatRegionOrImmerkaer) {
     options.registration = RegistrationMethod::None;
     options.measured_frame_sigma = o.measured_sigma;
     auto r = write_comparison_report(pair.measured, pair.simulated, options, dir / "user");
-    EXPECT_THAT(r.noise.at("S1").measured, HasSubstr("--measured-sigma"));
-    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+    EXPECT_THAT(r.noise.s1.measured, HasSubstr("--measured-sigma"));
+    EXPECT_NEAR(r.noise.s1.measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
                 1e-6);  // eq 15
-    EXPECT_TRUE(consistent_with_noise(r.regions[0].z.at("all")));
+    EXPECT_TRUE(consistent_with_noise(r.regions[0].z_pooled));
 
     options.measured_frame_sigma.reset();
     options.regions = parse_regions(tirpol::ConfigNode::parse(pair.regions_yaml, "rois.yaml"));
     r = write_comparison_report(pair.measured, pair.simulated, options, dir / "flat");
-    EXPECT_EQ(r.noise.at("S0").measured, "std of measured S0 in flat region 'background'");
+    EXPECT_EQ(r.noise.s0.measured, "std of measured S0 in flat region 'background'");
     // The background has a gentle S0 gradient; S1 is flat there, so its std is the noise.
-    EXPECT_NEAR(r.noise.at("S1").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+    EXPECT_NEAR(r.noise.s1.measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
                 0.1 * o.measured_sigma);
 
     options.regions.reset();
     r = write_comparison_report(pair.measured, pair.simulated, options, dir / "immerkaer");
-    EXPECT_THAT(r.noise.at("S2").measured, HasSubstr("Immerkær"));
-    EXPECT_NEAR(r.noise.at("S2").measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
+    EXPECT_THAT(r.noise.s2.measured, HasSubstr("Immerkær"));
+    EXPECT_NEAR(r.noise.s2.measured_sigma_median, std::sqrt(2.0) * o.measured_sigma,
                 0.15 * o.measured_sigma);
 }
 
@@ -338,7 +339,7 @@ TEST(ReportComparison, MissingSimulationVarianceIsNotedNotFatal) {
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     const auto r = write_comparison_report(pair.measured, pair.simulated, options, dir.path());
-    EXPECT_EQ(r.noise.at("S0").simulated, "none (σ_s = 0)");
+    EXPECT_EQ(r.noise.s0.simulated, "none (σ_s = 0)");
     ASSERT_FALSE(r.notes.empty());
     EXPECT_THAT(r.notes[0], HasSubstr("no S0_var channel"));
 }
@@ -360,11 +361,12 @@ TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
     const CompareResult r =
         write_comparison_report(estimated.measured, estimated.simulated, options, dir.path());
     const CompareResult r_exact = compare(exact.measured, exact.simulated, options).result;
-    for (const auto& q : kZQuantities) {
-        EXPECT_EQ(r.noise.at(q).simulated_dof, 12.0) << q;
-        EXPECT_TRUE(std::isinf(r.noise.at(q).measured_dof)) << q;
-        EXPECT_TRUE(std::isinf(r_exact.noise.at(q).simulated_dof)) << q;
-        EXPECT_LT(r.regions[0].z.at(q).rms, r_exact.regions[0].z.at(q).rms) << q;
+    for (const Quantity q : kZQuantities) {
+        const std::string& name = quantity_name(q);
+        EXPECT_EQ(r.noise[q].simulated_dof, 12.0) << name;
+        EXPECT_TRUE(std::isinf(r.noise[q].measured_dof)) << name;
+        EXPECT_TRUE(std::isinf(r_exact.noise[q].simulated_dof)) << name;
+        EXPECT_LT(r.regions[0].z[q].rms, r_exact.regions[0].z[q].rms) << name;
     }
     const auto json = nlohmann::json::parse(tirpol::read_file(dir / "report.json"));
     EXPECT_EQ(json["noise"]["S1"]["simulated_dof"].get<double>(), 12.0);
@@ -375,7 +377,8 @@ TEST(ReportComparison, DegreesOfFreedomOfTheVariancesReachTheReport) {
     const std::string noise_table = html.substr(table, html.find("</table>", table) - table);
     EXPECT_THAT(noise_table, HasSubstr("<th>ν_m</th>"));
     EXPECT_THAT(noise_table, HasSubstr("<th>ν_s</th>"));
-    for (const auto& q : kZQuantities) {
+    for (const Quantity quantity : kZQuantities) {
+        const std::string& q = quantity_name(quantity);
         const std::size_t row = noise_table.find("<tr><td>" + q + "</td>");
         ASSERT_NE(row, std::string::npos) << q;
         const std::string cells = noise_table.substr(row, noise_table.find("</tr>", row) - row);

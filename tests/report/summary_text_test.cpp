@@ -23,7 +23,7 @@ RegionResult region(const std::string& name, std::array<double, 3> difference, d
     r.pixel_count = 100;
     r.verdict = Agreement::ConsistentWithNoise;
     for (std::size_t i = 0; i < 3; ++i) {
-        const std::string& q = kZQuantities[i];
+        const Quantity q = kZQuantities[i];
         QuantityVerdict v;
         v.mean.pixel_count = 100;
         v.mean.difference = difference[i];
@@ -101,12 +101,12 @@ TEST(ReportSummaryText, VerdictsWithoutPowerAreNamed) {
         summary_paragraph(result_of({region("panel_a", {0.0, 0.0, 0.0}, 10.0, {30.0, -0.5, 0.5})}));
     EXPECT_THAT(none, HasSubstr("None of the verdicts has power: panel_a S0, panel_a S1 and "
                                 "panel_a S2"));
-    EXPECT_FALSE(
-        verdict_has_power(result_of({region("p", {0, 0, 0}, 10.0, {30, 1, 1})}).regions[0], "S0"));
-    EXPECT_TRUE(
-        verdict_has_power(result_of({region("p", {0, 0, 0}, 1.0, {30, 1, 1})}).regions[0], "S0"));
+    EXPECT_FALSE(verdict_has_power(result_of({region("p", {0, 0, 0}, 10.0, {30, 1, 1})}).regions[0],
+                                   Quantity::S0));
+    EXPECT_TRUE(verdict_has_power(result_of({region("p", {0, 0, 0}, 1.0, {30, 1, 1})}).regions[0],
+                                  Quantity::S0));
     EXPECT_FALSE(verdict_has_power(result_of({region("p", {0, 0, 0}, 1.0, {30, 1, 1})}).regions[0],
-                                   "DoLP"));  // not tested
+                                   Quantity::DoLP));  // not tested
 }
 
 TEST(ReportSummaryText, PixelsOutsideTheCalibrationRangeAreCountedAndTheirErrorNamed) {

@@ -1,5 +1,5 @@
 // The simulated camera lands on OpenCV's pixel grid: what cv::projectPoints says about a world
-// point is where the renderer's rays go and where the rendered image shows it (issue 14).
+// point is where the renderer's rays go and where the rendered image shows it.
 
 #include <gtest/gtest.h>
 

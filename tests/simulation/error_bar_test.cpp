@@ -1,4 +1,4 @@
-// Honest per-pixel error bars (issue 13): the S0_var/S1_var/S2_var channels are the variance of the
+// Honest per-pixel error bars: the S0_var/S1_var/S2_var channels are the variance of the
 // pixel's mean, so in an isothermal enclosure — where the exact answer is known, S = (L_bb, 0, 0,
 // 0) by Kirchhoff's law (paper eq 5) — z = (S − exact)/√var must follow the distribution that the
 // estimator implies. The renderer's variance is the spread of R i.i.d. replicate means

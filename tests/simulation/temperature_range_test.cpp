@@ -1,4 +1,4 @@
-// Scene temperatures are held to the physical range tirpol accepts, [1, 10000] K (issue 20: 1e9 °C
+// Scene temperatures are held to the physical range tirpol accepts, [1, 10000] K (before: 1e9 °C
 // rendered without complaint).
 
 #include <gmock/gmock.h>

@@ -1,5 +1,5 @@
 // The thermal model inside a scene: predicted temperatures, and the sky and sun taken from the same
-// weather record. Done criterion of issue 8 (paper Fig. 2): in the day scene the ball is warmer
+// weather record. As in paper Fig. 2: in the day scene the ball is warmer
 // than the snow.
 
 #include <gmock/gmock.h>

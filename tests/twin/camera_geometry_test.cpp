@@ -1,4 +1,4 @@
-// The twin's camera geometry (issue 14): the truth camera has a realistic lens and a pose error;
+// The twin's camera geometry: the truth camera has a realistic lens and a pose error;
 // the field procedure — geometric calibration from heated-checkerboard frames filmed through the
 // sensor model (NEDT 50 mK), pose from the surveyed panel corners — must recover fx and fy within
 // the issue's 0.5 %, the principal point and the distortion within their reported uncertainty, and

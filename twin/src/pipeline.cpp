@@ -471,10 +471,8 @@ void compare_and_report(Chain& c) {
     c.result.report_html = cr.html;
     c.result.registration = cr.registration;
     for (const auto& r : cr.regions)
-        c.result.regions.push_back({r.name,
-                                    r.pixel_count,
-                                    {r.verdicts.at("S0"), r.verdicts.at("S1"), r.verdicts.at("S2")},
-                                    r.verdict});
+        c.result.regions.push_back(
+            {r.name, r.pixel_count, {r.verdicts.s0, r.verdicts.s1, r.verdicts.s2}, r.verdict});
     c.result.report_summary = report::summary_paragraph(cr);
     if (cr.calibration_range)
         c.result.calibration_outside_fraction = cr.calibration_range->outside_fraction;

@@ -62,4 +62,21 @@ Image reduce_stokes(const std::vector<AnalyzerPlanes>& images, int width, int he
                     const AnalyzerModel& model, const WireGridCalibration* wire_grid = nullptr,
                     const ReductionOptions& options = {});
 
+/// Header attributes of a reduced Stokes image that say how the reduction went; their names are
+/// the Stokes EXR's, written only here (reduce_stokes and the microgrid reductions).
+inline constexpr const char* kUnrealizablePixelsAttribute = "unrealizable_pixels";
+inline constexpr const char* kWireGridCorrectedAttribute = "wire_grid_corrected";
+
+/// What a Stokes reduction records about itself, read back from its image.
+struct StokesReductionRecord {
+    /// Pixels whose measured vector was not realizable (√(S1²+S2²) > S0), projected onto the cone
+    /// when ReductionOptions::project_to_realizable.
+    int unrealizable_pixels = 0;
+    bool wire_grid_corrected = false;  ///< inputs were corrected by a wire-grid calibration
+};
+
+/// The record of the reduction that made `stokes`. Throws tirpol::Error naming the attribute when
+/// one is missing or not an integer (an image not written by a Stokes reduction).
+StokesReductionRecord stokes_reduction_record(const Image& stokes);
+
 }  // namespace tirpol::calibration

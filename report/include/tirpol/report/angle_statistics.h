@@ -24,15 +24,19 @@ struct AopStats {
     double difference_std_deg = 0.0;     ///< circular standard deviation of AoP_m − AoP_s (axial)
 };
 
-/// AoP statistics over `mask` from the Stokes planes of both images and the variances of S1, S2
-/// (per pixel). A pixel counts when √(S1² + S2²) > kAopSignificanceSigma · √((var_S1 + var_S2)/2)
-/// in both the measured and the simulated image. All inputs have the same length.
-AopStats aop_stats(const std::vector<float>& measured_s1, const std::vector<float>& measured_s2,
-                   const std::vector<float>& simulated_s1, const std::vector<float>& simulated_s2,
-                   const std::vector<float>& measured_var_s1,
-                   const std::vector<float>& measured_var_s2,
-                   const std::vector<float>& simulated_var_s1,
-                   const std::vector<float>& simulated_var_s2,
+/// The linear-polarization planes of one image, per pixel: S1, S2 and their variances.
+struct LinearPolarizationPlanes {
+    const std::vector<float>& s1;
+    const std::vector<float>& s2;
+    const std::vector<float>& var_s1;
+    const std::vector<float>& var_s2;
+};
+
+/// AoP statistics over `mask` from the planes of both images. A pixel counts when
+/// √(S1² + S2²) > kAopSignificanceSigma · √((var_S1 + var_S2)/2) in both the measured and the
+/// simulated image. All planes have the mask's length.
+AopStats aop_stats(const LinearPolarizationPlanes& measured,
+                   const LinearPolarizationPlanes& simulated,
                    const std::vector<std::uint8_t>& mask);
 
 }  // namespace tirpol::report

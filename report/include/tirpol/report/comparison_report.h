@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,59 @@
 
 namespace tirpol::report {
 
-/// Quantities compared statistically (AoP is shown, not averaged: it is an angle modulo 180°).
-inline const std::vector<std::string> kComparedQuantities = {"S0", "S1", "S2", "DoLP"};
-/// Quantities with a z statistic (those that carry variances).
-inline const std::vector<std::string> kZQuantities = {"S0", "S1", "S2"};
+/// A quantity the report compares statistically (AoP is shown, not averaged: it is an angle
+/// modulo 180°).
+enum class Quantity { S0, S1, S2, DoLP };
+
+/// Quantities compared statistically.
+inline constexpr std::array<Quantity, 4> kComparedQuantities = {Quantity::S0, Quantity::S1,
+                                                                Quantity::S2, Quantity::DoLP};
+/// Quantities with a z statistic and a verdict (those that carry variances).
+inline constexpr std::array<Quantity, 3> kZQuantities = {Quantity::S0, Quantity::S1, Quantity::S2};
+
+/// "S0", "S1", "S2", "DoLP": the quantity's channel in the images and its key in report.json.
+const std::string& quantity_name(Quantity quantity);
+
+/// One value for each of S0, S1 and S2 (kZQuantities): every one is always there, so a reader
+/// needs no lookup that can miss.
+template <class T>
+struct StokesValues {
+    T s0{}, s1{}, s2{};
+
+    /// The value of `quantity`; throws std::out_of_range for DoLP, which has none.
+    T& operator[](Quantity quantity) { return *pick(this, quantity); }
+    const T& operator[](Quantity quantity) const { return *pick(this, quantity); }
+
+private:
+    template <class Self>
+    static auto pick(Self* self, Quantity quantity) {
+        switch (quantity) {
+            case Quantity::S0:
+                return &self->s0;
+            case Quantity::S1:
+                return &self->s1;
+            case Quantity::S2:
+                return &self->s2;
+            case Quantity::DoLP:
+                break;
+        }
+        throw std::out_of_range("StokesValues: DoLP has no value (only S0, S1, S2)");
+    }
+};
+
+/// One value for each compared quantity (kComparedQuantities): S0, S1, S2 and DoLP.
+template <class T>
+struct ComparedValues : StokesValues<T> {
+    T dolp{};
+
+    /// The value of `quantity`.
+    T& operator[](Quantity quantity) {
+        return quantity == Quantity::DoLP ? dolp : StokesValues<T>::operator[](quantity);
+    }
+    const T& operator[](Quantity quantity) const {
+        return quantity == Quantity::DoLP ? dolp : StokesValues<T>::operator[](quantity);
+    }
+};
 
 struct CompareOptions {
     RegistrationMethod registration = RegistrationMethod::Auto;
@@ -92,14 +142,14 @@ struct NoiseSource {
 
 struct RegionResult {
     std::string name;
-    std::size_t pixel_count = 0;                 ///< pixels inside the polygon
-    std::map<std::string, QuantityStats> stats;  ///< by quantity (kComparedQuantities)
+    std::size_t pixel_count = 0;          ///< pixels inside the polygon
+    ComparedValues<QuantityStats> stats;  ///< S0, S1, S2, DoLP
     /// mean S1(region) − mean S1(background), W/(m²·sr); absent without a background region.
     std::optional<double> s1_contrast_measured, s1_contrast_simulated;
-    std::map<std::string, ZStats>
-        z;  ///< by quantity (kZQuantities) and "all" (pooled, for reference only)
-    /// By quantity (kZQuantities): the region-mean agreement test and the per-pixel σ diagnostic.
-    std::map<std::string, QuantityVerdict> verdicts;
+    StokesValues<ZStats> z;  ///< z = (m − s)/σ of S0, S1, S2
+    ZStats z_pooled;         ///< S0, S1 and S2 pooled (report.json's "all"), for reference only
+    /// Of S0, S1, S2: the region-mean agreement test and the per-pixel σ diagnostic.
+    StokesValues<QuantityVerdict> verdicts;
     Agreement verdict = Agreement::NoData;  ///< ExceedsNoise when any quantity's mean test exceeds
     AopStats aop;                           ///< AoP over significantly polarized pixels
     std::optional<KelvinBias> s0_bias_k;    ///< absent without a band or a positive simulated S0
@@ -118,7 +168,7 @@ struct CompareResult {
     int simulated_width = 0, simulated_height = 0;
     std::string units;  ///< of S0, S1, S2
     Registration registration;
-    std::map<std::string, NoiseSource> noise;  ///< by quantity (kZQuantities)
+    StokesValues<NoiseSource> noise;  ///< of S0, S1, S2
     std::vector<RegionResult> regions;
     std::string background;                   ///< background region name or empty
     std::filesystem::path html, json;         ///< written files

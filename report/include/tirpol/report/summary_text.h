@@ -15,8 +15,8 @@ namespace tirpol::report {
 /// Whether the region-mean test of `quantity` (S0, S1 or S2) in `region` has power: its detectable
 /// bias is smaller than the magnitude of the simulated region mean it tests. Without power a
 /// simulation that predicted zero would read "consistent with noise" as well, so "consistent" says
-/// little. False for a quantity without data.
-bool verdict_has_power(const RegionResult& region, const std::string& quantity);
+/// little. False for a quantity without data, and for DoLP, which has no test.
+bool verdict_has_power(const RegionResult& region, Quantity quantity);
 
 /// Plain UTF-8 text (no markup), one paragraph of a few sentences; read from `result` only.
 std::string summary_paragraph(const CompareResult& result);

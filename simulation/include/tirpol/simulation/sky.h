@@ -4,6 +4,7 @@
 /// (a clear LWIR night sky is, to first order; the paper's MODTRAN-P polarized sky is not
 /// modelled).
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -13,26 +14,31 @@
 
 namespace tirpol::simulation {
 
-/// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. Three kinds
-/// (docs/scene-format.md):
+class SkyModel;
+
+/// Sky radiance as a grey-body ε(θ)·L_bb(λ, T(θ)) of zenith angle θ. The sky types are registered
+/// by name, one file each in simulation/src/skies/ (docs/scene-format.md):
 ///  - uniform: ε = 1 at one temperature (or the brightness temperature of a given band radiance);
-///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature,
-///  the
-///    plane-parallel absorbing-atmosphere law of Granqvist & Hjortsberg (J. Appl. Phys. 52 (1981)
-///    4205), implemented once in thermal::directional_sky_emissivity_cos; ε_zenith comes from the
-///    scene or from a clear-sky model of the thermal module (Berdahl & Martin 1984 and others);
+///  - clear_sky: effective emissivity ε(θ) = 1 − (1 − ε_zenith)^(1/cos θ) at the air temperature
+///    (Granqvist & Hjortsberg 1981; ε_zenith from the scene or a clear-sky model of the thermal
+///    module);
 ///  - table: band radiance vs zenith angle from a CSV (e.g. converted from MODTRAN or libRadtran),
 ///    turned into brightness temperatures over the band and interpolated linearly in zenith angle.
-/// Below the horizon every kind takes its horizon value (ε → 1 for the clear sky).
+/// Below the horizon every type takes its horizon value (ε → 1 for the clear sky).
 class Sky {
 public:
+    /// A uniform sky at 0 K (no radiance), until a scene sets one.
+    Sky();
+    /// The sky of `model`, a registered sky type (simulation/src/sky_model.h).
+    explicit Sky(std::shared_ptr<const SkyModel> model);
+
     static Sky uniform(double temperature_k);
     static Sky clear_sky(double air_temperature_k, double zenith_emissivity);
     static Sky table(std::vector<double> zenith_deg, std::vector<double> band_radiance,
                      const Band& band);
 
-    /// From the `sky:` mapping of a scene file; `band` converts band radiances to brightness
-    /// temperatures.
+    /// From the `sky:` mapping of a scene file, by its `type` (an unknown type fails at `type`
+    /// listing the registered ones); `band` converts band radiances to brightness temperatures.
     static Sky from_config(const ConfigNode& node, const Band& band);
 
     /// Spectral radiance, W/(m²·sr·µm), seen along the world direction `direction` (pointing to the
@@ -44,19 +50,18 @@ public:
     /// node.
     class AtWavelength {
     public:
-        /// Sky::spectral_radiance(wavelength_um, direction), W/(m²·sr·µm), to rounding: the clear
-        /// sky's emissivity 1 − (1 − ε_zenith)^(1/cos θ) is evaluated as −expm1(ln(1 −
-        /// ε_zenith)/cos θ) with the logarithm taken once (an exp instead of a pow per path end).
+        /// Sky::spectral_radiance(wavelength_um, direction), W/(m²·sr·µm), to rounding (the
+        /// model's per-path emissivity, e.g. the clear sky's with its logarithm taken once).
         double spectral_radiance(const Vec3& direction) const;
 
     private:
         friend class Sky;
-        const Sky* m_sky = nullptr;
+        const SkyModel* m_model = nullptr;
         double m_wavelength_um = 0.0;
-        double m_blackbody = 0.0;                 ///< L_bb(λ, T) for the uniform and clear skies
-        double m_log_zenith_transmittance = 0.0;  ///< ln(1 − ε_zenith) for the clear sky
+        bool m_isothermal = false;  ///< the temperature does not depend on the direction
+        double m_blackbody = 0.0;   ///< L_bb(λ, T) when m_isothermal
     };
-    /// The sky at `wavelength_um`; refers to this Sky, which must outlive it.
+    /// The sky at `wavelength_um`; refers to this Sky's model, which must outlive it.
     AtWavelength at_wavelength(double wavelength_um) const;
 
     /// Effective emissivity and temperature at zenith angle θ given by cos θ.
@@ -64,11 +69,7 @@ public:
     double temperature_k(double cos_zenith) const;
 
 private:
-    enum class Kind { Uniform, ClearSky, Table };
-    Kind m_kind = Kind::Uniform;
-    double m_temperature_k = 0.0;
-    double m_zenith_emissivity = 1.0;
-    std::vector<double> m_zenith_deg, m_brightness_k;
+    std::shared_ptr<const SkyModel> m_model;
 };
 
 /// The sun as a uniform disk of solid angle `solid_angle_sr` and spectral radiance

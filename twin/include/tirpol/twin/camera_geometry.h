@@ -1,6 +1,6 @@
 #pragma once
 /// \file camera_geometry.h
-/// The twin's camera geometry (issue 14): the truth camera is the nominal one (the scene's pinhole
+/// The twin's camera geometry: the truth camera is the nominal one (the scene's pinhole
 /// at the surveyed position) with a realistic lens — barrel distortion, principal point off centre,
 /// fx ≠ fy — and a pose error. The twin recovers both as a field user does: the library calls
 /// behind `tirpol calibrate geometric` on frames of a heated checkerboard filmed through the
@@ -32,7 +32,7 @@ struct CameraGeometryOptions {
     /// observable on a small detector (at 160×120, 40° leaves fx uncertain by 1 %, 55° by 0.2 %).
     double board_max_tilt_deg = 55.0;
     /// The board is also rolled about the optical axis by up to ± this: at 160×120 with ~0.09 px of
-    /// corner noise, rolls of ±25° leave cx uncertain by 3.5 px (1σ), ±180° by 1.4 px (issue 14;
+    /// corner noise, rolls of ±25° leave cx uncertain by 3.5 px (1σ), ±180° by 1.4 px (see
     /// docs/twin.md, "Known limits").
     double board_roll_spread_deg = 180.0;
     /// `--fix-k3`: a 34° lens on a 160-pixel detector does not constrain k3

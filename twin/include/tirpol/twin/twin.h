@@ -1,6 +1,6 @@
 #pragma once
 /// \file twin.h
-/// The digital twin, end to end (issue 9): a paper scene is rendered, the renderer's sensor model
+/// The digital twin, end to end: a paper scene is rendered, the renderer's sensor model
 /// plays the camera (served over GigE Vision on loopback) and tirpol-stage-sim's engine plays the
 /// polarizer mount (APT or Elliptec bytes on a pseudo-terminal, opened through the real serial
 /// driver); `run_capture` records the sessions, calibration reduces them to Stokes, the flat black

@@ -8,9 +8,9 @@
 ///
 /// Why the GigE Vision path: in Aravis 0.8.26 a fill-pattern callback cannot set the buffer's
 /// received size (no public setter), so the in-process Fake interface delivers buffers whose image
-/// size reads 0 (Aravis issue 955). The GigE Vision server sends the whole payload regardless, and
-/// the receiving stream measures the size from the packets, so frames arrive intact (tested in
-/// aravis_fake_server_test).
+/// size reads 0 (github.com/AravisProject/aravis/issues/955). The GigE Vision server sends the
+/// whole payload regardless, and the receiving stream measures the size from the packets, so frames
+/// arrive intact (tested in aravis_fake_server_test).
 
 #include <cstdint>
 #include <filesystem>
