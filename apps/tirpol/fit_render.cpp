@@ -44,7 +44,9 @@ void register_fit_render(CLI::App& app) {
     cmd->add_option("--view", args->options.views,
                     "Measured view: STOKES.exr (the scene's camera) or "
                     "STOKES.exr,CAMERA.yaml,POSE.yaml; repeat")
-        ->required();
+        ->required()
+        ->expected(1)  // one view per --view: its commas join files, they do not list views
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_option("--region", args->options.objects,
                     "Scene object whose interior pixels are compared; repeat or comma list")
         ->required()

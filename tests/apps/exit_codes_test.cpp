@@ -92,6 +92,18 @@ TEST(ExitCodes, EverySubcommandExitsTwoOnBadUsageWithAMessage) {
     }
 }
 
+TEST(ExitCodes, FitRenderKeepsTheCommasOfOneViewTogether) {
+    // `--view STOKES.exr,CAMERA.yaml,POSE.yaml` is one view of three files (docs/fitting.md), not
+    // three views: a two-file view must be refused as a malformed view, before any file is read.
+    const std::string scene =
+        (tirpol::test::source_dir() / "config/scenes/ball_on_snow_night.yaml").string();
+    const CliRun r = run_cli("fit-render " + scene +
+                             " --view /nonexistent/a.exr,/nonexistent/cam.yaml --region ball"
+                             " --free glossy_black_paint.n=1.2:1.8");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_THAT(r.out, testing::HasSubstr("expected MEASURED.exr or")) << r.out;
+}
+
 TEST(ExitCodes, ErrorsInFilesExitOne) {
     // The command line is right; what it names is not: a missing file, a file of the wrong kind.
     const auto data = tirpol::test::source_dir() / "tests/data/fuzz-regressions";

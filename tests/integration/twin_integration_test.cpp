@@ -91,14 +91,17 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     EXPECT_EQ(free_parameters, 2);  // n and σ
 
     // The same paint fitted through the renderer (the sky colder at the zenith, the warm ground and
-    // the reflector at 5 °C are rendered, not assumed uniform): within 1σ and 5 % of the truth with
-    // χ²/dof ≤ 1.5, where eq 17's route is inconsistent with its own uncertainties.
+    // the reflector at 5 °C are rendered, not assumed uniform): within 2σ and 5 % of the truth with
+    // χ²/dof ≤ 1.5, where eq 17's route is inconsistent with its own uncertainties. One seeded run
+    // lands within 1σ with probability 0.68 per parameter (both: 0.47), so 1σ would test the seed;
+    // whether the stated σ is right is asked over seeds by
+    // RenderFit.PullsOfTheGlossyPaintOverIndependentSeedsAreUnitNormal.
     EXPECT_GT(r.reduced_chi2, 5.0) << "eq 17's route";
     ASSERT_TRUE(r.render_fit.usable);
     ASSERT_EQ(r.render_fit.parameters.size(), 2u);
     EXPECT_LE(r.render_fit.reduced_chi2, 1.5);
     for (const auto& p : r.render_fit.parameters) {
-        EXPECT_LE(std::abs(p.fitted - p.truth), p.sigma)
+        EXPECT_LE(std::abs(p.fitted - p.truth), 2.0 * p.sigma)
             << p.name << " fitted " << p.fitted << " ± " << p.sigma;
         EXPECT_LE(std::abs(p.fitted - p.truth), 0.05 * p.truth) << p.name << " fitted " << p.fitted;
     }

@@ -95,16 +95,16 @@ TEST(PooledVariance, TheReportPoolsARendersFewDofVarianceForItsZMaps) {
     CompareOptions options;
     options.registration = RegistrationMethod::None;
     const CompareResult r = compare(pair.measured, pair.simulated, options).result;
-    for (const auto& q : kZQuantities) {
-        EXPECT_EQ(r.noise.at(q).simulated_dof, 1.0) << q;
-        EXPECT_NE(r.noise.at(q).simulated.find("5×5 neighbourhood on the same surface"),
+    for (const Quantity q : kZQuantities) {
+        EXPECT_EQ(r.noise[q].simulated_dof, 1.0) << quantity_name(q);
+        EXPECT_NE(r.noise[q].simulated.find("5×5 neighbourhood on the same surface"),
                   std::string::npos)
-            << r.noise.at(q).simulated;
+            << r.noise[q].simulated;
     }
     for (const auto& region : r.regions)
-        for (const auto& q : kZQuantities)
-            EXPECT_EQ(region.verdicts.at(q).sigma.verdict, SigmaCheck::Plausible)
-                << region.name << " " << q;
+        for (const Quantity q : kZQuantities)
+            EXPECT_EQ(region.verdicts[q].sigma.verdict, SigmaCheck::Plausible)
+                << region.name << " " << quantity_name(q);
 }
 
 }  // namespace
