@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "counts_quicklook.h"
 #include "tirpol/calibration/calibration_chain.h"
-#include "tirpol/calibration/counts_quicklook.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/quicklook.h"
 

@@ -1,11 +1,10 @@
-#include "tirpol/fitting/parameter_options.h"
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/fit_run.h"
 
 namespace tirpol::fitting {
 

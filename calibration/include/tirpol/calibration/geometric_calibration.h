@@ -4,16 +4,100 @@
 /// for camera calibration", IEEE TPAMI 22(11), 2000, as implemented by cv::calibrateCamera), with
 /// per-view and total RMS reprojection error, 1σ of every parameter, and outlier views flagged.
 /// Pixel convention: OpenCV's (core/camera_model.h).
+///
+/// Finding a calibration target in a thermal frame: 14-bit counts, low contrast, blur, hot-on-cold
+/// or cold-on-hot. The frame is contrast-stretched robustly (0.5th–99.5th percentile → 0–255, NaN
+/// pixels filled with the frame's median) before OpenCV's detectors. Checkerboards: OpenCV's
+/// sector-based detector at full resolution with its own sub-pixel refinement (CALIB_CB_ACCURACY),
+/// either polarity; when that fails, again after removing stuck pixels, column offsets and the
+/// large-scale background (vignetting, gradients), then with the exhaustive search. Squares under
+/// 16 px (a 160×120 core's view) are refined further by cv::cornerSubPix.
+/// Circle grids: both polarities are tried; centres are cv::findCirclesGrid's blob centroids.
+/// docs/camera-geometry.md has the measurements behind each choice.
+///
+/// The planar targets of geometric calibration (docs/camera-geometry.md): a checkerboard (aluminium
+/// tape on black paint, or a heated board) or a grid of circles (heated discs, holes in a cold
+/// plate). Feature points lie in the target's plane z = 0 of its own frame, x along a row, y down
+/// the columns, in OpenCV's detection order (row by row).
+///
+/// The text `tirpol calibrate geometric` and `tirpol calibrate pose` print: what was calibrated or
+/// estimated, per view or control point, and the file written.
 
+#include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "tirpol/calibration/calibration_target.h"
-#include "tirpol/calibration/target_detection.h"
+#include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/camera_model.h"
+#include "tirpol/core/image.h"
 
 namespace tirpol::calibration {
+
+struct CalibrationTarget {
+    enum class Kind { Checkerboard, Circles, AsymmetricCircles };
+    Kind kind = Kind::Checkerboard;
+    int columns = 0;  ///< inner corners (checkerboard) or circles along a row
+    int rows = 0;     ///< inner corners or circles down a column
+    double spacing_m =
+        0.0;  ///< square side; circle pitch; for the asymmetric grid half the pitch along a row
+
+    /// Parses `checkerboard:COLSxROWS:SQUARE_M`, `circles:COLSxROWS:PITCH_M` or
+    /// `acircles:COLSxROWS:HALF_PITCH_M` (OpenCV's asymmetric grid). COLSxROWS count inner corners
+    /// of a checkerboard (a board of 10×7 squares is 9x6). Throws naming what was expected.
+    static CalibrationTarget parse(const std::string& text);
+    std::string to_string() const;
+
+    std::size_t point_count() const {
+        return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+    }
+    /// Feature positions in the target frame, metres, in detection order.
+    std::vector<Vec3> object_points() const;
+};
+
+/// Feature points of one view in OpenCV pixel coordinates (centre of the top-left pixel at (0, 0)),
+/// in the order of CalibrationTarget::object_points().
+struct TargetView {
+    std::string name;  ///< frame file or label, for messages
+    std::vector<Vec2> points_px;
+};
+
+/// The outcome of a search for the target in one frame: the view, or why there is none.
+struct TargetSearch {
+    std::optional<TargetView> view;
+    /// Empty when found; else why not, e.g. "only a 6x5 grid of the target's 9x6 inner corners is
+    /// in the frame: the board runs off its left edge; …", a grid of another size than the
+    /// target's, a flat frame, or no target at all.
+    std::string failure;
+};
+
+/// Searches a single-channel plane of `width`×`height` values (any units) for `target`. Throws
+/// when the plane's size does not match.
+TargetSearch search_target(const std::vector<float>& plane, int width, int height,
+                           const CalibrationTarget& target, const std::string& name = "");
+
+/// search_target() on every plane, the frames spread over the cores. `names` (optional) label the
+/// views.
+std::vector<TargetSearch> search_target_views(const std::vector<std::vector<float>>& planes,
+                                              int width, int height,
+                                              const CalibrationTarget& target,
+                                              const std::vector<std::string>& names = {});
+
+/// search_target()'s view: nullopt when the target is not found.
+std::optional<TargetView> detect_target(const std::vector<float>& plane, int width, int height,
+                                        const CalibrationTarget& target,
+                                        const std::string& name = "");
+
+/// detect_target() on every plane, the frames spread over the cores; element i is nullopt where
+/// the target was not found in plane i. `names` (optional) label the views.
+std::vector<std::optional<TargetView>> detect_target_views(
+    const std::vector<std::vector<float>>& planes, int width, int height,
+    const CalibrationTarget& target, const std::vector<std::string>& names = {});
+
+/// Reads a frame for detection: an EXR (channel `counts`, else `S0`) or a PNG/TIFF (8/16-bit,
+/// float).
+Image read_calibration_frame(const std::filesystem::path& path);
 
 struct GeometricCalibrationOptions {
     std::string distortion_model = "standard";  ///< standard (k1 k2 p1 p2 k3), rational, thin_prism
@@ -58,5 +142,16 @@ GeometricCalibrationResult calibrate_geometric(const std::vector<TargetView>& vi
 GeometricCalibrationResult calibrate_geometric_frames(
     const std::vector<std::filesystem::path>& frames, const CalibrationTarget& target,
     const GeometricCalibrationOptions& options = {});
+
+/// Views used of `frames` given, frames without the target, per-view RMS and tilt (outliers
+/// flagged), the total RMS, each intrinsic ± 1σ and `output`.
+std::string geometric_calibration_text(const GeometricCalibrationResult& result,
+                                       const CalibrationTarget& target, std::size_t frames,
+                                       const std::string& output);
+
+/// Points used, RMS, position and rotation ± 1σ, each point's residual (outliers flagged) and
+/// `output`.
+std::string pose_estimation_text(const PoseResult& result, const std::vector<ControlPoint>& points,
+                                 const std::string& output);
 
 }  // namespace tirpol::calibration
