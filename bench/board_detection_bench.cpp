@@ -18,7 +18,7 @@
 #include <string>
 
 #include "../tests/calibration/blurred_boards.h"
-#include "tirpol/calibration/target_detection.h"
+#include "tirpol/calibration/geometric_calibration.h"
 
 namespace {
 

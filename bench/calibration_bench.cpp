@@ -7,9 +7,9 @@
 #include <cstring>
 #include <random>
 
+#include "synthetic_fpa_camera.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"
-#include "tirpol/calibration/synthetic_fpa_camera.h"
 
 namespace {
 

@@ -9,12 +9,12 @@
 #include <random>
 #include <vector>
 
+#include "lambertian.h"
+#include "smooth_fresnel.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/fresnel.h"
-#include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
-#include "tirpol/materials/smooth_fresnel.h"
 
 namespace {
 using namespace tirpol;

@@ -11,7 +11,7 @@
 #include <random>
 
 #include "tirpol/calibration/microgrid_demosaic.h"
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 
 namespace {

@@ -1,10 +1,12 @@
 # cmake -DSOURCE_DIR=<tree> -P CheckPublicHeaderUse.cmake
 #
 # Fails when a public header (<module>/include/**) is used only inside its own module: included by
-# no other module, no test of another module, and none of apps/, python/, examples/, bench/, fuzz/
-# (directly, or through another public header of its module that is used). Such a header belongs in
-# <module>/src/. Run by CTest (architecture.public_headers_used), so the public surface stays what
-# users call.
+# no other module, no test of another module, and none of apps/, python/, examples/ (directly, or
+# through another public header of its module that is used). Such a header belongs in
+# <module>/src/. Benchmarks (bench/) and fuzz targets (fuzz/) are no users: like a module's own
+# tests they are white-box harnesses that see its src/ (bench/CMakeLists.txt, fuzz/CMakeLists.txt).
+# Run by CTest (architecture.public_headers_used), so the public surface stays what users call.
+# Count: find */include -name '*.h' | wc -l
 
 cmake_minimum_required(VERSION 3.20)
 
@@ -31,12 +33,14 @@ if(public_count EQUAL 0)
   message(FATAL_ERROR "CheckPublicHeaderUse.cmake: no public header under ${SOURCE_DIR}/*/include")
 endif()
 
-# Every source and header of the tree (not build folders, which hold a CMakeCache.txt).
+# Every source and header of the tree but the harnesses (not build folders, which hold a
+# CMakeCache.txt).
 set(sources)
 file(GLOB top_entries LIST_DIRECTORIES true ${SOURCE_DIR}/*)
 foreach(entry ${top_entries})
   get_filename_component(name ${entry} NAME)
-  if(IS_DIRECTORY ${entry} AND NOT EXISTS ${entry}/CMakeCache.txt AND NOT name MATCHES "^\\.")
+  if(IS_DIRECTORY ${entry} AND NOT EXISTS ${entry}/CMakeCache.txt AND NOT name MATCHES "^\\."
+     AND NOT name MATCHES "^(bench|fuzz)$")
     file(GLOB_RECURSE found ${entry}/*.h ${entry}/*.cpp ${entry}/*.hpp ${entry}/*.cc)
     list(APPEND sources ${found})
   endif()

@@ -16,7 +16,6 @@
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_output.h"
-#include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/material.h"

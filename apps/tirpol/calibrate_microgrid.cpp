@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "cli.h"
-#include "tirpol/calibration/microgrid_flat_field.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/exr_io.h"
 
 namespace tirpol::cli {

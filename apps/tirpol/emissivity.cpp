@@ -4,7 +4,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/materials/emissivity_report.h"
+#include "tirpol/materials/emissivity_curve.h"
 
 namespace tirpol::cli {
 

@@ -2,7 +2,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/thermal/sun_report.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::cli {
 

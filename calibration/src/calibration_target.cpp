@@ -1,9 +1,8 @@
-#include "tirpol/calibration/calibration_target.h"
-
 #include <fmt/format.h>
 
 #include <regex>
 
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

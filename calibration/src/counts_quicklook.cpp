@@ -1,4 +1,4 @@
-#include "tirpol/calibration/counts_quicklook.h"
+#include "counts_quicklook.h"
 
 #include <fmt/format.h>
 

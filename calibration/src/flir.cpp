@@ -1,8 +1,7 @@
-#include "tirpol/calibration/flir.h"
-
 #include <cmath>
 #include <limits>
 
+#include "tirpol/calibration/flir_image.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/radiometry.h"

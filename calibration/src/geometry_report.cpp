@@ -1,6 +1,6 @@
-#include "tirpol/calibration/geometry_report.h"
-
 #include <fmt/printf.h>
+
+#include "tirpol/calibration/geometric_calibration.h"
 
 namespace tirpol::calibration {
 

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/microgrid_flat_field.h"
-
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "tirpol/calibration/microgrid_pattern.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
-
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
@@ -7,6 +5,7 @@
 
 #include "stokes_row.h"
 #include "stokes_uncertainty.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

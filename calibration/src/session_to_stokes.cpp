@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "counts_quicklook.h"
 #include "tirpol/calibration/calibration_chain.h"
-#include "tirpol/calibration/counts_quicklook.h"
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/synthetic_fpa_camera.h"
+#include "synthetic_fpa_camera.h"
 
 #include <fmt/format.h>
 

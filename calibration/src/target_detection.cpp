@@ -1,5 +1,3 @@
-#include "tirpol/calibration/target_detection.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 
 #include "checkerboard_search.h"
 #include "thermal_frame_conditioning.h"
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/raster_io.h"

@@ -1,9 +1,9 @@
-#include "tirpol/core/session_summary.h"
-
 #include <fmt/printf.h>
 
 #include <algorithm>
 #include <ctime>
+
+#include "tirpol/core/path_info.h"
 
 namespace tirpol {
 

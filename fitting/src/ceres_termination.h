@@ -3,7 +3,7 @@
 
 #include <ceres/solver.h>
 
-#include "tirpol/fitting/solver_termination.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 

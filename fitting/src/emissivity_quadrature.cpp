@@ -1,10 +1,9 @@
-#include "tirpol/fitting/emissivity_quadrature.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/quadrature.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 

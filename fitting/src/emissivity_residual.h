@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/fitting/emissivity_quadrature.h"
 #include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting::detail {

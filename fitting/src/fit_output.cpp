@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
-#include "tirpol/fitting/parameter_interval.h"
-#include "tirpol/materials/material_writer.h"
+#include "tirpol/fitting/microfacet_fit.h"
+#include "tirpol/materials/material.h"
 
 namespace tirpol::fitting {
 

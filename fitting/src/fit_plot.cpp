@@ -1,5 +1,3 @@
-#include "tirpol/fitting/fit_plot.h"
-
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
@@ -8,6 +6,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/line_plot.h"
+#include "tirpol/fitting/fit_output.h"
 
 namespace tirpol::fitting {
 

@@ -7,10 +7,8 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/core/utc_time.h"
-#include "tirpol/fitting/fit_plot.h"
-#include "tirpol/fitting/parameter_options.h"
+#include "tirpol/fitting/fit_output.h"
 #include "tirpol/materials/material.h"
-#include "tirpol/materials/material_reference.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::fitting {

@@ -1,7 +1,5 @@
 // Least squares of a noisy black-box model with finite-difference derivatives (noisy_model_fit.h).
 
-#include "tirpol/fitting/noisy_model_fit.h"
-
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 
@@ -14,6 +12,7 @@
 #include "ceres_termination.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/render_fit.h"
 
 namespace tirpol::fitting {
 

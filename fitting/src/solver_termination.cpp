@@ -1,6 +1,5 @@
-#include "tirpol/fitting/solver_termination.h"
-
 #include "ceres_termination.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 

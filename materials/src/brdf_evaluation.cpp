@@ -7,7 +7,6 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/materials/material.h"
-#include "tirpol/materials/material_reference.h"
 
 namespace tirpol::materials {
 

@@ -7,7 +7,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/quadrature.h"
-#include "tirpol/materials/shell_target_math.h"
+#include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
 

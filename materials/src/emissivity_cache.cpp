@@ -1,5 +1,3 @@
-#include "tirpol/materials/emissivity_cache.h"
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -11,6 +9,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/emissivity.h"
 
 namespace tirpol::materials {
 

@@ -1,13 +1,11 @@
-#include "tirpol/materials/emissivity_report.h"
-
 #include <fmt/printf.h>
 
 #include <cmath>
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/material.h"
-#include "tirpol/materials/material_reference.h"
 
 namespace tirpol::materials {
 

@@ -1,11 +1,10 @@
-#include "tirpol/materials/material_reference.h"
-
 #include <algorithm>
 #include <vector>
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/source_tree.h"
+#include "tirpol/materials/material.h"
 
 namespace tirpol::materials {
 

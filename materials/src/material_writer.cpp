@@ -1,10 +1,9 @@
-#include "tirpol/materials/material_writer.h"
-
 #include <cmath>
 #include <sstream>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
+#include "tirpol/materials/material.h"
 
 namespace tirpol::materials {
 

@@ -6,8 +6,8 @@
 
 #include "tirpol/core/config.h"
 #include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/microfacet.h"
 #include "tirpol/materials/pbrdf.h"
-#include "tirpol/materials/spectral_value.h"
 
 namespace tirpol::materials {
 

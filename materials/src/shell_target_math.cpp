@@ -1,9 +1,8 @@
-#include "tirpol/materials/shell_target_math.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/stokes_frame.h"
+#include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
 

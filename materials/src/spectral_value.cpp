@@ -1,11 +1,10 @@
-#include "tirpol/materials/spectral_value.h"
-
 #include <cmath>
 #include <limits>
 
 #include "interpolation.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
 

@@ -8,7 +8,6 @@
 #include "interruptible.h"
 #include "tirpol/core/error.h"
 #include "tirpol/fitting/microfacet_fit.h"
-#include "tirpol/fitting/parameter_interval.h"
 
 namespace py = pybind11;
 

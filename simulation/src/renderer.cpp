@@ -26,7 +26,7 @@
 #include "tirpol/core/progress.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes_frame.h"
-#include "tirpol/materials/emissivity_cache.h"
+#include "tirpol/materials/emissivity.h"
 
 namespace tirpol::simulation {
 

@@ -6,12 +6,12 @@
 
 #include "csv_columns.h"
 #include "material_resolution.h"
+#include "scene_thermal.h"
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/scene_thermal.h"
 
 namespace tirpol::simulation {
 

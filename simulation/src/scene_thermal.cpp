@@ -1,4 +1,4 @@
-#include "tirpol/simulation/scene_thermal.h"
+#include "scene_thermal.h"
 
 #include <algorithm>
 #include <cmath>

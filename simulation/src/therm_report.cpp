@@ -4,13 +4,13 @@
 
 #include <sstream>
 
+#include "scene_thermal.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/scene_thermal.h"
 #include "tirpol/thermal/civil_time.h"
 
 namespace tirpol::simulation {

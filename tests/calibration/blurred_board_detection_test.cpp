@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "blurred_boards.h"
-#include "tirpol/calibration/target_detection.h"
+#include "tirpol/calibration/geometric_calibration.h"
 
 namespace tirpol::calibration {
 namespace {

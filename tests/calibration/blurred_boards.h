@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "tirpol/calibration/calibration_target.h"
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/geometry.h"
 
 namespace tirpol::test {

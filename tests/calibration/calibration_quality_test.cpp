@@ -11,9 +11,9 @@
 #include <cmath>
 #include <random>
 
+#include "synthetic_fpa_camera.h"
 #include "test_support.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/synthetic_fpa_camera.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"

@@ -2,7 +2,7 @@
 // (an offset common to the angles cancels), S0 keeps twice the offset, the read-back angles are
 // used, σ follows W⁺ of the ideal four-angle analyzer, and it is labelled counts.
 
-#include "tirpol/calibration/counts_quicklook.h"
+#include "counts_quicklook.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,10 +1,9 @@
 // The FLIR radiometric model: the published equation with published camera constants, the
 // published atmospheric constants, physical invariants and round trips.
 
-#include "tirpol/calibration/flir.h"
-
 #include <gtest/gtest.h>
 
+#include "tirpol/calibration/flir_image.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -9,10 +9,10 @@
 
 #include <cmath>
 
+#include "synthetic_fpa_camera.h"
 #include "test_support.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/session_calibration.h"
-#include "tirpol/calibration/synthetic_fpa_camera.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"

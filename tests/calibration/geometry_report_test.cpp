@@ -1,10 +1,10 @@
 // The text of `tirpol calibrate pose`: the camera position is −Rᵀt (here R = I, t = (−1, −2, −3)
 // gives (1, 2, 3) m), every control point's residual with outliers flagged, and the file written.
 
-#include "tirpol/calibration/geometry_report.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "tirpol/calibration/geometric_calibration.h"
 
 namespace tirpol::calibration {
 namespace {

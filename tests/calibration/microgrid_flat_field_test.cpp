@@ -5,8 +5,6 @@
 // analyzers and pixels, and reduce a uniform polarized flat field with a DoLP error ≤ 0.2 % RMS
 // (the figure), where the two-point NUC with ideal analyzers shows the planted spread.
 
-#include "tirpol/calibration/microgrid_flat_field.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,8 +4,6 @@
 // uniform polarized field to within 0.2 % DoLP RMS (the figure of the issue), where ideal-analyzer
 // reduction shows the planted spread.
 
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -16,6 +14,7 @@
 #include <random>
 
 #include "microgrid_accuracy.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 

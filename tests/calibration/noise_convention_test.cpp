@@ -12,9 +12,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
+#include "synthetic_fpa_camera.h"
 #include "test_support.h"
 #include "tirpol/calibration/frame_stack_io.h"
-#include "tirpol/calibration/synthetic_fpa_camera.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -1,10 +1,10 @@
 // summarize_session: what `tirpol info SESSION` shows a reviewer, counted from a manifest whose
 // contents are known.
 
-#include "tirpol/core/session_summary.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "tirpol/core/path_info.h"
 
 namespace tirpol {
 namespace {

@@ -3,8 +3,6 @@
 // lobe), and against closed forms: a Lambertian surface of albedo πρ_D has ε_S0 = 1 − πρ_D and ε_S1
 // = 0 at every angle.
 
-#include "tirpol/fitting/emissivity_quadrature.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +10,7 @@
 #include "synthetic_emissivity.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/microfacet.h"
 

@@ -14,9 +14,7 @@
 #include "synthetic_emissivity.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/fitting/fit_plot.h"
 #include "tirpol/fitting/microfacet_fit.h"
-#include "tirpol/fitting/parameter_interval.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
 

@@ -3,8 +3,6 @@
 // noise (common random numbers: one fixed offset per fit) enters the weights — Press et al.,
 // Numerical Recipes 3rd ed., §15.4–15.5.
 
-#include "tirpol/fitting/noisy_model_fit.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -17,6 +15,7 @@
 #include "error_of.h"
 #include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/render_fit.h"
 
 using tirpol::test::error_of;
 

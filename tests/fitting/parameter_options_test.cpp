@@ -2,13 +2,12 @@
 // --free NAME): each changes only the named parameter, and malformed items are refused with the
 // item named.
 
-#include "tirpol/fitting/parameter_options.h"
-
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/fit_run.h"
 
 namespace tirpol::fitting {
 namespace {

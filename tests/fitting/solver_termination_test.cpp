@@ -1,10 +1,10 @@
 // SolverTermination: the typed form of Ceres' termination, written out as Ceres spells it so that
 // the fit's JSON and text report keep their content.
-#include "tirpol/fitting/solver_termination.h"
-
 #include <gtest/gtest.h>
 
 #include <sstream>
+
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 namespace {

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "lambertian.h"
+#include "smooth_fresnel.h"
 #include "test_support.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/microfacet.h"
-#include "tirpol/materials/smooth_fresnel.h"
 
 namespace tirpol::materials {
 namespace {

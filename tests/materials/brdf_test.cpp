@@ -8,10 +8,10 @@
 #include <memory>
 #include <random>
 
+#include "lambertian.h"
+#include "smooth_fresnel.h"
 #include "tirpol/core/mueller.h"
-#include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/microfacet.h"
-#include "tirpol/materials/smooth_fresnel.h"
 
 namespace tirpol::materials {
 namespace {

@@ -2,13 +2,12 @@
 // one built from the model; a changed material, band grid or corrupt file never returns stale
 // numbers.
 
-#include "tirpol/materials/emissivity_cache.h"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "test_support.h"
+#include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {

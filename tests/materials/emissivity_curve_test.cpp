@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "smooth_fresnel.h"
 #include "tirpol/core/error.h"
 #include "tirpol/materials/microfacet.h"
-#include "tirpol/materials/smooth_fresnel.h"
 
 namespace tirpol::materials {
 namespace {

@@ -1,8 +1,6 @@
 // `tirpol emissivity`'s library side: the report of a library material at a wavelength and over a
 // band, its CSV file, JSON keys and text table.
 
-#include "tirpol/materials/emissivity_report.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +9,7 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/emissivity_curve.h"
 
 namespace tirpol::materials {
 namespace {

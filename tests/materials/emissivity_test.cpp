@@ -9,11 +9,11 @@
 #include <memory>
 #include <tuple>
 
+#include "lambertian.h"
+#include "smooth_fresnel.h"
 #include "tirpol/core/stokes.h"
 #include "tirpol/materials/fresnel.h"
-#include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/microfacet.h"
-#include "tirpol/materials/smooth_fresnel.h"
 
 namespace tirpol::materials {
 namespace {

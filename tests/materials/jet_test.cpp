@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "tirpol/materials/shell_target_math.h"
+#include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
 namespace {

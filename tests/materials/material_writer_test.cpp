@@ -1,8 +1,6 @@
 // The materials module writes the material files it reads: write → parse gives the same material
 // (round trip), whatever the text in its strings, for a constant index and for a spectral table.
 
-#include "tirpol/materials/material_writer.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

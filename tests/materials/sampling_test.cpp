@@ -8,8 +8,8 @@
 #include <memory>
 #include <random>
 
+#include "lambertian.h"
 #include "tirpol/materials/emissivity.h"
-#include "tirpol/materials/lambertian.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {

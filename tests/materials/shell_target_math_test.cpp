@@ -1,7 +1,5 @@
 // The micro-facet formulas of shell_target_math.h checked against independent constructions.
 
-#include "tirpol/materials/shell_target_math.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +7,7 @@
 
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/fresnel.h"
+#include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {
 namespace {

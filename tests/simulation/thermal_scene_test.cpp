@@ -5,12 +5,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "scene_thermal.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/scene.h"
-#include "tirpol/simulation/scene_thermal.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/solar_position.h"
 

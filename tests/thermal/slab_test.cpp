@@ -5,8 +5,6 @@
 // 6th ed. (2007) — eqs. 5.57, 5.58 (same solutions), §3.1 (plane wall with convection, thermal
 // resistances).
 
-#include "tirpol/thermal/slab.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +12,7 @@
 
 #include "tirpol/core/geometry.h"
 #include "tirpol/thermal/sky_longwave.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -3,12 +3,11 @@
 // reached from a time written as text, the same instant written with and without its offset, and
 // the times that are usage errors of --time.
 
-#include "tirpol/thermal/sun_report.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::thermal {
 namespace {

@@ -2,8 +2,6 @@
 // example at noon shows the paper's Fig. 2 ordering, keeping the 24-hour history changes only what
 // is recorded (the final state is the same), and the CSV and JSON report every object once.
 
-#include "tirpol/thermal/thermal_run.h"
-
 #include <gtest/gtest.h>
 
 #include <map>
@@ -12,6 +10,7 @@
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::thermal {
 namespace {

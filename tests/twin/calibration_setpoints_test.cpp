@@ -3,13 +3,12 @@
 // + B (the sensor model's Malus law, Chipman, Lam & Young 2018 eq 6.35), the polarimetric ones the
 // scene's S0; beyond the laboratory's blackbodies they are clamped and the reason is given.
 
-#include "tirpol/twin/calibration_setpoints.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "tirpol/twin/instrument.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {
 namespace {

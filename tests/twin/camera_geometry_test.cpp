@@ -5,8 +5,6 @@
 // a pose that puts the scene on the truth's pixel grid, far better than the nominal set-up it
 // started from.
 
-#include "tirpol/twin/camera_geometry.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +12,7 @@
 
 #include "test_support.h"
 #include "tirpol/core/camera_model.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {
 namespace {

@@ -1,10 +1,9 @@
-#include "tirpol/thermal/slab.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/sky_longwave.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 

@@ -1,9 +1,8 @@
-#include "tirpol/thermal/sun_report.h"
-
 #include <fmt/printf.h>
 
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/solar_position.h"
 
 namespace tirpol::thermal {
 

@@ -1,5 +1,3 @@
-#include "tirpol/thermal/thermal_run.h"
-
 #include <algorithm>
 #include <array>
 #include <sstream>
@@ -7,6 +5,7 @@
 #include "tirpol/core/line_plot.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/thermal_config.h"
 
 namespace tirpol::thermal {
 

@@ -1,5 +1,3 @@
-#include "tirpol/twin/calibration_setpoints.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,6 +5,7 @@
 #include <limits>
 
 #include "tirpol/core/error.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {
 

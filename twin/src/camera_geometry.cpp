@@ -2,8 +2,6 @@
 // procedure: geometric calibration from filmed checkerboard frames, pose from surveyed control
 // points.
 
-#include "tirpol/twin/camera_geometry.h"
-
 #include <fmt/format.h>
 
 #include <random>
@@ -16,6 +14,7 @@
 #include "tirpol/core/source_tree.h"
 #include "tirpol/simulation/heated_board.h"
 #include "tirpol/simulation/renderer.h"
+#include "tirpol/twin/twin.h"
 
 namespace tirpol::twin {
 

@@ -12,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include "regions.h"
-#include "tirpol/calibration/microgrid_flat_field.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"

@@ -28,8 +28,6 @@
 #include "tirpol/report/summary_text.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/renderer.h"
-#include "tirpol/twin/calibration_setpoints.h"
-#include "tirpol/twin/camera_geometry.h"
 #include "tirpol/twin/instrument.h"
 #include "tirpol/twin/twin.h"
 

@@ -1,6 +1,6 @@
 // `model: lambertian`: an unpolarized diffuse reflector with a spectral `reflectance`.
 
-#include "tirpol/materials/lambertian.h"
+#include "lambertian.h"
 
 #include "model_config.h"
 

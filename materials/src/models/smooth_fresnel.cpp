@@ -1,7 +1,7 @@
 // `model: smooth_fresnel`: a specular interface with the Fresnel Mueller matrix; only a refractive
 // index.
 
-#include "tirpol/materials/smooth_fresnel.h"
+#include "smooth_fresnel.h"
 
 #include "model_config.h"
 

@@ -1,4 +1,4 @@
-#include "tirpol/materials/lambertian.h"
+#include "lambertian.h"
 
 #include "../sampling.h"
 #include "tirpol/core/error.h"

@@ -1,4 +1,4 @@
-#include "tirpol/materials/smooth_fresnel.h"
+#include "smooth_fresnel.h"
 
 #include "tirpol/materials/fresnel.h"
 

@@ -8,7 +8,6 @@
 #include <optional>
 #include <string>
 
-#include "tirpol/calibration/counts_quicklook.h"  // kCountsQuicklookLabel heads its text
 #include "tirpol/core/image.h"
 
 namespace tirpol::calibration {

@@ -3,6 +3,11 @@
 /// What a fit leaves behind: a material YAML in the materials module's format (material.h,
 /// docs/materials.md) that `tirpol emissivity` and the renderer load directly, with the fit's
 /// provenance in `source`/`notes` and in comments; a JSON report; a text summary for the terminal.
+///
+/// A plot like the paper's Fig. 1: measured ε_S0(θ) and ε_S1(θ) with 2σ error bars and the fitted
+/// model curves, one panel each, one colour per dataset/band; axes, ticks, labels and a legend.
+/// Drawn with OpenCV directly rather than core's write_line_plot, which has neither error bars nor
+/// stacked panels; the tick positions are core's nice_ticks.
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -37,5 +42,11 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& result,
 /// warnings.
 std::string fit_report_text(const MicrofacetFitResult& result,
                             const std::vector<EmissivityDataset>& datasets);
+
+/// Writes the PNG (atomically). The curves are the fit's own quadrature at 0.5° steps.
+void write_fit_plot(const std::filesystem::path& png,
+                    const std::vector<EmissivityDataset>& datasets,
+                    const MicrofacetFitResult& result, const std::string& title,
+                    const QuadratureOptions& quadrature = {});
 
 }  // namespace tirpol::fitting

@@ -12,9 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/simulation/scene_thermal.h"  // export_scene_temperatures writes `exported`
 #include "tirpol/thermal/thermal_config.h"
-#include "tirpol/thermal/thermal_run.h"
 
 namespace tirpol::simulation {
 

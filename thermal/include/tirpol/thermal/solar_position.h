@@ -4,8 +4,14 @@
 /// Solar Radiation Applications", NREL/TP-560-34302 (2003, rev. 2008); Solar Energy 76(5) 577–589
 /// (2004). Topocentric zenith and azimuth, uncertainty ±0.0003° for years −2000…6000. Equation
 /// numbers below are the report's (section 3).
+///
+/// `tirpol sun`: the sun's position (solar_position.h) at a time written as text, and its incidence
+/// on a tilted surface, with the JSON and text formats.
 
+#include <nlohmann/json.hpp>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
 
 #include "tirpol/core/geometry.h"
 
@@ -65,5 +71,34 @@ Vec3 sun_direction(const SolarPosition& sun);
 /// Unit outward normal (x east, y north, z up) of a facet with tilt (0 = facing up) and azimuth of
 /// its downslope direction (from north, eastward).
 Vec3 facet_normal(double tilt_deg, double surface_azimuth_deg);
+
+/// Where (and the atmosphere) in `spa` (its unix_seconds is ignored), when as ISO 8601 text, and
+/// the surface.
+struct SunQuery {
+    SpaInput spa;
+    std::string time;                    ///< with its UTC offset, or with utc_offset_h given
+    std::optional<double> utc_offset_h;  ///< for a time written without one
+    double tilt_deg = 0.0;
+    double surface_azimuth_deg = 180.0;
+};
+
+/// The answer of sun_report.
+struct SunReport {
+    SpaInput spa;  ///< with the instant resolved
+    SolarPosition position;
+    double tilt_deg = 0.0, surface_azimuth_deg = 0.0;
+    double incidence_deg = 0.0;  ///< > 90: the sun is behind the surface
+};
+
+/// Resolves the time and runs the SPA. A time that does not parse, or has no offset while
+/// utc_offset_h is unset (no site, so no standard time to assume), throws OptionValueError for
+/// --time; the SPA's own range checks throw tirpol::Error.
+SunReport sun_report(const SunQuery& query);
+
+/// solar_position_json of the report.
+nlohmann::json sun_report_json(const SunReport& report);
+
+/// Time, zenith, azimuth, declination and incidence, one per line.
+std::string sun_report_text(const SunReport& report);
 
 }  // namespace tirpol::thermal

@@ -4,8 +4,8 @@
 /// the directional-hemispherical reflectance (Lambert 1760; Nicodemus et al., NBS Monograph 160,
 /// 1977). Its emissivity is unpolarized and angle-independent: ε = 1 − ρ.
 
+#include "tirpol/materials/microfacet.h"
 #include "tirpol/materials/pbrdf.h"
-#include "tirpol/materials/spectral_value.h"
 
 namespace tirpol::materials {
 

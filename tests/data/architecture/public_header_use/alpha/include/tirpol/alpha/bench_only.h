@@ -1,0 +1,4 @@
+#pragma once
+namespace alpha {
+struct BenchOnly {};
+}  // namespace alpha

@@ -1,0 +1,2 @@
+#include "tirpol/alpha/own_only.h"
+#include "tirpol/alpha/used.h"

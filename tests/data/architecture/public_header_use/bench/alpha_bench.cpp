@@ -1,0 +1,1 @@
+#include "tirpol/alpha/bench_only.h"
