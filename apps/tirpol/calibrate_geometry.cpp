@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/geometry_report.h"
+#include "tirpol/calibration/geometric_calibration.h"
 
 namespace tirpol::cli {
 

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/geometry_report.h"
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/core/output_guard.h"

@@ -1,11 +1,10 @@
-#include "tirpol/fitting/parameter_options.h"
-
 #include <cmath>
 #include <optional>
 #include <string>
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/fitting/fit_run.h"
 
 namespace tirpol::fitting {
 

@@ -11,7 +11,6 @@
 #include "image_conversion.h"
 #include "interruptible.h"
 #include "tirpol/calibration/analyzer.h"
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/stokes_reduction.h"

@@ -9,8 +9,7 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
-#include "tirpol/calibration/microgrid_flat_field.h"
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
+#include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/synthetic_microgrid.h"
 #include "tirpol/core/error.h"
 

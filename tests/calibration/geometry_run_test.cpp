@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
-#include "tirpol/calibration/geometry_report.h"
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/option_value_error.h"
 #include "tirpol/core/output_guard.h"
 

@@ -10,7 +10,6 @@
 #include <numbers>
 
 #include "test_support.h"
-#include "tirpol/calibration/microgrid_flat_field.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/synthetic_microgrid.h"
 #include "tirpol/core/error.h"

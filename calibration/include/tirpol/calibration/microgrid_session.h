@@ -6,15 +6,153 @@
 /// their frame counts) and the mean mosaic is reduced: demosaiced and reduced with ideal analyzers
 /// at the pattern's angles (reduce_microgrid), or, with a per-pixel calibration, per 2×2
 /// super-pixel with each pixel's own analysis vector (reduce_microgrid_per_pixel).
+///
+/// Per-pixel analyzer calibration of a microgrid camera and the reduction that uses it, after
+/// S. B. Powell & V. Gruev, "Calibration methods for division-of-focal-plane polarimeters",
+/// Opt. Express 21(18), 21039 (2013): the micro-polarizers' axis, diattenuation and transmission
+/// vary across the array (by up to 20 %), so every pixel gets its own analysis vector, fitted from
+/// frames of a uniform source of known Stokes (a blackbody seen through a reference polarizer at
+/// known angles, and at two radiances), and each 2×2 super-pixel is reduced by its own 3×4
+/// data-reduction matrix.
+///
+/// Pixel model (the row of analyzer.h, per pixel i): I_i = w_i·S + b_i with w_i = ½·t_i·(1, d_i cos
+/// 2θ_i, d_i sin 2θ_i), S = (S0, S1, S2) in the camera frame of ARCHITECTURE.md, b_i an additive
+/// background.
 
+#include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <optional>
+#include <span>
+#include <string>
+#include <vector>
 
-#include "tirpol/calibration/microgrid_pixel_calibration.h"
+#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/image.h"
 
 namespace tirpol::calibration {
+
+/// One calibration frame: a uniform source of known Stokes vector (S0, S1, S2) filling the view,
+/// and the (frame-averaged) microgrid frame, row-major.
+struct MicrogridFlatField {
+    Eigen::Vector3d source_stokes;
+    std::vector<float> frame;
+};
+
+/// Each pixel's analysis vector w_i and background b_i (planes, row-major).
+struct MicrogridPixelCalibration {
+    int width = 0;
+    int height = 0;
+    std::array<std::vector<float>, 3> analysis;  ///< w_i0, w_i1, w_i2
+    std::vector<float> background;               ///< b_i (0 when not fitted)
+    /// BadPixel bit mask (bad_pixels.h) as float, 0 = good; empty when no pixel was assessed.
+    /// Reduction leaves a bad pixel out of its super-pixel.
+    std::vector<float> bad;
+    double fit_rms = 0.0;  ///< RMS residual of the per-pixel fits, signal units
+    /// Per pixel, the standard deviation of its fit's residuals, √(RSS_i/(J − p)) for J flat fields
+    /// and p = 4 parameters (3 without background); empty when not known (no more sources than
+    /// parameters, or a calibration made another way).
+    std::vector<float> residual_std;
+    /// (AᵀA)⁻¹ of the fits' design matrix A (rows (S_j, 1)), p×p row-major: pixel i's parameters
+    /// (w_i0, w_i1, w_i2[, b_i]) have the covariance residual_std[i]² · this (least squares with
+    /// independent errors of equal variance per pixel). Empty with residual_std.
+    std::vector<double> unit_parameter_covariance;
+    /// Per pixel, the covariance of its parameters (w_i0, w_i1, w_i2, b_i) where it differs from
+    /// pixel to pixel in more than a scale (a calibration from flat-field sessions, propagated
+    /// from the records' temporal noise): the upper triangle's 10 entries in the order 00 01 02
+    /// 03 11 12 13 22 23 33, each a plane (signal units², the w in signal per Stokes unit); empty
+    /// when not known. Reduction uses it in place of residual_std and unit_parameter_covariance.
+    std::array<std::vector<float>, 10> parameter_covariance;
+    /// Units of the Stokes vectors the analysis vectors map from (e.g. "W/(m^2 sr)" when the
+    /// sources were blackbody band radiances); empty when not known. Reduction writes it as
+    /// `units`.
+    std::string stokes_units;
+
+    /// t_i = 2·w_i0 (1 for an ideal polarizer).
+    float transmission(std::size_t i) const { return 2.0f * analysis[0][i]; }
+    /// d_i = |(w_i1, w_i2)|/w_i0.
+    float diattenuation(std::size_t i) const;
+    /// θ_i = ½·atan2(w_i2, w_i1) in degrees, [0, 180).
+    float axis_angle_deg(std::size_t i) const;
+    /// Whether pixel i is marked bad.
+    bool is_bad(std::size_t i) const { return !bad.empty() && bad[i] != 0.0f; }
+    /// Whether the fit's uncertainties are known (residual_std and unit_parameter_covariance, or
+    /// parameter_covariance).
+    bool has_uncertainties() const { return !residual_std.empty() || has_pixel_covariance(); }
+    /// Whether each pixel's parameter covariance is given (parameter_covariance).
+    bool has_pixel_covariance() const { return !parameter_covariance[0].empty(); }
+    /// Channels `transmission`, `diattenuation`, `axis_angle_deg`, `background`, `w0`, `w1`, `w2`
+    /// and, when assessed, `bad`; with uncertainties the parameters' standard uncertainties
+    /// `w0_std`, `w1_std`, `w2_std` (and `background_std` when fitted) and either `residual_std`
+    /// with the attribute `unit_parameter_covariance`, or the per-pixel covariance as channels
+    /// `cov_w0_w0`, `cov_w0_w1`, … `cov_b_b` (parameter_covariance's order); attributes `fit_rms`
+    /// and, when known, `stokes_units`: the calibration as an EXR-ready image (the w, background,
+    /// bad, residual_std planes and the covariance are what reduction reads).
+    Image to_image() const;
+    /// The inverse of to_image(); throws tirpol::Error naming a missing channel. A file without a
+    /// `bad` channel (written before bad pixels were assessed) reads with no pixel marked bad.
+    static MicrogridPixelCalibration from_image(const Image& image);
+};
+
+/// Fits every pixel by linear least squares over the flat fields: I_ij = w_i·S_j + b_i (with
+/// `fit_background`, else b_i = 0). The design matrix is the same for every pixel, so its
+/// pseudo-inverse is computed once. Throws tirpol::Error for frames of the wrong size, non-finite
+/// values, or sources that do not determine the model: fewer than 4 (3 without background), or not
+/// spanning (S0, S1, S2[, 1]), e.g. a reference polarizer at one radiance only with a background.
+MicrogridPixelCalibration calibrate_microgrid_pixels(
+    const std::vector<MicrogridFlatField>& flat_fields, int width, int height,
+    bool fit_background = true);
+
+/// Reduces a microgrid frame with the per-pixel calibration, one Stokes vector per 2×2 super-pixel:
+/// S = (WᵀW)⁻¹Wᵀ(I − b) with W the 4×3 matrix of the cell's analysis vectors (the pattern is
+/// implicit in them). A pixel marked bad is left out (its row dropped): three good analyzers at
+/// distinct angles still determine S; such cells are counted in `cells_with_bad_pixels`. Output:
+/// half-size image with S0 S1 S2 DoLP AoP (deg, [0, 180)), attributes `demosaic_method` =
+/// "super-pixel", `analyzer_model` = "per-pixel", `units` when the calibration knows them. Throws
+/// tirpol::Error for a frame of another size than the calibration's or a non-finite value at a good
+/// pixel; a cell whose good rows do not determine S (fewer than 3, or a dead analyzer) gives NaN
+/// for that super-pixel and is counted in the attribute `singular_cells`.
+Image reduce_microgrid_per_pixel(std::span<const float> mosaic,
+                                 const MicrogridPixelCalibration& calibration);
+
+/// reduce_microgrid_per_pixel with its per-super-pixel work done once: each cell's 3×4 matrix
+/// M = (WᵀW)⁻¹Wᵀ (a bad pixel's column zero) and offset −M·b, so that reducing a frame is one
+/// matrix-vector product per cell (for a live view or many frames of one camera). Equal to
+/// reduce_microgrid_per_pixel to float rounding (it is what that function runs).
+class MicrogridPixelReducer {
+public:
+    /// Throws tirpol::Error for a calibration whose planes do not hold width × height values.
+    explicit MicrogridPixelReducer(const MicrogridPixelCalibration& calibration);
+    /// The output of reduce_microgrid_per_pixel for `mosaic` (same checks and attributes). When the
+    /// calibration has uncertainties or `mosaic_std` (each pixel's σ, e.g. of a frame mean) is
+    /// given, also S0_std S1_std S2_std DoLP_std AoP_std, to first order as reduce_stokes does: per
+    /// pixel k of a cell, var_k = σ_k² + (S, 1)ᵀ·Cov(w_k, b_k)·(S, 1) (the error of I_k − b_k −
+    /// w_k·S at the cell's S), Cov(S) = Σ_k var_k·m_k·m_kᵀ with m_k column k of M; attribute
+    /// `std_includes` says which. Throws tirpol::Error for a σ plane of the wrong size or holding a
+    /// negative or non-finite value at a good pixel.
+    Image reduce(std::span<const float> mosaic, std::span<const float> mosaic_std = {}) const;
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    /// The σ channels of `out` (S0 S1 S2 present) from the frame's σ and the calibration's.
+    void add_uncertainties(Image& out, std::span<const float> mosaic_std) const;
+
+    int m_width = 0, m_height = 0;
+    /// Per cell, row-major over the half-size image: M's 12 entries (row r, pixel k at 4r + k,
+    /// k = 2·(y mod 2) + (x mod 2)) and the 3 offsets; NaN for a singular cell.
+    std::array<std::vector<float>, 12> m_matrix;
+    std::array<std::vector<float>, 3> m_offset;
+    std::vector<unsigned char> m_bad;   ///< per pixel; its value is never read
+    std::vector<float> m_residual_var;  ///< per pixel, residual_std²; empty without uncertainties
+    std::vector<double> m_unit_covariance;                  ///< p×p, see unit_parameter_covariance
+    std::array<std::vector<float>, 10> m_pixel_covariance;  ///< see parameter_covariance
+    int m_parameters = 0;                                   ///< p: 4 with background, 3 without
+    int m_singular_cells = 0, m_cells_with_bad_pixels = 0;
+    std::string m_units;
+};
 
 struct MicrogridSessionOptions {
     DemosaicMethod method = DemosaicMethod::Newton;  ///< without a per-pixel calibration
