@@ -57,6 +57,45 @@ struct CalibrationTarget {
     std::vector<Vec3> object_points() const;
 };
 
+/// Feature points of one view in OpenCV pixel coordinates (centre of the top-left pixel at (0, 0)),
+/// in the order of CalibrationTarget::object_points().
+struct TargetView {
+    std::string name;  ///< frame file or label, for messages
+    std::vector<Vec2> points_px;
+};
+
+/// The outcome of a search for the target in one frame: the view, or why there is none.
+struct TargetSearch {
+    std::optional<TargetView> view;
+    /// Empty when found; else why not, e.g. "only a 6x5 grid of the target's 9x6 inner corners is
+    /// in the frame: the board runs off its left edge; …", a grid of another size than the
+    /// target's, a flat frame, or no target at all.
+    std::string failure;
+};
+
+/// Searches a single-channel plane of `width`×`height` values (any units) for `target`. Throws
+/// when the plane's size does not match.
+TargetSearch search_target(const std::vector<float>& plane, int width, int height,
+                           const CalibrationTarget& target, const std::string& name = "");
+
+/// search_target() on every plane, the frames spread over the cores. `names` (optional) label the
+/// views.
+std::vector<TargetSearch> search_target_views(const std::vector<std::vector<float>>& planes,
+                                              int width, int height,
+                                              const CalibrationTarget& target,
+                                              const std::vector<std::string>& names = {});
+
+/// search_target()'s view: nullopt when the target is not found.
+std::optional<TargetView> detect_target(const std::vector<float>& plane, int width, int height,
+                                        const CalibrationTarget& target,
+                                        const std::string& name = "");
+
+/// detect_target() on every plane, the frames spread over the cores; element i is nullopt where
+/// the target was not found in plane i. `names` (optional) label the views.
+std::vector<std::optional<TargetView>> detect_target_views(
+    const std::vector<std::vector<float>>& planes, int width, int height,
+    const CalibrationTarget& target, const std::vector<std::string>& names = {});
+
 struct GeometricCalibrationOptions {
     std::string distortion_model = "standard";  ///< standard (k1 k2 p1 p2 k3), rational, thin_prism
     bool fix_k3 = false;                        ///< keep k3 = 0 (few views, or a narrow lens)
@@ -149,45 +188,6 @@ struct PoseRun {
 
 /// Checks the output (OutputGuard), estimates the pose and writes it.
 PoseRun run_pose_estimation(const PoseRunOptions& options);
-
-/// Feature points of one view in OpenCV pixel coordinates (centre of the top-left pixel at (0, 0)),
-/// in the order of CalibrationTarget::object_points().
-struct TargetView {
-    std::string name;  ///< frame file or label, for messages
-    std::vector<Vec2> points_px;
-};
-
-/// The outcome of a search for the target in one frame: the view, or why there is none.
-struct TargetSearch {
-    std::optional<TargetView> view;
-    /// Empty when found; else why not, e.g. "only a 6x5 grid of the target's 9x6 inner corners is
-    /// in the frame: the board runs off its left edge; …", a grid of another size than the
-    /// target's, a flat frame, or no target at all.
-    std::string failure;
-};
-
-/// Searches a single-channel plane of `width`×`height` values (any units) for `target`. Throws
-/// when the plane's size does not match.
-TargetSearch search_target(const std::vector<float>& plane, int width, int height,
-                           const CalibrationTarget& target, const std::string& name = "");
-
-/// search_target() on every plane, the frames spread over the cores. `names` (optional) label the
-/// views.
-std::vector<TargetSearch> search_target_views(const std::vector<std::vector<float>>& planes,
-                                              int width, int height,
-                                              const CalibrationTarget& target,
-                                              const std::vector<std::string>& names = {});
-
-/// search_target()'s view: nullopt when the target is not found.
-std::optional<TargetView> detect_target(const std::vector<float>& plane, int width, int height,
-                                        const CalibrationTarget& target,
-                                        const std::string& name = "");
-
-/// detect_target() on every plane, the frames spread over the cores; element i is nullopt where
-/// the target was not found in plane i. `names` (optional) label the views.
-std::vector<std::optional<TargetView>> detect_target_views(
-    const std::vector<std::vector<float>>& planes, int width, int height,
-    const CalibrationTarget& target, const std::vector<std::string>& names = {});
 
 /// Reads a frame for detection: an EXR (channel `counts`, else `S0`) or a PNG/TIFF (8/16-bit,
 /// float).

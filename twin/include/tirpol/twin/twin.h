@@ -42,6 +42,31 @@
 
 namespace tirpol::twin {
 
+/// The coldest and warmest blackbody the twin's laboratory may use: an extended-area source cooled
+/// to −100 °C (a cryogenically cooled plate; thermo-electric ones reach about −40 °C) and +100 °C.
+inline constexpr double kColdestBlackbodyK = 173.15;
+inline constexpr double kWarmestBlackbodyK = 373.15;
+/// Margin on each side of the expected range, in brightness temperature.
+inline constexpr double kSetpointMarginK = 2.0;
+
+struct BlackbodySetpoints {
+    std::vector<double>
+        radiometric_k;  ///< three, polarizer out: span the detector radiance through the polarizer
+    std::vector<double> polarimetric_k;  ///< two, through the polarizer: span the scene's S0
+    double detector_radiance_min = 0.0, detector_radiance_max = 0.0;  ///< expected, W/(m²·sr)
+    double scene_s0_min = 0.0, scene_s0_max = 0.0;  ///< of the truth renders, W/(m²·sr)
+    /// Empty when both ranges are covered with margin; otherwise why not (a set-point was clamped
+    /// to the laboratory's blackbody range).
+    std::string limitation;
+};
+
+/// Set-points from the truth renders' S0, S1, S2 (finite pixels of every view) through `sensor`'s
+/// analyzer and grid background, in `band`, with kSetpointMarginK on each side, clamped to
+/// [kColdestBlackbodyK, kWarmestBlackbodyK]. Throws tirpol::Error when no render has a finite
+/// pixel.
+BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth,
+                                       const simulation::SensorModel& sensor, const Band& band);
+
 /// The nominal camera's intrinsics with the twin's realistic lens (an uncooled LWIR core behind a
 /// small germanium lens): k1 −0.30, k2 0.12, p1 0.0008, p2 −0.0005, k3 0, fy = 1.004 fx, the
 /// principal point 3.1 % of the width right and 2.4 % of the height up of the nominal one.
@@ -224,30 +249,5 @@ std::string paint_fit_comparison(const TwinResult& r);
 /// The demo's text summary: devices, target Stokes vs truth, emissivity, fit, per-region agreement,
 /// times.
 std::string twin_summary(const TwinResult& r);
-
-/// The coldest and warmest blackbody the twin's laboratory may use: an extended-area source cooled
-/// to −100 °C (a cryogenically cooled plate; thermo-electric ones reach about −40 °C) and +100 °C.
-inline constexpr double kColdestBlackbodyK = 173.15;
-inline constexpr double kWarmestBlackbodyK = 373.15;
-/// Margin on each side of the expected range, in brightness temperature.
-inline constexpr double kSetpointMarginK = 2.0;
-
-struct BlackbodySetpoints {
-    std::vector<double>
-        radiometric_k;  ///< three, polarizer out: span the detector radiance through the polarizer
-    std::vector<double> polarimetric_k;  ///< two, through the polarizer: span the scene's S0
-    double detector_radiance_min = 0.0, detector_radiance_max = 0.0;  ///< expected, W/(m²·sr)
-    double scene_s0_min = 0.0, scene_s0_max = 0.0;  ///< of the truth renders, W/(m²·sr)
-    /// Empty when both ranges are covered with margin; otherwise why not (a set-point was clamped
-    /// to the laboratory's blackbody range).
-    std::string limitation;
-};
-
-/// Set-points from the truth renders' S0, S1, S2 (finite pixels of every view) through `sensor`'s
-/// analyzer and grid background, in `band`, with kSetpointMarginK on each side, clamped to
-/// [kColdestBlackbodyK, kWarmestBlackbodyK]. Throws tirpol::Error when no render has a finite
-/// pixel.
-BlackbodySetpoints blackbody_setpoints(const std::vector<Image>& truth,
-                                       const simulation::SensorModel& sensor, const Band& band);
 
 }  // namespace tirpol::twin
