@@ -38,6 +38,9 @@ Image measured_render(simulation::Scene scene, const simulation::PinholeCamera& 
                       std::uint64_t seed) {
     scene.camera = camera;
     scene.sampling.seed = seed;
+    // A measurement's σ comes from many frames; a render standing in for one states its σ per
+    // pixel from the replicates, so it draws the replicates that make a per-pixel σ.
+    scene.sampling.replicates = simulation::kPerPixelReplicates;
     Image image = simulation::render(scene);
     std::optional<Image> independent;
     if (knob("TIRPOL_RENDER_FIT_TEST_INDEPENDENT_STD", 0) != 0) {
