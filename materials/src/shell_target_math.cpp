@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gaussian_erfc.h"
 #include "tirpol/core/stokes_frame.h"
 #include "tirpol/materials/microfacet.h"
 
@@ -16,6 +17,12 @@ double cotangent(double cos_theta) {
     return sin_theta * kMaxCotangent <= cos_theta ? kMaxCotangent : cos_theta / sin_theta;
 }
 }  // namespace
+
+double smith_lambda_from_gaussian(double sigma, double cot_theta) {
+    const double a = cot_theta / (std::sqrt(2.0) * sigma);
+    const double e = std::exp(-a * a);
+    return (e / (a * std::sqrt(kPi)) - detail::erfc_given_gaussian(a, e)) * 0.5;
+}
 
 MicrofacetGeometry microfacet_geometry(const Vec3& wi, const Vec3& wo) {
     MicrofacetGeometry g;
