@@ -9,8 +9,9 @@
 //  - ReflectionEqualNoise, EmissionEqualNoise: tirpol against Mitsuba 3 at equal noise, in
 //    mitsuba_comparison.cpp (the same program).
 //  - ShadingProfile: panels_night 80×64, 8 and 64 spp, one thread: the callgrind workload.
-//  - ThreadEfficiency: panels_night 320×256, 32 spp, at 1, 2, 4, … threads up to
-//    hardware_concurrency: wall time, speedup, efficiency and tracing CPU per million paths.
+//  - ThreadEfficiency: panels_night 320×256, 32 spp, at 1, 2, 4, … threads up to the CPUs the
+//    process may use (or TIRPOL_BENCH_THREADS): wall time, speedup, efficiency and its two causes,
+//    the busy share and the tracing CPU per path against one thread's.
 //  - ErrorBarTails (figures, not speed): per-pixel z tails against spp in an isothermal enclosure
 //    (plain estimator) and an open scene against a 4096-spp reference (control variate).
 //  - VarianceCalibration (figures): per material region of three night scenes, the two-seed ratio
@@ -23,6 +24,7 @@
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -183,36 +185,83 @@ BENCHMARK(BM_ShadingProfile)
     ->UseManualTime()
     ->Unit(benchmark::kSecond);
 
+/// The thread counts ThreadEfficiency runs: TIRPOL_BENCH_THREADS (comma-separated, e.g.
+/// "1,2,4,8,16") or 1, 2, 4, … up to the CPUs this process may run on (its affinity mask, so
+/// `taskset -c 0-7` limits the sweep to eight cores) and that count itself.
+std::vector<int> thread_counts() {
+    std::vector<int> counts;
+    if (const char* list = std::getenv("TIRPOL_BENCH_THREADS")) {
+        std::string text(list);
+        std::size_t begin = 0;
+        while (begin <= text.size()) {
+            const std::size_t end = std::min(text.find(',', begin), text.size());
+            const std::string item = text.substr(begin, end - begin);
+            char* item_end = nullptr;
+            const long threads = std::strtol(item.c_str(), &item_end, 10);
+            if (item.empty() || *item_end != '\0' || threads < 1 || threads > 4096)
+                throw Error(
+                    "TIRPOL_BENCH_THREADS: \"" + item +
+                    "\" is not a thread count; expected comma-separated integers 1 to 4096");
+            counts.push_back(static_cast<int>(threads));
+            begin = end + 1;
+        }
+        if (counts.front() != 1) counts.insert(counts.begin(), 1);  // the speedup's reference
+        return counts;
+    }
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    const int cpus = sched_getaffinity(0, sizeof(allowed), &allowed) == 0
+                         ? CPU_COUNT(&allowed)
+                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    for (int t = 1; t < cpus; t *= 2) counts.push_back(t);
+    counts.push_back(cpus);
+    return counts;
+}
+
 /// Thread scaling on PanelsNightEqualNoise-like work (panels_night 320×256 at 32 spp): wall time
-/// with 1, 2, 4, … threads up to hardware_concurrency (and it), the speedup over one thread and the
-/// efficiency speedup/threads, with the tracing CPU per million paths (a rise with threads is time
-/// lost to sharing: cache lines, the allocator, memory bandwidth). Needs otherwise idle cores.
+/// of the pixel loop with each of thread_counts(), the speedup over one thread and the efficiency
+/// speedup/threads, split into its two causes: the busy share (tracing CPU over threads × wall:
+/// below 1 when threads wait — for tiles at the end, or for a core the other jobs hold) and the
+/// tracing CPU per million paths against one thread's (above 1 when each path costs more with more
+/// threads: shared cache lines, the allocator, memory bandwidth, lower all-core clocks, SMT
+/// siblings). efficiency = busy share / CPU growth. Needs otherwise idle cores.
 void BM_ThreadEfficiency(benchmark::State& state) {
     Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(320, 256);
     scene.sampling.samples_per_pixel = 32;
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     std::vector<int> counts;
-    for (unsigned t = 1; t < hardware; t *= 2) counts.push_back(static_cast<int>(t));
-    counts.push_back(static_cast<int>(hardware));
+    try {
+        counts = thread_counts();
+    } catch (const Error& e) {
+        state.SkipWithError(e.what());
+        return;
+    }
     render(scene);  // emissivity tables into the cache
     const double paths = 320.0 * 256.0 * 32.0;
     for (auto _ : state) {
-        double one_thread_s = 0.0;
+        double one_thread_s = 0.0, one_thread_cpu_per_path = 0.0;
         for (const int threads : counts) {
             RenderOptions options;
             options.threads = threads;
             RenderStatistics stats;
             render(scene, options, &stats);
             const double wall_s = stats.seconds - stats.setup_seconds;
-            if (threads == 1) one_thread_s = wall_s;
+            const double cpu_per_million = stats.trace_cpu_seconds / (paths * 1e-6);
+            if (threads == 1) {
+                one_thread_s = wall_s;
+                one_thread_cpu_per_path = cpu_per_million;
+            }
             const double speedup = one_thread_s / wall_s;
+            const double busy = stats.trace_cpu_seconds / (threads * wall_s);
+            const double cpu_growth = cpu_per_million / one_thread_cpu_per_path;
             std::printf(
-                "threads %2d: %.3f s, speedup %.2f, efficiency %.2f, tracing %.3f CPU s per "
-                "million paths\n",
-                threads, wall_s, speedup, speedup / threads,
-                stats.trace_cpu_seconds / (paths * 1e-6));
+                "threads %2d: %.3f s, speedup %.2f, efficiency %.2f = busy share %.2f / CPU per "
+                "path %.2f× one thread's (tracing %.3f CPU s per million paths)\n",
+                threads, wall_s, speedup, speedup / threads, busy, cpu_growth, cpu_per_million);
+            std::fflush(stdout);
             state.counters[fmt::format("efficiency_{}", threads)] = speedup / threads;
+            state.counters[fmt::format("busy_{}", threads)] = busy;
+            state.counters[fmt::format("cpu_growth_{}", threads)] = cpu_growth;
         }
         state.SetIterationTime(1.0);
     }
