@@ -37,10 +37,8 @@ void register_fit_render(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "fit-render",
         "Fit micro-facet parameters through the renderer to measured Stokes images of a scene");
-    cmd->add_option("scene", args->scene,
-                    "Scene YAML: geometry, temperatures, sky, materials (docs/scene-format.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "scene", args->scene,
+                       "Scene YAML: geometry, temperatures, sky, materials (docs/scene-format.md)");
     cmd->add_option("--view", args->options.views,
                     "Measured view: STOKES.exr (the scene's camera) or "
                     "STOKES.exr,CAMERA.yaml,POSE.yaml; repeat")
