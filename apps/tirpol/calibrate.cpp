@@ -54,8 +54,7 @@ void register_calibrate(CLI::App& app) {
     rad->add_flag("--quadratic", ro.quadratic, "Fit counts = o + g·L + q·L² (≥ 3 temperatures)");
     rad->add_option("--fpa-degree", ro.fpa_degree,
                     "Gain and offset as polynomials of this degree in the camera's FPA temperature "
-                    "(0: one camera state; "
-                    "1: Nugent et al. 2013)")
+                    "(0: one camera state; 1: Nugent et al. 2013)")
         ->check(CLI::Range(0, 2))
         ->capture_default_str();
     rad->add_option("--summary", ro.summary,

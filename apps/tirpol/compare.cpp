@@ -46,8 +46,7 @@ void register_compare(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--registration", args->options.registration,
                     "none | auto | control-points | camera-model (default: camera-model with "
-                    "--camera, else control-points "
-                    "if given, else auto)")
+                    "--camera, else control-points if given, else auto)")
         ->check(CLI::IsMember({"none", "auto", "control-points", "camera-model"}));
     cmd->add_option("--measured-sigma", args->options.measured_frame_sigma,
                     "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has "

@@ -51,8 +51,7 @@ void register_fit_render(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--free", args->options.free,
                     "Parameter to fit: MATERIAL.PARAMETER=LOWER:UPPER[:INITIAL] (n k sigma bias "
-                    "tau_deg omega_deg "
-                    "rho_d rho_v); repeat")
+                    "tau_deg omega_deg rho_d rho_v); repeat")
         ->required();
     cmd->add_option("--spp", args->options.fit.samples_per_pixel,
                     "Samples per pixel of every render (0: the scene's)")

@@ -33,8 +33,7 @@ void register_noise(CLI::App& app) {
         app.add_subcommand("noise", "NEDT and 3D noise from a frame stack of a uniform blackbody");
     add_required_input(cmd, "STACK", o.stack,
                        "Directory of frames (EXR channel counts, PNG, TIFF), one EXR with frame_* "
-                       "channels, or a raw file "
-                       "(--raw-shape)",
+                       "channels, or a raw file (--raw-shape)",
                        CLI::ExistingPath);
     cmd->add_option("--raw-shape", a->raw_shape,
                     "STACK is a headerless raw file of frames WIDTH HEIGHT")

@@ -78,8 +78,7 @@ void register_reduce(CLI::App& app) {
                   "Update the offset from the session's shutter/blackbody record");
     cmd->add_flag("--drift-correction", a->drift_correction,
                   "Correct each record for the offset drift during the session (plan "
-                  "scene_reference region, else "
-                  "interleaved shutter records with a temperature)");
+                  "scene_reference region, else interleaved shutter records with a temperature)");
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction,
                     "Error above this saturated fraction")
         ->capture_default_str();

@@ -17,8 +17,7 @@ void register_temperature(CLI::App& app) {
     cmd->add_option("--channel", o->channel, "EXR channel holding counts")->capture_default_str();
     cmd->add_option("--fpa-temperature-k", o->fpa_temperature_k,
                     "Camera FPA temperature of the image (default: the EXR's fpa_temperature_k "
-                    "attribute); needed by an "
-                    "FPA-dependent calibration");
+                    "attribute); needed by an FPA-dependent calibration");
     add_output_option(cmd, o->output, "Output EXR (radiance, temperature_k)");
     add_force_flag(cmd, o->force);
     cmd->callback([o] {
