@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "tirpol/calibration/microgrid_file.h"
+#include "microgrid_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/option_value_error.h"
