@@ -41,9 +41,7 @@ void register_acquire(CLI::App& app) {
     auto args = std::make_shared<AcquireArgs>();
     auto* cmd = app.add_subcommand(
         "acquire", "Run a capture plan: polarizer angles × frames into a session directory");
-    cmd->add_option("plan", args->plan, "Capture plan (YAML; docs/acquisition-stages.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "plan", args->plan, "Capture plan (YAML; docs/acquisition-stages.md)");
     cmd->add_option("--camera", args->options.camera_uri,
                     "Camera URI (aravis://ID, v4l2:///dev/videoN, sim://...)")
         ->required();

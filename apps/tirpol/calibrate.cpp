@@ -45,22 +45,16 @@ void register_calibrate(CLI::App& app) {
     auto* rad = cmd->add_subcommand(
         "radiometric", "Per-pixel counts→radiance, bad pixels, from blackbody records");
     auto& ro = r->options;
-    rad->add_option("SESSION", ro.sessions,
-                    "Session directories with blackbody records (one camera; several camera "
-                    "temperatures for --fpa-degree)")
-        ->required()
-        ->check(CLI::ExistingDirectory);
+    add_required_input(rad, "SESSION", ro.sessions,
+                       "Session directories with blackbody records (one camera; several camera "
+                       "temperatures for --fpa-degree)",
+                       CLI::ExistingDirectory);
     add_output_option(rad, ro.output, "Calibration EXR to write");
-    rad->add_option("--band-um", r->band_um, "Band limits LO HI in micrometres")
-        ->expected(2)
-        ->capture_default_str();
-    rad->add_option("--rsr", ro.rsr, "Relative spectral response CSV (wavelength_um,response)")
-        ->check(CLI::ExistingFile);
+    add_band_options(rad, r->band_um, ro.rsr)->capture_default_str();
     rad->add_flag("--quadratic", ro.quadratic, "Fit counts = o + g·L + q·L² (≥ 3 temperatures)");
     rad->add_option("--fpa-degree", ro.fpa_degree,
                     "Gain and offset as polynomials of this degree in the camera's FPA temperature "
-                    "(0: one camera state; "
-                    "1: Nugent et al. 2013)")
+                    "(0: one camera state; 1: Nugent et al. 2013)")
         ->check(CLI::Range(0, 2))
         ->capture_default_str();
     rad->add_option("--summary", ro.summary,
@@ -75,12 +69,10 @@ void register_calibrate(CLI::App& app) {
         "polarimetric",
         "Wire-grid τ/B maps and analyzer model from blackbody/known-source records");
     auto& po = p->options;
-    pol->add_option("SESSION", po.session, "Session with blackbody records through the polarizer")
-        ->required()
-        ->check(CLI::ExistingDirectory);
-    pol->add_option("--calibration", po.calibration, "Radiometric calibration EXR")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(pol, "SESSION", po.session,
+                       "Session with blackbody records through the polarizer",
+                       CLI::ExistingDirectory);
+    add_required_input(pol, "--calibration", po.calibration, "Radiometric calibration EXR");
     add_output_option(pol, po.output, "Polarimetric calibration YAML (maps next to it, .maps.exr)");
     pol->add_option("--extinction-ratio", po.extinction_ratio,
                     "Datasheet extinction ratio t_max/t_min of the polarizer, used without "

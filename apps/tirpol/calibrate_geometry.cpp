@@ -26,9 +26,8 @@ void register_calibrate_geometry(CLI::App& app) {
     auto g = std::make_shared<calibration::GeometricRunOptions>();
     auto* geo = cmd->add_subcommand(
         "geometric", "Lens intrinsics and distortion from views of a checkerboard or circle grid");
-    geo->add_option("FRAMES", g->frames, "Frames showing the target (EXR counts/S0, PNG, TIFF)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(geo, "FRAMES", g->frames,
+                       "Frames showing the target (EXR counts/S0, PNG, TIFF)");
     geo->add_option("--target", g->target,
                     "checkerboard:COLSxROWS:SQUARE_M (inner corners) | circles:COLSxROWS:PITCH_M | "
                     "acircles:COLSxROWS:HALF_PITCH_M")
@@ -49,13 +48,10 @@ void register_calibrate_geometry(CLI::App& app) {
     auto p = std::make_shared<calibration::PoseRunOptions>();
     auto* pose = cmd->add_subcommand(
         "pose", "Camera pose in the scene's world frame from ≥ 4 surveyed control points");
-    pose->add_option("--camera", p->camera, "Camera model YAML (from `calibrate geometric`)")
-        ->required()
-        ->check(CLI::ExistingFile);
-    pose->add_option("--points", p->points,
-                     "Control points CSV: name,x_m,y_m,z_m,u_px,v_px (OpenCV pixels)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(pose, "--camera", p->camera,
+                       "Camera model YAML (from `calibrate geometric`)");
+    add_required_input(pose, "--points", p->points,
+                       "Control points CSV: name,x_m,y_m,z_m,u_px,v_px (OpenCV pixels)");
     add_output_option(pose, p->output, "Camera pose YAML to write");
     pose->add_option("--ransac-threshold-px", p->pose.ransac_threshold_px, "Outlier threshold")
         ->capture_default_str();

@@ -29,14 +29,10 @@ void register_compare(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     auto* cmd = app.add_subcommand(
         "compare", "Measured vs simulated Stokes images → HTML report with statistics");
-    cmd->add_option("--measured", args->options.measured,
-                    "Measured Stokes EXR (from `tirpol reduce`)")
-        ->required()
-        ->check(CLI::ExistingFile);
-    cmd->add_option("--simulated", args->options.simulated,
-                    "Simulated Stokes EXR (from `tirpol render`)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "--measured", args->options.measured,
+                       "Measured Stokes EXR (from `tirpol reduce`)");
+    add_required_input(cmd, "--simulated", args->options.simulated,
+                       "Simulated Stokes EXR (from `tirpol render`)");
     cmd->add_option("--rois", args->options.regions,
                     "Regions of interest YAML (named polygons in measured pixels)")
         ->check(CLI::ExistingFile);
@@ -50,8 +46,7 @@ void register_compare(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--registration", args->options.registration,
                     "none | auto | control-points | camera-model (default: camera-model with "
-                    "--camera, else control-points "
-                    "if given, else auto)")
+                    "--camera, else control-points if given, else auto)")
         ->check(CLI::IsMember({"none", "auto", "control-points", "camera-model"}));
     cmd->add_option("--measured-sigma", args->options.measured_frame_sigma,
                     "Radiance noise of one polarizer frame, W/(m²·sr), when the measured EXR has "

@@ -1,62 +1,32 @@
 // `tirpol demosaic`: one microgrid (division-of-focal-plane) frame → Stokes EXR (S0 S1 S2 DoLP
 // AoP).
 
-#include <cstdio>
 #include <memory>
-#include <optional>
 
 #include "cli.h"
-#include "tirpol/calibration/microgrid_file.h"
-#include "tirpol/core/exr_io.h"
+#include "common_options.h"
+#include "tirpol/calibration/microgrid_run.h"
 
 namespace tirpol::cli {
 
 namespace {
-struct DemosaicArgs {
-    std::string input, output, pattern, method = "newton", channel = "counts";
-    bool force = false;
-};
-
-void run_demosaic(const DemosaicArgs& a) {
-    OutputGuard().input(a.input, "INPUT").output_file(a.output, "--output").check(a.force);
-    std::optional<calibration::MicrogridPattern> pattern;
-    if (!a.pattern.empty())
-        pattern = parse_option_value(
-            "--pattern", [&] { return calibration::MicrogridPattern::parse(a.pattern); });
-    calibration::MicrogridReductionOptions options;
-    options.method = parse_option_value(
-        "--method", [&] { return calibration::parse_demosaic_method(a.method); });
-    const Image stokes = calibration::reduce_microgrid_file(a.input, pattern, options, a.channel);
-    write_exr(a.output, stokes);
-    const auto s0 = channel_stats(stokes.channel("S0"));
-    const auto dolp = channel_stats(stokes.channel("DoLP"));
-    std::printf(
-        "Stokes %d×%d (%s, pattern %s): S0 mean %.6g %s, DoLP mean %.4f; %d unrealizable pixel(s) "
-        "projected → %s\n",
-        stokes.width(), stokes.height(), a.method.c_str(),
-        std::get<std::string>(stokes.attributes().at("microgrid_pattern")).c_str(), s0.mean,
-        std::get<std::string>(stokes.attributes().at("units")).c_str(), dolp.mean,
-        std::get<int>(stokes.attributes().at("unrealizable_pixels")), a.output.c_str());
-}
-
 void register_demosaic(CLI::App& app) {
-    auto a = std::make_shared<DemosaicArgs>();
+    auto o = std::make_shared<calibration::DemosaicRunOptions>();
     auto* cmd =
         app.add_subcommand("demosaic", "Microgrid (DoFP) frame → Stokes EXR (S0 S1 S2 DoLP AoP)");
-    cmd->add_option("INPUT", a->input, "Microgrid frame: 16-bit PNG, TIFF or EXR")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "INPUT", o->input, "Microgrid frame: 16-bit PNG, TIFF or EXR");
     cmd->add_option(
-        "--pattern", a->pattern,
+        "--pattern", o->pattern,
         "Analyzer angles of the 2×2 cell (0,0),(0,1),(1,0),(1,1) in degrees, e.g. 90,45,135,0, or "
         "'sony'; default: the pattern recorded in an EXR header");
-    cmd->add_option("--method", a->method, "Demosaicing: super-pixel, bilinear or newton")
+    cmd->add_option("--method", o->method, "Demosaicing: super-pixel, bilinear or newton")
         ->capture_default_str();
-    cmd->add_option("--channel", a->channel, "EXR channel holding the frame")
+    cmd->add_option("--channel", o->channel, "EXR channel holding the frame")
         ->capture_default_str();
-    cmd->add_option("-o,--output", a->output, "Stokes EXR to write")->required();
-    add_force_flag(cmd, a->force);
-    cmd->callback([a] { run_demosaic(*a); });
+    cmd->add_option("-o,--output", o->output, "Stokes EXR to write")->required();
+    add_force_flag(cmd, o->force);
+    cmd->callback(
+        [o] { print_text(calibration::demosaic_run_text(calibration::run_demosaic(*o))); });
 }
 }  // namespace
 

@@ -14,25 +14,13 @@ struct EmissivityArgs {
     std::vector<double> band_um;
     std::string angles;
     bool json = false;
-    bool force = false;
 };
 
 void run_emissivity(EmissivityArgs& a) {
     auto& o = a.options;
-    OutputGuard()
-        .input(o.material, "MATERIAL")
-        .input(o.rsr, "--rsr")
-        .output_file(o.csv, "--csv")
-        .output_file(o.plot, "--plot")
-        .check(a.force);
     o.angles_deg =
         parse_option_value("--angles-deg", [&] { return materials::parse_angles_deg(a.angles); });
-    if (!o.wavelength_um) {
-        if (!(o.temperature_k > 0.0))
-            usage_error("--temperature-k", "expected a temperature above 0 K, got {}",
-                        o.temperature_k);
-        o.band_um = {a.band_um[0], a.band_um[1]};
-    }
+    if (!o.wavelength_um) o.band_um = {a.band_um[0], a.band_um[1]};
     const materials::EmissivityReport report = materials::emissivity_report(o);
     a.json ? print_json(materials::emissivity_report_json(report))
            : print_text(materials::emissivity_report_text(report));
@@ -59,7 +47,7 @@ void register_emissivity(CLI::App& app) {
     cmd->add_option("--csv", o.csv, "Write angle_deg,e_s0,e_s1,e_s2,e_s3,dolp,dhr to this CSV");
     cmd->add_option("--plot", o.plot, "Write a PNG plot of e_s0 and e_s1 vs angle (paper Fig. 1)");
     add_json_flag(cmd, args->json, "Print JSON (keys in docs/materials.md)");
-    add_force_flag(cmd, args->force);
+    add_force_flag(cmd, o.force);
     cmd->callback([args, wl, band] {
         if (wl->count() == 0 && band->count() == 0)
             throw CLI::RequiredError("one of --wavelength-um or --band-um");

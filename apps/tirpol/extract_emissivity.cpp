@@ -12,18 +12,10 @@ namespace {
 struct ExtractArgs {
     calibration::EmissivityExtractionOptions options;
     std::vector<double> band_um;
-    bool force = false;
 };
 
 void run_extract(ExtractArgs& a) {
     auto& o = a.options;
-    OutputGuard()
-        .input(o.input, "INPUT")
-        .input(o.rois, "ROIS")
-        .input(o.calibration, "--calibration")
-        .input(o.polarimetric, "--polarimetric")
-        .output_file(o.output, "--output")
-        .check(a.force);
     if (!a.band_um.empty()) o.band_um = std::pair{a.band_um[0], a.band_um[1]};
     const auto results = calibration::extract_emissivity(o);
     print_text(calibration::emissivity_results_text(results));
@@ -37,12 +29,10 @@ void register_extract(CLI::App& app) {
     auto& o = a->options;
     auto* cmd = app.add_subcommand("extract-emissivity",
                                    "Polarized emissivity of regions (eq 17) → CSV for fitting");
-    cmd->add_option("INPUT", o.input, "Stokes EXR from 'tirpol reduce', or a session directory")
-        ->required()
-        ->check(CLI::ExistingPath);
-    cmd->add_option("ROIS", o.rois, "Regions YAML (reflector, targets)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "INPUT", o.input,
+                       "Stokes EXR from 'tirpol reduce', or a session directory",
+                       CLI::ExistingPath);
+    add_required_input(cmd, "ROIS", o.rois, "Regions YAML (reflector, targets)");
     add_output_option(cmd, o.output, "CSV to write");
     cmd->add_option("--calibration", o.calibration,
                     "Radiometric calibration EXR (INPUT is a session)")
@@ -52,7 +42,7 @@ void register_extract(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--band-um", a->band_um, "Band LO HI (default: the Stokes EXR's band_um)")
         ->expected(2);
-    add_force_flag(cmd, a->force);
+    add_force_flag(cmd, o.force);
     cmd->callback([a] { run_extract(*a); });
 }
 }  // namespace

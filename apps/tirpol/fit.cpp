@@ -11,21 +11,13 @@ struct FitArgs {
     fitting::FitRunOptions options;
     std::string model = "micro-facet";
     bool json = false;
-    bool force = false;
 };
 
 void run_fit(const FitArgs& a) {
-    const auto& o = a.options;
-    OutputGuard guard;
-    for (const std::string& file : o.data) guard.input(file, "DATA");
-    guard.input(o.init, "--init")
-        .output_file(o.output, "--output")
-        .output_file(o.plot, "--plot")
-        .check(a.force);
     if (a.model != "micro-facet" && a.model != "microfacet")
         usage_error("--model",
                     "{}: only the micro-facet model can be fitted (expected micro-facet)", a.model);
-    const fitting::FitRun run = fitting::run_fit(o);
+    const fitting::FitRun run = fitting::run_fit(a.options);
     a.json ? print_json(fitting::fit_run_json(run)) : print_text(fitting::fit_run_text(run));
     if (!run.result.usable)
         fail("the fit did not converge to a usable solution ({})", run.result.termination);
@@ -36,10 +28,8 @@ void register_fit(CLI::App& app) {
     auto& o = args->options;
     auto* cmd = app.add_subcommand(
         "fit", "Fit micro-facet pBRDF parameters to measured polarized emissivity");
-    cmd->add_option("data", o.data,
-                    "Emissivity CSV(s) from `tirpol extract-emissivity` (docs/fitting.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "data", o.data,
+                       "Emissivity CSV(s) from `tirpol extract-emissivity` (docs/fitting.md)");
     cmd->add_option("--model", args->model, "Model to fit (micro-facet)")->capture_default_str();
     cmd->add_option("--fix", o.fix,
                     "Hold parameters fixed: NAME[=VALUE],... (n k sigma bias tau_deg omega_deg "
@@ -66,7 +56,7 @@ void register_fit(CLI::App& app) {
     cmd->add_option("--name", o.name, "Material name (default: the output file's stem)");
     cmd->add_option("--plot", o.plot, "PNG plot of data and fit (like the paper's Fig. 1)");
     add_json_flag(cmd, args->json, "Print the fit report as JSON (keys in docs/fitting.md)");
-    add_force_flag(cmd, args->force);
+    add_force_flag(cmd, o.force);
     cmd->callback([args] { run_fit(*args); });
 }
 }  // namespace

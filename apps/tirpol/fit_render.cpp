@@ -37,10 +37,8 @@ void register_fit_render(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "fit-render",
         "Fit micro-facet parameters through the renderer to measured Stokes images of a scene");
-    cmd->add_option("scene", args->scene,
-                    "Scene YAML: geometry, temperatures, sky, materials (docs/scene-format.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "scene", args->scene,
+                       "Scene YAML: geometry, temperatures, sky, materials (docs/scene-format.md)");
     cmd->add_option("--view", args->options.views,
                     "Measured view: STOKES.exr (the scene's camera) or "
                     "STOKES.exr,CAMERA.yaml,POSE.yaml; repeat")
@@ -53,8 +51,7 @@ void register_fit_render(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--free", args->options.free,
                     "Parameter to fit: MATERIAL.PARAMETER=LOWER:UPPER[:INITIAL] (n k sigma bias "
-                    "tau_deg omega_deg "
-                    "rho_d rho_v); repeat")
+                    "tau_deg omega_deg rho_d rho_v); repeat")
         ->required();
     cmd->add_option("--spp", args->options.fit.samples_per_pixel,
                     "Samples per pixel of every render (0: the scene's)")

@@ -17,12 +17,10 @@ struct FlirArgs {
     std::vector<double> planck;
     double reflected_c = 20.0;
     std::optional<double> atmosphere_c, window_c;
-    bool force = false;
 };
 
 void run_flir(FlirArgs& a) {
     auto& o = a.options;
-    OutputGuard().input(o.image, "RAW_IMAGE").output_file(o.output, "--output").check(a.force);
     o.planck = {a.planck[0], a.planck[1], a.planck[2], a.planck[3], a.planck[4]};
     o.conditions.reflected_k = a.reflected_c + kZeroCelsiusK;
     o.conditions.atmosphere_k = a.atmosphere_c.value_or(a.reflected_c) + kZeroCelsiusK;
@@ -35,9 +33,7 @@ void register_flir(CLI::App& app) {
     auto& c = a->options.conditions;
     auto* cmd = app.add_subcommand("flir-temperature",
                                    "Object temperature from FLIR raw counts and Planck constants");
-    cmd->add_option("RAW_IMAGE", a->options.image, "Raw image: EXR, 16-bit PNG or TIFF")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "RAW_IMAGE", a->options.image, "Raw image: EXR, 16-bit PNG or TIFF");
     cmd->add_option("--planck", a->planck,
                     "R1,R2,B,F,O (EXIF PlanckR1, PlanckR2, PlanckB, PlanckF, PlanckO)")
         ->required()
@@ -60,7 +56,7 @@ void register_flir(CLI::App& app) {
                     "External IR window transmission (0, 1]")
         ->capture_default_str();
     add_output_option(cmd, a->options.output, "Output EXR (temperature_k)");
-    add_force_flag(cmd, a->force);
+    add_force_flag(cmd, a->options.force);
     cmd->callback([a] { run_flir(*a); });
 }
 }  // namespace

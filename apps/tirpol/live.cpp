@@ -2,12 +2,10 @@
 // [--port N] [--bind ADDR]`: serves the live view (docs/live.md) until Ctrl-C. Prints the address
 // to open.
 
-#include <filesystem>
 #include <memory>
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/core/output_guard.h"
 #include "tirpol/live/live_server.h"
 
 namespace tirpol::cli {
@@ -21,21 +19,8 @@ struct LiveArgs {
 };
 
 void run_live(LiveArgs a) {
-    try {
-        live::validate(a.view);
-        live::validate(a.server);
-    } catch (const Error& e) {
-        throw CLI::ValidationError(e.what());
-    }
+    live::check_live_run(a.view, a.server);
     a.view.unit = live::parse_display_unit(a.show);
-    if (!a.view.snapshot_dir.empty()) {
-        OutputGuard()
-            .input(a.view.calibration_path, "--calibration")
-            .input(a.view.default_plan, "--plan")
-            .output_folder(a.view.snapshot_dir, "--snapshot-dir", {"snapshot-*"})
-            .check(a.view.force_snapshots);
-        std::filesystem::create_directories(a.view.snapshot_dir);
-    }
     live::LiveServer server(a.view, a.server);
     print_text(server.listening_text());
     std::fflush(stdout);

@@ -13,17 +13,10 @@ struct NoiseArgs {
     std::string convention = "sample", raw_type = "uint16";
     std::vector<int> raw_shape;
     std::size_t raw_header_bytes = 0;
-    bool force = false;
 };
 
 void run_noise(NoiseArgs& a) {
     auto& o = a.options;
-    OutputGuard()
-        .input(o.stack, "STACK")
-        .input(o.calibration, "--calibration")
-        .output_file(o.output, "--output")
-        .output_file(o.nedt_map, "--nedt-map")
-        .check(a.force);
     if (!a.raw_shape.empty())
         o.raw = calibration::RawFrameFormat{a.raw_shape[0], a.raw_shape[1],
                                             calibration::raw_type_from_string(a.raw_type),
@@ -38,12 +31,10 @@ void register_noise(CLI::App& app) {
     auto& o = a->options;
     auto* cmd =
         app.add_subcommand("noise", "NEDT and 3D noise from a frame stack of a uniform blackbody");
-    cmd->add_option("STACK", o.stack,
-                    "Directory of frames (EXR channel counts, PNG, TIFF), one EXR with frame_* "
-                    "channels, or a raw file "
-                    "(--raw-shape)")
-        ->required()
-        ->check(CLI::ExistingPath);
+    add_required_input(cmd, "STACK", o.stack,
+                       "Directory of frames (EXR channel counts, PNG, TIFF), one EXR with frame_* "
+                       "channels, or a raw file (--raw-shape)",
+                       CLI::ExistingPath);
     cmd->add_option("--raw-shape", a->raw_shape,
                     "STACK is a headerless raw file of frames WIDTH HEIGHT")
         ->expected(2);
@@ -68,7 +59,7 @@ void register_noise(CLI::App& app) {
         "--temperature-k", o.analysis.blackbody_temperature_k,
         "Blackbody temperature of the stack, reported (default: the mean brightness temperature)");
     cmd->add_option("--nedt-map", o.nedt_map, "Also write the per-pixel NEDT EXR here");
-    add_force_flag(cmd, a->force);
+    add_force_flag(cmd, o.force);
     cmd->callback([a] { run_noise(*a); });
 }
 }  // namespace

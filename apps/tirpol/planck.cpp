@@ -1,10 +1,7 @@
 // `tirpol planck`: band radiance and dL/dT of a blackbody, or brightness temperature of a radiance.
 
-#include <optional>
-
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/core/checks.h"
 #include "tirpol/core/planck_report.h"
 
 namespace tirpol::cli {
@@ -17,19 +14,8 @@ struct PlanckArgs {
 };
 
 void run_planck(PlanckArgs& a) {
-    std::optional<SpectralResponse> rsr;
-    if (!a.query.rsr.empty()) rsr = SpectralResponse::load_csv(a.query.rsr);
-    const Band band =
-        parse_option_value("--band-um", [&] { return Band(a.band_um[0], a.band_um[1], rsr); });
     a.query.band_um = {a.band_um[0], a.band_um[1]};
-    if (a.query.temperature_k)
-        parse_option_value("--temperature-k", [&] {
-            return check_temperature_k(*a.query.temperature_k, "--temperature-k");
-        });
-    if (a.query.radiance_w_m2_sr && !(*a.query.radiance_w_m2_sr > 0.0))
-        usage_error("--radiance", "expected a positive band radiance in W/(m²·sr), got {}",
-                    *a.query.radiance_w_m2_sr);
-    const PlanckAnswer answer = evaluate_planck(band, a.query);
+    const PlanckAnswer answer = evaluate_planck(a.query);
     a.json ? print_json(planck_answer_json(answer)) : print_text(planck_answer_text(answer));
 }
 

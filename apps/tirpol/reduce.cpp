@@ -1,16 +1,11 @@
 // `tirpol reduce`: a session of raw counts → calibrated Stokes EXR (S0 S1 S2 DoLP AoP + *_std).
 
-#include <cstdio>
 #include <memory>
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/microgrid_session.h"
+#include "tirpol/calibration/microgrid_run.h"
 #include "tirpol/calibration/session_to_stokes.h"
-#include "tirpol/core/error.h"
-#include "tirpol/core/exr_io.h"
-#include "tirpol/core/quicklook.h"
-#include "tirpol/core/session.h"
 
 namespace tirpol::cli {
 
@@ -26,70 +21,25 @@ struct ReduceArgs {
     double max_saturated_fraction = 0.01;
 };
 
-/// A microgrid camera's session: the mean mosaic, demosaiced and reduced (or per super-pixel with
-/// the per-pixel analyzer calibration), in counts.
-void run_reduce_microgrid(const ReduceArgs& a) {
-    for (const auto& [given, name] :
-         {std::pair{!a.calibration.empty(), "--calibration"},
-          std::pair{!a.polarimetric.empty(), "--polarimetric"},
-          std::pair{a.update_offset, "--update-offset"},
-          std::pair{a.drift_correction, "--drift-correction"}, std::pair{a.slar, "--slar"},
-          std::pair{a.other_camera, "--other-camera"}})
-        if (given)
-            usage_error(name,
-                        "{} is for a rotating-polarizer session; {} is a microgrid camera's "
-                        "session (use --pixel-calibration and --method)",
-                        name, a.session);
-    OutputGuard()
-        .input(a.session, "SESSION")
-        .input(a.pixel_calibration, "--pixel-calibration")
-        .output_file(a.output, "--output")
-        .output_folder(a.quicklooks, "--quicklooks",
-                       {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
-        .check(a.force);
-    calibration::MicrogridSessionOptions options;
-    options.method = parse_option_value(
-        "--method", [&] { return calibration::parse_demosaic_method(a.method); });
-    if (!a.pixel_calibration.empty())
-        options.pixel_calibration =
-            calibration::MicrogridPixelCalibration::from_image(read_exr(a.pixel_calibration));
-    Image stokes = calibration::reduce_microgrid_session(a.session, options);
-    if (!a.pixel_calibration.empty())
-        stokes.attributes()["pixel_calibration"] = a.pixel_calibration;
-    write_exr(a.output, stokes);
-    if (!a.quicklooks.empty())
-        for (const char* c : {"S0", "S1", "S2", "DoLP", "AoP"}) {
-            QuicklookOptions q;
-            q.colormap = default_colormap(c);
-            q.title = c;
-            q.units = std::string(c) == "AoP" ? "deg" : std::string(c) == "DoLP" ? "" : "counts";
-            write_quicklook(std::filesystem::path(a.quicklooks) / (std::string(c) + ".png"),
-                            stokes.channel(c), stokes.width(), stokes.height(), q);
-        }
-    const auto s0 = channel_stats(stokes.channel("S0"));
-    const auto dolp = channel_stats(stokes.channel("DoLP"));
-    std::printf(
-        "Stokes %d×%d (microgrid %s, %s, %d frame(s)): S0 mean %.6g counts, DoLP mean %.4f → %s\n",
-        stokes.width(), stokes.height(),
-        std::get<std::string>(stokes.attributes().at("microgrid_pattern")).c_str(),
-        a.pixel_calibration.empty() ? a.method.c_str() : "per-pixel calibration",
-        std::get<int>(stokes.attributes().at("frames_averaged")), s0.mean, dolp.mean,
-        a.output.c_str());
-}
-
 void run_reduce(const ReduceArgs& a) {
-    // Only a readable manifest that records a pattern makes a microgrid session; anything else is
-    // left to the rotating-polarizer path, which checks the outputs first and then reports what is
-    // wrong with the session (reading it again).
-    bool microgrid = false;
-    try {
-        microgrid =
-            std::filesystem::exists(std::filesystem::path(a.session) / kSessionManifestName) &&
-            calibration::is_microgrid_session(a.session);
-    } catch (const Error&) {
-        microgrid = false;
+    if (calibration::is_readable_microgrid_session(a.session)) {
+        for (const auto& [given, name] :
+             {std::pair{!a.calibration.empty(), "--calibration"},
+              std::pair{!a.polarimetric.empty(), "--polarimetric"},
+              std::pair{a.update_offset, "--update-offset"},
+              std::pair{a.drift_correction, "--drift-correction"}, std::pair{a.slar, "--slar"},
+              std::pair{a.other_camera, "--other-camera"}})
+            if (given)
+                usage_error(name,
+                            "{} is for a rotating-polarizer session; {} is a microgrid camera's "
+                            "session (use --pixel-calibration and --method)",
+                            name, a.session);
+        return print_text(
+            calibration::microgrid_reduce_run_text(calibration::run_microgrid_reduction(
+                {a.session, a.output, a.quicklooks, a.pixel_calibration, a.method, a.force})));
     }
-    if (microgrid) return run_reduce_microgrid(a);
+    // Anything else is left to the rotating-polarizer path, which checks the outputs first and
+    // then reports what is wrong with the session.
     if (!a.pixel_calibration.empty())
         usage_error("--pixel-calibration",
                     "{} is not a microgrid camera's session (its manifest records no microgrid "
@@ -107,9 +57,8 @@ void register_reduce(CLI::App& app) {
     auto a = std::make_shared<ReduceArgs>();
     auto* cmd =
         app.add_subcommand("reduce", "Session → Stokes EXR (S0 S1 S2 DoLP AoP and uncertainties)");
-    cmd->add_option("SESSION", a->session, "Session directory with polarizer records")
-        ->required()
-        ->check(CLI::ExistingDirectory);
+    add_required_input(cmd, "SESSION", a->session, "Session directory with polarizer records",
+                       CLI::ExistingDirectory);
     cmd->add_option("--calibration", a->calibration,
                     "Radiometric calibration EXR (rotating-polarizer session; without it, a "
                     "Stokes quick look in counts, not radiance)")
@@ -129,8 +78,7 @@ void register_reduce(CLI::App& app) {
                   "Update the offset from the session's shutter/blackbody record");
     cmd->add_flag("--drift-correction", a->drift_correction,
                   "Correct each record for the offset drift during the session (plan "
-                  "scene_reference region, else "
-                  "interleaved shutter records with a temperature)");
+                  "scene_reference region, else interleaved shutter records with a temperature)");
     cmd->add_option("--max-saturated-fraction", a->max_saturated_fraction,
                     "Error above this saturated fraction")
         ->capture_default_str();

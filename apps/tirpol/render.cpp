@@ -21,9 +21,7 @@ void register_render(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand(
         "render", "Render a scene file into a polarized (Stokes) thermal-infrared image");
-    cmd->add_option("scene", args->scene, "Scene YAML (docs/scene-format.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "scene", args->scene, "Scene YAML (docs/scene-format.md)");
     // -o/--output as in every subcommand; --out is the old spelling, kept hidden.
     auto* output = cmd->add_option("-o,--output", args->output,
                                    "Output directory (EXR + PNG quicklooks) (required)");

@@ -39,9 +39,7 @@ void register_sweep(CLI::App& app) {
     auto args = std::make_shared<SweepArgs>();
     auto* cmd = app.add_subcommand(
         "sweep", "Render a sweep of a scene over time of day, materials, camera, band, NEDT");
-    cmd->add_option("sweep", args->sweep_file, "Sweep YAML (docs/sweep.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "sweep", args->sweep_file, "Sweep YAML (docs/sweep.md)");
     cmd->add_option("-o,--output", args->out_dir, "Output folder (points/, manifest.json, results)")
         ->required();
     cmd->add_option("--threads", args->threads,

@@ -9,28 +9,18 @@ namespace tirpol::cli {
 namespace {
 void register_temperature(CLI::App& app) {
     auto o = std::make_shared<calibration::TemperatureImageOptions>();
-    auto force = std::make_shared<bool>(false);
     auto* cmd = app.add_subcommand(
         "temperature", "Brightness-temperature image from counts and a radiometric calibration");
-    cmd->add_option("IMAGE", o->image, "Raw image: EXR (channel --channel), 16-bit PNG or TIFF")
-        ->required()
-        ->check(CLI::ExistingFile);
-    cmd->add_option("--calibration", o->calibration, "Radiometric calibration EXR")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(cmd, "IMAGE", o->image,
+                       "Raw image: EXR (channel --channel), 16-bit PNG or TIFF");
+    add_required_input(cmd, "--calibration", o->calibration, "Radiometric calibration EXR");
     cmd->add_option("--channel", o->channel, "EXR channel holding counts")->capture_default_str();
     cmd->add_option("--fpa-temperature-k", o->fpa_temperature_k,
                     "Camera FPA temperature of the image (default: the EXR's fpa_temperature_k "
-                    "attribute); needed by an "
-                    "FPA-dependent calibration");
+                    "attribute); needed by an FPA-dependent calibration");
     add_output_option(cmd, o->output, "Output EXR (radiance, temperature_k)");
-    add_force_flag(cmd, *force);
-    cmd->callback([o, force] {
-        OutputGuard()
-            .input(o->image, "IMAGE")
-            .input(o->calibration, "--calibration")
-            .output_file(o->output, "--output")
-            .check(*force);
+    add_force_flag(cmd, o->force);
+    cmd->callback([o] {
         print_text(
             calibration::temperature_image_text(calibration::brightness_temperature_image(*o)));
     });

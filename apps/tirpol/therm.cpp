@@ -11,14 +11,11 @@ namespace {
 void register_therm(CLI::App& app) {
     auto o = std::make_shared<simulation::ThermOptions>();
     auto json = std::make_shared<bool>(false);
-    auto force = std::make_shared<bool>(false);
     auto* cmd = app.add_subcommand(
         "therm", "Surface temperatures from weather (1D slab model) and a 24-hour plot");
-    cmd->add_option(
-           "file", o->file,
-           "Scene YAML with predicted temperatures, or a standalone thermal YAML (docs/thermal.md)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_required_input(
+        cmd, "file", o->file,
+        "Scene YAML with predicted temperatures, or a standalone thermal YAML (docs/thermal.md)");
     cmd->add_option(
         "--at", o->at,
         "Time, ISO 8601 (no offset: the site's standard time); default: the file's `time`");
@@ -29,14 +26,8 @@ void register_therm(CLI::App& app) {
                     "Scene files: write predicted temperatures as <object>.csv (vertex_csv) / "
                     "<object>.exr (texture)");
     add_json_flag(cmd, *json, "Print JSON (keys in docs/thermal.md)");
-    add_force_flag(cmd, *force);
-    cmd->callback([o, json, force] {
-        OutputGuard()
-            .input(o->file, "FILE")
-            .output_file(o->csv, "--csv")
-            .output_file(o->plot, "--plot")
-            .output_folder(o->export_dir, "--export-dir", {"*.csv", "*.exr"})
-            .check(*force);
+    add_force_flag(cmd, o->force);
+    cmd->callback([o, json] {
         const simulation::ThermReport report = simulation::run_therm(*o);
         *json ? print_json(simulation::therm_report_json(report))
               : print_text(simulation::therm_report_text(report));

@@ -9,6 +9,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {
 
@@ -28,6 +29,13 @@ std::optional<std::pair<double, double>> band_attribute(const Attributes& attrib
 }  // namespace
 
 std::vector<EmissivityResult> extract_emissivity(const EmissivityExtractionOptions& o) {
+    OutputGuard()
+        .input(o.input, "INPUT")
+        .input(o.rois, "ROIS")
+        .input(o.calibration, "--calibration")
+        .input(o.polarimetric, "--polarimetric")
+        .output_file(o.output, "--output")
+        .check(o.force);
     ChainInputs chain;
     ChainProducts given;
     if (std::filesystem::is_directory(o.input)) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/raster_io.h"
 
@@ -13,6 +14,7 @@ namespace tirpol::calibration {
 FlirImageResult flir_temperature_image(const FlirImageOptions& o) {
     const FlirPlanck& p = o.planck;
     const FlirConditions& c = o.conditions;
+    OutputGuard().input(o.image, "RAW_IMAGE").output_file(o.output, "--output").check(o.force);
     validate_flir(p, c);
     const Image raw = read_raw_image(o.image, "counts", o.channel);
     Image out(raw.width(), raw.height());

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/microgrid_file.h"
+#include "microgrid_file.h"
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/raster_io.h"

@@ -4,11 +4,18 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/utf8.h"
 
 namespace tirpol::calibration {
 
 NoiseAnalysis run_noise_analysis(const NoiseRunOptions& o) {
+    OutputGuard()
+        .input(o.stack, "STACK")
+        .input(o.calibration, "--calibration")
+        .output_file(o.output, "--output")
+        .output_file(o.nedt_map, "--nedt-map")
+        .check(o.force);
     const auto stack = load_frame_stack(o.stack, o.raw);
     std::optional<RadiometricCalibration> cal;
     if (!o.calibration.empty()) cal = read_radiometric_calibration(o.calibration);

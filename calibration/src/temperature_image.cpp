@@ -8,6 +8,7 @@
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
@@ -24,6 +25,11 @@ std::optional<double> frame_fpa_temperature_k(const Image& raw, std::optional<do
 }  // namespace
 
 TemperatureImageResult brightness_temperature_image(const TemperatureImageOptions& o) {
+    OutputGuard()
+        .input(o.image, "IMAGE")
+        .input(o.calibration, "--calibration")
+        .output_file(o.output, "--output")
+        .check(o.force);
     const auto cal = read_radiometric_calibration(o.calibration);
     const Image raw = read_raw_image(o.image, "counts", o.channel);
     if (raw.width() != cal.width || raw.height() != cal.height)

@@ -4,6 +4,7 @@
 
 #include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/option_value_error.h"
 
 namespace tirpol {
 
@@ -12,18 +13,38 @@ PlanckAnswer evaluate_planck(const Band& band, const PlanckQuery& query) {
         fail("planck: give one of a temperature or a band radiance");
     PlanckAnswer answer{query, 0.0, std::nullopt, std::nullopt};
     if (query.temperature_k) {
-        const double t = check_temperature_k(*query.temperature_k, "--temperature-k");
+        double t = 0.0;
+        try {
+            t = check_temperature_k(*query.temperature_k, "--temperature-k");
+        } catch (const Error& e) {
+            throw OptionValueError("--temperature-k", e.what());
+        }
         answer.radiance_w_m2_sr = check_finite(band.radiance(t), "band radiance");
         answer.radiance_dT_w_m2_sr_k =
             check_finite(band.radiance_dT(t), "band radiance derivative dL/dT");
         return answer;
     }
     const double l = *query.radiance_w_m2_sr;
-    if (!(l > 0.0)) fail("--radiance: expected a positive band radiance in W/(m²·sr), got {}", l);
+    if (!(l > 0.0))
+        throw OptionValueError(
+            "--radiance",
+            fmt::format("--radiance: expected a positive band radiance in W/(m²·sr), got {}", l));
     answer.radiance_w_m2_sr = l;
     answer.brightness_temperature_k =
         check_finite(band.brightness_temperature(l), "brightness temperature");
     return answer;
+}
+
+PlanckAnswer evaluate_planck(const PlanckQuery& query) {
+    std::optional<SpectralResponse> rsr;
+    if (!query.rsr.empty()) rsr = SpectralResponse::load_csv(query.rsr);
+    std::optional<Band> band;
+    try {
+        band.emplace(query.band_um[0], query.band_um[1], rsr);
+    } catch (const Error& e) {
+        throw OptionValueError("--band-um", e.what());
+    }
+    return evaluate_planck(*band, query);
 }
 
 nlohmann::json planck_answer_json(const PlanckAnswer& a) {

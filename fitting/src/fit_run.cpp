@@ -6,6 +6,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/fitting/fit_output.h"
 #include "tirpol/materials/material.h"
@@ -66,6 +67,12 @@ void apply_parameter_options(const FitRunOptions& a, ParameterSettings& settings
 }
 
 FitRun run_fit(const FitRunOptions& a) {
+    OutputGuard guard;
+    for (const std::string& file : a.data) guard.input(file, "DATA");
+    guard.input(a.init, "--init")
+        .output_file(a.output, "--output")
+        .output_file(a.plot, "--plot")
+        .check(a.force);
     ParameterSettings usage_check = default_parameter_settings();
     apply_parameter_options(a, usage_check);  // before any data file is read
     FitRun run;

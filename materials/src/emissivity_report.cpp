@@ -4,12 +4,24 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/materials/emissivity_curve.h"
 #include "tirpol/materials/material.h"
 
 namespace tirpol::materials {
 
 EmissivityReport emissivity_report(const EmissivityReportOptions& o) {
+    OutputGuard()
+        .input(o.material, "MATERIAL")
+        .input(o.rsr, "--rsr")
+        .output_file(o.csv, "--csv")
+        .output_file(o.plot, "--plot")
+        .check(o.force);
+    if (!o.wavelength_um && !(o.temperature_k > 0.0))
+        throw OptionValueError(
+            "--temperature-k",
+            fmt::format("expected a temperature above 0 K, got {}", o.temperature_k));
     const Material m = load_material(material_file(o.material));
     EmissivityReport report{o, m.name, m.brdf->model(), "", {}};
     std::string spectral_ascii;  // the plot's Hershey font has no µ or en dash
@@ -18,8 +30,6 @@ EmissivityReport emissivity_report(const EmissivityReportOptions& o) {
         report.spectral = fmt::format("{} µm", *o.wavelength_um);
         spectral_ascii = fmt::format("{} um", *o.wavelength_um);
     } else {
-        if (!(o.temperature_k > 0.0))
-            fail("--temperature-k: expected a temperature above 0 K, got {}", o.temperature_k);
         std::optional<SpectralResponse> rsr;
         if (!o.rsr.empty()) rsr = SpectralResponse::load_csv(o.rsr);
         const Band band(o.band_um[0], o.band_um[1], rsr);

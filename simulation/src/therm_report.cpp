@@ -9,6 +9,7 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/scene.h"
 #include "tirpol/thermal/civil_time.h"
@@ -45,6 +46,12 @@ void therm_on_scene(ThermReport& report) {
 }  // namespace
 
 ThermReport run_therm(const ThermOptions& o) {
+    OutputGuard()
+        .input(o.file, "FILE")
+        .output_file(o.csv, "--csv")
+        .output_file(o.plot, "--plot")
+        .output_folder(o.export_dir, "--export-dir", {"*.csv", "*.exr"})
+        .check(o.force);
     ThermReport report;
     report.options = o;
     if (ConfigNode::load_file(o.file).has("camera")) {

@@ -2,7 +2,7 @@
 // reduction unscaled, the pattern comes from the caller or the EXR header, and conflicts are
 // refused.
 
-#include "tirpol/calibration/microgrid_file.h"
+#include "microgrid_file.h"
 
 #include <gtest/gtest.h>
 

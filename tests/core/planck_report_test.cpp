@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/option_value_error.h"
 
 namespace tirpol {
 namespace {
@@ -76,6 +77,33 @@ TEST(PlanckReport, BadQuestionsAreErrors) {
     q.radiance_w_m2_sr.reset();
     q.temperature_k = -5.0;
     EXPECT_THROW(evaluate_planck(band, q), Error);
+}
+
+TEST(PlanckReport, AQuestionFromOptionsNamesTheOptionThatIsWrong) {
+    const auto refused_option = [](const PlanckQuery& q) {
+        try {
+            evaluate_planck(q);
+        } catch (const OptionValueError& e) {
+            return e.option();
+        }
+        return std::string();
+    };
+    PlanckQuery q;
+    q.band_um = {14.0, 8.0};
+    q.temperature_k = 300.0;
+    EXPECT_EQ(refused_option(q), "--band-um");
+    q.band_um = {8.0, 14.0};
+    q.temperature_k = -5.0;
+    EXPECT_EQ(refused_option(q), "--temperature-k");
+    q.temperature_k.reset();
+    q.radiance_w_m2_sr = -1.0;
+    EXPECT_EQ(refused_option(q), "--radiance");
+    // The band the options make is the band of the other overload: the same answer.
+    const Band band(8.0, 14.0);
+    q.radiance_w_m2_sr = band.radiance(300.0);
+    EXPECT_EQ(evaluate_planck(q).brightness_temperature_k,
+              evaluate_planck(band, q).brightness_temperature_k);
+    EXPECT_NEAR(*evaluate_planck(q).brightness_temperature_k, 300.0, 1e-6);
 }
 
 }  // namespace

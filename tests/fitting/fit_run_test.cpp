@@ -10,6 +10,7 @@
 #include "synthetic_emissivity.h"
 #include "test_support.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/materials/material.h"
 
 namespace tirpol::fitting {
@@ -55,6 +56,23 @@ TEST(FitRun, ParameterOptionsThatDoNotParseNameTheirOption) {
             EXPECT_EQ(e.option(), option);
         }
     }
+}
+
+TEST(FitRun, OutputsAreCheckedAgainstTheDataBeforeAnyFileIsRead) {
+    const tirpol::test::TempDir dir("fit_run_guard");
+    FitRunOptions o;
+    o.data = {(dir / "data.csv").string()};
+    tirpol::test::write_text(o.data.front(), "not emissivity data");
+    o.output = o.data.front();
+    o.force = true;
+    EXPECT_THROW(run_fit(o), OutputConflict);
+    o.output = (dir / "fitted.yaml").string();
+    tirpol::test::write_text(o.output, "kept");
+    o.force = false;
+    EXPECT_THROW(run_fit(o), OutputConflict);
+    o.plot = o.data.front();
+    o.force = true;
+    EXPECT_THROW(run_fit(o), OutputConflict);
 }
 
 }  // namespace

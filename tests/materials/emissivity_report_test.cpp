@@ -9,6 +9,8 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/materials/emissivity_curve.h"
 
 namespace tirpol::materials {
@@ -71,6 +73,37 @@ TEST(EmissivityReport, BandBelowZeroKelvinIsAnError) {
     o.band_um = {8.0, 12.0};
     o.temperature_k = 0.0;
     EXPECT_THROW(emissivity_report(o), Error);
+}
+
+TEST(EmissivityReport, ABandTemperatureNotAboveZeroIsAnErrorOfItsOption) {
+    EmissivityReportOptions o = water();
+    o.band_um = {8.0, 12.0};
+    o.temperature_k = -1.0;
+    try {
+        emissivity_report(o);
+        FAIL() << "a band temperature of -1 K was accepted";
+    } catch (const OptionValueError& e) {
+        EXPECT_EQ(e.option(), "--temperature-k");
+    }
+}
+
+TEST(EmissivityReport, OutputsAreCheckedAgainstTheMaterialBeforeItLoads) {
+    const test::TempDir dir("emissivity_report_guard");
+    EmissivityReportOptions o = water();
+    o.material = (dir / "material.yaml").string();
+    test::write_text(o.material, "not a material");
+    o.csv = o.material;
+    o.force = true;
+    EXPECT_THROW(emissivity_report(o), OutputConflict);
+    o.csv.clear();
+    o.plot = (dir / "plot.png").string();
+    test::write_text(o.plot, "kept");
+    o.force = false;
+    EXPECT_THROW(emissivity_report(o), OutputConflict);
+    std::ifstream in(o.plot);
+    std::string kept;
+    in >> kept;
+    EXPECT_EQ(kept, "kept");
 }
 
 }  // namespace

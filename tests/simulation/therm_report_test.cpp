@@ -12,6 +12,7 @@
 
 #include "test_support.h"
 #include "tirpol/core/option_value_error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::simulation {
 namespace {
@@ -81,6 +82,24 @@ TEST(ThermReport, SceneFileReportsEachObjectsPredictedRange) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), HasSubstr("--plot needs a standalone thermal file"));
     }
+}
+
+TEST(ThermReport, OutputsAreCheckedAgainstTheFileBeforeItLoads) {
+    const test::TempDir dir("therm_report_guard");
+    ThermOptions o;
+    o.file = thermal_file();
+    o.csv = o.file;
+    o.force = true;
+    EXPECT_THROW(run_therm(o), OutputConflict);
+    o.csv.clear();
+    o.plot = (dir / "day.png").string();
+    test::write_text(o.plot, "kept");
+    o.force = false;
+    EXPECT_THROW(run_therm(o), OutputConflict);
+    std::ifstream in(o.plot);
+    std::string kept;
+    in >> kept;
+    EXPECT_EQ(kept, "kept");
 }
 
 }  // namespace

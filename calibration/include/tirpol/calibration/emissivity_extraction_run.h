@@ -21,9 +21,11 @@ struct EmissivityExtractionOptions {
     std::string calibration;   ///< radiometric calibration EXR (a session input)
     std::string polarimetric;  ///< polarimetric calibration YAML (a session input), or ""
     std::optional<std::pair<double, double>> band_um;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
 };
 
-/// Runs the chain (run_calibration_chain) to the emissivity of each target and writes the CSV
+/// Checks the output against the inputs (OutputGuard: OutputConflict before any work), runs the
+/// chain (run_calibration_chain) to the emissivity of each target and writes the CSV
 /// (emissivity_csv). A session without a calibration throws OptionValueError for --calibration;
 /// a band that disagrees with the calibration's or the EXR's, or an EXR without band_um and no
 /// band given, throws tirpol::Error naming both.

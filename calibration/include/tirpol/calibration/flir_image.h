@@ -73,6 +73,7 @@ struct FlirImageOptions {
     std::string output;
     FlirPlanck planck;
     FlirConditions conditions;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
 };
 
 /// What flir_temperature_image wrote.
@@ -82,7 +83,8 @@ struct FlirImageResult {
     std::size_t pixels_without_solution = 0;  ///< NaN: no temperature explains the raw value
 };
 
-/// Validates the model (validate_flir), converts every pixel and writes `options.output` with the
+/// Checks the output against the input (OutputGuard: OutputConflict before any work), validates
+/// the model (validate_flir), converts every pixel and writes `options.output` with the
 /// channel temperature_k and the model in its header. Throws tirpol::Error for bad constants or
 /// conditions, or an image that does not read.
 FlirImageResult flir_temperature_image(const FlirImageOptions& options);

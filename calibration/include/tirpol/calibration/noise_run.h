@@ -20,9 +20,11 @@ struct NoiseRunOptions {
     NoiseAnalysisOptions analysis;
     std::string output;    ///< report JSON (noise_analysis_json)
     std::string nedt_map;  ///< EXR nedt_k, temporal_noise_counts; "" = none (needs calibration)
+    bool force = false;    ///< existing outputs may be replaced (OutputGuard)
 };
 
-/// Loads, analyses and writes the report (and the NEDT map when there is a calibration). Throws
+/// Checks the outputs against the inputs (OutputGuard: OutputConflict before any work), loads,
+/// analyses and writes the report (and the NEDT map when there is a calibration). Throws
 /// tirpol::Error for a stack or calibration that does not read or does not fit.
 NoiseAnalysis run_noise_analysis(const NoiseRunOptions& options);
 

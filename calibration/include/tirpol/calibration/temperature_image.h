@@ -18,6 +18,7 @@ struct TemperatureImageOptions {
     std::string calibration;
     std::string output;
     std::optional<double> fpa_temperature_k;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
 };
 
 /// What brightness_temperature_image wrote.
@@ -27,7 +28,8 @@ struct TemperatureImageResult {
     std::optional<std::string> warning;  ///< pixels outside the calibrated range (also in the EXR)
 };
 
-/// Converts counts → radiance (counts_to_radiance, at the FPA temperature) → brightness
+/// Checks the output against the inputs (OutputGuard: OutputConflict before any work), converts
+/// counts → radiance (counts_to_radiance, at the FPA temperature) → brightness
 /// temperature and writes `options.output` (channels radiance, temperature_k). Throws
 /// tirpol::Error when image and calibration differ in size, or when no pixel gives a finite
 /// temperature (nothing is written then).

@@ -30,10 +30,16 @@ struct PlanckAnswer {
     std::optional<double> brightness_temperature_k;  ///< for a radiance
 };
 
-/// Evaluates `query` with `band` (built from query.band_um and the RSR). Throws tirpol::Error for a
-/// temperature outside the physical range, a radiance that is not positive, a query with neither or
-/// both, or a result that is not finite.
+/// Evaluates `query` with `band` (built from query.band_um and the RSR). Throws
+/// tirpol::OptionValueError naming --temperature-k for a temperature outside the physical range or
+/// --radiance for a radiance that is not positive, tirpol::Error for a query with neither or both,
+/// or a result that is not finite.
 PlanckAnswer evaluate_planck(const Band& band, const PlanckQuery& query);
+
+/// `tirpol planck`: evaluates `query` in the band its band_um and rsr (a CSV file, read) make.
+/// Throws tirpol::OptionValueError naming --band-um for band limits Band refuses, tirpol::Error for
+/// an RSR file that does not read, and what the overload above throws.
+PlanckAnswer evaluate_planck(const PlanckQuery& query);
 
 /// The JSON answer (docs/cli.md): band_um, rsr (null when none), temperature_k,
 /// radiance_w_m2_sr, radiance_dT_w_m2_sr_k or radiance_w_m2_sr, brightness_temperature_k.

@@ -51,6 +51,7 @@ struct FitRunOptions {
     std::string output;  ///< material YAML
     std::string plot;    ///< PNG, or ""
     std::string name;    ///< material name; "" = the output file's stem
+    bool force = false;  ///< existing outputs may be replaced (OutputGuard)
 };
 
 /// What run_fit fitted and wrote.
@@ -65,7 +66,8 @@ struct FitRun {
 /// the first item that does not parse or names no parameter.
 void apply_parameter_options(const FitRunOptions& options, ParameterSettings& settings);
 
-/// Loads the data, fits, writes the material YAML (with provenance) and the plot. Throws
+/// Checks the outputs against the inputs (OutputGuard: OutputConflict before any work), loads the
+/// data, fits, writes the material YAML (with provenance) and the plot. Throws
 /// OptionValueError for a bad parameter option, tirpol::Error for data or an --init material that
 /// does not read (or is not micro-facet). A fit that ends unusable is returned, not thrown.
 FitRun run_fit(const FitRunOptions& options);

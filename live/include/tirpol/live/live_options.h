@@ -35,8 +35,9 @@ struct LiveViewOptions {
     DisplayUnit unit = DisplayUnit::Counts;
     CycleOptions cycle;
     std::string default_plan, default_output;  ///< prefilled in the page's capture form
-    /// Where the page's Snapshot button writes (empty: no snapshots). The CLI checks it with
-    /// OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing file.
+    /// Where the page's Snapshot button writes (empty: no snapshots). check_live_run checks it
+    /// with OutputGuard before starting; `force_snapshots` lets a snapshot replace an existing
+    /// file.
     std::string snapshot_dir;
     /// With a microgrid camera and no stage, the page's Stokes images come from each frame:
     /// demosaiced by this method (calibration's parse_demosaic_method: super-pixel, bilinear,
@@ -71,5 +72,11 @@ struct ServerOptions {
 
 /// Throws tirpol::Error naming the option (`--port`, `--bind`) when a value is out of range.
 void validate(const ServerOptions& options);
+
+/// What `tirpol live` checks before it opens anything: both sets of options (`validate`; a
+/// problem becomes tirpol::OptionValueError naming the option its message begins with), then the
+/// snapshot folder against the inputs (OutputGuard; OutputConflict, `force_snapshots` as its
+/// force), which is created.
+void check_live_run(const LiveViewOptions& view, const ServerOptions& server);
 
 }  // namespace tirpol::live

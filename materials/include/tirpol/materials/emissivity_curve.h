@@ -58,8 +58,9 @@ struct EmissivityReportOptions {
     std::array<double, 2> band_um{};
     std::string rsr;
     double temperature_k = 300.0;
-    std::string csv;   ///< CSV table to write (emissivity_csv), or ""
-    std::string plot;  ///< PNG plot to write (write_emissivity_plot), or ""
+    std::string csv;     ///< CSV table to write (emissivity_csv), or ""
+    std::string plot;    ///< PNG plot to write (write_emissivity_plot), or ""
+    bool force = false;  ///< existing outputs may be replaced (OutputGuard)
 };
 
 /// The result of emissivity_report.
@@ -71,9 +72,11 @@ struct EmissivityReport {
     std::vector<EmissivityRow> rows;
 };
 
-/// Loads the material, computes the curve and writes the CSV and plot asked for. Throws
-/// tirpol::Error for a material that does not load, a wavelength or band outside its data, a
-/// temperature not above 0 K or an RSR file that does not read.
+/// Checks the outputs against the inputs (OutputGuard: OutputConflict before any work), loads the
+/// material, computes the curve and writes the CSV and plot asked for. Throws
+/// tirpol::OptionValueError naming --temperature-k for a band's temperature not above 0 K, and
+/// tirpol::Error for a material that does not load, a wavelength or band outside its data or an
+/// RSR file that does not read.
 EmissivityReport emissivity_report(const EmissivityReportOptions& options);
 
 /// The JSON report (docs/materials.md): material, file, model, wavelength_um or band_um, rsr and

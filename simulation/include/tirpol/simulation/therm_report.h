@@ -23,6 +23,7 @@ struct ThermOptions {
     std::string csv;         ///< CSV table of the objects
     std::string plot;        ///< 24-hour plot PNG (standalone files only)
     std::string export_dir;  ///< predicted temperatures as <object>.csv/.exr (scene files only)
+    bool force = false;      ///< existing outputs may be replaced (OutputGuard)
 };
 
 /// A scene object's predicted temperature range.
@@ -41,7 +42,8 @@ struct ThermReport {
     std::optional<thermal::ThermalRun> run;  ///< points into *thermal_scene
 };
 
-/// Reads the file, computes the temperatures and writes the outputs asked for. Throws
+/// Checks the outputs against the input (OutputGuard: OutputConflict before any work), reads the
+/// file, computes the temperatures and writes the outputs asked for. Throws
 /// OptionValueError for an --at that does not parse, tirpol::Error for an option the file kind
 /// does not take, a file that does not load or weather that does not cover the time.
 ThermReport run_therm(const ThermOptions& options);
