@@ -26,17 +26,16 @@ void run_demosaic(const DemosaicArgs& a) {
     calibration::MicrogridReductionOptions options;
     options.method = parse_option_value(
         "--method", [&] { return calibration::parse_demosaic_method(a.method); });
-    const Image stokes = calibration::reduce_microgrid_file(a.input, pattern, options, a.channel);
-    write_exr(a.output, stokes);
-    const auto s0 = channel_stats(stokes.channel("S0"));
-    const auto dolp = channel_stats(stokes.channel("DoLP"));
+    const calibration::MicrogridFileReduction r =
+        calibration::reduce_microgrid_file(a.input, pattern, options, a.channel);
+    write_exr(a.output, r.stokes);
+    const auto s0 = channel_stats(r.stokes.channel("S0"));
+    const auto dolp = channel_stats(r.stokes.channel("DoLP"));
     std::printf(
         "Stokes %d×%d (%s, pattern %s): S0 mean %.6g %s, DoLP mean %.4f; %d unrealizable pixel(s) "
         "projected → %s\n",
-        stokes.width(), stokes.height(), a.method.c_str(),
-        std::get<std::string>(stokes.attributes().at("microgrid_pattern")).c_str(), s0.mean,
-        std::get<std::string>(stokes.attributes().at("units")).c_str(), dolp.mean,
-        std::get<int>(stokes.attributes().at("unrealizable_pixels")), a.output.c_str());
+        r.stokes.width(), r.stokes.height(), a.method.c_str(), r.pattern.text().c_str(), s0.mean,
+        r.units.c_str(), dolp.mean, r.unrealizable_pixels, a.output.c_str());
 }
 
 void register_demosaic(CLI::App& app) {

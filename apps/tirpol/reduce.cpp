@@ -68,13 +68,13 @@ void run_reduce_microgrid(const ReduceArgs& a) {
         }
     const auto s0 = channel_stats(stokes.channel("S0"));
     const auto dolp = channel_stats(stokes.channel("DoLP"));
+    const calibration::MicrogridSessionRecord recorded =
+        calibration::microgrid_session_record(stokes);
     std::printf(
         "Stokes %d×%d (microgrid %s, %s, %d frame(s)): S0 mean %.6g counts, DoLP mean %.4f → %s\n",
-        stokes.width(), stokes.height(),
-        std::get<std::string>(stokes.attributes().at("microgrid_pattern")).c_str(),
+        stokes.width(), stokes.height(), recorded.pattern.text().c_str(),
         a.pixel_calibration.empty() ? a.method.c_str() : "per-pixel calibration",
-        std::get<int>(stokes.attributes().at("frames_averaged")), s0.mean, dolp.mean,
-        a.output.c_str());
+        recorded.frames_averaged, s0.mean, dolp.mean, a.output.c_str());
 }
 
 void run_reduce(const ReduceArgs& a) {
