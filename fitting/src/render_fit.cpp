@@ -422,7 +422,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
 
     for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
         summary.parameters[i].value = fit.values[i];
-        summary.parameters[i].sigma = fit.sigma[i];
+        summary.parameters[i].std_uncertainty = fit.std_uncertainty[i];
         if (!fit.model_variance_shift.empty())
             summary.parameters[i].variance_shift = fit.model_variance_shift[i];
     }
@@ -464,7 +464,7 @@ std::string RenderFitSummary::FullReport() const {
         out += fmt::format(
             "  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g}; render "
             "variance's pull {:+.2g})\n",
-            p.material, p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step,
+            p.material, p.name, p.value, p.std_uncertainty, p.initial, p.lower, p.upper, p.step,
             p.variance_shift);
     out += fmt::format("  chi2 {:.3f} for {} dof: chi2/dof {:.3f}\n", chi2, dof, reduced_chi2);
     if (parameters.size() > 1 && covariance_available) {
