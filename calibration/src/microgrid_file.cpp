@@ -1,13 +1,17 @@
 #include "microgrid_file.h"
 
+#include <utility>
+
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
 
-Image reduce_microgrid_file(const std::filesystem::path& input,
-                            const std::optional<MicrogridPattern>& pattern,
-                            MicrogridReductionOptions options, const std::string& exr_channel) {
+MicrogridFileReduction reduce_microgrid_file(const std::filesystem::path& input,
+                                             const std::optional<MicrogridPattern>& pattern,
+                                             MicrogridReductionOptions options,
+                                             const std::string& exr_channel) {
     const Image frame = read_raw_image(input, "counts", exr_channel);
     const Attributes& header = frame.attributes();
     std::optional<MicrogridPattern> recorded;
@@ -42,7 +46,8 @@ Image reduce_microgrid_file(const std::filesystem::path& input,
     stokes.attributes()["source_file"] = input.string();
     if (const auto bits = header.find("source_depth_bits"); bits != header.end())
         stokes.attributes()["source_depth_bits"] = bits->second;
-    return stokes;
+    const int unrealizable = stokes_reduction_record(stokes).unrealizable_pixels;
+    return {std::move(stokes), used, options.reduction.units, unrealizable};
 }
 
 }  // namespace tirpol::calibration

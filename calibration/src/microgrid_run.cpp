@@ -32,13 +32,6 @@ std::string text_attribute(const Image& image, const std::string& name) {
                ? std::get<std::string>(it->second)
                : std::string();
 }
-
-int int_attribute(const Image& image, const std::string& name) {
-    const auto it = image.attributes().find(name);
-    return it != image.attributes().end() && std::holds_alternative<int>(it->second)
-               ? std::get<int>(it->second)
-               : 0;
-}
 }  // namespace
 
 DemosaicRun run_demosaic(const DemosaicRunOptions& o) {
@@ -48,18 +41,19 @@ DemosaicRun run_demosaic(const DemosaicRunOptions& o) {
         pattern = parse_option("--pattern", [&] { return MicrogridPattern::parse(o.pattern); });
     MicrogridReductionOptions options;
     options.method = parse_option("--method", [&] { return parse_demosaic_method(o.method); });
-    const Image stokes = reduce_microgrid_file(o.input, pattern, options, o.channel);
-    write_exr(o.output, stokes);
+    const MicrogridFileReduction reduced =
+        reduce_microgrid_file(o.input, pattern, options, o.channel);
+    write_exr(o.output, reduced.stokes);
     DemosaicRun run;
     run.output = o.output;
-    run.width = stokes.width();
-    run.height = stokes.height();
+    run.width = reduced.stokes.width();
+    run.height = reduced.stokes.height();
     run.method = options.method;
-    run.pattern = text_attribute(stokes, "microgrid_pattern");
-    run.units = text_attribute(stokes, "units");
-    run.s0_mean = channel_stats(stokes.channel("S0")).mean;
-    run.dolp_mean = channel_stats(stokes.channel("DoLP")).mean;
-    run.unrealizable_pixels = int_attribute(stokes, "unrealizable_pixels");
+    run.pattern = reduced.pattern.text();
+    run.units = reduced.units;
+    run.s0_mean = channel_stats(reduced.stokes.channel("S0")).mean;
+    run.dolp_mean = channel_stats(reduced.stokes.channel("DoLP")).mean;
+    run.unrealizable_pixels = reduced.unrealizable_pixels;
     return run;
 }
 
@@ -101,8 +95,9 @@ MicrogridReduceRun run_microgrid_reduction(const MicrogridReduceRunOptions& o) {
     run.output = o.output;
     run.width = stokes.width();
     run.height = stokes.height();
-    run.frames_averaged = int_attribute(stokes, "frames_averaged");
-    run.pattern = text_attribute(stokes, "microgrid_pattern");
+    const MicrogridSessionRecord recorded = microgrid_session_record(stokes);
+    run.frames_averaged = recorded.frames_averaged;
+    run.pattern = recorded.pattern.text();
     run.reduction = o.pixel_calibration.empty() ? std::string(demosaic_method_name(options.method))
                                                 : "per-pixel calibration";
     run.units = text_attribute(stokes, "units");

@@ -7,6 +7,12 @@
 
 namespace tirpol::calibration {
 
+namespace {
+// The session reduction's own attributes (the Stokes EXR's names), written and read only here.
+constexpr const char* kRecordsAveraged = "records_averaged";
+constexpr const char* kFramesAveraged = "frames_averaged";
+}  // namespace
+
 bool is_microgrid_session(const std::filesystem::path& dir) {
     return read_session(dir).camera.microgrid_pattern_deg.has_value();
 }
@@ -79,9 +85,22 @@ Image reduce_microgrid_session(const std::filesystem::path& dir,
         stokes = reduce_microgrid(mean, width, height, pattern, reduction);
     }
     stokes.attributes()["session"] = dir.string();
-    stokes.attributes()["records_averaged"] = static_cast<int>(records);
-    stokes.attributes()["frames_averaged"] = static_cast<int>(frames);
+    stokes.attributes()[kRecordsAveraged] = static_cast<int>(records);
+    stokes.attributes()[kFramesAveraged] = static_cast<int>(frames);
     return stokes;
+}
+
+MicrogridSessionRecord microgrid_session_record(const Image& stokes) {
+    const auto integer = [&](const char* name) {
+        const auto it = stokes.attributes().find(name);
+        if (it == stokes.attributes().end())
+            fail("Stokes image: no attribute '{}' (not reduced from a microgrid session?)", name);
+        if (!std::holds_alternative<int>(it->second))
+            fail("Stokes image: attribute '{}' is not an integer", name);
+        return std::get<int>(it->second);
+    };
+    return {MicrogridPattern::from_attributes(stokes.attributes()), integer(kRecordsAveraged),
+            integer(kFramesAveraged)};
 }
 
 }  // namespace tirpol::calibration

@@ -251,15 +251,21 @@ void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
 }
 
 StokesReductionRecord stokes_reduction_record(const Image& stokes) {
-    const auto integer = [&](const char* name) {
+    const auto integer = [&](const char* name) -> std::optional<int> {
         const auto it = stokes.attributes().find(name);
-        if (it == stokes.attributes().end())
-            fail("Stokes image: no attribute '{}' (not written by a Stokes reduction?)", name);
+        if (it == stokes.attributes().end()) return std::nullopt;
         if (!std::holds_alternative<int>(it->second))
             fail("Stokes image: attribute '{}' is not an integer", name);
         return std::get<int>(it->second);
     };
-    return {integer(kUnrealizablePixelsAttribute), integer(kWireGridCorrectedAttribute) != 0};
+    const std::optional<int> unrealizable = integer(kUnrealizablePixelsAttribute);
+    if (!unrealizable)
+        fail("Stokes image: no attribute '{}' (not written by a Stokes reduction?)",
+             kUnrealizablePixelsAttribute);
+    StokesReductionRecord record{*unrealizable, std::nullopt};
+    if (const std::optional<int> corrected = integer(kWireGridCorrectedAttribute))
+        record.wire_grid_corrected = *corrected != 0;
+    return record;
 }
 
 Image reduce_stokes(const std::vector<AnalyzerImage>& images, int width, int height,

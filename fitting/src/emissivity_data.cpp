@@ -20,10 +20,10 @@ void validate_dataset(const EmissivityDataset& d) {
         const std::string which = fmt::format("{}: sample {}{}", d.source, i + 1,
                                               s.name.empty() ? "" : " (\"" + s.name + "\")");
         const std::pair<const char*, double> values[] = {{"angle_deg", s.angle_deg},
-                                                         {"e_s0", s.e_s0},
-                                                         {"e_s0_sigma", s.e_s0_sigma},
-                                                         {"e_s1", s.e_s1},
-                                                         {"e_s1_sigma", s.e_s1_sigma}};
+                                                         {"eps_s0", s.eps_s0},
+                                                         {"eps_s0_std", s.eps_s0_std},
+                                                         {"eps_s1", s.eps_s1},
+                                                         {"eps_s1_std", s.eps_s1_std}};
         for (const auto& [field, value] : values)
             if (!std::isfinite(value))
                 fail("{}: {} is {}; expected a finite number", which, field, value);
@@ -35,24 +35,24 @@ void validate_dataset(const EmissivityDataset& d) {
         // Measured emissivities stray outside [0, 1] by noise only; far outside, the row is not an
         // emissivity.
         constexpr double tol = limits::kEmissivityTolerance;
-        if (s.e_s0 < -tol || s.e_s0 > 1.0 + tol)
+        if (s.eps_s0 < -tol || s.eps_s0 > 1.0 + tol)
             fail(
-                "{}: e_s0 = {} is outside [{}, {}]; an emissivity lies in [0, 1] (a tolerance of "
+                "{}: eps_s0 = {} is outside [{}, {}]; an emissivity lies in [0, 1] (a tolerance of "
                 "{} is allowed for "
                 "measurement noise)",
-                which, s.e_s0, -tol, 1.0 + tol, tol);
-        if (std::abs(s.e_s1) > 1.0 + tol)
+                which, s.eps_s0, -tol, 1.0 + tol, tol);
+        if (std::abs(s.eps_s1) > 1.0 + tol)
             fail(
-                "{}: e_s1 = {} is outside [{}, {}]; a polarized emissivity lies in [-1, 1] (a "
+                "{}: eps_s1 = {} is outside [{}, {}]; a polarized emissivity lies in [-1, 1] (a "
                 "tolerance of {} is "
                 "allowed for measurement noise)",
-                which, s.e_s1, -1.0 - tol, 1.0 + tol, tol);
-        if (!(s.e_s0_sigma > 0.0) || !(s.e_s1_sigma > 0.0))
+                which, s.eps_s1, -1.0 - tol, 1.0 + tol, tol);
+        if (!(s.eps_s0_std > 0.0) || !(s.eps_s1_std > 0.0))
             fail(
-                "{}: uncertainties must be > 0 (got e_s0_sigma = {}, e_s1_sigma = {}); a zero "
+                "{}: uncertainties must be > 0 (got eps_s0_std = {}, eps_s1_std = {}); a zero "
                 "uncertainty would "
                 "give the sample infinite weight",
-                which, s.e_s0_sigma, s.e_s1_sigma);
+                which, s.eps_s0_std, s.eps_s1_std);
     }
 }
 
@@ -90,10 +90,10 @@ std::string emissivity_csv(const std::vector<EmissivityDataset>& datasets) {
             r.name = s.name;
             r.view_angle_deg = s.angle_deg;
             r.frame = EmissivityFrame::PlaneOfEmission;
-            r.eps_s0 = s.e_s0;
-            r.eps_s0_std = s.e_s0_sigma;
-            r.eps_s1 = s.e_s1;
-            r.eps_s1_std = s.e_s1_sigma;
+            r.eps_s0 = s.eps_s0;
+            r.eps_s0_std = s.eps_s0_std;
+            r.eps_s1 = s.eps_s1;
+            r.eps_s1_std = s.eps_s1_std;
             r.wavelength_um = d.wavelength_um;
             rows.push_back(std::move(r));
         }

@@ -22,8 +22,8 @@ struct EmissivityResidual {
         const materials::ShellTargetParameters<T> p = model_parameters_from_fit_order<T>(
             {n[0], k[0], sigma[0], bias[0], tau_deg[0], omega_deg[0], rho_d[0], rho_v[0]});
         const auto [s0, s1] = quadrature->emissivity(p);
-        residual[0] = (s0 - T(sample.e_s0)) * T(1.0 / sample.e_s0_sigma);
-        residual[1] = (s1 - T(sample.e_s1)) * T(1.0 / sample.e_s1_sigma);
+        residual[0] = (s0 - T(sample.eps_s0)) * T(1.0 / sample.eps_s0_std);
+        residual[1] = (s1 - T(sample.eps_s1)) * T(1.0 / sample.eps_s1_std);
         return true;
     }
 

@@ -135,12 +135,12 @@ nlohmann::json fit_report_json(const MicrofacetFitResult& r,
         samples.push_back({{"dataset", s.dataset},
                            {"wavelength_um", datasets[s.dataset].wavelength_um},
                            {"angle_deg", s.angle_deg},
-                           {"measured_s0", m.e_s0},
-                           {"sigma_s0", m.e_s0_sigma},
+                           {"measured_s0", m.eps_s0},
+                           {"sigma_s0", m.eps_s0_std},
                            {"model_s0", s.model_s0},
                            {"residual_s0", s.residual_s0},
-                           {"measured_s1", m.e_s1},
-                           {"sigma_s1", m.e_s1_sigma},
+                           {"measured_s1", m.eps_s1},
+                           {"sigma_s1", m.eps_s1_std},
                            {"model_s1", s.model_s1},
                            {"residual_s1", s.residual_s1}});
     }
@@ -194,7 +194,7 @@ std::string fit_report_text(const MicrofacetFitResult& r,
     for (const SampleFit& s : r.samples) {
         const EmissivitySample& m = datasets.at(s.dataset).samples.at(s.sample);
         out << fmt::format("{:5.1f}   {:9.4f} {:9.4f} {:+6.2f}  | {:9.4f} {:9.4f} {:+6.2f}\n",
-                           s.angle_deg, m.e_s0, s.model_s0, s.residual_s0, m.e_s1, s.model_s1,
+                           s.angle_deg, m.eps_s0, s.model_s0, s.residual_s0, m.eps_s1, s.model_s1,
                            s.residual_s1);
     }
     for (const std::string& w : r.warnings) out << "warning: " << w << '\n';

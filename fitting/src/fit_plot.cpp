@@ -20,13 +20,13 @@ const cv::Scalar kPalette[] = {
     {178, 114, 0}, {0, 94, 213}, {115, 158, 0}, {167, 121, 204}, {66, 228, 240}};
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-struct Axis {
+struct AxisRange {
     double lo, hi;
 };
 
 struct Panel {
     cv::Rect box;
-    Axis x, y;
+    AxisRange x, y;
     int px(double v) const {
         return box.x + static_cast<int>(std::lround((v - x.lo) / (x.hi - x.lo) * box.width));
     }
@@ -79,17 +79,17 @@ void write_fit_plot(const std::filesystem::path& png,
     }
 
     // Ranges covering data (with 2σ bars) and curves.
-    Axis y0{1e9, -1e9}, y1{1e9, -1e9};
-    auto grow = [](Axis& a, double v) {
+    AxisRange y0{1e9, -1e9}, y1{1e9, -1e9};
+    auto grow = [](AxisRange& a, double v) {
         a.lo = std::min(a.lo, v);
         a.hi = std::max(a.hi, v);
     };
     for (const auto& d : datasets)
         for (const auto& s : d.samples) {
-            grow(y0, s.e_s0 - 2 * s.e_s0_sigma);
-            grow(y0, s.e_s0 + 2 * s.e_s0_sigma);
-            grow(y1, s.e_s1 - 2 * s.e_s1_sigma);
-            grow(y1, s.e_s1 + 2 * s.e_s1_sigma);
+            grow(y0, s.eps_s0 - 2 * s.eps_s0_std);
+            grow(y0, s.eps_s0 + 2 * s.eps_s0_std);
+            grow(y1, s.eps_s1 - 2 * s.eps_s1_std);
+            grow(y1, s.eps_s1 + 2 * s.eps_s1_std);
         }
     for (const auto& c : curves)
         for (const auto& [s0, s1] : c) {
@@ -97,7 +97,7 @@ void write_fit_plot(const std::filesystem::path& png,
             grow(y1, s1);
         }
     grow(y1, 0.0);
-    for (Axis* a : {&y0, &y1}) {
+    for (AxisRange* a : {&y0, &y1}) {
         const double pad = 0.06 * std::max(a->hi - a->lo, 1e-3);
         a->lo -= pad;
         a->hi += pad;
@@ -128,8 +128,8 @@ void write_fit_plot(const std::filesystem::path& png,
             result.wavelengths_um.begin());
         const cv::Scalar colour = kPalette[band % std::size(kPalette)];
         for (const auto& s : d.samples) {
-            for (const auto& [panel, v, sg] : {std::tuple{&top, s.e_s0, s.e_s0_sigma},
-                                               std::tuple{&bottom, s.e_s1, s.e_s1_sigma}}) {
+            for (const auto& [panel, v, sg] : {std::tuple{&top, s.eps_s0, s.eps_s0_std},
+                                               std::tuple{&bottom, s.eps_s1, s.eps_s1_std}}) {
                 const int x = panel->px(s.angle_deg);
                 cv::line(img, {x, panel->py(v - 2 * sg)}, {x, panel->py(v + 2 * sg)}, kBlack, 1,
                          cv::LINE_AA);

@@ -526,8 +526,8 @@ MicrofacetFitResult MicrofacetFitProblem::solve() const {
         const EmissivitySample& s = im.datasets[di].samples[si];
         const auto [s0, s1] =
             im.quadratures[r]->emissivity(result.model_parameters(im.dataset_band[di]));
-        result.samples.push_back({di, si, s.angle_deg, s0, s1, (s0 - s.e_s0) / s.e_s0_sigma,
-                                  (s1 - s.e_s1) / s.e_s1_sigma});
+        result.samples.push_back({di, si, s.angle_deg, s0, s1, (s0 - s.eps_s0) / s.eps_s0_std,
+                                  (s1 - s.eps_s1) / s.eps_s1_std});
     }
     return result;
 }

@@ -329,14 +329,14 @@ NoisyModelFitResult fit_noisy_model(const NoisyModel& model, const std::vector<d
     const auto n = static_cast<Eigen::Index>(p);
     result.covariance = Eigen::MatrixXd::Zero(n, n);
     result.correlation = Eigen::MatrixXd::Identity(n, n);
-    result.sigma.assign(p, 0.0);
+    result.std_uncertainty.assign(p, 0.0);
     if (have_covariance) {
         Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(n, n);
         covariance.GetCovarianceBlock(theta.data(), theta.data(), c.data());
         result.covariance = c;
         result.covariance_available = true;
         for (Eigen::Index i = 0; i < n; ++i)
-            result.sigma[static_cast<std::size_t>(i)] = std::sqrt(c(i, i));
+            result.std_uncertainty[static_cast<std::size_t>(i)] = std::sqrt(c(i, i));
         const std::vector<double> gradient =
             weighted_variance_gradient(evaluate, theta, sigma, options);
         const Eigen::VectorXd shift =

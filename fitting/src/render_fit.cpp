@@ -90,19 +90,12 @@ double current_value(const materials::MicrofacetBrdf& brdf, const std::string& m
     fail("fit through the renderer: unknown parameter");
 }
 
-/// How append_values takes a per-pixel variance in RenderFitResiduals::pixels.
-enum class PixelVariance {
-    own,     ///< each pixel's own (a measurement's σ, known per pixel)
-    pooled,  ///< the region's mean (a render's: its few degrees of freedom per pixel)
-};
-
 /// Region means (or pixels) of the chosen Stokes components, and their variances from `variance`
 /// (a per-pixel variance of the value; null → 0), in the fixed order view, region, component,
 /// pixel.
 void append_values(const Image& image, const RenderFitView& view, const RenderFitOptions& options,
                    const std::string& variance_suffix, bool variance_is_std,
-                   PixelVariance pixel_variance, std::vector<double>& values,
-                   std::vector<double>& variances) {
+                   std::vector<double>& values, std::vector<double>& variances) {
     for (const RenderFitRegion& region : view.regions)
         for (int k : options.stokes) {
             const auto& s = image.channel(kStokes[k]);
@@ -111,22 +104,16 @@ void append_values(const Image& image, const RenderFitView& view, const RenderFi
                 const double x = v[i];
                 return variance_is_std ? x * x : x;
             };
-            double sum = 0.0, sum_var = 0.0;
-            for (std::size_t i : region.pixels) sum += s[i], sum_var += var(i);
-            const auto n = static_cast<double>(region.pixels.size());
             if (options.residuals == RenderFitResiduals::pixels) {
-                // A render's per-pixel variance has replicates − 1 degrees of freedom (one at the
-                // default two): weighting a pixel by the inverse of its own estimate would favour
-                // the pixels whose spread came out small (E[1/χ²₁] is infinite). The region's mean
-                // variance, with n·(replicates − 1) degrees of freedom, weights them alike.
                 for (std::size_t i : region.pixels)
-                    values.push_back(s[i]),
-                        variances.push_back(pixel_variance == PixelVariance::pooled ? sum_var / n
-                                                                                    : var(i));
+                    values.push_back(s[i]), variances.push_back(var(i));
                 continue;
             }
             // Pixels are independent (their own random numbers, their own temporal noise): the
             // variance of the mean is Σ var/n².
+            double sum = 0.0, sum_var = 0.0;
+            for (std::size_t i : region.pixels) sum += s[i], sum_var += var(i);
+            const auto n = static_cast<double>(region.pixels.size());
             values.push_back(sum / n);
             variances.push_back(sum_var / (n * n));
         }
@@ -356,8 +343,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
 
     std::vector<double> measured, measured_variance;
     for (const RenderFitView& v : views)
-        append_values(v.measured, v, options, "_std", true, PixelVariance::own, measured,
-                      measured_variance);
+        append_values(v.measured, v, options, "_std", true, measured, measured_variance);
     std::vector<double> measured_sigma(measured_variance.size());
     std::transform(measured_variance.begin(), measured_variance.end(), measured_sigma.begin(),
                    [](double v) { return std::sqrt(v); });
@@ -366,11 +352,13 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
     if (options.samples_per_pixel > 0)
         candidate.sampling.samples_per_pixel = options.samples_per_pixel;
     candidate.sampling.seed = options.seed.value_or(scene.sampling.seed);
-    // The fit weighs each residual by the render's variance as if it were known: a region's sum of
-    // two-replicate variances is unbiased but, over a few dozen pixels with heavy-tailed glossy
-    // paths, has few effective degrees of freedom, and the inverse of such an estimate weighs too
-    // much (χ²/dof 1.19–1.23 and n's pulls spread 1.6 over 16 seeds at two replicates). Sixteen
-    // give each pixel 15.
+    // The one place the render's variance is made fit for weighting. The fit weighs each residual
+    // by the render's variance as if it were known: a region's sum of two-replicate variances is
+    // unbiased but, over a few dozen pixels with heavy-tailed glossy paths, has few effective
+    // degrees of freedom, and the inverse of such an estimate weighs too much (χ²/dof 1.19–1.23
+    // and n's pulls spread 1.6 over 16 seeds at two replicates). Sixteen give each pixel 15, so
+    // residuals per pixel take each pixel's own variance too: the inverse of a 15-dof estimate is
+    // finite, on average 15/13 of the true inverse (at two replicates it has no mean).
     candidate.sampling.replicates =
         std::max(candidate.sampling.replicates, simulation::kPerPixelReplicates);
     std::map<std::string, std::size_t> fitted_materials;  // name → scene material index
@@ -423,8 +411,8 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
             const Image rendered = simulation::render(candidate, ro);
             ++renders;
             if (bar) bar->advance();
-            append_values(rendered, views[v], options, "_var", false, PixelVariance::pooled,
-                          prediction.value, prediction.variance);
+            append_values(rendered, views[v], options, "_var", false, prediction.value,
+                          prediction.variance);
         }
         return prediction;
     };
@@ -434,7 +422,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
 
     for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
         summary.parameters[i].value = fit.values[i];
-        summary.parameters[i].sigma = fit.sigma[i];
+        summary.parameters[i].std_uncertainty = fit.std_uncertainty[i];
         if (!fit.model_variance_shift.empty())
             summary.parameters[i].variance_shift = fit.model_variance_shift[i];
     }
@@ -476,7 +464,7 @@ std::string RenderFitSummary::FullReport() const {
         out += fmt::format(
             "  {}.{:<10} {:.5f} ± {:.5f}  (start {:.5f}, bounds [{}, {}], step {:.4g}; render "
             "variance's pull {:+.2g})\n",
-            p.material, p.name, p.value, p.sigma, p.initial, p.lower, p.upper, p.step,
+            p.material, p.name, p.value, p.std_uncertainty, p.initial, p.lower, p.upper, p.step,
             p.variance_shift);
     out += fmt::format("  chi2 {:.3f} for {} dof: chi2/dof {:.3f}\n", chi2, dof, reduced_chi2);
     if (parameters.size() > 1 && covariance_available) {

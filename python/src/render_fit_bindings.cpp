@@ -79,7 +79,7 @@ py::dict summary_dict(const RenderFitSummary& s) {
     py::list parameters;
     for (const auto& p : s.parameters)
         parameters.append(py::dict(py::arg("material") = p.material, py::arg("name") = p.name,
-                                   py::arg("value") = p.value, py::arg("sigma") = p.sigma,
+                                   py::arg("value") = p.value, py::arg("sigma") = p.std_uncertainty,
                                    py::arg("initial") = p.initial, py::arg("lower") = p.lower,
                                    py::arg("upper") = p.upper, py::arg("step") = p.step));
     return py::dict(py::arg("parameters") = parameters, py::arg("covariance") = s.covariance,

@@ -13,6 +13,14 @@ bool same_label(float a, float b) { return a == b || (std::isnan(a) && std::isna
 
 }  // namespace
 
+double satterthwaite_pooled_dof(double sum, double sum_of_squares, int count,
+                                double dof_per_pixel) {
+    const double most = dof_per_pixel * count;
+    if (!(sum_of_squares > 0.0)) return most;
+    const double dof = (dof_per_pixel + 2.0) * sum * sum / sum_of_squares - 2.0;
+    return std::clamp(dof, dof_per_pixel, most);
+}
+
 PooledVariance pool_variance(const std::vector<float>& variance,
                              const std::vector<const std::vector<float>*>& labels, int width,
                              int height, int radius_px, double dof_per_pixel) {
@@ -25,7 +33,7 @@ PooledVariance pool_variance(const std::vector<float>& variance,
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const std::size_t centre = index(x, y);
-            double sum = 0.0;
+            double sum = 0.0, sum_of_squares = 0.0;
             int count = 0;
             for (int v = std::max(0, y - radius_px); v <= std::min(height - 1, y + radius_px); ++v)
                 for (int u = std::max(0, x - radius_px); u <= std::min(width - 1, x + radius_px);
@@ -37,11 +45,13 @@ PooledVariance pool_variance(const std::vector<float>& variance,
                     });
                     if (!same) continue;
                     sum += variance[j];
+                    sum_of_squares += static_cast<double>(variance[j]) * variance[j];
                     ++count;
                 }
             if (count == 0) continue;
             out.variance[centre] = static_cast<float>(sum / count);
-            out.dof[centre] = static_cast<float>(dof_per_pixel * count);
+            out.dof[centre] = static_cast<float>(
+                satterthwaite_pooled_dof(sum, sum_of_squares, count, dof_per_pixel));
         }
     return out;
 }

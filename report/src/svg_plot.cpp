@@ -18,7 +18,7 @@ constexpr double kWidth = 520, kLeft = 78, kRight = 18, kTop = 36, kPlotHeight =
 constexpr double kPlotWidth = kWidth - kLeft - kRight;
 constexpr const char* kFont = "font-family=\"system-ui, 'DejaVu Sans', sans-serif\"";
 
-struct Frame {
+struct PlotFrame {
     double x_lo, x_hi, y_lo, y_hi;
     double x(double v) const { return kLeft + (v - x_lo) / (x_hi - x_lo) * kPlotWidth; }
     double y(double v) const {
@@ -29,7 +29,7 @@ struct Frame {
 // Axes box, grid lines at the ticks, tick labels and axis titles. Labels sit outside the box in
 // fixed margins sized for "−0.0025"-long numbers, so they neither overlap each other nor get
 // clipped.
-std::string axes(const Frame& f, const std::string& title, const std::string& x_label,
+std::string axes(const PlotFrame& f, const std::string& title, const std::string& x_label,
                  const std::string& y_label) {
     std::string s =
         fmt::format("<text x=\"{}\" y=\"22\" font-size=\"15\" font-weight=\"600\">{}</text>\n",
@@ -120,7 +120,7 @@ std::string svg_scatter(const std::string& title, const std::string& units,
             }
     const auto range = percentile_range(all, 0.002, 0.998);
     const auto [lo, hi] = padded(range.first, range.second);
-    const Frame f{lo, hi, lo, hi};
+    const PlotFrame f{lo, hi, lo, hi};
     const std::string unit_suffix = units.empty() ? "" : " [" + units + "]";
     // Legend: one row per series under the plot, so long names never cover data or each other.
     const double legend_top = kTop + kPlotHeight + kBottom + 4;
@@ -180,7 +180,7 @@ std::string svg_histogram(const std::string& title, const std::string& x_label,
     };
     double top = *std::max_element(density.begin(), density.end());
     if (gaussian_sigma > 0.0) top = std::max(top, gauss(gaussian_mean));
-    const Frame f{lo, hi, 0.0, top > 0.0 ? 1.08 * top : 1.0};
+    const PlotFrame f{lo, hi, 0.0, top > 0.0 ? 1.08 * top : 1.0};
     std::string s = open_svg(kTop + kPlotHeight + kBottom, title + " histogram");
     s += axes(f, title, x_label, "density");
     s += "<g fill=\"#4e79a7\" fill-opacity=\"0.75\">";

@@ -69,10 +69,12 @@ RenderRun run_render(const RenderRunOptions& o) {
     run.written = write_render_outputs(o.output, stem, image);
     if (o.sensor.empty()) return run;
     const auto model = SensorModel::from_config(ConfigNode::load_file(o.sensor));
-    for (const Image& frame : polarizer_images(image, model, scene.band)) {
-        const double angle = std::get<double>(frame.attributes().at("polarizer_angle_deg"));
-        run.polarizer_images.push_back(o.output / fmt::format("{}_pol{:03.0f}.exr", stem, angle));
-        write_exr(run.polarizer_images.back(), frame);
+    // One frame per analyzer angle, in the model's order.
+    const std::vector<Image> frames = polarizer_images(image, model, scene.band);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        run.polarizer_images.push_back(
+            o.output / fmt::format("{}_pol{:03.0f}.exr", stem, model.analyzer.angles_deg[i]));
+        write_exr(run.polarizer_images.back(), frames[i]);
     }
     return run;
 }

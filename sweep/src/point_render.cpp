@@ -35,10 +35,11 @@ void write_point(const SweepSpec& spec, const SweepPoint& point, const std::file
     if (config.sensor) {
         simulation::SensorModel model = simulation::SensorModel::from_config(*config.sensor);
         model.seed = point.seed;
-        for (const Image& frame : simulation::polarizer_images(image, model, scene.band)) {
-            const double angle = std::get<double>(frame.attributes().at("polarizer_angle_deg"));
-            write_exr(dir / fmt::format("pol{:03.0f}.exr", angle), frame);
-        }
+        // One frame per analyzer angle, in the model's order.
+        const std::vector<Image> frames = simulation::polarizer_images(image, model, scene.band);
+        for (std::size_t i = 0; i < frames.size(); ++i)
+            write_exr(dir / fmt::format("pol{:03.0f}.exr", model.analyzer.angles_deg[i]),
+                      frames[i]);
     }
     std::vector<std::string> objects;
     for (const auto& o : scene.objects) objects.push_back(o.name);

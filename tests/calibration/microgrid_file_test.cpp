@@ -38,7 +38,11 @@ TEST(MicrogridFile, Reduces16BitPngCountsWithTheGivenPattern) {
     ASSERT_TRUE(cv::imwrite(path.string(), png));
     MicrogridReductionOptions options;
     options.method = DemosaicMethod::Bilinear;
-    const Image stokes = reduce_microgrid_file(path, sony, options);
+    const MicrogridFileReduction reduced = reduce_microgrid_file(path, sony, options);
+    const Image& stokes = reduced.stokes;
+    EXPECT_EQ(reduced.pattern.angles_deg(), sony.angles_deg());
+    EXPECT_EQ(reduced.units, "counts");
+    EXPECT_EQ(reduced.unrealizable_pixels, 0);  // DoLP 0.36 everywhere
     EXPECT_EQ(stokes.width(), w);
     EXPECT_NEAR(stokes.at("S0", 5, 3), 30000.0f, 0.05f);
     EXPECT_NEAR(stokes.at("S1", 5, 3), 6000.0f, 0.05f);
@@ -67,8 +71,11 @@ TEST(MicrogridFile, TakesThePatternFromAnExrHeaderAndRefusesAConflictingOne) {
     frame.attributes()["units"] = std::string("W/(m^2 sr)");
     const auto path = dir / "frame.exr";
     write_exr(path, frame);
-    const Image stokes = reduce_microgrid_file(path, std::nullopt, {});
+    const MicrogridFileReduction reduced = reduce_microgrid_file(path, std::nullopt, {});
+    const Image& stokes = reduced.stokes;
     EXPECT_NEAR(stokes.at("S1", 2, 2), 6000.0f, 0.05f);
+    EXPECT_EQ(reduced.units, "W/(m^2 sr)");
+    EXPECT_EQ(reduced.pattern.text(), "0,45,135,90");
     EXPECT_EQ(std::get<std::string>(stokes.attributes().at("units")), "W/(m^2 sr)");
     EXPECT_EQ(std::get<std::string>(stokes.attributes().at("microgrid_pattern")), "0,45,135,90");
     EXPECT_THROW(reduce_microgrid_file(path, MicrogridPattern::sony_imx250mzr(), {}), Error);

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "test_support.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
 
@@ -83,10 +84,10 @@ TEST(MicrogridSession, AveragesRecordsByFrameCountAndReducesWithTheRecordedPatte
         MicrogridSessionOptions options;
         options.method = method;
         const Image stokes = reduce_microgrid_session(tmp / "s", options);
-        EXPECT_EQ(std::get<int>(stokes.attributes().at("frames_averaged")), 4);
-        EXPECT_EQ(std::get<int>(stokes.attributes().at("records_averaged")), 2);
-        EXPECT_EQ(std::get<std::string>(stokes.attributes().at("microgrid_pattern")),
-                  "0,45,135,90");
+        const MicrogridSessionRecord recorded = microgrid_session_record(stokes);
+        EXPECT_EQ(recorded.frames_averaged, 4);
+        EXPECT_EQ(recorded.records_averaged, 2);
+        EXPECT_EQ(recorded.pattern.text(), "0,45,135,90");
         for (std::size_t i = 0; i < stokes.pixel_count(); ++i) {
             ASSERT_NEAR(stokes.channel("S0")[i], 1100.0, 1e-2);
             ASSERT_NEAR(stokes.channel("S1")[i], 300.0, 1e-2);
@@ -129,7 +130,12 @@ TEST(MicrogridSession, PerPixelCalibrationReducesPerSuperPixelWithEachPixelsAnal
     MicrogridSessionOptions options;
     options.pixel_calibration = c;
     const Image calibrated = reduce_microgrid_session(tmp / "s", options);
+    EXPECT_EQ(microgrid_session_record(calibrated).frames_averaged, 2);
     EXPECT_EQ(calibrated.width(), kWidth / 2);
+    // A Stokes image reduced from one frame, not from a session, has no session record.
+    EXPECT_THAT(
+        [&] { microgrid_session_record(reduce_microgrid(mosaic, kWidth, kHeight, sony)); },
+        testing::ThrowsMessage<Error>(testing::HasSubstr("no attribute 'records_averaged'")));
     for (std::size_t i = 0; i < calibrated.pixel_count(); ++i) {
         ASSERT_NEAR(calibrated.channel("S0")[i], s[0], 1e-2);
         ASSERT_NEAR(calibrated.channel("S1")[i], s[1], 1e-2);

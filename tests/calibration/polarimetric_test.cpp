@@ -257,16 +257,20 @@ TEST(StokesReduction, NoisyUnrealizablePixelsAreProjectedOntoTheConeAndCounted) 
     EXPECT_EQ(unrealizable_before, count);
 }
 
-TEST(StokesReduction, TheRecordOfAnImageNotMadeByAReductionIsAnErrorNamingTheAttribute) {
+TEST(StokesReduction,
+     TheRecordOfAnImageNotMadeByAReductionIsAnErrorNamingTheAttributeAndAnUnstatedGridIsEmpty) {
     const auto model = AnalyzerModel::ideal(kAngles);
     std::vector<AnalyzerImage> images;
     for (double a : kAngles) images.push_back({a, {1.0f, 2.0f}, {}, "flat"});
     Image stokes = reduce_stokes(images, 2, 1, model);
     EXPECT_EQ(stokes_reduction_record(stokes).unrealizable_pixels, 0);
-    EXPECT_FALSE(stokes_reduction_record(stokes).wire_grid_corrected);
+    EXPECT_EQ(stokes_reduction_record(stokes).wire_grid_corrected, std::optional<bool>(false));
     stokes.attributes()[kWireGridCorrectedAttribute] = std::string("yes");
     EXPECT_THAT([&] { stokes_reduction_record(stokes); },
                 testing::ThrowsMessage<Error>(testing::HasSubstr("'wire_grid_corrected' is not")));
+    // An image that does not say whether a wire grid was removed is read, and says so.
+    stokes.attributes().erase(kWireGridCorrectedAttribute);
+    EXPECT_EQ(stokes_reduction_record(stokes).wire_grid_corrected, std::nullopt);
     stokes.attributes().erase(kUnrealizablePixelsAttribute);
     EXPECT_THAT([&] { stokes_reduction_record(stokes); },
                 testing::ThrowsMessage<Error>(testing::HasSubstr("no attribute 'unrealizable")));

@@ -39,10 +39,10 @@ TEST(EmissivityData, ReadsCalibrationCsvAndHalvesTwoSigmaColumns) {
     ASSERT_EQ(d[0].samples.size(), 2u);
     EXPECT_EQ(d[0].samples[1].name, "panel_60");
     EXPECT_DOUBLE_EQ(d[0].samples[1].angle_deg, 60.0);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s0, 0.91);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s0_sigma, 0.01);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s1, -0.03);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s1_sigma, 0.003);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s0, 0.91);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s0_std, 0.01);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s1, -0.03);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s1_std, 0.003);
 }
 
 TEST(EmissivityData, SplitsBandsAndRoundTripsItsOwnCsv) {
@@ -56,9 +56,9 @@ TEST(EmissivityData, SplitsBandsAndRoundTripsItsOwnCsv) {
     EXPECT_DOUBLE_EQ(d[0].wavelength_um, 8.5);
     EXPECT_DOUBLE_EQ(d[1].wavelength_um, 11.0);
     ASSERT_EQ(d[0].samples.size(), 2u);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s1, -0.04);
-    EXPECT_DOUBLE_EQ(d[0].samples[1].e_s1_sigma, 0.002);
-    EXPECT_DOUBLE_EQ(d[1].samples[0].e_s0_sigma, 0.02);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s1, -0.04);
+    EXPECT_DOUBLE_EQ(d[0].samples[1].eps_s1_std, 0.002);
+    EXPECT_DOUBLE_EQ(d[1].samples[0].eps_s0_std, 0.02);
 }
 
 TEST(EmissivityData, AcceptsHandWrittenOneSigmaColumns) {
@@ -66,7 +66,7 @@ TEST(EmissivityData, AcceptsHandWrittenOneSigmaColumns) {
     tirpol::test::write_text(
         dir / "e.csv", "angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma\n30,0.94,0.005,-0.01,0.002\n");
     const auto d = load_emissivity_csv(dir / "e.csv");
-    EXPECT_DOUBLE_EQ(d.at(0).samples.at(0).e_s0_sigma, 0.005);
+    EXPECT_DOUBLE_EQ(d.at(0).samples.at(0).eps_s0_std, 0.005);
 }
 
 TEST(EmissivityData, BadDataGiveClearErrors) {
@@ -76,7 +76,7 @@ TEST(EmissivityData, BadDataGiveClearErrors) {
         const char* row;
         const char* expected;
     } cases[] = {
-        {"p,30,300,1,1,2,nan,0.01,-0.01,0.004,0,0.004\n", "e_s0 is nan"},
+        {"p,30,300,1,1,2,nan,0.01,-0.01,0.004,0,0.004\n", "eps_s0 is nan"},
         {"p,95,300,1,1,2,0.9,0.01,-0.01,0.004,0,0.004\n", "outside [0°, 90°]"},
         {"p,-5,300,1,1,2,0.9,0.01,-0.01,0.004,0,0.004\n", "outside [0°, 90°]"},
         {"p,30,300,1,1,2,0.9,0,-0.01,0.004,0,0.004\n", "uncertainties must be > 0"},

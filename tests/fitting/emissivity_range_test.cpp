@@ -28,13 +28,14 @@ std::filesystem::path regression(const std::string& name) {
 TEST(EmissivityRange, ValuesFarOutsideZeroToOneAreErrorsNamingFileAndLine) {
     EXPECT_THAT(error_of(regression("emissivity_1e308.csv")),
                 AllOf(HasSubstr("emissivity_1e308.csv:2"),
-                      HasSubstr("e_s0 = 1e+308 is outside [-0.05, 1.05]")));
+                      HasSubstr("eps_s0 = 1e+308 is outside [-0.05, 1.05]")));
     EXPECT_THAT(error_of(regression("emissivity_5.csv")),
-                HasSubstr("e_s0 = 5 is outside [-0.05, 1.05]"));
+                HasSubstr("eps_s0 = 5 is outside [-0.05, 1.05]"));
     tirpol::test::TempDir dir;
     tirpol::test::write_text(dir / "s1.csv",
                              "angle_deg,e_s0,e_s0_sigma,e_s1,e_s1_sigma\n60,0.9,0.01,-1e9,0.01\n");
-    EXPECT_THAT(error_of(dir / "s1.csv"), HasSubstr("e_s1 = -1000000000 is outside [-1.05, 1.05]"));
+    EXPECT_THAT(error_of(dir / "s1.csv"),
+                HasSubstr("eps_s1 = -1000000000 is outside [-1.05, 1.05]"));
 }
 
 TEST(EmissivityRange, NoisyValuesJustOutsideTheRangeAreKept) {

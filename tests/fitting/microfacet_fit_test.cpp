@@ -128,8 +128,8 @@ TEST(MicrofacetFit, TwoSigmaIntervalsCoverTheTruthAtTheExpectedRate) {
         // Fitted curve against the true curve, in units of the noise: Σ ~ χ²(p) per seed.
         for (const SampleFit& s : r.samples) {
             const EmissivitySample& c = clean.samples[s.sample];
-            curve_chi2_sum += std::pow((s.model_s0 - c.e_s0) / c.e_s0_sigma, 2) +
-                              std::pow((s.model_s1 - c.e_s1) / c.e_s1_sigma, 2);
+            curve_chi2_sum += std::pow((s.model_s0 - c.eps_s0) / c.eps_s0_std, 2) +
+                              std::pow((s.model_s1 - c.eps_s1) / c.eps_s1_std, 2);
         }
     }
     std::printf(
@@ -246,13 +246,13 @@ TEST(MicrofacetFit, ScalingByReducedChiSquareInflatesTheCovariance) {
     EmissivityDataset clean = dataset_from_quadrature(truth, test::fig1_angles(), q);
     EmissivityDataset noisy = clean;
     for (auto& s : noisy.samples) {
-        s.e_s0_sigma *= 3.0;
-        s.e_s1_sigma *= 3.0;
+        s.eps_s0_std *= 3.0;
+        s.eps_s1_std *= 3.0;
     }
     noisy = test::noisy(noisy, 7);
     for (std::size_t i = 0; i < noisy.samples.size(); ++i) {
-        noisy.samples[i].e_s0_sigma = clean.samples[i].e_s0_sigma;
-        noisy.samples[i].e_s1_sigma = clean.samples[i].e_s1_sigma;
+        noisy.samples[i].eps_s0_std = clean.samples[i].eps_s0_std;
+        noisy.samples[i].eps_s1_std = clean.samples[i].eps_s1_std;
     }
     MicrofacetFitOptions o = fast_options(1, q.order);
     start_at(o, truth);

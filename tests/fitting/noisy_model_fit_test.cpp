@@ -71,7 +71,7 @@ TEST(NoisyModelFit, LinearModelCovarianceIsTheClosedForm) {
             EXPECT_NEAR(r.covariance(i, j), expected(i, j), 1e-6 * std::abs(expected(i, i)));
     }
     EXPECT_EQ(r.dof, m - 2);
-    EXPECT_NEAR(r.sigma[1], std::sqrt(expected(1, 1)), 1e-9);
+    EXPECT_NEAR(r.std_uncertainty[1], std::sqrt(expected(1, 1)), 1e-9);
 }
 
 // Repeated fits of a nonlinear model y = A·exp(−x/τ) whose every evaluation carries the same Monte
@@ -104,7 +104,7 @@ TEST(NoisyModelFit, RenderNoiseInTheWeightsGivesPullsOfUnitSpread) {
             o.steps = {1e-4, 1e-4};
             const NoisyModelFitResult r = fit_noisy_model(model, y, sy, o);
             EXPECT_TRUE(r.usable);
-            const double pull = (r.values[1] - tau_true) / r.sigma[1];
+            const double pull = (r.values[1] - tau_true) / r.std_uncertainty[1];
             sum2 += pull * pull;
             chi2 += r.reduced_chi2;
         }
@@ -154,8 +154,9 @@ TEST(NoisyModelFit, SubtractingTheModelVarianceRemovesItsPullOnTheMinimum) {
         const NoisyModelFitResult subtracted = fit_noisy_model(model, y, sy, o);
         ASSERT_TRUE(plain.usable && subtracted.usable) << subtracted.termination;
         ASSERT_EQ(subtracted.model_variance_shift.size(), 1u);
-        pull_plain += (plain.values[0] - theta_true) / plain.sigma[0] / fits;
-        pull_subtracted += (subtracted.values[0] - theta_true) / subtracted.sigma[0] / fits;
+        pull_plain += (plain.values[0] - theta_true) / plain.std_uncertainty[0] / fits;
+        pull_subtracted +=
+            (subtracted.values[0] - theta_true) / subtracted.std_uncertainty[0] / fits;
         shift_predicted += subtracted.model_variance_shift[0] / fits;
         shift_seen += (plain.values[0] - subtracted.values[0]) / fits;
     }

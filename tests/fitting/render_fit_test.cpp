@@ -86,9 +86,11 @@ void expect_recovered(const RenderFitSummary& s, const std::vector<double>& trut
     for (std::size_t i = 0; i < truth.size(); ++i) {
         const auto& p = s.parameters[i];
         std::printf("%s: pull %+.2f σ, %+.2f %% of the truth\n", p.name.c_str(),
-                    (p.value - truth[i]) / p.sigma, 100.0 * (p.value - truth[i]) / truth[i]);
-        EXPECT_LE(std::abs(p.value - truth[i]), 3.0 * p.sigma) << p.name << ": not within 3σ\n"
-                                                               << s.FullReport();
+                    (p.value - truth[i]) / p.std_uncertainty,
+                    100.0 * (p.value - truth[i]) / truth[i]);
+        EXPECT_LE(std::abs(p.value - truth[i]), 3.0 * p.std_uncertainty)
+            << p.name << ": not within 3σ\n"
+            << s.FullReport();
     }
     EXPECT_LE(s.reduced_chi2, 1.5) << s.FullReport();
     std::printf("%s", s.FullReport().c_str());
@@ -212,7 +214,8 @@ TEST(RenderFit, PullsOfTheGlossyPaintOverIndependentSeedsAreUnitNormal) {
         ASSERT_TRUE(s.IsSolutionUsable()) << s.FullReport();
         ASSERT_TRUE(s.covariance_available) << s.FullReport();
         for (std::size_t k = 0; k < truth.size(); ++k)
-            pulls[k].push_back((s.parameters[k].value - truth[k]) / s.parameters[k].sigma);
+            pulls[k].push_back((s.parameters[k].value - truth[k]) /
+                               s.parameters[k].std_uncertainty);
         reduced_chi2_sum += s.reduced_chi2;
         dof = s.dof;
         std::printf("fit %2d: n pull %+.2f, sigma pull %+.2f, chi2/dof %.2f\n", i, pulls[0].back(),

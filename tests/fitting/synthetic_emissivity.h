@@ -51,8 +51,8 @@ inline EmissivityDataset noisy(EmissivityDataset clean, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> normal;
     for (EmissivitySample& s : clean.samples) {
-        s.e_s0 += s.e_s0_sigma * normal(rng);
-        s.e_s1 += s.e_s1_sigma * normal(rng);
+        s.eps_s0 += s.eps_s0_std * normal(rng);
+        s.eps_s1 += s.eps_s1_std * normal(rng);
     }
     return clean;
 }

@@ -56,9 +56,9 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     // image).
     for (int c = 0; c < 3; ++c)
         EXPECT_LT(std::abs(r.target_stokes.measured[c] - r.target_stokes.truth[c]),
-                  4.0 * r.target_stokes.sigma[c])
+                  4.0 * r.target_stokes.std_error[c])
             << "S" << c << " measured " << r.target_stokes.measured[c] << " truth "
-            << r.target_stokes.truth[c] << " σ " << r.target_stokes.sigma[c];
+            << r.target_stokes.truth[c] << " σ " << r.target_stokes.std_error[c];
     EXPECT_LT(r.target_stokes.measured[1], 0.0);
 
     ASSERT_EQ(r.emissivity.size(), 3u);
@@ -84,8 +84,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     for (const auto& p : r.parameters) {
         if (p.fixed) continue;
         ++free_parameters;
-        EXPECT_GT(p.sigma, 0.0) << p.name;
-        EXPECT_LT(std::abs(p.fitted - p.truth), 4.0 * p.sigma)
+        EXPECT_GT(p.std_uncertainty, 0.0) << p.name;
+        EXPECT_LT(std::abs(p.fitted - p.truth), 4.0 * p.std_uncertainty)
             << p.name << " fitted " << p.fitted << " true " << p.truth;
     }
     EXPECT_EQ(free_parameters, 2);  // n and σ
@@ -101,8 +101,8 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
     ASSERT_EQ(r.render_fit.parameters.size(), 2u);
     EXPECT_LE(r.render_fit.reduced_chi2, 1.5);
     for (const auto& p : r.render_fit.parameters) {
-        EXPECT_LE(std::abs(p.fitted - p.truth), 2.0 * p.sigma)
-            << p.name << " fitted " << p.fitted << " ± " << p.sigma;
+        EXPECT_LE(std::abs(p.fitted - p.truth), 2.0 * p.std_uncertainty)
+            << p.name << " fitted " << p.fitted << " ± " << p.std_uncertainty;
         EXPECT_LE(std::abs(p.fitted - p.truth), 0.05 * p.truth) << p.name << " fitted " << p.fitted;
     }
     EXPECT_TRUE(std::filesystem::is_regular_file(r.fit_comparison));

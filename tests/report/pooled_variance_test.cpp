@@ -86,6 +86,82 @@ TEST(PooledVariance, PooledOneDofVariancesGiveNormalPerPixelZ) {
     EXPECT_EQ(d.verdict, SigmaCheck::Plausible);
 }
 
+/// Over `seeds` independent 5×5 images of one-dof variance estimates v̂ = σ²·χ²₁ (a render's at two
+/// replicates) around the true variances `sigma2`, the centre pixel's pooled variance: its scatter
+/// as degrees of freedom, 2·mean²/variance (a scaled χ²_ν has variance 2·mean²/ν), and the mean
+/// of the dof the pooling states.
+struct PooledScatter {
+    double scatter_dof = 0.0, stated_dof = 0.0, satterthwaite_true_dof = 0.0;
+};
+PooledScatter pooled_scatter_over_seeds(const std::vector<double>& sigma2, int seeds) {
+    const int w = 5, h = 5;
+    std::mt19937 rng(17);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<float> variance(w * h);
+    double sum = 0.0, sum_sq = 0.0, stated = 0.0;
+    for (int s = 0; s < seeds; ++s) {
+        for (int i = 0; i < w * h; ++i) {
+            const double z = normal(rng);
+            variance[i] = static_cast<float>(sigma2[i] * z * z);
+        }
+        const PooledVariance p = pool_variance(variance, {}, w, h, kVariancePoolRadiusPx, 1.0);
+        const double v = p.variance[2 * w + 2];
+        sum += v, sum_sq += v * v, stated += p.dof[2 * w + 2];
+    }
+    const double mean = sum / seeds, var = sum_sq / seeds - mean * mean;
+    double s1 = 0.0, s2 = 0.0;
+    for (double x : sigma2) s1 += x, s2 += x * x;
+    return {2.0 * mean * mean / var, stated / seeds, s1 * s1 / s2};
+}
+
+TEST(PooledVariance, TheStatedDofMatchesThePooledEstimatesScatterOverSeeds) {
+    // 20000 seeds: the scatter's dof has a relative standard error of about √(2.6/20000) = 1.1 %
+    // (the sample variance of a near-χ²₂₂ quantity), so it is held to 5 % of Satterthwaite's on
+    // the true variances. The stated dof is itself estimated from one-dof variances and held to
+    // ≤ ν·n, so its mean over seeds may sit a few per cent off the scatter (23.2 against 25.0 at
+    // equal variances, measured): 10 %.
+    constexpr int kSeeds = 20000;
+    // Equal variances: ν·n = 25, what every pixel pooled with its 24 neighbours states.
+    const PooledScatter equal = pooled_scatter_over_seeds(std::vector<double>(25, 1.0), kSeeds);
+    // A variance rising ×4 across the window, as over a surface turning towards the sky: the
+    // Satterthwaite dof is 21.2, and ν·n = 25 would be 18 % high.
+    std::vector<double> ramp(25);
+    for (int i = 0; i < 25; ++i) ramp[i] = 1.0 + 3.0 * (i % 5) / 4.0;
+    const PooledScatter rising = pooled_scatter_over_seeds(ramp, kSeeds);
+    for (const auto& [name, c] : {std::pair{"equal", equal}, std::pair{"rising ×4", rising}}) {
+        std::printf("%s: scatter %.2f dof, stated %.2f (mean), Satterthwaite on the truth %.2f\n",
+                    name, c.scatter_dof, c.stated_dof, c.satterthwaite_true_dof);
+        EXPECT_NEAR(c.scatter_dof, c.satterthwaite_true_dof, 0.05 * c.satterthwaite_true_dof)
+            << name;
+        EXPECT_NEAR(c.stated_dof, c.scatter_dof, 0.10 * c.scatter_dof) << name;
+    }
+    EXPECT_GT(25.0 - rising.scatter_dof, 0.10 * rising.scatter_dof) << "ν·n would have passed";
+    // Two levels ×9 apart on one surface (the edge of a reflection): the estimates see the step
+    // only through one-dof noise, so the stated dof stays above the scatter's, but by less than
+    // half of what ν·n = 25 would overstate.
+    std::vector<double> step(25);
+    for (int i = 0; i < 25; ++i) step[i] = i % 5 < 2 ? 1.0 : 9.0;
+    const PooledScatter edge = pooled_scatter_over_seeds(step, kSeeds);
+    std::printf("step ×9: scatter %.2f dof, stated %.2f (mean), Satterthwaite on the truth %.2f\n",
+                edge.scatter_dof, edge.stated_dof, edge.satterthwaite_true_dof);
+    EXPECT_NEAR(edge.scatter_dof, edge.satterthwaite_true_dof, 0.05 * edge.satterthwaite_true_dof);
+    EXPECT_GE(edge.stated_dof, edge.scatter_dof * 0.95);
+    EXPECT_LT(edge.stated_dof - edge.scatter_dof, 0.5 * (25.0 - edge.scatter_dof));
+}
+
+TEST(PooledVariance, SatterthwaiteDofIsBetweenOnePixelsAndAllPixelsDof) {
+    // Equal estimates: ν·n exactly (clamped from (ν + 2)·n − 2).
+    EXPECT_DOUBLE_EQ(satterthwaite_pooled_dof(25.0, 25.0, 25, 1.0), 25.0);
+    // All the variance in one pixel: one pixel's dof.
+    EXPECT_DOUBLE_EQ(satterthwaite_pooled_dof(7.0, 49.0, 25, 1.0), 1.0);
+    // Every estimate 0 (a pixel with no Monte Carlo noise): nothing to weigh, ν·n.
+    EXPECT_DOUBLE_EQ(satterthwaite_pooled_dof(0.0, 0.0, 9, 2.0), 18.0);
+    // Between: ten pixels at 1 and two at 10, ν = 1: 3·30²/210 − 2 = 10.857 of at most 12.
+    const double sum = 10.0 + 2.0 * 10.0, squares = 10.0 + 2.0 * 100.0;
+    EXPECT_DOUBLE_EQ(satterthwaite_pooled_dof(sum, squares, 12, 1.0),
+                     3.0 * sum * sum / squares - 2.0);
+}
+
 TEST(PooledVariance, TheReportPoolsARendersFewDofVarianceForItsZMaps) {
     // The synthetic pair with the simulation's variance stated at one dof per pixel (a render at
     // two replicates): the report says it pools, and its z of a correct simulation scatter as a

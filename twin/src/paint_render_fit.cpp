@@ -69,8 +69,8 @@ TwinRenderFit fit_paint_through_renderer(const PaintRenderFitInputs& in) {
     TwinRenderFit r;
     const double truth[] = {in.true_n, in.true_sigma};
     for (std::size_t i = 0; i < s.parameters.size(); ++i)
-        r.parameters.push_back(
-            {s.parameters[i].name, truth[i], s.parameters[i].value, s.parameters[i].sigma, false});
+        r.parameters.push_back({s.parameters[i].name, truth[i], s.parameters[i].value,
+                                s.parameters[i].std_uncertainty, false});
     r.reduced_chi2 = s.reduced_chi2;
     r.dof = s.dof;
     r.renders = s.renders;

@@ -269,9 +269,9 @@ void check_target_stokes(Chain& c) {
             calibration::region_mean(c.calibrated.stokes.front(), s, *target_rect0, "twin").mean;
         c.result.target_stokes.truth[k] =
             calibration::region_mean(c.truth.front(), s, *target_rect0, "twin").mean;
-        c.result.target_stokes.sigma[k] = rect_difference_standard_error(
+        c.result.target_stokes.std_error[k] = rect_difference_standard_error(
             c.calibrated.stokes.front(), c.truth.front(), s, *target_rect0);
-        c.result.target_stokes.sigma_temporal[k] =
+        c.result.target_stokes.std_error_temporal[k] =
             rect_standard_error(c.calibrated.stokes.front(), s + "_std", *target_rect0);
     }
 }

@@ -48,13 +48,14 @@ std::string paint_fit_comparison(const TwinResult& r) {
         if (p.fixed) continue;
         const auto q = std::find_if(f.parameters.begin(), f.parameters.end(),
                                     [&](const TwinParameter& t) { return t.name == p.name; });
-        out +=
-            fmt::sprintf("    %-6s true %.4f | eq 17 %.4f ± %.4f (%.1fσ, %+.1f %%)", p.name.c_str(),
-                         p.truth, p.fitted, p.sigma, std::abs(p.fitted - p.truth) / p.sigma,
-                         100.0 * (p.fitted / p.truth - 1.0));
+        out += fmt::sprintf("    %-6s true %.4f | eq 17 %.4f ± %.4f (%.1fσ, %+.1f %%)",
+                            p.name.c_str(), p.truth, p.fitted, p.std_uncertainty,
+                            std::abs(p.fitted - p.truth) / p.std_uncertainty,
+                            100.0 * (p.fitted / p.truth - 1.0));
         if (q != f.parameters.end())
-            out += fmt::sprintf(" | renderer %.4f ± %.4f (%.1fσ, %+.1f %%)", q->fitted, q->sigma,
-                                std::abs(q->fitted - q->truth) / q->sigma,
+            out += fmt::sprintf(" | renderer %.4f ± %.4f (%.1fσ, %+.1f %%)", q->fitted,
+                                q->std_uncertainty,
+                                std::abs(q->fitted - q->truth) / q->std_uncertainty,
                                 100.0 * (q->fitted / q->truth - 1.0));
         out += "\n";
     }
@@ -79,8 +80,8 @@ std::string twin_summary(const TwinResult& r) {
     for (int c = 0; c < 3; ++c)
         out += fmt::sprintf(
             "    S%d %9.4f vs %9.4f   (diff %+.4f, σ %.4f of which temporal %.4f, %.1fσ)\n", c,
-            t.measured[c], t.truth[c], t.measured[c] - t.truth[c], t.sigma[c], t.sigma_temporal[c],
-            std::abs(t.measured[c] - t.truth[c]) / t.sigma[c]);
+            t.measured[c], t.truth[c], t.measured[c] - t.truth[c], t.std_error[c],
+            t.std_error_temporal[c], std::abs(t.measured[c] - t.truth[c]) / t.std_error[c]);
     out += fmt::sprintf(
         "  polarized emissivity (plane-of-emission frame): measured | eq 17 on the truth render | "
         "true paint\n");
@@ -93,7 +94,8 @@ std::string twin_summary(const TwinResult& r) {
     for (const auto& p : r.parameters) {
         if (p.fixed) continue;
         out += fmt::sprintf("    %-6s true %.4f  recovered %.4f ± %.4f  (%.1fσ)\n", p.name.c_str(),
-                            p.truth, p.fitted, p.sigma, std::abs(p.fitted - p.truth) / p.sigma);
+                            p.truth, p.fitted, p.std_uncertainty,
+                            std::abs(p.fitted - p.truth) / p.std_uncertainty);
     }
     out += fmt::sprintf("    fixed:");
     for (const auto& p : r.parameters)

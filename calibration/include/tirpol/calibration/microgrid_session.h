@@ -205,6 +205,18 @@ bool is_microgrid_session(const std::filesystem::path& dir);
 Image reduce_microgrid_session(const std::filesystem::path& dir,
                                const MicrogridSessionOptions& options = {});
 
+/// What reduce_microgrid_session records about a reduction, read back from its image.
+struct MicrogridSessionRecord {
+    MicrogridPattern pattern;  ///< the session camera's
+    int records_averaged{};    ///< polarizer records
+    int frames_averaged{};     ///< camera frames over those records
+};
+
+/// The record of the session reduction that made `stokes`. Throws tirpol::Error naming the
+/// attribute when one is missing or of the wrong type (an image not made by
+/// reduce_microgrid_session).
+MicrogridSessionRecord microgrid_session_record(const Image& stokes);
+
 struct MicrogridFlatFieldOptions {
     BadPixelThresholds thresholds;  ///< dead, hot, noisy and non-linear pixels
     /// A pixel whose fitted diattenuation is below this (or above 1 + its 5 % tolerance) is

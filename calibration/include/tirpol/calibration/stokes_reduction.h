@@ -72,11 +72,14 @@ struct StokesReductionRecord {
     /// Pixels whose measured vector was not realizable (√(S1²+S2²) > S0), projected onto the cone
     /// when ReductionOptions::project_to_realizable.
     int unrealizable_pixels = 0;
-    bool wire_grid_corrected = false;  ///< inputs were corrected by a wire-grid calibration
+    /// Inputs were corrected by a wire-grid calibration; empty when the image does not say (a
+    /// Stokes EXR written before the reductions recorded it).
+    std::optional<bool> wire_grid_corrected;
 };
 
 /// The record of the reduction that made `stokes`. Throws tirpol::Error naming the attribute when
-/// one is missing or not an integer (an image not written by a Stokes reduction).
+/// `unrealizable_pixels` is missing, or either attribute is there but not an integer (an image not
+/// written by a Stokes reduction).
 StokesReductionRecord stokes_reduction_record(const Image& stokes);
 
 }  // namespace tirpol::calibration

@@ -19,11 +19,11 @@ namespace tirpol::fitting {
 /// One measured view angle.
 struct EmissivitySample {
     double angle_deg = 0.0;   ///< emission (view) angle from the surface normal, [0°, 90°]
-    double e_s0 = 0.0;        ///< ε_S0 = 1 − DHR
-    double e_s0_sigma = 0.0;  ///< standard (1σ) uncertainty of e_s0, > 0
-    double e_s1 =
+    double eps_s0 = 0.0;      ///< ε_S0 = 1 − DHR
+    double eps_s0_std = 0.0;  ///< standard (1σ) uncertainty of eps_s0, > 0
+    double eps_s1 =
         0.0;  ///< ε_S1 (plane-of-emission frame, < 0 for emission polarized in that plane)
-    double e_s1_sigma = 0.0;  ///< standard (1σ) uncertainty of e_s1, > 0
+    double eps_s1_std = 0.0;  ///< standard (1σ) uncertainty of eps_s1, > 0
     std::string name;         ///< target/ROI name from the CSV (may be empty)
 };
 
@@ -43,9 +43,10 @@ struct EmissivityDataset {
 std::vector<EmissivityDataset> load_emissivity_csv(const std::filesystem::path& path,
                                                    double default_wavelength_um = 10.0);
 
-/// Checks one dataset: at least one sample; finite values; angles in [0°, 90°]; e_s0 in [0, 1] and
-/// e_s1 in [-1, 1] within limits::kEmissivityTolerance (measurement noise); uncertainties finite
-/// and > 0; wavelength finite and > 0. Throws tirpol::Error naming `dataset.source` and the sample.
+/// Checks one dataset: at least one sample; finite values; angles in [0°, 90°]; eps_s0 in [0, 1]
+/// and eps_s1 in [-1, 1] within limits::kEmissivityTolerance (measurement noise); uncertainties
+/// finite and > 0; wavelength finite and > 0. Throws tirpol::Error naming `dataset.source` and the
+/// sample.
 void validate_dataset(const EmissivityDataset& dataset);
 
 /// Writes samples as an emissivity CSV (core/emissivity_csv.h) in the plane-of-emission frame, with

@@ -92,7 +92,8 @@ struct NoisyModelFitOptions {
 
 struct NoisyModelFitResult {
     std::vector<double> values;
-    std::vector<double> sigma;  ///< √diag(covariance); 0 when the covariance is unavailable
+    /// Standard uncertainties √diag(covariance); 0 when the covariance is unavailable.
+    std::vector<double> std_uncertainty;
     Eigen::MatrixXd
         covariance;  ///< (JᵀWJ)⁻¹ at the solution, W from measurement and model variance
     Eigen::MatrixXd correlation;
@@ -185,7 +186,8 @@ struct RenderFitOptions {
 struct RenderFitParameterResult {
     std::string material;
     std::string name;  ///< "n", "sigma", …
-    double initial = 0.0, value = 0.0, sigma = 0.0, lower = 0.0, upper = 0.0, step = 0.0;
+    double initial = 0.0, value = 0.0, lower = 0.0, upper = 0.0, step = 0.0;
+    double std_uncertainty = 0.0;  ///< standard uncertainty of `value` (0 without covariance)
     /// NoisyModelFitResult::model_variance_shift: how far the render's variance would pull a plain
     /// least-squares minimum (removed when subtract_model_variance is set); 0 without covariance.
     double variance_shift = 0.0;

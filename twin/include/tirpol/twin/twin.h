@@ -176,7 +176,8 @@ struct TwinEmissivity {
 
 struct TwinParameter {
     std::string name;
-    double truth = 0.0, fitted = 0.0, sigma = 0.0;
+    double truth = 0.0, fitted = 0.0;
+    double std_uncertainty = 0.0;  ///< of `fitted`
     bool fixed = false;
 };
 
@@ -204,9 +205,9 @@ struct TwinRegionAgreement {
 /// Measured vs the truth render, target ROI means of S0 S1 S2 (W/(m²·sr)).
 struct TwinStokesCheck {
     double measured[3] = {0, 0, 0}, truth[3] = {0, 0, 0};
-    double sigma[3] = {
+    double std_error[3] = {
         0, 0, 0};  ///< standard error of the mean difference (ROI scatter of measured − truth)
-    double sigma_temporal[3] = {
+    double std_error_temporal[3] = {
         0, 0, 0};  ///< of which temporal noise alone (the reduction's *_std channels)
 };
 
