@@ -26,7 +26,6 @@
 
 #include "../tests/acquisition/fake_gv_camera_process.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/acquisition/internal/aravis_camera.h"
 #include "tirpol/acquisition/internal/sim_stage.h"

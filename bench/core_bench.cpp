@@ -9,9 +9,8 @@
 #include <random>
 
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/mueller.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 
 namespace {
 using namespace tirpol;

@@ -16,7 +16,6 @@
 // camera's per-frame Stokes path instead.
 
 #include <benchmark/benchmark.h>
-#include <httplib.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -25,6 +24,7 @@
 
 #include "../tests/acquisition/child_process.h"
 #include "../tests/acquisition/fake_gv_camera_process.h"
+#include "httplib_after_eigen.h"
 #include "live_view.h"
 #include "tirpol/live/live_server.h"
 

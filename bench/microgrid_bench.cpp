@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <random>
 
-#include "tirpol/calibration/microgrid_demosaic.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 

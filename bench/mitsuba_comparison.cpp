@@ -38,7 +38,7 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/source_tree.h"
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/simulation/renderer.h"
 #include "tirpol/simulation/scene.h"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tirpol/core/radiometry.h"
-#include "tirpol/simulation/sky.h"
+#include "tirpol/simulation/scene.h"
 
 namespace {
 

@@ -13,9 +13,9 @@
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::examples {
 

@@ -15,7 +15,7 @@
 #include "tirpol/core/source_tree.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/fitting/fit_output.h"
+#include "tirpol/fitting/fit_run.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/material.h"

@@ -10,7 +10,7 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/source_tree.h"
-#include "tirpol/materials/emissivity_curve.h"
+#include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/material.h"
 
 namespace tirpol::examples {

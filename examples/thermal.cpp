@@ -6,7 +6,7 @@
 #include "examples.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/line_plot.h"
+#include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/source_tree.h"
 #include "tirpol/thermal/civil_time.h"

@@ -1,8 +1,8 @@
-#include "tirpol/acquisition/device_list.h"
-
 #include <fmt/printf.h>
 
 #include <algorithm>
+
+#include "tirpol/acquisition/camera.h"
 
 namespace tirpol::acquisition {
 

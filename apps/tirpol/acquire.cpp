@@ -11,7 +11,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/acquisition/capture_session.h"
+#include "tirpol/acquisition/capture.h"
 
 namespace tirpol::cli {
 

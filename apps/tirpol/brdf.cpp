@@ -2,7 +2,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/materials/brdf_evaluation.h"
+#include "tirpol/materials/material.h"
 
 namespace tirpol::cli {
 

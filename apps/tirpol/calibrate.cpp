@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/calibration_run.h"
+#include "tirpol/calibration/calibration_chain.h"
 
 namespace tirpol::cli {
 

@@ -12,8 +12,8 @@
 #include "numeric_options.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/log.h"
-#include "tirpol/core/option_value_error.h"
 #include "tirpol/report/provenance.h"
 #include "tirpol/twin/scene_camera.h"
 

@@ -7,7 +7,6 @@
 #include "common_options.h"
 #include "invocation.h"
 #include "tirpol/report/comparison_report.h"
-#include "tirpol/report/summary_text.h"
 
 namespace tirpol::cli {
 

@@ -3,7 +3,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/acquisition/device_list.h"
+#include "tirpol/acquisition/camera.h"
 
 namespace tirpol::cli {
 

@@ -2,9 +2,10 @@
 // wavelength or averaged over a band (Planck × RSR weighted), as a table, CSV, JSON and a Fig.
 // 1-style plot.
 
+#include "tirpol/materials/emissivity.h"
+
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/materials/emissivity_curve.h"
 
 namespace tirpol::cli {
 

@@ -4,7 +4,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/emissivity_extraction_run.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 
 namespace tirpol::cli {
 

@@ -1,9 +1,10 @@
 // `tirpol noise`: temporal noise, NEDT and the 3D noise decomposition from a stack of frames of a
 // uniform blackbody (docs/calibration.md).
 
+#include "tirpol/calibration/noise.h"
+
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/noise_run.h"
 
 namespace tirpol::cli {
 

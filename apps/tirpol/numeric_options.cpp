@@ -1,6 +1,6 @@
 #include "numeric_options.h"
 
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::cli {
 

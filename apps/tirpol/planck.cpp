@@ -2,7 +2,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/core/planck_report.h"
+#include "tirpol/core/path_info.h"
 
 namespace tirpol::cli {
 

@@ -4,8 +4,8 @@
 
 #include "cli.h"
 #include "common_options.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/calibration/microgrid_run.h"
-#include "tirpol/calibration/session_to_stokes.h"
 
 namespace tirpol::cli {
 

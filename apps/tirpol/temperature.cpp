@@ -2,7 +2,7 @@
 
 #include "cli.h"
 #include "common_options.h"
-#include "tirpol/calibration/temperature_image.h"
+#include "tirpol/calibration/radiometric.h"
 
 namespace tirpol::cli {
 

@@ -1,8 +1,8 @@
-#include "tirpol/calibration/bad_pixels.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "tirpol/calibration/radiometric.h"
 
 namespace tirpol::calibration {
 

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/calibration_quality.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,9 +6,9 @@
 #include <map>
 
 #include "fpa_state.h"
+#include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/line_plot.h"
 #include "tirpol/core/quicklook.h"
 
 namespace tirpol::calibration {

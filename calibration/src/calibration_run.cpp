@@ -1,12 +1,10 @@
-#include "tirpol/calibration/calibration_run.h"
-
 #include <fmt/printf.h>
 
 #include <cmath>
 
-#include "tirpol/calibration/bad_pixels.h"
 #include "tirpol/calibration/calibration_chain.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/calibration/radiometric.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

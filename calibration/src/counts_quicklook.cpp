@@ -10,10 +10,10 @@
 
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/stokes_reduction.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/session.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::calibration {
 

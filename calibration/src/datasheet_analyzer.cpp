@@ -1,9 +1,8 @@
-#include "tirpol/calibration/datasheet_analyzer.h"
-
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "tirpol/calibration/analyzer.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

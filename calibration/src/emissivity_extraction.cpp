@@ -4,8 +4,6 @@
 
 #include <cmath>
 
-#include "tirpol/calibration/region_mean.h"
-#include "tirpol/core/checks.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"

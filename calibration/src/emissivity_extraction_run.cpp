@@ -1,14 +1,13 @@
-#include "tirpol/calibration/emissivity_extraction_run.h"
-
 #include <fmt/printf.h>
 
 #include <cmath>
 #include <filesystem>
 
 #include "tirpol/calibration/calibration_chain.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

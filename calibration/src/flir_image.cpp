@@ -7,7 +7,6 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
 

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/frame_stack_io.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -7,10 +5,10 @@
 #include <limits>
 #include <set>
 
+#include "tirpol/calibration/noise.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/input_file.h"
-#include "tirpol/core/raster_io.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {
 

@@ -1,6 +1,6 @@
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/camera_model.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/microgrid_demosaic.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,6 +6,7 @@
 
 #include "microgrid_frame_check.h"
 #include "microgrid_newton_row.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

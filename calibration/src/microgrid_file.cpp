@@ -4,7 +4,7 @@
 
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/raster_io.h"
+#include "tirpol/core/exr_io.h"
 
 namespace tirpol::calibration {
 

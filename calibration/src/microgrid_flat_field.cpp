@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/microgrid_session.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"

@@ -1,12 +1,11 @@
-#include "tirpol/calibration/microgrid_pattern.h"
-
 #include <charconv>
 #include <cmath>
 #include <vector>
 
 #include "tirpol/calibration/analyzer.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::calibration {
 

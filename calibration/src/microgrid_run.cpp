@@ -7,7 +7,7 @@
 #include "microgrid_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"

@@ -5,7 +5,7 @@
 #include "microgrid_newton_row.h"
 #include "stokes_attributes.h"
 #include "stokes_row.h"
-#include "tirpol/core/cancelled.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace tirpol::calibration::detail {
 

@@ -10,8 +10,7 @@
 #include <span>
 
 #include "tirpol/calibration/analyzer.h"
-#include "tirpol/calibration/microgrid_demosaic.h"
-#include "tirpol/calibration/microgrid_pattern.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/image.h"
 

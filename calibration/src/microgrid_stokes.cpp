@@ -6,7 +6,7 @@
 #include "microgrid_frame_check.h"
 #include "microgrid_single_pass.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::calibration {
 

@@ -1,6 +1,4 @@
-#include "tirpol/calibration/noise_report.h"
-
-#include "tirpol/calibration/frame_stack_io.h"
+#include "tirpol/calibration/noise.h"
 
 namespace tirpol::calibration {
 

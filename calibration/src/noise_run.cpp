@@ -1,7 +1,6 @@
-#include "tirpol/calibration/noise_run.h"
-
 #include <fmt/printf.h>
 
+#include "tirpol/calibration/noise.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/output_guard.h"

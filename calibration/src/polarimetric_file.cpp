@@ -8,7 +8,7 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::calibration {
 

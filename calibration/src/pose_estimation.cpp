@@ -1,5 +1,3 @@
-#include "tirpol/calibration/pose_estimation.h"
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
@@ -7,8 +5,9 @@
 #include <opencv2/calib3d.hpp>
 #include <sstream>
 
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {
 

@@ -1,4 +1,4 @@
-#include "tirpol/calibration/region_mean.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 
 namespace tirpol::calibration {
 

@@ -8,10 +8,10 @@
 #include <map>
 
 #include "offset_drift.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/interrupt_signals.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/core/utc_time.h"
 #include "validate.h"
 

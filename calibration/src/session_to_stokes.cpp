@@ -1,5 +1,3 @@
-#include "tirpol/calibration/session_to_stokes.h"
-
 #include <fmt/format.h>
 #include <fmt/printf.h>
 
@@ -11,7 +9,7 @@
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/quicklook.h"
 

@@ -7,10 +7,10 @@
 
 #include "stokes_attributes.h"
 #include "stokes_uncertainty.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/interrupt_signals.h"
+#include "tirpol/core/stokes.h"
 #include "validate.h"
 
 namespace tirpol::calibration {

@@ -1,5 +1,3 @@
-#include "tirpol/calibration/synthetic_microgrid.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
 

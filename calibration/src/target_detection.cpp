@@ -15,7 +15,6 @@
 #include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
 

@@ -1,15 +1,11 @@
-#include "tirpol/calibration/temperature_image.h"
-
 #include <fmt/printf.h>
 
 #include <variant>
 
-#include "tirpol/calibration/calibration_quality.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/core/raster_io.h"
 
 namespace tirpol::calibration {
 

@@ -1,12 +1,11 @@
-#include "tirpol/calibration/wire_grid.h"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/stokes.h"
 #include "validate.h"
 
 namespace tirpol::calibration {

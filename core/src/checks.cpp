@@ -1,5 +1,3 @@
-#include "tirpol/core/checks.h"
-
 #include <cmath>
 
 #include "tirpol/core/error.h"

@@ -12,7 +12,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

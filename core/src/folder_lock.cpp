@@ -1,5 +1,3 @@
-#include "tirpol/core/folder_lock.h"
-
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -9,6 +7,7 @@
 #include <string>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

@@ -1,5 +1,3 @@
-#include "tirpol/core/input_file.h"
-
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +8,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

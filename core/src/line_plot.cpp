@@ -1,5 +1,3 @@
-#include "tirpol/core/line_plot.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +6,7 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/quicklook.h"
 
 namespace tirpol {
 

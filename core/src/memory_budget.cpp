@@ -1,5 +1,3 @@
-#include "tirpol/core/memory_budget.h"
-
 #include <fstream>
 #include <sstream>
 #include <string>

@@ -1,10 +1,9 @@
-#include "tirpol/core/mueller.h"
-
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol {
 

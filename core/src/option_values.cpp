@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "tirpol/core/limits.h"
-#include "tirpol/core/option_value_error.h"
 
 namespace tirpol {
 

@@ -1,10 +1,8 @@
-#include "tirpol/core/planck_report.h"
-
 #include <fmt/printf.h>
 
-#include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/path_info.h"
 
 namespace tirpol {
 

@@ -1,8 +1,8 @@
-#include "tirpol/core/polarizer_angle.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
+
+#include "tirpol/core/stokes.h"
 
 namespace tirpol {
 

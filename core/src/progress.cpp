@@ -1,9 +1,9 @@
-#include "tirpol/core/progress.h"
-
 #include <unistd.h>
 
 #include <cmath>
 #include <string>
+
+#include "tirpol/core/log.h"
 
 namespace tirpol {
 

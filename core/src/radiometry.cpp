@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

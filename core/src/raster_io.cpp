@@ -1,5 +1,3 @@
-#include "tirpol/core/raster_io.h"
-
 #include <tiffio.h>
 
 #include <algorithm>
@@ -13,8 +11,8 @@
 #include "png_read.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

@@ -15,8 +15,8 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/input_file.h"
 #include "tirpol/core/limits.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/utf8.h"
 
 namespace tirpol {

@@ -1,6 +1,6 @@
-#include "tirpol/core/stokes_frame.h"
-
 #include <cmath>
+
+#include "tirpol/core/stokes.h"
 
 namespace tirpol {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol {
 

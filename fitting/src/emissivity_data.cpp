@@ -1,5 +1,3 @@
-#include "tirpol/fitting/emissivity_data.h"
-
 #include <cmath>
 #include <map>
 
@@ -7,6 +5,7 @@
 #include "tirpol/core/emissivity_csv.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/limits.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 

@@ -1,8 +1,7 @@
-#include "tirpol/fitting/fit_output.h"
-
 #include <sstream>
 
 #include "tirpol/core/error.h"
+#include "tirpol/fitting/fit_run.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/material.h"
 

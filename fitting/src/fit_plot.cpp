@@ -5,8 +5,8 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/line_plot.h"
-#include "tirpol/fitting/fit_output.h"
+#include "tirpol/core/quicklook.h"
+#include "tirpol/fitting/fit_run.h"
 
 namespace tirpol::fitting {
 

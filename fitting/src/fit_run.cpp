@@ -5,10 +5,9 @@
 #include <filesystem>
 
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/utc_time.h"
-#include "tirpol/fitting/fit_output.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"
 

@@ -7,8 +7,8 @@
 #include "ceres_termination.h"
 #include "emissivity_residual.h"
 #include "latin_hypercube.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/limits.h"
 
 namespace tirpol::fitting {

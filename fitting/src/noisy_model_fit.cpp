@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "ceres_termination.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/fitting/render_fit.h"
 
 namespace tirpol::fitting {

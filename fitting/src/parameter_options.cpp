@@ -3,7 +3,7 @@
 #include <string>
 
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/fitting/fit_run.h"
 
 namespace tirpol::fitting {

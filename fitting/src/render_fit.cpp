@@ -14,8 +14,8 @@
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
-#include "tirpol/core/progress.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/log.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/simulation/renderer.h"
 

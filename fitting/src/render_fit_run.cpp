@@ -1,5 +1,5 @@
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/fitting/render_fit.h"
 #include "tirpol/simulation/scene.h"
 

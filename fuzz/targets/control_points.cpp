@@ -2,7 +2,7 @@
 // world points and their pixels (calibration::read_control_points) and the report's YAML list of
 // measured/simulated pixel pairs (report::load_control_points).
 #include "fuzz_support.h"
-#include "tirpol/calibration/pose_estimation.h"
+#include "tirpol/calibration/geometric_calibration.h"
 #include "tirpol/report/registration.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

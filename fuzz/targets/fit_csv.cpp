@@ -1,6 +1,6 @@
 // Fuzz target: measured emissivity CSV for `fit` (fitting::load_emissivity_csv, which validates).
 #include "fuzz_support.h"
-#include "tirpol/fitting/emissivity_data.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const auto path = tirpol::fuzz::write_input("emissivity.csv", data, size);

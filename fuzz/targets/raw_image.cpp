@@ -1,7 +1,7 @@
 // Fuzz target: raw camera images from other tools (read_raw_image). Each input is read both as a
 // PNG and as a TIFF (the reader chooses by extension; OpenCV then sniffs the content).
 #include "fuzz_support.h"
-#include "tirpol/core/raster_io.h"
+#include "tirpol/core/exr_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     for (const char* name : {"raw.png", "raw.tif"}) {

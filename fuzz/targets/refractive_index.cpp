@@ -1,7 +1,7 @@
 // Fuzz target: refractive-index tables (RefractiveIndexTable::load). Each input is read both as a
 // refractiveindex.info YAML and as a CSV (the loader chooses by extension), then interpolated.
 #include "fuzz_support.h"
-#include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/fresnel.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     for (const char* name : {"index.yml", "index.csv"}) {

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "fuzz_support.h"
-#include "tirpol/sweep/sweep_file.h"
+#include "tirpol/sweep/sweep_run.h"
 
 namespace {
 void link_config_folders() {

@@ -7,8 +7,6 @@
 
 #include "tapped_camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/capture_session.h"
-#include "tirpol/acquisition/stop_on_interrupt.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/utf8.h"
 

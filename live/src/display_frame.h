@@ -21,7 +21,7 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/calibration/radiometric.h"
-#include "tirpol/live/live_options.h"
+#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 

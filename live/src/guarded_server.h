@@ -10,12 +10,11 @@
 // (beyond it a connection is answered 503 and closed at once), so idle or slow connections cannot
 // starve the others.
 
-#include <httplib.h>
-
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
 
+#include "httplib_after_eigen.h"
 #include "request_policy.h"
 
 namespace tirpol::live::detail {

@@ -1,7 +1,6 @@
 #include "tirpol/live/live_server.h"
 
 #include <fmt/format.h>
-#include <httplib.h>
 #include <spdlog/spdlog.h>
 #include <sys/socket.h>
 
@@ -11,6 +10,7 @@
 #include "access.h"
 #include "api_request.h"
 #include "guarded_server.h"
+#include "httplib_after_eigen.h"
 #include "live_view.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/interrupt_signals.h"

@@ -17,10 +17,9 @@
 #include "region_statistics.h"
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/stage.h"
-#include "tirpol/calibration/microgrid_demosaic.h"
-#include "tirpol/calibration/microgrid_pattern.h"
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/calibration/radiometric.h"
-#include "tirpol/live/live_options.h"
+#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 

@@ -4,7 +4,6 @@
 
 #include <chrono>
 
-#include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"

@@ -19,7 +19,7 @@
 #include "frame_feed.h"
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/core/image.h"
-#include "tirpol/live/live_options.h"
+#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 

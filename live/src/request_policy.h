@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/live/live_options.h"
+#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 

@@ -1,5 +1,3 @@
-#include "tirpol/materials/brdf_evaluation.h"
-
 #include <fmt/printf.h>
 
 #include <cmath>

@@ -1,5 +1,3 @@
-#include "tirpol/materials/complex_index.h"
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -10,7 +8,8 @@
 #include "interpolation.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
+#include "tirpol/core/output_guard.h"
+#include "tirpol/materials/fresnel.h"
 
 namespace tirpol::materials {
 

@@ -1,14 +1,11 @@
-#include "tirpol/materials/emissivity_curve.h"
-
 #include <fmt/format.h>
 
 #include <cmath>
 #include <sstream>
 
-#include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/line_plot.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/quicklook.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::materials {

@@ -4,9 +4,9 @@
 
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/materials/emissivity_curve.h"
+#include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/material.h"
 
 namespace tirpol::materials {

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "tirpol/core/config.h"
-#include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/microfacet.h"
 #include "tirpol/materials/pbrdf.h"
 

@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include "gaussian_erfc.h"
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {

@@ -5,7 +5,7 @@
 /// 0): emission polarized in the plane of emission (S1 < 0), the classic result of Sandus, Appl.
 /// Opt. 4, 1634 (1965).
 
-#include "tirpol/materials/complex_index.h"
+#include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/pbrdf.h"
 
 namespace tirpol::materials {

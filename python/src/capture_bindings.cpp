@@ -12,8 +12,6 @@
 #include "interruptible.h"
 #include "python_config.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/capture_session.h"
-#include "tirpol/acquisition/stop_on_interrupt.h"
 
 namespace py = pybind11;
 

@@ -13,7 +13,6 @@
 #include "image_conversion.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/mueller.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes.h"
 

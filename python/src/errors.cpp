@@ -3,8 +3,8 @@
 // pybind11 tries translators newest first, so the subclass is registered after its base.
 #include "bindings.h"
 #include "device_errors.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace py = pybind11;
 

@@ -10,7 +10,7 @@
 #include "bindings.h"
 #include "image_conversion.h"
 #include "tirpol/calibration/microgrid_session.h"
-#include "tirpol/calibration/synthetic_microgrid.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
 
 namespace py = pybind11;

@@ -7,7 +7,7 @@
 
 #include "bindings.h"
 #include "image_conversion.h"
-#include "tirpol/calibration/wire_grid.h"
+#include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 
 namespace py = pybind11;

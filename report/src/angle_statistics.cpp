@@ -1,9 +1,9 @@
-#include "tirpol/report/angle_statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
+
+#include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
 

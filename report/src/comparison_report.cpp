@@ -10,9 +10,9 @@
 #include "pooled_variance.h"
 #include "svg_plot.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::report {

@@ -4,7 +4,7 @@
 
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/report/comparison_report.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tirpol/report/summary_text.h"
+#include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
 

@@ -8,7 +8,7 @@
 #include "figures.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/utf8.h"
-#include "tirpol/report/summary_text.h"
+#include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report::detail {
 

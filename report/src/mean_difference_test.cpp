@@ -1,8 +1,8 @@
-#include "tirpol/report/mean_difference_test.h"
-
 #include <algorithm>
 #include <cmath>
 #include <unsupported/Eigen/SpecialFunctions>
+
+#include "tirpol/report/verdict.h"
 
 namespace tirpol::report {
 

@@ -10,9 +10,9 @@
 #include <opencv2/video/tracking.hpp>
 #include <variant>
 
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace tirpol::report {
 

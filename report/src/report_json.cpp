@@ -3,7 +3,6 @@
 
 #include "tirpol/core/utf8.h"
 #include "tirpol/report/comparison_report.h"
-#include "tirpol/report/summary_text.h"
 
 namespace tirpol::report {
 

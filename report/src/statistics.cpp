@@ -1,10 +1,10 @@
-#include "tirpol/report/statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <unsupported/Eigen/SpecialFunctions>
+
+#include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
 

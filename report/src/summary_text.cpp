@@ -1,10 +1,10 @@
-#include "tirpol/report/summary_text.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "tirpol/report/comparison_report.h"
 
 namespace tirpol::report {
 

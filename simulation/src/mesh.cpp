@@ -1,5 +1,3 @@
-#include "tirpol/simulation/mesh.h"
-
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -9,6 +7,7 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/simulation/ray_tracer.h"
 
 namespace tirpol::simulation {
 

@@ -4,7 +4,7 @@
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/simulation/render_output.h"
 #include "tirpol/simulation/scene.h"

@@ -18,14 +18,12 @@
 #include "rng.h"
 #include "sobol_sampler.h"
 #include "surface_basis.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/log.h"
-#include "tirpol/core/memory_budget.h"
-#include "tirpol/core/progress.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::simulation {

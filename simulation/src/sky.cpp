@@ -1,11 +1,10 @@
-#include "tirpol/simulation/sky.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "sky_model.h"
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol::simulation {
 

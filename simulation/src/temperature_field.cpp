@@ -1,9 +1,8 @@
-#include "tirpol/simulation/temperature_field.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol::simulation {
 

@@ -8,7 +8,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/simulation/scene.h"

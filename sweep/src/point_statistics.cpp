@@ -1,11 +1,10 @@
-#include "tirpol/sweep/point_statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "tirpol/core/error.h"
+#include "tirpol/sweep/sweep_run.h"
 
 namespace tirpol::sweep {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "results.h"
-#include "tirpol/core/line_plot.h"
+#include "tirpol/core/quicklook.h"
 
 namespace tirpol::sweep::detail {
 

@@ -1,11 +1,10 @@
-#include "tirpol/sweep/sweep_file.h"
-
 #include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/sweep/sweep_run.h"
 #include "tirpol/thermal/civil_time.h"
 
 namespace tirpol::sweep {

@@ -12,7 +12,7 @@
 #include "point_render.h"
 #include "sweep_results.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/folder_lock.h"
+#include "tirpol/core/output_guard.h"
 
 namespace tirpol::sweep {
 

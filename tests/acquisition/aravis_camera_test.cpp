@@ -17,7 +17,7 @@
 
 #include "fake_gv_camera_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/frame_averager.h"
+#include "tirpol/acquisition/frame_gate.h"
 
 namespace tirpol::acquisition {
 namespace {

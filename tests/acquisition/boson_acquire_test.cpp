@@ -10,7 +10,7 @@
 
 #include "child_process.h"
 #include "test_support.h"
-#include "tirpol/acquisition/ffc.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"

@@ -1,12 +1,11 @@
 // `tirpol devices`' library side: serial-port discovery in a /dev-like folder (stable by-id names
 // first, the nodes they name not listed twice) and the list's formats.
 
-#include "tirpol/acquisition/device_list.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "tirpol/acquisition/camera.h"
 
 namespace tirpol::acquisition {
 namespace {

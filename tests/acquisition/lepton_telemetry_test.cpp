@@ -17,7 +17,6 @@
 #include "mock_purethermal_lepton.h"
 #include "test_support.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/internal/lepton_frame.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/internal/v4l2_camera.h"

@@ -7,7 +7,7 @@
 #include <thread>
 #include <utility>
 
-#include "tirpol/acquisition/sim/pseudo_terminal.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::test {
 

@@ -10,7 +10,6 @@
 #include <numbers>
 #include <thread>
 
-#include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/core/error.h"

@@ -11,11 +11,11 @@
 #include <thread>
 
 #include "stage_simulator_thread.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/apt_protocol.h"
 #include "tirpol/acquisition/internal/elliptec_protocol.h"
 #include "tirpol/acquisition/sim/stage_simulator.h"
 #include "tirpol/acquisition/stage.h"
-#include "tirpol/acquisition/stop_on_interrupt.h"
 
 namespace tirpol::acquisition {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "cli_runner.h"
 #include "test_support.h"
-#include "tirpol/calibration/synthetic_microgrid.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/exr_io.h"
 
 namespace {

@@ -16,7 +16,7 @@
 #include "cli_runner.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/folder_lock.h"
+#include "tirpol/core/output_guard.h"
 
 namespace {
 

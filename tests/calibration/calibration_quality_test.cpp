@@ -2,8 +2,6 @@
 // of a linear fit to a curved response, NEDT against its hand-computed value, warnings when a
 // calibration is applied beyond its blackbody or FPA range, and the one-page summary files.
 
-#include "tirpol/calibration/calibration_quality.h"
-
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,6 +11,7 @@
 
 #include "synthetic_fpa_camera.h"
 #include "test_support.h"
+#include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"

@@ -2,14 +2,13 @@
 // set-point's residual with its FPA temperature when there is one, the bad pixels counted by class
 // (a pixel's bits may name several classes) and the files written.
 
-#include "tirpol/calibration/calibration_run.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "tirpol/calibration/bad_pixels.h"
+#include "tirpol/calibration/calibration_chain.h"
+#include "tirpol/calibration/radiometric.h"
 
 namespace tirpol::calibration {
 namespace {

@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "test_support.h"
-#include "tirpol/calibration/session_to_stokes.h"
+#include "tirpol/calibration/calibration_chain.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"

@@ -2,8 +2,6 @@
 // polarizer's datasheet extinction ratio and the mount's axis offsets, and a method string that
 // says which model was used.
 
-#include "tirpol/calibration/datasheet_analyzer.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
+#include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"

@@ -2,14 +2,13 @@
 // the band given disagrees with the input's, when none is known, or when a session has no
 // calibration (a usage error of --calibration).
 
-#include "tirpol/calibration/emissivity_extraction_run.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::calibration {
 namespace {

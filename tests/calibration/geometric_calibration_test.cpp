@@ -12,7 +12,6 @@
 #include <random>
 
 #include "test_support.h"
-#include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/error.h"
 #include "truth_lens.h"
 

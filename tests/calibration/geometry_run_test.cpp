@@ -7,7 +7,7 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/geometric_calibration.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

@@ -4,8 +4,6 @@
 // false DoLP that an unpolarized edge turns into, per method. The table that docs/microgrid.md
 // quotes is printed by MicrogridAccuracy.TablePerMethod.
 
-#include "tirpol/calibration/microgrid_demosaic.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -14,7 +14,7 @@
 
 #include "test_support.h"
 #include "tirpol/calibration/microgrid_session.h"
-#include "tirpol/calibration/synthetic_microgrid.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
 

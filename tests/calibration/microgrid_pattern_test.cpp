@@ -1,10 +1,9 @@
 // The microgrid (division-of-focal-plane) 2×2 analyzer pattern: the Sony IMX250MZR layout, parsing,
 // the Stokes-completeness check and the record in an image header.
 
-#include "tirpol/calibration/microgrid_pattern.h"
-
 #include <gtest/gtest.h>
 
+#include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -13,9 +13,9 @@
 #include <numbers>
 
 #include "test_support.h"
-#include "tirpol/calibration/synthetic_microgrid.h"
+#include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/session.h"
 

@@ -14,7 +14,7 @@
 
 #include "synthetic_fpa_camera.h"
 #include "test_support.h"
-#include "tirpol/calibration/frame_stack_io.h"
+#include "tirpol/calibration/noise.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -2,13 +2,12 @@
 // at the blackbody temperature, the calibration's bad pixels are left out of the NEDT statistics
 // (responsivity 0, NEDT NaN), and the report holds the kelvin half only with a calibration.
 
-#include "tirpol/calibration/noise_report.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
+#include "tirpol/calibration/noise.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/radiometry.h"
 

@@ -2,8 +2,6 @@
 // splits the noise drawn over the 3D-noise components, with a report file that says so; the
 // summary text names it.
 
-#include "tirpol/calibration/noise_run.h"
-
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,6 +11,7 @@
 #include <random>
 
 #include "test_support.h"
+#include "tirpol/calibration/noise.h"
 #include "tirpol/core/exr_io.h"
 
 namespace tirpol::calibration {

@@ -11,12 +11,11 @@
 
 #include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/stokes_reduction.h"
-#include "tirpol/calibration/wire_grid.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::calibration {
 namespace {

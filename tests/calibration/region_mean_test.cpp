@@ -2,14 +2,13 @@
 // a rectangle and its standard error s/√n (sample standard deviation s with n − 1, the textbook
 // standard error of the mean), checked on a hand-computed patch.
 
-#include "tirpol/calibration/region_mean.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
+#include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::calibration {

@@ -13,7 +13,6 @@
 #include "rendered_frames.h"
 #include "test_support.h"
 #include "tirpol/calibration/geometric_calibration.h"
-#include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/simulation/pinhole_camera.h"
 #include "tirpol/simulation/renderer.h"

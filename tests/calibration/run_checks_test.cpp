@@ -6,9 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
-#include "tirpol/calibration/calibration_run.h"
-#include "tirpol/calibration/session_to_stokes.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/calibration/calibration_chain.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

@@ -9,10 +9,10 @@
 #include <sstream>
 
 #include "test_support.h"
-#include "tirpol/calibration/emissivity_extraction_run.h"
+#include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/flir_image.h"
-#include "tirpol/calibration/noise_run.h"
-#include "tirpol/calibration/temperature_image.h"
+#include "tirpol/calibration/noise.h"
+#include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::calibration {

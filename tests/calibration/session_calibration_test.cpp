@@ -17,8 +17,8 @@
 #include "tirpol/calibration/emissivity_extraction.h"
 #include "tirpol/calibration/synthetic_session.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 
 namespace tirpol::calibration {
 namespace {

@@ -1,8 +1,6 @@
 // `tirpol temperature` and `tirpol flir-temperature`'s library side: counts images through a fitted
 // radiometric calibration and through the FLIR model, written as EXRs, and their summaries.
 
-#include "tirpol/calibration/temperature_image.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -2,8 +2,6 @@
 // for ever, /dev/zero never ends (a session.json that was /dev/zero was read to 1 GiB). And the
 // memory check that refuses a job before it allocates.
 
-#include "tirpol/core/input_file.h"
-
 #include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,7 +19,8 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/memory_budget.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/core/radiometry.h"
 
 using tirpol::test::error_of;

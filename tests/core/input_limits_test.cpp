@@ -9,13 +9,11 @@
 #include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/camera_model.h"
-#include "tirpol/core/checks.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/core/raster_io.h"
 
 using tirpol::test::error_of;
 

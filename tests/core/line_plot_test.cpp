@@ -1,7 +1,5 @@
 // Line plots: a readable PNG of the requested size, 1-2-5 ticks, and clear errors.
 
-#include "tirpol/core/line_plot.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +7,7 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/quicklook.h"
 
 namespace tirpol {
 namespace {

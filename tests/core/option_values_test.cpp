@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "tirpol/core/limits.h"
-#include "tirpol/core/option_value_error.h"
 
 namespace tirpol {
 namespace {

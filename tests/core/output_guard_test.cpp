@@ -15,7 +15,6 @@
 
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/folder_lock.h"
 
 namespace tirpol {
 namespace {

@@ -1,13 +1,12 @@
 // `tirpol planck`'s library side: the temperature → radiance → brightness-temperature round trip
 // through the answers, their JSON keys and text, and the errors.
 
-#include "tirpol/core/planck_report.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
+#include "tirpol/core/path_info.h"
 
 namespace tirpol {
 namespace {

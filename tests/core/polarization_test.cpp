@@ -9,7 +9,6 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
 #include "tirpol/core/stokes.h"
 
 namespace tirpol {

@@ -1,9 +1,9 @@
 // Polarizer angle keys (core/polarizer_angle.h): the one rule for "the same nominal angle", its
 // channel-name tag, and the signed stage-angle difference.
 
-#include "tirpol/core/polarizer_angle.h"
-
 #include <gtest/gtest.h>
+
+#include "tirpol/core/stokes.h"
 
 namespace tirpol {
 namespace {

@@ -9,7 +9,7 @@
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/progress.h"
+#include "tirpol/core/log.h"
 #include "tirpol/core/quicklook.h"
 
 namespace tirpol {

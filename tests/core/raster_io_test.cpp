@@ -1,8 +1,6 @@
 // read_raw_image: 16-bit PNG and TIFF keep their integer counts unscaled; EXR channels; clear
 // errors.
 
-#include "tirpol/core/raster_io.h"
-
 #include <gtest/gtest.h>
 
 #include <opencv2/imgcodecs.hpp>

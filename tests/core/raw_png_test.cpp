@@ -12,7 +12,7 @@
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/raster_io.h"
+#include "tirpol/core/exr_io.h"
 
 namespace tirpol {
 namespace {

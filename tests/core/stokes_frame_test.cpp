@@ -1,11 +1,11 @@
 // Stokes reference frames and their rotation (paper §2.3.3, eqs 7–11), pinned to ARCHITECTURE.md.
 
-#include "tirpol/core/stokes_frame.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+
+#include "tirpol/core/stokes.h"
 
 namespace tirpol {
 namespace {

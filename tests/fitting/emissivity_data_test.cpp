@@ -2,8 +2,6 @@
 // hand-written 1σ layout, band splitting, and clear errors for bad data (NaN, angles outside 0–90°,
 // zero uncertainties, missing columns, non-numbers, too few samples for the free parameters).
 
-#include "tirpol/fitting/emissivity_data.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

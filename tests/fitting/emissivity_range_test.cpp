@@ -9,7 +9,7 @@
 #include "error_of.h"
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/fitting/emissivity_data.h"
+#include "tirpol/fitting/microfacet_fit.h"
 
 namespace tirpol::fitting {
 namespace {

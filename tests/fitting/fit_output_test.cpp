@@ -2,8 +2,6 @@
 // emissivity` and the renderer read) and reproduces the fitted curve; the JSON report carries the
 // documented keys; the plot is a PNG of the documented size.
 
-#include "tirpol/fitting/fit_output.h"
-
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,6 +12,7 @@
 #include "synthetic_emissivity.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
+#include "tirpol/fitting/fit_run.h"
 #include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/material.h"
 #include "tirpol/materials/microfacet.h"

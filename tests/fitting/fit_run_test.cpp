@@ -9,7 +9,7 @@
 
 #include "synthetic_emissivity.h"
 #include "test_support.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/materials/material.h"
 

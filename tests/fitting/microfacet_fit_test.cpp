@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "synthetic_emissivity.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/limits.h"
 
 namespace tirpol::fitting {

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "error_of.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/fitting/render_fit.h"
 
 using tirpol::test::error_of;

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/fitting/render_fit.h"
 
 namespace tirpol::fitting {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/fitting/emissivity_data.h"
+#include "tirpol/fitting/microfacet_fit.h"
 #include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/microfacet.h"
 

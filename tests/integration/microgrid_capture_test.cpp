@@ -20,7 +20,6 @@
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/sim_stage.h"
 #include "tirpol/acquisition/sim/fake_gige_server.h"
-#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/session.h"
 

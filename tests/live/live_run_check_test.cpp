@@ -10,9 +10,9 @@
 #include <limits>
 
 #include "test_support.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/live/live_options.h"
+#include "tirpol/live/live_server.h"
 
 namespace tirpol::live {
 namespace {

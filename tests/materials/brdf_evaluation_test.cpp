@@ -1,13 +1,12 @@
 // `tirpol brdf`'s library side: directions from zenith/azimuth, the evaluation of a library
 // material (reciprocity of its Mueller BRDF) and the JSON and text formats.
 
-#include "tirpol/materials/brdf_evaluation.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/material.h"
 
 namespace tirpol::materials {
 namespace {

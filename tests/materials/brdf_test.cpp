@@ -10,7 +10,7 @@
 
 #include "lambertian.h"
 #include "smooth_fresnel.h"
-#include "tirpol/core/mueller.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {

@@ -1,12 +1,11 @@
 // Complex-index tables: the refractiveindex.info YAML layout, CSV, interpolation and clear errors.
 
-#include "tirpol/materials/complex_index.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/fresnel.h"
 
 namespace tirpol::materials {
 namespace {

@@ -1,7 +1,5 @@
 // Emissivity curves as the CLI writes them: angle specifications, CSV columns, band averaging.
 
-#include "tirpol/materials/emissivity_curve.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +7,7 @@
 
 #include "smooth_fresnel.h"
 #include "tirpol/core/error.h"
+#include "tirpol/materials/emissivity.h"
 #include "tirpol/materials/microfacet.h"
 
 namespace tirpol::materials {

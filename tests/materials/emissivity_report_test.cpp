@@ -9,9 +9,9 @@
 
 #include "test_support.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/materials/emissivity_curve.h"
+#include "tirpol/materials/emissivity.h"
 
 namespace tirpol::materials {
 namespace {

@@ -8,7 +8,7 @@
 #include <complex>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::materials {
 namespace {

@@ -11,7 +11,7 @@
 #include "test_support.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/mueller.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::materials {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 #include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/microfacet.h"
 

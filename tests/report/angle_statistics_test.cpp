@@ -1,12 +1,12 @@
 // AoP statistics as axial (mod 180°) quantities over significantly polarized pixels.
 
-#include "tirpol/report/angle_statistics.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
+
+#include "tirpol/report/comparison_report.h"
 
 using namespace tirpol::report;
 

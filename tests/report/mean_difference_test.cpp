@@ -5,15 +5,13 @@
 // each region), and a detection rate near the stated power for a bias equal to the stated
 // detectable bias.
 
-#include "tirpol/report/mean_difference_test.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include "tirpol/report/statistics.h"
+#include "tirpol/report/comparison_report.h"
 #include "tirpol/report/verdict.h"
 
 using namespace tirpol::report;

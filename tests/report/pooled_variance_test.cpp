@@ -12,8 +12,7 @@
 
 #include "synthetic_pair.h"
 #include "tirpol/report/comparison_report.h"
-#include "tirpol/report/mean_difference_test.h"
-#include "tirpol/report/statistics.h"
+#include "tirpol/report/verdict.h"
 
 namespace tirpol::report {
 namespace {

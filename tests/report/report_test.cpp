@@ -13,9 +13,9 @@
 #include "synthetic_pair.h"
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/report/comparison_report.h"
 

@@ -1,13 +1,13 @@
 // Region statistics and the z statistic against values computed by hand, and Immerkær's noise
 // estimator against noise of known σ.
 
-#include "tirpol/report/statistics.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
+
+#include "tirpol/report/comparison_report.h"
 
 using namespace tirpol::report;
 

@@ -2,10 +2,10 @@
 // flagged; verdicts without power; pixels outside the calibration range; and that it always says
 // what each part of σ contains.
 
-#include "tirpol/report/summary_text.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "tirpol/report/comparison_report.h"
 
 using namespace tirpol::report;
 using ::testing::HasSubstr;

@@ -9,7 +9,7 @@
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/pinhole_camera.h"
-#include "tirpol/simulation/sky.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol::simulation {
 namespace {

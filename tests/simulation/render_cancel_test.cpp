@@ -6,8 +6,8 @@
 #include <atomic>
 
 #include "scene_fixtures.h"
-#include "tirpol/core/cancelled.h"
 #include "tirpol/core/config.h"
+#include "tirpol/core/interrupt_signals.h"
 #include "tirpol/simulation/renderer.h"
 
 namespace tirpol::simulation {

@@ -6,7 +6,7 @@
 
 #include "scene_fixtures.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/simulation/render_output.h"
 

@@ -15,7 +15,7 @@
 #include "sky_model.h"
 #include "test_support.h"
 #include "tirpol/core/config.h"
-#include "tirpol/simulation/sky.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol::simulation {
 namespace {

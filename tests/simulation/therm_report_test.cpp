@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "test_support.h"
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 
 namespace tirpol::simulation {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tirpol/sweep/point_statistics.h"
+#include "tirpol/sweep/sweep_run.h"
 
 namespace tirpol::sweep {
 namespace {

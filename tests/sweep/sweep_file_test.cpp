@@ -1,8 +1,6 @@
 // The sweep file: parameters checked against the base scene, points and seeds, bad input named by
 // file:line with "did you mean".
 
-#include "tirpol/sweep/sweep_file.h"
-
 #include <gtest/gtest.h>
 
 #include <set>
@@ -10,6 +8,7 @@
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/simulation/scene.h"
+#include "tirpol/sweep/sweep_run.h"
 
 namespace tirpol::sweep {
 namespace {

@@ -3,8 +3,6 @@
 // line, hour h = the hour ending at h:00 local standard time, missing
 // codes 99.9/999/9999/999999/99) and the field-log CSV of docs/thermal.md.
 
-#include "tirpol/thermal/weather.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -14,6 +12,7 @@
 #include "test_support.h"
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 namespace {

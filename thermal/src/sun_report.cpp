@@ -1,6 +1,6 @@
 #include <fmt/printf.h>
 
-#include "tirpol/core/option_value_error.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/solar_position.h"
 

@@ -2,7 +2,7 @@
 #include <array>
 #include <sstream>
 
-#include "tirpol/core/line_plot.h"
+#include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/thermal_config.h"

@@ -1,10 +1,9 @@
-#include "tirpol/thermal/weather.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "tirpol/core/error.h"
 #include "tirpol/thermal/civil_time.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 

@@ -8,11 +8,11 @@
 #include "csv_fields.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/input_file.h"
+#include "tirpol/core/output_guard.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/sky_longwave.h"
 #include "tirpol/thermal/solar_position.h"
-#include "tirpol/thermal/weather.h"
+#include "tirpol/thermal/surface_temperature.h"
 
 namespace tirpol::thermal {
 

@@ -7,7 +7,6 @@
 #include <random>
 
 #include "tirpol/calibration/geometric_calibration.h"
-#include "tirpol/calibration/pose_estimation.h"
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"

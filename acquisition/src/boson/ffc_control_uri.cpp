@@ -2,8 +2,8 @@
 
 #include <charconv>
 
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/device_uri.h"
-#include "tirpol/acquisition/ffc.h"
 #include "tirpol/acquisition/internal/boson_control.h"
 #include "tirpol/acquisition/internal/lepton_control.h"
 #include "tirpol/core/error.h"

@@ -1,7 +1,6 @@
-#include "tirpol/acquisition/frame_averager.h"
-
 #include <cmath>
 
+#include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/core/error.h"
 
 namespace tirpol::acquisition {

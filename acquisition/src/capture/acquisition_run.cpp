@@ -6,9 +6,7 @@
 #include <memory>
 #include <optional>
 
-#include "tirpol/acquisition/capture_session.h"
-#include "tirpol/acquisition/ffc.h"
-#include "tirpol/acquisition/stop_on_interrupt.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/output_guard.h"

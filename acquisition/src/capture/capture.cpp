@@ -11,11 +11,10 @@
 #include "capture/blackbody_step.h"
 #include "capture/ffc_guard.h"
 #include "capture/record_writer.h"
-#include "tirpol/acquisition/frame_averager.h"
 #include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/acquisition/internal/angles.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/progress.h"
+#include "tirpol/core/log.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::acquisition {

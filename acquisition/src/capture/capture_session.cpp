@@ -1,5 +1,3 @@
-#include "tirpol/acquisition/capture_session.h"
-
 #include "tirpol/acquisition/capture.h"
 #include "tirpol/core/error.h"
 

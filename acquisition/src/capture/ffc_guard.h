@@ -8,7 +8,7 @@
 #include <string>
 
 #include "tirpol/acquisition/camera.h"
-#include "tirpol/acquisition/ffc.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/core/session.h"
 
 namespace tirpol::acquisition::detail {

@@ -1,6 +1,6 @@
-#include "tirpol/acquisition/stop_on_interrupt.h"
-
 #include <spdlog/spdlog.h>
+
+#include "tirpol/acquisition/capture.h"
 
 namespace tirpol::acquisition {
 

@@ -1,5 +1,3 @@
-#include "tirpol/acquisition/sim/pseudo_terminal.h"
-
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <poll.h>
@@ -13,6 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <utility>
+
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::acquisition {
 

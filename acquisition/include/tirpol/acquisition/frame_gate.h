@@ -16,11 +16,18 @@
 /// or after the step's settle end. The frame period is the longer of the camera's nominal one (when
 /// it reports a rate) and the shortest interval per frame id observed so far — a camera that cannot
 /// keep the rate it reports runs at the longer period; with neither yet, 0.2 s.
+///
+/// Per-pixel running mean and standard deviation of a frame stream (Welford's online algorithm,
+/// B. P. Welford, Technometrics 4(3):419–420, 1962), in double so that 10⁴ frames of 14-bit counts
+/// lose nothing. The result is the `counts` / `counts_std` pair of a raw-frame EXR
+/// (ARCHITECTURE.md).
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "tirpol/acquisition/camera.h"
+#include "tirpol/core/image.h"
 
 namespace tirpol::acquisition {
 
@@ -56,6 +63,27 @@ private:
     std::int64_t m_last_ns = 0;
     std::uint64_t m_intervals = 0;  ///< reception intervals summed into m_span_ns
     std::int64_t m_span_ns = 0;
+};
+
+class FrameAverager {
+public:
+    /// Adds a frame. Throws tirpol::Error if its size differs from the first frame's.
+    void add(const Frame& frame);
+    std::uint64_t count() const { return m_count; }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+    /// Mean counts per pixel.
+    std::vector<float> mean() const;
+    /// Sample standard deviation per pixel (divides by n − 1; 0 for fewer than two frames).
+    std::vector<float> stddev() const;
+    /// An image with channels `counts` (mean) and `counts_std`, and attribute `frame_count`.
+    Image to_image() const;
+    void reset();
+
+private:
+    int m_width = 0, m_height = 0;
+    std::uint64_t m_count = 0;
+    std::vector<double> m_mean, m_m2;
 };
 
 }  // namespace tirpol::acquisition

@@ -14,6 +14,9 @@
 /// Data reduction for any N ≥ 3 positions: S = W⁺·I with W the N×3 matrix of rows a_k and W⁺ its
 /// Moore–Penrose pseudo-inverse (Tyo, Goldstein, Chenault & Shaw, "Review of passive imaging
 /// polarimetry for remote sensing applications", Appl. Opt. 45, 5453–5469, 2006, §4).
+///
+/// The analyzer model from a polarizer's datasheet, for a polarimetric calibration without
+/// known-source records: the extinction ratio and the transmission-axis offsets of the mount.
 
 #include <Eigen/Core>
 #include <string>
@@ -68,5 +71,20 @@ struct KnownSourceMeasurement {
 /// tirpol::Error naming what is missing otherwise.
 AnalyzerModel estimate_analyzer(const std::vector<double>& nominal_angles_deg,
                                 const std::vector<KnownSourceMeasurement>& measurements);
+
+struct DatasheetAnalyzer {
+    double extinction_ratio = 0.0;  ///< t_max/t_min > 1 (e.g. 100–300 for an LWIR wire grid)
+    std::vector<double>
+        axis_offsets_deg;  ///< axis − nominal: none (0°), one for all, or one per angle
+};
+
+/// The model at `angles_deg` (ascending): d = (ER − 1)/(ER + 1), θ_k = nominal_k + offset_k, t = 1
+/// + 1/ER. Throws tirpol::Error for ER ≤ 1 or not finite, offsets of another count than 0, 1 or the
+/// number of angles (naming both), or an offset of 45° or more.
+AnalyzerModel datasheet_analyzer_model(const std::vector<double>& angles_deg,
+                                       const DatasheetAnalyzer& datasheet);
+
+/// "datasheet (extinction ratio 150, axis offsets +1.50°)", for the calibration's analyzer method.
+std::string describe(const DatasheetAnalyzer& datasheet);
 
 }  // namespace tirpol::calibration

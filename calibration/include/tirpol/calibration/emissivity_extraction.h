@@ -12,18 +12,73 @@
 /// radiances normalised to unit response to unpolarized light; applied to the Stokes components
 /// (eqs 14–16 are linear) it gives the expressions above. ε_S1 and ε_S2 are in the image Stokes
 /// frame (ARCHITECTURE.md): a sky-facing panel seen obliquely has ε_S1 < 0.
+///
+/// `tirpol extract-emissivity` from files to a CSV: the polarized emissivity of regions of interest
+/// (paper eq 17) from a Stokes EXR, or from a session reduced with its calibration first.
+///
+/// The mean of an image quantity over a pixel rectangle and the standard error of that mean: the
+/// one ROI statistic of emissivity extraction (the region means of paper eq 17) and of the digital
+/// twin.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "tirpol/calibration/region_mean.h"
 #include "tirpol/core/config.h"
+#include "tirpol/core/error.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::calibration {
+
+/// A pixel rectangle [x, y, width, height] (origin top-left).
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct RegionMean {
+    double mean = 0.0;
+    /// Of `mean`: sample standard deviation (n − 1) over √n, pixels treated as independent; 0 for n
+    /// = 1.
+    double standard_error = 0.0;
+    std::size_t n = 0;  ///< finite pixels used
+};
+
+/// Mean and standard error of value(x, y) over the pixels of `rect` where it is finite (NaN and ±∞
+/// skipped). `rect` must lie inside the image(s) `value` reads. Throws tirpol::Error naming `what`
+/// and `quantity` when no value is finite.
+template <class Value>
+RegionMean region_mean_of(const PixelRect& rect, const std::string& what,
+                          const std::string& quantity, Value&& value) {
+    double sum = 0.0, sum2 = 0.0;
+    std::size_t n = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y)
+        for (int x = rect.x; x < rect.x + rect.width; ++x) {
+            const double v = value(x, y);
+            if (!std::isfinite(v)) continue;
+            sum += v;
+            sum2 += v * v;
+            ++n;
+        }
+    if (n == 0)
+        fail("{}: no finite {} pixel in the rectangle [{}, {}, {}, {}]", what, quantity, rect.x,
+             rect.y, rect.width, rect.height);
+    const double count = static_cast<double>(n);
+    const double mean = sum / count;
+    const double variance =
+        n > 1 ? std::max(0.0, (sum2 - count * mean * mean) / (count - 1.0)) : 0.0;
+    return {mean, std::sqrt(variance / count), n};
+}
+
+/// region_mean_of() of channel `channel` of `image`; throws tirpol::Error naming `what` when `rect`
+/// is not inside the image.
+RegionMean region_mean(const Image& image, const std::string& channel, const PixelRect& rect,
+                       const std::string& what);
 
 struct EmissivityTarget {
     std::string name;
@@ -89,5 +144,27 @@ std::vector<EmissivityResult> extract_emissivity(const Image& stokes, const Emis
 /// The emissivity CSV (tirpol/core/emissivity_csv.h): frame `image`, the 1σ uncertainties above
 /// (`*_std` columns), wavelength_um empty.
 std::string emissivity_csv(const std::vector<EmissivityResult>& results);
+
+/// The input (a Stokes EXR, or a session directory with its calibration), the regions YAML and the
+/// CSV to write. band_um, when set, must agree with the band of the input.
+struct EmissivityExtractionOptions {
+    std::string input;
+    std::string rois;
+    std::string output;
+    std::string calibration;   ///< radiometric calibration EXR (a session input)
+    std::string polarimetric;  ///< polarimetric calibration YAML (a session input), or ""
+    std::optional<std::pair<double, double>> band_um;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
+};
+
+/// Checks the output against the inputs (OutputGuard: OutputConflict before any work), runs the
+/// chain (run_calibration_chain) to the emissivity of each target and writes the CSV
+/// (emissivity_csv). A session without a calibration throws OptionValueError for --calibration;
+/// a band that disagrees with the calibration's or the EXR's, or an EXR without band_um and no
+/// band given, throws tirpol::Error naming both.
+std::vector<EmissivityResult> extract_emissivity(const EmissivityExtractionOptions& options);
+
+/// One line per target: name, view angle, ε_S0, ε_S1, ε_S2 with their 2σ.
+std::string emissivity_results_text(const std::vector<EmissivityResult>& results);
 
 }  // namespace tirpol::calibration

@@ -54,10 +54,9 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/calibration/bad_pixels.h"
-#include "tirpol/calibration/microgrid_pattern.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/calibration/microgrid_stokes.h"
+#include "tirpol/calibration/radiometric.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 

@@ -7,7 +7,7 @@
 
 #include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/radiometric.h"
-#include "tirpol/calibration/wire_grid.h"
+#include "tirpol/calibration/stokes_reduction.h"
 
 namespace tirpol::calibration {
 

@@ -10,16 +10,63 @@
 /// form of Nugent, Shaw & Pust, Opt. Eng. 52(6) 061304, 2013, docs/calibration.md), fitted from
 /// blackbody frames taken at several camera temperatures and applied frame by frame from each
 /// frame's T_fpa.
+///
+/// Bad-pixel classes, detection thresholds and the replacement rule. A pixel's class is a bit mask
+/// stored as a float channel `bad` in the calibration EXR (0 = good).
+///
+/// What a user needs to trust a radiometric calibration (docs/calibration.md, "Calibration
+/// quality"): residuals per blackbody set-point in counts and mK, a warning when a linear model
+/// leaves structured residuals, the NEDT map, warnings when a calibration is applied beyond the
+/// radiance or FPA-temperature range it was fitted over, and a one-page HTML/PNG summary.
+///
+/// `tirpol temperature`: a raw image of counts → radiance and brightness temperature with a
+/// radiometric calibration, written as an EXR, and the summary of the result.
 
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "tirpol/calibration/bad_pixels.h"
 #include "tirpol/core/image.h"
 #include "tirpol/core/radiometry.h"
 
 namespace tirpol::calibration {
+
+/// Bits of the bad-pixel mask.
+enum BadPixel : std::uint32_t {
+    kGood = 0,
+    kDead = 1u << 0,       ///< responsivity (gain) below `dead_gain_fraction` × median gain
+    kHot = 1u << 1,        ///< offset more than `hot_sigma` robust σ above the median offset
+    kNoisy = 1u << 2,      ///< temporal noise above `noisy_factor` × median temporal noise
+    kNonLinear = 1u << 3,  ///< fit residual more than `nonlinear_sigma` robust σ above the median
+                           ///< and not explained by the pixel's temporal noise (fit quality ≥ 3)
+    kSaturated = 1u << 4,  ///< at or above the saturation level in a calibration frame
+    /// A microgrid pixel whose fitted analyzer is implausible: diattenuation or axis outside the
+    /// limits of MicrogridFlatFieldOptions (a missing or damaged micro-polarizer).
+    kBadAnalyzer = 1u << 5,
+};
+
+/// Thresholds of the detection (robust σ = 1.4826 × median absolute deviation).
+struct BadPixelThresholds {
+    double dead_gain_fraction = 0.25;
+    double hot_sigma = 10.0;
+    double noisy_factor = 3.0;
+    double nonlinear_sigma = 10.0;
+};
+
+/// Median and robust σ (1.4826·MAD) of the finite values of `values`; {NaN, NaN} if none.
+struct RobustStats {
+    double median;
+    double sigma;
+};
+RobustStats robust_stats(const std::vector<float>& values);
+
+/// Replaces the values of bad pixels (mask ≠ 0) in `plane` (width × height) by the mean of the
+/// good pixels in the 3×3 neighbourhood, widening to 5×5 and 7×7 when none is good; NaN if
+/// still none. Replacement reads only good pixels, so the result does not depend on scan order.
+void replace_bad_pixels(std::vector<float>& plane, const std::vector<float>& bad_mask, int width,
+                        int height);
 
 /// One averaged blackbody frame: `counts` is the per-pixel mean over `frames` frames and
 /// `counts_std` the per-pixel temporal standard deviation (empty if unknown). `source` names it in
@@ -135,5 +182,82 @@ void write_radiometric_calibration(const std::string& path, const RadiometricCal
 /// Reads a calibration EXR written by write_radiometric_calibration (format 1, without
 /// format_version, or 2); errors name the file and the missing channel or attribute.
 RadiometricCalibration read_radiometric_calibration(const std::string& path);
+
+/// Residual of the fitted model at one calibration frame, over the good pixels.
+struct SetPointResidual {
+    double temperature_k = 0.0;                  ///< blackbody
+    double fpa_temperature_k = 0.0;              ///< camera; NaN when the frame has none
+    double mean_counts = 0.0, rms_counts = 0.0;  ///< counts − model
+    double mean_mk = 0.0, rms_mk = 0.0;  ///< the same in mK: ÷ (mean responsivity · dL/dT)
+    double standard_error_mk = 0.0;      ///< of mean_mk: rms_mk / √pixels
+    std::size_t pixels = 0;
+};
+
+struct CalibrationQuality {
+    std::vector<SetPointResidual> set_points;  ///< in the order of the frames
+    std::vector<float> nedt_k;        ///< per pixel, at the set-point nearest 300 K; NaN if unknown
+    double nedt_temperature_k = 0.0;  ///< blackbody temperature of that set-point
+    double nedt_median_k = 0.0;       ///< over good pixels; NaN when counts_std is unknown
+    std::vector<std::string> warnings;
+};
+
+/// A linear fit whose mean residual at some set-point exceeds both this and 4 standard errors of
+/// that mean is structured (a curved response), not noise.
+inline constexpr double kStructuredResidualMk = 10.0;
+
+/// Residuals per set-point, the NEDT map and the structured-residual warning (linear model only,
+/// ≥ 3 blackbody temperatures) for `cal` fitted from `frames` (the same frames, same order).
+CalibrationQuality assess_calibration(const RadiometricCalibration& cal,
+                                      const std::vector<BlackbodyFrame>& frames);
+
+/// Fraction (0..1) of `radiance`'s good, finite pixels outside the calibrated blackbody radiance
+/// range (their radiance is extrapolated); 0 when the calibration has no set-points or no good
+/// pixel.
+double outside_calibrated_range_fraction(const RadiometricCalibration& cal,
+                                         const std::vector<float>& radiance);
+
+/// A warning when `radiance` (from counts_to_radiance) holds good pixels outside the calibrated
+/// blackbody radiance range, or `fpa_temperature_k` lies outside the calibrated FPA range by more
+/// than 0.5 K; names the calibrated range in kelvin. std::nullopt when all is inside.
+std::optional<std::string> extrapolation_warning(
+    const RadiometricCalibration& cal, const std::vector<float>& radiance,
+    std::optional<double> fpa_temperature_k = std::nullopt);
+
+/// Writes DIR/index.html (one page: model, ranges, per-set-point table, bad-pixel counts, NEDT,
+/// warnings), DIR/maps.exr (channels nedt_k, bad), DIR/nedt.png, DIR/bad_pixels.png and
+/// DIR/residuals.png (mean residual in mK against blackbody temperature). DIR is created.
+/// "CAL.summary" next to the calibration file "CAL.exr".
+std::string default_summary_dir(const std::string& calibration_path);
+
+void write_calibration_summary(const std::filesystem::path& dir, const RadiometricCalibration& cal,
+                               const CalibrationQuality& quality);
+
+/// The raw image (EXR channel `channel`, 16-bit PNG or TIFF), the calibration EXR and the EXR to
+/// write. fpa_temperature_k, when unset, is taken from the image's fpa_temperature_k attribute.
+struct TemperatureImageOptions {
+    std::string image;
+    std::string channel = "counts";
+    std::string calibration;
+    std::string output;
+    std::optional<double> fpa_temperature_k;
+    bool force = false;  ///< an existing output may be replaced (OutputGuard)
+};
+
+/// What brightness_temperature_image wrote.
+struct TemperatureImageResult {
+    std::string output;
+    ChannelStats temperature_k;          ///< of the temperature_k channel
+    std::optional<std::string> warning;  ///< pixels outside the calibrated range (also in the EXR)
+};
+
+/// Checks the output against the inputs (OutputGuard: OutputConflict before any work), converts
+/// counts → radiance (counts_to_radiance, at the FPA temperature) → brightness
+/// temperature and writes `options.output` (channels radiance, temperature_k). Throws
+/// tirpol::Error when image and calibration differ in size, or when no pixel gives a finite
+/// temperature (nothing is written then).
+TemperatureImageResult brightness_temperature_image(const TemperatureImageOptions& options);
+
+/// The warning line, if any, and "brightness temperature: min … K, mean … K, max … K → OUTPUT".
+std::string temperature_image_text(const TemperatureImageResult& result);
 
 }  // namespace tirpol::calibration

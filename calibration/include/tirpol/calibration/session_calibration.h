@@ -22,8 +22,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "tirpol/calibration/calibration_quality.h"
-#include "tirpol/calibration/datasheet_analyzer.h"
+#include "tirpol/calibration/analyzer.h"
 #include "tirpol/calibration/polarimetric_file.h"
 #include "tirpol/calibration/radiometric.h"
 #include "tirpol/calibration/stokes_reduction.h"

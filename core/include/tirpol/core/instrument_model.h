@@ -16,7 +16,6 @@
 /// Counts: C = o + g · L + σ · u, with per-pixel gain g (counts per W/(m²·sr)), offset o, temporal
 /// noise σ (counts) and u a standard-normal deviate the caller draws from its own stream.
 
-#include "tirpol/core/mueller.h"
 #include "tirpol/core/stokes.h"
 
 namespace tirpol {

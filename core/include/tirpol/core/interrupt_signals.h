@@ -4,11 +4,17 @@
 /// first signal only sets a flag (a handler may do nothing else safely) that the program's loop or
 /// a watcher thread reads; a second one ends the process at once with the signal's default action.
 /// The previous handlers come back when it is destroyed.
+///
+/// The exception a long computation throws when its caller's cancellation flag stops it early (the
+/// Python module sets the flag on Ctrl-C): not bad input, so callers can tell it apart from an
+/// Error.
 
 #include <atomic>
 #include <chrono>
 #include <functional>
 #include <thread>
+
+#include "tirpol/core/error.h"
 
 namespace tirpol {
 
@@ -65,5 +71,16 @@ private:
     std::atomic<bool> m_done{false};
     std::thread m_thread;
 };
+
+class Cancelled : public Error {
+public:
+    using Error::Error;
+};
+
+/// Throws Cancelled("<what> cancelled") when the flag `cancel` points to is set; null: never.
+inline void throw_if_cancelled(const std::atomic<bool>* cancel, const char* what) {
+    if (cancel && cancel->load(std::memory_order_relaxed))
+        throw Cancelled(std::string(what) + " cancelled");
+}
 
 }  // namespace tirpol

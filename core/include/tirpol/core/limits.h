@@ -3,9 +3,26 @@
 /// Resource limits and physical ranges that every reader, library function and command-line option
 /// checks before it allocates or accepts a value. One table, so that a limit is raised (or
 /// explained) once; docs/cli.md lists it for users.
+///
+/// Range checks shared by every reader and command, so that one quantity is held to one range
+/// (limits.h) with one wording. Each throws tirpol::Error naming `what` (a field, flag or column).
+///
+/// A value a user gave for a command-line option that the library found wrong once it had read the
+/// files the value refers to (a time in a site's offset, a name in a file's list). The CLI exits
+/// 2 with it, as a usage error naming the option, instead of 1 for a bad input file. And the one
+/// parser of numbers in option values, with the table of option ranges (docs/cli.md lists it).
+///
+/// Checking a job's memory estimate against what the machine has, before allocating: a render or
+/// a table that cannot fit is refused with its estimate instead of ending in std::bad_alloc, the
+/// OOM killer or swap.
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "tirpol/core/error.h"
 
 namespace tirpol::limits {
 
@@ -61,3 +78,58 @@ inline constexpr int kMaxFramesPerStep = 100000;
 inline constexpr double kMaxMemoryFraction = 0.8;
 
 }  // namespace tirpol::limits
+
+namespace tirpol {
+
+/// `temperature_k` if it lies in [limits::kMinTemperatureK, limits::kMaxTemperatureK].
+double check_temperature_k(double temperature_k, std::string_view what);
+
+/// `value` if it is finite: a computed result that overflowed is an error, never printed as
+/// inf/nan.
+double check_finite(double value, std::string_view what);
+
+/// `value` if it is finite and ≥ 0 (an uncertainty, a noise level, a duration).
+double check_non_negative(double value, std::string_view what);
+
+class OptionValueError : public Error {
+public:
+    /// `message` may begin with `option` already; the CLI then prints it once.
+    OptionValueError(std::string option, const std::string& message)
+        : Error(message), m_option(std::move(option)) {}
+    /// The option ("--at").
+    const std::string& option() const { return m_option; }
+
+private:
+    std::string m_option;
+};
+
+/// All of `text` as one number in strtod's syntax (as CLI11 converts option values), or nullopt
+/// when `text` is empty or not all number. A value beyond a double's range is ±inf.
+std::optional<double> parse_number(std::string_view text);
+
+/// The range [lo, hi] the limits table (from core/limits.h) gives an option's values.
+struct OptionLimit {
+    double lo, hi;
+    std::string why;  ///< what the range is, for the message
+};
+
+/// The limit of option `long_name` ("--band-um") in subcommand `subcommand` ("planck", "calibrate
+/// radiometric"), or of that option in every subcommand, or nullptr.
+const OptionLimit* option_limit(const std::string& subcommand, const std::string& long_name);
+
+/// Why `text` is refused as a value of a numeric option with `limit` (nullptr: none): not finite,
+/// or outside the limit. Empty when it is accepted, and when it is no number at all (the option
+/// parser reports that itself).
+std::string option_number_problem(const std::string& text, const OptionLimit* limit);
+
+/// MemAvailable from /proc/meminfo, bytes (the kernel's estimate of what can be allocated without
+/// swapping); nullopt where it cannot be read (not Linux).
+std::optional<std::uint64_t> available_memory_bytes();
+
+/// Throws tirpol::Error "<what>: needs an estimated N GiB of memory, more than the M GiB available
+/// (limits::kMaxMemoryFraction of MemAvailable)" when `estimate_bytes` exceeds that budget.
+/// `available_bytes` stands in for available_memory_bytes() (tests); without either, no check.
+void check_memory_estimate(std::uint64_t estimate_bytes, std::string_view what,
+                           std::optional<std::uint64_t> available_bytes = available_memory_bytes());
+
+}  // namespace tirpol

@@ -14,12 +14,24 @@
 /// output keeps every entry it does not claim; what a command claims in a folder is listed in the
 /// folder's `.tirpol-outputs` (one pattern a line), so a re-run into its own folder (render, sweep
 /// --resume, compare, demo) is not refused.
+///
+/// One writer per output folder: an exclusive flock(2) on FOLDER/.lock for as long as the object
+/// lives. The kernel releases it when the process ends, even by SIGKILL, so a crashed run never
+/// leaves the folder locked. The holder writes its pid into the file, so a refused second run can
+/// name it.
+///
+/// Opening what a user names as an input: only a regular file is read (a FIFO would block the open
+/// or the read for ever, /dev/zero or /dev/urandom never end), and never more than a limit
+/// (limits::kMaxTextFileBytes for text). Errors name the path and what was found.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol {
 
@@ -79,5 +91,43 @@ private:
 /// `path` with symlinks resolved as far as it exists and the rest appended, made absolute and
 /// normal (std::filesystem::weakly_canonical of the absolute path).
 std::filesystem::path resolved_path(const std::filesystem::path& path);
+
+class FolderLock {
+public:
+    /// Creates `folder` if needed and locks it. Throws tirpol::Error naming the folder and the pid
+    /// of the process that holds it ("… is in use by process 1234 (a tirpol sweep?) …", `what`
+    /// filling in the kind of run) when another process has it.
+    FolderLock(const std::filesystem::path& folder, const std::string& what);
+    ~FolderLock();
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+    /// The lock file, FOLDER/.lock.
+    const std::filesystem::path& path() const { return m_path; }
+
+private:
+    std::filesystem::path m_path;
+    int m_fd = -1;
+};
+
+/// Throws tirpol::Error unless `path` is a regular file (symbolic links followed) of at most
+/// `max_bytes`: a missing file, a directory, a FIFO, a device or a socket is named as such. For
+/// readers that hand the path to a library that opens it (OpenEXR, libpng, std::ifstream).
+void check_input_file(const std::filesystem::path& path,
+                      std::uintmax_t max_bytes = limits::kMaxTextFileBytes);
+
+/// Reads a whole regular file of at most `max_bytes`. It is opened without blocking (O_NONBLOCK, so
+/// a FIFO swapped in after the check cannot stall the open) and checked on the open descriptor;
+/// the read stops at max_bytes + 1 whatever the file claims. Throws tirpol::Error naming the path.
+/// (read_file() in atomic_file.h is this with limits::kMaxTextFileBytes.)
+std::string read_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes);
+
+/// Offset of the first byte of `text` that is not part of well-formed UTF-8 (RFC 3629), or npos.
+std::size_t first_invalid_utf8(std::string_view text);
+
+/// Throws tirpol::Error "<source>:<line>:<column>: invalid UTF-8 (byte 0xNN) ..." unless `text` is
+/// well-formed UTF-8: YAML and JSON inputs are text, and a stray Latin-1 byte is named where it is
+/// instead of surfacing later as a parser's type error.
+void check_utf8_text(std::string_view text, std::string_view source);
 
 }  // namespace tirpol

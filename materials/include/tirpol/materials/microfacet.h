@@ -58,7 +58,6 @@
 #include <vector>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/materials/complex_index.h"
 #include "tirpol/materials/fresnel.h"
 #include "tirpol/materials/pbrdf.h"
 

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/mueller.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::materials {
 

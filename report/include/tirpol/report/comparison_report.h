@@ -4,9 +4,28 @@
 /// colour scales, difference and z maps, per-region statistics, scatter plots and histograms,
 /// written as a self-contained `report.html`, a `report.json` with every number (keys in
 /// docs/report.md) and the PNGs, all under one directory with atomic writes.
+///
+/// Statistics of the angle of polarization (AoP) as an axial quantity: AoP and AoP + 180° are the
+/// same state, so means and spreads are taken on the doubled angle (Mardia & Jupp, Directional
+/// Statistics, 2000, §2.2 and §9.3.2: mean direction of axial data = half the mean of 2θ, circular
+/// standard deviation √(−2 ln R̄)). Only pixels where both images are significantly polarized count:
+/// elsewhere AoP is the angle of noise.
+///
+/// Per-region comparison statistics of a measured and a registered simulated quantity, and the
+/// per-pixel normalised difference z = (m − s) / √(σ_m² + σ_s²): under the hypothesis that the
+/// simulation is right and both noises are Gaussian, z ~ N(0, 1), so |z| > 2 in 4.55 % and |z| > 3
+/// in 0.27 % of the pixels (two-sided normal tail probabilities, Abramowitz & Stegun 26.2).
+///
+/// The report's answer in one paragraph: which regions agree with the simulation within the noise,
+/// which do not and in which quantity by how much, whether the measurement was calibrated over the
+/// scene's radiances, what each part of a region mean's σ contains (measurement, render,
+/// registration), and whether the verdicts have power (the smallest bias the tests detect, against
+/// the simulated signal they test).
 
 #include <array>
 #include <atomic>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -16,14 +35,111 @@
 #include <vector>
 
 #include "tirpol/core/image.h"
-#include "tirpol/report/angle_statistics.h"
 #include "tirpol/report/provenance.h"
 #include "tirpol/report/regions.h"
 #include "tirpol/report/registration.h"
-#include "tirpol/report/statistics.h"
 #include "tirpol/report/verdict.h"
 
 namespace tirpol::report {
+
+/// Two-sided tail probabilities of the standard normal distribution, P(|z| > 2) and P(|z| > 3)
+/// (Abramowitz & Stegun, Handbook of Mathematical Functions, table 26.1: erfc(2/√2), erfc(3/√2)).
+inline constexpr double kNormalTailAbove2 = 0.045500263896358;
+inline constexpr double kNormalTailAbove3 = 0.002699796063260;
+
+/// Statistics of one quantity over the pixels of a region where both values are finite.
+/// std is the population standard deviation (divide by n); bias = mean(m − s);
+/// rmse = √mean((m − s)²). All zero with pixel_count = 0 when no pixel is valid.
+struct QuantityStats {
+    std::size_t pixel_count = 0;
+    double measured_mean = 0.0, measured_std = 0.0;
+    double simulated_mean = 0.0, simulated_std = 0.0;
+    double bias = 0.0, rmse = 0.0;
+    /// Standard error of `bias`: sample std of m − s over √n (pixels treated as independent).
+    double bias_sigma = 0.0;
+};
+
+/// `measured`, `simulated` and `mask` have the same length; a pixel counts when mask ≠ 0 and both
+/// values are finite.
+QuantityStats quantity_stats(const std::vector<float>& measured,
+                             const std::vector<float>& simulated,
+                             const std::vector<std::uint8_t>& mask);
+
+/// Mean of the finite values of `data` under `mask`; nullopt when there is none.
+std::optional<double> masked_mean(const std::vector<float>& data,
+                                  const std::vector<std::uint8_t>& mask);
+
+/// Per-pixel z = (m − s)/√(var_m + var_s); NaN where an input is not finite or the total variance
+/// is not positive. A variance estimated from few samples (a Monte-Carlo render's per-pixel
+/// variance has replicates − 1 degrees of freedom, its `variance_dof`) makes that ratio Student-t
+/// distributed with heavier tails than a normal: with finite `measured_dof`/`simulated_dof` each z
+/// is mapped to the normal value of the same two-sided tail probability under t with the
+/// Welch–Satterthwaite degrees of freedom ν = (v_m + v_s)² / (v_m²/ν_m + v_s²/ν_s) (Welch 1947,
+/// Biometrika 34, 28), so that |z| > 2 keeps meaning 4.55 % under noise alone. Infinite dof (the
+/// default): the plain ratio.
+std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance,
+                            double measured_dof = std::numeric_limits<double>::infinity(),
+                            double simulated_dof = std::numeric_limits<double>::infinity());
+
+/// z_scores with a per-pixel `simulated_dof` (a variance pooled over each pixel's neighbourhood,
+/// whose dof depends on the pixels pooled).
+std::vector<float> z_scores(const std::vector<float>& measured, const std::vector<float>& simulated,
+                            const std::vector<float>& measured_variance,
+                            const std::vector<float>& simulated_variance, double measured_dof,
+                            const std::vector<float>& simulated_dof);
+
+/// The standard normal deviate with the same two-sided tail probability as `t` under Student's t
+/// with `dof` degrees of freedom (sign kept); `t` itself for infinite dof.
+double normal_equivalent_of_t(double t, double dof);
+
+/// Summary of z over a region: fractions of valid pixels beyond 2 and 3, mean and RMS of z.
+struct ZStats {
+    std::size_t pixel_count = 0;
+    double fraction_above_2 = 0.0, fraction_above_3 = 0.0;
+    double mean = 0.0, rms = 0.0;
+};
+ZStats z_stats(const std::vector<float>& z, const std::vector<std::uint8_t>& mask);
+
+/// True when the fraction of |z| > 2 does not exceed the normal expectation 4.55 % by more than
+/// three binomial standard deviations √(p(1−p)/n): the differences are explained by the stated
+/// noise. (Pixels are treated as independent; spatially correlated noise makes the test stricter
+/// than it looks.)
+bool consistent_with_noise(const ZStats& z);
+
+/// Noise standard deviation of an image by Immerkær's method ("Fast noise variance estimation",
+/// Computer Vision and Image Understanding 64(2), 1996, eq. 2): σ = √(π/2)/(6(W−2)(H−2)) Σ|I ∗ N|
+/// with N the 3×3 difference of two Laplacians. Non-finite pixels and their neighbourhoods are
+/// skipped.
+double immerkaer_noise_sigma(const std::vector<float>& data, int width, int height);
+
+/// Linear polarization |P| = √(S1² + S2²) is significant when it exceeds this many σ of its noise.
+inline constexpr double kAopSignificanceSigma = 3.0;
+
+struct AopStats {
+    std::size_t region_pixel_count = 0;  ///< pixels in the region with finite S1, S2 in both images
+    std::size_t pixel_count = 0;         ///< of those, significantly polarized in both images
+    double measured_mean_deg = 0.0;      ///< axial mean AoP, [0, 180)
+    double simulated_mean_deg = 0.0;     ///< axial mean AoP, [0, 180)
+    double difference_mean_deg = 0.0;    ///< axial mean of AoP_m − AoP_s, [−90, 90)
+    double difference_std_deg = 0.0;     ///< circular standard deviation of AoP_m − AoP_s (axial)
+};
+
+/// The linear-polarization planes of one image, per pixel: S1, S2 and their variances.
+struct LinearPolarizationPlanes {
+    const std::vector<float>& s1;
+    const std::vector<float>& s2;
+    const std::vector<float>& var_s1;
+    const std::vector<float>& var_s2;
+};
+
+/// AoP statistics over `mask` from the planes of both images. A pixel counts when
+/// √(S1² + S2²) > kAopSignificanceSigma · √((var_S1 + var_S2)/2) in both the measured and the
+/// simulated image. All planes have the mask's length.
+AopStats aop_stats(const LinearPolarizationPlanes& measured,
+                   const LinearPolarizationPlanes& simulated,
+                   const std::vector<std::uint8_t>& mask);
 
 /// A quantity the report compares statistically (AoP is shown, not averaged: it is an angle
 /// modulo 180°).
@@ -253,5 +369,19 @@ struct ComparisonRunOptions {
 /// (OutputGuard), reads the files, records them in the provenance and writes the report
 /// (write_comparison_report).
 CompareResult run_comparison(const ComparisonRunOptions& options);
+
+/// Whether the region-mean test of `quantity` (S0, S1 or S2) in `region` has power: its detectable
+/// bias is smaller than the magnitude of the simulated region mean it tests. Without power a
+/// simulation that predicted zero would read "consistent with noise" as well, so "consistent" says
+/// little. False for a quantity without data, and for DoLP, which has no test.
+bool verdict_has_power(const RegionResult& region, Quantity quantity);
+
+/// Plain UTF-8 text (no markup), one paragraph of a few sentences; read from `result` only.
+std::string summary_paragraph(const CompareResult& result);
+
+/// What `tirpol compare` prints: the registration and its residual, the summary paragraph, one
+/// table row per region (pixels, S0 bias in kelvin, each quantity's t of the means with its
+/// detectable bias and verdict; columns padded by displayed width), the notes and the report path.
+std::string comparison_text(const CompareResult& result);
 
 }  // namespace tirpol::report

@@ -14,7 +14,7 @@
 #include "tirpol/core/camera_model.h"
 #include "tirpol/core/config.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/stokes_frame.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::simulation {
 

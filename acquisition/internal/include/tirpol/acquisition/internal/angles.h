@@ -2,7 +2,7 @@
 /// \file angles.h
 /// Angle helpers for rotation stages (degrees): core's, under acquisition's names.
 
-#include "tirpol/core/polarizer_angle.h"
+#include "tirpol/core/stokes.h"
 
 namespace tirpol::acquisition {
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "tirpol/acquisition/internal/fluke_scpi.h"
-#include "tirpol/acquisition/sim/pseudo_terminal.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::acquisition {
 

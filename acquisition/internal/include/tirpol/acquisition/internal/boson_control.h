@@ -17,7 +17,7 @@
 #include <memory>
 #include <string>
 
-#include "tirpol/acquisition/ffc.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/boson_fslp.h"
 #include "tirpol/acquisition/internal/byte_port.h"
 

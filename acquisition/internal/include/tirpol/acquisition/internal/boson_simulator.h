@@ -12,7 +12,7 @@
 
 #include "tirpol/acquisition/internal/boson_core_model.h"
 #include "tirpol/acquisition/internal/boson_fslp.h"
-#include "tirpol/acquisition/sim/pseudo_terminal.h"
+#include "tirpol/acquisition/sim/stage_simulator.h"
 
 namespace tirpol::acquisition {
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "tirpol/acquisition/ffc.h"
+#include "tirpol/acquisition/capture.h"
 #include "tirpol/acquisition/internal/lepton_cci.h"
 #include "tirpol/acquisition/internal/lepton_frame.h"
 
