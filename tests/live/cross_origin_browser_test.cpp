@@ -8,7 +8,6 @@
 // never skips.
 
 #include <gtest/gtest.h>
-#include <httplib.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -19,6 +18,7 @@
 
 #include "child_process.h"
 #include "find_on_path.h"
+#include "httplib_after_eigen.h"
 #include "served_live_view.h"
 #include "test_support.h"
 

@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
-#include <httplib.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,6 +23,7 @@
 #include "child_process.h"
 #include "fake_gv_camera_process.h"
 #include "find_on_path.h"
+#include "httplib_after_eigen.h"
 #include "png_text.h"
 #include "test_support.h"
 #include "tirpol/core/exr_io.h"

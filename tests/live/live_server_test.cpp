@@ -6,7 +6,6 @@
 #include "tirpol/live/live_server.h"
 
 #include <gtest/gtest.h>
-#include <httplib.h>
 
 #include <algorithm>
 #include <functional>
@@ -15,6 +14,7 @@
 #include "access.h"
 #include "decoded_image.h"
 #include "error_of.h"
+#include "httplib_after_eigen.h"
 #include "served_live_view.h"
 #include "tirpol/core/error.h"
 

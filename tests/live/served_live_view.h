@@ -3,7 +3,6 @@
 // HTTP over a loopback socket for the tests that must control every byte a client sends.
 
 #include <arpa/inet.h>
-#include <httplib.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -13,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "httplib_after_eigen.h"
 #include "live_view.h"
 #include "tirpol/live/live_server.h"
 
