@@ -3,12 +3,15 @@
 //    rtcOccluded1 replaying exactly the rays that render cast (camera, bounce, shadow and auxiliary
 //    rays, recorded in order), both on one thread: what the polarized shading costs per ray (median
 //    of 5 repetitions, each one render against 8 replays).
+//  - ShadingOverheadFloor: the same with an unpolarized Lambertian of no cost to speak of on every
+//    surface: the overhead of everything but the pBRDF, the floor no pBRDF speed-up goes below.
 //  - PanelsNightEqualNoise: panels_night at 640×512 rendered to a mean per-pixel S1 standard error
 //  of
 //    0.042 W/(m²·sr) over surfaces (the spp is predicted from a pilot render, σ ∝ 1/√spp).
 //  - ReflectionEqualNoise, EmissionEqualNoise: tirpol against Mitsuba 3 at equal noise, in
 //    mitsuba_comparison.cpp (the same program).
-//  - ShadingProfile: panels_night 80×64, 8 and 64 spp, one thread: the callgrind workload.
+//  - ShadingProfile: panels_night 80×64, 8 and 64 spp, one thread: the callgrind workload;
+//    ShadingProfileFloor the same with ShadingOverheadFloor's Lambertian on every surface.
 //  - ThreadEfficiency: panels_night 320×256, 32 spp, at 1, 2, 4, … threads up to the CPUs the
 //    process may use (or TIRPOL_BENCH_THREADS): wall time, speedup, efficiency and its two causes,
 //    the busy share and the tracing CPU per path against one thread's.
@@ -38,6 +41,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -101,12 +105,47 @@ double replay_cpu_seconds(const RayTracer& tracer, const RayLog& log) {
     return thread_cpu_seconds() - start;
 }
 
-void BM_ShadingOverhead(benchmark::State& state) {
+/// The cheapest reflector the path loop can meet: unpolarized Lambertian, reflectance 0.05 at
+/// every wavelength, its sample a cosine-weighted direction (Malley's method) and a scalar weight,
+/// no table or special function. ShadingOverheadFloor puts it on every surface of panels_night, so
+/// what its overhead shows is what everything but the pBRDF costs: camera rays, hit
+/// reconstruction, the sampler, emissivity lookups, sky, Stokes algebra and the frame rotations.
+class FloorBrdf final : public materials::PolarizedBrdf {
+public:
+    std::string model() const override { return "floor (bench)"; }
+    MuellerMatrix eval(const Vec3& wi, const Vec3& wo, double /*wavelength_um*/) const override {
+        MuellerMatrix m = MuellerMatrix::Zero();
+        if (wi.z() > 0.0 && wo.z() > 0.0) m(0, 0) = kReflectance / kPi;
+        return m;
+    }
+    materials::BrdfSample sample(const Vec3& wo, double /*wavelength_um*/, double u1,
+                                 double u2) const override {
+        materials::BrdfSample s;
+        const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+        s.wi = Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1)));
+        s.pdf = s.wi.z() / kPi;
+        if (s.pdf > 0.0 && wo.z() > 0.0) s.weight(0, 0) = kReflectance;
+        return s;
+    }
+    double pdf(const Vec3& wi, const Vec3& wo, double /*wavelength_um*/) const override {
+        return wo.z() > 0.0 && wi.z() > 0.0 ? wi.z() / kPi : 0.0;
+    }
+    bool is_isotropic() const override { return true; }
+    std::vector<materials::BrdfParameter> parameters(double /*wavelength_um*/) const override {
+        return {{"reflectance", kReflectance, ""}};
+    }
+
+private:
+    static constexpr double kReflectance = 0.05;
+};
+
+/// ShadingOverhead of `scene` (panels_night or its floor variant), `label` naming it in the line
+/// printed.
+void shading_overhead(benchmark::State& state, Scene scene, const char* label) {
     // Each repetition times one render and enough replays of its rays to cost about as much CPU (a
     // lone 0.07 s replay is at the mercy of the other jobs' cache traffic); the overhead is the
     // median over the repetitions, and the spread of the repetitions is printed with it.
     constexpr int kRepetitions = 5, kReplaysPerRepetition = 8;
-    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
     scene.camera = scene.camera.resized(320, 256);
     scene.sampling.samples_per_pixel = 8;
     RenderOptions one_thread;
@@ -140,20 +179,34 @@ void BM_ShadingOverhead(benchmark::State& state) {
     state.counters["embree_cpu_s"] = median(replay_cpu);
     state.counters["overhead"] = median(overhead);
     std::printf(
-        "shading overhead, panels_night 320x256 spp=8, %.0f rays (%.2f per camera path): render "
+        "shading overhead, %s 320x256 spp=8, %.0f rays (%.2f per camera path): render "
         "%.3f CPU s, "
         "bare Embree replay %.4f CPU s (medians of %d), ratio %.2f (repetitions %.2f-%.2f)\n",
-        recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu),
+        label, recorded, recorded / (320.0 * 256.0 * 8.0), median(render_cpu), median(replay_cpu),
         kRepetitions, median(overhead), *lo, *hi);
 }
+void BM_ShadingOverhead(benchmark::State& state) {
+    shading_overhead(state, load_scene(find_config("scenes/panels_night.yaml")), "panels_night");
+}
 BENCHMARK(BM_ShadingOverhead)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+/// panels_night with FloorBrdf on every surface.
+Scene floor_scene() {
+    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+    for (auto& m : scene.materials) m.brdf = std::make_shared<const FloorBrdf>();
+    return scene;
+}
+
+void BM_ShadingOverheadFloor(benchmark::State& state) {
+    shading_overhead(state, floor_scene(), "panels_night with FloorBrdf on every surface");
+}
+BENCHMARK(BM_ShadingOverheadFloor)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// The callgrind workload (docs/simulation.md "Where the time goes"): panels_night at 80×64, 8 spp
 /// (1 point in each of 8 replicates, as ShadingOverhead) and 64 spp (4 points in each of 16), one
 /// thread, the scene's emissivity tables already cached by a first 1-spp render. Small enough that
 /// `valgrind --tool=callgrind` finishes in a minute; its instruction counts do not depend on load.
-void BM_ShadingProfile(benchmark::State& state) {
-    Scene scene = load_scene(find_config("scenes/panels_night.yaml"));
+void shading_profile(benchmark::State& state, Scene scene) {
     scene.camera = scene.camera.resized(80, 64);
     scene.sampling.samples_per_pixel = 1;
     RenderOptions one_thread;
@@ -178,12 +231,21 @@ void BM_ShadingProfile(benchmark::State& state) {
                 static_cast<unsigned long long>(checksum));
     state.counters["scene_rays"] = static_cast<double>(stats.scene_rays);
 }
+
+void BM_ShadingProfile(benchmark::State& state) {
+    shading_profile(state, load_scene(find_config("scenes/panels_night.yaml")));
+}
 BENCHMARK(BM_ShadingProfile)
     ->Arg(8)
     ->Arg(64)
     ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kSecond);
+
+/// ShadingProfile's workload with FloorBrdf on every surface: the callgrind workload of what
+/// everything but the pBRDF costs (ShadingOverheadFloor).
+void BM_ShadingProfileFloor(benchmark::State& state) { shading_profile(state, floor_scene()); }
+BENCHMARK(BM_ShadingProfileFloor)->Arg(8)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 /// The thread counts ThreadEfficiency runs: TIRPOL_BENCH_THREADS (comma-separated, e.g.
 /// "1,2,4,8,16") or 1, 2, 4, … up to the CPUs this process may run on (its affinity mask, so
