@@ -85,9 +85,9 @@ std::vector<std::vector<float>> kept_frames(int earlier, int moving, int stale, 
     TwinWorld world(noisy, band, 4, 3);
     world.set_scene(uniform_scene(4, 3, 10.0));
     world.set_capture_gate(20'000'000, 60'000'000);
-    world.observe_reception_latency(5'000'000);
+    world.observe_reception_latency(5'000'000, 1'000'000'000);
     std::vector<float> counts(12);
-    std::int64_t t_ns = 1'000'000'000;
+    std::int64_t t_ns = 1'000'000'000;  // the latency's stamp: the gate's offset creeps from it
     for (int i = 0; i < earlier; ++i) world.fill(0.0, counts, t_ns += 40'000'000);
     world.on_stage_move();
     for (int i = 0; i < moving; ++i) world.fill(20.0, counts, t_ns += 10'000'000);

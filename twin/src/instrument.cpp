@@ -120,9 +120,25 @@ void TwinWorld::set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_w
     m_exposure_window_ns = exposure_window_ns;
 }
 
-void TwinWorld::observe_reception_latency(std::int64_t latency_ns) {
+namespace {
+/// How fast the FrameGate lets its host − device offset estimate creep up (frame_gate.cpp's
+/// kDriftPerNs): the world's mirror of the gate's bound must creep alike.
+constexpr double kGateOffsetCreepPerNs = 200e-6;
+
+std::int64_t crept(std::int64_t latency_ns, std::int64_t from_ns, std::int64_t to_ns) {
+    if (to_ns <= from_ns) return latency_ns;
+    return latency_ns +
+           static_cast<std::int64_t>(kGateOffsetCreepPerNs * static_cast<double>(to_ns - from_ns));
+}
+}  // namespace
+
+void TwinWorld::observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns) {
     std::lock_guard lock(m_mutex);
-    m_latency_ns = m_latency_ns ? std::min(*m_latency_ns, latency_ns) : latency_ns;
+    m_latency_ns =
+        m_latency_ns
+            ? std::min(crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns), latency_ns)
+            : latency_ns;
+    m_latency_stamp_ns = exposure_end_ns;
 }
 
 namespace {
@@ -140,8 +156,9 @@ std::uint64_t TwinWorld::noise_realisation(std::int64_t exposure_end_ns) {
         fail("twin: {} stage moves in one run, more than the {} the noise realisations number",
              m_stay, kMaxStays);
     const std::uint64_t stay = kRealisationBase + m_stay * kPlacesPerStay;
-    const std::int64_t window_start_ns =
-        exposure_end_ns + m_latency_ns.value_or(0) - m_exposure_window_ns;
+    const std::int64_t latency_ns =
+        m_latency_ns ? crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns) : 0;
+    const std::int64_t window_start_ns = exposure_end_ns + latency_ns - m_exposure_window_ns;
     if (m_moving || window_start_ns < m_arrived_ns + m_settle_ns)
         return stay + kMoveFramesFrom + m_frames_in_move++ % kMoveFramesFrom;
     return stay + m_frames_in_stay++ % kMoveFramesFrom;
@@ -250,8 +267,9 @@ public:
     Result<Frame> grab(std::chrono::milliseconds timeout) override {
         Result<Frame> frame = m_inner.grab(timeout);
         if (frame.ok() && frame.value().device_timestamp_ns != 0)
-            m_world.observe_reception_latency(frame.value().host_timestamp_ns -
-                                              frame.value().device_timestamp_ns);
+            m_world.observe_reception_latency(
+                frame.value().host_timestamp_ns - frame.value().device_timestamp_ns,
+                frame.value().device_timestamp_ns);
         return frame;
     }
     StreamStatistics statistics() const override { return m_inner.statistics(); }

@@ -70,9 +70,10 @@ public:
     /// end, where the frames a step keeps begin (noise_realisation). Zero for both: every frame
     /// after the move's end.
     void set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_window_ns);
-    /// A received frame's host reception − exposure-end stamp (ns); the world keeps the smallest,
-    /// as the FrameGate keeps its host − device offset.
-    void observe_reception_latency(std::int64_t latency_ns);
+    /// A received frame's host reception − exposure-end stamp (ns), the stamp `exposure_end_ns`:
+    /// the world follows the smallest as the FrameGate follows its host − device offset (allowed
+    /// to creep up by the gate's 200 ppm of stamp time), to place the gate's bound where it does.
+    void observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns);
     /// Microgrid world: the flat-field rig's blackbody at `temperature_k` fills the view behind
     /// the reference polarizer (the polarizer records of a flat-field session); nullopt: the scene.
     /// A blackbody placed by the operator (place_blackbody) is held in front of the lens and seen
@@ -141,6 +142,8 @@ private:
     std::uint64_t m_frames_in_stay = 0, m_frames_in_move = 0;
     std::int64_t m_settle_ns = 0, m_exposure_window_ns = 0;
     std::optional<std::int64_t> m_latency_ns;
+    std::int64_t m_latency_stamp_ns =
+        0;  ///< the stamp of the frame m_latency_ns was last updated by
 };
 
 /// A Stage that forwards to the real driver and reports every move and read-back to the world, so
