@@ -9,10 +9,13 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <numbers>
 #include <set>
+#include <thread>
 #include <utility>
 
 #include "test_support.h"
@@ -215,6 +218,54 @@ TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSett
     // 50 on an idle machine; a loaded one slows the simulated sensor).
     for (std::size_t i = 1; i < 4; ++i)
         EXPECT_GE(m.records[i].timing->stale_frames_discarded, 10) << m.records[i].file;
+}
+
+TEST(Capture, AFrameHeldUpOnTheCamerasThreadDuringAMoveIsNotAveraged) {
+    // A loaded machine holds the camera's thread up for 0.4 s right after it read the polarizer
+    // mid-move (the first mid-move frame of each move). The move (45° at 180°/s, 0.25 s) and the
+    // 0.05 s settle end before that frame leaves the camera, but its exposure ended mid-move: its
+    // stamp must say so, or the gate takes it for a frame exposed after the settle and one frame up
+    // to 45° off moves the 8-frame mean by tens of counts (noise-free Malus counts: within 0.5).
+    test::TempDir tmp;
+    SimulatedStageOptions slow;
+    slow.deg_per_s = 180.0;
+    Rig rig(slow, 0.0, 200.0, 64);
+    SimulatedCameraConfig config;
+    config.width = 6;
+    config.height = 4;
+    config.frame_rate_hz = 200.0;
+    config.buffers = 64;
+    std::atomic<int> held_frames{0};
+    bool held_this_move = false;  // the camera's thread alone touches it
+    rig.camera = std::make_unique<SimulatedCamera>(
+        config,
+        [&](double angle, std::vector<float>& out) {
+            const bool mid_move = std::abs(std::remainder(angle, 45.0)) > 0.5;
+            if (mid_move && !held_this_move) {
+                held_this_move = true;
+                ++held_frames;
+                std::this_thread::sleep_for(std::chrono::milliseconds(400));
+            }
+            if (!mid_move) held_this_move = false;
+            std::fill(out.begin(), out.end(), static_cast<float>(malus_counts(angle)));
+        },
+        simulated_stage_angle_source(*rig.stage));
+    CapturePlan plan;
+    plan.frames_per_angle = 8;
+    plan.settle_s = 0.05;
+    auto session = new_session(tmp / "s", rig, plan);
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    run_capture(*rig.camera, *rig.stage, plan, session, options);
+    EXPECT_GE(held_frames.load(), 3);  // the three 45° moves each had their held-up frame
+
+    const SessionManifest m = read_session(tmp / "s");
+    ASSERT_EQ(m.records.size(), 4u);
+    for (const auto& r : m.records) {
+        const Image img = read_session_frame(tmp / "s", m, r);
+        for (float v : img.channel("counts"))
+            ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
+    }
 }
 
 /// Test double: a stage that creeps 0.1° per read-back once it has arrived, as a mount losing its

@@ -7,6 +7,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <deque>
@@ -14,6 +15,7 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
+#include "tirpol/acquisition/frame_gate.h"
 #include "tirpol/acquisition/sim/fake_gige_server.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/acquisition/sim/stage_simulator.h"
@@ -56,8 +58,7 @@ std::optional<std::array<double, 4>> TwinWorld::microgrid_pattern_deg() const {
     return m_dofp->spec().pattern_deg;
 }
 
-std::vector<float> TwinWorld::dofp_frame(double angle_deg) {
-    const std::uint64_t frame_index = ++m_frame_index;
+std::vector<float> TwinWorld::dofp_frame(double angle_deg, std::uint64_t frame_index) {
     if (m_blackbody_k)
         return m_dofp->frame(blackbody_image(*m_blackbody_k), frame_index).channel("counts");
     if (!m_backdrop_k) {
@@ -101,6 +102,66 @@ void TwinWorld::on_stage_move() {
     std::lock_guard lock(m_mutex);
     m_blackbody_k = m_pending_blackbody_k;
     m_pending_blackbody_k.reset();
+    m_moving = true;
+    m_frames_in_move = 0;
+}
+
+void TwinWorld::on_stage_arrived(std::int64_t host_realtime_ns) {
+    std::lock_guard lock(m_mutex);
+    m_moving = false;
+    m_arrived_ns = host_realtime_ns;
+    ++m_stay;
+    m_frames_in_stay = 0;
+}
+
+void TwinWorld::set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_window_ns) {
+    std::lock_guard lock(m_mutex);
+    m_settle_ns = settle_ns;
+    m_exposure_window_ns = exposure_window_ns;
+}
+
+namespace {
+/// How fast the FrameGate lets its host − device offset estimate creep up (frame_gate.cpp's
+/// kDriftPerNs): the world's mirror of the gate's bound must creep alike.
+constexpr double kGateOffsetCreepPerNs = 200e-6;
+
+std::int64_t crept(std::int64_t latency_ns, std::int64_t from_ns, std::int64_t to_ns) {
+    if (to_ns <= from_ns) return latency_ns;
+    return latency_ns +
+           static_cast<std::int64_t>(kGateOffsetCreepPerNs * static_cast<double>(to_ns - from_ns));
+}
+}  // namespace
+
+void TwinWorld::observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns) {
+    std::lock_guard lock(m_mutex);
+    m_latency_ns =
+        m_latency_ns
+            ? std::min(crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns), latency_ns)
+            : latency_ns;
+    m_latency_stamp_ns = exposure_end_ns;
+}
+
+namespace {
+/// Realisations of the capture loop's frames: 2³⁰ + stay·2¹² + place, the places of a move's own
+/// frames from 2¹¹ on. The sensor model mixes the realisation into 32 bits (sensor_model.cpp), and
+/// the DoFP sensor stores it as an int attribute: stays beyond 2¹⁸ would overflow both.
+constexpr std::uint64_t kRealisationBase = std::uint64_t{1} << 30;
+constexpr std::uint64_t kPlacesPerStay = std::uint64_t{1} << 12;
+constexpr std::uint64_t kMoveFramesFrom = kPlacesPerStay / 2;
+constexpr std::uint64_t kMaxStays = std::uint64_t{1} << 18;
+}  // namespace
+
+std::uint64_t TwinWorld::noise_realisation(std::int64_t exposure_end_ns) {
+    if (m_stay >= kMaxStays)
+        fail("twin: {} stage moves in one run, more than the {} the noise realisations number",
+             m_stay, kMaxStays);
+    const std::uint64_t stay = kRealisationBase + m_stay * kPlacesPerStay;
+    const std::int64_t latency_ns =
+        m_latency_ns ? crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns) : 0;
+    const std::int64_t window_start_ns = exposure_end_ns + latency_ns - m_exposure_window_ns;
+    if (m_moving || window_start_ns < m_arrived_ns + m_settle_ns)
+        return stay + kMoveFramesFrom + m_frames_in_move++ % kMoveFramesFrom;
+    return stay + m_frames_in_stay++ % kMoveFramesFrom;
 }
 
 void TwinWorld::set_angle_deg(double angle_deg) {
@@ -124,14 +185,19 @@ const Image& TwinWorld::blackbody_image(double temperature_k) {
 }
 
 void TwinWorld::fill(double angle_deg, std::vector<float>& counts) {
+    fill(angle_deg, counts, host_realtime_ns());
+}
+
+void TwinWorld::fill(double angle_deg, std::vector<float>& counts, std::int64_t exposure_end_ns) {
     std::lock_guard lock(m_mutex);
+    const std::uint64_t realisation = noise_realisation(exposure_end_ns);
     if (m_dofp) {
-        counts = dofp_frame(angle_deg);
+        counts = dofp_frame(angle_deg, realisation);
         return;
     }
     const Image& source = m_blackbody_k ? blackbody_image(*m_blackbody_k) : m_scene;
     if (source.pixel_count() == 0) fail("twin: no scene set before the camera was read");
-    counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, ++m_frame_index);
+    counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, realisation);
 }
 
 std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg,
@@ -166,12 +232,16 @@ simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) 
 
 Status WorldReportingStage::home(std::chrono::milliseconds timeout) {
     m_world.on_stage_move();
-    return m_inner.home(timeout);
+    Status done = m_inner.home(timeout);
+    m_world.on_stage_arrived(host_realtime_ns());
+    return done;
 }
 
 Status WorldReportingStage::move_absolute(double angle_deg, std::chrono::milliseconds timeout) {
     m_world.on_stage_move();
-    return m_inner.move_absolute(angle_deg, timeout);
+    Status done = m_inner.move_absolute(angle_deg, timeout);
+    m_world.on_stage_arrived(host_realtime_ns());
+    return done;
 }
 
 Result<double> WorldReportingStage::position_deg() {
@@ -179,6 +249,38 @@ Result<double> WorldReportingStage::position_deg() {
     if (r.ok()) m_world.set_angle_deg(r.value());
     return r;
 }
+
+namespace {
+
+/// The camera as the capture loop sees it, telling the world each frame's reception latency (the
+/// FrameGate's host − device offset) where the device stamps on the host's clock.
+class LatencyReportingCamera final : public Camera {
+public:
+    LatencyReportingCamera(Camera& inner, TwinWorld& world) : m_inner(inner), m_world(world) {}
+    CameraInfo info() const override { return m_inner.info(); }
+    Status set_pixel_format(const std::string& format) override {
+        return m_inner.set_pixel_format(format);
+    }
+    Status set_frame_rate(double hz) override { return m_inner.set_frame_rate(hz); }
+    Status start() override { return m_inner.start(); }
+    Status stop() override { return m_inner.stop(); }
+    Result<Frame> grab(std::chrono::milliseconds timeout) override {
+        Result<Frame> frame = m_inner.grab(timeout);
+        if (frame.ok() && frame.value().device_timestamp_ns != 0)
+            m_world.observe_reception_latency(
+                frame.value().host_timestamp_ns - frame.value().device_timestamp_ns,
+                frame.value().device_timestamp_ns);
+        return frame;
+    }
+    StreamStatistics statistics() const override { return m_inner.statistics(); }
+    std::optional<double> device_temperature_k() override { return m_inner.device_temperature_k(); }
+
+private:
+    Camera& m_inner;
+    TwinWorld& m_world;
+};
+
+}  // namespace
 
 /// What TwinInstrument owns, in construction order: the stage simulator serving its pty, the real
 /// serial driver on the other end, the world-reporting stage, and the camera (over loopback GigE
@@ -271,8 +373,15 @@ void TwinInstrument::Devices::open_camera_over_gige() {
     // Free-running, as a field camera: each frame shows the polarizer where the simulated mount
     // physically is when the frame is exposed, also mid-move; the capture loop's gate must
     // discard those (no software trigger needed).
-    server->set_fill([this](const FakeGigEFrameRequest&, std::vector<float>& counts) {
-        world.fill(simulator.physical_angle_deg(StageSimulator::Clock::now()), counts);
+    server->set_fill([this](const FakeGigEFrameRequest& request, std::vector<float>& counts) {
+        // Time-true: the mount where it was when the exposure ended (the frame's stamp), not when
+        // this thread got round to filling it.
+        const auto since_stamp =
+            std::chrono::nanoseconds(host_realtime_ns() - request.timestamp_ns);
+        const auto exposure_end = StageSimulator::Clock::now() -
+                                  std::chrono::duration_cast<StageSimulator::Clock::duration>(
+                                      std::max(since_stamp, std::chrono::nanoseconds(0)));
+        world.fill(simulator.physical_angle_deg(exposure_end), counts, request.timestamp_ns);
     });
     // A microgrid bolometer free-runs at 60 Hz; the rotating-polarizer camera at Aravis's default.
     const std::string camera_uri =
@@ -338,6 +447,9 @@ CaptureSummary TwinInstrument::acquire(const CapturePlan& plan, const std::files
     std::filesystem::remove_all(dir);
     SessionWriter session =
         SessionWriter::create(dir, new_session_manifest(d.camera->info(), d.stage->info(), plan));
+    // The world numbers the noise realisations of the frames the capture loop will keep.
+    d.world.set_capture_gate(static_cast<std::int64_t>(std::llround(plan.settle_s * 1e9)),
+                             FrameGate(d.camera->info().frame_rate_hz).exposure_window_ns());
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.prompt = [&](const std::string& instruction) {
@@ -347,6 +459,10 @@ CaptureSummary TwinInstrument::acquire(const CapturePlan& plan, const std::files
         temperatures.pop_front();
         return true;
     };
+    if (d.server) {  // the fake GigE camera stamps its frames on the host's clock
+        LatencyReportingCamera camera(*d.camera, d.world);
+        return run_capture(camera, *d.stage, plan, session, options);
+    }
     return run_capture(*d.camera, *d.stage, plan, session, options);
 }
 

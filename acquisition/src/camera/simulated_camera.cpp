@@ -208,7 +208,17 @@ std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
         generator = m_generator;
         angle = m_angle;
     }
+    // The angle is read at the end of the exposure, and the frame is stamped at that same instant:
+    // stamped after the generator ran, a frame whose thread was held up (a slow generator, a
+    // loaded machine) would show the polarizer as it was before its stamp by more than the capture
+    // loop's exposure window, and a frame exposed mid-move could pass for one exposed after the
+    // settle.
     const double angle_deg = angle ? angle() : 0.0;
+    const std::int64_t device_timestamp_ns =
+        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now() - m_started)
+                                 .count();
+    const std::int64_t host_timestamp_ns = realtime_now_ns();
     generator(angle_deg, m_expected);
     if (m_expected.size() != n) {
         spdlog::error("sim://{}: the frame generator returned {} values for {}×{} pixels",
@@ -228,13 +238,8 @@ std::optional<Frame> SimulatedCamera::expose_one(std::uint64_t id) {
         frame.counts[i] = static_cast<float>(std::clamp(std::nearbyint(v), 0.0, full_scale));
     }
     frame.frame_id = id;
-    // The device clock is an oscillator of the camera's own, started at power-up (1 s before
-    // start()).
-    frame.device_timestamp_ns =
-        kTimestampOriginNs + std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::steady_clock::now() - m_started)
-                                 .count();
-    frame.host_timestamp_ns = realtime_now_ns();
+    frame.device_timestamp_ns = device_timestamp_ns;
+    frame.host_timestamp_ns = host_timestamp_ns;
     frame.fpa_temperature_k = m_config.fpa_temperature_k;
     return frame;
 }

@@ -62,6 +62,18 @@ public:
     /// The stage starts a move: a blackbody placed for this step stays; otherwise the operator has
     /// taken it away and the camera sees the scene.
     void on_stage_move();
+    /// The stage driver reported the move complete at `host_realtime_ns` (CLOCK_REALTIME, the
+    /// clock of the frames' stamps): the frames stamped from then on take noise realisations
+    /// numbered from the start of this stay (noise_realisation).
+    void on_stage_arrived(std::int64_t host_realtime_ns);
+    /// The capture plan's settle time and the FrameGate's exposure window (ns): with the move's
+    /// end, where the frames a step keeps begin (noise_realisation). Zero for both: every frame
+    /// after the move's end.
+    void set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_window_ns);
+    /// A received frame's host reception − exposure-end stamp (ns), the stamp `exposure_end_ns`:
+    /// the world follows the smallest as the FrameGate follows its host − device offset (allowed
+    /// to creep up by the gate's 200 ppm of stamp time), to place the gate's bound where it does.
+    void observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns);
     /// Microgrid world: the flat-field rig's blackbody at `temperature_k` fills the view behind
     /// the reference polarizer (the polarizer records of a flat-field session); nullopt: the scene.
     /// A blackbody placed by the operator (place_blackbody) is held in front of the lens and seen
@@ -76,8 +88,12 @@ public:
     void set_angle_deg(double angle_deg);
     double angle_deg() const;
 
-    /// Counts of one frame at polarizer angle `angle_deg`: the sensor model (gain, offset, NEDT
-    /// noise, the grid's reflected and emitted radiance) with a fresh noise realisation per call.
+    /// Counts of one frame at polarizer angle `angle_deg` whose exposure ended at
+    /// `exposure_end_ns` (CLOCK_REALTIME): the sensor model (gain, offset, NEDT noise, the grid's
+    /// reflected and emitted radiance) with the noise realisation noise_realisation gives it.
+    /// Frames are filled in the order of their exposure.
+    void fill(double angle_deg, std::vector<float>& counts, std::int64_t exposure_end_ns);
+    /// fill() of a frame whose exposure ends now.
     void fill(double angle_deg, std::vector<float>& counts);
 
     /// Counts of one frame of `stokes` through the same sensor model, polarizer at `angle_deg` or
@@ -93,7 +109,19 @@ public:
 
 private:
     const Image& blackbody_image(double temperature_k);
-    std::vector<float> dofp_frame(double angle_deg);  ///< m_mutex held
+    /// The noise realisation of the next frame exposed until `exposure_end_ns`, and counts it. A
+    /// free-running camera's frames fall at times the host's scheduler decides, so a count over all
+    /// frames gives the frames a step averages other realisations in every run (measured: shifted
+    /// by 1–2 between two runs). Keyed instead by the stage's stay (one per completed move) and the
+    /// frame's place among the frames the capture loop's FrameGate keeps — those whose exposure
+    /// window, `exposure_end_ns` + reception latency − window, starts at or after the move's end +
+    /// settle (set_capture_gate, observe_reception_latency) — a step's frames take the same
+    /// realisations run to run. Only a frame within the latency estimate's error of that bound can
+    /// be kept by one and placed by the other. The frames before the bound take realisations of
+    /// their own; realisations are ≥ 2³⁰: below are the frames filmed outside the capture loop
+    /// (sensor_frame's callers).
+    std::uint64_t noise_realisation(std::int64_t exposure_end_ns);               ///< m_mutex held
+    std::vector<float> dofp_frame(double angle_deg, std::uint64_t realisation);  ///< m_mutex held
 
     std::optional<simulation::DofpSensor> m_dofp;
     ReferencePolarizer m_reference;
@@ -108,7 +136,14 @@ private:
     bool m_polarizer_in_beam = true;
     std::optional<double> m_pending_blackbody_k, m_blackbody_k;
     double m_angle_deg = 0.0;
-    std::uint64_t m_frame_index = 0;
+    std::uint64_t m_stay = 0;  ///< completed moves
+    std::int64_t m_arrived_ns = 0;
+    bool m_moving = false;
+    std::uint64_t m_frames_in_stay = 0, m_frames_in_move = 0;
+    std::int64_t m_settle_ns = 0, m_exposure_window_ns = 0;
+    std::optional<std::int64_t> m_latency_ns;
+    std::int64_t m_latency_stamp_ns =
+        0;  ///< the stamp of the frame m_latency_ns was last updated by
 };
 
 /// A Stage that forwards to the real driver and reports every move and read-back to the world, so
