@@ -15,15 +15,6 @@
 
 namespace tirpol::calibration {
 
-namespace {
-std::string text_attribute(const Image& image, const std::string& name) {
-    const auto it = image.attributes().find(name);
-    return it != image.attributes().end() && std::holds_alternative<std::string>(it->second)
-               ? std::get<std::string>(it->second)
-               : std::string();
-}
-}  // namespace
-
 DemosaicRun run_demosaic(const DemosaicRunOptions& o) {
     OutputGuard().input(o.input, "INPUT").output_file(o.output, "--output").check(o.force);
     std::optional<MicrogridPattern> pattern;
@@ -93,8 +84,7 @@ MicrogridReduceRun run_microgrid_reduction(const MicrogridReduceRunOptions& o) {
     run.pattern = recorded.pattern.text();
     run.reduction = o.pixel_calibration.empty() ? std::string(demosaic_method_name(options.method))
                                                 : "per-pixel calibration";
-    run.units = text_attribute(stokes, "units");
-    if (run.units.empty()) run.units = "counts";
+    run.units = recorded.units.empty() ? "(units not recorded)" : recorded.units;
     run.s0_mean = channel_stats(stokes.channel("S0")).mean;
     run.dolp_mean = channel_stats(stokes.channel("DoLP")).mean;
     if (!o.quicklooks.empty())
