@@ -270,9 +270,9 @@ TEST(RenderFit, PullsOfTheGlossyPaintOverIndependentSeedsAreUnitNormal) {
 //
 // FAILS, so disabled until its cause is found (not yet known): over its 16 seeds (27 Nov 2026, load
 // 14-24, 2735 s) n's pulls had mean +9.40 and spread 2.21, σ's mean +12.78 and spread 9.29, and
-// every fit's χ²/dof lay in 0.77-0.84 (mean 0.799, 11068 dof). Whether the measurement's 64 spp
-// against the fit's 32 (a render bias that depends on spp) or the per-pixel weighting is the cause
-// is not separated; the region-means test above, at 8 spp, passes.
+// every fit's χ²/dof lay in 0.77-0.84 (mean 0.799, 11068 dof). With the measurement at the fit's
+// 32 spp it fails alike (n +10.95, σ +14.72, χ²/dof 0.793), so not through the spp mismatch: pixel
+// mode itself (its weighting, or the render variance's subtraction over 11068 residuals).
 TEST(RenderFit, DISABLED_PullsOfTheGlossyPaintOverPixelResidualsAreUnitNormal) {
     expect_unit_normal_pulls(RenderFitResiduals::pixels, 64);
 }
