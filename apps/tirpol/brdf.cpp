@@ -2,6 +2,7 @@
 
 #include "cli.h"
 #include "common_options.h"
+#include "tirpol/core/limits.h"
 #include "tirpol/materials/material.h"
 
 namespace tirpol::cli {

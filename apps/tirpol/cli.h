@@ -30,19 +30,6 @@ template <typename... Args>
     throw CLI::ValidationError(option, fmt::format(format, std::forward<Args>(args)...));
 }
 
-/// `parse()` of an option's value by a library function; its tirpol::Error becomes a usage error of
-/// `option` (the value is wrong, not a file or a device).
-template <typename Parse>
-auto parse_option_value(const std::string& option, Parse&& parse) {
-    try {
-        return parse();
-    } catch (const Error& e) {
-        const std::string message = e.what();
-        throw message.rfind(option, 0) == 0 ? CLI::ValidationError(message)
-                                            : CLI::ValidationError(option, message);
-    }
-}
-
 /// The `--force` flag of a command that writes: existing files at its outputs may be replaced (its
 /// inputs never; tirpol::OutputGuard). Every writing subcommand adds it and passes it to
 /// OutputGuard::check() before any work; an OutputConflict exits 2 (cli.cpp).

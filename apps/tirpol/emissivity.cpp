@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "common_options.h"
+#include "tirpol/core/limits.h"
 
 namespace tirpol::cli {
 

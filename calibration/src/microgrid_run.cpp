@@ -15,32 +15,15 @@
 
 namespace tirpol::calibration {
 
-namespace {
-// A library parser's error about an option's text becomes a usage error naming the option.
-template <typename Parse>
-auto parse_option(const std::string& option, Parse&& parse) {
-    try {
-        return parse();
-    } catch (const Error& e) {
-        throw OptionValueError(option, e.what());
-    }
-}
-
-std::string text_attribute(const Image& image, const std::string& name) {
-    const auto it = image.attributes().find(name);
-    return it != image.attributes().end() && std::holds_alternative<std::string>(it->second)
-               ? std::get<std::string>(it->second)
-               : std::string();
-}
-}  // namespace
-
 DemosaicRun run_demosaic(const DemosaicRunOptions& o) {
     OutputGuard().input(o.input, "INPUT").output_file(o.output, "--output").check(o.force);
     std::optional<MicrogridPattern> pattern;
     if (!o.pattern.empty())
-        pattern = parse_option("--pattern", [&] { return MicrogridPattern::parse(o.pattern); });
+        pattern =
+            parse_option_value("--pattern", [&] { return MicrogridPattern::parse(o.pattern); });
     MicrogridReductionOptions options;
-    options.method = parse_option("--method", [&] { return parse_demosaic_method(o.method); });
+    options.method =
+        parse_option_value("--method", [&] { return parse_demosaic_method(o.method); });
     const MicrogridFileReduction reduced =
         reduce_microgrid_file(o.input, pattern, options, o.channel);
     write_exr(o.output, reduced.stokes);
@@ -83,7 +66,8 @@ MicrogridReduceRun run_microgrid_reduction(const MicrogridReduceRunOptions& o) {
                        {"S0.png", "S1.png", "S2.png", "DoLP.png", "AoP.png"})
         .check(o.force);
     MicrogridSessionOptions options;
-    options.method = parse_option("--method", [&] { return parse_demosaic_method(o.method); });
+    options.method =
+        parse_option_value("--method", [&] { return parse_demosaic_method(o.method); });
     if (!o.pixel_calibration.empty())
         options.pixel_calibration =
             MicrogridPixelCalibration::from_image(read_exr(o.pixel_calibration));
@@ -100,8 +84,7 @@ MicrogridReduceRun run_microgrid_reduction(const MicrogridReduceRunOptions& o) {
     run.pattern = recorded.pattern.text();
     run.reduction = o.pixel_calibration.empty() ? std::string(demosaic_method_name(options.method))
                                                 : "per-pixel calibration";
-    run.units = text_attribute(stokes, "units");
-    if (run.units.empty()) run.units = "counts";
+    run.units = recorded.units.empty() ? "(units not recorded)" : recorded.units;
     run.s0_mean = channel_stats(stokes.channel("S0")).mean;
     run.dolp_mean = channel_stats(stokes.channel("DoLP")).mean;
     if (!o.quicklooks.empty())

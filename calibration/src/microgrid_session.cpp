@@ -11,6 +11,7 @@ namespace {
 // The session reduction's own attributes (the Stokes EXR's names), written and read only here.
 constexpr const char* kRecordsAveraged = "records_averaged";
 constexpr const char* kFramesAveraged = "frames_averaged";
+constexpr const char* kUnits = "units";
 }  // namespace
 
 bool is_microgrid_session(const std::filesystem::path& dir) {
@@ -99,8 +100,16 @@ MicrogridSessionRecord microgrid_session_record(const Image& stokes) {
             fail("Stokes image: attribute '{}' is not an integer", name);
         return std::get<int>(it->second);
     };
+    // Written by the ideal reduction ("counts") and by a per-pixel calibration that knows its
+    // Stokes units; absent otherwise.
+    std::string units;
+    if (const auto it = stokes.attributes().find(kUnits); it != stokes.attributes().end()) {
+        if (!std::holds_alternative<std::string>(it->second))
+            fail("Stokes image: attribute '{}' is not text", kUnits);
+        units = std::get<std::string>(it->second);
+    }
     return {MicrogridPattern::from_attributes(stokes.attributes()), integer(kRecordsAveraged),
-            integer(kFramesAveraged)};
+            integer(kFramesAveraged), std::move(units)};
 }
 
 }  // namespace tirpol::calibration

@@ -90,30 +90,44 @@ double current_value(const materials::MicrofacetBrdf& brdf, const std::string& m
     fail("fit through the renderer: unknown parameter");
 }
 
-/// Region means (or pixels) of the chosen Stokes components, and their variances from `variance`
-/// (a per-pixel variance of the value; null → 0), in the fixed order view, region, component,
-/// pixel.
+/// Where the variance of an image's values comes from, and how residuals per pixel take it.
+struct VarianceSource {
+    const char* suffix;  ///< the variance channel: S0 + suffix, …
+    bool is_std;         ///< the channel holds a standard deviation, not a variance
+    /// Residuals per pixel take the region's mean variance instead of each pixel's own estimate
+    /// (render_fit.cpp's fit_through_renderer says why a render's needs it).
+    bool pooled_over_region;
+};
+
+/// A measurement's per-pixel σ (`tirpol reduce`'s S*_std, from many frames): each pixel's own.
+constexpr VarianceSource kMeasuredStd{"_std", true, false};
+/// A render's per-pixel variance (S*_var, from its replicates): pooled over the region.
+constexpr VarianceSource kRenderVariance{"_var", false, true};
+
+/// Region means (or pixels) of the chosen Stokes components, and their variances from `source`,
+/// in the fixed order view, region, component, pixel.
 void append_values(const Image& image, const RenderFitView& view, const RenderFitOptions& options,
-                   const std::string& variance_suffix, bool variance_is_std,
-                   std::vector<double>& values, std::vector<double>& variances) {
+                   const VarianceSource& source, std::vector<double>& values,
+                   std::vector<double>& variances) {
     for (const RenderFitRegion& region : view.regions)
         for (int k : options.stokes) {
             const auto& s = image.channel(kStokes[k]);
-            const auto& v = image.channel(std::string(kStokes[k]) + variance_suffix);
+            const auto& v = image.channel(std::string(kStokes[k]) + source.suffix);
             const auto var = [&](std::size_t i) {
                 const double x = v[i];
-                return variance_is_std ? x * x : x;
+                return source.is_std ? x * x : x;
             };
-            if (options.residuals == RenderFitResiduals::pixels) {
-                for (std::size_t i : region.pixels)
-                    values.push_back(s[i]), variances.push_back(var(i));
-                continue;
-            }
             // Pixels are independent (their own random numbers, their own temporal noise): the
             // variance of the mean is Σ var/n².
             double sum = 0.0, sum_var = 0.0;
             for (std::size_t i : region.pixels) sum += s[i], sum_var += var(i);
             const auto n = static_cast<double>(region.pixels.size());
+            if (options.residuals == RenderFitResiduals::pixels) {
+                for (std::size_t i : region.pixels)
+                    values.push_back(s[i]),
+                        variances.push_back(source.pooled_over_region ? sum_var / n : var(i));
+                continue;
+            }
             values.push_back(sum / n);
             variances.push_back(sum_var / (n * n));
         }
@@ -343,7 +357,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
 
     std::vector<double> measured, measured_variance;
     for (const RenderFitView& v : views)
-        append_values(v.measured, v, options, "_std", true, measured, measured_variance);
+        append_values(v.measured, v, options, kMeasuredStd, measured, measured_variance);
     std::vector<double> measured_sigma(measured_variance.size());
     std::transform(measured_variance.begin(), measured_variance.end(), measured_sigma.begin(),
                    [](double v) { return std::sqrt(v); });
@@ -356,9 +370,11 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
     // by the render's variance as if it were known: a region's sum of two-replicate variances is
     // unbiased but, over a few dozen pixels with heavy-tailed glossy paths, has few effective
     // degrees of freedom, and the inverse of such an estimate weighs too much (χ²/dof 1.19–1.23
-    // and n's pulls spread 1.6 over 16 seeds at two replicates). Sixteen give each pixel 15, so
-    // residuals per pixel take each pixel's own variance too: the inverse of a 15-dof estimate is
-    // finite, on average 15/13 of the true inverse (at two replicates it has no mean).
+    // and n's pulls spread 1.6 over 16 seeds at two replicates). So the renders draw at least 16
+    // replicates (min(R, spp): 8 at 8 spp), and residuals per pixel take the region's mean render
+    // variance (kRenderVariance), not each pixel's own: with R − 1 dof one pixel's inverse is
+    // R − 1 over R − 3 of the true one on average (7/5 at 8 spp), and the heavy-tailed glossy
+    // pixels whose spread came out small would weigh most. The region's mean has n·(R − 1) dof.
     candidate.sampling.replicates =
         std::max(candidate.sampling.replicates, simulation::kPerPixelReplicates);
     std::map<std::string, std::size_t> fitted_materials;  // name → scene material index
@@ -411,7 +427,7 @@ RenderFitSummary fit_through_renderer(const simulation::Scene& scene,
             const Image rendered = simulation::render(candidate, ro);
             ++renders;
             if (bar) bar->advance();
-            append_values(rendered, views[v], options, "_var", false, prediction.value,
+            append_values(rendered, views[v], options, kRenderVariance, prediction.value,
                           prediction.variance);
         }
         return prediction;

@@ -88,6 +88,7 @@ TEST(MicrogridSession, AveragesRecordsByFrameCountAndReducesWithTheRecordedPatte
         EXPECT_EQ(recorded.frames_averaged, 4);
         EXPECT_EQ(recorded.records_averaged, 2);
         EXPECT_EQ(recorded.pattern.text(), "0,45,135,90");
+        EXPECT_EQ(recorded.units, "counts");
         for (std::size_t i = 0; i < stokes.pixel_count(); ++i) {
             ASSERT_NEAR(stokes.channel("S0")[i], 1100.0, 1e-2);
             ASSERT_NEAR(stokes.channel("S1")[i], 300.0, 1e-2);
@@ -131,6 +132,12 @@ TEST(MicrogridSession, PerPixelCalibrationReducesPerSuperPixelWithEachPixelsAnal
     options.pixel_calibration = c;
     const Image calibrated = reduce_microgrid_session(tmp / "s", options);
     EXPECT_EQ(microgrid_session_record(calibrated).frames_averaged, 2);
+    // The calibration states no Stokes units, so neither does the record (not "counts": the
+    // analysis vectors map from whatever units their sources had).
+    EXPECT_EQ(microgrid_session_record(calibrated).units, "");
+    options.pixel_calibration->stokes_units = "W/(m^2 sr)";
+    EXPECT_EQ(microgrid_session_record(reduce_microgrid_session(tmp / "s", options)).units,
+              "W/(m^2 sr)");
     EXPECT_EQ(calibrated.width(), kWidth / 2);
     // A Stokes image reduced from one frame, not from a session, has no session record.
     EXPECT_THAT(

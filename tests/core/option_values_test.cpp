@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "tirpol/core/limits.h"
 
@@ -58,6 +59,20 @@ TEST(OptionLimit, SubcommandEntriesApplyOnlyThereAndWildcardsEverywhere) {
     ASSERT_NE(spp, nullptr);
     EXPECT_EQ(spp->lo, 1);
     EXPECT_EQ(option_limit("planck", "--no-such-option"), nullptr);
+}
+
+TEST(ParseOptionValue, ALibraryErrorBecomesAUsageErrorNamingTheOption) {
+    EXPECT_EQ(parse_option_value("--angles-deg", [] { return 2.5; }), 2.5);
+    try {
+        parse_option_value("--pattern", []() -> int { fail("'0,45': expected four angles"); });
+        ADD_FAILURE() << "no OptionValueError";
+    } catch (const OptionValueError& e) {
+        EXPECT_EQ(e.option(), "--pattern");
+        EXPECT_STREQ(e.what(), "'0,45': expected four angles");
+    }
+    // Anything that is not a tirpol::Error (a bug, not the user's text) passes through unchanged.
+    EXPECT_THROW(parse_option_value("--pattern", []() -> int { throw std::logic_error("bug"); }),
+                 std::logic_error);
 }
 
 }  // namespace

@@ -63,7 +63,9 @@ struct MicrogridReduceRun {
     std::string pattern;  ///< the session's analyzer angles, "90,45,135,0"
     /// The demosaicing method's name, or "per-pixel calibration" (per super-pixel).
     std::string reduction;
-    std::string units;  ///< of S0, S1, S2: counts, or the per-pixel calibration's Stokes units
+    /// Of S0, S1, S2 (MicrogridSessionRecord::units): counts, the per-pixel calibration's Stokes
+    /// units, or "(units not recorded)" for a calibration that does not state them.
+    std::string units;
     double s0_mean = 0.0, dolp_mean = 0.0;
 };
 

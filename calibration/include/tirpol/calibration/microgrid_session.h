@@ -209,6 +209,9 @@ struct MicrogridSessionRecord {
     MicrogridPattern pattern;  ///< the session camera's
     int records_averaged{};    ///< polarizer records
     int frames_averaged{};     ///< camera frames over those records
+    /// Units of S0, S1, S2: "counts", or the per-pixel calibration's Stokes units; empty when the
+    /// calibration does not state them.
+    std::string units;
 };
 
 /// The record of the session reduction that made `stokes`. Throws tirpol::Error naming the

@@ -103,6 +103,18 @@ private:
     std::string m_option;
 };
 
+/// `parse()` of an option's text by a library function (a pattern, a method name, angles), with its
+/// tirpol::Error rethrown as an OptionValueError naming `option`: the value is wrong, not a file or
+/// a device, so the CLI exits 2 with it as a usage error.
+template <typename Parse>
+auto parse_option_value(const std::string& option, Parse&& parse) -> decltype(parse()) {
+    try {
+        return parse();
+    } catch (const Error& e) {
+        throw OptionValueError(option, e.what());
+    }
+}
+
 /// All of `text` as one number in strtod's syntax (as CLI11 converts option values), or nullopt
 /// when `text` is empty or not all number. A value beyond a double's range is ±inf.
 std::optional<double> parse_number(std::string_view text);
