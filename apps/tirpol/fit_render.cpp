@@ -58,7 +58,9 @@ void register_fit_render(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--seed", args->options.fit.seed,
                     "The one seed of every render (default: the scene's)");
-    cmd->add_flag("--pixels", args->pixels, "Compare every pixel instead of region means");
+    cmd->add_flag("--pixels", args->pixels,
+                  "Compare every pixel instead of region means (not verified: its uncertainties do "
+                  "not hold yet, docs/fitting.md)");
     cmd->add_flag("--forward", args->forward, "Forward differences (half the renders, O(h) error)");
     cmd->add_option("--max-iterations", args->options.fit.max_iterations, "Per solve")
         ->capture_default_str();

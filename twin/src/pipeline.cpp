@@ -187,6 +187,9 @@ void render_truth(Chain& c) {
         simulation::Scene s = c.scene;
         if (c.opt.perturb_truth) c.opt.perturb_truth(s);
         s.camera = c.cameras.back();
+        // The truth's Monte Carlo variance enters the measured σ, so it takes the replicates of a
+        // well-estimated variance, not the scene default's 2 (a 1-dof estimate per pixel).
+        s.sampling.replicates = simulation::kPerPixelReplicates;
         c.truth.push_back(simulation::render(s, c.render_options));
         simulation::write_render_outputs(c.out / "truth", fmt::format("view{}", v), c.truth.back());
     }
