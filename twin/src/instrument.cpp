@@ -121,14 +121,11 @@ void TwinWorld::set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_w
 }
 
 namespace {
-/// How fast the FrameGate lets its host − device offset estimate creep up (frame_gate.cpp's
-/// kDriftPerNs): the world's mirror of the gate's bound must creep alike.
-constexpr double kGateOffsetCreepPerNs = 200e-6;
-
+/// The world's mirror of the gate's bound creeps as the FrameGate's offset estimate does.
 std::int64_t crept(std::int64_t latency_ns, std::int64_t from_ns, std::int64_t to_ns) {
     if (to_ns <= from_ns) return latency_ns;
-    return latency_ns +
-           static_cast<std::int64_t>(kGateOffsetCreepPerNs * static_cast<double>(to_ns - from_ns));
+    return latency_ns + static_cast<std::int64_t>(FrameGate::kOffsetCreepPerNs *
+                                                  static_cast<double>(to_ns - from_ns));
 }
 }  // namespace
 

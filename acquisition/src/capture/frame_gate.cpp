@@ -12,8 +12,6 @@ constexpr std::int64_t kUnknownPeriodNs =
 /// Intervals longer than this are pauses (the capture loop not grabbing, a software trigger waiting
 /// for a move), not the camera's rate.
 constexpr std::int64_t kPauseNs = 2'000'000'000;
-/// How fast the device→host offset estimate may grow: 200 ppm, beyond any camera crystal's drift.
-constexpr double kDriftPerNs = 200e-6;
 }  // namespace
 
 std::int64_t host_realtime_ns() {
@@ -46,13 +44,14 @@ std::int64_t FrameGate::reception_ns(const Frame& frame) {
     if (frame.device_timestamp_ns == 0) return frame.host_timestamp_ns;
     // host − device = clock offset + this frame's latency. Its minimum over frames is the offset
     // plus the shortest latency: device + that minimum is when the frame would have arrived with no
-    // host delay. The minimum may creep up by kDriftPerNs per ns of device time, so a device clock
-    // slower than the host's (crystals differ by tens of ppm) is followed; a faster one lowers the
-    // minimum.
+    // host delay. The minimum may creep up by FrameGate::kOffsetCreepPerNs per ns of device time,
+    // so a device clock slower than the host's (crystals differ by tens of ppm) is followed; a
+    // faster one lowers the minimum.
     const std::int64_t offset = frame.host_timestamp_ns - frame.device_timestamp_ns;
     if (m_min_offset_ns && m_last_device_ns != 0 && frame.device_timestamp_ns > m_last_device_ns)
         *m_min_offset_ns += static_cast<std::int64_t>(
-            kDriftPerNs * static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
+            FrameGate::kOffsetCreepPerNs *
+            static_cast<double>(frame.device_timestamp_ns - m_last_device_ns));
     m_min_offset_ns = m_min_offset_ns ? std::min(*m_min_offset_ns, offset) : offset;
     m_last_device_ns = frame.device_timestamp_ns;
     return std::min(frame.host_timestamp_ns, frame.device_timestamp_ns + *m_min_offset_ns);

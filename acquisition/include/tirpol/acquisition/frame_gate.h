@@ -39,6 +39,10 @@ public:
     /// `nominal_frame_rate_hz`: the rate the camera reports, if any.
     explicit FrameGate(std::optional<double> nominal_frame_rate_hz);
 
+    /// How fast the host − device offset estimate may grow: 200 ppm, beyond any camera crystal's
+    /// drift.
+    static constexpr double kOffsetCreepPerNs = 200e-6;
+
     /// The ns subtracted from a reception time to bound the exposure start (see file comment).
     std::int64_t exposure_window_ns() const;
     /// Whether `frame` was exposed entirely after `settle_end_ns`; also feeds the rate estimate.
