@@ -15,7 +15,7 @@
 
 #include "tirpol/acquisition/camera.h"
 #include "tirpol/acquisition/capture.h"
-#include "tirpol/acquisition/frame_gate.h"
+#include "tirpol/acquisition/frame_gate.h"  // host_realtime_ns
 #include "tirpol/acquisition/sim/fake_gige_server.h"
 #include "tirpol/acquisition/sim/simulated_camera.h"
 #include "tirpol/acquisition/sim/stage_simulator.h"
@@ -58,26 +58,26 @@ std::optional<std::array<double, 4>> TwinWorld::microgrid_pattern_deg() const {
     return m_dofp->spec().pattern_deg;
 }
 
-std::vector<float> TwinWorld::dofp_frame(double angle_deg, std::uint64_t frame_index) {
-    if (m_blackbody_k)
-        return m_dofp->frame(blackbody_image(*m_blackbody_k), frame_index).channel("counts");
-    if (!m_backdrop_k) {
+std::vector<float> TwinWorld::dofp_frame(const Exposure& e, std::uint64_t realisation) {
+    if (e.blackbody_k)
+        return m_dofp->frame(blackbody_image(*e.blackbody_k), realisation).channel("counts");
+    if (!e.backdrop_k) {
         if (m_scene.pixel_count() == 0) fail("twin: no scene set before the camera was read");
-        return m_dofp->frame(m_scene, frame_index).channel("counts");
+        return m_dofp->frame(m_scene, realisation).channel("counts");
     }
     // The blackbody behind the reference polarizer at the stage's angle φ: a diattenuator on
     // unpolarized light gives ½L·(τ + τ_min, (τ − τ_min) cos 2φ, (τ − τ_min) sin 2φ) (Chipman, Lam
     // & Young 2018 eq 6.35), plus the polarizer's own unpolarized emission.
-    const double l = m_band.radiance(*m_backdrop_k);
+    const double l = m_band.radiance(*e.backdrop_k);
     const double tau = m_reference.transmission, tau_min = tau / m_reference.extinction_ratio;
-    const double two_phi = 2.0 * angle_deg * kPi / 180.0;
+    const double two_phi = 2.0 * e.angle_deg * kPi / 180.0;
     Image source(m_width, m_height);
     source.add_channel(
         "S0", static_cast<float>(0.5 * l * (tau + tau_min) + m_reference.emitted_radiance));
     source.add_channel("S1", static_cast<float>(0.5 * l * (tau - tau_min) * std::cos(two_phi)));
     source.add_channel("S2", static_cast<float>(0.5 * l * (tau - tau_min) * std::sin(two_phi)));
     source.add_channel("S3", 0.0f);
-    return m_dofp->frame(source, frame_index).channel("counts");
+    return m_dofp->frame(source, realisation).channel("counts");
 }
 
 void TwinWorld::set_scene(Image stokes) {
@@ -102,63 +102,38 @@ void TwinWorld::on_stage_move() {
     std::lock_guard lock(m_mutex);
     m_blackbody_k = m_pending_blackbody_k;
     m_pending_blackbody_k.reset();
-    m_moving = true;
-    m_frames_in_move = 0;
 }
 
-void TwinWorld::on_stage_arrived(std::int64_t host_realtime_ns) {
+void TwinWorld::on_stage_arrived() {
     std::lock_guard lock(m_mutex);
-    m_moving = false;
-    m_arrived_ns = host_realtime_ns;
     ++m_stay;
-    m_frames_in_stay = 0;
-}
-
-void TwinWorld::set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_window_ns) {
-    std::lock_guard lock(m_mutex);
-    m_settle_ns = settle_ns;
-    m_exposure_window_ns = exposure_window_ns;
+    m_sent_in_stay = 0;
+    m_kept_in_stay = 0;
 }
 
 namespace {
-/// The world's mirror of the gate's bound creeps as the FrameGate's offset estimate does.
-std::int64_t crept(std::int64_t latency_ns, std::int64_t from_ns, std::int64_t to_ns) {
-    if (to_ns <= from_ns) return latency_ns;
-    return latency_ns + static_cast<std::int64_t>(FrameGate::kOffsetCreepPerNs *
-                                                  static_cast<double>(to_ns - from_ns));
-}
-}  // namespace
-
-void TwinWorld::observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns) {
-    std::lock_guard lock(m_mutex);
-    m_latency_ns =
-        m_latency_ns
-            ? std::min(crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns), latency_ns)
-            : latency_ns;
-    m_latency_stamp_ns = exposure_end_ns;
-}
-
-namespace {
-/// Realisations of the capture loop's frames: 2³⁰ + stay·2¹² + place, the places of a move's own
-/// frames from 2¹¹ on. The sensor model mixes the realisation into 32 bits (sensor_model.cpp), and
-/// the DoFP sensor stores it as an int attribute: stays beyond 2¹⁸ would overflow both.
+/// The sensor model mixes a realisation into 32 bits (sensor_model.cpp), and the DoFP sensor stores
+/// it as an int attribute: stays beyond 2¹⁸ would overflow both.
 constexpr std::uint64_t kRealisationBase = std::uint64_t{1} << 30;
 constexpr std::uint64_t kPlacesPerStay = std::uint64_t{1} << 12;
-constexpr std::uint64_t kMoveFramesFrom = kPlacesPerStay / 2;
+constexpr std::uint64_t kSentFrom = kPlacesPerStay / 2;
 constexpr std::uint64_t kMaxStays = std::uint64_t{1} << 18;
+/// Exposures remembered for take(): a camera nobody takes frames from (sim://) must not grow them.
+constexpr std::size_t kMaxExposures = 1024;
 }  // namespace
 
-std::uint64_t TwinWorld::noise_realisation(std::int64_t exposure_end_ns) {
+std::uint64_t TwinWorld::realisation(std::uint64_t place) const {
     if (m_stay >= kMaxStays)
         fail("twin: {} stage moves in one run, more than the {} the noise realisations number",
              m_stay, kMaxStays);
-    const std::uint64_t stay = kRealisationBase + m_stay * kPlacesPerStay;
-    const std::int64_t latency_ns =
-        m_latency_ns ? crept(*m_latency_ns, m_latency_stamp_ns, exposure_end_ns) : 0;
-    const std::int64_t window_start_ns = exposure_end_ns + latency_ns - m_exposure_window_ns;
-    if (m_moving || window_start_ns < m_arrived_ns + m_settle_ns)
-        return stay + kMoveFramesFrom + m_frames_in_move++ % kMoveFramesFrom;
-    return stay + m_frames_in_stay++ % kMoveFramesFrom;
+    return kRealisationBase + m_stay * kPlacesPerStay + place;
+}
+
+std::vector<float> TwinWorld::render(const Exposure& e, std::uint64_t realisation) {
+    if (m_dofp) return dofp_frame(e, realisation);
+    const Image& source = e.blackbody_k ? blackbody_image(*e.blackbody_k) : m_scene;
+    if (source.pixel_count() == 0) fail("twin: no scene set before the camera was read");
+    return sensor_frame(source, e.angle_deg, e.polarizer_in_beam, realisation);
 }
 
 void TwinWorld::set_angle_deg(double angle_deg) {
@@ -187,14 +162,41 @@ void TwinWorld::fill(double angle_deg, std::vector<float>& counts) {
 
 void TwinWorld::fill(double angle_deg, std::vector<float>& counts, std::int64_t exposure_end_ns) {
     std::lock_guard lock(m_mutex);
-    const std::uint64_t realisation = noise_realisation(exposure_end_ns);
-    if (m_dofp) {
-        counts = dofp_frame(angle_deg, realisation);
-        return;
-    }
-    const Image& source = m_blackbody_k ? blackbody_image(*m_blackbody_k) : m_scene;
-    if (source.pixel_count() == 0) fail("twin: no scene set before the camera was read");
-    counts = sensor_frame(source, angle_deg, m_polarizer_in_beam, realisation);
+    Exposure e{exposure_end_ns, angle_deg, m_blackbody_k, m_backdrop_k, m_polarizer_in_beam, 0.0};
+    counts = render(e, realisation(kSentFrom + m_sent_in_stay++ % kSentFrom));
+    double sum = 0.0;
+    for (float c : counts) sum += c;
+    e.sent_mean = counts.empty() ? 0.0 : sum / static_cast<double>(counts.size());
+    if (m_exposures.size() == kMaxExposures) m_exposures.pop_front();
+    m_exposures.push_back(e);
+}
+
+void TwinWorld::take(std::int64_t exposure_end_ns, std::vector<float>& counts) {
+    std::lock_guard lock(m_mutex);
+    // Frames arrive in the order they were filled; those passed over were lost on the way.
+    while (!m_exposures.empty() && m_exposures.front().end_ns < exposure_end_ns)
+        m_exposures.pop_front();
+    if (m_exposures.empty())
+        fail("twin: the capture took a frame exposed until {} ns that the camera did not fill",
+             exposure_end_ns);
+    const Exposure e = m_exposures.front();
+    m_exposures.pop_front();
+    double sum = 0.0;
+    for (float c : counts) sum += c;
+    const double mean = counts.empty() ? 0.0 : sum / static_cast<double>(counts.size());
+    if (!(std::abs(mean - e.sent_mean) <= 0.5))
+        fail(
+            "twin: the frame exposed until {} ns arrived with mean counts {:.3f}, the camera sent "
+            "{:.3f} (more than the ADC's rounding apart)",
+            exposure_end_ns, mean, e.sent_mean);
+    if (m_kept_in_stay >= kSentFrom)
+        fail("twin: more than {} frames kept in one stay of the stage", kSentFrom);
+    counts = render(e, realisation(m_kept_in_stay));
+}
+
+void TwinWorld::frame_kept() {
+    std::lock_guard lock(m_mutex);
+    ++m_kept_in_stay;
 }
 
 std::vector<float> TwinWorld::sensor_frame(const Image& stokes, double angle_deg,
@@ -230,14 +232,14 @@ simulation::SensorModel twin_sensor(const Band& band, double air_temperature_k) 
 Status WorldReportingStage::home(std::chrono::milliseconds timeout) {
     m_world.on_stage_move();
     Status done = m_inner.home(timeout);
-    m_world.on_stage_arrived(host_realtime_ns());
+    m_world.on_stage_arrived();
     return done;
 }
 
 Status WorldReportingStage::move_absolute(double angle_deg, std::chrono::milliseconds timeout) {
     m_world.on_stage_move();
     Status done = m_inner.move_absolute(angle_deg, timeout);
-    m_world.on_stage_arrived(host_realtime_ns());
+    m_world.on_stage_arrived();
     return done;
 }
 
@@ -249,11 +251,18 @@ Result<double> WorldReportingStage::position_deg() {
 
 namespace {
 
-/// The camera as the capture loop sees it, telling the world each frame's reception latency (the
-/// FrameGate's host − device offset) where the device stamps on the host's clock.
-class LatencyReportingCamera final : public Camera {
+/// The camera as the capture loop sees it: each frame it hands out is taken from the world
+/// (TwinWorld::take), which redraws its noise by the frames the loop's gate kept, and rounded to
+/// the camera's whole counts. `stamped_on_host_clock`: the device stamps the end of the exposure
+/// on the host's clock (the fake GigE camera); otherwise the frame's host stamp, taken just before
+/// the world fills it (the in-process camera), finds it.
+class WorldTakingCamera final : public Camera {
 public:
-    LatencyReportingCamera(Camera& inner, TwinWorld& world) : m_inner(inner), m_world(world) {}
+    WorldTakingCamera(Camera& inner, TwinWorld& world, bool stamped_on_host_clock)
+        : m_inner(inner),
+          m_world(world),
+          m_device_stamps(stamped_on_host_clock),
+          m_full_scale(std::ldexp(1.0, inner.info().bits_per_pixel) - 1.0) {}
     CameraInfo info() const override { return m_inner.info(); }
     Status set_pixel_format(const std::string& format) override {
         return m_inner.set_pixel_format(format);
@@ -263,10 +272,12 @@ public:
     Status stop() override { return m_inner.stop(); }
     Result<Frame> grab(std::chrono::milliseconds timeout) override {
         Result<Frame> frame = m_inner.grab(timeout);
-        if (frame.ok() && frame.value().device_timestamp_ns != 0)
-            m_world.observe_reception_latency(
-                frame.value().host_timestamp_ns - frame.value().device_timestamp_ns,
-                frame.value().device_timestamp_ns);
+        if (!frame.ok()) return frame;
+        Frame& f = frame.value();
+        m_world.take(m_device_stamps ? f.device_timestamp_ns : f.host_timestamp_ns, f.counts);
+        for (float& c : f.counts)
+            c = static_cast<float>(
+                std::clamp(std::nearbyint(static_cast<double>(c)), 0.0, m_full_scale));
         return frame;
     }
     StreamStatistics statistics() const override { return m_inner.statistics(); }
@@ -275,6 +286,8 @@ public:
 private:
     Camera& m_inner;
     TwinWorld& m_world;
+    bool m_device_stamps;
+    double m_full_scale;
 };
 
 }  // namespace
@@ -444,9 +457,6 @@ CaptureSummary TwinInstrument::acquire(const CapturePlan& plan, const std::files
     std::filesystem::remove_all(dir);
     SessionWriter session =
         SessionWriter::create(dir, new_session_manifest(d.camera->info(), d.stage->info(), plan));
-    // The world numbers the noise realisations of the frames the capture loop will keep.
-    d.world.set_capture_gate(static_cast<std::int64_t>(std::llround(plan.settle_s * 1e9)),
-                             FrameGate(d.camera->info().frame_rate_hz).exposure_window_ns());
     CaptureOptions options;
     options.progress_stream = nullptr;
     options.prompt = [&](const std::string& instruction) {
@@ -456,11 +466,12 @@ CaptureSummary TwinInstrument::acquire(const CapturePlan& plan, const std::files
         temperatures.pop_front();
         return true;
     };
-    if (d.server) {  // the fake GigE camera stamps its frames on the host's clock
-        LatencyReportingCamera camera(*d.camera, d.world);
-        return run_capture(camera, *d.stage, plan, session, options);
-    }
-    return run_capture(*d.camera, *d.stage, plan, session, options);
+    // The gate's verdict numbers the noise realisations of the frames the capture keeps.
+    options.on_progress = [&](const CaptureProgress& p) {
+        if (p.event == CaptureProgress::Event::Frame) d.world.frame_kept();
+    };
+    WorldTakingCamera camera(*d.camera, d.world, d.server != nullptr);
+    return run_capture(camera, *d.stage, plan, session, options);
 }
 
 }  // namespace tirpol::twin

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -62,18 +63,9 @@ public:
     /// The stage starts a move: a blackbody placed for this step stays; otherwise the operator has
     /// taken it away and the camera sees the scene.
     void on_stage_move();
-    /// The stage driver reported the move complete at `host_realtime_ns` (CLOCK_REALTIME, the
-    /// clock of the frames' stamps): the frames stamped from then on take noise realisations
-    /// numbered from the start of this stay (noise_realisation).
-    void on_stage_arrived(std::int64_t host_realtime_ns);
-    /// The capture plan's settle time and the FrameGate's exposure window (ns): with the move's
-    /// end, where the frames a step keeps begin (noise_realisation). Zero for both: every frame
-    /// after the move's end.
-    void set_capture_gate(std::int64_t settle_ns, std::int64_t exposure_window_ns);
-    /// A received frame's host reception − exposure-end stamp (ns), the stamp `exposure_end_ns`:
-    /// the world follows the smallest as the FrameGate follows its host − device offset (allowed
-    /// to creep up by the gate's 200 ppm of stamp time), to place the gate's bound where it does.
-    void observe_reception_latency(std::int64_t latency_ns, std::int64_t exposure_end_ns);
+    /// The stage driver reported the move complete: a new stay, whose kept frames take the noise
+    /// realisations numbered from its first (take).
+    void on_stage_arrived();
     /// Microgrid world: the flat-field rig's blackbody at `temperature_k` fills the view behind
     /// the reference polarizer (the polarizer records of a flat-field session); nullopt: the scene.
     /// A blackbody placed by the operator (place_blackbody) is held in front of the lens and seen
@@ -89,12 +81,22 @@ public:
     double angle_deg() const;
 
     /// Counts of one frame at polarizer angle `angle_deg` whose exposure ended at
-    /// `exposure_end_ns` (CLOCK_REALTIME): the sensor model (gain, offset, NEDT noise, the grid's
-    /// reflected and emitted radiance) with the noise realisation noise_realisation gives it.
-    /// Frames are filled in the order of their exposure.
+    /// `exposure_end_ns` (CLOCK_REALTIME), as the camera sends them: the sensor model (gain,
+    /// offset, NEDT noise, the grid's reflected and emitted radiance) with a noise realisation of
+    /// the exposure's own (its place in the stay). The world remembers the exposure (the angle and
+    /// what was in view) for take(). Frames are filled in the order of their exposure.
     void fill(double angle_deg, std::vector<float>& counts, std::int64_t exposure_end_ns);
     /// fill() of a frame whose exposure ends now.
     void fill(double angle_deg, std::vector<float>& counts);
+    /// The capture loop took the frame whose counts arrived as `counts`, the first exposure filled
+    /// at or after `exposure_end_ns`: checks that its mean is the one the camera sent (within the
+    /// ADC's rounding), and redraws its noise with the realisation of the stay's next kept frame —
+    /// numbered by the frames the loop's gate kept (frame_kept), so a step averages the same
+    /// realisations whichever frames the camera delivered before and whichever the gate discarded.
+    /// Throws tirpol::Error when no such exposure was filled or the mean differs.
+    void take(std::int64_t exposure_end_ns, std::vector<float>& counts);
+    /// The capture loop's gate kept the frame taken last.
+    void frame_kept();
 
     /// Counts of one frame of `stokes` through the same sensor model, polarizer at `angle_deg` or
     /// out of the beam, noise realisation `frame_index` (frames filmed outside the capture loop,
@@ -109,19 +111,20 @@ public:
 
 private:
     const Image& blackbody_image(double temperature_k);
-    /// The noise realisation of the next frame exposed until `exposure_end_ns`, and counts it. A
-    /// free-running camera's frames fall at times the host's scheduler decides, so a count over all
-    /// frames gives the frames a step averages other realisations in every run (measured: shifted
-    /// by 1–2 between two runs). Keyed instead by the stage's stay (one per completed move) and the
-    /// frame's place among the frames the capture loop's FrameGate keeps — those whose exposure
-    /// window, `exposure_end_ns` + reception latency − window, starts at or after the move's end +
-    /// settle (set_capture_gate, observe_reception_latency) — a step's frames take the same
-    /// realisations run to run. Only a frame within the latency estimate's error of that bound can
-    /// be kept by one and placed by the other. The frames before the bound take realisations of
-    /// their own; realisations are ≥ 2³⁰: below are the frames filmed outside the capture loop
-    /// (sensor_frame's callers).
-    std::uint64_t noise_realisation(std::int64_t exposure_end_ns);               ///< m_mutex held
-    std::vector<float> dofp_frame(double angle_deg, std::uint64_t realisation);  ///< m_mutex held
+    /// What a frame saw over its exposure, and the mean counts the camera sent of it.
+    struct Exposure {
+        std::int64_t end_ns = 0;
+        double angle_deg = 0.0;
+        std::optional<double> blackbody_k, backdrop_k;
+        bool polarizer_in_beam = true;
+        double sent_mean = 0.0;
+    };
+    /// Realisations are 2³⁰ + stay·2¹² + place (place < 2¹¹: the stay's kept frames, from 2¹¹: the
+    /// frames as sent); below 2³⁰ are the frames filmed outside the capture loop (sensor_frame's
+    /// callers).
+    std::uint64_t realisation(std::uint64_t place) const;                         ///< m_mutex held
+    std::vector<float> render(const Exposure& e, std::uint64_t realisation);      ///< m_mutex held
+    std::vector<float> dofp_frame(const Exposure& e, std::uint64_t realisation);  ///< m_mutex held
 
     std::optional<simulation::DofpSensor> m_dofp;
     ReferencePolarizer m_reference;
@@ -137,13 +140,8 @@ private:
     std::optional<double> m_pending_blackbody_k, m_blackbody_k;
     double m_angle_deg = 0.0;
     std::uint64_t m_stay = 0;  ///< completed moves
-    std::int64_t m_arrived_ns = 0;
-    bool m_moving = false;
-    std::uint64_t m_frames_in_stay = 0, m_frames_in_move = 0;
-    std::int64_t m_settle_ns = 0, m_exposure_window_ns = 0;
-    std::optional<std::int64_t> m_latency_ns;
-    std::int64_t m_latency_stamp_ns =
-        0;  ///< the stamp of the frame m_latency_ns was last updated by
+    std::uint64_t m_sent_in_stay = 0, m_kept_in_stay = 0;
+    std::deque<Exposure> m_exposures;  ///< filled and not yet taken, oldest first
 };
 
 /// A Stage that forwards to the real driver and reports every move and read-back to the world, so
