@@ -85,6 +85,40 @@ SessionWriter new_session(const std::filesystem::path& dir, Rig& rig, const Capt
                                  new_session_manifest(rig.camera->info(), rig.stage->info(), plan));
 }
 
+/// The free-running tests' rig: the stage turns at 180°/s (45° in 0.25 s) while the camera
+/// free-runs at 200 Hz into a 64-frame queue, which therefore holds frames of the whole move when a
+/// step starts grabbing; noise-free Malus counts.
+Rig slow_stage_rig() {
+    SimulatedStageOptions slow;
+    slow.deg_per_s = 180.0;
+    return Rig(slow, 0.0, 200.0, 64);
+}
+
+/// Captures 0/45/90/135° with `rig`, 8 frames per angle after a 0.05 s settle, into a session at
+/// `dir`.
+CaptureSummary capture_after_slow_moves(Rig& rig, const std::filesystem::path& dir) {
+    CapturePlan plan;
+    plan.frames_per_angle = 8;
+    plan.settle_s = 0.05;
+    auto session = new_session(dir, rig, plan);
+    CaptureOptions options;
+    options.progress_stream = nullptr;
+    return run_capture(*rig.camera, *rig.stage, plan, session, options);
+}
+
+/// Every pixel of the 4 records in the session at `dir` is the Malus counts of its angle within 0.5
+/// (integers): a single frame from a move (up to 45° off) would move an 8-frame mean by tens of
+/// counts.
+void expect_only_frames_exposed_after_the_settle(const std::filesystem::path& dir) {
+    const SessionManifest m = read_session(dir);
+    ASSERT_EQ(m.records.size(), 4u);
+    for (const auto& r : m.records) {
+        const Image img = read_session_frame(dir, m, r);
+        for (float v : img.channel("counts"))
+            ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
+    }
+}
+
 TEST(CapturePlan, ExpandsReferencesThenRepeatsOfTheAngles) {
     const auto steps = plan_steps(small_plan());
     ASSERT_EQ(steps.size(), 3u + 8u);
@@ -171,23 +205,13 @@ TEST(Capture, RecordsEveryStepAndTheMeansGiveTheScenesStokesVector) {
 }
 
 TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSettle) {
-    // The stage turns at 180°/s (45° in 0.25 s) while the camera free-runs at 200 Hz into a
-    // 64-frame queue, which therefore holds frames of the whole move when the step starts grabbing.
-    // Noise-free Malus counts: a single frame from the move (up to 45° off) would move an 8-frame
-    // mean by tens of counts; frames exposed after the settle give malus(θ) exactly (integers:
-    // within 0.5).
+    // Each step's queue holds frames of the whole 45° move (slow_stage_rig): only those exposed
+    // after the settle may be averaged.
     test::TempDir tmp;
-    SimulatedStageOptions slow;
-    slow.deg_per_s = 180.0;
-    Rig rig(slow, 0.0, 200.0, 64);
-    CapturePlan plan;
-    plan.frames_per_angle = 8;
-    plan.settle_s = 0.05;
-    auto session = new_session(tmp / "s", rig, plan);
-    CaptureOptions options;
-    options.progress_stream = nullptr;
-    const auto summary = run_capture(*rig.camera, *rig.stage, plan, session, options);
+    Rig rig = slow_stage_rig();
+    const auto summary = capture_after_slow_moves(rig, tmp / "s");
     EXPECT_GT(summary.stale_discarded, 0u);
+    expect_only_frames_exposed_after_the_settle(tmp / "s");
 
     const SessionManifest m = read_session(tmp / "s");
     EXPECT_EQ(m.schema_version, kSessionSchemaVersion);
@@ -210,9 +234,6 @@ TEST(Capture, FreeRunningCameraDuringSlowMovesGivesOnlyFramesExposedAfterTheSett
         EXPECT_NEAR(t.angle_deg_before_frames, r.angle_deg_requested, 1e-5);
         EXPECT_NEAR(t.angle_deg_after_frames, r.angle_deg_requested, 1e-5);
         previous_last = r.last_timestamp_ns;
-        const Image img = read_session_frame(tmp / "s", m, r);
-        for (float v : img.channel("counts"))
-            ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
     }
     // The 45° moves took 0.25 s at up to 200 Hz: the frames of each were queued and thrown away (≈
     // 50 on an idle machine; a loaded one slows the simulated sensor).
@@ -227,9 +248,7 @@ TEST(Capture, AFrameHeldUpOnTheCamerasThreadDuringAMoveIsNotAveraged) {
     // stamp must say so, or the gate takes it for a frame exposed after the settle and one frame up
     // to 45° off moves the 8-frame mean by tens of counts (noise-free Malus counts: within 0.5).
     test::TempDir tmp;
-    SimulatedStageOptions slow;
-    slow.deg_per_s = 180.0;
-    Rig rig(slow, 0.0, 200.0, 64);
+    Rig rig = slow_stage_rig();
     SimulatedCameraConfig config;
     config.width = 6;
     config.height = 4;
@@ -250,22 +269,9 @@ TEST(Capture, AFrameHeldUpOnTheCamerasThreadDuringAMoveIsNotAveraged) {
             std::fill(out.begin(), out.end(), static_cast<float>(malus_counts(angle)));
         },
         simulated_stage_angle_source(*rig.stage));
-    CapturePlan plan;
-    plan.frames_per_angle = 8;
-    plan.settle_s = 0.05;
-    auto session = new_session(tmp / "s", rig, plan);
-    CaptureOptions options;
-    options.progress_stream = nullptr;
-    run_capture(*rig.camera, *rig.stage, plan, session, options);
+    capture_after_slow_moves(rig, tmp / "s");
     EXPECT_GE(held_frames.load(), 3);  // the three 45° moves each had their held-up frame
-
-    const SessionManifest m = read_session(tmp / "s");
-    ASSERT_EQ(m.records.size(), 4u);
-    for (const auto& r : m.records) {
-        const Image img = read_session_frame(tmp / "s", m, r);
-        for (float v : img.channel("counts"))
-            ASSERT_NEAR(v, malus_counts(r.angle_deg_requested), 0.5) << r.file;
-    }
+    expect_only_frames_exposed_after_the_settle(tmp / "s");
 }
 
 /// Test double: a stage that creeps 0.1° per read-back once it has arrived, as a mount losing its
