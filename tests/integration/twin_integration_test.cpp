@@ -10,9 +10,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 
 #include "test_support.h"
 #include "tirpol/core/atomic_file.h"
@@ -196,8 +199,23 @@ TEST(DigitalTwin, RecoversStokesAndPaintParametersWithinUncertainties) {
 /// region), so that "no region flagged" and "only the perturbed region flagged" are what a correct
 /// report gives 95 % of the time over noise realisations, not the 63 % of the per-region default (1
 /// − 0.95⁹).
+/// TIRPOL_TWIN_TEST_SEED (a non-negative integer), when set: the report tests' twin on other
+/// noise realisations (TwinOptions::seed), to see how Σt² scatters from run to run (docs/twin.md).
+std::optional<std::uint64_t> seed_knob() {
+    const char* text = std::getenv("TIRPOL_TWIN_TEST_SEED");
+    if (!text) return std::nullopt;
+    char* end = nullptr;
+    const unsigned long long value = std::strtoull(text, &end, 10);
+    if (end == text || *end != '\0') {
+        ADD_FAILURE() << "TIRPOL_TWIN_TEST_SEED='" << text << "': expected a non-negative integer";
+        return std::nullopt;
+    }
+    return value;
+}
+
 TwinOptions model_check_options(const std::filesystem::path& out) {
     TwinOptions options;
+    options.seed = seed_knob();
     options.out_dir = out;
     options.scene_file = test::source_dir() / "config/scenes/panels_night.yaml";
     options.width = 128;
@@ -225,13 +243,22 @@ TEST(DigitalTwin, ReportSeesNoDifferenceWhereThereIsNone) {
     // unit normal. Σt² over the 27 tests (9 regions × S0, S1, S2) follows χ²₂₇ when every σ_mean is
     // right; its 0.1 % and 99.9 % quantiles are 9.80 and 55.48 (NIST/SEMATECH e-Handbook
     // §1.3.6.7.4). σ 2.4× too large gives E[Σt²] = 27/2.4² = 4.7; σ 1.5× too small, 61.
+    // Per quantity: t, the σ of the region mean from the measurement, the render (truth and
+    // comparison) and the registration, and the per-pixel z scatter's σ factor, to tell which σ
+    // term a Σt² far from 27 comes from.
     double sum_t2 = 0.0;
     int tests = 0;
-    for (const auto& g : r.regions)
+    for (const auto& g : r.regions) {
+        std::printf("  %-24s", g.name.c_str());
         for (const auto& q : g.quantities) {
             sum_t2 += q.mean.t * q.mean.t;
             ++tests;
+            std::printf(" | t %+5.2f σ meas %.2e sim %.2e reg %.2e z×%.2f", q.mean.t,
+                        q.mean.measured_independent.sigma, q.mean.simulated.sigma,
+                        q.mean.registration.sigma, q.sigma.sigma_factor);
         }
+        std::printf("\n");
+    }
     ASSERT_EQ(tests, 27);
     std::printf(
         "  sum of t^2 over the 27 region-mean tests: %.2f (chi2_27: mean 27, 0.1%%-99.9%% "

@@ -485,6 +485,7 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
     fs::create_directories(c.out);
     c.scene.camera = c.scene.camera.resized(opt.width, opt.height);
     c.scene.sampling.samples_per_pixel = opt.spp;
+    if (opt.seed) c.scene.sampling.seed = *opt.seed;
     c.views = opt.views.empty() ? default_views(c.scene) : opt.views;
     c.render_options.threads = opt.threads;
     c.target = object_index(c.scene, opt.target);
@@ -493,7 +494,9 @@ void run_chain(const TwinOptions& opt, TwinResult& result, std::string& stage) {
 
     render_truth(c);
     const double air_k = c.scene.sky.temperature_k(1.0);  // clear sky: the air temperature
-    TwinWorld world(twin_sensor(c.scene.band, air_k), c.scene.band, opt.width, opt.height);
+    simulation::SensorModel sensor = twin_sensor(c.scene.band, air_k);
+    if (opt.seed) sensor.seed = *opt.seed;
+    TwinWorld world(sensor, c.scene.band, opt.width, opt.height);
     stage = "instrument set-up (stage on a pty, GigE Vision camera)";
     TwinInstrument instrument(world, opt.stage_protocol, opt.gige);
     result.camera_transport = instrument.camera_transport();

@@ -24,9 +24,11 @@
 /// must span the scene's S0. A calibration that does not span them extrapolates, and the report
 /// says so.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -158,6 +160,10 @@ struct TwinOptions {
     bool render_fitted_target = true;
     /// False-alarm rate per region and power of the report's region-mean tests.
     report::TestDesign report_design;
+    /// Another run of the same twin: the renders' sampling seed (the scene file's otherwise) and
+    /// the camera's noise seed (twin_sensor's otherwise), so that runs can be compared as
+    /// independent.
+    std::optional<std::uint64_t> seed;
 };
 
 /// Extracted polarized emissivity of the target in one view (plane-of-emission frame, σ = 1
