@@ -255,9 +255,10 @@ public:
                 }
             }
 
-            // Every bounce has its own pair of the scrambled sequence, so the lobe choice behind a
-            // mirror (the glossy paint seen in it) is as evenly spread over a pixel's samples as
-            // the first.
+            // Every bounce has its own stratified pair (the first two in the path's Sobol prefix,
+            // jointly with the sub-pixel position and wavelength; deeper ones padded), so the lobe
+            // choice behind a mirror (the glossy paint seen in it) is as evenly spread over a
+            // pixel's samples as the first.
             const auto [u1, u2] = sampler.scatter(bounce);
             const materials::BrdfSample s = brdf.sample(wo_local, lambda, u1, u2);
             if (!(s.pdf > 0.0)) break;
