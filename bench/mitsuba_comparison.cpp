@@ -47,6 +47,7 @@ namespace {
 using namespace tirpol;
 using namespace tirpol::simulation;
 using bench::kStokesChannels;
+using bench::noise_mask;
 using bench::relative_linear_noise;
 using bench::RenderPair;
 
@@ -476,25 +477,6 @@ struct Comparison {
     double max_relative_s0_difference = 0.0;  ///< |ΔS0|/S0 per region
     double max_ratio_difference = 0.0;        ///< |Δ(Sk/S0)| per region
 };
-
-/// The pixels whose centre ray hits a surface (noise_objects empty) or one of noise_objects.
-std::vector<bool> noise_mask(const Scene& scene, const Image& ids,
-                             const std::vector<std::string>& noise_objects) {
-    std::vector<bool> measured(scene.objects.size(), noise_objects.empty());
-    for (const auto& name : noise_objects) {
-        const auto it = std::find_if(scene.objects.begin(), scene.objects.end(),
-                                     [&](const SceneObject& o) { return o.name == name; });
-        if (it == scene.objects.end())
-            throw Error(scene.file.string() + ": no object named " + name + " to measure noise on");
-        measured[static_cast<std::size_t>(it - scene.objects.begin())] = true;
-    }
-    std::vector<bool> mask(ids.pixel_count());
-    for (std::size_t i = 0; i < mask.size(); ++i) {
-        const float id = ids.channel("object_id")[i];
-        mask[i] = id >= 0.0f && measured[static_cast<std::size_t>(id)];
-    }
-    return mask;
-}
 
 /// Both renderers to 1 % noise on `comparison`'s scene, and the CPU-time ratio against Mitsuba's
 /// best sampler (the body of ReflectionEqualNoise and EmissionEqualNoise).

@@ -21,8 +21,9 @@
 //    ⟨(a − b)²⟩/⟨var_a + var_b⟩ (1 when the variance channels are unbiased) ± its standard error at
 //    8, 32, 128 spp, both estimators.
 //  - ReplicateCount (figures): noise at 64 and 256 spp for 1, 4, 8, 16, 32 replicates.
-//  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare
-//    and panels_night (emission-dominated), and the fitted exponent of noise ∝ spp^a.
+//  - ConvergenceExponent (figures): relative S1/S2 noise at 16, 64, 256 spp on reflection_compare,
+//    panels_night (emission-dominated, outdoors) and emission_compare (over its spheres, as
+//    EmissionEqualNoise measures it), and the fitted exponent of noise ∝ spp^a.
 // Run: build/bench/tirpol_simulation_bench (from inside the source tree).
 
 #include <benchmark/benchmark.h>
@@ -624,9 +625,11 @@ void BM_ReplicateCount(benchmark::State& state) {
 }
 BENCHMARK(BM_ReplicateCount)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
-/// Relative S1/S2 noise (two seeds, surface pixels) of `scene` at 16, 64 and 256 spp, the exponent
-/// of a least-squares fit noise ∝ spp^a (goal ≤ −0.8), and the surfaces' two-seed variance ratio.
-void convergence_exponent(Scene scene, const char* name) {
+/// Relative S1/S2 noise (two seeds) of `scene` at 16, 64 and 256 spp over the pixels of
+/// `noise_objects` (empty: every surface pixel; bench::noise_mask), the exponent of a least-squares
+/// fit noise ∝ spp^a (goal ≤ −0.8), and those pixels' two-seed variance ratio.
+void convergence_exponent(Scene scene, const char* name,
+                          const std::vector<std::string>& noise_objects = {}) {
     std::vector<double> log_spp, log_noise;
     for (const int spp : {16, 64, 256}) {
         scene.sampling.samples_per_pixel = spp;
@@ -636,10 +639,9 @@ void convergence_exponent(Scene scene, const char* name) {
         pair.a = render(scene, {}, &stats);
         scene.sampling.seed = 2;
         pair.b = render(scene);
-        std::vector<bool> mask(pair.a.pixel_count());
+        const std::vector<bool> mask = bench::noise_mask(scene, pair.a, noise_objects);
         double diff = 0.0, var = 0.0;
         for (std::size_t i = 0; i < mask.size(); ++i) {
-            mask[i] = pair.a.channel("object_id")[i] >= 0.0f;
             if (!mask[i]) continue;
             for (const char* c : {"S1", "S2"}) {
                 const double d = pair.a.channel(c)[i] - pair.b.channel(c)[i];
@@ -673,6 +675,9 @@ void BM_ConvergenceExponent(benchmark::State& state) {
         Scene panels = load_scene(find_config("scenes/panels_night.yaml"));
         panels.camera = panels.camera.resized(160, 128);
         convergence_exponent(panels, "panels_night 160x128");
+        // Over the spheres, as EmissionEqualNoise measures it (the walls' S1, S2 are exactly 0).
+        convergence_exponent(load_scene(find_config("scenes/emission_compare.yaml")),
+                             "emission_compare 120x96 spheres", {"paint", "metal"});
         state.SetIterationTime(1.0);
     }
 }

@@ -4,13 +4,16 @@
 /// measured from them: shared by the simulation benchmarks and the Mitsuba 3 comparison
 /// (mitsuba_comparison.cpp), so that both renderers' noise is measured the same way.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "tirpol/core/error.h"
 #include "tirpol/core/image.h"
+#include "tirpol/simulation/scene.h"
 
 namespace tirpol::bench {
 
@@ -43,6 +46,26 @@ inline double relative_linear_noise(const RenderPair& p, const std::vector<bool>
         ++n;
     }
     return std::sqrt(var / static_cast<double>(n)) / (s0 / static_cast<double>(n));
+}
+
+/// The pixels whose centre ray hits a surface (noise_objects empty) or one of noise_objects.
+inline std::vector<bool> noise_mask(const simulation::Scene& scene, const Image& ids,
+                                    const std::vector<std::string>& noise_objects) {
+    std::vector<bool> measured(scene.objects.size(), noise_objects.empty());
+    for (const auto& name : noise_objects) {
+        const auto it =
+            std::find_if(scene.objects.begin(), scene.objects.end(),
+                         [&](const simulation::SceneObject& o) { return o.name == name; });
+        if (it == scene.objects.end())
+            throw Error(scene.file.string() + ": no object named " + name + " to measure noise on");
+        measured[static_cast<std::size_t>(it - scene.objects.begin())] = true;
+    }
+    std::vector<bool> mask(ids.pixel_count());
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        const float id = ids.channel("object_id")[i];
+        mask[i] = id >= 0.0f && measured[static_cast<std::size_t>(id)];
+    }
+    return mask;
 }
 
 }  // namespace tirpol::bench

@@ -75,13 +75,17 @@ StokesVector leaving_times(const MuellerMatrix& leaving, const StokesVector& v,
             leaving(2, 1) * v(1) + leaving(2, 2) * v(2), v(3)};
 }
 
-/// The temperature whose Planck spectrum shapes the wavelength draw: the mean of the objects'
-/// ranges (290 K without objects).
-double reference_temperature_k(const Scene& scene) {
+/// The spectrum that shapes the wavelength draw at `lambda_um`: the sum of the objects' Planck
+/// spectra at the middle of their temperature ranges (290 K without objects). A sum and not
+/// Planck's law at the mean temperature: a room of walls at 275–340 K and cold spheres (1 K) has a
+/// mean of 228 K, whose spectrum is 2.2× steeper across 8–14 µm than the walls' radiance, while the
+/// sum follows the objects that emit and ignores those that do not.
+double wavelength_shape(const Scene& scene, double lambda_um) {
+    if (scene.objects.empty()) return planck_radiance(lambda_um, 290.0);
     double sum = 0.0;
     for (const auto& o : scene.objects)
-        sum += 0.5 * (o.temperature.min_k() + o.temperature.max_k());
-    return scene.objects.empty() ? 290.0 : sum / static_cast<double>(scene.objects.size());
+        sum += planck_radiance(lambda_um, 0.5 * (o.temperature.min_k() + o.temperature.max_k()));
+    return sum;
 }
 
 /// Everything a path needs that does not change during a render.
@@ -100,16 +104,14 @@ public:
         if (!(band_weight_um > 0.0))
             fail("band {}–{} µm: the spectral response is zero everywhere", scene.band.lo_um(),
                  scene.band.hi_um());
-        // Nodes are drawn ∝ weight·L_bb(λ, T_ref) with T_ref the objects' mean temperature: a
-        // thermal scene's radiance has nearly Planck's spectral shape, so L(λ)/L_bb(λ, T_ref)
-        // changes little from node to node and the spectral part of the noise, which a replicate of
-        // few points stratifies only coarsely, mostly cancels. Any T_ref is unbiased (the estimate
+        // Nodes are drawn ∝ weight·B(λ), B the sum of the objects' Planck spectra
+        // (wavelength_shape): a thermal scene's radiance is a mixture of such spectra, so L(λ)/B(λ)
+        // changes little from node to node and the spectral part of the noise, which a replicate
+        // of few points stratifies only coarsely, mostly cancels. Any B is unbiased (the estimate
         // divides by the probability); uniform in weight where Planck's law underflows (short
-        // bands, cold T_ref).
-        const double t_ref_k = reference_temperature_k(scene);
+        // bands, cold scenes).
         std::vector<double> shape;
-        for (const auto& node : nodes)
-            shape.push_back(planck_radiance(node.wavelength_um, t_ref_k));
+        for (const auto& node : nodes) shape.push_back(wavelength_shape(scene, node.wavelength_um));
         if (!std::all_of(shape.begin(), shape.end(),
                          [](double b) { return std::isfinite(b) && b > 1e-30; }))
             shape.assign(nodes.size(), 1.0);
@@ -255,9 +257,10 @@ public:
                 }
             }
 
-            // Every bounce has its own pair of the scrambled sequence, so the lobe choice behind a
-            // mirror (the glossy paint seen in it) is as evenly spread over a pixel's samples as
-            // the first.
+            // Every bounce has its own stratified pair (the first two in the path's Sobol prefix,
+            // jointly with the sub-pixel position and wavelength; deeper ones padded), so the lobe
+            // choice behind a mirror (the glossy paint seen in it) is as evenly spread over a
+            // pixel's samples as the first.
             const auto [u1, u2] = sampler.scatter(bounce);
             const materials::BrdfSample s = brdf.sample(wo_local, lambda, u1, u2);
             if (!(s.pdf > 0.0)) break;
@@ -286,15 +289,19 @@ public:
                 frame_reference = surface_frame(-wi, n).reference;
             last_was_delta = s.is_delta;
 
-            // Russian roulette after the third hit ends paths without bias: a path survives with
+            // Russian roulette from the fifth hit on ends paths without bias: a path survives with
             // probability q = clamp(S0 throughput, 0.25, 1) and is then weighted by 1/q (Arvo &
             // Kirk, SIGGRAPH 1990). Deep mirror traps (a closed metal box) are followed as far as
             // they carry radiance, where a fixed bounce limit would drop it. The floor keeps
             // survivors' weights bounded (≤ 4× the throughput): with q = throughput alone a grey
             // diffuse enclosure (albedo 0.3) kept 1 path in 37 at ×37 weight, and pixels that drew
-            // no survivor read 1 % low with a variance estimate that could not show it. Cost:
-            // ≤ 1.33 extra hits a path.
-            if (bounce >= 2) {
+            // no survivor read 1 % low with a variance estimate that could not show it. Not from
+            // the third hit: in a closed room (emission_compare) a third of the spheres'
+            // polarization arrives after two or more wall reflections, and ×4 survivors there
+            // doubled the noise at 256 spp (ConvergenceExponent, docs/simulation.md). Cost: a path
+            // in a closed scene takes at least five hits (1.6× the CPU time there), open scenes
+            // hardly change.
+            if (bounce >= 4) {
                 constexpr double kMinSurvival = 0.25;
                 const double survive = std::clamp(throughput(0, 0), kMinSurvival, 1.0);
                 if (!(survive > 0.0) || sampler.roulette(bounce) >= survive) break;

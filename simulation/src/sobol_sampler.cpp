@@ -65,27 +65,71 @@ std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t seed) {
 
 constexpr double kTwoToMinus32 = 0x1.0p-32;
 
-/// The second coordinate of sobol_02_point, bit-reversed: the Owen scramble works on reversed
-/// fractions, and bit reversal is linear over XOR, so the reversed generator columns (1, 3, 5, 15,
-/// 17, …: each the previous XOR itself shifted left by one) give it without the two reversals that
-/// owen_scramble(sobol_02_point(index)[1], seed) spends.
-std::uint32_t sobol_second_reversed(std::uint32_t index) {
-    std::uint32_t second = 0;
-    for (std::uint32_t rest = index, column = 1u; rest != 0; rest >>= 1, column ^= column << 1)
-        if ((rest & 1u) != 0) second ^= column;
-    return second;
+/// Joe & Kuo's direction numbers (new-joe-kuo-6.21201) of Sobol dimensions 2–7 (1-based, as in
+/// their file; dimension 1 is van der Corput's): degree s of the primitive polynomial, its inner
+/// coefficients a (bits, highest degree first) and the initial odd m_1 … m_s.
+struct JoeKuoDimension {
+    int s;
+    std::uint32_t a;
+    std::array<std::uint32_t, 4> m;
+};
+constexpr std::array<JoeKuoDimension, kSobolDimensions - 1> kJoeKuo = {{{1, 0, {1}},
+                                                                        {2, 1, {1, 3}},
+                                                                        {3, 1, {1, 3, 1}},
+                                                                        {3, 2, {1, 1, 1}},
+                                                                        {4, 1, {1, 1, 3, 3}},
+                                                                        {4, 4, {1, 3, 5, 13}}}};
+
+/// Each dimension's 32 direction numbers v_k (the generator matrix's columns, as fractions),
+/// bit-reversed: the Owen scramble works on reversed fractions, and reversal is linear over XOR, so
+/// a point's reversed coordinate is the XOR of the reversed columns its index selects. Bratley &
+/// Fox's recurrence (ACM TOMS 14(1), 1988, algorithm 659): v_k = m_k/2^k for k ≤ s, then
+/// v_k = v_(k−s) ⊕ v_(k−s)/2^s ⊕ a_1·v_(k−1) ⊕ … ⊕ a_(s−1)·v_(k−s+1).
+constexpr std::array<std::array<std::uint32_t, 32>, kSobolDimensions> reversed_directions() {
+    std::array<std::array<std::uint32_t, 32>, kSobolDimensions> table{};
+    const auto reverse = [](std::uint32_t x) {
+        std::uint32_t r = 0;
+        for (int b = 0; b < 32; ++b) r |= ((x >> b) & 1u) << (31 - b);
+        return r;
+    };
+    for (int k = 0; k < 32; ++k) table[0][static_cast<std::size_t>(k)] = 1u << k;
+    for (int d = 1; d < kSobolDimensions; ++d) {
+        const JoeKuoDimension& jk = kJoeKuo[static_cast<std::size_t>(d - 1)];
+        std::array<std::uint32_t, 32> v{};  // v[k] is v_(k+1)
+        for (int k = 0; k < 32; ++k) {
+            const auto ku = static_cast<std::size_t>(k);
+            if (k < jk.s) {
+                v[ku] = jk.m[ku] << (31 - k);
+                continue;
+            }
+            const std::uint32_t back = v[static_cast<std::size_t>(k - jk.s)];
+            v[ku] = back ^ (back >> jk.s);
+            for (int j = 1; j < jk.s; ++j)
+                if (((jk.a >> (jk.s - 1 - j)) & 1u) != 0)
+                    v[ku] ^= v[static_cast<std::size_t>(k - j)];
+        }
+        for (int k = 0; k < 32; ++k)
+            table[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)] =
+                reverse(v[static_cast<std::size_t>(k)]);
+    }
+    return table;
+}
+constexpr auto kReversedDirections = reversed_directions();
+
+/// Sobol coordinate `dimension` of point `index`, bit-reversed.
+std::uint32_t sobol_reversed(std::uint32_t index, int dimension) {
+    if (dimension == 0) return index;  // van der Corput: the reversal of its reversal
+    const auto& columns = kReversedDirections[static_cast<std::size_t>(dimension)];
+    std::uint32_t x = 0;
+    for (std::uint32_t rest = index; rest != 0; rest &= rest - 1)
+        x ^= columns[static_cast<std::size_t>(__builtin_ctz(rest))];
+    return x;
 }
 
 }  // namespace
 
-std::array<std::uint32_t, 2> sobol_02_point(std::uint32_t index) {
-    // Second coordinate: generator matrix = upper-triangular Pascal matrix mod 2, whose columns are
-    // 1/2, 3/4, 5/8, 15/16, 17/32, … (each is the previous XOR itself shifted right by one).
-    std::uint32_t second = 0;
-    for (std::uint32_t rest = index, column = 0x80000000u; rest != 0;
-         rest >>= 1, column ^= column >> 1)
-        if ((rest & 1u) != 0) second ^= column;
-    return {reverse_bits(index), second};
+std::uint32_t sobol_coordinate(std::uint32_t index, int dimension) {
+    return reverse_bits(sobol_reversed(index, dimension));
 }
 
 std::uint32_t owen_scramble(std::uint32_t fraction, std::uint32_t seed) {
@@ -104,7 +148,27 @@ ReplicateSampler::ReplicateSampler(std::uint64_t seed, std::uint64_t pixel, std:
                   (replicate * 0x9FB21C651E98DF25ULL))),
       m_points(points),
       m_mask(permutation_mask(points)),
-      m_half_bits(m_mask != 0 ? permutation_half_bits(m_mask) : 0) {}
+      m_half_bits(m_mask != 0 ? permutation_half_bits(m_mask) : 0) {
+    // The prefix's keys: one permutation for all its numbers, a scramble per number.
+    m_prefix_permutation = mix64(m_key ^ 0x9E3779B97F4A7C15ULL);
+    for (std::size_t i = 0; i < m_prefix_scrambles.size(); i += 2) {
+        const std::uint64_t key = mix64(m_prefix_permutation ^ (i + 1) * 0xBF58476D1CE4E5B9ULL);
+        m_prefix_scrambles[i] = static_cast<std::uint32_t>(key);
+        if (i + 1 < m_prefix_scrambles.size())
+            m_prefix_scrambles[i + 1] = static_cast<std::uint32_t>(key >> 32);
+    }
+}
+
+std::uint32_t ReplicateSampler::prefix_point(std::uint32_t index) const {
+    return permuted(index, m_prefix_permutation);
+}
+
+double ReplicateSampler::prefix(std::uint32_t point, int number) const {
+    const auto n = static_cast<std::size_t>(number);
+    return reverse_bits(laine_karras_permutation(sobol_reversed(point, kPrefixSobolDimensions[n]),
+                                                 m_prefix_scrambles[n])) *
+           kTwoToMinus32;
+}
 
 ReplicateSampler::SlotKeys ReplicateSampler::slot_keys(std::uint32_t slot) const {
     const auto hash = [this](std::uint32_t s) {
@@ -132,7 +196,7 @@ std::array<double, 2> ReplicateSampler::pair(std::uint32_t index, std::uint32_t 
     const std::uint32_t x =
         reverse_bits(laine_karras_permutation(j, static_cast<std::uint32_t>(keys.scramble)));
     const std::uint32_t y = reverse_bits(laine_karras_permutation(
-        sobol_second_reversed(j), static_cast<std::uint32_t>(keys.scramble >> 32)));
+        sobol_reversed(j, 1), static_cast<std::uint32_t>(keys.scramble >> 32)));
     return {x * kTwoToMinus32, y * kTwoToMinus32};
 }
 
