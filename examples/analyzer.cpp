@@ -16,6 +16,7 @@
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::examples {
 
@@ -62,8 +63,7 @@ void analyzer_example(const std::filesystem::path& out_dir) {
             worst_dolp_error,
             static_cast<double>(std::abs(measured.channel("DoLP")[i] - truth.channel("DoLP")[i])));
     for (auto* img : {&truth, &measured}) {
-        img->attributes()["units"] = std::string("W/(m^2 sr)");
-        img->attributes()["band_um"] = std::vector<double>{8.0, 14.0};
+        write_stokes_image_header(*img, {.units = "W/(m^2 sr)", .band_um = std::array{8.0, 14.0}});
     }
     measured.attributes()["polarizer_extinction_ratio"] = 400.0;
     const auto dir = out_dir / "analyzer";

@@ -14,6 +14,7 @@
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/session.h"
 #include "tirpol/core/stokes.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
@@ -120,9 +121,9 @@ Image reduce_session_counts(const std::filesystem::path& dir,
     a["session"] = dir.string();
     a["camera"] = fmt::format("{} {} {}", m.camera.vendor, m.camera.model, m.camera.serial);
     a["analyzer"] = std::string("ideal, at the stage's read-back angles (no calibration)");
-    a["std_includes"] = std::string(
-        "temporal noise of the counts only (frame scatter / √frames); not the offset, gain or "
-        "polarizer terms a calibration removes");
+    write_stokes_image_header(
+        out, {.std_includes = "temporal noise of the counts only (frame scatter / √frames); not "
+                              "the offset, gain or polarizer terms a calibration removes"});
     return out;
 }
 

@@ -9,21 +9,13 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
 namespace {
 bool same_band(double lo_um, double hi_um, const Band& band) {
     return std::abs(lo_um - band.lo_um()) <= 1e-6 && std::abs(hi_um - band.hi_um()) <= 1e-6;
-}
-
-// The band_um attribute of a Stokes EXR, when it holds two numbers.
-std::optional<std::pair<double, double>> band_attribute(const Attributes& attributes) {
-    const auto it = attributes.find("band_um");
-    if (it == attributes.end()) return std::nullopt;
-    const auto* b = std::get_if<std::vector<double>>(&it->second);
-    if (!b || b->size() != 2) return std::nullopt;
-    return std::pair{(*b)[0], (*b)[1]};
 }
 }  // namespace
 
@@ -54,17 +46,17 @@ std::vector<EmissivityResult> extract_emissivity(const EmissivityExtractionOptio
         chain.scene_sessions = {o.input};
     } else {
         given.stokes = {read_exr(o.input)};
-        const auto own = band_attribute(given.stokes.front().attributes());
+        const auto own = read_stokes_image_header(given.stokes.front(), o.input).band_um;
         if (o.band_um) {
             chain.band = Band(o.band_um->first, o.band_um->second);
-            if (own && !same_band(own->first, own->second, chain.band))
+            if (own && !same_band((*own)[0], (*own)[1], chain.band))
                 fail(
                     "{}: its band_um ({:g}–{:g} µm) differs from --band-um {:g} {:g}; the Stokes "
                     "image's radiances "
                     "are in its own band: leave --band-um out",
-                    o.input, own->first, own->second, o.band_um->first, o.band_um->second);
+                    o.input, (*own)[0], (*own)[1], o.band_um->first, o.band_um->second);
         } else if (own) {
-            chain.band = Band(own->first, own->second);
+            chain.band = Band((*own)[0], (*own)[1]);
         } else {
             fail("{}: no band_um attribute; give --band-um LO HI", o.input);
         }

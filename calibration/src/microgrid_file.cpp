@@ -5,6 +5,7 @@
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
@@ -35,11 +36,8 @@ MicrogridFileReduction reduce_microgrid_file(const std::filesystem::path& input,
             "the four angles of the 2×2 cell, e.g. 90,45,135,0 for a Sony IMX250MZR",
             input.string());
     const MicrogridPattern& used = pattern ? *pattern : *recorded;
-    const auto units = header.find("units");
     options.reduction.units =
-        units != header.end() && std::holds_alternative<std::string>(units->second)
-            ? std::get<std::string>(units->second)
-            : std::string("counts");
+        read_stokes_image_header(frame, input.string()).units.value_or("counts");
     options.source = input.string();
     Image stokes =
         reduce_microgrid(frame.channel("counts"), frame.width(), frame.height(), used, options);

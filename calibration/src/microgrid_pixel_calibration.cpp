@@ -7,6 +7,7 @@
 #include "stokes_uncertainty.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
@@ -347,18 +348,18 @@ Image MicrogridPixelReducer::reduce(std::span<const float> mosaic,
         "Powell & Gruev, Opt. Express 21(18), 21039 (2013): per-super-pixel calibration matrix");
     out.attributes()["singular_cells"] = m_singular_cells;
     out.attributes()["cells_with_bad_pixels"] = m_cells_with_bad_pixels;
-    if (!m_units.empty()) out.attributes()["units"] = m_units;
+    if (!m_units.empty()) write_stokes_image_header(out, {.units = m_units});
     return out;
 }
 
 void MicrogridPixelReducer::add_uncertainties(Image& out, std::span<const float> mosaic_std) const {
     const bool pixel_covariance = !m_pixel_covariance[0].empty();
     const bool calibration_error = !m_residual_var.empty() || pixel_covariance;
-    out.attributes()["std_includes"] =
-        std::string(!mosaic_std.empty() && calibration_error
-                        ? "the frame's σ and the per-pixel calibration's fit error"
-                    : calibration_error ? "the per-pixel calibration's fit error"
-                                        : "the frame's σ");
+    write_stokes_image_header(
+        out, {.std_includes = !mosaic_std.empty() && calibration_error
+                                  ? "the frame's σ and the per-pixel calibration's fit error"
+                              : calibration_error ? "the per-pixel calibration's fit error"
+                                                  : "the frame's σ"});
     const std::vector<float>&s0 = out.channel("S0"), &s1 = out.channel("S1"),
           &s2 = out.channel("S2");
     std::vector<float>* sigma[5] = {&out.add_channel("S0_std"), &out.add_channel("S1_std"),

@@ -12,6 +12,7 @@
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/session.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
@@ -118,7 +119,7 @@ MicrogridCalibrationRun run_microgrid_calibration(const MicrogridCalibrationRunO
     run.calibration = calibrate_microgrid_sessions({o.sessions.begin(), o.sessions.end()},
                                                    Band(lo_um, hi_um, rsr));
     Image image = run.calibration.pixels.to_image();
-    image.attributes()["band_um"] = fmt::format("{} {}", lo_um, hi_um);
+    write_stokes_image_header(image, {.band_um = std::array{lo_um, hi_um}});
     write_exr(o.output, image);
     return run;
 }

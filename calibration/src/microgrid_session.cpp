@@ -4,6 +4,7 @@
 
 #include "tirpol/core/error.h"
 #include "tirpol/core/session.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
@@ -11,7 +12,6 @@ namespace {
 // The session reduction's own attributes (the Stokes EXR's names), written and read only here.
 constexpr const char* kRecordsAveraged = "records_averaged";
 constexpr const char* kFramesAveraged = "frames_averaged";
-constexpr const char* kUnits = "units";
 }  // namespace
 
 bool is_microgrid_session(const std::filesystem::path& dir) {
@@ -102,12 +102,7 @@ MicrogridSessionRecord microgrid_session_record(const Image& stokes) {
     };
     // Written by the ideal reduction ("counts") and by a per-pixel calibration that knows its
     // Stokes units; absent otherwise.
-    std::string units;
-    if (const auto it = stokes.attributes().find(kUnits); it != stokes.attributes().end()) {
-        if (!std::holds_alternative<std::string>(it->second))
-            fail("Stokes image: attribute '{}' is not text", kUnits);
-        units = std::get<std::string>(it->second);
-    }
+    std::string units = read_stokes_image_header(stokes, "Stokes image").units.value_or("");
     return {MicrogridPattern::from_attributes(stokes.attributes()), integer(kRecordsAveraged),
             integer(kFramesAveraged), std::move(units)};
 }

@@ -12,6 +12,7 @@
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/stokes.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/core/utc_time.h"
 #include "validate.h"
 
@@ -507,15 +508,15 @@ Image reduce_session(const fs::path& dir, const RadiometricCalibration& radiomet
     a["saturated_pixels"] = n_saturated;
     a["session"] = dir.string();
     a["camera_id"] = camera_id(m);
-    a["band_um"] = std::vector<double>{radiometric.band_lo_um, radiometric.band_hi_um};
     a["offset_updated"] = options.update_offset ? 1 : 0;
     if (!warnings.empty()) a["calibration_warnings"] = warnings;
+    StokesImageHeader header{.band_um = std::array{radiometric.band_lo_um, radiometric.band_hi_um}};
     if (!radiometric.temperatures_k.empty()) {
         const auto [t_lo, t_hi] = std::minmax_element(radiometric.temperatures_k.begin(),
                                                       radiometric.temperatures_k.end());
-        a["calibration_range_k"] = std::vector<double>{*t_lo, *t_hi};
-        a["calibration_outside_range_fraction"] = outside_range;
+        header.calibration_range = CalibrationRangeAttribute{{*t_lo, *t_hi}, outside_range};
     }
+    write_stokes_image_header(out, header);
     if (correction) {
         a["offset_update_source"] = correction->source;
         a["offset_update_mean_counts"] = correction->mean_counts;

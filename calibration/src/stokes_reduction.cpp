@@ -11,6 +11,7 @@
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/stokes.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "validate.h"
 
 namespace tirpol::calibration {
@@ -155,9 +156,10 @@ OutputPlanes add_output_channels(Image& out, const ValidatedInputs& v, const Ana
     OutputPlanes o{out.add_channel("S0"), out.add_channel("S1"), out.add_channel("S2"),
                    out.add_channel("DoLP"), out.add_channel("AoP")};
     if (v.have_std) {
-        out.attributes()["std_includes"] = std::string(
-            v.grid_covariance ? "temporal noise and the wire-grid calibration's fit error"
-                              : "temporal noise");
+        write_stokes_image_header(
+            out, {.std_includes = v.grid_covariance
+                                      ? "temporal noise and the wire-grid calibration's fit error"
+                                      : "temporal noise"});
         o.s0_std = &out.add_channel("S0_std");
         o.s1_std = &out.add_channel("S1_std");
         o.s2_std = &out.add_channel("S2_std");
@@ -230,8 +232,10 @@ detail::StokesStd detail::stokes_std(const double s[3], double pl, const StokesC
 void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
                                      const Eigen::Matrix3Xd& drm, const ReductionOptions& options,
                                      int unrealizable, bool wire_grid_corrected) {
+    std::vector<double> angles, drm_values;
+    for (const auto& p : model.positions) angles.push_back(p.nominal_angle_deg);
+    write_stokes_image_header(out, {.units = options.units, .analyzer_angles_deg = angles});
     auto& a = out.attributes();
-    a["units"] = options.units;
     a["units_S0"] = options.units;
     a["units_S1"] = options.units;
     a["units_S2"] = options.units;
@@ -240,11 +244,8 @@ void detail::write_stokes_attributes(Image& out, const AnalyzerModel& model,
     a["stokes_convention"] = std::string(
         "S1 = I0 - I90, S2 = I45 - I135; 0 deg along image rows (+x), 90 deg to the top of the "
         "image");
-    std::vector<double> angles, drm_values;
-    for (const auto& p : model.positions) angles.push_back(p.nominal_angle_deg);
     for (Eigen::Index r = 0; r < 3; ++r)
         for (Eigen::Index c = 0; c < drm.cols(); ++c) drm_values.push_back(drm(r, c));
-    a["analyzer_angles_deg"] = angles;
     a["drm"] = drm_values;
     a[kUnrealizablePixelsAttribute] = unrealizable;
     a[kWireGridCorrectedAttribute] = wire_grid_corrected ? 1 : 0;

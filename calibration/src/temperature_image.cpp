@@ -6,17 +6,16 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/output_guard.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 
 namespace {
 /// The FPA temperature given, else the one a session frame's header carries.
-std::optional<double> frame_fpa_temperature_k(const Image& raw, std::optional<double> given) {
+std::optional<double> frame_fpa_temperature_k(const Image& raw, const std::string& path,
+                                              std::optional<double> given) {
     if (given) return given;
-    const auto it = raw.attributes().find("fpa_temperature_k");
-    if (it != raw.attributes().end())
-        if (const double* t = std::get_if<double>(&it->second)) return *t;
-    return std::nullopt;
+    return read_stokes_image_header(raw, path).fpa_temperature_k;
 }
 }  // namespace
 
@@ -31,7 +30,7 @@ TemperatureImageResult brightness_temperature_image(const TemperatureImageOption
     if (raw.width() != cal.width || raw.height() != cal.height)
         fail("{}: image is {}×{} but calibration {} is {}×{}", o.image, raw.width(), raw.height(),
              o.calibration, cal.width, cal.height);
-    const auto fpa_k = frame_fpa_temperature_k(raw, o.fpa_temperature_k);
+    const auto fpa_k = frame_fpa_temperature_k(raw, o.image, o.fpa_temperature_k);
     const auto radiance = counts_to_radiance(cal, raw.channel("counts"), fpa_k);
     TemperatureImageResult result;
     result.output = o.output;
@@ -48,7 +47,7 @@ TemperatureImageResult brightness_temperature_image(const TemperatureImageOption
             o.image, o.calibration);
     out.attributes()["units_radiance"] = std::string("W/(m^2 sr)");
     out.attributes()["units_temperature_k"] = std::string("K");
-    out.attributes()["band_um"] = std::vector<double>{cal.band_lo_um, cal.band_hi_um};
+    write_stokes_image_header(out, {.band_um = std::array{cal.band_lo_um, cal.band_hi_um}});
     out.attributes()["calibration"] = o.calibration;
     out.attributes()["source"] = o.image;
     if (result.warning) out.attributes()["calibration_warning"] = *result.warning;

@@ -70,11 +70,7 @@ Vec2 CameraModel::project(const Vec3& point_camera) const {
     return {fx * d.x() + cx, fy * d.y() + cy};
 }
 
-Vec2 CameraModel::undistort(const Vec2& pixel) const {
-    const Vec2 goal((pixel.x() - cx) / fx, (pixel.y() - cy) / fy);
-    bool distorted = false;
-    for (double c : distortion) distorted = distorted || c != 0.0;
-    if (!distorted) return goal;
+Vec2 CameraModel::undistort_distorted(const Vec2& goal) const {
     // Fixed-point iteration (as cv::undistortPoints) gets close; Newton on the forward model then
     // makes it exact where fixed-point converges slowly (strong barrel distortion at the corners).
     Vec2 p = goal;

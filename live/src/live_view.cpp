@@ -10,6 +10,7 @@
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/core/utc_time.h"
 
 namespace tirpol::live {
@@ -33,9 +34,9 @@ DisplayImage stokes_image(const Image& stokes, const std::string& signal_units) 
                                   stokes.channel(n),
                                   {}});
     }
-    if (const auto it = stokes.attributes().find("analyzer_angles_deg");
-        it != stokes.attributes().end())
-        image.info["analyzer_angles_deg"] = std::get<std::vector<double>>(it->second);
+    if (const auto angles =
+            read_stokes_image_header(stokes, "live Stokes image").analyzer_angles_deg)
+        image.info["analyzer_angles_deg"] = *angles;
     return image;
 }
 }  // namespace
@@ -195,8 +196,8 @@ nlohmann::json LiveView::snapshot() {
     a["camera_serial"] = c.serial;
     a["pixel_format"] = c.pixel_format;
     a["frame_id"] = std::to_string(frame->frame_id);  // 64 bits: an EXR int holds 32
-    if (frame->fpa_temperature_k) a["fpa_temperature_k"] = *frame->fpa_temperature_k;
-    a["units"] = units;
+    write_stokes_image_header(image,
+                              {.units = units, .fpa_temperature_k = frame->fpa_temperature_k});
     if (m_stage) a["stage_uri"] = m_stage->info().uri;
 
     std::lock_guard lock(m_snapshot_mutex);

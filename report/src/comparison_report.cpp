@@ -14,6 +14,7 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/radiometry.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::report {
 
@@ -81,14 +82,10 @@ std::optional<std::vector<float>> variance_channel(const Image& image, const std
 
 // Degrees of freedom of an image's variance channels (the renderer's `variance_dof`); infinite when
 // the image does not say (a reduction's σ from many frames, or a model).
-double variance_dof(const Image& image) {
-    const auto it = image.attributes().find("variance_dof");
-    if (it == image.attributes().end()) return std::numeric_limits<double>::infinity();
-    if (const auto* i = std::get_if<int>(&it->second))
-        return *i > 0 ? *i : std::numeric_limits<double>::infinity();
-    if (const auto* d = std::get_if<double>(&it->second))
-        return *d > 0.0 ? *d : std::numeric_limits<double>::infinity();
-    return std::numeric_limits<double>::infinity();
+double variance_dof(const StokesImageHeader& header) {
+    return header.variance_dof && *header.variance_dof > 0
+               ? *header.variance_dof
+               : std::numeric_limits<double>::infinity();
 }
 
 double median_sqrt(const std::vector<float>& variance) {
@@ -112,27 +109,22 @@ struct QuantityDisplay {
     Colormap map;
 };
 
+// The two images' header attributes, read once.
+struct Headers {
+    StokesImageHeader measured, simulated;
+};
+
 // The band for the kelvin bias: the option, else the measured then the simulated `band_um`
 // attribute.
-std::optional<Band> comparison_band(const Image& measured, const Image& simulated,
-                                    const CompareOptions& options, CompareResult& result) {
-    auto from_attribute = [](const Image& image) -> std::optional<std::array<double, 2>> {
-        const auto it = image.attributes().find("band_um");
-        if (it == image.attributes().end() ||
-            !std::holds_alternative<std::vector<double>>(it->second))
-            return std::nullopt;
-        const auto& v = std::get<std::vector<double>>(it->second);
-        if (v.size() != 2 || !(v[0] > 0.0) || !(v[0] < v[1]) || !std::isfinite(v[1]))
-            return std::nullopt;
-        return std::array<double, 2>{v[0], v[1]};
-    };
+std::optional<Band> comparison_band(const Headers& headers, const CompareOptions& options,
+                                    CompareResult& result) {
     if (options.band_um) {
         result.band_um = options.band_um;
         result.band_source = "--band-um";
-    } else if (const auto m = from_attribute(measured)) {
+    } else if (const auto& m = headers.measured.band_um) {
         result.band_um = m;
         result.band_source = "band_um attribute of " + options.measured_name;
-    } else if (const auto s = from_attribute(simulated)) {
+    } else if (const auto& s = headers.simulated.band_um) {
         result.band_um = s;
         result.band_source = "band_um attribute of " + options.simulated_name;
     } else {
@@ -155,34 +147,19 @@ std::optional<KelvinBias> kelvin_bias(const QuantityStats& s0, const Band& band)
     return k;
 }
 
-// The calibration's range attributes of a reduced Stokes image
-// (calibration/session_calibration.cpp).
-std::optional<CalibrationRange> calibration_range(const Image& measured) {
-    const auto& a = measured.attributes();
-    const auto fraction = a.find("calibration_outside_range_fraction");
-    const auto range = a.find("calibration_range_k");
-    if (fraction == a.end() || range == a.end() ||
-        !std::holds_alternative<double>(fraction->second) ||
-        !std::holds_alternative<std::vector<double>>(range->second))
-        return std::nullopt;
-    const auto& k = std::get<std::vector<double>>(range->second);
-    if (k.size() != 2) return std::nullopt;
-    return CalibrationRange{std::get<double>(fraction->second), k[0], k[1]};
-}
-
-std::string text_attribute(const Image& image, const std::string& name) {
-    const auto it = image.attributes().find(name);
-    if (it == image.attributes().end() || !std::holds_alternative<std::string>(it->second))
-        return "";
-    return std::get<std::string>(it->second);
+// The calibration's range of a reduced Stokes image (calibration/session_calibration.cpp).
+std::optional<CalibrationRange> calibration_range(const StokesImageHeader& measured) {
+    if (!measured.calibration_range) return std::nullopt;
+    const auto& [range_k, outside_fraction] = *measured.calibration_range;
+    return CalibrationRange{outside_fraction, range_k[0], range_k[1]};
 }
 
 // What each side's σ holds, in words: the measured image's `std_includes` (written by the
 // reduction) plus the common calibration terms given; the render's variance is Monte Carlo noise
 // only.
-void describe_sigma_contents(CompareResult& result, const Image& measured, const Image& simulated,
+void describe_sigma_contents(CompareResult& result, const Headers& headers,
                              const CompareOptions& options) {
-    std::string m = text_attribute(measured, "std_includes");
+    std::string m = headers.measured.std_includes.value_or("");
     if (m.empty()) m = "the measured image's σ channels or the noise estimate named per quantity";
     m += " (independent from pixel to pixel)";
     if (options.measured_gain_sigma_relative > 0.0 || options.measured_offset_sigma > 0.0)
@@ -196,7 +173,7 @@ void describe_sigma_contents(CompareResult& result, const Image& measured, const
     std::string s =
         "Monte Carlo noise of the render only, not errors of its model or inputs (materials, "
         "temperatures, sky, geometry)";
-    if (const std::string note = text_attribute(simulated, "variance_note"); !note.empty())
+    if (const std::string note = headers.simulated.variance_note.value_or(""); !note.empty())
         s += "; " + note;
     result.simulated_sigma_contains = s;
 }
@@ -209,6 +186,7 @@ std::size_t region_index(const std::vector<Region>& regions, const std::string& 
 
 // The comparison's grid, units and regions; a bad polygon is reported before any expensive work.
 Comparison start_comparison(const Image& measured, const Image& simulated,
+                            const StokesImageHeader& measured_header,
                             const CompareOptions& options) {
     Comparison comparison;
     CompareResult& result = comparison.result;
@@ -217,10 +195,7 @@ Comparison start_comparison(const Image& measured, const Image& simulated,
     result.height = measured.height();
     result.simulated_width = simulated.width();
     result.simulated_height = simulated.height();
-    result.units = "W/(m²·sr)";
-    if (const auto it = measured.attributes().find("units");
-        it != measured.attributes().end() && std::holds_alternative<std::string>(it->second))
-        result.units = std::get<std::string>(it->second);
+    result.units = measured_header.units.value_or("W/(m²·sr)");
     std::vector<Region>& regions = comparison.planes.regions;
     if (options.regions) {
         regions = options.regions->regions;
@@ -296,7 +271,7 @@ std::vector<float> measured_variance_without_channel(const Comparison& compariso
 using VarianceByQuantity = StokesValues<std::vector<float>>;
 
 // Per-pixel differences and z = (m − s)/√(σ_m² + σ_s²) for S0, S1, S2, with where each σ came from.
-void differences_and_z(Comparison& comparison, const Image& measured_in, const Image& simulated_in,
+void differences_and_z(Comparison& comparison, const Headers& headers,
                        const CompareOptions& options, VarianceByQuantity& var_measured,
                        VarianceByQuantity& var_simulated) {
     CompareResult& result = comparison.result;
@@ -309,7 +284,7 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
         const std::string& q = quantity_name(quantity);
         throw_if_cancelled(options.cancel, "comparison");
         NoiseSource source;
-        source.measured_dof = variance_dof(measured_in);
+        source.measured_dof = variance_dof(headers.measured);
         auto var_m = variance_channel(planes.measured, q, source.measured);
         if (!var_m)
             var_m = measured_variance_without_channel(comparison, quantity, options, source);
@@ -322,7 +297,7 @@ void differences_and_z(Comparison& comparison, const Image& measured_in, const I
                 options.simulated_name, q, q));
         }
         source.measured_sigma_median = median_sqrt(*var_m);
-        source.simulated_dof = variance_dof(simulated_in);
+        source.simulated_dof = variance_dof(headers.simulated);
         // Per pixel, a shared measured σ counts as exact: its estimation error is common to the
         // pixels.
         const double measured_pixel_dof =
@@ -652,7 +627,7 @@ void difference_histograms(ReportFiles& f) {
 // Full-resolution planes behind the figures.
 void planes_exr(ReportFiles& f) {
     Image exr_planes(f.result.width, f.result.height);
-    exr_planes.attributes()["units"] = f.result.units;
+    write_stokes_image_header(exr_planes, {.units = f.result.units});
     for (const auto& q : std::vector<std::string>{"S0", "S1", "S2", "DoLP", "AoP"}) {
         exr_planes.set_channel("measured." + q, f.planes.measured.channel(q));
         exr_planes.set_channel("simulated." + q, f.planes.simulated.channel(q));
@@ -691,16 +666,17 @@ Comparison compare(const Image& measured_in, const Image& simulated_in,
                    const CompareOptions& options) {
     require_stokes_channels(measured_in, options.measured_name, "measured");
     require_stokes_channels(simulated_in, options.simulated_name, "simulated");
-    Comparison comparison = start_comparison(measured_in, simulated_in, options);
+    const Headers headers{read_stokes_image_header(measured_in, options.measured_name),
+                          read_stokes_image_header(simulated_in, options.simulated_name)};
+    Comparison comparison = start_comparison(measured_in, simulated_in, headers.measured, options);
     comparison.result.design = options.design;
-    comparison.result.calibration_range = calibration_range(measured_in);
-    describe_sigma_contents(comparison.result, measured_in, simulated_in, options);
+    comparison.result.calibration_range = calibration_range(headers.measured);
+    describe_sigma_contents(comparison.result, headers, options);
     register_planes(comparison, measured_in, simulated_in, options);
     VarianceByQuantity var_measured, var_simulated;
-    differences_and_z(comparison, measured_in, simulated_in, options, var_measured, var_simulated);
+    differences_and_z(comparison, headers, options, var_measured, var_simulated);
     const std::vector<float> z_pooled = pooled_z(comparison.planes);
-    const std::optional<Band> band =
-        comparison_band(measured_in, simulated_in, options, comparison.result);
+    const std::optional<Band> band = comparison_band(headers, options, comparison.result);
     for (std::size_t r = 0; r < comparison.planes.regions.size(); ++r) {
         throw_if_cancelled(options.cancel, "comparison");
         comparison.result.regions.push_back(region_result(comparison.planes, comparison.result,

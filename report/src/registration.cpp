@@ -8,11 +8,11 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
-#include <variant>
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/interrupt_signals.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::report {
 
@@ -412,21 +412,17 @@ Registration register_images(const Image& measured, const Image& simulated,
 
 namespace {
 
-/// The renderer's camera attribute `name` of `simulated`, checked against `expected` to float
-/// precision.
-void check_camera_attribute(const Image& simulated, const std::string& name,
+/// The renderer's lens `values` (its `what`, from the simulated image's header), checked against
+/// `expected` to float precision.
+void check_camera_attribute(const std::optional<std::vector<double>>& values,
                             const std::vector<double>& expected, const std::string& camera_name,
                             const std::string& what) {
-    const auto it = simulated.attributes().find(name);
-    const auto* values = it == simulated.attributes().end()
-                             ? nullptr
-                             : std::get_if<std::vector<double>>(&it->second);
     if (!values)
         fail(
-            "registration by camera model {}: the simulated image has no '{}' header attribute; "
+            "registration by camera model {}: the simulated image's header has no camera {}; "
             "render it through "
             "that model (scene `camera: {{model: {}}}`) with this version of tirpol",
-            camera_name, name, camera_name);
+            camera_name, what, camera_name);
     // Missing trailing coefficients are zero (the renderer writes the shortest OpenCV layout that
     // holds them).
     const auto at = [](const std::vector<double>& v, std::size_t i) {
@@ -457,11 +453,12 @@ Registration register_by_camera_model(const Image& measured, const Image& simula
             "registration by camera model {}: the simulated image is {}×{}, the model and the "
             "measured image {}×{}",
             camera_name, simulated.width(), simulated.height(), w, h);
-    check_camera_attribute(simulated, "camera_intrinsics_px",
-                           {camera.fx, camera.fy, camera.cx, camera.cy}, camera_name,
+    const StokesImageHeader header = read_stokes_image_header(simulated, "the simulated image");
+    std::optional<std::vector<double>> intrinsics;
+    if (const auto& k = header.camera_intrinsics_px) intrinsics.emplace(k->begin(), k->end());
+    check_camera_attribute(intrinsics, {camera.fx, camera.fy, camera.cx, camera.cy}, camera_name,
                            "intrinsics fx fy cx cy");
-    check_camera_attribute(simulated, "camera_distortion", camera.distortion, camera_name,
-                           "distortion");
+    check_camera_attribute(header.camera_distortion, camera.distortion, camera_name, "distortion");
     Registration reg;
     reg.method = RegistrationMethod::CameraModel;
     reg.note = fmt::format(

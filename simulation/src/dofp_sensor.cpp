@@ -7,6 +7,7 @@
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::simulation {
 
@@ -210,7 +211,7 @@ Image DofpSensor::frame(const Image& stokes, std::uint64_t frame_index) const {
         std::vector<double>(m_spec.pattern_deg.begin(), m_spec.pattern_deg.end());
     out.attributes()["frame_index"] = static_cast<int>(frame_index);
     out.attributes()["counts_noise_sigma"] = m_noise_sigma_counts;
-    out.attributes()["units"] = std::string("counts: DN");
+    write_stokes_image_header(out, {.units = "counts: DN"});
     return out;
 }
 

@@ -1,6 +1,5 @@
 #include "tirpol/simulation/pinhole_camera.h"
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -222,13 +221,7 @@ PinholeCamera PinholeCamera::rotated(const Mat3& rotation) const {
 }
 
 Vec3 PinholeCamera::ray_direction(double u, double v) const {
-    // Without distortion undistort is the affine map below (the same expressions, so the same
-    // doubles); written here it costs no out-of-line call into core per camera ray.
-    const bool distorted = std::any_of(m_lens.distortion.begin(), m_lens.distortion.end(),
-                                       [](double c) { return c != 0.0; });
-    const Eigen::Vector2d p = distorted ? m_lens.undistort(Eigen::Vector2d(u - 0.5, v - 0.5))
-                                        : Eigen::Vector2d(((u - 0.5) - m_lens.cx) / m_lens.fx,
-                                                          ((v - 0.5) - m_lens.cy) / m_lens.fy);
+    const Vec2 p = m_lens.undistort(Vec2(u - 0.5, v - 0.5));
     return (m_world_from_camera * Vec3(p.x(), p.y(), 1.0)).normalized();
 }
 

@@ -24,6 +24,7 @@
 #include "tirpol/core/log.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::simulation {
@@ -576,14 +577,22 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
     if (options.cancel && options.cancel->load()) throw Cancelled("render cancelled");
     if (progress) progress->finish();
 
+    const CameraModel& lens = scene.camera.lens_model();
+    write_stokes_image_header(
+        image, {.units = "W/(m^2 sr) band radiance",
+                .band_um = std::array{scene.band.lo_um(), scene.band.hi_um()},
+                // Degrees of freedom of the S*_var channels (R − 1 for R i.i.d. replicates), so
+                // that a comparison can allow for the Student-t tails of a ratio with an
+                // estimated variance.
+                .variance_dof = replicates - 1,
+                // The lens rendered through (OpenCV pixel convention), so a comparison can check
+                // that it is the measured camera's calibrated model
+                // (report::register_by_camera_model).
+                .camera_intrinsics_px = std::array{lens.fx, lens.fy, lens.cx, lens.cy},
+                .camera_distortion = lens.distortion});
     auto& attrs = image.attributes();
-    attrs["units"] = std::string("W/(m^2 sr) band radiance");
-    attrs["band_um"] = std::vector<double>{scene.band.lo_um(), scene.band.hi_um()};
     attrs["band_rsr"] = std::string(scene.band.rsr() ? "yes" : "none");
     attrs["spp"] = spp;
-    // Degrees of freedom of the S*_var channels (R − 1 for R i.i.d. replicates), so that a
-    // comparison can allow for the Student-t tails of a ratio with an estimated variance.
-    attrs["variance_dof"] = replicates - 1;
     attrs["replicates"] = replicates;
     attrs["seed"] = std::to_string(seed);
     attrs["max_bounces"] = scene.sampling.max_bounces;
@@ -595,11 +604,6 @@ Image render(const Scene& scene, const RenderOptions& options, RenderStatistics*
         "top; S1 = I0 - I90; "
         "S3 > 0 right-circular seen by the receiver");
     attrs["renderer"] = std::string("tirpol polarized path tracer (Embree 3, TBB)");
-    // The lens rendered through (OpenCV pixel convention), so a comparison can check that it is the
-    // measured camera's calibrated model (report::register_by_camera_model).
-    const CameraModel& lens = scene.camera.lens_model();
-    attrs["camera_intrinsics_px"] = std::vector<double>{lens.fx, lens.fy, lens.cx, lens.cy};
-    attrs["camera_distortion"] = lens.distortion;
 
     if (statistics) {
         *statistics = stats;

@@ -6,6 +6,7 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/solar_position.h"
 #include "tirpol/thermal/thermal_config.h"
@@ -201,7 +202,7 @@ std::vector<std::filesystem::path> export_scene_temperatures(const ConfigNode& r
         if (!p.map_k.empty()) {
             Image map(p.width, p.height);
             map.set_channel("temperature_k", p.map_k);
-            map.attributes()["units"] = std::string("K");
+            write_stokes_image_header(map, {.units = "K"});
             const auto path = dir / (name + ".exr");
             write_exr(path, map);
             written.push_back(path);

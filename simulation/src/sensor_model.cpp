@@ -6,6 +6,7 @@
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/geometry.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::simulation {
 
@@ -98,7 +99,7 @@ std::vector<Image> polarizer_images(const Image& stokes, const SensorModel& mode
         if (model.counts) img.attributes()["counts_noise_sigma"] = sigma_counts;
         img.attributes()["polarizer_angle_deg"] = angle_deg;
         img.attributes()["frame_index"] = static_cast<int>(frame_index);
-        img.attributes()["units"] = std::string("radiance: W/(m^2 sr); counts: DN");
+        write_stokes_image_header(img, {.units = "radiance: W/(m^2 sr); counts: DN"});
         out.push_back(std::move(img));
     }
     return out;

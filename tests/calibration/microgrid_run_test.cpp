@@ -18,6 +18,7 @@
 #include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/session.h"
+#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 namespace {
@@ -151,7 +152,10 @@ TEST(MicrogridRun, CalibrationAndReductionOfSessionsReportInTheUnitsTheyWrite) {
     EXPECT_THAT(microgrid_calibration_text(cal),
                 HasSubstr("microgrid calibration 32×24 from 2 open-blackbody and 16 polarizer"));
     const Image written = read_exr(c.output);
-    EXPECT_EQ(std::get<std::string>(written.attributes().at("band_um")), "8 14");
+    // Two reals, as every other image's band (read_stokes_image_header reads it).
+    EXPECT_EQ(std::get<std::vector<double>>(written.attributes().at("band_um")),
+              (std::vector<double>{8.0, 14.0}));
+    EXPECT_EQ(read_stokes_image_header(written, c.output).band_um, (std::array{8.0, 14.0}));
 
     MicrogridReduceRunOptions r;
     r.session = (dir / "scene").string();

@@ -104,7 +104,7 @@ TEST(CameraModelRegistration, AnotherLensOrAMissingHeaderOrSizeIsAnError) {
     pair.simulated.attributes().erase("camera_intrinsics_px");
     msg = error_of(
         [&] { register_by_camera_model(pair.measured, pair.simulated, model, "cam.yaml"); });
-    EXPECT_THAT(msg, HasSubstr("no 'camera_intrinsics_px' header attribute"));
+    EXPECT_THAT(msg, HasSubstr("header has no camera intrinsics fx fy cx cy"));
 
     auto small = model;
     small.width = 100;

@@ -17,6 +17,7 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/source_tree.h"
+#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_run.h"
@@ -139,8 +140,10 @@ void add_truth_render_noise(Image& simulated, const Image& truth) {
         for (std::size_t i = 0; i < var.size(); ++i)
             if (std::isfinite(truth_var[i])) var[i] += truth_var[i];
     }
-    simulated.attributes()["variance_note"] =
-        std::string("S0_var..S2_var include the Monte Carlo variance of the twin's truth render");
+    write_stokes_image_header(
+        simulated,
+        {.variance_note = "S0_var..S2_var include the Monte Carlo variance of the twin's truth "
+                          "render"});
 }
 
 report::Region rect_region(const std::string& name, const calibration::PixelRect& r) {

@@ -98,9 +98,9 @@ struct MicrogridCalibrationRun {
 };
 
 /// Calibrates the camera from the sessions (calibrate_microgrid_sessions) and writes the per-pixel
-/// calibration EXR (MicrogridPixelCalibration::to_image, attribute `band_um` "LO HI"). Throws
-/// tirpol::OptionValueError naming --band-um unless 0 < LO < HI, OutputConflict as run_demosaic
-/// does, tirpol::Error as calibrate_microgrid_sessions does.
+/// calibration EXR (MicrogridPixelCalibration::to_image, attribute `band_um`: two reals LO HI).
+/// Throws tirpol::OptionValueError naming --band-um unless 0 < LO < HI, OutputConflict as
+/// run_demosaic does, tirpol::Error as calibrate_microgrid_sessions does.
 MicrogridCalibrationRun run_microgrid_calibration(const MicrogridCalibrationRunOptions& options);
 
 /// Records used, the NUC's gain spread and fit, the analyzers' diattenuation and axis error, the

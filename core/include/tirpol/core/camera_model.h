@@ -46,7 +46,17 @@ struct CameraModel {
     Vec2 project(const Vec3& point_camera) const;
     /// Normalised undistorted image coordinates (x/z, y/z) of OpenCV pixel (u, v): the exact
     /// inverse of project() (fixed-point start, then Newton on the forward model to 1e-12).
-    Vec2 undistort(const Vec2& pixel) const;
+    /// Inline for a distortion-free lens, where it is affine: the renderer calls it per camera ray.
+    Vec2 undistort(const Vec2& pixel) const {
+        const Vec2 goal((pixel.x() - cx) / fx, (pixel.y() - cy) / fy);
+        for (double c : distortion)
+            if (c != 0.0) return undistort_distorted(goal);
+        return goal;
+    }
+
+private:
+    /// undistort() of a lens with distortion, from the distortion-free coordinates `goal`.
+    Vec2 undistort_distorted(const Vec2& goal) const;
 };
 
 /// Where the camera is: x_camera = R · x_world + t (OpenCV's rvec/tvec convention, R as a matrix).
