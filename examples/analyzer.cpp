@@ -16,7 +16,6 @@
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::examples {
 

@@ -11,10 +11,10 @@
 #include "tirpol/calibration/session_calibration.h"
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/session.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

@@ -9,7 +9,6 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

@@ -5,7 +5,6 @@
 #include "tirpol/calibration/stokes_reduction.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

@@ -7,7 +7,7 @@
 #include "stokes_uncertainty.h"
 #include "tirpol/calibration/microgrid_session.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/stokes_image_header.h"
+#include "tirpol/core/exr_io.h"
 
 namespace tirpol::calibration {
 

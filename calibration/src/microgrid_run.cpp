@@ -12,7 +12,6 @@
 #include "tirpol/core/quicklook.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/session.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/session.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

@@ -9,10 +9,10 @@
 
 #include "offset_drift.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/core/utc_time.h"
 #include "validate.h"
 

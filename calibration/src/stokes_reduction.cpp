@@ -8,10 +8,10 @@
 #include "stokes_attributes.h"
 #include "stokes_uncertainty.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/core/stokes_image_header.h"
 #include "validate.h"
 
 namespace tirpol::calibration {

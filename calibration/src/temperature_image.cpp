@@ -6,7 +6,6 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/output_guard.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 

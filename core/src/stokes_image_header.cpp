@@ -1,9 +1,11 @@
-#include "tirpol/core/stokes_image_header.h"
+// StokesImageHeader (declared in exr_io.h): the on-disk names and types of the header attributes
+// modules exchange, in this one place.
 
 #include <cmath>
 #include <variant>
 
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 
 namespace tirpol {
 

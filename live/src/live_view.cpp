@@ -10,7 +10,7 @@
 #include "tirpol/acquisition/stage.h"
 #include "tirpol/calibration/microgrid_stokes.h"
 #include "tirpol/core/error.h"
-#include "tirpol/core/stokes_image_header.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/utc_time.h"
 
 namespace tirpol::live {

@@ -14,7 +14,6 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/radiometry.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::report {
 

@@ -11,8 +11,8 @@
 
 #include "tirpol/core/config.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/interrupt_signals.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::report {
 

@@ -6,8 +6,8 @@
 #include "rng.h"
 #include "temperature_value.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/geometry.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::simulation {
 

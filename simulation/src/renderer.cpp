@@ -19,12 +19,12 @@
 #include "sobol_sampler.h"
 #include "surface_basis.h"
 #include "tirpol/core/error.h"
+#include "tirpol/core/exr_io.h"
 #include "tirpol/core/interrupt_signals.h"
 #include "tirpol/core/limits.h"
 #include "tirpol/core/log.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/stokes.h"
-#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/materials/emissivity.h"
 
 namespace tirpol::simulation {

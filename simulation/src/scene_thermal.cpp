@@ -6,7 +6,6 @@
 #include "tirpol/core/atomic_file.h"
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
-#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/thermal/civil_time.h"
 #include "tirpol/thermal/solar_position.h"
 #include "tirpol/thermal/thermal_config.h"

@@ -18,7 +18,6 @@
 #include "tirpol/core/limits.h"
 #include "tirpol/core/output_guard.h"
 #include "tirpol/core/session.h"
-#include "tirpol/core/stokes_image_header.h"
 
 namespace tirpol::calibration {
 namespace {

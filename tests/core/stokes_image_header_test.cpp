@@ -2,8 +2,6 @@
 // (and the on-disk types other readers expect), and a present attribute of the wrong type or shape
 // is an error naming it and the file.
 
-#include "tirpol/core/stokes_image_header.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,9 +10,9 @@
 #include "tirpol/core/error.h"
 #include "tirpol/core/exr_io.h"
 
-using tirpol::test::error_of;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
+using tirpol::test::error_of;
 
 namespace tirpol {
 namespace {

@@ -17,7 +17,6 @@
 #include "tirpol/core/exr_io.h"
 #include "tirpol/core/radiometry.h"
 #include "tirpol/core/source_tree.h"
-#include "tirpol/core/stokes_image_header.h"
 #include "tirpol/core/utc_time.h"
 #include "tirpol/core/utf8.h"
 #include "tirpol/fitting/fit_run.h"
